@@ -1,0 +1,1 @@
+//! Expansion: IR to tokens.

@@ -1,0 +1,150 @@
+//! Diagnostics: one error with its span and help, the accumulator every stage reports into,
+//! and rendering to the text shown by the macro, the CLI and the snapshot tests.
+//!
+//! Every message points into the spec twice over: `--> path:line:col`, then the offending line
+//! with a caret underline, then `= help:` with a fix.
+
+use std::fmt::Write as _;
+use std::ops::Range;
+
+use crate::source::SpecSource;
+
+/// One error in a spec.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Diagnostic {
+    /// Byte range in the spec text (empty range: a point; `0..0` when the error is the whole
+    /// file, e.g. a missing file).
+    pub span: Range<usize>,
+    /// What is wrong, one sentence without a final period.
+    pub message: String,
+    /// How to fix it.
+    pub help: Option<String>,
+}
+
+/// Collects every error of a spec, so that all are reported at once.
+#[derive(Debug, Default)]
+pub struct Diagnostics {
+    items: Vec<Diagnostic>,
+}
+
+impl Diagnostics {
+    /// An empty accumulator.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Record an error. Returns it so a help line can be attached.
+    pub fn error(&mut self, span: Range<usize>, message: impl Into<String>) -> &mut Diagnostic {
+        self.items.push(Diagnostic {
+            span,
+            message: message.into(),
+            help: None,
+        });
+        let last = self.items.len() - 1;
+        &mut self.items[last]
+    }
+
+    /// True when nothing was reported.
+    pub fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+
+    /// Number of errors.
+    pub fn len(&self) -> usize {
+        self.items.len()
+    }
+
+    /// The errors sorted by position (then message), duplicates removed.
+    pub fn into_sorted(mut self) -> Vec<Diagnostic> {
+        self.items.sort_by(|a, b| {
+            (a.span.start, a.span.end, &a.message).cmp(&(b.span.start, b.span.end, &b.message))
+        });
+        self.items.dedup();
+        self.items
+    }
+}
+
+impl Diagnostic {
+    /// Attach a help line.
+    pub fn help(&mut self, help: impl Into<String>) -> &mut Self {
+        self.help = Some(help.into());
+        self
+    }
+
+    /// Render as text: message, location, quoted line with carets, help.
+    pub fn render(&self, source: &SpecSource) -> String {
+        let span = source.clamp(self.span.clone());
+        let (line, col) = source.line_col(span.start);
+        let mut out = String::new();
+        let _ = writeln!(out, "error: {}", self.message);
+        let _ = writeln!(out, "  --> {}:{}:{}", source.path, line, col);
+        if !source.text.is_empty() {
+            let text = source.line_text(line);
+            let gutter = line.to_string();
+            let pad = " ".repeat(gutter.len());
+            // Underline up to the end of the span or of the line, at least one caret.
+            let line_chars = text.chars().count();
+            let (end_line, end_col) = source.line_col(span.end);
+            let last_col = if end_line == line {
+                end_col
+            } else {
+                line_chars + 1
+            };
+            let width = last_col.saturating_sub(col).max(1);
+            let _ = writeln!(out, "{pad} |");
+            let _ = writeln!(out, "{gutter} | {text}");
+            let _ = writeln!(
+                out,
+                "{pad} | {}{}",
+                " ".repeat(col.saturating_sub(1)),
+                "^".repeat(width)
+            );
+        }
+        if let Some(help) = &self.help {
+            let _ = writeln!(out, "  = help: {help}");
+        }
+        out
+    }
+}
+
+/// Render a list of diagnostics, separated by blank lines.
+pub fn render_all(diagnostics: &[Diagnostic], source: &SpecSource) -> String {
+    diagnostics
+        .iter()
+        .map(|d| d.render(source))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The closest candidate to a misspelled name, if one is close enough to suggest.
+pub fn did_you_mean<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let normalized = normalize(name);
+    candidates
+        .into_iter()
+        .map(|c| (edit_distance(&normalized, &normalize(c)), c))
+        .filter(|(d, c)| *d <= (c.len().max(name.len()) / 3).max(1))
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, c)| c)
+}
+
+fn normalize(s: &str) -> String {
+    s.chars()
+        .filter(|c| !matches!(c, '-' | '_' | '/' | ' '))
+        .flat_map(char::to_lowercase)
+        .collect()
+}
+
+/// Levenshtein distance.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1];
+        for (j, cb) in b.iter().enumerate() {
+            let sub = prev[j] + usize::from(ca != *cb);
+            cur.push(sub.min(prev[j + 1] + 1).min(cur[j] + 1));
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}

@@ -1,0 +1,533 @@
+//! The checked, resolved protocol: what validation produces and every consumer (expansion,
+//! docs, interpreter, diff) reads.
+//!
+//! Nothing here carries a span, a default still to apply or a string still to parse: every
+//! size, offset, byte order and reference is resolved. Downstream code trusts it and never
+//! reports a user error. Order is always the spec's order.
+
+/// A whole protocol spec, checked.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Protocol {
+    /// Module name (`[protocol] name`), a valid snake_case Rust identifier.
+    pub name: String,
+    /// Free version string of the spec (`[protocol] version`), empty when absent.
+    pub version: String,
+    /// Documentation of the protocol.
+    pub doc: String,
+    /// Spec constants, in spec order.
+    pub constants: Vec<Constant>,
+    /// Named address sets, in spec order.
+    pub addresses: Vec<AddressSet>,
+    /// Enums, in spec order.
+    pub enums: Vec<Enum>,
+    /// Payload structs, in spec order. A struct only refers to structs before it in this list
+    /// (validation sorts dependencies first, otherwise keeping spec order).
+    pub structs: Vec<Struct>,
+    /// Frame formats; at least one. The first is the default.
+    pub frames: Vec<Frame>,
+    /// Directions; empty when every command has one payload.
+    pub directions: Vec<Direction>,
+    /// Commands, in spec order.
+    pub commands: Vec<Command>,
+}
+
+/// A named integer constant of the spec.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Constant {
+    /// Name as written (SCREAMING_SNAKE_CASE).
+    pub name: String,
+    /// Value.
+    pub value: u64,
+    /// Documentation.
+    pub doc: String,
+}
+
+/// A named address, or inclusive range of addresses.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AddressSet {
+    /// Name as written (snake_case).
+    pub name: String,
+    /// Lowest address of the set.
+    pub first: u64,
+    /// Highest address of the set (== `first` for a single address).
+    pub last: u64,
+    /// Documentation.
+    pub doc: String,
+}
+
+/// Byte order of a multi-byte value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Endian {
+    /// Least significant byte first.
+    Little,
+    /// Most significant byte first.
+    Big,
+}
+
+/// A primitive wire type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Prim {
+    /// `u8`
+    U8,
+    /// `i8`
+    I8,
+    /// `u16`
+    U16,
+    /// `i16`
+    I16,
+    /// `u32`
+    U32,
+    /// `i32`
+    I32,
+    /// `u64`
+    U64,
+    /// `i64`
+    I64,
+    /// `f32`, IEEE 754 binary32
+    F32,
+    /// `f64`, IEEE 754 binary64
+    F64,
+    /// `bool`, one byte: 0 is false, anything else true (encoded as 1)
+    Bool,
+}
+
+impl Prim {
+    /// Size on the wire, in bytes.
+    pub fn size(self) -> usize {
+        match self {
+            Prim::U8 | Prim::I8 | Prim::Bool => 1,
+            Prim::U16 | Prim::I16 => 2,
+            Prim::U32 | Prim::I32 | Prim::F32 => 4,
+            Prim::U64 | Prim::I64 | Prim::F64 => 8,
+        }
+    }
+
+    /// The Rust type name.
+    pub fn rust_name(self) -> &'static str {
+        match self {
+            Prim::U8 => "u8",
+            Prim::I8 => "i8",
+            Prim::U16 => "u16",
+            Prim::I16 => "i16",
+            Prim::U32 => "u32",
+            Prim::I32 => "i32",
+            Prim::U64 => "u64",
+            Prim::I64 => "i64",
+            Prim::F32 => "f32",
+            Prim::F64 => "f64",
+            Prim::Bool => "bool",
+        }
+    }
+
+    /// True for the unsigned integer types.
+    pub fn is_unsigned(self) -> bool {
+        matches!(self, Prim::U8 | Prim::U16 | Prim::U32 | Prim::U64)
+    }
+
+    /// True for the signed integer types.
+    pub fn is_signed(self) -> bool {
+        matches!(self, Prim::I8 | Prim::I16 | Prim::I32 | Prim::I64)
+    }
+
+    /// True for `f32` and `f64`.
+    pub fn is_float(self) -> bool {
+        matches!(self, Prim::F32 | Prim::F64)
+    }
+}
+
+/// A primitive with its byte order (the byte order of a one-byte type is irrelevant but set).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Scalar {
+    /// The type.
+    pub prim: Prim,
+    /// The byte order.
+    pub endian: Endian,
+}
+
+/// A payload struct.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Struct {
+    /// Rust name (PascalCase, as written).
+    pub name: String,
+    /// Documentation.
+    pub doc: String,
+    /// Fields in wire order, padding included.
+    pub fields: Vec<Field>,
+    /// Wire size in bytes (sum of the field sizes).
+    pub size: usize,
+}
+
+/// One field of a payload struct.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Field {
+    /// Rust field name (snake_case as written; keywords become raw identifiers in expansion).
+    /// Empty for padding.
+    pub name: String,
+    /// Documentation.
+    pub doc: String,
+    /// Byte offset within the struct.
+    pub offset: usize,
+    /// Wire size in bytes.
+    pub size: usize,
+    /// What the field is.
+    pub kind: FieldKind,
+    /// Physical unit, for docs (empty when none).
+    pub unit: String,
+}
+
+/// What a struct field holds.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FieldKind {
+    /// Reserved bytes: written as zero, ignored when read.
+    Padding,
+    /// A value, or a fixed array of values.
+    Value {
+        /// Element type.
+        ty: ValueType,
+        /// `Some(n)` for a fixed array of n elements.
+        count: Option<usize>,
+    },
+    /// An integer whose bits are split into named members.
+    Bits {
+        /// The integer on the wire.
+        word: Scalar,
+        /// Members, lowest bit first as written in the spec.
+        members: Vec<BitMember>,
+    },
+}
+
+/// The element type of a value field.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ValueType {
+    /// A primitive. With `scale`, the Rust value is `raw as f64 * scale` (an `f32` or `f64`
+    /// per `physical`).
+    Scalar {
+        /// Wire type.
+        scalar: Scalar,
+        /// Scaling from raw to physical value.
+        scale: Option<Scale>,
+    },
+    /// A nested struct (index into [`Protocol::structs`]).
+    Struct(usize),
+    /// An enum (index into [`Protocol::enums`]) with its wire integer.
+    Enum(usize, Scalar),
+}
+
+/// Scaling of a raw integer into a physical value: `physical = raw * factor + offset`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scale {
+    /// Multiplier.
+    pub factor: f64,
+    /// Added after multiplying.
+    pub offset: f64,
+    /// Rust type of the physical value (`F32` or `F64`).
+    pub physical: Prim,
+}
+
+/// A named group of bits inside a `Bits` field or a header word.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BitMember {
+    /// Name (snake_case).
+    pub name: String,
+    /// Documentation.
+    pub doc: String,
+    /// Lowest bit, counted from the least significant bit of the word.
+    pub shift: u32,
+    /// Number of bits.
+    pub width: u32,
+    /// Rust type of the member: `Bool` for a one-bit flag unless written otherwise, else the
+    /// smallest unsigned type that holds `width` bits.
+    pub prim: Prim,
+    /// The enum (index into [`Protocol::enums`]) the member holds, if any.
+    pub enum_index: Option<usize>,
+}
+
+/// An enum with explicit values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Enum {
+    /// Rust name (PascalCase, as written).
+    pub name: String,
+    /// Documentation.
+    pub doc: String,
+    /// Integer type of the values.
+    pub prim: Prim,
+    /// Variants in spec order.
+    pub variants: Vec<EnumVariant>,
+    /// What a value with no variant becomes.
+    pub unknown: UnknownPolicy,
+}
+
+/// One enum variant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnumVariant {
+    /// Name as written in the spec (SCREAMING_SNAKE_CASE).
+    pub name: String,
+    /// Rust variant name (PascalCase of `name`).
+    pub rust_name: String,
+    /// Value (two's complement bits for signed enums).
+    pub value: u64,
+    /// Documentation.
+    pub doc: String,
+}
+
+/// What an enum does with a value that has no variant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UnknownPolicy {
+    /// Decoding fails.
+    Reject,
+    /// Decoding keeps the raw value in an `Unknown(raw)` variant.
+    Keep,
+}
+
+/// A position in a frame: counted from its first byte, or back from its end.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pos {
+    /// Offset from the first byte of the frame.
+    Start(usize),
+    /// Offset from the end of the frame: `End(2)` is the byte two before the end, i.e. the
+    /// second-to-last byte starts at `End(2)`.
+    End(usize),
+}
+
+/// A frame format.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    /// Name as written (snake_case).
+    pub name: String,
+    /// Documentation.
+    pub doc: String,
+    /// Sync bytes at offset 0.
+    pub sync: Vec<u8>,
+    /// Bytes from the frame start to the payload (sync, header fields, header checks).
+    pub header_len: usize,
+    /// Bytes after the payload (frame checks, trailers).
+    pub trailer_len: usize,
+    /// Smallest payload.
+    pub payload_min: usize,
+    /// Largest payload.
+    pub payload_max: usize,
+    /// Header values (fields and bitfield members) in wire order.
+    pub values: Vec<HeaderValue>,
+    /// How the total frame length is known.
+    pub length: Length,
+    /// Indices into `values` of the dispatch key fields, in key order (empty: no dispatch).
+    pub dispatch: Vec<usize>,
+    /// Checks in the order they are verified on decode and computed on encode (header checks
+    /// first, then frame checks in wire order).
+    pub checks: Vec<Check>,
+    /// Constant byte runs after the payload (trailers such as an end word).
+    pub trailers: Vec<Trailer>,
+    /// The wire elements in order, for docs and diagrams.
+    pub elements: Vec<Element>,
+}
+
+impl Frame {
+    /// Smallest total frame length.
+    pub fn min_len(&self) -> usize {
+        self.header_len + self.payload_min + self.trailer_len
+    }
+    /// Largest total frame length.
+    pub fn max_len(&self) -> usize {
+        self.header_len + self.payload_max + self.trailer_len
+    }
+}
+
+/// One element of a frame layout, for docs.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Element {
+    /// Sync bytes.
+    Sync(Vec<u8>),
+    /// A header word (index of its first value in `Frame::values`; `len` values share it).
+    Word {
+        /// Name of the word (field name).
+        name: String,
+        /// Offset from the frame start.
+        offset: usize,
+        /// Wire type.
+        scalar: Scalar,
+        /// Indices into `Frame::values`.
+        values: Vec<usize>,
+    },
+    /// The payload.
+    Payload,
+    /// A check (index into `Frame::checks`).
+    Check(usize),
+    /// A trailer (index into `Frame::trailers`).
+    Trailer(usize),
+}
+
+/// A value stored in the header: a whole field, or some bits of a header word.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeaderValue {
+    /// Name (snake_case).
+    pub name: String,
+    /// Documentation.
+    pub doc: String,
+    /// Offset of the word from the frame start (always inside the header).
+    pub offset: usize,
+    /// The word on the wire.
+    pub word: Scalar,
+    /// Lowest bit of the value in the word (0 for a whole field).
+    pub shift: u32,
+    /// Number of bits (8 * size for a whole field).
+    pub width: u32,
+    /// Rust type of the value.
+    pub prim: Prim,
+    /// What the value is for.
+    pub role: Role,
+}
+
+/// What a header value is for.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Role {
+    /// Set by the user, exposed in the generated `Header` struct.
+    User {
+        /// True when the spec marks the field as holding addresses of `[addresses]`.
+        addresses: bool,
+    },
+    /// The length field (see [`Frame::length`]); computed on encode.
+    Length,
+    /// Part of the dispatch key; set from the command on encode.
+    Dispatch,
+    /// Must equal this value; written on encode, checked on decode.
+    Const(u64),
+}
+
+/// How the total length of a frame is known.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Length {
+    /// Every frame has the same length.
+    Fixed(usize),
+    /// `total = value + adjust`, where `value` is the header value at index `value`.
+    Field {
+        /// Index into `Frame::values`.
+        value: usize,
+        /// Added to the field value to give the total frame length (may be negative).
+        adjust: i64,
+    },
+}
+
+/// A check: a checksum or CRC over a range of the frame, stored in the frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Check {
+    /// Name (snake_case, defaults to the algorithm kind).
+    pub name: String,
+    /// Documentation.
+    pub doc: String,
+    /// The algorithm.
+    pub algorithm: Algorithm,
+    /// Where the check value is stored.
+    pub at: Pos,
+    /// Bytes of the stored check value.
+    pub size: usize,
+    /// Byte order of the stored value.
+    pub endian: Endian,
+    /// First byte covered.
+    pub from: Pos,
+    /// One past the last byte covered.
+    pub to: Pos,
+    /// True when the check is inside the header: it is verified before the length is trusted.
+    pub header: bool,
+}
+
+/// A checksum algorithm.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Algorithm {
+    /// Sum of the bytes modulo `modulus` (256 or 255).
+    Sum {
+        /// 255 or 256.
+        modulus: u32,
+    },
+    /// XOR of the bytes.
+    Xor,
+    /// A CRC.
+    Crc(CrcParams),
+}
+
+/// Parameters of a CRC in the Rocksoft model (as the `crc` crate's `Algorithm`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CrcParams {
+    /// Catalogue constant of the `crc` crate (`CRC_16_UMTS`), or `None` for a custom CRC.
+    pub catalog: Option<String>,
+    /// Name to show in docs (`CRC-16/UMTS`, or the spec's name of a custom CRC).
+    pub display: String,
+    /// Width in bits: 8, 16, 32 or 64.
+    pub width: u8,
+    /// Polynomial, normal form.
+    pub poly: u64,
+    /// Initial register value (un-reflected).
+    pub init: u64,
+    /// Reflect input bytes.
+    pub refin: bool,
+    /// Reflect the result.
+    pub refout: bool,
+    /// XOR applied to the result.
+    pub xorout: u64,
+    /// CRC of `b"123456789"`.
+    pub check: u64,
+    /// Residue (for the `crc` crate's `Algorithm`).
+    pub residue: u64,
+    /// Lookup table slices: 0 (no table), 1 or 16.
+    pub table: u8,
+}
+
+/// A constant byte run after the payload.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Trailer {
+    /// Name (snake_case).
+    pub name: String,
+    /// Documentation.
+    pub doc: String,
+    /// Where it starts.
+    pub at: Pos,
+    /// The bytes.
+    pub bytes: Vec<u8>,
+}
+
+/// A direction of travel, which selects a command's payload.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Direction {
+    /// Name (`request` or `response`).
+    pub name: String,
+    /// Documentation.
+    pub doc: String,
+    /// How a decoder tells this direction from the header.
+    pub rule: DirectionRule,
+}
+
+/// How a decoder recognises a direction.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DirectionRule {
+    /// A header value (index into the first frame's `values`) lies in an address set (index
+    /// into [`Protocol::addresses`]).
+    InSet {
+        /// Header value index.
+        value: usize,
+        /// Address set index.
+        set: usize,
+    },
+    /// A header value equals a constant.
+    Equals {
+        /// Header value index.
+        value: usize,
+        /// The constant.
+        equals: u64,
+    },
+}
+
+/// A command.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Command {
+    /// Name as written (SCREAMING_SNAKE_CASE).
+    pub name: String,
+    /// Rust variant name (PascalCase of `name`).
+    pub rust_name: String,
+    /// Key: one value per dispatch field of the frame.
+    pub id: Vec<u64>,
+    /// Documentation.
+    pub doc: String,
+    /// Payload struct (index into [`Protocol::structs`]) per direction, in the order of
+    /// [`Protocol::directions`]; a single entry when the spec has no directions. `None`: the
+    /// payload is empty.
+    pub payloads: Vec<Option<usize>>,
+}

@@ -1,0 +1,310 @@
+//! The spec as written: a serde model that mirrors the TOML file one to one.
+//!
+//! Every value a diagnostic may point at is `Spanned`. Nothing is interpreted here: defaults,
+//! names, sizes and references are resolved by `validate`, the only place that reports user
+//! errors besides the TOML shape errors that deserialization itself finds.
+
+use indexmap::IndexMap;
+use serde::Deserialize;
+use toml::Spanned;
+
+/// A spanned string.
+pub type SStr = Spanned<String>;
+/// A spanned integer (TOML integers are i64).
+pub type SInt = Spanned<i64>;
+/// An ordered map keyed by spanned names, in spec order.
+pub type Named<T> = IndexMap<SStr, Spanned<T>>;
+
+/// The whole spec file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpecFile {
+    /// `[protocol]`: name, version, documentation, default byte order.
+    pub protocol: Spanned<ProtocolTable>,
+    /// `[constants]`: named integers usable where a count or value is expected.
+    #[serde(default)]
+    pub constants: Named<ConstantDef>,
+    /// `[addresses]`: named addresses and address ranges.
+    #[serde(default)]
+    pub addresses: Named<AddressDef>,
+    /// `[checksums.NAME]`: custom checksum algorithms.
+    #[serde(default)]
+    pub checksums: Named<ChecksumDef>,
+    /// `[frames.NAME]`: frame formats.
+    #[serde(default)]
+    pub frames: Named<FrameDef>,
+    /// `[directions]`: how a decoder tells a request from a response.
+    #[serde(default)]
+    pub directions: Named<DirectionDef>,
+    /// `[commands]`: one line per command.
+    #[serde(default)]
+    pub commands: Named<CommandDef>,
+    /// `[structs.NAME]`: payload structs.
+    #[serde(default)]
+    pub structs: Named<StructDef>,
+    /// `[enums.NAME]`: enums.
+    #[serde(default)]
+    pub enums: Named<EnumDef>,
+}
+
+/// `[protocol]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProtocolTable {
+    /// Module name of the generated code (snake_case).
+    pub name: SStr,
+    /// Free version string.
+    pub version: Option<SStr>,
+    /// Documentation (Markdown).
+    pub doc: Option<SStr>,
+    /// Default byte order of multi-byte fields: `"little"` (default) or `"big"`.
+    pub byte_order: Option<SStr>,
+}
+
+/// A constant: `NAME = 12` or `NAME = { value = 12, doc = "..." }`.
+///
+/// Untagged enums buffer their input, so nothing inside them can be `Spanned`: the span of the
+/// whole value is kept by the map entry.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum ConstantDef {
+    /// `NAME = 12`
+    Bare(i64),
+    /// `NAME = { value = 12, doc = "..." }`
+    Full(ConstantFull),
+}
+
+/// The table form of a constant.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConstantFull {
+    /// Value.
+    pub value: i64,
+    /// Documentation.
+    pub doc: Option<String>,
+}
+
+/// An address set: `{ range = [lo, hi] }` or `{ value = v }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AddressDef {
+    /// Inclusive range.
+    pub range: Option<Spanned<Vec<SInt>>>,
+    /// Single address.
+    pub value: Option<SInt>,
+    /// Documentation.
+    pub doc: Option<SStr>,
+}
+
+/// A custom checksum algorithm.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChecksumDef {
+    /// CRC parameters (Rocksoft model).
+    pub crc: Option<Spanned<CrcDef>>,
+    /// Lookup table slices: 0, 1 or 16 (default 16).
+    pub table: Option<SInt>,
+    /// Documentation.
+    pub doc: Option<SStr>,
+}
+
+/// CRC parameters in the Rocksoft model (as in the `crc` crate's `Algorithm`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CrcDef {
+    /// 8, 16, 32 or 64.
+    pub width: SInt,
+    /// Polynomial, normal (MSB-first) form.
+    pub poly: SInt,
+    /// Initial register value, un-reflected.
+    pub init: SInt,
+    /// Reflect input bytes.
+    pub refin: Spanned<bool>,
+    /// Reflect the output.
+    pub refout: Spanned<bool>,
+    /// Final XOR.
+    pub xorout: SInt,
+    /// CRC of the ASCII bytes "123456789"; verified at expansion.
+    pub check: SInt,
+}
+
+/// `[frames.NAME]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrameDef {
+    /// Documentation.
+    pub doc: Option<SStr>,
+    /// The wire elements in order.
+    pub layout: Spanned<Vec<Spanned<ElementDef>>>,
+    /// Names of the fields that form the dispatch key, in key order.
+    pub dispatch: Option<Spanned<Vec<SStr>>>,
+}
+
+/// One element of a frame layout. Exactly one of `sync`, `field`, `payload`, `check`,
+/// `trailer` says what it is; validation checks the combination.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ElementDef {
+    /// Sync bytes (first element only).
+    pub sync: Option<Spanned<Vec<SInt>>>,
+    /// A header field with this name.
+    pub field: Option<SStr>,
+    /// The payload, with its size bounds.
+    pub payload: Option<Spanned<PayloadDef>>,
+    /// A check with this algorithm (catalogue name, built-in, or `[checksums]` name).
+    pub check: Option<SStr>,
+    /// A constant byte run after the payload.
+    pub trailer: Option<Spanned<Vec<SInt>>>,
+    /// Type of a field (`u8`, `u16be`, `u16le`, `u16`, ...).
+    #[serde(rename = "type")]
+    pub ty: Option<SStr>,
+    /// The field holds addresses of `[addresses]`.
+    pub addresses: Option<Spanned<bool>>,
+    /// The field is the frame's length and counts these elements (`"a..b"`, `"a"`, `"frame"`).
+    pub length_of: Option<SStr>,
+    /// The field must hold this value.
+    pub value: Option<SInt>,
+    /// The field is split into bit members.
+    pub bits: Option<Spanned<Vec<Spanned<BitDef>>>>,
+    /// Bytes a check covers (`"a..b"`, `"a"`, `"frame"`: everything before the check).
+    pub over: Option<SStr>,
+    /// Byte order of a check value (default: the protocol's).
+    pub byte_order: Option<SStr>,
+    /// Name of a check or trailer.
+    pub name: Option<SStr>,
+    /// Documentation.
+    pub doc: Option<SStr>,
+}
+
+/// `{ payload = { min = 0, max = 119 } }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PayloadDef {
+    /// Smallest payload (default 0).
+    pub min: Option<SInt>,
+    /// Largest payload (required: a decoder's buffer is sized from it).
+    pub max: Option<SInt>,
+}
+
+/// A bit member of a header field or struct field.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BitDef {
+    /// Name.
+    pub name: SStr,
+    /// Number of bits.
+    pub bits: SInt,
+    /// Rust type (`bool`, `u8`, ..., or an enum name); default `bool` for one bit, else the
+    /// smallest unsigned integer.
+    #[serde(rename = "type")]
+    pub ty: Option<SStr>,
+    /// In a header: this member is the frame's length.
+    pub length_of: Option<SStr>,
+    /// In a header: this member must hold this value.
+    pub value: Option<SInt>,
+    /// Documentation.
+    pub doc: Option<SStr>,
+}
+
+/// `request = { field = "sender", in = "master" }` or `{ field = "is_ack", equals = 0 }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DirectionDef {
+    /// Header field that tells the direction.
+    pub field: SStr,
+    /// The field lies in this address set.
+    #[serde(rename = "in")]
+    pub in_set: Option<SStr>,
+    /// The field equals this value.
+    pub equals: Option<SInt>,
+    /// Documentation.
+    pub doc: Option<SStr>,
+}
+
+/// A command line: `NAME = { id = 1, request = "S", response = "T", doc = "..." }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CommandDef {
+    /// Key: an integer, or one integer per dispatch field.
+    pub id: Spanned<IdDef>,
+    /// Payload struct (specs without directions).
+    pub payload: Option<SStr>,
+    /// Payload struct of the request direction.
+    pub request: Option<SStr>,
+    /// Payload struct of the response direction.
+    pub response: Option<SStr>,
+    /// Documentation.
+    pub doc: Option<SStr>,
+}
+
+/// A command id: `1` or `[0x03, 0x01]`.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum IdDef {
+    /// One dispatch field.
+    One(i64),
+    /// Several dispatch fields, in the frame's `dispatch` order.
+    Many(Vec<i64>),
+}
+
+/// `[structs.NAME]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StructDef {
+    /// Documentation.
+    pub doc: Option<SStr>,
+    /// Byte order of this struct's fields (default: the protocol's).
+    pub byte_order: Option<SStr>,
+    /// Fields in wire order.
+    pub fields: Spanned<Vec<Spanned<FieldDef>>>,
+}
+
+/// A struct field, or `{ pad = N }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FieldDef {
+    /// Field name.
+    pub name: Option<SStr>,
+    /// Type: primitive (`u16`, `i32be`, `f32`, `bool`), struct or enum name.
+    #[serde(rename = "type")]
+    pub ty: Option<SStr>,
+    /// Fixed array length: an integer or a constant's name.
+    pub count: Option<Spanned<CountDef>>,
+    /// Padding bytes (written as zero, ignored when read).
+    pub pad: Option<SInt>,
+    /// Bit members of an integer field.
+    pub bits: Option<Spanned<Vec<Spanned<BitDef>>>>,
+    /// Physical value = raw * scale (+ offset).
+    pub scale: Option<Spanned<f64>>,
+    /// Added after scaling.
+    pub offset: Option<Spanned<f64>>,
+    /// Unit of the (physical) value, for docs.
+    pub unit: Option<SStr>,
+    /// Documentation.
+    pub doc: Option<SStr>,
+}
+
+/// An array count: `8` or `"SERVO_COUNT"`.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum CountDef {
+    /// Literal.
+    Literal(i64),
+    /// A constant's name.
+    Constant(String),
+}
+
+/// `[enums.NAME]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnumDef {
+    /// Wire type (`u8`, `u16be`, ...).
+    #[serde(rename = "type")]
+    pub ty: SStr,
+    /// `"reject"` (default) or `"keep"`.
+    pub unknown: Option<SStr>,
+    /// Documentation.
+    pub doc: Option<SStr>,
+    /// Variants: `NAME = 1` or `NAME = { value = 1, doc = "..." }`.
+    pub values: Named<ConstantDef>,
+}

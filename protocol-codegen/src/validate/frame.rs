@@ -1,0 +1,486 @@
+//! Rules for frame formats: the layout's elements (sync, header fields and their bits, payload,
+//! checks, trailers), offsets, the length field and what it counts, what each check covers,
+//! and the dispatch key.
+
+use toml::Spanned;
+
+use super::checksum::resolve_algorithm;
+use super::names::{check_snake_name, parse_byte_order, parse_prim};
+use super::types::{fit, lower_bits, mask, Enums, Structs};
+use super::{text, Ctx};
+use crate::diag::did_you_mean;
+use crate::ir::{
+    Algorithm, Check, Element, Frame, HeaderValue, Length, Pos, Prim, Role, Scalar,
+    Trailer,
+};
+use crate::spec::model::{ElementDef, FrameDef, SStr};
+
+/// Rule: a spec has at least one frame format, each with a snake_case name.
+pub(crate) fn lower_frames(ctx: &mut Ctx<'_>, structs: &Structs, enums: &Enums) -> Vec<Frame> {
+    let spec = ctx.spec;
+    if spec.frames.is_empty() {
+        ctx.error(spec.protocol.span(), "the spec has no frame format", "add a `[frames.NAME]` table with a `layout = [...]`; see docs/spec-format.md");
+    }
+    let mut out = Vec::new();
+    for (name, def) in &spec.frames {
+        check_snake_name(ctx, name, "frame name");
+        if let Some(f) = lower_frame(ctx, name, def.get_ref(), structs, enums) {
+            out.push(f);
+        }
+    }
+    out
+}
+
+/// What one layout element is, once classified.
+enum Kind {
+    Sync(Vec<u8>),
+    /// A header word: indices of its values in `values`.
+    Word(Scalar, Vec<usize>),
+    Payload,
+    Check(usize),
+    Trailer(usize),
+}
+
+struct El<'s> {
+    name: String,
+    def: &'s Spanned<ElementDef>,
+    kind: Kind,
+    size: usize,
+}
+
+/// The keys an element may carry besides its kind key, per kind.
+const FIELD_KEYS: &[&str] = &["field", "type", "addresses", "length_of", "value", "bits", "doc"];
+const SYNC_KEYS: &[&str] = &["sync", "doc"];
+const PAYLOAD_KEYS: &[&str] = &["payload", "doc"];
+const CHECK_KEYS: &[&str] = &["check", "over", "byte_order", "name", "doc"];
+const TRAILER_KEYS: &[&str] = &["trailer", "name", "doc"];
+
+fn present_keys(e: &ElementDef) -> Vec<(&'static str, std::ops::Range<usize>)> {
+    let mut v = Vec::new();
+    macro_rules! k {
+        ($($f:ident => $n:literal),*) => {$(
+            if let Some(x) = &e.$f { v.push(($n, x.span())); }
+        )*};
+    }
+    k!(sync => "sync", field => "field", payload => "payload", check => "check", trailer => "trailer",
+       ty => "type", addresses => "addresses", length_of => "length_of", value => "value",
+       bits => "bits", over => "over", byte_order => "byte_order", name => "name", doc => "doc");
+    v
+}
+
+/// Rule: each element has exactly one kind key (`sync`, `field`, `payload`, `check`,
+/// `trailer`) and only the keys that apply to that kind.
+fn check_element_keys(ctx: &mut Ctx<'_>, el: &Spanned<ElementDef>) -> Option<&'static str> {
+    let keys = present_keys(el.get_ref());
+    let kinds: Vec<_> = keys
+        .iter()
+        .filter(|(k, _)| ["sync", "field", "payload", "check", "trailer"].contains(k))
+        .collect();
+    let kind = match kinds.as_slice() {
+        [one] => one.0,
+        [] => {
+            ctx.error(el.span(), "layout element has no kind", "start it with one of `sync = [...]`, `field = \"name\"`, `payload = { max = N }`, `check = \"algorithm\"` or `trailer = [...]`");
+            return None;
+        }
+        [_, second, ..] => {
+            ctx.error(second.1.clone(), format!("layout element has two kinds (`{}` and `{}`)", kinds[0].0, second.0), "split it into two elements");
+            return None;
+        }
+    };
+    let allowed = match kind {
+        "sync" => SYNC_KEYS,
+        "field" => FIELD_KEYS,
+        "payload" => PAYLOAD_KEYS,
+        "check" => CHECK_KEYS,
+        _ => TRAILER_KEYS,
+    };
+    for (k, span) in &keys {
+        if !allowed.contains(k) {
+            ctx.error(span.clone(), format!("key `{k}` does not apply to a `{kind}` element"), format!("a `{kind}` element takes {}", allowed.iter().map(|a| format!("`{a}`")).collect::<Vec<_>>().join(", ")));
+        }
+    }
+    Some(kind)
+}
+
+fn byte_list(ctx: &mut Ctx<'_>, list: &Spanned<Vec<Spanned<i64>>>, what: &str) -> Vec<u8> {
+    if list.get_ref().is_empty() {
+        ctx.error(list.span(), format!("{what} is empty"), "list at least one byte, e.g. `[0xFF, 0xFF]`");
+    }
+    let mut out = Vec::new();
+    for b in list.get_ref() {
+        match u8::try_from(*b.get_ref()) {
+            Ok(v) => out.push(v),
+            Err(_) => ctx.error(b.span(), format!("{} is not a byte", b.get_ref()), "use a value from 0x00 to 0xFF"),
+        }
+    }
+    out
+}
+
+#[allow(clippy::too_many_lines)]
+fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Structs, enums: &Enums) -> Option<Frame> {
+    let mut els: Vec<El<'_>> = Vec::new();
+    let mut values: Vec<HeaderValue> = Vec::new();
+    let mut checks: Vec<(Check, usize)> = Vec::new();
+    let mut trailers: Vec<Trailer> = Vec::new();
+    let mut payload: Option<(usize, usize, usize)> = None; // (element index, min, max)
+    let mut length_decl: Option<(usize, &SStr)> = None; // (value index, coverage)
+    let layout = def.layout.get_ref();
+    let mut broken = false;
+
+    for (i, el) in layout.iter().enumerate() {
+        let Some(kind) = check_element_keys(ctx, el) else {
+            broken = true;
+            continue;
+        };
+        let d = el.get_ref();
+        match kind {
+            "sync" => {
+                let bytes = byte_list(ctx, d.sync.as_ref()?, "sync");
+                if i != 0 {
+                    ctx.error(el.span(), "sync bytes must be the first element of the layout", "move the `sync` element to the start; constant bytes after the payload are a `trailer`");
+                }
+                els.push(El { name: "sync".into(), def: el, size: bytes.len(), kind: Kind::Sync(bytes) });
+            }
+            "field" => {
+                let name = d.field.as_ref()?;
+                check_snake_name(ctx, name, "field name");
+                if payload.is_some() {
+                    ctx.error(el.span(), "header fields must come before the payload", "move the field before the `payload` element; only checks and trailers follow the payload");
+                }
+                let Some(ty) = &d.ty else {
+                    ctx.error(el.span(), format!("field `{}` has no `type`", name.get_ref()), "add `type = \"u8\"` (or `u16be`, `u16le`, ...)");
+                    broken = true;
+                    continue;
+                };
+                let word = match parse_prim(ty.get_ref(), ctx.default_endian) {
+                    Some(s) if s.prim.is_unsigned() => s,
+                    Some(_) => {
+                        ctx.error(ty.span(), format!("header field type `{}` is not an unsigned integer", ty.get_ref()), "header fields are `u8`, `u16le`, `u16be`, `u32le`, ... (use `bits` for flags)");
+                        broken = true;
+                        continue;
+                    }
+                    None => {
+                        let known = ["u8", "u16le", "u16be", "u32le", "u32be", "u64le", "u64be"].map(String::from);
+                        super::names::unknown_type(ctx, ty, &known, "a header field's type");
+                        broken = true;
+                        continue;
+                    }
+                };
+                let offset: usize = els.iter().map(|e| e.size).sum();
+                let mut idx = Vec::new();
+                let addresses = d.addresses.as_ref().is_some_and(|a| *a.get_ref());
+                if let Some(bits) = &d.bits {
+                    let members = lower_bits(ctx, bits.get_ref(), word.prim, enums, &|_| None);
+                    for (m, bdef) in members.into_iter().zip(bits.get_ref()) {
+                        let b = bdef.get_ref();
+                        let role = if let Some(v) = &b.value {
+                            if *v.get_ref() < 0 || (*v.get_ref() as u64) > mask(m.width) {
+                                ctx.error(v.span(), format!("value {} does not fit in the {} bits of `{}`", v.get_ref(), m.width, m.name), "use a smaller value or more bits");
+                            }
+                            Role::Const(*v.get_ref() as u64)
+                        } else if let Some(cov) = &b.length_of {
+                            length_decl_once(ctx, &mut length_decl, values.len(), cov);
+                            Role::Length
+                        } else {
+                            Role::User { addresses }
+                        };
+                        idx.push(values.len());
+                        values.push(HeaderValue { name: m.name, doc: m.doc, offset, word, shift: m.shift, width: m.width, prim: if m.prim == Prim::Bool { Prim::Bool } else { m.prim }, role });
+                    }
+                    if d.value.is_some() || d.length_of.is_some() {
+                        ctx.error(el.span(), "a field with `bits` puts `value` and `length_of` on its members", "move the key into the member it is about");
+                    }
+                } else {
+                    let role = if let Some(v) = &d.value {
+                        if fit(*v.get_ref(), word.prim).is_none() {
+                            ctx.error(v.span(), format!("value {} does not fit in {}", v.get_ref(), word.prim.rust_name()), "use a smaller value or a wider type");
+                        }
+                        Role::Const(*v.get_ref() as u64)
+                    } else if let Some(cov) = &d.length_of {
+                        length_decl_once(ctx, &mut length_decl, values.len(), cov);
+                        Role::Length
+                    } else {
+                        Role::User { addresses }
+                    };
+                    idx.push(values.len());
+                    let width = (word.prim.size() * 8) as u32;
+                    values.push(HeaderValue { name: name.get_ref().clone(), doc: text(&d.doc), offset, word, shift: 0, width, prim: word.prim, role });
+                }
+                els.push(El { name: name.get_ref().clone(), def: el, size: word.prim.size(), kind: Kind::Word(word, idx) });
+            }
+            "payload" => {
+                let p = d.payload.as_ref()?;
+                if payload.is_some() {
+                    ctx.error(el.span(), "a frame has one payload", "remove the second `payload` element");
+                    continue;
+                }
+                let min = p.get_ref().min.as_ref().map_or(0, |m| *m.get_ref());
+                let max = match &p.get_ref().max {
+                    Some(m) => *m.get_ref(),
+                    None => {
+                        ctx.error(p.span(), "the payload needs a `max` size", "write `payload = { max = N }`: decoders size their buffer from it");
+                        broken = true;
+                        0
+                    }
+                };
+                if min < 0 || max < min {
+                    ctx.error(p.span(), format!("payload bounds {min}..={max} are not valid"), "use 0 <= min <= max");
+                    broken = true;
+                }
+                payload = Some((els.len(), min.max(0) as usize, max.max(0) as usize));
+                els.push(El { name: "payload".into(), def: el, size: 0, kind: Kind::Payload });
+            }
+            "check" => {
+                let alg_name = d.check.as_ref()?;
+                let algorithm = resolve_algorithm(ctx, alg_name);
+                let endian = match &d.byte_order {
+                    Some(o) => parse_byte_order(ctx, o).unwrap_or(ctx.default_endian),
+                    None => ctx.default_endian,
+                };
+                let name = d.name.as_ref().map_or_else(|| "checksum".to_string(), |n| n.get_ref().clone());
+                if let Some(n) = &d.name {
+                    check_snake_name(ctx, n, "check name");
+                }
+                let Some(algorithm) = algorithm else {
+                    broken = true;
+                    continue;
+                };
+                let size = algorithm_size(&algorithm);
+                let ci = checks.len();
+                checks.push((Check { name: name.clone(), doc: text(&d.doc), algorithm, at: Pos::Start(0), size, endian, from: Pos::Start(0), to: Pos::Start(0), header: payload.is_none() }, els.len()));
+                els.push(El { name, def: el, size, kind: Kind::Check(ci) });
+            }
+            _ => {
+                let bytes = byte_list(ctx, d.trailer.as_ref()?, "trailer");
+                if payload.is_none() {
+                    ctx.error(el.span(), "a trailer comes after the payload", "constant bytes before the payload are a field with `value = ...`, or the sync");
+                }
+                let name = d.name.as_ref().map_or_else(|| "trailer".to_string(), |n| n.get_ref().clone());
+                let ti = trailers.len();
+                trailers.push(Trailer { name: name.clone(), doc: text(&d.doc), at: Pos::Start(0), bytes: bytes.clone() });
+                els.push(El { name, def: el, size: bytes.len(), kind: Kind::Trailer(ti) });
+            }
+        }
+    }
+
+    // Rule: element names are unique within a frame (they are what `over` and `length_of` name).
+    for (i, e) in els.iter().enumerate() {
+        if els[..i].iter().any(|p| p.name == e.name) {
+            let span = e.def.get_ref().field.as_ref().or(e.def.get_ref().name.as_ref()).map_or(e.def.span(), Spanned::span);
+            ctx.error(span, format!("two elements of frame `{}` are named `{}`", fname.get_ref(), e.name), "give every field, check and trailer its own name (checks and trailers take `name = \"...\"`)");
+        }
+    }
+
+    // Rule: the first element is the sync.
+    if !matches!(els.first().map(|e| &e.kind), Some(Kind::Sync(_))) && !broken {
+        ctx.error(def.layout.span(), format!("frame `{}` has no sync bytes", fname.get_ref()), "start the layout with `{ sync = [0xFF, 0xFF] }`: a stream decoder finds frames by their sync");
+        broken = true;
+    }
+    let Some((pi, payload_min, payload_max)) = payload else {
+        if !broken {
+            ctx.error(def.layout.span(), format!("frame `{}` has no payload element", fname.get_ref()), "add `{ payload = { max = N } }` where the command's data goes");
+        }
+        return None;
+    };
+    if broken {
+        return None;
+    }
+
+    // Offsets: header elements from the start, trailer elements back from the end.
+    let header_len: usize = els[..pi].iter().map(|e| e.size).sum();
+    let trailer_len: usize = els[pi + 1..].iter().map(|e| e.size).sum();
+    let start_of = |i: usize| -> Pos {
+        if i <= pi {
+            Pos::Start(els[..i].iter().map(|e| e.size).sum())
+        } else {
+            Pos::End(els[i..].iter().map(|e| e.size).sum())
+        }
+    };
+    let end_of = |i: usize| -> Pos {
+        if i < pi {
+            Pos::Start(els[..=i].iter().map(|e| e.size).sum())
+        } else {
+            Pos::End(els[i + 1..].iter().map(|e| e.size).sum())
+        }
+    };
+    let find = |ctx: &mut Ctx<'_>, n: &str, span: std::ops::Range<usize>| -> Option<usize> {
+        let found = els.iter().position(|e| e.name == n);
+        if found.is_none() {
+            let help = match did_you_mean(n, els.iter().map(|e| e.name.as_str())) {
+                Some(b) => format!("did you mean `{b}`?"),
+                None => format!("name elements of this layout: {}", els.iter().map(|e| format!("`{}`", e.name)).collect::<Vec<_>>().join(", ")),
+            };
+            ctx.error(span, format!("frame `{}` has no element `{n}`", fname.get_ref()), help);
+        }
+        found
+    };
+    // Parse "a..b", "a" or "frame" into element indices (inclusive); "frame" is `None`.
+    let parse_range = |ctx: &mut Ctx<'_>, s: &SStr| -> Option<Option<(usize, usize)>> {
+        let v = s.get_ref().trim();
+        if v == "frame" {
+            return Some(None);
+        }
+        let (a, b) = v.split_once("..").unwrap_or((v, v));
+        let ia = find(ctx, a.trim(), s.span())?;
+        let ib = find(ctx, b.trim(), s.span())?;
+        if ia > ib {
+            ctx.error(s.span(), format!("range `{v}` runs backwards"), format!("write the earlier element first: `{}..{}`", b.trim(), a.trim()));
+            return None;
+        }
+        Some(Some((ia, ib)))
+    };
+
+    let mut ok = true;
+    // Rule: the length field covers a contiguous run of elements that includes the payload; the
+    // total length is the field's value plus the bytes outside that run.
+    let length = match length_decl {
+        None if payload_min == payload_max => Length::Fixed(header_len + payload_max + trailer_len),
+        None => {
+            ctx.error(def.layout.span(), format!("frame `{}` has no length field, but its payload size varies", fname.get_ref()), "mark the field that holds the length with `length_of = \"...\"`, or set the payload's `min` equal to its `max`");
+            return None;
+        }
+        Some((vi, cov)) => match parse_range(ctx, cov) {
+            None => return None,
+            Some(range) => {
+                let (ia, ib) = range.unwrap_or((0, els.len() - 1));
+                if ia > pi || ib < pi {
+                    ctx.error(cov.span(), format!("the length field counts `{}`, which does not include the payload", cov.get_ref()), "a length field must count the payload (e.g. `\"payload\"`, `\"command..payload\"` or `\"frame\"`)");
+                    return None;
+                }
+                let before = match start_of(ia) { Pos::Start(n) | Pos::End(n) => n };
+                let after = match end_of(ib) { Pos::Start(n) => header_len + trailer_len - n, Pos::End(n) => n };
+                let adjust = (before + after) as i64;
+                let v = &values[vi];
+                let field_max = mask(v.width);
+                let needed = (header_len + payload_max + trailer_len) as i64 - adjust;
+                if needed > 0 && needed as u64 > field_max {
+                    ctx.error(cov.span(), format!("the length field has {} bits (at most {field_max}), but the largest frame needs {needed}", v.width), "use a wider length field, or lower the payload's `max`");
+                    ok = false;
+                }
+                if (header_len + payload_min + trailer_len) as i64 - adjust < 0 {
+                    ctx.error(cov.span(), "the length field would count a negative number of bytes", "check what `length_of` covers");
+                    ok = false;
+                }
+                Length::Field { value: vi, adjust }
+            }
+        },
+    };
+    // Rule: a check covers bytes before it (`frame` means all of them), never its own bytes, and
+    // a check inside the header covers only header bytes.
+    for (check, ei) in &mut checks {
+        let d = els[*ei].def.get_ref();
+        let at = start_of(*ei);
+        let over = d.over.as_ref();
+        let range = match over {
+            None => {
+                ctx.error(els[*ei].def.span(), format!("check `{}` does not say what it covers", check.name), "add `over = \"frame\"` (every byte before the check) or `over = \"first..last\"`");
+                ok = false;
+                continue;
+            }
+            Some(s) => match parse_range(ctx, s) {
+                None => {
+                    ok = false;
+                    continue;
+                }
+                Some(r) => r,
+            },
+        };
+        let (from, to) = match range {
+            None => (Pos::Start(0), at),
+            Some((ia, ib)) => {
+                if ia <= *ei && *ei <= ib {
+                    ctx.error(over.map_or(0..0, Spanned::span), format!("check `{}` covers its own bytes", check.name), "a check covers bytes before it: end the range at the element before the check");
+                    ok = false;
+                    continue;
+                }
+                if ib > *ei {
+                    ctx.error(over.map_or(0..0, Spanned::span), format!("check `{}` covers bytes after it", check.name), "cover only elements before the check");
+                    ok = false;
+                    continue;
+                }
+                (start_of(ia), end_of(ib))
+            }
+        };
+        check.at = at;
+        check.from = from;
+        check.to = to;
+    }
+    let _ = ok;
+    for (t, e) in trailers.iter_mut().zip(els.iter().filter(|e| matches!(e.kind, Kind::Trailer(_)))) {
+        let i = els.iter().position(|x| std::ptr::eq(x, e)).unwrap_or(0);
+        t.at = start_of(i);
+    }
+
+    // Rule: the dispatch key names header fields that are not the length or a constant.
+    let mut dispatch = Vec::new();
+    if let Some(keys) = &def.dispatch {
+        for k in keys.get_ref() {
+            match values.iter().position(|v| &v.name == k.get_ref()) {
+                Some(vi) => match values[vi].role {
+                    Role::User { .. } => {
+                        values[vi].role = Role::Dispatch;
+                        dispatch.push(vi);
+                    }
+                    _ => ctx.error(k.span(), format!("`{}` cannot be a dispatch key: it is the length or a constant", k.get_ref()), "dispatch on a field that holds the command id"),
+                },
+                None => {
+                    let help = match did_you_mean(k.get_ref(), values.iter().map(|v| v.name.as_str())) {
+                        Some(b) => format!("did you mean `{b}`?"),
+                        None => "name a header field of this frame".to_string(),
+                    };
+                    ctx.error(k.span(), format!("frame `{}` has no header field `{}`", fname.get_ref(), k.get_ref()), help);
+                }
+            }
+        }
+    }
+
+    let elements = els
+        .iter()
+        .map(|e| match &e.kind {
+            Kind::Sync(b) => Element::Sync(b.clone()),
+            Kind::Word(s, idx) => Element::Word { name: e.name.clone(), offset: idx.first().map_or(0, |&i| values[i].offset), scalar: *s, values: idx.clone() },
+            Kind::Payload => Element::Payload,
+            Kind::Check(i) => Element::Check(*i),
+            Kind::Trailer(i) => Element::Trailer(*i),
+        })
+        .collect();
+    let sync = match &els[0].kind {
+        Kind::Sync(b) => b.clone(),
+        _ => Vec::new(),
+    };
+    let mut ordered: Vec<Check> = checks.iter().filter(|(c, _)| c.header).map(|(c, _)| c.clone()).collect();
+    ordered.extend(checks.iter().filter(|(c, _)| !c.header).map(|(c, _)| c.clone()));
+    // Element::Check indices refer to spec order; keep `checks` in spec order when no header
+    // check follows a frame check (always true: header checks precede the payload).
+    Some(Frame {
+        name: fname.get_ref().clone(),
+        doc: text(&def.doc),
+        sync,
+        header_len,
+        trailer_len,
+        payload_min,
+        payload_max,
+        values,
+        length,
+        dispatch,
+        checks: ordered,
+        trailers,
+        elements,
+    })
+}
+
+fn length_decl_once<'s>(ctx: &mut Ctx<'_>, slot: &mut Option<(usize, &'s SStr)>, value: usize, cov: &'s SStr) {
+    if slot.is_some() {
+        ctx.error(cov.span(), "a frame has one length field", "remove `length_of` from all but one field");
+    } else {
+        *slot = Some((value, cov));
+    }
+}
+
+/// Bytes of a check value.
+pub(crate) fn algorithm_size(a: &Algorithm) -> usize {
+    match a {
+        Algorithm::Sum { .. } | Algorithm::Xor => 1,
+        Algorithm::Crc(p) => usize::from(p.width / 8),
+    }
+}

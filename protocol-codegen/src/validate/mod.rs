@@ -1,0 +1,81 @@
+//! Validation: the spec model in, the checked [`ir::Protocol`] out. The only place that reports
+//! user errors after loading; every rule is a `check_*` or `lower_*` function with its rule
+//! stated in prose above it. Errors are accumulated: validation goes on after an error wherever
+//! the rest can still be checked, and every error carries the span of what is wrong.
+
+mod catalog;
+mod checksum;
+mod commands;
+mod frame;
+mod names;
+mod types;
+
+use std::ops::Range;
+
+use crate::diag::Diagnostics;
+use crate::ir::{self, Endian};
+use crate::spec::model::{SStr, SpecFile};
+
+pub use catalog::{catalog, display_name};
+pub use names::{pascal_case, RESERVED_TYPE_NAMES};
+
+/// Validation state shared by the rules: the spec, the error accumulator and what earlier
+/// rules resolved.
+pub(crate) struct Ctx<'a> {
+    pub spec: &'a SpecFile,
+    pub diags: &'a mut Diagnostics,
+    pub default_endian: Endian,
+}
+
+impl Ctx<'_> {
+    /// Record an error with a help line.
+    pub fn error(&mut self, span: Range<usize>, message: impl Into<String>, help: impl Into<String>) {
+        self.diags.error(span, message).help(help);
+    }
+}
+
+/// Turn a loaded spec into the checked IR. Returns `None` when it cannot be built; errors are
+/// in `diags` (which may also hold errors when `Some` is returned: callers check both).
+pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol> {
+    let mut ctx = Ctx {
+        spec,
+        diags,
+        default_endian: Endian::Little,
+    };
+    let p = spec.protocol.get_ref();
+    ctx.default_endian = match &p.byte_order {
+        Some(order) => names::parse_byte_order(&mut ctx, order).unwrap_or(Endian::Little),
+        None => Endian::Little,
+    };
+    names::check_snake_name(&mut ctx, &p.name, "protocol name");
+
+    let constants = types::lower_constants(&mut ctx);
+    let addresses = commands::lower_addresses(&mut ctx);
+    let enums = types::lower_enums(&mut ctx);
+    let structs = types::lower_structs(&mut ctx, &enums, &constants);
+    names::check_type_names(&mut ctx);
+    let frames = frame::lower_frames(&mut ctx, &structs, &enums);
+    let directions = match frames.first() {
+        Some(first) => commands::lower_directions(&mut ctx, first, &addresses),
+        None => Vec::new(),
+    };
+    let commands = commands::lower_commands(&mut ctx, frames.first(), &directions, &structs);
+
+    Some(ir::Protocol {
+        name: p.name.get_ref().clone(),
+        version: text(&p.version),
+        doc: text(&p.doc),
+        constants,
+        addresses,
+        enums: enums.enums,
+        structs: structs.structs,
+        frames,
+        directions,
+        commands,
+    })
+}
+
+/// The text of an optional spanned string, empty when absent.
+pub(crate) fn text(s: &Option<SStr>) -> String {
+    s.as_ref().map(|s| s.get_ref().trim().to_string()).unwrap_or_default()
+}

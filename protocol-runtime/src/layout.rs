@@ -1,0 +1,131 @@
+//! The description of a frame format as data: where the sync bytes, the length, the checks and
+//! the trailers are. Generated code builds one as a `static`; the CLI's interpreter builds one
+//! at run time from a spec. Both hand it to the same engine ([`crate::decoder`]) and the same
+//! sealing step ([`FrameLayout::seal`]), so the wire rules exist once.
+
+use crate::checksum::Checksum;
+
+/// Byte order of a multi-byte value on the wire.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ByteOrder {
+    /// Least significant byte first.
+    Little,
+    /// Most significant byte first.
+    Big,
+}
+
+/// A position in a frame, counted from its first byte or back from its end.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Pos {
+    /// Offset from the first byte of the frame.
+    Start(usize),
+    /// Distance back from the end of the frame: `End(2)` is where the last two bytes start.
+    End(usize),
+}
+
+impl Pos {
+    /// The absolute offset of this position in a frame of `frame_len` bytes, or `None` if it
+    /// falls outside the frame.
+    #[inline]
+    pub const fn resolve(self, frame_len: usize) -> Option<usize> {
+        match self {
+            Pos::Start(n) => {
+                if n <= frame_len {
+                    Some(n)
+                } else {
+                    None
+                }
+            }
+            Pos::End(n) => frame_len.checked_sub(n),
+        }
+    }
+}
+
+/// An unsigned integer of 1, 2, 4 or 8 bytes at a position of the frame, optionally narrowed to
+/// some of its bits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct WordField {
+    /// Where the word starts.
+    pub at: Pos,
+    /// Bytes of the word: 1, 2, 4 or 8.
+    pub size: u8,
+    /// Byte order of the word.
+    pub order: ByteOrder,
+    /// Lowest bit of the value inside the word.
+    pub shift: u8,
+    /// Number of bits of the value (1 ..= 8 * size).
+    pub width: u8,
+}
+
+/// How the total length of a frame is known.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum LengthRule {
+    /// Every frame has this length.
+    Fixed(usize),
+    /// `total = field value + adjust`. The field must lie in the header.
+    Field {
+        /// The length field.
+        field: WordField,
+        /// Added to the field's value to give the total frame length.
+        adjust: i64,
+    },
+}
+
+/// A value the frame must hold: checked on decode, written on encode (reserved bytes, version
+/// bits, a constant instruction, ...).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Constant {
+    /// Where the value is.
+    pub field: WordField,
+    /// The value it must have.
+    pub value: u64,
+}
+
+/// A constant byte run at a fixed position (a trailer such as an end word).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Marker<'a> {
+    /// Where it starts.
+    pub at: Pos,
+    /// The bytes.
+    pub bytes: &'a [u8],
+}
+
+/// A check stored in the frame: an algorithm over a range of bytes, stored at a position.
+#[derive(Debug, Clone, Copy)]
+pub struct Check<'a> {
+    /// The algorithm.
+    pub checksum: Checksum<'a>,
+    /// First byte covered.
+    pub from: Pos,
+    /// One past the last byte covered.
+    pub to: Pos,
+    /// Where the check value is stored.
+    pub at: Pos,
+    /// Byte order of the stored value (its size is the checksum's width).
+    pub order: ByteOrder,
+}
+
+/// A frame format, as data.
+#[derive(Debug, Clone, Copy)]
+pub struct FrameLayout<'a> {
+    /// Bytes every frame starts with (at least one).
+    pub sync: &'a [u8],
+    /// Bytes needed to know the frame's length and verify its header checks.
+    pub header_len: usize,
+    /// Smallest valid total length.
+    pub min_len: usize,
+    /// Largest valid total length.
+    pub max_len: usize,
+    /// How the total length is known.
+    pub length: LengthRule,
+    /// Values that must hold, all inside the header.
+    pub constants: &'a [Constant],
+    /// Checks entirely inside the header (covered bytes and stored value): verified before the
+    /// length is trusted, computed on encode before the frame checks.
+    pub header_checks: &'a [Check<'a>],
+    /// Checks over the whole frame, verified once the frame is complete, computed on encode in
+    /// this order.
+    pub frame_checks: &'a [Check<'a>],
+    /// Constant byte runs after the payload.
+    pub markers: &'a [Marker<'a>],
+}
