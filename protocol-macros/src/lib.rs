@@ -1,1 +1,27 @@
-//! placeholder
+//! The `protocol!` and `#[derive(Payload)]` macros. A thin shim: all logic is in
+//! `protocol-codegen`. Use them through `protocol-runtime`, which re-exports them.
+
+use proc_macro::TokenStream;
+
+/// Generate a protocol module from a TOML spec.
+///
+/// `protocol!("specs/hflink.toml")` reads the spec relative to the calling crate's
+/// `Cargo.toml` and expands to `pub mod <name> { ... }`: payload structs, enums, the `Command`
+/// and `Message` enums, `Header`, `Packet` (decode/encode), the `LAYOUT` the runtime's stream
+/// decoder uses, and size consts. Errors in the spec are compile errors that quote the spec's
+/// line and column. Also accepts `inline = "..."` (the spec text) and `crate = path`.
+#[proc_macro]
+pub fn protocol(input: TokenStream) -> TokenStream {
+    protocol_codegen::input::protocol_macro(input.into()).into()
+}
+
+/// Derive `Payload` (wire encoding and decoding) for a hand-written struct. See
+/// `protocol_codegen::codegen::derive` for the attributes.
+#[proc_macro_derive(Payload, attributes(payload))]
+pub fn derive_payload(input: TokenStream) -> TokenStream {
+    let input = syn::parse_macro_input!(input as syn::DeriveInput);
+    match protocol_codegen::codegen::derive::derive_payload(&input) {
+        Ok(tokens) => tokens.into(),
+        Err(e) => e.to_compile_error().into(),
+    }
+}

@@ -167,7 +167,9 @@ const BLOCK: usize = 1024;
 /// Adds the eight bytes of `word` into the four 16-bit lanes of `lanes`.
 #[inline(always)]
 fn add_lanes(lanes: u64, word: u64) -> u64 {
-    lanes.wrapping_add(word & EVEN_BYTES).wrapping_add((word >> 8) & EVEN_BYTES)
+    lanes
+        .wrapping_add(word & EVEN_BYTES)
+        .wrapping_add((word >> 8) & EVEN_BYTES)
 }
 
 /// The sum of the four 16-bit lanes of `lanes`.
@@ -294,9 +296,18 @@ mod tests {
         assert_eq!(check_all_tables!(u8, Crc8, &crc::CRC_8_MAXIM_DOW), 0xA1);
         assert_eq!(check_all_tables!(u16, Crc16, &crc::CRC_16_UMTS), 0xFEE8);
         assert_eq!(check_all_tables!(u16, Crc16, &crc::CRC_16_MCRF4XX), 0x6F91);
-        assert_eq!(check_all_tables!(u32, Crc32, &crc::CRC_32_ISO_HDLC), 0xCBF4_3926);
-        assert_eq!(check_all_tables!(u64, Crc64, &crc::CRC_64_XZ), 0x995D_C9BB_DF19_39FA);
-        assert_eq!(check_all_tables!(u64, Crc64, &crc::CRC_64_ECMA_182), 0x6C40_DF5F_0B49_7347);
+        assert_eq!(
+            check_all_tables!(u32, Crc32, &crc::CRC_32_ISO_HDLC),
+            0xCBF4_3926
+        );
+        assert_eq!(
+            check_all_tables!(u64, Crc64, &crc::CRC_64_XZ),
+            0x995D_C9BB_DF19_39FA
+        );
+        assert_eq!(
+            check_all_tables!(u64, Crc64, &crc::CRC_64_ECMA_182),
+            0x6C40_DF5F_0B49_7347
+        );
     }
 
     static DJI_CRC8: crc::Algorithm<u8> = crc::Algorithm {
@@ -336,14 +347,18 @@ mod tests {
         assert_eq!(check_all_tables!(u32, Crc32, &DJI_CRC32), 0xE4D9_DC14);
         static T: crc::Crc<u8, crc::Table<1>> = crc::Crc::<u8, crc::Table<1>>::new(&DJI_CRC8);
         // The referee header A5 03 00 00 carries CRC-8 0x27 (a published frame).
-        assert_eq!(Checksum::Crc8(CrcImpl::Table1(&T)).compute(&[0xA5, 0x03, 0x00, 0x00]), 0x27);
+        assert_eq!(
+            Checksum::Crc8(CrcImpl::Table1(&T)).compute(&[0xA5, 0x03, 0x00, 0x00]),
+            0x27
+        );
     }
 
     #[test]
     fn debug_names_the_algorithm_and_table() {
         extern crate std;
         use std::format;
-        static T: crc::Crc<u16, crc::Table<16>> = crc::Crc::<u16, crc::Table<16>>::new(&crc::CRC_16_UMTS);
+        static T: crc::Crc<u16, crc::Table<16>> =
+            crc::Crc::<u16, crc::Table<16>>::new(&crc::CRC_16_UMTS);
         let text = format!("{:?}", Checksum::Crc16(CrcImpl::Table16(&T)));
         assert!(text.starts_with("Crc16(Table16(Algorithm"), "{text}");
         assert_eq!(format!("{:?}", Checksum::SumMod255), "SumMod255");

@@ -62,10 +62,16 @@ impl fmt::Display for DecodeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             DecodeError::Truncated { needed, available } => {
-                write!(f, "input truncated: {needed} bytes needed, {available} available")
+                write!(
+                    f,
+                    "input truncated: {needed} bytes needed, {available} available"
+                )
             }
             DecodeError::PayloadLength { expected, actual } => {
-                write!(f, "payload length mismatch: expected {expected} bytes, got {actual}")
+                write!(
+                    f,
+                    "payload length mismatch: expected {expected} bytes, got {actual}"
+                )
             }
             DecodeError::UnknownCommand { key } => write!(f, "unknown command {key:#x}"),
             DecodeError::UnknownDirection => f.write_str("header matches no direction"),
@@ -128,7 +134,10 @@ impl fmt::Display for EncodeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             EncodeError::BufferTooSmall { needed, available } => {
-                write!(f, "buffer too small: {needed} bytes needed, {available} available")
+                write!(
+                    f,
+                    "buffer too small: {needed} bytes needed, {available} available"
+                )
             }
             EncodeError::PayloadTooLarge { len, max } => {
                 write!(f, "payload too large: {len} bytes, at most {max} allowed")

@@ -81,7 +81,10 @@ impl<'a> Reader<'a> {
     /// A reader at the start of `bytes`.
     #[inline]
     pub const fn new(bytes: &'a [u8]) -> Self {
-        Self { rest: bytes, total: bytes.len() }
+        Self {
+            rest: bytes,
+            total: bytes.len(),
+        }
     }
 
     /// Bytes not read yet.
@@ -105,7 +108,10 @@ impl<'a> Reader<'a> {
 
     #[cold]
     fn truncated(&self, n: usize) -> DecodeError {
-        DecodeError::Truncated { needed: self.position().saturating_add(n), available: self.total }
+        DecodeError::Truncated {
+            needed: self.position().saturating_add(n),
+            available: self.total,
+        }
     }
 
     /// Reads `N` bytes as an array.
@@ -202,7 +208,10 @@ impl<'a> Reader<'a> {
         if self.rest.is_empty() {
             Ok(())
         } else {
-            Err(DecodeError::PayloadLength { expected: self.position(), actual: self.total })
+            Err(DecodeError::PayloadLength {
+                expected: self.position(),
+                actual: self.total,
+            })
         }
     }
 }
@@ -282,7 +291,10 @@ impl<'a> Writer<'a> {
 
     #[cold]
     fn too_small(&self, n: usize) -> EncodeError {
-        EncodeError::BufferTooSmall { needed: self.pos.saturating_add(n), available: self.buf.len() }
+        EncodeError::BufferTooSmall {
+            needed: self.pos.saturating_add(n),
+            available: self.buf.len(),
+        }
     }
 
     /// Writes an array of `N` bytes.
@@ -292,7 +304,11 @@ impl<'a> Writer<'a> {
     /// [`EncodeError::BufferTooSmall`] if fewer than `N` bytes of room remain.
     #[inline]
     pub fn put_array<const N: usize>(&mut self, bytes: [u8; N]) -> Result<(), EncodeError> {
-        match self.buf.get_mut(self.pos..).and_then(<[u8]>::first_chunk_mut::<N>) {
+        match self
+            .buf
+            .get_mut(self.pos..)
+            .and_then(<[u8]>::first_chunk_mut::<N>)
+        {
             Some(dst) => {
                 *dst = bytes;
                 // The chunk exists, so `pos + N <= buf.len()`.
@@ -310,7 +326,10 @@ impl<'a> Writer<'a> {
     /// [`EncodeError::BufferTooSmall`] if too little room remains; nothing is written then.
     #[inline]
     pub fn put_bytes(&mut self, b: &[u8]) -> Result<(), EncodeError> {
-        let dst = self.pos.checked_add(b.len()).and_then(|end| self.buf.get_mut(self.pos..end));
+        let dst = self
+            .pos
+            .checked_add(b.len())
+            .and_then(|end| self.buf.get_mut(self.pos..end));
         match dst {
             Some(dst) => {
                 dst.copy_from_slice(b);
@@ -328,7 +347,10 @@ impl<'a> Writer<'a> {
     /// [`EncodeError::BufferTooSmall`] if too little room remains; nothing is written then.
     #[inline]
     pub fn zeros(&mut self, n: usize) -> Result<(), EncodeError> {
-        let dst = self.pos.checked_add(n).and_then(|end| self.buf.get_mut(self.pos..end));
+        let dst = self
+            .pos
+            .checked_add(n)
+            .and_then(|end| self.buf.get_mut(self.pos..end));
         match dst {
             Some(dst) => {
                 dst.fill(0);
@@ -413,7 +435,10 @@ pub fn read_uint(bytes: &[u8], offset: usize, size: u8, order: ByteOrder) -> Opt
             u64::from_le_bytes(buf)
         }
         ByteOrder::Big => {
-            buf.iter_mut().rev().zip(word.iter().rev()).for_each(|(d, s)| *d = *s);
+            buf.iter_mut()
+                .rev()
+                .zip(word.iter().rev())
+                .for_each(|(d, s)| *d = *s);
             u64::from_be_bytes(buf)
         }
     })
@@ -434,19 +459,35 @@ pub fn read_uint(bytes: &[u8], offset: usize, size: u8, order: ByteOrder) -> Opt
 /// assert_eq!(write_uint(&mut bytes, 0, 1, ByteOrder::Big, 0x100), None);
 /// ```
 #[inline]
-pub fn write_uint(bytes: &mut [u8], offset: usize, size: u8, order: ByteOrder, value: u64) -> Option<()> {
+pub fn write_uint(
+    bytes: &mut [u8],
+    offset: usize,
+    size: u8,
+    order: ByteOrder,
+    value: u64,
+) -> Option<()> {
     if size == 0 || size > 8 {
         return None;
     }
     // A shift by 64 (an 8-byte word) is `None`: every value fits.
-    if value.checked_shr(u32::from(size).wrapping_mul(8)).unwrap_or(0) != 0 {
+    if value
+        .checked_shr(u32::from(size).wrapping_mul(8))
+        .unwrap_or(0)
+        != 0
+    {
         return None;
     }
     let word = bytes.get_mut(offset..offset.checked_add(usize::from(size))?)?;
     match order {
-        ByteOrder::Little => word.iter_mut().zip(value.to_le_bytes()).for_each(|(d, s)| *d = s),
+        ByteOrder::Little => word
+            .iter_mut()
+            .zip(value.to_le_bytes())
+            .for_each(|(d, s)| *d = s),
         ByteOrder::Big => {
-            word.iter_mut().rev().zip(value.to_be_bytes().into_iter().rev()).for_each(|(d, s)| *d = s);
+            word.iter_mut()
+                .rev()
+                .zip(value.to_be_bytes().into_iter().rev())
+                .for_each(|(d, s)| *d = s);
         }
     }
     Some(())
@@ -593,13 +634,37 @@ mod tests {
     #[test]
     fn short_reads_fail_without_advancing() {
         let mut r = Reader::new(&[1, 2, 3]);
-        assert_eq!(r.u32_be(), Err(DecodeError::Truncated { needed: 4, available: 3 }));
-        assert_eq!(r.take(4), Err(DecodeError::Truncated { needed: 4, available: 3 }));
-        assert_eq!(r.skip(usize::MAX), Err(DecodeError::Truncated { needed: usize::MAX, available: 3 }));
+        assert_eq!(
+            r.u32_be(),
+            Err(DecodeError::Truncated {
+                needed: 4,
+                available: 3
+            })
+        );
+        assert_eq!(
+            r.take(4),
+            Err(DecodeError::Truncated {
+                needed: 4,
+                available: 3
+            })
+        );
+        assert_eq!(
+            r.skip(usize::MAX),
+            Err(DecodeError::Truncated {
+                needed: usize::MAX,
+                available: 3
+            })
+        );
         assert_eq!(r.position(), 0);
         assert_eq!(r.take(2).unwrap(), &[1, 2]);
         assert_eq!(r.rest(), &[3]);
-        assert_eq!(r.clone().finish(), Err(DecodeError::PayloadLength { expected: 2, actual: 3 }));
+        assert_eq!(
+            r.clone().finish(),
+            Err(DecodeError::PayloadLength {
+                expected: 2,
+                actual: 3
+            })
+        );
         assert_eq!(r.bytes::<1>().unwrap(), [3]);
         assert_eq!(r.bytes::<0>().unwrap(), []);
         r.finish().unwrap();
@@ -610,21 +675,51 @@ mod tests {
         let mut buf = [9u8; 3];
         let mut w = Writer::new(&mut buf);
         w.put_u8(1).unwrap();
-        assert_eq!(w.put_u32_le(0), Err(EncodeError::BufferTooSmall { needed: 5, available: 3 }));
-        assert_eq!(w.put_bytes(&[0; 3]), Err(EncodeError::BufferTooSmall { needed: 4, available: 3 }));
-        assert_eq!(w.zeros(usize::MAX), Err(EncodeError::BufferTooSmall { needed: usize::MAX, available: 3 }));
+        assert_eq!(
+            w.put_u32_le(0),
+            Err(EncodeError::BufferTooSmall {
+                needed: 5,
+                available: 3
+            })
+        );
+        assert_eq!(
+            w.put_bytes(&[0; 3]),
+            Err(EncodeError::BufferTooSmall {
+                needed: 4,
+                available: 3
+            })
+        );
+        assert_eq!(
+            w.zeros(usize::MAX),
+            Err(EncodeError::BufferTooSmall {
+                needed: usize::MAX,
+                available: 3
+            })
+        );
         assert_eq!(w.position(), 1);
         w.put_bytes(&[7]).unwrap();
         w.zeros(1).unwrap();
-        assert_eq!(w.put_bool(false), Err(EncodeError::BufferTooSmall { needed: 4, available: 3 }));
+        assert_eq!(
+            w.put_bool(false),
+            Err(EncodeError::BufferTooSmall {
+                needed: 4,
+                available: 3
+            })
+        );
         assert_eq!(buf, [1, 7, 0]);
     }
 
     #[test]
     fn uints_of_every_size() {
         let bytes = [1, 2, 3, 4, 5, 6, 7, 8, 9];
-        assert_eq!(read_uint(&bytes, 0, 8, ByteOrder::Big), Some(0x0102_0304_0506_0708));
-        assert_eq!(read_uint(&bytes, 1, 8, ByteOrder::Little), Some(0x0908_0706_0504_0302));
+        assert_eq!(
+            read_uint(&bytes, 0, 8, ByteOrder::Big),
+            Some(0x0102_0304_0506_0708)
+        );
+        assert_eq!(
+            read_uint(&bytes, 1, 8, ByteOrder::Little),
+            Some(0x0908_0706_0504_0302)
+        );
         assert_eq!(read_uint(&bytes, 2, 0, ByteOrder::Little), None);
         assert_eq!(read_uint(&bytes, 0, 9, ByteOrder::Little), None);
         assert_eq!(read_uint(&bytes, usize::MAX, 1, ByteOrder::Little), None);
@@ -644,7 +739,13 @@ mod tests {
 
     #[test]
     fn word_fields_narrow_to_their_bits() {
-        let field = WordField { at: Pos::End(3), size: 2, order: ByteOrder::Big, shift: 4, width: 8 };
+        let field = WordField {
+            at: Pos::End(3),
+            size: 2,
+            order: ByteOrder::Big,
+            shift: 4,
+            width: 8,
+        };
         let mut frame = [0u8, 0xA0, 0x0B, 0xFF];
         assert_eq!(field.read(&frame), Some(0x00));
         field.write(&mut frame, 0xCD).unwrap();
@@ -655,7 +756,13 @@ mod tests {
         let bad = WordField { shift: 9, ..field };
         assert!(!bad.is_valid());
         assert_eq!(bad.read(&frame), None);
-        let full = WordField { at: Pos::Start(0), size: 8, order: ByteOrder::Little, shift: 0, width: 64 };
+        let full = WordField {
+            at: Pos::Start(0),
+            size: 8,
+            order: ByteOrder::Little,
+            shift: 0,
+            width: 64,
+        };
         assert_eq!(full.max_value(), u64::MAX);
         let mut eight = [0u8; 8];
         full.write(&mut eight, u64::MAX).unwrap();

@@ -1,1 +1,83 @@
-//! Expansion: IR to tokens.
+//! Expansion: the checked IR to Rust tokens. Infallible: everything that could be wrong was
+//! reported by validation. Output order is the spec's order, so expansion is deterministic.
+//!
+//! One module per concern: [`payload`] (the single payload generator, shared with the derive),
+//! [`types`] (structs and enums), [`frame`] (layout statics and header), [`dispatch`]
+//! (commands, messages, packets), [`docs`] (rustdoc text), [`paths`] (runtime paths).
+
+pub mod derive;
+pub mod dispatch;
+pub mod docs;
+pub mod frame;
+pub mod paths;
+pub mod payload;
+pub mod types;
+
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
+
+use crate::ir::Protocol;
+pub use paths::RuntimePath;
+
+/// Rust keywords that must be written as raw identifiers.
+const KEYWORDS: &[&str] = &[
+    "as", "async", "await", "break", "const", "continue", "dyn", "else", "enum", "extern", "false",
+    "fn", "for", "gen", "if", "impl", "in", "let", "loop", "match", "mod", "move", "mut", "pub",
+    "ref", "return", "static", "struct", "trait", "true", "type", "unsafe", "use", "where",
+    "while", "abstract", "become", "box", "do", "final", "macro", "override", "priv", "try",
+    "typeof", "unsized", "virtual", "yield",
+];
+
+/// An identifier for a spec name; keywords become raw identifiers (`r#type`), never renamed.
+pub fn ident(name: &str) -> Ident {
+    if KEYWORDS.contains(&name) {
+        Ident::new_raw(name, Span::call_site())
+    } else {
+        Ident::new(name, Span::call_site())
+    }
+}
+
+/// `SCREAMING_CASE` identifier for a const named after a spec name.
+pub fn const_ident(name: &str) -> Ident {
+    Ident::new(&name.to_ascii_uppercase(), Span::call_site())
+}
+
+/// Expand a protocol into its module.
+pub fn expand(p: &Protocol, paths: &RuntimePath) -> TokenStream {
+    let module = ident(&p.name);
+    let mut doc = p.doc.clone();
+    if !p.version.is_empty() {
+        doc.push_str(&format!("\n\nSpec version: {}.", p.version));
+    }
+    if let Some(f) = p.frames.first() {
+        doc.push_str("\n\n");
+        doc.push_str(&docs::frame_doc(f));
+    }
+    let doc = docs::doc_attrs(&doc);
+    let constants = types::emit_constants(p);
+    let addresses = types::emit_addresses(p);
+    let enums = types::emit_enums(p, paths);
+    let structs = types::emit_structs(p, paths);
+    let frames = frame::emit_frames(p, paths);
+    let dispatch = dispatch::emit_dispatch(p, paths);
+    quote! {
+        #doc
+        pub mod #module {
+            #constants
+            #addresses
+            #enums
+            #structs
+            #frames
+            #dispatch
+        }
+    }
+}
+
+/// Expand and format with prettyplease (for review, snapshots and `protocol expand`).
+pub fn expand_pretty(p: &Protocol, paths: &RuntimePath) -> String {
+    let tokens = expand(p, paths);
+    match syn::parse2::<syn::File>(tokens.clone()) {
+        Ok(file) => prettyplease::unparse(&file),
+        Err(_) => tokens.to_string(),
+    }
+}

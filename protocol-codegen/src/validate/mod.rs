@@ -79,3 +79,8 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
 pub(crate) fn text(s: &Option<SStr>) -> String {
     s.as_ref().map(|s| s.get_ref().trim().to_string()).unwrap_or_default()
 }
+
+/// Parse a primitive wire type spelling (`u16`, `u16be`, `f32`, `bool`); for the derive macro.
+pub fn parse_prim_public(name: &str, default: Endian) -> Option<ir::Scalar> {
+    names::parse_prim(name, default)
+}

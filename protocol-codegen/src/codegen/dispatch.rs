@@ -1,0 +1,383 @@
+//! Commands and messages: the `Command` id enum, the dispatch enums (`Message`, or `Request` and
+//! `Response` when the spec has directions), and `Packet`, which decodes a frame into a header
+//! and a message and encodes one back through the runtime's `FrameLayout::seal`.
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use super::docs::doc_attrs;
+use super::frame::{user_values, value_const};
+use super::payload::prim_type;
+use super::types::int_lit;
+use super::{ident, RuntimePath};
+use crate::ir::{Command, DirectionRule, Frame, Prim, Protocol};
+
+/// Everything about commands and messages, for the first frame.
+pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
+    let Some(f) = p.frames.first() else { return quote!() };
+    if f.dispatch.is_empty() {
+        return quote!();
+    }
+    let rt = paths.private();
+    let mut out = emit_command_enum(p, f);
+    if p.directions.is_empty() {
+        out.extend(emit_message_enum(p, 0, &format_ident!("Message"), "A decoded message: one variant per command, holding its payload.", &rt));
+    } else {
+        for (di, d) in p.directions.iter().enumerate() {
+            let name = format_ident!("{}", super::super::validate::pascal_case(&d.name));
+            let doc = format!("A {} message: one variant per command, holding its {} payload. {}", d.name, d.name, d.doc);
+            out.extend(emit_message_enum(p, di, &name, &doc, &rt));
+        }
+        out.extend(emit_direction_message(p, &rt));
+    }
+    out.extend(emit_packet(p, f, &rt));
+    out
+}
+
+fn key_prims(f: &Frame) -> Vec<Prim> {
+    f.dispatch.iter().map(|&i| f.values[i].prim).collect()
+}
+
+fn id_type(f: &Frame) -> TokenStream {
+    let prims: Vec<TokenStream> = key_prims(f).into_iter().map(prim_type).collect();
+    if prims.len() == 1 { prims[0].clone() } else { quote!((#(#prims),*)) }
+}
+
+fn id_value(f: &Frame, c: &Command) -> TokenStream {
+    let lits: Vec<TokenStream> = key_prims(f).into_iter().zip(&c.id).map(|(p, v)| int_lit(p, *v)).collect();
+    if lits.len() == 1 { lits[0].clone() } else { quote!((#(#lits),*)) }
+}
+
+fn emit_command_enum(p: &Protocol, f: &Frame) -> TokenStream {
+    let id_ty = id_type(f);
+    let keys: Vec<&str> = f.dispatch.iter().map(|&i| f.values[i].name.as_str()).collect();
+    let variants = p.commands.iter().map(|c| {
+        let v = ident(&c.rust_name);
+        let ids = c.id.iter().map(|x| format!("{x:#04x}")).collect::<Vec<_>>().join(", ");
+        let d = doc_attrs(&format!("`{}` (id {ids}). {}", c.name, c.doc));
+        quote!(#d #v)
+    });
+    let all = p.commands.iter().map(|c| {
+        let v = ident(&c.rust_name);
+        quote!(Self::#v)
+    });
+    let n = p.commands.len();
+    let to_id = p.commands.iter().map(|c| {
+        let v = ident(&c.rust_name);
+        let id = id_value(f, c);
+        quote!(Self::#v => #id,)
+    });
+    let from_id = p.commands.iter().map(|c| {
+        let v = ident(&c.rust_name);
+        let id = id_value(f, c);
+        quote!(#id => ::core::option::Option::Some(Self::#v),)
+    });
+    let names = p.commands.iter().map(|c| {
+        let v = ident(&c.rust_name);
+        let name = &c.name;
+        quote!(Self::#v => #name,)
+    });
+    let id_doc = format!(" A command id: the value of the dispatch key ({}).", keys.join(", "));
+    quote! {
+        #[doc = #id_doc]
+        pub type CommandId = #id_ty;
+        /// Every command of the spec, with its id.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum Command {
+            #(#variants,)*
+        }
+        impl Command {
+            /// Every command, in spec order.
+            pub const ALL: [Command; #n] = [#(#all),*];
+            /// The command's id.
+            pub const fn id(self) -> CommandId {
+                match self {
+                    #(#to_id)*
+                }
+            }
+            /// The command with this id, if any.
+            pub const fn from_id(id: CommandId) -> ::core::option::Option<Self> {
+                match id {
+                    #(#from_id)*
+                    _ => ::core::option::Option::None,
+                }
+            }
+            /// The command's name in the spec.
+            pub const fn name(self) -> &'static str {
+                match self {
+                    #(#names)*
+                }
+            }
+        }
+    }
+}
+
+fn emit_message_enum(p: &Protocol, di: usize, name: &proc_macro2::Ident, doc: &str, rt: &TokenStream) -> TokenStream {
+    let doc = doc_attrs(doc);
+    let mut variants = Vec::new();
+    let mut command_arms = Vec::new();
+    let mut len_arms = Vec::new();
+    let mut write_arms = Vec::new();
+    let mut read_arms = Vec::new();
+    for c in &p.commands {
+        let v = ident(&c.rust_name);
+        match c.payloads.get(di).copied().flatten() {
+            Some(si) => {
+                let s = ident(&p.structs[si].name);
+                let d = doc_attrs(&format!("`{}`, carrying a `{}`. {}", c.name, p.structs[si].name, c.doc));
+                variants.push(quote!(#d #v(#s)));
+                command_arms.push(quote!(Self::#v(_) => Command::#v,));
+                len_arms.push(quote!(Self::#v(_) => <#s as #rt::Payload>::SIZE,));
+                write_arms.push(quote!(Self::#v(payload) => #rt::Payload::write(payload, w),));
+                read_arms.push(quote!(Command::#v => Self::#v(<#s as #rt::Payload>::from_bytes(payload)?),));
+            }
+            None => {
+                let d = doc_attrs(&format!("`{}`, with an empty payload. {}", c.name, c.doc));
+                variants.push(quote!(#d #v));
+                command_arms.push(quote!(Self::#v => Command::#v,));
+                len_arms.push(quote!(Self::#v => 0,));
+                write_arms.push(quote!(Self::#v => ::core::result::Result::Ok(()),));
+                read_arms.push(quote!(Command::#v => {
+                    if !payload.is_empty() {
+                        return ::core::result::Result::Err(#rt::DecodeError::PayloadLength { expected: 0, actual: payload.len() });
+                    }
+                    Self::#v
+                }));
+            }
+        }
+    }
+    quote! {
+        #doc
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub enum #name {
+            #(#variants,)*
+        }
+        impl #name {
+            /// The command of this message.
+            pub const fn command(&self) -> Command {
+                match self {
+                    #(#command_arms)*
+                }
+            }
+            /// Bytes of the payload on the wire.
+            pub const fn payload_len(&self) -> usize {
+                match self {
+                    #(#len_arms)*
+                }
+            }
+            /// Write the payload.
+            ///
+            /// # Errors
+            /// `EncodeError::BufferTooSmall` if `w` has too little room.
+            pub fn write_payload(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
+                match self {
+                    #(#write_arms)*
+                }
+            }
+            /// Read the payload of `command`.
+            ///
+            /// # Errors
+            /// `DecodeError::PayloadLength` if the payload's size is not the command's, or any
+            /// error of the payload's fields (an unknown enum value, ...).
+            pub fn read_payload(command: Command, payload: &[u8]) -> ::core::result::Result<Self, #rt::DecodeError> {
+                ::core::result::Result::Ok(match command {
+                    #(#read_arms)*
+                })
+            }
+        }
+    }
+}
+
+fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
+    let variants = p.directions.iter().map(|d| {
+        let v = format_ident!("{}", super::super::validate::pascal_case(&d.name));
+        let doc = doc_attrs(&format!("A {}. {}", d.name, d.doc));
+        quote!(#doc #v(#v))
+    });
+    let names: Vec<_> = p.directions.iter().map(|d| format_ident!("{}", super::super::validate::pascal_case(&d.name))).collect();
+    quote! {
+        /// A decoded message: its direction, then the command and payload.
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub enum Message {
+            #(#variants,)*
+        }
+        impl Message {
+            /// The command of this message.
+            pub const fn command(&self) -> Command {
+                match self {
+                    #(Self::#names(m) => m.command(),)*
+                }
+            }
+            /// Bytes of the payload on the wire.
+            pub const fn payload_len(&self) -> usize {
+                match self {
+                    #(Self::#names(m) => m.payload_len(),)*
+                }
+            }
+            /// Write the payload.
+            ///
+            /// # Errors
+            /// `EncodeError::BufferTooSmall` if `w` has too little room.
+            pub fn write_payload(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
+                match self {
+                    #(Self::#names(m) => m.write_payload(w),)*
+                }
+            }
+        }
+    }
+}
+
+/// The condition that a header is of direction `rule`, as an expression over `header`.
+fn direction_test(p: &Protocol, f: &Frame, rule: &DirectionRule) -> TokenStream {
+    match rule {
+        DirectionRule::InSet { value, set } => {
+            let v = &f.values[*value];
+            let id = ident(&v.name);
+            let a = &p.addresses[*set];
+            let (first, last) = (int_lit(v.prim, a.first), int_lit(v.prim, a.last));
+            quote!((#first..=#last).contains(&header.#id))
+        }
+        DirectionRule::Equals { value, equals } => {
+            let id = ident(&f.values[*value].name);
+            quote!((header.#id as u64) == #equals)
+        }
+    }
+}
+
+fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
+    let header_fields: Vec<TokenStream> = user_values(f)
+        .map(|v| {
+            let id = ident(&v.name);
+            let c = value_const("", v);
+            let conv = if v.prim == Prim::Bool {
+                quote!(header_value(frame, wire::#c)? != 0)
+            } else {
+                let t = prim_type(v.prim);
+                quote!(header_value(frame, wire::#c)? as #t)
+            };
+            quote!(#id: #conv)
+        })
+        .collect();
+    let header_writes = user_values(f).map(|v| {
+        let id = ident(&v.name);
+        let c = value_const("", v);
+        quote!(wire::#c.write(frame, self.header.#id as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)
+    });
+    let key_consts: Vec<_> = f.dispatch.iter().map(|&i| value_const("", &f.values[i])).collect();
+    let key_prims = key_prims(f);
+    let (read_key, key_u64, write_key) = if key_consts.len() == 1 {
+        let c = &key_consts[0];
+        let t = prim_type(key_prims[0]);
+        (
+            quote!(let id: CommandId = header_value(frame, wire::#c)? as #t;),
+            quote!(id as u64),
+            quote!(wire::#c.write(frame, self.message.command().id() as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;),
+        )
+    } else {
+        let vars: Vec<_> = (0..key_consts.len()).map(|i| format_ident!("k{}", i)).collect();
+        let types: Vec<_> = key_prims.iter().map(|p| prim_type(*p)).collect();
+        let idx: Vec<syn::Index> = (0..key_consts.len()).map(syn::Index::from).collect();
+        let widths: Vec<u32> = f.dispatch.iter().map(|&i| f.values[i].width).collect();
+        let mut key = quote!(0u64);
+        for (v, w) in vars.iter().zip(&widths) {
+            key = quote!(((#key) << #w) | (#v as u64));
+        }
+        (
+            quote!(#(let #vars = header_value(frame, wire::#key_consts)? as #types;)* let id: CommandId = (#(#vars),*);),
+            quote!({ let (#(#vars),*) = id; #key }),
+            quote!(let id = self.message.command().id(); #(wire::#key_consts.write(frame, id.#idx as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)*),
+        )
+    };
+    let message = if p.directions.is_empty() {
+        quote!(Message::read_payload(command, payload)?)
+    } else {
+        let arms = p.directions.iter().map(|d| {
+            let v = format_ident!("{}", super::super::validate::pascal_case(&d.name));
+            let test = direction_test(p, f, &d.rule);
+            quote!(if #test { Message::#v(#v::read_payload(command, payload)?) } else)
+        });
+        quote!(#(#arms)* { return ::core::result::Result::Err(#rt::DecodeError::UnknownDirection); })
+    };
+    let direction_check = if p.directions.is_empty() {
+        quote!()
+    } else {
+        let arms = p.directions.iter().map(|d| {
+            let v = format_ident!("{}", super::super::validate::pascal_case(&d.name));
+            let test = direction_test(p, f, &d.rule);
+            quote!(Message::#v(_) => #test,)
+        });
+        quote! {
+            let header = &self.header;
+            let matches = match &self.message { #(#arms)* };
+            if !matches {
+                return ::core::result::Result::Err(#rt::EncodeError::ValueOutOfRange);
+            }
+        }
+    };
+    quote! {
+        /// A header value of a frame.
+        fn header_value(frame: &[u8], field: #rt::WordField) -> ::core::result::Result<u64, #rt::DecodeError> {
+            field.read(frame).ok_or(#rt::DecodeError::Truncated { needed: HEADER_LEN, available: frame.len() })
+        }
+        /// A whole frame, decoded: the header values and the message.
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct Packet {
+            /// The header values the sender set.
+            pub header: Header,
+            /// The command and its payload.
+            pub message: Message,
+        }
+        impl Packet {
+            /// Decode the frame at the start of `bytes`, checking its framing (sync, length,
+            /// checks) first.
+            ///
+            /// # Errors
+            /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they
+            /// end early, and the errors of [`Packet::from_frame`].
+            pub fn decode(bytes: &[u8]) -> ::core::result::Result<Self, #rt::DecodeError> {
+                let frame = LAYOUT.parse(bytes)?;
+                Self::from_frame(frame)
+            }
+            /// Decode a frame whose framing a decoder already checked.
+            ///
+            /// # Errors
+            /// `UnknownCommand` for an id the spec does not have, `UnknownDirection` when the
+            /// header matches no direction, `PayloadLength` when the payload's size is not the
+            /// command's, and errors of the payload's fields.
+            pub fn from_frame(frame: &[u8]) -> ::core::result::Result<Self, #rt::DecodeError> {
+                let header = Header { #(#header_fields,)* };
+                #read_key
+                let command = Command::from_id(id).ok_or(#rt::DecodeError::UnknownCommand { key: #key_u64 })?;
+                let payload = frame
+                    .get(HEADER_LEN..frame.len().saturating_sub(TRAILER_LEN))
+                    .ok_or(#rt::DecodeError::Truncated { needed: HEADER_LEN + TRAILER_LEN, available: frame.len() })?;
+                let message = #message;
+                ::core::result::Result::Ok(Packet { header, message })
+            }
+            /// Bytes of the encoded frame.
+            pub const fn encoded_len(&self) -> usize {
+                HEADER_LEN + self.message.payload_len() + TRAILER_LEN
+            }
+            /// Encode the frame into the start of `buf`; returns its length.
+            ///
+            /// # Errors
+            /// `EncodeError::BufferTooSmall` if `buf` is shorter than [`Packet::encoded_len`],
+            /// `ValueOutOfRange` if a header value does not fit its field or does not match the
+            /// message's direction.
+            pub fn encode(&self, buf: &mut [u8]) -> ::core::result::Result<usize, #rt::EncodeError> {
+                #direction_check
+                let total = self.encoded_len();
+                let available = buf.len();
+                let frame = buf.get_mut(..total).ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
+                #(#header_writes)*
+                #write_key
+                let payload = frame
+                    .get_mut(HEADER_LEN..total - TRAILER_LEN)
+                    .ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
+                self.message.write_payload(&mut #rt::Writer::new(payload))?;
+                LAYOUT.seal(frame)?;
+                ::core::result::Result::Ok(total)
+            }
+        }
+    }
+}

@@ -1,0 +1,178 @@
+//! Rustdoc text for generated items: the spec's own documentation plus layout tables (offset,
+//! size, field, type, byte order, unit). Text only; no tokens besides `#[doc]` attributes.
+
+use proc_macro2::TokenStream;
+use quote::quote;
+
+use crate::ir::{Algorithm, Endian, Field, FieldKind, Frame, Pos, Protocol, Role, Struct, ValueType};
+
+/// `#[doc = "..."]` attributes, one per line (so rustdoc and prettyplease keep the layout).
+pub fn doc_attrs(text: &str) -> TokenStream {
+    let lines: Vec<String> = if text.trim().is_empty() {
+        Vec::new()
+    } else {
+        text.lines().map(|l| format!(" {l}").trim_end().to_string()).collect()
+    };
+    quote!(#(#[doc = #lines])*)
+}
+
+fn order_name(e: Endian, size: usize) -> &'static str {
+    if size <= 1 {
+        "-"
+    } else {
+        match e {
+            Endian::Little => "little",
+            Endian::Big => "big",
+        }
+    }
+}
+
+/// The type of a struct field as the docs show it.
+pub fn field_type_name(p: &Protocol, f: &Field) -> String {
+    match &f.kind {
+        FieldKind::Padding => "padding".into(),
+        FieldKind::Bits { word, .. } => format!("{} bits", word.prim.rust_name()),
+        FieldKind::Value { ty, count } => {
+            let base = match ty {
+                ValueType::Scalar { scalar, scale: None } => scalar.prim.rust_name().to_string(),
+                ValueType::Scalar { scalar, scale: Some(s) } => {
+                    let off = if s.offset != 0.0 { format!(" + {}", s.offset) } else { String::new() };
+                    format!("{} × {}{off}", scalar.prim.rust_name(), s.factor)
+                }
+                ValueType::Struct(i) => format!("`{}`", p.structs[*i].name),
+                ValueType::Enum(i, s) => format!("`{}` ({})", p.enums[*i].name, s.prim.rust_name()),
+            };
+            match count {
+                Some(n) => format!("[{base}; {n}]"),
+                None => base,
+            }
+        }
+    }
+}
+
+fn field_order(f: &Field) -> &'static str {
+    match &f.kind {
+        FieldKind::Padding => "-",
+        FieldKind::Bits { word, .. } => order_name(word.endian, word.prim.size()),
+        FieldKind::Value { ty, .. } => match ty {
+            ValueType::Scalar { scalar, .. } | ValueType::Enum(_, scalar) => order_name(scalar.endian, scalar.prim.size()),
+            ValueType::Struct(_) => "-",
+        },
+    }
+}
+
+/// The doc of a struct: its spec text and a table of its wire layout.
+pub fn struct_doc(p: &Protocol, s: &Struct) -> String {
+    let mut out = String::new();
+    out.push_str(&s.doc);
+    out.push_str(&format!("\n\nWire layout, {} bytes:\n\n| offset | size | field | type | byte order | unit |\n|---:|---:|---|---|---|---|\n", s.size));
+    for f in &s.fields {
+        let name = match &f.kind {
+            FieldKind::Padding => "*(padding)*".to_string(),
+            FieldKind::Bits { members, .. } => members
+                .iter()
+                .map(|m| format!("`{}` (bits {}..{})", m.name, m.shift, m.shift + m.width))
+                .collect::<Vec<_>>()
+                .join(", "),
+            _ => format!("`{}`", f.name),
+        };
+        let unit = if f.unit.is_empty() { "-".to_string() } else { f.unit.clone() };
+        out.push_str(&format!("| {} | {} | {} | {} | {} | {} |\n", f.offset, f.size, name, field_type_name(p, f), field_order(f), unit));
+    }
+    out
+}
+
+fn pos_text(pos: Pos) -> String {
+    match pos {
+        Pos::Start(n) => n.to_string(),
+        Pos::End(n) => format!("end − {n}"),
+    }
+}
+
+/// Text for a checksum algorithm.
+pub fn algorithm_text(a: &Algorithm) -> String {
+    match a {
+        Algorithm::Sum { modulus } => format!("sum of the bytes modulo {modulus}"),
+        Algorithm::Xor => "XOR of the bytes".into(),
+        Algorithm::Crc(c) => match &c.catalog {
+            Some(_) => format!("{} (catalogue CRC, check {:#x})", c.display.to_uppercase(), c.check),
+            None => format!(
+                "custom CRC `{}`: width {}, poly {:#x}, init {:#x}, refin {}, refout {}, xorout {:#x}, check {:#x}",
+                c.display, c.width, c.poly, c.init, c.refin, c.refout, c.xorout, c.check
+            ),
+        },
+    }
+}
+
+/// The doc of a frame format: a table of its elements.
+pub fn frame_doc(f: &Frame) -> String {
+    let mut out = String::new();
+    if !f.doc.is_empty() {
+        out.push_str(&f.doc);
+        out.push_str("\n\n");
+    }
+    out.push_str(&format!(
+        "Frame `{}`: {} to {} bytes (header {}, payload {} to {}, trailer {}).\n\n| offset | size | element | type | meaning |\n|---|---:|---|---|---|\n",
+        f.name,
+        f.min_len(),
+        f.max_len(),
+        f.header_len,
+        f.payload_min,
+        f.payload_max,
+        f.trailer_len
+    ));
+    for e in &f.elements {
+        match e {
+            crate::ir::Element::Sync(b) => out.push_str(&format!(
+                "| 0 | {} | sync | bytes | {} |\n",
+                b.len(),
+                b.iter().map(|x| format!("`{x:02X}`")).collect::<Vec<_>>().join(" ")
+            )),
+            crate::ir::Element::Word { name, offset, scalar, values } => {
+                let meaning = values
+                    .iter()
+                    .map(|&i| {
+                        let v = &f.values[i];
+                        let bits = if v.width as usize == scalar.prim.size() * 8 { String::new() } else { format!("bits {}..{} ", v.shift, v.shift + v.width) };
+                        let role = match &v.role {
+                            Role::User { .. } => String::new(),
+                            Role::Length => match &f.length {
+                                crate::ir::Length::Field { adjust, .. } => format!(": length, total frame = value + {adjust}"),
+                                crate::ir::Length::Fixed(_) => ": length".into(),
+                            },
+                            Role::Dispatch => ": command id".into(),
+                            Role::Const(c) => format!(": always {c:#x}"),
+                        };
+                        format!("{bits}`{}`{role}", v.name)
+                    })
+                    .collect::<Vec<_>>()
+                    .join("; ");
+                out.push_str(&format!("| {offset} | {} | `{name}` | {} {} | {meaning} |\n", scalar.prim.size(), scalar.prim.rust_name(), order_name(scalar.endian, scalar.prim.size())));
+            }
+            crate::ir::Element::Payload => out.push_str(&format!("| {} | {}..={} | payload | bytes | the command's struct |\n", f.header_len, f.payload_min, f.payload_max)),
+            crate::ir::Element::Check(i) => {
+                let c = &f.checks[*i];
+                out.push_str(&format!(
+                    "| {} | {} | `{}` | check | {} over bytes {} .. {} |\n",
+                    pos_text(c.at),
+                    c.size,
+                    c.name,
+                    algorithm_text(&c.algorithm),
+                    pos_text(c.from),
+                    pos_text(c.to)
+                ));
+            }
+            crate::ir::Element::Trailer(i) => {
+                let t = &f.trailers[*i];
+                out.push_str(&format!(
+                    "| {} | {} | `{}` | bytes | {} |\n",
+                    pos_text(t.at),
+                    t.bytes.len(),
+                    t.name,
+                    t.bytes.iter().map(|x| format!("`{x:02X}`")).collect::<Vec<_>>().join(" ")
+                ));
+            }
+        }
+    }
+    out
+}

@@ -1,0 +1,225 @@
+//! Frame formats as runtime data: size consts, where each header value sits (`wire`), the
+//! `FrameLayout` static the runtime engine decodes and seals with, the CRC tables, the `Header`
+//! struct and the `Decoder` type. The wire rules themselves live in the runtime, not here.
+
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::{format_ident, quote};
+
+use super::docs::{doc_attrs, frame_doc};
+use super::payload::prim_type;
+use super::{const_ident, ident, RuntimePath};
+use crate::ir::{Algorithm, Check, Endian, Frame, HeaderValue, Length, Pos, Prim, Protocol, Role};
+
+/// Prefix of a frame's items: empty for the first (default) frame, `NAME_` for the others.
+pub fn frame_prefix(p: &Protocol, f: &Frame) -> String {
+    if p.frames.first().is_some_and(|first| first.name == f.name) {
+        String::new()
+    } else {
+        format!("{}_", f.name.to_ascii_uppercase())
+    }
+}
+
+fn pos(rt: &TokenStream, p: Pos) -> TokenStream {
+    match p {
+        Pos::Start(n) => quote!(#rt::Pos::Start(#n)),
+        Pos::End(n) => quote!(#rt::Pos::End(#n)),
+    }
+}
+
+fn order(rt: &TokenStream, e: Endian) -> TokenStream {
+    match e {
+        Endian::Little => quote!(#rt::ByteOrder::Little),
+        Endian::Big => quote!(#rt::ByteOrder::Big),
+    }
+}
+
+/// A `WordField` literal for a header value.
+pub fn word_field(rt: &TokenStream, v: &HeaderValue) -> TokenStream {
+    let at = pos(rt, Pos::Start(v.offset));
+    let size = v.word.prim.size() as u8;
+    let ord = order(rt, v.word.endian);
+    let shift = v.shift as u8;
+    let width = v.width as u8;
+    quote!(#rt::WordField { at: #at, size: #size, order: #ord, shift: #shift, width: #width })
+}
+
+/// Name of the `wire` const of a header value.
+pub fn value_const(prefix: &str, v: &HeaderValue) -> Ident {
+    const_ident(&format!("{prefix}{}", v.name))
+}
+
+fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>, static_name: &Ident) -> TokenStream {
+    match &c.algorithm {
+        Algorithm::Sum { modulus: 255 } => quote!(#rt::Checksum::SumMod255),
+        Algorithm::Sum { .. } => quote!(#rt::Checksum::Sum8),
+        Algorithm::Xor => quote!(#rt::Checksum::Xor8),
+        Algorithm::Crc(p) => {
+            let w = Ident::new(&format!("u{}", p.width), Span::call_site());
+            let (table_ty, variant) = match p.table {
+                0 => (quote!(#rt::crc::NoTable), quote!(NoTable)),
+                1 => (quote!(#rt::crc::Table<1>), quote!(Table1)),
+                _ => (quote!(#rt::crc::Table<16>), quote!(Table16)),
+            };
+            let alg = match &p.catalog {
+                Some(name) => {
+                    let n = Ident::new(name, Span::call_site());
+                    quote!(#rt::crc::#n)
+                }
+                None => {
+                    let lit = |v: u64| super::types::int_lit(width_prim(p.width), v);
+                    let (poly, init, xorout, check, residue) = (lit(p.poly), lit(p.init), lit(p.xorout), lit(p.check), lit(p.residue));
+                    let width = p.width;
+                    let (refin, refout) = (p.refin, p.refout);
+                    quote!(#rt::crc::Algorithm { width: #width, poly: #poly, init: #init, refin: #refin, refout: #refout, xorout: #xorout, check: #check, residue: #residue })
+                }
+            };
+            let doc = format!(" Lookup table of the `{}` check ({}).", c.name, p.display);
+            statics.push(quote! {
+                #[doc = #doc]
+                static #static_name: #rt::crc::Crc<#w, #table_ty> = #rt::crc::Crc::<#w, #table_ty>::new(&#alg);
+            });
+            let ctor = format_ident!("Crc{}", p.width);
+            quote!(#rt::Checksum::#ctor(#rt::CrcImpl::#variant(&#static_name)))
+        }
+    }
+}
+
+fn width_prim(width: u8) -> Prim {
+    match width {
+        8 => Prim::U8,
+        16 => Prim::U16,
+        32 => Prim::U32,
+        _ => Prim::U64,
+    }
+}
+
+/// Every frame format: consts, `wire` fields, layout, header struct (first frame), decoder.
+pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
+    let rt = paths.private();
+    let mut out = TokenStream::new();
+    for f in &p.frames {
+        let prefix = frame_prefix(p, f);
+        let c = |n: &str| const_ident(&format!("{prefix}{n}"));
+        let (max_frame, min_frame, max_payload, min_payload, header_len, trailer_len) =
+            (c("MAX_FRAME_LEN"), c("MIN_FRAME_LEN"), c("MAX_PAYLOAD_LEN"), c("MIN_PAYLOAD_LEN"), c("HEADER_LEN"), c("TRAILER_LEN"));
+        let (maxf, minf, maxp, minp, hl, tl) = (f.max_len(), f.min_len(), f.payload_max, f.payload_min, f.header_len, f.trailer_len);
+        let layout_name = c("LAYOUT");
+        let fname = &f.name;
+        let layout_doc = doc_attrs(&frame_doc(f));
+        let length = match &f.length {
+            Length::Fixed(n) => quote!(#rt::LengthRule::Fixed(#n)),
+            Length::Field { value, adjust } => {
+                let field = value_const(&prefix, &f.values[*value]);
+                quote!(#rt::LengthRule::Field { field: wire::#field, adjust: #adjust })
+            }
+        };
+        let constants = f.values.iter().filter_map(|v| match v.role {
+            Role::Const(value) => {
+                let field = value_const(&prefix, v);
+                Some(quote!(#rt::Constant { field: wire::#field, value: #value }))
+            }
+            _ => None,
+        });
+        let mut statics = Vec::new();
+        let mut header_checks = Vec::new();
+        let mut frame_checks = Vec::new();
+        for ch in &f.checks {
+            let sname = const_ident(&format!("{prefix}{}_TABLE", ch.name));
+            let cs = checksum_expr(&rt, ch, &mut statics, &sname);
+            let (from, to, at, ord) = (pos(&rt, ch.from), pos(&rt, ch.to), pos(&rt, ch.at), order(&rt, ch.endian));
+            let lit = quote!(#rt::Check { checksum: #cs, from: #from, to: #to, at: #at, order: #ord });
+            if ch.header {
+                header_checks.push(lit);
+            } else {
+                frame_checks.push(lit);
+            }
+        }
+        let markers = f.trailers.iter().map(|t| {
+            let at = pos(&rt, t.at);
+            let bytes = &t.bytes;
+            quote!(#rt::Marker { at: #at, bytes: &[#(#bytes),*] })
+        });
+        let sync = &f.sync;
+        let decoder_name = if prefix.is_empty() { format_ident!("Decoder") } else { format_ident!("{}Decoder", super::super::validate::pascal_case(&f.name)) };
+        let decoder_fn = if prefix.is_empty() { format_ident!("decoder") } else { format_ident!("{}_decoder", f.name) };
+        let decoder_doc = format!(" A streaming decoder of `{fname}` frames: a fixed buffer of `{}` bytes, no heap.", max_frame);
+        out.extend(quote! {
+            #[doc = concat!(" Largest `", #fname, "` frame, in bytes.")]
+            pub const #max_frame: usize = #maxf;
+            #[doc = concat!(" Smallest `", #fname, "` frame, in bytes.")]
+            pub const #min_frame: usize = #minf;
+            #[doc = concat!(" Largest payload of a `", #fname, "` frame, in bytes.")]
+            pub const #max_payload: usize = #maxp;
+            #[doc = concat!(" Smallest payload of a `", #fname, "` frame, in bytes.")]
+            pub const #min_payload: usize = #minp;
+            #[doc = concat!(" Bytes of a `", #fname, "` frame before its payload.")]
+            pub const #header_len: usize = #hl;
+            #[doc = concat!(" Bytes of a `", #fname, "` frame after its payload.")]
+            pub const #trailer_len: usize = #tl;
+            #(#statics)*
+            #layout_doc
+            pub static #layout_name: #rt::FrameLayout<'static> = #rt::FrameLayout {
+                sync: &[#(#sync),*],
+                header_len: #hl,
+                min_len: #minf,
+                max_len: #maxf,
+                length: #length,
+                constants: &[#(#constants),*],
+                header_checks: &[#(#header_checks),*],
+                frame_checks: &[#(#frame_checks),*],
+                markers: &[#(#markers),*],
+            };
+            #[doc = #decoder_doc]
+            pub type #decoder_name = #rt::StreamDecoder<'static, #max_frame>;
+            #[doc = concat!(" A new decoder of `", #fname, "` frames.")]
+            pub const fn #decoder_fn() -> #decoder_name {
+                #rt::StreamDecoder::new(&#layout_name)
+            }
+        });
+
+    }
+    // Header value positions of every frame, in one module.
+    let wire_items = p.frames.iter().flat_map(|f| {
+        let prefix = frame_prefix(p, f);
+        let fname = f.name.clone();
+        let rt = rt.clone();
+        f.values.iter().map(move |v| {
+            let name = value_const(&prefix, v);
+            let lit = word_field(&rt, v);
+            let doc = format!(" Where `{}` sits in a `{fname}` frame.", v.name);
+            quote!(#[doc = #doc] pub const #name: #rt::WordField = #lit;)
+        }).collect::<Vec<_>>()
+    });
+    out.extend(quote! {
+        /// Where each header value sits in a frame (for reading raw frames).
+        pub mod wire {
+            #(#wire_items)*
+        }
+    });
+    if let Some(f) = p.frames.first() {
+        out.extend(emit_header(f));
+    }
+    out
+}
+
+/// The user-set header values of the first frame.
+pub fn user_values(f: &Frame) -> impl Iterator<Item = &HeaderValue> {
+    f.values.iter().filter(|v| matches!(v.role, Role::User { .. }))
+}
+
+fn emit_header(f: &Frame) -> TokenStream {
+    let fields = user_values(f).map(|v| {
+        let id = ident(&v.name);
+        let ty = prim_type(v.prim);
+        let d = doc_attrs(if v.doc.is_empty() { "Header value." } else { &v.doc });
+        quote!(#d pub #id: #ty)
+    });
+    quote! {
+        /// The header values a sender sets (the codec computes the sync, length, command and
+        /// checks).
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+        pub struct Header {
+            #(#fields,)*
+        }
+    }
+}

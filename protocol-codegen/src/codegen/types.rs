@@ -1,0 +1,256 @@
+//! Spec constants, address sets, enums and payload structs as Rust items. The structs' wire
+//! code comes from the shared payload generator ([`super::payload`]).
+
+use proc_macro2::{Literal, TokenStream};
+use quote::{format_ident, quote};
+
+use super::docs::{doc_attrs, struct_doc};
+use super::payload::{emit_payload_impl, field_type, prim_type, BitType, PBit, PField, PKind, PayloadDef};
+use super::{const_ident, ident, RuntimePath};
+use crate::ir::{Enum, FieldKind, Prim, Protocol, Struct, UnknownPolicy, ValueType};
+
+/// A literal of the given integer type holding `value` (two's complement bits for signed).
+pub fn int_lit(prim: Prim, value: u64) -> TokenStream {
+    let lit = match prim {
+        Prim::U8 => Literal::u8_suffixed(value as u8),
+        Prim::I8 => Literal::i8_suffixed(value as u8 as i8),
+        Prim::U16 => Literal::u16_suffixed(value as u16),
+        Prim::I16 => Literal::i16_suffixed(value as u16 as i16),
+        Prim::U32 => Literal::u32_suffixed(value as u32),
+        Prim::I32 => Literal::i32_suffixed(value as u32 as i32),
+        Prim::I64 => Literal::i64_suffixed(value as i64),
+        _ => Literal::u64_suffixed(value),
+    };
+    quote!(#lit)
+}
+
+/// `pub const NAME: u64 = value;` per spec constant.
+pub fn emit_constants(p: &Protocol) -> TokenStream {
+    let items = p.constants.iter().map(|c| {
+        let name = const_ident(&c.name);
+        let v = c.value;
+        let doc = doc_attrs(if c.doc.is_empty() { "Spec constant." } else { &c.doc });
+        quote!(#doc pub const #name: u64 = #v;)
+    });
+    quote!(#(#items)*)
+}
+
+/// `pub mod addresses` with a const per set: a `RangeInclusive` or a single address.
+pub fn emit_addresses(p: &Protocol) -> TokenStream {
+    if p.addresses.is_empty() {
+        return quote!();
+    }
+    let prim = address_prim(p);
+    let ty = prim_type(prim);
+    let items = p.addresses.iter().map(|a| {
+        let name = const_ident(&a.name);
+        let doc = doc_attrs(&a.doc);
+        let first = int_lit(prim, a.first);
+        let last = int_lit(prim, a.last);
+        if a.first == a.last {
+            quote!(#doc pub const #name: #ty = #first;)
+        } else {
+            quote!(#doc pub const #name: ::core::ops::RangeInclusive<#ty> = #first..=#last;)
+        }
+    });
+    quote! {
+        /// The spec's named addresses and address ranges.
+        pub mod addresses {
+            #(#items)*
+        }
+    }
+}
+
+/// The integer type of address fields: that of the first field marked `addresses`, else `u8`.
+pub fn address_prim(p: &Protocol) -> Prim {
+    p.frames
+        .first()
+        .and_then(|f| f.values.iter().find(|v| matches!(v.role, crate::ir::Role::User { addresses: true })))
+        .map_or(Prim::U8, |v| v.prim)
+}
+
+/// Every enum with `to_raw` and `from_raw`.
+pub fn emit_enums(p: &Protocol, paths: &RuntimePath) -> TokenStream {
+    let items = p.enums.iter().map(|e| emit_enum(e, paths));
+    quote!(#(#items)*)
+}
+
+fn emit_enum(e: &Enum, paths: &RuntimePath) -> TokenStream {
+    let rt = paths.private();
+    let name = ident(&e.name);
+    let raw = prim_type(e.prim);
+    let mut doc = e.doc.clone();
+    doc.push_str(&format!(
+        "\n\nOn the wire as `{}`. {}",
+        e.prim.rust_name(),
+        match e.unknown {
+            UnknownPolicy::Reject => "A value with no variant is a decode error.",
+            UnknownPolicy::Keep => "A value with no variant decodes to `Unknown(raw)`.",
+        }
+    ));
+    let doc = doc_attrs(&doc);
+    let variants = e.variants.iter().enumerate().map(|(i, v)| {
+        let vn = ident(&v.rust_name);
+        let vdoc = doc_attrs(&format!("`{}` = {}{}{}", v.name, v.value, if v.doc.is_empty() { "" } else { ": " }, v.doc));
+        let default = if i == 0 { quote!(#[default]) } else { quote!() };
+        quote!(#vdoc #default #vn)
+    });
+    let (unknown_variant, unknown_to, unknown_from) = match e.unknown {
+        UnknownPolicy::Keep => (
+            quote!(#[doc = " A value with no variant, kept as it was on the wire."] Unknown(#raw),),
+            quote!(Self::Unknown(raw) => raw,),
+            quote!(other => ::core::result::Result::Ok(Self::Unknown(other)),),
+        ),
+        UnknownPolicy::Reject => (
+            quote!(),
+            quote!(),
+            quote!(other => ::core::result::Result::Err(#rt::DecodeError::InvalidEnum { value: other as u64 }),),
+        ),
+    };
+    let to = e.variants.iter().map(|v| {
+        let vn = ident(&v.rust_name);
+        let lit = int_lit(e.prim, v.value);
+        quote!(Self::#vn => #lit,)
+    });
+    let from = e.variants.iter().map(|v| {
+        let vn = ident(&v.rust_name);
+        let lit = int_lit(e.prim, v.value);
+        quote!(#lit => ::core::result::Result::Ok(Self::#vn),)
+    });
+    quote! {
+        #doc
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+        pub enum #name {
+            #(#variants,)*
+            #unknown_variant
+        }
+        impl #name {
+            /// The value on the wire.
+            pub const fn to_raw(self) -> #raw {
+                match self {
+                    #(#to)*
+                    #unknown_to
+                }
+            }
+            /// The variant of a wire value.
+            ///
+            /// # Errors
+            /// `DecodeError::InvalidEnum` for a value with no variant, unless the enum keeps
+            /// unknown values.
+            pub const fn from_raw(raw: #raw) -> ::core::result::Result<Self, #rt::DecodeError> {
+                match raw {
+                    #(#from)*
+                    #unknown_from
+                }
+            }
+        }
+    }
+}
+
+/// Lower an IR struct into the payload generator's model.
+pub fn payload_def(p: &Protocol, s: &Struct) -> PayloadDef {
+    let fields = s
+        .fields
+        .iter()
+        .map(|f| {
+            let kind = match &f.kind {
+                FieldKind::Padding => PKind::Pad(f.size),
+                FieldKind::Bits { word, members } => PKind::Bits {
+                    word: *word,
+                    members: members
+                        .iter()
+                        .map(|m| PBit {
+                            ident: ident(&m.name),
+                            shift: m.shift,
+                            width: m.width,
+                            ty: match m.enum_index {
+                                Some(i) => BitType::Enum({
+                                    let n = ident(&p.enums[i].name);
+                                    quote!(#n)
+                                }, p.enums[i].prim),
+                                None if m.prim == Prim::Bool => BitType::Bool,
+                                None => BitType::Uint(m.prim),
+                            },
+                        })
+                        .collect(),
+                },
+                FieldKind::Value { ty, count } => match ty {
+                    ValueType::Scalar { scalar, scale } => PKind::Scalar { scalar: *scalar, scale: *scale, count: *count },
+                    ValueType::Struct(i) => {
+                        let n = ident(&p.structs[*i].name);
+                        PKind::Nested { ty: quote!(#n), count: *count }
+                    }
+                    ValueType::Enum(i, scalar) => {
+                        let n = ident(&p.enums[*i].name);
+                        PKind::Enum { ty: quote!(#n), scalar: *scalar, count: *count }
+                    }
+                },
+            };
+            PField { ident: (!f.name.is_empty()).then(|| ident(&f.name)), kind }
+        })
+        .collect();
+    PayloadDef { name: ident(&s.name), fields, size: Some(s.size) }
+}
+
+/// Every struct: declaration (with layout docs) and its `Payload` impl.
+pub fn emit_structs(p: &Protocol, paths: &RuntimePath) -> TokenStream {
+    let items = p.structs.iter().map(|s| {
+        let def = payload_def(p, s);
+        let name = &def.name;
+        let doc = doc_attrs(&struct_doc(p, s));
+        let mut fields = Vec::new();
+        let mut all_small = true;
+        let mut eq = true;
+        for (pf, f) in def.fields.iter().zip(&s.fields) {
+            let unit = if f.unit.is_empty() { String::new() } else { format!(" Unit: {}.", f.unit) };
+            match &pf.kind {
+                PKind::Pad(_) => {}
+                PKind::Bits { members, .. } => {
+                    let FieldKind::Bits { members: ir_members, .. } = &f.kind else { continue };
+                    for (m, im) in members.iter().zip(ir_members) {
+                        let ty = match &m.ty {
+                            BitType::Bool => quote!(bool),
+                            BitType::Uint(p) => prim_type(*p),
+                            BitType::Enum(t, _) => t.clone(),
+                        };
+                        let text = format!("{}{}(bits {}..{} of byte {}.)", im.doc, if im.doc.is_empty() { "" } else { " " }, im.shift, im.shift + im.width, f.offset);
+                        let d = doc_attrs(&text);
+                        let id = &m.ident;
+                        fields.push(quote!(#d pub #id: #ty));
+                    }
+                }
+                kind => {
+                    if let Some(n) = match kind {
+                        PKind::Scalar { count, .. } | PKind::Nested { count, .. } | PKind::Enum { count, .. } => *count,
+                        _ => None,
+                    } {
+                        all_small &= n <= 32;
+                    }
+                    if let PKind::Scalar { scalar, scale, .. } = kind {
+                        eq &= !scalar.prim.is_float() && scale.is_none();
+                    }
+                    if let PKind::Nested { .. } = kind {
+                        eq = false;
+                    }
+                    let id = pf.ident.clone().unwrap_or_else(|| format_ident!("_unnamed"));
+                    let ty = field_type(kind);
+                    let text = format!("{}{}", if f.doc.is_empty() { format!("`{}`.", f.name) } else { f.doc.clone() }, unit);
+                    let d = doc_attrs(&text);
+                    fields.push(quote!(#d pub #id: #ty));
+                }
+            }
+        }
+        let default = if all_small { quote!(Default,) } else { quote!() };
+        let eq = if eq { quote!(Eq, Hash,) } else { quote!() };
+        let imp = emit_payload_impl(&def, paths);
+        quote! {
+            #doc
+            #[derive(Debug, Clone, Copy, PartialEq, #eq #default)]
+            pub struct #name {
+                #(#fields,)*
+            }
+            #imp
+        }
+    });
+    quote!(#(#items)*)
+}

@@ -1,0 +1,110 @@
+//! The `protocol!` macro's entry: its arguments (a spec path, or an inline spec; an optional
+//! `crate = path` override), reading the spec file relative to the calling crate, and turning
+//! diagnostics into compile errors placed on the macro's argument.
+
+use std::path::PathBuf;
+
+use proc_macro2::{Span, TokenStream};
+use quote::quote;
+use syn::parse::{Parse, ParseStream};
+use syn::{LitStr, Token};
+
+use crate::codegen::{expand, RuntimePath};
+use crate::diag::{render_all, Diagnostic};
+use crate::source::SpecSource;
+
+/// Environment variable that overrides the directory spec paths are relative to (trybuild
+/// runs the cases in a crate of its own, so its cases point this at the project).
+pub const MANIFEST_DIR_OVERRIDE: &str = "PROTOCOL_SPEC_DIR";
+
+/// Parsed macro arguments.
+pub struct MacroInput {
+    /// `"specs/x.toml"` or `inline = "..."`.
+    pub spec: SpecArg,
+    /// Runtime crate path.
+    pub paths: RuntimePath,
+}
+
+/// Where the spec comes from.
+pub enum SpecArg {
+    /// A path relative to the calling crate's manifest directory.
+    Path(LitStr),
+    /// The spec text itself.
+    Inline(LitStr),
+}
+
+impl Parse for MacroInput {
+    fn parse(input: ParseStream<'_>) -> syn::Result<Self> {
+        let mut spec = None;
+        let mut paths = RuntimePath::default();
+        while !input.is_empty() {
+            if input.peek(LitStr) {
+                spec = Some(SpecArg::Path(input.parse()?));
+            } else {
+                let key: syn::Ident = input.call(syn::ext::IdentExt::parse_any)?;
+                input.parse::<Token![=]>()?;
+                match key.to_string().as_str() {
+                    "path" => spec = Some(SpecArg::Path(input.parse()?)),
+                    "inline" => spec = Some(SpecArg::Inline(input.parse()?)),
+                    "crate" => {
+                        let p: syn::Path = input.parse()?;
+                        paths = RuntimePath(quote!(#p));
+                    }
+                    _ => return Err(syn::Error::new(key.span(), "expected `path = \"...\"`, `inline = \"...\"` or `crate = path`")),
+                }
+            }
+            if !input.is_empty() {
+                input.parse::<Token![,]>()?;
+            }
+        }
+        let spec = spec.ok_or_else(|| input.error("expected the spec's path: protocol!(\"specs/name.toml\")"))?;
+        Ok(MacroInput { spec, paths })
+    }
+}
+
+fn errors_to_tokens(diags: &[Diagnostic], source: &SpecSource, span: Span) -> TokenStream {
+    let text = render_all(diags, source);
+    let n = diags.len();
+    let msg = format!("{} error{} in spec {}\n\n{text}", n, if n == 1 { "" } else { "s" }, source.path);
+    syn::Error::new(span, msg).to_compile_error()
+}
+
+/// Expand `protocol!(...)`. Never panics: every failure is a compile error.
+pub fn protocol_macro(tokens: TokenStream) -> TokenStream {
+    let input: MacroInput = match syn::parse2(tokens) {
+        Ok(i) => i,
+        Err(e) => return e.to_compile_error(),
+    };
+    let (source, span, track) = match &input.spec {
+        SpecArg::Inline(lit) => (SpecSource::new("<inline spec>", lit.value()), lit.span(), None),
+        SpecArg::Path(lit) => {
+            let rel = lit.value();
+            let base = std::env::var_os(MANIFEST_DIR_OVERRIDE)
+                .or_else(|| std::env::var_os("CARGO_MANIFEST_DIR"))
+                .map(PathBuf::from)
+                .unwrap_or_default();
+            let full = base.join(&rel);
+            match std::fs::read_to_string(&full) {
+                Ok(text) => (SpecSource::new(rel.clone(), text), lit.span(), Some(full)),
+                Err(e) => {
+                    let msg = format!(
+                        "cannot read spec `{rel}`: {e}\n  = help: the path is relative to the crate's Cargo.toml directory ({})",
+                        if base.as_os_str().is_empty() { "unknown".to_string() } else { "CARGO_MANIFEST_DIR".to_string() }
+                    );
+                    return syn::Error::new(lit.span(), msg).to_compile_error();
+                }
+            }
+        }
+    };
+    match crate::compile(&source) {
+        Err(diags) => errors_to_tokens(&diags, &source, span),
+        Ok(protocol) => {
+            let code = expand(&protocol, &input.paths);
+            let track = track.map(|p| {
+                let p = p.to_string_lossy().into_owned();
+                quote!(const _: &[u8] = include_bytes!(#p);)
+            });
+            quote!(#code #track)
+        }
+    }
+}

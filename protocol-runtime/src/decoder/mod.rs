@@ -1,0 +1,304 @@
+//! The one frame engine: deciding whether bytes are a frame ([`FrameLayout::probe`],
+//! [`FrameLayout::parse`]) and finding frames in a byte stream that arrives in chunks
+//! ([`StreamDecoder`]).
+//!
+//! This module owns the decoding rules of every frame format: the order of the checks, what a
+//! rejection costs (one byte: the search resumes right after the rejected start), and the
+//! accounting of every byte fed ([`Stats`]). It does not know what a payload means; generated
+//! code dispatches on the frames it yields.
+//!
+//! # How a candidate is decided
+//!
+//! A candidate starts where the sync bytes (or, at the very end of the input, a prefix of
+//! them) are found. Then, as soon as enough bytes are there:
+//!
+//! 1. with the header (`max(header_len, sync.len())` bytes): the [`Constant`]s
+//!    ([`Reject::BadHeader`]), the header checks ([`Reject::BadHeaderCheck`]), and the length
+//!    from the [`LengthRule`], which must lie in `min_len..=max_len` and fit the decoder's buffer
+//!    ([`Reject::BadLength`]) — an impossible length is rejected before its bytes are awaited;
+//! 2. with the whole frame: the frame checks in order ([`Reject::BadChecksum`]), then the
+//!    [`Marker`]s ([`Reject::BadTrailer`]).
+//!
+//! Items of the header (constants, header checks, a length field) resolve their positions
+//! against the header alone, so they use [`Pos::Start`](crate::layout::Pos::Start); frame checks
+//! and markers resolve against the whole frame.
+//!
+//! [`LengthRule`]: crate::layout::LengthRule
+
+use core::fmt;
+
+mod stream;
+
+pub use stream::{Event, Frame, Stats, StreamDecoder};
+
+use crate::error::DecodeError;
+use crate::layout::{Check, Constant, FrameLayout, LengthRule, Marker};
+use crate::wire::{read_uint, write_uint};
+
+/// Why a candidate frame was rejected.
+#[non_exhaustive]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reject {
+    /// The sync bytes or a [`Constant`] of the header do not match.
+    BadHeader,
+    /// A header check does not match.
+    BadHeaderCheck,
+    /// The length is outside the format's bounds or the decoder's buffer.
+    BadLength,
+    /// A frame check does not match.
+    BadChecksum,
+    /// A trailing [`Marker`] does not match.
+    BadTrailer,
+    /// The input ended before the frame was complete (see [`StreamDecoder::flush`]).
+    Truncated,
+}
+
+impl fmt::Display for Reject {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Reject::BadHeader => "bad header",
+            Reject::BadHeaderCheck => "bad header check",
+            Reject::BadLength => "bad length",
+            Reject::BadChecksum => "bad checksum",
+            Reject::BadTrailer => "bad trailer",
+            Reject::Truncated => "truncated frame",
+        })
+    }
+}
+
+impl core::error::Error for Reject {}
+
+/// What [`FrameLayout::probe`] found at the start of some bytes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Probe {
+    /// A valid frame of this total length starts here.
+    Frame(usize),
+    /// At least this many bytes (counted from the candidate's start) are needed to decide.
+    Need(usize),
+    /// No valid frame starts here.
+    Reject(Reject),
+}
+
+impl Check<'_> {
+    /// The covered range and the stored value's offset in a frame of `len` bytes.
+    #[inline]
+    fn resolve(&self, len: usize) -> Option<(core::ops::Range<usize>, usize)> {
+        let from = self.from.resolve(len)?;
+        let to = self.to.resolve(len)?;
+        Some((from..to, self.at.resolve(len)?))
+    }
+
+    /// Whether the value stored in `frame` is the check of the bytes it covers. Positions
+    /// resolve against `frame.len()`; a range outside the frame does not verify.
+    #[inline]
+    pub fn verify(&self, frame: &[u8]) -> bool {
+        let Some((covered, at)) = self.resolve(frame.len()) else {
+            return false;
+        };
+        let Some(covered) = frame.get(covered) else {
+            return false;
+        };
+        let width = self.checksum.width() as u8;
+        read_uint(frame, at, width, self.order) == Some(self.checksum.compute(covered))
+    }
+
+    /// Computes the check of the bytes it covers and stores it in `frame`.
+    ///
+    /// Returns `None`, writing nothing, if a position lies outside the frame.
+    #[inline]
+    pub fn store(&self, frame: &mut [u8]) -> Option<()> {
+        let (covered, at) = self.resolve(frame.len())?;
+        let value = self.checksum.compute(frame.get(covered)?);
+        write_uint(frame, at, self.checksum.width() as u8, self.order, value)
+    }
+}
+
+impl Marker<'_> {
+    /// Whether `frame` holds the marker's bytes at its position.
+    #[inline]
+    pub fn matches(&self, frame: &[u8]) -> bool {
+        let Some(at) = self.at.resolve(frame.len()) else {
+            return false;
+        };
+        let end = at.checked_add(self.bytes.len());
+        end.and_then(|end| frame.get(at..end)) == Some(self.bytes)
+    }
+
+    /// Writes the marker's bytes into `frame`; `None`, writing nothing, if they do not fit.
+    #[inline]
+    pub fn write(&self, frame: &mut [u8]) -> Option<()> {
+        let at = self.at.resolve(frame.len())?;
+        let dst = frame.get_mut(at..at.checked_add(self.bytes.len())?)?;
+        dst.copy_from_slice(self.bytes);
+        Some(())
+    }
+}
+
+impl Constant {
+    /// Whether `header` holds the value.
+    #[inline]
+    pub fn matches(&self, header: &[u8]) -> bool {
+        self.field.read(header) == Some(self.value)
+    }
+}
+
+impl FrameLayout<'_> {
+    /// Bytes needed before the length is known and the header verified:
+    /// `max(header_len, sync.len())`.
+    #[inline]
+    pub const fn header_span(&self) -> usize {
+        if self.header_len > self.sync.len() {
+            self.header_len
+        } else {
+            self.sync.len()
+        }
+    }
+
+    /// The total length of a frame from its header, by the length rule.
+    ///
+    /// Only the first [`header_span`](Self::header_span) bytes of `header` are looked at.
+    /// Returns `None` if `header` is shorter, or the length is negative or overflows. The
+    /// bounds `min_len..=max_len` are not checked here.
+    ///
+    /// ```
+    /// # use protocol_runtime::layout::*;
+    /// # use protocol_runtime::Checksum;
+    /// # let hflink = FrameLayout {
+    /// #     sync: &[0xFF, 0xFF], header_len: 6, min_len: 8, max_len: 127,
+    /// #     length: LengthRule::Field {
+    /// #         field: WordField { at: Pos::Start(4), size: 2, order: ByteOrder::Big, shift: 0, width: 16 },
+    /// #         adjust: 7,
+    /// #     },
+    /// #     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
+    /// # };
+    /// // HFLink: a big-endian u16 at offset 4 counts command and payload; 7 bytes of framing.
+    /// assert_eq!(hflink.frame_len(&[0xFF, 0xFF, 0x11, 0x01, 0x00, 0x01]), Some(8));
+    /// assert_eq!(hflink.frame_len(&[0xFF, 0xFF, 0x11]), None);
+    /// ```
+    pub fn frame_len(&self, header: &[u8]) -> Option<usize> {
+        let header = header.get(..self.header_span())?;
+        match self.length {
+            LengthRule::Fixed(len) => Some(len),
+            LengthRule::Field { field, adjust } => {
+                let value = i64::try_from(field.read(header)?).ok()?;
+                usize::try_from(value.checked_add(adjust)?).ok()
+            }
+        }
+    }
+
+    /// Examines `bytes`, which start at a candidate frame start (where the sync bytes, or a
+    /// prefix of them, were found).
+    ///
+    /// Frames longer than `max_len` are rejected as [`Reject::BadLength`].
+    ///
+    /// ```
+    /// # use protocol_runtime::layout::*;
+    /// # use protocol_runtime::{Checksum, decoder::{Probe, Reject}};
+    /// # let hflink = FrameLayout {
+    /// #     sync: &[0xFF, 0xFF], header_len: 6, min_len: 8, max_len: 127,
+    /// #     length: LengthRule::Field {
+    /// #         field: WordField { at: Pos::Start(4), size: 2, order: ByteOrder::Big, shift: 0, width: 16 },
+    /// #         adjust: 7,
+    /// #     },
+    /// #     constants: &[], header_checks: &[],
+    /// #     frame_checks: &[Check {
+    /// #         checksum: Checksum::SumMod255, from: Pos::Start(0), to: Pos::End(1), at: Pos::End(1),
+    /// #         order: ByteOrder::Big,
+    /// #     }],
+    /// #     markers: &[],
+    /// # };
+    /// let frame = [0xFF, 0xFF, 0x11, 0x01, 0x00, 0x01, 0x00, 0x13];
+    /// assert_eq!(hflink.probe(&frame), Probe::Frame(8));
+    /// assert_eq!(hflink.probe(&frame[..3]), Probe::Need(6));
+    /// assert_eq!(hflink.probe(&frame[..6]), Probe::Need(8));
+    /// assert_eq!(hflink.probe(&[0xFF, 0xFF, 0x11, 0x01, 0x00, 0x01, 0x00, 0x14]), Probe::Reject(Reject::BadChecksum));
+    /// assert_eq!(hflink.probe(&[0xFF, 0xFF, 0x11, 0x01, 0xFF, 0xFF]), Probe::Reject(Reject::BadLength));
+    /// ```
+    #[inline]
+    pub fn probe(&self, bytes: &[u8]) -> Probe {
+        self.probe_within(bytes, self.max_len)
+    }
+
+    /// [`probe`](Self::probe) with frames longer than `limit` rejected as too long.
+    pub(crate) fn probe_within(&self, bytes: &[u8], limit: usize) -> Probe {
+        let seen = bytes.len().min(self.sync.len());
+        if bytes.get(..seen) != self.sync.get(..seen) {
+            return Probe::Reject(Reject::BadHeader);
+        }
+        let span = self.header_span();
+        if span > limit {
+            // No frame fits; but a sync prefix cut by the end of the bytes may not be a
+            // candidate at all: decide that first, so that the verdict does not depend on
+            // where the input was cut.
+            if bytes.len() < self.sync.len() {
+                return Probe::Need(self.sync.len());
+            }
+            return Probe::Reject(Reject::BadLength);
+        }
+        let Some(header) = bytes.get(..span) else {
+            return Probe::Need(span);
+        };
+        if !self.constants.iter().all(|c| c.matches(header)) {
+            return Probe::Reject(Reject::BadHeader);
+        }
+        if !self.header_checks.iter().all(|c| c.verify(header)) {
+            return Probe::Reject(Reject::BadHeaderCheck);
+        }
+        let total = match self.frame_len(header) {
+            Some(t) if t >= span && t > 0 && t >= self.min_len && t <= limit => t,
+            _ => return Probe::Reject(Reject::BadLength),
+        };
+        let Some(frame) = bytes.get(..total) else {
+            return Probe::Need(total);
+        };
+        if !self.frame_checks.iter().all(|c| c.verify(frame)) {
+            return Probe::Reject(Reject::BadChecksum);
+        }
+        if !self.markers.iter().all(|m| m.matches(frame)) {
+            return Probe::Reject(Reject::BadTrailer);
+        }
+        Probe::Frame(total)
+    }
+
+    /// Parses exactly one frame at the start of `bytes` (bytes after it are ignored).
+    ///
+    /// # Errors
+    ///
+    /// [`DecodeError::Truncated`] if more bytes are needed to decide,
+    /// [`DecodeError::Frame`] if no valid frame starts here.
+    ///
+    /// ```
+    /// # use protocol_runtime::layout::*;
+    /// # use protocol_runtime::{Checksum, DecodeError, decoder::Reject};
+    /// # let hflink = FrameLayout {
+    /// #     sync: &[0xFF, 0xFF], header_len: 6, min_len: 8, max_len: 127,
+    /// #     length: LengthRule::Field {
+    /// #         field: WordField { at: Pos::Start(4), size: 2, order: ByteOrder::Big, shift: 0, width: 16 },
+    /// #         adjust: 7,
+    /// #     },
+    /// #     constants: &[], header_checks: &[],
+    /// #     frame_checks: &[Check {
+    /// #         checksum: Checksum::SumMod255, from: Pos::Start(0), to: Pos::End(1), at: Pos::End(1),
+    /// #         order: ByteOrder::Big,
+    /// #     }],
+    /// #     markers: &[],
+    /// # };
+    /// let bytes = [0xFF, 0xFF, 0x11, 0x01, 0x00, 0x01, 0x00, 0x13, 0xAA];
+    /// assert_eq!(hflink.parse(&bytes)?, &bytes[..8]);
+    /// assert_eq!(hflink.parse(&bytes[..7]), Err(DecodeError::Truncated { needed: 8, available: 7 }));
+    /// assert_eq!(hflink.parse(&bytes[1..]), Err(DecodeError::Frame(Reject::BadHeader)));
+    /// # Ok::<(), DecodeError>(())
+    /// ```
+    pub fn parse<'b>(&self, bytes: &'b [u8]) -> Result<&'b [u8], DecodeError> {
+        match self.probe(bytes) {
+            Probe::Frame(len) => bytes
+                .get(..len)
+                .ok_or(DecodeError::Frame(Reject::BadLength)),
+            Probe::Need(needed) => Err(DecodeError::Truncated {
+                needed,
+                available: bytes.len(),
+            }),
+            Probe::Reject(reason) => Err(DecodeError::Frame(reason)),
+        }
+    }
+}

@@ -1,0 +1,480 @@
+//! The streaming half of the engine: [`StreamDecoder`] finds frames in input that arrives in
+//! chunks, and accounts for every byte ([`Stats`]) and every decision ([`Event`]).
+//!
+//! This module owns the search for candidates, the fixed buffer that holds a candidate cut by
+//! the end of a chunk, and the rule that a rejection costs one byte. Whether a candidate is a
+//! frame is decided by [`FrameLayout::probe`]'s rules, in the parent module.
+
+use core::fmt;
+
+use super::{Probe, Reject};
+use crate::layout::FrameLayout;
+
+/// Where the first candidate of `data` starts: the first offset where `data` holds the sync
+/// bytes, or a prefix of them that runs to the end of `data`; `data.len()` if there is none.
+#[inline]
+fn find_candidate(sync: &[u8], data: &[u8]) -> usize {
+    let Some((&first, more)) = sync.split_first() else {
+        return 0;
+    };
+    let mut from = 0;
+    while let Some(hit) = data
+        .get(from..)
+        .and_then(|rest| memchr::memchr(first, rest))
+    {
+        let at = from.wrapping_add(hit);
+        let after = data.get(at.wrapping_add(1)..).unwrap_or_default();
+        let n = after.len().min(more.len());
+        if after.get(..n) == more.get(..n) {
+            return at;
+        }
+        from = at.wrapping_add(1);
+    }
+    data.len()
+}
+
+/// What a [`StreamDecoder`] counted, for link-quality reports.
+///
+/// Every byte fed is accounted for once: `frame_bytes + skipped_bytes` plus the bytes still
+/// pending equals the bytes fed ([`StreamDecoder::position`]). A rejected candidate's first
+/// byte counts as skipped (the search resumes right after it).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Valid frames yielded.
+    pub frames: u64,
+    /// Bytes of the valid frames.
+    pub frame_bytes: u64,
+    /// Bytes that belong to no valid frame.
+    pub skipped_bytes: u64,
+    /// Candidates rejected as [`Reject::BadHeader`].
+    pub bad_header: u64,
+    /// Candidates rejected as [`Reject::BadHeaderCheck`].
+    pub bad_header_check: u64,
+    /// Candidates rejected as [`Reject::BadLength`].
+    pub bad_length: u64,
+    /// Candidates rejected as [`Reject::BadChecksum`].
+    pub bad_checksum: u64,
+    /// Candidates rejected as [`Reject::BadTrailer`].
+    pub bad_trailer: u64,
+    /// Candidates rejected as [`Reject::Truncated`] by [`StreamDecoder::flush`].
+    pub truncated: u64,
+}
+
+impl Stats {
+    const ZERO: Stats = Stats {
+        frames: 0,
+        frame_bytes: 0,
+        skipped_bytes: 0,
+        bad_header: 0,
+        bad_header_check: 0,
+        bad_length: 0,
+        bad_checksum: 0,
+        bad_trailer: 0,
+        truncated: 0,
+    };
+
+    /// Candidates rejected, for any reason.
+    pub const fn rejected(&self) -> u64 {
+        self.bad_header
+            .wrapping_add(self.bad_header_check)
+            .wrapping_add(self.bad_length)
+            .wrapping_add(self.bad_checksum)
+            .wrapping_add(self.bad_trailer)
+            .wrapping_add(self.truncated)
+    }
+
+    fn count_reject(&mut self, reason: Reject) {
+        self.skipped_bytes = self.skipped_bytes.wrapping_add(1);
+        let counter = match reason {
+            Reject::BadHeader => &mut self.bad_header,
+            Reject::BadHeaderCheck => &mut self.bad_header_check,
+            Reject::BadLength => &mut self.bad_length,
+            Reject::BadChecksum => &mut self.bad_checksum,
+            Reject::BadTrailer => &mut self.bad_trailer,
+            Reject::Truncated => &mut self.truncated,
+        };
+        *counter = counter.wrapping_add(1);
+    }
+
+    fn count_frame(&mut self, len: usize) {
+        self.frames = self.frames.wrapping_add(1);
+        self.frame_bytes = self.frame_bytes.wrapping_add(len as u64);
+    }
+}
+
+/// A valid frame found in a stream.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Frame<'a> {
+    /// The whole frame, sync to trailer.
+    pub bytes: &'a [u8],
+    /// Offset of its first byte in the whole stream.
+    pub offset: u64,
+}
+
+/// What a [`StreamDecoder`] reports with [`StreamDecoder::next_event`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Event<'a> {
+    /// A valid frame.
+    Frame(Frame<'a>),
+    /// A candidate starting at `offset` was rejected; the search resumes at `offset + 1`.
+    Rejected {
+        /// Offset of the candidate's first byte in the stream.
+        offset: u64,
+        /// Why it was rejected.
+        reason: Reject,
+    },
+    /// A run of `len` bytes where no candidate starts. A long run of garbage may be reported
+    /// in several pieces (one per chunk of input, for example).
+    Skipped {
+        /// Offset of the run's first byte in the stream.
+        offset: u64,
+        /// Bytes in the run.
+        len: usize,
+    },
+}
+
+/// One step of the engine: the data of an [`Event`], with a buffered frame as a range so that
+/// the engine's buffer is borrowed only once the step is over.
+enum Step<'i> {
+    Input(Frame<'i>),
+    Buffered {
+        start: usize,
+        end: usize,
+        offset: u64,
+    },
+    Rejected {
+        offset: u64,
+        reason: Reject,
+    },
+    Skipped {
+        offset: u64,
+        len: usize,
+    },
+    Idle,
+}
+
+/// Finds the frames of a [`FrameLayout`] in a byte stream that arrives in chunks of any size.
+///
+/// The decoder owns a fixed buffer of `N` bytes and never allocates. Frames found whole in the
+/// caller's input are returned borrowing that input (zero copy); only a candidate cut by the end
+/// of a chunk is copied into the buffer, and completed from the following chunks with just the
+/// bytes it needs. Frames longer than `min(max_len, N)` are rejected as [`Reject::BadLength`].
+/// A rejected candidate costs one byte: the search resumes right after its start, so a corrupt
+/// or truncated frame never costs the valid frame that follows it.
+///
+/// ```
+/// use protocol_runtime::layout::{ByteOrder, Check, LengthRule, Pos, WordField};
+/// use protocol_runtime::{Checksum, FrameLayout, StreamDecoder};
+///
+/// static HFLINK: FrameLayout<'static> = FrameLayout {
+///     sync: &[0xFF, 0xFF],
+///     header_len: 6,
+///     min_len: 8,
+///     max_len: 127,
+///     length: LengthRule::Field {
+///         field: WordField { at: Pos::Start(4), size: 2, order: ByteOrder::Big, shift: 0, width: 16 },
+///         adjust: 7,
+///     },
+///     constants: &[],
+///     header_checks: &[],
+///     frame_checks: &[Check {
+///         checksum: Checksum::SumMod255,
+///         from: Pos::Start(0),
+///         to: Pos::End(1),
+///         at: Pos::End(1),
+///         order: ByteOrder::Big,
+///     }],
+///     markers: &[],
+/// };
+///
+/// let mut decoder = StreamDecoder::<128>::new(&HFLINK);
+/// let mut offsets = Vec::new();
+/// // Garbage, then a frame split across two chunks.
+/// for chunk in [&[0x00, 0xFF, 0xFF, 0x11][..], &[0x01, 0x00, 0x01, 0x00, 0x13]] {
+///     decoder.feed(chunk, |frame| offsets.push(frame.offset));
+/// }
+/// assert_eq!(offsets, [1]);
+/// assert_eq!(decoder.stats().skipped_bytes, 1);
+/// ```
+pub struct StreamDecoder<'l, const N: usize> {
+    layout: &'l FrameLayout<'l>,
+    buf: [u8; N],
+    /// The pending bytes are `buf[start..end]`; `start < end` or both are 0.
+    start: usize,
+    end: usize,
+    /// Bytes consumed from all inputs.
+    position: u64,
+    stats: Stats,
+}
+
+impl<const N: usize> fmt::Debug for StreamDecoder<'_, N> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("StreamDecoder")
+            .field("capacity", &N)
+            .field("pending", &self.pending())
+            .field("position", &self.position)
+            .field("stats", &self.stats)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'l, const N: usize> StreamDecoder<'l, N> {
+    /// A decoder for `layout` with an empty buffer.
+    pub const fn new(layout: &'l FrameLayout<'l>) -> Self {
+        Self {
+            layout,
+            buf: [0; N],
+            start: 0,
+            end: 0,
+            position: 0,
+            stats: Stats::ZERO,
+        }
+    }
+
+    /// The frame format.
+    #[inline]
+    pub fn layout(&self) -> &'l FrameLayout<'l> {
+        self.layout
+    }
+
+    /// What was counted since the decoder was created or reset.
+    #[inline]
+    pub fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    /// Bytes held in the buffer: the start of a candidate the input has not completed yet.
+    #[inline]
+    pub fn pending(&self) -> usize {
+        self.end.saturating_sub(self.start)
+    }
+
+    /// The bytes held in the buffer.
+    #[inline]
+    pub fn pending_bytes(&self) -> &[u8] {
+        self.buf.get(self.start..self.end).unwrap_or_default()
+    }
+
+    /// Bytes consumed from all inputs since the decoder was created or reset.
+    #[inline]
+    pub fn position(&self) -> u64 {
+        self.position
+    }
+
+    /// Forgets the pending bytes, the position and the stats: the decoder is as new.
+    pub fn reset(&mut self) {
+        self.start = 0;
+        self.end = 0;
+        self.position = 0;
+        self.stats = Stats::ZERO;
+    }
+
+    /// The next valid frame, consuming from `*input` as needed (the slice is advanced).
+    ///
+    /// Returns `None` when the input is exhausted; a partial frame at its end stays buffered
+    /// for the next call. Rejections and garbage are counted in [`stats`](Self::stats).
+    pub fn decode<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Frame<'s>> {
+        self.next_frame(input, false)
+    }
+
+    /// Like [`decode`](Self::decode), but also reports rejected candidates and skipped runs.
+    pub fn next_event<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Event<'s>> {
+        self.event(input, false)
+    }
+
+    /// Declares the end of the input (end of a file, or an idle gap on the link) and returns
+    /// the next frame among the pending bytes.
+    ///
+    /// The pending candidate will never be completed: it is rejected as [`Reject::Truncated`]
+    /// and the bytes after its start are searched again, so a truncated frame does not hide
+    /// a valid frame inside its claimed length. Call until `None`; the buffer is then empty.
+    pub fn flush(&mut self) -> Option<Frame<'_>> {
+        self.next_frame(&mut &[][..], true)
+    }
+
+    /// Like [`flush`](Self::flush), but also reports rejected candidates and skipped runs.
+    pub fn flush_event(&mut self) -> Option<Event<'_>> {
+        self.event(&mut &[][..], true)
+    }
+
+    /// Feeds a chunk and calls `sink` with every frame completed by it.
+    pub fn feed(&mut self, mut chunk: &[u8], mut sink: impl FnMut(Frame<'_>)) {
+        while let Some(frame) = self.decode(&mut chunk) {
+            sink(frame);
+        }
+    }
+
+    fn next_frame<'s, 'i: 's>(
+        &'s mut self,
+        input: &mut &'i [u8],
+        at_end: bool,
+    ) -> Option<Frame<'s>> {
+        let (start, end, offset) = loop {
+            match self.step(input, at_end) {
+                Step::Input(frame) => return Some(frame),
+                Step::Buffered { start, end, offset } => break (start, end, offset),
+                Step::Rejected { .. } | Step::Skipped { .. } => {}
+                Step::Idle => return None,
+            }
+        };
+        Some(Frame {
+            bytes: self.buf.get(start..end).unwrap_or_default(),
+            offset,
+        })
+    }
+
+    fn event<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8], at_end: bool) -> Option<Event<'s>> {
+        Some(match self.step(input, at_end) {
+            Step::Input(frame) => Event::Frame(frame),
+            Step::Buffered { start, end, offset } => Event::Frame(Frame {
+                bytes: self.buf.get(start..end).unwrap_or_default(),
+                offset,
+            }),
+            Step::Rejected { offset, reason } => Event::Rejected { offset, reason },
+            Step::Skipped { offset, len } => Event::Skipped { offset, len },
+            Step::Idle => return None,
+        })
+    }
+
+    /// Frames longer than this are rejected.
+    #[inline]
+    fn limit(&self) -> usize {
+        self.layout.max_len.min(N)
+    }
+
+    /// Advances `input` by `n` bytes (at most its length) and returns the bytes skipped.
+    #[inline]
+    fn consume<'i>(&mut self, input: &mut &'i [u8], n: usize) -> &'i [u8] {
+        let data: &'i [u8] = input;
+        let (head, rest) = data.split_at_checked(n).unwrap_or((data, &[]));
+        *input = rest;
+        self.position = self.position.wrapping_add(head.len() as u64);
+        head
+    }
+
+    /// One event's worth of work.
+    #[inline]
+    fn step<'i>(&mut self, input: &mut &'i [u8], at_end: bool) -> Step<'i> {
+        if self.start < self.end {
+            self.step_buffered(input, at_end)
+        } else {
+            self.start = 0;
+            self.end = 0;
+            self.step_input(input, at_end)
+        }
+    }
+
+    /// A step on the caller's input, with nothing pending.
+    #[inline]
+    fn step_input<'i>(&mut self, input: &mut &'i [u8], at_end: bool) -> Step<'i> {
+        let data: &'i [u8] = input;
+        if data.is_empty() {
+            return Step::Idle;
+        }
+        let offset = self.position;
+        let skip = find_candidate(self.layout.sync, data);
+        if skip > 0 {
+            let len = self.consume(input, skip).len();
+            self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(len as u64);
+            return Step::Skipped { offset, len };
+        }
+        let reason = match self.layout.probe_within(data, self.limit()) {
+            Probe::Frame(len) => {
+                let bytes = self.consume(input, len);
+                self.stats.count_frame(bytes.len());
+                return Step::Input(Frame { bytes, offset });
+            }
+            Probe::Need(_) => {
+                // The candidate runs to the end of the input, which is then shorter than what
+                // it needs, itself at most `limit() <= N`: keep it all.
+                if let Some(dst) = self.buf.get_mut(..data.len()) {
+                    dst.copy_from_slice(data);
+                    self.start = 0;
+                    self.end = data.len();
+                    self.consume(input, data.len());
+                    return self.step_buffered(input, at_end);
+                }
+                Reject::BadLength
+            }
+            Probe::Reject(reason) => reason,
+        };
+        self.consume(input, 1);
+        self.stats.count_reject(reason);
+        Step::Rejected { offset, reason }
+    }
+
+    /// A step on the pending bytes, completing them from the caller's input as needed.
+    fn step_buffered<'i>(&mut self, input: &mut &'i [u8], at_end: bool) -> Step<'i> {
+        let limit = self.limit();
+        loop {
+            let Some(region) = self.buf.get(self.start..self.end) else {
+                self.start = 0;
+                self.end = 0;
+                return Step::Idle;
+            };
+            let pending = region.len();
+            let offset = self.position.wrapping_sub(pending as u64);
+            let skip = find_candidate(self.layout.sync, region);
+            if skip > 0 {
+                self.start = self.start.wrapping_add(skip);
+                self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);
+                return Step::Skipped { offset, len: skip };
+            }
+            let reason = match self.layout.probe_within(region, limit) {
+                Probe::Frame(len) => {
+                    let start = self.start;
+                    self.start = start.wrapping_add(len);
+                    self.stats.count_frame(len);
+                    return Step::Buffered {
+                        start,
+                        end: self.start,
+                        offset,
+                    };
+                }
+                Probe::Reject(reason) => reason,
+                Probe::Need(_) if input.is_empty() && at_end => Reject::Truncated,
+                Probe::Need(_) if input.is_empty() => return Step::Idle,
+                Probe::Need(needed) => {
+                    if self.fill(input, needed) {
+                        continue;
+                    }
+                    Reject::BadLength
+                }
+            };
+            self.start = self.start.wrapping_add(1);
+            self.stats.count_reject(reason);
+            return Step::Rejected { offset, reason };
+        }
+    }
+
+    /// Copies from `input` until the pending bytes number `needed` or the input is exhausted,
+    /// moving the pending bytes to the front of the buffer first if they would not fit.
+    /// Returns `false`, copying nothing, if `needed` exceeds the buffer.
+    fn fill(&mut self, input: &mut &[u8], needed: usize) -> bool {
+        if needed > N {
+            return false;
+        }
+        if self.start.saturating_add(needed) > N && self.buf.get(self.start..self.end).is_some() {
+            self.buf.copy_within(self.start..self.end, 0);
+            self.end = self.end.wrapping_sub(self.start);
+            self.start = 0;
+        }
+        let want = needed.saturating_sub(self.pending()).min(input.len());
+        let data: &[u8] = input;
+        let Some((src, rest)) = data.split_at_checked(want) else {
+            return false;
+        };
+        let Some(dst) = self
+            .end
+            .checked_add(want)
+            .and_then(|to| self.buf.get_mut(self.end..to))
+        else {
+            return false;
+        };
+        dst.copy_from_slice(src);
+        *input = rest;
+        self.position = self.position.wrapping_add(want as u64);
+        self.end = self.end.wrapping_add(want);
+        true
+    }
+}

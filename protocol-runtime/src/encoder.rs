@@ -1,0 +1,234 @@
+//! Writing frames: sealing a frame written in place ([`FrameLayout::seal`]) and the
+//! [`Payload`] trait that generated payload structs implement.
+//!
+//! This module owns the encoding rules of every frame format: which parts of a frame the
+//! runtime computes (sync, length, constants, checks, markers) and in which order. The caller
+//! (generated code, or the CLI's interpreter) writes the user's header fields and the payload
+//! straight into the output buffer, then seals it: no frame is built on the stack and copied.
+
+use crate::decoder::Probe;
+use crate::error::{DecodeError, EncodeError};
+use crate::layout::{FrameLayout, LengthRule};
+use crate::wire::{Reader, Writer};
+
+impl FrameLayout<'_> {
+    /// Fills in the computed parts of `frame`, whose user header fields and payload are already
+    /// written: the sync bytes, the length field (from `frame.len()` by the length rule), the
+    /// constants, the header checks, the markers, then the frame checks in order.
+    ///
+    /// Header items resolve their positions against the header, as when decoding.
+    ///
+    /// # Errors
+    ///
+    /// - [`EncodeError::BufferTooSmall`] if `frame` is shorter than `min_len` (or the header),
+    /// - [`EncodeError::PayloadTooLarge`] if it is longer than `max_len`,
+    /// - [`EncodeError::ValueOutOfRange`] if the length does not fit its field, the rule is
+    ///   [`LengthRule::Fixed`] and the length differs, a constant does not fit its field, or an
+    ///   item lies outside the frame (an inconsistent layout).
+    ///
+    /// ```
+    /// use protocol_runtime::layout::{ByteOrder, Check, LengthRule, Pos, WordField};
+    /// use protocol_runtime::{Checksum, FrameLayout};
+    ///
+    /// let hflink = FrameLayout {
+    ///     sync: &[0xFF, 0xFF],
+    ///     header_len: 6,
+    ///     min_len: 8,
+    ///     max_len: 127,
+    ///     length: LengthRule::Field {
+    ///         field: WordField { at: Pos::Start(4), size: 2, order: ByteOrder::Big, shift: 0, width: 16 },
+    ///         adjust: 7,
+    ///     },
+    ///     constants: &[],
+    ///     header_checks: &[],
+    ///     frame_checks: &[Check {
+    ///         checksum: Checksum::SumMod255,
+    ///         from: Pos::Start(0),
+    ///         to: Pos::End(1),
+    ///         at: Pos::End(1),
+    ///         order: ByteOrder::Big,
+    ///     }],
+    ///     markers: &[],
+    /// };
+    /// let mut frame = [0u8; 8];
+    /// frame[2] = 0x11; // sender
+    /// frame[3] = 0x01; // receiver
+    /// frame[6] = 0x00; // command
+    /// hflink.seal(&mut frame)?;
+    /// assert_eq!(frame, [0xFF, 0xFF, 0x11, 0x01, 0x00, 0x01, 0x00, 0x13]);
+    /// assert_eq!(hflink.parse(&frame), Ok(&frame[..]));
+    /// # Ok::<(), protocol_runtime::EncodeError>(())
+    /// ```
+    pub fn seal(&self, frame: &mut [u8]) -> Result<(), EncodeError> {
+        let len = frame.len();
+        let span = self.header_span();
+        let min = self.min_len.max(span);
+        if len < min {
+            return Err(EncodeError::BufferTooSmall {
+                needed: min,
+                available: len,
+            });
+        }
+        if len > self.max_len {
+            return Err(EncodeError::PayloadTooLarge {
+                len,
+                max: self.max_len,
+            });
+        }
+        let header = frame.get_mut(..span).ok_or(EncodeError::ValueOutOfRange)?;
+        let sync = header
+            .get_mut(..self.sync.len())
+            .ok_or(EncodeError::ValueOutOfRange)?;
+        sync.copy_from_slice(self.sync);
+        match self.length {
+            LengthRule::Fixed(fixed) if fixed == len => {}
+            LengthRule::Fixed(_) => return Err(EncodeError::ValueOutOfRange),
+            LengthRule::Field { field, adjust } => {
+                let value = i64::try_from(len)
+                    .ok()
+                    .and_then(|len| len.checked_sub(adjust))
+                    .and_then(|value| u64::try_from(value).ok())
+                    .ok_or(EncodeError::ValueOutOfRange)?;
+                field
+                    .write(header, value)
+                    .ok_or(EncodeError::ValueOutOfRange)?;
+            }
+        }
+        for constant in self.constants {
+            constant
+                .field
+                .write(header, constant.value)
+                .ok_or(EncodeError::ValueOutOfRange)?;
+        }
+        for check in self.header_checks {
+            check.store(header).ok_or(EncodeError::ValueOutOfRange)?;
+        }
+        for marker in self.markers {
+            marker.write(frame).ok_or(EncodeError::ValueOutOfRange)?;
+        }
+        for check in self.frame_checks {
+            check.store(frame).ok_or(EncodeError::ValueOutOfRange)?;
+        }
+        Ok(())
+    }
+
+    /// Whether `frame` is exactly one valid frame (a debugging aid for encoders).
+    pub fn is_valid_frame(&self, frame: &[u8]) -> bool {
+        self.probe(frame) == Probe::Frame(frame.len())
+    }
+}
+
+/// A value with a fixed wire form: generated payload structs implement it (usually with
+/// `#[derive(Payload)]`).
+///
+/// ```
+/// use protocol_runtime::{DecodeError, EncodeError, Payload, Reader, Writer};
+///
+/// #[derive(Debug, PartialEq)]
+/// struct Speed {
+///     x: f32,
+///     turn: i16,
+/// }
+///
+/// impl Payload for Speed {
+///     const SIZE: usize = 6;
+///     fn write(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
+///         w.put_f32_le(self.x)?;
+///         w.put_i16_be(self.turn)
+///     }
+///     fn read(r: &mut Reader<'_>) -> Result<Self, DecodeError> {
+///         Ok(Speed { x: r.f32_le()?, turn: r.i16_be()? })
+///     }
+/// }
+///
+/// let mut buf = [0u8; 8];
+/// let n = Speed { x: 0.5, turn: -3 }.to_bytes(&mut buf)?;
+/// assert_eq!(n, Speed::SIZE);
+/// assert_eq!(Speed::from_bytes(&buf[..n])?, Speed { x: 0.5, turn: -3 });
+/// assert_eq!(
+///     Speed::from_bytes(&buf),
+///     Err(DecodeError::PayloadLength { expected: 6, actual: 8 })
+/// );
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub trait Payload: Sized {
+    /// Size on the wire in bytes.
+    const SIZE: usize;
+
+    /// Writes the value at the writer's position.
+    ///
+    /// # Errors
+    ///
+    /// [`EncodeError::BufferTooSmall`] if the buffer is too short;
+    /// [`EncodeError::ValueOutOfRange`] if a field's value does not fit its wire form.
+    fn write(&self, w: &mut Writer<'_>) -> Result<(), EncodeError>;
+
+    /// Reads a value at the reader's position.
+    ///
+    /// # Errors
+    ///
+    /// [`DecodeError::Truncated`] if the input is too short;
+    /// [`DecodeError::InvalidEnum`] if a field holds no variant of its enum.
+    fn read(r: &mut Reader<'_>) -> Result<Self, DecodeError>;
+
+    /// Decodes a value from exactly `bytes`.
+    ///
+    /// # Errors
+    ///
+    /// [`DecodeError::PayloadLength`] if `bytes` is shorter than the value (then `expected` is
+    /// [`SIZE`](Self::SIZE)) or longer (then `expected` is the bytes read); the errors of
+    /// [`read`](Self::read) otherwise.
+    fn from_bytes(bytes: &[u8]) -> Result<Self, DecodeError> {
+        let mut r = Reader::new(bytes);
+        let value = Self::read(&mut r).map_err(|e| match e {
+            DecodeError::Truncated { .. } => DecodeError::PayloadLength {
+                expected: Self::SIZE,
+                actual: bytes.len(),
+            },
+            other => other,
+        })?;
+        r.finish()?;
+        Ok(value)
+    }
+
+    /// Encodes the value at the start of `buf` and returns the bytes written.
+    ///
+    /// # Errors
+    ///
+    /// The errors of [`write`](Self::write).
+    fn to_bytes(&self, buf: &mut [u8]) -> Result<usize, EncodeError> {
+        let mut w = Writer::new(buf);
+        self.write(&mut w)?;
+        Ok(w.position())
+    }
+}
+
+/// No payload: a command that carries nothing.
+impl Payload for () {
+    const SIZE: usize = 0;
+
+    #[inline]
+    fn write(&self, _: &mut Writer<'_>) -> Result<(), EncodeError> {
+        Ok(())
+    }
+
+    #[inline]
+    fn read(_: &mut Reader<'_>) -> Result<Self, DecodeError> {
+        Ok(())
+    }
+}
+
+/// Raw bytes.
+impl<const N: usize> Payload for [u8; N] {
+    const SIZE: usize = N;
+
+    #[inline]
+    fn write(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
+        w.put_array(*self)
+    }
+
+    #[inline]
+    fn read(r: &mut Reader<'_>) -> Result<Self, DecodeError> {
+        r.bytes()
+    }
+}

@@ -1,0 +1,253 @@
+//! HFLink golden vectors and the golden stream, fed whole and in chunks of every size.
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use common::{HFLINK, HFLINK_GOLDEN, HFLINK_STREAM, Seen, hex, reference, run};
+use protocol_runtime::decoder::{Probe, Reject};
+use protocol_runtime::{DecodeError, EncodeError, Frame, StreamDecoder};
+
+#[test]
+fn golden_frames_probe_and_parse_as_valid() {
+    for golden in HFLINK_GOLDEN {
+        let frame = hex(golden);
+        assert_eq!(HFLINK.probe(&frame), Probe::Frame(frame.len()), "{golden}");
+        assert_eq!(HFLINK.parse(&frame), Ok(&frame[..]));
+        for cut in 0..frame.len() {
+            let want = if cut < 6 { 6 } else { frame.len() };
+            assert_eq!(
+                HFLINK.probe(&frame[..cut]),
+                Probe::Need(want),
+                "{golden} cut at {cut}"
+            );
+            assert_eq!(
+                HFLINK.parse(&frame[..cut]),
+                Err(DecodeError::Truncated {
+                    needed: want,
+                    available: cut
+                })
+            );
+        }
+    }
+}
+
+#[test]
+fn every_single_byte_corruption_is_rejected() {
+    for golden in HFLINK_GOLDEN {
+        let frame = hex(golden);
+        for i in 0..frame.len() {
+            // Not 0xFF: sum mod 255 cannot tell 0x00 from 0xFF.
+            for flip in [0x01, 0x80, 0x55] {
+                let mut bad = frame.clone();
+                bad[i] ^= flip;
+                let Probe::Reject(reason) = HFLINK.probe(&bad) else {
+                    // A changed length may only ask for more bytes (or fewer, then fail).
+                    assert!(i == 4 || i == 5, "{golden}: byte {i} ^ {flip:#x} accepted");
+                    continue;
+                };
+                let expected = match i {
+                    0 | 1 => Reject::BadHeader,
+                    4 | 5 => reason,
+                    _ => Reject::BadChecksum,
+                };
+                assert_eq!(reason, expected, "{golden}: byte {i} ^ {flip:#x}");
+            }
+        }
+    }
+}
+
+#[test]
+fn seal_writes_the_golden_frames() {
+    for golden in HFLINK_GOLDEN {
+        let frame = hex(golden);
+        let mut built = frame.clone();
+        // Keep sender, receiver, command and payload; clear what the layout computes.
+        built[..2].fill(0);
+        built[4..6].fill(0);
+        *built.last_mut().unwrap() = 0;
+        HFLINK.seal(&mut built).unwrap();
+        assert_eq!(built, frame, "{golden}");
+        assert!(HFLINK.is_valid_frame(&built));
+    }
+}
+
+#[test]
+fn seal_refuses_bad_sizes() {
+    let mut short = [0u8; 7];
+    assert_eq!(
+        HFLINK.seal(&mut short),
+        Err(EncodeError::BufferTooSmall {
+            needed: 8,
+            available: 7
+        })
+    );
+    let mut long = [0u8; 128];
+    assert_eq!(
+        HFLINK.seal(&mut long),
+        Err(EncodeError::PayloadTooLarge { len: 128, max: 127 })
+    );
+    let mut max = [0u8; 127];
+    HFLINK.seal(&mut max).unwrap();
+    assert_eq!(HFLINK.probe(&max), Probe::Frame(127));
+}
+
+const EXPECTED_FRAMES: [(u64, usize); 4] = [(4, 28), (40, 20), (62, 8), (81, 28)];
+
+fn frames_of(seen: &[Seen]) -> Vec<(u64, usize)> {
+    seen.iter()
+        .filter_map(|e| match e {
+            Seen::Frame { offset, bytes } => Some((*offset, bytes.len())),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The candidate at 70 claims 44 bytes and the stream ends 40 bytes later: the frame at 81
+/// inside its claimed length comes out when the end of input is declared (`flush`), or as soon
+/// as 4 more bytes arrive and the candidate fails its checksum.
+#[test]
+fn golden_stream_yields_its_frames_for_every_chunk_size() {
+    let stream = hex(HFLINK_STREAM);
+    assert_eq!(stream.len(), 110);
+    let whole = run::<128>(&HFLINK, &stream, &[stream.len()], true);
+    assert_eq!(frames_of(&whole), EXPECTED_FRAMES);
+    assert_eq!(whole, reference(&HFLINK, &stream, true));
+    for size in 1..=stream.len() {
+        assert_eq!(
+            run::<128>(&HFLINK, &stream, &[size], true),
+            whole,
+            "chunks of {size}"
+        );
+        let unflushed = run::<128>(&HFLINK, &stream, &[size], false);
+        assert_eq!(
+            frames_of(&unflushed),
+            EXPECTED_FRAMES[..3],
+            "chunks of {size}"
+        );
+    }
+    let mut longer = stream.clone();
+    longer.extend_from_slice(&[0; 4]);
+    assert_eq!(
+        frames_of(&run::<128>(&HFLINK, &longer, &[7], false)),
+        EXPECTED_FRAMES
+    );
+}
+
+#[test]
+fn golden_stream_events_report_rejections_with_offsets() {
+    let stream = hex(HFLINK_STREAM);
+    let seen = run::<128>(&HFLINK, &stream, &[5, 1, 9], true);
+    let summary: Vec<String> = seen
+        .iter()
+        .map(|e| match e {
+            Seen::Frame { offset, bytes } => format!("frame {offset} +{}", bytes.len()),
+            Seen::Rejected { offset, reason } => format!("rejected {offset} {reason}"),
+            Seen::Skipped { offset, len } => format!("skipped {offset} +{len}"),
+        })
+        .collect();
+    assert_eq!(
+        summary,
+        [
+            "skipped 0 +4",
+            "frame 4 +28",
+            "rejected 32 bad checksum",
+            "skipped 33 +7",
+            "frame 40 +20",
+            "skipped 60 +2",
+            "frame 62 +8",
+            "rejected 70 truncated frame",
+            "skipped 71 +10",
+            "frame 81 +28",
+            "skipped 109 +1",
+        ]
+    );
+}
+
+#[test]
+fn frames_found_whole_in_the_input_borrow_it() {
+    let stream = hex(HFLINK_STREAM);
+    let mut decoder = StreamDecoder::<128>::new(&HFLINK);
+    let mut input = &stream[..];
+    let range = stream.as_ptr_range();
+    let mut count = 0;
+    while let Some(Frame { bytes, offset }) = decoder.decode(&mut input) {
+        assert!(
+            range.contains(&bytes.as_ptr()),
+            "frame at {offset} was copied"
+        );
+        assert_eq!(
+            bytes,
+            &stream[offset as usize..offset as usize + bytes.len()]
+        );
+        count += 1;
+    }
+    assert_eq!(count, 3);
+    assert_eq!(decoder.pending(), 40);
+    assert_eq!(decoder.pending_bytes(), &stream[70..]);
+}
+
+#[test]
+fn stats_account_for_every_byte() {
+    let stream = hex(HFLINK_STREAM);
+    let mut decoder = StreamDecoder::<128>::new(&HFLINK);
+    let mut fed = 0u64;
+    for chunk in stream.chunks(3) {
+        let mut frames = 0;
+        decoder.feed(chunk, |_| frames += 1);
+        fed += chunk.len() as u64;
+        let s = *decoder.stats();
+        assert_eq!(
+            s.frame_bytes + s.skipped_bytes + decoder.pending() as u64,
+            fed
+        );
+        assert_eq!(decoder.position(), fed);
+    }
+    while decoder.flush().is_some() {}
+    let s = *decoder.stats();
+    assert_eq!(
+        (s.frames, s.frame_bytes, s.bad_checksum, s.truncated),
+        (4, 84, 1, 1)
+    );
+    assert_eq!(s.skipped_bytes, 110 - 84);
+    assert_eq!(decoder.pending(), 0);
+    decoder.reset();
+    assert_eq!(
+        (*decoder.stats(), decoder.position(), decoder.pending()),
+        (Default::default(), 0, 0)
+    );
+}
+
+#[test]
+fn impossible_lengths_are_rejected_before_their_bytes_arrive() {
+    // len = 0x7F00: rejected with the header alone, and the next frame is found.
+    let mut stream = hex("ffff11017f00");
+    stream.extend(hex(HFLINK_GOLDEN[1]));
+    let mut decoder = StreamDecoder::<128>::new(&HFLINK);
+    let mut input = &stream[..6];
+    assert!(decoder.decode(&mut input).is_none());
+    assert_eq!(decoder.stats().bad_length, 1);
+    assert_eq!(
+        decoder.pending(),
+        0,
+        "nothing is awaited for an impossible length"
+    );
+    let mut input = &stream[6..];
+    assert_eq!(decoder.decode(&mut input).map(|f| f.offset), Some(6));
+}
+
+#[test]
+fn a_truncated_frame_does_not_cost_the_next_one() {
+    let valid = hex(HFLINK_GOLDEN[2]);
+    for cut in 1..valid.len() {
+        let mut stream = valid[..cut].to_vec();
+        stream.extend(&valid);
+        stream.extend(&valid);
+        let seen = run::<128>(&HFLINK, &stream, &[1], true);
+        assert_eq!(seen, reference(&HFLINK, &stream, true));
+        let frames = frames_of(&seen);
+        assert!(
+            frames.contains(&(stream.len() as u64 - valid.len() as u64, valid.len())),
+            "cut {cut}"
+        );
+    }
+}

@@ -1,0 +1,198 @@
+//! The other frame shapes: a header CRC (referee), a 10-bit length sharing a word with a
+//! constant version (RoboRTS), and a trailer marker.
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use common::{REFEREE, REFEREE_GOLDEN, ROBORTS, Rng, TRAILER, hex, random_frame, reference, run};
+use protocol_runtime::decoder::{Probe, Reject};
+use protocol_runtime::layout::{FrameLayout, LengthRule};
+use protocol_runtime::{EncodeError, StreamDecoder};
+
+#[test]
+fn referee_golden_frame() {
+    let frame = hex(REFEREE_GOLDEN);
+    assert_eq!(REFEREE.probe(&frame), Probe::Frame(12));
+    let mut built = frame.clone();
+    built[0] = 0;
+    built[1..3].fill(0);
+    built[4] = 0;
+    built[10..].fill(0);
+    REFEREE.seal(&mut built).unwrap();
+    assert_eq!(built, frame);
+}
+
+#[test]
+fn referee_header_check_is_verified_before_the_length_is_trusted() {
+    let frame = hex(REFEREE_GOLDEN);
+    let mut bad = frame.clone();
+    bad[4] ^= 1;
+    assert_eq!(
+        REFEREE.probe(&bad[..5]),
+        Probe::Reject(Reject::BadHeaderCheck)
+    );
+    // A corrupt length is caught by the header CRC, not awaited.
+    let mut long = frame.clone();
+    long[1] = 0x40;
+    assert_eq!(
+        REFEREE.probe(&long[..5]),
+        Probe::Reject(Reject::BadHeaderCheck)
+    );
+    let mut body = frame.clone();
+    body[7] ^= 0x10;
+    assert_eq!(REFEREE.probe(&body), Probe::Reject(Reject::BadChecksum));
+    let mut stream = bad.clone();
+    stream.extend(&body);
+    stream.extend(&frame);
+    let seen = run::<64>(&REFEREE, &stream, &[1, 2, 3], true);
+    assert_eq!(seen, reference(&REFEREE, &stream, true));
+    assert!(seen.contains(&common::Seen::Frame {
+        offset: 24,
+        bytes: frame.clone()
+    }));
+}
+
+#[test]
+fn roborts_ten_bit_length_and_version_bits() {
+    let mut frame = vec![0u8; 20];
+    frame[3] = 0x02; // sender
+    frame[12..16].copy_from_slice(&[1, 2, 3, 4]);
+    ROBORTS.seal(&mut frame).unwrap();
+    assert_eq!(frame[0], 0xAA);
+    assert_eq!(
+        u16::from_le_bytes([frame[1], frame[2]]),
+        20,
+        "length 20, version 0"
+    );
+    assert_eq!(ROBORTS.probe(&frame), Probe::Frame(20));
+
+    // Version bits set: the constant fails.
+    let mut v1 = frame.clone();
+    v1[2] |= 0x04;
+    assert_eq!(ROBORTS.probe(&v1), Probe::Reject(Reject::BadHeader));
+    // A 10-bit length above max_len (300) but with a valid header: rejected on the header.
+    let mut long = frame.clone();
+    long[1..3].copy_from_slice(&(1000u16).to_le_bytes());
+    ROBORTS.header_checks[0].store(&mut long[..12]).unwrap();
+    assert_eq!(ROBORTS.probe(&long[..12]), Probe::Reject(Reject::BadLength));
+    // A length above 10 bits cannot be sealed.
+    let mut huge = vec![0u8; 1024];
+    let wide = FrameLayout {
+        max_len: 2000,
+        ..ROBORTS
+    };
+    assert_eq!(wide.seal(&mut huge), Err(EncodeError::ValueOutOfRange));
+    // The CRC32 covers the data.
+    let mut data = frame.clone();
+    data[13] ^= 0x80;
+    assert_eq!(ROBORTS.probe(&data), Probe::Reject(Reject::BadChecksum));
+}
+
+#[test]
+fn roborts_streams_match_the_reference() {
+    let mut rng = Rng(0xDEAD_BEEF_1234_5678);
+    let mut stream = Vec::new();
+    for i in 0..40 {
+        let len = 16 + rng.below(100);
+        let mut frame = random_frame(&mut rng, &ROBORTS, len);
+        if i % 5 == 3 {
+            let at = rng.below(len);
+            frame[at] ^= 1 << rng.below(8);
+        }
+        if i % 7 == 2 {
+            frame.truncate(rng.below(len));
+        }
+        stream.extend(&frame);
+    }
+    let expected = reference(&ROBORTS, &stream, true);
+    for sizes in [&[1][..], &[7, 1, 300], &[64], &[stream.len()]] {
+        assert_eq!(
+            run::<300>(&ROBORTS, &stream, sizes, true),
+            expected,
+            "{sizes:?}"
+        );
+    }
+}
+
+#[test]
+fn trailer_marker_is_checked_after_the_checksum() {
+    let mut frame = vec![0u8; 9];
+    frame[2..6].copy_from_slice(&[1, 2, 3, 5]);
+    TRAILER.seal(&mut frame).unwrap();
+    assert_eq!(
+        frame,
+        [0x5A, 4, 1, 2, 3, 5, 0x5A ^ 4 ^ 1 ^ 2 ^ 3 ^ 5, 0x1F, 0x2F]
+    );
+    assert_eq!(TRAILER.probe(&frame), Probe::Frame(9));
+    let mut bad = frame.clone();
+    bad[8] = 0x30;
+    assert_eq!(TRAILER.probe(&bad), Probe::Reject(Reject::BadTrailer));
+    let mut both = bad.clone();
+    both[6] ^= 1;
+    assert_eq!(TRAILER.probe(&both), Probe::Reject(Reject::BadChecksum));
+
+    let mut stream = bad.clone();
+    stream.extend(&frame);
+    let seen = run::<64>(&TRAILER, &stream, &[2], false);
+    assert_eq!(seen, reference(&TRAILER, &stream, false));
+    assert_eq!(
+        seen[0],
+        common::Seen::Rejected {
+            offset: 0,
+            reason: Reject::BadTrailer
+        }
+    );
+    assert!(seen.contains(&common::Seen::Frame {
+        offset: 9,
+        bytes: frame
+    }));
+}
+
+#[test]
+fn fixed_length_layouts() {
+    let fixed = FrameLayout {
+        length: LengthRule::Fixed(9),
+        min_len: 9,
+        max_len: 9,
+        ..TRAILER
+    };
+    let mut frame = [0u8; 9];
+    fixed.seal(&mut frame).unwrap();
+    assert_eq!(fixed.probe(&frame), Probe::Frame(9));
+    assert_eq!(fixed.frame_len(&frame[..2]), Some(9));
+    let loose = FrameLayout {
+        max_len: 10,
+        ..fixed
+    };
+    let mut ten = [0u8; 10];
+    assert_eq!(loose.seal(&mut ten), Err(EncodeError::ValueOutOfRange));
+}
+
+#[test]
+fn frame_len_edge_cases() {
+    let negative = FrameLayout {
+        length: match TRAILER.length {
+            LengthRule::Field { field, .. } => LengthRule::Field { field, adjust: -10 },
+            fixed => fixed,
+        },
+        ..TRAILER
+    };
+    assert_eq!(negative.frame_len(&[0x5A, 3]), None);
+    assert_eq!(negative.probe(&[0x5A, 3]), Probe::Reject(Reject::BadLength));
+    assert_eq!(negative.frame_len(&[0x5A, 12]), Some(2));
+    let overflow = FrameLayout {
+        length: match TRAILER.length {
+            LengthRule::Field { field, .. } => LengthRule::Field {
+                field,
+                adjust: i64::MAX,
+            },
+            fixed => fixed,
+        },
+        ..TRAILER
+    };
+    assert_eq!(overflow.frame_len(&[0x5A, 3]), None);
+    let mut decoder = StreamDecoder::<64>::new(&overflow);
+    let mut input = &[0x5A, 3, 0x5A][..];
+    assert!(decoder.decode(&mut input).is_none());
+    assert_eq!(decoder.stats().bad_length, 1);
+}
