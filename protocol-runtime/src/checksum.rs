@@ -179,43 +179,64 @@ fn fold_lanes(lanes: u64) -> u64 {
     (pairs & 0xFFFF_FFFF).wrapping_add(pairs >> 32)
 }
 
+/// `data` as one little-endian word, zero-extended (`data` has at most 8 bytes).
+#[inline(always)]
+fn short_word(data: &[u8]) -> u64 {
+    let mut word = [0u8; 8];
+    for (dst, src) in word.iter_mut().zip(data) {
+        *dst = *src;
+    }
+    u64::from_le_bytes(word)
+}
+
+/// Splits `data` (at least 8 bytes) into its leading `len % 8` bytes, as a zero-extended word
+/// read without a byte loop (the first word with its extra bytes masked off), and the whole
+/// words after them. A frame's length varies from one frame to the next; a byte loop over its
+/// tail would mispredict on every frame.
+#[inline(always)]
+fn split_lead(data: &[u8]) -> (u64, &[u8]) {
+    let lead = data.len() % 8;
+    let first = data.first_chunk::<8>().map_or(0, |w| u64::from_le_bytes(*w));
+    // `lead == 0` shifts by 64: no leading bytes.
+    let mask = u64::MAX.checked_shr(64u32.wrapping_sub(8u32.wrapping_mul(lead as u32))).unwrap_or(0);
+    (first & mask, data.get(lead..).unwrap_or_default())
+}
+
 /// The exact sum of all bytes, eight at a time in 16-bit lanes (no carries between lanes:
 /// lanes are folded every [`BLOCK`] bytes, before they can overflow).
-fn byte_sum(mut data: &[u8]) -> u64 {
-    let mut total = 0u64;
-    while !data.is_empty() {
-        let (mut block, rest) = data.split_at_checked(BLOCK).unwrap_or((data, &[]));
+#[inline]
+fn byte_sum(data: &[u8]) -> u64 {
+    if data.len() < 8 {
+        return fold_lanes(add_lanes(0, short_word(data)));
+    }
+    let (lead, mut words) = split_lead(data);
+    let mut total = fold_lanes(add_lanes(0, lead));
+    while !words.is_empty() {
+        let (mut block, rest) = words.split_at_checked(BLOCK).unwrap_or((words, &[]));
         let mut lanes = 0u64;
         while let Some((word, tail)) = block.split_first_chunk::<8>() {
             lanes = add_lanes(lanes, u64::from_le_bytes(*word));
             block = tail;
         }
-        // The last 0..=7 bytes as one zero-padded word: a block is a whole number of words
-        // unless it is the last, so a block adds at most 128 words.
-        let mut last = [0u8; 8];
-        for (dst, src) in last.iter_mut().zip(block) {
-            *dst = *src;
-        }
-        lanes = add_lanes(lanes, u64::from_le_bytes(last));
         total = total.wrapping_add(fold_lanes(lanes));
-        data = rest;
+        words = rest;
     }
     total
 }
 
 /// The xor of all bytes, eight at a time.
-fn xor8(mut data: &[u8]) -> u8 {
-    let mut acc = 0u64;
-    while let Some((word, tail)) = data.split_first_chunk::<8>() {
+#[inline]
+fn xor8(data: &[u8]) -> u8 {
+    let (mut acc, mut words) =
+        if data.len() < 8 { (short_word(data), &[][..]) } else { split_lead(data) };
+    while let Some((word, tail)) = words.split_first_chunk::<8>() {
         acc ^= u64::from_le_bytes(*word);
-        data = tail;
+        words = tail;
     }
-    let mut last = [0u8; 8];
-    for (dst, src) in last.iter_mut().zip(data) {
-        *dst = *src;
-    }
-    acc ^= u64::from_le_bytes(last);
-    acc.to_le_bytes().iter().fold(0, |x, b| x ^ b)
+    acc ^= acc >> 32;
+    acc ^= acc >> 16;
+    acc ^= acc >> 8;
+    acc.to_le_bytes()[0]
 }
 
 #[cfg(test)]

@@ -403,13 +403,10 @@ impl<'a> Writer<'a> {
     }
 }
 
-/// The bytes `offset..offset + size` of `bytes`, if `size` is 1..=8 and they exist.
-#[inline]
-fn word_bytes(bytes: &[u8], offset: usize, size: u8) -> Option<&[u8]> {
-    if size == 0 || size > 8 {
-        return None;
-    }
-    bytes.get(offset..offset.checked_add(usize::from(size))?)
+/// The `N` bytes at `offset`, if they exist.
+#[inline(always)]
+fn chunk_at<const N: usize>(bytes: &[u8], offset: usize) -> Option<[u8; N]> {
+    bytes.get(offset..)?.first_chunk::<N>().copied()
 }
 
 /// Reads an unsigned word of `size` bytes (1 to 8) at `offset`.
@@ -427,21 +424,25 @@ fn word_bytes(bytes: &[u8], offset: usize, size: u8) -> Option<&[u8]> {
 /// ```
 #[inline]
 pub fn read_uint(bytes: &[u8], offset: usize, size: u8, order: ByteOrder) -> Option<u64> {
-    let word = word_bytes(bytes, offset, size)?;
-    let mut buf = [0u8; 8];
-    Some(match order {
-        ByteOrder::Little => {
-            buf.iter_mut().zip(word).for_each(|(d, s)| *d = *s);
-            u64::from_le_bytes(buf)
+    // One fixed-size load per common size: no byte loop, no call to memcpy.
+    match (size, order) {
+        (1, _) => bytes.get(offset).map(|&b| u64::from(b)),
+        (2, ByteOrder::Little) => chunk_at(bytes, offset).map(|w| u64::from(u16::from_le_bytes(w))),
+        (2, ByteOrder::Big) => chunk_at(bytes, offset).map(|w| u64::from(u16::from_be_bytes(w))),
+        (4, ByteOrder::Little) => chunk_at(bytes, offset).map(|w| u64::from(u32::from_le_bytes(w))),
+        (4, ByteOrder::Big) => chunk_at(bytes, offset).map(|w| u64::from(u32::from_be_bytes(w))),
+        (8, ByteOrder::Little) => chunk_at(bytes, offset).map(u64::from_le_bytes),
+        (8, ByteOrder::Big) => chunk_at(bytes, offset).map(u64::from_be_bytes),
+        (3 | 5 | 6 | 7, _) => {
+            let word = bytes.get(offset..offset.checked_add(usize::from(size))?)?;
+            let push = |acc: u64, b: &u8| (acc << 8) | u64::from(*b);
+            Some(match order {
+                ByteOrder::Little => word.iter().rev().fold(0, push),
+                ByteOrder::Big => word.iter().fold(0, push),
+            })
         }
-        ByteOrder::Big => {
-            buf.iter_mut()
-                .rev()
-                .zip(word.iter().rev())
-                .for_each(|(d, s)| *d = *s);
-            u64::from_be_bytes(buf)
-        }
-    })
+        _ => None,
+    }
 }
 
 /// Writes `value` as an unsigned word of `size` bytes (1 to 8) at `offset`.

@@ -221,8 +221,8 @@ impl FrameLayout<'_> {
 
     /// [`probe`](Self::probe) with frames longer than `limit` rejected as too long.
     pub(crate) fn probe_within(&self, bytes: &[u8], limit: usize) -> Probe {
-        let seen = bytes.len().min(self.sync.len());
-        if bytes.get(..seen) != self.sync.get(..seen) {
+        // A byte loop, not `==` on slices: sync words are a few bytes, a call to memcmp costs more.
+        if !bytes.iter().zip(self.sync).all(|(a, b)| a == b) {
             return Probe::Reject(Reject::BadHeader);
         }
         let span = self.header_span();

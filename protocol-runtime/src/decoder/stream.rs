@@ -14,18 +14,19 @@ use crate::layout::FrameLayout;
 /// bytes, or a prefix of them that runs to the end of `data`; `data.len()` if there is none.
 #[inline]
 fn find_candidate(sync: &[u8], data: &[u8]) -> usize {
-    let Some((&first, more)) = sync.split_first() else {
-        return 0;
-    };
-    let mut from = 0;
-    while let Some(hit) = data
-        .get(from..)
-        .and_then(|rest| memchr::memchr(first, rest))
-    {
-        let at = from.wrapping_add(hit);
+    let Some((&first, more)) = sync.split_first() else { return 0 };
+    let continues = |at: usize| {
         let after = data.get(at.wrapping_add(1)..).unwrap_or_default();
-        let n = after.len().min(more.len());
-        if after.get(..n) == more.get(..n) {
+        after.iter().zip(more).all(|(a, b)| a == b)
+    };
+    // On a clean stream the next frame starts right here.
+    if data.first() == Some(&first) && continues(0) {
+        return 0;
+    }
+    let mut from = 0;
+    while let Some(hit) = data.get(from..).and_then(|rest| memchr::memchr(first, rest)) {
+        let at = from.wrapping_add(hit);
+        if continues(at) {
             return at;
         }
         from = at.wrapping_add(1);
