@@ -21,7 +21,20 @@ pub fn compile(source: &SpecSource) -> Result<ir::Protocol, Vec<Diagnostic>> {
     let Some(spec) = spec::load_spec(source, &mut diags) else {
         return Err(diags.into_sorted());
     };
-    match validate::validate(&spec, &mut diags) {
+    let shape_errors = diags.spans();
+    let mut semantic = Diagnostics::new();
+    let protocol = validate::validate(&spec, &mut semantic);
+    // A semantic error about an element whose ill-typed or unknown entry was dropped is a
+    // consequence of that shape error, not a second mistake: report the shape error alone.
+    for d in semantic.into_sorted() {
+        let follows = shape_errors
+            .iter()
+            .any(|s| d.span.start <= s.start && s.end <= d.span.end);
+        if !follows {
+            diags.push(d);
+        }
+    }
+    match protocol {
         Some(protocol) if diags.is_empty() => Ok(protocol),
         _ => Err(diags.into_sorted()),
     }

@@ -21,11 +21,18 @@ pub use model::SpecFile;
 /// Most shape errors reported from one file before giving up.
 const MAX_SHAPE_ERRORS: usize = 64;
 
-/// Parse and deserialize a spec. Returns `None` when any error was reported.
+/// Parse and deserialize a spec.
+///
+/// Returns `None` when the text is not TOML or a required key is missing. After shape errors
+/// that could be repaired by dropping the offending entry (an unknown key, an ill-typed value),
+/// it returns the repaired model so that validation can report the remaining errors too; the
+/// caller knows from `diags` that the spec is invalid, and [`shape_error_spans`] lets it drop
+/// follow-up errors about the entries that were dropped.
 pub fn load_spec(source: &SpecSource, diags: &mut Diagnostics) -> Option<SpecFile> {
     let (tree, syntax_errors) = DeTable::parse_recoverable(&source.text);
     if !syntax_errors.is_empty() {
-        for e in syntax_errors {
+        // Only the first: the parser's recovery turns one missing bracket into a cascade.
+        for e in syntax_errors.into_iter().take(1) {
             let span = e.span().unwrap_or(0..0);
             diags
                 .error(span, format!("invalid TOML: {}", first_line(e.message())))
@@ -34,13 +41,11 @@ pub fn load_spec(source: &SpecSource, diags: &mut Diagnostics) -> Option<SpecFil
         return None;
     }
     let mut tree = tree;
-    let mut failed = false;
     for _ in 0..MAX_SHAPE_ERRORS {
         let de = toml::de::Deserializer::from(tree.clone());
         match SpecFile::deserialize(de) {
-            Ok(spec) => return if failed { None } else { Some(spec) },
+            Ok(spec) => return Some(spec),
             Err(e) => {
-                failed = true;
                 let span = e.span().unwrap_or(0..0);
                 report_shape_error(diags, span.clone(), e.message());
                 if !remove_span(&mut tree, &span) {
@@ -57,7 +62,7 @@ fn report_shape_error(diags: &mut Diagnostics, span: Range<usize>, message: &str
     let message = first_line(message);
     if let Some(rest) = message.strip_prefix("unknown field `") {
         let name = rest.split('`').next().unwrap_or("");
-        let expected: Vec<&str> = rest.split('`').skip(1).step_by(2).collect();
+        let expected: Vec<&str> = rest.split('`').skip(2).step_by(2).collect();
         let d = diags.error(span, format!("unknown key `{name}`"));
         match did_you_mean(name, expected.iter().copied()) {
             Some(best) => d.help(format!("did you mean `{best}`?")),

@@ -405,7 +405,6 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
         check.from = from;
         check.to = to;
     }
-    let _ = ok;
     for (t, e) in trailers.iter_mut().zip(els.iter().filter(|e| matches!(e.kind, Kind::Trailer(_)))) {
         let i = els.iter().position(|x| std::ptr::eq(x, e)).unwrap_or(0);
         t.at = start_of(i);
@@ -429,11 +428,16 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                         None => "name a header field of this frame".to_string(),
                     };
                     ctx.error(k.span(), format!("frame `{}` has no header field `{}`", fname.get_ref(), k.get_ref()), help);
+                    ok = false;
                 }
             }
         }
     }
 
+    if !ok {
+        // The commands cannot be checked against a frame whose layout is broken.
+        return None;
+    }
     let elements = els
         .iter()
         .map(|e| match &e.kind {
