@@ -157,86 +157,83 @@ impl Checksum<'_> {
     }
 }
 
-/// Bytes 0, 2, 4 and 6 of a little-endian `u64`, each in a 16-bit lane.
-const EVEN_BYTES: u64 = 0x00FF_00FF_00FF_00FF;
-/// The two low 16-bit lanes of each 32-bit half.
-const EVEN_LANES: u64 = 0x0000_FFFF_0000_FFFF;
-/// Bytes summed per block: 128 words add at most 128 × 2 × 255 = 65 280 to a 16-bit lane.
-const BLOCK: usize = 1024;
+/// Bytes summed or xored per step: one SSE2 register, which the compiler fills for a loop over
+/// fixed-size arrays (`psadbw` for the sum).
+const STEP: usize = 16;
 
-/// Adds the eight bytes of `word` into the four 16-bit lanes of `lanes`.
+/// `MASK[r..r + STEP]` keeps the last `r` bytes of a `STEP`-byte window.
+const MASK: [u8; 2 * STEP] = {
+    let mut mask = [0u8; 2 * STEP];
+    let mut i = STEP;
+    while i < 2 * STEP {
+        mask[i] = 0xFF;
+        i += 1;
+    }
+    mask
+};
+
+/// The last `STEP` bytes of `data` (at least `STEP` long), masked to keep the last `rest`
+/// (`< STEP`) of them: the bytes a whole-step loop from the start left over, read without a
+/// byte loop. A frame's length varies from one frame to the next; a byte loop over its tail
+/// would mispredict on every frame.
 #[inline(always)]
-fn add_lanes(lanes: u64, word: u64) -> u64 {
-    lanes
-        .wrapping_add(word & EVEN_BYTES)
-        .wrapping_add((word >> 8) & EVEN_BYTES)
+fn masked_tail(data: &[u8], rest: usize) -> [u8; STEP] {
+    let mut tail = data.last_chunk::<STEP>().copied().unwrap_or([0; STEP]);
+    let mask = MASK.get(rest..).and_then(<[u8]>::first_chunk::<STEP>).unwrap_or(&[0; STEP]);
+    for (b, m) in tail.iter_mut().zip(mask) {
+        *b &= m;
+    }
+    tail
 }
 
-/// The sum of the four 16-bit lanes of `lanes`.
+/// `data` (shorter than `STEP`), zero-extended.
 #[inline(always)]
-fn fold_lanes(lanes: u64) -> u64 {
-    let pairs = (lanes & EVEN_LANES).wrapping_add((lanes >> 16) & EVEN_LANES);
-    (pairs & 0xFFFF_FFFF).wrapping_add(pairs >> 32)
-}
-
-/// `data` as one little-endian word, zero-extended (`data` has at most 8 bytes).
-#[inline(always)]
-fn short_word(data: &[u8]) -> u64 {
-    let mut word = [0u8; 8];
-    for (dst, src) in word.iter_mut().zip(data) {
+fn padded(data: &[u8]) -> [u8; STEP] {
+    let mut block = [0u8; STEP];
+    for (dst, src) in block.iter_mut().zip(data) {
         *dst = *src;
     }
-    u64::from_le_bytes(word)
+    block
 }
 
-/// Splits `data` (at least 8 bytes) into its leading `len % 8` bytes, as a zero-extended word
-/// read without a byte loop (the first word with its extra bytes masked off), and the whole
-/// words after them. A frame's length varies from one frame to the next; a byte loop over its
-/// tail would mispredict on every frame.
+/// Splits `data` into whole steps and what is left, as one zero-filled step.
 #[inline(always)]
-fn split_lead(data: &[u8]) -> (u64, &[u8]) {
-    let lead = data.len() % 8;
-    let first = data.first_chunk::<8>().map_or(0, |w| u64::from_le_bytes(*w));
-    // `lead == 0` shifts by 64: no leading bytes.
-    let mask = u64::MAX.checked_shr(64u32.wrapping_sub(8u32.wrapping_mul(lead as u32))).unwrap_or(0);
-    (first & mask, data.get(lead..).unwrap_or_default())
+fn steps(data: &[u8]) -> (core::slice::ChunksExact<'_, u8>, [u8; STEP]) {
+    let whole = data.chunks_exact(STEP);
+    let rest = whole.remainder().len();
+    let last = if data.len() < STEP { padded(data) } else { masked_tail(data, rest) };
+    (whole, last)
 }
 
-/// The exact sum of all bytes, eight at a time in 16-bit lanes (no carries between lanes:
-/// lanes are folded every [`BLOCK`] bytes, before they can overflow).
+#[inline(always)]
+fn sum_step(block: &[u8; STEP]) -> u64 {
+    block.iter().map(|&b| u64::from(b)).fold(0, u64::wrapping_add)
+}
+
+/// The exact sum of all bytes.
 #[inline]
 fn byte_sum(data: &[u8]) -> u64 {
-    if data.len() < 8 {
-        return fold_lanes(add_lanes(0, short_word(data)));
-    }
-    let (lead, mut words) = split_lead(data);
-    let mut total = fold_lanes(add_lanes(0, lead));
-    while !words.is_empty() {
-        let (mut block, rest) = words.split_at_checked(BLOCK).unwrap_or((words, &[]));
-        let mut lanes = 0u64;
-        while let Some((word, tail)) = block.split_first_chunk::<8>() {
-            lanes = add_lanes(lanes, u64::from_le_bytes(*word));
-            block = tail;
+    let (whole, last) = steps(data);
+    let mut total = sum_step(&last);
+    for block in whole {
+        if let Ok(block) = <&[u8; STEP]>::try_from(block) {
+            total = total.wrapping_add(sum_step(block));
         }
-        total = total.wrapping_add(fold_lanes(lanes));
-        words = rest;
     }
     total
 }
 
-/// The xor of all bytes, eight at a time.
+/// The xor of all bytes.
 #[inline]
 fn xor8(data: &[u8]) -> u8 {
-    let (mut acc, mut words) =
-        if data.len() < 8 { (short_word(data), &[][..]) } else { split_lead(data) };
-    while let Some((word, tail)) = words.split_first_chunk::<8>() {
-        acc ^= u64::from_le_bytes(*word);
-        words = tail;
+    let (whole, last) = steps(data);
+    let mut acc = u128::from_le_bytes(last);
+    for block in whole {
+        if let Ok(block) = <[u8; STEP]>::try_from(block) {
+            acc ^= u128::from_le_bytes(block);
+        }
     }
-    acc ^= acc >> 32;
-    acc ^= acc >> 16;
-    acc ^= acc >> 8;
-    acc.to_le_bytes()[0]
+    acc.to_le_bytes().iter().fold(0, |x, b| x ^ b)
 }
 
 #[cfg(test)]
@@ -277,7 +274,7 @@ mod tests {
     }
 
     #[test]
-    fn sums_of_long_inputs_do_not_overflow_lanes() {
+    fn sums_of_long_inputs_are_exact() {
         let buf = [0xFFu8; 5000];
         for len in [1023, 1024, 1025, 2048, 4999, 5000] {
             let sum = 255 * len as u64;
