@@ -48,14 +48,22 @@ struct Wire {
 
 impl Wire {
     fn new(seed: u64) -> Self {
-        Wire { bytes: Vec::new(), rng: Rng(seed), sent: Vec::new() }
+        Wire {
+            bytes: Vec::new(),
+            rng: Rng(seed),
+            sent: Vec::new(),
+        }
     }
 
     fn send(&mut self, frame: &[u8]) {
         // Garbage before the frame, sometimes with stray sync bytes in it.
         if self.rng.below(10) == 0 {
             for _ in 0..self.rng.below(12) {
-                let b = if self.rng.below(3) == 0 { 0xFF } else { self.rng.next() as u8 };
+                let b = if self.rng.below(3) == 0 {
+                    0xFF
+                } else {
+                    self.rng.next() as u8
+                };
                 self.bytes.push(b);
             }
         }
@@ -115,11 +123,21 @@ fn main() {
     // The host sends its requests.
     for i in 0..EXCHANGES {
         let request = match i % 3 {
-            0 => Request::SetRobotSpeed(ChassisCoord { x: i as f32 * 0.01, y: 0.0, z: -0.5 }),
+            0 => Request::SetRobotSpeed(ChassisCoord {
+                x: i as f32 * 0.01,
+                y: 0.0,
+                z: -0.5,
+            }),
             1 => Request::ReadRobotSpeed,
             _ => Request::ReadSystemInfo,
         };
-        let packet = Packet { header: Header { sender: MASTER, receiver: SLAVE }, message: Message::Request(request) };
+        let packet = Packet {
+            header: Header {
+                sender: MASTER,
+                receiver: SLAVE,
+            },
+            message: Message::Request(request),
+        };
         let n = packet.encode(&mut buf).expect("request fits");
         to_robot.send(&buf[..n]);
     }
@@ -133,10 +151,21 @@ fn main() {
         let mut input = chunk;
         while let Some(frame) = robot_decoder.decode(&mut input) {
             robot_received.push(frame.bytes.to_vec());
-            if let Ok(Packet { message: Message::Request(req), .. }) = Packet::from_frame(frame.bytes) {
-                if let Some(resp) = robot_reply(&req, &mut robot_state) {
-                    replies.push(Packet { header: Header { sender: SLAVE, receiver: MASTER }, message: Message::Response(resp) });
-                }
+            let reply = match Packet::from_frame(frame.bytes) {
+                Ok(Packet {
+                    message: Message::Request(req),
+                    ..
+                }) => robot_reply(&req, &mut robot_state),
+                _ => None,
+            };
+            if let Some(resp) = reply {
+                replies.push(Packet {
+                    header: Header {
+                        sender: SLAVE,
+                        receiver: MASTER,
+                    },
+                    message: Message::Response(resp),
+                });
             }
         }
     });
@@ -168,9 +197,22 @@ fn main() {
         ("robot", &to_robot, &robot_received, robot_decoder.stats()),
         ("host", &to_host, &host_received, host_decoder.stats()),
     ] {
-        let untouched: Vec<&Vec<u8>> = wire.sent.iter().filter(|(_, f)| *f == Fault::None).map(|(b, _)| b).collect();
-        let flipped = wire.sent.iter().filter(|(_, f)| *f == Fault::BitFlip).count();
-        let truncated = wire.sent.iter().filter(|(_, f)| *f == Fault::Truncated).count();
+        let untouched: Vec<&Vec<u8>> = wire
+            .sent
+            .iter()
+            .filter(|(_, f)| *f == Fault::None)
+            .map(|(b, _)| b)
+            .collect();
+        let flipped = wire
+            .sent
+            .iter()
+            .filter(|(_, f)| *f == Fault::BitFlip)
+            .count();
+        let truncated = wire
+            .sent
+            .iter()
+            .filter(|(_, f)| *f == Fault::Truncated)
+            .count();
         // Every untouched frame must be among the received ones, in order.
         let mut it = received.iter();
         let all_arrived = untouched.iter().all(|u| it.any(|r| r == *u));

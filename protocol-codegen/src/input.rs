@@ -9,8 +9,8 @@ use quote::quote;
 use syn::parse::{Parse, ParseStream};
 use syn::{LitStr, Token};
 
-use crate::codegen::{expand, RuntimePath};
-use crate::diag::{render_all, Diagnostic};
+use crate::codegen::{RuntimePath, expand};
+use crate::diag::{Diagnostic, render_all};
 use crate::source::SpecSource;
 
 /// Environment variable that overrides the directory spec paths are relative to (trybuild
@@ -50,14 +50,21 @@ impl Parse for MacroInput {
                         let p: syn::Path = input.parse()?;
                         paths = RuntimePath(quote!(#p));
                     }
-                    _ => return Err(syn::Error::new(key.span(), "expected `path = \"...\"`, `inline = \"...\"` or `crate = path`")),
+                    _ => {
+                        return Err(syn::Error::new(
+                            key.span(),
+                            "expected `path = \"...\"`, `inline = \"...\"` or `crate = path`",
+                        ));
+                    }
                 }
             }
             if !input.is_empty() {
                 input.parse::<Token![,]>()?;
             }
         }
-        let spec = spec.ok_or_else(|| input.error("expected the spec's path: protocol!(\"specs/name.toml\")"))?;
+        let spec = spec.ok_or_else(|| {
+            input.error("expected the spec's path: protocol!(\"specs/name.toml\")")
+        })?;
         Ok(MacroInput { spec, paths })
     }
 }
@@ -65,7 +72,12 @@ impl Parse for MacroInput {
 fn errors_to_tokens(diags: &[Diagnostic], source: &SpecSource, span: Span) -> TokenStream {
     let text = render_all(diags, source);
     let n = diags.len();
-    let msg = format!("{} error{} in spec {}\n\n{text}", n, if n == 1 { "" } else { "s" }, source.path);
+    let msg = format!(
+        "{} error{} in spec {}\n\n{text}",
+        n,
+        if n == 1 { "" } else { "s" },
+        source.path
+    );
     syn::Error::new(span, msg).to_compile_error()
 }
 
@@ -76,7 +88,11 @@ pub fn protocol_macro(tokens: TokenStream) -> TokenStream {
         Err(e) => return e.to_compile_error(),
     };
     let (source, span, track) = match &input.spec {
-        SpecArg::Inline(lit) => (SpecSource::new("<inline spec>", lit.value()), lit.span(), None),
+        SpecArg::Inline(lit) => (
+            SpecSource::new("<inline spec>", lit.value()),
+            lit.span(),
+            None,
+        ),
         SpecArg::Path(lit) => {
             let rel = lit.value();
             let base = std::env::var_os(MANIFEST_DIR_OVERRIDE)
@@ -89,7 +105,11 @@ pub fn protocol_macro(tokens: TokenStream) -> TokenStream {
                 Err(e) => {
                     let msg = format!(
                         "cannot read spec `{rel}`: {e}\n  = help: the path is relative to the crate's Cargo.toml directory ({})",
-                        if base.as_os_str().is_empty() { "unknown".to_string() } else { "CARGO_MANIFEST_DIR".to_string() }
+                        if base.as_os_str().is_empty() {
+                            "unknown".to_string()
+                        } else {
+                            "CARGO_MANIFEST_DIR".to_string()
+                        }
                     );
                     return syn::Error::new(lit.span(), msg).to_compile_error();
                 }
@@ -102,7 +122,9 @@ pub fn protocol_macro(tokens: TokenStream) -> TokenStream {
             let code = expand(&protocol, &input.paths);
             let track = track.map(|p| {
                 let p = p.to_string_lossy().into_owned();
-                quote!(const _: &[u8] = include_bytes!(#p);)
+                quote!(
+                    const _: &[u8] = include_bytes!(#p);
+                )
             });
             quote!(#code #track)
         }

@@ -162,15 +162,11 @@ impl Checksum<'_> {
 const STEP: usize = 16;
 
 /// `MASK[r..r + STEP]` keeps the last `r` bytes of a `STEP`-byte window.
-const MASK: [u8; 2 * STEP] = {
-    let mut mask = [0u8; 2 * STEP];
-    let mut i = STEP;
-    while i < 2 * STEP {
-        mask[i] = 0xFF;
-        i += 1;
-    }
-    mask
-};
+#[rustfmt::skip]
+const MASK: [u8; 2 * STEP] = [
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+    0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF,
+];
 
 /// The last `STEP` bytes of `data` (at least `STEP` long), masked to keep the last `rest`
 /// (`< STEP`) of them: the bytes a whole-step loop from the start left over, read without a
@@ -179,7 +175,10 @@ const MASK: [u8; 2 * STEP] = {
 #[inline(always)]
 fn masked_tail(data: &[u8], rest: usize) -> [u8; STEP] {
     let mut tail = data.last_chunk::<STEP>().copied().unwrap_or([0; STEP]);
-    let mask = MASK.get(rest..).and_then(<[u8]>::first_chunk::<STEP>).unwrap_or(&[0; STEP]);
+    let mask = MASK
+        .get(rest..)
+        .and_then(<[u8]>::first_chunk::<STEP>)
+        .unwrap_or(&[0; STEP]);
     for (b, m) in tail.iter_mut().zip(mask) {
         *b &= m;
     }
@@ -201,13 +200,20 @@ fn padded(data: &[u8]) -> [u8; STEP] {
 fn steps(data: &[u8]) -> (core::slice::ChunksExact<'_, u8>, [u8; STEP]) {
     let whole = data.chunks_exact(STEP);
     let rest = whole.remainder().len();
-    let last = if data.len() < STEP { padded(data) } else { masked_tail(data, rest) };
+    let last = if data.len() < STEP {
+        padded(data)
+    } else {
+        masked_tail(data, rest)
+    };
     (whole, last)
 }
 
 #[inline(always)]
 fn sum_step(block: &[u8; STEP]) -> u64 {
-    block.iter().map(|&b| u64::from(b)).fold(0, u64::wrapping_add)
+    block
+        .iter()
+        .map(|&b| u64::from(b))
+        .fold(0, u64::wrapping_add)
 }
 
 /// The exact sum of all bytes.

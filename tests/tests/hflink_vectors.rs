@@ -3,7 +3,7 @@
 //! yields exactly its expected frames at every chunk size.
 
 use protocol_runtime::{DecodeError, Reject};
-use protocol_tests::{hex, load_vectors, F};
+use protocol_tests::{F, hex, load_vectors};
 use serde_json::Value;
 
 protocol_runtime::protocol!("../specs/hflink.toml");
@@ -19,7 +19,11 @@ fn u_of(v: &Value, k: &str) -> u64 {
 }
 
 fn chassis_coord(v: &Value) -> ChassisCoord {
-    ChassisCoord { x: f32_of(v, "x"), y: f32_of(v, "y"), z: f32_of(v, "z") }
+    ChassisCoord {
+        x: f32_of(v, "x"),
+        y: f32_of(v, "y"),
+        z: f32_of(v, "z"),
+    }
 }
 
 fn system_info(v: &Value) -> SystemInfo {
@@ -94,20 +98,35 @@ fn chassis_parameters(v: &Value) -> ChassisParameters {
 
 /// The message a vector records, built from its JSON fields (not from the bytes).
 fn expected_message(frame: &Value) -> Message {
-    let command = Command::from_id(u_of(frame, "command_id") as u8).expect("command id in the spec");
+    let command =
+        Command::from_id(u_of(frame, "command_id") as u8).expect("command id in the spec");
     let from_master = frame["direction"] == "master->slave";
     let fields = &frame["fields"];
     let payload_type = frame["payload_type"].as_str().unwrap_or("");
     let ty = payload_type.split('(').next().unwrap_or("");
     match (ty, command, from_master) {
-        ("ChassisCoord", Command::ShakingHands, true) => Message::Request(Request::ShakingHands(chassis_coord(fields))),
-        ("ChassisCoord", Command::SetRobotSpeed, true) => Message::Request(Request::SetRobotSpeed(chassis_coord(fields))),
-        ("SystemInfo", Command::ReadSystemInfo, false) => Message::Response(Response::ReadSystemInfo(system_info(fields))),
-        ("GPSData", Command::ReadGpsData, false) => Message::Response(Response::ReadGpsData(gps_data(fields))),
-        ("MotorParameters", Command::SetMotorParameters, true) => Message::Request(Request::SetMotorParameters(motor_parameters(fields))),
-        ("ChassisParameters", Command::SetChassisParameters, true) => Message::Request(Request::SetChassisParameters(chassis_parameters(fields))),
+        ("ChassisCoord", Command::ShakingHands, true) => {
+            Message::Request(Request::ShakingHands(chassis_coord(fields)))
+        }
+        ("ChassisCoord", Command::SetRobotSpeed, true) => {
+            Message::Request(Request::SetRobotSpeed(chassis_coord(fields)))
+        }
+        ("SystemInfo", Command::ReadSystemInfo, false) => {
+            Message::Response(Response::ReadSystemInfo(system_info(fields)))
+        }
+        ("GPSData", Command::ReadGpsData, false) => {
+            Message::Response(Response::ReadGpsData(gps_data(fields)))
+        }
+        ("MotorParameters", Command::SetMotorParameters, true) => {
+            Message::Request(Request::SetMotorParameters(motor_parameters(fields)))
+        }
+        ("ChassisParameters", Command::SetChassisParameters, true) => {
+            Message::Request(Request::SetChassisParameters(chassis_parameters(fields)))
+        }
         ("", c, true) => Message::Request(Request::read_payload(c, &[]).expect("empty request")),
-        ("", c, false) => Message::Response(Response::read_payload(c, &[]).expect("empty response")),
+        ("", c, false) => {
+            Message::Response(Response::read_payload(c, &[]).expect("empty response"))
+        }
         other => panic!("vector not covered by this test: {other:?}"),
     }
 }
@@ -123,11 +142,18 @@ fn every_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
         // Framing: every vector whose length field counts a command byte is a valid frame.
         let parsed = LAYOUT.parse(&bytes);
         if data.is_empty() {
-            assert_eq!(parsed, Err(DecodeError::Frame(Reject::BadLength)), "{name}: a length-0 frame has no command byte");
+            assert_eq!(
+                parsed,
+                Err(DecodeError::Frame(Reject::BadLength)),
+                "{name}: a length-0 frame has no command byte"
+            );
             continue;
         }
         assert_eq!(parsed, Ok(&bytes[..]), "{name}: framing");
-        let header = Header { sender: u_of(frame, "sender") as u8, receiver: u_of(frame, "receiver") as u8 };
+        let header = Header {
+            sender: u_of(frame, "sender") as u8,
+            receiver: u_of(frame, "receiver") as u8,
+        };
         match Command::from_id(data[0]) {
             None => panic!("{name}: unknown command {}", data[0]),
             Some(cmd) => {
@@ -138,22 +164,32 @@ fn every_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
                     // A payload the command does not carry (the originals' raw `sendMessage`
                     // tests): framing accepts it, typed decoding names the size mismatch.
                     match declared {
-                        Err(DecodeError::PayloadLength { actual, .. }) => assert_eq!(actual, payload_len, "{name}"),
+                        Err(DecodeError::PayloadLength { actual, .. }) => {
+                            assert_eq!(actual, payload_len, "{name}")
+                        }
                         other => panic!("{name}: expected a payload length error, got {other:?}"),
                     }
                     assert_eq!(cmd.id(), data[0]);
                     continue;
                 }
-                let expected = Packet { header, message: expected_message(frame) };
+                let expected = Packet {
+                    header,
+                    message: expected_message(frame),
+                };
                 assert_eq!(declared, Ok(expected), "{name}: decode");
                 let mut buf = [0u8; MAX_FRAME_LEN];
-                let n = expected.encode(&mut buf).unwrap_or_else(|e| panic!("{name}: encode failed: {e}"));
+                let n = expected
+                    .encode(&mut buf)
+                    .unwrap_or_else(|e| panic!("{name}: encode failed: {e}"));
                 assert_eq!(F(&buf[..n]), F(&bytes), "{name}: encode");
                 typed += 1;
             }
         }
     }
-    assert_eq!(typed, 10, "every typed vector was checked in both directions");
+    assert_eq!(
+        typed, 10,
+        "every typed vector was checked in both directions"
+    );
 }
 
 #[test]
@@ -173,7 +209,8 @@ fn stream_yields_expected_frames_at_every_chunk_size() {
             for part in bytes.chunks(chunk) {
                 let mut input = part;
                 while let Some(frame) = dec.decode(&mut input) {
-                    let packet = Packet::from_frame(frame.bytes).expect("every expected frame decodes");
+                    let packet =
+                        Packet::from_frame(frame.bytes).expect("every expected frame decodes");
                     assert_eq!(packet.header.sender, 0x11);
                     got.push((frame.offset, frame.bytes.to_vec()));
                 }
@@ -181,7 +218,11 @@ fn stream_yields_expected_frames_at_every_chunk_size() {
             assert_eq!(got, expected, "chunk size {chunk}");
             let s = dec.stats();
             assert_eq!(s.frames, expected.len() as u64);
-            assert_eq!(s.frame_bytes + s.skipped_bytes + dec.pending() as u64, bytes.len() as u64, "chunk size {chunk}: every byte accounted for");
+            assert_eq!(
+                s.frame_bytes + s.skipped_bytes + dec.pending() as u64,
+                bytes.len() as u64,
+                "chunk size {chunk}: every byte accounted for"
+            );
         }
     }
 }
@@ -190,9 +231,19 @@ fn stream_yields_expected_frames_at_every_chunk_size() {
 fn the_original_decoder_loses_a_frame_that_ours_keeps() {
     let v = load_vectors("hflink.json");
     let stream = &v["streams"][0];
-    let ours = stream["expected_frames"].as_array().expect("expected").len();
-    let original = stream["original_decoder"]["frames"].as_array().expect("original").len();
-    assert_eq!((ours, original), (4, 3), "the vector documents the original's loss");
+    let ours = stream["expected_frames"]
+        .as_array()
+        .expect("expected")
+        .len();
+    let original = stream["original_decoder"]["frames"]
+        .as_array()
+        .expect("original")
+        .len();
+    assert_eq!(
+        (ours, original),
+        (4, 3),
+        "the vector documents the original's loss"
+    );
     let mut dec = decoder();
     let bytes = hex(stream["hex"].as_str().expect("hex"));
     let mut input = &bytes[..];
@@ -206,12 +257,24 @@ fn the_original_decoder_loses_a_frame_that_ours_keeps() {
 #[test]
 fn direction_follows_the_sender_address() {
     // A READ request carries no payload, its response a struct; the same command byte.
-    let request = Packet { header: Header { sender: 0x01, receiver: 0x11 }, message: Message::Request(Request::ReadSystemInfo) };
+    let request = Packet {
+        header: Header {
+            sender: 0x01,
+            receiver: 0x11,
+        },
+        message: Message::Request(Request::ReadSystemInfo),
+    };
     let mut buf = [0u8; MAX_FRAME_LEN];
     let n = request.encode(&mut buf).expect("encodes");
     assert_eq!(F(&buf[..n]), F(&hex("ffff011100010114")));
     // The same message from a slave address is refused: it would decode as a response.
-    let wrong = Packet { header: Header { sender: 0x11, receiver: 0x01 }, ..request };
+    let wrong = Packet {
+        header: Header {
+            sender: 0x11,
+            receiver: 0x01,
+        },
+        ..request
+    };
     assert!(wrong.encode(&mut buf).is_err());
     // A frame from an address outside both ranges decodes to UnknownDirection.
     let mut frame = hex("ffff011100010114");
@@ -223,11 +286,26 @@ fn direction_follows_the_sender_address() {
 
 #[test]
 fn short_buffers_and_oversized_lengths_are_errors_not_panics() {
-    let p = Packet { header: Header { sender: 1, receiver: 0x11 }, message: Message::Request(Request::SetArmState(ArmDofVector { servo: [1.0; 8] })) };
+    let p = Packet {
+        header: Header {
+            sender: 1,
+            receiver: 0x11,
+        },
+        message: Message::Request(Request::SetArmState(ArmDofVector { servo: [1.0; 8] })),
+    };
     for len in 0..p.encoded_len() {
         let mut buf = vec![0u8; len];
-        assert!(matches!(p.encode(&mut buf), Err(protocol_runtime::EncodeError::BufferTooSmall { .. })), "buffer of {len}");
+        assert!(
+            matches!(
+                p.encode(&mut buf),
+                Err(protocol_runtime::EncodeError::BufferTooSmall { .. })
+            ),
+            "buffer of {len}"
+        );
     }
     // length 0x0079 = 121 > 120: rejected before the payload is awaited.
-    assert_eq!(LAYOUT.parse(&hex("ffff0111007900")), Err(DecodeError::Frame(Reject::BadLength)));
+    assert_eq!(
+        LAYOUT.parse(&hex("ffff0111007900")),
+        Err(DecodeError::Frame(Reject::BadLength))
+    );
 }

@@ -3,7 +3,7 @@
 //! exact bytes; the stream yields exactly its expected frames at every chunk size.
 
 use protocol_runtime::DecodeError;
-use protocol_tests::{hex, load_vectors, F};
+use protocol_tests::{F, hex, load_vectors};
 use serde_json::Value;
 
 protocol_runtime::protocol!("../specs/referee.toml");
@@ -26,8 +26,12 @@ fn expected(cmd: u64, v: &Value) -> Option<Message> {
             game_progress: u(v, "game_progress") as u8,
             stage_remain_time: u(v, "stage_remain_time") as u16,
         }),
-        0x0002 => Message::GameResult(GameResult { winner: u(v, "winner") as u8 }),
-        0x0101 => Message::EventData(EventData { event_type: u(v, "event_type") as u32 }),
+        0x0002 => Message::GameResult(GameResult {
+            winner: u(v, "winner") as u8,
+        }),
+        0x0101 => Message::EventData(EventData {
+            event_type: u(v, "event_type") as u32,
+        }),
         0x0102 => Message::SupplyProjectileAction(SupplyProjectileAction {
             supply_projectile_id: u(v, "supply_projectile_id") as u8,
             supply_robot_id: u(v, "supply_robot_id") as u8,
@@ -52,9 +56,19 @@ fn expected(cmd: u64, v: &Value) -> Option<Message> {
             mains_power_chassis_output: u(v, "mains_power_chassis_output") == 1,
             mains_power_shooter_output: u(v, "mains_power_shooter_output") == 1,
         }),
-        0x0203 => Message::GameRobotPos(GameRobotPos { x: f(v, "x"), y: f(v, "y"), z: f(v, "z"), yaw: f(v, "yaw") }),
-        0x0204 => Message::BuffMusk(BuffMusk { power_rune_buff: u(v, "power_rune_buff") as u8 }),
-        0x0206 => Message::RobotHurt(RobotHurt { armor_id: u(v, "armor_id") as u8, hurt_type: u(v, "hurt_type") as u8 }),
+        0x0203 => Message::GameRobotPos(GameRobotPos {
+            x: f(v, "x"),
+            y: f(v, "y"),
+            z: f(v, "z"),
+            yaw: f(v, "yaw"),
+        }),
+        0x0204 => Message::BuffMusk(BuffMusk {
+            power_rune_buff: u(v, "power_rune_buff") as u8,
+        }),
+        0x0206 => Message::RobotHurt(RobotHurt {
+            armor_id: u(v, "armor_id") as u8,
+            hurt_type: u(v, "hurt_type") as u8,
+        }),
         _ => return None,
     })
 }
@@ -76,10 +90,19 @@ fn every_2019_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
         let Some(message) = expected(cmd, &frame["fields"]) else {
             // 0x0301 (student interactive) carries variable user data: not a fixed struct in
             // this spec yet, so typed decoding reports the unknown command.
-            assert_eq!(Packet::decode(&bytes), Err(DecodeError::UnknownCommand { key: cmd }), "{name}");
+            assert_eq!(
+                Packet::decode(&bytes),
+                Err(DecodeError::UnknownCommand { key: cmd }),
+                "{name}"
+            );
             continue;
         };
-        let packet = Packet { header: Header { seq: u(frame, "seq") as u8 }, message };
+        let packet = Packet {
+            header: Header {
+                seq: u(frame, "seq") as u8,
+            },
+            message,
+        };
         assert_eq!(Packet::decode(&bytes), Ok(packet), "{name}: decode");
         let mut buf = [0u8; MAX_FRAME_LEN];
         let n = packet.encode(&mut buf).expect("encodes");

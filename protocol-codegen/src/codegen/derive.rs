@@ -17,8 +17,8 @@ use quote::quote;
 use syn::spanned::Spanned;
 use syn::{Data, DeriveInput, Expr, Fields, Lit, Type};
 
-use super::payload::{emit_payload_impl, PField, PKind, PayloadDef};
 use super::RuntimePath;
+use super::payload::{PField, PKind, PayloadDef, emit_payload_impl};
 use crate::ir::{Endian, Prim, Scalar, Scale};
 use crate::validate::parse_prim_public as parse_prim;
 
@@ -36,7 +36,10 @@ fn parse_endian(lit: &syn::LitStr) -> syn::Result<Endian> {
     match lit.value().as_str() {
         "little" => Ok(Endian::Little),
         "big" => Ok(Endian::Big),
-        _ => Err(syn::Error::new(lit.span(), "expected \"little\" or \"big\"")),
+        _ => Err(syn::Error::new(
+            lit.span(),
+            "expected \"little\" or \"big\"",
+        )),
     }
 }
 
@@ -44,7 +47,12 @@ fn parse_prim_lit(lit: &syn::LitStr) -> syn::Result<Prim> {
     parse_prim(&lit.value(), Endian::Little)
         .map(|s| s.prim)
         .filter(|p| p.is_signed() || p.is_unsigned())
-        .ok_or_else(|| syn::Error::new(lit.span(), "expected an integer type such as \"u8\" or \"i16\""))
+        .ok_or_else(|| {
+            syn::Error::new(
+                lit.span(),
+                "expected an integer type such as \"u8\" or \"i16\"",
+            )
+        })
 }
 
 /// Expand `#[derive(Payload)]`.
@@ -54,13 +62,22 @@ fn parse_prim_lit(lit: &syn::LitStr) -> syn::Result<Prim> {
 /// fields, or an attribute it does not know.
 pub fn derive_payload(input: &DeriveInput) -> syn::Result<TokenStream> {
     let Data::Struct(data) = &input.data else {
-        return Err(syn::Error::new(input.ident.span(), "#[derive(Payload)] supports structs only"));
+        return Err(syn::Error::new(
+            input.ident.span(),
+            "#[derive(Payload)] supports structs only",
+        ));
     };
     if !input.generics.params.is_empty() {
-        return Err(syn::Error::new(input.generics.span(), "#[derive(Payload)] does not support generic structs"));
+        return Err(syn::Error::new(
+            input.generics.span(),
+            "#[derive(Payload)] does not support generic structs",
+        ));
     }
     let Fields::Named(named) = &data.fields else {
-        return Err(syn::Error::new(input.ident.span(), "#[derive(Payload)] needs named fields"));
+        return Err(syn::Error::new(
+            input.ident.span(),
+            "#[derive(Payload)] needs named fields",
+        ));
     };
     let mut struct_endian = Endian::Little;
     let mut paths = RuntimePath::default();
@@ -111,48 +128,105 @@ pub fn derive_payload(input: &DeriveInput) -> syn::Result<TokenStream> {
         }
         let endian = a.endian.unwrap_or(struct_endian);
         if a.pad_before > 0 {
-            fields.push(PField { ident: None, kind: PKind::Pad(a.pad_before) });
+            fields.push(PField {
+                ident: None,
+                kind: PKind::Pad(a.pad_before),
+            });
         }
         let (elem, count) = match &f.ty {
             Type::Array(arr) => {
                 let n = match &arr.len {
                     Expr::Lit(l) => match &l.lit {
                         Lit::Int(i) => i.base10_parse::<usize>()?,
-                        _ => return Err(syn::Error::new(arr.len.span(), "array length must be an integer literal")),
+                        _ => {
+                            return Err(syn::Error::new(
+                                arr.len.span(),
+                                "array length must be an integer literal",
+                            ));
+                        }
                     },
-                    _ => return Err(syn::Error::new(arr.len.span(), "array length must be an integer literal")),
+                    _ => {
+                        return Err(syn::Error::new(
+                            arr.len.span(),
+                            "array length must be an integer literal",
+                        ));
+                    }
                 };
                 (&*arr.elem, Some(n))
             }
             t => (t, None),
         };
         let prim = match elem {
-            Type::Path(tp) if tp.qself.is_none() => tp.path.get_ident().and_then(|i| parse_prim(&i.to_string(), endian)).filter(|s| {
-                // `u16le` and friends are not Rust types.
-                s.prim.rust_name() == tp.path.get_ident().map(ToString::to_string).unwrap_or_default()
-            }),
+            Type::Path(tp) if tp.qself.is_none() => tp
+                .path
+                .get_ident()
+                .and_then(|i| parse_prim(&i.to_string(), endian))
+                .filter(|s| {
+                    // `u16le` and friends are not Rust types.
+                    s.prim.rust_name()
+                        == tp
+                            .path
+                            .get_ident()
+                            .map(ToString::to_string)
+                            .unwrap_or_default()
+                }),
             _ => None,
         };
         let kind = if let Some(repr) = a.repr {
-            PKind::Enum { ty: quote!(#elem), scalar: Scalar { prim: repr, endian }, count }
+            PKind::Enum {
+                ty: quote!(#elem),
+                scalar: Scalar { prim: repr, endian },
+                count,
+            }
         } else if let Some(factor) = a.scale {
             let Some(phys) = prim.filter(|s| s.prim.is_float()) else {
-                return Err(syn::Error::new(f.ty.span(), "a scaled field must be `f32` or `f64`"));
+                return Err(syn::Error::new(
+                    f.ty.span(),
+                    "a scaled field must be `f32` or `f64`",
+                ));
             };
             let Some(raw) = a.raw else {
-                return Err(syn::Error::new(f.ty.span(), "a scaled field needs `raw = \"i16\"` (its wire type)"));
+                return Err(syn::Error::new(
+                    f.ty.span(),
+                    "a scaled field needs `raw = \"i16\"` (its wire type)",
+                ));
             };
-            PKind::Scalar { scalar: Scalar { prim: raw, endian }, scale: Some(Scale { factor, offset: 0.0, physical: phys.prim }), count }
+            PKind::Scalar {
+                scalar: Scalar { prim: raw, endian },
+                scale: Some(Scale {
+                    factor,
+                    offset: 0.0,
+                    physical: phys.prim,
+                }),
+                count,
+            }
         } else if let Some(s) = prim {
-            PKind::Scalar { scalar: s, scale: None, count }
+            PKind::Scalar {
+                scalar: s,
+                scale: None,
+                count,
+            }
         } else {
-            PKind::Nested { ty: quote!(#elem), count }
+            PKind::Nested {
+                ty: quote!(#elem),
+                count,
+            }
         };
-        fields.push(PField { ident: f.ident.clone(), kind });
+        fields.push(PField {
+            ident: f.ident.clone(),
+            kind,
+        });
         if a.pad_after > 0 {
-            fields.push(PField { ident: None, kind: PKind::Pad(a.pad_after) });
+            fields.push(PField {
+                ident: None,
+                kind: PKind::Pad(a.pad_after),
+            });
         }
     }
-    let def = PayloadDef { name: input.ident.clone(), fields, size: None };
+    let def = PayloadDef {
+        name: input.ident.clone(),
+        fields,
+        size: None,
+    };
     Ok(emit_payload_impl(&def, &paths))
 }

@@ -9,23 +9,34 @@ use super::docs::doc_attrs;
 use super::frame::{user_values, value_const};
 use super::payload::prim_type;
 use super::types::int_lit;
-use super::{ident, RuntimePath};
+use super::{RuntimePath, ident};
 use crate::ir::{Command, DirectionRule, Frame, Prim, Protocol};
 
 /// Everything about commands and messages, for the first frame.
 pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
-    let Some(f) = p.frames.first() else { return quote!() };
+    let Some(f) = p.frames.first() else {
+        return quote!();
+    };
     if f.dispatch.is_empty() {
         return quote!();
     }
     let rt = paths.private();
     let mut out = emit_command_enum(p, f);
     if p.directions.is_empty() {
-        out.extend(emit_message_enum(p, 0, &format_ident!("Message"), "A decoded message: one variant per command, holding its payload.", &rt));
+        out.extend(emit_message_enum(
+            p,
+            0,
+            &format_ident!("Message"),
+            "A decoded message: one variant per command, holding its payload.",
+            &rt,
+        ));
     } else {
         for (di, d) in p.directions.iter().enumerate() {
             let name = format_ident!("{}", super::super::validate::pascal_case(&d.name));
-            let doc = format!("A {} message: one variant per command, holding its {} payload. {}", d.name, d.name, d.doc);
+            let doc = format!(
+                "A {} message: one variant per command, holding its {} payload. {}",
+                d.name, d.name, d.doc
+            );
             out.extend(emit_message_enum(p, di, &name, &doc, &rt));
         }
         out.extend(emit_direction_message(p, &rt));
@@ -40,20 +51,40 @@ fn key_prims(f: &Frame) -> Vec<Prim> {
 
 fn id_type(f: &Frame) -> TokenStream {
     let prims: Vec<TokenStream> = key_prims(f).into_iter().map(prim_type).collect();
-    if prims.len() == 1 { prims[0].clone() } else { quote!((#(#prims),*)) }
+    if prims.len() == 1 {
+        prims[0].clone()
+    } else {
+        quote!((#(#prims),*))
+    }
 }
 
 fn id_value(f: &Frame, c: &Command) -> TokenStream {
-    let lits: Vec<TokenStream> = key_prims(f).into_iter().zip(&c.id).map(|(p, v)| int_lit(p, *v)).collect();
-    if lits.len() == 1 { lits[0].clone() } else { quote!((#(#lits),*)) }
+    let lits: Vec<TokenStream> = key_prims(f)
+        .into_iter()
+        .zip(&c.id)
+        .map(|(p, v)| int_lit(p, *v))
+        .collect();
+    if lits.len() == 1 {
+        lits[0].clone()
+    } else {
+        quote!((#(#lits),*))
+    }
 }
 
 fn emit_command_enum(p: &Protocol, f: &Frame) -> TokenStream {
     let id_ty = id_type(f);
-    let keys: Vec<&str> = f.dispatch.iter().map(|&i| f.values[i].name.as_str()).collect();
+    let keys: Vec<&str> = f
+        .dispatch
+        .iter()
+        .map(|&i| f.values[i].name.as_str())
+        .collect();
     let variants = p.commands.iter().map(|c| {
         let v = ident(&c.rust_name);
-        let ids = c.id.iter().map(|x| format!("{x:#04x}")).collect::<Vec<_>>().join(", ");
+        let ids =
+            c.id.iter()
+                .map(|x| format!("{x:#04x}"))
+                .collect::<Vec<_>>()
+                .join(", ");
         let d = doc_attrs(&format!("`{}` (id {ids}). {}", c.name, c.doc));
         quote!(#d #v)
     });
@@ -77,7 +108,10 @@ fn emit_command_enum(p: &Protocol, f: &Frame) -> TokenStream {
         let name = &c.name;
         quote!(Self::#v => #name,)
     });
-    let id_doc = format!(" A command id: the value of the dispatch key ({}).", keys.join(", "));
+    let id_doc = format!(
+        " A command id: the value of the dispatch key ({}).",
+        keys.join(", ")
+    );
     quote! {
         #[doc = #id_doc]
         pub type CommandId = #id_ty;
@@ -112,7 +146,13 @@ fn emit_command_enum(p: &Protocol, f: &Frame) -> TokenStream {
     }
 }
 
-fn emit_message_enum(p: &Protocol, di: usize, name: &proc_macro2::Ident, doc: &str, rt: &TokenStream) -> TokenStream {
+fn emit_message_enum(
+    p: &Protocol,
+    di: usize,
+    name: &proc_macro2::Ident,
+    doc: &str,
+    rt: &TokenStream,
+) -> TokenStream {
     let doc = doc_attrs(doc);
     let mut variants = Vec::new();
     let mut command_arms = Vec::new();
@@ -124,12 +164,17 @@ fn emit_message_enum(p: &Protocol, di: usize, name: &proc_macro2::Ident, doc: &s
         match c.payloads.get(di).copied().flatten() {
             Some(si) => {
                 let s = ident(&p.structs[si].name);
-                let d = doc_attrs(&format!("`{}`, carrying a `{}`. {}", c.name, p.structs[si].name, c.doc));
+                let d = doc_attrs(&format!(
+                    "`{}`, carrying a `{}`. {}",
+                    c.name, p.structs[si].name, c.doc
+                ));
                 variants.push(quote!(#d #v(#s)));
                 command_arms.push(quote!(Self::#v(_) => Command::#v,));
                 len_arms.push(quote!(Self::#v(_) => <#s as #rt::Payload>::SIZE,));
                 write_arms.push(quote!(Self::#v(payload) => #rt::Payload::write(payload, w),));
-                read_arms.push(quote!(Command::#v => Self::#v(<#s as #rt::Payload>::from_bytes(payload)?),));
+                read_arms.push(
+                    quote!(Command::#v => Self::#v(<#s as #rt::Payload>::from_bytes(payload)?),),
+                );
             }
             None => {
                 let d = doc_attrs(&format!("`{}`, with an empty payload. {}", c.name, c.doc));
@@ -194,7 +239,11 @@ fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
         let doc = doc_attrs(&format!("A {}. {}", d.name, d.doc));
         quote!(#doc #v(#v))
     });
-    let names: Vec<_> = p.directions.iter().map(|d| format_ident!("{}", super::super::validate::pascal_case(&d.name))).collect();
+    let names: Vec<_> = p
+        .directions
+        .iter()
+        .map(|d| format_ident!("{}", super::super::validate::pascal_case(&d.name)))
+        .collect();
     quote! {
         /// A decoded message: its direction, then the command and payload.
         #[derive(Debug, Clone, Copy, PartialEq)]
@@ -263,7 +312,11 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         let c = value_const("", v);
         quote!(wire::#c.write(frame, self.header.#id as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)
     });
-    let key_consts: Vec<_> = f.dispatch.iter().map(|&i| value_const("", &f.values[i])).collect();
+    let key_consts: Vec<_> = f
+        .dispatch
+        .iter()
+        .map(|&i| value_const("", &f.values[i]))
+        .collect();
     let key_prims = key_prims(f);
     let (read_key, key_u64, write_key) = if key_consts.len() == 1 {
         let c = &key_consts[0];
@@ -274,7 +327,9 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             quote!(wire::#c.write(frame, self.message.command().id() as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;),
         )
     } else {
-        let vars: Vec<_> = (0..key_consts.len()).map(|i| format_ident!("k{}", i)).collect();
+        let vars: Vec<_> = (0..key_consts.len())
+            .map(|i| format_ident!("k{}", i))
+            .collect();
         let types: Vec<_> = key_prims.iter().map(|p| prim_type(*p)).collect();
         let idx: Vec<syn::Index> = (0..key_consts.len()).map(syn::Index::from).collect();
         let widths: Vec<u32> = f.dispatch.iter().map(|&i| f.values[i].width).collect();

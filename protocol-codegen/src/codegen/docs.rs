@@ -4,14 +4,18 @@
 use proc_macro2::TokenStream;
 use quote::quote;
 
-use crate::ir::{Algorithm, Endian, Field, FieldKind, Frame, Pos, Protocol, Role, Struct, ValueType};
+use crate::ir::{
+    Algorithm, Endian, Field, FieldKind, Frame, Pos, Protocol, Role, Struct, ValueType,
+};
 
 /// `#[doc = "..."]` attributes, one per line (so rustdoc and prettyplease keep the layout).
 pub fn doc_attrs(text: &str) -> TokenStream {
     let lines: Vec<String> = if text.trim().is_empty() {
         Vec::new()
     } else {
-        text.lines().map(|l| format!(" {l}").trim_end().to_string()).collect()
+        text.lines()
+            .map(|l| format!(" {l}").trim_end().to_string())
+            .collect()
     };
     quote!(#(#[doc = #lines])*)
 }
@@ -34,9 +38,19 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
         FieldKind::Bits { word, .. } => format!("{} bits", word.prim.rust_name()),
         FieldKind::Value { ty, count } => {
             let base = match ty {
-                ValueType::Scalar { scalar, scale: None } => scalar.prim.rust_name().to_string(),
-                ValueType::Scalar { scalar, scale: Some(s) } => {
-                    let off = if s.offset != 0.0 { format!(" + {}", s.offset) } else { String::new() };
+                ValueType::Scalar {
+                    scalar,
+                    scale: None,
+                } => scalar.prim.rust_name().to_string(),
+                ValueType::Scalar {
+                    scalar,
+                    scale: Some(s),
+                } => {
+                    let off = if s.offset != 0.0 {
+                        format!(" + {}", s.offset)
+                    } else {
+                        String::new()
+                    };
                     format!("{} × {}{off}", scalar.prim.rust_name(), s.factor)
                 }
                 ValueType::Struct(i) => format!("`{}`", p.structs[*i].name),
@@ -55,7 +69,9 @@ fn field_order(f: &Field) -> &'static str {
         FieldKind::Padding => "-",
         FieldKind::Bits { word, .. } => order_name(word.endian, word.prim.size()),
         FieldKind::Value { ty, .. } => match ty {
-            ValueType::Scalar { scalar, .. } | ValueType::Enum(_, scalar) => order_name(scalar.endian, scalar.prim.size()),
+            ValueType::Scalar { scalar, .. } | ValueType::Enum(_, scalar) => {
+                order_name(scalar.endian, scalar.prim.size())
+            }
             ValueType::Struct(_) => "-",
         },
     }
@@ -76,8 +92,20 @@ pub fn struct_doc(p: &Protocol, s: &Struct) -> String {
                 .join(", "),
             _ => format!("`{}`", f.name),
         };
-        let unit = if f.unit.is_empty() { "-".to_string() } else { f.unit.clone() };
-        out.push_str(&format!("| {} | {} | {} | {} | {} | {} |\n", f.offset, f.size, name, field_type_name(p, f), field_order(f), unit));
+        let unit = if f.unit.is_empty() {
+            "-".to_string()
+        } else {
+            f.unit.clone()
+        };
+        out.push_str(&format!(
+            "| {} | {} | {} | {} | {} | {} |\n",
+            f.offset,
+            f.size,
+            name,
+            field_type_name(p, f),
+            field_order(f),
+            unit
+        ));
     }
     out
 }
@@ -95,7 +123,11 @@ pub fn algorithm_text(a: &Algorithm) -> String {
         Algorithm::Sum { modulus } => format!("sum of the bytes modulo {modulus}"),
         Algorithm::Xor => "XOR of the bytes".into(),
         Algorithm::Crc(c) => match &c.catalog {
-            Some(_) => format!("{} (catalogue CRC, check {:#x})", c.display.to_uppercase(), c.check),
+            Some(_) => format!(
+                "{} (catalogue CRC, check {:#x})",
+                c.display.to_uppercase(),
+                c.check
+            ),
             None => format!(
                 "custom CRC `{}`: width {}, poly {:#x}, init {:#x}, refin {}, refout {}, xorout {:#x}, check {:#x}",
                 c.display, c.width, c.poly, c.init, c.refin, c.refout, c.xorout, c.check
@@ -126,18 +158,32 @@ pub fn frame_doc(f: &Frame) -> String {
             crate::ir::Element::Sync(b) => out.push_str(&format!(
                 "| 0 | {} | sync | bytes | {} |\n",
                 b.len(),
-                b.iter().map(|x| format!("`{x:02X}`")).collect::<Vec<_>>().join(" ")
+                b.iter()
+                    .map(|x| format!("`{x:02X}`"))
+                    .collect::<Vec<_>>()
+                    .join(" ")
             )),
-            crate::ir::Element::Word { name, offset, scalar, values } => {
+            crate::ir::Element::Word {
+                name,
+                offset,
+                scalar,
+                values,
+            } => {
                 let meaning = values
                     .iter()
                     .map(|&i| {
                         let v = &f.values[i];
-                        let bits = if v.width as usize == scalar.prim.size() * 8 { String::new() } else { format!("bits {}..{} ", v.shift, v.shift + v.width) };
+                        let bits = if v.width as usize == scalar.prim.size() * 8 {
+                            String::new()
+                        } else {
+                            format!("bits {}..{} ", v.shift, v.shift + v.width)
+                        };
                         let role = match &v.role {
                             Role::User { .. } => String::new(),
                             Role::Length => match &f.length {
-                                crate::ir::Length::Field { adjust, .. } => format!(": length, total frame = value + {adjust}"),
+                                crate::ir::Length::Field { adjust, .. } => {
+                                    format!(": length, total frame = value + {adjust}")
+                                }
                                 crate::ir::Length::Fixed(_) => ": length".into(),
                             },
                             Role::Dispatch => ": command id".into(),
@@ -147,9 +193,17 @@ pub fn frame_doc(f: &Frame) -> String {
                     })
                     .collect::<Vec<_>>()
                     .join("; ");
-                out.push_str(&format!("| {offset} | {} | `{name}` | {} {} | {meaning} |\n", scalar.prim.size(), scalar.prim.rust_name(), order_name(scalar.endian, scalar.prim.size())));
+                out.push_str(&format!(
+                    "| {offset} | {} | `{name}` | {} {} | {meaning} |\n",
+                    scalar.prim.size(),
+                    scalar.prim.rust_name(),
+                    order_name(scalar.endian, scalar.prim.size())
+                ));
             }
-            crate::ir::Element::Payload => out.push_str(&format!("| {} | {}..={} | payload | bytes | the command's struct |\n", f.header_len, f.payload_min, f.payload_max)),
+            crate::ir::Element::Payload => out.push_str(&format!(
+                "| {} | {}..={} | payload | bytes | the command's struct |\n",
+                f.header_len, f.payload_min, f.payload_max
+            )),
             crate::ir::Element::Check(i) => {
                 let c = &f.checks[*i];
                 out.push_str(&format!(
@@ -169,7 +223,11 @@ pub fn frame_doc(f: &Frame) -> String {
                     pos_text(t.at),
                     t.bytes.len(),
                     t.name,
-                    t.bytes.iter().map(|x| format!("`{x:02X}`")).collect::<Vec<_>>().join(" ")
+                    t.bytes
+                        .iter()
+                        .map(|x| format!("`{x:02X}`"))
+                        .collect::<Vec<_>>()
+                        .join(" ")
                 ));
             }
         }

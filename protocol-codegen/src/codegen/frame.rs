@@ -7,7 +7,7 @@ use quote::{format_ident, quote};
 
 use super::docs::{doc_attrs, frame_doc};
 use super::payload::prim_type;
-use super::{const_ident, ident, RuntimePath};
+use super::{RuntimePath, const_ident, ident};
 use crate::ir::{Algorithm, Check, Endian, Frame, HeaderValue, Length, Pos, Prim, Protocol, Role};
 
 /// Prefix of a frame's items: empty for the first (default) frame, `NAME_` for the others.
@@ -48,7 +48,12 @@ pub fn value_const(prefix: &str, v: &HeaderValue) -> Ident {
     const_ident(&format!("{prefix}{}", v.name))
 }
 
-fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>, static_name: &Ident) -> TokenStream {
+fn checksum_expr(
+    rt: &TokenStream,
+    c: &Check,
+    statics: &mut Vec<TokenStream>,
+    static_name: &Ident,
+) -> TokenStream {
     match &c.algorithm {
         Algorithm::Sum { modulus: 255 } => quote!(#rt::Checksum::SumMod255),
         Algorithm::Sum { .. } => quote!(#rt::Checksum::Sum8),
@@ -67,7 +72,13 @@ fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>, st
                 }
                 None => {
                     let lit = |v: u64| super::types::int_lit(width_prim(p.width), v);
-                    let (poly, init, xorout, check, residue) = (lit(p.poly), lit(p.init), lit(p.xorout), lit(p.check), lit(p.residue));
+                    let (poly, init, xorout, check, residue) = (
+                        lit(p.poly),
+                        lit(p.init),
+                        lit(p.xorout),
+                        lit(p.check),
+                        lit(p.residue),
+                    );
                     let width = p.width;
                     let (refin, refout) = (p.refin, p.refout);
                     quote!(#rt::crc::Algorithm { width: #width, poly: #poly, init: #init, refin: #refin, refout: #refout, xorout: #xorout, check: #check, residue: #residue })
@@ -100,9 +111,22 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     for f in &p.frames {
         let prefix = frame_prefix(p, f);
         let c = |n: &str| const_ident(&format!("{prefix}{n}"));
-        let (max_frame, min_frame, max_payload, min_payload, header_len, trailer_len) =
-            (c("MAX_FRAME_LEN"), c("MIN_FRAME_LEN"), c("MAX_PAYLOAD_LEN"), c("MIN_PAYLOAD_LEN"), c("HEADER_LEN"), c("TRAILER_LEN"));
-        let (maxf, minf, maxp, minp, hl, tl) = (f.max_len(), f.min_len(), f.payload_max, f.payload_min, f.header_len, f.trailer_len);
+        let (max_frame, min_frame, max_payload, min_payload, header_len, trailer_len) = (
+            c("MAX_FRAME_LEN"),
+            c("MIN_FRAME_LEN"),
+            c("MAX_PAYLOAD_LEN"),
+            c("MIN_PAYLOAD_LEN"),
+            c("HEADER_LEN"),
+            c("TRAILER_LEN"),
+        );
+        let (maxf, minf, maxp, minp, hl, tl) = (
+            f.max_len(),
+            f.min_len(),
+            f.payload_max,
+            f.payload_min,
+            f.header_len,
+            f.trailer_len,
+        );
         let layout_name = c("LAYOUT");
         let fname = &f.name;
         let layout_doc = doc_attrs(&frame_doc(f));
@@ -126,8 +150,14 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         for ch in &f.checks {
             let sname = const_ident(&format!("{prefix}{}_TABLE", ch.name));
             let cs = checksum_expr(&rt, ch, &mut statics, &sname);
-            let (from, to, at, ord) = (pos(&rt, ch.from), pos(&rt, ch.to), pos(&rt, ch.at), order(&rt, ch.endian));
-            let lit = quote!(#rt::Check { checksum: #cs, from: #from, to: #to, at: #at, order: #ord });
+            let (from, to, at, ord) = (
+                pos(&rt, ch.from),
+                pos(&rt, ch.to),
+                pos(&rt, ch.at),
+                order(&rt, ch.endian),
+            );
+            let lit =
+                quote!(#rt::Check { checksum: #cs, from: #from, to: #to, at: #at, order: #ord });
             if ch.header {
                 header_checks.push(lit);
             } else {
@@ -140,9 +170,20 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
             quote!(#rt::Marker { at: #at, bytes: &[#(#bytes),*] })
         });
         let sync = &f.sync;
-        let decoder_name = if prefix.is_empty() { format_ident!("Decoder") } else { format_ident!("{}Decoder", super::super::validate::pascal_case(&f.name)) };
-        let decoder_fn = if prefix.is_empty() { format_ident!("decoder") } else { format_ident!("{}_decoder", f.name) };
-        let decoder_doc = format!(" A streaming decoder of `{fname}` frames: a fixed buffer of `{}` bytes, no heap.", max_frame);
+        let decoder_name = if prefix.is_empty() {
+            format_ident!("Decoder")
+        } else {
+            format_ident!("{}Decoder", super::super::validate::pascal_case(&f.name))
+        };
+        let decoder_fn = if prefix.is_empty() {
+            format_ident!("decoder")
+        } else {
+            format_ident!("{}_decoder", f.name)
+        };
+        let decoder_doc = format!(
+            " A streaming decoder of `{fname}` frames: a fixed buffer of `{}` bytes, no heap.",
+            max_frame
+        );
         out.extend(quote! {
             #[doc = concat!(" Largest `", #fname, "` frame, in bytes.")]
             pub const #max_frame: usize = #maxf;
@@ -176,19 +217,21 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
                 #rt::StreamDecoder::new(&#layout_name)
             }
         });
-
     }
     // Header value positions of every frame, in one module.
     let wire_items = p.frames.iter().flat_map(|f| {
         let prefix = frame_prefix(p, f);
         let fname = f.name.clone();
         let rt = rt.clone();
-        f.values.iter().map(move |v| {
-            let name = value_const(&prefix, v);
-            let lit = word_field(&rt, v);
-            let doc = format!(" Where `{}` sits in a `{fname}` frame.", v.name);
-            quote!(#[doc = #doc] pub const #name: #rt::WordField = #lit;)
-        }).collect::<Vec<_>>()
+        f.values
+            .iter()
+            .map(move |v| {
+                let name = value_const(&prefix, v);
+                let lit = word_field(&rt, v);
+                let doc = format!(" Where `{}` sits in a `{fname}` frame.", v.name);
+                quote!(#[doc = #doc] pub const #name: #rt::WordField = #lit;)
+            })
+            .collect::<Vec<_>>()
     });
     out.extend(quote! {
         /// Where each header value sits in a frame (for reading raw frames).
@@ -204,14 +247,20 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
 
 /// The user-set header values of the first frame.
 pub fn user_values(f: &Frame) -> impl Iterator<Item = &HeaderValue> {
-    f.values.iter().filter(|v| matches!(v.role, Role::User { .. }))
+    f.values
+        .iter()
+        .filter(|v| matches!(v.role, Role::User { .. }))
 }
 
 fn emit_header(f: &Frame) -> TokenStream {
     let fields = user_values(f).map(|v| {
         let id = ident(&v.name);
         let ty = prim_type(v.prim);
-        let d = doc_attrs(if v.doc.is_empty() { "Header value." } else { &v.doc });
+        let d = doc_attrs(if v.doc.is_empty() {
+            "Header value."
+        } else {
+            &v.doc
+        });
         quote!(#d pub #id: #ty)
     });
     quote! {

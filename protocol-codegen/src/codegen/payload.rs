@@ -125,8 +125,16 @@ fn float_lit(x: f64) -> TokenStream {
 /// Reading one element of a field.
 fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
     match kind {
-        PKind::Scalar { scalar, scale: None, .. } => read_scalar(*scalar),
-        PKind::Scalar { scalar, scale: Some(sc), .. } => {
+        PKind::Scalar {
+            scalar,
+            scale: None,
+            ..
+        } => read_scalar(*scalar),
+        PKind::Scalar {
+            scalar,
+            scale: Some(sc),
+            ..
+        } => {
             let raw = read_scalar(*scalar);
             let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
             let phys = prim_type(sc.physical);
@@ -144,8 +152,16 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
 /// Writing one element `value` (an expression of the field's element type).
 fn write_elem(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream {
     match kind {
-        PKind::Scalar { scalar, scale: None, .. } => write_scalar(*scalar, value),
-        PKind::Scalar { scalar, scale: Some(sc), .. } => {
+        PKind::Scalar {
+            scalar,
+            scale: None,
+            ..
+        } => write_scalar(*scalar, value),
+        PKind::Scalar {
+            scalar,
+            scale: Some(sc),
+            ..
+        } => {
             let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
             let raw_ty = prim_type(scalar.prim);
             // Round half away from zero; `as` saturates out-of-range values and maps NaN to 0.
@@ -164,7 +180,9 @@ fn write_elem(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream
 /// The Rust type of one element of a field.
 pub fn elem_type(kind: &PKind) -> TokenStream {
     match kind {
-        PKind::Scalar { scale: Some(sc), .. } => prim_type(sc.physical),
+        PKind::Scalar {
+            scale: Some(sc), ..
+        } => prim_type(sc.physical),
         PKind::Scalar { scalar, .. } => prim_type(scalar.prim),
         PKind::Nested { ty, .. } | PKind::Enum { ty, .. } => ty.clone(),
         PKind::Pad(_) | PKind::Bits { .. } => quote!(()),
@@ -182,7 +200,9 @@ pub fn field_type(kind: &PKind) -> TokenStream {
 
 fn count_of(kind: &PKind) -> Option<usize> {
     match kind {
-        PKind::Scalar { count, .. } | PKind::Nested { count, .. } | PKind::Enum { count, .. } => *count,
+        PKind::Scalar { count, .. } | PKind::Nested { count, .. } | PKind::Enum { count, .. } => {
+            *count
+        }
         _ => None,
     }
 }
@@ -304,7 +324,11 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
 }
 
 fn bit_mask(width: u32, word: Prim) -> TokenStream {
-    let m: u64 = if width >= 64 { u64::MAX } else { (1u64 << width) - 1 };
+    let m: u64 = if width >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << width) - 1
+    };
     let lit = match word {
         Prim::U8 => proc_macro2::Literal::u8_suffixed(m as u8),
         Prim::U16 => proc_macro2::Literal::u16_suffixed(m as u16),

@@ -5,8 +5,10 @@ use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
 use super::docs::{doc_attrs, struct_doc};
-use super::payload::{emit_payload_impl, field_type, prim_type, BitType, PBit, PField, PKind, PayloadDef};
-use super::{const_ident, ident, RuntimePath};
+use super::payload::{
+    BitType, PBit, PField, PKind, PayloadDef, emit_payload_impl, field_type, prim_type,
+};
+use super::{RuntimePath, const_ident, ident};
 use crate::ir::{Enum, FieldKind, Prim, Protocol, Struct, UnknownPolicy, ValueType};
 
 /// A literal of the given integer type holding `value` (two's complement bits for signed).
@@ -29,7 +31,11 @@ pub fn emit_constants(p: &Protocol) -> TokenStream {
     let items = p.constants.iter().map(|c| {
         let name = const_ident(&c.name);
         let v = c.value;
-        let doc = doc_attrs(if c.doc.is_empty() { "Spec constant." } else { &c.doc });
+        let doc = doc_attrs(if c.doc.is_empty() {
+            "Spec constant."
+        } else {
+            &c.doc
+        });
         quote!(#doc pub const #name: u64 = #v;)
     });
     quote!(#(#items)*)
@@ -65,7 +71,11 @@ pub fn emit_addresses(p: &Protocol) -> TokenStream {
 pub fn address_prim(p: &Protocol) -> Prim {
     p.frames
         .first()
-        .and_then(|f| f.values.iter().find(|v| matches!(v.role, crate::ir::Role::User { addresses: true })))
+        .and_then(|f| {
+            f.values
+                .iter()
+                .find(|v| matches!(v.role, crate::ir::Role::User { addresses: true }))
+        })
         .map_or(Prim::U8, |v| v.prim)
 }
 
@@ -91,7 +101,13 @@ fn emit_enum(e: &Enum, paths: &RuntimePath) -> TokenStream {
     let doc = doc_attrs(&doc);
     let variants = e.variants.iter().enumerate().map(|(i, v)| {
         let vn = ident(&v.rust_name);
-        let vdoc = doc_attrs(&format!("`{}` = {}{}{}", v.name, v.value, if v.doc.is_empty() { "" } else { ": " }, v.doc));
+        let vdoc = doc_attrs(&format!(
+            "`{}` = {}{}{}",
+            v.name,
+            v.value,
+            if v.doc.is_empty() { "" } else { ": " },
+            v.doc
+        ));
         let default = if i == 0 { quote!(#[default]) } else { quote!() };
         quote!(#vdoc #default #vn)
     });
@@ -164,10 +180,13 @@ pub fn payload_def(p: &Protocol, s: &Struct) -> PayloadDef {
                             shift: m.shift,
                             width: m.width,
                             ty: match m.enum_index {
-                                Some(i) => BitType::Enum({
-                                    let n = ident(&p.enums[i].name);
-                                    quote!(#n)
-                                }, p.enums[i].prim),
+                                Some(i) => BitType::Enum(
+                                    {
+                                        let n = ident(&p.enums[i].name);
+                                        quote!(#n)
+                                    },
+                                    p.enums[i].prim,
+                                ),
                                 None if m.prim == Prim::Bool => BitType::Bool,
                                 None => BitType::Uint(m.prim),
                             },
@@ -175,21 +194,39 @@ pub fn payload_def(p: &Protocol, s: &Struct) -> PayloadDef {
                         .collect(),
                 },
                 FieldKind::Value { ty, count } => match ty {
-                    ValueType::Scalar { scalar, scale } => PKind::Scalar { scalar: *scalar, scale: *scale, count: *count },
+                    ValueType::Scalar { scalar, scale } => PKind::Scalar {
+                        scalar: *scalar,
+                        scale: *scale,
+                        count: *count,
+                    },
                     ValueType::Struct(i) => {
                         let n = ident(&p.structs[*i].name);
-                        PKind::Nested { ty: quote!(#n), count: *count }
+                        PKind::Nested {
+                            ty: quote!(#n),
+                            count: *count,
+                        }
                     }
                     ValueType::Enum(i, scalar) => {
                         let n = ident(&p.enums[*i].name);
-                        PKind::Enum { ty: quote!(#n), scalar: *scalar, count: *count }
+                        PKind::Enum {
+                            ty: quote!(#n),
+                            scalar: *scalar,
+                            count: *count,
+                        }
                     }
                 },
             };
-            PField { ident: (!f.name.is_empty()).then(|| ident(&f.name)), kind }
+            PField {
+                ident: (!f.name.is_empty()).then(|| ident(&f.name)),
+                kind,
+            }
         })
         .collect();
-    PayloadDef { name: ident(&s.name), fields, size: Some(s.size) }
+    PayloadDef {
+        name: ident(&s.name),
+        fields,
+        size: Some(s.size),
+    }
 }
 
 /// Every struct: declaration (with layout docs) and its `Payload` impl.
@@ -202,18 +239,35 @@ pub fn emit_structs(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         let mut all_small = true;
         let mut eq = true;
         for (pf, f) in def.fields.iter().zip(&s.fields) {
-            let unit = if f.unit.is_empty() { String::new() } else { format!(" Unit: {}.", f.unit) };
+            let unit = if f.unit.is_empty() {
+                String::new()
+            } else {
+                format!(" Unit: {}.", f.unit)
+            };
             match &pf.kind {
                 PKind::Pad(_) => {}
                 PKind::Bits { members, .. } => {
-                    let FieldKind::Bits { members: ir_members, .. } = &f.kind else { continue };
+                    let FieldKind::Bits {
+                        members: ir_members,
+                        ..
+                    } = &f.kind
+                    else {
+                        continue;
+                    };
                     for (m, im) in members.iter().zip(ir_members) {
                         let ty = match &m.ty {
                             BitType::Bool => quote!(bool),
                             BitType::Uint(p) => prim_type(*p),
                             BitType::Enum(t, _) => t.clone(),
                         };
-                        let text = format!("{}{}(bits {}..{} of byte {}.)", im.doc, if im.doc.is_empty() { "" } else { " " }, im.shift, im.shift + im.width, f.offset);
+                        let text = format!(
+                            "{}{}(bits {}..{} of byte {}.)",
+                            im.doc,
+                            if im.doc.is_empty() { "" } else { " " },
+                            im.shift,
+                            im.shift + im.width,
+                            f.offset
+                        );
                         let d = doc_attrs(&text);
                         let id = &m.ident;
                         fields.push(quote!(#d pub #id: #ty));
@@ -221,7 +275,9 @@ pub fn emit_structs(p: &Protocol, paths: &RuntimePath) -> TokenStream {
                 }
                 kind => {
                     if let Some(n) = match kind {
-                        PKind::Scalar { count, .. } | PKind::Nested { count, .. } | PKind::Enum { count, .. } => *count,
+                        PKind::Scalar { count, .. }
+                        | PKind::Nested { count, .. }
+                        | PKind::Enum { count, .. } => *count,
                         _ => None,
                     } {
                         all_small &= n <= 32;
@@ -232,15 +288,30 @@ pub fn emit_structs(p: &Protocol, paths: &RuntimePath) -> TokenStream {
                     if let PKind::Nested { .. } = kind {
                         eq = false;
                     }
-                    let id = pf.ident.clone().unwrap_or_else(|| format_ident!("_unnamed"));
+                    let id = pf
+                        .ident
+                        .clone()
+                        .unwrap_or_else(|| format_ident!("_unnamed"));
                     let ty = field_type(kind);
-                    let text = format!("{}{}", if f.doc.is_empty() { format!("`{}`.", f.name) } else { f.doc.clone() }, unit);
+                    let text = format!(
+                        "{}{}",
+                        if f.doc.is_empty() {
+                            format!("`{}`.", f.name)
+                        } else {
+                            f.doc.clone()
+                        },
+                        unit
+                    );
                     let d = doc_attrs(&text);
                     fields.push(quote!(#d pub #id: #ty));
                 }
             }
         }
-        let default = if all_small { quote!(Default,) } else { quote!() };
+        let default = if all_small {
+            quote!(Default,)
+        } else {
+            quote!()
+        };
         let eq = if eq { quote!(Eq, Hash,) } else { quote!() };
         let imp = emit_payload_impl(&def, paths);
         quote! {

@@ -10,8 +10,8 @@ pub mod model;
 use std::ops::Range;
 
 use serde::Deserialize;
-use toml::de::{DeTable, DeValue};
 use toml::Spanned;
+use toml::de::{DeTable, DeValue};
 
 use crate::diag::{Diagnostics, did_you_mean};
 use crate::source::SpecSource;
@@ -69,7 +69,11 @@ fn report_shape_error(diags: &mut Diagnostics, span: Range<usize>, message: &str
             None if expected.is_empty() => d.help("this table takes no keys"),
             None => d.help(format!(
                 "the keys allowed here are {}",
-                expected.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
+                expected
+                    .iter()
+                    .map(|k| format!("`{k}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             )),
         };
     } else if let Some(rest) = message.strip_prefix("missing field `") {
@@ -79,7 +83,10 @@ fn report_shape_error(diags: &mut Diagnostics, span: Range<usize>, message: &str
             .help(format!("add `{name} = ...`; see docs/spec-format.md"));
     } else if message.contains("did not match any variant of untagged enum ConstantDef") {
         diags
-            .error(span, "expected an integer, or a table `{ value = ..., doc = \"...\" }`")
+            .error(
+                span,
+                "expected an integer, or a table `{ value = ..., doc = \"...\" }`",
+            )
             .help("write `NAME = 12` or `NAME = { value = 12, doc = \"...\" }`");
     } else if message.contains("did not match any variant of untagged enum IdDef") {
         diags

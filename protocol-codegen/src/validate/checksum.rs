@@ -2,7 +2,7 @@
 //! of `[checksums]` verified against their declared check value.
 
 use super::catalog::{catalog, display_name};
-use super::{text, Ctx};
+use super::{Ctx, text};
 use crate::diag::did_you_mean;
 use crate::ir::{Algorithm, CrcParams};
 use crate::spec::model::{ChecksumDef, SStr};
@@ -54,7 +54,11 @@ pub(crate) fn resolve_algorithm(ctx: &mut Ctx<'_>, name: &SStr) -> Option<Algori
         Some(best) => format!("did you mean `{best}`?"),
         None => "use `sum8`, `sum-mod-255`, `xor8`, a CRC of the crc catalogue such as `crc-16-umts`, or define one under `[checksums.NAME]`".to_string(),
     };
-    ctx.error(name.span(), format!("unknown checksum algorithm `{n}`"), help);
+    ctx.error(
+        name.span(),
+        format!("unknown checksum algorithm `{n}`"),
+        help,
+    );
     None
 }
 
@@ -70,14 +74,31 @@ fn lower_custom(ctx: &mut Ctx<'_>, key: &SStr, def: &Spanned<ChecksumDef>) -> Op
     let c = crc.get_ref();
     let width = *c.width.get_ref();
     if ![8, 16, 32, 64].contains(&width) {
-        ctx.error(c.width.span(), format!("CRC width {width} cannot be stored in whole bytes"), "use a width of 8, 16, 32 or 64");
+        ctx.error(
+            c.width.span(),
+            format!("CRC width {width} cannot be stored in whole bytes"),
+            "use a width of 8, 16, 32 or 64",
+        );
         return None;
     }
-    let max = if width == 64 { u64::MAX } else { (1u64 << width) - 1 };
+    let max = if width == 64 {
+        u64::MAX
+    } else {
+        (1u64 << width) - 1
+    };
     let mut ok = true;
-    for (what, v) in [("poly", &c.poly), ("init", &c.init), ("xorout", &c.xorout), ("check", &c.check)] {
+    for (what, v) in [
+        ("poly", &c.poly),
+        ("init", &c.init),
+        ("xorout", &c.xorout),
+        ("check", &c.check),
+    ] {
         if *v.get_ref() < 0 || (*v.get_ref() as u64) > max {
-            ctx.error(v.span(), format!("`{what}` {:#x} does not fit in {width} bits", v.get_ref()), format!("use a value from 0 to {max:#x}"));
+            ctx.error(
+                v.span(),
+                format!("`{what}` {:#x} does not fit in {width} bits", v.get_ref()),
+                format!("use a value from 0 to {max:#x}"),
+            );
             ok = false;
         }
     }
@@ -85,7 +106,11 @@ fn lower_custom(ctx: &mut Ctx<'_>, key: &SStr, def: &Spanned<ChecksumDef>) -> Op
         None => 16,
         Some(t) if [0, 1, 16].contains(t.get_ref()) => *t.get_ref() as u8,
         Some(t) => {
-            ctx.error(t.span(), format!("table size {} is not offered", t.get_ref()), "use 0 (no table, smallest), 1 (256 entries) or 16 (slicing-by-16, fastest)");
+            ctx.error(
+                t.span(),
+                format!("table size {} is not offered", t.get_ref()),
+                "use 0 (no table, smallest), 1 (256 entries) or 16 (slicing-by-16, fastest)",
+            );
             16
         }
     };

@@ -6,8 +6,8 @@ use std::collections::HashMap;
 use toml::Spanned;
 
 use super::names::{check_screaming_name, check_snake_name, pascal_case};
-use super::types::{mask, Structs};
-use super::{text, Ctx};
+use super::types::{Structs, mask};
+use super::{Ctx, text};
 use crate::diag::did_you_mean;
 use crate::ir::{AddressSet, Command, Direction, DirectionRule, Frame, Role};
 use crate::spec::model::{IdDef, SStr};
@@ -21,31 +21,51 @@ pub(crate) fn lower_addresses(ctx: &mut Ctx<'_>) -> Vec<AddressSet> {
         check_snake_name(ctx, name, "address name");
         let d = def.get_ref();
         let (first, last) = match (&d.range, &d.value) {
-            (Some(r), None) => match r.get_ref().as_slice() {
-                [a, b] if *a.get_ref() >= 0 && a.get_ref() <= b.get_ref() => (*a.get_ref() as u64, *b.get_ref() as u64),
-                _ => {
-                    ctx.error(r.span(), format!("address range of `{}` is not `[first, last]` with 0 <= first <= last", name.get_ref()), "write `range = [0x01, 0x10]`");
-                    continue;
+            (Some(r), None) => {
+                match r.get_ref().as_slice() {
+                    [a, b] if *a.get_ref() >= 0 && a.get_ref() <= b.get_ref() => {
+                        (*a.get_ref() as u64, *b.get_ref() as u64)
+                    }
+                    _ => {
+                        ctx.error(r.span(), format!("address range of `{}` is not `[first, last]` with 0 <= first <= last", name.get_ref()), "write `range = [0x01, 0x10]`");
+                        continue;
+                    }
                 }
-            },
+            }
             (None, Some(v)) if *v.get_ref() >= 0 => (*v.get_ref() as u64, *v.get_ref() as u64),
             (None, Some(v)) => {
                 ctx.error(v.span(), "an address cannot be negative", "use 0 or more");
                 continue;
             }
             _ => {
-                ctx.error(def.span(), format!("address `{}` needs exactly one of `range` and `value`", name.get_ref()), "write `{ range = [0x01, 0x10] }` or `{ value = 0xFF }`");
+                ctx.error(
+                    def.span(),
+                    format!(
+                        "address `{}` needs exactly one of `range` and `value`",
+                        name.get_ref()
+                    ),
+                    "write `{ range = [0x01, 0x10] }` or `{ value = 0xFF }`",
+                );
                 continue;
             }
         };
-        out.push(AddressSet { name: name.get_ref().clone(), first, last, doc: text(&d.doc) });
+        out.push(AddressSet {
+            name: name.get_ref().clone(),
+            first,
+            last,
+            doc: text(&d.doc),
+        });
     }
     out
 }
 
 /// Rule: directions are `request` and `response` (both, or none); each names a header field of
 /// the first frame and either an address set (`in`) or a value (`equals`).
-pub(crate) fn lower_directions(ctx: &mut Ctx<'_>, frame: &Frame, addresses: &[AddressSet]) -> Vec<Direction> {
+pub(crate) fn lower_directions(
+    ctx: &mut Ctx<'_>,
+    frame: &Frame,
+    addresses: &[AddressSet],
+) -> Vec<Direction> {
     let spec = ctx.spec;
     let mut out = Vec::new();
     for (name, def) in &spec.directions {
@@ -59,33 +79,77 @@ pub(crate) fn lower_directions(ctx: &mut Ctx<'_>, frame: &Frame, addresses: &[Ad
             continue;
         }
         let d = def.get_ref();
-        let Some(vi) = frame.values.iter().position(|v| &v.name == d.field.get_ref()) else {
-            let help = match did_you_mean(d.field.get_ref(), frame.values.iter().map(|v| v.name.as_str())) {
+        let Some(vi) = frame
+            .values
+            .iter()
+            .position(|v| &v.name == d.field.get_ref())
+        else {
+            let help = match did_you_mean(
+                d.field.get_ref(),
+                frame.values.iter().map(|v| v.name.as_str()),
+            ) {
                 Some(b) => format!("did you mean `{b}`?"),
                 None => "name a header field of the first frame".to_string(),
             };
-            ctx.error(d.field.span(), format!("frame `{}` has no header field `{}`", frame.name, d.field.get_ref()), help);
+            ctx.error(
+                d.field.span(),
+                format!(
+                    "frame `{}` has no header field `{}`",
+                    frame.name,
+                    d.field.get_ref()
+                ),
+                help,
+            );
             continue;
         };
         if !matches!(frame.values[vi].role, Role::User { .. }) {
-            ctx.error(d.field.span(), format!("`{}` is computed by the codec, so it cannot tell the direction", d.field.get_ref()), "use a field the sender sets, such as an address or a flag");
+            ctx.error(
+                d.field.span(),
+                format!(
+                    "`{}` is computed by the codec, so it cannot tell the direction",
+                    d.field.get_ref()
+                ),
+                "use a field the sender sets, such as an address or a flag",
+            );
             continue;
         }
         let rule = match (&d.in_set, &d.equals) {
             (Some(set), None) => match addresses.iter().position(|a| &a.name == set.get_ref()) {
                 Some(si) => DirectionRule::InSet { value: vi, set: si },
                 None => {
-                    let help = match did_you_mean(set.get_ref(), addresses.iter().map(|a| a.name.as_str())) {
+                    let help = match did_you_mean(
+                        set.get_ref(),
+                        addresses.iter().map(|a| a.name.as_str()),
+                    ) {
                         Some(b) => format!("did you mean `{b}`?"),
                         None => "declare the set under `[addresses]`".to_string(),
                     };
-                    ctx.error(set.span(), format!("unknown address set `{}`", set.get_ref()), help);
+                    ctx.error(
+                        set.span(),
+                        format!("unknown address set `{}`", set.get_ref()),
+                        help,
+                    );
                     continue;
                 }
             },
-            (None, Some(v)) if *v.get_ref() >= 0 && (*v.get_ref() as u64) <= mask(frame.values[vi].width) => DirectionRule::Equals { value: vi, equals: *v.get_ref() as u64 },
+            (None, Some(v))
+                if *v.get_ref() >= 0 && (*v.get_ref() as u64) <= mask(frame.values[vi].width) =>
+            {
+                DirectionRule::Equals {
+                    value: vi,
+                    equals: *v.get_ref() as u64,
+                }
+            }
             (None, Some(v)) => {
-                ctx.error(v.span(), format!("{} does not fit in field `{}`", v.get_ref(), d.field.get_ref()), "use a value the field can hold");
+                ctx.error(
+                    v.span(),
+                    format!(
+                        "{} does not fit in field `{}`",
+                        v.get_ref(),
+                        d.field.get_ref()
+                    ),
+                    "use a value the field can hold",
+                );
                 continue;
             }
             _ => {
@@ -93,11 +157,24 @@ pub(crate) fn lower_directions(ctx: &mut Ctx<'_>, frame: &Frame, addresses: &[Ad
                 continue;
             }
         };
-        out.push(Direction { name: n.clone(), doc: text(&d.doc), rule });
+        out.push(Direction {
+            name: n.clone(),
+            doc: text(&d.doc),
+            rule,
+        });
     }
     if out.len() == 1 {
-        let span = spec.directions.keys().next().map(Spanned::span).unwrap_or_default();
-        ctx.error(span, "only one direction is declared", "declare both `request` and `response`, or neither");
+        let span = spec
+            .directions
+            .keys()
+            .next()
+            .map(Spanned::span)
+            .unwrap_or_default();
+        ctx.error(
+            span,
+            "only one direction is declared",
+            "declare both `request` and `response`, or neither",
+        );
         out.clear();
     }
     // Request first, then response, whatever the spec's order.
@@ -109,12 +186,22 @@ pub(crate) fn lower_directions(ctx: &mut Ctx<'_>, frame: &Frame, addresses: &[Ad
 /// one value per dispatch field that fits the field and is not used by another command, and
 /// payload references (`payload` without directions, `request`/`response` with them) that
 /// name structs whose size fits the frame's payload bounds.
-pub(crate) fn lower_commands(ctx: &mut Ctx<'_>, frame: Option<&Frame>, directions: &[Direction], structs: &Structs) -> Vec<Command> {
+pub(crate) fn lower_commands(
+    ctx: &mut Ctx<'_>,
+    frame: Option<&Frame>,
+    directions: &[Direction],
+    structs: &Structs,
+) -> Vec<Command> {
     let spec = ctx.spec;
     let mut out: Vec<Command> = Vec::new();
     let Some(frame) = frame else { return out };
     if !spec.commands.is_empty() && frame.dispatch.is_empty() {
-        let span = spec.commands.keys().next().map(Spanned::span).unwrap_or_default();
+        let span = spec
+            .commands
+            .keys()
+            .next()
+            .map(Spanned::span)
+            .unwrap_or_default();
         ctx.error(span, format!("commands are declared, but frame `{}` has no dispatch key", frame.name), "add `dispatch = [\"command\"]` to the frame, naming the field that holds the command id");
         return out;
     }
@@ -127,7 +214,14 @@ pub(crate) fn lower_commands(ctx: &mut Ctx<'_>, frame: Option<&Frame>, direction
         let d = def.get_ref();
         let rust_name = pascal_case(name.get_ref());
         if let Some(prev) = rust_names.get(&rust_name) {
-            ctx.error(name.span(), format!("commands `{prev}` and `{}` both become the Rust name `{rust_name}`", name.get_ref()), "rename one so their PascalCase forms differ");
+            ctx.error(
+                name.span(),
+                format!(
+                    "commands `{prev}` and `{}` both become the Rust name `{rust_name}`",
+                    name.get_ref()
+                ),
+                "rename one so their PascalCase forms differ",
+            );
             continue;
         }
         rust_names.insert(rust_name.clone(), name.get_ref().clone());
@@ -136,8 +230,28 @@ pub(crate) fn lower_commands(ctx: &mut Ctx<'_>, frame: Option<&Frame>, direction
             IdDef::Many(v) => v.clone(),
         };
         if raw.len() != frame.dispatch.len() {
-            let keys: Vec<&str> = frame.dispatch.iter().map(|&i| frame.values[i].name.as_str()).collect();
-            ctx.error(d.id.span(), format!("id has {} value(s), but the dispatch key has {} field(s) ({})", raw.len(), keys.len(), keys.join(", ")), if keys.len() == 1 { "write one integer, e.g. `id = 0x01`".to_string() } else { format!("write one integer per field, in the order {}", keys.join(", ")) });
+            let keys: Vec<&str> = frame
+                .dispatch
+                .iter()
+                .map(|&i| frame.values[i].name.as_str())
+                .collect();
+            ctx.error(
+                d.id.span(),
+                format!(
+                    "id has {} value(s), but the dispatch key has {} field(s) ({})",
+                    raw.len(),
+                    keys.len(),
+                    keys.join(", ")
+                ),
+                if keys.len() == 1 {
+                    "write one integer, e.g. `id = 0x01`".to_string()
+                } else {
+                    format!(
+                        "write one integer per field, in the order {}",
+                        keys.join(", ")
+                    )
+                },
+            );
             continue;
         }
         let mut id = Vec::new();
@@ -145,7 +259,18 @@ pub(crate) fn lower_commands(ctx: &mut Ctx<'_>, frame: Option<&Frame>, direction
         for (v, &vi) in raw.iter().zip(&frame.dispatch) {
             let field = &frame.values[vi];
             if *v < 0 || (*v as u64) > mask(field.width) {
-                ctx.error(d.id.span(), format!("id {v} does not fit in the {}-bit field `{}`", field.width, field.name), format!("ids of `{}` range from 0 to {}", field.name, mask(field.width)));
+                ctx.error(
+                    d.id.span(),
+                    format!(
+                        "id {v} does not fit in the {}-bit field `{}`",
+                        field.width, field.name
+                    ),
+                    format!(
+                        "ids of `{}` range from 0 to {}",
+                        field.name,
+                        mask(field.width)
+                    ),
+                );
                 fits = false;
             }
             id.push(*v as u64);
@@ -159,17 +284,33 @@ pub(crate) fn lower_commands(ctx: &mut Ctx<'_>, frame: Option<&Frame>, direction
         }
         ids.insert(id.clone(), name.get_ref().clone());
         let payloads = lower_payload_refs(ctx, name, d, frame, directions, structs);
-        out.push(Command { name: name.get_ref().clone(), rust_name, id, doc: text(&d.doc), payloads });
+        out.push(Command {
+            name: name.get_ref().clone(),
+            rust_name,
+            id,
+            doc: text(&d.doc),
+            payloads,
+        });
     }
     out
 }
 
-fn lower_payload_refs(ctx: &mut Ctx<'_>, name: &SStr, d: &crate::spec::model::CommandDef, frame: &Frame, directions: &[Direction], structs: &Structs) -> Vec<Option<usize>> {
+fn lower_payload_refs(
+    ctx: &mut Ctx<'_>,
+    name: &SStr,
+    d: &crate::spec::model::CommandDef,
+    frame: &Frame,
+    directions: &[Direction],
+    structs: &Structs,
+) -> Vec<Option<usize>> {
     let resolve = |ctx: &mut Ctx<'_>, r: &Option<SStr>| -> Option<usize> {
         let r = r.as_ref()?;
         let Some(&i) = structs.by_name.get(r.get_ref()) else {
             if !ctx.spec.structs.keys().any(|k| k.get_ref() == r.get_ref()) {
-                let help = match did_you_mean(r.get_ref(), structs.structs.iter().map(|s| s.name.as_str())) {
+                let help = match did_you_mean(
+                    r.get_ref(),
+                    structs.structs.iter().map(|s| s.name.as_str()),
+                ) {
                     Some(b) => format!("did you mean `{b}`?"),
                     None => "declare it as `[structs.NAME]`".to_string(),
                 };
@@ -179,9 +320,27 @@ fn lower_payload_refs(ctx: &mut Ctx<'_>, name: &SStr, d: &crate::spec::model::Co
         };
         let size = structs.structs[i].size;
         if size > frame.payload_max {
-            ctx.error(r.span(), format!("struct `{}` is {size} bytes, but frame `{}` carries at most {} payload bytes", r.get_ref(), frame.name, frame.payload_max), "raise the payload's `max` or shrink the struct");
+            ctx.error(
+                r.span(),
+                format!(
+                    "struct `{}` is {size} bytes, but frame `{}` carries at most {} payload bytes",
+                    r.get_ref(),
+                    frame.name,
+                    frame.payload_max
+                ),
+                "raise the payload's `max` or shrink the struct",
+            );
         } else if size < frame.payload_min {
-            ctx.error(r.span(), format!("struct `{}` is {size} bytes, but frame `{}` carries at least {} payload bytes", r.get_ref(), frame.name, frame.payload_min), "lower the payload's `min` or pad the struct");
+            ctx.error(
+                r.span(),
+                format!(
+                    "struct `{}` is {size} bytes, but frame `{}` carries at least {} payload bytes",
+                    r.get_ref(),
+                    frame.name,
+                    frame.payload_min
+                ),
+                "lower the payload's `min` or pad the struct",
+            );
         }
         Some(i)
     };
@@ -198,7 +357,13 @@ fn lower_payload_refs(ctx: &mut Ctx<'_>, name: &SStr, d: &crate::spec::model::Co
         }
         directions
             .iter()
-            .map(|dir| if dir.name == "request" { resolve(ctx, &d.request) } else { resolve(ctx, &d.response) })
+            .map(|dir| {
+                if dir.name == "request" {
+                    resolve(ctx, &d.request)
+                } else {
+                    resolve(ctx, &d.response)
+                }
+            })
             .collect()
     }
 }

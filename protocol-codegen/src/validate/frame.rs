@@ -6,12 +6,11 @@ use toml::Spanned;
 
 use super::checksum::resolve_algorithm;
 use super::names::{check_snake_name, parse_byte_order, parse_prim};
-use super::types::{fit, lower_bits, mask, Enums, Structs};
-use super::{text, Ctx};
+use super::types::{Enums, Structs, fit, lower_bits, mask};
+use super::{Ctx, text};
 use crate::diag::did_you_mean;
 use crate::ir::{
-    Algorithm, Check, Element, Frame, HeaderValue, Length, Pos, Prim, Role, Scalar,
-    Trailer,
+    Algorithm, Check, Element, Frame, HeaderValue, Length, Pos, Prim, Role, Scalar, Trailer,
 };
 use crate::spec::model::{ElementDef, FrameDef, SStr};
 
@@ -19,7 +18,11 @@ use crate::spec::model::{ElementDef, FrameDef, SStr};
 pub(crate) fn lower_frames(ctx: &mut Ctx<'_>, structs: &Structs, enums: &Enums) -> Vec<Frame> {
     let spec = ctx.spec;
     if spec.frames.is_empty() {
-        ctx.error(spec.protocol.span(), "the spec has no frame format", "add a `[frames.NAME]` table with a `layout = [...]`; see docs/spec-format.md");
+        ctx.error(
+            spec.protocol.span(),
+            "the spec has no frame format",
+            "add a `[frames.NAME]` table with a `layout = [...]`; see docs/spec-format.md",
+        );
     }
     let mut out = Vec::new();
     for (name, def) in &spec.frames {
@@ -49,7 +52,15 @@ struct El<'s> {
 }
 
 /// The keys an element may carry besides its kind key, per kind.
-const FIELD_KEYS: &[&str] = &["field", "type", "addresses", "length_of", "value", "bits", "doc"];
+const FIELD_KEYS: &[&str] = &[
+    "field",
+    "type",
+    "addresses",
+    "length_of",
+    "value",
+    "bits",
+    "doc",
+];
 const SYNC_KEYS: &[&str] = &["sync", "doc"];
 const PAYLOAD_KEYS: &[&str] = &["payload", "doc"];
 const CHECK_KEYS: &[&str] = &["check", "over", "byte_order", "name", "doc"];
@@ -83,7 +94,14 @@ fn check_element_keys(ctx: &mut Ctx<'_>, el: &Spanned<ElementDef>) -> Option<&'s
             return None;
         }
         [_, second, ..] => {
-            ctx.error(second.1.clone(), format!("layout element has two kinds (`{}` and `{}`)", kinds[0].0, second.0), "split it into two elements");
+            ctx.error(
+                second.1.clone(),
+                format!(
+                    "layout element has two kinds (`{}` and `{}`)",
+                    kinds[0].0, second.0
+                ),
+                "split it into two elements",
+            );
             return None;
         }
     };
@@ -96,7 +114,18 @@ fn check_element_keys(ctx: &mut Ctx<'_>, el: &Spanned<ElementDef>) -> Option<&'s
     };
     for (k, span) in &keys {
         if !allowed.contains(k) {
-            ctx.error(span.clone(), format!("key `{k}` does not apply to a `{kind}` element"), format!("a `{kind}` element takes {}", allowed.iter().map(|a| format!("`{a}`")).collect::<Vec<_>>().join(", ")));
+            ctx.error(
+                span.clone(),
+                format!("key `{k}` does not apply to a `{kind}` element"),
+                format!(
+                    "a `{kind}` element takes {}",
+                    allowed
+                        .iter()
+                        .map(|a| format!("`{a}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            );
         }
     }
     Some(kind)
@@ -104,20 +133,34 @@ fn check_element_keys(ctx: &mut Ctx<'_>, el: &Spanned<ElementDef>) -> Option<&'s
 
 fn byte_list(ctx: &mut Ctx<'_>, list: &Spanned<Vec<Spanned<i64>>>, what: &str) -> Vec<u8> {
     if list.get_ref().is_empty() {
-        ctx.error(list.span(), format!("{what} is empty"), "list at least one byte, e.g. `[0xFF, 0xFF]`");
+        ctx.error(
+            list.span(),
+            format!("{what} is empty"),
+            "list at least one byte, e.g. `[0xFF, 0xFF]`",
+        );
     }
     let mut out = Vec::new();
     for b in list.get_ref() {
         match u8::try_from(*b.get_ref()) {
             Ok(v) => out.push(v),
-            Err(_) => ctx.error(b.span(), format!("{} is not a byte", b.get_ref()), "use a value from 0x00 to 0xFF"),
+            Err(_) => ctx.error(
+                b.span(),
+                format!("{} is not a byte", b.get_ref()),
+                "use a value from 0x00 to 0xFF",
+            ),
         }
     }
     out
 }
 
 #[allow(clippy::too_many_lines)]
-fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Structs, enums: &Enums) -> Option<Frame> {
+fn lower_frame(
+    ctx: &mut Ctx<'_>,
+    fname: &SStr,
+    def: &FrameDef,
+    _structs: &Structs,
+    enums: &Enums,
+) -> Option<Frame> {
     let mut els: Vec<El<'_>> = Vec::new();
     let mut values: Vec<HeaderValue> = Vec::new();
     let mut checks: Vec<(Check, usize)> = Vec::new();
@@ -139,7 +182,12 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                 if i != 0 {
                     ctx.error(el.span(), "sync bytes must be the first element of the layout", "move the `sync` element to the start; constant bytes after the payload are a `trailer`");
                 }
-                els.push(El { name: "sync".into(), def: el, size: bytes.len(), kind: Kind::Sync(bytes) });
+                els.push(El {
+                    name: "sync".into(),
+                    def: el,
+                    size: bytes.len(),
+                    kind: Kind::Sync(bytes),
+                });
             }
             "field" => {
                 let name = d.field.as_ref()?;
@@ -148,7 +196,11 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                     ctx.error(el.span(), "header fields must come before the payload", "move the field before the `payload` element; only checks and trailers follow the payload");
                 }
                 let Some(ty) = &d.ty else {
-                    ctx.error(el.span(), format!("field `{}` has no `type`", name.get_ref()), "add `type = \"u8\"` (or `u16be`, `u16le`, ...)");
+                    ctx.error(
+                        el.span(),
+                        format!("field `{}` has no `type`", name.get_ref()),
+                        "add `type = \"u8\"` (or `u16be`, `u16le`, ...)",
+                    );
                     broken = true;
                     continue;
                 };
@@ -160,7 +212,8 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                         continue;
                     }
                     None => {
-                        let known = ["u8", "u16le", "u16be", "u32le", "u32be", "u64le", "u64be"].map(String::from);
+                        let known = ["u8", "u16le", "u16be", "u32le", "u32be", "u64le", "u64be"]
+                            .map(String::from);
                         super::names::unknown_type(ctx, ty, &known, "a header field's type");
                         broken = true;
                         continue;
@@ -175,7 +228,16 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                         let b = bdef.get_ref();
                         let role = if let Some(v) = &b.value {
                             if *v.get_ref() < 0 || (*v.get_ref() as u64) > mask(m.width) {
-                                ctx.error(v.span(), format!("value {} does not fit in the {} bits of `{}`", v.get_ref(), m.width, m.name), "use a smaller value or more bits");
+                                ctx.error(
+                                    v.span(),
+                                    format!(
+                                        "value {} does not fit in the {} bits of `{}`",
+                                        v.get_ref(),
+                                        m.width,
+                                        m.name
+                                    ),
+                                    "use a smaller value or more bits",
+                                );
                             }
                             Role::Const(*v.get_ref() as u64)
                         } else if let Some(cov) = &b.length_of {
@@ -185,15 +247,40 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                             Role::User { addresses }
                         };
                         idx.push(values.len());
-                        values.push(HeaderValue { name: m.name, doc: m.doc, offset, word, shift: m.shift, width: m.width, prim: if m.prim == Prim::Bool { Prim::Bool } else { m.prim }, role });
+                        values.push(HeaderValue {
+                            name: m.name,
+                            doc: m.doc,
+                            offset,
+                            word,
+                            shift: m.shift,
+                            width: m.width,
+                            prim: if m.prim == Prim::Bool {
+                                Prim::Bool
+                            } else {
+                                m.prim
+                            },
+                            role,
+                        });
                     }
                     if d.value.is_some() || d.length_of.is_some() {
-                        ctx.error(el.span(), "a field with `bits` puts `value` and `length_of` on its members", "move the key into the member it is about");
+                        ctx.error(
+                            el.span(),
+                            "a field with `bits` puts `value` and `length_of` on its members",
+                            "move the key into the member it is about",
+                        );
                     }
                 } else {
                     let role = if let Some(v) = &d.value {
                         if fit(*v.get_ref(), word.prim).is_none() {
-                            ctx.error(v.span(), format!("value {} does not fit in {}", v.get_ref(), word.prim.rust_name()), "use a smaller value or a wider type");
+                            ctx.error(
+                                v.span(),
+                                format!(
+                                    "value {} does not fit in {}",
+                                    v.get_ref(),
+                                    word.prim.rust_name()
+                                ),
+                                "use a smaller value or a wider type",
+                            );
                         }
                         Role::Const(*v.get_ref() as u64)
                     } else if let Some(cov) = &d.length_of {
@@ -204,31 +291,62 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                     };
                     idx.push(values.len());
                     let width = (word.prim.size() * 8) as u32;
-                    values.push(HeaderValue { name: name.get_ref().clone(), doc: text(&d.doc), offset, word, shift: 0, width, prim: word.prim, role });
+                    values.push(HeaderValue {
+                        name: name.get_ref().clone(),
+                        doc: text(&d.doc),
+                        offset,
+                        word,
+                        shift: 0,
+                        width,
+                        prim: word.prim,
+                        role,
+                    });
                 }
-                els.push(El { name: name.get_ref().clone(), def: el, size: word.prim.size(), kind: Kind::Word(word, idx) });
+                els.push(El {
+                    name: name.get_ref().clone(),
+                    def: el,
+                    size: word.prim.size(),
+                    kind: Kind::Word(word, idx),
+                });
             }
             "payload" => {
                 let p = d.payload.as_ref()?;
                 if payload.is_some() {
-                    ctx.error(el.span(), "a frame has one payload", "remove the second `payload` element");
+                    ctx.error(
+                        el.span(),
+                        "a frame has one payload",
+                        "remove the second `payload` element",
+                    );
                     continue;
                 }
                 let min = p.get_ref().min.as_ref().map_or(0, |m| *m.get_ref());
                 let max = match &p.get_ref().max {
                     Some(m) => *m.get_ref(),
                     None => {
-                        ctx.error(p.span(), "the payload needs a `max` size", "write `payload = { max = N }`: decoders size their buffer from it");
+                        ctx.error(
+                            p.span(),
+                            "the payload needs a `max` size",
+                            "write `payload = { max = N }`: decoders size their buffer from it",
+                        );
                         broken = true;
                         0
                     }
                 };
                 if min < 0 || max < min {
-                    ctx.error(p.span(), format!("payload bounds {min}..={max} are not valid"), "use 0 <= min <= max");
+                    ctx.error(
+                        p.span(),
+                        format!("payload bounds {min}..={max} are not valid"),
+                        "use 0 <= min <= max",
+                    );
                     broken = true;
                 }
                 payload = Some((els.len(), min.max(0) as usize, max.max(0) as usize));
-                els.push(El { name: "payload".into(), def: el, size: 0, kind: Kind::Payload });
+                els.push(El {
+                    name: "payload".into(),
+                    def: el,
+                    size: 0,
+                    kind: Kind::Payload,
+                });
             }
             "check" => {
                 let alg_name = d.check.as_ref()?;
@@ -237,7 +355,10 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                     Some(o) => parse_byte_order(ctx, o).unwrap_or(ctx.default_endian),
                     None => ctx.default_endian,
                 };
-                let name = d.name.as_ref().map_or_else(|| "checksum".to_string(), |n| n.get_ref().clone());
+                let name = d
+                    .name
+                    .as_ref()
+                    .map_or_else(|| "checksum".to_string(), |n| n.get_ref().clone());
                 if let Some(n) = &d.name {
                     check_snake_name(ctx, n, "check name");
                 }
@@ -247,18 +368,49 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                 };
                 let size = algorithm_size(&algorithm);
                 let ci = checks.len();
-                checks.push((Check { name: name.clone(), doc: text(&d.doc), algorithm, at: Pos::Start(0), size, endian, from: Pos::Start(0), to: Pos::Start(0), header: payload.is_none() }, els.len()));
-                els.push(El { name, def: el, size, kind: Kind::Check(ci) });
+                checks.push((
+                    Check {
+                        name: name.clone(),
+                        doc: text(&d.doc),
+                        algorithm,
+                        at: Pos::Start(0),
+                        size,
+                        endian,
+                        from: Pos::Start(0),
+                        to: Pos::Start(0),
+                        header: payload.is_none(),
+                    },
+                    els.len(),
+                ));
+                els.push(El {
+                    name,
+                    def: el,
+                    size,
+                    kind: Kind::Check(ci),
+                });
             }
             _ => {
                 let bytes = byte_list(ctx, d.trailer.as_ref()?, "trailer");
                 if payload.is_none() {
                     ctx.error(el.span(), "a trailer comes after the payload", "constant bytes before the payload are a field with `value = ...`, or the sync");
                 }
-                let name = d.name.as_ref().map_or_else(|| "trailer".to_string(), |n| n.get_ref().clone());
+                let name = d
+                    .name
+                    .as_ref()
+                    .map_or_else(|| "trailer".to_string(), |n| n.get_ref().clone());
                 let ti = trailers.len();
-                trailers.push(Trailer { name: name.clone(), doc: text(&d.doc), at: Pos::Start(0), bytes: bytes.clone() });
-                els.push(El { name, def: el, size: bytes.len(), kind: Kind::Trailer(ti) });
+                trailers.push(Trailer {
+                    name: name.clone(),
+                    doc: text(&d.doc),
+                    at: Pos::Start(0),
+                    bytes: bytes.clone(),
+                });
+                els.push(El {
+                    name,
+                    def: el,
+                    size: bytes.len(),
+                    kind: Kind::Trailer(ti),
+                });
             }
         }
     }
@@ -266,7 +418,13 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
     // Rule: element names are unique within a frame (they are what `over` and `length_of` name).
     for (i, e) in els.iter().enumerate() {
         if els[..i].iter().any(|p| p.name == e.name) {
-            let span = e.def.get_ref().field.as_ref().or(e.def.get_ref().name.as_ref()).map_or(e.def.span(), Spanned::span);
+            let span = e
+                .def
+                .get_ref()
+                .field
+                .as_ref()
+                .or(e.def.get_ref().name.as_ref())
+                .map_or(e.def.span(), Spanned::span);
             ctx.error(span, format!("two elements of frame `{}` are named `{}`", fname.get_ref(), e.name), "give every field, check and trailer its own name (checks and trailers take `name = \"...\"`)");
         }
     }
@@ -278,7 +436,11 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
     }
     let Some((pi, payload_min, payload_max)) = payload else {
         if !broken {
-            ctx.error(def.layout.span(), format!("frame `{}` has no payload element", fname.get_ref()), "add `{ payload = { max = N } }` where the command's data goes");
+            ctx.error(
+                def.layout.span(),
+                format!("frame `{}` has no payload element", fname.get_ref()),
+                "add `{ payload = { max = N } }` where the command's data goes",
+            );
         }
         return None;
     };
@@ -308,9 +470,19 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
         if found.is_none() {
             let help = match did_you_mean(n, els.iter().map(|e| e.name.as_str())) {
                 Some(b) => format!("did you mean `{b}`?"),
-                None => format!("name elements of this layout: {}", els.iter().map(|e| format!("`{}`", e.name)).collect::<Vec<_>>().join(", ")),
+                None => format!(
+                    "name elements of this layout: {}",
+                    els.iter()
+                        .map(|e| format!("`{}`", e.name))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
             };
-            ctx.error(span, format!("frame `{}` has no element `{n}`", fname.get_ref()), help);
+            ctx.error(
+                span,
+                format!("frame `{}` has no element `{n}`", fname.get_ref()),
+                help,
+            );
         }
         found
     };
@@ -324,7 +496,15 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
         let ia = find(ctx, a.trim(), s.span())?;
         let ib = find(ctx, b.trim(), s.span())?;
         if ia > ib {
-            ctx.error(s.span(), format!("range `{v}` runs backwards"), format!("write the earlier element first: `{}..{}`", b.trim(), a.trim()));
+            ctx.error(
+                s.span(),
+                format!("range `{v}` runs backwards"),
+                format!(
+                    "write the earlier element first: `{}..{}`",
+                    b.trim(),
+                    a.trim()
+                ),
+            );
             return None;
         }
         Some(Some((ia, ib)))
@@ -347,8 +527,13 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                     ctx.error(cov.span(), format!("the length field counts `{}`, which does not include the payload", cov.get_ref()), "a length field must count the payload (e.g. `\"payload\"`, `\"command..payload\"` or `\"frame\"`)");
                     return None;
                 }
-                let before = match start_of(ia) { Pos::Start(n) | Pos::End(n) => n };
-                let after = match end_of(ib) { Pos::Start(n) => header_len + trailer_len - n, Pos::End(n) => n };
+                let before = match start_of(ia) {
+                    Pos::Start(n) | Pos::End(n) => n,
+                };
+                let after = match end_of(ib) {
+                    Pos::Start(n) => header_len + trailer_len - n,
+                    Pos::End(n) => n,
+                };
                 let adjust = (before + after) as i64;
                 let v = &values[vi];
                 let field_max = mask(v.width);
@@ -358,7 +543,11 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                     ok = false;
                 }
                 if (header_len + payload_min + trailer_len) as i64 - adjust < 0 {
-                    ctx.error(cov.span(), "the length field would count a negative number of bytes", "check what `length_of` covers");
+                    ctx.error(
+                        cov.span(),
+                        "the length field would count a negative number of bytes",
+                        "check what `length_of` covers",
+                    );
                     ok = false;
                 }
                 Length::Field { value: vi, adjust }
@@ -394,7 +583,11 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                     continue;
                 }
                 if ib > *ei {
-                    ctx.error(over.map_or(0..0, Spanned::span), format!("check `{}` covers bytes after it", check.name), "cover only elements before the check");
+                    ctx.error(
+                        over.map_or(0..0, Spanned::span),
+                        format!("check `{}` covers bytes after it", check.name),
+                        "cover only elements before the check",
+                    );
                     ok = false;
                     continue;
                 }
@@ -405,7 +598,10 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
         check.from = from;
         check.to = to;
     }
-    for (t, e) in trailers.iter_mut().zip(els.iter().filter(|e| matches!(e.kind, Kind::Trailer(_)))) {
+    for (t, e) in trailers
+        .iter_mut()
+        .zip(els.iter().filter(|e| matches!(e.kind, Kind::Trailer(_))))
+    {
         let i = els.iter().position(|x| std::ptr::eq(x, e)).unwrap_or(0);
         t.at = start_of(i);
     }
@@ -420,14 +616,30 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
                         values[vi].role = Role::Dispatch;
                         dispatch.push(vi);
                     }
-                    _ => ctx.error(k.span(), format!("`{}` cannot be a dispatch key: it is the length or a constant", k.get_ref()), "dispatch on a field that holds the command id"),
+                    _ => ctx.error(
+                        k.span(),
+                        format!(
+                            "`{}` cannot be a dispatch key: it is the length or a constant",
+                            k.get_ref()
+                        ),
+                        "dispatch on a field that holds the command id",
+                    ),
                 },
                 None => {
-                    let help = match did_you_mean(k.get_ref(), values.iter().map(|v| v.name.as_str())) {
-                        Some(b) => format!("did you mean `{b}`?"),
-                        None => "name a header field of this frame".to_string(),
-                    };
-                    ctx.error(k.span(), format!("frame `{}` has no header field `{}`", fname.get_ref(), k.get_ref()), help);
+                    let help =
+                        match did_you_mean(k.get_ref(), values.iter().map(|v| v.name.as_str())) {
+                            Some(b) => format!("did you mean `{b}`?"),
+                            None => "name a header field of this frame".to_string(),
+                        };
+                    ctx.error(
+                        k.span(),
+                        format!(
+                            "frame `{}` has no header field `{}`",
+                            fname.get_ref(),
+                            k.get_ref()
+                        ),
+                        help,
+                    );
                     ok = false;
                 }
             }
@@ -442,7 +654,12 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
         .iter()
         .map(|e| match &e.kind {
             Kind::Sync(b) => Element::Sync(b.clone()),
-            Kind::Word(s, idx) => Element::Word { name: e.name.clone(), offset: idx.first().map_or(0, |&i| values[i].offset), scalar: *s, values: idx.clone() },
+            Kind::Word(s, idx) => Element::Word {
+                name: e.name.clone(),
+                offset: idx.first().map_or(0, |&i| values[i].offset),
+                scalar: *s,
+                values: idx.clone(),
+            },
             Kind::Payload => Element::Payload,
             Kind::Check(i) => Element::Check(*i),
             Kind::Trailer(i) => Element::Trailer(*i),
@@ -452,8 +669,17 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
         Kind::Sync(b) => b.clone(),
         _ => Vec::new(),
     };
-    let mut ordered: Vec<Check> = checks.iter().filter(|(c, _)| c.header).map(|(c, _)| c.clone()).collect();
-    ordered.extend(checks.iter().filter(|(c, _)| !c.header).map(|(c, _)| c.clone()));
+    let mut ordered: Vec<Check> = checks
+        .iter()
+        .filter(|(c, _)| c.header)
+        .map(|(c, _)| c.clone())
+        .collect();
+    ordered.extend(
+        checks
+            .iter()
+            .filter(|(c, _)| !c.header)
+            .map(|(c, _)| c.clone()),
+    );
     // Element::Check indices refer to spec order; keep `checks` in spec order when no header
     // check follows a frame check (always true: header checks precede the payload).
     Some(Frame {
@@ -473,9 +699,18 @@ fn lower_frame(ctx: &mut Ctx<'_>, fname: &SStr, def: &FrameDef, _structs: &Struc
     })
 }
 
-fn length_decl_once<'s>(ctx: &mut Ctx<'_>, slot: &mut Option<(usize, &'s SStr)>, value: usize, cov: &'s SStr) {
+fn length_decl_once<'s>(
+    ctx: &mut Ctx<'_>,
+    slot: &mut Option<(usize, &'s SStr)>,
+    value: usize,
+    cov: &'s SStr,
+) {
     if slot.is_some() {
-        ctx.error(cov.span(), "a frame has one length field", "remove `length_of` from all but one field");
+        ctx.error(
+            cov.span(),
+            "a frame has one length field",
+            "remove `length_of` from all but one field",
+        );
     } else {
         *slot = Some((value, cov));
     }

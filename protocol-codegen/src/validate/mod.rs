@@ -17,7 +17,7 @@ use crate::ir::{self, Endian};
 use crate::spec::model::{SStr, SpecFile};
 
 pub use catalog::{catalog, display_name};
-pub use names::{pascal_case, RESERVED_TYPE_NAMES};
+pub use names::{RESERVED_TYPE_NAMES, pascal_case};
 
 /// Validation state shared by the rules: the spec, the error accumulator and what earlier
 /// rules resolved.
@@ -29,7 +29,12 @@ pub(crate) struct Ctx<'a> {
 
 impl Ctx<'_> {
     /// Record an error with a help line.
-    pub fn error(&mut self, span: Range<usize>, message: impl Into<String>, help: impl Into<String>) {
+    pub fn error(
+        &mut self,
+        span: Range<usize>,
+        message: impl Into<String>,
+        help: impl Into<String>,
+    ) {
         self.diags.error(span, message).help(help);
     }
 }
@@ -77,7 +82,9 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
 
 /// The text of an optional spanned string, empty when absent.
 pub(crate) fn text(s: &Option<SStr>) -> String {
-    s.as_ref().map(|s| s.get_ref().trim().to_string()).unwrap_or_default()
+    s.as_ref()
+        .map(|s| s.get_ref().trim().to_string())
+        .unwrap_or_default()
 }
 
 /// Parse a primitive wire type spelling (`u16`, `u16be`, `f32`, `bool`); for the derive macro.

@@ -8,8 +8,16 @@ use crate::spec::model::SStr;
 
 /// Type names the expansion defines in every generated module; specs cannot reuse them.
 pub const RESERVED_TYPE_NAMES: &[&str] = &[
-    "Header", "Message", "Request", "Response", "Packet", "Command", "Decoder", "Frame",
-    "Payload", "Direction",
+    "Header",
+    "Message",
+    "Request",
+    "Response",
+    "Packet",
+    "Command",
+    "Decoder",
+    "Frame",
+    "Payload",
+    "Direction",
 ];
 
 /// Rust keywords that cannot be raw identifiers (`self`, `Self`, `super`, `crate`).
@@ -62,7 +70,10 @@ pub(crate) fn check_snake_name(ctx: &mut Ctx<'_>, name: &SStr, what: &str) -> bo
         ctx.error(
             name.span(),
             format!("{what} `{n}` is not a snake_case identifier"),
-            format!("use lowercase letters, digits and `_`, starting with a letter, e.g. `{}`", to_snake(n)),
+            format!(
+                "use lowercase letters, digits and `_`, starting with a letter, e.g. `{}`",
+                to_snake(n)
+            ),
         );
         return false;
     }
@@ -76,7 +87,10 @@ pub(crate) fn check_pascal_name(ctx: &mut Ctx<'_>, name: &SStr, what: &str) -> b
         ctx.error(
             name.span(),
             format!("{what} name `{n}` is not a PascalCase identifier"),
-            format!("use letters and digits, starting with a capital, e.g. `{}`", pascal_case(&to_snake(n))),
+            format!(
+                "use letters and digits, starting with a capital, e.g. `{}`",
+                pascal_case(&to_snake(n))
+            ),
         );
         return false;
     }
@@ -91,7 +105,10 @@ pub(crate) fn check_screaming_name(ctx: &mut Ctx<'_>, name: &SStr, what: &str) -
         ctx.error(
             name.span(),
             format!("{what} name `{n}` is not SCREAMING_SNAKE_CASE"),
-            format!("use capitals, digits and `_`, e.g. `{}`", to_snake(n).to_ascii_uppercase()),
+            format!(
+                "use capitals, digits and `_`, e.g. `{}`",
+                to_snake(n).to_ascii_uppercase()
+            ),
         );
         return false;
     }
@@ -209,7 +226,9 @@ pub(crate) fn unknown_type(ctx: &mut Ctx<'_>, ty: &SStr, known: &[String], what:
     let n = ty.get_ref();
     let help = match did_you_mean(n, known.iter().map(String::as_str)) {
         Some(best) => format!("did you mean `{best}`?"),
-        None => format!("{what} is a primitive (`u8`, `u16be`, `f32`, `bool`, ...), or the name of a struct or enum of this spec"),
+        None => format!(
+            "{what} is a primitive (`u8`, `u16be`, `f32`, `bool`, ...), or the name of a struct or enum of this spec"
+        ),
     };
     ctx.error(ty.span(), format!("unknown type `{n}`"), help);
 }

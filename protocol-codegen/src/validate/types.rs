@@ -9,11 +9,11 @@ use super::names::{
     check_pascal_name, check_screaming_name, check_snake_name, parse_byte_order, parse_prim,
     pascal_case, prim_spellings, unknown_type,
 };
-use super::{text, Ctx};
+use super::{Ctx, text};
 use crate::diag::did_you_mean;
 use crate::ir::{
-    BitMember, Constant, Endian, Enum, EnumVariant, Field, FieldKind, Prim, Scalar, Scale,
-    Struct, UnknownPolicy, ValueType,
+    BitMember, Constant, Endian, Enum, EnumVariant, Field, FieldKind, Prim, Scalar, Scale, Struct,
+    UnknownPolicy, ValueType,
 };
 use crate::spec::model::{BitDef, ConstantDef, CountDef, FieldDef, SStr, StructDef};
 
@@ -28,10 +28,18 @@ pub(crate) fn lower_constants(ctx: &mut Ctx<'_>) -> Vec<Constant> {
             ConstantDef::Full(f) => (f.value, f.doc.clone().unwrap_or_default()),
         };
         if value < 0 {
-            ctx.error(def.span(), format!("constant `{}` is negative", name.get_ref()), "constants are counts and values: use 0 or more");
+            ctx.error(
+                def.span(),
+                format!("constant `{}` is negative", name.get_ref()),
+                "constants are counts and values: use 0 or more",
+            );
             continue;
         }
-        out.push(Constant { name: name.get_ref().clone(), value: value as u64, doc });
+        out.push(Constant {
+            name: name.get_ref().clone(),
+            value: value as u64,
+            doc,
+        });
     }
     out
 }
@@ -49,7 +57,9 @@ pub(crate) fn fit(value: i64, prim: Prim) -> Option<u64> {
         let min = -(1i128 << (bits - 1));
         let max = (1i128 << (bits - 1)) - 1;
         let v = i128::from(value);
-        (min..=max).contains(&v).then(|| (value as u64) & mask(bits))
+        (min..=max)
+            .contains(&v)
+            .then(|| (value as u64) & mask(bits))
     } else {
         (value >= 0 && (bits == 64 || (value as u64) <= mask(bits))).then_some(value as u64)
     }
@@ -57,7 +67,11 @@ pub(crate) fn fit(value: i64, prim: Prim) -> Option<u64> {
 
 /// A mask of the low `bits` bits.
 pub(crate) fn mask(bits: u32) -> u64 {
-    if bits >= 64 { u64::MAX } else { (1u64 << bits) - 1 }
+    if bits >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << bits) - 1
+    }
 }
 
 /// Rule: an enum has a PascalCase name, an integer type, at least one variant,
@@ -73,8 +87,15 @@ pub(crate) fn lower_enums(ctx: &mut Ctx<'_>) -> Enums {
         let scalar = match parse_prim(d.ty.get_ref(), ctx.default_endian) {
             Some(s) if s.prim.is_signed() || s.prim.is_unsigned() => s,
             _ => {
-                ctx.error(d.ty.span(), format!("enum type `{}` is not an integer type", d.ty.get_ref()), "use `u8`, `u16`, `i16be`, ...");
-                Scalar { prim: Prim::U8, endian: Endian::Little }
+                ctx.error(
+                    d.ty.span(),
+                    format!("enum type `{}` is not an integer type", d.ty.get_ref()),
+                    "use `u8`, `u16`, `i16be`, ...",
+                );
+                Scalar {
+                    prim: Prim::U8,
+                    endian: Endian::Little,
+                }
             }
         };
         let unknown = match d.unknown.as_ref().map(|u| u.get_ref().as_str()) {
@@ -87,7 +108,11 @@ pub(crate) fn lower_enums(ctx: &mut Ctx<'_>) -> Enums {
             }
         };
         if d.values.is_empty() {
-            ctx.error(def.span(), format!("enum `{}` has no values", name.get_ref()), "add `values = { NAME = 0, ... }`");
+            ctx.error(
+                def.span(),
+                format!("enum `{}` has no values", name.get_ref()),
+                "add `values = { NAME = 0, ... }`",
+            );
         }
         let mut variants: Vec<EnumVariant> = Vec::new();
         for (vname, vdef) in &d.values {
@@ -97,22 +122,57 @@ pub(crate) fn lower_enums(ctx: &mut Ctx<'_>) -> Enums {
                 ConstantDef::Full(f) => (f.value, f.doc.clone().unwrap_or_default()),
             };
             let Some(value) = fit(raw, scalar.prim) else {
-                ctx.error(vdef.span(), format!("value {raw} of `{}` does not fit in {}", vname.get_ref(), scalar.prim.rust_name()), "use a wider enum type or a smaller value");
+                ctx.error(
+                    vdef.span(),
+                    format!(
+                        "value {raw} of `{}` does not fit in {}",
+                        vname.get_ref(),
+                        scalar.prim.rust_name()
+                    ),
+                    "use a wider enum type or a smaller value",
+                );
                 continue;
             };
             let rust_name = pascal_case(vname.get_ref());
             if let Some(prev) = variants.iter().find(|v| v.value == value) {
-                ctx.error(vdef.span(), format!("value {raw} of `{}` is already used by `{}`", vname.get_ref(), prev.name), "give every enum value its own number");
+                ctx.error(
+                    vdef.span(),
+                    format!(
+                        "value {raw} of `{}` is already used by `{}`",
+                        vname.get_ref(),
+                        prev.name
+                    ),
+                    "give every enum value its own number",
+                );
             } else if let Some(prev) = variants.iter().find(|v| v.rust_name == rust_name) {
-                ctx.error(vname.span(), format!("`{}` and `{}` both become the Rust variant `{rust_name}`", prev.name, vname.get_ref()), "rename one so their PascalCase forms differ");
+                ctx.error(
+                    vname.span(),
+                    format!(
+                        "`{}` and `{}` both become the Rust variant `{rust_name}`",
+                        prev.name,
+                        vname.get_ref()
+                    ),
+                    "rename one so their PascalCase forms differ",
+                );
             } else if unknown == UnknownPolicy::Keep && rust_name == "Unknown" {
                 ctx.error(vname.span(), "a value named `UNKNOWN` collides with the `Unknown(raw)` variant of `unknown = \"keep\"`", "rename it");
             } else {
-                variants.push(EnumVariant { name: vname.get_ref().clone(), rust_name, value, doc });
+                variants.push(EnumVariant {
+                    name: vname.get_ref().clone(),
+                    rust_name,
+                    value,
+                    doc,
+                });
             }
         }
         by_name.insert(name.get_ref().clone(), enums.len());
-        enums.push(Enum { name: name.get_ref().clone(), doc: text(&d.doc), prim: scalar.prim, variants, unknown });
+        enums.push(Enum {
+            name: name.get_ref().clone(),
+            doc: text(&d.doc),
+            prim: scalar.prim,
+            variants,
+            unknown,
+        });
     }
     Enums { enums, by_name }
 }
@@ -130,10 +190,21 @@ pub(crate) fn lower_structs(ctx: &mut Ctx<'_>, enums: &Enums, constants: &[Const
     for name in spec.structs.keys() {
         check_pascal_name(ctx, name, "struct");
     }
-    let mut out = Structs { structs: Vec::new(), by_name: HashMap::new() };
+    let mut out = Structs {
+        structs: Vec::new(),
+        by_name: HashMap::new(),
+    };
     let mut state: HashMap<String, Visit> = HashMap::new();
     for name in spec.structs.keys() {
-        visit_struct(ctx, name.get_ref(), &mut state, &mut out, enums, constants, None);
+        visit_struct(
+            ctx,
+            name.get_ref(),
+            &mut state,
+            &mut out,
+            enums,
+            constants,
+            None,
+        );
     }
     out
 }
@@ -183,24 +254,40 @@ fn visit_struct(
     let mut offset = 0usize;
     for f in d.fields.get_ref() {
         if let Some(field) = lower_field(ctx, f, endian, out, enums, constants, offset) {
-            if !field.name.is_empty() {
-                if fields.iter().any(|x| x.name == field.name) {
-                    let span = f.get_ref().name.as_ref().map(Spanned::span).unwrap_or(f.span());
-                    ctx.error(span, format!("field `{}` appears twice in struct `{name}`", field.name), "rename one of the fields");
-                    continue;
-                }
+            if !field.name.is_empty() && fields.iter().any(|x| x.name == field.name) {
+                let span = f
+                    .get_ref()
+                    .name
+                    .as_ref()
+                    .map(Spanned::span)
+                    .unwrap_or(f.span());
+                ctx.error(
+                    span,
+                    format!("field `{}` appears twice in struct `{name}`", field.name),
+                    "rename one of the fields",
+                );
+                continue;
             }
             offset += field.size;
             fields.push(field);
         }
     }
     if d.fields.get_ref().is_empty() {
-        ctx.error(d.fields.span(), format!("struct `{name}` has no fields"), "a command without payload names no struct; remove the struct or add fields");
+        ctx.error(
+            d.fields.span(),
+            format!("struct `{name}` has no fields"),
+            "a command without payload names no struct; remove the struct or add fields",
+        );
     }
     state.insert(name.to_string(), Visit::Done);
     let index = out.structs.len();
     out.by_name.insert(name.to_string(), index);
-    out.structs.push(Struct { name: name.to_string(), doc: text(&d.doc), fields, size: offset });
+    out.structs.push(Struct {
+        name: name.to_string(),
+        doc: text(&d.doc),
+        fields,
+        size: offset,
+    });
     Some(index)
 }
 
@@ -218,23 +305,51 @@ fn lower_field(
 ) -> Option<Field> {
     let d = f.get_ref();
     if let Some(pad) = &d.pad {
-        if d.name.is_some() || d.ty.is_some() || d.count.is_some() || d.bits.is_some() || d.scale.is_some() {
-            ctx.error(f.span(), "a padding entry takes only `pad` (and `doc`)", "write `{ pad = 3 }` on its own line");
+        if d.name.is_some()
+            || d.ty.is_some()
+            || d.count.is_some()
+            || d.bits.is_some()
+            || d.scale.is_some()
+        {
+            ctx.error(
+                f.span(),
+                "a padding entry takes only `pad` (and `doc`)",
+                "write `{ pad = 3 }` on its own line",
+            );
         }
         if *pad.get_ref() <= 0 {
-            ctx.error(pad.span(), "padding must be at least one byte", "remove the entry or use `pad = 1` or more");
+            ctx.error(
+                pad.span(),
+                "padding must be at least one byte",
+                "remove the entry or use `pad = 1` or more",
+            );
             return None;
         }
         let size = *pad.get_ref() as usize;
-        return Some(Field { name: String::new(), doc: text(&d.doc), offset, size, kind: FieldKind::Padding, unit: String::new() });
+        return Some(Field {
+            name: String::new(),
+            doc: text(&d.doc),
+            offset,
+            size,
+            kind: FieldKind::Padding,
+            unit: String::new(),
+        });
     }
     let Some(name) = &d.name else {
-        ctx.error(f.span(), "a field needs a `name` (or is a padding entry `{ pad = N }`)", "add `name = \"...\"`");
+        ctx.error(
+            f.span(),
+            "a field needs a `name` (or is a padding entry `{ pad = N }`)",
+            "add `name = \"...\"`",
+        );
         return None;
     };
     check_snake_name(ctx, name, "field name");
     let Some(ty) = &d.ty else {
-        ctx.error(f.span(), format!("field `{}` has no `type`", name.get_ref()), "add `type = \"u8\"` (or another primitive, struct or enum)");
+        ctx.error(
+            f.span(),
+            format!("field `{}` has no `type`", name.get_ref()),
+            "add `type = \"u8\"` (or another primitive, struct or enum)",
+        );
         return None;
     };
     let count = match &d.count {
@@ -242,17 +357,26 @@ fn lower_field(
         Some(c) => match c.get_ref() {
             CountDef::Literal(n) if *n > 0 => Some(*n as usize),
             CountDef::Literal(_) => {
-                ctx.error(c.span(), "an array count must be at least 1", "use `count = 1` or more");
+                ctx.error(
+                    c.span(),
+                    "an array count must be at least 1",
+                    "use `count = 1` or more",
+                );
                 None
             }
             CountDef::Constant(cname) => match constants.iter().find(|k| &k.name == cname) {
                 Some(k) if k.value > 0 => Some(k.value as usize),
                 Some(_) => {
-                    ctx.error(c.span(), format!("constant `{cname}` is 0, not a valid array count"), "set the constant to 1 or more");
+                    ctx.error(
+                        c.span(),
+                        format!("constant `{cname}` is 0, not a valid array count"),
+                        "set the constant to 1 or more",
+                    );
                     None
                 }
                 None => {
-                    let help = match did_you_mean(cname, constants.iter().map(|k| k.name.as_str())) {
+                    let help = match did_you_mean(cname, constants.iter().map(|k| k.name.as_str()))
+                    {
                         Some(b) => format!("did you mean `{b}`?"),
                         None => "declare it under `[constants]`, or write a number".to_string(),
                     };
@@ -267,11 +391,22 @@ fn lower_field(
     let doc = text(&d.doc);
     if let Some(bits) = &d.bits {
         let Some(word) = scalar.filter(|s| s.prim.is_unsigned()) else {
-            ctx.error(ty.span(), format!("a field with `bits` must be an unsigned integer, not `{}`", ty.get_ref()), "use `u8`, `u16`, `u32` or `u64`");
+            ctx.error(
+                ty.span(),
+                format!(
+                    "a field with `bits` must be an unsigned integer, not `{}`",
+                    ty.get_ref()
+                ),
+                "use `u8`, `u16`, `u32` or `u64`",
+            );
             return None;
         };
         if count.is_some() {
-            ctx.error(f.span(), "a bitfield cannot be an array", "remove `count`, or wrap the bitfield in a struct and make an array of it");
+            ctx.error(
+                f.span(),
+                "a bitfield cannot be an array",
+                "remove `count`, or wrap the bitfield in a struct and make an array of it",
+            );
         }
         let members = lower_bits(ctx, bits.get_ref(), word.prim, enums, &|m| {
             if m.length_of.is_some() || m.value.is_some() {
@@ -280,24 +415,51 @@ fn lower_field(
                 None
             }
         });
-        return Some(Field { name: name.get_ref().clone(), doc, offset, size: word.prim.size(), kind: FieldKind::Bits { word, members }, unit });
+        return Some(Field {
+            name: name.get_ref().clone(),
+            doc,
+            offset,
+            size: word.prim.size(),
+            kind: FieldKind::Bits { word, members },
+            unit,
+        });
     }
     let (elem, elem_size) = if let Some(scalar) = scalar {
         let scale = match (&d.scale, &d.offset) {
             (None, None) => None,
             (s, o) => {
                 if !(scalar.prim.is_signed() || scalar.prim.is_unsigned()) {
-                    let span = s.as_ref().or(o.as_ref()).map(Spanned::span).unwrap_or(f.span());
-                    ctx.error(span, format!("`scale` applies to integer fields, not `{}`", ty.get_ref()), "remove `scale`/`offset`, or use an integer wire type");
+                    let span = s
+                        .as_ref()
+                        .or(o.as_ref())
+                        .map(Spanned::span)
+                        .unwrap_or(f.span());
+                    ctx.error(
+                        span,
+                        format!("`scale` applies to integer fields, not `{}`", ty.get_ref()),
+                        "remove `scale`/`offset`, or use an integer wire type",
+                    );
                     None
                 } else {
                     let factor = s.as_ref().map_or(1.0, |s| *s.get_ref());
                     if factor == 0.0 || !factor.is_finite() {
                         let span = s.as_ref().map(Spanned::span).unwrap_or(f.span());
-                        ctx.error(span, "a scale factor must be a finite number other than 0", "write e.g. `scale = 0.001` for mm/s on the wire and m/s in Rust");
+                        ctx.error(
+                            span,
+                            "a scale factor must be a finite number other than 0",
+                            "write e.g. `scale = 0.001` for mm/s on the wire and m/s in Rust",
+                        );
                     }
-                    let physical = if scalar.prim.size() <= 2 { Prim::F32 } else { Prim::F64 };
-                    Some(Scale { factor, offset: o.as_ref().map_or(0.0, |o| *o.get_ref()), physical })
+                    let physical = if scalar.prim.size() <= 2 {
+                        Prim::F32
+                    } else {
+                        Prim::F64
+                    };
+                    Some(Scale {
+                        factor,
+                        offset: o.as_ref().map_or(0.0, |o| *o.get_ref()),
+                        physical,
+                    })
                 }
             }
         };
@@ -308,7 +470,10 @@ fn lower_field(
     } else if let Some(&i) = enums.by_name.get(ty.get_ref()) {
         reject_scale(ctx, d, "an enum");
         let e = &enums.enums[i];
-        let s = Scalar { prim: e.prim, endian };
+        let s = Scalar {
+            prim: e.prim,
+            endian,
+        };
         (ValueType::Enum(i, s), e.prim.size())
     } else {
         if !ctx.spec.structs.keys().any(|k| k.get_ref() == ty.get_ref()) {
@@ -320,12 +485,23 @@ fn lower_field(
         return None;
     };
     let size = elem_size * count.unwrap_or(1);
-    Some(Field { name: name.get_ref().clone(), doc, offset, size, kind: FieldKind::Value { ty: elem, count }, unit })
+    Some(Field {
+        name: name.get_ref().clone(),
+        doc,
+        offset,
+        size,
+        kind: FieldKind::Value { ty: elem, count },
+        unit,
+    })
 }
 
 fn reject_scale(ctx: &mut Ctx<'_>, d: &FieldDef, what: &str) {
     if let Some(s) = &d.scale {
-        ctx.error(s.span(), format!("`scale` applies to integer fields, not to {what}"), "remove `scale`");
+        ctx.error(
+            s.span(),
+            format!("`scale` applies to integer fields, not to {what}"),
+            "remove `scale`",
+        );
     }
 }
 
@@ -350,33 +526,61 @@ pub(crate) fn lower_bits(
         check_snake_name(ctx, &m.name, "bit member");
         let width = *m.bits.get_ref();
         if width <= 0 || width > i64::from(word_bits) {
-            ctx.error(m.bits.span(), format!("bit member `{}` has {width} bits", m.name.get_ref()), format!("a member has 1 to {word_bits} bits"));
+            ctx.error(
+                m.bits.span(),
+                format!("bit member `{}` has {width} bits", m.name.get_ref()),
+                format!("a member has 1 to {word_bits} bits"),
+            );
             continue;
         }
         let width = width as u32;
         if members.iter().any(|x| &x.name == m.name.get_ref()) {
-            ctx.error(m.name.span(), format!("bit member `{}` appears twice", m.name.get_ref()), "rename one of them");
+            ctx.error(
+                m.name.span(),
+                format!("bit member `{}` appears twice", m.name.get_ref()),
+                "rename one of them",
+            );
         }
         let (prim, enum_index) = match &m.ty {
             None if width == 1 => (Prim::Bool, None),
             None => (smallest_uint(width), None),
             Some(t) => match parse_prim(t.get_ref(), Endian::Little) {
                 Some(s) if s.prim == Prim::Bool && width == 1 => (Prim::Bool, None),
-                Some(s) if s.prim.is_unsigned() && (s.prim.size() * 8) as u32 >= width => (s.prim, None),
+                Some(s) if s.prim.is_unsigned() && (s.prim.size() * 8) as u32 >= width => {
+                    (s.prim, None)
+                }
                 Some(_) => {
-                    ctx.error(t.span(), format!("type `{}` cannot hold the {width} bits of `{}`", t.get_ref(), m.name.get_ref()), "use `bool` for one bit, or an unsigned integer at least as wide");
+                    ctx.error(
+                        t.span(),
+                        format!(
+                            "type `{}` cannot hold the {width} bits of `{}`",
+                            t.get_ref(),
+                            m.name.get_ref()
+                        ),
+                        "use `bool` for one bit, or an unsigned integer at least as wide",
+                    );
                     (smallest_uint(width), None)
                 }
                 None => match enums.by_name.get(t.get_ref()) {
                     Some(&i) => {
                         let e = &enums.enums[i];
-                        if let Some(v) = e.variants.iter().find(|v| v.value > super::types::mask(width)) {
+                        if let Some(v) = e
+                            .variants
+                            .iter()
+                            .find(|v| v.value > super::types::mask(width))
+                        {
                             ctx.error(t.span(), format!("enum `{}` has value {} (`{}`), which does not fit in {width} bits", e.name, v.value, v.name), "widen the member or narrow the enum");
                         }
                         (smallest_uint(width), Some(i))
                     }
                     None => {
-                        let mut known = vec!["bool".to_string(), "u8".into(), "u16".into(), "u32".into(), "u64".into()];
+                        let mut known = vec![
+                            "bool".to_string(),
+                            "u8".into(),
+                            "u16".into(),
+                            "u32".into(),
+                            "u64".into(),
+                        ];
                         known.extend(enums.enums.iter().map(|e| e.name.clone()));
                         unknown_type(ctx, t, &known, "a bit member's type");
                         (smallest_uint(width), None)
@@ -384,12 +588,23 @@ pub(crate) fn lower_bits(
                 },
             },
         };
-        members.push(BitMember { name: m.name.get_ref().clone(), doc: text(&m.doc), shift, width, prim, enum_index });
+        members.push(BitMember {
+            name: m.name.get_ref().clone(),
+            doc: text(&m.doc),
+            shift,
+            width,
+            prim,
+            enum_index,
+        });
         shift += width;
     }
     if shift > word_bits {
         let span = bits.last().map(Spanned::span).unwrap_or_default();
-        ctx.error(span, format!("the bit members add up to {shift} bits, but the word has {word_bits}"), "shrink the members or use a wider word type");
+        ctx.error(
+            span,
+            format!("the bit members add up to {shift} bits, but the word has {word_bits}"),
+            "shrink the members or use a wider word type",
+        );
     }
     members
 }

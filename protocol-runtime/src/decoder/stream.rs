@@ -14,7 +14,9 @@ use crate::layout::FrameLayout;
 /// bytes, or a prefix of them that runs to the end of `data`; `data.len()` if there is none.
 #[inline]
 fn find_candidate(sync: &[u8], data: &[u8]) -> usize {
-    let Some((&first, more)) = sync.split_first() else { return 0 };
+    let Some((&first, more)) = sync.split_first() else {
+        return 0;
+    };
     let continues = |at: usize| {
         let after = data.get(at.wrapping_add(1)..).unwrap_or_default();
         after.iter().zip(more).all(|(a, b)| a == b)
@@ -24,7 +26,10 @@ fn find_candidate(sync: &[u8], data: &[u8]) -> usize {
         return 0;
     }
     let mut from = 0;
-    while let Some(hit) = data.get(from..).and_then(|rest| memchr::memchr(first, rest)) {
+    while let Some(hit) = data
+        .get(from..)
+        .and_then(|rest| memchr::memchr(first, rest))
+    {
         let at = from.wrapping_add(hit);
         if continues(at) {
             return at;

@@ -13,9 +13,16 @@ use hflink::{Header, Message, Packet, Request};
 /// Encode a speed command, then decode every frame of `input`, as firmware would: a static
 /// decoder, a stack buffer, no allocation. Returns the number of frames decoded.
 pub fn firmware_step(input: &[u8], out: &mut [u8; hflink::MAX_FRAME_LEN]) -> usize {
-    let speed = hflink::ChassisCoord { x: 0.5, y: 0.0, z: 0.1 };
+    let speed = hflink::ChassisCoord {
+        x: 0.5,
+        y: 0.0,
+        z: 0.1,
+    };
     let packet = Packet {
-        header: Header { sender: 0x01, receiver: 0x11 },
+        header: Header {
+            sender: 0x01,
+            receiver: 0x11,
+        },
         message: Message::Request(Request::SetRobotSpeed(speed)),
     };
     let _ = packet.encode(out);
