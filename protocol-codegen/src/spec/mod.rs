@@ -26,7 +26,7 @@ const MAX_SHAPE_ERRORS: usize = 64;
 /// Returns `None` when the text is not TOML or a required key is missing. After shape errors
 /// that could be repaired by dropping the offending entry (an unknown key, an ill-typed value),
 /// it returns the repaired model so that validation can report the remaining errors too; the
-/// caller knows from `diags` that the spec is invalid, and [`shape_error_spans`] lets it drop
+/// caller knows from `diags` that the spec is invalid, and the spans of those errors let it drop
 /// follow-up errors about the entries that were dropped.
 pub fn load_spec(source: &SpecSource, diags: &mut Diagnostics) -> Option<SpecFile> {
     let (tree, syntax_errors) = DeTable::parse_recoverable(&source.text);
