@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{HFLINK, HFLINK_GOLDEN, HFLINK_STREAM, Seen, hex, reference, run};
+use common::{HFLINK, HFLINK_GOLDEN, HFLINK_STREAM, Seen, check, hex};
 use protocol_runtime::decoder::{Probe, Reject};
 use protocol_runtime::{DecodeError, EncodeError, Frame, StreamDecoder};
 
@@ -102,41 +102,36 @@ fn frames_of(seen: &[Seen]) -> Vec<(u64, usize)> {
         .collect()
 }
 
-/// The candidate at 70 claims 44 bytes and the stream ends 40 bytes later: the frame at 81
-/// inside its claimed length comes out when the end of input is declared (`flush`), or as soon
-/// as 4 more bytes arrive and the candidate fails its checksum.
+/// The candidate at 70 claims 44 bytes and the stream ends 40 bytes later. The frame at 81
+/// lies inside its claimed length: it comes out as soon as it is complete, the candidate being
+/// taken for a truncated frame, whatever the chunking, without waiting for more input.
 #[test]
 fn golden_stream_yields_its_frames_for_every_chunk_size() {
     let stream = hex(HFLINK_STREAM);
     assert_eq!(stream.len(), 110);
-    let whole = run::<128>(&HFLINK, &stream, &[stream.len()], true);
+    let whole = check::<128>(&HFLINK, &stream, &[stream.len()], false);
     assert_eq!(frames_of(&whole), EXPECTED_FRAMES);
-    assert_eq!(whole, reference(&HFLINK, &stream, true));
     for size in 1..=stream.len() {
-        assert_eq!(
-            run::<128>(&HFLINK, &stream, &[size], true),
-            whole,
-            "chunks of {size}"
-        );
-        let unflushed = run::<128>(&HFLINK, &stream, &[size], false);
-        assert_eq!(
-            frames_of(&unflushed),
-            EXPECTED_FRAMES[..3],
-            "chunks of {size}"
-        );
+        for flush in [false, true] {
+            let seen = check::<128>(&HFLINK, &stream, &[size], flush);
+            assert_eq!(seen, whole, "chunks of {size}, flush {flush}");
+        }
     }
+    // With 4 more bytes the candidate at 70 is complete, and fails its checksum instead.
     let mut longer = stream.clone();
     longer.extend_from_slice(&[0; 4]);
-    assert_eq!(
-        frames_of(&run::<128>(&HFLINK, &longer, &[7], false)),
-        EXPECTED_FRAMES
-    );
+    let seen = check::<128>(&HFLINK, &longer, &[longer.len()], false);
+    assert_eq!(frames_of(&seen), EXPECTED_FRAMES);
+    assert!(seen.contains(&Seen::Rejected {
+        offset: 70,
+        reason: Reject::BadChecksum
+    }));
 }
 
 #[test]
 fn golden_stream_events_report_rejections_with_offsets() {
     let stream = hex(HFLINK_STREAM);
-    let seen = run::<128>(&HFLINK, &stream, &[5, 1, 9], true);
+    let seen = check::<128>(&HFLINK, &stream, &[5, 1, 9], true);
     let summary: Vec<String> = seen
         .iter()
         .map(|e| match e {
@@ -169,21 +164,16 @@ fn frames_found_whole_in_the_input_borrow_it() {
     let mut decoder = StreamDecoder::<128>::new(&HFLINK);
     let mut input = &stream[..];
     let range = stream.as_ptr_range();
-    let mut count = 0;
+    let mut frames = Vec::new();
     while let Some(Frame { bytes, offset }) = decoder.decode(&mut input) {
-        assert!(
-            range.contains(&bytes.as_ptr()),
-            "frame at {offset} was copied"
-        );
-        assert_eq!(
-            bytes,
-            &stream[offset as usize..offset as usize + bytes.len()]
-        );
-        count += 1;
+        let at = offset as usize;
+        assert_eq!(bytes, &stream[at..at + bytes.len()]);
+        frames.push((offset, range.contains(&bytes.as_ptr())));
     }
-    assert_eq!(count, 3);
-    assert_eq!(decoder.pending(), 40);
-    assert_eq!(decoder.pending_bytes(), &stream[70..]);
+    // The frame at 81 lies inside the pending candidate at 70, whose bytes were copied.
+    assert_eq!(frames, [(4, true), (40, true), (62, true), (81, false)]);
+    assert_eq!(decoder.pending(), 0);
+    assert_eq!(decoder.stats().truncated, 1);
 }
 
 #[test]
@@ -242,12 +232,46 @@ fn a_truncated_frame_does_not_cost_the_next_one() {
         let mut stream = valid[..cut].to_vec();
         stream.extend(&valid);
         stream.extend(&valid);
-        let seen = run::<128>(&HFLINK, &stream, &[1], true);
-        assert_eq!(seen, reference(&HFLINK, &stream, true));
+        let seen = check::<128>(&HFLINK, &stream, &[1], false);
         let frames = frames_of(&seen);
         assert!(
             frames.contains(&(stream.len() as u64 - valid.len() as u64, valid.len())),
             "cut {cut}"
         );
     }
+}
+
+/// The one case where the chunking changes the frames: a valid frame whose payload holds a
+/// complete valid frame, cut by a chunk boundary right after the inner one.
+#[test]
+fn an_inner_frame_complete_first_wins_over_its_pending_outer_frame() {
+    let inner = hex(HFLINK_GOLDEN[1]);
+    let mut outer = vec![0u8; 7 + 1 + inner.len() + 3];
+    outer[2..4].copy_from_slice(&[0x11, 0x01]);
+    outer[7..7 + inner.len()].copy_from_slice(&inner);
+    common::HFLINK.seal(&mut outer).unwrap();
+    let whole = check::<128>(&HFLINK, &outer, &[outer.len()], false);
+    assert_eq!(
+        whole,
+        [Seen::Frame {
+            offset: 0,
+            bytes: outer.clone()
+        }]
+    );
+    let cut = check::<128>(&HFLINK, &outer, &[7 + inner.len(), outer.len()], false);
+    assert_eq!(
+        cut,
+        [
+            Seen::Rejected {
+                offset: 0,
+                reason: Reject::Truncated
+            },
+            Seen::Skipped { offset: 1, len: 6 },
+            Seen::Frame {
+                offset: 7,
+                bytes: inner
+            },
+            Seen::Skipped { offset: 15, len: 4 },
+        ]
+    );
 }

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{Rng, Seen, layouts, random_frame, reference, run};
+use common::{Rng, Seen, check, layouts, random_frame, run};
 use protocol_runtime::StreamDecoder;
 use protocol_runtime::layout::{FrameLayout, LengthRule};
 
@@ -55,19 +55,29 @@ fn chunkings(rng: &mut Rng, total: usize) -> Vec<Vec<usize>> {
     vec![vec![1], vec![2, 3, 5], vec![13], random, vec![total.max(1)]]
 }
 
+fn frames(seen: &[Seen]) -> Vec<Seen> {
+    seen.iter()
+        .filter(|e| matches!(e, Seen::Frame { .. }))
+        .cloned()
+        .collect()
+}
+
 #[test]
 fn mixed_streams_match_the_reference_for_every_chunking() {
     let mut rng = Rng(0x0123_4567_89AB_CDEF);
     for (name, layout) in layouts() {
         for round in 0..6 {
             let stream = mixed_stream(&mut rng, layout, 60);
+            let whole = check::<512>(layout, &stream, &[stream.len()], false);
             for flush in [false, true] {
-                let expected = reference(layout, &stream, flush);
                 for sizes in chunkings(&mut rng, stream.len()) {
-                    let seen = run::<512>(layout, &stream, &sizes, flush);
+                    let seen = check::<512>(layout, &stream, &sizes, flush);
+                    // No valid frame hides inside another in these streams: the frames do not
+                    // depend on the chunking (only why a truncated frame was dropped may).
                     assert_eq!(
-                        seen, expected,
-                        "{name} round {round} chunks {sizes:?} flush {flush}"
+                        frames(&seen),
+                        frames(&whole),
+                        "{name} round {round} {sizes:?}"
                     );
                 }
             }
@@ -108,23 +118,15 @@ fn decode_yields_the_frames_that_next_event_reports() {
 fn small_buffer<const N: usize>(rng: &mut Rng) {
     for (name, layout) in layouts() {
         let stream = mixed_stream(rng, layout, 40);
-        let capped = FrameLayout {
-            max_len: layout.max_len.min(N),
-            ..*layout
-        };
         for flush in [false, true] {
-            let expected = reference(&capped, &stream, flush);
             for sizes in [vec![1], vec![3, 11], vec![stream.len()]] {
-                let seen = run::<N>(layout, &stream, &sizes, flush);
                 if N >= layout.sync.len() {
-                    assert_eq!(
-                        seen, expected,
-                        "{name} N={N} chunks {sizes:?} flush {flush}"
-                    );
+                    check::<N>(layout, &stream, &sizes, flush);
                 } else {
                     // The sync does not fit: nothing can be decoded, and a sync prefix cut by
                     // a chunk boundary cannot be held to see whether it completes.
-                    assert!(!seen.iter().any(|e| matches!(e, Seen::Frame { .. })));
+                    let seen = run::<N>(layout, &stream, &sizes, flush);
+                    assert!(frames(&seen).is_empty(), "{name}");
                 }
             }
         }
@@ -148,7 +150,7 @@ fn buffers_smaller_than_max_len_never_panic_and_reject_long_frames() {
 #[test]
 fn random_garbage_never_panics_and_always_progresses() {
     let mut rng = Rng(0x7777_0000_1111_2222);
-    for (name, layout) in layouts() {
+    for (_, layout) in layouts() {
         for hostile in [false, true] {
             let stream = if hostile {
                 hostile_garbage(&mut rng, layout, 50_000)
@@ -158,22 +160,9 @@ fn random_garbage_never_panics_and_always_progresses() {
                 s
             };
             let sizes: Vec<usize> = (0..97).map(|_| 1 + rng.below(200)).collect();
-            let seen = run::<128>(layout, &stream, &sizes, true);
-            assert_eq!(
-                seen,
-                reference(layout, &stream, true),
-                "{name} hostile {hostile}"
-            );
-            let seen = run::<16>(layout, &stream, &sizes, true);
-            let capped = FrameLayout {
-                max_len: layout.max_len.min(16),
-                ..*layout
-            };
-            assert_eq!(
-                seen,
-                reference(&capped, &stream, true),
-                "{name} hostile {hostile} N=16"
-            );
+            check::<128>(layout, &stream, &sizes, true);
+            check::<16>(layout, &stream, &sizes, true);
+            check::<128>(layout, &stream[..5000], &[1], false);
         }
     }
 }
@@ -207,19 +196,11 @@ fn degenerate_layouts_still_progress() {
     };
     for layout in [no_sync_fixed, empty_frames, header_beyond_max, long_sync] {
         for flush in [false, true] {
-            let expected = reference(&layout, &stream, flush);
-            assert_eq!(
-                run::<64>(&layout, &stream, &[1, 7, 64], flush),
-                expected,
-                "{layout:?}"
-            );
-            let capped = FrameLayout {
-                max_len: layout.max_len.min(4),
-                ..layout
-            };
-            let small = run::<4>(&layout, &stream, &[5], flush);
+            check::<64>(&layout, &stream, &[1, 7, 64], flush);
             if layout.sync.len() <= 4 {
-                assert_eq!(small, reference(&capped, &stream, flush), "{layout:?}");
+                check::<4>(&layout, &stream, &[5], flush);
+            } else {
+                run::<4>(&layout, &stream, &[5], flush);
             }
         }
     }

@@ -19,6 +19,15 @@
 //! 2. with the whole frame: the frame checks in order ([`Reject::BadChecksum`]), then the
 //!    [`Marker`]s ([`Reject::BadTrailer`]).
 //!
+//! A candidate whose bytes have not all arrived when the input runs out waits for more, with
+//! one exception: if a complete valid frame starts among the bytes it already holds, the
+//! candidate is taken for a truncated frame ([`Reject::Truncated`]) and the valid frame is
+//! yielded at once, instead of being held back until the candidate's claimed length has
+//! arrived (on a request/response link, that may be never). The price: a valid frame whose
+//! payload holds another complete valid frame, cut by a chunk boundary just after the inner
+//! one, yields the inner frame instead. With a CRC that needs a forged frame inside a payload;
+//! with a weak sum it is rare (the sync bytes, a plausible length and a matching sum).
+//!
 //! Items of the header (constants, header checks, a length field) resolve their positions
 //! against the header alone, so they use [`Pos::Start`](crate::layout::Pos::Start); frame checks
 //! and markers resolve against the whole frame.
@@ -49,7 +58,8 @@ pub enum Reject {
     BadChecksum,
     /// A trailing [`Marker`] does not match.
     BadTrailer,
-    /// The input ended before the frame was complete (see [`StreamDecoder::flush`]).
+    /// The frame's bytes never came: a complete valid frame started inside its claimed length,
+    /// or the input was declared ended ([`StreamDecoder::flush`]).
     Truncated,
 }
 

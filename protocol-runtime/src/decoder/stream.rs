@@ -62,7 +62,7 @@ pub struct Stats {
     pub bad_checksum: u64,
     /// Candidates rejected as [`Reject::BadTrailer`].
     pub bad_trailer: u64,
-    /// Candidates rejected as [`Reject::Truncated`] by [`StreamDecoder::flush`].
+    /// Candidates rejected as [`Reject::Truncated`].
     pub truncated: u64,
 }
 
@@ -166,7 +166,15 @@ enum Step<'i> {
 /// of a chunk is copied into the buffer, and completed from the following chunks with just the
 /// bytes it needs. Frames longer than `min(max_len, N)` are rejected as [`Reject::BadLength`].
 /// A rejected candidate costs one byte: the search resumes right after its start, so a corrupt
-/// or truncated frame never costs the valid frame that follows it.
+/// or truncated frame never costs the valid frame that follows it; and a valid frame is yielded
+/// as soon as it is complete, even inside the claimed length of an earlier candidate still
+/// waiting for its bytes (which is then rejected as [`Reject::Truncated`]; see the
+/// [module docs](crate::decoder)).
+///
+/// Every byte fed is accounted for ([`Stats`]). The frames do not depend on how the input was
+/// cut into chunks (but for the rare case in the module docs); the events hardly do: a skipped
+/// run may come in pieces, and a candidate cut by a chunk boundary may be rejected as
+/// truncated where, received whole, it would have failed a check.
 ///
 /// ```
 /// use protocol_runtime::layout::{ByteOrder, Check, LengthRule, Pos, WordField};
@@ -211,6 +219,10 @@ pub struct StreamDecoder<'l, const N: usize> {
     /// Bytes consumed from all inputs.
     position: u64,
     stats: Stats,
+    /// What [`Self::frame_inside`] learnt about the pending candidate starting at stream offset
+    /// `inner_owner`: its first `inner_dead` bytes start no frame, now or later.
+    inner_owner: u64,
+    inner_dead: usize,
 }
 
 impl<const N: usize> fmt::Debug for StreamDecoder<'_, N> {
@@ -234,6 +246,8 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
             end: 0,
             position: 0,
             stats: Stats::ZERO,
+            inner_owner: u64::MAX,
+            inner_dead: 0,
         }
     }
 
@@ -273,6 +287,7 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
         self.end = 0;
         self.position = 0;
         self.stats = Stats::ZERO;
+        self.inner_owner = u64::MAX;
     }
 
     /// The next valid frame, consuming from `*input` as needed (the slice is advanced).
@@ -292,8 +307,8 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
     /// the next frame among the pending bytes.
     ///
     /// The pending candidate will never be completed: it is rejected as [`Reject::Truncated`]
-    /// and the bytes after its start are searched again, so a truncated frame does not hide
-    /// a valid frame inside its claimed length. Call until `None`; the buffer is then empty.
+    /// and the bytes after its start are searched again (a sync prefix, a header cut short).
+    /// Call until `None`; the buffer is then empty.
     pub fn flush(&mut self) -> Option<Frame<'_>> {
         self.next_frame(&mut &[][..], true)
     }
@@ -438,8 +453,13 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
                     };
                 }
                 Probe::Reject(reason) => reason,
-                Probe::Need(_) if input.is_empty() && at_end => Reject::Truncated,
-                Probe::Need(_) if input.is_empty() => return Step::Idle,
+                Probe::Need(_) if input.is_empty() => {
+                    if at_end || self.frame_inside(limit) {
+                        Reject::Truncated
+                    } else {
+                        return Step::Idle;
+                    }
+                }
                 Probe::Need(needed) => {
                     if self.fill(input, needed) {
                         continue;
@@ -451,6 +471,50 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
             self.stats.count_reject(reason);
             return Step::Rejected { offset, reason };
         }
+    }
+
+    /// Whether a complete valid frame starts after the first byte of the pending candidate:
+    /// then the candidate's claimed length runs over it, and the candidate is taken for a
+    /// truncated frame rather than holding the valid one back until more bytes arrive.
+    ///
+    /// Called each time the input runs out while the candidate waits, so it remembers how many
+    /// of the candidate's bytes are known to start no frame (a rejection is final: more bytes
+    /// do not change it) and starts after them next time.
+    fn frame_inside(&mut self, limit: usize) -> bool {
+        let layout = self.layout;
+        let shortest = layout.min_len.max(layout.header_span()).max(1);
+        let owner = self.position.wrapping_sub(self.pending() as u64);
+        let known = if self.inner_owner == owner {
+            self.inner_dead
+        } else {
+            1
+        };
+        let region = self.buf.get(self.start..self.end).unwrap_or_default();
+        let mut at = known.max(1);
+        let mut undecided = None;
+        let found = loop {
+            let rest = region.get(at..).unwrap_or_default();
+            if rest.len() < shortest {
+                break false;
+            }
+            let skip = find_candidate(layout.sync, rest);
+            let Some(candidate) = rest.get(skip..).filter(|c| !c.is_empty()) else {
+                at = region.len();
+                break false;
+            };
+            at = at.wrapping_add(skip);
+            match layout.probe_within(candidate, limit) {
+                Probe::Frame(_) => break true,
+                Probe::Need(_) => {
+                    undecided.get_or_insert(at);
+                }
+                Probe::Reject(_) => {}
+            }
+            at = at.wrapping_add(1);
+        };
+        self.inner_owner = owner;
+        self.inner_dead = undecided.unwrap_or(at);
+        found
     }
 
     /// Copies from `input` until the pending bytes number `needed` or the input is exhausted,

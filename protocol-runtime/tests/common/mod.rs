@@ -339,43 +339,97 @@ pub fn check_accounting<const N: usize>(decoder: &StreamDecoder<'_, N>, fed: usi
     assert_eq!(s.skipped_bytes, skipped + rejected);
 }
 
-/// The engine's rules applied to the whole stream at once, with `probe`: the reference the
-/// streaming decoder must match for every chunking (with a buffer of at least `max_len`).
-pub fn reference(layout: &FrameLayout<'_>, stream: &[u8], flush: bool) -> Vec<Seen> {
+/// Where chunks of the given sizes (cycled, as [`run`] feeds them) end in a stream of `len`.
+pub fn chunk_ends(len: usize, sizes: &[usize]) -> Vec<usize> {
+    let mut ends = Vec::new();
+    let mut end = 0;
+    let mut i = 0;
+    while end < len {
+        end += sizes[i % sizes.len()].clamp(1, len - end);
+        i += 1;
+        ends.push(end);
+    }
+    ends
+}
+
+/// The engine's rules as an executable specification over the whole stream, with `probe`.
+///
+/// After each chunk, the engine decides what the bytes received so far decide: a candidate
+/// whose bytes have not all arrived waits, unless a complete valid frame starts inside the
+/// bytes it holds (then it is taken for a truncated frame), or the input is declared ended
+/// (`flush`). The streaming decoder must match this for the same chunking, with a buffer of at
+/// least `max_len` (or with `max_len` capped to its buffer).
+pub fn reference(
+    layout: &FrameLayout<'_>,
+    stream: &[u8],
+    sizes: &[usize],
+    flush: bool,
+) -> Vec<Seen> {
+    let mut horizons: Vec<(usize, bool)> = chunk_ends(stream.len(), sizes)
+        .into_iter()
+        .map(|end| (end, false))
+        .collect();
+    if flush {
+        horizons.push((stream.len(), true));
+    }
     let mut seen = Vec::new();
     let mut pos = 0;
-    while pos < stream.len() {
-        let rest = &stream[pos..];
-        let n = rest.len().min(layout.sync.len());
-        if rest[..n] != layout.sync[..n] {
-            push(
-                &mut seen,
-                Event::Skipped {
-                    offset: pos as u64,
-                    len: 1,
-                },
-            );
-            pos += 1;
-            continue;
-        }
-        let reason = match layout.probe(rest) {
-            Probe::Frame(len) => {
-                seen.push(Seen::Frame {
-                    offset: pos as u64,
-                    bytes: rest[..len].to_vec(),
-                });
-                pos += len;
+    for (end, at_end) in horizons {
+        while pos < end {
+            let avail = &stream[pos..end];
+            let n = avail.len().min(layout.sync.len());
+            if avail[..n] != layout.sync[..n] {
+                push(
+                    &mut seen,
+                    Event::Skipped {
+                        offset: pos as u64,
+                        len: 1,
+                    },
+                );
+                pos += 1;
                 continue;
             }
-            Probe::Need(_) if !flush => break,
-            Probe::Need(_) => Reject::Truncated,
-            Probe::Reject(reason) => reason,
-        };
-        seen.push(Seen::Rejected {
-            offset: pos as u64,
-            reason,
-        });
-        pos += 1;
+            let frame_inside =
+                || (1..avail.len()).any(|k| matches!(layout.probe(&avail[k..]), Probe::Frame(_)));
+            let reason = match layout.probe(avail) {
+                Probe::Frame(len) => {
+                    seen.push(Seen::Frame {
+                        offset: pos as u64,
+                        bytes: avail[..len].to_vec(),
+                    });
+                    pos += len;
+                    continue;
+                }
+                Probe::Reject(reason) => reason,
+                Probe::Need(_) if at_end || frame_inside() => Reject::Truncated,
+                Probe::Need(_) => break,
+            };
+            seen.push(Seen::Rejected {
+                offset: pos as u64,
+                reason,
+            });
+            pos += 1;
+        }
     }
+    seen
+}
+
+/// Runs the decoder and checks it against [`reference`] for the same chunking.
+pub fn check<const N: usize>(
+    layout: &FrameLayout<'_>,
+    stream: &[u8],
+    sizes: &[usize],
+    flush: bool,
+) -> Vec<Seen> {
+    let seen = run::<N>(layout, stream, sizes, flush);
+    let capped = FrameLayout {
+        max_len: layout.max_len.min(N),
+        ..*layout
+    };
+    assert_eq!(
+        seen,
+        reference(&capped, stream, sizes, flush),
+        "chunks {sizes:?} flush {flush} N={N}"
+    );
     seen
 }
