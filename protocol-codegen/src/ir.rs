@@ -222,6 +222,19 @@ pub struct Scale {
     pub offset: f64,
     /// Rust type of the physical value (`F32` or `F64`).
     pub physical: Prim,
+    /// How a physical value becomes a raw integer on encode.
+    pub rounding: Rounding,
+    /// Physical values are clamped into this range before encoding.
+    pub clamp: Option<(f64, f64)>,
+}
+
+/// Rounding of a scaled value to its raw integer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rounding {
+    /// To the nearest integer, halves away from zero.
+    Nearest,
+    /// Toward zero (as a C cast does).
+    Truncate,
 }
 
 /// A named group of bits inside a `Bits` field or a header word.
@@ -289,11 +302,30 @@ pub enum Pos {
     End(usize),
 }
 
+/// How frames travel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Transport {
+    /// A byte stream (UART, USB serial, TCP): frames are found by their sync bytes.
+    Serial,
+    /// CAN: a frame is an id and up to 8 data bytes. The frame's first two values are the
+    /// virtual `can_id` (a big-endian `u32` word) and `dlc` (a `u8`), so checks may cover them;
+    /// the data bytes follow.
+    Can {
+        /// 29-bit ids (CAN 2.0B) instead of 11-bit ones.
+        extended: bool,
+    },
+}
+
+/// Bytes of the virtual `can_id` + `dlc` prefix of a CAN frame.
+pub const CAN_PREFIX_LEN: usize = 5;
+
 /// A frame format.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Frame {
     /// Name as written (snake_case).
     pub name: String,
+    /// How the frames travel.
+    pub transport: Transport,
     /// Documentation.
     pub doc: String,
     /// Sync bytes at offset 0.
@@ -341,8 +373,8 @@ pub enum Element {
     Word {
         /// Name of the word (field name).
         name: String,
-        /// Offset from the frame start.
-        offset: usize,
+        /// Where the word is.
+        at: Pos,
         /// Wire type.
         scalar: Scalar,
         /// Indices into `Frame::values`.
@@ -363,8 +395,9 @@ pub struct HeaderValue {
     pub name: String,
     /// Documentation.
     pub doc: String,
-    /// Offset of the word from the frame start (always inside the header).
-    pub offset: usize,
+    /// Where the word is: from the start for header values, back from the end for values
+    /// after the payload (such as a rolling counter before the checksum).
+    pub at: Pos,
     /// The word on the wire.
     pub word: Scalar,
     /// Lowest bit of the value in the word (0 for a whole field).
@@ -522,8 +555,10 @@ pub struct Command {
     pub name: String,
     /// Rust variant name (PascalCase of `name`).
     pub rust_name: String,
-    /// Key: one value per dispatch field of the frame.
+    /// Key: one value per dispatch field of the first frame.
     pub id: Vec<u64>,
+    /// The CAN id, when the spec has a CAN frame.
+    pub can_id: Option<u64>,
     /// Documentation.
     pub doc: String,
     /// Payload struct (index into [`Protocol::structs`]) per direction, in the order of

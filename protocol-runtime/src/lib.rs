@@ -89,6 +89,7 @@
     clippy::arithmetic_side_effects
 )]
 
+pub mod can;
 pub mod checksum;
 pub mod decoder;
 pub mod encoder;
@@ -96,6 +97,7 @@ pub mod error;
 pub mod layout;
 pub mod wire;
 
+pub use can::CanFrame;
 pub use checksum::Checksum;
 pub use decoder::{Event, Frame, Reject, Stats, StreamDecoder};
 pub use encoder::Payload;
@@ -110,7 +112,7 @@ pub use protocol_macros::{Payload, protocol};
 /// code generator.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::{checksum::*, decoder::*, encoder::*, error::*, layout::*, wire::*};
+    pub use crate::{can::*, checksum::*, decoder::*, encoder::*, error::*, layout::*, wire::*};
     pub use core;
     pub use crc;
 }

@@ -19,7 +19,7 @@ use syn::{Data, DeriveInput, Expr, Fields, Lit, Type};
 
 use super::RuntimePath;
 use super::payload::{PField, PKind, PayloadDef, emit_payload_impl};
-use crate::ir::{Endian, Prim, Scalar, Scale};
+use crate::ir::{Endian, Prim, Rounding, Scalar, Scale};
 use crate::validate::parse_prim_public as parse_prim;
 
 #[derive(Default)]
@@ -197,6 +197,8 @@ pub fn derive_payload(input: &DeriveInput) -> syn::Result<TokenStream> {
                     factor,
                     offset: 0.0,
                     physical: phys.prim,
+                    rounding: Rounding::Nearest,
+                    clamp: None,
                 }),
                 count,
             }

@@ -6,11 +6,11 @@ use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
 use super::docs::doc_attrs;
-use super::frame::{user_values, value_const};
+use super::frame::{frame_prefix, user_values, value_const};
 use super::payload::prim_type;
 use super::types::int_lit;
 use super::{RuntimePath, ident};
-use crate::ir::{Command, DirectionRule, Frame, Prim, Protocol};
+use crate::ir::{Command, DirectionRule, Frame, Prim, Protocol, Transport};
 
 /// Everything about commands and messages, for the first frame.
 pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
@@ -42,7 +42,96 @@ pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         out.extend(emit_direction_message(p, &rt));
     }
     out.extend(emit_packet(p, f, &rt));
+    if p.directions.is_empty() {
+        for (fi, cf) in p.frames.iter().enumerate().skip(1) {
+            if matches!(cf.transport, Transport::Can { .. }) {
+                out.extend(emit_can_packet(cf, &frame_prefix(p, &p.frames[fi]), &rt));
+            }
+        }
+    }
     out
+}
+
+/// `<Name>Packet` for a CAN frame format: decode from and encode to a `CanFrame`, through the
+/// frame's virtual layout (id, length, data) so the runtime verifies and seals its checks.
+fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> TokenStream {
+    let pascal = super::super::validate::pascal_case(&f.name);
+    let header = format_ident!("{}Header", pascal);
+    let packet = format_ident!("{}Packet", pascal);
+    let layout = super::const_ident(&format!("{prefix}LAYOUT"));
+    let header_len = super::const_ident(&format!("{prefix}HEADER_LEN"));
+    let trailer_len = super::const_ident(&format!("{prefix}TRAILER_LEN"));
+    let prefix_can_id = super::const_ident(&format!("{prefix}can_id"));
+    let users: Vec<_> = user_values(f).collect();
+    let reads = users.iter().map(|v| {
+        let id = ident(&v.name);
+        let c = value_const(prefix, v);
+        let t = prim_type(v.prim);
+        if v.prim == Prim::Bool {
+            quote!(#id: header_value(frame, wire::#c)? != 0)
+        } else {
+            quote!(#id: header_value(frame, wire::#c)? as #t)
+        }
+    });
+    let writes = users.iter().map(|v| {
+        let id = ident(&v.name);
+        let c = value_const(prefix, v);
+        quote!(wire::#c.write(frame, self.header.#id as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)
+    });
+    let doc = format!(
+        " A whole `{}` CAN frame, decoded: the header values and the message.",
+        f.name
+    );
+    let decode_doc = " Decode a received CAN frame, verifying its checks.";
+    quote! {
+        #[doc = #doc]
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct #packet {
+            /// The header values the sender set.
+            pub header: #header,
+            /// The command and its payload.
+            pub message: Message,
+        }
+        impl #packet {
+            #[doc = #decode_doc]
+            ///
+            /// # Errors
+            /// `DecodeError::Frame` when a check fails or the length is wrong,
+            /// `UnknownCommand` for an id the spec does not have, `PayloadLength` when the
+            /// payload's size is not the command's.
+            pub fn decode(can: &#rt::CanFrame) -> ::core::result::Result<Self, #rt::DecodeError> {
+                let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
+                let frame = #layout.parse(can.to_virtual(&mut virt))?;
+                let command = Command::from_can_id(can.id).ok_or(#rt::DecodeError::UnknownCommand { key: can.id as u64 })?;
+                let payload = frame
+                    .get(#header_len..frame.len().saturating_sub(#trailer_len))
+                    .ok_or(#rt::DecodeError::Truncated { needed: #header_len + #trailer_len, available: frame.len() })?;
+                ::core::result::Result::Ok(#packet {
+                    header: #header { #(#reads,)* },
+                    message: Message::read_payload(command, payload)?,
+                })
+            }
+            /// Encode into a CAN frame.
+            ///
+            /// # Errors
+            /// `EncodeError::ValueOutOfRange` when the command has no CAN id or a header value
+            /// does not fit its field.
+            pub fn encode(&self) -> ::core::result::Result<#rt::CanFrame, #rt::EncodeError> {
+                let id = self.message.command().can_id().ok_or(#rt::EncodeError::ValueOutOfRange)?;
+                let total = #header_len + self.message.payload_len() + #trailer_len;
+                let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
+                let frame = virt.get_mut(..total).ok_or(#rt::EncodeError::PayloadTooLarge { len: total, max: #rt::CAN_VIRTUAL_LEN })?;
+                wire::#prefix_can_id.write(frame, u64::from(id)).ok_or(#rt::EncodeError::ValueOutOfRange)?;
+                #(#writes)*
+                let payload = frame
+                    .get_mut(#header_len..total.saturating_sub(#trailer_len))
+                    .ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available: #rt::CAN_VIRTUAL_LEN })?;
+                self.message.write_payload(&mut #rt::Writer::new(payload))?;
+                #layout.seal(frame)?;
+                #rt::CanFrame::from_virtual(frame)
+            }
+        }
+    }
 }
 
 fn key_prims(f: &Frame) -> Vec<Prim> {
@@ -112,6 +201,45 @@ fn emit_command_enum(p: &Protocol, f: &Frame) -> TokenStream {
         " A command id: the value of the dispatch key ({}).",
         keys.join(", ")
     );
+    let can = if p
+        .frames
+        .iter()
+        .skip(1)
+        .any(|f| matches!(f.transport, Transport::Can { .. }))
+    {
+        let to = p.commands.iter().map(|c| {
+            let v = ident(&c.rust_name);
+            match c.can_id {
+                Some(id) => {
+                    let id = id as u32;
+                    quote!(Self::#v => ::core::option::Option::Some(#id),)
+                }
+                None => quote!(Self::#v => ::core::option::Option::None,),
+            }
+        });
+        let from = p.commands.iter().filter_map(|c| {
+            let v = ident(&c.rust_name);
+            let id = c.can_id? as u32;
+            Some(quote!(#id => ::core::option::Option::Some(Self::#v),))
+        });
+        quote! {
+            /// The command's CAN id, if it has one.
+            pub const fn can_id(self) -> ::core::option::Option<u32> {
+                match self {
+                    #(#to)*
+                }
+            }
+            /// The command with this CAN id, if any.
+            pub const fn from_can_id(id: u32) -> ::core::option::Option<Self> {
+                match id {
+                    #(#from)*
+                    _ => ::core::option::Option::None,
+                }
+            }
+        }
+    } else {
+        quote!()
+    };
     quote! {
         #[doc = #id_doc]
         pub type CommandId = #id_ty;
@@ -142,6 +270,7 @@ fn emit_command_enum(p: &Protocol, f: &Frame) -> TokenStream {
                     #(#names)*
                 }
             }
+            #can
         }
     }
 }

@@ -165,10 +165,11 @@ pub fn frame_doc(f: &Frame) -> String {
             )),
             crate::ir::Element::Word {
                 name,
-                offset,
+                at,
                 scalar,
                 values,
             } => {
+                let offset = pos_text(*at);
                 let meaning = values
                     .iter()
                     .map(|&i| {

@@ -8,7 +8,9 @@ use quote::{format_ident, quote};
 use super::docs::{doc_attrs, frame_doc};
 use super::payload::prim_type;
 use super::{RuntimePath, const_ident, ident};
-use crate::ir::{Algorithm, Check, Endian, Frame, HeaderValue, Length, Pos, Prim, Protocol, Role};
+use crate::ir::{
+    Algorithm, Check, Endian, Frame, HeaderValue, Length, Pos, Prim, Protocol, Role, Transport,
+};
 
 /// Prefix of a frame's items: empty for the first (default) frame, `NAME_` for the others.
 pub fn frame_prefix(p: &Protocol, f: &Frame) -> String {
@@ -35,7 +37,7 @@ fn order(rt: &TokenStream, e: Endian) -> TokenStream {
 
 /// A `WordField` literal for a header value.
 pub fn word_field(rt: &TokenStream, v: &HeaderValue) -> TokenStream {
-    let at = pos(rt, Pos::Start(v.offset));
+    let at = pos(rt, v.at);
     let size = v.word.prim.size() as u8;
     let ord = order(rt, v.word.endian);
     let shift = v.shift as u8;
@@ -210,13 +212,18 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
                 frame_checks: &[#(#frame_checks),*],
                 markers: &[#(#markers),*],
             };
-            #[doc = #decoder_doc]
-            pub type #decoder_name = #rt::StreamDecoder<'static, #max_frame>;
-            #[doc = concat!(" A new decoder of `", #fname, "` frames.")]
-            pub const fn #decoder_fn() -> #decoder_name {
-                #rt::StreamDecoder::new(&#layout_name)
-            }
         });
+        // A CAN frame arrives whole: it has a packet type, not a stream decoder.
+        if f.transport == Transport::Serial {
+            out.extend(quote! {
+                #[doc = #decoder_doc]
+                pub type #decoder_name = #rt::StreamDecoder<'static, #max_frame>;
+                #[doc = concat!(" A new decoder of `", #fname, "` frames.")]
+                pub const fn #decoder_fn() -> #decoder_name {
+                    #rt::StreamDecoder::new(&#layout_name)
+                }
+            });
+        }
     }
     // Header value positions of every frame, in one module.
     let wire_items = p.frames.iter().flat_map(|f| {
@@ -240,7 +247,18 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         }
     });
     if let Some(f) = p.frames.first() {
-        out.extend(emit_header(f));
+        out.extend(emit_header(f, &format_ident!("Header")));
+    }
+    for f in p
+        .frames
+        .iter()
+        .skip(1)
+        .filter(|f| f.transport != Transport::Serial)
+    {
+        out.extend(emit_header(
+            f,
+            &format_ident!("{}Header", super::super::validate::pascal_case(&f.name)),
+        ));
     }
     out
 }
@@ -252,7 +270,7 @@ pub fn user_values(f: &Frame) -> impl Iterator<Item = &HeaderValue> {
         .filter(|v| matches!(v.role, Role::User { .. }))
 }
 
-fn emit_header(f: &Frame) -> TokenStream {
+fn emit_header(f: &Frame, name: &Ident) -> TokenStream {
     let fields = user_values(f).map(|v| {
         let id = ident(&v.name);
         let ty = prim_type(v.prim);
@@ -267,7 +285,7 @@ fn emit_header(f: &Frame) -> TokenStream {
         /// The header values a sender sets (the codec computes the sync, length, command and
         /// checks).
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-        pub struct Header {
+        pub struct #name {
             #(#fields,)*
         }
     }

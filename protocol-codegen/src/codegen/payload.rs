@@ -164,11 +164,31 @@ fn write_elem(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream
         } => {
             let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
             let raw_ty = prim_type(scalar.prim);
-            // Round half away from zero; `as` saturates out-of-range values and maps NaN to 0.
-            let raw = quote! {{
-                let q = ((#value) as f64 - #o) / #f;
-                (if q >= 0.0 { q + 0.5 } else { q - 0.5 }) as #raw_ty
-            }};
+            let clamped = match sc.clamp {
+                Some((lo, hi)) => {
+                    let (lo, hi) = (float_lit(lo), float_lit(hi));
+                    quote!(((#value) as f64).clamp(#lo, #hi))
+                }
+                None => quote!(((#value) as f64)),
+            };
+            // `as` saturates out-of-range values and maps NaN to 0. No `round`/`trunc`: they are
+            // not in `core`.
+            let raw = match sc.rounding {
+                crate::ir::Rounding::Nearest => quote! {{
+                    let q = (#clamped - #o) / #f;
+                    (if q >= 0.0 { q + 0.5 } else { q - 0.5 }) as #raw_ty
+                }},
+                // Toward zero, as a C cast; but a value within float noise of an integer is that
+                // integer, so that a decoded value (raw * factor, rounded to f32) encodes back
+                // to the same raw value.
+                crate::ir::Rounding::Truncate => quote! {{
+                    let q = (#clamped - #o) / #f;
+                    let nearest = (if q >= 0.0 { q + 0.5 } else { q - 0.5 }) as i64 as f64;
+                    let off = if q >= nearest { q - nearest } else { nearest - q };
+                    let mag = if q >= 0.0 { q } else { -q };
+                    (if off <= 1e-6 * (if mag > 1.0 { mag } else { 1.0 }) { nearest } else { q }) as #raw_ty
+                }},
+            };
             write_scalar(*scalar, raw)
         }
         PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::write(&#value, w)?;),

@@ -138,6 +138,10 @@ pub struct FrameDef {
     pub layout: Spanned<Vec<Spanned<ElementDef>>>,
     /// Names of the fields that form the dispatch key, in key order.
     pub dispatch: Option<Spanned<Vec<SStr>>>,
+    /// `"serial"` (default) or `"can"`.
+    pub transport: Option<SStr>,
+    /// For CAN: `"standard"` (11-bit ids, default) or `"extended"` (29-bit).
+    pub can_id: Option<SStr>,
 }
 
 /// One element of a frame layout. Exactly one of `sync`, `field`, `payload`, `check`,
@@ -233,6 +237,8 @@ pub struct CommandDef {
     pub request: Option<SStr>,
     /// Payload struct of the response direction.
     pub response: Option<SStr>,
+    /// The command's CAN id, for specs with a CAN frame.
+    pub can_id: Option<SInt>,
     /// Documentation.
     pub doc: Option<SStr>,
 }
@@ -278,6 +284,10 @@ pub struct FieldDef {
     pub scale: Option<Spanned<f64>>,
     /// Added after scaling.
     pub offset: Option<Spanned<f64>>,
+    /// `"nearest"` (default) or `"truncate"`: how encoding turns a physical value into raw.
+    pub rounding: Option<SStr>,
+    /// `[min, max]`: physical values are clamped into this range before encoding.
+    pub clamp: Option<Spanned<Vec<Spanned<f64>>>>,
     /// Unit of the (physical) value, for docs.
     pub unit: Option<SStr>,
     /// Documentation.

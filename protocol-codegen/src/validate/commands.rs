@@ -9,7 +9,7 @@ use super::names::{check_screaming_name, check_snake_name, pascal_case};
 use super::types::{Structs, mask};
 use super::{Ctx, text};
 use crate::diag::did_you_mean;
-use crate::ir::{AddressSet, Command, Direction, DirectionRule, Frame, Role};
+use crate::ir::{AddressSet, Command, Direction, DirectionRule, Frame, Role, Transport};
 use crate::spec::model::{IdDef, SStr};
 
 /// Rule: an address set is `{ range = [first, last] }` with first <= last, or `{ value = v }`;
@@ -188,13 +188,15 @@ pub(crate) fn lower_directions(
 /// name structs whose size fits the frame's payload bounds.
 pub(crate) fn lower_commands(
     ctx: &mut Ctx<'_>,
-    frame: Option<&Frame>,
+    frames: &[Frame],
     directions: &[Direction],
     structs: &Structs,
 ) -> Vec<Command> {
     let spec = ctx.spec;
     let mut out: Vec<Command> = Vec::new();
-    let Some(frame) = frame else { return out };
+    let Some(frame) = frames.first() else {
+        return out;
+    };
     if !spec.commands.is_empty() && frame.dispatch.is_empty() {
         let span = spec
             .commands
@@ -206,6 +208,11 @@ pub(crate) fn lower_commands(
         return out;
     }
     let mut ids: HashMap<Vec<u64>, String> = HashMap::new();
+    let mut can_ids: HashMap<u64, String> = HashMap::new();
+    let can_frame = frames
+        .iter()
+        .skip(1)
+        .find(|f| matches!(f.transport, Transport::Can { .. }));
     let mut rust_names: HashMap<String, String> = HashMap::new();
     for (name, def) in &spec.commands {
         if !check_screaming_name(ctx, name, "command") {
@@ -284,7 +291,9 @@ pub(crate) fn lower_commands(
         }
         ids.insert(id.clone(), name.get_ref().clone());
         let payloads = lower_payload_refs(ctx, name, d, frame, directions, structs);
+        let can_id = lower_can_id(ctx, name, d.can_id.as_ref(), can_frame, &mut can_ids);
         out.push(Command {
+            can_id,
             name: name.get_ref().clone(),
             rust_name,
             id,
@@ -366,4 +375,40 @@ fn lower_payload_refs(
             })
             .collect()
     }
+}
+
+/// Rule: a command's `can_id` is given when the spec has a CAN frame besides its first frame,
+/// fits the frame's id width (11 or 29 bits), and is not another command's.
+fn lower_can_id(
+    ctx: &mut Ctx<'_>,
+    name: &SStr,
+    id: Option<&Spanned<i64>>,
+    can_frame: Option<&Frame>,
+    seen: &mut HashMap<u64, String>,
+) -> Option<u64> {
+    let id = id?;
+    let Some(frame) = can_frame else {
+        ctx.error(
+            id.span(),
+            "`can_id` needs a CAN frame besides the first frame",
+            "add a `[frames.NAME]` with `transport = \"can\"`, or remove `can_id`",
+        );
+        return None;
+    };
+    let width = frame.values.first().map_or(11, |v| v.width);
+    let v = *id.get_ref();
+    if v < 0 || (v as u64) > mask(width) {
+        ctx.error(id.span(), format!("CAN id {v:#x} does not fit in {width} bits"), if width == 11 { "standard CAN ids go up to 0x7FF; use `can_id = \"extended\"` on the frame for 29-bit ids".to_string() } else { "extended CAN ids go up to 0x1FFFFFFF".to_string() });
+        return None;
+    }
+    if let Some(prev) = seen.get(&(v as u64)) {
+        ctx.error(
+            id.span(),
+            format!("command `{}` reuses the CAN id of `{prev}`", name.get_ref()),
+            "every command needs its own CAN id",
+        );
+        return None;
+    }
+    seen.insert(v as u64, name.get_ref().clone());
+    Some(v as u64)
 }

@@ -10,7 +10,8 @@ use super::types::{Enums, Structs, fit, lower_bits, mask};
 use super::{Ctx, text};
 use crate::diag::did_you_mean;
 use crate::ir::{
-    Algorithm, Check, Element, Frame, HeaderValue, Length, Pos, Prim, Role, Scalar, Trailer,
+    Algorithm, CAN_PREFIX_LEN, Check, Element, Endian, Frame, HeaderValue, Length, Pos, Prim, Role,
+    Scalar, Trailer, Transport,
 };
 use crate::spec::model::{ElementDef, FrameDef, SStr};
 
@@ -46,7 +47,8 @@ enum Kind {
 
 struct El<'s> {
     name: String,
-    def: &'s Spanned<ElementDef>,
+    /// `None` for the virtual `can_id` and `dlc` of a CAN frame.
+    def: Option<&'s Spanned<ElementDef>>,
     kind: Kind,
     size: usize,
 }
@@ -169,6 +171,56 @@ fn lower_frame(
     let mut length_decl: Option<(usize, &SStr)> = None; // (value index, coverage)
     let layout = def.layout.get_ref();
     let mut broken = false;
+    let transport = lower_transport(ctx, def);
+    if let Transport::Can { extended } = transport {
+        // The virtual prefix every CAN frame starts with: the id and the data length, so that
+        // checks can cover them (the Scout CAN checksum does) and dispatch can name the id.
+        let id_word = Scalar {
+            prim: Prim::U32,
+            endian: Endian::Big,
+        };
+        values.push(HeaderValue {
+            name: "can_id".into(),
+            doc: "The CAN identifier.".into(),
+            at: Pos::Start(0),
+            word: id_word,
+            shift: 0,
+            width: if extended { 29 } else { 11 },
+            prim: Prim::U32,
+            role: Role::User { addresses: false },
+        });
+        values.push(HeaderValue {
+            name: "dlc".into(),
+            doc: "The CAN data length code: number of data bytes.".into(),
+            at: Pos::Start(4),
+            word: Scalar {
+                prim: Prim::U8,
+                endian: Endian::Big,
+            },
+            shift: 0,
+            width: 8,
+            prim: Prim::U8,
+            role: Role::Length,
+        });
+        els.push(El {
+            name: "can_id".into(),
+            def: None,
+            size: 4,
+            kind: Kind::Word(id_word, vec![0]),
+        });
+        els.push(El {
+            name: "dlc".into(),
+            def: None,
+            size: 1,
+            kind: Kind::Word(
+                Scalar {
+                    prim: Prim::U8,
+                    endian: Endian::Big,
+                },
+                vec![1],
+            ),
+        });
+    }
 
     for (i, el) in layout.iter().enumerate() {
         let Some(kind) = check_element_keys(ctx, el) else {
@@ -179,12 +231,18 @@ fn lower_frame(
         match kind {
             "sync" => {
                 let bytes = byte_list(ctx, d.sync.as_ref()?, "sync");
-                if i != 0 {
+                if matches!(transport, Transport::Can { .. }) {
+                    ctx.error(
+                        el.span(),
+                        "a CAN frame has no sync bytes",
+                        "remove the `sync` element: CAN delivers whole frames",
+                    );
+                } else if i != 0 {
                     ctx.error(el.span(), "sync bytes must be the first element of the layout", "move the `sync` element to the start; constant bytes after the payload are a `trailer`");
                 }
                 els.push(El {
                     name: "sync".into(),
-                    def: el,
+                    def: Some(el),
                     size: bytes.len(),
                     kind: Kind::Sync(bytes),
                 });
@@ -192,8 +250,9 @@ fn lower_frame(
             "field" => {
                 let name = d.field.as_ref()?;
                 check_snake_name(ctx, name, "field name");
-                if payload.is_some() {
-                    ctx.error(el.span(), "header fields must come before the payload", "move the field before the `payload` element; only checks and trailers follow the payload");
+                let after_payload = payload.is_some();
+                if after_payload && (d.value.is_some() || d.length_of.is_some()) {
+                    ctx.error(el.span(), "a field after the payload cannot be the length or a constant", "constant bytes after the payload are a `trailer = [...]`; the length field goes before the payload");
                 }
                 let Some(ty) = &d.ty else {
                     ctx.error(
@@ -219,7 +278,9 @@ fn lower_frame(
                         continue;
                     }
                 };
-                let offset: usize = els.iter().map(|e| e.size).sum();
+                // The real position is set once the whole layout is known (fields after the
+                // payload count back from the end).
+                let placeholder = Pos::Start(0);
                 let mut idx = Vec::new();
                 let addresses = d.addresses.as_ref().is_some_and(|a| *a.get_ref());
                 if let Some(bits) = &d.bits {
@@ -250,7 +311,7 @@ fn lower_frame(
                         values.push(HeaderValue {
                             name: m.name,
                             doc: m.doc,
-                            offset,
+                            at: placeholder,
                             word,
                             shift: m.shift,
                             width: m.width,
@@ -294,7 +355,7 @@ fn lower_frame(
                     values.push(HeaderValue {
                         name: name.get_ref().clone(),
                         doc: text(&d.doc),
-                        offset,
+                        at: placeholder,
                         word,
                         shift: 0,
                         width,
@@ -304,7 +365,7 @@ fn lower_frame(
                 }
                 els.push(El {
                     name: name.get_ref().clone(),
-                    def: el,
+                    def: Some(el),
                     size: word.prim.size(),
                     kind: Kind::Word(word, idx),
                 });
@@ -343,7 +404,7 @@ fn lower_frame(
                 payload = Some((els.len(), min.max(0) as usize, max.max(0) as usize));
                 els.push(El {
                     name: "payload".into(),
-                    def: el,
+                    def: Some(el),
                     size: 0,
                     kind: Kind::Payload,
                 });
@@ -384,7 +445,7 @@ fn lower_frame(
                 ));
                 els.push(El {
                     name,
-                    def: el,
+                    def: Some(el),
                     size,
                     kind: Kind::Check(ci),
                 });
@@ -407,7 +468,7 @@ fn lower_frame(
                 });
                 els.push(El {
                     name,
-                    def: el,
+                    def: Some(el),
                     size: bytes.len(),
                     kind: Kind::Trailer(ti),
                 });
@@ -417,20 +478,23 @@ fn lower_frame(
 
     // Rule: element names are unique within a frame (they are what `over` and `length_of` name).
     for (i, e) in els.iter().enumerate() {
+        let Some(edef) = e.def else { continue };
         if els[..i].iter().any(|p| p.name == e.name) {
-            let span = e
-                .def
+            let span = edef
                 .get_ref()
                 .field
                 .as_ref()
-                .or(e.def.get_ref().name.as_ref())
-                .map_or(e.def.span(), Spanned::span);
+                .or(edef.get_ref().name.as_ref())
+                .map_or(edef.span(), Spanned::span);
             ctx.error(span, format!("two elements of frame `{}` are named `{}`", fname.get_ref(), e.name), "give every field, check and trailer its own name (checks and trailers take `name = \"...\"`)");
         }
     }
 
-    // Rule: the first element is the sync.
-    if !matches!(els.first().map(|e| &e.kind), Some(Kind::Sync(_))) && !broken {
+    // Rule: the first element of a serial frame is the sync.
+    if transport == Transport::Serial
+        && !matches!(els.first().map(|e| &e.kind), Some(Kind::Sync(_)))
+        && !broken
+    {
         ctx.error(def.layout.span(), format!("frame `{}` has no sync bytes", fname.get_ref()), "start the layout with `{ sync = [0xFF, 0xFF] }`: a stream decoder finds frames by their sync");
         broken = true;
     }
@@ -511,9 +575,37 @@ fn lower_frame(
     };
 
     let mut ok = true;
+    // Every word's position: header words from the start, words after the payload from the end.
+    for (i, e) in els.iter().enumerate() {
+        if let Kind::Word(_, idx) = &e.kind {
+            for &vi in idx {
+                values[vi].at = start_of(i);
+            }
+        }
+    }
+    if let Transport::Can { .. } = transport {
+        // Rule: a CAN frame's length is its DLC, and it carries at most 8 data bytes.
+        if let Some((_, cov)) = length_decl {
+            ctx.error(
+                cov.span(),
+                "a CAN frame's length is its DLC",
+                "remove `length_of`: the data length of a CAN frame comes with the frame",
+            );
+            return None;
+        }
+        let data_max = header_len - CAN_PREFIX_LEN + payload_max + trailer_len;
+        if data_max > 8 {
+            ctx.error(def.layout.span(), format!("frame `{}` needs up to {data_max} data bytes, but a CAN frame carries at most 8", fname.get_ref()), "shrink the payload's `max` or the fields around it");
+            return None;
+        }
+    }
     // Rule: the length field covers a contiguous run of elements that includes the payload; the
     // total length is the field's value plus the bytes outside that run.
     let length = match length_decl {
+        None if matches!(transport, Transport::Can { .. }) => Length::Field {
+            value: 1,
+            adjust: CAN_PREFIX_LEN as i64,
+        },
         None if payload_min == payload_max => Length::Fixed(header_len + payload_max + trailer_len),
         None => {
             ctx.error(def.layout.span(), format!("frame `{}` has no length field, but its payload size varies", fname.get_ref()), "mark the field that holds the length with `length_of = \"...\"`, or set the payload's `min` equal to its `max`");
@@ -557,12 +649,13 @@ fn lower_frame(
     // Rule: a check covers bytes before it (`frame` means all of them), never its own bytes, and
     // a check inside the header covers only header bytes.
     for (check, ei) in &mut checks {
-        let d = els[*ei].def.get_ref();
+        let Some(edef) = els[*ei].def else { continue };
+        let d = edef.get_ref();
         let at = start_of(*ei);
         let over = d.over.as_ref();
         let range = match over {
             None => {
-                ctx.error(els[*ei].def.span(), format!("check `{}` does not say what it covers", check.name), "add `over = \"frame\"` (every byte before the check) or `over = \"first..last\"`");
+                ctx.error(edef.span(), format!("check `{}` does not say what it covers", check.name), "add `over = \"frame\"` (every byte before the check) or `over = \"first..last\"`");
                 ok = false;
                 continue;
             }
@@ -611,6 +704,17 @@ fn lower_frame(
     if let Some(keys) = &def.dispatch {
         for k in keys.get_ref() {
             match values.iter().position(|v| &v.name == k.get_ref()) {
+                Some(vi) if matches!(values[vi].at, Pos::End(_)) => {
+                    ctx.error(
+                        k.span(),
+                        format!(
+                            "`{}` comes after the payload, so it cannot be a dispatch key",
+                            k.get_ref()
+                        ),
+                        "dispatch on a header field",
+                    );
+                    ok = false;
+                }
                 Some(vi) => match values[vi].role {
                     Role::User { .. } => {
                         values[vi].role = Role::Dispatch;
@@ -656,7 +760,7 @@ fn lower_frame(
             Kind::Sync(b) => Element::Sync(b.clone()),
             Kind::Word(s, idx) => Element::Word {
                 name: e.name.clone(),
-                offset: idx.first().map_or(0, |&i| values[i].offset),
+                at: idx.first().map_or(Pos::Start(0), |&i| values[i].at),
                 scalar: *s,
                 values: idx.clone(),
             },
@@ -684,6 +788,7 @@ fn lower_frame(
     // check follows a frame check (always true: header checks precede the payload).
     Some(Frame {
         name: fname.get_ref().clone(),
+        transport,
         doc: text(&def.doc),
         sync,
         header_len,
@@ -697,6 +802,44 @@ fn lower_frame(
         trailers,
         elements,
     })
+}
+
+/// Rule: `transport` is `"serial"` (default) or `"can"`; `can_id` (`"standard"` or
+/// `"extended"`) applies to CAN frames only.
+fn lower_transport(ctx: &mut Ctx<'_>, def: &FrameDef) -> Transport {
+    let extended = match def.can_id.as_ref().map(|c| (c, c.get_ref().as_str())) {
+        None | Some((_, "standard")) => false,
+        Some((_, "extended")) => true,
+        Some((c, other)) => {
+            ctx.error(
+                c.span(),
+                format!("unknown CAN id kind `{other}`"),
+                "write `\"standard\"` (11-bit ids) or `\"extended\"` (29-bit ids)",
+            );
+            false
+        }
+    };
+    match def.transport.as_ref().map(|t| (t, t.get_ref().as_str())) {
+        None | Some((_, "serial")) => {
+            if let Some(c) = &def.can_id {
+                ctx.error(
+                    c.span(),
+                    "`can_id` applies to CAN frames",
+                    "add `transport = \"can\"` or remove `can_id`",
+                );
+            }
+            Transport::Serial
+        }
+        Some((_, "can")) => Transport::Can { extended },
+        Some((t, other)) => {
+            let help = match did_you_mean(other, ["serial", "can"]) {
+                Some(b) => format!("did you mean `{b}`?"),
+                None => "write `\"serial\"` (a byte stream) or `\"can\"`".to_string(),
+            };
+            ctx.error(t.span(), format!("unknown transport `{other}`"), help);
+            Transport::Serial
+        }
+    }
 }
 
 fn length_decl_once<'s>(

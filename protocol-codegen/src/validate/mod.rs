@@ -64,7 +64,7 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
         Some(first) => commands::lower_directions(&mut ctx, first, &addresses),
         None => Vec::new(),
     };
-    let commands = commands::lower_commands(&mut ctx, frames.first(), &directions, &structs);
+    let commands = commands::lower_commands(&mut ctx, &frames, &directions, &structs);
 
     Some(ir::Protocol {
         name: p.name.get_ref().clone(),

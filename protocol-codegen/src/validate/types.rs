@@ -12,8 +12,8 @@ use super::names::{
 use super::{Ctx, text};
 use crate::diag::did_you_mean;
 use crate::ir::{
-    BitMember, Constant, Endian, Enum, EnumVariant, Field, FieldKind, Prim, Scalar, Scale, Struct,
-    UnknownPolicy, ValueType,
+    BitMember, Constant, Endian, Enum, EnumVariant, Field, FieldKind, Prim, Rounding, Scalar,
+    Scale, Struct, UnknownPolicy, ValueType,
 };
 use crate::spec::model::{BitDef, ConstantDef, CountDef, FieldDef, SStr, StructDef};
 
@@ -455,10 +455,41 @@ fn lower_field(
                     } else {
                         Prim::F64
                     };
+                    let rounding = match d.rounding.as_ref().map(|r| r.get_ref().as_str()) {
+                        None | Some("nearest") => Rounding::Nearest,
+                        Some("truncate") => Rounding::Truncate,
+                        Some(other) => {
+                            let span = d.rounding.as_ref().map(Spanned::span).unwrap_or_default();
+                            ctx.error(
+                                span,
+                                format!("unknown rounding `{other}`"),
+                                "write `\"nearest\"` (halves away from zero) or `\"truncate\"` (toward zero, as a C cast)",
+                            );
+                            Rounding::Nearest
+                        }
+                    };
+                    let clamp = match &d.clamp {
+                        None => None,
+                        Some(c) => match c.get_ref().as_slice() {
+                            [lo, hi] if lo.get_ref() <= hi.get_ref() => {
+                                Some((*lo.get_ref(), *hi.get_ref()))
+                            }
+                            _ => {
+                                ctx.error(
+                                    c.span(),
+                                    "`clamp` is not `[min, max]` with min <= max",
+                                    "write the physical limits, e.g. `clamp = [-1.5, 1.5]`",
+                                );
+                                None
+                            }
+                        },
+                    };
                     Some(Scale {
                         factor,
                         offset: o.as_ref().map_or(0.0, |o| *o.get_ref()),
                         physical,
+                        rounding,
+                        clamp,
                     })
                 }
             }
@@ -496,6 +527,18 @@ fn lower_field(
 }
 
 fn reject_scale(ctx: &mut Ctx<'_>, d: &FieldDef, what: &str) {
+    for (key, span) in [
+        ("rounding", d.rounding.as_ref().map(Spanned::span)),
+        ("clamp", d.clamp.as_ref().map(Spanned::span)),
+    ] {
+        if let Some(span) = span {
+            ctx.error(
+                span,
+                format!("`{key}` applies to scaled integer fields, not to {what}"),
+                format!("remove `{key}`"),
+            );
+        }
+    }
     if let Some(s) = &d.scale {
         ctx.error(
             s.span(),
