@@ -1,0 +1,229 @@
+//! The harness shared by the robustness suites (properties, fault injection, resource bounds,
+//! no-alloc, the fuzz corpus) and by the `cargo fuzz` targets, which include this directory by
+//! path so that CI replays the fuzz corpus through exactly the code the fuzzers run.
+//!
+//! It owns the list of specs under test ([`for_each_spec!`]: one line per spec), the [`Spec`]
+//! trait that makes a generated module usable by generic code, a spec-driven generator of valid
+//! frames ([`model`]), the checked stream driver ([`stream`]), the fault injector ([`fault`])
+//! and the fuzz entry points ([`fuzz`]). It does not know any spec's structs by name: every
+//! value is generated from the spec's checked IR, so a new spec needs no new generator code.
+#![allow(dead_code, unused_macros, unused_imports)]
+
+pub mod fault;
+pub mod fuzz;
+pub mod model;
+pub mod stream;
+
+use std::fmt::Debug;
+
+use protocol_runtime::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stats, StreamDecoder};
+
+/// Calls `$callback!(module, "path relative to the crate")` for every spec under test.
+///
+/// Adding a spec to every robustness suite (properties, faults, bounds, no-alloc, fuzz corpus)
+/// is one line here; `specs_dir_is_covered` (in `properties.rs`) fails when a spec in `specs/`
+/// is missing from this list.
+macro_rules! for_each_spec {
+    ($callback:ident) => {
+        $callback!(hflink, "../specs/hflink.toml");
+        $callback!(referee, "../specs/referee.toml");
+    };
+}
+pub(crate) use for_each_spec;
+
+/// Expands a spec with `protocol!` and implements [`Spec`] for its `Packet`.
+macro_rules! expand_spec {
+    ($name:ident, $path:literal) => {
+        protocol_runtime::protocol!($path);
+
+        impl $crate::support::Spec for $name::Packet {
+            const NAME: &'static str = stringify!($name);
+            const PATH: &'static str = $path;
+            const TEXT: &'static str =
+                include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/", $path));
+            const MAX_FRAME_LEN: usize = $name::MAX_FRAME_LEN;
+            type Decoder = $name::Decoder;
+
+            fn layout() -> &'static protocol_runtime::FrameLayout<'static> {
+                &$name::LAYOUT
+            }
+            fn decoder() -> Self::Decoder {
+                $name::decoder()
+            }
+            fn from_frame(frame: &[u8]) -> Result<Self, protocol_runtime::DecodeError> {
+                $name::Packet::from_frame(frame)
+            }
+            fn decode(bytes: &[u8]) -> Result<Self, protocol_runtime::DecodeError> {
+                $name::Packet::decode(bytes)
+            }
+            fn encode(&self, buf: &mut [u8]) -> Result<usize, protocol_runtime::EncodeError> {
+                $name::Packet::encode(self, buf)
+            }
+            fn encoded_len(&self) -> usize {
+                $name::Packet::encoded_len(self)
+            }
+        }
+    };
+}
+
+for_each_spec!(expand_spec);
+
+/// A generated protocol module, seen through its `Packet` type.
+pub trait Spec: Sized + Debug + Clone + PartialEq + 'static {
+    /// The module name.
+    const NAME: &'static str;
+    /// The spec path, relative to the tests crate.
+    const PATH: &'static str;
+    /// The spec text (for the IR the generators work from).
+    const TEXT: &'static str;
+    /// The generated `MAX_FRAME_LEN`.
+    const MAX_FRAME_LEN: usize;
+    /// The generated `Decoder` type.
+    type Decoder: Dec;
+    /// The generated `LAYOUT`.
+    fn layout() -> &'static FrameLayout<'static>;
+    /// The generated `decoder()`.
+    fn decoder() -> Self::Decoder;
+    /// `Packet::from_frame`.
+    fn from_frame(frame: &[u8]) -> Result<Self, DecodeError>;
+    /// `Packet::decode`.
+    fn decode(bytes: &[u8]) -> Result<Self, DecodeError>;
+    /// `Packet::encode`.
+    fn encode(&self, buf: &mut [u8]) -> Result<usize, EncodeError>;
+    /// `Packet::encoded_len`.
+    fn encoded_len(&self) -> usize;
+
+    /// The packet encoded into a fresh buffer of exactly `MAX_FRAME_LEN` bytes.
+    fn to_vec(&self) -> Result<Vec<u8>, EncodeError> {
+        let mut buf = vec![0u8; Self::MAX_FRAME_LEN];
+        let n = self.encode(&mut buf)?;
+        buf.truncate(n);
+        Ok(buf)
+    }
+}
+
+/// The stream decoder API, for any buffer size (generated decoders differ only in `N`).
+pub trait Dec {
+    /// The buffer size `N`.
+    const CAPACITY: usize;
+    /// `StreamDecoder::next_event`.
+    fn next_event<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Event<'s>>;
+    /// `StreamDecoder::decode`.
+    fn decode<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Frame<'s>>;
+    /// `StreamDecoder::flush_event`.
+    fn flush_event(&mut self) -> Option<Event<'_>>;
+    /// `StreamDecoder::flush`.
+    fn flush(&mut self) -> Option<Frame<'_>>;
+    /// `StreamDecoder::pending`.
+    fn pending(&self) -> usize;
+    /// `StreamDecoder::position`.
+    fn position(&self) -> u64;
+    /// `StreamDecoder::stats`.
+    fn stats(&self) -> Stats;
+}
+
+impl<const N: usize> Dec for StreamDecoder<'static, N> {
+    const CAPACITY: usize = N;
+    fn next_event<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Event<'s>> {
+        StreamDecoder::next_event(self, input)
+    }
+    fn decode<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Frame<'s>> {
+        StreamDecoder::decode(self, input)
+    }
+    fn flush_event(&mut self) -> Option<Event<'_>> {
+        StreamDecoder::flush_event(self)
+    }
+    fn flush(&mut self) -> Option<Frame<'_>> {
+        StreamDecoder::flush(self)
+    }
+    fn pending(&self) -> usize {
+        StreamDecoder::pending(self)
+    }
+    fn position(&self) -> u64 {
+        StreamDecoder::position(self)
+    }
+    fn stats(&self) -> Stats {
+        *StreamDecoder::stats(self)
+    }
+}
+
+/// Where random choices come from: a seeded generator ([`Rng`]) for the fault streams, or the
+/// bytes of a proptest case or a fuzz input ([`Entropy`]), so that one generator serves all.
+pub trait Source {
+    /// 64 random bits.
+    fn next_u64(&mut self) -> u64;
+
+    /// A value in `0..n` (0 when `n` is 0). Takes only as many bytes as `n` needs, so that
+    /// [`Entropy`] shrinks well.
+    fn below(&mut self, n: u64) -> u64 {
+        if n <= 1 {
+            return 0;
+        }
+        self.next_u64() % n
+    }
+
+    /// A value in `lo..=hi`.
+    fn range(&mut self, lo: u64, hi: u64) -> u64 {
+        lo + self.below(hi - lo + 1)
+    }
+
+    /// A random byte.
+    fn byte(&mut self) -> u8 {
+        self.below(256) as u8
+    }
+
+    /// True with probability `1 / n`.
+    fn one_in(&mut self, n: u64) -> bool {
+        self.below(n) == 0
+    }
+
+    /// `n` random bytes.
+    fn bytes(&mut self, n: usize) -> Vec<u8> {
+        (0..n).map(|_| self.byte()).collect()
+    }
+}
+
+/// SplitMix64: small, seedable, and good enough to place faults.
+#[derive(Debug, Clone)]
+pub struct Rng(pub u64);
+
+impl Source for Rng {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+}
+
+/// Choices read from given bytes (zeros once they run out).
+#[derive(Debug, Clone)]
+pub struct Entropy<'a>(pub &'a [u8]);
+
+impl Entropy<'_> {
+    fn take(&mut self, n: usize) -> u64 {
+        let (head, rest) = self.0.split_at(n.min(self.0.len()));
+        self.0 = rest;
+        head.iter().fold(0, |acc, &b| (acc << 8) | u64::from(b))
+    }
+}
+
+impl Source for Entropy<'_> {
+    fn next_u64(&mut self) -> u64 {
+        self.take(8)
+    }
+
+    fn below(&mut self, n: u64) -> u64 {
+        if n <= 1 {
+            return 0;
+        }
+        let bytes = (64 - (n - 1).leading_zeros()).div_ceil(8) as usize;
+        self.take(bytes) % n
+    }
+}
+
+/// Bytes as hex, for assertion messages.
+pub fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
