@@ -104,12 +104,7 @@ pub fn protocol_macro(tokens: TokenStream) -> TokenStream {
                 Ok(text) => (SpecSource::new(rel.clone(), text), lit.span(), Some(full)),
                 Err(e) => {
                     let msg = format!(
-                        "cannot read spec `{rel}`: {e}\n  = help: the path is relative to the crate's Cargo.toml directory ({})",
-                        if base.as_os_str().is_empty() {
-                            "unknown".to_string()
-                        } else {
-                            "CARGO_MANIFEST_DIR".to_string()
-                        }
+                        "cannot read spec `{rel}`: {e}\n  = help: the path is relative to the directory of the calling crate's Cargo.toml"
                     );
                     return syn::Error::new(lit.span(), msg).to_compile_error();
                 }

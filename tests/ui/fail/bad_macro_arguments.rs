@@ -1,0 +1,3 @@
+protocol_runtime::protocol!(spec = "specs/hflink.toml");
+
+fn main() {}

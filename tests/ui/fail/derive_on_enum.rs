@@ -1,0 +1,6 @@
+#[derive(protocol_runtime::Payload)]
+enum NotAStruct {
+    A,
+}
+
+fn main() {}

@@ -1,0 +1,3 @@
+protocol_runtime::protocol!("specs/does_not_exist.toml");
+
+fn main() {}

@@ -1,0 +1,6 @@
+// Generated types are real types: a READ request carries no payload.
+protocol_runtime::protocol!("specs/hflink.toml");
+
+fn main() {
+    let _ = hflink::Request::ReadSystemInfo(hflink::ChassisCoord::default());
+}
