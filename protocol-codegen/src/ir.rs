@@ -153,8 +153,11 @@ pub struct Struct {
     pub doc: String,
     /// Fields in wire order, padding included.
     pub fields: Vec<Field>,
-    /// Wire size in bytes (sum of the field sizes).
+    /// Wire size in bytes (sum of the field sizes); the largest size when the struct ends with
+    /// variable bytes.
     pub size: usize,
+    /// Smallest wire size (`size` unless the struct ends with variable bytes).
+    pub min_size: usize,
 }
 
 /// One field of a payload struct.
@@ -186,6 +189,11 @@ pub enum FieldKind {
         ty: ValueType,
         /// `Some(n)` for a fixed array of n elements.
         count: Option<usize>,
+    },
+    /// Every byte left in the payload, up to `max` (only as the last field of a struct).
+    Bytes {
+        /// The most bytes.
+        max: usize,
     },
     /// An integer whose bits are split into named members.
     Bits {
@@ -351,6 +359,11 @@ pub struct Frame {
     pub trailers: Vec<Trailer>,
     /// The wire elements in order, for docs and diagrams.
     pub elements: Vec<Element>,
+    /// Acknowledgements: the index of the one-bit flag in `values` (role [`Role::Ack`]), and
+    /// the bytes of an acknowledgement's header (the dispatch fields are absent).
+    pub ack: Option<(usize, usize)>,
+    /// Length of a bare header, when the frame may be the header alone.
+    pub bare_len: Option<usize>,
 }
 
 impl Frame {
@@ -424,6 +437,9 @@ pub enum Role {
     Dispatch,
     /// Must equal this value; written on encode, checked on decode.
     Const(u64),
+    /// The acknowledgement flag: equals the value when the frame is an acknowledgement; set by
+    /// the codec from the message.
+    Ack(u64),
 }
 
 /// How the total length of a frame is known.

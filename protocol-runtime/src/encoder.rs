@@ -62,8 +62,9 @@ impl FrameLayout<'_> {
     pub fn seal(&self, frame: &mut [u8]) -> Result<(), EncodeError> {
         let len = frame.len();
         let span = self.header_span();
+        let bare = self.length.bare_len() == Some(len) && len >= span;
         let min = self.min_len.max(span);
-        if len < min {
+        if len < min && !bare {
             return Err(EncodeError::BufferTooSmall {
                 needed: min,
                 available: len,
@@ -83,7 +84,7 @@ impl FrameLayout<'_> {
         match self.length {
             LengthRule::Fixed(fixed) if fixed == len => {}
             LengthRule::Fixed(_) => return Err(EncodeError::ValueOutOfRange),
-            LengthRule::Field { field, adjust } => {
+            LengthRule::Field { field, adjust } | LengthRule::FieldOrBare { field, adjust, .. } => {
                 let value = i64::try_from(len)
                     .ok()
                     .and_then(|len| len.checked_sub(adjust))
@@ -102,6 +103,9 @@ impl FrameLayout<'_> {
         }
         for check in self.header_checks {
             check.store(header).ok_or(EncodeError::ValueOutOfRange)?;
+        }
+        if bare {
+            return Ok(());
         }
         for marker in self.markers {
             marker.write(frame).ok_or(EncodeError::ValueOutOfRange)?;
@@ -152,8 +156,17 @@ impl FrameLayout<'_> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub trait Payload: Sized {
-    /// Size on the wire in bytes.
+    /// Size on the wire in bytes; for a value that ends with variable bytes, the largest size.
     const SIZE: usize;
+
+    /// Smallest size on the wire: [`SIZE`](Self::SIZE) unless the value ends with variable
+    /// bytes.
+    const MIN_SIZE: usize = Self::SIZE;
+
+    /// Size of this value on the wire.
+    fn wire_len(&self) -> usize {
+        Self::SIZE
+    }
 
     /// Writes the value at the writer's position.
     ///

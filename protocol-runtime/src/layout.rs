@@ -69,6 +69,28 @@ pub enum LengthRule {
         /// Added to the field's value to give the total frame length.
         adjust: i64,
     },
+    /// As [`LengthRule::Field`], except that a frame of exactly `bare` bytes is a bare header:
+    /// no payload, no frame checks, no markers (a RoboRTS acknowledgement without data is the
+    /// 12-byte header alone). `min_len` then applies to the other frames.
+    FieldOrBare {
+        /// The length field.
+        field: WordField,
+        /// Added to the field's value to give the total frame length.
+        adjust: i64,
+        /// Length of a bare header.
+        bare: usize,
+    },
+}
+
+impl LengthRule {
+    /// The length of a bare header, for [`LengthRule::FieldOrBare`].
+    #[inline]
+    pub const fn bare_len(&self) -> Option<usize> {
+        match *self {
+            LengthRule::FieldOrBare { bare, .. } => Some(bare),
+            _ => None,
+        }
+    }
 }
 
 /// A value the frame must hold: checked on decode, written on encode (reserved bytes, version

@@ -89,6 +89,7 @@
     clippy::arithmetic_side_effects
 )]
 
+pub mod bytes;
 pub mod can;
 pub mod checksum;
 pub mod decoder;
@@ -97,6 +98,7 @@ pub mod error;
 pub mod layout;
 pub mod wire;
 
+pub use bytes::Bytes;
 pub use can::CanFrame;
 pub use checksum::Checksum;
 pub use decoder::{Event, Frame, Reject, Stats, StreamDecoder};
@@ -112,7 +114,7 @@ pub use protocol_macros::{Payload, protocol};
 /// code generator.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::{can::*, checksum::*, decoder::*, encoder::*, error::*, layout::*, wire::*};
+    pub use crate::{bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, layout::*, wire::*};
     pub use core;
     pub use crc;
 }

@@ -282,6 +282,8 @@ fn emit_message_enum(
     doc: &str,
     rt: &TokenStream,
 ) -> TokenStream {
+    // Acknowledgements (a frame format with `ack`): a variant without a command.
+    let ack_max = p.frames.first().and_then(|f| f.ack.map(|(_, hl)| f.max_len() - hl - f.trailer_len));
     let doc = doc_attrs(doc);
     let mut variants = Vec::new();
     let mut command_arms = Vec::new();
@@ -299,7 +301,7 @@ fn emit_message_enum(
                 ));
                 variants.push(quote!(#d #v(#s)));
                 command_arms.push(quote!(Self::#v(_) => Command::#v,));
-                len_arms.push(quote!(Self::#v(_) => <#s as #rt::Payload>::SIZE,));
+                len_arms.push(quote!(Self::#v(payload) => #rt::Payload::wire_len(payload),));
                 write_arms.push(quote!(Self::#v(payload) => #rt::Payload::write(payload, w),));
                 read_arms.push(
                     quote!(Command::#v => Self::#v(<#s as #rt::Payload>::from_bytes(payload)?),),
@@ -320,6 +322,33 @@ fn emit_message_enum(
             }
         }
     }
+    let command_fn = match ack_max {
+        None => quote! {
+            /// The command of this message.
+            pub const fn command(&self) -> Command {
+                match self {
+                    #(#command_arms)*
+                }
+            }
+        },
+        Some(max) => {
+            variants.push(quote! {
+                #[doc = " An acknowledgement: no command, the acknowledgement data."]
+                Ack(#rt::Bytes<#max>)
+            });
+            len_arms.push(quote!(Self::Ack(data) => data.len(),));
+            write_arms.push(quote!(Self::Ack(data) => data.write(w),));
+            quote! {
+                /// The command of this message (`None` for an acknowledgement).
+                pub const fn command(&self) -> ::core::option::Option<Command> {
+                    ::core::option::Option::Some(match self {
+                        #(#command_arms)*
+                        Self::Ack(_) => return ::core::option::Option::None,
+                    })
+                }
+            }
+        }
+    };
     quote! {
         #doc
         #[derive(Debug, Clone, Copy, PartialEq)]
@@ -327,14 +356,9 @@ fn emit_message_enum(
             #(#variants,)*
         }
         impl #name {
-            /// The command of this message.
-            pub const fn command(&self) -> Command {
-                match self {
-                    #(#command_arms)*
-                }
-            }
+            #command_fn
             /// Bytes of the payload on the wire.
-            pub const fn payload_len(&self) -> usize {
+            pub fn payload_len(&self) -> usize {
                 match self {
                     #(#len_arms)*
                 }
@@ -387,7 +411,7 @@ fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
                 }
             }
             /// Bytes of the payload on the wire.
-            pub const fn payload_len(&self) -> usize {
+            pub fn payload_len(&self) -> usize {
                 match self {
                     #(Self::#names(m) => m.payload_len(),)*
                 }
@@ -453,7 +477,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         (
             quote!(let id: CommandId = header_value(frame, wire::#c)? as #t;),
             quote!(id as u64),
-            quote!(wire::#c.write(frame, self.message.command().id() as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;),
+            quote!(wire::#c.write(frame, command.id() as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;),
         )
     } else {
         let vars: Vec<_> = (0..key_consts.len())
@@ -469,7 +493,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         (
             quote!(#(let #vars = header_value(frame, wire::#key_consts)? as #types;)* let id: CommandId = (#(#vars),*);),
             quote!({ let (#(#vars),*) = id; #key }),
-            quote!(let id = self.message.command().id(); #(wire::#key_consts.write(frame, id.#idx as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)*),
+            quote!(let id = command.id(); #(wire::#key_consts.write(frame, id.#idx as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)*),
         )
     };
     let message = if p.directions.is_empty() {
@@ -497,6 +521,54 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 return ::core::result::Result::Err(#rt::EncodeError::ValueOutOfRange);
             }
         }
+    };
+    // Acknowledgements: decoded before the dispatch key (they have none), encoded with their
+    // flag set and no key.
+    let (ack_decode, ack_len, ack_flag, start_of, command_of) = match f.ack {
+        Some((vi, ack_header_len)) => {
+            let flag = value_const("", &f.values[vi]);
+            // Validation gives the flag the role `Ack`; 1 is its only other possible value.
+            let equals = match f.values[vi].role {
+                crate::ir::Role::Ack(equals) => equals,
+                _ => 1,
+            };
+            let other = 1 - equals;
+            let max = f.max_len() - ack_header_len - f.trailer_len;
+            let bare = f.bare_len.is_some();
+            let end = if bare {
+                quote!(if frame.len() == #ack_header_len { frame.len() } else { frame.len().saturating_sub(TRAILER_LEN) })
+            } else {
+                quote!(frame.len().saturating_sub(TRAILER_LEN))
+            };
+            let bare_arm = if bare { quote!(Message::Ack(data) if data.is_empty() => #ack_header_len,) } else { quote!() };
+            (
+                quote! {
+                    if header_value(frame, wire::#flag)? == #equals {
+                        let data = frame
+                            .get(#ack_header_len..#end)
+                            .ok_or(#rt::DecodeError::Truncated { needed: #ack_header_len, available: frame.len() })?;
+                        let data = #rt::Bytes::from_slice(data).ok_or(#rt::DecodeError::PayloadLength { expected: #max, actual: data.len() })?;
+                        return ::core::result::Result::Ok(Packet { header, message: Message::Ack(data) });
+                    }
+                },
+                quote! {
+                    #bare_arm
+                    Message::Ack(data) => #ack_header_len + data.len() + TRAILER_LEN,
+                },
+                quote! {
+                    let is_ack = matches!(self.message, Message::Ack(_));
+                    wire::#flag.write(frame, if is_ack { #equals } else { #other }).ok_or(#rt::EncodeError::ValueOutOfRange)?;
+                },
+                quote!(if matches!(self.message, Message::Ack(_)) { #ack_header_len } else { HEADER_LEN }),
+                quote!(self.message.command()),
+            )
+        }
+        None => (quote!(), quote!(), quote!(), quote!(HEADER_LEN), quote!(::core::option::Option::Some(self.message.command()))),
+    };
+    let payload_end = if f.bare_len.is_some() {
+        quote!(if total == start { total } else { total.saturating_sub(TRAILER_LEN) })
+    } else {
+        quote!(total.saturating_sub(TRAILER_LEN))
     };
     quote! {
         /// A header value of a frame.
@@ -530,6 +602,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             /// command's, and errors of the payload's fields.
             pub fn from_frame(frame: &[u8]) -> ::core::result::Result<Self, #rt::DecodeError> {
                 let header = Header { #(#header_fields,)* };
+                #ack_decode
                 #read_key
                 let command = Command::from_id(id).ok_or(#rt::DecodeError::UnknownCommand { key: #key_u64 })?;
                 let payload = frame
@@ -539,8 +612,11 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 ::core::result::Result::Ok(Packet { header, message })
             }
             /// Bytes of the encoded frame.
-            pub const fn encoded_len(&self) -> usize {
-                HEADER_LEN + self.message.payload_len() + TRAILER_LEN
+            pub fn encoded_len(&self) -> usize {
+                match &self.message {
+                    #ack_len
+                    message => HEADER_LEN + message.payload_len() + TRAILER_LEN,
+                }
             }
             /// Encode the frame into the start of `buf`; returns its length.
             ///
@@ -551,12 +627,16 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             pub fn encode(&self, buf: &mut [u8]) -> ::core::result::Result<usize, #rt::EncodeError> {
                 #direction_check
                 let total = self.encoded_len();
+                let start = #start_of;
                 let available = buf.len();
                 let frame = buf.get_mut(..total).ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
                 #(#header_writes)*
-                #write_key
+                #ack_flag
+                if let ::core::option::Option::Some(command) = #command_of {
+                    #write_key
+                }
                 let payload = frame
-                    .get_mut(HEADER_LEN..total - TRAILER_LEN)
+                    .get_mut(start..#payload_end)
                     .ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
                 self.message.write_payload(&mut #rt::Writer::new(payload))?;
                 LAYOUT.seal(frame)?;

@@ -35,6 +35,7 @@ fn order_name(e: Endian, size: usize) -> &'static str {
 pub fn field_type_name(p: &Protocol, f: &Field) -> String {
     match &f.kind {
         FieldKind::Padding => "padding".into(),
+        FieldKind::Bytes { max } => format!("bytes, up to {max}"),
         FieldKind::Bits { word, .. } => format!("{} bits", word.prim.rust_name()),
         FieldKind::Value { ty, count } => {
             let base = match ty {
@@ -66,7 +67,7 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
 
 fn field_order(f: &Field) -> &'static str {
     match &f.kind {
-        FieldKind::Padding => "-",
+        FieldKind::Padding | FieldKind::Bytes { .. } => "-",
         FieldKind::Bits { word, .. } => order_name(word.endian, word.prim.size()),
         FieldKind::Value { ty, .. } => match ty {
             ValueType::Scalar { scalar, .. } | ValueType::Enum(_, scalar) => {
@@ -189,6 +190,7 @@ pub fn frame_doc(f: &Frame) -> String {
                             },
                             Role::Dispatch => ": command id".into(),
                             Role::Const(c) => format!(": always {c:#x}"),
+                            Role::Ack(v) => format!(": {v} in acknowledgements"),
                         };
                         format!("{bits}`{}`{role}", v.name)
                     })

@@ -12,6 +12,32 @@ use crate::ir::{
     Algorithm, Check, Endian, Frame, HeaderValue, Length, Pos, Prim, Protocol, Role, Transport,
 };
 
+/// Bytes the stream engine needs before it knows a frame's length and has verified its header:
+/// through the length field, the constants and the header checks (fields after them, such as a
+/// command id, are part of what the length counts).
+pub fn decide_len(f: &Frame) -> usize {
+    let word_end = |v: &HeaderValue| match v.at {
+        Pos::Start(o) => o + v.word.prim.size(),
+        Pos::End(_) => 0,
+    };
+    let length = match &f.length {
+        Length::Field { value, .. } => word_end(&f.values[*value]),
+        Length::Fixed(_) => 0,
+    };
+    let constants = f.values.iter().filter(|v| matches!(v.role, Role::Const(_))).map(word_end).max().unwrap_or(0);
+    let checks = f
+        .checks
+        .iter()
+        .filter(|c| c.header)
+        .map(|c| match c.at {
+            Pos::Start(o) => o + c.size,
+            Pos::End(_) => 0,
+        })
+        .max()
+        .unwrap_or(0);
+    f.sync.len().max(length).max(constants).max(checks)
+}
+
 /// Prefix of a frame's items: empty for the first (default) frame, `NAME_` for the others.
 pub fn frame_prefix(p: &Protocol, f: &Frame) -> String {
     if p.frames.first().is_some_and(|first| first.name == f.name) {
@@ -136,9 +162,13 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
             Length::Fixed(n) => quote!(#rt::LengthRule::Fixed(#n)),
             Length::Field { value, adjust } => {
                 let field = value_const(&prefix, &f.values[*value]);
-                quote!(#rt::LengthRule::Field { field: wire::#field, adjust: #adjust })
+                match f.bare_len {
+                    Some(bare) => quote!(#rt::LengthRule::FieldOrBare { field: wire::#field, adjust: #adjust, bare: #bare }),
+                    None => quote!(#rt::LengthRule::Field { field: wire::#field, adjust: #adjust }),
+                }
             }
         };
+        let decide = decide_len(f);
         let constants = f.values.iter().filter_map(|v| match v.role {
             Role::Const(value) => {
                 let field = value_const(&prefix, v);
@@ -203,7 +233,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
             #layout_doc
             pub static #layout_name: #rt::FrameLayout<'static> = #rt::FrameLayout {
                 sync: &[#(#sync),*],
-                header_len: #hl,
+                header_len: #decide,
                 min_len: #minf,
                 max_len: #maxf,
                 length: #length,

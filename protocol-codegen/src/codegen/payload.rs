@@ -56,6 +56,13 @@ pub enum PKind {
         /// Array length.
         count: Option<usize>,
     },
+    /// Every byte left, as `ty` (the runtime's `Bytes<max>`).
+    Bytes {
+        /// The field's type.
+        ty: TokenStream,
+        /// The most bytes.
+        max: usize,
+    },
     /// An unsigned word whose bits are the struct fields `members`.
     Bits {
         /// The word on the wire.
@@ -145,6 +152,7 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
             let raw = read_scalar(*scalar);
             quote!(#ty::from_raw(#raw)?)
         }
+        PKind::Bytes { ty, .. } => quote!(<#ty>::read_rest(r)?),
         PKind::Pad(_) | PKind::Bits { .. } => quote!(()),
     }
 }
@@ -193,6 +201,7 @@ fn write_elem(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream
         }
         PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::write(&#value, w)?;),
         PKind::Enum { scalar, .. } => write_scalar(*scalar, quote!((#value).to_raw())),
+        PKind::Bytes { .. } => quote!(#value.write(w)?;),
         PKind::Pad(_) | PKind::Bits { .. } => quote!(),
     }
 }
@@ -204,7 +213,7 @@ pub fn elem_type(kind: &PKind) -> TokenStream {
             scale: Some(sc), ..
         } => prim_type(sc.physical),
         PKind::Scalar { scalar, .. } => prim_type(scalar.prim),
-        PKind::Nested { ty, .. } | PKind::Enum { ty, .. } => ty.clone(),
+        PKind::Nested { ty, .. } | PKind::Enum { ty, .. } | PKind::Bytes { ty, .. } => ty.clone(),
         PKind::Pad(_) | PKind::Bits { .. } => quote!(()),
     }
 }
@@ -242,6 +251,7 @@ fn size_expr(kind: &PKind, rt: &TokenStream) -> TokenStream {
             let s = word.prim.size();
             quote!(#s)
         }
+        PKind::Bytes { max, .. } => quote!(#max),
     }
 }
 
@@ -326,9 +336,25 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
         None if sizes.is_empty() => quote!(0),
         None => quote!(#(#sizes)+*),
     };
+    // A struct that ends with variable bytes: its minimum size and its actual size.
+    let variable = def.fields.iter().find_map(|f| match (&f.kind, &f.ident) {
+        (PKind::Bytes { max, .. }, Some(id)) => Some((*max, id.clone())),
+        _ => None,
+    });
+    let variable = match variable {
+        Some((max, id)) => quote! {
+            const MIN_SIZE: usize = Self::SIZE - #max;
+            #[inline]
+            fn wire_len(&self) -> usize {
+                Self::MIN_SIZE + self.#id.len()
+            }
+        },
+        None => quote!(),
+    };
     quote! {
         impl #rt::Payload for #name {
             const SIZE: usize = #size;
+            #variable
             #[inline]
             fn write(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
                 #(#writes)*

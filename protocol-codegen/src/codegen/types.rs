@@ -164,13 +164,17 @@ fn emit_enum(e: &Enum, paths: &RuntimePath) -> TokenStream {
 }
 
 /// Lower an IR struct into the payload generator's model.
-pub fn payload_def(p: &Protocol, s: &Struct) -> PayloadDef {
+pub fn payload_def(p: &Protocol, s: &Struct, paths: &RuntimePath) -> PayloadDef {
     let fields = s
         .fields
         .iter()
         .map(|f| {
             let kind = match &f.kind {
                 FieldKind::Padding => PKind::Pad(f.size),
+                FieldKind::Bytes { max } => {
+                    let rt = paths.private();
+                    PKind::Bytes { ty: quote!(#rt::Bytes<#max>), max: *max }
+                }
                 FieldKind::Bits { word, members } => PKind::Bits {
                     word: *word,
                     members: members
@@ -232,7 +236,7 @@ pub fn payload_def(p: &Protocol, s: &Struct) -> PayloadDef {
 /// Every struct: declaration (with layout docs) and its `Payload` impl.
 pub fn emit_structs(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     let items = p.structs.iter().map(|s| {
-        let def = payload_def(p, s);
+        let def = payload_def(p, s, paths);
         let name = &def.name;
         let doc = doc_attrs(&struct_doc(p, s));
         let mut fields = Vec::new();

@@ -142,6 +142,21 @@ pub struct FrameDef {
     pub transport: Option<SStr>,
     /// For CAN: `"standard"` (11-bit ids, default) or `"extended"` (29-bit).
     pub can_id: Option<SStr>,
+    /// Frames whose header matches this rule are acknowledgements: they carry no dispatch
+    /// fields, and their payload is raw acknowledgement data.
+    pub ack: Option<Spanned<AckDef>>,
+    /// A frame may be the header alone (up to its header checks): no payload, no frame checks.
+    pub bare_header: Option<Spanned<bool>>,
+}
+
+/// `ack = { field = "is_ack", equals = 1 }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AckDef {
+    /// A one-bit header value.
+    pub field: SStr,
+    /// Its value in acknowledgements.
+    pub equals: SInt,
 }
 
 /// One element of a frame layout. Exactly one of `sync`, `field`, `payload`, `check`,
@@ -276,6 +291,8 @@ pub struct FieldDef {
     pub ty: Option<SStr>,
     /// Fixed array length: an integer or a constant's name.
     pub count: Option<Spanned<CountDef>>,
+    /// For `type = "bytes"`: the most bytes the field holds.
+    pub max: Option<SInt>,
     /// Padding bytes (written as zero, ignored when read).
     pub pad: Option<SInt>,
     /// Bit members of an integer field.

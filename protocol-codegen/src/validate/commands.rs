@@ -328,7 +328,10 @@ fn lower_payload_refs(
             return None;
         };
         let size = structs.structs[i].size;
-        if size > frame.payload_max {
+        let min_size = structs.structs[i].min_size;
+        if size > frame.payload_max && min_size != size {
+            ctx.error(r.span(), format!("struct `{}` holds up to {size} bytes, but frame `{}` carries at most {} payload bytes", r.get_ref(), frame.name, frame.payload_max), "lower the `max` of its variable bytes, or raise the payload's `max`");
+        } else if size > frame.payload_max {
             ctx.error(
                 r.span(),
                 format!(
@@ -339,7 +342,7 @@ fn lower_payload_refs(
                 ),
                 "raise the payload's `max` or shrink the struct",
             );
-        } else if size < frame.payload_min {
+        } else if min_size < frame.payload_min {
             ctx.error(
                 r.span(),
                 format!(

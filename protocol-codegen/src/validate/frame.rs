@@ -750,6 +750,60 @@ fn lower_frame(
         }
     }
 
+    // Rule: an acknowledgement flag is a one-bit header value set by the sender; the dispatch
+    // fields, absent from acknowledgements, are the last header fields before the payload.
+    let mut ack = None;
+    if let Some(a) = &def.ack {
+        let a_def = a.get_ref();
+        match values.iter().position(|v| &v.name == a_def.field.get_ref()) {
+            None => {
+                ctx.error(a_def.field.span(), format!("frame `{}` has no header field `{}`", fname.get_ref(), a_def.field.get_ref()), "name the one-bit flag that marks acknowledgements");
+                ok = false;
+            }
+            Some(vi) if values[vi].width != 1 || !matches!(values[vi].role, Role::User { .. }) => {
+                ctx.error(a_def.field.span(), format!("`{}` is not a one-bit field set by the sender", a_def.field.get_ref()), "the acknowledgement flag is a one-bit member of a header field's `bits`");
+                ok = false;
+            }
+            Some(vi) => {
+                let equals = *a_def.equals.get_ref();
+                if !(0..=1).contains(&equals) {
+                    ctx.error(a_def.equals.span(), "a one-bit flag equals 0 or 1", "write `equals = 1` (or 0)");
+                    ok = false;
+                }
+                // The dispatch words must sit right before the payload.
+                let mut ack_header_len = header_len;
+                let mut i = pi;
+                let mut words = 0;
+                while i > 0 {
+                    match &els[i - 1].kind {
+                        Kind::Word(_, idx) if idx.iter().all(|v| dispatch.contains(v)) && !idx.is_empty() => {
+                            ack_header_len -= els[i - 1].size;
+                            words += idx.len();
+                            i -= 1;
+                        }
+                        _ => break,
+                    }
+                }
+                if dispatch.is_empty() || words != dispatch.len() {
+                    ctx.error(a.span(), "acknowledgements need the dispatch fields to be the last header fields before the payload", "move the dispatch fields right before the `payload` element (acknowledgements are the frames without them)");
+                    ok = false;
+                }
+                values[vi].role = Role::Ack(equals.clamp(0, 1) as u64);
+                ack = Some((vi, ack_header_len));
+            }
+        }
+    }
+    // Rule: a bare header needs a length field (its value says the frame is the header alone).
+    let bare_len = match &def.bare_header {
+        Some(b) if *b.get_ref() => {
+            if !matches!(length, Length::Field { .. }) {
+                ctx.error(b.span(), "a bare header needs a length field", "only a frame whose length field can say \"header only\" may be a bare header");
+                ok = false;
+            }
+            Some(ack.map_or(header_len, |(_, n)| n))
+        }
+        _ => None,
+    };
     if !ok {
         // The commands cannot be checked against a frame whose layout is broken.
         return None;
@@ -801,6 +855,8 @@ fn lower_frame(
         checks: ordered,
         trailers,
         elements,
+        ack,
+        bare_len,
     })
 }
 

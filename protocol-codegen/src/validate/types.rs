@@ -279,6 +279,17 @@ fn visit_struct(
             "a command without payload names no struct; remove the struct or add fields",
         );
     }
+    // Rule: variable bytes take every byte left, so they can only be the last field.
+    let mut min_size = offset;
+    for (i, f) in fields.iter().enumerate() {
+        if let FieldKind::Bytes { max } = f.kind {
+            if i + 1 != fields.len() {
+                let span = d.fields.get_ref().iter().find(|x| x.get_ref().name.as_ref().is_some_and(|n| n.get_ref() == &f.name)).map_or(d.fields.span(), Spanned::span);
+                ctx.error(span, format!("`{}` holds variable bytes but is not the last field of `{name}`", f.name), "variable bytes take every byte left in the payload: move the field to the end");
+            }
+            min_size = offset - max;
+        }
+    }
     state.insert(name.to_string(), Visit::Done);
     let index = out.structs.len();
     out.by_name.insert(name.to_string(), index);
@@ -287,6 +298,7 @@ fn visit_struct(
         doc: text(&d.doc),
         fields,
         size: offset,
+        min_size,
     });
     Some(index)
 }
@@ -386,6 +398,24 @@ fn lower_field(
             },
         },
     };
+    if ty.get_ref() == "bytes" {
+        let Some(max) = &d.max else {
+            ctx.error(ty.span(), format!("variable bytes `{}` need a `max`", name.get_ref()), "add `max = N`: the most bytes the field can hold (decoders store them inline)");
+            return None;
+        };
+        if *max.get_ref() <= 0 {
+            ctx.error(max.span(), "`max` must be at least 1", "use the largest number of bytes the field may carry");
+            return None;
+        }
+        if count.is_some() || d.bits.is_some() || d.scale.is_some() {
+            ctx.error(f.span(), "variable bytes take only `name`, `type`, `max`, `unit` and `doc`", "remove the other keys");
+        }
+        let max = *max.get_ref() as usize;
+        return Some(Field { name: name.get_ref().clone(), doc: text(&d.doc), offset, size: max, kind: FieldKind::Bytes { max }, unit: text(&d.unit) });
+    }
+    if let Some(max) = &d.max {
+        ctx.error(max.span(), "`max` applies to `type = \"bytes\"` fields", "remove `max`, or use `count` for a fixed array");
+    }
     let scalar = parse_prim(ty.get_ref(), endian);
     let unit = text(&d.unit);
     let doc = text(&d.doc);
@@ -497,6 +527,9 @@ fn lower_field(
         (ValueType::Scalar { scalar, scale }, scalar.prim.size())
     } else if let Some(&i) = structs.by_name.get(ty.get_ref()) {
         reject_scale(ctx, d, "a struct");
+        if structs.structs[i].min_size != structs.structs[i].size {
+            ctx.error(ty.span(), format!("struct `{}` ends with variable bytes, so it cannot be a field of another struct", ty.get_ref()), "use it as a command's payload, or give the inner bytes a fixed `count`");
+        }
         (ValueType::Struct(i), structs.structs[i].size)
     } else if let Some(&i) = enums.by_name.get(ty.get_ref()) {
         reject_scale(ctx, d, "an enum");

@@ -189,7 +189,7 @@ impl FrameLayout<'_> {
         let header = header.get(..self.header_span())?;
         match self.length {
             LengthRule::Fixed(len) => Some(len),
-            LengthRule::Field { field, adjust } => {
+            LengthRule::Field { field, adjust } | LengthRule::FieldOrBare { field, adjust, .. } => {
                 let value = i64::try_from(field.read(header)?).ok()?;
                 usize::try_from(value.checked_add(adjust)?).ok()
             }
@@ -254,7 +254,10 @@ impl FrameLayout<'_> {
         if !self.header_checks.iter().all(|c| c.verify(header)) {
             return Probe::Reject(Reject::BadHeaderCheck);
         }
+        let bare = self.length.bare_len();
         let total = match self.frame_len(header) {
+            // A bare header is complete and verified once its header checks hold.
+            Some(t) if Some(t) == bare && t >= span && t > 0 && t <= limit => return Probe::Frame(t),
             Some(t) if t >= span && t > 0 && t >= self.min_len && t <= limit => t,
             _ => return Probe::Reject(Reject::BadLength),
         };

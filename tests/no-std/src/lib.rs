@@ -7,6 +7,10 @@
 #![deny(warnings, missing_docs)]
 
 protocol_runtime::protocol!("../../specs/hflink.toml");
+protocol_runtime::protocol!("../../specs/referee.toml");
+protocol_runtime::protocol!("../../specs/referee2018.toml");
+protocol_runtime::protocol!("../../specs/scout.toml");
+protocol_runtime::protocol!("../../specs/roborts.toml");
 
 use hflink::{Header, Message, Packet, Request};
 
@@ -35,4 +39,32 @@ pub fn firmware_step(input: &[u8], out: &mut [u8; hflink::MAX_FRAME_LEN]) -> usi
         }
     }
     n
+}
+
+/// Decode a Scout CAN frame, as a CAN interrupt handler would.
+pub fn scout_can(id: u32, data: &[u8]) -> Option<scout::Message> {
+    let frame = protocol_runtime::CanFrame::new(id, data).ok()?;
+    scout::CanPacket::decode(&frame).ok().map(|p| p.message)
+}
+
+/// Count the valid frames of each serial spec in `input`.
+pub fn count_frames(input: &[u8]) -> [usize; 4] {
+    let mut counts = [0; 4];
+    let (mut a, mut b, mut c, mut d) = (referee::decoder(), referee2018::decoder(), scout::decoder(), roborts::decoder());
+    let (mut ia, mut ib, mut ic, mut id) = (input, input, input, input);
+    while a.decode(&mut ia).is_some() {
+        counts[0] += 1;
+    }
+    while b.decode(&mut ib).is_some() {
+        counts[1] += 1;
+    }
+    while c.decode(&mut ic).is_some() {
+        counts[2] += 1;
+    }
+    while let Some(f) = d.decode(&mut id) {
+        if roborts::Packet::from_frame(f.bytes).is_ok() {
+            counts[3] += 1;
+        }
+    }
+    counts
 }

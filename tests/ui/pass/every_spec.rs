@@ -5,6 +5,7 @@ protocol_runtime::protocol!("specs/hflink.toml");
 protocol_runtime::protocol!("specs/referee.toml");
 protocol_runtime::protocol!("specs/referee2018.toml");
 protocol_runtime::protocol!("specs/scout.toml");
+protocol_runtime::protocol!("specs/roborts.toml");
 protocol_runtime::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
 protocol_runtime::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
 protocol_runtime::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
@@ -14,4 +15,5 @@ fn main() {
     let _ = hflink::decoder();
     let _ = referee::decoder();
     let _ = scout::CanPacket::decode;
+    let _ = roborts::decoder();
 }
