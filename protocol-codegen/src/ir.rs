@@ -158,6 +158,9 @@ pub struct Struct {
     pub size: usize,
     /// Smallest wire size (`size` unless the struct ends with variable bytes).
     pub min_size: usize,
+    /// Fields of the struct that repeats this one, which this struct's sized bytes take their
+    /// size from (empty for a struct that stands alone).
+    pub context: Vec<String>,
 }
 
 /// One field of a payload struct.
@@ -190,11 +193,25 @@ pub enum FieldKind {
         /// `Some(n)` for a fixed array of n elements.
         count: Option<usize>,
     },
-    /// Every byte left in the payload, up to `max` (only as the last field of a struct).
+    /// Bytes: every byte left in the payload (only as the last field of a struct), or as many
+    /// as an earlier field states.
     Bytes {
         /// The most bytes.
         max: usize,
+        /// The integer field that holds the number of bytes: a field of this struct before
+        /// this one, or of the struct that repeats this one.
+        size_from: Option<String>,
     },
+    /// Elements of a struct (index into [`Protocol::structs`]) repeated to the end of the
+    /// payload (only as the last field of a struct).
+    Group {
+        /// The element struct.
+        elem: usize,
+        /// The most elements.
+        max: usize,
+    },
+    /// A value present only when bytes remain in the payload (only at the end of a struct).
+    Optional(Box<FieldKind>),
     /// An integer whose bits are split into named members.
     Bits {
         /// The integer on the wire.
@@ -364,6 +381,11 @@ pub struct Frame {
     pub ack: Option<(usize, usize)>,
     /// Length of a bare header, when the frame may be the header alone.
     pub bare_len: Option<usize>,
+    /// Byte stuffing of the payload: the pattern, and the byte inserted after it.
+    pub stuffing: Option<(Vec<u8>, u8)>,
+    /// For a frame format without dispatch key: the struct (index into [`Protocol::structs`])
+    /// every frame carries.
+    pub message: Option<usize>,
 }
 
 impl Frame {

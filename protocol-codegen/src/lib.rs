@@ -6,6 +6,7 @@
 
 pub mod codegen;
 pub mod diag;
+pub mod docs_md;
 pub mod input;
 pub mod ir;
 pub mod source;

@@ -2,14 +2,15 @@
 //! for one small fixture per spec-language feature (`tests/features/`). Review a snapshot diff
 //! as you would review code. Output must be deterministic: each spec is expanded twice.
 
-use protocol_codegen::codegen::{expand_pretty, RuntimePath};
+use protocol_codegen::codegen::{RuntimePath, expand_pretty};
 use protocol_codegen::diag::render_all;
 use protocol_codegen::source::SpecSource;
 
 fn expand_file(path: &std::path::Path, shown: &str) -> String {
     let text = std::fs::read_to_string(path).expect("spec");
     let source = SpecSource::new(shown, text);
-    let protocol = protocol_codegen::compile(&source).unwrap_or_else(|d| panic!("{}", render_all(&d, &source)));
+    let protocol = protocol_codegen::compile(&source)
+        .unwrap_or_else(|d| panic!("{}", render_all(&d, &source)));
     let once = expand_pretty(&protocol, &RuntimePath::default());
     let twice = expand_pretty(&protocol, &RuntimePath::default());
     assert_eq!(once, twice, "expansion of {shown} is not deterministic");
@@ -19,7 +20,10 @@ fn expand_file(path: &std::path::Path, shown: &str) -> String {
 #[test]
 fn every_bundled_spec() {
     insta::glob!("../../specs", "*.toml", |path| {
-        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("spec.toml");
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or("spec.toml");
         insta::assert_snapshot!(expand_file(path, &format!("specs/{name}")));
     });
 }
@@ -27,7 +31,10 @@ fn every_bundled_spec() {
 #[test]
 fn every_feature_fixture() {
     insta::glob!("features/*.toml", |path| {
-        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("spec.toml");
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or("spec.toml");
         insta::assert_snapshot!(expand_file(path, &format!("tests/features/{name}")));
     });
 }

@@ -19,7 +19,10 @@ pub struct Bytes<const N: usize> {
 impl<const N: usize> Bytes<N> {
     /// No bytes.
     pub const fn new() -> Self {
-        Bytes { len: 0, buf: [0; N] }
+        Bytes {
+            len: 0,
+            buf: [0; N],
+        }
     }
 
     /// A copy of `bytes`, or `None` if it holds more than `N`.
@@ -107,7 +110,10 @@ impl<const N: usize> fmt::Debug for Bytes<N> {
 impl<const N: usize> TryFrom<&[u8]> for Bytes<N> {
     type Error = EncodeError;
     fn try_from(bytes: &[u8]) -> Result<Self, EncodeError> {
-        Self::from_slice(bytes).ok_or(EncodeError::PayloadTooLarge { len: bytes.len(), max: N })
+        Self::from_slice(bytes).ok_or(EncodeError::PayloadTooLarge {
+            len: bytes.len(),
+            max: N,
+        })
     }
 }
 
@@ -124,11 +130,20 @@ mod tests {
         assert_eq!(b.as_slice(), &[2, 3, 4]);
         assert_eq!(r.remaining(), 0);
         let mut r = Reader::new(&data);
-        assert_eq!(Bytes::<3>::read_rest(&mut r), Err(DecodeError::PayloadLength { expected: 3, actual: 4 }));
+        assert_eq!(
+            Bytes::<3>::read_rest(&mut r),
+            Err(DecodeError::PayloadLength {
+                expected: 3,
+                actual: 4
+            })
+        );
         let mut out = [0u8; 3];
         let mut w = Writer::new(&mut out);
         b.write(&mut w).expect("room");
         assert_eq!(out, [2, 3, 4]);
-        assert_eq!(Bytes::<2>::try_from(&data[..]), Err(EncodeError::PayloadTooLarge { len: 4, max: 2 }));
+        assert_eq!(
+            Bytes::<2>::try_from(&data[..]),
+            Err(EncodeError::PayloadTooLarge { len: 4, max: 2 })
+        );
     }
 }

@@ -56,6 +56,12 @@ pub enum DecodeError {
     },
     /// The bytes are not a valid frame.
     Frame(Reject),
+    /// A stuffed payload holds the forbidden pattern without the byte stuffing inserts after
+    /// it.
+    InvalidStuffing,
+    /// A field that must have the size another field states does not (a repeated group's
+    /// element that does not fit the declared data length).
+    SizeMismatch,
 }
 
 impl fmt::Display for DecodeError {
@@ -76,6 +82,16 @@ impl fmt::Display for DecodeError {
             DecodeError::UnknownCommand { key } => write!(f, "unknown command {key:#x}"),
             DecodeError::UnknownDirection => f.write_str("header matches no direction"),
             DecodeError::InvalidEnum { value } => write!(f, "invalid enum value {value:#x}"),
+            DecodeError::InvalidStuffing => {
+                write!(
+                    f,
+                    "stuffed payload: a forbidden pattern is not followed by its stuffing byte"
+                )
+            }
+            DecodeError::SizeMismatch => write!(
+                f,
+                "a field's size does not match the size another field states"
+            ),
             DecodeError::Frame(reason) => write!(f, "invalid frame: {reason}"),
         }
     }

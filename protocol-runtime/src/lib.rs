@@ -95,7 +95,9 @@ pub mod checksum;
 pub mod decoder;
 pub mod encoder;
 pub mod error;
+pub mod group;
 pub mod layout;
+pub mod stuffing;
 pub mod wire;
 
 pub use bytes::Bytes;
@@ -104,6 +106,7 @@ pub use checksum::Checksum;
 pub use decoder::{Event, Frame, Reject, Stats, StreamDecoder};
 pub use encoder::Payload;
 pub use error::{DecodeError, EncodeError};
+pub use group::Group;
 pub use layout::FrameLayout;
 pub use wire::{Reader, Writer};
 
@@ -114,7 +117,10 @@ pub use protocol_macros::{Payload, protocol};
 /// code generator.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::{bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, layout::*, wire::*};
+    pub use crate::{
+        bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, group::*, layout::*,
+        stuffing::*, wire::*,
+    };
     pub use core;
     pub use crc;
 }

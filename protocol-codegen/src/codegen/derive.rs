@@ -229,6 +229,7 @@ pub fn derive_payload(input: &DeriveInput) -> syn::Result<TokenStream> {
         name: input.ident.clone(),
         fields,
         size: None,
+        min_size: None,
     };
     Ok(emit_payload_impl(&def, &paths))
 }

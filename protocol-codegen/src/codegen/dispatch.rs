@@ -42,6 +42,17 @@ pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         out.extend(emit_direction_message(p, &rt));
     }
     out.extend(emit_packet(p, f, &rt));
+    for (fi, mf) in p.frames.iter().enumerate().skip(1) {
+        if let (Transport::Serial, Some(si)) = (mf.transport, mf.message) {
+            out.extend(emit_message_packet(
+                p,
+                mf,
+                si,
+                &frame_prefix(p, &p.frames[fi]),
+                &rt,
+            ));
+        }
+    }
     if p.directions.is_empty() {
         for (fi, cf) in p.frames.iter().enumerate().skip(1) {
             if matches!(cf.transport, Transport::Can { .. }) {
@@ -283,7 +294,10 @@ fn emit_message_enum(
     rt: &TokenStream,
 ) -> TokenStream {
     // Acknowledgements (a frame format with `ack`): a variant without a command.
-    let ack_max = p.frames.first().and_then(|f| f.ack.map(|(_, hl)| f.max_len() - hl - f.trailer_len));
+    let ack_max = p
+        .frames
+        .first()
+        .and_then(|f| f.ack.map(|(_, hl)| f.max_len() - hl - f.trailer_len));
     let doc = doc_attrs(doc);
     let mut variants = Vec::new();
     let mut command_arms = Vec::new();
@@ -540,7 +554,11 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             } else {
                 quote!(frame.len().saturating_sub(TRAILER_LEN))
             };
-            let bare_arm = if bare { quote!(Message::Ack(data) if data.is_empty() => #ack_header_len,) } else { quote!() };
+            let bare_arm = if bare {
+                quote!(Message::Ack(data) if data.is_empty() => #ack_header_len,)
+            } else {
+                quote!()
+            };
             (
                 quote! {
                     if header_value(frame, wire::#flag)? == #equals {
@@ -563,14 +581,44 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 quote!(self.message.command()),
             )
         }
-        None => (quote!(), quote!(), quote!(), quote!(HEADER_LEN), quote!(::core::option::Option::Some(self.message.command()))),
+        None => (
+            quote!(),
+            quote!(),
+            quote!(),
+            quote!(HEADER_LEN),
+            quote!(::core::option::Option::Some(self.message.command())),
+        ),
     };
-    let payload_end = if f.bare_len.is_some() {
-        quote!(if total == start { total } else { total.saturating_sub(TRAILER_LEN) })
+    // Byte stuffing: the payload is unstuffed before it is read, stuffed after it is written.
+    let (unstuff, stuff) = match &f.stuffing {
+        Some(_) => (
+            quote! {
+                let mut unstuffed = [0u8; MAX_PAYLOAD_LEN];
+                let payload = STUFFING.unstuff(payload, &mut unstuffed)?;
+            },
+            quote!(let plen = STUFFING.stuff_in_place(region, plen)?;),
+        ),
+        None => (quote!(), quote!()),
+    };
+    let stuffing_const = match &f.stuffing {
+        Some((after, insert)) => quote! {
+            /// The payload's byte stuffing: the sender inserts `insert` after every `after`.
+            pub const STUFFING: #rt::Stuffing<'static> = #rt::Stuffing { after: &[#(#after),*], insert: #insert };
+        },
+        None => quote!(),
+    };
+    // A bare header (the header alone) has no trailer either.
+    let trailer_of = if f.bare_len.is_some() {
+        quote!(if start == HEADER_LEN || plen > 0 {
+            TRAILER_LEN
+        } else {
+            0
+        })
     } else {
-        quote!(total.saturating_sub(TRAILER_LEN))
+        quote!(TRAILER_LEN)
     };
     quote! {
+        #stuffing_const
         /// A header value of a frame.
         fn header_value(frame: &[u8], field: #rt::WordField) -> ::core::result::Result<u64, #rt::DecodeError> {
             field.read(frame).ok_or(#rt::DecodeError::Truncated { needed: HEADER_LEN, available: frame.len() })
@@ -608,6 +656,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 let payload = frame
                     .get(HEADER_LEN..frame.len().saturating_sub(TRAILER_LEN))
                     .ok_or(#rt::DecodeError::Truncated { needed: HEADER_LEN + TRAILER_LEN, available: frame.len() })?;
+                #unstuff
                 let message = #message;
                 ::core::result::Result::Ok(Packet { header, message })
             }
@@ -626,20 +675,121 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             /// message's direction.
             pub fn encode(&self, buf: &mut [u8]) -> ::core::result::Result<usize, #rt::EncodeError> {
                 #direction_check
-                let total = self.encoded_len();
-                let start = #start_of;
+                let needed = self.encoded_len();
                 let available = buf.len();
+                if available < needed {
+                    return ::core::result::Result::Err(#rt::EncodeError::BufferTooSmall { needed, available });
+                }
+                let start = #start_of;
+                // The payload first, in place: its size on the wire decides the frame's length.
+                let region = buf
+                    .get_mut(start..available.saturating_sub(TRAILER_LEN))
+                    .ok_or(#rt::EncodeError::BufferTooSmall { needed, available })?;
+                let mut w = #rt::Writer::new(region);
+                self.message.write_payload(&mut w)?;
+                let plen = w.position();
+                #stuff
+                let total = start + plen + #trailer_of;
                 let frame = buf.get_mut(..total).ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
                 #(#header_writes)*
                 #ack_flag
                 if let ::core::option::Option::Some(command) = #command_of {
                     #write_key
                 }
-                let payload = frame
-                    .get_mut(start..#payload_end)
-                    .ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
-                self.message.write_payload(&mut #rt::Writer::new(payload))?;
                 LAYOUT.seal(frame)?;
+                ::core::result::Result::Ok(total)
+            }
+        }
+    }
+}
+
+/// `<Name>Packet` for a frame format without dispatch key: every frame carries one struct.
+fn emit_message_packet(
+    p: &Protocol,
+    f: &Frame,
+    si: usize,
+    prefix: &str,
+    rt: &TokenStream,
+) -> TokenStream {
+    let pascal = super::super::validate::pascal_case(&f.name);
+    let header = format_ident!("{}Header", pascal);
+    let packet = format_ident!("{}Packet", pascal);
+    let st = ident(&p.structs[si].name);
+    let layout = super::const_ident(&format!("{prefix}LAYOUT"));
+    let header_len = super::const_ident(&format!("{prefix}HEADER_LEN"));
+    let trailer_len = super::const_ident(&format!("{prefix}TRAILER_LEN"));
+    let users: Vec<_> = user_values(f).collect();
+    let reads = users.iter().map(|v| {
+        let id = ident(&v.name);
+        let c = value_const(prefix, v);
+        let t = prim_type(v.prim);
+        if v.prim == Prim::Bool {
+            quote!(#id: header_value(frame, wire::#c)? != 0)
+        } else {
+            quote!(#id: header_value(frame, wire::#c)? as #t)
+        }
+    });
+    let writes = users.iter().map(|v| {
+        let id = ident(&v.name);
+        let c = value_const(prefix, v);
+        quote!(wire::#c.write(frame, self.header.#id as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)
+    });
+    let doc = format!(
+        " A whole `{}` frame, decoded: the header values and its `{}`.",
+        f.name, p.structs[si].name
+    );
+    quote! {
+        #[doc = #doc]
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct #packet {
+            /// The header values the sender set.
+            pub header: #header,
+            /// What the frame carries.
+            pub payload: #st,
+        }
+        impl #packet {
+            /// Decode the frame at the start of `bytes`, checking its framing first.
+            ///
+            /// # Errors
+            /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they end
+            /// early, `PayloadLength` if the payload's size does not fit the struct.
+            pub fn decode(bytes: &[u8]) -> ::core::result::Result<Self, #rt::DecodeError> {
+                let frame = #layout.parse(bytes)?;
+                Self::from_frame(frame)
+            }
+            /// Decode a frame whose framing a decoder already checked.
+            ///
+            /// # Errors
+            /// `PayloadLength` if the payload's size does not fit the struct, and errors of its
+            /// fields.
+            pub fn from_frame(frame: &[u8]) -> ::core::result::Result<Self, #rt::DecodeError> {
+                let payload = frame
+                    .get(#header_len..frame.len().saturating_sub(#trailer_len))
+                    .ok_or(#rt::DecodeError::Truncated { needed: #header_len + #trailer_len, available: frame.len() })?;
+                ::core::result::Result::Ok(#packet {
+                    header: #header { #(#reads,)* },
+                    payload: <#st as #rt::Payload>::from_bytes(payload)?,
+                })
+            }
+            /// Bytes of the encoded frame.
+            pub fn encoded_len(&self) -> usize {
+                #header_len + #rt::Payload::wire_len(&self.payload) + #trailer_len
+            }
+            /// Encode the frame into the start of `buf`; returns its length.
+            ///
+            /// # Errors
+            /// `EncodeError::BufferTooSmall` if `buf` is too short, `ValueOutOfRange` if a
+            /// header value does not fit its field.
+            pub fn encode(&self, buf: &mut [u8]) -> ::core::result::Result<usize, #rt::EncodeError> {
+                let total = self.encoded_len();
+                let available = buf.len();
+                let frame = buf.get_mut(..total).ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
+                #(#writes)*
+                let payload = frame
+                    .get_mut(#header_len..total.saturating_sub(#trailer_len))
+                    .ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
+                #rt::Payload::write(&self.payload, &mut #rt::Writer::new(payload))?;
+                #layout.seal(frame)?;
                 ::core::result::Result::Ok(total)
             }
         }

@@ -35,7 +35,25 @@ fn order_name(e: Endian, size: usize) -> &'static str {
 pub fn field_type_name(p: &Protocol, f: &Field) -> String {
     match &f.kind {
         FieldKind::Padding => "padding".into(),
-        FieldKind::Bytes { max } => format!("bytes, up to {max}"),
+        FieldKind::Bytes {
+            max,
+            size_from: None,
+        } => format!("bytes, the rest (up to {max})"),
+        FieldKind::Bytes {
+            max,
+            size_from: Some(n),
+        } => format!("bytes, `{n}` of them (up to {max})"),
+        FieldKind::Group { elem, max } => format!(
+            "`{}` repeated to the end (up to {max})",
+            p.structs[*elem].name
+        ),
+        FieldKind::Optional(inner) => {
+            let inner = Field {
+                kind: (**inner).clone(),
+                ..f.clone()
+            };
+            format!("optional {}", field_type_name(p, &inner))
+        }
         FieldKind::Bits { word, .. } => format!("{} bits", word.prim.rust_name()),
         FieldKind::Value { ty, count } => {
             let base = match ty {
@@ -67,7 +85,11 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
 
 fn field_order(f: &Field) -> &'static str {
     match &f.kind {
-        FieldKind::Padding | FieldKind::Bytes { .. } => "-",
+        FieldKind::Padding | FieldKind::Bytes { .. } | FieldKind::Group { .. } => "-",
+        FieldKind::Optional(inner) => field_order(&Field {
+            kind: (**inner).clone(),
+            ..f.clone()
+        }),
         FieldKind::Bits { word, .. } => order_name(word.endian, word.prim.size()),
         FieldKind::Value { ty, .. } => match ty {
             ValueType::Scalar { scalar, .. } | ValueType::Enum(_, scalar) => {

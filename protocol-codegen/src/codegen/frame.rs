@@ -24,7 +24,13 @@ pub fn decide_len(f: &Frame) -> usize {
         Length::Field { value, .. } => word_end(&f.values[*value]),
         Length::Fixed(_) => 0,
     };
-    let constants = f.values.iter().filter(|v| matches!(v.role, Role::Const(_))).map(word_end).max().unwrap_or(0);
+    let constants = f
+        .values
+        .iter()
+        .filter(|v| matches!(v.role, Role::Const(_)))
+        .map(word_end)
+        .max()
+        .unwrap_or(0);
     let checks = f
         .checks
         .iter()
@@ -163,7 +169,9 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
             Length::Field { value, adjust } => {
                 let field = value_const(&prefix, &f.values[*value]);
                 match f.bare_len {
-                    Some(bare) => quote!(#rt::LengthRule::FieldOrBare { field: wire::#field, adjust: #adjust, bare: #bare }),
+                    Some(bare) => {
+                        quote!(#rt::LengthRule::FieldOrBare { field: wire::#field, adjust: #adjust, bare: #bare })
+                    }
                     None => quote!(#rt::LengthRule::Field { field: wire::#field, adjust: #adjust }),
                 }
             }
@@ -283,7 +291,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         .frames
         .iter()
         .skip(1)
-        .filter(|f| f.transport != Transport::Serial)
+        .filter(|f| f.transport != Transport::Serial || f.message.is_some())
     {
         out.extend(emit_header(
             f,

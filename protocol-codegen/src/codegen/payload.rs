@@ -17,6 +17,8 @@ pub struct PayloadDef {
     /// The wire size when the caller knows it (spec structs); otherwise it is computed as a
     /// const expression over the fields (derive, whose nested types are opaque).
     pub size: Option<usize>,
+    /// The smallest wire size, for structs whose size varies (spec structs).
+    pub min_size: Option<usize>,
 }
 
 /// One field (or padding run) in wire order.
@@ -56,13 +58,33 @@ pub enum PKind {
         /// Array length.
         count: Option<usize>,
     },
-    /// Every byte left, as `ty` (the runtime's `Bytes<max>`).
+    /// Bytes, as `ty` (the runtime's `Bytes<max>`): every byte left, or as many as the
+    /// integer field `size_from` says.
     Bytes {
         /// The field's type.
         ty: TokenStream,
         /// The most bytes.
         max: usize,
+        /// The field holding the number of bytes (of this struct, or of the struct that
+        /// repeats this one).
+        size_from: Option<Ident>,
     },
+    /// Elements repeated to the end of the payload, as `ty` (the runtime's `Group<elem, max>`),
+    /// read and written inline so that an element's sized bytes can use this struct's fields.
+    Group {
+        /// The field's type.
+        ty: TokenStream,
+        /// The element type.
+        elem_ty: TokenStream,
+        /// The element's fields.
+        elem: Vec<PField>,
+        /// The most elements.
+        max: usize,
+        /// The element's largest wire size.
+        elem_size: usize,
+    },
+    /// A value present when bytes remain.
+    Optional(Box<PKind>),
     /// An unsigned word whose bits are the struct fields `members`.
     Bits {
         /// The word on the wire.
@@ -152,8 +174,153 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
             let raw = read_scalar(*scalar);
             quote!(#ty::from_raw(#raw)?)
         }
-        PKind::Bytes { ty, .. } => quote!(<#ty>::read_rest(r)?),
-        PKind::Pad(_) | PKind::Bits { .. } => quote!(()),
+        PKind::Bytes {
+            ty,
+            size_from: None,
+            ..
+        } => quote!(<#ty>::read_rest(r)?),
+        PKind::Bytes {
+            ty,
+            size_from: Some(n),
+            ..
+        } => {
+            let var = local(n);
+            quote!(<#ty>::from_slice(r.take(#var as usize)?).ok_or(#rt::DecodeError::SizeMismatch)?)
+        }
+        PKind::Pad(_) | PKind::Bits { .. } | PKind::Group { .. } | PKind::Optional(_) => quote!(()),
+    }
+}
+
+/// The local variable a struct's read code holds field `id` in.
+fn local(id: &Ident) -> Ident {
+    format_ident!("f_{}", id.to_string().trim_start_matches("r#"))
+}
+
+/// An expression reading a whole field (array, optional, group included).
+fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
+    match kind {
+        PKind::Optional(inner) => {
+            let read = read_value(inner, rt);
+            quote!(if r.remaining() > 0 { ::core::option::Option::Some(#read) } else { ::core::option::Option::None })
+        }
+        PKind::Group {
+            ty, elem_ty, elem, ..
+        } => {
+            let mut lets = Vec::new();
+            let mut inits = Vec::new();
+            for f in elem {
+                match (&f.kind, &f.ident) {
+                    (PKind::Pad(n), _) => lets.push(quote!(r.skip(#n)?;)),
+                    (k, Some(id)) => {
+                        let v = format_ident!("e_{}", id.to_string().trim_start_matches("r#"));
+                        let read = read_value(k, rt);
+                        lets.push(quote!(let #v = #read;));
+                        inits.push(quote!(#id: #v));
+                    }
+                    _ => {}
+                }
+            }
+            quote! {{
+                let mut group = <#ty>::new();
+                while r.remaining() > 0 {
+                    #(#lets)*
+                    let available = r.position() + r.remaining();
+                    group
+                        .push(#elem_ty { #(#inits),* })
+                        .map_err(|_| #rt::DecodeError::PayloadLength { expected: <Self as #rt::Payload>::SIZE, actual: available })?;
+                }
+                group
+            }}
+        }
+        k => match count_of(k) {
+            None => read_elem(k, rt),
+            Some(n) => {
+                let read = read_elem(k, rt);
+                let t = elem_type(k);
+                quote! {{
+                    let mut a: [#t; #n] = [<#t as ::core::default::Default>::default(); #n];
+                    for e in a.iter_mut() { *e = #read; }
+                    a
+                }}
+            }
+        },
+    }
+}
+
+/// Statements writing a whole field whose value is `value`; `owner` is the expression whose
+/// fields sized bytes take their size from (`self`).
+fn write_value(
+    kind: &PKind,
+    value: TokenStream,
+    owner: &TokenStream,
+    rt: &TokenStream,
+) -> TokenStream {
+    match kind {
+        PKind::Optional(inner) => {
+            let w = write_value(inner, quote!((*v)), owner, rt);
+            quote!(if let ::core::option::Option::Some(v) = &#value { #w })
+        }
+        PKind::Group { elem, .. } => {
+            let parts = elem.iter().map(|f| match (&f.kind, &f.ident) {
+                (PKind::Pad(n), _) => quote!(w.zeros(#n)?;),
+                (k, Some(id)) => write_value(k, quote!(e.#id), owner, rt),
+                _ => quote!(),
+            });
+            quote!(for e in #value.iter() { #(#parts)* })
+        }
+        PKind::Bytes {
+            size_from: Some(n), ..
+        } => quote! {
+            if #value.len() != #owner.#n as usize {
+                return ::core::result::Result::Err(#rt::EncodeError::ValueOutOfRange);
+            }
+            #value.write(w)?;
+        },
+        k => match count_of(k) {
+            None => write_elem(k, value, rt),
+            Some(_) => {
+                let w1 = write_elem(k, quote!(*e), rt);
+                quote!(for e in #value.iter() { #w1 })
+            }
+        },
+    }
+}
+
+/// The wire size of a field's value, for fields whose size varies.
+fn variable_len(kind: &PKind, value: TokenStream, rt: &TokenStream) -> Option<TokenStream> {
+    match kind {
+        PKind::Bytes { .. } => Some(quote!(#value.len())),
+        PKind::Optional(inner) => {
+            let size = variable_len(inner, quote!(v), rt).unwrap_or_else(|| size_expr(inner, rt));
+            Some(
+                quote!(match &#value { ::core::option::Option::Some(v) => #size, ::core::option::Option::None => 0 }),
+            )
+        }
+        PKind::Group { elem, .. } => {
+            let parts = elem.iter().map(|f| match &f.ident {
+                Some(id) => variable_len(&f.kind, quote!(e.#id), rt)
+                    .unwrap_or_else(|| size_expr(&f.kind, rt)),
+                None => size_expr(&f.kind, rt),
+            });
+            Some(quote!(#value.iter().map(|e| 0 #(+ #parts)*).sum::<usize>()))
+        }
+        _ => None,
+    }
+}
+
+/// The wire size of a fixed-size field.
+fn fixed_size(kind: &PKind) -> usize {
+    let n = count_of(kind).unwrap_or(1);
+    match kind {
+        PKind::Pad(len) => *len,
+        PKind::Scalar { scalar, .. } | PKind::Enum { scalar, .. } => scalar.prim.size() * n,
+        PKind::Bits { word, .. } => word.prim.size(),
+        PKind::Bytes { max, .. } => *max,
+        PKind::Group { max, elem_size, .. } => max * elem_size,
+        PKind::Optional(inner) => fixed_size(inner),
+        // Nested payloads are sized by their own impl; only spec structs call this, whose
+        // nested structs are fixed and whose size the IR knows.
+        PKind::Nested { .. } => 0,
     }
 }
 
@@ -202,7 +369,7 @@ fn write_elem(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream
         PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::write(&#value, w)?;),
         PKind::Enum { scalar, .. } => write_scalar(*scalar, quote!((#value).to_raw())),
         PKind::Bytes { .. } => quote!(#value.write(w)?;),
-        PKind::Pad(_) | PKind::Bits { .. } => quote!(),
+        PKind::Pad(_) | PKind::Bits { .. } | PKind::Group { .. } | PKind::Optional(_) => quote!(),
     }
 }
 
@@ -213,7 +380,14 @@ pub fn elem_type(kind: &PKind) -> TokenStream {
             scale: Some(sc), ..
         } => prim_type(sc.physical),
         PKind::Scalar { scalar, .. } => prim_type(scalar.prim),
-        PKind::Nested { ty, .. } | PKind::Enum { ty, .. } | PKind::Bytes { ty, .. } => ty.clone(),
+        PKind::Nested { ty, .. }
+        | PKind::Enum { ty, .. }
+        | PKind::Bytes { ty, .. }
+        | PKind::Group { ty, .. } => ty.clone(),
+        PKind::Optional(inner) => {
+            let t = field_type(inner);
+            quote!(::core::option::Option<#t>)
+        }
         PKind::Pad(_) | PKind::Bits { .. } => quote!(()),
     }
 }
@@ -252,6 +426,10 @@ fn size_expr(kind: &PKind, rt: &TokenStream) -> TokenStream {
             quote!(#s)
         }
         PKind::Bytes { max, .. } => quote!(#max),
+        PKind::Group { .. } | PKind::Optional(_) => {
+            let s = fixed_size(kind);
+            quote!(#s)
+        }
     }
 }
 
@@ -308,25 +486,10 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
             }
             kind => {
                 let Some(id) = &f.ident else { continue };
-                let var = format_ident!("f_{}", id.to_string().trim_start_matches("r#"));
-                match count_of(kind) {
-                    None => {
-                        writes.push(write_elem(kind, quote!(self.#id), &rt));
-                        let read = read_elem(kind, &rt);
-                        reads.push(quote!(let #var = #read;));
-                    }
-                    Some(_) => {
-                        let w1 = write_elem(kind, quote!(*e), &rt);
-                        writes.push(quote!(for e in self.#id.iter() { #w1 }));
-                        let read = read_elem(kind, &rt);
-                        let n = count_of(kind).unwrap_or(1);
-                        let t = elem_type(kind);
-                        reads.push(quote! {
-                            let mut #var: [#t; #n] = [<#t as ::core::default::Default>::default(); #n];
-                            for e in #var.iter_mut() { *e = #read; }
-                        });
-                    }
-                }
+                let var = local(id);
+                writes.push(write_value(kind, quote!(self.#id), &quote!(self), &rt));
+                let read = read_value(kind, &rt);
+                reads.push(quote!(let #var = #read;));
                 inits.push(quote!(#id: #var));
             }
         }
@@ -336,20 +499,29 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
         None if sizes.is_empty() => quote!(0),
         None => quote!(#(#sizes)+*),
     };
-    // A struct that ends with variable bytes: its minimum size and its actual size.
-    let variable = def.fields.iter().find_map(|f| match (&f.kind, &f.ident) {
-        (PKind::Bytes { max, .. }, Some(id)) => Some((*max, id.clone())),
-        _ => None,
-    });
-    let variable = match variable {
-        Some((max, id)) => quote! {
-            const MIN_SIZE: usize = Self::SIZE - #max;
+    // A struct with fields of variable size: its minimum size and its actual size.
+    let mut fixed = Vec::new();
+    let mut lens = Vec::new();
+    for f in &def.fields {
+        match (variable_len(&f.kind, quote!(x), &rt), &f.ident) {
+            (Some(_), Some(id)) => lens.extend(variable_len(&f.kind, quote!(self.#id), &rt)),
+            _ => fixed.push(size_expr(&f.kind, &rt)),
+        }
+    }
+    let variable = if lens.is_empty() {
+        quote!()
+    } else {
+        let min = match def.min_size {
+            Some(n) => quote!(#n),
+            None => quote!(0 #(+ #fixed)*),
+        };
+        quote! {
+            const MIN_SIZE: usize = #min;
             #[inline]
             fn wire_len(&self) -> usize {
-                Self::MIN_SIZE + self.#id.len()
+                0 #(+ #fixed)* #(+ #lens)*
             }
-        },
-        None => quote!(),
+        }
     };
     quote! {
         impl #rt::Payload for #name {

@@ -165,71 +165,88 @@ fn emit_enum(e: &Enum, paths: &RuntimePath) -> TokenStream {
 
 /// Lower an IR struct into the payload generator's model.
 pub fn payload_def(p: &Protocol, s: &Struct, paths: &RuntimePath) -> PayloadDef {
-    let fields = s
-        .fields
-        .iter()
-        .map(|f| {
-            let kind = match &f.kind {
-                FieldKind::Padding => PKind::Pad(f.size),
-                FieldKind::Bytes { max } => {
-                    let rt = paths.private();
-                    PKind::Bytes { ty: quote!(#rt::Bytes<#max>), max: *max }
-                }
-                FieldKind::Bits { word, members } => PKind::Bits {
-                    word: *word,
-                    members: members
-                        .iter()
-                        .map(|m| PBit {
-                            ident: ident(&m.name),
-                            shift: m.shift,
-                            width: m.width,
-                            ty: match m.enum_index {
-                                Some(i) => BitType::Enum(
-                                    {
-                                        let n = ident(&p.enums[i].name);
-                                        quote!(#n)
-                                    },
-                                    p.enums[i].prim,
-                                ),
-                                None if m.prim == Prim::Bool => BitType::Bool,
-                                None => BitType::Uint(m.prim),
-                            },
-                        })
-                        .collect(),
-                },
-                FieldKind::Value { ty, count } => match ty {
-                    ValueType::Scalar { scalar, scale } => PKind::Scalar {
-                        scalar: *scalar,
-                        scale: *scale,
-                        count: *count,
-                    },
-                    ValueType::Struct(i) => {
-                        let n = ident(&p.structs[*i].name);
-                        PKind::Nested {
-                            ty: quote!(#n),
-                            count: *count,
-                        }
-                    }
-                    ValueType::Enum(i, scalar) => {
-                        let n = ident(&p.enums[*i].name);
-                        PKind::Enum {
-                            ty: quote!(#n),
-                            scalar: *scalar,
-                            count: *count,
-                        }
-                    }
-                },
-            };
-            PField {
-                ident: (!f.name.is_empty()).then(|| ident(&f.name)),
-                kind,
-            }
-        })
-        .collect();
     PayloadDef {
         name: ident(&s.name),
-        fields,
+        fields: payload_fields(p, s, paths),
         size: Some(s.size),
+        min_size: Some(s.min_size),
+    }
+}
+
+fn payload_fields(p: &Protocol, s: &Struct, paths: &RuntimePath) -> Vec<PField> {
+    s.fields
+        .iter()
+        .map(|f| PField {
+            ident: (!f.name.is_empty()).then(|| ident(&f.name)),
+            kind: payload_kind(p, &f.kind, f.size, paths),
+        })
+        .collect()
+}
+
+fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize, paths: &RuntimePath) -> PKind {
+    let rt = paths.private();
+    match kind {
+        FieldKind::Padding => PKind::Pad(size),
+        FieldKind::Bytes { max, size_from } => PKind::Bytes {
+            ty: quote!(#rt::Bytes<#max>),
+            max: *max,
+            size_from: size_from.as_deref().map(ident),
+        },
+        FieldKind::Group { elem, max } => {
+            let e = &p.structs[*elem];
+            let elem_ty = ident(&e.name);
+            PKind::Group {
+                ty: quote!(#rt::Group<#elem_ty, #max>),
+                elem_ty: quote!(#elem_ty),
+                elem: payload_fields(p, e, paths),
+                max: *max,
+                elem_size: e.size,
+            }
+        }
+        FieldKind::Optional(inner) => {
+            PKind::Optional(Box::new(payload_kind(p, inner, size, paths)))
+        }
+        FieldKind::Bits { word, members } => PKind::Bits {
+            word: *word,
+            members: members
+                .iter()
+                .map(|m| PBit {
+                    ident: ident(&m.name),
+                    shift: m.shift,
+                    width: m.width,
+                    ty: match m.enum_index {
+                        Some(i) => {
+                            let n = ident(&p.enums[i].name);
+                            BitType::Enum(quote!(#n), p.enums[i].prim)
+                        }
+                        None if m.prim == Prim::Bool => BitType::Bool,
+                        None => BitType::Uint(m.prim),
+                    },
+                })
+                .collect(),
+        },
+        FieldKind::Value { ty, count } => match ty {
+            ValueType::Scalar { scalar, scale } => PKind::Scalar {
+                scalar: *scalar,
+                scale: *scale,
+                count: *count,
+            },
+            ValueType::Struct(i) => {
+                let n = ident(&p.structs[*i].name);
+                PKind::Nested {
+                    ty: quote!(#n),
+                    count: *count,
+                }
+            }
+            ValueType::Enum(i, scalar) => {
+                let n = ident(&p.enums[*i].name);
+                PKind::Enum {
+                    ty: quote!(#n),
+                    scalar: *scalar,
+                    count: *count,
+                }
+            }
+        },
     }
 }
 
@@ -286,12 +303,7 @@ pub fn emit_structs(p: &Protocol, paths: &RuntimePath) -> TokenStream {
                     } {
                         all_small &= n <= 32;
                     }
-                    if let PKind::Scalar { scalar, scale, .. } = kind {
-                        eq &= !scalar.prim.is_float() && scale.is_none();
-                    }
-                    if let PKind::Nested { .. } = kind {
-                        eq = false;
-                    }
+                    eq &= kind_is_eq(kind);
                     let id = pf
                         .ident
                         .clone()
@@ -317,7 +329,13 @@ pub fn emit_structs(p: &Protocol, paths: &RuntimePath) -> TokenStream {
             quote!()
         };
         let eq = if eq { quote!(Eq, Hash,) } else { quote!() };
-        let imp = emit_payload_impl(&def, paths);
+        // A struct whose sized bytes take their size from the struct that repeats it is read
+        // and written by that struct's code: it has no wire form of its own.
+        let imp = if s.context.is_empty() {
+            emit_payload_impl(&def, paths)
+        } else {
+            quote!()
+        };
         quote! {
             #doc
             #[derive(Debug, Clone, Copy, PartialEq, #eq #default)]
@@ -328,4 +346,14 @@ pub fn emit_structs(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         }
     });
     quote!(#(#items)*)
+}
+
+/// Whether a field's Rust type is `Eq` and `Hash` (no floats, no nested payloads or groups).
+fn kind_is_eq(kind: &PKind) -> bool {
+    match kind {
+        PKind::Scalar { scalar, scale, .. } => !scalar.prim.is_float() && scale.is_none(),
+        PKind::Nested { .. } | PKind::Group { .. } => false,
+        PKind::Optional(inner) => kind_is_eq(inner),
+        PKind::Pad(_) | PKind::Enum { .. } | PKind::Bytes { .. } | PKind::Bits { .. } => true,
+    }
 }

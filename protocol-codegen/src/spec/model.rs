@@ -147,6 +147,20 @@ pub struct FrameDef {
     pub ack: Option<Spanned<AckDef>>,
     /// A frame may be the header alone (up to its header checks): no payload, no frame checks.
     pub bare_header: Option<Spanned<bool>>,
+    /// Byte stuffing of the payload.
+    pub stuffing: Option<Spanned<StuffingDef>>,
+    /// For a frame format without dispatch key: the struct every frame carries.
+    pub message: Option<SStr>,
+}
+
+/// `stuffing = { after = [0xFF, 0xFF, 0xFD], insert = 0xFD }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StuffingDef {
+    /// The pattern after which the sender inserts a byte.
+    pub after: Spanned<Vec<SInt>>,
+    /// The inserted byte.
+    pub insert: SInt,
 }
 
 /// `ack = { field = "is_ack", equals = 1 }`.
@@ -291,8 +305,15 @@ pub struct FieldDef {
     pub ty: Option<SStr>,
     /// Fixed array length: an integer or a constant's name.
     pub count: Option<Spanned<CountDef>>,
-    /// For `type = "bytes"`: the most bytes the field holds.
+    /// For `type = "bytes"`: the most bytes the field holds; with `repeat`: the most elements.
     pub max: Option<SInt>,
+    /// For `type = "bytes"`: the name of an earlier integer field (of this struct, or of the
+    /// struct that repeats this one) that holds the number of bytes.
+    pub size: Option<SStr>,
+    /// The field is a group of elements of its struct type, repeated to the end of the payload.
+    pub repeat: Option<Spanned<bool>>,
+    /// The field may be absent: it is present when bytes remain in the payload.
+    pub optional: Option<Spanned<bool>>,
     /// Padding bytes (written as zero, ignored when read).
     pub pad: Option<SInt>,
     /// Bit members of an integer field.

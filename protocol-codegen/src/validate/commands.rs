@@ -329,9 +329,12 @@ fn lower_payload_refs(
         };
         let size = structs.structs[i].size;
         let min_size = structs.structs[i].min_size;
-        if size > frame.payload_max && min_size != size {
-            ctx.error(r.span(), format!("struct `{}` holds up to {size} bytes, but frame `{}` carries at most {} payload bytes", r.get_ref(), frame.name, frame.payload_max), "lower the `max` of its variable bytes, or raise the payload's `max`");
-        } else if size > frame.payload_max {
+        if let Some(need) = structs.structs[i].context.first() {
+            ctx.error(r.span(), format!("struct `{}` takes a size from `{need}`, a field of the struct that repeats it, so it cannot be a payload itself", r.get_ref()), "use it as the element of a repeated group");
+        }
+        if min_size > frame.payload_max && min_size != size {
+            ctx.error(r.span(), format!("struct `{}` takes at least {min_size} bytes, but frame `{}` carries at most {} payload bytes", r.get_ref(), frame.name, frame.payload_max), "raise the payload's `max` or shrink the struct");
+        } else if size > frame.payload_max && min_size == size {
             ctx.error(
                 r.span(),
                 format!(

@@ -160,7 +160,7 @@ fn lower_frame(
     ctx: &mut Ctx<'_>,
     fname: &SStr,
     def: &FrameDef,
-    _structs: &Structs,
+    structs: &Structs,
     enums: &Enums,
 ) -> Option<Frame> {
     let mut els: Vec<El<'_>> = Vec::new();
@@ -757,17 +757,36 @@ fn lower_frame(
         let a_def = a.get_ref();
         match values.iter().position(|v| &v.name == a_def.field.get_ref()) {
             None => {
-                ctx.error(a_def.field.span(), format!("frame `{}` has no header field `{}`", fname.get_ref(), a_def.field.get_ref()), "name the one-bit flag that marks acknowledgements");
+                ctx.error(
+                    a_def.field.span(),
+                    format!(
+                        "frame `{}` has no header field `{}`",
+                        fname.get_ref(),
+                        a_def.field.get_ref()
+                    ),
+                    "name the one-bit flag that marks acknowledgements",
+                );
                 ok = false;
             }
             Some(vi) if values[vi].width != 1 || !matches!(values[vi].role, Role::User { .. }) => {
-                ctx.error(a_def.field.span(), format!("`{}` is not a one-bit field set by the sender", a_def.field.get_ref()), "the acknowledgement flag is a one-bit member of a header field's `bits`");
+                ctx.error(
+                    a_def.field.span(),
+                    format!(
+                        "`{}` is not a one-bit field set by the sender",
+                        a_def.field.get_ref()
+                    ),
+                    "the acknowledgement flag is a one-bit member of a header field's `bits`",
+                );
                 ok = false;
             }
             Some(vi) => {
                 let equals = *a_def.equals.get_ref();
                 if !(0..=1).contains(&equals) {
-                    ctx.error(a_def.equals.span(), "a one-bit flag equals 0 or 1", "write `equals = 1` (or 0)");
+                    ctx.error(
+                        a_def.equals.span(),
+                        "a one-bit flag equals 0 or 1",
+                        "write `equals = 1` (or 0)",
+                    );
                     ok = false;
                 }
                 // The dispatch words must sit right before the payload.
@@ -776,7 +795,9 @@ fn lower_frame(
                 let mut words = 0;
                 while i > 0 {
                     match &els[i - 1].kind {
-                        Kind::Word(_, idx) if idx.iter().all(|v| dispatch.contains(v)) && !idx.is_empty() => {
+                        Kind::Word(_, idx)
+                            if idx.iter().all(|v| dispatch.contains(v)) && !idx.is_empty() =>
+                        {
                             ack_header_len -= els[i - 1].size;
                             words += idx.len();
                             i -= 1;
@@ -797,12 +818,70 @@ fn lower_frame(
     let bare_len = match &def.bare_header {
         Some(b) if *b.get_ref() => {
             if !matches!(length, Length::Field { .. }) {
-                ctx.error(b.span(), "a bare header needs a length field", "only a frame whose length field can say \"header only\" may be a bare header");
+                ctx.error(
+                    b.span(),
+                    "a bare header needs a length field",
+                    "only a frame whose length field can say \"header only\" may be a bare header",
+                );
                 ok = false;
             }
             Some(ack.map_or(header_len, |(_, n)| n))
         }
         _ => None,
+    };
+    // Rule: stuffing names a non-empty pattern of bytes and a byte to insert.
+    let stuffing = def.stuffing.as_ref().and_then(|st| {
+        let d = st.get_ref();
+        let after = byte_list(ctx, &d.after, "the stuffing pattern");
+        match u8::try_from(*d.insert.get_ref()) {
+            Ok(insert) if !after.is_empty() => Some((after, insert)),
+            Ok(_) => None,
+            Err(_) => {
+                ctx.error(
+                    d.insert.span(),
+                    format!("{} is not a byte", d.insert.get_ref()),
+                    "use a value from 0x00 to 0xFF",
+                );
+                None
+            }
+        }
+    });
+    // Rule: a frame format without a dispatch key may name the struct every frame carries; it
+    // must fit the payload's bounds.
+    let message = match &def.message {
+        None => None,
+        Some(m) if !dispatch.is_empty() || def.dispatch.is_some() => {
+            ctx.error(
+                m.span(),
+                "a frame format has either a dispatch key or one `message`",
+                "remove `dispatch` (every frame carries this struct) or `message`",
+            );
+            ok = false;
+            None
+        }
+        Some(m) => match structs.by_name.get(m.get_ref()) {
+            Some(&i) => {
+                let st = &structs.structs[i];
+                if st.min_size < payload_min || st.min_size > payload_max || (st.size < payload_min)
+                {
+                    ctx.error(m.span(), format!("struct `{}` takes {} to {} bytes, but frame `{}` carries {payload_min} to {payload_max}", st.name, st.min_size, st.size, fname.get_ref()), "make the payload bounds and the struct agree");
+                    ok = false;
+                }
+                Some(i)
+            }
+            None => {
+                let help = match did_you_mean(
+                    m.get_ref(),
+                    structs.structs.iter().map(|s| s.name.as_str()),
+                ) {
+                    Some(b) => format!("did you mean `{b}`?"),
+                    None => "declare it as `[structs.NAME]`".to_string(),
+                };
+                ctx.error(m.span(), format!("unknown struct `{}`", m.get_ref()), help);
+                ok = false;
+                None
+            }
+        },
     };
     if !ok {
         // The commands cannot be checked against a frame whose layout is broken.
@@ -857,6 +936,8 @@ fn lower_frame(
         elements,
         ack,
         bare_len,
+        stuffing,
+        message,
     })
 }
 

@@ -253,7 +253,10 @@ fn visit_struct(
     let mut fields: Vec<Field> = Vec::new();
     let mut offset = 0usize;
     for f in d.fields.get_ref() {
-        if let Some(field) = lower_field(ctx, f, endian, out, enums, constants, offset) {
+        if let Some(mut field) = lower_field(ctx, f, endian, out, enums, constants, offset) {
+            if f.get_ref().optional.as_ref().is_some_and(|o| *o.get_ref()) {
+                field.kind = FieldKind::Optional(Box::new(field.kind));
+            }
             if !field.name.is_empty() && fields.iter().any(|x| x.name == field.name) {
                 let span = f
                     .get_ref()
@@ -279,15 +282,63 @@ fn visit_struct(
             "a command without payload names no struct; remove the struct or add fields",
         );
     }
-    // Rule: variable bytes take every byte left, so they can only be the last field.
-    let mut min_size = offset;
+    // Rule: what takes every byte left (variable bytes without `size`, a repeated group, an
+    // optional field) can only be the last field; sized bytes must name an earlier integer
+    // field of this struct, or be resolved by the struct that repeats this one.
+    let mut min_size = 0usize;
+    let mut unresolved = Vec::new();
     for (i, f) in fields.iter().enumerate() {
-        if let FieldKind::Bytes { max } = f.kind {
+        let span = || {
+            d.fields
+                .get_ref()
+                .iter()
+                .find(|x| {
+                    x.get_ref()
+                        .name
+                        .as_ref()
+                        .is_some_and(|n| n.get_ref() == &f.name)
+                })
+                .map_or(d.fields.span(), Spanned::span)
+        };
+        let tail = match &f.kind {
+            FieldKind::Bytes {
+                size_from: None, ..
+            } => Some("variable bytes"),
+            FieldKind::Group { .. } => Some("a repeated group"),
+            FieldKind::Optional(_) => Some("an optional field"),
+            _ => None,
+        };
+        if let Some(what) = tail {
             if i + 1 != fields.len() {
-                let span = d.fields.get_ref().iter().find(|x| x.get_ref().name.as_ref().is_some_and(|n| n.get_ref() == &f.name)).map_or(d.fields.span(), Spanned::span);
-                ctx.error(span, format!("`{}` holds variable bytes but is not the last field of `{name}`", f.name), "variable bytes take every byte left in the payload: move the field to the end");
+                ctx.error(
+                    span(),
+                    format!("`{}` is {what} but not the last field of `{name}`", f.name),
+                    "it takes every byte left in the payload: move it to the end",
+                );
             }
-            min_size = offset - max;
+        }
+        match &f.kind {
+            FieldKind::Bytes {
+                size_from: Some(src),
+                ..
+            } => {
+                let prior = fields[..i].iter().find(|x| &x.name == src);
+                match prior {
+                    Some(x) if matches!(&x.kind, FieldKind::Value { ty: ValueType::Scalar { scalar, scale: None }, count: None } if scalar.prim.is_unsigned()) => {}
+                    Some(_) => ctx.error(span(), format!("`{src}` is not an unsigned integer field, so it cannot give the size of `{}`", f.name), "name an earlier `u8`/`u16`/`u32` field that holds the number of bytes"),
+                    None => unresolved.push(src.clone()),
+                }
+            }
+            FieldKind::Group { elem, .. } => {
+                // The element's sized bytes may name fields of this struct before the group.
+                for need in &out.structs[*elem].context {
+                    if !fields[..i].iter().any(|x| &x.name == need) {
+                        ctx.error(span(), format!("the elements of `{}` take their size from `{need}`, which `{name}` does not have before the group", f.name), format!("add an integer field `{need}` before `{}`", f.name));
+                    }
+                }
+            }
+            FieldKind::Bytes { .. } | FieldKind::Optional(_) => {}
+            _ => min_size += f.size,
         }
     }
     state.insert(name.to_string(), Visit::Done);
@@ -299,6 +350,7 @@ fn visit_struct(
         fields,
         size: offset,
         min_size,
+        context: unresolved,
     });
     Some(index)
 }
@@ -400,21 +452,86 @@ fn lower_field(
     };
     if ty.get_ref() == "bytes" {
         let Some(max) = &d.max else {
-            ctx.error(ty.span(), format!("variable bytes `{}` need a `max`", name.get_ref()), "add `max = N`: the most bytes the field can hold (decoders store them inline)");
+            ctx.error(
+                ty.span(),
+                format!("variable bytes `{}` need a `max`", name.get_ref()),
+                "add `max = N`: the most bytes the field can hold (decoders store them inline)",
+            );
             return None;
         };
         if *max.get_ref() <= 0 {
-            ctx.error(max.span(), "`max` must be at least 1", "use the largest number of bytes the field may carry");
+            ctx.error(
+                max.span(),
+                "`max` must be at least 1",
+                "use the largest number of bytes the field may carry",
+            );
             return None;
         }
         if count.is_some() || d.bits.is_some() || d.scale.is_some() {
-            ctx.error(f.span(), "variable bytes take only `name`, `type`, `max`, `unit` and `doc`", "remove the other keys");
+            ctx.error(
+                f.span(),
+                "variable bytes take only `name`, `type`, `max`, `unit` and `doc`",
+                "remove the other keys",
+            );
         }
         let max = *max.get_ref() as usize;
-        return Some(Field { name: name.get_ref().clone(), doc: text(&d.doc), offset, size: max, kind: FieldKind::Bytes { max }, unit: text(&d.unit) });
+        let size_from = d.size.as_ref().map(|s| s.get_ref().clone());
+        return Some(Field {
+            name: name.get_ref().clone(),
+            doc: text(&d.doc),
+            offset,
+            size: max,
+            kind: FieldKind::Bytes { max, size_from },
+            unit: text(&d.unit),
+        });
+    }
+    if let Some(sz) = &d.size {
+        ctx.error(
+            sz.span(),
+            "`size` applies to `type = \"bytes\"` fields",
+            "remove `size`",
+        );
+    }
+    if d.repeat.as_ref().is_some_and(|r| *r.get_ref()) {
+        let Some(&elem) = structs.by_name.get(ty.get_ref()) else {
+            ctx.error(
+                ty.span(),
+                format!(
+                    "a repeated group repeats a struct, and `{}` is not one",
+                    ty.get_ref()
+                ),
+                "declare the element as `[structs.NAME]`",
+            );
+            return None;
+        };
+        let Some(max) = d.max.as_ref().filter(|m| *m.get_ref() > 0) else {
+            ctx.error(
+                f.span(),
+                format!(
+                    "repeated group `{}` needs `max`, the most elements",
+                    name.get_ref()
+                ),
+                "add `max = N`: decoders store the elements inline",
+            );
+            return None;
+        };
+        let max = *max.get_ref() as usize;
+        let size = structs.structs[elem].size * max;
+        return Some(Field {
+            name: name.get_ref().clone(),
+            doc: text(&d.doc),
+            offset,
+            size,
+            kind: FieldKind::Group { elem, max },
+            unit: text(&d.unit),
+        });
     }
     if let Some(max) = &d.max {
-        ctx.error(max.span(), "`max` applies to `type = \"bytes\"` fields", "remove `max`, or use `count` for a fixed array");
+        ctx.error(
+            max.span(),
+            "`max` applies to `type = \"bytes\"` fields and repeated groups",
+            "remove `max`, or use `count` for a fixed array",
+        );
     }
     let scalar = parse_prim(ty.get_ref(), endian);
     let unit = text(&d.unit);

@@ -257,7 +257,9 @@ impl FrameLayout<'_> {
         let bare = self.length.bare_len();
         let total = match self.frame_len(header) {
             // A bare header is complete and verified once its header checks hold.
-            Some(t) if Some(t) == bare && t >= span && t > 0 && t <= limit => return Probe::Frame(t),
+            Some(t) if Some(t) == bare && t >= span && t > 0 && t <= limit => {
+                return Probe::Frame(t);
+            }
             Some(t) if t >= span && t > 0 && t >= self.min_len && t <= limit => t,
             _ => return Probe::Reject(Reject::BadLength),
         };

@@ -11,6 +11,7 @@ protocol_runtime::protocol!("../../specs/referee.toml");
 protocol_runtime::protocol!("../../specs/referee2018.toml");
 protocol_runtime::protocol!("../../specs/scout.toml");
 protocol_runtime::protocol!("../../specs/roborts.toml");
+protocol_runtime::protocol!("../../specs/dynamixel.toml");
 
 use hflink::{Header, Message, Packet, Request};
 
@@ -67,4 +68,22 @@ pub fn count_frames(input: &[u8]) -> [usize; 4] {
         }
     }
     counts
+}
+
+/// Decode a Dynamixel status packet (byte-stuffed) and a feedback frame, as firmware would.
+pub fn dynamixel(input: &[u8]) -> (usize, usize) {
+    let (mut packets, mut feedback) = (dynamixel::decoder(), dynamixel::feedback_decoder());
+    let (mut a, mut b) = (input, input);
+    let (mut n, mut m) = (0, 0);
+    while let Some(f) = packets.decode(&mut a) {
+        if dynamixel::Packet::from_frame(f.bytes).is_ok() {
+            n += 1;
+        }
+    }
+    while let Some(f) = feedback.decode(&mut b) {
+        if dynamixel::FeedbackPacket::from_frame(f.bytes).is_ok() {
+            m += 1;
+        }
+    }
+    (n, m)
 }

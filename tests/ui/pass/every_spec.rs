@@ -6,6 +6,7 @@ protocol_runtime::protocol!("specs/referee.toml");
 protocol_runtime::protocol!("specs/referee2018.toml");
 protocol_runtime::protocol!("specs/scout.toml");
 protocol_runtime::protocol!("specs/roborts.toml");
+protocol_runtime::protocol!("specs/dynamixel.toml");
 protocol_runtime::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
 protocol_runtime::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
 protocol_runtime::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
@@ -16,4 +17,5 @@ fn main() {
     let _ = referee::decoder();
     let _ = scout::CanPacket::decode;
     let _ = roborts::decoder();
+    let _ = dynamixel::feedback_decoder();
 }

@@ -1,0 +1,283 @@
+//! The Markdown reference of a spec (`protocol doc`): overview, addresses and directions, each
+//! frame format's layout, the command table, every struct and every enum.
+//!
+//! One function per section, called in document order by [`render`], so that a section can be
+//! added (packet diagrams of the frame formats, say) without touching the others. The layout
+//! tables of frames and structs are the ones rustdoc shows on the generated items
+//! ([`crate::codegen::docs`]), so the reference and the API docs cannot disagree.
+//!
+//! ```
+//! let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../specs/hflink.toml"))?;
+//! let source = protocol_codegen::source::SpecSource::new("specs/hflink.toml", text);
+//! let protocol = protocol_codegen::compile(&source).map_err(|_| "invalid spec")?;
+//! let md = protocol_codegen::docs_md::render(&protocol);
+//! assert!(md.starts_with("# hflink"));
+//! assert!(md.contains("| 0x0c | `SET_ROBOT_SPEED` |"));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use std::fmt::Write as _;
+
+use crate::codegen::docs::{frame_doc, struct_doc};
+use crate::ir::{DirectionRule, Enum, Protocol, Transport, UnknownPolicy};
+
+/// The whole reference, sections in order.
+pub fn render(p: &Protocol) -> String {
+    let mut out = String::new();
+    overview(p, &mut out);
+    addresses(p, &mut out);
+    directions(p, &mut out);
+    constants(p, &mut out);
+    frames(p, &mut out);
+    commands(p, &mut out);
+    structs(p, &mut out);
+    enums(p, &mut out);
+    // One trailing newline, whatever the last section left.
+    while out.ends_with("\n\n") {
+        out.pop();
+    }
+    out
+}
+
+/// A table cell: no line breaks, no unescaped pipes.
+fn cell(text: &str) -> String {
+    text.split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .replace('|', "\\|")
+}
+
+fn overview(p: &Protocol, out: &mut String) {
+    let _ = writeln!(out, "# {}\n", p.name);
+    if !p.version.is_empty() {
+        let _ = writeln!(out, "Spec version: {}.\n", p.version);
+    }
+    if !p.doc.trim().is_empty() {
+        let _ = writeln!(out, "{}\n", p.doc.trim());
+    }
+    let _ = writeln!(
+        out,
+        "{} frame format{}, {} command{}, {} struct{}, {} enum{}.\n",
+        p.frames.len(),
+        plural(p.frames.len()),
+        p.commands.len(),
+        plural(p.commands.len()),
+        p.structs.len(),
+        plural(p.structs.len()),
+        p.enums.len(),
+        plural(p.enums.len())
+    );
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
+fn addresses(p: &Protocol, out: &mut String) {
+    if p.addresses.is_empty() {
+        return;
+    }
+    out.push_str("## Addresses\n\n| name | addresses | meaning |\n|---|---|---|\n");
+    for a in &p.addresses {
+        let range = if a.first == a.last {
+            format!("`{:#04x}`", a.first)
+        } else {
+            format!("`{:#04x}` ..= `{:#04x}`", a.first, a.last)
+        };
+        let _ = writeln!(out, "| `{}` | {range} | {} |", a.name, cell(&a.doc));
+    }
+    out.push('\n');
+}
+
+fn directions(p: &Protocol, out: &mut String) {
+    if p.directions.is_empty() {
+        return;
+    }
+    out.push_str("## Directions\n\nA command's payload depends on the direction of the frame, told by its header (rules tested in order):\n\n| direction | when | meaning |\n|---|---|---|\n");
+    let value = |i: usize| {
+        p.frames
+            .first()
+            .and_then(|f| f.values.get(i))
+            .map_or("?", |v| v.name.as_str())
+    };
+    for d in &p.directions {
+        let rule = match &d.rule {
+            DirectionRule::InSet { value: v, set } => format!(
+                "`{}` in `{}`",
+                value(*v),
+                p.addresses.get(*set).map_or("?", |a| a.name.as_str())
+            ),
+            DirectionRule::Equals { value: v, equals } => {
+                format!("`{}` = `{equals:#x}`", value(*v))
+            }
+        };
+        let _ = writeln!(out, "| {} | {rule} | {} |", d.name, cell(&d.doc));
+    }
+    out.push('\n');
+}
+
+fn constants(p: &Protocol, out: &mut String) {
+    if p.constants.is_empty() {
+        return;
+    }
+    out.push_str("## Constants\n\n| name | value | meaning |\n|---|---:|---|\n");
+    for c in &p.constants {
+        let _ = writeln!(out, "| `{}` | {} | {} |", c.name, c.value, cell(&c.doc));
+    }
+    out.push('\n');
+}
+
+/// Each frame format: its transport and its layout table.
+fn frames(p: &Protocol, out: &mut String) {
+    out.push_str("## Frame formats\n\n");
+    for (i, f) in p.frames.iter().enumerate() {
+        let _ = writeln!(out, "### `{}`\n", f.name);
+        let transport = match f.transport {
+            Transport::Serial => "a byte stream; frames are found by their sync bytes".to_string(),
+            Transport::Can { extended } => format!(
+                "CAN ({} ids); the table shows the frame as its checks see it: the id as a big-endian `u32`, the data length, then the data bytes",
+                if extended { "29-bit" } else { "11-bit" }
+            ),
+        };
+        let role = if i == 0 {
+            " The default frame format."
+        } else {
+            ""
+        };
+        let _ = writeln!(out, "Transport: {transport}.{role}\n");
+        out.push_str(frame_doc(f).trim_end());
+        out.push_str("\n\n");
+    }
+}
+
+/// The command table: id, name, payload per direction with its size, doc.
+fn commands(p: &Protocol, out: &mut String) {
+    if p.commands.is_empty() {
+        return;
+    }
+    let key: Vec<&str> = p
+        .frames
+        .first()
+        .map(|f| {
+            f.dispatch
+                .iter()
+                .filter_map(|&i| f.values.get(i))
+                .map(|v| v.name.as_str())
+                .collect()
+        })
+        .unwrap_or_default();
+    let can = p.commands.iter().any(|c| c.can_id.is_some());
+    let slots: Vec<String> = if p.directions.is_empty() {
+        vec!["payload".into()]
+    } else {
+        p.directions.iter().map(|d| d.name.clone()).collect()
+    };
+    let _ = writeln!(
+        out,
+        "## Commands\n\nThe id is the value of the dispatch key ({}).\n",
+        key.iter()
+            .map(|k| format!("`{k}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let mut head = String::from("| id |");
+    let mut rule = String::from("|---|");
+    if can {
+        head.push_str(" CAN id |");
+        rule.push_str("---|");
+    }
+    head.push_str(" name |");
+    rule.push_str("---|");
+    for s in &slots {
+        let _ = write!(head, " {s} |");
+        rule.push_str("---|");
+    }
+    head.push_str(" doc |");
+    rule.push_str("---|");
+    let _ = writeln!(out, "{head}\n{rule}");
+    for c in &p.commands {
+        let ids: Vec<String> = c.id.iter().map(|v| format!("{v:#04x}")).collect();
+        let mut row = format!("| {} |", ids.join(", "));
+        if can {
+            let _ = write!(
+                row,
+                " {} |",
+                c.can_id.map_or("-".into(), |v| format!("{v:#05x}"))
+            );
+        }
+        let _ = write!(row, " `{}` |", c.name);
+        for i in 0..slots.len() {
+            let text = match c.payloads.get(i).copied().flatten() {
+                Some(si) => {
+                    let s = &p.structs[si];
+                    format!("[`{}`](#{}) ({} B)", s.name, s.name.to_lowercase(), s.size)
+                }
+                None => "empty".into(),
+            };
+            let _ = write!(row, " {text} |");
+        }
+        let _ = writeln!(row, " {} |", cell(&c.doc));
+        out.push_str(&row);
+    }
+    out.push('\n');
+}
+
+/// Every struct, with its wire layout table.
+fn structs(p: &Protocol, out: &mut String) {
+    if p.structs.is_empty() {
+        return;
+    }
+    out.push_str("## Structs\n\n");
+    for s in &p.structs {
+        let _ = writeln!(out, "### {}\n", s.name);
+        out.push_str(struct_doc(p, s).trim());
+        out.push_str("\n\n");
+    }
+}
+
+/// Every enum with its values.
+fn enums(p: &Protocol, out: &mut String) {
+    if p.enums.is_empty() {
+        return;
+    }
+    out.push_str("## Enums\n\n");
+    for e in &p.enums {
+        enum_section(e, out);
+    }
+}
+
+/// A variant's value: the IR holds two's complement bits, a signed enum shows the number.
+fn value_text(e: &Enum, bits: u64) -> String {
+    let width = 8 * e.prim.size() as u32;
+    if e.prim.is_signed() && width < 64 {
+        let shift = 64 - width;
+        (((bits << shift) as i64) >> shift).to_string()
+    } else if e.prim.is_signed() {
+        (bits as i64).to_string()
+    } else {
+        bits.to_string()
+    }
+}
+
+fn enum_section(e: &Enum, out: &mut String) {
+    let _ = writeln!(out, "### {}\n", e.name);
+    if !e.doc.trim().is_empty() {
+        let _ = writeln!(out, "{}\n", e.doc.trim());
+    }
+    let unknown = match e.unknown {
+        UnknownPolicy::Reject => "a value with no variant is a decode error",
+        UnknownPolicy::Keep => "a value with no variant is kept as it is",
+    };
+    let _ = writeln!(out, "On the wire as `{}`; {unknown}.\n", e.prim.rust_name());
+    out.push_str("| value | name | meaning |\n|---:|---|---|\n");
+    for v in &e.variants {
+        let _ = writeln!(
+            out,
+            "| {} | `{}` | {} |",
+            value_text(e, v.value),
+            v.name,
+            cell(&v.doc)
+        );
+    }
+    out.push('\n');
+}
