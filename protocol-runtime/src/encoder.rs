@@ -189,13 +189,13 @@ pub trait Payload: Sized {
     /// # Errors
     ///
     /// [`DecodeError::PayloadLength`] if `bytes` is shorter than the value (then `expected` is
-    /// [`SIZE`](Self::SIZE)) or longer (then `expected` is the bytes read); the errors of
+    /// [`MIN_SIZE`](Self::MIN_SIZE)) or longer (then `expected` is the bytes read); the errors of
     /// [`read`](Self::read) otherwise.
     fn from_bytes(bytes: &[u8]) -> Result<Self, DecodeError> {
         let mut r = Reader::new(bytes);
         let value = Self::read(&mut r).map_err(|e| match e {
             DecodeError::Truncated { .. } => DecodeError::PayloadLength {
-                expected: Self::SIZE,
+                expected: Self::MIN_SIZE,
                 actual: bytes.len(),
             },
             other => other,
