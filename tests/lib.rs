@@ -39,3 +39,55 @@ impl fmt::Debug for F<'_> {
         Ok(())
     }
 }
+
+/// The bytes of a vector stream and its `expected_frames` as (offset, bytes).
+///
+/// # Panics
+/// When the vector lacks them.
+pub fn stream_vector(stream: &Value) -> (Vec<u8>, Vec<(u64, Vec<u8>)>) {
+    let bytes = hex(stream["hex"].as_str().expect("stream hex"));
+    let expected = stream["expected_frames"]
+        .as_array()
+        .expect("expected_frames")
+        .iter()
+        .map(|f| {
+            (
+                f["offset"].as_u64().expect("offset"),
+                hex(f["hex"].as_str().expect("frame hex")),
+            )
+        })
+        .collect();
+    (bytes, expected)
+}
+
+/// Feed `bytes` to a fresh decoder of `layout` in chunks of every size from 1 to the whole
+/// stream; every run must yield exactly `expected` (offset and bytes), every byte must be
+/// accounted for, and `each` sees every frame (to check it decodes).
+///
+/// # Panics
+/// On the first chunk size whose frames differ.
+pub fn assert_stream_at_every_chunk_size<const N: usize>(
+    layout: &'static protocol_runtime::FrameLayout<'static>,
+    bytes: &[u8],
+    expected: &[(u64, Vec<u8>)],
+    mut each: impl FnMut(&[u8]),
+) {
+    for chunk in 1..=bytes.len() {
+        let mut dec = protocol_runtime::StreamDecoder::<N>::new(layout);
+        let mut got = Vec::new();
+        for part in bytes.chunks(chunk) {
+            let mut input = part;
+            while let Some(frame) = dec.decode(&mut input) {
+                each(frame.bytes);
+                got.push((frame.offset, frame.bytes.to_vec()));
+            }
+        }
+        assert_eq!(got, expected, "chunk size {chunk}");
+        let s = dec.stats();
+        assert_eq!(
+            s.frame_bytes + s.skipped_bytes + dec.pending() as u64,
+            bytes.len() as u64,
+            "chunk size {chunk}: every byte accounted for"
+        );
+    }
+}

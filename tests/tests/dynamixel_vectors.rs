@@ -5,7 +5,7 @@
 //! against frames built here by hand from the blog's layout.
 
 use protocol_runtime::{Bytes, DecodeError, Group};
-use protocol_tests::{F, hex, load_vectors};
+use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
 protocol_runtime::protocol!("../specs/dynamixel.toml");
@@ -176,32 +176,16 @@ fn a_servo_whose_data_disagrees_with_data_length_is_an_error_both_ways() {
 #[test]
 fn status_stream_yields_expected_packets_at_every_chunk_size() {
     let v = load_vectors("dynamixel_protocol2.json");
-    let stream = &v["streams"][0];
-    let bytes = hex(stream["hex"].as_str().expect("hex"));
-    let expected: Vec<(u64, Vec<u8>)> = stream["expected_frames"]
-        .as_array()
-        .expect("expected")
-        .iter()
-        .map(|f| (u(f, "offset"), hex(f["hex"].as_str().expect("hex"))))
-        .collect();
-    for chunk in 1..=bytes.len() {
-        let mut dec = decoder();
-        let mut got = Vec::new();
-        for part in bytes.chunks(chunk) {
-            let mut input = part;
-            while let Some(frame) = dec.decode(&mut input) {
-                assert!(matches!(
-                    Packet::from_frame(frame.bytes),
-                    Ok(Packet {
-                        message: Message::Status(_),
-                        ..
-                    })
-                ));
-                got.push((frame.offset, frame.bytes.to_vec()));
-            }
-        }
-        assert_eq!(got, expected, "chunk size {chunk}");
-    }
+    let (bytes, expected) = stream_vector(&v["streams"][0]);
+    assert_stream_at_every_chunk_size::<MAX_FRAME_LEN>(&LAYOUT, &bytes, &expected, |frame| {
+        assert!(matches!(
+            Packet::from_frame(frame),
+            Ok(Packet {
+                message: Message::Status(_),
+                ..
+            })
+        ));
+    });
 }
 
 /// A feedback frame built by hand from the blog's layout: `12 34 LEN`, per servo position and

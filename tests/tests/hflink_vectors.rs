@@ -3,7 +3,7 @@
 //! yields exactly its expected frames at every chunk size.
 
 use protocol_runtime::{DecodeError, Reject};
-use protocol_tests::{F, hex, load_vectors};
+use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
 protocol_runtime::protocol!("../specs/hflink.toml");
@@ -195,36 +195,11 @@ fn every_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
 #[test]
 fn stream_yields_expected_frames_at_every_chunk_size() {
     let v = load_vectors("hflink.json");
-    for stream in v["streams"].as_array().expect("streams") {
-        let bytes = hex(stream["hex"].as_str().expect("hex"));
-        let expected: Vec<(u64, Vec<u8>)> = stream["expected_frames"]
-            .as_array()
-            .expect("expected_frames")
-            .iter()
-            .map(|f| (u_of(f, "offset"), hex(f["hex"].as_str().expect("hex"))))
-            .collect();
-        for chunk in 1..=bytes.len() {
-            let mut dec = decoder();
-            let mut got = Vec::new();
-            for part in bytes.chunks(chunk) {
-                let mut input = part;
-                while let Some(frame) = dec.decode(&mut input) {
-                    let packet =
-                        Packet::from_frame(frame.bytes).expect("every expected frame decodes");
-                    assert_eq!(packet.header.sender, 0x11);
-                    got.push((frame.offset, frame.bytes.to_vec()));
-                }
-            }
-            assert_eq!(got, expected, "chunk size {chunk}");
-            let s = dec.stats();
-            assert_eq!(s.frames, expected.len() as u64);
-            assert_eq!(
-                s.frame_bytes + s.skipped_bytes + dec.pending() as u64,
-                bytes.len() as u64,
-                "chunk size {chunk}: every byte accounted for"
-            );
-        }
-    }
+    let (bytes, expected) = stream_vector(&v["streams"][0]);
+    assert_stream_at_every_chunk_size::<MAX_FRAME_LEN>(&LAYOUT, &bytes, &expected, |frame| {
+        let packet = Packet::from_frame(frame).expect("every expected frame decodes");
+        assert_eq!(packet.header.sender, 0x11);
+    });
 }
 
 #[test]

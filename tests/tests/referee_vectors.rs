@@ -3,7 +3,7 @@
 //! exact bytes; the stream yields exactly its expected frames at every chunk size.
 
 use protocol_runtime::DecodeError;
-use protocol_tests::{F, hex, load_vectors};
+use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
 protocol_runtime::protocol!("../specs/referee.toml");
@@ -71,7 +71,10 @@ fn expected(cmd: u64, v: &Value) -> Option<Message> {
         }),
         0x0301 => {
             let (head, data) = match v["data_cmd_id"].as_u64() {
-                Some(id) => ([id, u(v, "sender_ID"), u(v, "receiver_ID")], hex(v["data_hex"].as_str().expect("data"))),
+                Some(id) => (
+                    [id, u(v, "sender_ID"), u(v, "receiver_ID")],
+                    hex(v["data_hex"].as_str().expect("data")),
+                ),
                 // The 118-byte vector records the whole payload: its first 6 bytes are the
                 // sub-header.
                 None => {
@@ -109,7 +112,14 @@ fn every_2019_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
             // A 0x0301 frame without its 6-byte sub-header: the original firmware hands it on,
             // here it is a payload length error.
             assert_eq!(u(frame, "data_length"), 0, "{name}");
-            assert_eq!(Packet::decode(&bytes), Err(DecodeError::PayloadLength { expected: 6, actual: 0 }), "{name}");
+            assert_eq!(
+                Packet::decode(&bytes),
+                Err(DecodeError::PayloadLength {
+                    expected: 6,
+                    actual: 0
+                }),
+                "{name}"
+            );
             continue;
         };
         let packet = Packet {
@@ -130,26 +140,10 @@ fn every_2019_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
 #[test]
 fn stream_yields_expected_frames_at_every_chunk_size() {
     let v = load_vectors("robomaster_referee.json");
-    for stream in v["streams"].as_array().expect("streams") {
-        let bytes = hex(stream["hex"].as_str().expect("hex"));
-        let expected: Vec<(u64, Vec<u8>)> = stream["expected_frames"]
-            .as_array()
-            .expect("expected_frames")
-            .iter()
-            .map(|f| (u(f, "offset"), hex(f["hex"].as_str().expect("hex"))))
-            .collect();
-        for chunk in 1..=bytes.len() {
-            let mut dec = decoder();
-            let mut got = Vec::new();
-            for part in bytes.chunks(chunk) {
-                let mut input = part;
-                while let Some(frame) = dec.decode(&mut input) {
-                    got.push((frame.offset, frame.bytes.to_vec()));
-                }
-            }
-            assert_eq!(got, expected, "chunk size {chunk}");
-        }
-    }
+    let (bytes, expected) = stream_vector(&v["streams"][0]);
+    assert_stream_at_every_chunk_size::<MAX_FRAME_LEN>(&LAYOUT, &bytes, &expected, |frame| {
+        assert!(Packet::from_frame(frame).is_ok());
+    });
 }
 
 mod season_2018 {

@@ -4,7 +4,7 @@
 //! frames at every chunk size; what the original rejects is rejected.
 
 use protocol_runtime::{Bytes, DecodeError, Reject};
-use protocol_tests::{hex, load_vectors, F};
+use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
 protocol_runtime::protocol!("../specs/roborts.toml");
@@ -32,7 +32,9 @@ fn header(h: &Value) -> Header {
 fn expected(frame: &Value) -> Message {
     let v = &frame["fields"];
     if frame["header"]["is_ack"] == 1 {
-        return Message::Ack(Bytes::from_slice(&hex(frame["data_hex"].as_str().unwrap_or(""))).expect("fits"));
+        return Message::Ack(
+            Bytes::from_slice(&hex(frame["data_hex"].as_str().unwrap_or(""))).expect("fits"),
+        );
     }
     match (u(frame, "cmd_set"), u(frame, "cmd_id")) {
         (0x03, 0x03) => Message::SetGimbalAngle(GimbalAngle {
@@ -48,7 +50,9 @@ fn expected(frame: &Value) -> Message {
             rotate_x_offset: i(v, "rotate_x_offset") as i16,
             rotate_y_offset: i(v, "rotate_y_offset") as i16,
         }),
-        (0x00, 0x01) => Message::Heartbeat(Heartbeat { heartbeat: u(v, "heartbeat") as u32 }),
+        (0x00, 0x01) => Message::Heartbeat(Heartbeat {
+            heartbeat: u(v, "heartbeat") as u32,
+        }),
         (0x01, 0x01) => Message::RefereeSendData(SupplyProjectileBooking {
             cmd: u(v, "cmd") as u16,
             supply_projectile_id: u(v, "supply_projectile_id") as u8,
@@ -57,9 +61,13 @@ fn expected(frame: &Value) -> Message {
         }),
         (0xFF, 0x00) => {
             // "bytes (i*7+0xAA)&0xFF, i=0..1004"
-            let data: Vec<u8> = (0..1005u32).map(|i| ((i * 7 + 0xAA) & 0xFF) as u8).collect();
+            let data: Vec<u8> = (0..1005u32)
+                .map(|i| ((i * 7 + 0xAA) & 0xFF) as u8)
+                .collect();
             assert_eq!(data, hex(frame["data_hex"].as_str().expect("data")));
-            Message::TextEchoTransmit(RawData { data: Bytes::from_slice(&data).expect("1005 bytes fit") })
+            Message::TextEchoTransmit(RawData {
+                data: Bytes::from_slice(&data).expect("1005 bytes fit"),
+            })
         }
         (0x02, 0x01) => Message::PushChassisInfo(ChassisInfo {
             gyro_angle: i(v, "gyro_angle") as i16,
@@ -84,7 +92,12 @@ fn expected(frame: &Value) -> Message {
             mains_power_shooter_output: u(v, "mains_power_shooter_output") == 1,
         }),
         (0x04, 0x02) => {
-            let d: Vec<i16> = v["distance"].as_array().expect("distance").iter().map(|x| x.as_i64().expect("int") as i16).collect();
+            let d: Vec<i16> = v["distance"]
+                .as_array()
+                .expect("distance")
+                .iter()
+                .map(|x| x.as_i64().expect("int") as i16)
+                .collect();
             Message::PushUwbInfo(UwbInfo {
                 x: i(v, "x") as i16,
                 y: i(v, "y") as i16,
@@ -105,10 +118,15 @@ fn every_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
     for frame in v["frames"].as_array().expect("frames") {
         let name = frame["name"].as_str().unwrap_or("?");
         let bytes = hex(frame["hex"].as_str().expect("hex"));
-        let packet = Packet { header: header(&frame["header"]), message: expected(frame) };
+        let packet = Packet {
+            header: header(&frame["header"]),
+            message: expected(frame),
+        };
         assert_eq!(Packet::decode(&bytes), Ok(packet), "{name}: decode");
         let mut buf = [0u8; MAX_FRAME_LEN];
-        let len = packet.encode(&mut buf).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let len = packet
+            .encode(&mut buf)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(F(&buf[..len]), F(&bytes), "{name}: encode");
         n += 1;
     }
@@ -118,27 +136,11 @@ fn every_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
 #[test]
 fn stream_yields_expected_frames_at_every_chunk_size() {
     let v = load_vectors("roborts_sdk.json");
-    let stream = &v["streams"][0];
-    let bytes = hex(stream["hex"].as_str().expect("hex"));
-    let expected: Vec<(u64, Vec<u8>)> = stream["expected_frames"]
-        .as_array()
-        .expect("expected")
-        .iter()
-        .map(|f| (u(f, "offset"), hex(f["hex"].as_str().expect("hex"))))
-        .collect();
-    for chunk in 1..=bytes.len() {
-        let mut dec = decoder();
-        let mut got = Vec::new();
-        for part in bytes.chunks(chunk) {
-            let mut input = part;
-            while let Some(frame) = dec.decode(&mut input) {
-                let p = Packet::from_frame(frame.bytes).expect("decodes");
-                assert!(p.message.command().is_some());
-                got.push((frame.offset, frame.bytes.to_vec()));
-            }
-        }
-        assert_eq!(got, expected, "chunk size {chunk}");
-    }
+    let (bytes, expected) = stream_vector(&v["streams"][0]);
+    assert_stream_at_every_chunk_size::<MAX_FRAME_LEN>(&LAYOUT, &bytes, &expected, |frame| {
+        let p = Packet::from_frame(frame).expect("decodes");
+        assert!(p.message.command().is_some());
+    });
 }
 
 /// Re-seal a header after editing it, so that only the edited rule can reject it.
@@ -161,33 +163,61 @@ fn with_header_crc(mut header: [u8; 12]) -> [u8; 12] {
 #[test]
 fn rejects_what_the_original_rejects() {
     // The header-only acknowledgement of the vectors.
-    let ack: [u8; 12] = hex("aa0c0025000200000700a0bc").try_into().expect("12 bytes");
+    let ack: [u8; 12] = hex("aa0c0025000200000700a0bc")
+        .try_into()
+        .expect("12 bytes");
     assert!(Packet::decode(&ack).is_ok());
     // Version 1 (bits 10..16 of the length word).
     let mut h = ack;
     h[2] |= 0x04;
-    assert_eq!(LAYOUT.parse(&with_header_crc(h)), Err(DecodeError::Frame(Reject::BadHeader)));
+    assert_eq!(
+        LAYOUT.parse(&with_header_crc(h)),
+        Err(DecodeError::Frame(Reject::BadHeader))
+    );
     // Reserved bits of the session byte.
     let mut h = ack;
     h[3] |= 0x80;
-    assert_eq!(LAYOUT.parse(&with_header_crc(h)), Err(DecodeError::Frame(Reject::BadHeader)));
+    assert_eq!(
+        LAYOUT.parse(&with_header_crc(h)),
+        Err(DecodeError::Frame(Reject::BadHeader))
+    );
     // reserved1.
     let mut h = ack;
     h[6] = 1;
-    assert_eq!(LAYOUT.parse(&with_header_crc(h)), Err(DecodeError::Frame(Reject::BadHeader)));
+    assert_eq!(
+        LAYOUT.parse(&with_header_crc(h)),
+        Err(DecodeError::Frame(Reject::BadHeader))
+    );
     // A length below 12, and lengths 13 to 15 (no room for the CRC32).
     for len in [0u8, 5, 11, 13, 14, 15] {
         let mut h = ack;
         h[1] = len;
-        assert_eq!(LAYOUT.parse(&with_header_crc(h)), Err(DecodeError::Frame(Reject::BadLength)), "length {len}");
+        assert_eq!(
+            LAYOUT.parse(&with_header_crc(h)),
+            Err(DecodeError::Frame(Reject::BadLength)),
+            "length {len}"
+        );
     }
     // A command payload of 1006 bytes would wrap the 10-bit length: the payload type cannot
     // even hold it, and the largest ones (1005 bytes of command data, 1007 of ack data) encode
     // to a 1023-byte frame.
     assert!(Bytes::<1005>::from_slice(&[0u8; 1006]).is_none());
-    let header = Header { session_id: 0, sender: 0, receiver: 2, seq_num: 0 };
-    let largest_ack = Packet { header, message: Message::Ack(Bytes::from_slice(&[7u8; 1007]).expect("fits")) };
-    let largest_cmd = Packet { header, message: Message::TextEchoTransmit(RawData { data: Bytes::from_slice(&[7u8; 1005]).expect("fits") }) };
+    let header = Header {
+        session_id: 0,
+        sender: 0,
+        receiver: 2,
+        seq_num: 0,
+    };
+    let largest_ack = Packet {
+        header,
+        message: Message::Ack(Bytes::from_slice(&[7u8; 1007]).expect("fits")),
+    };
+    let largest_cmd = Packet {
+        header,
+        message: Message::TextEchoTransmit(RawData {
+            data: Bytes::from_slice(&[7u8; 1005]).expect("fits"),
+        }),
+    };
     for p in [largest_ack, largest_cmd] {
         let mut buf = [0u8; 1100];
         assert_eq!(p.encode(&mut buf), Ok(1023));

@@ -73,22 +73,7 @@ fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> TokenStream {
     let header_len = super::const_ident(&format!("{prefix}HEADER_LEN"));
     let trailer_len = super::const_ident(&format!("{prefix}TRAILER_LEN"));
     let prefix_can_id = super::const_ident(&format!("{prefix}can_id"));
-    let users: Vec<_> = user_values(f).collect();
-    let reads = users.iter().map(|v| {
-        let id = ident(&v.name);
-        let c = value_const(prefix, v);
-        let t = prim_type(v.prim);
-        if v.prim == Prim::Bool {
-            quote!(#id: header_value(frame, wire::#c)? != 0)
-        } else {
-            quote!(#id: header_value(frame, wire::#c)? as #t)
-        }
-    });
-    let writes = users.iter().map(|v| {
-        let id = ident(&v.name);
-        let c = value_const(prefix, v);
-        quote!(wire::#c.write(frame, self.header.#id as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)
-    });
+    let (reads, writes) = header_codec(f, prefix, rt);
     let doc = format!(
         " A whole `{}` CAN frame, decoded: the header values and the message.",
         f.name
@@ -461,24 +446,7 @@ fn direction_test(p: &Protocol, f: &Frame, rule: &DirectionRule) -> TokenStream 
 }
 
 fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
-    let header_fields: Vec<TokenStream> = user_values(f)
-        .map(|v| {
-            let id = ident(&v.name);
-            let c = value_const("", v);
-            let conv = if v.prim == Prim::Bool {
-                quote!(header_value(frame, wire::#c)? != 0)
-            } else {
-                let t = prim_type(v.prim);
-                quote!(header_value(frame, wire::#c)? as #t)
-            };
-            quote!(#id: #conv)
-        })
-        .collect();
-    let header_writes = user_values(f).map(|v| {
-        let id = ident(&v.name);
-        let c = value_const("", v);
-        quote!(wire::#c.write(frame, self.header.#id as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)
-    });
+    let (header_fields, header_writes) = header_codec(f, "", rt);
     let key_consts: Vec<_> = f
         .dispatch
         .iter()
@@ -718,22 +686,7 @@ fn emit_message_packet(
     let layout = super::const_ident(&format!("{prefix}LAYOUT"));
     let header_len = super::const_ident(&format!("{prefix}HEADER_LEN"));
     let trailer_len = super::const_ident(&format!("{prefix}TRAILER_LEN"));
-    let users: Vec<_> = user_values(f).collect();
-    let reads = users.iter().map(|v| {
-        let id = ident(&v.name);
-        let c = value_const(prefix, v);
-        let t = prim_type(v.prim);
-        if v.prim == Prim::Bool {
-            quote!(#id: header_value(frame, wire::#c)? != 0)
-        } else {
-            quote!(#id: header_value(frame, wire::#c)? as #t)
-        }
-    });
-    let writes = users.iter().map(|v| {
-        let id = ident(&v.name);
-        let c = value_const(prefix, v);
-        quote!(wire::#c.write(frame, self.header.#id as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)
-    });
+    let (reads, writes) = header_codec(f, prefix, rt);
     let doc = format!(
         " A whole `{}` frame, decoded: the header values and its `{}`.",
         f.name, p.structs[si].name
@@ -794,4 +747,23 @@ fn emit_message_packet(
             }
         }
     }
+}
+
+/// Reading the user-set header values of frame `f` into a header struct's fields, and writing
+/// them back from `self.header`, through the `wire` consts of the frame (named with `prefix`).
+fn header_codec(f: &Frame, prefix: &str, rt: &TokenStream) -> (Vec<TokenStream>, Vec<TokenStream>) {
+    user_values(f)
+        .map(|v| {
+            let id = ident(&v.name);
+            let c = value_const(prefix, v);
+            let read = if v.prim == Prim::Bool {
+                quote!(#id: header_value(frame, wire::#c)? != 0)
+            } else {
+                let t = prim_type(v.prim);
+                quote!(#id: header_value(frame, wire::#c)? as #t)
+            };
+            let write = quote!(wire::#c.write(frame, self.header.#id as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;);
+            (read, write)
+        })
+        .unzip()
 }
