@@ -260,6 +260,7 @@ fn uart_stream_yields_expected_frames_at_every_chunk_size() {
 }
 
 #[test]
+#[allow(clippy::approx_constant)] // 0.5235 rad/s is the Scout's limit, not pi/6.
 fn motion_commands_clamp_and_truncate_like_set_motion_command() {
     // (linear m/s, angular rad/s) -> (linear %, angular %), from running the original.
     for ((lin, ang), (lp, ap)) in [

@@ -62,6 +62,8 @@ pub fn expand(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     let dispatch = dispatch::emit_dispatch(p, paths);
     quote! {
         #doc
+        // Numbers in a spec are taken as written: a robot's 0.5235 rad/s limit is not pi/6.
+        #[allow(clippy::approx_constant)]
         pub mod #module {
             #constants
             #addresses
