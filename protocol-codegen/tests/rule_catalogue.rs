@@ -14,9 +14,9 @@ use protocol_codegen::source::SpecSource;
 /// every other fixture holds exactly one mistake.
 const SEVERAL: &[(&str, usize)] = &[
     ("several_errors.toml", 2),
-    // Five mistakes, four errors: the unknown struct `Sped` of a command whose id is a
-    // duplicate is not checked yet (validation skips the rest of a command after a bad id).
-    ("many_errors_at_once.toml", 4),
+    ("many_errors_at_once.toml", 5),
+    // A broken frame and a badly named command: the frame's error does not hide the command's.
+    ("frame_error_hides_command_errors.toml", 2),
     ("several_errors_across_sections.toml", 7),
 ];
 

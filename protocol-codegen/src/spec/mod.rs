@@ -42,12 +42,21 @@ pub fn load_spec(source: &SpecSource, diags: &mut Diagnostics) -> Option<SpecFil
         return None;
     }
     let mut tree = tree;
+    let mut reported: Vec<Range<usize>> = Vec::new();
     for _ in 0..MAX_SHAPE_ERRORS {
         let de = toml::de::Deserializer::from(tree.clone());
         match SpecFile::deserialize(de) {
             Ok(spec) => return Some(spec),
             Err(e) => {
                 let span = e.span().unwrap_or(0..0);
+                // A key dropped to repair an ill-typed value is then "missing": that is the
+                // same mistake, already reported.
+                let repaired = e.message().starts_with("missing field")
+                    && reported.iter().any(|r: &Range<usize>| span.start <= r.start && r.end <= span.end);
+                if repaired {
+                    return None;
+                }
+                reported.push(span.clone());
                 report_shape_error(diags, span.clone(), e.message());
                 if !remove_span(&mut tree, &span) {
                     return None;

@@ -239,6 +239,7 @@ fn lower_frame(
                     );
                 } else if i != 0 {
                     ctx.error(el.span(), "sync bytes must be the first element of the layout", "move the `sync` element to the start; constant bytes after the payload are a `trailer`");
+                    broken = true;
                 }
                 els.push(El {
                     name: "sync".into(),
@@ -292,10 +293,11 @@ fn lower_frame(
                                 ctx.error(
                                     v.span(),
                                     format!(
-                                        "value {} does not fit in the {} bits of `{}`",
+                                        "value {} does not fit in `{}` ({} bit{})",
                                         v.get_ref(),
+                                        m.name,
                                         m.width,
-                                        m.name
+                                        if m.width == 1 { "" } else { "s" }
                                     ),
                                     "use a smaller value or more bits",
                                 );
@@ -390,7 +392,7 @@ fn lower_frame(
                             "write `payload = { max = N }`: decoders size their buffer from it",
                         );
                         broken = true;
-                        0
+                        min.max(0)
                     }
                 };
                 if min < 0 || max < min {
@@ -631,7 +633,7 @@ fn lower_frame(
                 let field_max = mask(v.width);
                 let needed = (header_len + payload_max + trailer_len) as i64 - adjust;
                 if needed > 0 && needed as u64 > field_max {
-                    ctx.error(cov.span(), format!("the length field has {} bits (at most {field_max}), but the largest frame needs {needed}", v.width), "use a wider length field, or lower the payload's `max`");
+                    ctx.error(cov.span(), format!("the length field has {} bits (at most {field_max}), but the largest frame needs the value {needed}", v.width), "use a wider length field, or lower the payload's `max`");
                     ok = false;
                 }
                 if (header_len + payload_min + trailer_len) as i64 - adjust < 0 {
@@ -720,14 +722,14 @@ fn lower_frame(
                         values[vi].role = Role::Dispatch;
                         dispatch.push(vi);
                     }
-                    _ => ctx.error(
-                        k.span(),
-                        format!(
-                            "`{}` cannot be a dispatch key: it is the length or a constant",
-                            k.get_ref()
-                        ),
-                        "dispatch on a field that holds the command id",
-                    ),
+                    _ => {
+                        ctx.error(
+                            k.span(),
+                            format!("`{}` cannot be a dispatch key: it is the length or a constant", k.get_ref()),
+                            "dispatch on a field that holds the command id",
+                        );
+                        ok = false;
+                    }
                 },
                 None => {
                     let help =

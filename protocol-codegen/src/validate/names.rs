@@ -66,7 +66,15 @@ fn is_screaming(name: &str) -> bool {
 /// Rust keywords are fine: they become raw identifiers.
 pub(crate) fn check_snake_name(ctx: &mut Ctx<'_>, name: &SStr, what: &str) -> bool {
     let n = name.get_ref();
-    if !is_snake(n) || NOT_RAW.contains(&n.as_str()) {
+    if NOT_RAW.contains(&n.as_str()) {
+        ctx.error(
+            name.span(),
+            format!("{what} `{n}` cannot be used"),
+            format!("`self`, `super` and `crate` cannot be names in Rust, even as raw identifiers; e.g. `{n}_`"),
+        );
+        return false;
+    }
+    if !is_snake(n) {
         ctx.error(
             name.span(),
             format!("{what} `{n}` is not a snake_case identifier"),
@@ -116,9 +124,20 @@ pub(crate) fn check_screaming_name(ctx: &mut Ctx<'_>, name: &SStr, what: &str) -
 }
 
 fn to_snake(name: &str) -> String {
+    let chars: Vec<char> = name.chars().collect();
     let mut out = String::new();
-    for (i, c) in name.chars().enumerate() {
-        if c.is_ascii_uppercase() && i > 0 && !out.ends_with('_') {
+    for (i, &c) in chars.iter().enumerate() {
+        // A capital starts a word after a lowercase letter or digit, or before a lowercase
+        // letter inside a run of capitals (`CRCValue` -> `crc_value`).
+        let prev = i.checked_sub(1).and_then(|p| chars.get(p)).copied();
+        let next = chars.get(i + 1).copied();
+        let boundary = c.is_ascii_uppercase()
+            && match prev {
+                Some(p) if p.is_ascii_lowercase() || p.is_ascii_digit() => true,
+                Some(p) if p.is_ascii_uppercase() => next.is_some_and(|n| n.is_ascii_lowercase()),
+                _ => false,
+            };
+        if boundary && !out.ends_with('_') {
             out.push('_');
         }
         if c.is_ascii_alphanumeric() {

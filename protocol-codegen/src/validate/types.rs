@@ -181,6 +181,9 @@ pub(crate) fn lower_enums(ctx: &mut Ctx<'_>) -> Enums {
 pub(crate) struct Structs {
     pub structs: Vec<Struct>,
     pub by_name: HashMap<String, usize>,
+    /// Per struct: the `size` names it could not resolve itself, with the span of each `size`
+    /// value and the names of the fields before it (for diagnostics where it is used).
+    pub size_refs: HashMap<String, Vec<(String, std::ops::Range<usize>, Vec<String>)>>,
 }
 
 /// Rule: structs have PascalCase names and resolve in dependency order; a struct that
@@ -193,6 +196,7 @@ pub(crate) fn lower_structs(ctx: &mut Ctx<'_>, enums: &Enums, constants: &[Const
     let mut out = Structs {
         structs: Vec::new(),
         by_name: HashMap::new(),
+        size_refs: HashMap::new(),
     };
     let mut state: HashMap<String, Visit> = HashMap::new();
     for name in spec.structs.keys() {
@@ -326,7 +330,13 @@ fn visit_struct(
                 match prior {
                     Some(x) if matches!(&x.kind, FieldKind::Value { ty: ValueType::Scalar { scalar, scale: None }, count: None } if scalar.prim.is_unsigned()) => {}
                     Some(_) => ctx.error(span(), format!("`{src}` is not an unsigned integer field, so it cannot give the size of `{}`", f.name), "name an earlier `u8`/`u16`/`u32` field that holds the number of bytes"),
-                    None => unresolved.push(src.clone()),
+                    None => {
+                        unresolved.push(src.clone());
+                        let def = d.fields.get_ref().iter().find(|x| x.get_ref().name.as_ref().is_some_and(|n| n.get_ref() == &f.name));
+                        let span = def.and_then(|x| x.get_ref().size.as_ref()).map_or(d.fields.span(), Spanned::span);
+                        let earlier = fields[..i].iter().filter(|x| !x.name.is_empty()).map(|x| x.name.clone()).collect();
+                        out.size_refs.entry(name.to_string()).or_default().push((src.clone(), span, earlier));
+                    }
                 }
             }
             FieldKind::Group { elem, .. } => {
@@ -378,7 +388,7 @@ fn lower_field(
             ctx.error(
                 f.span(),
                 "a padding entry takes only `pad` (and `doc`)",
-                "write `{ pad = 3 }` on its own line",
+                "write the padding as its own entry, e.g. `{ pad = 3 }`, and the field as another",
             );
         }
         if *pad.get_ref() <= 0 {
