@@ -1,6 +1,91 @@
-//! The `protocol` command (being built; see the CLI issue).
+//! The `protocol` command: check, document, decode, encode, expand and diff protocol specs,
+//! without compiling anything. Every command reads a spec through the same pipeline as the
+//! `protocol!` macro; `decode` and `encode` run the interpreter on the runtime's own engine.
+//!
+//! This file owns the command line (clap) and the exit status; each command lives in
+//! [`cmd`].
+#![forbid(unsafe_code)]
 
-fn main() {
-    eprintln!("protocol: the command-line tool is not built yet; see README.md");
-    std::process::exit(2);
+mod cmd;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+/// Describe a robot link once in a TOML spec; check, document, decode and encode it here.
+#[derive(Debug, Parser)]
+#[command(name = "protocol", version, about, max_term_width = 100)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Validate specs: every error with file:line:col, the spec line and a help; exit 1 on error.
+    Check {
+        /// The spec files.
+        #[arg(required = true)]
+        specs: Vec<PathBuf>,
+        /// Print the diagnostics as a JSON array (for editors and CI) instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Render the Markdown reference of a spec.
+    Doc {
+        /// The spec file.
+        spec: PathBuf,
+        /// Write to this file instead of stdout.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+    /// Decode a byte stream (file, stdin, hex, serial port) or a CAN log into frames and events.
+    Decode(cmd::decode::Args),
+    /// Encode frame objects (JSON Lines, as `decode --format json` prints them) into frames.
+    Encode(cmd::encode::Args),
+    /// Print the Rust code the `protocol!` macro generates for a spec, formatted.
+    Expand {
+        /// The spec file.
+        spec: PathBuf,
+    },
+    /// Report every change between two versions of a spec as breaking or compatible; exit 1 if
+    /// anything breaks the wire, 2 if a spec is invalid.
+    Diff {
+        /// The old version.
+        old: PathBuf,
+        /// The new version.
+        new: PathBuf,
+        /// Print the changes as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// How `decode` prints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// One aligned line per frame (the default on a terminal).
+    Table,
+    /// JSON Lines: one object per frame or event (the default otherwise).
+    Json,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Check { specs, json } => cmd::check::run(&specs, json),
+        Command::Doc { spec, output } => cmd::doc::run(&spec, output.as_deref()),
+        Command::Decode(args) => cmd::decode::run(&args),
+        Command::Encode(args) => cmd::encode::run(&args),
+        Command::Expand { spec } => cmd::expand::run(&spec),
+        Command::Diff { old, new, json } => cmd::diff::run(&old, &new, json),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("{:?}", e);
+            ExitCode::FAILURE
+        }
+    }
 }

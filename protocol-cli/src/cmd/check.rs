@@ -1,0 +1,76 @@
+//! `protocol check SPEC... [--json]`: validate specs, print every diagnostic, exit 1 on error.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use miette::Result;
+use protocol_cli::spec;
+use serde_json::{Value, json};
+
+use super::{INVALID, stderr_color};
+
+/// Checks every spec; all are checked even after one fails.
+pub fn run(specs: &[PathBuf], as_json: bool) -> Result<ExitCode> {
+    let mut failed = false;
+    let mut all = Vec::new();
+    for path in specs {
+        let loaded = match spec::load(path) {
+            Ok(l) => l,
+            Err(e) => {
+                failed = true;
+                if as_json {
+                    all.push(json!({
+                        "file": e.path, "line": Value::Null, "column": Value::Null,
+                        "end_line": Value::Null, "end_column": Value::Null,
+                        "severity": "error", "message": e.to_string(), "help": Value::Null,
+                    }));
+                } else {
+                    eprintln!("error: {e}");
+                }
+                continue;
+            }
+        };
+        match &loaded.result {
+            Ok(p) => {
+                if !as_json {
+                    println!(
+                        "{}: ok ({} command{}, {} frame format{}, {} struct{})",
+                        loaded.source.path,
+                        p.commands.len(),
+                        plural(p.commands.len()),
+                        p.frames.len(),
+                        plural(p.frames.len()),
+                        p.structs.len(),
+                        plural(p.structs.len()),
+                    );
+                }
+            }
+            Err(diags) => {
+                failed = true;
+                if as_json {
+                    all.extend(diags.iter().map(|d| spec::to_json(d, &loaded.source)));
+                } else {
+                    eprint!("{}", spec::render(diags, &loaded.source, stderr_color()));
+                    eprintln!(
+                        "{}: {} error{}",
+                        loaded.source.path,
+                        diags.len(),
+                        plural(diags.len())
+                    );
+                }
+            }
+        }
+    }
+    if as_json {
+        println!("{}", Value::Array(all));
+    }
+    Ok(if failed {
+        ExitCode::from(INVALID)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}

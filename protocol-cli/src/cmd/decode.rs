@@ -1,0 +1,341 @@
+//! `protocol decode SPEC [INPUT|-] [--hex] [--serial PORT --baud N] [--candump FILE]
+//! [--format table|json] [--stats]`: find and decode the frames of a byte stream with the
+//! runtime's stream engine, on the interpreter's layout of the spec.
+//!
+//! This module owns where the bytes come from (a file, stdin, hex text, a serial port, a CAN
+//! log) and when the input ends; what a line says is the session's business.
+
+use std::io::{self, IsTerminal, Read, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use miette::{IntoDiagnostic, Result, WrapErr, miette};
+use protocol_cli::candump;
+use protocol_cli::interp::{Codec, Interpreter, parse_hex};
+use protocol_cli::session::{Output, Session};
+use protocol_codegen::ir::Transport;
+use protocol_runtime::{FrameLayout, StreamDecoder};
+
+use super::load_checked;
+use crate::Format;
+
+/// Arguments of `protocol decode`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The spec file.
+    spec: PathBuf,
+    /// The input: a binary file, or `-` for stdin (the default).
+    #[arg(conflicts_with_all = ["serial", "candump"])]
+    input: Option<PathBuf>,
+    /// The input is hex text (whitespace, `0x`, `,` and `:` are ignored).
+    #[arg(long)]
+    hex: bool,
+    /// Read a live serial port (runs until interrupted, or until the port hangs up).
+    #[arg(long, value_name = "PORT", conflicts_with = "candump")]
+    serial: Option<String>,
+    /// Baud rate of the serial port.
+    #[arg(long, value_name = "N", default_value_t = 115_200, requires = "serial")]
+    baud: u32,
+    /// Read a Linux `candump -L` or `candump` log (the spec needs a CAN frame format).
+    #[arg(long, value_name = "FILE")]
+    candump: Option<PathBuf>,
+    /// Output format [default: table on a terminal, json otherwise].
+    #[arg(long, value_enum)]
+    format: Option<Format>,
+    /// Print a summary at the end: frames per command, checksum failures, length rejections,
+    /// bytes skipped, link efficiency (to stdout with `table`, to stderr with `json`).
+    #[arg(long)]
+    stats: bool,
+    /// The frame format to look for [default: the first of the spec with a matching transport].
+    #[arg(long, value_name = "NAME")]
+    frame: Option<String>,
+}
+
+/// Decodes the input.
+pub fn run(args: &Args) -> Result<ExitCode> {
+    let protocol = match load_checked(&args.spec)? {
+        Ok(p) => p,
+        Err(code) => return Ok(code),
+    };
+    let interp = Interpreter::new(protocol);
+    let codec = interp.codec();
+    let output = match args.format {
+        Some(Format::Table) => Output::Table,
+        Some(Format::Json) => Output::Json,
+        None if io::stdout().is_terminal() => Output::Table,
+        None => Output::Json,
+    };
+    let can = args.candump.is_some();
+    let format = pick_format(&codec, args.frame.as_deref(), can)?;
+    let stdout = io::stdout();
+    let mut session = Session::new(&codec, format, output, io::BufWriter::new(stdout.lock()));
+    let decoded = if let Some(path) = &args.candump {
+        let text = std::fs::read_to_string(path)
+            .into_diagnostic()
+            .wrap_err_with(|| format!("cannot read `{}`", path.display()))?;
+        decode_candump(&mut session, &path.display().to_string(), &text).map(|()| None)
+    } else {
+        let layout = codec
+            .layout(format)
+            .ok_or_else(|| miette!("no frame format {format}"))?;
+        let mut input = open_input(args)?;
+        stream(&layout, &mut input, &mut session).map(Some)
+    }
+    .and_then(|engine| session.flush().map(|()| engine));
+    let engine = match decoded {
+        Ok(engine) => engine,
+        // The reader of the output went away (`| head`): not an error of ours.
+        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => return Ok(ExitCode::SUCCESS),
+        Err(e) => return Err(e).into_diagnostic().wrap_err("decoding failed"),
+    };
+    if args.stats {
+        let summary = session.summary(engine.as_ref());
+        let written = match output {
+            Output::Table => writeln!(io::stdout(), "\n{summary}"),
+            Output::Json => write!(io::stderr(), "{summary}"),
+        };
+        match written {
+            Err(e) if e.kind() != io::ErrorKind::BrokenPipe => {
+                return Err(e).into_diagnostic();
+            }
+            _ => {}
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The frame format to decode: `--frame NAME`, else the first with the input's transport.
+fn pick_format(codec: &Codec<'_>, name: Option<&str>, can: bool) -> Result<usize> {
+    let p = codec.protocol();
+    let is_can = |t: Transport| matches!(t, Transport::Can { .. });
+    if let Some(name) = name {
+        let i = codec.format_index(name).ok_or_else(|| {
+            let names: Vec<&str> = p.frames.iter().map(|f| f.name.as_str()).collect();
+            miette!(
+                "spec `{}` has no frame format `{name}` (it has: {})",
+                p.name,
+                names.join(", ")
+            )
+        })?;
+        if is_can(p.frames[i].transport) != can {
+            return Err(miette!(
+                "frame format `{name}` is {} frame format; {}",
+                if can { "not a CAN" } else { "a CAN" },
+                if can {
+                    "--candump needs a CAN one"
+                } else {
+                    "read it with --candump"
+                }
+            ));
+        }
+        return Ok(i);
+    }
+    p.frames
+        .iter()
+        .position(|f| is_can(f.transport) == can)
+        .ok_or_else(|| {
+            if can {
+                miette!(
+                    help = "a CAN frame format has `transport = \"can\"` in its `[frames.NAME]` table",
+                    "spec `{}` has no CAN transport: --candump needs a frame format carried over CAN",
+                    p.name
+                )
+            } else {
+                miette!(
+                    help = "use --candump FILE for a CAN log",
+                    "spec `{}` has only CAN frame formats: a byte stream cannot be decoded",
+                    p.name
+                )
+            }
+        })
+}
+
+/// Where the bytes of a stream come from.
+enum Input {
+    /// All of it, in memory (a file, or hex text), with a progress bar for large inputs.
+    Bytes {
+        data: Vec<u8>,
+        at: usize,
+        bar: Option<ProgressBar>,
+    },
+    /// A stream read as it comes (stdin).
+    Reader(Box<dyn Read>),
+    /// A serial port, until it hangs up or SIGINT.
+    Serial {
+        port: Box<dyn serialport::SerialPort>,
+        interrupted: Arc<AtomicBool>,
+    },
+}
+
+/// Bytes per read: large enough for throughput, small enough for a live display.
+const CHUNK: usize = 64 * 1024;
+
+/// Inputs above this size get a progress bar (when stderr is a terminal).
+const PROGRESS_ABOVE: usize = 4 * 1024 * 1024;
+
+fn open_input(args: &Args) -> Result<Input> {
+    if let Some(port) = &args.serial {
+        let port = serialport::new(port, args.baud)
+            .timeout(Duration::from_millis(100))
+            .open()
+            .into_diagnostic()
+            .wrap_err_with(|| format!("cannot open serial port `{port}`"))?;
+        let interrupted = Arc::new(AtomicBool::new(false));
+        signal_hook::flag::register(signal_hook::consts::SIGINT, Arc::clone(&interrupted))
+            .into_diagnostic()?;
+        return Ok(Input::Serial { port, interrupted });
+    }
+    let path = args.input.as_ref().filter(|p| p.as_os_str() != "-");
+    let raw = match (path, args.hex) {
+        (None, false) => return Ok(Input::Reader(Box::new(io::stdin()))),
+        (None, true) => {
+            let mut text = Vec::new();
+            io::stdin().read_to_end(&mut text).into_diagnostic()?;
+            text
+        }
+        (Some(p), _) => std::fs::read(p)
+            .into_diagnostic()
+            .wrap_err_with(|| format!("cannot read `{}`", p.display()))?,
+    };
+    let data = if args.hex {
+        let text = String::from_utf8(raw).map_err(|_| miette!("--hex input is not text"))?;
+        parse_hex(&text).ok_or_else(|| {
+            miette!("--hex input is not hex: expected pairs of hex digits (whitespace and 0x are ignored)")
+        })?
+    } else {
+        raw
+    };
+    let bar = (data.len() > PROGRESS_ABOVE && io::stderr().is_terminal()).then(|| {
+        let bar = ProgressBar::new(data.len() as u64);
+        if let Ok(style) =
+            ProgressStyle::with_template("{bar:40} {bytes}/{total_bytes} {bytes_per_sec}")
+        {
+            bar.set_style(style);
+        }
+        bar
+    });
+    Ok(Input::Bytes { data, at: 0, bar })
+}
+
+impl Input {
+    /// The next chunk; empty at the end of the input.
+    fn next<'b>(&'b mut self, buf: &'b mut [u8]) -> io::Result<&'b [u8]> {
+        match self {
+            Input::Bytes { data, at, bar } => {
+                let end = (*at + CHUNK).min(data.len());
+                let chunk = data.get(*at..end).unwrap_or_default();
+                *at = end;
+                if let Some(bar) = bar {
+                    bar.set_position(end as u64);
+                    if end == data.len() {
+                        bar.finish_and_clear();
+                    }
+                }
+                Ok(chunk)
+            }
+            Input::Reader(r) => loop {
+                match r.read(buf) {
+                    Ok(n) => return Ok(buf.get(..n).unwrap_or_default()),
+                    Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+                    Err(e) => return Err(e),
+                }
+            },
+            Input::Serial { port, interrupted } => loop {
+                if interrupted.load(Ordering::Relaxed) {
+                    return Ok(&[]);
+                }
+                match port.read(buf) {
+                    // A port that hangs up (a closed pty, an unplugged adapter: `serialport`
+                    // reports POLLHUP as a broken pipe, a read after it as EIO) ends the input.
+                    Ok(0) => return Ok(&[]),
+                    Ok(n) => return Ok(buf.get(..n).unwrap_or_default()),
+                    Err(e)
+                        if matches!(
+                            e.kind(),
+                            io::ErrorKind::TimedOut | io::ErrorKind::Interrupted
+                        ) => {}
+                    Err(e)
+                        if e.kind() == io::ErrorKind::BrokenPipe || e.raw_os_error() == Some(5) =>
+                    {
+                        return Ok(&[]);
+                    }
+                    Err(e) => return Err(e),
+                }
+            },
+        }
+    }
+
+    /// Whether output should be flushed after every chunk (a live source).
+    fn live(&self) -> bool {
+        !matches!(self, Input::Bytes { .. })
+    }
+}
+
+/// Runs the engine over the whole input; returns its stats.
+fn stream<W: Write>(
+    layout: &FrameLayout<'_>,
+    input: &mut Input,
+    session: &mut Session<'_, '_, W>,
+) -> io::Result<protocol_runtime::Stats> {
+    // The engine's buffer is a const generic: the smallest of a few sizes that holds the
+    // format's largest frame, so that no valid frame is refused for want of room.
+    match layout.max_len {
+        0..=256 => stream_n::<256, W>(layout, input, session),
+        257..=4096 => stream_n::<4096, W>(layout, input, session),
+        4097..=65_600 => stream_n::<65_600, W>(layout, input, session),
+        _ => stream_n::<{ 1 << 20 }, W>(layout, input, session),
+    }
+}
+
+fn stream_n<const N: usize, W: Write>(
+    layout: &FrameLayout<'_>,
+    input: &mut Input,
+    session: &mut Session<'_, '_, W>,
+) -> io::Result<protocol_runtime::Stats> {
+    if layout.max_len > N {
+        eprintln!(
+            "warning: frames longer than {N} bytes (the format allows {}) are rejected as bad lengths",
+            layout.max_len
+        );
+    }
+    let mut decoder = Box::new(StreamDecoder::<N>::new(layout));
+    let mut buf = vec![0u8; CHUNK];
+    let live = input.live();
+    loop {
+        let mut chunk = input.next(&mut buf)?;
+        if chunk.is_empty() {
+            break;
+        }
+        session.fed(chunk.len());
+        while let Some(event) = decoder.next_event(&mut chunk) {
+            session.event(&event)?;
+        }
+        if live {
+            session.flush()?;
+        }
+    }
+    while let Some(event) = decoder.flush_event() {
+        session.event(&event)?;
+    }
+    Ok(*decoder.stats())
+}
+
+/// Decodes every record of a CAN log; lines that are not frames are reported on stderr.
+fn decode_candump<W: Write>(
+    session: &mut Session<'_, '_, W>,
+    name: &str,
+    text: &str,
+) -> io::Result<()> {
+    let (records, errors) = candump::parse(text);
+    for (line, error) in &errors {
+        eprintln!("warning: {name}:{line}: not a CAN frame: {error}");
+    }
+    for (index, (_, record)) in records.iter().enumerate() {
+        session.can(index as u64, record)?;
+    }
+    Ok(())
+}

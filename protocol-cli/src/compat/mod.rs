@@ -1,0 +1,392 @@
+//! Wire compatibility between two versions of a spec (`protocol diff OLD NEW`): every change,
+//! classified as breaking (a frame written by one version is read differently, or refused, by
+//! the other) or compatible (names, docs, added commands), each with its reason.
+//!
+//! This module compares two checked IRs. Commands are matched by their id (what is on the
+//! wire), frame formats by name, struct fields by position; a rename is compatible for the wire
+//! (and reported, since it changes the generated API). Struct and field comparison lives in
+//! the `payload` submodule.
+
+mod payload;
+
+use std::fmt;
+
+use protocol_codegen::ir::{Algorithm, Command, DirectionRule, Frame, Protocol, Role};
+
+/// How a change affects the wire.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Class {
+    /// Frames of one version are refused or misread by the other.
+    Breaking,
+    /// The wire format is unchanged (names, docs, additions).
+    Compatible,
+}
+
+/// One change between two specs.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Change {
+    /// Breaking or compatible.
+    pub class: Class,
+    /// What changed (`command READ_SYSTEM_INFO (id 0x01)`, `frame link`).
+    pub subject: String,
+    /// How, and why it matters.
+    pub reason: String,
+}
+
+impl fmt::Display for Change {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let class = match self.class {
+            Class::Breaking => "breaking  ",
+            Class::Compatible => "compatible",
+        };
+        write!(f, "{class}  {}: {}", self.subject, self.reason)
+    }
+}
+
+/// Collects changes about one subject.
+struct Report<'a> {
+    out: &'a mut Vec<Change>,
+    subject: String,
+}
+
+impl Report<'_> {
+    fn breaking(&mut self, reason: impl Into<String>) {
+        self.out.push(Change {
+            class: Class::Breaking,
+            subject: self.subject.clone(),
+            reason: reason.into(),
+        });
+    }
+
+    fn compatible(&mut self, reason: impl Into<String>) {
+        self.out.push(Change {
+            class: Class::Compatible,
+            subject: self.subject.clone(),
+            reason: reason.into(),
+        });
+    }
+}
+
+/// Every change from `old` to `new`, breaking ones first (each group in spec order).
+pub fn diff(old: &Protocol, new: &Protocol) -> Vec<Change> {
+    let mut out = Vec::new();
+    {
+        let mut r = Report {
+            out: &mut out,
+            subject: format!("protocol {}", new.name),
+        };
+        if old.name != new.name {
+            r.compatible(format!(
+                "renamed from `{}` (the generated module's name changes)",
+                old.name
+            ));
+        }
+        if old.version != new.version {
+            r.compatible(format!("version `{}` → `{}`", old.version, new.version));
+        }
+        if old.doc != new.doc {
+            r.compatible("doc changed");
+        }
+    }
+    diff_frames(old, new, &mut out);
+    diff_directions(old, new, &mut out);
+    diff_commands(old, new, &mut out);
+    out.sort_by_key(|c| c.class);
+    out
+}
+
+fn hex_bytes(b: &[u8]) -> String {
+    b.iter()
+        .map(|x| format!("{x:02X}"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+fn algorithm_name(a: &Algorithm) -> String {
+    match a {
+        Algorithm::Sum { modulus } => format!("sum mod {modulus}"),
+        Algorithm::Xor => "xor".into(),
+        Algorithm::Crc(c) => format!(
+            "{} (poly {:#x}, init {:#x}, refin {}, refout {}, xorout {:#x})",
+            c.display, c.poly, c.init, c.refin, c.refout, c.xorout
+        ),
+    }
+}
+
+fn role_name(r: &Role) -> String {
+    match r {
+        Role::User { .. } => "a header value".into(),
+        Role::Length => "the length".into(),
+        Role::Dispatch => "a dispatch key".into(),
+        Role::Const(v) => format!("the constant {v:#x}"),
+        Role::Ack(v) => format!("the acknowledgement flag (set: {v})"),
+    }
+}
+
+fn diff_frames(old: &Protocol, new: &Protocol, out: &mut Vec<Change>) {
+    for (i, of) in old.frames.iter().enumerate() {
+        let mut r = Report {
+            out,
+            subject: format!("frame `{}`", of.name),
+        };
+        match new.frames.iter().position(|f| f.name == of.name) {
+            None => r.breaking("frame format removed"),
+            Some(j) => {
+                if i == 0 && j != 0 {
+                    r.breaking(
+                        "no longer the default (first) frame format, which carries the commands",
+                    );
+                }
+                diff_frame(of, &new.frames[j], &mut r);
+            }
+        }
+    }
+    for nf in &new.frames {
+        if !old.frames.iter().any(|f| f.name == nf.name) {
+            let mut r = Report {
+                out,
+                subject: format!("frame `{}`", nf.name),
+            };
+            r.compatible("frame format added");
+        }
+    }
+}
+
+fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
+    if o.transport != n.transport {
+        r.breaking(format!("transport {:?} → {:?}", o.transport, n.transport));
+    }
+    if o.sync != n.sync {
+        r.breaking(format!(
+            "sync bytes {} → {}",
+            hex_bytes(&o.sync),
+            hex_bytes(&n.sync)
+        ));
+    }
+    if (o.header_len, o.trailer_len) != (n.header_len, n.trailer_len) {
+        r.breaking(format!(
+            "header/trailer {}/{} bytes → {}/{} bytes",
+            o.header_len, o.trailer_len, n.header_len, n.trailer_len
+        ));
+    }
+    if (o.payload_min, o.payload_max) != (n.payload_min, n.payload_max) {
+        r.breaking(format!(
+            "payload bounds {}..={} → {}..={} bytes (decoders reject lengths outside them)",
+            o.payload_min, o.payload_max, n.payload_min, n.payload_max
+        ));
+    }
+    for (ov, nv) in o.values.iter().zip(&n.values) {
+        let shape = |v: &protocol_codegen::ir::HeaderValue| (v.at, v.word, v.shift, v.width);
+        if shape(ov) != shape(nv) {
+            r.breaking(format!(
+                "header value `{}` moved or changed type ({:?} {:?} bits {}..{} → {:?} {:?} bits {}..{})",
+                nv.name,
+                ov.at,
+                ov.word.prim,
+                ov.shift,
+                ov.shift + ov.width,
+                nv.at,
+                nv.word.prim,
+                nv.shift,
+                nv.shift + nv.width
+            ));
+        } else if std::mem::discriminant(&ov.role) != std::mem::discriminant(&nv.role)
+            || matches!((&ov.role, &nv.role), (Role::Const(a), Role::Const(b)) if a != b)
+        {
+            r.breaking(format!(
+                "header value `{}` was {}, is {}",
+                nv.name,
+                role_name(&ov.role),
+                role_name(&nv.role)
+            ));
+        } else if ov.name != nv.name {
+            r.compatible(format!(
+                "header value `{}` renamed to `{}`",
+                ov.name, nv.name
+            ));
+        }
+    }
+    if o.values.len() != n.values.len() {
+        r.breaking(format!(
+            "{} header values → {}",
+            o.values.len(),
+            n.values.len()
+        ));
+    }
+    if o.length != n.length {
+        r.breaking(format!("length rule {:?} → {:?}", o.length, n.length));
+    }
+    if o.dispatch != n.dispatch {
+        r.breaking("the dispatch key's fields changed");
+    }
+    for (k, (oc, nc)) in o.checks.iter().zip(&n.checks).enumerate() {
+        if oc.algorithm != nc.algorithm {
+            r.breaking(format!(
+                "check `{}`: {} → {}",
+                nc.name,
+                algorithm_name(&oc.algorithm),
+                algorithm_name(&nc.algorithm)
+            ));
+        } else if (oc.at, oc.size, oc.endian, oc.from, oc.to, oc.header)
+            != (nc.at, nc.size, nc.endian, nc.from, nc.to, nc.header)
+        {
+            r.breaking(format!(
+                "check `{}` (#{}) covers other bytes or is stored elsewhere",
+                nc.name,
+                k + 1
+            ));
+        }
+    }
+    if o.checks.len() != n.checks.len() {
+        r.breaking(format!("{} checks → {}", o.checks.len(), n.checks.len()));
+    }
+    let trailers = |f: &Frame| {
+        f.trailers
+            .iter()
+            .map(|t| (t.at, t.bytes.clone()))
+            .collect::<Vec<_>>()
+    };
+    if trailers(o) != trailers(n) {
+        r.breaking("trailer bytes changed");
+    }
+    if o.doc != n.doc {
+        r.compatible("doc changed");
+    }
+}
+
+/// A direction rule with its references resolved, for comparison across specs.
+fn rule_text(p: &Protocol, rule: &DirectionRule) -> String {
+    let value_name = |i: usize| {
+        p.frames
+            .first()
+            .and_then(|f| f.values.get(i))
+            .map_or("?", |v| v.name.as_str())
+    };
+    match rule {
+        DirectionRule::InSet { value, set } => {
+            let (first, last) = p.addresses.get(*set).map_or((0, 0), |a| (a.first, a.last));
+            format!("`{}` in {first:#x}..={last:#x}", value_name(*value))
+        }
+        DirectionRule::Equals { value, equals } => {
+            format!("`{}` == {equals:#x}", value_name(*value))
+        }
+    }
+}
+
+fn diff_directions(old: &Protocol, new: &Protocol, out: &mut Vec<Change>) {
+    let names = |p: &Protocol| {
+        p.directions
+            .iter()
+            .map(|d| d.name.clone())
+            .collect::<Vec<_>>()
+    };
+    let mut r = Report {
+        out,
+        subject: "directions".into(),
+    };
+    if names(old) != names(new) {
+        r.breaking(format!(
+            "[{}] → [{}] (which payload a frame carries depends on them)",
+            names(old).join(", "),
+            names(new).join(", ")
+        ));
+        return;
+    }
+    for (od, nd) in old.directions.iter().zip(&new.directions) {
+        let (a, b) = (rule_text(old, &od.rule), rule_text(new, &nd.rule));
+        if a != b {
+            r.breaking(format!("`{}`: {a} → {b}", nd.name));
+        }
+    }
+}
+
+fn id_text(c: &Command) -> String {
+    let ids: Vec<String> = c.id.iter().map(|v| format!("{v:#04x}")).collect();
+    match ids.as_slice() {
+        [one] => one.clone(),
+        many => format!("[{}]", many.join(", ")),
+    }
+}
+
+fn diff_commands(old: &Protocol, new: &Protocol, out: &mut Vec<Change>) {
+    for oc in &old.commands {
+        let mut r = Report {
+            out,
+            subject: format!("command {} (id {})", oc.name, id_text(oc)),
+        };
+        let Some(nc) = new.commands.iter().find(|c| c.id == oc.id) else {
+            match new.commands.iter().find(|c| c.name == oc.name) {
+                Some(moved) => r.breaking(format!(
+                    "id changed to {}: receivers of one version do not know the other's",
+                    id_text(moved)
+                )),
+                None => r.breaking("removed: its frames become unknown commands"),
+            }
+            continue;
+        };
+        if nc.name != oc.name {
+            r.compatible(format!(
+                "renamed to {} (same id; the generated variant's name changes)",
+                nc.name
+            ));
+        }
+        if nc.can_id != oc.can_id {
+            r.breaking(format!(
+                "CAN id {} → {}",
+                oc.can_id.map_or("none".into(), |v| format!("{v:#x}")),
+                nc.can_id.map_or("none".into(), |v| format!("{v:#x}"))
+            ));
+        }
+        for (di, (op, np)) in oc.payloads.iter().zip(&nc.payloads).enumerate() {
+            let dir = old
+                .directions
+                .get(di)
+                .map_or(String::from("payload"), |d| format!("{} payload", d.name));
+            match (op, np) {
+                (None, None) => {}
+                (None, Some(s)) => r.breaking(format!(
+                    "{dir}: none → `{}` ({} bytes); payload sizes are exact",
+                    new.structs[*s].name, new.structs[*s].size
+                )),
+                (Some(s), None) => r.breaking(format!(
+                    "{dir}: `{}` ({} bytes) → none",
+                    old.structs[*s].name, old.structs[*s].size
+                )),
+                (Some(a), Some(b)) => {
+                    let before = r.out.len();
+                    payload::diff_struct(
+                        old,
+                        &old.structs[*a],
+                        new,
+                        &new.structs[*b],
+                        &dir,
+                        &mut r,
+                    );
+                    let reused = nc.name != oc.name
+                        && r.out[before..].iter().any(|c| c.class == Class::Breaking);
+                    if reused {
+                        r.breaking(format!(
+                            "the id is reused for another payload ({} is not {})",
+                            nc.name, oc.name
+                        ));
+                    }
+                }
+            }
+        }
+        if oc.payloads.len() != nc.payloads.len() {
+            r.breaking("payloads per direction changed");
+        }
+        if oc.doc != nc.doc {
+            r.compatible("doc changed");
+        }
+    }
+    for nc in &new.commands {
+        if !old.commands.iter().any(|c| c.id == nc.id) {
+            let mut r = Report {
+                out,
+                subject: format!("command {} (id {})", nc.name, id_text(nc)),
+            };
+            r.compatible("added");
+        }
+    }
+}

@@ -1,0 +1,307 @@
+//! Frame objects (the JSON shape `decode` prints) to frames, as the generated packets'
+//! `encode` builds them: the payload written first (its size on the wire decides the frame's
+//! length) and stuffed, then the header values, the acknowledgement flag and the dispatch key
+//! (or CAN id), then the runtime seals the frame.
+
+use protocol_codegen::ir::{Frame, Protocol, Role};
+use protocol_runtime::{EncodeError, FrameLayout, Writer};
+use serde_json::{Map, Value};
+
+use super::{
+    Dispatch, ack_max, ack_value, direction_of, dispatch_of, is_can_id, parse_hex, stuffing,
+};
+use crate::interp::error::EncodeIssue;
+use crate::interp::layout::word_field;
+use crate::interp::payload::write_payload;
+use crate::interp::value::{NumError, json_bits, truncate};
+
+/// The command a frame object names: `command` (spec or Rust name), else its `id` or `can_id`.
+fn command_of(p: &Protocol, by_can: bool, obj: &Map<String, Value>) -> Result<usize, EncodeIssue> {
+    if let Some(name) = obj.get("command") {
+        let name = name
+            .as_str()
+            .ok_or_else(|| EncodeIssue::new("command", "expected a command name"))?;
+        return p
+            .commands
+            .iter()
+            .position(|c| c.name == name || c.rust_name == name)
+            .ok_or_else(|| {
+                EncodeIssue::new("command", format!("no command `{name}` in the spec"))
+            });
+    }
+    let (key, value) = match (obj.get("id"), obj.get("can_id")) {
+        (Some(v), _) => ("id", v),
+        (None, Some(v)) => ("can_id", v),
+        (None, None) => return Err(EncodeIssue::missing("command")),
+    };
+    let ids: Vec<u64> = match value {
+        Value::Array(items) => items.iter().filter_map(Value::as_u64).collect(),
+        other => other.as_u64().into_iter().collect(),
+    };
+    p.commands
+        .iter()
+        .position(|c| {
+            if by_can || key == "can_id" {
+                ids.len() == 1 && c.can_id == ids.first().copied()
+            } else {
+                c.id == ids
+            }
+        })
+        .ok_or_else(|| EncodeIssue::new(key, format!("no command has the id {value}")))
+}
+
+/// The user-set header values of a frame object, checked against their types: (value index,
+/// raw value).
+fn header_values(f: &Frame, obj: &Map<String, Value>) -> Result<Vec<(usize, u64)>, EncodeIssue> {
+    let empty = Map::new();
+    let header = match obj.get("header") {
+        Some(Value::Object(h)) => h,
+        Some(Value::Null) | None => &empty,
+        Some(_) => return Err(EncodeIssue::new("header", "expected an object")),
+    };
+    // Values the spec computes (a length, a command id) may be given: they are ignored.
+    if let Some(k) = header
+        .keys()
+        .find(|k| !f.values.iter().any(|v| v.name == **k && !is_can_id(f, v)))
+    {
+        return Err(EncodeIssue::new(
+            format!("header.{k}"),
+            format!("frame `{}` has no such header field", f.name),
+        ));
+    }
+    let mut values = Vec::new();
+    for (vi, v) in f.values.iter().enumerate() {
+        if !matches!(v.role, Role::User { .. }) {
+            continue;
+        }
+        let path = format!("header.{}", v.name);
+        let given = header
+            .get(&v.name)
+            .ok_or_else(|| EncodeIssue::missing(&path))?;
+        let raw = json_bits(given, v.prim).map_err(|e| match e {
+            NumError::Type(m) | NumError::Range(m) => EncodeIssue::new(&path, m),
+        })?;
+        values.push((vi, raw));
+    }
+    Ok(values)
+}
+
+/// What the frame carries: a command (its index and payload struct), acknowledgement data, or
+/// raw bytes.
+enum Body {
+    Command(usize, Option<usize>),
+    Ack,
+    Message(usize),
+    Raw,
+}
+
+/// Encodes a frame object of format `fi` with its layout. Returns the frame's bytes (for a CAN
+/// format, its virtual frame).
+///
+/// # Errors
+/// [`EncodeIssue`] naming the first missing, ill-typed or out-of-range value, or the runtime's
+/// refusal of the frame.
+pub fn encode(
+    p: &Protocol,
+    fi: usize,
+    layout: &FrameLayout<'_>,
+    obj: &Map<String, Value>,
+) -> Result<Vec<u8>, EncodeIssue> {
+    let f = &p.frames[fi];
+    let dispatch = dispatch_of(p, fi);
+    let values = header_values(f, obj)?;
+    let raw_of = |i: usize| values.iter().find(|(vi, _)| *vi == i).map(|(_, r)| *r);
+    let is_ack = obj.get("ack").and_then(Value::as_bool) == Some(true);
+    let body = match dispatch {
+        Dispatch::Key if is_ack => {
+            if f.ack.is_none() {
+                return Err(EncodeIssue::new(
+                    "ack",
+                    format!("frame `{}` has no acknowledgements", f.name),
+                ));
+            }
+            Body::Ack
+        }
+        Dispatch::Key | Dispatch::CanId => {
+            let ci = command_of(p, dispatch == Dispatch::CanId, obj)?;
+            // The direction, from the header, as the decoder will see it.
+            let slot = if dispatch == Dispatch::Key && !p.directions.is_empty() {
+                direction_of(p, &raw_of).ok_or_else(|| {
+                    EncodeIssue::new("header", "the header matches no direction of the spec")
+                })?
+            } else {
+                0
+            };
+            Body::Command(ci, p.commands[ci].payloads.get(slot).copied().flatten())
+        }
+        Dispatch::Message(si) => Body::Message(si),
+        Dispatch::None => Body::Raw,
+    };
+    let start = match (&body, f.ack) {
+        (Body::Ack, Some((_, ack_header_len))) => ack_header_len,
+        _ => f.header_len,
+    };
+    // The payload first, in place, in a buffer of the largest frame (as generated code's
+    // callers size theirs): its size on the wire decides the frame's length.
+    let mut buf = vec![0u8; f.max_len()];
+    let region_end = f.max_len().saturating_sub(f.trailer_len).max(start);
+    let region = buf
+        .get_mut(start..region_end)
+        .ok_or_else(|| EncodeIssue::runtime(EncodeError::ValueOutOfRange))?;
+    let mut plen = write_body(p, f, &body, obj, region)?;
+    if let (Some(s), Body::Command(..)) = (stuffing(f), &body) {
+        plen = s
+            .stuff_in_place(region, plen)
+            .map_err(EncodeIssue::runtime)?;
+    }
+    // A bare header (the header alone) has no trailer either.
+    let trailer = if f.bare_len.is_some() && start != f.header_len && plen == 0 {
+        0
+    } else {
+        f.trailer_len
+    };
+    let total = start + plen + trailer;
+    let frame = buf
+        .get_mut(..total)
+        .ok_or_else(|| EncodeIssue::runtime(EncodeError::ValueOutOfRange))?;
+    for (vi, raw) in &values {
+        let v = &f.values[*vi];
+        word_field(v).write(frame, *raw).ok_or_else(|| {
+            EncodeIssue::new(
+                format!("header.{}", v.name),
+                format!("{raw} does not fit the field"),
+            )
+        })?;
+    }
+    if let Some((flag, _)) = f.ack {
+        if dispatch == Dispatch::Key {
+            let equals = ack_value(f, flag);
+            let value = if matches!(body, Body::Ack) {
+                equals
+            } else {
+                1 - equals.min(1)
+            };
+            word_field(&f.values[flag])
+                .write(frame, value)
+                .ok_or_else(|| EncodeIssue::runtime(EncodeError::ValueOutOfRange))?;
+        }
+    }
+    if let Body::Command(ci, _) = body {
+        write_key(p, f, dispatch, ci, obj, frame)?;
+    }
+    layout.seal(frame).map_err(EncodeIssue::runtime)?;
+    Ok(frame.to_vec())
+}
+
+/// Writes what the frame carries at the start of `region`; returns its size.
+fn write_body(
+    p: &Protocol,
+    f: &Frame,
+    body: &Body,
+    obj: &Map<String, Value>,
+    region: &mut [u8],
+) -> Result<usize, EncodeIssue> {
+    let payload = obj.get("payload");
+    let len = region.len();
+    let too_large = |e: EncodeError| match e {
+        EncodeError::BufferTooSmall { .. } => EncodeIssue::new(
+            "payload",
+            format!("too large for a `{}` frame ({len} bytes at most)", f.name),
+        ),
+        other => EncodeIssue::runtime(other),
+    };
+    let bytes_of = |what: &str| -> Result<Vec<u8>, EncodeIssue> {
+        let text = payload
+            .and_then(Value::as_str)
+            .ok_or_else(|| EncodeIssue::new("payload", format!("expected {what} as hex")))?;
+        parse_hex(text).ok_or_else(|| EncodeIssue::new("payload", "invalid hex"))
+    };
+    let mut w = Writer::new(region);
+    match body {
+        Body::Command(ci, None) => {
+            let empty = match payload {
+                None | Some(Value::Null) => true,
+                Some(Value::Object(m)) => m.is_empty(),
+                Some(_) => false,
+            };
+            if !empty {
+                let name = &p.commands[*ci].name;
+                return Err(EncodeIssue::new(
+                    "payload",
+                    format!("{name} carries no payload in this direction"),
+                ));
+            }
+        }
+        Body::Command(_, Some(si)) | Body::Message(si) => {
+            let v = payload.ok_or_else(|| EncodeIssue::missing("payload"))?;
+            // The only error without a path is the writer's: the payload does not fit.
+            write_payload(p, *si, v, &mut w, "payload").map_err(|e| {
+                if e.path.is_empty() {
+                    too_large(EncodeError::BufferTooSmall {
+                        needed: len + 1,
+                        available: len,
+                    })
+                } else {
+                    e
+                }
+            })?;
+        }
+        Body::Ack => {
+            let data = bytes_of("the acknowledgement data")?;
+            let max = f.ack.map_or(0, |(_, hl)| ack_max(f, hl));
+            if data.len() > max {
+                return Err(EncodeIssue::new(
+                    "payload",
+                    format!(
+                        "{} bytes of acknowledgement data, at most {max}",
+                        data.len()
+                    ),
+                ));
+            }
+            w.put_bytes(&data).map_err(too_large)?;
+        }
+        Body::Raw => {
+            let data = bytes_of("the payload")?;
+            w.put_bytes(&data).map_err(too_large)?;
+        }
+    }
+    Ok(w.position())
+}
+
+/// Writes the dispatch key (or the CAN id) of command `ci`.
+fn write_key(
+    p: &Protocol,
+    f: &Frame,
+    dispatch: Dispatch,
+    ci: usize,
+    obj: &Map<String, Value>,
+    frame: &mut [u8],
+) -> Result<(), EncodeIssue> {
+    let c = &p.commands[ci];
+    let fail = || EncodeIssue::runtime(EncodeError::ValueOutOfRange);
+    match dispatch {
+        Dispatch::Key => {
+            for (&vi, id) in f.dispatch.iter().zip(&c.id) {
+                word_field(&f.values[vi])
+                    .write(frame, truncate(f.values[vi].prim, *id))
+                    .ok_or_else(fail)?;
+            }
+        }
+        Dispatch::CanId => {
+            let id = c
+                .can_id
+                .ok_or_else(|| EncodeIssue::new("command", format!("{} has no CAN id", c.name)))?;
+            if let Some(given) = obj.get("can_id").filter(|g| g.as_u64() != Some(id)) {
+                return Err(EncodeIssue::new(
+                    "can_id",
+                    format!("{given} is not the CAN id of {} ({id:#x})", c.name),
+                ));
+            }
+            for v in f.values.iter().filter(|v| is_can_id(f, v)) {
+                word_field(v).write(frame, id).ok_or_else(fail)?;
+            }
+        }
+        Dispatch::Message(_) | Dispatch::None => {}
+    }
+    Ok(())
+}

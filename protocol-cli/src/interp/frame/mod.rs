@@ -1,0 +1,390 @@
+//! Whole frames between the wire and JSON: header values, acknowledgements, the dispatch key,
+//! byte stuffing, the direction and the payload, in the order the generated packets take them
+//! (`Packet::from_frame`, and the `<Name>Packet` of a CAN or message-only frame format, in
+//! `protocol-codegen/src/codegen/dispatch.rs`), so that both report the same error for the same
+//! bytes. Encoding lives in [`encode`].
+//!
+//! This module owns which frame formats carry what ([`Dispatch`]); verifying and sealing frames
+//! is the runtime's [`FrameLayout`](protocol_runtime::FrameLayout) business.
+
+mod encode;
+
+pub use encode::encode;
+
+use protocol_codegen::ir::{DirectionRule, Frame, HeaderValue, Prim, Protocol, Role, Transport};
+use protocol_runtime::DecodeError;
+use protocol_runtime::stuffing::Stuffing;
+use serde_json::{Map, Value};
+
+use super::error::DecodeIssue;
+use super::layout::word_field;
+use super::payload::{ReadFail, read_payload};
+use super::value::truncate;
+
+/// What the frames of a format carry, as generated code decodes them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dispatch {
+    /// A command chosen by the header's dispatch key (the first frame format: `Packet`).
+    Key,
+    /// A command chosen by the CAN id (a CAN frame format after the first: `<Name>Packet`).
+    CanId,
+    /// One struct (index into the protocol's structs), every frame (`<Name>Packet`).
+    Message(usize),
+    /// Raw payload bytes: no commands, no struct.
+    None,
+}
+
+/// What frame format `fi` of `p` carries.
+pub fn dispatch_of(p: &Protocol, fi: usize) -> Dispatch {
+    let Some(f) = p.frames.get(fi) else {
+        return Dispatch::None;
+    };
+    let keyed = p
+        .frames
+        .first()
+        .is_some_and(|first| !first.dispatch.is_empty());
+    if let (Some(si), true) = (f.message, fi > 0 || !keyed) {
+        return Dispatch::Message(si);
+    }
+    if !keyed {
+        Dispatch::None
+    } else if fi == 0 {
+        Dispatch::Key
+    } else if matches!(f.transport, Transport::Can { .. }) && p.directions.is_empty() {
+        Dispatch::CanId
+    } else {
+        Dispatch::None
+    }
+}
+
+/// True for the header value that holds a CAN frame's id: it is shown as the frame's `can_id`.
+pub fn is_can_id(f: &Frame, v: &HeaderValue) -> bool {
+    matches!(f.transport, Transport::Can { .. }) && v.name == "can_id"
+}
+
+/// The value of the acknowledgement flag that marks an acknowledgement.
+pub fn ack_value(f: &Frame, flag: usize) -> u64 {
+    match f.values.get(flag).map(|v| &v.role) {
+        Some(Role::Ack(equals)) => *equals,
+        // Validation gives the flag the role `Ack`; 1 is the usual flag.
+        _ => 1,
+    }
+}
+
+/// The largest acknowledgement data.
+pub fn ack_max(f: &Frame, ack_header_len: usize) -> usize {
+    f.max_len()
+        .saturating_sub(ack_header_len)
+        .saturating_sub(f.trailer_len)
+}
+
+/// The payload's byte stuffing, as the runtime applies it.
+pub fn stuffing(f: &Frame) -> Option<Stuffing<'_>> {
+    f.stuffing.as_ref().map(|(after, insert)| Stuffing {
+        after,
+        insert: *insert,
+    })
+}
+
+/// A header value as generated header structs hold it: `value as T`, or `value != 0`.
+fn header_json(v: &HeaderValue, raw: u64) -> Value {
+    if v.prim == Prim::Bool {
+        Value::Bool(raw != 0)
+    } else {
+        Value::from(truncate(v.prim, raw))
+    }
+}
+
+/// The HEADER_LEN generated `header_value` reports when a header value is out of the frame.
+fn header_truncated(p: &Protocol, frame: &[u8]) -> DecodeIssue {
+    DecodeIssue::Frame(DecodeError::Truncated {
+        needed: p.frames.first().map_or(0, |f| f.header_len),
+        available: frame.len(),
+    })
+}
+
+/// The user-set header values of a frame, as JSON, in wire order.
+fn read_header(p: &Protocol, f: &Frame, frame: &[u8]) -> Result<Map<String, Value>, DecodeIssue> {
+    let mut out = Map::new();
+    for v in f
+        .values
+        .iter()
+        .filter(|v| matches!(v.role, Role::User { .. }))
+    {
+        let raw = word_field(v)
+            .read(frame)
+            .ok_or_else(|| header_truncated(p, frame))?;
+        if !is_can_id(f, v) {
+            out.insert(v.name.clone(), header_json(v, raw));
+        }
+    }
+    Ok(out)
+}
+
+/// A decoded frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Decoded {
+    /// Index of the frame format.
+    pub format: usize,
+    /// Index of the command (`None` for an acknowledgement or a format without commands).
+    pub command: Option<usize>,
+    /// Index of the direction (`None` when the spec has none).
+    pub direction: Option<usize>,
+    /// True for an acknowledgement (a frame without command whose payload is its data).
+    pub ack: bool,
+    /// The dispatch key's values (the CAN id for a CAN frame).
+    pub id: Vec<u64>,
+    /// The CAN id, for a CAN frame.
+    pub can_id: Option<u64>,
+    /// The user-set header values, in wire order.
+    pub header: Map<String, Value>,
+    /// The payload: an object (empty for a command without payload), or the raw bytes as a hex
+    /// string (an acknowledgement's data, a format without commands).
+    pub payload: Value,
+}
+
+/// Lowercase hex of some bytes.
+pub fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// Bytes from hex text: whitespace, `0x` prefixes and `:`/`,` separators are ignored.
+pub fn parse_hex(text: &str) -> Option<Vec<u8>> {
+    let digits: String = text
+        .split(|c: char| c.is_whitespace() || c == ',' || c == ':')
+        .map(|w| {
+            w.strip_prefix("0x")
+                .or_else(|| w.strip_prefix("0X"))
+                .unwrap_or(w)
+        })
+        .collect();
+    if digits.len() % 2 != 0 {
+        return None;
+    }
+    (0..digits.len())
+        .step_by(2)
+        .map(|i| {
+            digits
+                .get(i..i + 2)
+                .and_then(|d| u8::from_str_radix(d, 16).ok())
+        })
+        .collect()
+}
+
+/// The payload bytes of a frame.
+fn payload_of<'b>(f: &Frame, frame: &'b [u8]) -> Result<&'b [u8], DecodeIssue> {
+    frame
+        .get(f.header_len..frame.len().saturating_sub(f.trailer_len))
+        .ok_or(DecodeIssue::Frame(DecodeError::Truncated {
+            needed: f.header_len + f.trailer_len,
+            available: frame.len(),
+        }))
+}
+
+/// The direction of a header, testing the rules in order (`request` first).
+fn direction_of(p: &Protocol, raw: &dyn Fn(usize) -> Option<u64>) -> Option<usize> {
+    let f = p.frames.first()?;
+    p.directions.iter().position(|d| match &d.rule {
+        DirectionRule::InSet { value, set } => {
+            let (Some(v), Some(a)) = (f.values.get(*value), p.addresses.get(*set)) else {
+                return false;
+            };
+            let x = raw(*value).map(|r| truncate(v.prim, r));
+            x.is_some_and(|x| truncate(v.prim, a.first) <= x && x <= truncate(v.prim, a.last))
+        }
+        DirectionRule::Equals { value, equals } => {
+            let Some(v) = f.values.get(*value) else {
+                return false;
+            };
+            let x = raw(*value).map(|r| {
+                if v.prim == Prim::Bool {
+                    u64::from(r != 0)
+                } else {
+                    truncate(v.prim, r)
+                }
+            });
+            x == Some(*equals)
+        }
+    })
+}
+
+/// Decodes the payload of struct `si` (or an empty one) for `command`, as `read_payload` and
+/// `from_bytes` do.
+fn read_struct_payload(
+    p: &Protocol,
+    si: Option<usize>,
+    command: &str,
+    payload: &[u8],
+) -> Result<Value, DecodeIssue> {
+    let Some(si) = si else {
+        if payload.is_empty() {
+            return Ok(Value::Object(Map::new()));
+        }
+        return Err(DecodeIssue::PayloadLength {
+            command: command.to_string(),
+            expected: 0,
+            actual: payload.len(),
+        });
+    };
+    read_payload(p, si, payload)
+        .map(Value::Object)
+        .map_err(|e| match e {
+            ReadFail::Runtime(DecodeError::PayloadLength { expected, actual }) => {
+                DecodeIssue::PayloadLength {
+                    command: command.to_string(),
+                    expected,
+                    actual,
+                }
+            }
+            ReadFail::Runtime(other) => DecodeIssue::Frame(other),
+            ReadFail::Enum {
+                field,
+                enum_index,
+                value,
+            } => DecodeIssue::InvalidEnum {
+                command: command.to_string(),
+                field,
+                enum_name: p.enums[enum_index].name.clone(),
+                value,
+            },
+        })
+}
+
+/// Decodes a frame of format `fi` that the engine accepted (for a CAN format: its virtual
+/// frame), as the generated packet of the format does.
+pub fn decode(p: &Protocol, fi: usize, frame: &[u8]) -> Result<Decoded, DecodeIssue> {
+    let f = &p.frames[fi];
+    let read = |i: usize| f.values.get(i).and_then(|v| word_field(v).read(frame));
+    let mut out = Decoded {
+        format: fi,
+        command: None,
+        direction: None,
+        ack: false,
+        id: Vec::new(),
+        can_id: None,
+        header: Map::new(),
+        payload: Value::Null,
+    };
+    if let Some(v) = f.values.iter().find(|v| is_can_id(f, v)) {
+        // The whole identifier word, as generated code takes `CanFrame::id`: bits above the
+        // id's width (which no bus delivers) make an unknown command, not another one.
+        let mut whole = word_field(v);
+        whole.shift = 0;
+        whole.width = whole.size.saturating_mul(8);
+        out.can_id = whole.read(frame);
+    }
+    match dispatch_of(p, fi) {
+        Dispatch::None => {
+            out.header = read_header(p, f, frame)?;
+            out.payload = Value::from(hex(payload_of(f, frame)?));
+        }
+        Dispatch::Message(si) => {
+            let payload = payload_of(f, frame)?;
+            out.header = read_header(p, f, frame)?;
+            out.payload = read_struct_payload(p, Some(si), &f.name, payload)?;
+        }
+        Dispatch::CanId => {
+            let can_id = out.can_id.unwrap_or(0);
+            out.id = vec![can_id];
+            let ci = p
+                .commands
+                .iter()
+                .position(|c| c.can_id == Some(can_id))
+                .ok_or(DecodeIssue::UnknownCommand {
+                    id: vec![can_id],
+                    key: can_id,
+                })?;
+            out.command = Some(ci);
+            let payload = payload_of(f, frame)?;
+            out.header = read_header(p, f, frame)?;
+            let c = &p.commands[ci];
+            out.payload =
+                read_struct_payload(p, c.payloads.first().copied().flatten(), &c.name, payload)?;
+        }
+        Dispatch::Key => {
+            out.header = read_header(p, f, frame)?;
+            if let Some((flag, ack_header_len)) = f.ack {
+                if read(flag).ok_or_else(|| header_truncated(p, frame))? == ack_value(f, flag) {
+                    let end = if f.bare_len.is_some() && frame.len() == ack_header_len {
+                        frame.len()
+                    } else {
+                        frame.len().saturating_sub(f.trailer_len)
+                    };
+                    let data = frame.get(ack_header_len..end).ok_or(DecodeIssue::Frame(
+                        DecodeError::Truncated {
+                            needed: ack_header_len,
+                            available: frame.len(),
+                        },
+                    ))?;
+                    let max = ack_max(f, ack_header_len);
+                    if data.len() > max {
+                        return Err(DecodeIssue::Frame(DecodeError::PayloadLength {
+                            expected: max,
+                            actual: data.len(),
+                        }));
+                    }
+                    out.ack = true;
+                    out.payload = Value::from(hex(data));
+                    return Ok(out);
+                }
+            }
+            decode_command(p, f, frame, &read, &mut out)?;
+        }
+    }
+    Ok(out)
+}
+
+/// The dispatch key, command, stuffing, direction and payload of a first-format frame.
+fn decode_command(
+    p: &Protocol,
+    f: &Frame,
+    frame: &[u8],
+    read: &dyn Fn(usize) -> Option<u64>,
+    out: &mut Decoded,
+) -> Result<(), DecodeIssue> {
+    let mut key = 0u64;
+    for &vi in &f.dispatch {
+        let v = &f.values[vi];
+        let raw = read(vi).ok_or_else(|| header_truncated(p, frame))?;
+        let x = truncate(v.prim, raw);
+        out.id.push(x);
+        key = key.checked_shl(v.width).unwrap_or(0) | x;
+    }
+    let ci = p
+        .commands
+        .iter()
+        .position(|c| {
+            c.id.len() == out.id.len()
+                && c.id
+                    .iter()
+                    .zip(&out.id)
+                    .zip(&f.dispatch)
+                    .all(|((a, b), &vi)| truncate(f.values[vi].prim, *a) == *b)
+        })
+        .ok_or_else(|| DecodeIssue::UnknownCommand {
+            id: out.id.clone(),
+            key,
+        })?;
+    out.command = Some(ci);
+    let c = &p.commands[ci];
+    let stuffed = payload_of(f, frame)?;
+    let mut unstuffed = vec![0u8; f.payload_max];
+    let payload = match stuffing(f) {
+        Some(s) => s
+            .unstuff(stuffed, &mut unstuffed)
+            .map_err(DecodeIssue::Frame)?,
+        None => stuffed,
+    };
+    let slot = if p.directions.is_empty() {
+        0
+    } else {
+        let d = direction_of(p, read).ok_or_else(|| DecodeIssue::UnknownDirection {
+            command: c.name.clone(),
+        })?;
+        out.direction = Some(d);
+        d
+    };
+    out.payload =
+        read_struct_payload(p, c.payloads.get(slot).copied().flatten(), &c.name, payload)?;
+    Ok(())
+}

@@ -1,0 +1,222 @@
+//! The interpreter: encodes and decodes the frames of any checked spec at run time, without
+//! compiling anything, for the `protocol` command.
+//!
+//! It reads the same checked IR as the `protocol!` macro ([`protocol_codegen::ir`]) and runs
+//! the runtime's own engine on it: every frame format becomes a runtime
+//! [`FrameLayout`] value (what generated code holds as its `LAYOUT` static), so finding frames
+//! in a stream ([`protocol_runtime::StreamDecoder`]), verifying them and sealing them use the
+//! very code generated codecs use, and the wire rules exist once. What the interpreter adds is
+//! the dynamic half of generated code: header values, dispatch, directions and payload structs,
+//! to and from [`serde_json::Value`] (the JSON Lines shape of `protocol decode`).
+//!
+//! ```
+//! use protocol_cli::interp::Interpreter;
+//! use protocol_codegen::source::SpecSource;
+//!
+//! let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../specs/hflink.toml"))?;
+//! let protocol = protocol_codegen::compile(&SpecSource::new("specs/hflink.toml", text))
+//!     .map_err(|_| "invalid spec")?;
+//! let interp = Interpreter::new(protocol);
+//! let codec = interp.codec();
+//!
+//! let frame = codec.encode(&serde_json::json!({
+//!     "command": "SET_ROBOT_SPEED",
+//!     "header": { "sender": 1, "receiver": 17 },
+//!     "payload": { "x": 0.5, "y": 0.0, "z": 0.1 },
+//! }))?;
+//! let decoded = codec.parse(0, &frame.bytes)?;
+//! assert_eq!(interp.protocol().commands[decoded.command.unwrap()].name, "SET_ROBOT_SPEED");
+//! assert_eq!(decoded.payload["x"], 0.5);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! Layouts borrow CRC objects, so they cannot live in the same struct as them: an
+//! [`Interpreter`] owns the protocol and its CRC objects, and a [`Codec`] borrowed from it holds
+//! the layouts' slices.
+
+mod error;
+mod frame;
+mod layout;
+mod payload;
+mod value;
+
+pub use error::{DecodeIssue, EncodeIssue};
+pub use frame::{Decoded, Dispatch, ack_value, dispatch_of, hex, parse_hex};
+pub use layout::{order, pos, word_field};
+pub use value::{NumError, f32_json, f64_json, json_f32, json_f64};
+
+use protocol_codegen::ir::{Protocol, Transport};
+use protocol_runtime::{CanFrame, DecodeError, FrameLayout};
+use serde_json::{Map, Value};
+
+use layout::{CrcStore, FrameParts};
+
+/// A checked protocol with the CRC objects its layouts borrow.
+pub struct Interpreter {
+    protocol: Protocol,
+    crcs: CrcStore,
+}
+
+impl Interpreter {
+    /// An interpreter of a checked protocol.
+    pub fn new(protocol: Protocol) -> Self {
+        let crcs = CrcStore::new(&protocol);
+        Interpreter { protocol, crcs }
+    }
+
+    /// The protocol.
+    pub fn protocol(&self) -> &Protocol {
+        &self.protocol
+    }
+
+    /// The codec: layouts of every frame format, decoding and encoding.
+    pub fn codec(&self) -> Codec<'_> {
+        let frames = self
+            .protocol
+            .frames
+            .iter()
+            .enumerate()
+            .map(|(i, f)| FrameParts::new(f, i, &self.crcs))
+            .collect();
+        Codec {
+            protocol: &self.protocol,
+            frames,
+        }
+    }
+}
+
+/// An encoded frame.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Encoded {
+    /// Index of its frame format.
+    pub format: usize,
+    /// The frame's bytes (a CAN format's virtual frame: id, length, data).
+    pub bytes: Vec<u8>,
+    /// The CAN frame, for a CAN format.
+    pub can: Option<CanFrame>,
+}
+
+/// Decoding and encoding the frames of one protocol.
+pub struct Codec<'a> {
+    protocol: &'a Protocol,
+    frames: Vec<FrameParts<'a>>,
+}
+
+impl Codec<'_> {
+    /// The protocol.
+    pub fn protocol(&self) -> &Protocol {
+        self.protocol
+    }
+
+    /// The runtime layout of frame format `format` (an index into the protocol's frames), as
+    /// generated code's `LAYOUT` holds it. `None` for an index out of range.
+    pub fn layout(&self, format: usize) -> Option<FrameLayout<'_>> {
+        self.frames.get(format).map(FrameParts::layout)
+    }
+
+    /// The index of the frame format named `name`.
+    pub fn format_index(&self, name: &str) -> Option<usize> {
+        self.protocol.frames.iter().position(|f| f.name == name)
+    }
+
+    /// Decodes a frame the engine accepted (a CAN format's virtual frame), as generated
+    /// `Packet::from_frame` does.
+    ///
+    /// # Errors
+    /// [`DecodeIssue`], mirroring the runtime's [`DecodeError`] of generated code.
+    pub fn decode_frame(&self, format: usize, frame: &[u8]) -> Result<Decoded, DecodeIssue> {
+        if format >= self.protocol.frames.len() {
+            return Err(DecodeIssue::Frame(DecodeError::Frame(
+                protocol_runtime::Reject::BadHeader,
+            )));
+        }
+        frame::decode(self.protocol, format, frame)
+    }
+
+    /// Verifies the framing of the frame at the start of `bytes`, then decodes it, as
+    /// generated `Packet::decode` does.
+    ///
+    /// # Errors
+    /// [`DecodeIssue::Frame`] when no valid frame starts there, then as
+    /// [`decode_frame`](Self::decode_frame).
+    pub fn parse(&self, format: usize, bytes: &[u8]) -> Result<Decoded, DecodeIssue> {
+        let layout = self
+            .layout(format)
+            .ok_or(DecodeIssue::Frame(DecodeError::Frame(
+                protocol_runtime::Reject::BadHeader,
+            )))?;
+        let frame = layout.parse(bytes).map_err(DecodeIssue::Frame)?;
+        self.decode_frame(format, frame)
+    }
+
+    /// Decodes a received CAN frame of a CAN format, verifying its checks on its virtual
+    /// frame, as generated `<Name>Packet::decode` does.
+    ///
+    /// # Errors
+    /// As [`parse`](Self::parse).
+    pub fn decode_can(&self, format: usize, can: &CanFrame) -> Result<Decoded, DecodeIssue> {
+        let mut virt = [0u8; protocol_runtime::can::CAN_VIRTUAL_LEN];
+        self.parse(format, can.to_virtual(&mut virt))
+    }
+
+    /// The JSON Lines object of a decoded frame: offset, length, format, command, id, header,
+    /// payload, hex (`can_id` for a CAN frame; `"ack": true` instead of a command for an
+    /// acknowledgement, whose payload is its data as hex). `bytes` are the frame's bytes as
+    /// received (a CAN frame's data bytes).
+    pub fn frame_json(&self, d: &Decoded, offset: u64, bytes: &[u8]) -> Value {
+        let p = self.protocol;
+        let mut o = Map::new();
+        o.insert("offset".into(), Value::from(offset));
+        o.insert("length".into(), Value::from(bytes.len()));
+        let format = p.frames.get(d.format).map_or("", |f| f.name.as_str());
+        o.insert("format".into(), Value::from(format));
+        if let Some(c) = d.command.and_then(|ci| p.commands.get(ci)) {
+            o.insert("command".into(), Value::from(c.name.clone()));
+            let id = match d.id.as_slice() {
+                [one] => Value::from(*one),
+                many => Value::from(many.to_vec()),
+            };
+            o.insert("id".into(), id);
+        }
+        if d.ack {
+            o.insert("ack".into(), Value::Bool(true));
+        }
+        if let Some(can_id) = d.can_id {
+            o.insert("can_id".into(), Value::from(can_id));
+        }
+        o.insert("header".into(), Value::Object(d.header.clone()));
+        o.insert("payload".into(), d.payload.clone());
+        o.insert("hex".into(), Value::from(hex(bytes)));
+        Value::Object(o)
+    }
+
+    /// Encodes a frame object in the shape [`frame_json`](Self::frame_json) gives (`format`
+    /// defaults to the first; `offset`, `length` and `hex` are ignored; values the spec
+    /// computes, such as lengths and checks, are computed).
+    ///
+    /// # Errors
+    /// [`EncodeIssue`] naming the first missing, ill-typed or out-of-range value.
+    pub fn encode(&self, object: &Value) -> Result<Encoded, EncodeIssue> {
+        let obj = object
+            .as_object()
+            .ok_or_else(|| EncodeIssue::new("", "expected a frame object"))?;
+        let format = match obj.get("format") {
+            None | Some(Value::Null) => 0,
+            Some(Value::String(name)) => self.format_index(name).ok_or_else(|| {
+                EncodeIssue::new("format", format!("no frame format `{name}` in the spec"))
+            })?,
+            Some(_) => return Err(EncodeIssue::new("format", "expected a frame format name")),
+        };
+        let layout = self
+            .layout(format)
+            .ok_or_else(|| EncodeIssue::new("format", "no such frame format"))?;
+        let bytes = frame::encode(self.protocol, format, &layout, obj)?;
+        let can = match self.protocol.frames[format].transport {
+            Transport::Can { .. } => {
+                Some(CanFrame::from_virtual(&bytes).map_err(EncodeIssue::runtime)?)
+            }
+            Transport::Serial => None,
+        };
+        Ok(Encoded { format, bytes, can })
+    }
+}

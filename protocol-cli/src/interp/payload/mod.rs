@@ -1,0 +1,72 @@
+//! Payload structs between the wire and JSON: the dynamic counterpart of the `impl Payload`
+//! that `emit_payload_impl` (`protocol-codegen/src/codegen/payload.rs`) generates, field for
+//! field and in the same order, with the same conversions (scaling, rounding, clamping, bit
+//! masks, enum lookups) and the same errors.
+//!
+//! A struct is a JSON object with its fields in spec order: nested structs are objects,
+//! arrays and repeated groups are arrays, bytes are a lowercase hex string, an optional field
+//! that is absent is `null`, enums are their spec name (the number when unknown and kept),
+//! scaled fields their physical value, bitfield members their own keys; padding does not
+//! appear. Reading lives in [`read`], writing in [`write`].
+
+mod read;
+mod write;
+
+pub use read::{ReadFail, read_payload};
+pub use write::write_payload;
+
+use protocol_codegen::ir::{BitMember, Enum, Field, FieldKind, Prim, UnknownPolicy};
+
+use super::value::truncate;
+
+fn join(path: &str, name: &str) -> String {
+    if path.is_empty() {
+        name.to_string()
+    } else {
+        format!("{path}.{name}")
+    }
+}
+
+fn member_mask(m: &BitMember) -> u64 {
+    if m.width >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << m.width) - 1
+    }
+}
+
+/// The value of raw bits of a signed type, `None` for unsigned types.
+fn signed_value(prim: Prim, raw: u64) -> Option<i64> {
+    match prim {
+        Prim::I8 => Some(i64::from(raw as u8 as i8)),
+        Prim::I16 => Some(i64::from(raw as u16 as i16)),
+        Prim::I32 => Some(i64::from(raw as u32 as i32)),
+        Prim::I64 => Some(raw as i64),
+        _ => None,
+    }
+}
+
+/// The variant of an enum with raw value `raw` (bits truncated to the enum's type).
+fn variant(e: &Enum, raw: u64) -> Option<&protocol_codegen::ir::EnumVariant> {
+    e.variants.iter().find(|v| truncate(e.prim, v.value) == raw)
+}
+
+/// Whether unknown values of `e` are kept.
+fn keeps_unknown(e: &Enum) -> bool {
+    e.unknown == UnknownPolicy::Keep
+}
+
+/// The JSON keys a field takes in its struct's object: its name, or its bit members' names.
+fn keys(f: &Field) -> Vec<&str> {
+    fn of<'a>(name: &'a str, kind: &'a FieldKind) -> Vec<&'a str> {
+        match kind {
+            FieldKind::Padding => Vec::new(),
+            FieldKind::Bits { members, .. } => members.iter().map(|m| m.name.as_str()).collect(),
+            FieldKind::Optional(inner) => of(name, inner),
+            FieldKind::Value { .. } | FieldKind::Bytes { .. } | FieldKind::Group { .. } => {
+                vec![name]
+            }
+        }
+    }
+    of(&f.name, &f.kind)
+}

@@ -1,0 +1,236 @@
+//! Reading a payload struct into JSON, as the generated `Payload::read` and `from_bytes` do.
+
+use protocol_codegen::ir::{BitMember, Enum, Field, FieldKind, Prim, Protocol, ValueType};
+use protocol_runtime::{DecodeError, Reader};
+use serde_json::{Map, Value};
+
+use super::{join, keeps_unknown, member_mask, signed_value, variant};
+use crate::interp::frame::hex;
+use crate::interp::value::{f32_json, f64_json, read_scalar, truncate};
+
+/// Why a payload could not be read.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ReadFail {
+    /// A runtime error (the payload ended early, sizes that disagree, ...).
+    Runtime(DecodeError),
+    /// A field holds no variant of its enum.
+    Enum {
+        /// Path of the field.
+        field: String,
+        /// Index of the enum.
+        enum_index: usize,
+        /// The value as the runtime reports it (`raw as u64`).
+        value: u64,
+    },
+}
+
+impl From<DecodeError> for ReadFail {
+    fn from(e: DecodeError) -> Self {
+        ReadFail::Runtime(e)
+    }
+}
+
+/// Reads exactly `bytes` as struct `si`, as generated `Payload::from_bytes` does: an early
+/// end is a `PayloadLength` with the struct's smallest size, bytes left over a
+/// `PayloadLength` with the bytes read.
+///
+/// # Errors
+/// [`ReadFail`] as generated code fails on the same bytes.
+pub fn read_payload(p: &Protocol, si: usize, bytes: &[u8]) -> Result<Map<String, Value>, ReadFail> {
+    let mut r = Reader::new(bytes);
+    let value = read_struct(p, si, &mut r, "").map_err(|e| match e {
+        ReadFail::Runtime(DecodeError::Truncated { .. }) => {
+            ReadFail::Runtime(DecodeError::PayloadLength {
+                expected: p.structs[si].min_size,
+                actual: bytes.len(),
+            })
+        }
+        other => other,
+    })?;
+    r.finish()?;
+    Ok(value)
+}
+
+/// Reads struct `si` at the reader's position (`Payload::read`).
+fn read_struct(
+    p: &Protocol,
+    si: usize,
+    r: &mut Reader<'_>,
+    path: &str,
+) -> Result<Map<String, Value>, ReadFail> {
+    let s = &p.structs[si];
+    let mut out = Map::new();
+    for f in &s.fields {
+        read_field(p, f, &f.kind, s.size, r, path, &mut out, None)?;
+    }
+    Ok(out)
+}
+
+/// Reads one field into `out`. `size` is the wire size of the struct whose read code runs (a
+/// repeated group reports it when full); `owner` holds the fields sized bytes take their size
+/// from: the struct being read (`None`: `out` itself), or for a group's elements, which
+/// generated code reads inline, the struct that repeats them.
+#[allow(clippy::too_many_arguments)]
+fn read_field(
+    p: &Protocol,
+    f: &Field,
+    kind: &FieldKind,
+    size: usize,
+    r: &mut Reader<'_>,
+    path: &str,
+    out: &mut Map<String, Value>,
+    owner: Option<&Map<String, Value>>,
+) -> Result<(), ReadFail> {
+    match kind {
+        FieldKind::Padding => r.skip(f.size)?,
+        FieldKind::Bits { word, members } => {
+            let raw = read_scalar(r, *word)?.as_u64();
+            for m in members {
+                let v = read_member(p, m, raw, &join(path, &m.name))?;
+                out.insert(m.name.clone(), v);
+            }
+        }
+        FieldKind::Optional(inner) => {
+            if r.remaining() > 0 {
+                read_field(p, f, inner, size, r, path, out, owner)?;
+            } else {
+                for key in super::keys(f) {
+                    out.insert(key.to_string(), Value::Null);
+                }
+            }
+        }
+        FieldKind::Value { ty, count } => {
+            let fpath = join(path, &f.name);
+            let v = match count {
+                None => read_elem(p, ty, r, &fpath)?,
+                Some(n) => {
+                    let mut items = Vec::with_capacity(*n);
+                    for i in 0..*n {
+                        items.push(read_elem(p, ty, r, &format!("{fpath}[{i}]"))?);
+                    }
+                    Value::Array(items)
+                }
+            };
+            out.insert(f.name.clone(), v);
+        }
+        FieldKind::Bytes { max, size_from } => {
+            let v = match size_from {
+                None => {
+                    // `Bytes::<max>::read_rest`.
+                    let start = r.position();
+                    let rest = r.rest();
+                    if rest.len() > *max {
+                        return Err(ReadFail::Runtime(DecodeError::PayloadLength {
+                            expected: start + max,
+                            actual: start + rest.len(),
+                        }));
+                    }
+                    r.skip(rest.len())?;
+                    hex(rest)
+                }
+                Some(n) => {
+                    let count = owner
+                        .unwrap_or(out)
+                        .get(n)
+                        .and_then(Value::as_u64)
+                        .unwrap_or(0);
+                    let taken = r.take(count as usize)?;
+                    if taken.len() > *max {
+                        return Err(ReadFail::Runtime(DecodeError::SizeMismatch));
+                    }
+                    hex(taken)
+                }
+            };
+            out.insert(f.name.clone(), Value::from(v));
+        }
+        FieldKind::Group { elem, max } => {
+            let sizes = owner.unwrap_or(out);
+            let mut items = Vec::new();
+            let fpath = join(path, &f.name);
+            while r.remaining() > 0 {
+                let mut item = Map::new();
+                let epath = format!("{fpath}[{}]", items.len());
+                for ef in &p.structs[*elem].fields {
+                    read_field(p, ef, &ef.kind, size, r, &epath, &mut item, Some(sizes))?;
+                }
+                let available = r.position() + r.remaining();
+                if items.len() == *max {
+                    return Err(ReadFail::Runtime(DecodeError::PayloadLength {
+                        expected: size,
+                        actual: available,
+                    }));
+                }
+                items.push(Value::Object(item));
+            }
+            out.insert(f.name.clone(), Value::Array(items));
+        }
+    }
+    Ok(())
+}
+
+fn read_member(p: &Protocol, m: &BitMember, word: u64, path: &str) -> Result<Value, ReadFail> {
+    let field = (word >> m.shift) & member_mask(m);
+    Ok(match m.enum_index {
+        Some(ei) => {
+            let e = &p.enums[ei];
+            enum_json(e, ei, truncate(e.prim, field), path)?
+        }
+        None if m.prim == Prim::Bool => Value::Bool(field != 0),
+        None => Value::from(truncate(m.prim, field)),
+    })
+}
+
+fn read_elem(
+    p: &Protocol,
+    ty: &ValueType,
+    r: &mut Reader<'_>,
+    path: &str,
+) -> Result<Value, ReadFail> {
+    Ok(match ty {
+        ValueType::Scalar {
+            scalar,
+            scale: None,
+        } => read_scalar(r, *scalar)?.to_json(),
+        ValueType::Scalar {
+            scalar,
+            scale: Some(sc),
+        } => {
+            let raw = read_scalar(r, *scalar)?.as_f64();
+            let physical = raw * sc.factor + sc.offset;
+            match sc.physical {
+                Prim::F32 => f32_json(physical as f32),
+                _ => f64_json(physical),
+            }
+        }
+        ValueType::Struct(si) => Value::Object(read_struct(p, *si, r, path)?),
+        ValueType::Enum(ei, scalar) => {
+            let raw = read_scalar(r, *scalar)?;
+            enum_json(
+                &p.enums[*ei],
+                *ei,
+                truncate(scalar.prim, raw.as_u64()),
+                path,
+            )?
+        }
+    })
+}
+
+/// The JSON form of an enum's raw value (bits truncated to the enum's type).
+fn enum_json(e: &Enum, ei: usize, raw: u64, path: &str) -> Result<Value, ReadFail> {
+    if let Some(v) = variant(e, raw) {
+        return Ok(Value::from(v.name.clone()));
+    }
+    let signed = signed_value(e.prim, raw);
+    if keeps_unknown(e) {
+        return Ok(match signed {
+            Some(i) => Value::from(i),
+            None => Value::from(raw),
+        });
+    }
+    Err(ReadFail::Enum {
+        field: path.to_string(),
+        enum_index: ei,
+        // Generated code reports `raw as u64`, which sign-extends a signed raw value.
+        value: signed.map_or(raw, |i| i as u64),
+    })
+}

@@ -1,0 +1,331 @@
+//! Writing a payload struct from JSON, as the generated `Payload::write` does. Values that
+//! generated code cannot even hold (a number too large for its type, bytes beyond a field's
+//! `max`, an unknown variant of a rejecting enum) are refused with the path of the value.
+
+use protocol_codegen::ir::{
+    BitMember, Enum, Field, FieldKind, Prim, Protocol, Rounding, Scalar, Scale, Struct, ValueType,
+};
+use protocol_runtime::Writer;
+use serde_json::{Map, Value};
+
+use super::{join, keeps_unknown, member_mask, signed_value, variant};
+use crate::interp::error::EncodeIssue;
+use crate::interp::frame::parse_hex;
+use crate::interp::value::{
+    NumError, bits_as_f64, json_bits, json_f32, json_f64, saturating_cast, truncate, write_bits,
+};
+
+fn issue(path: &str, e: NumError) -> EncodeIssue {
+    match e {
+        NumError::Type(m) | NumError::Range(m) => EncodeIssue::new(path, m),
+    }
+}
+
+/// Writes struct `si` from a JSON object; returns the bytes written.
+///
+/// # Errors
+/// [`EncodeIssue`] naming the first missing, ill-typed, out-of-range or unknown value.
+pub fn write_payload(
+    p: &Protocol,
+    si: usize,
+    v: &Value,
+    w: &mut Writer<'_>,
+    path: &str,
+) -> Result<(), EncodeIssue> {
+    write_struct(p, si, v, w, path)
+}
+
+fn write_struct(
+    p: &Protocol,
+    si: usize,
+    v: &Value,
+    w: &mut Writer<'_>,
+    path: &str,
+) -> Result<(), EncodeIssue> {
+    let s = &p.structs[si];
+    let obj = v.as_object().ok_or_else(|| {
+        EncodeIssue::new(path, format!("expected an object (struct `{}`)", s.name))
+    })?;
+    check_keys(s, obj, path)?;
+    for f in &s.fields {
+        write_field(p, f, &f.kind, obj, w, path, obj)?;
+    }
+    Ok(())
+}
+
+/// Every key of `obj` must name a field or bit member of `s`.
+fn check_keys(s: &Struct, obj: &Map<String, Value>, path: &str) -> Result<(), EncodeIssue> {
+    let known = |k: &str| s.fields.iter().any(|f| super::keys(f).contains(&k));
+    match obj.keys().find(|k| !known(k)) {
+        Some(k) => Err(EncodeIssue::new(
+            join(path, k),
+            format!("struct `{}` has no such field", s.name),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Writes one field from `obj`; `owner` holds the fields sized bytes take their size from (the
+/// struct, or for a group's elements the struct that repeats them).
+fn write_field(
+    p: &Protocol,
+    f: &Field,
+    kind: &FieldKind,
+    obj: &Map<String, Value>,
+    w: &mut Writer<'_>,
+    path: &str,
+    owner: &Map<String, Value>,
+) -> Result<(), EncodeIssue> {
+    let buffer = |e| EncodeIssue::runtime(e);
+    let fpath = join(path, &f.name);
+    match kind {
+        FieldKind::Padding => w.zeros(f.size).map_err(buffer),
+        FieldKind::Bits { word, members } => {
+            let mut bits = 0u64;
+            for m in members {
+                let mpath = join(path, &m.name);
+                let v = obj
+                    .get(&m.name)
+                    .ok_or_else(|| EncodeIssue::missing(&mpath))?;
+                let raw = member_raw(p, m, v, &mpath)?;
+                bits |= (raw & member_mask(m)) << m.shift;
+            }
+            write_bits(w, *word, truncate(word.prim, bits)).map_err(buffer)
+        }
+        FieldKind::Optional(inner) => {
+            let present = super::keys(f)
+                .iter()
+                .any(|k| obj.get(*k).is_some_and(|v| !v.is_null()));
+            if present {
+                write_field(p, f, inner, obj, w, path, owner)
+            } else {
+                Ok(())
+            }
+        }
+        FieldKind::Value { ty, count } => {
+            let v = obj
+                .get(&f.name)
+                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
+            match count {
+                None => write_elem(p, ty, v, w, &fpath),
+                Some(n) => {
+                    let items = v.as_array().ok_or_else(|| {
+                        EncodeIssue::new(&fpath, format!("expected an array of {n} elements"))
+                    })?;
+                    if items.len() != *n {
+                        return Err(EncodeIssue::new(
+                            &fpath,
+                            format!("expected {n} elements, got {}", items.len()),
+                        ));
+                    }
+                    for (i, item) in items.iter().enumerate() {
+                        write_elem(p, ty, item, w, &format!("{fpath}[{i}]"))?;
+                    }
+                    Ok(())
+                }
+            }
+        }
+        FieldKind::Bytes { max, size_from } => {
+            let v = obj
+                .get(&f.name)
+                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
+            let bytes = json_bytes(v).ok_or_else(|| {
+                EncodeIssue::new(
+                    &fpath,
+                    "expected bytes: a hex string or an array of numbers 0..=255",
+                )
+            })?;
+            if bytes.len() > *max {
+                return Err(EncodeIssue::new(
+                    &fpath,
+                    format!("{} bytes, at most {max} allowed", bytes.len()),
+                ));
+            }
+            if let Some(n) = size_from {
+                let stated = owner.get(n).and_then(Value::as_u64);
+                if stated != Some(bytes.len() as u64) {
+                    return Err(EncodeIssue::new(
+                        &fpath,
+                        format!(
+                            "{} bytes, but `{n}` says {}",
+                            bytes.len(),
+                            stated.map_or("nothing".into(), |s| s.to_string())
+                        ),
+                    ));
+                }
+            }
+            w.put_bytes(&bytes).map_err(buffer)
+        }
+        FieldKind::Group { elem, max } => {
+            let v = obj
+                .get(&f.name)
+                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
+            let items = v
+                .as_array()
+                .ok_or_else(|| EncodeIssue::new(&fpath, "expected an array of elements"))?;
+            if items.len() > *max {
+                return Err(EncodeIssue::new(
+                    &fpath,
+                    format!("{} elements, at most {max} allowed", items.len()),
+                ));
+            }
+            let es = &p.structs[*elem];
+            for (i, item) in items.iter().enumerate() {
+                let ipath = format!("{fpath}[{i}]");
+                let iobj = item.as_object().ok_or_else(|| {
+                    EncodeIssue::new(&ipath, format!("expected an object (struct `{}`)", es.name))
+                })?;
+                check_keys(es, iobj, &ipath)?;
+                for ef in &es.fields {
+                    write_field(p, ef, &ef.kind, iobj, w, &ipath, owner)?;
+                }
+            }
+            Ok(())
+        }
+    }
+}
+
+/// Bytes from JSON: a hex string, or an array of numbers.
+fn json_bytes(v: &Value) -> Option<Vec<u8>> {
+    match v {
+        Value::String(s) => parse_hex(s),
+        Value::Array(items) => items
+            .iter()
+            .map(|x| x.as_u64().and_then(|b| u8::try_from(b).ok()))
+            .collect(),
+        _ => None,
+    }
+}
+
+/// The raw bits of a bit member, before masking. Values that do not fit the member's width
+/// are refused (generated code would mask them silently; a person typing JSON wants to know).
+fn member_raw(p: &Protocol, m: &BitMember, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
+    match m.enum_index {
+        // `to_raw() as word`: a negative value of a signed enum is sign-extended, then masked.
+        Some(ei) => {
+            let e = &p.enums[ei];
+            let raw = enum_raw(e, v, path)?;
+            Ok(signed_value(e.prim, raw).map_or(raw, |i| i as u64))
+        }
+        None => {
+            let raw = json_bits(v, m.prim).map_err(|e| issue(path, e))?;
+            if raw & !member_mask(m) != 0 {
+                return Err(EncodeIssue::new(
+                    path,
+                    format!("{raw} does not fit {} bits", m.width),
+                ));
+            }
+            Ok(raw)
+        }
+    }
+}
+
+fn write_elem(
+    p: &Protocol,
+    ty: &ValueType,
+    v: &Value,
+    w: &mut Writer<'_>,
+    path: &str,
+) -> Result<(), EncodeIssue> {
+    let buffer = |e| EncodeIssue::runtime(e);
+    match ty {
+        ValueType::Scalar {
+            scalar,
+            scale: None,
+        } => {
+            let bits = json_bits(v, scalar.prim).map_err(|e| issue(path, e))?;
+            write_bits(w, *scalar, bits).map_err(buffer)
+        }
+        ValueType::Scalar {
+            scalar,
+            scale: Some(sc),
+        } => {
+            let bits = scaled_raw(*scalar, sc, v, path)?;
+            write_bits(w, *scalar, bits).map_err(buffer)
+        }
+        ValueType::Struct(si) => write_struct(p, *si, v, w, path),
+        ValueType::Enum(ei, scalar) => {
+            let raw = enum_raw(&p.enums[*ei], v, path)?;
+            write_bits(w, *scalar, raw).map_err(buffer)
+        }
+    }
+}
+
+/// The raw integer of a scaled field's physical value, computed as generated code computes it
+/// (`write_elem` in `protocol-codegen/src/codegen/payload.rs`): the value in its Rust type,
+/// clamped, `(value - offset) / factor`, rounded, `as` the raw type.
+fn scaled_raw(scalar: Scalar, sc: &Scale, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
+    let value = match sc.physical {
+        Prim::F32 => json_f32(v).map(f64::from),
+        _ => json_f64(v),
+    }
+    .map_err(|e| issue(path, e))?;
+    let clamped = match sc.clamp {
+        Some((lo, hi)) => value.clamp(lo, hi),
+        None => value,
+    };
+    let q = (clamped - sc.offset) / sc.factor;
+    let nearest = if q >= 0.0 { q + 0.5 } else { q - 0.5 };
+    let rounded = match sc.rounding {
+        Rounding::Nearest => nearest,
+        // Toward zero, but a value within float noise of an integer is that integer, so that
+        // a decoded value (raw * factor, rounded to f32) encodes back to its raw value.
+        Rounding::Truncate => {
+            let nearest = nearest as i64 as f64;
+            let off = if q >= nearest {
+                q - nearest
+            } else {
+                nearest - q
+            };
+            let magnitude = if q >= 0.0 { q } else { -q };
+            if off <= 1e-6 * (if magnitude > 1.0 { magnitude } else { 1.0 }) {
+                nearest
+            } else {
+                q
+            }
+        }
+    };
+    Ok(truncate(scalar.prim, saturating_cast(scalar.prim, rounded)))
+}
+
+/// The raw bits (truncated to the enum's type) of an enum value: a variant's spec or Rust
+/// name, or a number that is a variant's value (any number when unknown values are kept).
+fn enum_raw(e: &Enum, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
+    if let Value::String(name) = v {
+        return e
+            .variants
+            .iter()
+            .find(|x| x.name == *name || x.rust_name == *name)
+            .map(|x| truncate(e.prim, x.value))
+            .ok_or_else(|| {
+                let names: Vec<&str> = e.variants.iter().map(|x| x.name.as_str()).collect();
+                EncodeIssue::new(
+                    path,
+                    format!(
+                        "`{name}` is no variant of `{}` (variants: {})",
+                        e.name,
+                        names.join(", ")
+                    ),
+                )
+            });
+    }
+    let raw = json_bits(v, e.prim).map_err(|err| match err {
+        NumError::Type(_) => EncodeIssue::new(
+            path,
+            format!("expected a variant name of `{}` or its value", e.name),
+        ),
+        NumError::Range(m) => EncodeIssue::new(path, m),
+    })?;
+    if variant(e, raw).is_some() || keeps_unknown(e) {
+        Ok(raw)
+    } else {
+        Err(EncodeIssue::new(
+            path,
+            format!(
+                "{} is no variant of `{}`, which rejects unknown values",
+                bits_as_f64(e.prim, raw),
+                e.name
+            ),
+        ))
+    }
+}

@@ -1,0 +1,354 @@
+//! A decoding session of `protocol decode`: turns the engine's events (and CAN log records)
+//! into output lines, JSON Lines or table, and counts what it saw for `--stats`.
+//!
+//! Unknown commands and bad frames are events like any other: they are printed and counted,
+//! and the decode goes on. The byte accounting of a serial stream is the engine's
+//! ([`protocol_runtime::Stats`]); this module adds what only an interpreter knows (commands,
+//! payload errors).
+
+use std::io::{self, Write};
+
+use protocol_runtime::{CanFrame, DecodeError, Event, Reject, Stats};
+use serde_json::{Map, Value};
+
+use crate::candump::CanRecord;
+use crate::interp::{Codec, DecodeIssue, Decoded, hex};
+use crate::table::{Widths, event_line, frame_line};
+
+/// How frames and events are printed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Output {
+    /// One aligned line per frame or event.
+    Table,
+    /// One JSON object per line.
+    Json,
+}
+
+/// What a session counted.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Counts {
+    /// Frames decoded into messages, and their bytes, per command (spec order).
+    pub per_command: Vec<(u64, u64)>,
+    /// Frames of a format without commands.
+    pub raw_frames: u64,
+    /// Frames decoded (messages and raw frames).
+    pub frames: u64,
+    /// Bytes of the decoded frames.
+    pub frame_bytes: u64,
+    /// Payload bytes of the decoded frames.
+    pub payload_bytes: u64,
+    /// Valid frames with an id no command has.
+    pub unknown_command: u64,
+    /// Valid frames whose header matches no direction.
+    pub unknown_direction: u64,
+    /// Valid frames whose payload does not fit their command (size, enum value).
+    pub bad_payload: u64,
+    /// CAN frames rejected, by reason (serial rejections are in the engine's stats).
+    pub can_rejected: Vec<(String, u64)>,
+    /// CAN records that are not data frames (remote requests, CAN FD).
+    pub can_skipped: u64,
+    /// Bytes received (serial), or data bytes of the CAN records.
+    pub input_bytes: u64,
+}
+
+/// The JSON name of a rejection.
+pub fn reject_name(reason: Reject) -> &'static str {
+    match reason {
+        Reject::BadHeader => "bad_header",
+        Reject::BadHeaderCheck => "bad_header_check",
+        Reject::BadLength => "bad_length",
+        Reject::BadChecksum => "bad_checksum",
+        Reject::BadTrailer => "bad_trailer",
+        Reject::Truncated => "truncated",
+        _ => "rejected",
+    }
+}
+
+/// A decoding session writing to `out`.
+pub struct Session<'c, 'a, W: Write> {
+    codec: &'c Codec<'a>,
+    format: usize,
+    output: Output,
+    widths: Widths,
+    out: W,
+    /// What was counted so far.
+    pub counts: Counts,
+}
+
+impl<'c, 'a, W: Write> Session<'c, 'a, W> {
+    /// A session decoding frames of format `format` of `codec`'s protocol.
+    pub fn new(codec: &'c Codec<'a>, format: usize, output: Output, out: W) -> Self {
+        let p = codec.protocol();
+        Session {
+            codec,
+            format,
+            output,
+            widths: Widths::of(p),
+            out,
+            counts: Counts {
+                per_command: vec![(0, 0); p.commands.len()],
+                ..Counts::default()
+            },
+        }
+    }
+
+    /// Handles one event of the stream engine.
+    ///
+    /// # Errors
+    /// When the output cannot be written.
+    pub fn event(&mut self, event: &Event<'_>) -> io::Result<()> {
+        match event {
+            Event::Frame(f) => self.frame(f.offset, f.bytes, f.bytes),
+            Event::Rejected { offset, reason } => {
+                self.emit(*offset, reject_name(*reason), 1, Map::new())
+            }
+            Event::Skipped { offset, len } => self.emit(*offset, "skipped", *len, Map::new()),
+        }
+    }
+
+    /// Counts bytes fed to the engine (for the link efficiency).
+    pub fn fed(&mut self, bytes: usize) {
+        self.counts.input_bytes += bytes as u64;
+    }
+
+    /// Handles one record of a CAN log (`index`: its position in the log, from 0).
+    ///
+    /// # Errors
+    /// When the output cannot be written.
+    pub fn can(&mut self, index: u64, record: &CanRecord) -> io::Result<()> {
+        self.counts.input_bytes += record.data.len() as u64;
+        let mut extra = Map::new();
+        extra.insert("can_id".into(), Value::from(record.id));
+        if record.remote || record.fd {
+            self.counts.can_skipped += 1;
+            let kind = if record.remote {
+                "remote request"
+            } else {
+                "CAN FD frame"
+            };
+            extra.insert(
+                "error".into(),
+                Value::from(format!("{kind}: not a classic data frame")),
+            );
+            return self.emit(index, "skipped", record.data.len(), extra);
+        }
+        let frame = match CanFrame::new(record.id, &record.data) {
+            Ok(f) => f,
+            Err(_) => return self.can_reject(index, record, Reject::BadLength, extra),
+        };
+        match self.codec.decode_can(self.format, &frame) {
+            Err(DecodeIssue::Frame(DecodeError::Frame(reason))) => {
+                self.can_reject(index, record, reason, extra)
+            }
+            result => self.decoded(index, &record.data, result, extra),
+        }
+    }
+
+    fn can_reject(
+        &mut self,
+        index: u64,
+        record: &CanRecord,
+        reason: Reject,
+        extra: Map<String, Value>,
+    ) -> io::Result<()> {
+        let name = reject_name(reason);
+        match self.counts.can_rejected.iter_mut().find(|(n, _)| n == name) {
+            Some((_, n)) => *n += 1,
+            None => self.counts.can_rejected.push((name.to_string(), 1)),
+        }
+        self.emit(index, name, record.data.len(), extra)
+    }
+
+    /// A frame the engine accepted.
+    fn frame(&mut self, offset: u64, frame: &[u8], shown: &[u8]) -> io::Result<()> {
+        let result = self.codec.decode_frame(self.format, frame);
+        self.decoded(offset, shown, result, Map::new())
+    }
+
+    fn decoded(
+        &mut self,
+        offset: u64,
+        shown: &[u8],
+        result: Result<Decoded, DecodeIssue>,
+        mut extra: Map<String, Value>,
+    ) -> io::Result<()> {
+        let p = self.codec.protocol();
+        let d = match result {
+            Ok(d) => d,
+            Err(issue) => {
+                let event = match &issue {
+                    DecodeIssue::UnknownCommand { id, .. } => {
+                        self.counts.unknown_command += 1;
+                        let id = match id.as_slice() {
+                            [one] => Value::from(*one),
+                            many => Value::from(many.to_vec()),
+                        };
+                        extra.insert("id".into(), id);
+                        "unknown_command"
+                    }
+                    DecodeIssue::UnknownDirection { command } => {
+                        self.counts.unknown_direction += 1;
+                        extra.insert("command".into(), Value::from(command.clone()));
+                        "unknown_direction"
+                    }
+                    DecodeIssue::PayloadLength { command, .. }
+                    | DecodeIssue::InvalidEnum { command, .. } => {
+                        self.counts.bad_payload += 1;
+                        extra.insert("command".into(), Value::from(command.clone()));
+                        "bad_payload"
+                    }
+                    DecodeIssue::Frame(_) => {
+                        self.counts.bad_payload += 1;
+                        "bad_payload"
+                    }
+                };
+                extra.insert("error".into(), Value::from(issue.to_string()));
+                extra.insert("hex".into(), Value::from(hex(shown)));
+                return self.emit(offset, event, shown.len(), extra);
+            }
+        };
+        self.counts.frames += 1;
+        self.counts.frame_bytes += shown.len() as u64;
+        let f = &p.frames[d.format];
+        self.counts.payload_bytes +=
+            shown.len().saturating_sub(f.header_len + f.trailer_len) as u64;
+        match d.command.and_then(|ci| self.counts.per_command.get_mut(ci)) {
+            Some((n, bytes)) => {
+                *n += 1;
+                *bytes += shown.len() as u64;
+            }
+            None => self.counts.raw_frames += 1,
+        }
+        let line = match self.output {
+            Output::Json => self.codec.frame_json(&d, offset, shown).to_string(),
+            Output::Table => frame_line(p, self.widths, &d, offset, shown.len()),
+        };
+        writeln!(self.out, "{line}")
+    }
+
+    fn emit(
+        &mut self,
+        offset: u64,
+        event: &str,
+        bytes: usize,
+        extra: Map<String, Value>,
+    ) -> io::Result<()> {
+        let line = match self.output {
+            Output::Json => {
+                let mut o = Map::new();
+                o.insert("offset".into(), Value::from(offset));
+                o.insert("event".into(), Value::from(event));
+                o.insert("bytes".into(), Value::from(bytes));
+                o.extend(extra);
+                Value::Object(o).to_string()
+            }
+            Output::Table => {
+                let mut what = event.replace('_', " ");
+                for key in ["command", "can_id", "id", "error"] {
+                    if let Some(v) = extra.get(key) {
+                        let text = match (key, v.as_u64()) {
+                            ("can_id" | "id", Some(n)) => format!("{n:#x}"),
+                            _ => v.as_str().map_or_else(|| v.to_string(), str::to_string),
+                        };
+                        what.push_str(&format!("  {key}={text}"));
+                    }
+                }
+                event_line(offset, bytes, &what)
+            }
+        };
+        writeln!(self.out, "{line}")
+    }
+
+    /// Flushes the output.
+    ///
+    /// # Errors
+    /// When the output cannot be written.
+    pub fn flush(&mut self) -> io::Result<()> {
+        self.out.flush()
+    }
+
+    /// The `--stats` summary. `engine`: the stream engine's stats (serial input).
+    pub fn summary(&self, engine: Option<&Stats>) -> String {
+        let p = self.codec.protocol();
+        let c = &self.counts;
+        let total = engine
+            .map_or(c.input_bytes, |e| e.frame_bytes + e.skipped_bytes)
+            .max(c.input_bytes);
+        let width = p
+            .commands
+            .iter()
+            .map(|x| x.name.len())
+            .max()
+            .unwrap_or(0)
+            .max(7);
+        let mut s = format!(
+            "frames decoded: {} ({} of {} bytes)\n  {:<width$}  {:>7}  {:>9}\n",
+            c.frames, c.frame_bytes, total, "command", "frames", "bytes"
+        );
+        for (cmd, (n, bytes)) in p.commands.iter().zip(&c.per_command) {
+            if *n > 0 {
+                s.push_str(&format!("  {:<width$}  {n:>7}  {bytes:>9}\n", cmd.name));
+            }
+        }
+        if c.raw_frames > 0 {
+            s.push_str(&format!(
+                "  {:<width$}  {:>7}\n",
+                "(no command)", c.raw_frames
+            ));
+        }
+        s.push_str(&format!(
+            "unknown commands: {}, unknown directions: {}, bad payloads: {}\n",
+            c.unknown_command, c.unknown_direction, c.bad_payload
+        ));
+        match engine {
+            Some(e) => {
+                s.push_str(&format!(
+                    "checksum failures: {} (frame checks {}, header checks {})\n",
+                    e.bad_checksum + e.bad_header_check,
+                    e.bad_checksum,
+                    e.bad_header_check
+                ));
+                s.push_str(&format!("length rejections: {}\n", e.bad_length));
+                s.push_str(&format!(
+                    "other rejections: bad header {}, bad trailer {}, truncated {}\n",
+                    e.bad_header, e.bad_trailer, e.truncated
+                ));
+                s.push_str(&format!(
+                    "bytes skipped: {} ({})\n",
+                    e.skipped_bytes,
+                    percent(e.skipped_bytes, total)
+                ));
+            }
+            None => {
+                let rejected: Vec<String> = c
+                    .can_rejected
+                    .iter()
+                    .map(|(name, n)| format!("{} {n}", name.replace('_', " ")))
+                    .collect();
+                s.push_str(&format!(
+                    "CAN frames rejected: {}; not data frames: {}\n",
+                    if rejected.is_empty() {
+                        "none".into()
+                    } else {
+                        rejected.join(", ")
+                    },
+                    c.can_skipped
+                ));
+            }
+        }
+        s.push_str(&format!(
+            "link efficiency: {} (bytes in decoded frames); payload {}\n",
+            percent(c.frame_bytes, total),
+            percent(c.payload_bytes, total)
+        ));
+        s
+    }
+}
+
+fn percent(part: u64, total: u64) -> String {
+    if total == 0 {
+        "0.0%".into()
+    } else {
+        format!("{:.1}%", part as f64 * 100.0 / total as f64)
+    }
+}

@@ -1,0 +1,270 @@
+//! The compatibility report (`protocol diff`), in process: one edit of a spec per kind of
+//! change, and the class and reason each gets.
+
+use protocol_cli::compat::{Change, Class, diff};
+use protocol_codegen::ir::Protocol;
+use protocol_codegen::source::SpecSource;
+
+fn compile(name: &str, text: &str) -> Protocol {
+    protocol_codegen::compile(&SpecSource::new(name, text))
+        .unwrap_or_else(|d| panic!("{name} does not compile: {d:?}"))
+}
+
+fn spec(path: &str) -> String {
+    std::fs::read_to_string(format!("{}/{path}", env!("CARGO_MANIFEST_DIR"))).expect("spec")
+}
+
+/// The changes from `path` to `path` with `from` replaced by `to`.
+fn changes(path: &str, from: &str, to: &str) -> Vec<Change> {
+    let old = spec(path);
+    assert!(old.contains(from), "`{from}` is not in {path}");
+    let new = old.replacen(from, to, 1);
+    diff(&compile("old.toml", &old), &compile("new.toml", &new))
+}
+
+fn assert_one(changes: &[Change], class: Class, needle: &str) {
+    assert!(
+        changes
+            .iter()
+            .any(|c| c.class == class && c.to_string().contains(needle)),
+        "no {class:?} change mentioning `{needle}` in:\n{}",
+        changes
+            .iter()
+            .map(|c| format!("  {c}\n"))
+            .collect::<String>()
+    );
+}
+
+fn breaking(changes: &[Change]) -> usize {
+    changes
+        .iter()
+        .filter(|c| c.class == Class::Breaking)
+        .count()
+}
+
+const HFLINK: &str = "../specs/hflink.toml";
+const FEATURES: &str = "tests/fixtures/features.toml";
+
+#[test]
+fn a_spec_is_compatible_with_itself() {
+    for path in [
+        HFLINK,
+        "../specs/referee.toml",
+        "../specs/scout.toml",
+        FEATURES,
+    ] {
+        let p = compile("x.toml", &spec(path));
+        assert_eq!(diff(&p, &p), Vec::new(), "{path}");
+    }
+}
+
+#[test]
+fn payload_changes_break() {
+    let c = changes(
+        HFLINK,
+        "{ name = \"cpu_usage\", type = \"f32\" }",
+        "{ name = \"cpu_usage\", type = \"f64\" }",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "READ_SYSTEM_INFO (id 0x01): response payload: field `cpu_usage` (offset 8): f32 Little → f64 Little",
+    );
+    let c = changes(
+        HFLINK,
+        "{ name = \"power_remain\", type = \"f32\", unit = \"%\" },",
+        "{ name = \"power_remain\", type = \"f32\", unit = \"%\" },\n  { name = \"extra\", type = \"u8\" },",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "fields added, 20 → 21 bytes (payload sizes are exact)",
+    );
+    let c = changes(
+        HFLINK,
+        "{ name = \"x\", type = \"f32\", unit = \"m or m/s\" },",
+        "{ name = \"x\", type = \"f32be\", unit = \"m or m/s\" },",
+    );
+    assert_one(&c, Class::Breaking, "f32 Little → f32 Big");
+    let c = changes(
+        HFLINK,
+        "READ_SYSTEM_INFO = { id = 1, response = \"SystemInfo\"",
+        "READ_SYSTEM_INFO = { id = 1, response = \"ImuSensorData\"",
+    );
+    assert!(
+        breaking(&c) == 0,
+        "same size and types: the wire is the same: {c:?}"
+    );
+    let c = changes(
+        HFLINK,
+        "SAVE_MOTOR_PARAMETERS = { id = 3,",
+        "SAVE_MOTOR_PARAMETERS = { id = 3, request = \"ChassisCoord\",",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "request payload: none → `ChassisCoord` (12 bytes)",
+    );
+}
+
+#[test]
+fn commands_removed_or_renumbered_break_and_added_ones_do_not() {
+    let c = changes(
+        HFLINK,
+        "READ_GPS_DATA = { id = 26, response = \"GpsData\", doc = \"Read the GPS fix.\" }\n",
+        "",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "command READ_GPS_DATA (id 0x1a): removed",
+    );
+    let c = changes(
+        HFLINK,
+        "READ_GPS_DATA = { id = 26,",
+        "READ_GPS_DATA = { id = 40,",
+    );
+    assert_one(&c, Class::Breaking, "id changed to 0x28");
+    assert_one(
+        &c,
+        Class::Compatible,
+        "command READ_GPS_DATA (id 0x28): added",
+    );
+    let c = changes(
+        HFLINK,
+        "READ_GPS_DATA = { id = 26,",
+        "READ_GPS_FIX = { id = 26,",
+    );
+    assert_one(&c, Class::Compatible, "renamed to READ_GPS_FIX");
+    assert_eq!(breaking(&c), 0);
+    let c = changes(
+        HFLINK,
+        "READ_GPS_DATA = { id = 26, response = \"GpsData\"",
+        "READ_ODOMETRY = { id = 26, response = \"ChassisCoord\"",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "the id is reused for another payload (READ_ODOMETRY is not READ_GPS_DATA)",
+    );
+}
+
+#[test]
+fn framing_changes_break() {
+    let c = changes(HFLINK, "{ check = \"sum-mod-255\"", "{ check = \"sum8\"");
+    assert_one(
+        &c,
+        Class::Breaking,
+        "check `checksum`: sum mod 255 → sum mod 256",
+    );
+    let c = changes(HFLINK, "{ sync = [0xFF, 0xFF] }", "{ sync = [0xFF, 0xFE] }");
+    assert_one(&c, Class::Breaking, "sync bytes FF FF → FF FE");
+    let c = changes(
+        HFLINK,
+        "{ payload = { max = 119 } }",
+        "{ payload = { max = 100 } }",
+    );
+    assert_one(&c, Class::Breaking, "payload bounds 0..=119 → 0..=100");
+    let c = changes(
+        HFLINK,
+        "slave = { range = [0x11, 0x40]",
+        "slave = { range = [0x11, 0x50]",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "`response`: `sender` in 0x11..=0x40 → `sender` in 0x11..=0x50",
+    );
+    let c = changes(
+        "../specs/referee.toml",
+        "{ check = \"crc-16-mcrf4xx\"",
+        "{ check = \"crc-16-kermit\"",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "check `frame_crc16`: crc-16-mcrf4xx (poly 0x1021, init 0xffff, refin true, refout true, xorout 0x0) → crc-16-kermit",
+    );
+}
+
+#[test]
+fn enums_break_when_old_decoders_would_refuse_a_value() {
+    let c = changes(
+        FEATURES,
+        "values = { OFF = 0, MANUAL = 1, AUTO = 7 }",
+        "values = { OFF = 0, MANUAL = 1, AUTO = 7, SPORT = 8 }",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "enum `Drive` gained SPORT = 8, which old decoders reject",
+    );
+    let c = changes(
+        FEATURES,
+        "values = { DOWN = -1, LEVEL = 0, UP = 1 }",
+        "values = { DOWN = -1, LEVEL = 0, UP = 1, FLIP = 2 }",
+    );
+    assert_one(
+        &c,
+        Class::Compatible,
+        "enum `Trim` gained FLIP = 2 (old decoders keep it as an unknown value)",
+    );
+    assert_eq!(breaking(&c), 0, "{c:?}");
+    let c = changes(
+        FEATURES,
+        "values = { OFF = 0, MANUAL = 1, AUTO = 7 }",
+        "values = { OFF = 0, MANUAL = 1, AUTOMATIC = 7 }",
+    );
+    assert_one(&c, Class::Compatible, "value 7 renamed AUTO → AUTOMATIC");
+    let c = changes(
+        FEATURES,
+        "values = { OFF = 0, MANUAL = 1, AUTO = 7 }",
+        "values = { OFF = 0, MANUAL = 1 }",
+    );
+    assert_one(&c, Class::Breaking, "enum `Drive` lost the value 7 (AUTO)");
+}
+
+#[test]
+fn names_and_docs_are_compatible() {
+    let c = changes(
+        HFLINK,
+        "{ name = \"cpu_usage\", type = \"f32\" }",
+        "{ name = \"cpu_load\", type = \"f32\", doc = \"Load, 0 to 1.\" }",
+    );
+    assert_one(
+        &c,
+        Class::Compatible,
+        "field `cpu_load` (offset 8): renamed from `cpu_usage`",
+    );
+    assert_one(
+        &c,
+        Class::Compatible,
+        "field `cpu_load` (offset 8): doc changed",
+    );
+    assert_eq!(breaking(&c), 0);
+    let c = changes(
+        HFLINK,
+        "doc = \"Read the GPS fix.\"",
+        "doc = \"Read the latest GPS fix.\"",
+    );
+    assert_one(
+        &c,
+        Class::Compatible,
+        "command READ_GPS_DATA (id 0x1a): doc changed",
+    );
+    let c = changes(HFLINK, "version = \"2017.02\"", "version = \"2017.03\"");
+    assert_one(&c, Class::Compatible, "version `2017.02` → `2017.03`");
+}
+
+#[test]
+fn breaking_changes_come_first() {
+    let c = changes(
+        HFLINK,
+        "READ_GPS_DATA = { id = 26,",
+        "READ_GPS_DATA = { id = 40,",
+    );
+    let classes: Vec<Class> = c.iter().map(|x| x.class).collect();
+    let mut sorted = classes.clone();
+    sorted.sort();
+    assert_eq!(classes, sorted);
+}

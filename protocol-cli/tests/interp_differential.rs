@@ -1,0 +1,549 @@
+//! The interpreter against the generated code, spec by spec: the same layouts (compared as
+//! the runtime's `Debug` prints them), and for every golden vector and thousands of random
+//! frames per spec the same decoded values (compared with the generated `Packet`'s `{:?}`,
+//! field for field), the same errors, and the same bytes when the decoded message is encoded
+//! again (the interpreter's message going through JSON text, as in `decode | encode`).
+//!
+//! Besides the bundled specs, `tests/fixtures/features.toml` holds every feature of the spec
+//! language that they do not use. A spec added to `specs/` joins by one `protocol!` line and one
+//! `generated!` line below.
+
+mod support;
+
+use protocol_cli::interp::{Codec, DecodeIssue, Decoded, Interpreter, hex, word_field};
+use protocol_codegen::ir::{DirectionRule, Protocol, Transport};
+use protocol_runtime::{CanFrame, DecodeError, EncodeError, Event, FrameLayout, StreamDecoder};
+use serde_json::Value;
+use support::{Rng, interpreter, rust_debug, unhex, vectors};
+
+protocol_runtime::protocol!("../specs/hflink.toml");
+protocol_runtime::protocol!("../specs/referee.toml");
+protocol_runtime::protocol!("../specs/referee2018.toml");
+protocol_runtime::protocol!("../specs/scout.toml");
+protocol_runtime::protocol!("../specs/dynamixel.toml");
+protocol_runtime::protocol!("../specs/roborts.toml");
+protocol_runtime::protocol!("tests/fixtures/features.toml");
+
+/// A decoded message as `{:?}` prints it, and its bytes encoded again.
+type Generated<T> = Result<(String, T), DecodeError>;
+
+/// A generated packet's `decode`, then `encode`.
+type Decode = fn(&[u8]) -> Generated<Vec<u8>>;
+
+/// What the test needs of a generated module.
+struct Gen {
+    spec: &'static str,
+    /// `{:?}` of every frame format's `LAYOUT`, in spec order.
+    layouts: fn() -> Vec<String>,
+    /// Seals a frame of a format with the generated layout.
+    seal: fn(usize, &mut [u8]) -> Result<(), EncodeError>,
+    /// `Packet::decode`, then `Packet::encode`.
+    decode: Decode,
+    /// `<Frame>Packet::decode(can)`, then `encode`, for a spec with a CAN frame format.
+    can: Option<fn(&CanFrame) -> Generated<CanFrame>>,
+    /// A frame format that carries one struct, and its `<Frame>Packet::decode`, then `encode`.
+    message: Option<(usize, Decode)>,
+    /// The events of `decoder()` over a stream cut in chunks of `n` bytes.
+    stream: fn(&[u8], usize) -> Vec<String>,
+}
+
+fn event_text(e: &Event<'_>) -> String {
+    match e {
+        Event::Frame(f) => format!("frame @{} {}", f.offset, hex(f.bytes)),
+        other => format!("{other:?}"),
+    }
+}
+
+macro_rules! generated {
+    ($m:ident, [$($layout:ident),*], $can:expr) => {
+        generated!($m, [$($layout),*], $can, None)
+    };
+    ($m:ident, [$($layout:ident),*], $can:expr, $message:expr) => {
+        Gen {
+            spec: stringify!($m),
+            layouts: || vec![$(format!("{:?}", $m::$layout)),*],
+            seal: |fi, frame| {
+                let layouts: &[&FrameLayout<'static>] = &[$(&$m::$layout),*];
+                layouts[fi].seal(frame)
+            },
+            decode: |bytes| {
+                let packet = $m::Packet::decode(bytes)?;
+                let mut buf = vec![0u8; $m::MAX_FRAME_LEN];
+                let n = packet.encode(&mut buf).expect("generated code encodes what it decoded");
+                Ok((format!("{packet:?}"), buf[..n].to_vec()))
+            },
+            can: $can,
+            message: $message,
+            stream: |bytes, n| {
+                let mut decoder = $m::decoder();
+                let mut events = Vec::new();
+                for mut chunk in bytes.chunks(n) {
+                    while let Some(e) = decoder.next_event(&mut chunk) {
+                        events.push(event_text(&e));
+                    }
+                }
+                while let Some(e) = decoder.flush_event() {
+                    events.push(event_text(&e));
+                }
+                events
+            },
+        }
+    };
+}
+
+fn scout_can(can: &CanFrame) -> Generated<CanFrame> {
+    let packet = scout::CanPacket::decode(can)?;
+    let again = packet
+        .encode()
+        .expect("generated code encodes what it decoded");
+    Ok((format!("{packet:?}"), again))
+}
+
+fn dynamixel_feedback(bytes: &[u8]) -> Generated<Vec<u8>> {
+    let packet = dynamixel::FeedbackPacket::decode(bytes)?;
+    let mut buf = vec![0u8; dynamixel::FEEDBACK_MAX_FRAME_LEN];
+    let n = packet
+        .encode(&mut buf)
+        .expect("generated code encodes what it decoded");
+    Ok((format!("{packet:?}"), buf[..n].to_vec()))
+}
+
+fn specs() -> Vec<Gen> {
+    vec![
+        generated!(hflink, [LAYOUT], None),
+        generated!(referee, [LAYOUT], None),
+        generated!(referee2018, [LAYOUT], None),
+        generated!(scout, [LAYOUT, CAN_LAYOUT], Some(scout_can)),
+        generated!(
+            dynamixel,
+            [LAYOUT, FEEDBACK_LAYOUT],
+            None,
+            Some((1, dynamixel_feedback))
+        ),
+        generated!(roborts, [LAYOUT], None),
+        generated!(features, [LAYOUT, RAW_LAYOUT], None),
+    ]
+}
+
+/// Outcomes of the comparisons of one spec.
+#[derive(Debug, Default)]
+struct Tally {
+    same_message: usize,
+    same_error: Vec<(String, usize)>,
+}
+
+impl Tally {
+    fn error(&mut self, e: &DecodeError) {
+        let kind = format!("{e:?}")
+            .split([' ', '('])
+            .next()
+            .unwrap_or("")
+            .to_string();
+        match self.same_error.iter_mut().find(|(k, _)| *k == kind) {
+            Some((_, n)) => *n += 1,
+            None => self.same_error.push((kind, 1)),
+        }
+    }
+}
+
+/// The interpreter's message, through JSON text as `decode | encode` carries it, encoded.
+fn reencode(codec: &Codec<'_>, d: &Decoded, label: &str) -> protocol_cli::interp::Encoded {
+    let text = codec.frame_json(d, 0, &[]).to_string();
+    let back: Value = serde_json::from_str(&text).expect("JSON text reads back");
+    codec
+        .encode(&back)
+        .unwrap_or_else(|e| panic!("{label}: the interpreter cannot encode {text}: {e}"))
+}
+
+fn compare(
+    codec: &Codec<'_>,
+    label: &str,
+    generated: Generated<Vec<u8>>,
+    interpreted: Result<Decoded, DecodeIssue>,
+    tally: &mut Tally,
+) {
+    match (generated, interpreted) {
+        (Ok((debug, bytes)), Ok(d)) => {
+            assert_eq!(
+                rust_debug(codec.protocol(), &d),
+                debug,
+                "{label}: decoded values"
+            );
+            let again = reencode(codec, &d, label);
+            assert_eq!(hex(&again.bytes), hex(&bytes), "{label}: encoded again");
+            tally.same_message += 1;
+        }
+        (Err(g), Err(i)) => {
+            assert_eq!(i.to_runtime(), g, "{label}: errors ({i})");
+            tally.error(&g);
+        }
+        (g, i) => panic!("{label}: generated code gives {g:?}, the interpreter {i:?}"),
+    }
+}
+
+fn compare_can(
+    codec: &Codec<'_>,
+    fi: usize,
+    label: &str,
+    g: &Gen,
+    can: &CanFrame,
+    tally: &mut Tally,
+) {
+    let generated = (g.can.expect("a CAN packet"))(can);
+    let interpreted = codec.decode_can(fi, can);
+    match (generated, interpreted) {
+        (Ok((debug, again)), Ok(d)) => {
+            assert_eq!(
+                rust_debug(codec.protocol(), &d),
+                debug,
+                "{label}: decoded values"
+            );
+            assert_eq!(
+                reencode(codec, &d, label).can,
+                Some(again),
+                "{label}: encoded again"
+            );
+            tally.same_message += 1;
+        }
+        (Err(g), Err(i)) => {
+            assert_eq!(i.to_runtime(), g, "{label}: errors ({i})");
+            tally.error(&g);
+        }
+        (g, i) => panic!("{label}: generated code gives {g:?}, the interpreter {i:?}"),
+    }
+}
+
+#[test]
+fn every_layout_is_the_generated_one() {
+    for g in specs() {
+        let interp = interpreter(g.spec);
+        let codec = interp.codec();
+        let generated = (g.layouts)();
+        assert_eq!(
+            generated.len(),
+            interp.protocol().frames.len(),
+            "{}",
+            g.spec
+        );
+        for (i, expected) in generated.iter().enumerate() {
+            let built = format!("{:?}", codec.layout(i).expect("a layout"));
+            assert_eq!(&built, expected, "{}: frame format {i}", g.spec);
+        }
+    }
+}
+
+/// Every frame of the golden vector files, decoded by both codecs with every spec that could
+/// read it (the 2018 referee frame is also read by the 2019 spec, and the other way round).
+#[test]
+fn golden_vectors_decode_and_encode_alike() {
+    let files: &[(&str, &str)] = &[
+        ("hflink", "hflink.json"),
+        ("referee", "robomaster_referee.json"),
+        ("referee2018", "robomaster_referee.json"),
+        ("scout", "agilex_scout.json"),
+        ("dynamixel", "dynamixel_protocol2.json"),
+        ("roborts", "roborts_sdk.json"),
+    ];
+    let gens = specs();
+    for (spec, file) in files {
+        let g = gens.iter().find(|g| g.spec == *spec).expect("spec");
+        let interp = interpreter(spec);
+        let codec = interp.codec();
+        let v = vectors(file);
+        let mut tally = Tally::default();
+        let mut reproduced = 0;
+        for frame in v["frames"].as_array().expect("frames") {
+            let name = frame["name"].as_str().unwrap_or("?");
+            let serial = frame["hex"].as_str().or(frame["uart"]["hex"].as_str());
+            if let Some(text) = serial {
+                let bytes = unhex(text);
+                let label = format!("{spec}: {name}");
+                let generated = (g.decode)(&bytes);
+                if matches!(&generated, Ok((_, again)) if *again == bytes) {
+                    reproduced += 1;
+                }
+                compare(
+                    &codec,
+                    &label,
+                    generated,
+                    codec.parse(0, &bytes),
+                    &mut tally,
+                );
+            }
+            if let (Some(id), Some(data)) = (
+                frame["can"]["can_id"].as_u64(),
+                frame["can"]["data_hex"].as_str(),
+            ) {
+                let can = CanFrame::new(id as u32, &unhex(data)).expect("a CAN frame");
+                let fi = can_format(interp.protocol());
+                compare_can(
+                    &codec,
+                    fi,
+                    &format!("{spec}: {name} (CAN)"),
+                    g,
+                    &can,
+                    &mut tally,
+                );
+            }
+        }
+        for list in [&v["can_frames_captured"], &v["streams"][1]["frames"]] {
+            for (k, frame) in list.as_array().into_iter().flatten().enumerate() {
+                let id = frame["can_id"].as_u64().expect("can_id") as u32;
+                let can = CanFrame::new(id, &unhex(frame["data_hex"].as_str().expect("data")))
+                    .expect("CAN");
+                let fi = can_format(interp.protocol());
+                compare_can(
+                    &codec,
+                    fi,
+                    &format!("{spec}: CAN frame {k}"),
+                    g,
+                    &can,
+                    &mut tally,
+                );
+            }
+        }
+        println!(
+            "{spec} on {file}: {tally:?}, {reproduced} reproduced byte for byte by generated code"
+        );
+        assert!(
+            tally.same_message > 0,
+            "{spec}: no vector decoded: the test compares nothing"
+        );
+    }
+}
+
+fn can_format(p: &Protocol) -> usize {
+    p.frames
+        .iter()
+        .position(|f| matches!(f.transport, Transport::Can { .. }))
+        .expect("a CAN frame format")
+}
+
+/// Payload sizes to try for a struct of `min..=max` bytes in a format of `lo..=hi`: the
+/// smallest and largest, one in between, and one byte off either end (each size error is also
+/// compared).
+fn sizes(
+    rng: &mut Rng,
+    min: usize,
+    max: usize,
+    lo: usize,
+    hi: usize,
+    round: usize,
+) -> Option<usize> {
+    let n = match round % 10 {
+        0..=3 => max,
+        4 | 5 => min,
+        6 | 7 => rng.range(min as u64, max as u64) as usize,
+        8 => max + 1,
+        _ => min.checked_sub(1)?,
+    };
+    (lo..=hi).contains(&n).then_some(n)
+}
+
+/// Random frames of every command in every direction, of every struct-carrying format, of
+/// acknowledgements and bare headers: random header values and payload bytes (NaNs,
+/// out-of-range enums and bools, non-zero padding, stuffing patterns included), of the sizes
+/// `sizes` picks, sealed by the generated layout.
+#[test]
+fn random_messages_decode_and_encode_alike() {
+    const ROUNDS: usize = 60;
+    for g in specs() {
+        let interp = interpreter(g.spec);
+        let codec = interp.codec();
+        let p = interp.protocol();
+        let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ g.spec.len() as u64);
+        let mut tally = Tally::default();
+        let f = &p.frames[0];
+        let mut attempts = 0;
+        for c in &p.commands {
+            for (slot, payload) in c.payloads.iter().enumerate() {
+                let (min, max) =
+                    payload.map_or((0, 0), |si| (p.structs[si].min_size, p.structs[si].size));
+                for round in 0..ROUNDS {
+                    let Some(len) = sizes(
+                        &mut rng,
+                        min,
+                        max.min(f.payload_max),
+                        f.payload_min,
+                        f.payload_max,
+                        round,
+                    ) else {
+                        continue;
+                    };
+                    let mut frame = vec![0u8; f.header_len + len + f.trailer_len];
+                    rng.fill(&mut frame);
+                    if let Some((after, insert)) = f
+                        .stuffing
+                        .as_ref()
+                        .filter(|(a, _)| round % 3 == 0 && len > a.len())
+                    {
+                        // A stuffed pattern, as a sender writes it.
+                        let at =
+                            f.header_len + rng.range(0, (len - after.len() - 1) as u64) as usize;
+                        frame[at..at + after.len()].copy_from_slice(after);
+                        frame[at + after.len()] = *insert;
+                    }
+                    for (&vi, id) in f.dispatch.iter().zip(&c.id) {
+                        word_field(&f.values[vi])
+                            .write(&mut frame, *id)
+                            .expect("id fits");
+                    }
+                    if let Some((flag, _)) = f.ack {
+                        // Mostly a command; sometimes an acknowledgement.
+                        let equals = protocol_cli::interp::ack_value(f, flag);
+                        let value = if round % 4 == 0 { equals } else { 1 - equals };
+                        word_field(&f.values[flag])
+                            .write(&mut frame, value)
+                            .expect("fits");
+                    }
+                    // Mostly a header of the slot's direction; sometimes whatever came.
+                    if let (Some(d), true) = (p.directions.get(slot), round % 7 != 0) {
+                        let (vi, value) = match d.rule {
+                            DirectionRule::InSet { value, set } => {
+                                let a = &p.addresses[set];
+                                (value, rng.range(a.first, a.last))
+                            }
+                            DirectionRule::Equals { value, equals } => (value, equals),
+                        };
+                        word_field(&f.values[vi])
+                            .write(&mut frame, value)
+                            .expect("fits");
+                    }
+                    (g.seal)(0, &mut frame).expect("the generated layout seals");
+                    attempts += 1;
+                    let label = format!(
+                        "{}: {} slot {slot} round {round}: {}",
+                        g.spec,
+                        c.name,
+                        hex(&frame)
+                    );
+                    compare(
+                        &codec,
+                        &label,
+                        (g.decode)(&frame),
+                        codec.parse(0, &frame),
+                        &mut tally,
+                    );
+                }
+            }
+        }
+        if let Some(bare) = f.bare_len {
+            for round in 0..ROUNDS {
+                let mut frame = vec![0u8; bare];
+                rng.fill(&mut frame);
+                (g.seal)(0, &mut frame).expect("the generated layout seals a bare header");
+                attempts += 1;
+                let label = format!("{}: bare header round {round}: {}", g.spec, hex(&frame));
+                compare(
+                    &codec,
+                    &label,
+                    (g.decode)(&frame),
+                    codec.parse(0, &frame),
+                    &mut tally,
+                );
+            }
+        }
+        if let Some((fi, decode)) = g.message {
+            let mf = &p.frames[fi];
+            let si = mf.message.expect("a struct");
+            let (min, max) = (p.structs[si].min_size, p.structs[si].size);
+            for round in 0..ROUNDS {
+                let Some(len) = sizes(&mut rng, min, max, mf.payload_min, mf.payload_max, round)
+                else {
+                    continue;
+                };
+                let mut frame = vec![0u8; mf.header_len + len + mf.trailer_len];
+                rng.fill(&mut frame);
+                (g.seal)(fi, &mut frame).expect("the generated layout seals");
+                attempts += 1;
+                let label = format!("{}: {} round {round}: {}", g.spec, mf.name, hex(&frame));
+                compare(
+                    &codec,
+                    &label,
+                    decode(&frame),
+                    codec.parse(fi, &frame),
+                    &mut tally,
+                );
+            }
+        }
+        if g.can.is_some() {
+            let fi = can_format(p);
+            let cf = &p.frames[fi];
+            let can_id = cf
+                .values
+                .iter()
+                .find(|v| v.name == "can_id")
+                .expect("can_id");
+            for c in p.commands.iter().filter(|c| c.can_id.is_some()) {
+                let size = c.payloads[0].map_or(0, |si| p.structs[si].size);
+                for round in 0..ROUNDS {
+                    let mut frame = vec![0u8; cf.header_len + size + cf.trailer_len];
+                    rng.fill(&mut frame);
+                    // Mostly a real bus's frame; sometimes bits above the id's width.
+                    let mut word = word_field(can_id);
+                    if round % 10 != 9 {
+                        word.shift = 0;
+                        word.width = 32;
+                    }
+                    word.write(&mut frame, c.can_id.unwrap_or(0)).expect("fits");
+                    (g.seal)(fi, &mut frame).expect("the generated layout seals");
+                    let can = CanFrame::from_virtual(&frame).expect("a CAN frame");
+                    attempts += 1;
+                    let label = format!("{}: {} on CAN round {round}", g.spec, c.name);
+                    compare_can(&codec, fi, &label, &g, &can, &mut tally);
+                }
+            }
+        }
+        println!("{}: {attempts} frames: {tally:?}", g.spec);
+        // Most random frames are messages: the values of both codecs are compared, not only
+        // their errors.
+        assert!(
+            tally.same_message * 2 > attempts,
+            "{}: too few frames decoded: {tally:?}",
+            g.spec
+        );
+    }
+}
+
+/// The streams of the vector files, in chunks of several sizes: the interpreter's layout in
+/// the engine yields the events of the generated decoder.
+#[test]
+fn vector_streams_yield_the_same_events() {
+    let files: &[(&str, &str)] = &[
+        ("hflink", "hflink.json"),
+        ("referee", "robomaster_referee.json"),
+        ("scout", "agilex_scout.json"),
+        ("dynamixel", "dynamixel_protocol2.json"),
+        ("roborts", "roborts_sdk.json"),
+    ];
+    let gens = specs();
+    for (spec, file) in files {
+        let g = gens.iter().find(|g| g.spec == *spec).expect("spec");
+        let interp: Interpreter = interpreter(spec);
+        let codec = interp.codec();
+        let layout = codec.layout(0).expect("layout");
+        for stream in vectors(file)["streams"].as_array().expect("streams") {
+            let Some(text) = stream["hex"].as_str() else {
+                continue;
+            };
+            let bytes = unhex(text);
+            for n in [1, 3, 7, 64, bytes.len()] {
+                let mut decoder = StreamDecoder::<4096>::new(&layout);
+                let mut events = Vec::new();
+                for mut chunk in bytes.chunks(n) {
+                    while let Some(e) = decoder.next_event(&mut chunk) {
+                        events.push(event_text(&e));
+                    }
+                }
+                while let Some(e) = decoder.flush_event() {
+                    events.push(event_text(&e));
+                }
+                assert_eq!(events, (g.stream)(&bytes, n), "{spec}: chunks of {n}");
+                assert!(
+                    events.iter().any(|e| e.starts_with("frame")),
+                    "{spec}: no frame"
+                );
+            }
+        }
+    }
+}

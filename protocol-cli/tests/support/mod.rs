@@ -1,0 +1,290 @@
+//! Helpers of the interpreter tests: loading specs and golden vectors, a deterministic random
+//! generator, and `rust_debug`, which prints a decoded frame exactly as `{:?}` prints the
+//! generated `Packet` of the same frame, so the two codecs are compared field for field.
+#![allow(dead_code)]
+
+use protocol_cli::interp::{Decoded, Interpreter, json_f32, json_f64};
+use protocol_codegen::ir::{FieldKind, Prim, Protocol, Role, UnknownPolicy, ValueType};
+use protocol_codegen::source::SpecSource;
+use serde_json::Value;
+
+/// The interpreter of `specs/NAME.toml`, or of `tests/fixtures/NAME.toml` when there is no
+/// such spec.
+pub fn interpreter(name: &str) -> Interpreter {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let (path, shown) = [
+        (
+            format!("{root}/../specs/{name}.toml"),
+            format!("specs/{name}.toml"),
+        ),
+        (
+            format!("{root}/tests/fixtures/{name}.toml"),
+            format!("tests/fixtures/{name}.toml"),
+        ),
+    ]
+    .into_iter()
+    .find(|(p, _)| std::path::Path::new(p).exists())
+    .unwrap_or_else(|| panic!("no spec named {name}"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let p = protocol_codegen::compile(&SpecSource::new(shown, text))
+        .unwrap_or_else(|d| panic!("{name} is invalid: {d:?}"));
+    Interpreter::new(p)
+}
+
+/// `tests/vectors/NAME`.
+pub fn vectors(name: &str) -> Value {
+    let path = format!("{}/../tests/vectors/{name}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    serde_json::from_str(&text).expect("vector file is JSON")
+}
+
+/// Bytes of hex text.
+pub fn unhex(text: &str) -> Vec<u8> {
+    protocol_cli::interp::parse_hex(text).expect("valid hex")
+}
+
+/// xorshift64*: deterministic test data without dependencies.
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// The next 64 random bits.
+    pub fn bits(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    /// A number in `lo..=hi`.
+    pub fn range(&mut self, lo: u64, hi: u64) -> u64 {
+        lo + self.bits() % (hi - lo + 1)
+    }
+
+    /// Fills `buf` with random bytes.
+    pub fn fill(&mut self, buf: &mut [u8]) {
+        for b in buf {
+            *b = (self.bits() >> 32) as u8;
+        }
+    }
+}
+
+/// `snake_case` to `PascalCase`, as generated type names are formed.
+pub fn pascal(name: &str) -> String {
+    protocol_codegen::validate::pascal_case(name)
+}
+
+fn int_text(prim: Prim, v: &Value) -> String {
+    match prim {
+        Prim::Bool => v.as_bool().expect("bool").to_string(),
+        Prim::F32 => format!("{:?}", json_f32(v).expect("f32")),
+        Prim::F64 => format!("{:?}", json_f64(v).expect("f64")),
+        _ if prim.is_signed() => v.as_i64().expect("integer").to_string(),
+        _ => v.as_u64().expect("integer").to_string(),
+    }
+}
+
+fn enum_text(p: &Protocol, ei: usize, v: &Value) -> String {
+    let e = &p.enums[ei];
+    match v {
+        Value::String(name) => e
+            .variants
+            .iter()
+            .find(|x| x.name == *name)
+            .map(|x| x.rust_name.clone())
+            .expect("a variant name"),
+        other => {
+            assert_eq!(
+                e.unknown,
+                UnknownPolicy::Keep,
+                "a number for a rejecting enum"
+            );
+            format!("Unknown({})", int_text(e.prim, other))
+        }
+    }
+}
+
+fn elem_text(p: &Protocol, ty: &ValueType, v: &Value) -> String {
+    match ty {
+        ValueType::Scalar {
+            scalar,
+            scale: None,
+        } => int_text(scalar.prim, v),
+        ValueType::Scalar {
+            scale: Some(sc), ..
+        } => int_text(sc.physical, v),
+        ValueType::Struct(si) => struct_text(p, *si, v),
+        ValueType::Enum(ei, _) => enum_text(p, *ei, v),
+    }
+}
+
+/// A struct value as `{:?}` prints the generated struct.
+pub fn struct_text(p: &Protocol, si: usize, v: &Value) -> String {
+    let s = &p.structs[si];
+    let mut fields = Vec::new();
+    for f in &s.fields {
+        field_text(p, &f.name, &f.kind, v, &mut fields);
+    }
+    if fields.is_empty() {
+        s.name.clone()
+    } else {
+        format!("{} {{ {} }}", s.name, fields.join(", "))
+    }
+}
+
+/// `name: value` of a field (its members' for a bitfield), as `{:?}` prints it.
+fn field_text(p: &Protocol, name: &str, kind: &FieldKind, v: &Value, out: &mut Vec<String>) {
+    match kind {
+        FieldKind::Padding => {}
+        FieldKind::Bits { members, .. } => {
+            for m in members {
+                let x = &v[&m.name];
+                let text = match m.enum_index {
+                    Some(ei) => enum_text(p, ei, x),
+                    None => int_text(m.prim, x),
+                };
+                out.push(format!("{}: {text}", m.name));
+            }
+        }
+        FieldKind::Optional(inner) => {
+            if v[name].is_null() {
+                out.push(format!("{name}: None"));
+            } else {
+                let mut one = Vec::new();
+                field_text(p, name, inner, v, &mut one);
+                for t in one {
+                    let (key, value) = t.split_once(": ").expect("name: value");
+                    out.push(format!("{key}: Some({value})"));
+                }
+            }
+        }
+        FieldKind::Bytes { .. } => {
+            out.push(format!("{name}: Bytes({})", v[name].as_str().expect("hex")));
+        }
+        FieldKind::Group { elem, .. } => {
+            let items: Vec<String> = v[name]
+                .as_array()
+                .expect("array")
+                .iter()
+                .map(|e| struct_text(p, *elem, e))
+                .collect();
+            out.push(format!("{name}: [{}]", items.join(", ")));
+        }
+        FieldKind::Value { ty, count } => {
+            let x = &v[name];
+            let text = match count {
+                None => elem_text(p, ty, x),
+                Some(_) => {
+                    let items: Vec<String> = x
+                        .as_array()
+                        .expect("array")
+                        .iter()
+                        .map(|e| elem_text(p, ty, e))
+                        .collect();
+                    format!("[{}]", items.join(", "))
+                }
+            };
+            out.push(format!("{name}: {text}"));
+        }
+    }
+}
+
+/// A decoded frame as `{:?}` prints the generated `Packet` (or `<Frame>Packet` of a CAN frame
+/// format) of the same frame.
+pub fn rust_debug(p: &Protocol, d: &Decoded) -> String {
+    let f = &p.frames[d.format];
+    let (packet, header) = if d.format == 0 {
+        ("Packet".to_string(), "Header".to_string())
+    } else {
+        (
+            format!("{}Packet", pascal(&f.name)),
+            format!("{}Header", pascal(&f.name)),
+        )
+    };
+    let header_fields: Vec<String> = f
+        .values
+        .iter()
+        .filter(|v| matches!(v.role, Role::User { .. }))
+        .map(|v| format!("{}: {}", v.name, int_text(v.prim, &d.header[&v.name])))
+        .collect();
+    let header = if header_fields.is_empty() {
+        header
+    } else {
+        format!("{header} {{ {} }}", header_fields.join(", "))
+    };
+    if d.command.is_none() && !d.ack {
+        let si = f.message.expect("a message frame format");
+        return format!(
+            "{packet} {{ header: {header}, payload: {} }}",
+            struct_text(p, si, &d.payload)
+        );
+    }
+    let message = if d.ack {
+        format!("Ack(Bytes({}))", d.payload.as_str().expect("hex"))
+    } else {
+        let c = &p.commands[d.command.expect("a command")];
+        let slot = d.direction.unwrap_or(0);
+        let inner = match c.payloads[slot] {
+            None => c.rust_name.clone(),
+            Some(si) => format!("{}({})", c.rust_name, struct_text(p, si, &d.payload)),
+        };
+        match d.direction {
+            Some(di) => format!("{}({inner})", pascal(&p.directions[di].name)),
+            None => inner,
+        }
+    };
+    format!("{packet} {{ header: {header}, message: {message} }}")
+}
+
+/// The workspace root: commands run there, so that paths read as a user types them.
+pub fn root() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("the crate is in the workspace")
+        .to_path_buf()
+}
+
+/// Runs the `protocol` binary in the workspace root, with `stdin` as its input.
+pub fn protocol(args: &[&str], stdin: &[u8]) -> std::process::Output {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_protocol"))
+        .args(args)
+        .current_dir(root())
+        .env("NO_COLOR", "1")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let mut input = child.stdin.take().expect("stdin");
+    let data = stdin.to_vec();
+    // A thread, so that a child that writes much before reading cannot deadlock the test.
+    let writer = std::thread::spawn(move || {
+        let _ = input.write_all(&data);
+    });
+    let out = child.wait_with_output().expect("the binary ends");
+    let _ = writer.join();
+    out
+}
+
+/// Text of an output stream.
+pub fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// JSON Lines of an output stream.
+pub fn json_lines(bytes: &[u8]) -> Vec<Value> {
+    text(bytes)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("not JSON: {l}: {e}")))
+        .collect()
+}
+
+/// The ground truth the capture script wrote for `examples/captures/NAME`.
+pub fn truth(name: &str) -> Vec<Value> {
+    let path = root()
+        .join("examples/captures")
+        .join(format!("{name}.truth.jsonl"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    json_lines(text.as_bytes())
+}
