@@ -50,7 +50,16 @@ pub fn emit_addresses(p: &Protocol) -> TokenStream {
     let ty = prim_type(prim);
     let items = p.addresses.iter().map(|a| {
         let name = const_ident(&a.name);
-        let doc = doc_attrs(&a.doc);
+        let doc = if a.doc.is_empty() {
+            let what = if a.first == a.last {
+                format!("{:#x}", a.first)
+            } else {
+                format!("{:#x} to {:#x}", a.first, a.last)
+            };
+            doc_attrs(&format!("Address `{}`: {what}.", a.name))
+        } else {
+            doc_attrs(&a.doc)
+        };
         let first = int_lit(prim, a.first);
         let last = int_lit(prim, a.last);
         if a.first == a.last {

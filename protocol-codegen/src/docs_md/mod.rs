@@ -1,5 +1,5 @@
 //! The Markdown reference of a spec (`protocol doc`): overview, addresses and directions, each
-//! frame format's layout, the command table, every struct and every enum.
+//! frame format's layout and what it carries, the command table, every struct and every enum.
 //!
 //! One function per section, called in document order by [`render`], so that a section can be
 //! added (packet diagrams of the frame formats, say) without touching the others. The layout
@@ -19,7 +19,9 @@
 use std::fmt::Write as _;
 
 use crate::codegen::docs::{frame_doc, struct_doc};
-use crate::ir::{DirectionRule, Enum, Protocol, Transport, UnknownPolicy};
+use crate::ir::{
+    DirectionRule, Element, Enum, Frame, Pos, Protocol, Role, Transport, UnknownPolicy,
+};
 
 /// The whole reference, sections in order.
 pub fn render(p: &Protocol) -> String {
@@ -145,9 +147,237 @@ fn frames(p: &Protocol, out: &mut String) {
             ""
         };
         let _ = writeln!(out, "Transport: {transport}.{role}\n");
+        let notes = frame_notes(p, f);
+        for note in &notes {
+            let _ = writeln!(out, "- {note}");
+        }
+        if !notes.is_empty() {
+            out.push('\n');
+        }
+        out.push_str("```text\n");
+        out.push_str(&packet_diagram(f));
+        out.push_str("```\n\n");
         out.push_str(frame_doc(f).trim_end());
         out.push_str("\n\n");
     }
+}
+
+/// Bytes per row of a packet diagram (32 bits, as in the RFCs).
+const ROW_BYTES: usize = 4;
+/// Characters per byte: two per bit.
+const BYTE_CHARS: usize = 16;
+
+/// An RFC-style packet picture of a frame format: the header elements four bytes to a row, the
+/// payload as a variable block, then the elements after it; below, what each check covers.
+pub fn packet_diagram(f: &Frame) -> String {
+    let mut head: Vec<(String, usize)> = Vec::new();
+    let mut tail: Vec<(String, usize)> = Vec::new();
+    let mut legend: Vec<String> = Vec::new();
+    let mut after_payload = false;
+    for e in &f.elements {
+        let item = match e {
+            Element::Sync(b) => Some((
+                format!(
+                    "sync {}",
+                    b.iter()
+                        .map(|x| format!("{x:02X}"))
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                ),
+                b.len(),
+            )),
+            Element::Word {
+                name,
+                scalar,
+                values,
+                ..
+            } => {
+                let members = values
+                    .iter()
+                    .map(|&i| format!("{}:{}", f.values[i].name, f.values[i].width))
+                    .collect::<Vec<_>>()
+                    .join(" ");
+                let label =
+                    if values.len() > 1 && members.len() < scalar.prim.size() * BYTE_CHARS - 1 {
+                        members
+                    } else {
+                        if values.len() > 1 {
+                            legend.push(format!("{name} = {members} (bits, lowest first)"));
+                        }
+                        name.clone()
+                    };
+                Some((label, scalar.prim.size()))
+            }
+            Element::Payload => {
+                after_payload = true;
+                None
+            }
+            Element::Check(i) => f.checks.get(*i).map(|c| (c.name.clone(), c.size)),
+            Element::Trailer(i) => f.trailers.get(*i).map(|t| {
+                (
+                    format!(
+                        "{} {}",
+                        t.name,
+                        t.bytes
+                            .iter()
+                            .map(|x| format!("{x:02X}"))
+                            .collect::<Vec<_>>()
+                            .join(" ")
+                    ),
+                    t.bytes.len(),
+                )
+            }),
+        };
+        if let Some(item) = item {
+            if after_payload {
+                tail.push(item)
+            } else {
+                head.push(item)
+            }
+        }
+    }
+    let mut out = String::new();
+    out.push_str(" 0                   1                   2                   3\n");
+    out.push_str(" 0 1 2 3 4 5 6 7 8 9 0 1 2 3 4 5 6 7 8 9 0 1 2 3 4 5 6 7 8 9 0 1\n");
+    draw_rows(&head, &mut out, true);
+    let full = ROW_BYTES * BYTE_CHARS - 1;
+    let payload = if f.payload_min == f.payload_max {
+        format!("payload, {} bytes", f.payload_max)
+    } else {
+        format!("payload, {} to {} bytes", f.payload_min, f.payload_max)
+    };
+    if out.ends_with('\n') && !out.ends_with("+\n") {
+        out.push_str(&separator(ROW_BYTES));
+    }
+    out.push_str(&format!(
+        "|{}|\n~{}~\n|{}|\n",
+        " ".repeat(full),
+        center(&payload, full),
+        " ".repeat(full)
+    ));
+    out.push_str(&separator(ROW_BYTES));
+    draw_rows(&tail, &mut out, false);
+    for line in &legend {
+        out.push_str(line);
+        out.push('\n');
+    }
+    for c in &f.checks {
+        out.push_str(&format!(
+            "{} covers bytes {} .. {}{}\n",
+            c.name,
+            pos_text(c.from),
+            pos_text(c.to),
+            if c.header { " (a header check)" } else { "" }
+        ));
+    }
+    out
+}
+
+fn pos_text(p: Pos) -> String {
+    match p {
+        Pos::Start(n) => n.to_string(),
+        Pos::End(n) => format!("end - {n}"),
+    }
+}
+
+fn separator(bytes: usize) -> String {
+    format!("{}+\n", "+-".repeat(bytes * 8))
+}
+
+fn center(label: &str, width: usize) -> String {
+    let label: String = label.chars().take(width).collect();
+    let n = label.chars().count();
+    let left = (width - n) / 2;
+    format!(
+        "{}{}{}",
+        " ".repeat(left),
+        label,
+        " ".repeat(width - n - left)
+    )
+}
+
+/// Rows of at most four bytes; an element crossing a row boundary continues on the next row.
+fn draw_rows(items: &[(String, usize)], out: &mut String, leading_separator: bool) {
+    let mut row: Vec<(String, usize)> = Vec::new();
+    let mut used = 0;
+    let mut first_row = leading_separator;
+    let flush =
+        |row: &mut Vec<(String, usize)>, used: usize, out: &mut String, first: &mut bool| {
+            if row.is_empty() {
+                return;
+            }
+            if *first {
+                out.push_str(&separator(used));
+                *first = false;
+            }
+            out.push('|');
+            for (label, n) in row.iter() {
+                out.push_str(&center(label, n * BYTE_CHARS - 1));
+                out.push('|');
+            }
+            out.push('\n');
+            out.push_str(&separator(used));
+            row.clear();
+        };
+    for (label, size) in items {
+        let mut left = *size;
+        let mut cont = false;
+        while left > 0 {
+            let take = left.min(ROW_BYTES - used);
+            row.push((
+                if cont {
+                    format!("{label} (cont.)")
+                } else {
+                    label.clone()
+                },
+                take,
+            ));
+            used += take;
+            left -= take;
+            cont = true;
+            if used == ROW_BYTES {
+                flush(&mut row, used, out, &mut first_row);
+                used = 0;
+            }
+        }
+    }
+    flush(&mut row, used, out, &mut first_row);
+}
+
+/// What a frame format does besides its layout table: the struct it carries, its
+/// acknowledgements, bare headers, byte stuffing.
+fn frame_notes(p: &Protocol, f: &Frame) -> Vec<String> {
+    let mut notes = Vec::new();
+    if let Some(s) = f.message.and_then(|si| p.structs.get(si)) {
+        notes.push(format!(
+            "Every frame carries a [`{}`](#{}).",
+            s.name,
+            s.name.to_lowercase()
+        ));
+    }
+    if let Some((flag, header_len)) = f.ack {
+        let name = f.values.get(flag).map_or("?", |v| v.name.as_str());
+        let value = match f.values.get(flag).map(|v| &v.role) {
+            Some(Role::Ack(v)) => *v,
+            _ => 1,
+        };
+        notes.push(format!(
+            "Acknowledgements: when `{name}` is {value}, the frame has no command; its first {header_len} bytes are the header and the bytes up to the trailer are the acknowledgement's data."
+        ));
+    }
+    if let Some(bare) = f.bare_len {
+        notes.push(format!(
+            "A frame may be its header alone: {bare} bytes, with no payload and no trailer."
+        ));
+    }
+    if let Some((after, insert)) = &f.stuffing {
+        let pattern: Vec<String> = after.iter().map(|b| format!("`{b:02X}`")).collect();
+        notes.push(format!(
+            "Byte stuffing: inside the payload, the sender inserts `{insert:02X}` after every {}; the length and the checks count the stuffed bytes.",
+            pattern.join(" ")
+        ));
+    }
+    notes
 }
 
 /// The command table: id, name, payload per direction with its size, doc.
@@ -210,7 +440,12 @@ fn commands(p: &Protocol, out: &mut String) {
             let text = match c.payloads.get(i).copied().flatten() {
                 Some(si) => {
                     let s = &p.structs[si];
-                    format!("[`{}`](#{}) ({} B)", s.name, s.name.to_lowercase(), s.size)
+                    let size = if s.min_size == s.size {
+                        format!("{} B", s.size)
+                    } else {
+                        format!("{}..={} B", s.min_size, s.size)
+                    };
+                    format!("[`{}`](#{}) ({size})", s.name, s.name.to_lowercase())
                 }
                 None => "empty".into(),
             };
