@@ -89,6 +89,9 @@
     clippy::arithmetic_side_effects
 )]
 
+#[cfg(feature = "std")]
+extern crate std;
+
 pub mod bytes;
 pub mod can;
 pub mod checksum;
@@ -96,6 +99,8 @@ pub mod decoder;
 pub mod encoder;
 pub mod error;
 pub mod group;
+#[cfg(any(feature = "std", feature = "embedded-io"))]
+pub mod io;
 pub mod layout;
 pub mod stuffing;
 pub mod wire;

@@ -183,8 +183,12 @@ pub(crate) struct Structs {
     pub by_name: HashMap<String, usize>,
     /// Per struct: the `size` names it could not resolve itself, with the span of each `size`
     /// value and the names of the fields before it (for diagnostics where it is used).
-    pub size_refs: HashMap<String, Vec<(String, std::ops::Range<usize>, Vec<String>)>>,
+    pub size_refs: HashMap<String, Vec<SizeRef>>,
 }
+
+/// A `size` a struct could not resolve itself: the field it names, the span of the `size`
+/// value, and the names of the fields before it.
+pub(crate) type SizeRef = (String, std::ops::Range<usize>, Vec<String>);
 
 /// Rule: structs have PascalCase names and resolve in dependency order; a struct that
 /// contains itself, directly or not, is an error (its size would be infinite).
