@@ -389,9 +389,14 @@ pub struct Frame {
 }
 
 impl Frame {
-    /// Smallest total frame length.
+    /// Smallest total frame length (not counting a bare header): an acknowledgement without
+    /// dispatch fields and with no data may be shorter than the smallest command frame.
     pub fn min_len(&self) -> usize {
-        self.header_len + self.payload_min + self.trailer_len
+        let command = self.header_len + self.payload_min + self.trailer_len;
+        match self.ack {
+            Some((_, ack_header_len)) => command.min(ack_header_len + self.trailer_len),
+            None => command,
+        }
     }
     /// Largest total frame length.
     pub fn max_len(&self) -> usize {

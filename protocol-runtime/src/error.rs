@@ -59,6 +59,9 @@ pub enum DecodeError {
     /// A stuffed payload holds the forbidden pattern without the byte stuffing inserts after
     /// it.
     InvalidStuffing,
+    /// A scaled value lies outside the range its field clamps encoded values to: it could not
+    /// be encoded back to the same bytes.
+    ValueOutOfRange,
     /// A field that must have the size another field states does not (a repeated group's
     /// element that does not fit the declared data length).
     SizeMismatch,
@@ -87,6 +90,9 @@ impl fmt::Display for DecodeError {
                     f,
                     "stuffed payload: a forbidden pattern is not followed by its stuffing byte"
                 )
+            }
+            DecodeError::ValueOutOfRange => {
+                write!(f, "a scaled value lies outside its field's range")
             }
             DecodeError::SizeMismatch => write!(
                 f,

@@ -568,6 +568,20 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         ),
         None => (quote!(), quote!()),
     };
+    // With stuffing, the inserted bytes count too: write the payload aside to count them.
+    let stuffed_extra = match &f.stuffing {
+        Some(_) => quote! {
+            + {
+                let mut scratch = [0u8; MAX_PAYLOAD_LEN];
+                let mut w = #rt::Writer::new(&mut scratch);
+                match self.message.write_payload(&mut w) {
+                    ::core::result::Result::Ok(()) => STUFFING.count(w.written()),
+                    ::core::result::Result::Err(_) => 0,
+                }
+            }
+        },
+        None => quote!(),
+    };
     let stuffing_const = match &f.stuffing {
         Some((after, insert)) => quote! {
             /// The payload's byte stuffing: the sender inserts `insert` after every `after`.
@@ -630,10 +644,11 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             }
             /// Bytes of the encoded frame.
             pub fn encoded_len(&self) -> usize {
-                match &self.message {
+                let unstuffed = match &self.message {
                     #ack_len
                     message => HEADER_LEN + message.payload_len() + TRAILER_LEN,
-                }
+                };
+                unstuffed #stuffed_extra
             }
             /// Encode the frame into the start of `buf`; returns its length.
             ///

@@ -167,7 +167,20 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
             let raw = read_scalar(*scalar);
             let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
             let phys = prim_type(sc.physical);
-            quote!(((#raw as f64) * #f + #o) as #phys)
+            match sc.clamp {
+                // A value outside the clamp range would not encode back to the same bytes.
+                Some((lo, hi)) => {
+                    let (lo, hi) = (float_lit(lo), float_lit(hi));
+                    quote!({
+                        let v = (#raw as f64) * #f + #o;
+                        if !#rt::within_clamp(v, #lo, #hi) {
+                            return ::core::result::Result::Err(#rt::DecodeError::ValueOutOfRange);
+                        }
+                        v as #phys
+                    })
+                }
+                None => quote!(((#raw as f64) * #f + #o) as #phys),
+            }
         }
         PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::read(r)?),
         PKind::Enum { ty, scalar, .. } => {
@@ -367,7 +380,18 @@ fn write_elem(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream
             write_scalar(*scalar, raw)
         }
         PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::write(&#value, w)?;),
-        PKind::Enum { scalar, .. } => write_scalar(*scalar, quote!((#value).to_raw())),
+        // An `Unknown(raw)` holding a known variant's value would decode as that variant.
+        PKind::Enum { ty, scalar, .. } => {
+            let w = write_scalar(*scalar, quote!(raw));
+            quote! {{
+                let v = #value;
+                let raw = v.to_raw();
+                if #ty::from_raw(raw) != ::core::result::Result::Ok(v) {
+                    return ::core::result::Result::Err(#rt::EncodeError::ValueOutOfRange);
+                }
+                #w
+            }}
+        }
         PKind::Bytes { .. } => quote!(#value.write(w)?;),
         PKind::Pad(_) | PKind::Bits { .. } | PKind::Group { .. } | PKind::Optional(_) => quote!(),
     }
@@ -459,8 +483,22 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
                     let raw = match &m.ty {
                         BitType::Bool => quote!(#wt::from(self.#id)),
                         BitType::Uint(_) => quote!((self.#id as #wt)),
-                        BitType::Enum(_, _) => quote!((self.#id.to_raw() as #wt)),
+                        BitType::Enum(ty, _) => quote!({
+                            let raw = self.#id.to_raw();
+                            if #ty::from_raw(raw) != ::core::result::Result::Ok(self.#id) {
+                                return ::core::result::Result::Err(#rt::EncodeError::ValueOutOfRange);
+                            }
+                            raw as #wt
+                        }),
                     };
+                    // A member value wider than its bits would be cut: refuse it.
+                    if !matches!(m.ty, BitType::Bool) {
+                        parts.push(quote! {
+                            if (#raw as u64) > (#mask as u64) {
+                                return ::core::result::Result::Err(#rt::EncodeError::ValueOutOfRange);
+                            }
+                        });
+                    }
                     parts.push(quote!(#var |= (#raw & #mask) << #shift;));
                     let field = quote!(((#var >> #shift) & #mask));
                     let value = match &m.ty {

@@ -538,3 +538,12 @@ mod tests {
         assert_eq!(buf, [1, 7, 0]);
     }
 }
+
+/// Whether a decoded physical value lies in the clamp range `lo..=hi` of its scaled field,
+/// allowing for the rounding of `raw * factor + offset` (a raw value at the limit is inside).
+/// Generated code and the interpreter both decide with this function.
+#[inline]
+pub fn within_clamp(physical: f64, lo: f64, hi: f64) -> bool {
+    let slack = 1e-9 * (if hi - lo > 1.0 { hi - lo } else { 1.0 });
+    physical >= lo - slack && physical <= hi + slack
+}

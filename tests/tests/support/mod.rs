@@ -4,7 +4,7 @@
 //!
 //! It owns the list of specs under test ([`for_each_spec!`]: one line per spec), the [`Spec`]
 //! trait that makes a generated module usable by generic code, a spec-driven generator of valid
-//! frames ([`model`]), the checked stream driver ([`stream`]), the fault injector ([`fault`])
+//! frames ([`model`]) and of canonical payloads ([`payload`]), the checked stream driver ([`stream`]), the fault injector ([`fault`])
 //! and the fuzz entry points ([`fuzz`]). It does not know any spec's structs by name: every
 //! value is generated from the spec's checked IR, so a new spec needs no new generator code.
 #![allow(dead_code, unused_macros, unused_imports)]
@@ -12,6 +12,7 @@
 pub mod fault;
 pub mod fuzz;
 pub mod model;
+pub mod payload;
 pub mod stream;
 
 use std::fmt::Debug;
@@ -25,8 +26,12 @@ use protocol_runtime::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stat
 /// is missing from this list.
 macro_rules! for_each_spec {
     ($callback:ident) => {
+        $callback!(dynamixel, "../specs/dynamixel.toml");
         $callback!(hflink, "../specs/hflink.toml");
         $callback!(referee, "../specs/referee.toml");
+        $callback!(referee2018, "../specs/referee2018.toml");
+        $callback!(roborts, "../specs/roborts.toml");
+        $callback!(scout, "../specs/scout.toml");
     };
 }
 pub(crate) use for_each_spec;
@@ -172,6 +177,19 @@ pub trait Source {
         self.below(256) as u8
     }
 
+    /// A length in `0..=max`, often an edge: 0, 1, `max - 1`, `max`, or small.
+    fn len(&mut self, max: usize) -> usize {
+        let max = max as u64;
+        (match self.below(8) {
+            0 => 0,
+            1 => 1.min(max),
+            2 => max.saturating_sub(1),
+            3 => max,
+            4 | 5 => self.below(max.min(16) + 1),
+            _ => self.below(max + 1),
+        }) as usize
+    }
+
     /// True with probability `1 / n`.
     fn one_in(&mut self, n: u64) -> bool {
         self.below(n) == 0
@@ -223,7 +241,12 @@ impl Source for Entropy<'_> {
     }
 }
 
-/// Bytes as hex, for assertion messages.
+/// Bytes as hex, for assertion messages (the first 64 bytes of longer runs).
 pub fn hex(bytes: &[u8]) -> String {
-    bytes.iter().map(|b| format!("{b:02x}")).collect()
+    let shown: String = bytes.iter().take(64).map(|b| format!("{b:02x}")).collect();
+    if bytes.len() > 64 {
+        format!("{shown}... ({} bytes)", bytes.len())
+    } else {
+        shown
+    }
 }

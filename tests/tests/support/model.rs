@@ -1,28 +1,46 @@
 //! A generator of valid frames driven by a spec's checked IR: it knows every command, which
 //! payload each direction carries, where the header values are and how a payload struct is laid
-//! out, so it builds frames for any spec without naming its types.
+//! out, so it builds frames for any spec without naming its types (payload values: [`super::payload`]).
 //!
 //! *Canonical* frames are the ones the encoder itself produces (padding zero, booleans 0 or 1,
 //! unused bits zero, enum values that exist): those must survive decode → encode byte for byte.
 //! *Raw* frames only pass the frame checks (any header values, any payload length and bytes):
 //! those must decode to a value or an error, never a panic.
 
+use std::collections::HashMap;
+use std::sync::{Mutex, OnceLock};
+
 use protocol_codegen::ir;
 use protocol_codegen::source::SpecSource;
+use protocol_runtime::FrameLayout;
 use protocol_runtime::decoder::Probe;
+use protocol_runtime::layout::LengthRule;
 use protocol_runtime::layout::{ByteOrder, Pos, WordField};
-use protocol_runtime::{FrameLayout, LengthRule};
+use protocol_runtime::stuffing::Stuffing;
 
+use super::payload::Ctx;
 use super::{Source, Spec};
 
-/// One way a frame can be sent: a command, in a direction, with that direction's payload.
+/// What a frame carries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Carries {
+    /// A command (index into the IR's commands).
+    Command(usize),
+    /// An acknowledgement: the ack flag set, no dispatch fields, any data.
+    Ack,
+    /// The one struct of a frame format without dispatch.
+    Message,
+}
+
+/// One way a frame can be sent: a command in a direction with that direction's payload, an
+/// acknowledgement, or the message of a frame format without dispatch.
 #[derive(Debug, Clone, Copy)]
 pub struct Choice {
-    /// Index into the IR's commands.
-    pub command: usize,
+    /// What the frame carries.
+    pub carries: Carries,
     /// Index into the IR's directions (`None` when the spec has none).
     pub direction: Option<usize>,
-    /// The payload struct (`None`: empty payload).
+    /// The payload struct (`None`: empty payload, or raw data for an acknowledgement).
     pub payload: Option<usize>,
 }
 
@@ -32,8 +50,20 @@ pub struct Model {
     pub ir: ir::Protocol,
     /// The generated layout (what the decoder runs on).
     pub layout: &'static FrameLayout<'static>,
-    /// Every (command, direction) pair.
+    /// Every way a frame can be sent.
     pub choices: Vec<Choice>,
+}
+
+/// The model of `S`, compiled once per process.
+pub fn model<S: Spec>() -> &'static Model {
+    static MODELS: OnceLock<Mutex<HashMap<&'static str, &'static Model>>> = OnceLock::new();
+    let mut models = MODELS
+        .get_or_init(Default::default)
+        .lock()
+        .expect("model cache");
+    models
+        .entry(S::NAME)
+        .or_insert_with(|| Box::leak(Box::new(Model::of::<S>())))
 }
 
 impl Model {
@@ -45,19 +75,52 @@ impl Model {
         let source = SpecSource::new(S::PATH, S::TEXT);
         let ir = protocol_codegen::compile(&source)
             .unwrap_or_else(|e| panic!("{} does not compile: {e:?}", S::PATH));
+        let f = &ir.frames[0];
         let mut choices = Vec::new();
-        for (command, c) in ir.commands.iter().enumerate() {
+        if let Some(s) = f.message {
+            choices.push(Choice {
+                carries: Carries::Message,
+                direction: None,
+                payload: Some(s),
+            });
+        }
+        for (command, c) in ir
+            .commands
+            .iter()
+            .enumerate()
+            .filter(|_| f.message.is_none())
+        {
+            let carries = Carries::Command(command);
             if ir.directions.is_empty() {
                 let payload = c.payloads.first().copied().flatten();
-                choices.push(Choice { command, direction: None, payload });
+                choices.push(Choice {
+                    carries,
+                    direction: None,
+                    payload,
+                });
             } else {
                 for direction in 0..ir.directions.len() {
                     let payload = c.payloads.get(direction).copied().flatten();
-                    choices.push(Choice { command, direction: Some(direction), payload });
+                    choices.push(Choice {
+                        carries,
+                        direction: Some(direction),
+                        payload,
+                    });
                 }
             }
         }
-        Model { ir, layout: S::layout(), choices }
+        if f.ack.is_some() {
+            choices.push(Choice {
+                carries: Carries::Ack,
+                direction: None,
+                payload: None,
+            });
+        }
+        Model {
+            ir,
+            layout: S::layout(),
+            choices,
+        }
     }
 
     /// The frame format under test (the spec's first).
@@ -65,7 +128,21 @@ impl Model {
         &self.ir.frames[0]
     }
 
-    /// Payload bytes of a choice.
+    /// Bytes before the payload of a frame of `choice`.
+    fn header_len(&self, choice: Choice) -> usize {
+        match (choice.carries, self.frame().ack) {
+            (Carries::Ack, Some((_, len))) => len,
+            _ => self.frame().header_len,
+        }
+    }
+
+    /// The most (unstuffed) payload bytes a frame of `choice` can carry.
+    fn payload_room(&self, choice: Choice) -> usize {
+        let f = self.frame();
+        f.max_len() - self.header_len(choice) - f.trailer_len
+    }
+
+    /// Fixed payload bytes of a choice (the largest size for a variable struct).
     pub fn payload_len(&self, choice: Choice) -> usize {
         choice.payload.map_or(0, |s| self.ir.structs[s].size)
     }
@@ -75,50 +152,155 @@ impl Model {
         self.choices[src.below(self.choices.len() as u64) as usize]
     }
 
-    /// A canonical frame for a random choice.
+    /// A canonical frame for a random choice. A choice whose frame the layout refuses (see
+    /// [`try_canonical`](Self::try_canonical)) is replaced by another.
+    ///
+    /// # Panics
+    /// If the layout refuses every frame tried.
     pub fn canonical(&self, src: &mut impl Source) -> Vec<u8> {
+        let mut last = None;
+        for _ in 0..16 {
+            match self.try_canonical(src) {
+                Ok(frame) => return frame,
+                Err(e) => last = Some(e),
+            }
+        }
+        panic!("the layout refuses every frame tried: {last:?}")
+    }
+
+    /// A canonical frame for a random choice, or why the layout refused to seal it (a frame
+    /// the spec allows but the layout's bounds exclude).
+    pub fn try_canonical(&self, src: &mut impl Source) -> Result<Vec<u8>, Refused> {
         let choice = self.choose(src);
         self.canonical_for(src, choice)
     }
 
-    /// A canonical frame for `choice`.
-    pub fn canonical_for(&self, src: &mut impl Source, choice: Choice) -> Vec<u8> {
+    /// A canonical frame for `choice`: its payload is what the encoder writes for some value.
+    pub fn canonical_for(&self, src: &mut impl Source, choice: Choice) -> Result<Vec<u8>, Refused> {
+        let room = self.payload_room(choice);
+        // Stuffing may lengthen the payload: retry with smaller variable parts if it no longer
+        // fits (rare: the pattern must occur in random bytes).
         let mut payload = Vec::new();
-        if let Some(s) = choice.payload {
-            self.canonical_struct(src, s, &mut payload);
+        for attempt in 0..4 {
+            let budget = room >> attempt;
+            payload.clear();
+            match (choice.carries, choice.payload) {
+                (Carries::Ack, _) => {
+                    let n = src.len(budget);
+                    payload = src.bytes(n);
+                }
+                (_, Some(s)) => {
+                    self.canonical_struct(src, s, budget, &mut Ctx::default(), &mut payload)
+                }
+                (_, None) => {}
+            }
+            if self.stuffed(&payload).len() <= room {
+                break;
+            }
         }
-        self.build(src, choice, &payload)
+        self.try_build(src, choice, &payload)
     }
 
-    /// A frame of `choice` whose payload is `payload` (any bytes), sealed.
+    /// The payload as sent: stuffed, if the frame format stuffs.
+    pub fn stuffed(&self, payload: &[u8]) -> Vec<u8> {
+        let Some((after, insert)) = &self.frame().stuffing else {
+            return payload.to_vec();
+        };
+        let rule = Stuffing {
+            after,
+            insert: *insert,
+        };
+        let mut buf = payload.to_vec();
+        buf.resize(2 * payload.len() + 1, 0);
+        let n = rule
+            .stuff_in_place(&mut buf, payload.len())
+            .expect("room to stuff");
+        buf.truncate(n);
+        buf
+    }
+
+    /// A frame of `choice` whose (unstuffed) payload is `payload`, any bytes: header values
+    /// set, payload stuffed, sealed.
     ///
     /// # Panics
     /// If the layout refuses to seal it (a payload outside the format's bounds).
     pub fn build(&self, src: &mut impl Source, choice: Choice, payload: &[u8]) -> Vec<u8> {
+        self.try_build(src, choice, payload)
+            .unwrap_or_else(|e| panic!("{e:?}"))
+    }
+
+    /// [`build`](Self::build), or why the layout refused to seal the frame.
+    pub fn try_build(
+        &self,
+        src: &mut impl Source,
+        choice: Choice,
+        payload: &[u8],
+    ) -> Result<Vec<u8>, Refused> {
         let f = self.frame();
-        let mut frame = vec![0u8; f.header_len + payload.len() + f.trailer_len];
+        let ack = choice.carries == Carries::Ack;
+        let header_len = self.header_len(choice);
+        let payload = self.stuffed(payload);
+        let bare = ack && payload.is_empty() && f.bare_len.is_some();
+        let trailer = if bare { 0 } else { f.trailer_len };
+        let mut frame = vec![0u8; header_len + payload.len() + trailer];
         for (i, v) in f.values.iter().enumerate() {
             let value = match &v.role {
                 ir::Role::Const(c) => *c,
                 ir::Role::Length => continue,
-                ir::Role::Dispatch => {
-                    let k = f.dispatch.iter().position(|&d| d == i).expect("dispatch value");
-                    self.ir.commands[choice.command].id[k]
-                }
+                ir::Role::Dispatch => match choice.carries {
+                    Carries::Command(c) => {
+                        let k = f
+                            .dispatch
+                            .iter()
+                            .position(|&d| d == i)
+                            .expect("dispatch value");
+                        self.ir.commands[c].id[k]
+                    }
+                    _ => continue,
+                },
+                ir::Role::Ack(flag) if ack => *flag,
+                ir::Role::Ack(flag) => !flag & word_field(v).max_value(),
                 ir::Role::User { .. } => self.user_value(src, choice, i, v),
             };
-            word_field(v).write(&mut frame, value).expect("header value fits");
+            if bare && matches!(v.at, ir::Pos::End(_)) {
+                continue;
+            }
+            word_field(v)
+                .write(&mut frame, value)
+                .expect("header value fits");
         }
-        let end = frame.len() - f.trailer_len;
-        frame[f.header_len..end].copy_from_slice(payload);
-        self.seal(frame)
+        frame[header_len..header_len + payload.len()].copy_from_slice(&payload);
+        self.layout.seal(&mut frame).map_err(|error| Refused {
+            choice,
+            len: frame.len(),
+            error,
+        })?;
+        Ok(self.checked(frame))
     }
 
     /// A frame that passes every check but is otherwise random: any header values (an unknown
-    /// command, an address in no direction's range), any payload length and bytes.
+    /// command, an address in no direction's range, the ack flag), any payload length and
+    /// bytes (unstuffed: possibly invalid stuffing).
     pub fn raw(&self, src: &mut impl Source) -> Vec<u8> {
         let f = self.frame();
-        let len = src.range(f.payload_min as u64, f.payload_max as u64) as usize;
+        // Half of them carry a real command with random payload bytes of its size: those reach
+        // the payload decoders (an unknown command stops at the dispatch).
+        if src.one_in(2) {
+            let choice = self.choose(src);
+            let st = choice.payload.map(|s| &self.ir.structs[s]);
+            let len = st.map_or(0, |st| st.min_size + src.len(st.size - st.min_size));
+            let payload = src.bytes(len);
+            if let Ok(frame) = self.try_build(src, choice, &payload) {
+                return frame;
+            }
+        }
+        let len = f.payload_min + src.len(f.payload_max - f.payload_min);
+        self.raw_with_payload_len(src, len)
+    }
+
+    /// [`raw`](Self::raw) with a payload of `len` bytes.
+    pub fn raw_with_payload_len(&self, src: &mut impl Source, len: usize) -> Vec<u8> {
+        let f = self.frame();
         let mut frame = vec![0u8; f.header_len + len + f.trailer_len];
         for v in &f.values {
             let field = word_field(v);
@@ -132,19 +314,29 @@ impl Model {
         let end = frame.len() - f.trailer_len;
         let payload = src.bytes(len);
         frame[f.header_len..end].copy_from_slice(&payload);
-        self.seal(frame)
+        self.layout.seal(&mut frame).expect("seal");
+        self.checked(frame)
     }
 
-    /// Seals `frame` with the generated layout and checks that it is then a valid frame.
-    fn seal(&self, mut frame: Vec<u8>) -> Vec<u8> {
-        self.layout.seal(&mut frame).expect("seal");
-        assert_eq!(self.layout.probe(&frame), Probe::Frame(frame.len()), "sealed frame is valid");
+    /// Checks that a sealed frame is a valid frame of the layout.
+    fn checked(&self, frame: Vec<u8>) -> Vec<u8> {
+        assert_eq!(
+            self.layout.probe(&frame),
+            Probe::Frame(frame.len()),
+            "sealed frame is valid"
+        );
         frame
     }
 
     /// A header value set by the user: the direction's range or value for the field that
     /// tells the direction, anything that fits otherwise.
-    fn user_value(&self, src: &mut impl Source, choice: Choice, index: usize, v: &ir::HeaderValue) -> u64 {
+    fn user_value(
+        &self,
+        src: &mut impl Source,
+        choice: Choice,
+        index: usize,
+        v: &ir::HeaderValue,
+    ) -> u64 {
         if let Some(d) = choice.direction {
             match self.ir.directions[d].rule {
                 ir::DirectionRule::InSet { value, set } if value == index => {
@@ -157,74 +349,17 @@ impl Model {
         }
         src.next_u64() & word_field(v).max_value()
     }
-
-    /// Appends the canonical bytes of a random value of struct `s`.
-    pub fn canonical_struct(&self, src: &mut impl Source, s: usize, out: &mut Vec<u8>) {
-        for field in &self.ir.structs[s].fields {
-            match &field.kind {
-                ir::FieldKind::Padding => out.resize(out.len() + field.size, 0),
-                ir::FieldKind::Value { ty, count } => {
-                    for _ in 0..count.unwrap_or(1) {
-                        self.canonical_value(src, ty, out);
-                    }
-                }
-                ir::FieldKind::Bits { word, members } => {
-                    let mut bits = 0u64;
-                    for m in members {
-                        let value = match (m.enum_index, m.prim) {
-                            (Some(e), _) => self.enum_value(src, e, m.width),
-                            (None, ir::Prim::Bool) => src.below(2),
-                            (None, _) => src.next_u64() & mask(m.width),
-                        };
-                        bits |= (value & mask(m.width)) << m.shift;
-                    }
-                    put_uint(out, *word, bits);
-                }
-            }
-        }
-    }
-
-    fn canonical_value(&self, src: &mut impl Source, ty: &ir::ValueType, out: &mut Vec<u8>) {
-        match ty {
-            ir::ValueType::Struct(s) => self.canonical_struct(src, *s, out),
-            ir::ValueType::Enum(e, scalar) => {
-                let value = self.enum_value(src, *e, 8 * scalar.prim.size() as u32);
-                put_uint(out, *scalar, value);
-            }
-            ir::ValueType::Scalar { scalar, .. } => {
-                let value = match scalar.prim {
-                    ir::Prim::Bool => src.below(2),
-                    _ => src.next_u64(),
-                };
-                put_uint(out, *scalar, value);
-            }
-        }
-    }
-
-    /// A value of enum `e`: one of its variants, or (when unknown values are kept) any value.
-    fn enum_value(&self, src: &mut impl Source, e: usize, width: u32) -> u64 {
-        let en = &self.ir.enums[e];
-        if en.unknown == ir::UnknownPolicy::Keep && src.one_in(4) || en.variants.is_empty() {
-            return src.next_u64() & mask(width);
-        }
-        en.variants[src.below(en.variants.len() as u64) as usize].value
-    }
 }
 
-/// The low `width` bits.
-fn mask(width: u32) -> u64 {
-    if width >= 64 { u64::MAX } else { (1u64 << width) - 1 }
-}
-
-/// Appends the low bytes of `value` in the scalar's size and byte order.
-fn put_uint(out: &mut Vec<u8>, scalar: ir::Scalar, value: u64) {
-    let size = scalar.prim.size();
-    let le = value.to_le_bytes();
-    let bytes = &le[..size];
-    match scalar.endian {
-        ir::Endian::Little => out.extend_from_slice(bytes),
-        ir::Endian::Big => out.extend(bytes.iter().rev()),
-    }
+/// A frame the spec allows but the generated layout refuses to seal.
+#[derive(Debug, Clone)]
+pub struct Refused {
+    /// What the frame carried.
+    pub choice: Choice,
+    /// Its length.
+    pub len: usize,
+    /// What `seal` said.
+    pub error: protocol_runtime::EncodeError,
 }
 
 /// The runtime position of an IR position.
@@ -252,7 +387,9 @@ pub fn word_field(v: &ir::HeaderValue) -> WordField {
 /// The length field of the layout, with the adjustment (`None` for fixed-length frames).
 pub fn length_field(layout: &FrameLayout<'_>) -> Option<(WordField, i64)> {
     match layout.length {
-        LengthRule::Field { field, adjust } => Some((field, adjust)),
+        LengthRule::Field { field, adjust } | LengthRule::FieldOrBare { field, adjust, .. } => {
+            Some((field, adjust))
+        }
         LengthRule::Fixed(_) => None,
     }
 }

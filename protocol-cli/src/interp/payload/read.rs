@@ -197,6 +197,11 @@ fn read_elem(
         } => {
             let raw = read_scalar(r, *scalar)?.as_f64();
             let physical = raw * sc.factor + sc.offset;
+            if let Some((lo, hi)) = sc.clamp {
+                if !protocol_runtime::wire::within_clamp(physical, lo, hi) {
+                    return Err(ReadFail::Runtime(DecodeError::ValueOutOfRange));
+                }
+            }
             match sc.physical {
                 Prim::F32 => f32_json(physical as f32),
                 _ => f64_json(physical),

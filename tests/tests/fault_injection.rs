@@ -1,0 +1,334 @@
+//! Fault injection for every spec: long streams of valid frames with seeded faults (see
+//! `support::fault`), fed whole, in random chunks and byte by byte. For every stream:
+//!
+//! - every frame no fault touched is decoded, in order, unless an accepted false frame (a check
+//!   collision) overlaps it, or (fed in chunks only) a valid frame lies inside it: the
+//!   decoder's documented rule (module docs of `protocol_runtime::decoder`);
+//! - every frame the decoder accepts that was not sent as such really passes its checks,
+//!   verified here independently of the runtime (sums and CRCs from the spec's IR, via the
+//!   `crc` crate); their number is compared with what the checks' widths predict;
+//! - the counters add up to the input length after every call (`support::stream::run`).
+//!
+//! Run with `--nocapture` to see the numbers per spec. Adding a spec to
+//! `support::for_each_spec!` adds it here.
+
+mod support;
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+use protocol_codegen::ir;
+use support::fault::{FaultStream, Kind, build};
+use support::model::{Model, model};
+use support::stream::run;
+use support::{Rng, Source, Spec, hex};
+
+/// Frames per stream (of short frames; fewer of long ones).
+const FRAMES: usize = 1200;
+
+/// Streams per spec: 3, or `FAULT_SEEDS` (for longer runs than CI's).
+fn seeds() -> u64 {
+    std::env::var("FAULT_SEEDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(3)
+}
+
+/// What the streams of one spec gave.
+#[derive(Debug, Default)]
+struct Tally {
+    bytes: u64,
+    sent: u64,
+    untouched: u64,
+    delivered: u64,
+    lost_to_collision: u64,
+    lost_nested: u64,
+    lost_to_reassembled: u64,
+    /// Touched frames decoded as sent all the same (their neighbours made them whole again).
+    reassembled: u64,
+    /// Accepted frames that were not sent as such, by what the frame their first byte
+    /// belongs to had suffered (`None`: garbage between frames).
+    collisions: BTreeMap<Option<Kind>, u64>,
+    /// Candidates that reached the frame checks without being a frame sent as such.
+    trials: u64,
+    bad_header_check: u64,
+    bad_length: u64,
+    truncated: u64,
+    touched: BTreeMap<Kind, u64>,
+    /// The first false frames, for the report.
+    examples: Vec<String>,
+}
+
+impl Tally {
+    fn collisions(&self) -> u64 {
+        self.collisions.values().sum()
+    }
+}
+
+/// The chance that a random candidate passes the frame checks: one in the number of values
+/// each check can take.
+fn pass_rate(frame: &ir::Frame) -> f64 {
+    frame
+        .checks
+        .iter()
+        .filter(|c| !c.header)
+        .map(|c| match &c.algorithm {
+            ir::Algorithm::Sum { modulus } => 1.0 / f64::from(*modulus),
+            ir::Algorithm::Xor => 1.0 / 256.0,
+            ir::Algorithm::Crc(p) => 0.5f64.powi(i32::from(p.width)),
+        })
+        .product()
+}
+
+/// Whether every check of the spec holds on `bytes`, computed from the IR with the `crc` crate
+/// and plain arithmetic: an oracle independent of the runtime's checksum code.
+fn checks_hold(frame: &ir::Frame, bytes: &[u8]) -> bool {
+    let len = bytes.len();
+    let bare = frame.bare_len == Some(len);
+    let at = |p: ir::Pos| match p {
+        ir::Pos::Start(n) => n,
+        ir::Pos::End(n) => len - n,
+    };
+    frame.checks.iter().filter(|c| c.header || !bare).all(|c| {
+        let data = &bytes[at(c.from)..at(c.to)];
+        let expected = match &c.algorithm {
+            ir::Algorithm::Sum { modulus } => {
+                data.iter().map(|&b| u64::from(b)).sum::<u64>() % u64::from(*modulus)
+            }
+            ir::Algorithm::Xor => u64::from(data.iter().fold(0, |a, b| a ^ b)),
+            ir::Algorithm::Crc(p) => crc_of(p, data),
+        };
+        let stored = &bytes[at(c.at)..at(c.at) + c.size];
+        let stored = match c.endian {
+            ir::Endian::Little => stored
+                .iter()
+                .rev()
+                .fold(0u64, |a, &b| (a << 8) | u64::from(b)),
+            ir::Endian::Big => stored.iter().fold(0u64, |a, &b| (a << 8) | u64::from(b)),
+        };
+        stored == expected
+    })
+}
+
+fn crc_of(p: &ir::CrcParams, data: &[u8]) -> u64 {
+    macro_rules! crc {
+        ($t:ty) => {{
+            let alg: &'static crc::Algorithm<$t> = Box::leak(Box::new(crc::Algorithm {
+                width: p.width,
+                poly: p.poly as $t,
+                init: p.init as $t,
+                refin: p.refin,
+                refout: p.refout,
+                xorout: p.xorout as $t,
+                check: p.check as $t,
+                residue: p.residue as $t,
+            }));
+            u64::from(crc::Crc::<$t>::new(alg).checksum(data))
+        }};
+    }
+    match p.width {
+        8 => crc!(u8),
+        16 => crc!(u16),
+        32 => crc!(u32),
+        _ => crc!(u64),
+    }
+}
+
+/// Feeds one stream in `sizes` and checks it; `chunked` allows the documented nested case.
+fn check_stream<S: Spec>(
+    m: &Model,
+    fs: &FaultStream,
+    sizes: &[usize],
+    chunked: bool,
+    t: &mut Tally,
+) {
+    let r = run::<S>(&fs.bytes, sizes);
+    let sent_at: BTreeMap<usize, usize> = fs
+        .sent
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (s.offset, i))
+        .collect();
+    let mut delivered = vec![false; fs.sent.len()];
+    let mut last = None;
+    let mut false_frames = Vec::new();
+    for (offset, bytes) in &r.frames {
+        assert!(
+            checks_hold(m.frame(), bytes),
+            "{}: accepted {} with a failing check",
+            S::NAME,
+            hex(bytes)
+        );
+        let at = *offset as usize;
+        match sent_at.get(&at) {
+            Some(&i) if !fs.sent[i].kind.touches() && fs.sent[i].bytes == *bytes => {
+                assert!(last < Some(i), "{}: frame {i} out of order", S::NAME);
+                last = Some(i);
+                delivered[i] = true;
+            }
+            _ => {
+                let end = at + bytes.len();
+                let owner = sent_at.range(..=at).next_back().map(|(_, &i)| &fs.sent[i]);
+                let owner = owner.filter(|s| at < s.offset + s.bytes.len());
+                // A touched frame's own bytes, made whole again by its neighbours: a sync word
+                // inserted right after the sync bytes leaves the frame whole behind a stray
+                // byte; a frame cut before its last byte, followed by a frame that starts with
+                // that byte, or a frame that lost its first byte after garbage that ends with
+                // it, are the frame sent. Not a check collision: the bytes are the frame.
+                let mut overlapping = fs
+                    .sent
+                    .iter()
+                    .filter(|s| s.offset < end && at < s.offset + s.bytes.len());
+                if overlapping.any(|s| s.kind.touches() && s.original == *bytes) {
+                    t.reassembled += 1;
+                    false_frames.push((at, end, false));
+                    continue;
+                }
+                *t.collisions.entry(owner.map(|s| s.kind)).or_default() += 1;
+                if t.examples.len() < 4 {
+                    let from = at.saturating_sub(16);
+                    let sent = owner.map(|s| (s.offset, hex(&s.original)));
+                    t.examples.push(format!(
+                        "at {at}: {} (stream from {from}: {}; sent there: {sent:?})",
+                        hex(bytes),
+                        hex(&fs.bytes[from..(at + bytes.len() + 16).min(fs.bytes.len())])
+                    ));
+                }
+                false_frames.push((at, end, true));
+            }
+        }
+    }
+    for (i, s) in fs
+        .sent
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| !s.kind.touches())
+    {
+        t.untouched += 1;
+        if delivered[i] {
+            t.delivered += 1;
+            continue;
+        }
+        let (start, end) = (s.offset, s.offset + s.bytes.len());
+        let inside = r
+            .frames
+            .iter()
+            .any(|(o, b)| *o as usize > start && *o as usize + b.len() <= end);
+        if chunked && inside {
+            t.lost_nested += 1;
+        } else if let Some(&(_, _, collision)) =
+            false_frames.iter().find(|&&(a, b, _)| a < end && start < b)
+        {
+            if collision {
+                t.lost_to_collision += 1;
+            } else {
+                t.lost_to_reassembled += 1;
+            }
+        } else {
+            let from = start.saturating_sub(48);
+            panic!(
+                "{}: untouched frame {i} ({:?}) at {start} lost, chunks {sizes:?}\n\
+                 stream from {from}: {}\nframes near: {:?}",
+                S::NAME,
+                s.kind,
+                hex(&fs.bytes[from..(end + 48).min(fs.bytes.len())]),
+                r.frames
+                    .iter()
+                    .filter(|(o, _)| (*o as usize).abs_diff(start) < 2048)
+                    .map(|f| f.0)
+                    .collect::<Vec<_>>()
+            );
+        }
+    }
+    let st = r.stats;
+    t.trials += st.bad_checksum + st.bad_trailer + false_frames.len() as u64;
+    t.bad_header_check += st.bad_header_check;
+    t.bad_length += st.bad_length;
+    t.truncated += st.truncated;
+    t.bytes += fs.bytes.len() as u64;
+}
+
+fn faults<S: Spec>() {
+    let m = model::<S>();
+    let mut t = Tally::default();
+    for seed in 1..=seeds() {
+        let mut rng = Rng(seed ^ 0x5EED);
+        // Streams of long frames get fewer of them: the byte count, not the frame count, sets
+        // the run time.
+        let frames = FRAMES * 64 / m.layout.max_len.clamp(64, 512);
+        let fs = build(m, &mut rng, frames, 3);
+        t.sent += fs.sent.len() as u64;
+        for s in &fs.sent {
+            *t.touched.entry(s.kind).or_default() += 1;
+        }
+        check_stream::<S>(m, &fs, &[fs.bytes.len()], false, &mut t);
+        let sizes: Vec<usize> = (0..32)
+            .map(|_| rng.below(2 * m.layout.max_len as u64) as usize + 1)
+            .collect();
+        check_stream::<S>(m, &fs, &sizes, true, &mut t);
+        if seed == 1 {
+            check_stream::<S>(m, &fs, &[1], true, &mut t);
+        }
+    }
+    let rate = pass_rate(m.frame());
+    let expected = t.trials as f64 * rate;
+    let observed = t.collisions();
+    let mut report = String::new();
+    let _ = writeln!(
+        report,
+        "{}: {} frames sent, {} bytes fed (3 feedings per stream)",
+        S::NAME,
+        t.sent,
+        t.bytes
+    );
+    let _ = writeln!(report, "  faults: {:?}", t.touched);
+    let _ = writeln!(
+        report,
+        "  untouched {} runs: delivered {}, lost to a collision {}, to a reassembled frame {}, \
+         to the nested rule {}; touched frames reassembled by their neighbours {}",
+        t.untouched,
+        t.delivered,
+        t.lost_to_collision,
+        t.lost_to_reassembled,
+        t.lost_nested,
+        t.reassembled
+    );
+    let _ = writeln!(
+        report,
+        "  rejected: bad header check {}, bad length {}, truncated {}; reached the frame check {}",
+        t.bad_header_check, t.bad_length, t.truncated, t.trials
+    );
+    let _ = writeln!(
+        report,
+        "  false frames accepted (checks really collide): {observed} (by fault {:?}); \
+         predicted {expected:.2} at {rate:.3e} per candidate",
+        t.collisions
+    );
+    for e in &t.examples {
+        let _ = writeln!(report, "    {e}");
+    }
+    eprint!("{report}");
+    assert_eq!(
+        t.delivered + t.lost_to_collision + t.lost_to_reassembled + t.lost_nested,
+        t.untouched
+    );
+    // Every untouched frame lost is explained by a false frame over it, and those are as rare
+    // as the checks' width says: within four standard deviations of the prediction (the
+    // faults are not random bytes, so the prediction is a guide, not an exact law).
+    let bound = expected + 4.0 * expected.sqrt() + 4.0;
+    assert!(
+        (observed as f64) <= bound,
+        "{report}more false frames than the check width predicts"
+    );
+}
+
+macro_rules! fault_suite {
+    ($name:ident, $path:literal) => {
+        #[test]
+        fn $name() {
+            faults::<support::$name::Packet>();
+        }
+    };
+}
+
+support::for_each_spec!(fault_suite);

@@ -1,0 +1,228 @@
+//! Canonical payloads: random values of a spec's payload structs, written as the generated
+//! encoder writes them (padding zero, booleans 0 or 1, unused bits zero, enum values that exist,
+//! scaled values inside their clamp range, byte counts that match the fields that state them),
+//! so that decoding them and encoding the result gives the same bytes.
+
+use std::collections::HashMap;
+
+use protocol_codegen::ir;
+
+use super::Source;
+use super::model::Model;
+
+impl Model {
+    /// Appends the canonical bytes of a random value of struct `s`, keeping variable parts
+    /// (bytes, groups, optional fields) within about `budget` bytes.
+    pub fn canonical_struct(
+        &self,
+        src: &mut impl Source,
+        s: usize,
+        budget: usize,
+        ctx: &mut Ctx,
+        out: &mut Vec<u8>,
+    ) {
+        self.size_limits(s, &mut ctx.limits);
+        for field in &self.ir.structs[s].fields {
+            self.canonical_field(src, field, &field.kind, budget, ctx, out);
+        }
+    }
+
+    /// Records, for every field that gives a byte count (`size = "field"`), the most bytes it
+    /// may count.
+    fn size_limits(&self, s: usize, limits: &mut HashMap<String, u64>) {
+        for field in &self.ir.structs[s].fields {
+            match &field.kind {
+                ir::FieldKind::Bytes {
+                    max,
+                    size_from: Some(name),
+                } => {
+                    let limit = limits.entry(name.clone()).or_insert(u64::MAX);
+                    *limit = (*limit).min(*max as u64);
+                }
+                ir::FieldKind::Group { elem, .. } => self.size_limits(*elem, limits),
+                _ => {}
+            }
+        }
+    }
+
+    fn canonical_field(
+        &self,
+        src: &mut impl Source,
+        field: &ir::Field,
+        kind: &ir::FieldKind,
+        budget: usize,
+        ctx: &mut Ctx,
+        out: &mut Vec<u8>,
+    ) {
+        let room = budget.saturating_sub(out.len());
+        match kind {
+            ir::FieldKind::Padding => out.resize(out.len() + field.size, 0),
+            ir::FieldKind::Value { ty, count } => {
+                for _ in 0..count.unwrap_or(1) {
+                    let limit = ctx.limits.get(&field.name).copied();
+                    let value = self.canonical_value(src, ty, limit, out);
+                    ctx.values.insert(field.name.clone(), value);
+                }
+            }
+            ir::FieldKind::Bits { word, members } => {
+                let mut bits = 0u64;
+                for m in members {
+                    let value = match (m.enum_index, m.prim) {
+                        (Some(e), _) => self.enum_value(src, e, m.width),
+                        (None, ir::Prim::Bool) => src.below(2),
+                        (None, _) => src.next_u64() & mask(m.width),
+                    };
+                    bits |= (value & mask(m.width)) << m.shift;
+                }
+                put_uint(out, *word, bits);
+            }
+            ir::FieldKind::Bytes { max, size_from } => {
+                let n = match size_from {
+                    Some(name) => ctx.values.get(name).copied().unwrap_or(0) as usize,
+                    None => src.len((*max).min(room)),
+                };
+                let mut bytes = src.bytes(n);
+                // Often hold the sync bytes or the stuffing pattern: what a weak decoder or
+                // encoder gets wrong.
+                let f = self.frame();
+                let pattern = match &f.stuffing {
+                    Some((after, _)) if src.one_in(2) => after.as_slice(),
+                    _ => &f.sync,
+                };
+                if src.one_in(3) && n >= pattern.len() {
+                    let at = src.below((n - pattern.len() + 1) as u64) as usize;
+                    bytes[at..at + pattern.len()].copy_from_slice(pattern);
+                }
+                out.extend(bytes);
+            }
+            ir::FieldKind::Group { elem, max } => {
+                for _ in 0..src.len(*max) {
+                    let before = out.len();
+                    self.canonical_struct(src, *elem, budget, ctx, out);
+                    if out.len() > budget {
+                        out.truncate(before);
+                        break;
+                    }
+                }
+            }
+            ir::FieldKind::Optional(inner) => {
+                if src.one_in(2) {
+                    let before = out.len();
+                    self.canonical_field(src, field, inner, budget, ctx, out);
+                    if out.len() > budget {
+                        out.truncate(before);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Appends one canonical value; returns its raw bits (for fields other fields refer to).
+    fn canonical_value(
+        &self,
+        src: &mut impl Source,
+        ty: &ir::ValueType,
+        limit: Option<u64>,
+        out: &mut Vec<u8>,
+    ) -> u64 {
+        match ty {
+            ir::ValueType::Struct(s) => {
+                self.canonical_struct(src, *s, usize::MAX, &mut Ctx::default(), out);
+                0
+            }
+            ir::ValueType::Enum(e, scalar) => {
+                let value = self.enum_value(src, *e, 8 * scalar.prim.size() as u32);
+                put_uint(out, *scalar, value);
+                value
+            }
+            ir::ValueType::Scalar { scalar, scale } => {
+                let mut value = match (scalar.prim, limit) {
+                    (ir::Prim::Bool, _) => src.below(2),
+                    (_, Some(limit)) => src.below(limit.saturating_add(1)),
+                    _ => src.next_u64(),
+                };
+                // A scaled value outside its clamp range is not canonical: the encoder clamps it.
+                if let Some(scale) = scale {
+                    let mut tries = 0;
+                    while !in_clamp(scale, scalar.prim, value) {
+                        tries += 1;
+                        value = if tries < 16 {
+                            src.next_u64()
+                        } else {
+                            clamp_midpoint(scale)
+                        };
+                    }
+                }
+                put_uint(out, *scalar, value);
+                value & mask(8 * scalar.prim.size() as u32)
+            }
+        }
+    }
+
+    /// A value of enum `e`: one of its variants, or (when unknown values are kept) any value.
+    fn enum_value(&self, src: &mut impl Source, e: usize, width: u32) -> u64 {
+        let en = &self.ir.enums[e];
+        if en.unknown == ir::UnknownPolicy::Keep && src.one_in(4) || en.variants.is_empty() {
+            return src.next_u64() & mask(width);
+        }
+        en.variants[src.below(en.variants.len() as u64) as usize].value
+    }
+}
+
+/// The raw bits as a number of the wire type (sign-extended for signed types).
+fn raw_number(prim: ir::Prim, raw: u64) -> f64 {
+    let bits = 8 * prim.size() as u32;
+    let raw = raw & mask(bits);
+    if prim.is_signed() {
+        let shift = 64 - bits;
+        (((raw << shift) as i64) >> shift) as f64
+    } else {
+        raw as f64
+    }
+}
+
+/// Whether the physical value of `raw`, as the decoder computes it, lies in the clamp range.
+fn in_clamp(scale: &ir::Scale, prim: ir::Prim, raw: u64) -> bool {
+    let Some((lo, hi)) = scale.clamp else {
+        return true;
+    };
+    let physical = raw_number(prim, raw) * scale.factor + scale.offset;
+    let physical = match scale.physical {
+        ir::Prim::F32 => f64::from(physical as f32),
+        _ => physical,
+    };
+    lo <= physical && physical <= hi
+}
+
+/// The raw value nearest the middle of the clamp range (two's complement bits).
+fn clamp_midpoint(scale: &ir::Scale) -> u64 {
+    let (lo, hi) = scale.clamp.unwrap_or((0.0, 0.0));
+    (((lo + hi) / 2.0 - scale.offset) / scale.factor).round() as i64 as u64
+}
+
+/// Values of the fields generated so far, and bounds on the fields that count bytes.
+#[derive(Debug, Default)]
+pub struct Ctx {
+    values: HashMap<String, u64>,
+    limits: HashMap<String, u64>,
+}
+
+/// The low `width` bits.
+fn mask(width: u32) -> u64 {
+    if width >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << width) - 1
+    }
+}
+
+/// Appends the low bytes of `value` in the scalar's size and byte order.
+fn put_uint(out: &mut Vec<u8>, scalar: ir::Scalar, value: u64) {
+    let size = scalar.prim.size();
+    let le = value.to_le_bytes();
+    let bytes = &le[..size];
+    match scalar.endian {
+        ir::Endian::Little => out.extend_from_slice(bytes),
+        ir::Endian::Big => out.extend(bytes.iter().rev()),
+    }
+}

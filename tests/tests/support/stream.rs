@@ -1,0 +1,284 @@
+//! The checked stream driver: feeds bytes to a spec's generated decoder in given chunk sizes and
+//! asserts the engine's invariants after every call, so that every suite (properties, faults,
+//! fuzzing) checks the same things:
+//!
+//! - the decoder never holds more than its buffer (`pending() <= MAX_FRAME_LEN`);
+//! - it always makes progress: every event accounts for at least one byte, the events tile the
+//!   stream without gap or overlap, and a call returns `None` only once its input is consumed;
+//! - every byte is accounted for: `frame_bytes + skipped_bytes + pending == position == fed`;
+//! - every frame it yields is the stream's bytes at its offset, and a valid frame of the layout;
+//! - every frame decodes to a packet or an error, never a panic, and a packet re-encodes to
+//!   bytes that decode to the same packet.
+
+use protocol_runtime::decoder::Probe;
+use protocol_runtime::{Event, FrameLayout, Reject, Stats};
+
+use super::{Dec, Spec, hex};
+
+/// What a checked run yielded.
+#[derive(Debug, Clone, Default)]
+pub struct Run {
+    /// The frames, with their stream offsets.
+    pub frames: Vec<(u64, Vec<u8>)>,
+    /// The rejected candidates.
+    pub rejected: Vec<(u64, Reject)>,
+    /// The decoder's counters at the end.
+    pub stats: Stats,
+}
+
+/// Feeds `stream` to a fresh decoder of `S` in chunks of the sizes `sizes` (cycled; zero sizes
+/// are fed too, as empty chunks), flushes it, and checks every invariant on the way.
+///
+/// # Panics
+/// On any broken invariant.
+pub fn run<S: Spec>(stream: &[u8], sizes: &[usize]) -> Run {
+    let mut decoder = S::decoder();
+    let mut out = Run::default();
+    let mut cursor = 0u64;
+    let mut fed = 0usize;
+    let mut sizes = Sizes::new(sizes);
+    let mut rest = stream;
+    while !rest.is_empty() {
+        let n = sizes.next(rest.len());
+        let (chunk, tail) = rest.split_at(n);
+        rest = tail;
+        fed += n;
+        let mut input = chunk;
+        // Every event accounts for at least one byte, so a call that makes no progress would
+        // show up here as more events than bytes.
+        let budget = n + decoder.pending() + 1;
+        let mut events = 0;
+        loop {
+            let before = input.len();
+            let Some(event) = decoder.next_event(&mut input) else {
+                assert!(
+                    input.is_empty(),
+                    "{}: None with {} bytes unread",
+                    S::NAME,
+                    input.len()
+                );
+                break;
+            };
+            events += 1;
+            assert!(
+                events <= budget,
+                "{}: no progress at offset {cursor}",
+                S::NAME
+            );
+            assert!(input.len() <= before);
+            record::<S>(event, stream, &mut cursor, &mut out);
+            check_counters::<S>(&decoder, (fed - input.len()) as u64, cursor);
+        }
+        check_counters::<S>(&decoder, fed as u64, cursor);
+    }
+    let budget = decoder.pending() + 1;
+    let mut events = 0;
+    while let Some(event) = decoder.flush_event() {
+        events += 1;
+        assert!(events <= budget, "{}: flush makes no progress", S::NAME);
+        record::<S>(event, stream, &mut cursor, &mut out);
+    }
+    assert_eq!(
+        decoder.pending(),
+        0,
+        "{}: flush leaves bytes pending",
+        S::NAME
+    );
+    check_counters::<S>(&decoder, fed as u64, cursor);
+    assert_eq!(
+        cursor,
+        stream.len() as u64,
+        "{}: events do not cover the stream",
+        S::NAME
+    );
+    let stats = decoder.stats();
+    assert_eq!(stats.frames, out.frames.len() as u64);
+    assert_eq!(stats.rejected(), out.rejected.len() as u64);
+    out.stats = stats;
+    out
+}
+
+/// The frames of `stream` through the API users call (`decode`, then `flush`), in chunks of
+/// `sizes`: must be exactly the frames of [`run`].
+pub fn frames<S: Spec>(stream: &[u8], sizes: &[usize]) -> Vec<(u64, Vec<u8>)> {
+    let mut decoder = S::decoder();
+    let mut out = Vec::new();
+    let mut sizes = Sizes::new(sizes);
+    let mut rest = stream;
+    while !rest.is_empty() {
+        let n = sizes.next(rest.len());
+        let (mut chunk, tail) = rest.split_at(n);
+        rest = tail;
+        while let Some(frame) = decoder.decode(&mut chunk) {
+            out.push((frame.offset, frame.bytes.to_vec()));
+        }
+        assert!(chunk.is_empty());
+        assert!(decoder.pending() <= S::MAX_FRAME_LEN);
+    }
+    while let Some(frame) = decoder.flush() {
+        out.push((frame.offset, frame.bytes.to_vec()));
+    }
+    out
+}
+
+/// Chunk sizes, cycled: zeros are fed as empty chunks, but sizes that are all zero (or none)
+/// mean the whole rest, so that feeding always ends.
+struct Sizes<'a> {
+    sizes: &'a [usize],
+    next: usize,
+}
+
+impl<'a> Sizes<'a> {
+    fn new(sizes: &'a [usize]) -> Self {
+        let sizes = if sizes.iter().any(|&s| s > 0) {
+            sizes
+        } else {
+            &[]
+        };
+        Sizes { sizes, next: 0 }
+    }
+
+    fn next(&mut self, rest: usize) -> usize {
+        let Some(&n) = self.sizes.get(self.next % self.sizes.len().max(1)) else {
+            return rest;
+        };
+        self.next += 1;
+        n.min(rest)
+    }
+}
+
+/// Checks one event against the stream and appends it to `out`.
+fn record<S: Spec>(event: Event<'_>, stream: &[u8], cursor: &mut u64, out: &mut Run) {
+    let (offset, len) = match event {
+        Event::Frame(frame) => {
+            let len = frame.bytes.len();
+            let at = frame.offset as usize;
+            assert_eq!(
+                Some(frame.bytes),
+                stream.get(at..at + len),
+                "{}: frame at {at} is not the stream's bytes",
+                S::NAME
+            );
+            assert_eq!(
+                S::layout().probe(frame.bytes),
+                Probe::Frame(len),
+                "{}: yielded an invalid frame {}",
+                S::NAME,
+                hex(frame.bytes)
+            );
+            check_packet::<S>(frame.bytes);
+            out.frames.push((frame.offset, frame.bytes.to_vec()));
+            (frame.offset, len)
+        }
+        Event::Rejected { offset, reason } => {
+            out.rejected.push((offset, reason));
+            (offset, 1)
+        }
+        Event::Skipped { offset, len } => (offset, len),
+    };
+    assert!(len > 0, "{}: an event of no bytes at {offset}", S::NAME);
+    assert_eq!(
+        offset,
+        *cursor,
+        "{}: events leave a gap or overlap",
+        S::NAME
+    );
+    *cursor += len as u64;
+}
+
+/// The buffer bound and the accounting identity.
+fn check_counters<S: Spec>(decoder: &S::Decoder, fed: u64, cursor: u64) {
+    let pending = decoder.pending();
+    assert!(
+        pending <= S::MAX_FRAME_LEN,
+        "{}: {pending} bytes pending",
+        S::NAME
+    );
+    assert!(pending <= <S::Decoder as Dec>::CAPACITY);
+    let s = decoder.stats();
+    assert_eq!(
+        decoder.position(),
+        fed,
+        "{}: position is not the bytes fed",
+        S::NAME
+    );
+    assert_eq!(
+        s.frame_bytes + s.skipped_bytes + pending as u64,
+        fed,
+        "{}: counters do not add up: {s:?}, pending {pending}",
+        S::NAME
+    );
+    assert_eq!(
+        cursor + pending as u64,
+        fed,
+        "{}: events and pending bytes differ from fed",
+        S::NAME
+    );
+}
+
+/// A valid frame decodes to a packet or an error (never a panic); a packet re-encodes into
+/// bytes that are a valid frame and decode to the same packet.
+pub fn check_packet<S: Spec>(frame: &[u8]) {
+    let Ok(packet) = S::from_frame(frame) else {
+        return;
+    };
+    let bytes = packet
+        .to_vec()
+        .unwrap_or_else(|e| panic!("{}: decoded {packet:?} does not encode: {e}", S::NAME));
+    let again = S::decode(&bytes).expect("re-encoded frame decodes");
+    assert_same_packet(&packet, &again, &bytes);
+}
+
+/// `a == b`, or, when a value does not equal itself (a NaN), that both encode to the same
+/// bytes. `bytes` (what `b` was decoded from) names the case in the message.
+pub fn assert_same_packet<S: Spec>(a: &S, b: &S, bytes: &[u8]) {
+    #[allow(clippy::eq_op)]
+    if a == a {
+        assert_eq!(a, b, "{}: packet changed through {}", S::NAME, hex(bytes));
+    } else {
+        assert_eq!(
+            a.to_vec(),
+            b.to_vec(),
+            "{}: packet changed through {}",
+            S::NAME,
+            hex(bytes)
+        );
+    }
+}
+
+/// Whether a frame of `frames` holds another complete valid frame strictly inside it: the one
+/// case where the frames depend on how the input was cut (see the decoder's module docs).
+pub fn nested_frame(layout: &FrameLayout<'_>, frames: &[(u64, Vec<u8>)]) -> Option<(u64, usize)> {
+    frames.iter().find_map(|(offset, bytes)| {
+        (1..bytes.len()).find_map(|k| match layout.probe(&bytes[k..]) {
+            Probe::Frame(_) => Some((*offset, k)),
+            _ => None,
+        })
+    })
+}
+
+/// The frames of `stream` fed whole and fed in `sizes` must be the same, but for the
+/// documented nested-frame case. Returns whether the documented case applied.
+pub fn assert_chunking_invariant<S: Spec>(stream: &[u8], sizes: &[usize]) -> bool {
+    let whole = run::<S>(stream, &[stream.len().max(1)]);
+    let chunked = run::<S>(stream, sizes);
+    assert_eq!(
+        frames::<S>(stream, sizes),
+        chunked.frames,
+        "{}: decode and next_event differ",
+        S::NAME
+    );
+    if whole.frames == chunked.frames {
+        return false;
+    }
+    let nested = nested_frame(S::layout(), &whole.frames);
+    assert!(
+        nested.is_some(),
+        "{}: chunks {sizes:?} change the frames of {}:\nwhole   {:?}\nchunked {:?}",
+        S::NAME,
+        hex(stream),
+        whole.frames.iter().map(|f| f.0).collect::<Vec<_>>(),
+        chunked.frames.iter().map(|f| f.0).collect::<Vec<_>>(),
+    );
+    true
+}
