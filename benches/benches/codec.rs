@@ -1,0 +1,355 @@
+//! The performance issue's benchmarks, in one run so that ratios compare like with like:
+//!
+//! - decoders (generated, hand-written, byte-at-a-time port, and the prototype of the proposed
+//!   runtime changes) on 16 MiB streams of HFLink and referee frames, clean and noisy, fed whole
+//!   and in 64-byte chunks: 8 groups of 4 (of 7 with `PROTOCOL_BENCH_ABLATION=1`, which adds the
+//!   prototype with one change at a time);
+//! - encoders (generated, hand-written, prototype): a million frames into a reused buffer, for
+//!   each protocol.
+//!
+//! Before a decoder is timed, its frames on that stream and feed are compared with the ground
+//! truth: the generated, hand-written and prototype decoders must return exactly the untouched
+//! frames, the port (which, like the originals, does not rescan) a subset of them, in order,
+//! with no frame of its own. Encoders must write the same bytes, which the generated decoder
+//! reads back.
+//!
+//! Times are the benchmark thread's CPU time ([`ThreadCpuTime`]). Run: `cargo bench -p
+//! protocol-benches` (about 4 minutes; 6 with the ablation), or with `PROTOCOL_BENCH_QUICK=1`
+//! (10 samples of 1 s, under 2 minutes). Criterion's own arguments work too, e.g. `cargo bench
+//! -p protocol-benches -- hflink-clean`. `bench-report` turns the saved medians into the tables
+//! of `BENCHMARKS.md`.
+
+// `criterion_group!` generates an undocumented public function.
+#![allow(missing_docs)]
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::measurement::{Measurement, ValueFormatter, WallTime};
+use criterion::{
+    BenchmarkGroup, Criterion, SamplingMode, Throughput, criterion_group, criterion_main,
+};
+use protocol_benches::encode::{self, FRAMES};
+use protocol_benches::hand::{self, Staged};
+use protocol_benches::port::{hflink::HfLinkPort, referee::RefereePort};
+use protocol_benches::proto::{self, Proto, ProtoStaged};
+use protocol_benches::verify::{self, Output};
+use protocol_benches::workload::{Noise, Protocol, Workload};
+use protocol_benches::{ChunkDecoder, generated};
+
+/// Bytes per chunk of the chunked feed.
+const CHUNK: usize = 64;
+
+const HF: usize = generated::hflink::MAX_FRAME_LEN;
+const RF: usize = generated::referee::MAX_FRAME_LEN;
+
+/// Whether to also time the prototype with one change at a time.
+fn ablation() -> bool {
+    std::env::var_os("PROTOCOL_BENCH_ABLATION").is_some_and(|v| v != "0")
+}
+
+/// Thread CPU time instead of wall time: the machines this runs on share their cores with
+/// other work, and wall time counts the time the benchmark thread waits for a core (on the
+/// 2-core machine of `BENCHMARKS.md`, under a load average of 5-8, wall-time medians of the same
+/// decoder varied 2x from one group to the next). CPU time of the one thread that decodes is
+/// what a decoder costs. Values and units are printed as criterion prints durations.
+struct ThreadCpuTime;
+
+static WALL: WallTime = WallTime;
+
+impl Measurement for ThreadCpuTime {
+    type Intermediate = cpu_time::ThreadTime;
+    type Value = Duration;
+
+    fn start(&self) -> Self::Intermediate {
+        cpu_time::ThreadTime::now()
+    }
+    fn end(&self, start: Self::Intermediate) -> Self::Value {
+        start.elapsed()
+    }
+    fn add(&self, a: &Self::Value, b: &Self::Value) -> Self::Value {
+        *a + *b
+    }
+    fn zero(&self) -> Self::Value {
+        Duration::ZERO
+    }
+    fn to_f64(&self, value: &Self::Value) -> f64 {
+        value.as_nanos() as f64
+    }
+    fn formatter(&self) -> &dyn ValueFormatter {
+        WALL.formatter()
+    }
+}
+
+fn config() -> Criterion<ThreadCpuTime> {
+    let quick = std::env::var_os("PROTOCOL_BENCH_QUICK").is_some_and(|v| v != "0");
+    let (samples, warm_up, measure) = if quick {
+        (10, Duration::from_millis(300), Duration::from_secs(1))
+    } else {
+        (30, Duration::from_secs(1), Duration::from_secs(3))
+    };
+    Criterion::default()
+        .with_measurement(ThreadCpuTime)
+        .sample_size(samples)
+        .warm_up_time(warm_up)
+        .measurement_time(measure)
+        .nresamples(10_000)
+        .without_plots()
+}
+
+/// Which decoders a stream is checked and timed with.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    /// Must return exactly the ground truth.
+    Exact,
+    /// The byte-at-a-time port: a subset of the ground truth, no frame of its own.
+    Port,
+}
+
+/// Checks a decoder's frames, then times it.
+fn bench_decoder<D: ChunkDecoder>(
+    g: &mut BenchmarkGroup<'_, ThreadCpuTime>,
+    id: &str,
+    w: &Workload,
+    chunk: usize,
+    kind: Kind,
+    make: impl Fn() -> D,
+) {
+    let out: Output = verify::collect(&mut make(), &w.stream, chunk);
+    match kind {
+        Kind::Exact => {
+            if let Err(e) = verify::exact(w, &out) {
+                panic!("{id}: {e}");
+            }
+        }
+        Kind::Port => {
+            let loss = verify::compare(w, &out);
+            let clean = w.noise == Noise::Clean;
+            assert!(
+                loss.extra == 0 && (loss.lost == 0 || !clean),
+                "{id} on {}: {loss}",
+                w.name()
+            );
+            eprintln!(
+                "{} {id}: {} of {} frames ({loss}, {:.3}% lost)",
+                w.name(),
+                out.frames(),
+                w.frames.len(),
+                100.0 * loss.lost as f64 / w.frames.len() as f64
+            );
+        }
+    }
+    g.bench_function(id, |b| {
+        b.iter(|| {
+            let mut decoder = make();
+            verify::count(&mut decoder, black_box(&w.stream), chunk)
+        });
+    });
+}
+
+fn decode(c: &mut Criterion<ThreadCpuTime>) {
+    for protocol in [Protocol::HfLink, Protocol::Referee] {
+        for noise in [Noise::Clean, Noise::Noisy] {
+            let w = Workload::standard(protocol, noise);
+            for (feed, chunk) in [("whole", w.stream.len()), ("64", CHUNK)] {
+                let mut group = c.benchmark_group(format!("{}-{feed}", w.name()));
+                let g = &mut group;
+                g.throughput(Throughput::Bytes(w.stream.len() as u64));
+                // Every iteration is long (a 16 MiB stream): the same count per sample.
+                g.sampling_mode(SamplingMode::Flat);
+                match protocol {
+                    Protocol::HfLink => {
+                        bench_decoder(
+                            g,
+                            "generated",
+                            &w,
+                            chunk,
+                            Kind::Exact,
+                            generated::hflink_decoder,
+                        );
+                        bench_decoder(
+                            g,
+                            "hand",
+                            &w,
+                            chunk,
+                            Kind::Exact,
+                            Staged::<hand::hflink::HfLink>::default,
+                        );
+                        bench_decoder(g, "port", &w, chunk, Kind::Port, HfLinkPort::default);
+                        bench_decoder(
+                            g,
+                            "proto",
+                            &w,
+                            chunk,
+                            Kind::Exact,
+                            proto::HfLinkProto::default,
+                        );
+                        if ablation() {
+                            bench_decoder(
+                                g,
+                                "proto-const",
+                                &w,
+                                chunk,
+                                Kind::Exact,
+                                Proto::<proto::HfConst, HF>::default,
+                            );
+                            bench_decoder(
+                                g,
+                                "proto-fast",
+                                &w,
+                                chunk,
+                                Kind::Exact,
+                                Proto::<proto::HfFast, HF>::default,
+                            );
+                            bench_decoder(
+                                g,
+                                "proto-lazy",
+                                &w,
+                                chunk,
+                                Kind::Exact,
+                                ProtoStaged::<proto::HfStagedLazy, HF>::default,
+                            );
+                        }
+                    }
+                    Protocol::Referee => {
+                        bench_decoder(
+                            g,
+                            "generated",
+                            &w,
+                            chunk,
+                            Kind::Exact,
+                            generated::referee_decoder,
+                        );
+                        bench_decoder(
+                            g,
+                            "hand",
+                            &w,
+                            chunk,
+                            Kind::Exact,
+                            Staged::<hand::referee::Referee>::default,
+                        );
+                        bench_decoder(g, "port", &w, chunk, Kind::Port, RefereePort::default);
+                        bench_decoder(
+                            g,
+                            "proto",
+                            &w,
+                            chunk,
+                            Kind::Exact,
+                            proto::RefereeProto::default,
+                        );
+                        if ablation() {
+                            bench_decoder(
+                                g,
+                                "proto-const",
+                                &w,
+                                chunk,
+                                Kind::Exact,
+                                Proto::<proto::RefConst, RF>::default,
+                            );
+                            bench_decoder(
+                                g,
+                                "proto-fast",
+                                &w,
+                                chunk,
+                                Kind::Exact,
+                                Proto::<proto::RefFast, RF>::default,
+                            );
+                            bench_decoder(
+                                g,
+                                "proto-lazy",
+                                &w,
+                                chunk,
+                                Kind::Exact,
+                                ProtoStaged::<proto::RefStagedLazy, RF>::default,
+                            );
+                        }
+                    }
+                }
+                group.finish();
+            }
+        }
+    }
+}
+
+/// Checks that two encoders write the same frames and that the generated decoder reads them all
+/// back, then times both.
+fn bench_encoders(
+    c: &mut Criterion<ThreadCpuTime>,
+    group: &str,
+    frame_len: usize,
+    [generated, hand, proto]: [fn(&mut [u8], u32) -> usize; 3],
+    count_frames: impl Fn(&[u8]) -> usize,
+) {
+    let a = encode::encode_all(FRAMES, generated);
+    let b = encode::encode_all(FRAMES, hand);
+    let p = encode::encode_all(FRAMES, proto);
+    assert_eq!(
+        a.len(),
+        frame_len * FRAMES as usize,
+        "{group}: generated frame length"
+    );
+    assert!(a == b && a == p, "{group}: the encoders disagree");
+    assert_eq!(
+        count_frames(&a),
+        FRAMES as usize,
+        "{group}: frames decoded back"
+    );
+    let mut buf = vec![0u8; encode::BUFFER];
+    let mut g = c.benchmark_group(group);
+    g.throughput(Throughput::Bytes((frame_len * FRAMES as usize) as u64));
+    g.sampling_mode(SamplingMode::Flat);
+    g.bench_function("generated", |bench| {
+        bench.iter(|| encode::encode_wrapping(black_box(&mut buf), FRAMES, generated));
+    });
+    g.bench_function("hand", |bench| {
+        bench.iter(|| encode::encode_wrapping(black_box(&mut buf), FRAMES, hand));
+    });
+    g.bench_function("proto", |bench| {
+        bench.iter(|| encode::encode_wrapping(black_box(&mut buf), FRAMES, proto));
+    });
+    g.finish();
+}
+
+fn encoders(c: &mut Criterion<ThreadCpuTime>) {
+    bench_encoders(
+        c,
+        "hflink-encode",
+        hand::hflink::SYSTEM_INFO_FRAME,
+        [
+            |buf, i| {
+                generated::encode_system_info(buf, 0x11, 0x01, encode::system_info(i)).unwrap_or(0)
+            },
+            |buf, i| {
+                hand::hflink::encode_system_info(buf, 0x11, 0x01, encode::system_info(i))
+                    .unwrap_or(0)
+            },
+            |buf, i| {
+                proto::encode::encode_system_info(buf, 0x11, 0x01, encode::system_info(i))
+                    .unwrap_or(0)
+            },
+        ],
+        |bytes| verify::count(&mut generated::hflink_decoder(), bytes, bytes.len()).0,
+    );
+    bench_encoders(
+        c,
+        "referee-encode",
+        hand::referee::ROBOT_POS_FRAME,
+        [
+            |buf, i| generated::encode_robot_pos(buf, i as u8, encode::robot_pos(i)).unwrap_or(0),
+            |buf, i| {
+                hand::referee::encode_robot_pos(buf, i as u8, encode::robot_pos(i)).unwrap_or(0)
+            },
+            |buf, i| {
+                proto::encode::encode_robot_pos(buf, i as u8, encode::robot_pos(i)).unwrap_or(0)
+            },
+        ],
+        |bytes| verify::count(&mut generated::referee_decoder(), bytes, bytes.len()).0,
+    );
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = decode, encoders
+}
+criterion_main!(benches);

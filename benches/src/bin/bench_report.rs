@@ -1,0 +1,130 @@
+//! Turns the medians criterion saved after `cargo bench -p protocol-benches` into the Markdown
+//! tables of `BENCHMARKS.md`: throughput, time per frame, and the ratios the performance issue
+//! sets targets for.
+//!
+//! Usage: `bench-report [CRITERION_DIR]`; by default `$CARGO_TARGET_DIR/criterion`, else
+//! `target/criterion`. It draws the workloads again (they are fixed-seed) to count their frames.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use protocol_benches::encode::FRAMES;
+use protocol_benches::workload::{Noise, Protocol, Workload};
+
+/// The median of one benchmark, in nanoseconds per iteration.
+fn median(dir: &Path, group: &str, id: &str) -> Option<f64> {
+    let path = dir.join(group).join(id).join("new").join("estimates.json");
+    let text = std::fs::read_to_string(path).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    v["median"]["point_estimate"].as_f64()
+}
+
+fn cell(ns: Option<f64>, bytes: usize, frames: usize) -> String {
+    match ns {
+        Some(ns) => format!(
+            "{:.2} ms, {:.2} GB/s, {:.1} ns/frame",
+            ns / 1e6,
+            bytes as f64 / ns,
+            ns / frames as f64
+        ),
+        None => "not run".into(),
+    }
+}
+
+fn ratio(num: Option<f64>, den: Option<f64>) -> String {
+    match (num, den) {
+        (Some(a), Some(b)) if b > 0.0 => format!("{:.2}x", a / b),
+        _ => "-".into(),
+    }
+}
+
+fn main() -> ExitCode {
+    let dir = std::env::args()
+        .nth(1)
+        .map(PathBuf::from)
+        .unwrap_or_else(|| {
+            std::env::var_os("CARGO_TARGET_DIR")
+                .map(PathBuf::from)
+                .unwrap_or_else(|| PathBuf::from("target"))
+                .join("criterion")
+        });
+    if !dir.is_dir() {
+        eprintln!("bench-report: no criterion results in {}", dir.display());
+        return ExitCode::FAILURE;
+    }
+    println!(
+        "| stream | feed | frames | generated | hand-written | byte-at-a-time port | prototype | generated vs hand | generated vs port | hand vs port | prototype vs hand | prototype vs port |"
+    );
+    println!("|---|---|---:|---|---|---|---|---:|---:|---:|---:|---:|");
+    let mut ablation = Vec::new();
+    for protocol in [Protocol::HfLink, Protocol::Referee] {
+        for noise in [Noise::Clean, Noise::Noisy] {
+            let w = Workload::standard(protocol, noise);
+            let (bytes, frames) = (w.stream.len(), w.frames.len());
+            for feed in ["whole", "64"] {
+                let group = format!("{}-{feed}", w.name());
+                let feed_name = if feed == "whole" {
+                    "whole"
+                } else {
+                    "64-byte chunks"
+                };
+                let [g, h, p, x] =
+                    ["generated", "hand", "port", "proto"].map(|id| median(&dir, &group, id));
+                println!(
+                    "| {} | {feed_name} | {frames} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                    w.name(),
+                    cell(g, bytes, frames),
+                    cell(h, bytes, frames),
+                    cell(p, bytes, frames),
+                    cell(x, bytes, frames),
+                    ratio(h, g),
+                    ratio(p, g),
+                    ratio(p, h),
+                    ratio(h, x),
+                    ratio(p, x),
+                );
+                let steps = ["proto-const", "proto-fast", "proto", "proto-lazy"]
+                    .map(|id| median(&dir, &group, id));
+                if steps[0].is_some() {
+                    ablation.push(format!(
+                        "| {} | {feed_name} | {} | {} | {} | {} | {} |",
+                        w.name(),
+                        ratio(h, g),
+                        ratio(h, steps[0]),
+                        ratio(h, steps[1]),
+                        ratio(h, steps[2]),
+                        ratio(h, steps[3]),
+                    ));
+                }
+            }
+        }
+    }
+    if !ablation.is_empty() {
+        println!();
+        println!(
+            "| stream | feed | generated | 1: constant layout | 1+2: + window checks | 1+2+3: + staging | 1+2+3 without early truncation |"
+        );
+        println!("|---|---|---:|---:|---:|---:|---:|");
+        for row in ablation {
+            println!("{row}");
+        }
+    }
+    println!();
+    println!(
+        "| encoder (1M frames) | frame bytes | generated | hand-written | prototype | generated vs hand | prototype vs hand |"
+    );
+    println!("|---|---:|---|---|---|---:|---:|");
+    for (group, frame) in [("hflink-encode", 28usize), ("referee-encode", 25)] {
+        let [g, h, p] = ["generated", "hand", "proto"].map(|id| median(&dir, group, id));
+        let bytes = frame * FRAMES as usize;
+        println!(
+            "| {group} | {frame} | {} | {} | {} | {} | {} |",
+            cell(g, bytes, FRAMES as usize),
+            cell(h, bytes, FRAMES as usize),
+            cell(p, bytes, FRAMES as usize),
+            ratio(h, g),
+            ratio(h, p)
+        );
+    }
+    ExitCode::SUCCESS
+}

@@ -1,0 +1,93 @@
+//! The code under test: what `protocol_runtime::protocol!` generates from the two specs, used
+//! the way its documentation shows (a decoder from `decoder()`, `decode` in a loop per chunk,
+//! `flush` at the end; `Packet::encode` into the caller's buffer).
+
+use protocol_runtime::StreamDecoder;
+
+use crate::ChunkDecoder;
+
+protocol_runtime::protocol!("../specs/hflink.toml");
+protocol_runtime::protocol!("../specs/referee.toml");
+
+/// A generated decoder of either spec.
+pub struct Generated<const N: usize>(pub StreamDecoder<'static, N>);
+
+/// The generated HFLink decoder.
+pub fn hflink_decoder() -> Generated<{ hflink::MAX_FRAME_LEN }> {
+    Generated(hflink::decoder())
+}
+
+/// The generated referee decoder.
+pub fn referee_decoder() -> Generated<{ referee::MAX_FRAME_LEN }> {
+    Generated(referee::decoder())
+}
+
+impl<const N: usize> ChunkDecoder for Generated<N> {
+    #[inline]
+    fn feed<F: FnMut(&[u8])>(&mut self, mut chunk: &[u8], sink: &mut F) {
+        while let Some(frame) = self.0.decode(&mut chunk) {
+            sink(frame.bytes);
+        }
+    }
+
+    fn finish<F: FnMut(&[u8])>(&mut self, sink: &mut F) {
+        while let Some(frame) = self.0.flush() {
+            sink(frame.bytes);
+        }
+    }
+}
+
+/// Writes a `READ_SYSTEM_INFO` response (a 20-byte `SystemInfo`) with the generated encoder at
+/// the start of `buf`; returns its length.
+///
+/// # Errors
+///
+/// The encoder's, for a short buffer.
+#[inline]
+pub fn encode_system_info(
+    buf: &mut [u8],
+    sender: u8,
+    receiver: u8,
+    info: [f32; 5],
+) -> Result<usize, protocol_runtime::EncodeError> {
+    use hflink::{Header, Message, Packet, Response, SystemInfo};
+    let [
+        system_time,
+        cpu_temperature,
+        cpu_usage,
+        battery_voltage,
+        power_remain,
+    ] = info;
+    Packet {
+        header: Header { sender, receiver },
+        message: Message::Response(Response::ReadSystemInfo(SystemInfo {
+            system_time,
+            cpu_temperature,
+            cpu_usage,
+            battery_voltage,
+            power_remain,
+        })),
+    }
+    .encode(buf)
+}
+
+/// Writes a `GAME_ROBOT_POS` frame (a 16-byte `GameRobotPos`) with the generated encoder at the
+/// start of `buf`; returns its length.
+///
+/// # Errors
+///
+/// The encoder's, for a short buffer.
+#[inline]
+pub fn encode_robot_pos(
+    buf: &mut [u8],
+    seq: u8,
+    pos: [f32; 4],
+) -> Result<usize, protocol_runtime::EncodeError> {
+    use referee::{GameRobotPos, Header, Message, Packet};
+    let [x, y, z, yaw] = pos;
+    Packet {
+        header: Header { seq },
+        message: Message::GameRobotPos(GameRobotPos { x, y, z, yaw }),
+    }
+    .encode(buf)
+}

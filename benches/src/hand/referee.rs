@@ -1,0 +1,87 @@
+//! The referee protocol by hand: the frame scan and an encoder.
+//!
+//! `A5 data_length(u16 LE) seq CRC8 | cmd_id(u16 LE) data CRC16(LE)`: the CRC-8 covers the first
+//! four bytes and is checked before the length is trusted; `data_length` is at most 118; the
+//! CRC-16/MCRF4XX covers everything before it.
+
+use super::Scan;
+use super::crc::{crc8_header, crc16};
+
+/// Referee frames.
+pub struct Referee;
+
+/// Largest frame a receiver accepts.
+const MAX_FRAME: usize = 127;
+/// Largest `data_length`.
+const MAX_DATA: usize = 118;
+
+/// Where the next candidate (an `A5`) starts at or after `at`.
+#[inline(always)]
+fn find_sof(data: &[u8], at: usize) -> Option<usize> {
+    // On a clean stream the next frame starts right here.
+    if data.get(at) == Some(&0xA5) {
+        return Some(at);
+    }
+    Some(at + memchr::memchr(0xA5, data.get(at..)?)?)
+}
+
+impl Scan for Referee {
+    const MAX_FRAME: usize = MAX_FRAME;
+
+    #[inline(always)]
+    fn scan<F: FnMut(&[u8])>(buf: &[u8], len: usize, at_end: bool, sink: &mut F) -> usize {
+        let data = &buf[..len];
+        let mut at = 0;
+        while let Some(p) = find_sof(data, at) {
+            let rest = &data[p..];
+            let Some(&[h0, h1, h2, h3, h4]) = rest.first_chunk::<5>() else {
+                if at_end {
+                    at = p + 1;
+                    continue;
+                }
+                return p;
+            };
+            let data_len = usize::from(u16::from_le_bytes([h1, h2]));
+            if crc8_header([h0, h1, h2, h3]) != h4 || data_len > MAX_DATA {
+                at = p + 1;
+                continue;
+            }
+            let total = data_len + 9;
+            let Some(frame) = rest.get(..total) else {
+                if at_end {
+                    at = p + 1;
+                    continue;
+                }
+                return p;
+            };
+            let stored = u16::from_le_bytes([frame[total - 2], frame[total - 1]]);
+            if crc16(&buf[p..], total - 2) == stored {
+                sink(frame);
+                at = p + total;
+            } else {
+                at = p + 1;
+            }
+        }
+        data.len()
+    }
+}
+
+/// Bytes of a `GAME_ROBOT_POS` frame: 7 header bytes, 16 data bytes, the CRC-16.
+pub const ROBOT_POS_FRAME: usize = 25;
+
+/// Writes a `GAME_ROBOT_POS` frame (`x`, `y`, `z`, `yaw` as `f32`) with sequence number `seq` at
+/// the start of `buf`; returns its length, or `None` if `buf` is too short.
+#[inline]
+pub fn encode_robot_pos(buf: &mut [u8], seq: u8, pos: [f32; 4]) -> Option<usize> {
+    let frame = buf.first_chunk_mut::<ROBOT_POS_FRAME>()?;
+    let header = [0xA5, 16, 0, seq];
+    frame[..4].copy_from_slice(&header);
+    frame[4] = crc8_header(header);
+    frame[5..7].copy_from_slice(&0x0203u16.to_le_bytes());
+    for (dst, v) in frame[7..23].chunks_exact_mut(4).zip(pos) {
+        dst.copy_from_slice(&v.to_le_bytes());
+    }
+    let crc = crc16(frame, 23);
+    frame[23..].copy_from_slice(&crc.to_le_bytes());
+    Some(ROBOT_POS_FRAME)
+}

@@ -1,0 +1,235 @@
+//! Every decoder of the benchmark against the ground truth, on smaller streams of the same
+//! workloads and at many chunk sizes; the encoders against each other. The benchmark repeats the
+//! full-size checks before it times anything; these catch a broken decoder in `cargo test`.
+
+use protocol_benches::encode;
+use protocol_benches::hand::{self, Staged};
+use protocol_benches::port::{hflink::HfLinkPort, referee::RefereePort};
+use protocol_benches::proto::{self, Proto, ProtoStaged};
+use protocol_benches::verify::{collect, compare, count, exact};
+use protocol_benches::workload::{Noise, Protocol, Workload, reference_frames};
+use protocol_benches::{ChunkDecoder, generated};
+
+const LEN: usize = 256 << 10;
+const CHUNKS: [usize; 6] = [1, 7, 64, 65, 1000, usize::MAX];
+
+fn workloads() -> Vec<Workload> {
+    let mut out = Vec::new();
+    for protocol in [Protocol::HfLink, Protocol::Referee] {
+        for (noise, seed) in [(Noise::Clean, 11), (Noise::Noisy, 12)] {
+            out.push(Workload::generate(protocol, noise, LEN, seed));
+        }
+    }
+    out
+}
+
+fn check_exact<D: ChunkDecoder>(name: &str, w: &Workload, make: impl Fn() -> D) {
+    check_chunks(name, w, &CHUNKS, make);
+}
+
+fn check_chunks<D: ChunkDecoder>(name: &str, w: &Workload, chunks: &[usize], make: impl Fn() -> D) {
+    for &chunk in chunks {
+        let out = collect(&mut make(), &w.stream, chunk);
+        if let Err(e) = exact(w, &out) {
+            panic!("{name}, chunks of {chunk}: {e}");
+        }
+        assert_eq!(count(&mut make(), &w.stream, chunk).0, w.frames.len());
+    }
+}
+
+#[test]
+fn workloads_hold_exactly_their_untouched_frames() {
+    for w in workloads() {
+        assert_eq!(
+            reference_frames(w.protocol, &w.stream),
+            w.frames,
+            "{}",
+            w.name()
+        );
+        assert!(w.stream.len() > LEN - 200 && w.stream.len() <= LEN);
+        let frames = w.frames.len() as f64;
+        let mean = w.frame_lengths().iter().sum::<usize>() as f64 / frames;
+        let expected = if w.protocol == Protocol::HfLink {
+            47.5
+        } else {
+            59.5
+        };
+        assert!(
+            (mean - expected).abs() < 1.0,
+            "{}: mean frame {mean}",
+            w.name()
+        );
+        if w.noise == Noise::Noisy {
+            let covered: usize = w.frame_lengths().iter().sum();
+            // 5% of the frames corrupt, and the garbage: roughly 5% + 0.1 * 15.5 / frame bytes.
+            let lost = 1.0 - covered as f64 / w.stream.len() as f64;
+            assert!((0.06..0.1).contains(&lost), "{}: {lost}", w.name());
+        }
+    }
+}
+
+#[test]
+fn generated_decoders_return_exactly_the_untouched_frames() {
+    for w in workloads() {
+        match w.protocol {
+            Protocol::HfLink => check_exact("generated", &w, generated::hflink_decoder),
+            Protocol::Referee => check_exact("generated", &w, generated::referee_decoder),
+        }
+    }
+}
+
+#[test]
+fn hand_written_decoders_return_exactly_the_untouched_frames() {
+    for w in workloads() {
+        match w.protocol {
+            Protocol::HfLink => check_exact("hand", &w, Staged::<hand::hflink::HfLink>::default),
+            Protocol::Referee => check_exact("hand", &w, Staged::<hand::referee::Referee>::default),
+        }
+    }
+}
+
+#[test]
+fn prototype_decoders_return_exactly_the_untouched_frames() {
+    // Fewer chunk sizes than for the real decoders: four variants of one engine, and
+    // unoptimized (as `cargo test` runs) this is the slowest test of the crate.
+    const PROTO_CHUNKS: [usize; 3] = [7, 64, usize::MAX];
+    for w in workloads() {
+        match w.protocol {
+            Protocol::HfLink => {
+                check_chunks(
+                    "proto-const",
+                    &w,
+                    &PROTO_CHUNKS,
+                    Proto::<proto::HfConst, 127>::default,
+                );
+                check_chunks(
+                    "proto-fast",
+                    &w,
+                    &PROTO_CHUNKS,
+                    Proto::<proto::HfFast, 127>::default,
+                );
+                check_chunks(
+                    "proto",
+                    &w,
+                    &PROTO_CHUNKS,
+                    ProtoStaged::<proto::HfStaged, 127>::default,
+                );
+                check_exact(
+                    "proto-lazy",
+                    &w,
+                    ProtoStaged::<proto::HfStagedLazy, 127>::default,
+                );
+            }
+            Protocol::Referee => {
+                check_chunks(
+                    "proto-const",
+                    &w,
+                    &PROTO_CHUNKS,
+                    Proto::<proto::RefConst, 127>::default,
+                );
+                check_chunks(
+                    "proto-fast",
+                    &w,
+                    &PROTO_CHUNKS,
+                    Proto::<proto::RefFast, 127>::default,
+                );
+                check_chunks(
+                    "proto",
+                    &w,
+                    &PROTO_CHUNKS,
+                    ProtoStaged::<proto::RefStaged, 127>::default,
+                );
+                check_exact(
+                    "proto-lazy",
+                    &w,
+                    ProtoStaged::<proto::RefStagedLazy, 127>::default,
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn ports_return_every_clean_frame_and_lose_some_noisy_ones() {
+    for w in workloads() {
+        for chunk in [1, 64, usize::MAX] {
+            let out = match w.protocol {
+                Protocol::HfLink => collect(&mut HfLinkPort::default(), &w.stream, chunk),
+                Protocol::Referee => collect(&mut RefereePort::default(), &w.stream, chunk),
+            };
+            let loss = compare(&w, &out);
+            assert_eq!(loss.extra, 0, "{}", w.name());
+            match w.noise {
+                Noise::Clean => assert_eq!(loss.lost, 0, "{}", w.name()),
+                // The originals lose the frame after a stray sync byte or a truncated frame.
+                Noise::Noisy => assert!(
+                    loss.lost > 0 && loss.lost * 100 < w.frames.len(),
+                    "{}: {loss}",
+                    w.name()
+                ),
+            }
+        }
+    }
+}
+
+#[test]
+fn a_stray_sync_byte_costs_the_port_the_next_frame_but_not_the_others() {
+    let w = Workload::generate(Protocol::HfLink, Noise::Clean, 1000, 3);
+    let first = w.frames[0].clone();
+    let mut stream = vec![0xFF];
+    stream.extend_from_slice(&w.stream);
+    let port = collect(&mut HfLinkPort::default(), &stream, usize::MAX);
+    let hand = collect(
+        &mut Staged::<hand::hflink::HfLink>::default(),
+        &stream,
+        usize::MAX,
+    );
+    assert_eq!(hand.frames(), w.frames.len());
+    assert_eq!(port.frames(), w.frames.len() - 1);
+    assert_ne!(port.iter().next(), Some(&w.stream[first]));
+}
+
+#[test]
+fn encoders_write_the_same_frames() {
+    let n = 10_000;
+    let g = encode::encode_all(n, |b, i| {
+        generated::encode_system_info(b, 0x11, 0x01, encode::system_info(i)).unwrap_or(0)
+    });
+    let h = encode::encode_all(n, |b, i| {
+        hand::hflink::encode_system_info(b, 0x11, 0x01, encode::system_info(i)).unwrap_or(0)
+    });
+    let p = encode::encode_all(n, |b, i| {
+        proto::encode::encode_system_info(b, 0x11, 0x01, encode::system_info(i)).unwrap_or(0)
+    });
+    assert_eq!(g.len(), n as usize * hand::hflink::SYSTEM_INFO_FRAME);
+    assert!(g == h && g == p);
+    assert_eq!(
+        count(&mut generated::hflink_decoder(), &g, 100).0,
+        n as usize
+    );
+
+    let g = encode::encode_all(n, |b, i| {
+        generated::encode_robot_pos(b, i as u8, encode::robot_pos(i)).unwrap_or(0)
+    });
+    let h = encode::encode_all(n, |b, i| {
+        hand::referee::encode_robot_pos(b, i as u8, encode::robot_pos(i)).unwrap_or(0)
+    });
+    let p = encode::encode_all(n, |b, i| {
+        proto::encode::encode_robot_pos(b, i as u8, encode::robot_pos(i)).unwrap_or(0)
+    });
+    assert_eq!(g.len(), n as usize * hand::referee::ROBOT_POS_FRAME);
+    assert!(g == h && g == p);
+    assert_eq!(
+        count(&mut generated::referee_decoder(), &g, 100).0,
+        n as usize
+    );
+}
+
+#[test]
+fn wrapping_encoder_reuses_its_buffer() {
+    let mut buf = vec![0u8; encode::BUFFER];
+    let total = encode::encode_wrapping(&mut buf, 100_000, |b, i| {
+        hand::hflink::encode_system_info(b, 0x11, 0x01, encode::system_info(i)).unwrap_or(0)
+    });
+    assert_eq!(total, 100_000 * hand::hflink::SYSTEM_INFO_FRAME);
+}
