@@ -114,7 +114,7 @@ fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> TokenStream {
             /// does not fit its field.
             pub fn encode(&self) -> ::core::result::Result<#rt::CanFrame, #rt::EncodeError> {
                 let id = self.message.command().can_id().ok_or(#rt::EncodeError::ValueOutOfRange)?;
-                let total = #header_len + self.message.payload_len() + #trailer_len;
+                let total = #header_len.saturating_add(self.message.payload_len()).saturating_add(#trailer_len);
                 let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
                 let frame = virt.get_mut(..total).ok_or(#rt::EncodeError::PayloadTooLarge { len: total, max: #rt::CAN_VIRTUAL_LEN })?;
                 wire::#prefix_can_id.write(frame, u64::from(id)).ok_or(#rt::EncodeError::ValueOutOfRange)?;
@@ -539,7 +539,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 },
                 quote! {
                     #bare_arm
-                    Message::Ack(data) => #ack_header_len + data.len() + TRAILER_LEN,
+                    Message::Ack(data) => (#ack_header_len as usize).saturating_add(data.len()).saturating_add(TRAILER_LEN),
                 },
                 quote! {
                     let is_ack = matches!(self.message, Message::Ack(_));
@@ -571,15 +571,15 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     // With stuffing, the inserted bytes count too: write the payload aside to count them.
     let stuffed_extra = match &f.stuffing {
         Some(_) => quote! {
-            + {
-                let mut scratch = [0u8; MAX_PAYLOAD_LEN];
-                let mut w = #rt::Writer::new(&mut scratch);
-                match self.message.write_payload(&mut w) {
-                    ::core::result::Result::Ok(()) => STUFFING.count(w.written()),
-                    ::core::result::Result::Err(_) => 0,
-                }
-            }
-        },
+        .saturating_add({
+                        let mut scratch = [0u8; MAX_PAYLOAD_LEN];
+                        let mut w = #rt::Writer::new(&mut scratch);
+                        match self.message.write_payload(&mut w) {
+                            ::core::result::Result::Ok(()) => STUFFING.count(w.written()),
+                            ::core::result::Result::Err(_) => 0,
+                        }
+                    })
+                },
         None => quote!(),
     };
     let stuffing_const = match &f.stuffing {
@@ -646,7 +646,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             pub fn encoded_len(&self) -> usize {
                 let unstuffed = match &self.message {
                     #ack_len
-                    message => HEADER_LEN + message.payload_len() + TRAILER_LEN,
+                    message => HEADER_LEN.saturating_add(message.payload_len()).saturating_add(TRAILER_LEN),
                 };
                 unstuffed #stuffed_extra
             }
@@ -672,7 +672,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 self.message.write_payload(&mut w)?;
                 let plen = w.position();
                 #stuff
-                let total = start + plen + #trailer_of;
+                let total = start.saturating_add(plen).saturating_add(#trailer_of);
                 let frame = buf.get_mut(..total).ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
                 #(#header_writes)*
                 #ack_flag
@@ -741,7 +741,7 @@ fn emit_message_packet(
             }
             /// Bytes of the encoded frame.
             pub fn encoded_len(&self) -> usize {
-                #header_len + #rt::Payload::wire_len(&self.payload) + #trailer_len
+                #header_len.saturating_add(#rt::Payload::wire_len(&self.payload)).saturating_add(#trailer_len)
             }
             /// Encode the frame into the start of `buf`; returns its length.
             ///

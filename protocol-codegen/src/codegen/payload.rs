@@ -237,7 +237,7 @@ fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
                 let mut group = <#ty>::new();
                 while r.remaining() > 0 {
                     #(#lets)*
-                    let available = r.position() + r.remaining();
+                    let available = r.position().saturating_add(r.remaining());
                     group
                         .push(#elem_ty { #(#inits),* })
                         .map_err(|_| #rt::DecodeError::PayloadLength { expected: <Self as #rt::Payload>::SIZE, actual: available })?;
@@ -310,12 +310,22 @@ fn variable_len(kind: &PKind, value: TokenStream, rt: &TokenStream) -> Option<To
             )
         }
         PKind::Group { elem, .. } => {
-            let parts = elem.iter().map(|f| match &f.ident {
-                Some(id) => variable_len(&f.kind, quote!(e.#id), rt)
-                    .unwrap_or_else(|| size_expr(&f.kind, rt)),
-                None => size_expr(&f.kind, rt),
-            });
-            Some(quote!(#value.iter().map(|e| 0 #(+ #parts)*).sum::<usize>()))
+            let mut fixed = Vec::new();
+            let mut vars = Vec::new();
+            for f in elem {
+                match f
+                    .ident
+                    .as_ref()
+                    .and_then(|id| variable_len(&f.kind, quote!(e.#id), rt))
+                {
+                    Some(len) => vars.push(len),
+                    None => fixed.push(size_expr(&f.kind, rt)),
+                }
+            }
+            Some(quote!(#value.iter().fold(0usize, |acc, e| {
+                const FIXED: usize = 0 #(+ #fixed)*;
+                acc.saturating_add(FIXED #(.saturating_add(#vars))*)
+            })))
         }
         _ => None,
     }
@@ -557,7 +567,8 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
             const MIN_SIZE: usize = #min;
             #[inline]
             fn wire_len(&self) -> usize {
-                0 #(+ #fixed)* #(+ #lens)*
+                const FIXED: usize = 0 #(+ #fixed)*;
+                FIXED #(.saturating_add(#lens))*
             }
         }
     };

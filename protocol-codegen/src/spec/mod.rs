@@ -52,7 +52,9 @@ pub fn load_spec(source: &SpecSource, diags: &mut Diagnostics) -> Option<SpecFil
                 // A key dropped to repair an ill-typed value is then "missing": that is the
                 // same mistake, already reported.
                 let repaired = e.message().starts_with("missing field")
-                    && reported.iter().any(|r: &Range<usize>| span.start <= r.start && r.end <= span.end);
+                    && reported
+                        .iter()
+                        .any(|r: &Range<usize>| span.start <= r.start && r.end <= span.end);
                 if repaired {
                     return None;
                 }

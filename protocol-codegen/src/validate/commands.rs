@@ -166,12 +166,21 @@ pub(crate) fn lower_directions(
     // Rule: both directions, or neither. Report a lone direction only when the spec declares
     // one; when a declared direction failed to lower, its own error says why.
     if spec.directions.len() == 1 {
-        let span = spec.directions.keys().next().map(Spanned::span).unwrap_or_default();
-        ctx.error(span, "only one direction is declared", "declare both `request` and `response`, or neither");
+        let span = spec
+            .directions
+            .keys()
+            .next()
+            .map(Spanned::span)
+            .unwrap_or_default();
+        ctx.error(
+            span,
+            "only one direction is declared",
+            "declare both `request` and `response`, or neither",
+        );
     }
     if out.len() != 2 {
         out.clear();
-    }    // Request first, then response, whatever the spec's order.
+    } // Request first, then response, whatever the spec's order.
     out.sort_by_key(|d| d.name != "request");
     out
 }
@@ -190,17 +199,30 @@ pub(crate) fn lower_commands(
     let mut out: Vec<Command> = Vec::new();
     // The first frame format holds the dispatch key. When it failed to lower, its own errors
     // say why, and the commands are still checked for everything that does not need it.
-    let frame = frames.first().filter(|f| spec.frames.keys().next().is_some_and(|k| k.get_ref() == &f.name));
+    let frame = frames.first().filter(|f| {
+        spec.frames
+            .keys()
+            .next()
+            .is_some_and(|k| k.get_ref() == &f.name)
+    });
     if let Some(frame) = frame {
         if !spec.commands.is_empty() && frame.dispatch.is_empty() {
-            let span = spec.commands.keys().next().map(Spanned::span).unwrap_or_default();
+            let span = spec
+                .commands
+                .keys()
+                .next()
+                .map(Spanned::span)
+                .unwrap_or_default();
             ctx.error(span, format!("commands are declared, but frame `{}` has no dispatch key", frame.name), "add `dispatch = [\"command\"]` to the frame, naming the field that holds the command id");
             return out;
         }
     }
     let mut ids: HashMap<Vec<u64>, String> = HashMap::new();
     let mut can_ids: HashMap<u64, String> = HashMap::new();
-    let can_frame = frames.iter().skip(1).find(|f| matches!(f.transport, Transport::Can { .. }));
+    let can_frame = frames
+        .iter()
+        .skip(1)
+        .find(|f| matches!(f.transport, Transport::Can { .. }));
     let mut rust_names: HashMap<String, String> = HashMap::new();
     for (name, def) in &spec.commands {
         if !check_screaming_name(ctx, name, "command") {
@@ -210,7 +232,14 @@ pub(crate) fn lower_commands(
         let rust_name = pascal_case(name.get_ref());
         let mut valid = true;
         if let Some(prev) = rust_names.get(&rust_name) {
-            ctx.error(name.span(), format!("commands `{prev}` and `{}` both become the Rust name `{rust_name}`", name.get_ref()), "rename one so their PascalCase forms differ");
+            ctx.error(
+                name.span(),
+                format!(
+                    "commands `{prev}` and `{}` both become the Rust name `{rust_name}`",
+                    name.get_ref()
+                ),
+                "rename one so their PascalCase forms differ",
+            );
             valid = false;
         } else {
             rust_names.insert(rust_name.clone(), name.get_ref().clone());
@@ -219,7 +248,14 @@ pub(crate) fn lower_commands(
         let payloads = lower_payload_refs(ctx, name, d, frame, directions, structs);
         let can_id = lower_can_id(ctx, name, d.can_id.as_ref(), can_frame, &mut can_ids);
         if let (true, Some(id)) = (valid, id) {
-            out.push(Command { can_id, name: name.get_ref().clone(), rust_name, id, doc: text(&d.doc), payloads });
+            out.push(Command {
+                can_id,
+                name: name.get_ref().clone(),
+                rust_name,
+                id,
+                doc: text(&d.doc),
+                payloads,
+            });
         }
     }
     out
@@ -227,17 +263,39 @@ pub(crate) fn lower_commands(
 
 /// Rule: an id has one value per dispatch field of the frame, each fitting its field, and no
 /// other command has the same id.
-fn lower_id(ctx: &mut Ctx<'_>, name: &SStr, d: &crate::spec::model::CommandDef, frame: &Frame, ids: &mut HashMap<Vec<u64>, String>) -> Option<Vec<u64>> {
+fn lower_id(
+    ctx: &mut Ctx<'_>,
+    name: &SStr,
+    d: &crate::spec::model::CommandDef,
+    frame: &Frame,
+    ids: &mut HashMap<Vec<u64>, String>,
+) -> Option<Vec<u64>> {
     let raw: Vec<i64> = match d.id.get_ref() {
         IdDef::One(v) => vec![*v],
         IdDef::Many(v) => v.clone(),
     };
     if raw.len() != frame.dispatch.len() {
-        let keys: Vec<&str> = frame.dispatch.iter().map(|&i| frame.values[i].name.as_str()).collect();
+        let keys: Vec<&str> = frame
+            .dispatch
+            .iter()
+            .map(|&i| frame.values[i].name.as_str())
+            .collect();
         ctx.error(
             d.id.span(),
-            format!("id has {} value(s), but the dispatch key has {} field(s) ({})", raw.len(), keys.len(), keys.join(", ")),
-            if keys.len() == 1 { "write one integer, e.g. `id = 0x01`".to_string() } else { format!("write one integer per field, in the order {}", keys.join(", ")) },
+            format!(
+                "id has {} value(s), but the dispatch key has {} field(s) ({})",
+                raw.len(),
+                keys.len(),
+                keys.join(", ")
+            ),
+            if keys.len() == 1 {
+                "write one integer, e.g. `id = 0x01`".to_string()
+            } else {
+                format!(
+                    "write one integer per field, in the order {}",
+                    keys.join(", ")
+                )
+            },
         );
         return None;
     }
@@ -246,7 +304,18 @@ fn lower_id(ctx: &mut Ctx<'_>, name: &SStr, d: &crate::spec::model::CommandDef, 
     for (v, &vi) in raw.iter().zip(&frame.dispatch) {
         let field = &frame.values[vi];
         if *v < 0 || (*v as u64) > mask(field.width) {
-            ctx.error(d.id.span(), format!("id {v} does not fit in the {}-bit field `{}`", field.width, field.name), format!("ids of `{}` range from 0 to {}", field.name, mask(field.width)));
+            ctx.error(
+                d.id.span(),
+                format!(
+                    "id {v} does not fit in the {}-bit field `{}`",
+                    field.width, field.name
+                ),
+                format!(
+                    "ids of `{}` range from 0 to {}",
+                    field.name,
+                    mask(field.width)
+                ),
+            );
             fits = false;
         }
         id.push(*v as u64);
@@ -293,9 +362,18 @@ fn lower_payload_refs(
             for (need, span, earlier) in structs.size_refs.get(r.get_ref()).into_iter().flatten() {
                 let help = match did_you_mean(need, earlier.iter().map(String::as_str)) {
                     Some(b) => format!("did you mean `{b}`?"),
-                    None => "name an earlier integer field that holds the number of bytes".to_string(),
+                    None => {
+                        "name an earlier integer field that holds the number of bytes".to_string()
+                    }
                 };
-                ctx.error(span.clone(), format!("struct `{}` has no integer field `{need}` before its sized bytes", r.get_ref()), help);
+                ctx.error(
+                    span.clone(),
+                    format!(
+                        "struct `{}` has no integer field `{need}` before its sized bytes",
+                        r.get_ref()
+                    ),
+                    help,
+                );
             }
             return Some(i);
         }
@@ -330,7 +408,10 @@ fn lower_payload_refs(
     if directions.is_empty() {
         // Directions declared but broken: their own errors say why; skip these checks.
         let declared = !ctx.spec.directions.is_empty();
-        for (key, v) in [("request", &d.request), ("response", &d.response)].into_iter().filter(|_| !declared) {
+        for (key, v) in [("request", &d.request), ("response", &d.response)]
+            .into_iter()
+            .filter(|_| !declared)
+        {
             if let Some(v) = v {
                 ctx.error(v.span(), format!("`{key}` needs `[directions]`, which this spec does not declare"), "write `payload = \"...\"`, or declare `[directions]` to give requests and responses their own payloads");
             }
@@ -363,7 +444,12 @@ fn lower_can_id(
     seen: &mut HashMap<u64, String>,
 ) -> Option<u64> {
     let id = id?;
-    let declared = ctx.spec.frames.values().skip(1).any(|f| f.get_ref().transport.as_ref().is_some_and(|t| t.get_ref() == "can"));
+    let declared = ctx.spec.frames.values().skip(1).any(|f| {
+        f.get_ref()
+            .transport
+            .as_ref()
+            .is_some_and(|t| t.get_ref() == "can")
+    });
     let Some(frame) = can_frame else {
         if declared {
             // The CAN frame failed to lower; its own errors say why.

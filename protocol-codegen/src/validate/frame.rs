@@ -725,7 +725,10 @@ fn lower_frame(
                     _ => {
                         ctx.error(
                             k.span(),
-                            format!("`{}` cannot be a dispatch key: it is the length or a constant", k.get_ref()),
+                            format!(
+                                "`{}` cannot be a dispatch key: it is the length or a constant",
+                                k.get_ref()
+                            ),
                             "dispatch on a field that holds the command id",
                         );
                         ok = false;

@@ -62,7 +62,10 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
     let frames = frame::lower_frames(&mut ctx, &structs, &enums);
     // Directions name fields of the first frame: skip them when it failed to lower.
     let first_spec_frame = spec.frames.keys().next().map(|k| k.get_ref().as_str());
-    let directions = match frames.first().filter(|f| Some(f.name.as_str()) == first_spec_frame) {
+    let directions = match frames
+        .first()
+        .filter(|f| Some(f.name.as_str()) == first_spec_frame)
+    {
         Some(first) => commands::lower_directions(&mut ctx, first, &addresses),
         None => Vec::new(),
     };

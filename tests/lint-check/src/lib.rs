@@ -15,12 +15,7 @@
     clippy::expect_used,
     clippy::panic
 )]
-#![expect(
-    clippy::arithmetic_side_effects,
-    reason = "generated length sums (`encoded_len`, `wire_len`, `total` in `encode`) still use `+` \
-              (issue 7); when codegen uses checked arithmetic this expectation fails the build: \
-              move the lint into the `deny` list above"
-)]
+#![deny(clippy::arithmetic_side_effects)]
 #![allow(unused, clippy::all)]
 
 include!(concat!(env!("OUT_DIR"), "/specs.rs"));

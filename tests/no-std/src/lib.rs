@@ -51,7 +51,12 @@ pub fn scout_can(id: u32, data: &[u8]) -> Option<scout::Message> {
 /// Count the valid frames of each serial spec in `input`.
 pub fn count_frames(input: &[u8]) -> [usize; 4] {
     let mut counts = [0; 4];
-    let (mut a, mut b, mut c, mut d) = (referee::decoder(), referee2018::decoder(), scout::decoder(), roborts::decoder());
+    let (mut a, mut b, mut c, mut d) = (
+        referee::decoder(),
+        referee2018::decoder(),
+        scout::decoder(),
+        roborts::decoder(),
+    );
     let (mut ia, mut ib, mut ic, mut id) = (input, input, input, input);
     while a.decode(&mut ia).is_some() {
         counts[0] += 1;
