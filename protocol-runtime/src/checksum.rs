@@ -341,7 +341,7 @@ mod tests {
         refin: true,
         refout: true,
         xorout: 0,
-        check: 0,
+        check: 0x0B,
         residue: 0,
     };
     static DJI_CRC16: crc::Algorithm<u16> = crc::Algorithm {
@@ -375,6 +375,8 @@ mod tests {
             Checksum::Crc8(CrcImpl::Table1(&T)).compute(&[0xA5, 0x03, 0x00, 0x00]),
             0x27
         );
+        // And its check value (protocols.md: 0x0B; the catalogue's MAXIM-DOW with init 0 is 0xA1).
+        assert_eq!(check_all_tables!(u8, Crc8, &DJI_CRC8), 0x0B);
     }
 
     #[test]

@@ -65,7 +65,7 @@ static DJI_CRC8: crc::Algorithm<u8> = crc::Algorithm {
     refin: true,
     refout: true,
     xorout: 0,
-    check: 0,
+    check: 0x0B,
     residue: 0,
 };
 static DJI_CRC16: crc::Algorithm<u16> = crc::Algorithm {

@@ -197,15 +197,22 @@ fn json_bytes(v: &Value) -> Option<Vec<u8>> {
     }
 }
 
-/// The raw bits of a bit member, before masking. Values that do not fit the member's width
-/// are refused (generated code would mask them silently; a person typing JSON wants to know).
+/// The raw bits of a bit member. Values that do not fit the member's width are refused, as
+/// generated code refuses them (`EncodeError::ValueOutOfRange`).
 fn member_raw(p: &Protocol, m: &BitMember, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
     match m.enum_index {
         // `to_raw() as word`: a negative value of a signed enum is sign-extended, then masked.
         Some(ei) => {
             let e = &p.enums[ei];
             let raw = enum_raw(e, v, path)?;
-            Ok(signed_value(e.prim, raw).map_or(raw, |i| i as u64))
+            let raw = signed_value(e.prim, raw).map_or(raw, |i| i as u64);
+            if raw & !member_mask(m) != 0 {
+                return Err(EncodeIssue::new(
+                    path,
+                    format!("{raw} does not fit {} bits", m.width),
+                ));
+            }
+            Ok(raw)
         }
         None => {
             let raw = json_bits(v, m.prim).map_err(|e| issue(path, e))?;
