@@ -73,7 +73,7 @@ pub fn assert_stream_at_every_chunk_size<const N: usize>(
     mut each: impl FnMut(&[u8]),
 ) {
     for chunk in 1..=bytes.len() {
-        let mut dec = protocol_runtime::StreamDecoder::<N>::new(layout);
+        let mut dec = protocol_runtime::StreamDecoder::<_, N>::new(layout);
         let mut got = Vec::new();
         for part in bytes.chunks(chunk) {
             let mut input = part;

@@ -1,14 +1,14 @@
 //! The performance issue's benchmarks, in one run so that ratios compare like with like:
 //!
-//! - decoders (generated, hand-written, byte-at-a-time port, and the prototype of the proposed
-//!   runtime changes) on 16 MiB streams of HFLink and referee frames, clean and noisy, fed whole
-//!   and in 64-byte chunks: 8 groups of 4 (of 7 with `PROTOCOL_BENCH_ABLATION=1`, which adds the
-//!   prototype with one change at a time);
-//! - encoders (generated, hand-written, prototype): a million frames into a reused buffer, for
-//!   each protocol.
+//! - decoders (generated, hand-written, byte-at-a-time port) on 16 MiB streams of HFLink and
+//!   referee frames, clean and noisy, fed whole and in 64-byte chunks: 8 groups of 3 (of 4 with
+//!   `PROTOCOL_BENCH_ABLATION=1`, which adds the generated decoder reading its layout through a
+//!   reference, as the CLI's interpreter does);
+//! - encoders (generated, hand-written): a million frames into a reused buffer, for each
+//!   protocol.
 //!
 //! Before a decoder is timed, its frames on that stream and feed are compared with the ground
-//! truth: the generated, hand-written and prototype decoders must return exactly the untouched
+//! truth: the generated and hand-written decoders must return exactly the untouched
 //! frames, the port (which, like the originals, does not rescan) a subset of them, in order,
 //! with no frame of its own. Encoders must write the same bytes, which the generated decoder
 //! reads back.
@@ -32,7 +32,6 @@ use criterion::{
 use protocol_benches::encode::{self, FRAMES};
 use protocol_benches::hand::{self, Staged};
 use protocol_benches::port::{hflink::HfLinkPort, referee::RefereePort};
-use protocol_benches::proto::{self, Proto, ProtoStaged};
 use protocol_benches::verify::{self, Output};
 use protocol_benches::workload::{Noise, Protocol, Workload};
 use protocol_benches::{ChunkDecoder, generated};
@@ -40,10 +39,8 @@ use protocol_benches::{ChunkDecoder, generated};
 /// Bytes per chunk of the chunked feed.
 const CHUNK: usize = 64;
 
-const HF: usize = generated::hflink::MAX_FRAME_LEN;
-const RF: usize = generated::referee::MAX_FRAME_LEN;
-
-/// Whether to also time the prototype with one change at a time.
+/// Whether to also time the generated decoders with the layout read through a reference (as
+/// the CLI's interpreter does), to show what a compile-time layout buys.
 fn ablation() -> bool {
     std::env::var_os("PROTOCOL_BENCH_ABLATION").is_some_and(|v| v != "0")
 }
@@ -159,109 +156,25 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                 g.sampling_mode(SamplingMode::Flat);
                 match protocol {
                     Protocol::HfLink => {
-                        bench_decoder(
-                            g,
-                            "generated",
-                            &w,
-                            chunk,
-                            Kind::Exact,
-                            generated::hflink_decoder,
-                        );
-                        bench_decoder(
-                            g,
-                            "hand",
-                            &w,
-                            chunk,
-                            Kind::Exact,
-                            Staged::<hand::hflink::HfLink>::default,
-                        );
+                        let generated = generated::hflink_decoder;
+                        bench_decoder(g, "generated", &w, chunk, Kind::Exact, generated);
+                        let hand = Staged::<hand::hflink::HfLink>::default;
+                        bench_decoder(g, "hand", &w, chunk, Kind::Exact, hand);
                         bench_decoder(g, "port", &w, chunk, Kind::Port, HfLinkPort::default);
-                        bench_decoder(
-                            g,
-                            "proto",
-                            &w,
-                            chunk,
-                            Kind::Exact,
-                            proto::HfLinkProto::default,
-                        );
                         if ablation() {
-                            bench_decoder(
-                                g,
-                                "proto-const",
-                                &w,
-                                chunk,
-                                Kind::Exact,
-                                Proto::<proto::HfConst, HF>::default,
-                            );
-                            bench_decoder(
-                                g,
-                                "proto-fast",
-                                &w,
-                                chunk,
-                                Kind::Exact,
-                                Proto::<proto::HfFast, HF>::default,
-                            );
-                            bench_decoder(
-                                g,
-                                "proto-lazy",
-                                &w,
-                                chunk,
-                                Kind::Exact,
-                                ProtoStaged::<proto::HfStagedLazy, HF>::default,
-                            );
+                            let by_ref = generated::hflink_decoder_by_ref;
+                            bench_decoder(g, "generated-by-ref", &w, chunk, Kind::Exact, by_ref);
                         }
                     }
                     Protocol::Referee => {
-                        bench_decoder(
-                            g,
-                            "generated",
-                            &w,
-                            chunk,
-                            Kind::Exact,
-                            generated::referee_decoder,
-                        );
-                        bench_decoder(
-                            g,
-                            "hand",
-                            &w,
-                            chunk,
-                            Kind::Exact,
-                            Staged::<hand::referee::Referee>::default,
-                        );
+                        let generated = generated::referee_decoder;
+                        bench_decoder(g, "generated", &w, chunk, Kind::Exact, generated);
+                        let hand = Staged::<hand::referee::Referee>::default;
+                        bench_decoder(g, "hand", &w, chunk, Kind::Exact, hand);
                         bench_decoder(g, "port", &w, chunk, Kind::Port, RefereePort::default);
-                        bench_decoder(
-                            g,
-                            "proto",
-                            &w,
-                            chunk,
-                            Kind::Exact,
-                            proto::RefereeProto::default,
-                        );
                         if ablation() {
-                            bench_decoder(
-                                g,
-                                "proto-const",
-                                &w,
-                                chunk,
-                                Kind::Exact,
-                                Proto::<proto::RefConst, RF>::default,
-                            );
-                            bench_decoder(
-                                g,
-                                "proto-fast",
-                                &w,
-                                chunk,
-                                Kind::Exact,
-                                Proto::<proto::RefFast, RF>::default,
-                            );
-                            bench_decoder(
-                                g,
-                                "proto-lazy",
-                                &w,
-                                chunk,
-                                Kind::Exact,
-                                ProtoStaged::<proto::RefStagedLazy, RF>::default,
-                            );
+                            let by_ref = generated::referee_decoder_by_ref;
+                            bench_decoder(g, "generated-by-ref", &w, chunk, Kind::Exact, by_ref);
                         }
                     }
                 }
@@ -277,18 +190,17 @@ fn bench_encoders(
     c: &mut Criterion<ThreadCpuTime>,
     group: &str,
     frame_len: usize,
-    [generated, hand, proto]: [fn(&mut [u8], u32) -> usize; 3],
+    [generated, hand]: [fn(&mut [u8], u32) -> usize; 2],
     count_frames: impl Fn(&[u8]) -> usize,
 ) {
     let a = encode::encode_all(FRAMES, generated);
     let b = encode::encode_all(FRAMES, hand);
-    let p = encode::encode_all(FRAMES, proto);
     assert_eq!(
         a.len(),
         frame_len * FRAMES as usize,
         "{group}: generated frame length"
     );
-    assert!(a == b && a == p, "{group}: the encoders disagree");
+    assert!(a == b, "{group}: the encoders disagree");
     assert_eq!(
         count_frames(&a),
         FRAMES as usize,
@@ -303,9 +215,6 @@ fn bench_encoders(
     });
     g.bench_function("hand", |bench| {
         bench.iter(|| encode::encode_wrapping(black_box(&mut buf), FRAMES, hand));
-    });
-    g.bench_function("proto", |bench| {
-        bench.iter(|| encode::encode_wrapping(black_box(&mut buf), FRAMES, proto));
     });
     g.finish();
 }
@@ -323,10 +232,6 @@ fn encoders(c: &mut Criterion<ThreadCpuTime>) {
                 hand::hflink::encode_system_info(buf, 0x11, 0x01, encode::system_info(i))
                     .unwrap_or(0)
             },
-            |buf, i| {
-                proto::encode::encode_system_info(buf, 0x11, 0x01, encode::system_info(i))
-                    .unwrap_or(0)
-            },
         ],
         |bytes| verify::count(&mut generated::hflink_decoder(), bytes, bytes.len()).0,
     );
@@ -338,9 +243,6 @@ fn encoders(c: &mut Criterion<ThreadCpuTime>) {
             |buf, i| generated::encode_robot_pos(buf, i as u8, encode::robot_pos(i)).unwrap_or(0),
             |buf, i| {
                 hand::referee::encode_robot_pos(buf, i as u8, encode::robot_pos(i)).unwrap_or(0)
-            },
-            |buf, i| {
-                proto::encode::encode_robot_pos(buf, i as u8, encode::robot_pos(i)).unwrap_or(0)
             },
         ],
         |bytes| verify::count(&mut generated::referee_decoder(), bytes, bytes.len()).0,

@@ -3,6 +3,7 @@
 //! `flush` at the end; `Packet::encode` into the caller's buffer).
 
 use protocol_runtime::StreamDecoder;
+use protocol_runtime::layout::LayoutRef;
 
 use crate::ChunkDecoder;
 
@@ -10,19 +11,31 @@ protocol_runtime::protocol!("../specs/hflink.toml");
 protocol_runtime::protocol!("../specs/referee.toml");
 
 /// A generated decoder of either spec.
-pub struct Generated<const N: usize>(pub StreamDecoder<'static, N>);
+pub struct Generated<L: LayoutRef, const N: usize>(pub StreamDecoder<L, N>);
 
 /// The generated HFLink decoder.
-pub fn hflink_decoder() -> Generated<{ hflink::MAX_FRAME_LEN }> {
+pub fn hflink_decoder() -> Generated<hflink::Layout, { hflink::DECODER_BUFFER_LEN }> {
     Generated(hflink::decoder())
 }
 
 /// The generated referee decoder.
-pub fn referee_decoder() -> Generated<{ referee::MAX_FRAME_LEN }> {
+pub fn referee_decoder() -> Generated<referee::Layout, { referee::DECODER_BUFFER_LEN }> {
     Generated(referee::decoder())
 }
 
-impl<const N: usize> ChunkDecoder for Generated<N> {
+/// The generated HFLink layout read through a reference, as the CLI's interpreter reads its own.
+pub fn hflink_decoder_by_ref()
+-> Generated<&'static protocol_runtime::FrameLayout<'static>, { hflink::DECODER_BUFFER_LEN }> {
+    Generated(StreamDecoder::new(&hflink::LAYOUT))
+}
+
+/// The generated referee layout read through a reference, as the CLI's interpreter reads its own.
+pub fn referee_decoder_by_ref()
+-> Generated<&'static protocol_runtime::FrameLayout<'static>, { referee::DECODER_BUFFER_LEN }> {
+    Generated(StreamDecoder::new(&referee::LAYOUT))
+}
+
+impl<L: LayoutRef, const N: usize> ChunkDecoder for Generated<L, N> {
     #[inline]
     fn feed<F: FnMut(&[u8])>(&mut self, mut chunk: &[u8], sink: &mut F) {
         while let Some(frame) = self.0.decode(&mut chunk) {

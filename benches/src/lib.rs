@@ -14,12 +14,10 @@
 //!   descriptions in the protocol fact sheet;
 //! - [`verify`]: running any decoder over a workload and comparing its frames with the ground
 //!   truth, which the benchmark does before it times anything;
-//! - [`proto`]: a prototype of the runtime changes that would close the gap, measured beside
-//!   the real generated decoder;
 //! - [`synth`]: synthetic specs of N commands, for the size and expansion-time scaling.
 //!
-//! It does not own the runtime or the code generator: what it measures about them, and the
-//! changes it suggests, are in `BENCHMARKS.md`.
+//! It does not own the runtime or the code generator: what it measures about them is in
+//! `BENCHMARKS.md`.
 
 #![forbid(unsafe_code)]
 
@@ -27,7 +25,6 @@ pub mod encode;
 pub mod generated;
 pub mod hand;
 pub mod port;
-pub mod proto;
 pub mod synth;
 pub mod verify;
 pub mod workload;

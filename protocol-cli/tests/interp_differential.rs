@@ -528,7 +528,7 @@ fn vector_streams_yield_the_same_events() {
             };
             let bytes = unhex(text);
             for n in [1, 3, 7, 64, bytes.len()] {
-                let mut decoder = StreamDecoder::<4096>::new(&layout);
+                let mut decoder = StreamDecoder::<_, 4096>::new(&layout);
                 let mut events = Vec::new();
                 for mut chunk in bytes.chunks(n) {
                     while let Some(e) = decoder.next_event(&mut chunk) {

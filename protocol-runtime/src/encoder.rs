@@ -59,6 +59,7 @@ impl FrameLayout<'_> {
     /// assert_eq!(hflink.parse(&frame), Ok(&frame[..]));
     /// # Ok::<(), protocol_runtime::EncodeError>(())
     /// ```
+    #[inline(always)]
     pub fn seal(&self, frame: &mut [u8]) -> Result<(), EncodeError> {
         let len = frame.len();
         let span = self.header_span();

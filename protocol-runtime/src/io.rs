@@ -4,6 +4,7 @@
 //! borrow the decoder's buffer or the read buffer, so nothing is copied or allocated.
 
 use crate::decoder::{Frame, StreamDecoder};
+use crate::layout::LayoutRef;
 
 /// Reads once from `reader` into `buf` and hands every complete frame to `sink`.
 ///
@@ -14,9 +15,9 @@ use crate::decoder::{Frame, StreamDecoder};
 ///
 /// The reader's error; the decoder keeps any partial frame for the next call.
 #[cfg(feature = "embedded-io")]
-pub fn read_frames<R: embedded_io::Read, const N: usize>(
+pub fn read_frames<R: embedded_io::Read, L: LayoutRef, const N: usize>(
     reader: &mut R,
-    decoder: &mut StreamDecoder<'_, N>,
+    decoder: &mut StreamDecoder<L, N>,
     buf: &mut [u8],
     sink: impl FnMut(Frame<'_>),
 ) -> Result<usize, R::Error> {
@@ -31,9 +32,9 @@ pub fn read_frames<R: embedded_io::Read, const N: usize>(
 ///
 /// The reader's error (`Interrupted` is retried).
 #[cfg(feature = "std")]
-pub fn read_frames_std<R: std::io::Read, const N: usize>(
+pub fn read_frames_std<R: std::io::Read, L: LayoutRef, const N: usize>(
     reader: &mut R,
-    decoder: &mut StreamDecoder<'_, N>,
+    decoder: &mut StreamDecoder<L, N>,
     buf: &mut [u8],
     sink: impl FnMut(Frame<'_>),
 ) -> std::io::Result<usize> {
@@ -103,7 +104,7 @@ mod tests {
             }
         }
         let mut reader = Slow(&stream);
-        let mut decoder = StreamDecoder::<128>::new(&LAYOUT);
+        let mut decoder = StreamDecoder::<_, 128>::new(&LAYOUT);
         let mut buf = [0u8; 16];
         let mut frames = 0;
         while read_frames_std(&mut reader, &mut decoder, &mut buf, |f| {

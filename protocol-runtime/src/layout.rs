@@ -26,7 +26,7 @@ pub enum Pos {
 impl Pos {
     /// The absolute offset of this position in a frame of `frame_len` bytes, or `None` if it
     /// falls outside the frame.
-    #[inline]
+    #[inline(always)]
     pub const fn resolve(self, frame_len: usize) -> Option<usize> {
         match self {
             Pos::Start(n) => {
@@ -84,7 +84,7 @@ pub enum LengthRule {
 
 impl LengthRule {
     /// The length of a bare header, for [`LengthRule::FieldOrBare`].
-    #[inline]
+    #[inline(always)]
     pub const fn bare_len(&self) -> Option<usize> {
         match *self {
             LengthRule::FieldOrBare { bare, .. } => Some(bare),
@@ -150,4 +150,45 @@ pub struct FrameLayout<'a> {
     pub frame_checks: &'a [Check<'a>],
     /// Constant byte runs after the payload.
     pub markers: &'a [Marker<'a>],
+}
+
+/// Where the engine finds a frame format: a [`FrameLayout`] reference built at run time (the
+/// CLI's interpreter), or a zero-sized type whose [`layout`](Self::layout) returns a `static`
+/// (generated code).
+///
+/// Why a trait and not always a reference: the engine reads the layout for every candidate
+/// (the sync bytes, the length field, each check's positions and algorithm). Through a
+/// reference held in a field those reads stay reads, and the engine interprets the layout
+/// frame after frame; through a zero-sized type they are reads of a constant, which the
+/// compiler folds: the generic engine compiles to the code one would write for the one format,
+/// and links only the checksums it uses.
+///
+/// ```
+/// use protocol_runtime::layout::{FrameLayout, LayoutRef, LengthRule};
+///
+/// static FIXED: FrameLayout<'static> = FrameLayout {
+///     sync: &[0xAA], header_len: 1, min_len: 4, max_len: 4, length: LengthRule::Fixed(4),
+///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
+/// };
+///
+/// #[derive(Clone, Copy)]
+/// struct Fixed;
+/// impl LayoutRef for Fixed {
+///     #[inline(always)]
+///     fn layout(&self) -> &FrameLayout<'_> {
+///         &FIXED
+///     }
+/// }
+/// assert_eq!(Fixed.layout().max_len, (&FIXED).layout().max_len);
+/// ```
+pub trait LayoutRef: Copy {
+    /// The frame format.
+    fn layout(&self) -> &FrameLayout<'_>;
+}
+
+impl<'l> LayoutRef for &'l FrameLayout<'l> {
+    #[inline(always)]
+    fn layout(&self) -> &FrameLayout<'_> {
+        self
+    }
 }

@@ -59,7 +59,7 @@
 //! let mut corrupt = frame;
 //! corrupt[6] = 0x05;
 //! let stream = [&[0x42][..], &corrupt, &frame[..3], &frame[3..]].concat();
-//! let mut decoder = StreamDecoder::<128>::new(&HFLINK);
+//! let mut decoder = StreamDecoder::<_, 128>::new(&HFLINK);
 //! let mut events = Vec::new();
 //! for mut chunk in stream.chunks(11) {
 //!     while let Some(event) = decoder.next_event(&mut chunk) {

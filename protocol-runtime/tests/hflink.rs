@@ -161,7 +161,7 @@ fn golden_stream_events_report_rejections_with_offsets() {
 #[test]
 fn frames_found_whole_in_the_input_borrow_it() {
     let stream = hex(HFLINK_STREAM);
-    let mut decoder = StreamDecoder::<128>::new(&HFLINK);
+    let mut decoder = StreamDecoder::<_, 128>::new(&HFLINK);
     let mut input = &stream[..];
     let range = stream.as_ptr_range();
     let mut frames = Vec::new();
@@ -179,7 +179,7 @@ fn frames_found_whole_in_the_input_borrow_it() {
 #[test]
 fn stats_account_for_every_byte() {
     let stream = hex(HFLINK_STREAM);
-    let mut decoder = StreamDecoder::<128>::new(&HFLINK);
+    let mut decoder = StreamDecoder::<_, 128>::new(&HFLINK);
     let mut fed = 0u64;
     for chunk in stream.chunks(3) {
         let mut frames = 0;
@@ -212,7 +212,7 @@ fn impossible_lengths_are_rejected_before_their_bytes_arrive() {
     // len = 0x7F00: rejected with the header alone, and the next frame is found.
     let mut stream = hex("ffff11017f00");
     stream.extend(hex(HFLINK_GOLDEN[1]));
-    let mut decoder = StreamDecoder::<128>::new(&HFLINK);
+    let mut decoder = StreamDecoder::<_, 128>::new(&HFLINK);
     let mut input = &stream[..6];
     assert!(decoder.decode(&mut input).is_none());
     assert_eq!(decoder.stats().bad_length, 1);

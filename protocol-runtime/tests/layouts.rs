@@ -194,7 +194,7 @@ fn frame_len_edge_cases() {
         ..TRAILER
     };
     assert_eq!(overflow.frame_len(&[0x5A, 3]), None);
-    let mut decoder = StreamDecoder::<64>::new(&overflow);
+    let mut decoder = StreamDecoder::<_, 64>::new(&overflow);
     let mut input = &[0x5A, 3, 0x5A][..];
     assert!(decoder.decode(&mut input).is_none());
     assert_eq!(decoder.stats().bad_length, 1);

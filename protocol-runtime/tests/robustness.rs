@@ -94,7 +94,7 @@ fn decode_yields_the_frames_that_next_event_reports() {
             .into_iter()
             .filter(|e| matches!(e, Seen::Frame { .. }))
             .collect();
-        let mut decoder = StreamDecoder::<256>::new(layout);
+        let mut decoder = StreamDecoder::<_, 256>::new(layout);
         let mut frames = Vec::new();
         for chunk in stream.chunks(17) {
             decoder.feed(chunk, |f| {

@@ -302,7 +302,7 @@ fn stream_n<const N: usize, W: Write>(
             layout.max_len
         );
     }
-    let mut decoder = Box::new(StreamDecoder::<N>::new(layout));
+    let mut decoder = Box::new(StreamDecoder::<_, N>::new(layout));
     let mut buf = vec![0u8; CHUNK];
     let live = input.live();
     loop {

@@ -11,7 +11,7 @@ use std::sync::Mutex;
 
 use protocol_codegen::codegen::frame::decide_len;
 use protocol_codegen::ir::{self, Algorithm, CrcParams, Endian, HeaderValue, Length, Role};
-use protocol_runtime::checksum::{Checksum, CrcImpl};
+use protocol_runtime::checksum::{Checksum, CrcImpl, Slicing16};
 use protocol_runtime::layout::{
     ByteOrder, Check, Constant, FrameLayout, LengthRule, Marker, Pos, WordField,
 };
@@ -93,11 +93,12 @@ interned_algorithm!(algorithm16, u16);
 interned_algorithm!(algorithm32, u32);
 interned_algorithm!(algorithm64, u64);
 
-/// A CRC object of one width, with the table size the spec chose (as generated code builds).
+/// A CRC object of one width, with the table size the spec chose (as generated code builds):
+/// the `crc` crate's for no table and one table, the runtime's [`Slicing16`] for sixteen.
 enum Tables<W: crc::Width> {
     NoTable(Box<crc::Crc<W, crc::NoTable>>),
     Table1(Box<crc::Crc<W, crc::Table<1>>>),
-    Table16(Box<crc::Crc<W, crc::Table<16>>>),
+    Table16(Box<Slicing16<W>>),
 }
 
 impl<W: crc::Width> Tables<W> {
@@ -116,7 +117,7 @@ macro_rules! tables {
         match $table {
             0 => Tables::NoTable(Box::new(crc::Crc::<$w, crc::NoTable>::new(alg))),
             1 => Tables::Table1(Box::new(crc::Crc::<$w, crc::Table<1>>::new(alg))),
-            _ => Tables::Table16(Box::new(crc::Crc::<$w, crc::Table<16>>::new(alg))),
+            _ => Tables::Table16(Box::new(Slicing16::<$w>::new(alg))),
         }
     }};
 }

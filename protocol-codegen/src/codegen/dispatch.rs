@@ -324,6 +324,7 @@ fn emit_message_enum(
     let command_fn = match ack_max {
         None => quote! {
             /// The command of this message.
+            #[inline]
             pub const fn command(&self) -> Command {
                 match self {
                     #(#command_arms)*
@@ -339,6 +340,7 @@ fn emit_message_enum(
             write_arms.push(quote!(Self::Ack(data) => data.write(w),));
             quote! {
                 /// The command of this message (`None` for an acknowledgement).
+                #[inline]
                 pub const fn command(&self) -> ::core::option::Option<Command> {
                     ::core::option::Option::Some(match self {
                         #(#command_arms)*
@@ -357,6 +359,7 @@ fn emit_message_enum(
         impl #name {
             #command_fn
             /// Bytes of the payload on the wire.
+            #[inline]
             pub fn payload_len(&self) -> usize {
                 match self {
                     #(#len_arms)*
@@ -366,6 +369,7 @@ fn emit_message_enum(
             ///
             /// # Errors
             /// `EncodeError::BufferTooSmall` if `w` has too little room.
+            #[inline]
             pub fn write_payload(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
                 match self {
                     #(#write_arms)*
@@ -404,12 +408,14 @@ fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
         }
         impl Message {
             /// The command of this message.
+            #[inline]
             pub const fn command(&self) -> Command {
                 match self {
                     #(Self::#names(m) => m.command(),)*
                 }
             }
             /// Bytes of the payload on the wire.
+            #[inline]
             pub fn payload_len(&self) -> usize {
                 match self {
                     #(Self::#names(m) => m.payload_len(),)*
@@ -419,6 +425,7 @@ fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
             ///
             /// # Errors
             /// `EncodeError::BufferTooSmall` if `w` has too little room.
+            #[inline]
             pub fn write_payload(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
                 match self {
                     #(Self::#names(m) => m.write_payload(w),)*
@@ -643,6 +650,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 ::core::result::Result::Ok(Packet { header, message })
             }
             /// Bytes of the encoded frame.
+            #[inline]
             pub fn encoded_len(&self) -> usize {
                 let unstuffed = match &self.message {
                     #ack_len
@@ -656,6 +664,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             /// `EncodeError::BufferTooSmall` if `buf` is shorter than [`Packet::encoded_len`],
             /// `ValueOutOfRange` if a header value does not fit its field or does not match the
             /// message's direction.
+            #[inline]
             pub fn encode(&self, buf: &mut [u8]) -> ::core::result::Result<usize, #rt::EncodeError> {
                 #direction_check
                 let needed = self.encoded_len();
@@ -740,6 +749,7 @@ fn emit_message_packet(
                 })
             }
             /// Bytes of the encoded frame.
+            #[inline]
             pub fn encoded_len(&self) -> usize {
                 #header_len.saturating_add(#rt::Payload::wire_len(&self.payload)).saturating_add(#trailer_len)
             }
@@ -748,6 +758,7 @@ fn emit_message_packet(
             /// # Errors
             /// `EncodeError::BufferTooSmall` if `buf` is too short, `ValueOutOfRange` if a
             /// header value does not fit its field.
+            #[inline]
             pub fn encode(&self, buf: &mut [u8]) -> ::core::result::Result<usize, #rt::EncodeError> {
                 let total = self.encoded_len();
                 let available = buf.len();

@@ -82,6 +82,18 @@ pub fn value_const(prefix: &str, v: &HeaderValue) -> Ident {
     const_ident(&format!("{prefix}{}", v.name))
 }
 
+/// The buffer of a generated decoder for frames of at most `max_frame` bytes: the frame, as
+/// much again for a chunk of input staged behind a pending frame (the engine stages a chunk
+/// only if it fits, and otherwise completes the frame from the input directly), and 128 bytes
+/// for a checksum window, rounded up to a multiple of 64.
+pub fn decoder_buffer_len(max_frame: usize) -> usize {
+    max_frame
+        .saturating_mul(2)
+        .max(max_frame.saturating_add(64))
+        .saturating_add(128)
+        .next_multiple_of(64)
+}
+
 fn checksum_expr(
     rt: &TokenStream,
     c: &Check,
@@ -95,9 +107,9 @@ fn checksum_expr(
         Algorithm::Crc(p) => {
             let w = Ident::new(&format!("u{}", p.width), Span::call_site());
             let (table_ty, variant) = match p.table {
-                0 => (quote!(#rt::crc::NoTable), quote!(NoTable)),
-                1 => (quote!(#rt::crc::Table<1>), quote!(Table1)),
-                _ => (quote!(#rt::crc::Table<16>), quote!(Table16)),
+                0 => (Some(quote!(#rt::crc::NoTable)), quote!(NoTable)),
+                1 => (Some(quote!(#rt::crc::Table<1>)), quote!(Table1)),
+                _ => (None, quote!(Table16)),
             };
             let alg = match &p.catalog {
                 Some(name) => {
@@ -119,9 +131,19 @@ fn checksum_expr(
                 }
             };
             let doc = format!(" Lookup table of the `{}` check ({}).", c.name, p.display);
+            let (ty, init) = match table_ty {
+                Some(table_ty) => (
+                    quote!(#rt::crc::Crc<#w, #table_ty>),
+                    quote!(#rt::crc::Crc::<#w, #table_ty>::new(&#alg)),
+                ),
+                None => (
+                    quote!(#rt::Slicing16<#w>),
+                    quote!(#rt::Slicing16::<#w>::new(&#alg)),
+                ),
+            };
             statics.push(quote! {
                 #[doc = #doc]
-                static #static_name: #rt::crc::Crc<#w, #table_ty> = #rt::crc::Crc::<#w, #table_ty>::new(&#alg);
+                static #static_name: #ty = #init;
             });
             let ctor = format_ident!("Crc{}", p.width);
             quote!(#rt::Checksum::#ctor(#rt::CrcImpl::#variant(&#static_name)))
@@ -222,7 +244,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         };
         let decoder_doc = format!(
             " A streaming decoder of `{fname}` frames: a fixed buffer of `{}` bytes, no heap.",
-            max_frame
+            c("DECODER_BUFFER_LEN")
         );
         out.extend(quote! {
             #[doc = concat!(" Largest `", #fname, "` frame, in bytes.")]
@@ -253,12 +275,38 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         });
         // A CAN frame arrives whole: it has a packet type, not a stream decoder.
         if f.transport == Transport::Serial {
+            let buffer = decoder_buffer_len(f.max_len());
+            let buffer_name = c("DECODER_BUFFER_LEN");
+            let layout_type = if prefix.is_empty() {
+                format_ident!("Layout")
+            } else {
+                format_ident!("{}Layout", super::super::validate::pascal_case(&f.name))
+            };
+            let buffer_doc = format!(
+                " Bytes of the buffer of a [`{decoder_name}`]: a pending frame, a chunk of input \
+                 staged behind it, and room for a checksum window."
+            );
+            let layout_type_doc = format!(
+                " [`{layout_name}`] as a type: the engine reads the layout as a compile-time \
+                 constant and compiles to code for `{fname}` frames alone."
+            );
             out.extend(quote! {
+                #[doc = #layout_type_doc]
+                #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+                pub struct #layout_type;
+                impl #rt::LayoutRef for #layout_type {
+                    #[inline(always)]
+                    fn layout(&self) -> &#rt::FrameLayout<'_> {
+                        &#layout_name
+                    }
+                }
+                #[doc = #buffer_doc]
+                pub const #buffer_name: usize = #buffer;
                 #[doc = #decoder_doc]
-                pub type #decoder_name = #rt::StreamDecoder<'static, #max_frame>;
+                pub type #decoder_name = #rt::StreamDecoder<#layout_type, #buffer_name>;
                 #[doc = concat!(" A new decoder of `", #fname, "` frames.")]
                 pub const fn #decoder_fn() -> #decoder_name {
-                    #rt::StreamDecoder::new(&#layout_name)
+                    #rt::StreamDecoder::new(#layout_type)
                 }
             });
         }

@@ -15,6 +15,7 @@ pub const RESERVED_TYPE_NAMES: &[&str] = &[
     "Packet",
     "Command",
     "Decoder",
+    "Layout",
     "Frame",
     "Payload",
     "Direction",

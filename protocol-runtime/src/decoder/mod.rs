@@ -91,7 +91,7 @@ pub enum Probe {
 
 impl Check<'_> {
     /// The covered range and the stored value's offset in a frame of `len` bytes.
-    #[inline]
+    #[inline(always)]
     fn resolve(&self, len: usize) -> Option<(core::ops::Range<usize>, usize)> {
         let from = self.from.resolve(len)?;
         let to = self.to.resolve(len)?;
@@ -102,20 +102,31 @@ impl Check<'_> {
     /// resolve against `frame.len()`; a range outside the frame does not verify.
     #[inline]
     pub fn verify(&self, frame: &[u8]) -> bool {
-        let Some((covered, at)) = self.resolve(frame.len()) else {
+        self.verify_prefix(frame, frame.len())
+    }
+
+    /// [`verify`](Self::verify) for the `len`-byte frame at the start of `bytes`, which may run
+    /// past it. The bytes after the frame are in reach of a window checksum
+    /// ([`Checksum::compute_prefix`](crate::Checksum::compute_prefix): a fixed-size read
+    /// instead of a loop whose trip count follows the frame length) but never change the
+    /// verdict.
+    #[inline(always)]
+    pub fn verify_prefix(&self, bytes: &[u8], len: usize) -> bool {
+        let (Some(frame), Some((covered, at))) = (bytes.get(..len), self.resolve(len)) else {
             return false;
         };
-        let Some(covered) = frame.get(covered) else {
-            return false;
-        };
+        let value = covered.end.checked_sub(covered.start).and_then(|n| {
+            let from = bytes.get(covered.start..)?;
+            self.checksum.compute_prefix(from, n)
+        });
         let width = self.checksum.width() as u8;
-        read_uint(frame, at, width, self.order) == Some(self.checksum.compute(covered))
+        value.is_some() && read_uint(frame, at, width, self.order) == value
     }
 
     /// Computes the check of the bytes it covers and stores it in `frame`.
     ///
     /// Returns `None`, writing nothing, if a position lies outside the frame.
-    #[inline]
+    #[inline(always)]
     pub fn store(&self, frame: &mut [u8]) -> Option<()> {
         let (covered, at) = self.resolve(frame.len())?;
         let value = self.checksum.compute(frame.get(covered)?);
@@ -125,7 +136,7 @@ impl Check<'_> {
 
 impl Marker<'_> {
     /// Whether `frame` holds the marker's bytes at its position.
-    #[inline]
+    #[inline(always)]
     pub fn matches(&self, frame: &[u8]) -> bool {
         let Some(at) = self.at.resolve(frame.len()) else {
             return false;
@@ -146,7 +157,7 @@ impl Marker<'_> {
 
 impl Constant {
     /// Whether `header` holds the value.
-    #[inline]
+    #[inline(always)]
     pub fn matches(&self, header: &[u8]) -> bool {
         self.field.read(header) == Some(self.value)
     }
@@ -155,7 +166,7 @@ impl Constant {
 impl FrameLayout<'_> {
     /// Bytes needed before the length is known and the header verified:
     /// `max(header_len, sync.len())`.
-    #[inline]
+    #[inline(always)]
     pub const fn header_span(&self) -> usize {
         if self.header_len > self.sync.len() {
             self.header_len
@@ -185,6 +196,7 @@ impl FrameLayout<'_> {
     /// assert_eq!(hflink.frame_len(&[0xFF, 0xFF, 0x11, 0x01, 0x00, 0x01]), Some(8));
     /// assert_eq!(hflink.frame_len(&[0xFF, 0xFF, 0x11]), None);
     /// ```
+    #[inline(always)]
     pub fn frame_len(&self, header: &[u8]) -> Option<usize> {
         let header = header.get(..self.header_span())?;
         match self.length {
@@ -226,53 +238,7 @@ impl FrameLayout<'_> {
     /// ```
     #[inline]
     pub fn probe(&self, bytes: &[u8]) -> Probe {
-        self.probe_within(bytes, self.max_len)
-    }
-
-    /// [`probe`](Self::probe) with frames longer than `limit` rejected as too long.
-    pub(crate) fn probe_within(&self, bytes: &[u8], limit: usize) -> Probe {
-        // A byte loop, not `==` on slices: sync words are a few bytes, a call to memcmp costs more.
-        if !bytes.iter().zip(self.sync).all(|(a, b)| a == b) {
-            return Probe::Reject(Reject::BadHeader);
-        }
-        let span = self.header_span();
-        if span > limit {
-            // No frame fits; but a sync prefix cut by the end of the bytes may not be a
-            // candidate at all: decide that first, so that the verdict does not depend on
-            // where the input was cut.
-            if bytes.len() < self.sync.len() {
-                return Probe::Need(self.sync.len());
-            }
-            return Probe::Reject(Reject::BadLength);
-        }
-        let Some(header) = bytes.get(..span) else {
-            return Probe::Need(span);
-        };
-        if !self.constants.iter().all(|c| c.matches(header)) {
-            return Probe::Reject(Reject::BadHeader);
-        }
-        if !self.header_checks.iter().all(|c| c.verify(header)) {
-            return Probe::Reject(Reject::BadHeaderCheck);
-        }
-        let bare = self.length.bare_len();
-        let total = match self.frame_len(header) {
-            // A bare header is complete and verified once its header checks hold.
-            Some(t) if Some(t) == bare && t >= span && t > 0 && t <= limit => {
-                return Probe::Frame(t);
-            }
-            Some(t) if t >= span && t > 0 && t >= self.min_len && t <= limit => t,
-            _ => return Probe::Reject(Reject::BadLength),
-        };
-        let Some(frame) = bytes.get(..total) else {
-            return Probe::Need(total);
-        };
-        if !self.frame_checks.iter().all(|c| c.verify(frame)) {
-            return Probe::Reject(Reject::BadChecksum);
-        }
-        if !self.markers.iter().all(|m| m.matches(frame)) {
-            return Probe::Reject(Reject::BadTrailer);
-        }
-        Probe::Frame(total)
+        probe(self, bytes, bytes.len(), self.max_len)
     }
 
     /// Parses exactly one frame at the start of `bytes` (bytes after it are ignored).
@@ -316,4 +282,73 @@ impl FrameLayout<'_> {
             Probe::Reject(reason) => Err(DecodeError::Frame(reason)),
         }
     }
+}
+
+/// [`FrameLayout::probe`] on `readable[..avail]`, with frames longer than `limit` rejected as
+/// too long. The bytes of `readable` past `avail` (the rest of the input or of the buffer) are
+/// in reach of window checksums ([`Check::verify_prefix`]) and decide nothing.
+///
+/// Always inlined: with the layout a constant ([`LayoutRef`](crate::layout::LayoutRef)), every
+/// loop over its items and every position unrolls into straight code for the one format.
+#[inline(always)]
+pub(crate) fn probe(
+    layout: &FrameLayout<'_>,
+    readable: &[u8],
+    avail: usize,
+    limit: usize,
+) -> Probe {
+    let bytes = readable.get(..avail).unwrap_or(readable);
+    // A byte loop, not `==` on slices: sync words are a few bytes, a call to memcmp costs more.
+    for (a, b) in bytes.iter().zip(layout.sync) {
+        if a != b {
+            return Probe::Reject(Reject::BadHeader);
+        }
+    }
+    let span = layout.header_span();
+    if span > limit {
+        // No frame fits; but a sync prefix cut by the end of the bytes may not be a
+        // candidate at all: decide that first, so that the verdict does not depend on
+        // where the input was cut.
+        if bytes.len() < layout.sync.len() {
+            return Probe::Need(layout.sync.len());
+        }
+        return Probe::Reject(Reject::BadLength);
+    }
+    let Some(header) = bytes.get(..span) else {
+        return Probe::Need(span);
+    };
+    // Plain loops rather than `Iterator::all`, which the compiler left out of line.
+    for c in layout.constants {
+        if !c.matches(header) {
+            return Probe::Reject(Reject::BadHeader);
+        }
+    }
+    for c in layout.header_checks {
+        if !c.verify_prefix(readable, span) {
+            return Probe::Reject(Reject::BadHeaderCheck);
+        }
+    }
+    let bare = layout.length.bare_len();
+    let total = match layout.frame_len(header) {
+        // A bare header is complete and verified once its header checks hold.
+        Some(t) if Some(t) == bare && t >= span && t > 0 && t <= limit => {
+            return Probe::Frame(t);
+        }
+        Some(t) if t >= span && t > 0 && t >= layout.min_len && t <= limit => t,
+        _ => return Probe::Reject(Reject::BadLength),
+    };
+    let Some(frame) = bytes.get(..total) else {
+        return Probe::Need(total);
+    };
+    for c in layout.frame_checks {
+        if !c.verify_prefix(readable, total) {
+            return Probe::Reject(Reject::BadChecksum);
+        }
+    }
+    for m in layout.markers {
+        if !m.matches(frame) {
+            return Probe::Reject(Reject::BadTrailer);
+        }
+    }
+    Probe::Frame(total)
 }

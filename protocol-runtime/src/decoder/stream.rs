@@ -7,8 +7,8 @@
 
 use core::fmt;
 
-use super::{Probe, Reject};
-use crate::layout::FrameLayout;
+use super::{Probe, Reject, probe};
+use crate::layout::{FrameLayout, LayoutRef};
 
 /// Where the first candidate of `data` starts: the first offset where `data` holds the sync
 /// bytes, or a prefix of them that runs to the end of `data`; `data.len()` if there is none.
@@ -37,6 +37,44 @@ fn find_candidate(sync: &[u8], data: &[u8]) -> usize {
         from = at.wrapping_add(1);
     }
     data.len()
+}
+
+/// Bytes kept free behind staged input: a window checksum reads a fixed-size block from a
+/// candidate's start (up to 128 bytes), which then stays inside the buffer instead of falling
+/// back to an exact loop.
+const STAGE_SLACK: usize = 128;
+
+/// The first offset of `data` holding `sync`'s first byte, or `data.len()`: the search inside
+/// a pending candidate, a few dozen bytes. Eight bytes per step (a zero-byte test on a word
+/// xored with the byte repeated); a call to `memchr` costs more on so few bytes.
+#[inline(always)]
+fn find_first_byte(sync: &[u8], data: &[u8]) -> usize {
+    const LOW: u64 = 0x0101_0101_0101_0101;
+    const HIGH: u64 = 0x8080_8080_8080_8080;
+    let Some(&first) = sync.first() else {
+        return 0;
+    };
+    let pattern = LOW.wrapping_mul(u64::from(first));
+    let words = data.chunks_exact(8);
+    let tail = words.remainder();
+    for (k, word) in words.enumerate() {
+        let Ok(word) = <[u8; 8]>::try_from(word) else {
+            break;
+        };
+        let x = u64::from_le_bytes(word) ^ pattern;
+        // The lowest flagged byte is exactly the first zero byte of `x` (a borrow only
+        // propagates upwards from a zero byte).
+        let zero = x.wrapping_sub(LOW) & !x & HIGH;
+        if zero != 0 {
+            return k
+                .wrapping_mul(8)
+                .wrapping_add((zero.trailing_zeros() / 8) as usize);
+        }
+    }
+    let base = data.len().wrapping_sub(tail.len());
+    tail.iter()
+        .position(|&b| b == first)
+        .map_or(data.len(), |at| base.wrapping_add(at))
 }
 
 /// What a [`StreamDecoder`] counted, for link-quality reports.
@@ -201,7 +239,7 @@ enum Step<'i> {
 ///     markers: &[],
 /// };
 ///
-/// let mut decoder = StreamDecoder::<128>::new(&HFLINK);
+/// let mut decoder = StreamDecoder::<_, 128>::new(&HFLINK);
 /// let mut offsets = Vec::new();
 /// // Garbage, then a frame split across two chunks.
 /// for chunk in [&[0x00, 0xFF, 0xFF, 0x11][..], &[0x01, 0x00, 0x01, 0x00, 0x13]] {
@@ -210,8 +248,8 @@ enum Step<'i> {
 /// assert_eq!(offsets, [1]);
 /// assert_eq!(decoder.stats().skipped_bytes, 1);
 /// ```
-pub struct StreamDecoder<'l, const N: usize> {
-    layout: &'l FrameLayout<'l>,
+pub struct StreamDecoder<L: LayoutRef, const N: usize> {
+    layout: L,
     buf: [u8; N],
     /// The pending bytes are `buf[start..end]`; `start < end` or both are 0.
     start: usize,
@@ -225,7 +263,7 @@ pub struct StreamDecoder<'l, const N: usize> {
     inner_dead: usize,
 }
 
-impl<const N: usize> fmt::Debug for StreamDecoder<'_, N> {
+impl<L: LayoutRef, const N: usize> fmt::Debug for StreamDecoder<L, N> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("StreamDecoder")
             .field("capacity", &N)
@@ -236,9 +274,9 @@ impl<const N: usize> fmt::Debug for StreamDecoder<'_, N> {
     }
 }
 
-impl<'l, const N: usize> StreamDecoder<'l, N> {
+impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// A decoder for `layout` with an empty buffer.
-    pub const fn new(layout: &'l FrameLayout<'l>) -> Self {
+    pub const fn new(layout: L) -> Self {
         Self {
             layout,
             buf: [0; N],
@@ -253,8 +291,8 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
 
     /// The frame format.
     #[inline]
-    pub fn layout(&self) -> &'l FrameLayout<'l> {
-        self.layout
+    pub fn layout(&self) -> &FrameLayout<'_> {
+        self.layout.layout()
     }
 
     /// What was counted since the decoder was created or reset.
@@ -358,13 +396,13 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
     }
 
     /// Frames longer than this are rejected.
-    #[inline]
+    #[inline(always)]
     fn limit(&self) -> usize {
-        self.layout.max_len.min(N)
+        self.layout.layout().max_len.min(N)
     }
 
     /// Advances `input` by `n` bytes (at most its length) and returns the bytes skipped.
-    #[inline]
+    #[inline(always)]
     fn consume<'i>(&mut self, input: &mut &'i [u8], n: usize) -> &'i [u8] {
         let data: &'i [u8] = input;
         let (head, rest) = data.split_at_checked(n).unwrap_or((data, &[]));
@@ -374,7 +412,7 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
     }
 
     /// One event's worth of work.
-    #[inline]
+    #[inline(always)]
     fn step<'i>(&mut self, input: &mut &'i [u8], at_end: bool) -> Step<'i> {
         if self.start < self.end {
             self.step_buffered(input, at_end)
@@ -386,20 +424,22 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
     }
 
     /// A step on the caller's input, with nothing pending.
-    #[inline]
+    #[inline(always)]
     fn step_input<'i>(&mut self, input: &mut &'i [u8], at_end: bool) -> Step<'i> {
         let data: &'i [u8] = input;
         if data.is_empty() {
             return Step::Idle;
         }
+        let layout = self.layout;
+        let layout = layout.layout();
         let offset = self.position;
-        let skip = find_candidate(self.layout.sync, data);
+        let skip = find_candidate(layout.sync, data);
         if skip > 0 {
             let len = self.consume(input, skip).len();
             self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(len as u64);
             return Step::Skipped { offset, len };
         }
-        let reason = match self.layout.probe_within(data, self.limit()) {
+        let reason = match probe(layout, data, data.len(), self.limit()) {
             Probe::Frame(len) => {
                 let bytes = self.consume(input, len);
                 self.stats.count_frame(bytes.len());
@@ -426,6 +466,8 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
 
     /// A step on the pending bytes, completing them from the caller's input as needed.
     fn step_buffered<'i>(&mut self, input: &mut &'i [u8], at_end: bool) -> Step<'i> {
+        let layout = self.layout;
+        let layout = layout.layout();
         let limit = self.limit();
         loop {
             let Some(region) = self.buf.get(self.start..self.end) else {
@@ -435,13 +477,14 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
             };
             let pending = region.len();
             let offset = self.position.wrapping_sub(pending as u64);
-            let skip = find_candidate(self.layout.sync, region);
+            let skip = find_candidate(layout.sync, region);
             if skip > 0 {
                 self.start = self.start.wrapping_add(skip);
                 self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);
                 return Step::Skipped { offset, len: skip };
             }
-            let reason = match self.layout.probe_within(region, limit) {
+            let readable = self.buf.get(self.start..).unwrap_or_default();
+            let reason = match probe(layout, readable, pending, limit) {
                 Probe::Frame(len) => {
                     let start = self.start;
                     self.start = start.wrapping_add(len);
@@ -460,6 +503,10 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
                         return Step::Idle;
                     }
                 }
+                // A small chunk goes in whole and the scan goes on in the buffer: cheaper than
+                // completing the candidate with just the bytes it needs and returning to the
+                // chunk for a few bytes (PERF.md, lesson 4).
+                Probe::Need(_) if self.stage(input) => continue,
                 Probe::Need(needed) => {
                     if self.fill(input, needed) {
                         continue;
@@ -482,6 +529,7 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
     /// do not change it) and starts after them next time.
     fn frame_inside(&mut self, limit: usize) -> bool {
         let layout = self.layout;
+        let layout = layout.layout();
         let shortest = layout.min_len.max(layout.header_span()).max(1);
         let owner = self.position.wrapping_sub(self.pending() as u64);
         let known = if self.inner_owner == owner {
@@ -489,21 +537,28 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
         } else {
             1
         };
-        let region = self.buf.get(self.start..self.end).unwrap_or_default();
+        let readable = self.buf.get(self.start..).unwrap_or_default();
+        let region = readable.get(..self.pending()).unwrap_or_default();
         let mut at = known.max(1);
         let mut undecided = None;
         let found = loop {
-            let rest = region.get(at..).unwrap_or_default();
-            if rest.len() < shortest {
-                break false;
-            }
-            let skip = find_candidate(layout.sync, rest);
-            let Some(candidate) = rest.get(skip..).filter(|c| !c.is_empty()) else {
-                at = region.len();
+            // Only a start with room for the shortest frame after it can hold a frame.
+            let last_start = region.len().saturating_sub(shortest);
+            let Some(rest) = region.get(at..).filter(|_| at <= last_start) else {
                 break false;
             };
+            let window = rest.len().saturating_sub(shortest).saturating_add(1);
+            let skip = find_first_byte(layout.sync, rest.get(..window).unwrap_or(rest));
+            if skip >= window {
+                // No start left with room for a frame: none of these bytes starts one, now or
+                // later, but the ones too close to the end may once more bytes arrive.
+                undecided.get_or_insert(at.wrapping_add(window));
+                at = region.len();
+                break false;
+            }
             at = at.wrapping_add(skip);
-            match layout.probe_within(candidate, limit) {
+            let from = readable.get(at..).unwrap_or_default();
+            match probe(layout, from, region.len().wrapping_sub(at), limit) {
                 Probe::Frame(_) => break true,
                 Probe::Need(_) => {
                     undecided.get_or_insert(at);
@@ -515,6 +570,32 @@ impl<'l, const N: usize> StreamDecoder<'l, N> {
         self.inner_owner = owner;
         self.inner_dead = undecided.unwrap_or(at);
         found
+    }
+
+    /// Appends the whole input behind the pending bytes if it fits the buffer with room for
+    /// a checksum window after it (moving the pending bytes to the front first if needed).
+    /// Returns `false`, copying nothing, otherwise.
+    #[inline(always)]
+    fn stage(&mut self, input: &mut &[u8]) -> bool {
+        let data: &[u8] = input;
+        let room = N.saturating_sub(STAGE_SLACK);
+        if self.pending().saturating_add(data.len()) > room {
+            return false;
+        }
+        if self.end.saturating_add(data.len()) > room {
+            self.buf.copy_within(self.start..self.end, 0);
+            self.end = self.end.wrapping_sub(self.start);
+            self.start = 0;
+        }
+        let end = self.end.wrapping_add(data.len());
+        let Some(dst) = self.buf.get_mut(self.end..end) else {
+            return false;
+        };
+        dst.copy_from_slice(data);
+        self.end = end;
+        self.position = self.position.wrapping_add(data.len() as u64);
+        *input = &[];
+        true
     }
 
     /// Copies from `input` until the pending bytes number `needed` or the input is exhausted,

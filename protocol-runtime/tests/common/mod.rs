@@ -2,10 +2,10 @@
 //! reference model of the stream engine, shared by the integration tests.
 #![allow(dead_code)]
 
-use protocol_runtime::checksum::{Checksum, CrcImpl};
+use protocol_runtime::checksum::{Checksum, CrcImpl, Slicing16};
 use protocol_runtime::decoder::{Probe, Reject};
 use protocol_runtime::layout::{
-    ByteOrder, Check, Constant, FrameLayout, LengthRule, Marker, Pos, WordField,
+    ByteOrder, Check, Constant, FrameLayout, LayoutRef, LengthRule, Marker, Pos, WordField,
 };
 use protocol_runtime::{Event, StreamDecoder};
 
@@ -89,11 +89,9 @@ static DJI_CRC32: crc::Algorithm<u32> = crc::Algorithm {
     residue: 0,
 };
 static REFEREE_CRC8: crc::Crc<u8, crc::Table<1>> = crc::Crc::<u8, crc::Table<1>>::new(&DJI_CRC8);
-static REFEREE_CRC16: crc::Crc<u16, crc::Table<16>> =
-    crc::Crc::<u16, crc::Table<16>>::new(&crc::CRC_16_MCRF4XX);
+static REFEREE_CRC16: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_MCRF4XX);
 static ROBORTS_CRC16: crc::Crc<u16, crc::NoTable> = crc::Crc::<u16, crc::NoTable>::new(&DJI_CRC16);
-static ROBORTS_CRC32: crc::Crc<u32, crc::Table<16>> =
-    crc::Crc::<u32, crc::Table<16>>::new(&DJI_CRC32);
+static ROBORTS_CRC32: Slicing16<u32> = Slicing16::<u32>::new(&DJI_CRC32);
 
 /// `A5 len(u16 LE, payload only) seq crc8 | cmd(u16 LE) data crc16(LE)`.
 pub static REFEREE: FrameLayout<'static> = FrameLayout {
@@ -286,7 +284,7 @@ pub fn run<const N: usize>(
     sizes: &[usize],
     flush: bool,
 ) -> Vec<Seen> {
-    let mut decoder = StreamDecoder::<N>::new(layout);
+    let mut decoder = StreamDecoder::<_, N>::new(layout);
     let mut seen = Vec::new();
     let mut fed = 0usize;
     let mut rest = stream;
@@ -315,7 +313,11 @@ pub fn run<const N: usize>(
 }
 
 /// The stats account for every byte fed, and agree with the events.
-pub fn check_accounting<const N: usize>(decoder: &StreamDecoder<'_, N>, fed: usize, seen: &[Seen]) {
+pub fn check_accounting<L: LayoutRef, const N: usize>(
+    decoder: &StreamDecoder<L, N>,
+    fed: usize,
+    seen: &[Seen],
+) {
     let s = decoder.stats();
     assert_eq!(decoder.position(), fed as u64);
     assert_eq!(

@@ -17,6 +17,7 @@ pub mod stream;
 
 use std::fmt::Debug;
 
+use protocol_runtime::layout::LayoutRef;
 use protocol_runtime::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stats, StreamDecoder};
 
 /// Calls `$callback!(module, "path relative to the crate")` for every spec under test.
@@ -47,6 +48,7 @@ macro_rules! expand_spec {
             const TEXT: &'static str =
                 include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/", $path));
             const MAX_FRAME_LEN: usize = $name::MAX_FRAME_LEN;
+            const DECODER_BUFFER_LEN: usize = $name::DECODER_BUFFER_LEN;
             type Decoder = $name::Decoder;
 
             fn layout() -> &'static protocol_runtime::FrameLayout<'static> {
@@ -83,6 +85,8 @@ pub trait Spec: Sized + Debug + Clone + PartialEq + 'static {
     const TEXT: &'static str;
     /// The generated `MAX_FRAME_LEN`.
     const MAX_FRAME_LEN: usize;
+    /// The generated `DECODER_BUFFER_LEN`.
+    const DECODER_BUFFER_LEN: usize;
     /// The generated `Decoder` type.
     type Decoder: Dec;
     /// The generated `LAYOUT`.
@@ -127,7 +131,7 @@ pub trait Dec {
     fn stats(&self) -> Stats;
 }
 
-impl<const N: usize> Dec for StreamDecoder<'static, N> {
+impl<L: LayoutRef, const N: usize> Dec for StreamDecoder<L, N> {
     const CAPACITY: usize = N;
     fn next_event<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Event<'s>> {
         StreamDecoder::next_event(self, input)

@@ -1,0 +1,219 @@
+//! Frame check algorithms: byte sums, xor, and CRCs.
+//!
+//! This module owns computing a check value over a byte range ([`Checksum::compute`],
+//! [`Checksum::compute_prefix`]) and its size on the wire ([`Checksum::width`]). Which bytes a
+//! check covers and where its value is stored is the frame layout's business
+//! ([`crate::layout::Check`]).
+//!
+//! # CRC tables
+//!
+//! A CRC is built in a `static` or `const` from a [`crc::Algorithm`] and wrapped in a
+//! [`CrcImpl`] that names its table size, which trades memory for speed:
+//!
+//! | implementation | tables | bytes for `u8` / `u16` / `u32` / `u64` | speed on 50-byte frames |
+//! | --- | --- | --- | --- |
+//! | [`CrcImpl::NoTable`] (`crc::NoTable`) | none | 0 | slowest (bit by bit) |
+//! | [`CrcImpl::Table1`] (`crc::Table<1>`) | 256 entries | 256 / 512 / 1 Ki / 2 Ki | 3-5x slower |
+//! | [`CrcImpl::Table16`] ([`Slicing16`]) | 16 × 256 entries | 4 / 8 / 16 / 32 Ki | fastest |
+//!
+//! Firmware short of flash picks `NoTable` or `Table1` (the `crc` crate's); hosts pick
+//! `Table16`, this crate's [`Slicing16`], which has no byte-wise loop at all (the `crc` crate's
+//! `Table<16>` finishes with one over the last `n % 16` bytes).
+//!
+//! ```
+//! use protocol_runtime::checksum::{Checksum, CrcImpl, Slicing16};
+//!
+//! static CRC: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_UMTS);
+//! let check = Checksum::Crc16(CrcImpl::Table16(&CRC));
+//! assert_eq!(check.width(), 2);
+//! assert_eq!(check.compute(b"123456789"), 0xFEE8);
+//! // The same over the first 9 bytes of a longer input.
+//! assert_eq!(check.compute_prefix(b"123456789 and more", 9), Some(0xFEE8));
+//! assert_eq!(Checksum::SumMod255.compute(b"123456789"), 0xDE);
+//! ```
+
+use core::fmt;
+
+mod slicing;
+mod sum;
+#[cfg(test)]
+mod tests;
+
+pub use slicing::Slicing16;
+
+/// A check algorithm.
+#[derive(Clone, Copy)]
+pub enum Checksum<'a> {
+    /// Sum of the bytes modulo 256.
+    Sum8,
+    /// Sum of the bytes modulo 255 (a value in `0..=254`).
+    SumMod255,
+    /// Xor of the bytes.
+    Xor8,
+    /// An 8-bit CRC.
+    Crc8(CrcImpl<'a, u8>),
+    /// A 16-bit CRC.
+    Crc16(CrcImpl<'a, u16>),
+    /// A 32-bit CRC.
+    Crc32(CrcImpl<'a, u32>),
+    /// A 64-bit CRC.
+    Crc64(CrcImpl<'a, u64>),
+}
+
+/// A CRC with its table size.
+#[derive(Clone, Copy)]
+pub enum CrcImpl<'a, W: crc::Width> {
+    /// Bit by bit, no table (the [`crc`] crate's).
+    NoTable(&'a crc::Crc<W, crc::NoTable>),
+    /// One 256-entry table (the [`crc`] crate's).
+    Table1(&'a crc::Crc<W, crc::Table<1>>),
+    /// Slicing by 16: sixteen 256-entry tables, no byte-wise loop ([`Slicing16`]).
+    Table16(&'a Slicing16<W>),
+}
+
+macro_rules! crc_impl_width {
+    ($($w:ty),*) => {$(
+        impl CrcImpl<'_, $w> {
+            #[doc = concat!("The CRC of `data` as a `", stringify!($w), "`.")]
+            #[inline(always)]
+            pub fn checksum(&self, data: &[u8]) -> $w {
+                match self {
+                    CrcImpl::NoTable(c) => c.checksum(data),
+                    CrcImpl::Table1(c) => c.checksum(data),
+                    CrcImpl::Table16(c) => c.checksum(data),
+                }
+            }
+
+            #[doc = concat!("The CRC of `data[..n]` as a `", stringify!($w), "`; `data` may")]
+            /// run past `n` (bytes past `n` never change the result). If `data` is shorter
+            /// than `n`, the CRC of all of `data`.
+            #[inline(always)]
+            pub fn checksum_prefix(&self, data: &[u8], n: usize) -> $w {
+                match self {
+                    CrcImpl::NoTable(c) => c.checksum(data.get(..n).unwrap_or(data)),
+                    CrcImpl::Table1(c) => c.checksum(data.get(..n).unwrap_or(data)),
+                    CrcImpl::Table16(c) => c.checksum_prefix(data, n),
+                }
+            }
+        }
+    )*};
+}
+crc_impl_width!(u8, u16, u32, u64);
+
+impl<W: crc::Width> CrcImpl<'_, W> {
+    /// The parameters of the CRC.
+    #[inline]
+    pub fn algorithm(&self) -> &'static crc::Algorithm<W> {
+        match self {
+            CrcImpl::NoTable(c) => c.algorithm,
+            CrcImpl::Table1(c) => c.algorithm,
+            CrcImpl::Table16(c) => c.algorithm(),
+        }
+    }
+
+    /// Number of 256-entry tables: 0, 1 or 16.
+    #[inline]
+    pub const fn table_lanes(&self) -> usize {
+        match self {
+            CrcImpl::NoTable(_) => 0,
+            CrcImpl::Table1(_) => 1,
+            CrcImpl::Table16(_) => 16,
+        }
+    }
+}
+
+impl<W: crc::Width + fmt::Debug> fmt::Debug for CrcImpl<'_, W> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let name = match self {
+            CrcImpl::NoTable(_) => "NoTable",
+            CrcImpl::Table1(_) => "Table1",
+            CrcImpl::Table16(_) => "Table16",
+        };
+        f.debug_tuple(name).field(self.algorithm()).finish()
+    }
+}
+
+impl fmt::Debug for Checksum<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Checksum::Sum8 => f.write_str("Sum8"),
+            Checksum::SumMod255 => f.write_str("SumMod255"),
+            Checksum::Xor8 => f.write_str("Xor8"),
+            Checksum::Crc8(c) => f.debug_tuple("Crc8").field(c).finish(),
+            Checksum::Crc16(c) => f.debug_tuple("Crc16").field(c).finish(),
+            Checksum::Crc32(c) => f.debug_tuple("Crc32").field(c).finish(),
+            Checksum::Crc64(c) => f.debug_tuple("Crc64").field(c).finish(),
+        }
+    }
+}
+
+// `compute` and `compute_prefix` (and `CrcImpl`'s `checksum` and `checksum_prefix`) are
+// `#[inline(always)]` dispatchers over out-of-line per-algorithm functions: where the
+// `Checksum` is a constant (a generated layout), only the algorithm it names is linked, which
+// matters for firmware flash (at `opt-level = "s"` a plain `#[inline]` dispatcher stays out of
+// line and links every table size of its width).
+impl Checksum<'_> {
+    /// Bytes of the stored check value: 1 for the sums, xor and CRC-8, then 2, 4 or 8.
+    #[inline]
+    pub const fn width(&self) -> usize {
+        match self {
+            Checksum::Sum8 | Checksum::SumMod255 | Checksum::Xor8 | Checksum::Crc8(_) => 1,
+            Checksum::Crc16(_) => 2,
+            Checksum::Crc32(_) => 4,
+            Checksum::Crc64(_) => 8,
+        }
+    }
+
+    /// The check value of `data`, in the low [`width`](Self::width) bytes of the result.
+    ///
+    /// ```
+    /// use protocol_runtime::Checksum;
+    ///
+    /// assert_eq!(Checksum::Sum8.compute(&[0xFF, 0x02]), 0x01);
+    /// assert_eq!(Checksum::Xor8.compute(&[0x0F, 0xF0]), 0xFF);
+    /// ```
+    #[inline(always)]
+    pub fn compute(&self, data: &[u8]) -> u64 {
+        match self {
+            Checksum::Sum8 => u64::from(sum::sum8(data)),
+            Checksum::SumMod255 => u64::from(sum::sum_mod255(data)),
+            Checksum::Xor8 => u64::from(sum::xor8(data)),
+            Checksum::Crc8(c) => u64::from(c.checksum(data)),
+            Checksum::Crc16(c) => u64::from(c.checksum(data)),
+            Checksum::Crc32(c) => u64::from(c.checksum(data)),
+            Checksum::Crc64(c) => c.checksum(data),
+        }
+    }
+
+    /// The check value of `data[..n]`, in the low [`width`](Self::width) bytes of the result,
+    /// or `None` if `data` is shorter than `n`.
+    ///
+    /// `data` may run past `n`, and bytes past `n` never change the result, but they let the
+    /// computation read fixed-size blocks: the sums and xor read a whole 128-byte window under
+    /// a mask when `data` holds 128 bytes and `n <= 128` (no loop or branch that follows `n`),
+    /// and a [`CrcImpl::Table16`] CRC reads its first 16-byte block whole. A decoder passes the
+    /// rest of its input from the candidate's start.
+    ///
+    /// ```
+    /// use protocol_runtime::Checksum;
+    ///
+    /// let input = [0x01, 0x02, 0x03, 0xAA, 0xBB];
+    /// assert_eq!(Checksum::Sum8.compute_prefix(&input, 3), Some(0x06));
+    /// assert_eq!(Checksum::Sum8.compute_prefix(&input, 6), None);
+    /// ```
+    #[inline(always)]
+    pub fn compute_prefix(&self, data: &[u8], n: usize) -> Option<u64> {
+        if data.len() < n {
+            return None;
+        }
+        Some(match self {
+            Checksum::Sum8 => u64::from(sum::sum8_prefix(data, n)),
+            Checksum::SumMod255 => u64::from(sum::sum_mod255_prefix(data, n)),
+            Checksum::Xor8 => u64::from(sum::xor8_prefix(data, n)),
+            Checksum::Crc8(c) => u64::from(c.checksum_prefix(data, n)),
+            Checksum::Crc16(c) => u64::from(c.checksum_prefix(data, n)),
+            Checksum::Crc32(c) => u64::from(c.checksum_prefix(data, n)),
+            Checksum::Crc64(c) => c.checksum_prefix(data, n),
+        })
+    }
+}

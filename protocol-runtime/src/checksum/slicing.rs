@@ -1,0 +1,268 @@
+//! Slicing-by-16 CRCs without a byte-wise loop: [`Slicing16`].
+//!
+//! This module owns the fast table-driven CRC and nothing else: which CRC a check uses and the
+//! smaller table choices (`crc::NoTable`, `crc::Table<1>`) are the parent module's business.
+//!
+//! We do not use the `crc` crate's `Table<16>`: it runs a byte-wise loop over the last
+//! `n % 16` bytes, and a loop whose trip count follows the frame length mispredicts about once
+//! per frame (`PERF.md` lessons 2 and 3). Here the leading `n % 16` bytes are
+//! one zero-padded 16-byte block and everything after them whole blocks.
+//!
+//! # How
+//!
+//! The register is kept as the `crc` crate keeps it: in the low `width` bits when the input is
+//! reflected (`refin`, the register shifts right), in the high `width` bits otherwise (it
+//! shifts left). A CRC register update is linear, so the register after a 16-byte block `b`
+//! from register `r` is the xor, over the block's bytes, of `T[15 - i][b[i] ^ r[i]]`, where
+//! `r[i]` are the register's bytes in the order they meet the input (little-endian when
+//! reflected, big-endian otherwise; zero past the register's size) and `T[k][v]` is the
+//! register after the byte `v` then `k` zero bytes, from a zero register.
+//!
+//! Leading zero bytes leave a zero register zero, so a first block of `lead` bytes (1..=16) is
+//! read as `16 - lead` zero bytes then those bytes. The initial register is folded into the
+//! first `lead` bytes; when the register is wider than `lead` bytes, the part that does not
+//! meet an input byte is what the register still holds after them, shifted by `lead` bytes.
+
+use core::fmt;
+
+/// Bytes per block, and number of tables.
+const BLOCK: usize = 16;
+
+/// A slicing-by-16 CRC: sixteen 256-entry tables of `W`, built at compile time from a
+/// `crc` crate [`Algorithm`](crc::Algorithm), computing exactly what
+/// `crc::Crc::<W, crc::NoTable>::new(alg).checksum(data)` computes, for any width from 1 to
+/// the bits of `W` and any `refin`/`refout`.
+///
+/// Its size is 16 × 256 × `size_of::<W>()` bytes plus a few words: 4 KiB (`u8`), 8 KiB
+/// (`u16`), 16 KiB (`u32`), 32 KiB (`u64`).
+///
+/// ```
+/// use protocol_runtime::checksum::Slicing16;
+///
+/// static CRC: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_UMTS);
+/// assert_eq!(CRC.checksum(b"123456789"), 0xFEE8);
+/// // The CRC of the first 9 bytes; the bytes after them are read but do not count.
+/// assert_eq!(CRC.checksum_prefix(b"123456789 and more", 9), 0xFEE8);
+/// ```
+#[derive(Clone)]
+pub struct Slicing16<W: crc::Width> {
+    /// `tables[k][v]`: the register after the byte `v` then `k` zero bytes, from zero.
+    tables: [[W; 256]; BLOCK],
+    algorithm: &'static crc::Algorithm<W>,
+    /// The initial register, aligned as the tables are.
+    init: W,
+    /// Whether the input is reflected (the register shifts right).
+    reflect: bool,
+    /// Whether the register is reversed at the end (`refin != refout`).
+    reverse: bool,
+    /// Bits the (possibly reversed) register is shifted right at the end: the unused low bits
+    /// of a register kept in the high bits.
+    shift: u32,
+    xorout: W,
+}
+
+impl<W: crc::Width> Slicing16<W> {
+    /// The parameters of the CRC.
+    #[inline]
+    pub const fn algorithm(&self) -> &'static crc::Algorithm<W> {
+        self.algorithm
+    }
+}
+
+impl<W: crc::Width + fmt::Debug> fmt::Debug for Slicing16<W> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Slicing16")
+            .field("algorithm", self.algorithm)
+            .finish_non_exhaustive()
+    }
+}
+
+macro_rules! slicing16_width {
+    ($($w:ty),*) => {$(
+        impl Slicing16<$w> {
+            #[doc = concat!("The tables of `alg`, a CRC of 1 to ", stringify!($w), "::BITS bits.")]
+            ///
+            /// Meant for a `static` or `const` initialiser (the tables are then built by the
+            /// compiler); at run time it takes a few microseconds. A width outside that range
+            /// gives meaningless values, never a panic.
+            #[must_use]
+            pub const fn new(alg: &'static crc::Algorithm<$w>) -> Self {
+                let pad = <$w>::BITS.saturating_sub(alg.width as u32);
+                let (poly, init) = if alg.refin {
+                    (
+                        shr_or_zero!($w, alg.poly.reverse_bits(), pad),
+                        shr_or_zero!($w, alg.init.reverse_bits(), pad),
+                    )
+                } else {
+                    (shl_or_zero!($w, alg.poly, pad), shl_or_zero!($w, alg.init, pad))
+                };
+                Slicing16 {
+                    tables: slicing16_tables!($w, poly, alg.refin),
+                    algorithm: alg,
+                    init,
+                    reflect: alg.refin,
+                    reverse: alg.refin != alg.refout,
+                    shift: if alg.refout { 0 } else { pad },
+                    xorout: alg.xorout,
+                }
+            }
+
+            /// The CRC of `data`.
+            #[inline]
+            pub fn checksum(&self, data: &[u8]) -> $w {
+                self.checksum_prefix(data, data.len())
+            }
+
+            /// The CRC of `data[..n]`; `data` may run past `n` (the bytes after `n` are read,
+            /// to load the first block whole, but never change the result). If `data` is
+            /// shorter than `n`, the CRC of all of `data`.
+            #[inline]
+            pub fn checksum_prefix(&self, data: &[u8], n: usize) -> $w {
+                let n = n.min(data.len());
+                let register = if self.reflect {
+                    self.register::<true>(data, n)
+                } else {
+                    self.register::<false>(data, n)
+                };
+                let register = if self.reverse { register.reverse_bits() } else { register };
+                register.checked_shr(self.shift).unwrap_or(0) ^ self.xorout
+            }
+
+            /// The register after `data[..n]` (`n <= data.len()`), before finalisation.
+            #[inline(always)]
+            fn register<const REFLECT: bool>(&self, data: &[u8], n: usize) -> $w {
+                // The leading bytes: 1..=16 of them (0 when `n` is 0), so that whole blocks
+                // follow.
+                let lead = n.wrapping_sub(n.saturating_sub(1) & !(BLOCK - 1));
+                let first = match data.first_chunk::<BLOCK>() {
+                    Some(block) => *block,
+                    None => {
+                        // Only when all of `data` is shorter than a block.
+                        let mut block = [0u8; BLOCK];
+                        if let (Some(dst), Some(src)) = (block.get_mut(..n), data.get(..n)) {
+                            dst.copy_from_slice(src);
+                        }
+                        block
+                    }
+                };
+                // Big-endian, input byte `i` sits at bits `8 * (15 - i)`: shifting right by
+                // `16 - lead` bytes moves the leading bytes to the end of the block, zeros in
+                // front, and drops what `first` held past them.
+                let pad = ((BLOCK.wrapping_sub(lead)) as u32).wrapping_mul(8);
+                let aligned = (u128::from_be_bytes(first) ^ Self::spread::<REFLECT>(self.init))
+                    .checked_shr(pad)
+                    .unwrap_or(0);
+                let kept_bits = (lead as u32).wrapping_mul(8);
+                let kept = if REFLECT {
+                    self.init.checked_shr(kept_bits)
+                } else {
+                    self.init.checked_shl(kept_bits)
+                };
+                let mut register = self.block(aligned.to_be_bytes()) ^ kept.unwrap_or(0);
+                let rest = data.get(lead..n).unwrap_or_default();
+                for block in rest.chunks_exact(BLOCK) {
+                    if let Some(block) = block.first_chunk::<BLOCK>() {
+                        let folded = u128::from_be_bytes(*block)
+                            ^ Self::spread::<REFLECT>(register);
+                        register = self.block(folded.to_be_bytes());
+                    }
+                }
+                register
+            }
+
+            /// The register's bytes in input order, at the start of a big-endian block.
+            #[inline(always)]
+            fn spread<const REFLECT: bool>(register: $w) -> u128 {
+                let ordered = if REFLECT { register.swap_bytes() } else { register };
+                u128::from(ordered) << (u128::BITS - <$w>::BITS)
+            }
+
+            /// The register after the 16 bytes of `block` (the register already folded in),
+            /// from a zero register.
+            #[inline(always)]
+            fn block(&self, block: [u8; BLOCK]) -> $w {
+                self.tables
+                    .iter()
+                    .rev()
+                    .zip(block)
+                    .map(|(table, byte)| table.get(usize::from(byte)).copied().unwrap_or(0))
+                    .fold(0, |acc, x| acc ^ x)
+            }
+        }
+    )*};
+}
+
+/// `$x >> $n`, zero when `$n` is the width or more (`checked_shr` in a `const fn`).
+macro_rules! shr_or_zero {
+    ($w:ty, $x:expr, $n:expr) => {
+        match <$w>::checked_shr($x, $n) {
+            Some(v) => v,
+            None => 0,
+        }
+    };
+}
+
+/// `$x << $n`, zero when `$n` is the width or more.
+macro_rules! shl_or_zero {
+    ($w:ty, $x:expr, $n:expr) => {
+        match <$w>::checked_shl($x, $n) {
+            Some(v) => v,
+            None => 0,
+        }
+    };
+}
+
+/// The sixteen tables of the aligned polynomial `$poly` (reflected when `$reflect`).
+macro_rules! slicing16_tables {
+    ($w:ty, $poly:expr, $reflect:expr) => {{
+        // Indexing and the loop counters only run in a `const` initialiser or in `new`, with
+        // every index a counter bounded by the array it indexes: an index out of bounds would
+        // fail to compile (const) or could not happen (run time).
+        #[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
+        const fn build(poly: $w, reflect: bool) -> [[$w; 256]; BLOCK] {
+            const TOP: $w = 1 << (<$w>::BITS - 1);
+            let mut tables = [[0; 256]; BLOCK];
+            // Table 0: one byte, bit by bit.
+            let mut v = 0;
+            while v < 256 {
+                let mut r: $w = if reflect {
+                    v as $w
+                } else {
+                    shl_or_zero!($w, v as $w, <$w>::BITS - 8)
+                };
+                let mut bit = 0;
+                while bit < 8 {
+                    r = if reflect {
+                        if r & 1 != 0 { (r >> 1) ^ poly } else { r >> 1 }
+                    } else if r & TOP != 0 {
+                        (r << 1) ^ poly
+                    } else {
+                        r << 1
+                    };
+                    bit += 1;
+                }
+                tables[0][v] = r;
+                v += 1;
+            }
+            // Table k: table k - 1 followed by one zero byte.
+            let mut k = 1;
+            while k < BLOCK {
+                let mut v = 0;
+                while v < 256 {
+                    let prev = tables[k - 1][v];
+                    tables[k][v] = if reflect {
+                        shr_or_zero!($w, prev, 8) ^ tables[0][(prev & 0xFF) as usize]
+                    } else {
+                        shl_or_zero!($w, prev, 8) ^ tables[0][(prev >> (<$w>::BITS - 8)) as usize]
+                    };
+                    v += 1;
+                }
+                k += 1;
+            }
+            tables
+        }
+        build($poly, $reflect)
+    }};
+}
+
+slicing16_width!(u8, u16, u32, u64);

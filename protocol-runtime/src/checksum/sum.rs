@@ -1,0 +1,222 @@
+//! Byte sums and xor: exact over a slice, and masked over a fixed window.
+//!
+//! This module owns how the byte checks are computed; which one a check uses is the parent
+//! module's business. Two shapes:
+//!
+//! - exact: whole 16-byte steps then the last bytes as one masked step, for any length;
+//! - window: when the input holds [`WINDOW`] bytes and the check covers at most that many, the
+//!   whole window under a mask, with no loop or branch on the covered length (a loop whose trip
+//!   count follows the frame length mispredicts about once per frame, `PERF.md`,
+//!   lesson 3).
+//!
+//! Nothing here divides a 64-bit number: on 32-bit targets that links a division routine
+//! (`__aeabi_uldivmod`, 864 bytes on thumbv7em).
+
+/// Bytes of the masked window: every byte a check of up to 128 bytes covers.
+pub(super) const WINDOW: usize = 128;
+
+/// `WINDOW_MASK.as_flattened()[WINDOW - n..][..WINDOW]` keeps the first `n` bytes of a window.
+static WINDOW_MASK: [[u8; WINDOW]; 2] = [[0xFF; WINDOW], [0; WINDOW]];
+
+/// The mask keeping the first `n` (`<= WINDOW`) bytes of a window.
+#[inline(always)]
+fn window_mask(n: usize) -> &'static [u8; WINDOW] {
+    WINDOW_MASK
+        .as_flattened()
+        .get(WINDOW.wrapping_sub(n)..)
+        .and_then(<[u8]>::first_chunk::<WINDOW>)
+        .unwrap_or(&[0; WINDOW])
+}
+
+/// The little-endian `u64` at `at` of a window (0 past its end, which no caller reads).
+#[inline(always)]
+fn word(bytes: &[u8; WINDOW], at: usize) -> u64 {
+    bytes
+        .get(at..)
+        .and_then(<[u8]>::first_chunk::<8>)
+        .map_or(0, |b| u64::from_le_bytes(*b))
+}
+
+/// Applies `step` to `(lane, masked word)` for the sixteen words of `window[..n]` (bytes
+/// past `n` read as zero), two lanes of one `u64` each: the shape of one SSE2 or NEON register,
+/// which the SLP vectoriser fills. Offsets are loop counters rather than `chunks_exact`
+/// iterators, whose length division stays in the code at `opt-level = "s"`.
+#[inline(always)]
+fn masked_words(window: &[u8; WINDOW], n: usize, mut step: impl FnMut(&mut u64, u64)) -> [u64; 2] {
+    let mask = window_mask(n);
+    let mut lanes = [0u64; 2];
+    for pair in 0..WINDOW / 16 {
+        for (j, lane) in lanes.iter_mut().enumerate() {
+            let at = pair.wrapping_mul(16).wrapping_add(j.wrapping_mul(8));
+            step(lane, word(window, at) & word(mask, at));
+        }
+    }
+    lanes
+}
+
+/// The sum of `window[..n]` (`n <= WINDOW`, at most 128 × 255 = 32640), without a branch on
+/// `n`: SWAR, each word's bytes added pairwise into four 16-bit lanes (at most 8 words × 2 ×
+/// 255 = 4080 per lane and `u64`), the lanes added at the end by one multiplication.
+#[inline(always)]
+fn window_sum(window: &[u8; WINDOW], n: usize) -> u32 {
+    const LOW_BYTES: u64 = 0x00FF_00FF_00FF_00FF;
+    let [a, b] = masked_words(window, n, |lane, x| {
+        let pairs = (x & LOW_BYTES).wrapping_add((x >> 8) & LOW_BYTES);
+        *lane = lane.wrapping_add(pairs);
+    });
+    // Each 16-bit lane of `a + b` is at most 8160; the top lane of the product is the sum of
+    // the four (at most 32640), no carry crossing lanes.
+    (a.wrapping_add(b).wrapping_mul(0x0001_0001_0001_0001) >> 48) as u32
+}
+
+/// The xor of `window[..n]` (`n <= WINDOW`), without a branch on `n`.
+#[inline(always)]
+fn window_xor(window: &[u8; WINDOW], n: usize) -> u8 {
+    let [a, b] = masked_words(window, n, |lane, x| *lane ^= x);
+    fold_xor(a ^ b)
+}
+
+/// The xor of the eight bytes of `x`.
+#[inline(always)]
+fn fold_xor(x: u64) -> u8 {
+    let x = x ^ (x >> 32);
+    let x = x ^ (x >> 16);
+    (x ^ (x >> 8)) as u8
+}
+
+/// `x % 255` without a 64-bit division: `2^32 ≡ 1 (mod 255)`, so the two halves of `x` add up
+/// to a congruent number, and once more to one that fits a `u32`.
+#[inline(always)]
+pub(super) fn mod255(x: u64) -> u8 {
+    let halves = |x: u64| (x >> 32).wrapping_add(x & 0xFFFF_FFFF);
+    // At most 2^33 - 2, then at most 2^32 - 1.
+    let folded = halves(halves(x)) as u32;
+    folded.checked_rem(255).unwrap_or(0) as u8
+}
+
+/// The sum of `data[..n]` (`n <= data.len()`): the window when it applies, else exact.
+#[inline(always)]
+fn prefix_sum(data: &[u8], n: usize) -> u64 {
+    match data.first_chunk::<WINDOW>() {
+        Some(window) if n <= WINDOW => u64::from(window_sum(window, n)),
+        _ => byte_sum(data.get(..n).unwrap_or(data)),
+    }
+}
+
+/// The sum modulo 256 of `data`.
+#[inline]
+pub(super) fn sum8(data: &[u8]) -> u8 {
+    byte_sum(data) as u8
+}
+
+/// The sum modulo 255 of `data`.
+#[inline]
+pub(super) fn sum_mod255(data: &[u8]) -> u8 {
+    mod255(byte_sum(data))
+}
+
+/// The sum modulo 256 of `data[..n]` (`n <= data.len()`).
+#[inline]
+pub(super) fn sum8_prefix(data: &[u8], n: usize) -> u8 {
+    prefix_sum(data, n) as u8
+}
+
+/// The sum modulo 255 of `data[..n]` (`n <= data.len()`).
+#[inline]
+pub(super) fn sum_mod255_prefix(data: &[u8], n: usize) -> u8 {
+    match data.first_chunk::<WINDOW>() {
+        // At most 32640: a `u32` remainder.
+        Some(window) if n <= WINDOW => window_sum(window, n).checked_rem(255).unwrap_or(0) as u8,
+        _ => sum_mod255(data.get(..n).unwrap_or(data)),
+    }
+}
+
+/// The xor of `data[..n]` (`n <= data.len()`).
+#[inline]
+pub(super) fn xor8_prefix(data: &[u8], n: usize) -> u8 {
+    match data.first_chunk::<WINDOW>() {
+        Some(window) if n <= WINDOW => window_xor(window, n),
+        _ => xor8(data.get(..n).unwrap_or(data)),
+    }
+}
+
+/// Bytes summed or xored per step of the exact functions: one SSE2 register, which the
+/// compiler fills for a loop over fixed-size arrays (`psadbw` for the sum).
+const STEP: usize = 16;
+
+/// `MASK[r..r + STEP]` keeps the last `r` bytes of a `STEP`-byte window.
+static MASK: [[u8; STEP]; 2] = [[0; STEP], [0xFF; STEP]];
+
+/// The last `STEP` bytes of `data` (at least `STEP` long), masked to keep the last `rest`
+/// (`< STEP`) of them: the bytes a whole-step loop from the start left over, read without a
+/// byte loop.
+#[inline(always)]
+fn masked_tail(data: &[u8], rest: usize) -> [u8; STEP] {
+    let mut tail = data.last_chunk::<STEP>().copied().unwrap_or([0; STEP]);
+    let mask = MASK
+        .as_flattened()
+        .get(rest..)
+        .and_then(<[u8]>::first_chunk::<STEP>)
+        .unwrap_or(&[0; STEP]);
+    for (b, m) in tail.iter_mut().zip(mask) {
+        *b &= m;
+    }
+    tail
+}
+
+/// `data` (shorter than `STEP`), zero-extended.
+#[inline(always)]
+fn padded(data: &[u8]) -> [u8; STEP] {
+    let mut block = [0u8; STEP];
+    for (dst, src) in block.iter_mut().zip(data) {
+        *dst = *src;
+    }
+    block
+}
+
+/// Splits `data` into whole steps and what is left, as one zero-filled step.
+#[inline(always)]
+fn steps(data: &[u8]) -> (core::slice::ChunksExact<'_, u8>, [u8; STEP]) {
+    let whole = data.chunks_exact(STEP);
+    let rest = whole.remainder().len();
+    let last = if data.len() < STEP {
+        padded(data)
+    } else {
+        masked_tail(data, rest)
+    };
+    (whole, last)
+}
+
+#[inline(always)]
+fn sum_step(block: &[u8; STEP]) -> u64 {
+    block
+        .iter()
+        .map(|&b| u64::from(b))
+        .fold(0, u64::wrapping_add)
+}
+
+/// The exact sum of all bytes.
+#[inline]
+pub(super) fn byte_sum(data: &[u8]) -> u64 {
+    let (whole, last) = steps(data);
+    let mut total = sum_step(&last);
+    for block in whole {
+        if let Some(block) = block.first_chunk::<STEP>() {
+            total = total.wrapping_add(sum_step(block));
+        }
+    }
+    total
+}
+
+/// The xor of all bytes.
+#[inline]
+pub(super) fn xor8(data: &[u8]) -> u8 {
+    let (whole, last) = steps(data);
+    let mut acc = u128::from_le_bytes(last);
+    for block in whole {
+        if let Some(block) = block.first_chunk::<STEP>() {
+            acc ^= u128::from_le_bytes(*block);
+        }
+    }
+    fold_xor((acc as u64) ^ ((acc >> 64) as u64))
+}

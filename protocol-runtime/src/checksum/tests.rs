@@ -1,0 +1,424 @@
+//! Every check against its definition: sums and xor against naive loops, every CRC of the
+//! `crc` crate's catalogue against `crc::Crc<W, NoTable>`, custom CRCs against their check
+//! values. Nothing is timed here (benchmarks live in `benches/`).
+
+#![allow(
+    clippy::indexing_slicing,
+    clippy::arithmetic_side_effects,
+    clippy::unwrap_used,
+    clippy::panic
+)]
+
+extern crate std;
+
+use std::format;
+use std::vec::Vec;
+
+use super::*;
+
+const CHECK: &[u8] = b"123456789";
+
+/// Overruns past the covered bytes a prefix computation is tested with.
+const OVERRUNS: [usize; 5] = [0, 1, 15, 16, 40];
+
+/// A xorshift64 generator: deterministic test data without dependencies.
+fn fill(seed: &mut u64, buf: &mut [u8]) {
+    for b in buf {
+        *seed ^= *seed << 13;
+        *seed ^= *seed >> 7;
+        *seed ^= *seed << 17;
+        *b = (*seed >> 24) as u8;
+    }
+}
+
+fn random(seed: u64, len: usize) -> Vec<u8> {
+    let mut seed = seed;
+    let mut buf = std::vec![0u8; len];
+    fill(&mut seed, &mut buf);
+    buf
+}
+
+// ---- sums and xor ----
+
+fn naive_sum(data: &[u8]) -> u64 {
+    data.iter().map(|&b| u64::from(b)).sum()
+}
+
+fn naive_xor(data: &[u8]) -> u64 {
+    u64::from(data.iter().fold(0u8, |a, b| a ^ b))
+}
+
+/// Checks exact and prefix forms of the three byte checks for every `n` in `0..=300`, with
+/// and without bytes past `n` (the window form applies from 128 bytes of input).
+fn check_sums_over(buf: &[u8]) {
+    for n in 0..=300 {
+        let data = &buf[..n];
+        let (sum, xor) = (naive_sum(data), naive_xor(data));
+        assert_eq!(Checksum::Sum8.compute(data), sum % 256, "n {n}");
+        assert_eq!(Checksum::SumMod255.compute(data), sum % 255, "n {n}");
+        assert_eq!(Checksum::Xor8.compute(data), xor, "n {n}");
+        for extra in OVERRUNS.into_iter().chain([100, 128, 200]) {
+            let Some(input) = buf.get(..n + extra) else {
+                continue;
+            };
+            let at = |c: Checksum<'_>| c.compute_prefix(input, n);
+            assert_eq!(at(Checksum::Sum8), Some(sum % 256), "n {n} + {extra}");
+            assert_eq!(at(Checksum::SumMod255), Some(sum % 255), "n {n} + {extra}");
+            assert_eq!(at(Checksum::Xor8), Some(xor), "n {n} + {extra}");
+        }
+    }
+}
+
+#[test]
+fn sums_match_naive_definitions_for_every_length_and_overrun() {
+    for seed in [0x9E37_79B9_7F4A_7C15, 1, 0xDEAD_BEEF] {
+        check_sums_over(&random(seed, 600));
+    }
+    check_sums_over(&[0xFF; 600]);
+    check_sums_over(&[0; 600]);
+}
+
+#[test]
+fn window_ignores_every_byte_past_n() {
+    // Same covered bytes, different bytes after them: the same value.
+    let mut a = random(7, 256);
+    let b = a.clone();
+    for n in 0..=128 {
+        a[n..].fill(0xFF);
+        for c in [Checksum::Sum8, Checksum::SumMod255, Checksum::Xor8] {
+            assert_eq!(
+                c.compute_prefix(&a, n),
+                c.compute_prefix(&b, n),
+                "{c:?} n {n}"
+            );
+        }
+        a.copy_from_slice(&b);
+    }
+}
+
+#[test]
+fn sums_of_long_inputs_are_exact() {
+    let buf = [0xFFu8; 5000];
+    for len in (0..=5000)
+        .step_by(7)
+        .chain([1023, 1024, 1025, 2048, 4999, 5000])
+    {
+        let sum = 255 * len as u64;
+        assert_eq!(sum::byte_sum(&buf[..len]), sum);
+        assert_eq!(Checksum::Sum8.compute(&buf[..len]), sum % 256, "len {len}");
+        assert_eq!(
+            Checksum::SumMod255.compute(&buf[..len]),
+            sum % 255,
+            "len {len}"
+        );
+        assert_eq!(
+            Checksum::SumMod255.compute_prefix(&buf, len),
+            Some(sum % 255),
+            "len {len}"
+        );
+        assert_eq!(Checksum::Xor8.compute(&buf[..len]), (len as u64 % 2) * 0xFF);
+    }
+    // Eight MiB of 0xFF and of random bytes: past any 16-bit or 32-bit lane.
+    for data in [std::vec![0xFFu8; 8 << 20], random(3, 8 << 20)] {
+        let sum = naive_sum(&data);
+        assert_eq!(Checksum::SumMod255.compute(&data), sum % 255);
+        assert_eq!(Checksum::Sum8.compute(&data), sum % 256);
+    }
+}
+
+#[test]
+fn mod255_without_division_is_the_remainder() {
+    let mut seed = 5;
+    let mut words = [0u8; 8 * 1000];
+    fill(&mut seed, &mut words);
+    let randoms = words
+        .chunks_exact(8)
+        .map(|w| u64::from_le_bytes(w.try_into().unwrap()));
+    let edges = [
+        0,
+        1,
+        254,
+        255,
+        256,
+        u64::from(u32::MAX),
+        u64::from(u32::MAX) + 1,
+        (1 << 33) - 2,
+        u64::MAX - 1,
+        u64::MAX,
+        0xFFFF_FFFF_0000_0000,
+        0x0000_0001_FFFF_FFFF,
+    ];
+    for x in edges.into_iter().chain(randoms) {
+        assert_eq!(u64::from(sum::mod255(x)), x % 255, "{x:#x}");
+    }
+}
+
+#[test]
+fn sum_check_values() {
+    assert_eq!(Checksum::SumMod255.compute(CHECK), 0xDE);
+    assert_eq!(Checksum::Sum8.compute(CHECK), 0xDD);
+    assert_eq!(Checksum::Xor8.compute(CHECK), 0x31);
+}
+
+#[test]
+fn prefix_past_the_input_is_none() {
+    static T16: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_UMTS);
+    static T1: crc::Crc<u16, crc::Table<1>> =
+        crc::Crc::<u16, crc::Table<1>>::new(&crc::CRC_16_UMTS);
+    let data = [0u8; 200];
+    for c in [
+        Checksum::Sum8,
+        Checksum::SumMod255,
+        Checksum::Xor8,
+        Checksum::Crc16(CrcImpl::Table16(&T16)),
+        Checksum::Crc16(CrcImpl::Table1(&T1)),
+    ] {
+        for len in [0, 5, 128, 200] {
+            assert_eq!(c.compute_prefix(&data[..len], len + 1), None, "{c:?}");
+            assert!(c.compute_prefix(&data[..len], len).is_some(), "{c:?}");
+        }
+    }
+    // Below `Checksum`, a prefix longer than the input is the whole input.
+    assert_eq!(T16.checksum_prefix(CHECK, 100), 0xFEE8);
+    assert_eq!(CrcImpl::Table1(&T1).checksum_prefix(CHECK, 100), 0xFEE8);
+}
+
+// ---- CRCs ----
+
+/// Checks `Slicing16` (built at run time, the way the interpreter builds it) against
+/// `crc::Crc<W, NoTable>` for every algorithm named: the check value, random data of every
+/// length in `0..=300`, and prefixes with bytes past them. Returns the number of algorithms.
+macro_rules! check_catalogue {
+    ($w:ty, $variant:ident: $($alg:ident),* $(,)?) => {{
+        let buf = random(0x5EED, 300 + 40);
+        let mut count = 0;
+        $(
+            let alg: &'static crc::Algorithm<$w> = &crc::$alg;
+            let reference = crc::Crc::<$w, crc::NoTable>::new(alg);
+            let fast = std::boxed::Box::new(Slicing16::<$w>::new(alg));
+            assert_eq!(fast.checksum(CHECK), alg.check, stringify!($alg));
+            assert_eq!(reference.checksum(CHECK), alg.check, stringify!($alg));
+            let check = Checksum::$variant(CrcImpl::Table16(&fast));
+            for n in 0..=300 {
+                let want = reference.checksum(&buf[..n]);
+                assert_eq!(fast.checksum(&buf[..n]), want, "{} n {n}", stringify!($alg));
+                for extra in OVERRUNS {
+                    assert_eq!(
+                        fast.checksum_prefix(&buf[..n + extra], n),
+                        want,
+                        "{} n {n} + {extra}",
+                        stringify!($alg)
+                    );
+                }
+                assert_eq!(check.compute_prefix(&buf, n), Some(u64::from(want)));
+            }
+            count += 1;
+        )*
+        count
+    }};
+}
+
+#[test]
+fn catalogue_crc8_slicing_matches_the_crc_crate() {
+    let count = check_catalogue!(u8, Crc8:
+        CRC_3_GSM, CRC_3_ROHC, CRC_4_G_704, CRC_4_INTERLAKEN, CRC_5_EPC_C1G2, CRC_5_G_704,
+        CRC_5_USB, CRC_6_CDMA2000_A, CRC_6_CDMA2000_B, CRC_6_DARC, CRC_6_G_704, CRC_6_GSM,
+        CRC_7_MMC, CRC_7_ROHC, CRC_7_UMTS, CRC_8_AUTOSAR, CRC_8_BLUETOOTH, CRC_8_CDMA2000,
+        CRC_8_DARC, CRC_8_DVB_S2, CRC_8_GSM_A, CRC_8_GSM_B, CRC_8_HITAG, CRC_8_I_432_1,
+        CRC_8_I_CODE, CRC_8_LTE, CRC_8_MAXIM_DOW, CRC_8_MIFARE_MAD, CRC_8_NRSC_5,
+        CRC_8_OPENSAFETY, CRC_8_ROHC, CRC_8_SAE_J1850, CRC_8_SMBUS, CRC_8_TECH_3250,
+        CRC_8_WCDMA,
+    );
+    assert_eq!(count, 35);
+}
+
+#[test]
+fn catalogue_crc16_slicing_matches_the_crc_crate() {
+    let count = check_catalogue!(u16, Crc16:
+        CRC_10_ATM, CRC_10_CDMA2000, CRC_10_GSM, CRC_11_FLEXRAY, CRC_11_UMTS, CRC_12_CDMA2000,
+        CRC_12_DECT, CRC_12_GSM, CRC_12_UMTS, CRC_13_BBC, CRC_14_DARC, CRC_14_GSM, CRC_15_CAN,
+        CRC_15_MPT1327, CRC_16_ARC, CRC_16_CDMA2000, CRC_16_CMS, CRC_16_DDS_110,
+        CRC_16_DECT_R, CRC_16_DECT_X, CRC_16_DNP, CRC_16_EN_13757, CRC_16_GENIBUS,
+        CRC_16_GSM, CRC_16_IBM_3740, CRC_16_IBM_SDLC, CRC_16_ISO_IEC_14443_3_A,
+        CRC_16_KERMIT, CRC_16_LJ1200, CRC_16_M17, CRC_16_MAXIM_DOW, CRC_16_MCRF4XX,
+        CRC_16_MODBUS, CRC_16_NRSC_5, CRC_16_OPENSAFETY_A, CRC_16_OPENSAFETY_B,
+        CRC_16_PROFIBUS, CRC_16_RIELLO, CRC_16_SPI_FUJITSU, CRC_16_T10_DIF, CRC_16_TELEDISK,
+        CRC_16_TMS37157, CRC_16_UMTS, CRC_16_USB, CRC_16_XMODEM,
+    );
+    assert_eq!(count, 45);
+}
+
+#[test]
+fn catalogue_crc32_slicing_matches_the_crc_crate() {
+    let count = check_catalogue!(u32, Crc32:
+        CRC_17_CAN_FD, CRC_21_CAN_FD, CRC_24_BLE, CRC_24_FLEXRAY_A, CRC_24_FLEXRAY_B,
+        CRC_24_INTERLAKEN, CRC_24_LTE_A, CRC_24_LTE_B, CRC_24_OPENPGP, CRC_24_OS_9,
+        CRC_30_CDMA, CRC_31_PHILIPS, CRC_32_AIXM, CRC_32_AUTOSAR, CRC_32_BASE91_D,
+        CRC_32_BZIP2, CRC_32_CD_ROM_EDC, CRC_32_CKSUM, CRC_32_ISCSI, CRC_32_ISO_HDLC,
+        CRC_32_JAMCRC, CRC_32_MEF, CRC_32_MPEG_2, CRC_32_XFER,
+    );
+    assert_eq!(count, 24);
+}
+
+#[test]
+fn catalogue_crc64_slicing_matches_the_crc_crate() {
+    let count = check_catalogue!(u64, Crc64:
+        CRC_40_GSM, CRC_64_ECMA_182, CRC_64_GO_ISO, CRC_64_MS, CRC_64_NVME, CRC_64_REDIS,
+        CRC_64_WE, CRC_64_XZ,
+    );
+    assert_eq!(count, 8);
+}
+
+/// The crossed-endian catalogue entries (`refin != refout`) are covered above; this makes
+/// sure there is at least one, so the reversal at the end is exercised.
+#[test]
+fn catalogue_has_crossed_endian_crcs() {
+    let alg = &crc::CRC_12_UMTS;
+    assert!(!alg.refin && alg.refout);
+    static UMTS: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_12_UMTS);
+    assert_eq!(UMTS.checksum(CHECK), 0xDAF);
+}
+
+/// Checks all three table variants of one algorithm against its check value, with the tables
+/// built by the compiler (as generated code builds them).
+macro_rules! check_all_tables {
+    ($w:ty, $variant:ident, $alg:expr) => {{
+        static NO: crc::Crc<$w, crc::NoTable> = crc::Crc::<$w, crc::NoTable>::new($alg);
+        static T1: crc::Crc<$w, crc::Table<1>> = crc::Crc::<$w, crc::Table<1>>::new($alg);
+        static T16: Slicing16<$w> = Slicing16::<$w>::new($alg);
+        let expected = u64::from($alg.check);
+        let buf = random(11, 300);
+        for c in [
+            Checksum::$variant(CrcImpl::NoTable(&NO)),
+            Checksum::$variant(CrcImpl::Table1(&T1)),
+            Checksum::$variant(CrcImpl::Table16(&T16)),
+        ] {
+            assert_eq!(c.compute(CHECK), expected, "{c:?}");
+            assert_eq!(c.compute_prefix(b"123456789abcdefghijk", 9), Some(expected));
+            assert_eq!(c.width(), core::mem::size_of::<$w>());
+            for n in 0..=buf.len() {
+                assert_eq!(
+                    c.compute_prefix(&buf, n),
+                    Some(u64::from(NO.checksum(&buf[..n]))),
+                    "{c:?} n {n}"
+                );
+                assert_eq!(c.compute(&buf[..n]), u64::from(NO.checksum(&buf[..n])));
+            }
+        }
+        expected
+    }};
+}
+
+#[test]
+fn catalogue_crcs_match_their_check_values_with_every_table() {
+    assert_eq!(check_all_tables!(u8, Crc8, &crc::CRC_8_MAXIM_DOW), 0xA1);
+    assert_eq!(check_all_tables!(u8, Crc8, &crc::CRC_3_GSM), 0x4);
+    assert_eq!(check_all_tables!(u16, Crc16, &crc::CRC_16_UMTS), 0xFEE8);
+    assert_eq!(check_all_tables!(u16, Crc16, &crc::CRC_16_MCRF4XX), 0x6F91);
+    assert_eq!(check_all_tables!(u16, Crc16, &crc::CRC_12_UMTS), 0xDAF);
+    assert_eq!(
+        check_all_tables!(u32, Crc32, &crc::CRC_32_ISO_HDLC),
+        0xCBF4_3926
+    );
+    assert_eq!(check_all_tables!(u32, Crc32, &crc::CRC_24_BLE), 0xC2_5A56);
+    assert_eq!(
+        check_all_tables!(u64, Crc64, &crc::CRC_64_XZ),
+        0x995D_C9BB_DF19_39FA
+    );
+    assert_eq!(
+        check_all_tables!(u64, Crc64, &crc::CRC_64_ECMA_182),
+        0x6C40_DF5F_0B49_7347
+    );
+    assert_eq!(
+        check_all_tables!(u64, Crc64, &crc::CRC_40_GSM),
+        0xD4_164F_C646
+    );
+}
+
+static DJI_CRC8: crc::Algorithm<u8> = crc::Algorithm {
+    width: 8,
+    poly: 0x31,
+    init: 0xFF,
+    refin: true,
+    refout: true,
+    xorout: 0,
+    check: 0x0B,
+    residue: 0,
+};
+static DJI_CRC16: crc::Algorithm<u16> = crc::Algorithm {
+    width: 16,
+    poly: 0x8005,
+    init: 0xC55C,
+    refin: true,
+    refout: true,
+    xorout: 0,
+    check: 0x2752,
+    residue: 0,
+};
+static DJI_CRC32: crc::Algorithm<u32> = crc::Algorithm {
+    width: 32,
+    poly: 0x04C1_1DB7,
+    init: 0xC55C_0000,
+    refin: true,
+    refout: true,
+    xorout: 0,
+    check: 0xE4D9_DC14,
+    residue: 0,
+};
+
+#[test]
+fn dji_custom_crcs_match_their_check_values() {
+    assert_eq!(check_all_tables!(u16, Crc16, &DJI_CRC16), 0x2752);
+    assert_eq!(check_all_tables!(u32, Crc32, &DJI_CRC32), 0xE4D9_DC14);
+    // And its check value (protocols.md: 0x0B; the catalogue's MAXIM-DOW with init 0 is 0xA1).
+    assert_eq!(check_all_tables!(u8, Crc8, &DJI_CRC8), 0x0B);
+    // The referee header A5 03 00 00 carries CRC-8 0x27 (a published frame), whatever the
+    // table and however far the input runs past the header.
+    static T1: crc::Crc<u8, crc::Table<1>> = crc::Crc::<u8, crc::Table<1>>::new(&DJI_CRC8);
+    static T16: Slicing16<u8> = Slicing16::<u8>::new(&DJI_CRC8);
+    let frame = [0xA5, 0x03, 0x00, 0x00, 0x27, 0x01, 0x02, 0x03, 0x04, 0x05];
+    for c in [
+        Checksum::Crc8(CrcImpl::Table1(&T1)),
+        Checksum::Crc8(CrcImpl::Table16(&T16)),
+    ] {
+        assert_eq!(c.compute(&frame[..4]), 0x27);
+        for end in 4..=frame.len() {
+            assert_eq!(c.compute_prefix(&frame[..end], 4), Some(0x27));
+        }
+    }
+}
+
+#[test]
+fn slicing_built_at_compile_time_equals_run_time() {
+    static CONST: Slicing16<u32> = Slicing16::<u32>::new(&crc::CRC_32_ISCSI);
+    let run = std::boxed::Box::new(Slicing16::<u32>::new(&crc::CRC_32_ISCSI));
+    let buf = random(13, 300);
+    for n in 0..=buf.len() {
+        assert_eq!(
+            CONST.checksum_prefix(&buf, n),
+            run.checksum_prefix(&buf, n),
+            "n {n}"
+        );
+    }
+}
+
+#[test]
+fn table_sizes() {
+    use core::mem::size_of;
+    assert_eq!(size_of::<[[u8; 256]; 16]>(), 4096);
+    assert!(size_of::<Slicing16<u8>>() <= 4096 + 32);
+    assert!(size_of::<Slicing16<u16>>() <= 8192 + 32);
+    assert!(size_of::<Slicing16<u32>>() <= 16384 + 32);
+    assert!(size_of::<Slicing16<u64>>() <= 32768 + 32);
+}
+
+#[test]
+fn debug_names_the_algorithm_and_table() {
+    static T: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_UMTS);
+    let text = format!("{:?}", Checksum::Crc16(CrcImpl::Table16(&T)));
+    assert!(text.starts_with("Crc16(Table16(Algorithm"), "{text}");
+    assert!(format!("{T:?}").starts_with("Slicing16 { algorithm: Algorithm"));
+    assert_eq!(format!("{:?}", Checksum::SumMod255), "SumMod255");
+    assert_eq!(CrcImpl::Table16(&T).table_lanes(), 16);
+    assert_eq!(*T.algorithm(), crc::CRC_16_UMTS);
+}
