@@ -116,7 +116,11 @@ macro_rules! slicing16_width {
             /// The CRC of `data[..n]`; `data` may run past `n` (the bytes after `n` are read,
             /// to load the first block whole, but never change the result). If `data` is
             /// shorter than `n`, the CRC of all of `data`.
-            #[inline]
+            ///
+            /// Always inlined: a frame's header check covers a constant number of bytes, and
+            /// inlined with it the leading block's zero bytes fold away (a 4-byte header CRC
+            /// costs four lookups, not sixteen).
+            #[inline(always)]
             pub fn checksum_prefix(&self, data: &[u8], n: usize) -> $w {
                 let n = n.min(data.len());
                 let register = if self.reflect {
@@ -158,13 +162,12 @@ macro_rules! slicing16_width {
                 } else {
                     self.init.checked_shl(kept_bits)
                 };
-                let mut register = self.block(aligned.to_be_bytes()) ^ kept.unwrap_or(0);
+                let mut register = self.block::<REFLECT>(&aligned.to_be_bytes(), 0)
+                    ^ kept.unwrap_or(0);
                 let rest = data.get(lead..n).unwrap_or_default();
                 for block in rest.chunks_exact(BLOCK) {
                     if let Some(block) = block.first_chunk::<BLOCK>() {
-                        let folded = u128::from_be_bytes(*block)
-                            ^ Self::spread::<REFLECT>(register);
-                        register = self.block(folded.to_be_bytes());
+                        register = self.block::<REFLECT>(block, register);
                     }
                 }
                 register
@@ -177,16 +180,34 @@ macro_rules! slicing16_width {
                 u128::from(ordered) << (u128::BITS - <$w>::BITS)
             }
 
-            /// The register after the 16 bytes of `block` (the register already folded in),
-            /// from a zero register.
+            /// The register after the 16 bytes of `block` fed into `register`.
+            ///
+            /// The register is folded into the block's first bytes byte by byte, with the
+            /// block read straight from the input: the register is what each block waits for,
+            /// and folding it into a 128-bit copy of the block first put a store and reloads of
+            /// the copy on that path.
             #[inline(always)]
-            fn block(&self, block: [u8; BLOCK]) -> $w {
-                self.tables
-                    .iter()
-                    .rev()
-                    .zip(block)
-                    .map(|(table, byte)| table.get(usize::from(byte)).copied().unwrap_or(0))
-                    .fold(0, |acc, x| acc ^ x)
+            fn block<const REFLECT: bool>(&self, block: &[u8; BLOCK], register: $w) -> $w {
+                let folded = if REFLECT {
+                    register.to_le_bytes()
+                } else {
+                    register.to_be_bytes()
+                };
+                let lookup = |table: &[$w; 256], index: u8| {
+                    table.get(usize::from(index)).copied().unwrap_or(0)
+                };
+                let (head_tables, tail_tables) = self.tables.split_at(BLOCK - folded.len());
+                let (head, tail) = block.split_at(folded.len());
+                // The bytes the register is not folded into first: their lookups do not wait
+                // for the register, so only the last few xors below do.
+                let mut acc: $w = 0;
+                for (&byte, table) in tail.iter().zip(head_tables.iter().rev()) {
+                    acc ^= lookup(table, byte);
+                }
+                for ((&byte, r), table) in head.iter().zip(folded).zip(tail_tables.iter().rev()) {
+                    acc ^= lookup(table, byte ^ r);
+                }
+                acc
             }
         }
     )*};

@@ -116,13 +116,13 @@ pub(super) fn sum_mod255(data: &[u8]) -> u8 {
 }
 
 /// The sum modulo 256 of `data[..n]` (`n <= data.len()`).
-#[inline]
+#[inline(always)]
 pub(super) fn sum8_prefix(data: &[u8], n: usize) -> u8 {
     prefix_sum(data, n) as u8
 }
 
 /// The sum modulo 255 of `data[..n]` (`n <= data.len()`).
-#[inline]
+#[inline(always)]
 pub(super) fn sum_mod255_prefix(data: &[u8], n: usize) -> u8 {
     match data.first_chunk::<WINDOW>() {
         // At most 32640: a `u32` remainder.
@@ -132,7 +132,7 @@ pub(super) fn sum_mod255_prefix(data: &[u8], n: usize) -> u8 {
 }
 
 /// The xor of `data[..n]` (`n <= data.len()`).
-#[inline]
+#[inline(always)]
 pub(super) fn xor8_prefix(data: &[u8], n: usize) -> u8 {
     match data.first_chunk::<WINDOW>() {
         Some(window) if n <= WINDOW => window_xor(window, n),

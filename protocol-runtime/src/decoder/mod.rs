@@ -115,12 +115,19 @@ impl Check<'_> {
         let (Some(frame), Some((covered, at))) = (bytes.get(..len), self.resolve(len)) else {
             return false;
         };
-        let value = covered.end.checked_sub(covered.start).and_then(|n| {
-            let from = bytes.get(covered.start..)?;
-            self.checksum.compute_prefix(from, n)
-        });
+        // No closures here: the compiler leaves a closure out of line, and with it the match on
+        // the (constant) algorithm.
+        let (Some(n), Some(from)) = (
+            covered.end.checked_sub(covered.start),
+            bytes.get(covered.start..),
+        ) else {
+            return false;
+        };
+        let Some(value) = self.checksum.compute_prefix(from, n) else {
+            return false;
+        };
         let width = self.checksum.width() as u8;
-        value.is_some() && read_uint(frame, at, width, self.order) == value
+        read_uint(frame, at, width, self.order) == Some(value)
     }
 
     /// Computes the check of the bytes it covers and stores it in `frame`.

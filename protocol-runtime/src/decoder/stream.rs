@@ -39,18 +39,89 @@ fn find_candidate(sync: &[u8], data: &[u8]) -> usize {
     data.len()
 }
 
+/// Takes the first `len` bytes off `input` (all of it if shorter).
+#[inline(always)]
+fn take<'i>(input: &mut &'i [u8], len: usize) -> &'i [u8] {
+    let data: &'i [u8] = input;
+    let (head, rest) = data.split_at_checked(len).unwrap_or((data, &[]));
+    *input = rest;
+    head
+}
+
 /// Bytes kept free behind staged input: a window checksum reads a fixed-size block from a
 /// candidate's start (up to 128 bytes), which then stays inside the buffer instead of falling
 /// back to an exact loop.
 const STAGE_SLACK: usize = 128;
+
+/// Every byte of a word set to one: the zero-byte test's constants.
+const LOW: u64 = 0x0101_0101_0101_0101;
+const HIGH: u64 = 0x8080_8080_8080_8080;
+
+/// Bytes [`holds_first_byte`] compares at once.
+const SCAN: usize = 64;
+
+/// `SCAN_MASK[SCAN - k..][..SCAN]` keeps the first `k` bytes of a block.
+const SCAN_MASK: [u8; 2 * SCAN] = {
+    let mut mask = [0; 2 * SCAN];
+    let mut i = 0;
+    while i < SCAN {
+        // In a const initialiser: an index out of bounds fails to compile.
+        #[allow(clippy::indexing_slicing)]
+        {
+            mask[i] = 0xFF;
+        }
+        i = i.wrapping_add(1);
+    }
+    mask
+};
+
+/// Whether `data[..n]` holds `sync`'s first byte: the question asked of a pending candidate
+/// every time the input runs out, whose answer is nearly always no. Whole 64-byte blocks are
+/// compared under a mask, without a branch per byte or per word (which the compiler turns into
+/// a few vector compares); a search that stops at the first match mispredicts its exit once per
+/// call, at a length that changes every time.
+#[inline(always)]
+fn holds_first_byte(sync: &[u8], data: &[u8], n: usize) -> bool {
+    let Some(&first) = sync.first() else {
+        return false;
+    };
+    let mut from = 0usize;
+    while from < n {
+        let rest = data.get(from..).unwrap_or_default();
+        let left = n.wrapping_sub(from);
+        let Some(block) = rest.first_chunk::<SCAN>() else {
+            // The end of the buffer: fewer than `SCAN` bytes left to read.
+            return rest.iter().take(left).any(|&b| b == first);
+        };
+        let keep = SCAN_MASK
+            .get(SCAN.saturating_sub(left)..)
+            .and_then(<[u8]>::first_chunk::<SCAN>)
+            .unwrap_or(&[0; SCAN]);
+        let pattern = LOW.wrapping_mul(u64::from(first));
+        let mut hits = 0u64;
+        for (word, mask) in block.chunks_exact(8).zip(keep.chunks_exact(8)) {
+            let (Ok(word), Ok(mask)) = (<[u8; 8]>::try_from(word), <[u8; 8]>::try_from(mask))
+            else {
+                break;
+            };
+            let x = u64::from_le_bytes(word) ^ pattern;
+            // A flag below a zero byte of `x` is exact; above one it may be a borrow's, but
+            // then a masked-in zero byte lies below it (the mask keeps a prefix).
+            hits |= x.wrapping_sub(LOW) & !x & HIGH & u64::from_le_bytes(mask);
+        }
+        if hits != 0 {
+            return true;
+        }
+        from = from.wrapping_add(SCAN);
+    }
+    false
+}
 
 /// The first offset of `data` holding `sync`'s first byte, or `data.len()`: the search inside
 /// a pending candidate, a few dozen bytes. Eight bytes per step (a zero-byte test on a word
 /// xored with the byte repeated); a call to `memchr` costs more on so few bytes.
 #[inline(always)]
 fn find_first_byte(sync: &[u8], data: &[u8]) -> usize {
-    const LOW: u64 = 0x0101_0101_0101_0101;
-    const HIGH: u64 = 0x8080_8080_8080_8080;
     let Some(&first) = sync.first() else {
         return 0;
     };
@@ -177,10 +248,17 @@ pub enum Event<'a> {
     },
 }
 
-/// One step of the engine: the data of an [`Event`], with a buffered frame as a range so that
-/// the engine's buffer is borrowed only once the step is over.
-enum Step<'i> {
-    Input(Frame<'i>),
+/// One step of the engine: the data of an [`Event`], with frames as numbers: a buffered frame
+/// as a range, so that the engine's buffer is borrowed only once the step is over, and a frame
+/// of the input as its length, taken from the input by the caller. (A step holding a slice was
+/// returned through memory and read back with one wide load from two narrow stores: a store
+/// forwarding stall once per frame.)
+enum Step {
+    /// The next `len` bytes of the input are a frame (consumed by the caller).
+    Input {
+        len: usize,
+        offset: u64,
+    },
     Buffered {
         start: usize,
         end: usize,
@@ -368,12 +446,32 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         input: &mut &'i [u8],
         at_end: bool,
     ) -> Option<Frame<'s>> {
+        // The two kinds of step are matched apart, not through `step`: a step result that
+        // comes from either an inlined or a called function is passed through memory, and
+        // reading a frame back from there stalled on store forwarding, once per frame.
         let (start, end, offset) = loop {
-            match self.step(input, at_end) {
-                Step::Input(frame) => return Some(frame),
-                Step::Buffered { start, end, offset } => break (start, end, offset),
-                Step::Rejected { .. } | Step::Skipped { .. } => {}
-                Step::Idle => return None,
+            if self.start < self.end {
+                match self.step_buffered(input, at_end) {
+                    Step::Input { len, offset } => {
+                        let bytes = take(input, len);
+                        return Some(Frame { bytes, offset });
+                    }
+                    Step::Buffered { start, end, offset } => break (start, end, offset),
+                    Step::Rejected { .. } | Step::Skipped { .. } => {}
+                    Step::Idle => return None,
+                }
+            } else {
+                self.start = 0;
+                self.end = 0;
+                match self.step_input(input, at_end) {
+                    Step::Input { len, offset } => {
+                        let bytes = take(input, len);
+                        return Some(Frame { bytes, offset });
+                    }
+                    Step::Buffered { start, end, offset } => break (start, end, offset),
+                    Step::Rejected { .. } | Step::Skipped { .. } => {}
+                    Step::Idle => return None,
+                }
             }
         };
         Some(Frame {
@@ -384,7 +482,10 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
 
     fn event<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8], at_end: bool) -> Option<Event<'s>> {
         Some(match self.step(input, at_end) {
-            Step::Input(frame) => Event::Frame(frame),
+            Step::Input { len, offset } => Event::Frame(Frame {
+                bytes: take(input, len),
+                offset,
+            }),
             Step::Buffered { start, end, offset } => Event::Frame(Frame {
                 bytes: self.buf.get(start..end).unwrap_or_default(),
                 offset,
@@ -413,7 +514,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
 
     /// One event's worth of work.
     #[inline(always)]
-    fn step<'i>(&mut self, input: &mut &'i [u8], at_end: bool) -> Step<'i> {
+    fn step(&mut self, input: &mut &[u8], at_end: bool) -> Step {
         if self.start < self.end {
             self.step_buffered(input, at_end)
         } else {
@@ -425,8 +526,8 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
 
     /// A step on the caller's input, with nothing pending.
     #[inline(always)]
-    fn step_input<'i>(&mut self, input: &mut &'i [u8], at_end: bool) -> Step<'i> {
-        let data: &'i [u8] = input;
+    fn step_input(&mut self, input: &mut &[u8], at_end: bool) -> Step {
+        let data: &[u8] = input;
         if data.is_empty() {
             return Step::Idle;
         }
@@ -441,9 +542,10 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         }
         let reason = match probe(layout, data, data.len(), self.limit()) {
             Probe::Frame(len) => {
-                let bytes = self.consume(input, len);
-                self.stats.count_frame(bytes.len());
-                return Step::Input(Frame { bytes, offset });
+                // `len <= data.len()`: the caller takes the bytes from the input.
+                self.position = self.position.wrapping_add(len as u64);
+                self.stats.count_frame(len);
+                return Step::Input { len, offset };
             }
             Probe::Need(_) => {
                 // The candidate runs to the end of the input, which is then shorter than what
@@ -465,10 +567,17 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     }
 
     /// A step on the pending bytes, completing them from the caller's input as needed.
-    fn step_buffered<'i>(&mut self, input: &mut &'i [u8], at_end: bool) -> Step<'i> {
+    fn step_buffered(&mut self, input: &mut &[u8], at_end: bool) -> Step {
         let layout = self.layout;
         let layout = layout.layout();
         let limit = self.limit();
+        // A small chunk goes in whole, before anything is probed, and the scan goes on in the
+        // buffer: cheaper than probing the pending candidate, completing it with just the
+        // bytes it needs and returning to the chunk for a few bytes (PERF.md, lesson 4). The
+        // frames do not change: they depend on the bytes, not on where they are held.
+        if !input.is_empty() {
+            self.stage(input);
+        }
         loop {
             let Some(region) = self.buf.get(self.start..self.end) else {
                 self.start = 0;
@@ -503,10 +612,6 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                         return Step::Idle;
                     }
                 }
-                // A small chunk goes in whole and the scan goes on in the buffer: cheaper than
-                // completing the candidate with just the bytes it needs and returning to the
-                // chunk for a few bytes (PERF.md, lesson 4).
-                Probe::Need(_) if self.stage(input) => continue,
                 Probe::Need(needed) => {
                     if self.fill(input, needed) {
                         continue;
@@ -548,7 +653,13 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                 break false;
             };
             let window = rest.len().saturating_sub(shortest).saturating_add(1);
-            let skip = find_first_byte(layout.sync, rest.get(..window).unwrap_or(rest));
+            // Read from the buffer, past the pending bytes: whole blocks, masked.
+            let readable_rest = readable.get(at..).unwrap_or_default();
+            let skip = if holds_first_byte(layout.sync, readable_rest, window) {
+                find_first_byte(layout.sync, rest.get(..window).unwrap_or(rest))
+            } else {
+                window
+            };
             if skip >= window {
                 // No start left with room for a frame: none of these bytes starts one, now or
                 // later, but the ones too close to the end may once more bytes arrive.
