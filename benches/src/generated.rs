@@ -37,10 +37,8 @@ pub fn referee_decoder_by_ref()
 
 impl<L: LayoutRef, const N: usize> ChunkDecoder for Generated<L, N> {
     #[inline]
-    fn feed<F: FnMut(&[u8])>(&mut self, mut chunk: &[u8], sink: &mut F) {
-        while let Some(frame) = self.0.decode(&mut chunk) {
-            sink(frame.bytes);
-        }
+    fn feed<F: FnMut(&[u8])>(&mut self, chunk: &[u8], sink: &mut F) {
+        self.0.feed(chunk, |frame| sink(frame.bytes));
     }
 
     fn finish<F: FnMut(&[u8])>(&mut self, sink: &mut F) {

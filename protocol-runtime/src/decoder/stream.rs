@@ -410,6 +410,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     ///
     /// Returns `None` when the input is exhausted; a partial frame at its end stays buffered
     /// for the next call. Rejections and garbage are counted in [`stats`](Self::stats).
+    #[inline(always)]
     pub fn decode<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Frame<'s>> {
         self.next_frame(input, false)
     }
@@ -435,12 +436,124 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     }
 
     /// Feeds a chunk and calls `sink` with every frame completed by it.
+    ///
+    /// The same frames, stats and buffering as [`decode`](Self::decode) in a loop, and faster:
+    /// while nothing is pending, the frames of the chunk are found in one loop that keeps the
+    /// counters in registers and writes them back once (through `decode`, they are updated in
+    /// the decoder for every frame, a chain of loads and stores from one frame to the next).
+    #[inline]
     pub fn feed(&mut self, mut chunk: &[u8], mut sink: impl FnMut(Frame<'_>)) {
-        while let Some(frame) = self.decode(&mut chunk) {
-            sink(frame);
+        loop {
+            if self.start >= self.end {
+                self.scan_input(&mut chunk, &mut sink);
+            } else {
+                if !chunk.is_empty() {
+                    self.stage(&mut chunk);
+                }
+                self.scan_buffered(&mut sink);
+            }
+            // A candidate that needs more bytes, or the chunk's end: one step of the general
+            // engine.
+            match self.decode(&mut chunk) {
+                Some(frame) => sink(frame),
+                None => return,
+            }
         }
     }
 
+    /// [`step_buffered`](Self::step_buffered) in a loop, for [`feed`](Self::feed), once the
+    /// chunk is staged: frames, rejected candidates and skipped runs of the pending bytes,
+    /// until a candidate needs more bytes than are pending (left to the general engine).
+    #[inline(always)]
+    fn scan_buffered(&mut self, sink: &mut impl FnMut(Frame<'_>)) {
+        let layout = self.layout;
+        let layout = layout.layout();
+        let limit = self.limit();
+        let readable = self.buf.get(self.start..).unwrap_or_default();
+        let pending = self.end.saturating_sub(self.start);
+        let base = self.position.wrapping_sub(pending as u64);
+        let (mut at, mut frames, mut frame_bytes) = (0usize, 0u64, 0u64);
+        while at < pending {
+            let from = readable.get(at..).unwrap_or_default();
+            let avail = pending.wrapping_sub(at);
+            let skip = find_candidate(layout.sync, from.get(..avail).unwrap_or(from));
+            if skip > 0 {
+                self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);
+                at = at.wrapping_add(skip);
+                continue;
+            }
+            match probe(layout, from, avail, limit) {
+                Probe::Frame(len) => {
+                    sink(Frame {
+                        bytes: from.get(..len).unwrap_or(from),
+                        offset: base.wrapping_add(at as u64),
+                    });
+                    frames = frames.wrapping_add(1);
+                    frame_bytes = frame_bytes.wrapping_add(len as u64);
+                    at = at.wrapping_add(len);
+                }
+                Probe::Reject(reason) => {
+                    self.stats.count_reject(reason);
+                    at = at.wrapping_add(1);
+                }
+                Probe::Need(_) => break,
+            }
+        }
+        self.stats.frames = self.stats.frames.wrapping_add(frames);
+        self.stats.frame_bytes = self.stats.frame_bytes.wrapping_add(frame_bytes);
+        self.start = self.start.wrapping_add(at.min(pending));
+        if self.start >= self.end {
+            self.start = 0;
+            self.end = 0;
+        }
+    }
+
+    /// [`step_input`](Self::step_input) in a loop, for [`feed`](Self::feed): frames, rejected
+    /// candidates and skipped runs of `input`, until a candidate needs more bytes than `input`
+    /// holds (left to the general engine, which buffers it) or `input` is used up.
+    #[inline(always)]
+    fn scan_input(&mut self, input: &mut &[u8], sink: &mut impl FnMut(Frame<'_>)) {
+        let layout = self.layout;
+        let layout = layout.layout();
+        let limit = self.limit();
+        let data: &[u8] = input;
+        let base = self.position;
+        let (mut at, mut frames, mut frame_bytes) = (0usize, 0u64, 0u64);
+        while let Some(rest) = data.get(at..).filter(|r| !r.is_empty()) {
+            let skip = find_candidate(layout.sync, rest);
+            if skip > 0 {
+                self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);
+                at = at.wrapping_add(skip);
+                continue;
+            }
+            match probe(layout, rest, rest.len(), limit) {
+                Probe::Frame(len) => {
+                    let offset = base.wrapping_add(at as u64);
+                    sink(Frame {
+                        bytes: rest.get(..len).unwrap_or(rest),
+                        offset,
+                    });
+                    frames = frames.wrapping_add(1);
+                    frame_bytes = frame_bytes.wrapping_add(len as u64);
+                    at = at.wrapping_add(len);
+                }
+                Probe::Reject(reason) => {
+                    self.stats.count_reject(reason);
+                    at = at.wrapping_add(1);
+                }
+                Probe::Need(_) => break,
+            }
+        }
+        self.stats.frames = self.stats.frames.wrapping_add(frames);
+        self.stats.frame_bytes = self.stats.frame_bytes.wrapping_add(frame_bytes);
+        self.position = self.position.wrapping_add(at as u64);
+        *input = data.get(at..).unwrap_or_default();
+    }
+
+    // Inlined into the caller's loop: the common step (a frame found in the input) is a few
+    // dozen instructions, which a call and a return per frame would add to; the buffered
+    // steps stay out of line.
+    #[inline(always)]
     fn next_frame<'s, 'i: 's>(
         &'s mut self,
         input: &mut &'i [u8],
@@ -567,6 +680,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     }
 
     /// A step on the pending bytes, completing them from the caller's input as needed.
+    #[inline(never)]
     fn step_buffered(&mut self, input: &mut &[u8], at_end: bool) -> Step {
         let layout = self.layout;
         let layout = layout.layout();

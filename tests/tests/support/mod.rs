@@ -119,6 +119,8 @@ pub trait Dec {
     fn next_event<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Event<'s>>;
     /// `StreamDecoder::decode`.
     fn decode<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Frame<'s>>;
+    /// `StreamDecoder::feed`.
+    fn feed(&mut self, chunk: &[u8], sink: impl FnMut(Frame<'_>));
     /// `StreamDecoder::flush_event`.
     fn flush_event(&mut self) -> Option<Event<'_>>;
     /// `StreamDecoder::flush`.
@@ -138,6 +140,9 @@ impl<L: LayoutRef, const N: usize> Dec for StreamDecoder<L, N> {
     }
     fn decode<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Frame<'s>> {
         StreamDecoder::decode(self, input)
+    }
+    fn feed(&mut self, chunk: &[u8], sink: impl FnMut(Frame<'_>)) {
+        StreamDecoder::feed(self, chunk, sink)
     }
     fn flush_event(&mut self) -> Option<Event<'_>> {
         StreamDecoder::flush_event(self)

@@ -2,7 +2,8 @@
 //! asserts the engine's invariants after every call, so that every suite (properties, faults,
 //! fuzzing) checks the same things:
 //!
-//! - the decoder never holds more than its buffer (`pending() <= MAX_FRAME_LEN`);
+//! - the decoder never holds more than its buffer, and once a chunk is used up only the start
+//!   of one candidate, shorter than a frame;
 //! - it always makes progress: every event accounts for at least one byte, the events tile the
 //!   stream without gap or overlap, and a call returns `None` only once its input is consumed;
 //! - every byte is accounted for: `frame_bytes + skipped_bytes + pending == position == fed`;
@@ -98,26 +99,52 @@ pub fn run<S: Spec>(stream: &[u8], sizes: &[usize]) -> Run {
     out
 }
 
-/// The frames of `stream` through the API users call (`decode`, then `flush`), in chunks of
-/// `sizes`: must be exactly the frames of [`run`].
+/// The frames of `stream` through the APIs users call (`decode` in a loop, and `feed`, then
+/// `flush`), in chunks of `sizes`: must be exactly the frames of [`run`]. The two decoders must
+/// agree after every chunk: the same frames, stats, position and pending bytes (`feed` scans
+/// runs of frames in a loop of its own).
 pub fn frames<S: Spec>(stream: &[u8], sizes: &[usize]) -> Vec<(u64, Vec<u8>)> {
     let mut decoder = S::decoder();
+    let mut fed = S::decoder();
     let mut out = Vec::new();
+    let mut out_fed = Vec::new();
     let mut sizes = Sizes::new(sizes);
     let mut rest = stream;
     while !rest.is_empty() {
         let n = sizes.next(rest.len());
         let (mut chunk, tail) = rest.split_at(n);
         rest = tail;
+        fed.feed(chunk, |frame| {
+            out_fed.push((frame.offset, frame.bytes.to_vec()))
+        });
         while let Some(frame) = decoder.decode(&mut chunk) {
             out.push((frame.offset, frame.bytes.to_vec()));
         }
         assert!(chunk.is_empty());
-        assert!(decoder.pending() <= S::MAX_FRAME_LEN);
+        assert!(decoder.pending() < S::MAX_FRAME_LEN);
+        assert_eq!(out_fed, out, "{}: feed and decode differ", S::NAME);
+        assert_eq!(
+            fed.stats(),
+            decoder.stats(),
+            "{}: feed and decode count differently",
+            S::NAME
+        );
+        assert_eq!(fed.pending(), decoder.pending(), "{}", S::NAME);
+        assert_eq!(fed.position(), decoder.position(), "{}", S::NAME);
     }
     while let Some(frame) = decoder.flush() {
         out.push((frame.offset, frame.bytes.to_vec()));
     }
+    while let Some(frame) = fed.flush() {
+        out_fed.push((frame.offset, frame.bytes.to_vec()));
+    }
+    assert_eq!(
+        out_fed,
+        out,
+        "{}: feed and decode differ after flush",
+        S::NAME
+    );
+    assert_eq!(fed.stats(), decoder.stats(), "{}", S::NAME);
     out
 }
 
@@ -267,7 +294,7 @@ pub fn assert_chunking_invariant<S: Spec>(stream: &[u8], sizes: &[usize]) -> boo
     assert_eq!(
         frames::<S>(stream, sizes),
         chunked.frames,
-        "{}: decode and next_event differ",
+        "{}: decode (or feed) and next_event differ",
         S::NAME
     );
     if whole.frames == chunked.frames {
