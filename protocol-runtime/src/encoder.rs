@@ -8,7 +8,7 @@
 
 use crate::decoder::Probe;
 use crate::error::{DecodeError, EncodeError};
-use crate::layout::{FrameLayout, LengthRule};
+use crate::layout::{FrameLayout, LengthRule, all_hold};
 use crate::wire::{Reader, Writer};
 
 impl FrameLayout<'_> {
@@ -96,23 +96,20 @@ impl FrameLayout<'_> {
                     .ok_or(EncodeError::ValueOutOfRange)?;
             }
         }
-        for constant in self.constants {
-            constant
-                .field
-                .write(header, constant.value)
-                .ok_or(EncodeError::ValueOutOfRange)?;
-        }
-        for check in self.header_checks {
-            check.store(header).ok_or(EncodeError::ValueOutOfRange)?;
+        // Each item handled apart (`all_hold`), so that a constant layout folds at any
+        // optimisation level.
+        let written = all_hold!(self.constants, |c| c.field.write(header, c.value).is_some())
+            && all_hold!(self.header_checks, |c| c.store(header).is_some());
+        if !written {
+            return Err(EncodeError::ValueOutOfRange);
         }
         if bare {
             return Ok(());
         }
-        for marker in self.markers {
-            marker.write(frame).ok_or(EncodeError::ValueOutOfRange)?;
-        }
-        for check in self.frame_checks {
-            check.store(frame).ok_or(EncodeError::ValueOutOfRange)?;
+        let written = all_hold!(self.markers, |m| m.write(frame).is_some())
+            && all_hold!(self.frame_checks, |c| c.store(frame).is_some());
+        if !written {
+            return Err(EncodeError::ValueOutOfRange);
         }
         Ok(())
     }

@@ -192,3 +192,44 @@ impl<'l> LayoutRef for &'l FrameLayout<'l> {
         self
     }
 }
+
+/// Whether `$body` (with `$item` bound to each item of `$items`, in order) holds for every
+/// item, stopping at the first that fails.
+///
+/// Written with slice patterns for up to three items (a layout has at most two checks and a
+/// few constants): with a layout known at compile time, each item is then a constant the
+/// compiler folds, which a loop only gives where the compiler unrolls it (not at
+/// `opt-level = "s"`, where a loop over the checks kept every checksum algorithm in firmware).
+/// A macro, not a function taking a closure: a closure holding a checksum is large, and left
+/// out of line its item is no longer a constant.
+macro_rules! all_hold {
+    ($items:expr, |$item:ident| $body:expr) => {
+        match $items {
+            [] => true,
+            [$item] => $body,
+            [first, second] => {
+                ({
+                    let $item = first;
+                    $body
+                }) && ({
+                    let $item = second;
+                    $body
+                })
+            }
+            [first, second, third] => {
+                ({
+                    let $item = first;
+                    $body
+                }) && ({
+                    let $item = second;
+                    $body
+                }) && ({
+                    let $item = third;
+                    $body
+                })
+            }
+            more => more.iter().all(|$item| $body),
+        }
+    };
+}
+pub(crate) use all_hold;

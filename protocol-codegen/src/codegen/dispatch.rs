@@ -324,7 +324,7 @@ fn emit_message_enum(
     let command_fn = match ack_max {
         None => quote! {
             /// The command of this message.
-            #[inline]
+            #[inline(always)]
             pub const fn command(&self) -> Command {
                 match self {
                     #(#command_arms)*
@@ -340,7 +340,7 @@ fn emit_message_enum(
             write_arms.push(quote!(Self::Ack(data) => data.write(w),));
             quote! {
                 /// The command of this message (`None` for an acknowledgement).
-                #[inline]
+                #[inline(always)]
                 pub const fn command(&self) -> ::core::option::Option<Command> {
                     ::core::option::Option::Some(match self {
                         #(#command_arms)*
@@ -359,7 +359,7 @@ fn emit_message_enum(
         impl #name {
             #command_fn
             /// Bytes of the payload on the wire.
-            #[inline]
+            #[inline(always)]
             pub fn payload_len(&self) -> usize {
                 match self {
                     #(#len_arms)*
@@ -369,7 +369,7 @@ fn emit_message_enum(
             ///
             /// # Errors
             /// `EncodeError::BufferTooSmall` if `w` has too little room.
-            #[inline]
+            #[inline(always)]
             pub fn write_payload(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
                 match self {
                     #(#write_arms)*
@@ -408,14 +408,14 @@ fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
         }
         impl Message {
             /// The command of this message.
-            #[inline]
+            #[inline(always)]
             pub const fn command(&self) -> Command {
                 match self {
                     #(Self::#names(m) => m.command(),)*
                 }
             }
             /// Bytes of the payload on the wire.
-            #[inline]
+            #[inline(always)]
             pub fn payload_len(&self) -> usize {
                 match self {
                     #(Self::#names(m) => m.payload_len(),)*
@@ -425,7 +425,7 @@ fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
             ///
             /// # Errors
             /// `EncodeError::BufferTooSmall` if `w` has too little room.
-            #[inline]
+            #[inline(always)]
             pub fn write_payload(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
                 match self {
                     #(Self::#names(m) => m.write_payload(w),)*
@@ -608,7 +608,8 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     };
     quote! {
         #stuffing_const
-        /// A header value of a frame.
+        /// A header value of a frame (inlined: with the field a constant, a load at a fixed offset).
+        #[inline(always)]
         fn header_value(frame: &[u8], field: #rt::WordField) -> ::core::result::Result<u64, #rt::DecodeError> {
             field.read(frame).ok_or(#rt::DecodeError::Truncated { needed: HEADER_LEN, available: frame.len() })
         }
@@ -650,7 +651,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 ::core::result::Result::Ok(Packet { header, message })
             }
             /// Bytes of the encoded frame.
-            #[inline]
+            #[inline(always)]
             pub fn encoded_len(&self) -> usize {
                 let unstuffed = match &self.message {
                     #ack_len
@@ -664,7 +665,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             /// `EncodeError::BufferTooSmall` if `buf` is shorter than [`Packet::encoded_len`],
             /// `ValueOutOfRange` if a header value does not fit its field or does not match the
             /// message's direction.
-            #[inline]
+            #[inline(always)]
             pub fn encode(&self, buf: &mut [u8]) -> ::core::result::Result<usize, #rt::EncodeError> {
                 #direction_check
                 let needed = self.encoded_len();
@@ -749,7 +750,7 @@ fn emit_message_packet(
                 })
             }
             /// Bytes of the encoded frame.
-            #[inline]
+            #[inline(always)]
             pub fn encoded_len(&self) -> usize {
                 #header_len.saturating_add(#rt::Payload::wire_len(&self.payload)).saturating_add(#trailer_len)
             }
@@ -758,7 +759,7 @@ fn emit_message_packet(
             /// # Errors
             /// `EncodeError::BufferTooSmall` if `buf` is too short, `ValueOutOfRange` if a
             /// header value does not fit its field.
-            #[inline]
+            #[inline(always)]
             pub fn encode(&self, buf: &mut [u8]) -> ::core::result::Result<usize, #rt::EncodeError> {
                 let total = self.encoded_len();
                 let available = buf.len();

@@ -41,7 +41,7 @@ mod stream;
 pub use stream::{Event, Frame, Stats, StreamDecoder};
 
 use crate::error::DecodeError;
-use crate::layout::{Check, Constant, FrameLayout, LengthRule, Marker};
+use crate::layout::{Check, Constant, FrameLayout, LayoutRef, LengthRule, Marker, all_hold};
 use crate::wire::{read_uint, write_uint};
 
 /// Why a candidate frame was rejected.
@@ -245,7 +245,7 @@ impl FrameLayout<'_> {
     /// ```
     #[inline]
     pub fn probe(&self, bytes: &[u8]) -> Probe {
-        probe(self, bytes, bytes.len(), self.max_len)
+        probe(&self, bytes, bytes.len(), self.max_len)
     }
 
     /// Parses exactly one frame at the start of `bytes` (bytes after it are ignored).
@@ -295,15 +295,17 @@ impl FrameLayout<'_> {
 /// too long. The bytes of `readable` past `avail` (the rest of the input or of the buffer) are
 /// in reach of window checksums ([`Check::verify_prefix`]) and decide nothing.
 ///
-/// Always inlined: with the layout a constant ([`LayoutRef`](crate::layout::LayoutRef)), every
-/// loop over its items and every position unrolls into straight code for the one format.
+/// Generic over where the layout comes from: for a layout known at compile time
+/// ([`LayoutRef`]), every read of it is a constant, and this compiles to code for the one
+/// format. Always inlined: it is the body of the engine's inner loops.
 #[inline(always)]
-pub(crate) fn probe(
-    layout: &FrameLayout<'_>,
+pub(crate) fn probe<L: LayoutRef>(
+    layout: &L,
     readable: &[u8],
     avail: usize,
     limit: usize,
 ) -> Probe {
+    let layout = layout.layout();
     let bytes = readable.get(..avail).unwrap_or(readable);
     // A byte loop, not `==` on slices: sync words are a few bytes, a call to memcmp costs more.
     for (a, b) in bytes.iter().zip(layout.sync) {
@@ -324,16 +326,11 @@ pub(crate) fn probe(
     let Some(header) = bytes.get(..span) else {
         return Probe::Need(span);
     };
-    // Plain loops rather than `Iterator::all`, which the compiler left out of line.
-    for c in layout.constants {
-        if !c.matches(header) {
-            return Probe::Reject(Reject::BadHeader);
-        }
+    if !all_hold!(layout.constants, |c| c.matches(header)) {
+        return Probe::Reject(Reject::BadHeader);
     }
-    for c in layout.header_checks {
-        if !c.verify_prefix(readable, span) {
-            return Probe::Reject(Reject::BadHeaderCheck);
-        }
+    if !all_hold!(layout.header_checks, |c| c.verify_prefix(readable, span)) {
+        return Probe::Reject(Reject::BadHeaderCheck);
     }
     let bare = layout.length.bare_len();
     let total = match layout.frame_len(header) {
@@ -347,15 +344,11 @@ pub(crate) fn probe(
     let Some(frame) = bytes.get(..total) else {
         return Probe::Need(total);
     };
-    for c in layout.frame_checks {
-        if !c.verify_prefix(readable, total) {
-            return Probe::Reject(Reject::BadChecksum);
-        }
+    if !all_hold!(layout.frame_checks, |c| c.verify_prefix(readable, total)) {
+        return Probe::Reject(Reject::BadChecksum);
     }
-    for m in layout.markers {
-        if !m.matches(frame) {
-            return Probe::Reject(Reject::BadTrailer);
-        }
+    if !all_hold!(layout.markers, |m| m.matches(frame)) {
+        return Probe::Reject(Reject::BadTrailer);
     }
     Probe::Frame(total)
 }

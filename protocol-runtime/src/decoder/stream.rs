@@ -26,10 +26,7 @@ fn find_candidate(sync: &[u8], data: &[u8]) -> usize {
         return 0;
     }
     let mut from = 0;
-    while let Some(hit) = data
-        .get(from..)
-        .and_then(|rest| memchr::memchr(first, rest))
-    {
+    while let Some(hit) = data.get(from..).and_then(|rest| find_byte(first, rest)) {
         let at = from.wrapping_add(hit);
         if continues(at) {
             return at;
@@ -37,6 +34,18 @@ fn find_candidate(sync: &[u8], data: &[u8]) -> usize {
         from = at.wrapping_add(1);
     }
     data.len()
+}
+
+/// The first offset of `byte` in `data`: `memchr` (vector compares) on 64-bit targets; a plain
+/// loop on 32-bit ones (microcontrollers), where `memchr`'s word-at-a-time code costs more
+/// flash than it saves time on a UART's chunks.
+#[inline(always)]
+fn find_byte(byte: u8, data: &[u8]) -> Option<usize> {
+    if cfg!(target_pointer_width = "64") {
+        memchr::memchr(byte, data)
+    } else {
+        data.iter().position(|&b| b == byte)
+    }
 }
 
 /// Takes the first `len` bytes off `input` (all of it if shorter).
@@ -482,7 +491,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                 at = at.wrapping_add(skip);
                 continue;
             }
-            match probe(layout, from, avail, limit) {
+            match probe(&self.layout, from, avail, limit) {
                 Probe::Frame(len) => {
                     sink(Frame {
                         bytes: from.get(..len).unwrap_or(from),
@@ -526,7 +535,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                 at = at.wrapping_add(skip);
                 continue;
             }
-            match probe(layout, rest, rest.len(), limit) {
+            match probe(&self.layout, rest, rest.len(), limit) {
                 Probe::Frame(len) => {
                     let offset = base.wrapping_add(at as u64);
                     sink(Frame {
@@ -653,7 +662,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(len as u64);
             return Step::Skipped { offset, len };
         }
-        let reason = match probe(layout, data, data.len(), self.limit()) {
+        let reason = match probe(&self.layout, data, data.len(), self.limit()) {
             Probe::Frame(len) => {
                 // `len <= data.len()`: the caller takes the bytes from the input.
                 self.position = self.position.wrapping_add(len as u64);
@@ -707,7 +716,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                 return Step::Skipped { offset, len: skip };
             }
             let readable = self.buf.get(self.start..).unwrap_or_default();
-            let reason = match probe(layout, readable, pending, limit) {
+            let reason = match probe(&self.layout, readable, pending, limit) {
                 Probe::Frame(len) => {
                     let start = self.start;
                     self.start = start.wrapping_add(len);
@@ -769,7 +778,11 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             let window = rest.len().saturating_sub(shortest).saturating_add(1);
             // Read from the buffer, past the pending bytes: whole blocks, masked.
             let readable_rest = readable.get(at..).unwrap_or_default();
-            let skip = if holds_first_byte(layout.sync, readable_rest, window) {
+            // (The masked block test only where words are 64 bits: on a microcontroller the
+            // plain search is smaller and as fast.)
+            let skip = if cfg!(not(target_pointer_width = "64"))
+                || holds_first_byte(layout.sync, readable_rest, window)
+            {
                 find_first_byte(layout.sync, rest.get(..window).unwrap_or(rest))
             } else {
                 window
@@ -783,7 +796,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             }
             at = at.wrapping_add(skip);
             let from = readable.get(at..).unwrap_or_default();
-            match probe(layout, from, region.len().wrapping_sub(at), limit) {
+            match probe(&self.layout, from, region.len().wrapping_sub(at), limit) {
                 Probe::Frame(_) => break true,
                 Probe::Need(_) => {
                     undecided.get_or_insert(at);
