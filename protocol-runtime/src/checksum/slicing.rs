@@ -77,6 +77,10 @@ impl<W: crc::Width + fmt::Debug> fmt::Debug for Slicing16<W> {
     }
 }
 
+/// Checks of at most this many bytes are computed byte by byte
+/// ([`Slicing16::checksum_prefix`]).
+const SHORT: usize = 8;
+
 macro_rules! slicing16_width {
     ($($w:ty),*) => {$(
         impl Slicing16<$w> {
@@ -135,6 +139,9 @@ macro_rules! slicing16_width {
             /// The register after `data[..n]` (`n <= data.len()`), before finalisation.
             #[inline(always)]
             fn register<const REFLECT: bool>(&self, data: &[u8], n: usize) -> $w {
+                if n <= SHORT {
+                    return self.short_register::<REFLECT>(data, n);
+                }
                 // The leading bytes: 1..=16 of them (0 when `n` is 0), so that whole blocks
                 // follow.
                 let lead = n.wrapping_sub(n.saturating_sub(1) & !(BLOCK - 1));
@@ -171,6 +178,37 @@ macro_rules! slicing16_width {
                     }
                 }
                 register
+            }
+
+            /// [`register`](Self::register) of at most [`SHORT`] bytes (a header check),
+            /// byte by byte: one lookup per byte, the initial register folded into the first
+            /// ones. With `n` a constant (a header's span) this is straight-line code over
+            /// single-byte loads, which the compiler takes from the stores of an encoder that
+            /// has just written the header; a whole-block read of freshly written bytes stalls
+            /// on store forwarding.
+            #[inline(always)]
+            fn short_register<const REFLECT: bool>(&self, data: &[u8], n: usize) -> $w {
+                let init = if REFLECT {
+                    self.init.to_le_bytes()
+                } else {
+                    self.init.to_be_bytes()
+                };
+                let mut acc: $w = 0;
+                for (i, &byte) in data.iter().take(n).enumerate() {
+                    let index = byte ^ init.get(i).copied().unwrap_or(0);
+                    let table = self.tables.get(n.wrapping_sub(1).wrapping_sub(i));
+                    acc ^= table
+                        .and_then(|t| t.get(usize::from(index)))
+                        .copied()
+                        .unwrap_or(0);
+                }
+                let kept_bits = (n as u32).wrapping_mul(8);
+                let kept = if REFLECT {
+                    self.init.checked_shr(kept_bits)
+                } else {
+                    self.init.checked_shl(kept_bits)
+                };
+                acc ^ kept.unwrap_or(0)
             }
 
             /// The register's bytes in input order, at the start of a big-endian block.

@@ -12,6 +12,13 @@ fn chunk_at<const N: usize>(bytes: &[u8], offset: usize) -> Option<[u8; N]> {
     bytes.get(offset..)?.first_chunk::<N>().copied()
 }
 
+/// Writes `bytes` over `word` (of the same length).
+#[inline(always)]
+fn put<const N: usize>(word: &mut [u8], bytes: [u8; N]) -> Option<()> {
+    word.first_chunk_mut::<N>()?.copy_from_slice(&bytes);
+    Some(())
+}
+
 /// Reads an unsigned word of `size` bytes (1 to 8) at `offset`.
 ///
 /// Returns `None` if the word does not lie inside `bytes` or `size` is not in `1..=8`.
@@ -82,6 +89,22 @@ pub fn write_uint(
         return None;
     }
     let word = bytes.get_mut(offset..offset.checked_add(usize::from(size))?)?;
+    // One fixed-size store per common size: no byte loop through a copy on the stack.
+    match (size, order) {
+        (1, _) => {
+            if let Some(b) = word.first_mut() {
+                *b = value as u8;
+            }
+            return Some(());
+        }
+        (2, ByteOrder::Little) => return put(word, (value as u16).to_le_bytes()),
+        (2, ByteOrder::Big) => return put(word, (value as u16).to_be_bytes()),
+        (4, ByteOrder::Little) => return put(word, (value as u32).to_le_bytes()),
+        (4, ByteOrder::Big) => return put(word, (value as u32).to_be_bytes()),
+        (8, ByteOrder::Little) => return put(word, value.to_le_bytes()),
+        (8, ByteOrder::Big) => return put(word, value.to_be_bytes()),
+        _ => {}
+    }
     match order {
         ByteOrder::Little => word
             .iter_mut()
@@ -172,6 +195,10 @@ impl WordField {
             return None;
         }
         let offset = self.at.resolve(frame.len())?;
+        if self.shift == 0 && u32::from(self.width) == u32::from(self.size).wrapping_mul(8) {
+            // The whole word: nothing of it to keep, no read back.
+            return write_uint(frame, offset, self.size, self.order, value);
+        }
         let word = read_uint(frame, offset, self.size, self.order)?;
         let shift = u32::from(self.shift);
         let mask = self.max_value().checked_shl(shift)?;
