@@ -234,7 +234,7 @@ macro_rules! slicing16_width {
                 let lookup = |table: &[$w; 256], index: u8| {
                     table.get(usize::from(index)).copied().unwrap_or(0)
                 };
-                let (head_tables, tail_tables) = self.tables.split_at(BLOCK - folded.len());
+                let (head_tables, tail_tables) = self.tables.split_at(BLOCK.saturating_sub(folded.len()));
                 let (head, tail) = block.split_at(folded.len());
                 // The bytes the register is not folded into first: their lookups do not wait
                 // for the register, so only the last few xors below do.
