@@ -196,10 +196,11 @@ impl<'l> LayoutRef for &'l FrameLayout<'l> {
 /// Whether `$body` (with `$item` bound to each item of `$items`, in order) holds for every
 /// item, stopping at the first that fails.
 ///
-/// Written with slice patterns for up to three items (a layout has at most two checks and a
-/// few constants): with a layout known at compile time, each item is then a constant the
-/// compiler folds, which a loop only gives where the compiler unrolls it (not at
-/// `opt-level = "s"`, where a loop over the checks kept every checksum algorithm in firmware).
+/// A lone item (the common case: one header check, one frame check) is matched apart: with a
+/// layout known at compile time it is then a constant the compiler folds, which a loop only
+/// gives where the compiler unrolls it (not at `opt-level = "s"`, where a loop over the checks
+/// kept every checksum algorithm in firmware). Only one item is: every arm copies `$body`,
+/// and with a layout read at run time (the interpreter) every copy holds every algorithm.
 /// A macro, not a function taking a closure: a closure holding a checksum is large, and left
 /// out of line its item is no longer a constant.
 macro_rules! all_hold {
@@ -207,27 +208,6 @@ macro_rules! all_hold {
         match $items {
             [] => true,
             [$item] => $body,
-            [first, second] => {
-                ({
-                    let $item = first;
-                    $body
-                }) && ({
-                    let $item = second;
-                    $body
-                })
-            }
-            [first, second, third] => {
-                ({
-                    let $item = first;
-                    $body
-                }) && ({
-                    let $item = second;
-                    $body
-                }) && ({
-                    let $item = third;
-                    $body
-                })
-            }
             more => more.iter().all(|$item| $body),
         }
     };

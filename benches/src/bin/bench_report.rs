@@ -53,10 +53,9 @@ fn main() -> ExitCode {
         return ExitCode::FAILURE;
     }
     println!(
-        "| stream | feed | frames | generated | hand-written | byte-at-a-time port | prototype | generated vs hand | generated vs port | hand vs port | prototype vs hand | prototype vs port |"
+        "| stream | feed | frames | generated | hand-written | byte-at-a-time port | generated, layout by reference | generated vs hand | generated vs port | hand vs port | by reference vs hand |"
     );
-    println!("|---|---|---:|---|---|---|---|---:|---:|---:|---:|---:|");
-    let mut ablation = Vec::new();
+    println!("|---|---|---:|---|---|---|---|---:|---:|---:|---:|");
     for protocol in [Protocol::HfLink, Protocol::Referee] {
         for noise in [Noise::Clean, Noise::Noisy] {
             let w = Workload::standard(protocol, noise);
@@ -68,62 +67,36 @@ fn main() -> ExitCode {
                 } else {
                     "64-byte chunks"
                 };
-                let [g, h, p, x] =
-                    ["generated", "hand", "port", "proto"].map(|id| median(&dir, &group, id));
+                let [g, h, p, r] = ["generated", "hand", "port", "generated-by-ref"]
+                    .map(|id| median(&dir, &group, id));
                 println!(
-                    "| {} | {feed_name} | {frames} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                    "| {} | {feed_name} | {frames} | {} | {} | {} | {} | {} | {} | {} | {} |",
                     w.name(),
                     cell(g, bytes, frames),
                     cell(h, bytes, frames),
                     cell(p, bytes, frames),
-                    cell(x, bytes, frames),
+                    cell(r, bytes, frames),
                     ratio(h, g),
                     ratio(p, g),
                     ratio(p, h),
-                    ratio(h, x),
-                    ratio(p, x),
+                    ratio(h, r),
                 );
-                let steps = ["proto-const", "proto-fast", "proto", "proto-lazy"]
-                    .map(|id| median(&dir, &group, id));
-                if steps[0].is_some() {
-                    ablation.push(format!(
-                        "| {} | {feed_name} | {} | {} | {} | {} | {} |",
-                        w.name(),
-                        ratio(h, g),
-                        ratio(h, steps[0]),
-                        ratio(h, steps[1]),
-                        ratio(h, steps[2]),
-                        ratio(h, steps[3]),
-                    ));
-                }
             }
-        }
-    }
-    if !ablation.is_empty() {
-        println!();
-        println!(
-            "| stream | feed | generated | 1: constant layout | 1+2: + window checks | 1+2+3: + staging | 1+2+3 without early truncation |"
-        );
-        println!("|---|---|---:|---:|---:|---:|---:|");
-        for row in ablation {
-            println!("{row}");
         }
     }
     println!();
     println!(
-        "| encoder (1M frames) | frame bytes | generated | hand-written | prototype | generated vs hand | prototype vs hand |"
+        "| encoder (1M frames) | frame bytes | generated | hand-written | generated vs hand |"
     );
-    println!("|---|---:|---|---|---|---:|---:|");
+    println!("|---|---:|---|---|---:|");
     for (group, frame) in [("hflink-encode", 28usize), ("referee-encode", 25)] {
-        let [g, h, p] = ["generated", "hand", "proto"].map(|id| median(&dir, group, id));
+        let [g, h] = ["generated", "hand"].map(|id| median(&dir, group, id));
         let bytes = frame * FRAMES as usize;
         println!(
-            "| {group} | {frame} | {} | {} | {} | {} | {} |",
+            "| {group} | {frame} | {} | {} | {} |",
             cell(g, bytes, FRAMES as usize),
             cell(h, bytes, FRAMES as usize),
-            cell(p, bytes, FRAMES as usize),
             ratio(h, g),
-            ratio(h, p)
         );
     }
     ExitCode::SUCCESS
