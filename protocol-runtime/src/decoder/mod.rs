@@ -305,6 +305,7 @@ pub(crate) fn probe<L: LayoutRef>(
     avail: usize,
     limit: usize,
 ) -> Probe {
+    let layout_ref = layout;
     let layout = layout.layout();
     let bytes = readable.get(..avail).unwrap_or(readable);
     // A byte loop, not `==` on slices: sync words are a few bytes, a call to memcmp costs more.
@@ -313,6 +314,20 @@ pub(crate) fn probe<L: LayoutRef>(
             return Probe::Reject(Reject::BadHeader);
         }
     }
+    probe_synced(layout_ref, readable, avail, limit)
+}
+
+/// [`probe`] once the candidate's first bytes are known to match the sync bytes, as far as
+/// they go (the engine's search has just compared them): every other rule.
+#[inline(always)]
+pub(crate) fn probe_synced<L: LayoutRef>(
+    layout: &L,
+    readable: &[u8],
+    avail: usize,
+    limit: usize,
+) -> Probe {
+    let layout = layout.layout();
+    let bytes = readable.get(..avail).unwrap_or(readable);
     let span = layout.header_span();
     if span > limit {
         // No frame fits; but a sync prefix cut by the end of the bytes may not be a
@@ -333,12 +348,18 @@ pub(crate) fn probe<L: LayoutRef>(
         return Probe::Reject(Reject::BadHeaderCheck);
     }
     let bare = layout.length.bare_len();
+    let shortest = span.max(layout.min_len).max(1);
     let total = match layout.frame_len(header) {
         // A bare header is complete and verified once its header checks hold.
         Some(t) if Some(t) == bare && t >= span && t > 0 && t <= limit => {
             return Probe::Frame(t);
         }
-        Some(t) if t >= span && t > 0 && t >= layout.min_len && t <= limit => t,
+        // `shortest..=limit` in one comparison (empty when `limit < shortest`).
+        Some(t)
+            if limit >= shortest && t.wrapping_sub(shortest) <= limit.wrapping_sub(shortest) =>
+        {
+            t
+        }
         _ => return Probe::Reject(Reject::BadLength),
     };
     let Some(frame) = bytes.get(..total) else {

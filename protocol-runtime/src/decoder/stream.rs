@@ -7,7 +7,7 @@
 
 use core::fmt;
 
-use super::{Probe, Reject, probe};
+use super::{Probe, Reject, probe, probe_synced};
 use crate::layout::{FrameLayout, LayoutRef};
 
 /// Where the first candidate of `data` starts: the first offset where `data` holds the sync
@@ -209,6 +209,11 @@ impl Stats {
 
     fn count_reject(&mut self, reason: Reject) {
         self.skipped_bytes = self.skipped_bytes.wrapping_add(1);
+        self.count_reason(reason);
+    }
+
+    /// Counts a rejection's reason only: the caller counts its skipped byte.
+    fn count_reason(&mut self, reason: Reject) {
         let counter = match reason {
             Reject::BadHeader => &mut self.bad_header,
             Reject::BadHeaderCheck => &mut self.bad_header_check,
@@ -482,35 +487,42 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         let readable = self.buf.get(self.start..).unwrap_or_default();
         let pending = self.end.saturating_sub(self.start);
         let base = self.position.wrapping_sub(pending as u64);
-        let (mut at, mut frames, mut frame_bytes) = (0usize, 0u64, 0u64);
+        // Per frame, only a count and the offset change: a frame's bytes are what the scan
+        // did not skip (`at - gaps`), added once at the end.
+        let (mut at, mut frames, mut gaps) = (0usize, 0u64, 0usize);
         while at < pending {
             let from = readable.get(at..).unwrap_or_default();
             let avail = pending.wrapping_sub(at);
             let skip = find_candidate(layout.sync, from.get(..avail).unwrap_or(from));
             if skip > 0 {
-                self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);
+                gaps = gaps.wrapping_add(skip);
                 at = at.wrapping_add(skip);
                 continue;
             }
-            match probe(&self.layout, from, avail, limit) {
+            // The search has just compared the sync bytes.
+            let verdict = if avail >= layout.sync.len() {
+                probe_synced(&self.layout, from, avail, limit)
+            } else {
+                probe(&self.layout, from, avail, limit)
+            };
+            match verdict {
                 Probe::Frame(len) => {
                     sink(Frame {
                         bytes: from.get(..len).unwrap_or(from),
                         offset: base.wrapping_add(at as u64),
                     });
                     frames = frames.wrapping_add(1);
-                    frame_bytes = frame_bytes.wrapping_add(len as u64);
                     at = at.wrapping_add(len);
                 }
                 Probe::Reject(reason) => {
-                    self.stats.count_reject(reason);
+                    self.stats.count_reason(reason);
+                    gaps = gaps.wrapping_add(1);
                     at = at.wrapping_add(1);
                 }
                 Probe::Need(_) => break,
             }
         }
-        self.stats.frames = self.stats.frames.wrapping_add(frames);
-        self.stats.frame_bytes = self.stats.frame_bytes.wrapping_add(frame_bytes);
+        self.count_scan(frames, at, gaps);
         self.start = self.start.wrapping_add(at.min(pending));
         if self.start >= self.end {
             self.start = 0;
@@ -528,15 +540,22 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         let limit = self.limit();
         let data: &[u8] = input;
         let base = self.position;
-        let (mut at, mut frames, mut frame_bytes) = (0usize, 0u64, 0u64);
+        // As in `scan_buffered`: a count and the offset per frame.
+        let (mut at, mut frames, mut gaps) = (0usize, 0u64, 0usize);
         while let Some(rest) = data.get(at..).filter(|r| !r.is_empty()) {
             let skip = find_candidate(layout.sync, rest);
             if skip > 0 {
-                self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);
+                gaps = gaps.wrapping_add(skip);
                 at = at.wrapping_add(skip);
                 continue;
             }
-            match probe(&self.layout, rest, rest.len(), limit) {
+            // The search has just compared the sync bytes.
+            let verdict = if rest.len() >= layout.sync.len() {
+                probe_synced(&self.layout, rest, rest.len(), limit)
+            } else {
+                probe(&self.layout, rest, rest.len(), limit)
+            };
+            match verdict {
                 Probe::Frame(len) => {
                     let offset = base.wrapping_add(at as u64);
                     sink(Frame {
@@ -544,18 +563,17 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                         offset,
                     });
                     frames = frames.wrapping_add(1);
-                    frame_bytes = frame_bytes.wrapping_add(len as u64);
                     at = at.wrapping_add(len);
                 }
                 Probe::Reject(reason) => {
-                    self.stats.count_reject(reason);
+                    self.stats.count_reason(reason);
+                    gaps = gaps.wrapping_add(1);
                     at = at.wrapping_add(1);
                 }
                 Probe::Need(_) => break,
             }
         }
-        self.stats.frames = self.stats.frames.wrapping_add(frames);
-        self.stats.frame_bytes = self.stats.frame_bytes.wrapping_add(frame_bytes);
+        self.count_scan(frames, at, gaps);
         self.position = self.position.wrapping_add(at as u64);
         *input = data.get(at..).unwrap_or_default();
     }
@@ -617,6 +635,17 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             Step::Skipped { offset, len } => Event::Skipped { offset, len },
             Step::Idle => return None,
         })
+    }
+
+    /// Adds what a scan loop counted: `frames` frames in `scanned` bytes, of which `gaps`
+    /// belong to no frame (skipped runs and the first bytes of rejected candidates).
+    #[inline(always)]
+    fn count_scan(&mut self, frames: u64, scanned: usize, gaps: usize) {
+        let stats = &mut self.stats;
+        stats.frames = stats.frames.wrapping_add(frames);
+        stats.skipped_bytes = stats.skipped_bytes.wrapping_add(gaps as u64);
+        let frame_bytes = scanned.wrapping_sub(gaps) as u64;
+        stats.frame_bytes = stats.frame_bytes.wrapping_add(frame_bytes);
     }
 
     /// Frames longer than this are rejected.
