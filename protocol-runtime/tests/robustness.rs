@@ -88,15 +88,25 @@ fn mixed_streams_match_the_reference_for_every_chunking() {
 #[test]
 fn decode_yields_the_frames_that_next_event_reports() {
     let mut rng = Rng(0x5151_5151_0000_0001);
+    // Chunk sizes from one byte (every candidate waits, the early-truncation search runs at
+    // every byte) to larger than the stream.
     for (name, layout) in layouts() {
-        let stream = mixed_stream(&mut rng, layout, 80);
-        let events: Vec<Seen> = run::<256>(layout, &stream, &[17], true)
+        for size in [1, 2, 3, 7, 17, 64, 200, 5000] {
+            feed_matches_next_event(&mut rng, name, layout, size);
+        }
+    }
+}
+
+fn feed_matches_next_event(rng: &mut Rng, name: &str, layout: &FrameLayout<'_>, size: usize) {
+    {
+        let stream = mixed_stream(rng, layout, 80);
+        let events: Vec<Seen> = run::<256>(layout, &stream, &[size], true)
             .into_iter()
             .filter(|e| matches!(e, Seen::Frame { .. }))
             .collect();
         let mut decoder = StreamDecoder::<_, 256>::new(layout);
         let mut frames = Vec::new();
-        for chunk in stream.chunks(17) {
+        for chunk in stream.chunks(size) {
             decoder.feed(chunk, |f| {
                 frames.push(Seen::Frame {
                     offset: f.offset,
@@ -110,7 +120,7 @@ fn decode_yields_the_frames_that_next_event_reports() {
                 bytes: f.bytes.to_vec(),
             });
         }
-        assert_eq!(frames, events, "{name}");
+        assert_eq!(frames, events, "{name}, chunks of {size}");
     }
 }
 

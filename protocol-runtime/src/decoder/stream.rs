@@ -66,7 +66,7 @@ const STAGE_SLACK: usize = 128;
 const LOW: u64 = 0x0101_0101_0101_0101;
 const HIGH: u64 = 0x8080_8080_8080_8080;
 
-/// Bytes [`holds_first_byte`] compares at once.
+/// Bytes [`may_start_sync`] compares at once.
 const SCAN: usize = 64;
 
 /// `SCAN_MASK[SCAN - k..][..SCAN]` keeps the first `k` bytes of a block.
@@ -84,39 +84,59 @@ const SCAN_MASK: [u8; 2 * SCAN] = {
     mask
 };
 
-/// Whether `data[..n]` holds `sync`'s first byte: the question asked of a pending candidate
-/// every time the input runs out, whose answer is nearly always no. Whole 64-byte blocks are
-/// compared under a mask, without a branch per byte or per word (which the compiler turns into
-/// a few vector compares); a search that stops at the first match mispredicts its exit once per
-/// call, at a length that changes every time.
+/// Whether some offset of `data[..n]` may start `sync`: holds its first byte followed by its
+/// second (its first byte alone, for a one-byte sync). The question asked of a pending
+/// candidate every time the input runs out, whose answer is nearly always no. A `true` may be
+/// wrong (the caller searches exactly then), a `false` never is.
+///
+/// Whole 64-byte blocks are compared under a mask, without a branch per byte or per word (the
+/// compiler turns this into a few vector compares); a search that stops at the first match
+/// mispredicts its exit once per call, at a length that changes every time. Testing pairs
+/// rather than the first byte alone makes a `true` rare for two-byte syncs (`FF FF`: a random
+/// payload byte is `FF` once in 256, a pair once in 65,536), so the branch on it predicts well.
 #[inline(always)]
-fn holds_first_byte(sync: &[u8], data: &[u8], n: usize) -> bool {
-    let Some(&first) = sync.first() else {
-        return false;
+fn may_start_sync(sync: &[u8], data: &[u8], n: usize) -> bool {
+    let (first, second) = match *sync {
+        [] => return n > 0,
+        [first] => (first, None),
+        [first, second, ..] => (first, Some(second)),
     };
+    let pattern = LOW.wrapping_mul(u64::from(first));
+    let next_pattern = LOW.wrapping_mul(u64::from(second.unwrap_or(0)));
+    let zero_bytes = |x: u64| x.wrapping_sub(LOW) & !x & HIGH;
     let mut from = 0usize;
     while from < n {
         let rest = data.get(from..).unwrap_or_default();
         let left = n.wrapping_sub(from);
-        let Some(block) = rest.first_chunk::<SCAN>() else {
-            // The end of the buffer: fewer than `SCAN` bytes left to read.
-            return rest.iter().take(left).any(|&b| b == first);
+        // The block and, for the second byte, the block one byte further.
+        let Some(block) = rest.first_chunk::<{ SCAN + 8 }>() else {
+            // The end of the buffer: fewer bytes left to read than a block.
+            return (0..left).any(|i| {
+                rest.get(i) == Some(&first)
+                    && second.is_none_or(|s| rest.get(i.wrapping_add(1)).is_none_or(|&b| b == s))
+            });
         };
         let keep = SCAN_MASK
             .get(SCAN.saturating_sub(left)..)
             .and_then(<[u8]>::first_chunk::<SCAN>)
             .unwrap_or(&[0; SCAN]);
-        let pattern = LOW.wrapping_mul(u64::from(first));
         let mut hits = 0u64;
-        for (word, mask) in block.chunks_exact(8).zip(keep.chunks_exact(8)) {
-            let (Ok(word), Ok(mask)) = (<[u8; 8]>::try_from(word), <[u8; 8]>::try_from(mask))
-            else {
-                break;
+        for k in 0..SCAN / 8 {
+            let at = k.wrapping_mul(8);
+            let word_at = |bytes: &[u8], at: usize| {
+                bytes
+                    .get(at..)
+                    .and_then(<[u8]>::first_chunk::<8>)
+                    .map_or(0, |w| u64::from_le_bytes(*w))
             };
-            let x = u64::from_le_bytes(word) ^ pattern;
             // A flag below a zero byte of `x` is exact; above one it may be a borrow's, but
-            // then a masked-in zero byte lies below it (the mask keeps a prefix).
-            hits |= x.wrapping_sub(LOW) & !x & HIGH & u64::from_le_bytes(mask);
+            // then a masked-in zero byte lies below it (the mask keeps a prefix): a false
+            // `true` at worst.
+            let mut flags = zero_bytes(word_at(block, at) ^ pattern);
+            if second.is_some() {
+                flags &= zero_bytes(word_at(block, at.wrapping_add(1)) ^ next_pattern);
+            }
+            hits |= flags & word_at(keep, at);
         }
         if hits != 0 {
             return true;
@@ -461,19 +481,54 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         loop {
             if self.start >= self.end {
                 self.scan_input(&mut chunk, &mut sink);
+                if chunk.is_empty() {
+                    return;
+                }
+                // A candidate runs to the end of the chunk and needs more: keep it and, unless
+                // a frame is complete inside it, wait (what `step_input` and `step_buffered`
+                // would decide, without probing the candidate twice more).
+                if self.hold(&mut chunk) && !self.frame_inside(self.limit()) {
+                    return;
+                }
             } else {
                 if !chunk.is_empty() {
                     self.stage(&mut chunk);
                 }
                 self.scan_buffered(&mut sink);
+                if self.start >= self.end {
+                    if chunk.is_empty() {
+                        return;
+                    }
+                    continue;
+                }
+                // The pending candidate needs more bytes than the chunk brought: as above.
+                if chunk.is_empty() && !self.frame_inside(self.limit()) {
+                    return;
+                }
             }
-            // A candidate that needs more bytes, or the chunk's end: one step of the general
-            // engine.
+            // A candidate that a frame inside it cuts short, or a chunk too large to stage:
+            // one step of the general engine.
             match self.decode(&mut chunk) {
                 Some(frame) => sink(frame),
                 None => return,
             }
         }
+    }
+
+    /// Keeps the whole input, with nothing pending, as the pending bytes (the start of a
+    /// candidate that needs more). Returns `false`, copying nothing, if it does not fit.
+    #[inline(always)]
+    fn hold(&mut self, input: &mut &[u8]) -> bool {
+        let data: &[u8] = input;
+        let Some(dst) = self.buf.get_mut(..data.len()) else {
+            return false;
+        };
+        dst.copy_from_slice(data);
+        self.start = 0;
+        self.end = data.len();
+        self.position = self.position.wrapping_add(data.len() as u64);
+        *input = &[];
+        true
     }
 
     /// [`step_buffered`](Self::step_buffered) in a loop, for [`feed`](Self::feed), once the
@@ -702,11 +757,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             Probe::Need(_) => {
                 // The candidate runs to the end of the input, which is then shorter than what
                 // it needs, itself at most `limit() <= N`: keep it all.
-                if let Some(dst) = self.buf.get_mut(..data.len()) {
-                    dst.copy_from_slice(data);
-                    self.start = 0;
-                    self.end = data.len();
-                    self.consume(input, data.len());
+                if self.hold(input) {
                     return self.step_buffered(input, at_end);
                 }
                 Reject::BadLength
@@ -785,7 +836,46 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// Called each time the input runs out while the candidate waits, so it remembers how many
     /// of the candidate's bytes are known to start no frame (a rejection is final: more bytes
     /// do not change it) and starts after them next time.
+    ///
+    /// Inlined where the input runs out: most calls end with the block test that finds no
+    /// start of the sync bytes among the candidate's bytes, without a call.
+    #[inline(always)]
     fn frame_inside(&mut self, limit: usize) -> bool {
+        let layout = self.layout;
+        let layout = layout.layout();
+        let shortest = layout.min_len.max(layout.header_span()).max(1);
+        let owner = self.position.wrapping_sub(self.pending() as u64);
+        let known = if self.inner_owner == owner {
+            self.inner_dead
+        } else {
+            1
+        }
+        .max(1);
+        // Only a start with room for the shortest frame after it can hold a frame now.
+        let Some(last_start) = self.pending().checked_sub(shortest) else {
+            return false;
+        };
+        if known > last_start {
+            return false;
+        }
+        let readable = self
+            .buf
+            .get(self.start.wrapping_add(known)..)
+            .unwrap_or_default();
+        let window = last_start.wrapping_sub(known).wrapping_add(1);
+        if cfg!(target_pointer_width = "64") && !may_start_sync(layout.sync, readable, window) {
+            // None of these bytes starts a frame, now or later; the ones too close to the
+            // end may once more bytes arrive.
+            self.inner_owner = owner;
+            self.inner_dead = last_start.wrapping_add(1);
+            return false;
+        }
+        self.search_inside(limit)
+    }
+
+    /// [`frame_inside`](Self::frame_inside)'s exact search.
+    #[inline(never)]
+    fn search_inside(&mut self, limit: usize) -> bool {
         let layout = self.layout;
         let layout = layout.layout();
         let shortest = layout.min_len.max(layout.header_span()).max(1);
@@ -811,7 +901,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             // (The masked block test only where words are 64 bits: on a microcontroller the
             // plain search is smaller and as fast.)
             let skip = if cfg!(not(target_pointer_width = "64"))
-                || holds_first_byte(layout.sync, readable_rest, window)
+                || may_start_sync(layout.sync, readable_rest, window)
             {
                 find_first_byte(layout.sync, rest.get(..window).unwrap_or(rest))
             } else {
@@ -895,5 +985,67 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         self.position = self.position.wrapping_add(want as u64);
         self.end = self.end.wrapping_add(want);
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(
+        clippy::indexing_slicing,
+        clippy::arithmetic_side_effects,
+        clippy::unwrap_used
+    )]
+
+    extern crate std;
+
+    use super::{SCAN, may_start_sync};
+
+    /// The definition [`may_start_sync`] filters for: an offset below `n` holding the sync's
+    /// first byte, followed by its second (or by the end of `data`).
+    fn starts_sync(sync: &[u8], data: &[u8], n: usize) -> bool {
+        (0..n.min(data.len())).any(|i| {
+            sync.first().is_none_or(|&s| data[i] == s)
+                && sync
+                    .get(1)
+                    .is_none_or(|&s| data.get(i + 1).is_none_or(|&b| b == s))
+        })
+    }
+
+    #[test]
+    fn the_sync_filter_never_misses_a_start() {
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let mut false_true = 0;
+        for sync in [
+            &[][..],
+            &[0xA5],
+            &[0xFF, 0xFF],
+            &[0xFF, 0xFF, 0xFD],
+            &[0x55, 0xAA],
+        ] {
+            for _ in 0..20_000 {
+                let len = (next() % (2 * SCAN as u64 + 20)) as usize;
+                // Bytes drawn mostly from the sync's own, so that starts and near misses are
+                // common.
+                let data: std::vec::Vec<u8> = (0..len)
+                    .map(|_| match next() % 4 {
+                        0 | 1 => sync.get((next() % 3) as usize).copied().unwrap_or(0),
+                        _ => next() as u8,
+                    })
+                    .collect();
+                let n = (next() % (len as u64 + 1)) as usize;
+                let exact = starts_sync(sync, &data, n);
+                let filtered = may_start_sync(sync, &data, n);
+                assert!(filtered || !exact, "{sync:02x?} n={n} {data:02x?}");
+                false_true += usize::from(filtered && !exact);
+            }
+        }
+        // A filter that answers `true` to everything would pass the assertion above.
+        assert!(false_true < 5 * 20_000 / 10, "{false_true} false starts");
     }
 }
