@@ -170,8 +170,13 @@ fn frames_found_whole_in_the_input_borrow_it() {
         assert_eq!(bytes, &stream[at..at + bytes.len()]);
         frames.push((offset, range.contains(&bytes.as_ptr())));
     }
-    // The frame at 81 lies inside the pending candidate at 70, whose bytes were copied.
-    assert_eq!(frames, [(4, true), (40, true), (62, true), (81, false)]);
+    // The frame at 81 lies inside the pending candidate at 70, whose bytes were copied. (With
+    // the `stage-input` feature, every byte goes through the buffer.)
+    let in_place = !cfg!(feature = "stage-input");
+    assert_eq!(
+        frames,
+        [(4, in_place), (40, in_place), (62, in_place), (81, false)]
+    );
     assert_eq!(decoder.pending(), 0);
     assert_eq!(decoder.stats().truncated, 1);
 }

@@ -217,6 +217,8 @@ const SHORT: usize = 32;
 /// it, while a wide load over freshly stored bytes stalls on store forwarding (measured: 3x on
 /// a 28-byte HFLink frame).
 #[inline(always)]
+// `ShortSum` is a `u64` on this target only.
+#[allow(clippy::useless_conversion)]
 pub(super) fn byte_sum(data: &[u8]) -> u64 {
     if fits_u32_sum(data) {
         return u64::from(short_sum(data));
