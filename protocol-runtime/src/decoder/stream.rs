@@ -250,11 +250,6 @@ impl Stats {
 
     fn count_reject(&mut self, reason: Reject) {
         self.skipped_bytes = self.skipped_bytes.wrapping_add(1);
-        self.count_reason(reason);
-    }
-
-    /// Counts a rejection's reason only: the caller counts its skipped byte.
-    fn count_reason(&mut self, reason: Reject) {
         let counter = match reason {
             Reject::BadHeader => &mut self.bad_header,
             Reject::BadHeaderCheck => &mut self.bad_header_check,
@@ -568,14 +563,16 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         let pending = self.end.saturating_sub(self.start);
         let base = self.position.wrapping_sub(pending as u64);
         // Per frame, only a count and the offset change: a frame's bytes are what the scan
-        // did not skip (`at - gaps`), added once at the end.
-        let (mut at, mut frames, mut gaps) = (0usize, 0u64, 0usize);
+        // did not skip, added once at the end. Skipped bytes (rare on a good link) go straight
+        // to the stats, out of the loop's registers.
+        let skipped_before = self.stats.skipped_bytes;
+        let (mut at, mut frames) = (0usize, 0u64);
         while at < pending {
             let from = readable.get(at..).unwrap_or_default();
             let avail = pending.wrapping_sub(at);
             let skip = find_candidate(layout.sync, from.get(..avail).unwrap_or(from));
             if skip > 0 {
-                gaps = gaps.wrapping_add(skip);
+                self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);
                 at = at.wrapping_add(skip);
                 continue;
             }
@@ -595,14 +592,13 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                     at = at.wrapping_add(len);
                 }
                 Probe::Reject(reason) => {
-                    self.stats.count_reason(reason);
-                    gaps = gaps.wrapping_add(1);
+                    self.stats.count_reject(reason);
                     at = at.wrapping_add(1);
                 }
                 Probe::Need(_) => break,
             }
         }
-        self.count_scan(frames, at, gaps);
+        self.count_scan(frames, at, skipped_before);
         self.start = self.start.wrapping_add(at.min(pending));
         if self.start >= self.end {
             self.start = 0;
@@ -620,12 +616,13 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         let limit = self.limit();
         let data: &[u8] = input;
         let base = self.position;
-        // As in `scan_buffered`: a count and the offset per frame.
-        let (mut at, mut frames, mut gaps) = (0usize, 0u64, 0usize);
+        // As in `scan_buffered`: a count and the offset per frame, skipped bytes in the stats.
+        let skipped_before = self.stats.skipped_bytes;
+        let (mut at, mut frames) = (0usize, 0u64);
         while let Some(rest) = data.get(at..).filter(|r| !r.is_empty()) {
             let skip = find_candidate(layout.sync, rest);
             if skip > 0 {
-                gaps = gaps.wrapping_add(skip);
+                self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);
                 at = at.wrapping_add(skip);
                 continue;
             }
@@ -646,14 +643,13 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                     at = at.wrapping_add(len);
                 }
                 Probe::Reject(reason) => {
-                    self.stats.count_reason(reason);
-                    gaps = gaps.wrapping_add(1);
+                    self.stats.count_reject(reason);
                     at = at.wrapping_add(1);
                 }
                 Probe::Need(_) => break,
             }
         }
-        self.count_scan(frames, at, gaps);
+        self.count_scan(frames, at, skipped_before);
         self.position = self.position.wrapping_add(at as u64);
         *input = data.get(at..).unwrap_or_default();
     }
@@ -717,14 +713,15 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         })
     }
 
-    /// Adds what a scan loop counted: `frames` frames in `scanned` bytes, of which `gaps`
-    /// belong to no frame (skipped runs and the first bytes of rejected candidates).
+    /// Adds what a scan loop counted: `frames` frames in `scanned` bytes; the bytes that belong
+    /// to no frame (skipped runs and the first bytes of rejected candidates) were added to the
+    /// skipped bytes since they were `skipped_before`.
     #[inline(always)]
-    fn count_scan(&mut self, frames: u64, scanned: usize, gaps: usize) {
+    fn count_scan(&mut self, frames: u64, scanned: usize, skipped_before: u64) {
         let stats = &mut self.stats;
         stats.frames = stats.frames.wrapping_add(frames);
-        stats.skipped_bytes = stats.skipped_bytes.wrapping_add(gaps as u64);
-        let frame_bytes = scanned.wrapping_sub(gaps) as u64;
+        let gaps = stats.skipped_bytes.wrapping_sub(skipped_before);
+        let frame_bytes = (scanned as u64).wrapping_sub(gaps);
         stats.frame_bytes = stats.frame_bytes.wrapping_add(frame_bytes);
     }
 
