@@ -161,6 +161,14 @@ pub trait Payload: Sized {
     /// bytes.
     const MIN_SIZE: usize = Self::SIZE;
 
+    /// Whether [`read`](Self::read) can fail only for want of bytes, and every value has
+    /// exactly [`SIZE`](Self::SIZE) bytes (no enums, clamped values or variable parts, also in
+    /// nested values). Then [`from_bytes`](Self::from_bytes) checks the length first, which
+    /// gives the same error the reading would and lets the compiler drop every per-field
+    /// bounds check (smaller firmware). Generated code sets it; `false` is always correct.
+    #[doc(hidden)]
+    const READ_NEEDS_ONLY_BYTES: bool = false;
+
     /// Size of this value on the wire.
     fn wire_len(&self) -> usize {
         Self::SIZE
@@ -190,6 +198,13 @@ pub trait Payload: Sized {
     /// [`MIN_SIZE`](Self::MIN_SIZE)) or longer (then `expected` is the bytes read); the errors of
     /// [`read`](Self::read) otherwise.
     fn from_bytes(bytes: &[u8]) -> Result<Self, DecodeError> {
+        if Self::READ_NEEDS_ONLY_BYTES && bytes.len() != Self::SIZE {
+            // What reading would give: a truncation, or bytes left once `SIZE` are read.
+            return Err(DecodeError::PayloadLength {
+                expected: Self::SIZE,
+                actual: bytes.len(),
+            });
+        }
         let mut r = Reader::new(bytes);
         let value = Self::read(&mut r).map_err(|e| match e {
             DecodeError::Truncated { .. } => DecodeError::PayloadLength {
@@ -217,6 +232,7 @@ pub trait Payload: Sized {
 /// No payload: a command that carries nothing.
 impl Payload for () {
     const SIZE: usize = 0;
+    const READ_NEEDS_ONLY_BYTES: bool = true;
 
     #[inline]
     fn write(&self, _: &mut Writer<'_>) -> Result<(), EncodeError> {
@@ -232,6 +248,7 @@ impl Payload for () {
 /// Raw bytes.
 impl<const N: usize> Payload for [u8; N] {
     const SIZE: usize = N;
+    const READ_NEEDS_ONLY_BYTES: bool = true;
 
     #[inline]
     fn write(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {

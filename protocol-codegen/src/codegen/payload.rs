@@ -572,10 +572,24 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
             }
         }
     };
+    let only_bytes = if lens.is_empty() {
+        needs_only_bytes(&def.fields, &rt)
+    } else {
+        None
+    };
+    let only_bytes = only_bytes.map(|parts| {
+        let parts = if parts.is_empty() {
+            vec![quote!(true)]
+        } else {
+            parts
+        };
+        quote!(const READ_NEEDS_ONLY_BYTES: bool = #(#parts)&&*;)
+    });
     quote! {
         impl #rt::Payload for #name {
             const SIZE: usize = #size;
             #variable
+            #only_bytes
             #[inline]
             fn write(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
                 #(#writes)*
@@ -588,6 +602,33 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
             }
         }
     }
+}
+
+/// Whether reading `fields` can fail only for want of bytes (`Payload::READ_NEEDS_ONLY_BYTES`):
+/// `None` if some field can fail otherwise (an enum, a clamped value, a bit member that is an
+/// enum) or has a variable size; else the conditions on nested types, all of which must hold.
+fn needs_only_bytes(fields: &[PField], rt: &TokenStream) -> Option<Vec<TokenStream>> {
+    let mut nested = Vec::new();
+    for f in fields {
+        match &f.kind {
+            PKind::Pad(_) => {}
+            PKind::Scalar { scale, .. } if scale.as_ref().is_none_or(|s| s.clamp.is_none()) => {}
+            PKind::Nested { ty, .. } => {
+                let condition = quote!(<#ty as #rt::Payload>::READ_NEEDS_ONLY_BYTES);
+                // Once per nested type.
+                if !nested
+                    .iter()
+                    .any(|c: &TokenStream| c.to_string() == condition.to_string())
+                {
+                    nested.push(condition);
+                }
+            }
+            PKind::Bits { members, .. }
+                if members.iter().all(|m| !matches!(m.ty, BitType::Enum(..))) => {}
+            _ => return None,
+        }
+    }
+    Some(nested)
 }
 
 fn bit_mask(width: u32, word: Prim) -> TokenStream {
