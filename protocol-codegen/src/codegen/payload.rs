@@ -572,6 +572,12 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
             }
         }
     };
+    // A value of fixed size: its room checked once, not per field.
+    let reserve = if lens.is_empty() && !writes.is_empty() {
+        quote!(let w = &mut w.reserve(<Self as #rt::Payload>::SIZE)?;)
+    } else {
+        quote!()
+    };
     let only_bytes = if lens.is_empty() {
         needs_only_bytes(&def.fields, &rt)
     } else {
@@ -592,6 +598,7 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
             #only_bytes
             #[inline]
             fn write(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
+                #reserve
                 #(#writes)*
                 ::core::result::Result::Ok(())
             }

@@ -286,6 +286,38 @@ impl<'a> Writer<'a> {
         self.buf.len().saturating_sub(self.pos)
     }
 
+    /// A writer over the next `n` bytes, which this one moves past: the room for a value of
+    /// known size checked once, so that the writes into it (at constant offsets of a buffer of
+    /// constant length, once inlined) need no check of their own.
+    ///
+    /// # Errors
+    ///
+    /// [`EncodeError::BufferTooSmall`] if fewer than `n` bytes remain (nothing moves).
+    ///
+    /// ```
+    /// use protocol_runtime::{EncodeError, Writer};
+    ///
+    /// let mut buf = [0u8; 6];
+    /// let mut w = Writer::new(&mut buf);
+    /// w.reserve(4)?.put_u32_be(0x0102_0304)?;
+    /// assert_eq!(w.reserve(4).err(), Some(EncodeError::BufferTooSmall { needed: 8, available: 6 }));
+    /// w.put_u16_le(5)?;
+    /// assert_eq!(w.written(), [1, 2, 3, 4, 5, 0]);
+    /// # Ok::<(), EncodeError>(())
+    /// ```
+    #[inline]
+    pub fn reserve(&mut self, n: usize) -> Result<Writer<'_>, EncodeError> {
+        let start = self.pos;
+        let Some(end) = start.checked_add(n).filter(|&end| end <= self.buf.len()) else {
+            return Err(self.too_small(n));
+        };
+        self.pos = end;
+        // In bounds: checked above.
+        Ok(Writer::new(
+            self.buf.get_mut(start..end).unwrap_or_default(),
+        ))
+    }
+
     /// The bytes written so far.
     #[inline]
     pub fn written(&self) -> &[u8] {
