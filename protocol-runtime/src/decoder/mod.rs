@@ -317,8 +317,8 @@ pub(crate) fn probe<L: LayoutRef>(
     probe_synced(layout_ref, readable, avail, limit)
 }
 
-/// [`probe`] once the candidate's first bytes are known to match the sync bytes, as far as
-/// they go (the engine's search has just compared them): every other rule.
+/// [`probe`] once the candidate's bytes are known to match the sync bytes, as many of them as
+/// there are (the engine's search for a candidate has just compared them): every other rule.
 #[inline(always)]
 pub(crate) fn probe_synced<L: LayoutRef>(
     layout: &L,
