@@ -622,7 +622,10 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         // As in `scan_buffered`: a count and the offset per frame, skipped bytes in the stats.
         let skipped_before = self.stats.skipped_bytes;
         let (mut at, mut frames) = (0usize, 0u64);
-        while let Some(rest) = data.get(at..).filter(|r| !r.is_empty()) {
+        // One comparison per step (`at` never passes the end: every step advances it by at
+        // most what is left).
+        while at < data.len() {
+            let rest = data.get(at..).unwrap_or_default();
             let skip = find_candidate(layout.sync, rest);
             if skip > 0 {
                 self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);
