@@ -55,6 +55,19 @@ fn no_alloc<S: Spec>() {
         "{}: decoding allocated {info:?}",
         S::NAME
     );
+    // The same stream through `feed`, which scans in its own loops.
+    let mut fed_decoder = S::decoder();
+    let mut fed_frames = 0usize;
+    let info = allocation_counter::measure(|| {
+        for chunk in &chunks {
+            fed_decoder.feed(chunk, |_| fed_frames += 1);
+        }
+        while fed_decoder.flush().is_some() {
+            fed_frames += 1;
+        }
+    });
+    assert_eq!(info.count_total, 0, "{}: feed allocated {info:?}", S::NAME);
+    assert_eq!(fed_frames, frames, "{}: feed and decode differ", S::NAME);
     assert!(frames > 0 && decoded > 0, "{}: nothing decoded", S::NAME);
 
     let mut written = 0usize;

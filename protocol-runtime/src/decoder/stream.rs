@@ -335,11 +335,13 @@ enum Step {
 
 /// Finds the frames of a [`FrameLayout`] in a byte stream that arrives in chunks of any size.
 ///
-/// The decoder owns a fixed buffer of `N` bytes and never allocates. Frames found whole in the
-/// caller's input are returned borrowing that input (zero copy); a candidate cut by the end of
-/// a chunk is copied into the buffer, and the following chunks are appended behind it whole
-/// when they fit (leaving room for a checksum window), else only the bytes it needs. Frames
-/// longer than `min(max_len, N)` are rejected as [`Reject::BadLength`].
+/// The decoder owns a fixed buffer of `N` bytes and never allocates. On hosts, frames found
+/// whole in the caller's input are returned borrowing that input (zero copy); a candidate cut
+/// by the end of a chunk is copied into the buffer, and the following chunks are appended
+/// behind it whole when they fit (leaving room for a checksum window), else only the bytes it
+/// needs. On targets without 64-bit pointers (and with the `stage-input` feature) every chunk
+/// is staged in the buffer first, which takes less code. Frames longer than `min(max_len, N)`
+/// are rejected as [`Reject::BadLength`].
 /// A rejected candidate costs one byte: the search resumes right after its start, so a corrupt
 /// or truncated frame never costs the valid frame that follows it; and a valid frame is yielded
 /// as soon as it is complete, even inside the claimed length of an earlier candidate still
