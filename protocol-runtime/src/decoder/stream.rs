@@ -23,17 +23,24 @@ fn find_candidate(sync: &[u8], data: &[u8]) -> usize {
     };
     // On a clean stream the next frame starts right here. (A shortcut for hosts: the loop
     // below finds it too, and on microcontrollers a second copy of the test costs flash.)
+    let mut from = 0;
     if cfg!(target_pointer_width = "64") {
-        let here = match *sync {
+        // Whether a candidate starts here, and whether a `false` is final (a two-byte sync
+        // compared whole needs two bytes; its prefix at the very end is left to the loop).
+        let (here, settled) = match *sync {
             // A two-byte sync (HFLink's `FF FF`) as one 16-bit comparison.
-            [a, b] => data.first_chunk::<2>() == Some(&[a, b]),
-            _ => data.first() == Some(&first) && continues(0),
+            [a, b] => (data.first_chunk::<2>() == Some(&[a, b]), data.len() >= 2),
+            _ => (data.first() == Some(&first) && continues(0), true),
         };
         if here {
             return 0;
         }
+        if settled {
+            // After a rejected candidate the search resumes at its second byte, which often is
+            // the sync's first again (`FF` of `FF FF`): not a start, and no call to find it.
+            from = 1;
+        }
     }
-    let mut from = 0;
     while let Some(hit) = data.get(from..).and_then(|rest| find_byte(first, rest)) {
         let at = from.wrapping_add(hit);
         if continues(at) {
