@@ -18,6 +18,15 @@
 //! Generated code names this crate's items through `protocol_runtime::__private`; users depend
 //! on this crate alone, which re-exports the macros behind the default `macros` feature.
 //!
+//! # Features
+//!
+//! | feature | what it adds |
+//! |---|---|
+//! | `macros` (default) | the `protocol!` and `#[derive(Payload)]` macros |
+//! | `std` | reading frames from a `std::io::Read` |
+//! | `embedded-io` | reading frames from an `embedded-io` reader |
+//! | `stage-input` | every input chunk staged in the decoder's buffer before it is scanned, as on targets without 64-bit pointers (where it is the default: less code); on hosts, to test that path. Frames and stats are the same either way; only whether a frame borrows the caller's input changes |
+//!
 //! # Example
 //!
 //! A layout written by hand (generated code writes the same `static`): HFLink frames are
