@@ -205,6 +205,17 @@ pub trait Payload: Sized {
                 actual: bytes.len(),
             });
         }
+        Self::read_exactly(bytes)
+    }
+
+    /// [`from_bytes`](Self::from_bytes) without the length checked first: field by field, then
+    /// no byte may be left. (The tests check the shortcut against it.)
+    ///
+    /// # Errors
+    ///
+    /// As [`from_bytes`](Self::from_bytes).
+    #[doc(hidden)]
+    fn read_exactly(bytes: &[u8]) -> Result<Self, DecodeError> {
         let mut r = Reader::new(bytes);
         let value = Self::read(&mut r).map_err(|e| match e {
             DecodeError::Truncated { .. } => DecodeError::PayloadLength {

@@ -890,14 +890,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     fn frame_inside(&mut self, limit: usize) -> bool {
         let layout = self.layout;
         let layout = layout.layout();
-        let shortest = layout.min_len.max(layout.header_span()).max(1);
-        let owner = self.position.wrapping_sub(self.pending() as u64);
-        let known = if self.inner_owner == owner {
-            self.inner_dead
-        } else {
-            1
-        }
-        .max(1);
+        let (owner, known, shortest) = self.inside_known();
         // Only a start with room for the shortest frame after it can hold a frame now.
         let Some(last_start) = self.pending().checked_sub(shortest) else {
             return false;
@@ -920,9 +913,11 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         self.search_inside(limit)
     }
 
-    /// [`frame_inside`](Self::frame_inside)'s exact search.
-    #[inline(never)]
-    fn search_inside(&mut self, limit: usize) -> bool {
+    /// For [`frame_inside`](Self::frame_inside): the pending candidate's stream offset, how
+    /// many of its first bytes are known to start no frame (at least its own first byte), and
+    /// the shortest frame.
+    #[inline(always)]
+    fn inside_known(&self) -> (u64, usize, usize) {
         let layout = self.layout;
         let layout = layout.layout();
         let shortest = layout.min_len.max(layout.header_span()).max(1);
@@ -932,9 +927,18 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         } else {
             1
         };
+        (owner, known.max(1), shortest)
+    }
+
+    /// [`frame_inside`](Self::frame_inside)'s exact search.
+    #[inline(never)]
+    fn search_inside(&mut self, limit: usize) -> bool {
+        let layout = self.layout;
+        let layout = layout.layout();
+        let (owner, known, shortest) = self.inside_known();
         let readable = self.buf.get(self.start..).unwrap_or_default();
         let region = readable.get(..self.pending()).unwrap_or_default();
-        let mut at = known.max(1);
+        let mut at = known;
         let mut undecided = None;
         let found = loop {
             // Only a start with room for the shortest frame after it can hold a frame.
