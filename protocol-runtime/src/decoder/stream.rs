@@ -21,9 +21,9 @@ fn find_candidate(sync: &[u8], data: &[u8]) -> usize {
         let after = data.get(at.wrapping_add(1)..).unwrap_or_default();
         after.iter().zip(more).all(|(a, b)| a == b)
     };
+    let mut from = 0;
     // On a clean stream the next frame starts right here. (A shortcut for hosts: the loop
     // below finds it too, and on microcontrollers a second copy of the test costs flash.)
-    let mut from = 0;
     if cfg!(target_pointer_width = "64") {
         // Whether a candidate starts here, and whether a `false` is final (a two-byte sync
         // compared whole needs two bytes; its prefix at the very end is left to the loop).
