@@ -98,30 +98,28 @@ fn decode_yields_the_frames_that_next_event_reports() {
 }
 
 fn feed_matches_next_event(rng: &mut Rng, name: &str, layout: &FrameLayout<'_>, size: usize) {
-    {
-        let stream = mixed_stream(rng, layout, 80);
-        let events: Vec<Seen> = run::<256>(layout, &stream, &[size], true)
-            .into_iter()
-            .filter(|e| matches!(e, Seen::Frame { .. }))
-            .collect();
-        let mut decoder = StreamDecoder::<_, 256>::new(layout);
-        let mut frames = Vec::new();
-        for chunk in stream.chunks(size) {
-            decoder.feed(chunk, |f| {
-                frames.push(Seen::Frame {
-                    offset: f.offset,
-                    bytes: f.bytes.to_vec(),
-                })
-            });
-        }
-        while let Some(f) = decoder.flush() {
+    let stream = mixed_stream(rng, layout, 80);
+    let events: Vec<Seen> = run::<256>(layout, &stream, &[size], true)
+        .into_iter()
+        .filter(|e| matches!(e, Seen::Frame { .. }))
+        .collect();
+    let mut decoder = StreamDecoder::<_, 256>::new(layout);
+    let mut frames = Vec::new();
+    for chunk in stream.chunks(size) {
+        decoder.feed(chunk, |f| {
             frames.push(Seen::Frame {
                 offset: f.offset,
                 bytes: f.bytes.to_vec(),
-            });
-        }
-        assert_eq!(frames, events, "{name}, chunks of {size}");
+            })
+        });
     }
+    while let Some(f) = decoder.flush() {
+        frames.push(Seen::Frame {
+            offset: f.offset,
+            bytes: f.bytes.to_vec(),
+        });
+    }
+    assert_eq!(frames, events, "{name}, chunks of {size}");
 }
 
 /// Runs the engine with a buffer of `N` bytes: it behaves as if `max_len` were `min(max_len, N)`.

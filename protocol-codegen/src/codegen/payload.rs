@@ -152,6 +152,9 @@ fn float_lit(x: f64) -> TokenStream {
 }
 
 /// Reading one element of a field.
+///
+/// Whatever can fail here other than for want of bytes (clamped scales, enums) must also make
+/// [`needs_only_bytes`] answer `None`; a kind it does not know it answers `None` for.
 fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
     match kind {
         PKind::Scalar {
@@ -613,7 +616,9 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
 
 /// Whether reading `fields` can fail only for want of bytes (`Payload::READ_NEEDS_ONLY_BYTES`):
 /// `None` if some field can fail otherwise (an enum, a clamped value, a bit member that is an
-/// enum) or has a variable size; else the conditions on nested types, all of which must hold.
+/// enum: the failures [`read_elem`] and the bit members' reads emit) or has a variable size;
+/// else the conditions on nested types, all of which must hold. Checked against reading field
+/// by field on every bundled spec's structs (`tests/tests/payload_length_first.rs`).
 fn needs_only_bytes(fields: &[PField], rt: &TokenStream) -> Option<Vec<TokenStream>> {
     let mut nested = Vec::new();
     for f in fields {
