@@ -1,8 +1,9 @@
 //! The performance issue's benchmarks, in one run so that ratios compare like with like:
 //!
 //! - decoders (generated, hand-written, byte-at-a-time port) on 16 MiB streams of HFLink and
-//!   referee frames, clean and noisy, fed whole and in 64-byte chunks: 8 groups of 3 (of 4 with
-//!   `PROTOCOL_BENCH_ABLATION=1`, which adds the generated decoder reading its layout through a
+//!   referee frames, clean and noisy, fed whole and in 64-byte chunks: 8 groups, each with the
+//!   port also driven with one call per byte and, on clean streams, the length-walk floor (plus,
+//!   with `PROTOCOL_BENCH_ABLATION=1`, the generated decoder reading its layout through a
 //!   reference, as the CLI's interpreter does);
 //! - encoders (generated, hand-written): a million frames into a reused buffer, for each
 //!   protocol.
@@ -14,7 +15,7 @@
 //! reads back.
 //!
 //! Times are the benchmark thread's CPU time ([`ThreadCpuTime`]). Run: `cargo bench -p
-//! protocol-benches` (about 4 minutes; 6 with the ablation), or with `PROTOCOL_BENCH_QUICK=1`
+//! protocol-benches` (about 5 minutes; 6 with the ablation), or with `PROTOCOL_BENCH_QUICK=1`
 //! (10 samples of 1 s, under 2 minutes). Criterion's own arguments work too, e.g. `cargo bench
 //! -p protocol-benches -- hflink-clean`. `bench-report` turns the saved medians into the tables
 //! of `BENCHMARKS.md`.
@@ -31,7 +32,8 @@ use criterion::{
 };
 use protocol_benches::encode::{self, FRAMES};
 use protocol_benches::hand::{self, Staged};
-use protocol_benches::port::{hflink::HfLinkPort, referee::RefereePort};
+use protocol_benches::floor::{CheckedWalk, HfLinkLengths, LengthWalk, RefereeLengths};
+use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
 use protocol_benches::verify::{self, Output};
 use protocol_benches::workload::{Noise, Protocol, Workload};
 use protocol_benches::{ChunkDecoder, generated};
@@ -161,6 +163,14 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                         let hand = Staged::<hand::hflink::HfLink>::default;
                         bench_decoder(g, "hand", &w, chunk, Kind::Exact, hand);
                         bench_decoder(g, "port", &w, chunk, Kind::Port, HfLinkPort::default);
+                        let per_byte = OneCallPerByte::<HfLinkPort>::default;
+                        bench_decoder(g, "port-per-byte", &w, chunk, Kind::Port, per_byte);
+                        if noise == Noise::Clean {
+                            let floor = LengthWalk::<HfLinkLengths>::default;
+                            bench_decoder(g, "floor", &w, chunk, Kind::Exact, floor);
+                            let checked = CheckedWalk::<HfLinkLengths>::default;
+                            bench_decoder(g, "floor-checked", &w, chunk, Kind::Exact, checked);
+                        }
                         if ablation() {
                             let by_ref = generated::hflink_decoder_by_ref;
                             bench_decoder(g, "generated-by-ref", &w, chunk, Kind::Exact, by_ref);
@@ -172,6 +182,14 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                         let hand = Staged::<hand::referee::Referee>::default;
                         bench_decoder(g, "hand", &w, chunk, Kind::Exact, hand);
                         bench_decoder(g, "port", &w, chunk, Kind::Port, RefereePort::default);
+                        let per_byte = OneCallPerByte::<RefereePort>::default;
+                        bench_decoder(g, "port-per-byte", &w, chunk, Kind::Port, per_byte);
+                        if noise == Noise::Clean {
+                            let floor = LengthWalk::<RefereeLengths>::default;
+                            bench_decoder(g, "floor", &w, chunk, Kind::Exact, floor);
+                            let checked = CheckedWalk::<RefereeLengths>::default;
+                            bench_decoder(g, "floor-checked", &w, chunk, Kind::Exact, checked);
+                        }
                         if ablation() {
                             let by_ref = generated::referee_decoder_by_ref;
                             bench_decoder(g, "generated-by-ref", &w, chunk, Kind::Exact, by_ref);

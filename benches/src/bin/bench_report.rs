@@ -85,6 +85,44 @@ fn main() -> ExitCode {
         }
     }
     println!();
+    // What the 64-byte rows can reach: the floor (framing only, clean streams) and the port
+    // driven with one call per byte, the originals' interface.
+    println!(
+        "| stream | feed | generated | floor: length walk | port, one call per byte | generated vs port per byte | floor vs port | floor vs port per byte | generated vs floor |"
+    );
+    println!("|---|---|---|---|---|---:|---:|---:|---:|");
+    for protocol in [Protocol::HfLink, Protocol::Referee] {
+        for noise in [Noise::Clean, Noise::Noisy] {
+            let w = Workload::standard(protocol, noise);
+            let (bytes, frames) = (w.stream.len(), w.frames.len());
+            for feed in ["whole", "64"] {
+                let group = format!("{}-{feed}", w.name());
+                let feed_name = if feed == "whole" {
+                    "whole"
+                } else {
+                    "64-byte chunks"
+                };
+                let [g, f, p, b] = ["generated", "floor", "port", "port-per-byte"]
+                    .map(|id| median(&dir, &group, id));
+                println!(
+                    "| {} | {feed_name} | {} | {} | {} | {} | {} | {} | {} |",
+                    w.name(),
+                    cell(g, bytes, frames),
+                    if noise == Noise::Clean {
+                        cell(f, bytes, frames)
+                    } else {
+                        "(clean streams only)".into()
+                    },
+                    cell(b, bytes, frames),
+                    ratio(b, g),
+                    ratio(p, f),
+                    ratio(b, f),
+                    ratio(g, f),
+                );
+            }
+        }
+    }
+    println!();
     println!(
         "| encoder (1M frames) | frame bytes | generated | hand-written | generated vs hand |"
     );

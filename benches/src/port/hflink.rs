@@ -12,7 +12,7 @@
 //! from its peer) is left out, since it is dispatch, not framing, and the streams carry both
 //! directions.
 
-use crate::ChunkDecoder;
+use super::Receiver;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum State {
@@ -49,9 +49,7 @@ impl Default for HfLinkPort {
     }
 }
 
-impl HfLinkPort {
-    /// Takes one byte; true when it completes a valid frame (then in `self.frame[..6 +
-    /// self.count + 1]`).
+impl Receiver for HfLinkPort {
     #[inline]
     fn push(&mut self, byte: u8) -> bool {
         match self.state {
@@ -116,19 +114,13 @@ impl HfLinkPort {
         }
         false
     }
-}
 
-impl ChunkDecoder for HfLinkPort {
     #[inline]
-    fn feed<F: FnMut(&[u8])>(&mut self, chunk: &[u8], sink: &mut F) {
-        for &byte in chunk {
-            if self.push(byte) {
-                sink(&self.frame[..self.count + 7]);
-            }
-        }
+    fn frame(&self) -> &[u8] {
+        &self.frame[..self.count + 7]
     }
 
-    fn finish<F: FnMut(&[u8])>(&mut self, _: &mut F) {
+    fn reset(&mut self) {
         self.state = State::WaitingFf1;
     }
 }

@@ -8,7 +8,7 @@
 //! the search for `A5` at the next unread byte: bytes already consumed are never looked at
 //! again.
 
-use crate::ChunkDecoder;
+use super::Receiver;
 
 const fn crc8_table() -> [u8; 256] {
     let mut t = [0u8; 256];
@@ -104,8 +104,7 @@ impl Default for RefereePort {
     }
 }
 
-impl RefereePort {
-    /// Takes one byte; true when it completes a valid frame (then in `self.buf[..self.index]`).
+impl Receiver for RefereePort {
     #[inline]
     fn push(&mut self, byte: u8) -> bool {
         match self.step {
@@ -160,19 +159,13 @@ impl RefereePort {
         }
         false
     }
-}
 
-impl ChunkDecoder for RefereePort {
     #[inline]
-    fn feed<F: FnMut(&[u8])>(&mut self, chunk: &[u8], sink: &mut F) {
-        for &byte in chunk {
-            if self.push(byte) {
-                sink(&self.buf[..self.index]);
-            }
-        }
+    fn frame(&self) -> &[u8] {
+        &self.buf[..self.index]
     }
 
-    fn finish<F: FnMut(&[u8])>(&mut self, _: &mut F) {
+    fn reset(&mut self) {
         self.step = Step::Sof;
     }
 }
