@@ -31,8 +31,8 @@ use criterion::{
     BenchmarkGroup, Criterion, SamplingMode, Throughput, criterion_group, criterion_main,
 };
 use protocol_benches::encode::{self, FRAMES};
-use protocol_benches::hand::{self, Staged};
 use protocol_benches::floor::{CheckedWalk, HfLinkLengths, LengthWalk, RefereeLengths};
+use protocol_benches::hand::{self, Staged};
 use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
 use protocol_benches::verify::{self, Output};
 use protocol_benches::workload::{Noise, Protocol, Workload};

@@ -3,8 +3,9 @@
 //! full-size checks before it times anything; these catch a broken decoder in `cargo test`.
 
 use protocol_benches::encode;
+use protocol_benches::floor::{CheckedWalk, HfLinkLengths, LengthWalk, RefereeLengths};
 use protocol_benches::hand::{self, Staged};
-use protocol_benches::port::{hflink::HfLinkPort, referee::RefereePort};
+use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
 use protocol_benches::verify::{collect, compare, count, exact};
 use protocol_benches::workload::{Noise, Protocol, Workload, reference_frames};
 use protocol_benches::{ChunkDecoder, generated};
@@ -118,6 +119,84 @@ fn ports_return_every_clean_frame_and_lose_some_noisy_ones() {
                     w.name()
                 ),
             }
+        }
+    }
+}
+
+#[test]
+fn ports_called_once_per_byte_return_what_the_fused_ports_return() {
+    for w in workloads() {
+        for chunk in [1, 64, usize::MAX] {
+            let (fused, per_byte) = match w.protocol {
+                Protocol::HfLink => (
+                    collect(&mut HfLinkPort::default(), &w.stream, chunk),
+                    collect(
+                        &mut OneCallPerByte::<HfLinkPort>::default(),
+                        &w.stream,
+                        chunk,
+                    ),
+                ),
+                Protocol::Referee => (
+                    collect(&mut RefereePort::default(), &w.stream, chunk),
+                    collect(
+                        &mut OneCallPerByte::<RefereePort>::default(),
+                        &w.stream,
+                        chunk,
+                    ),
+                ),
+            };
+            assert!(fused.frames() > 0);
+            assert_eq!(fused, per_byte, "{}, chunks of {chunk}", w.name());
+        }
+    }
+}
+
+#[test]
+fn floors_return_exactly_the_frames_of_clean_streams() {
+    for w in workloads().into_iter().filter(|w| w.noise == Noise::Clean) {
+        match w.protocol {
+            Protocol::HfLink => {
+                check_exact("floor", &w, LengthWalk::<HfLinkLengths>::default);
+                check_exact("floor-checked", &w, CheckedWalk::<HfLinkLengths>::default);
+            }
+            Protocol::Referee => {
+                check_exact("floor", &w, LengthWalk::<RefereeLengths>::default);
+                check_exact("floor-checked", &w, CheckedWalk::<RefereeLengths>::default);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_checked_floor_drops_a_frame_whose_check_fails() {
+    for protocol in [Protocol::HfLink, Protocol::Referee] {
+        let w = Workload::generate(protocol, Noise::Clean, 4096, 5);
+        let mut stream = w.stream.clone();
+        // The last byte of the second frame: HFLink's sum, the referee's CRC-16 (lengths stay).
+        let second = w.frames[1].clone();
+        stream[second.end - 1] ^= 0x01;
+        for chunk in [1, 64, usize::MAX] {
+            let checked = match protocol {
+                Protocol::HfLink => {
+                    collect(&mut CheckedWalk::<HfLinkLengths>::default(), &stream, chunk)
+                }
+                Protocol::Referee => collect(
+                    &mut CheckedWalk::<RefereeLengths>::default(),
+                    &stream,
+                    chunk,
+                ),
+            };
+            let unchecked = match protocol {
+                Protocol::HfLink => {
+                    collect(&mut LengthWalk::<HfLinkLengths>::default(), &stream, chunk)
+                }
+                Protocol::Referee => {
+                    collect(&mut LengthWalk::<RefereeLengths>::default(), &stream, chunk)
+                }
+            };
+            assert_eq!(unchecked.frames(), w.frames.len(), "{protocol:?}");
+            assert_eq!(checked.frames(), w.frames.len() - 1, "{protocol:?}");
+            assert_ne!(checked.iter().nth(1), Some(&stream[second.clone()]));
         }
     }
 }
