@@ -15,7 +15,7 @@
 //! reads back.
 //!
 //! Times are the benchmark thread's CPU time ([`ThreadCpuTime`]). Run: `cargo bench -p
-//! protocol-benches` (about 5 minutes; 6 with the ablation), or with `PROTOCOL_BENCH_QUICK=1`
+//! protocol-benches` (about 4 minutes; 5 with the ablation), or with `PROTOCOL_BENCH_QUICK=1`
 //! (10 samples of 1 s, under 2 minutes). Criterion's own arguments work too, e.g. `cargo bench
 //! -p protocol-benches -- hflink-clean`. `bench-report` turns the saved medians into the tables
 //! of `BENCHMARKS.md`.
