@@ -13,9 +13,12 @@
 //!   that its state can stay in registers from one byte to the next (the benchmark's "port"
 //!   column, against which the 10x target is computed);
 //! - through [`OneCallPerByte`]: one call per byte into a receiver that keeps its state in
-//!   memory, the shape of the originals' interfaces (HFLink's receiver is handed one byte per
-//!   call; the referee parser takes each byte from a FIFO through a function call). Slower, and
-//!   closer to what `PERF.md` measured for the originals' state machines.
+//!   memory, the shape of the originals' interfaces. HFLink's `StateMachine::receiveStates`
+//!   takes one byte per call (`const unsigned char rx_data`), called in a loop over the bytes
+//!   taken from the serial receive queue, as HANDS-FREE's own notes on hf_link describe it; the
+//!   referee's `referee_unpack_fifo_data` takes each byte from its FIFO with a call to
+//!   `fifo_s_get`, its state in a global struct. Slower, and closer to what `PERF.md` measured
+//!   for the originals' state machines.
 
 use crate::ChunkDecoder;
 
