@@ -31,7 +31,7 @@ use criterion::{
     BenchmarkGroup, Criterion, SamplingMode, Throughput, criterion_group, criterion_main,
 };
 use protocol_benches::encode::{self, FRAMES};
-use protocol_benches::floor::{CheckedWalk, HfLinkLengths, LengthWalk, RefereeLengths};
+use protocol_benches::floor::{CheckedWalk, HfLinkFormat, LengthWalk, RefereeFormat};
 use protocol_benches::hand::{self, Staged};
 use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
 use protocol_benches::verify::{self, Output};
@@ -166,9 +166,9 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                         let per_byte = OneCallPerByte::<HfLinkPort>::default;
                         bench_decoder(g, "port-per-byte", &w, chunk, Kind::Port, per_byte);
                         if noise == Noise::Clean {
-                            let floor = LengthWalk::<HfLinkLengths>::default;
+                            let floor = LengthWalk::<HfLinkFormat>::default;
                             bench_decoder(g, "floor", &w, chunk, Kind::Exact, floor);
-                            let checked = CheckedWalk::<HfLinkLengths>::default;
+                            let checked = CheckedWalk::<HfLinkFormat>::default;
                             bench_decoder(g, "floor-checked", &w, chunk, Kind::Exact, checked);
                         }
                         if ablation() {
@@ -185,9 +185,9 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                         let per_byte = OneCallPerByte::<RefereePort>::default;
                         bench_decoder(g, "port-per-byte", &w, chunk, Kind::Port, per_byte);
                         if noise == Noise::Clean {
-                            let floor = LengthWalk::<RefereeLengths>::default;
+                            let floor = LengthWalk::<RefereeFormat>::default;
                             bench_decoder(g, "floor", &w, chunk, Kind::Exact, floor);
-                            let checked = CheckedWalk::<RefereeLengths>::default;
+                            let checked = CheckedWalk::<RefereeFormat>::default;
                             bench_decoder(g, "floor-checked", &w, chunk, Kind::Exact, checked);
                         }
                         if ablation() {

@@ -21,8 +21,9 @@ use protocol_runtime::layout::LayoutRef;
 use crate::ChunkDecoder;
 use crate::generated::{hflink, referee};
 
-/// Where a protocol's frame length is, the one thing the walk reads, and its checks.
-pub trait Lengths {
+/// What the walk knows of a protocol's frames: where the length is (the one field it reads) and
+/// how to check a frame.
+pub trait Format {
     /// Bytes up to and including the length field.
     const HEADER: usize;
     /// The whole frame's length, from its first `HEADER` bytes.
@@ -51,9 +52,9 @@ fn checks_hold(layout: &FrameLayout<'_>, readable: &[u8], len: usize) -> bool {
 }
 
 /// HFLink: `FF FF sender receiver length(u16 BE)`, then `length` bytes and the sum.
-pub struct HfLinkLengths;
+pub struct HfLinkFormat;
 
-impl Lengths for HfLinkLengths {
+impl Format for HfLinkFormat {
     const HEADER: usize = 6;
     #[inline(always)]
     fn frame_len(header: &[u8]) -> usize {
@@ -66,9 +67,9 @@ impl Lengths for HfLinkLengths {
 }
 
 /// Referee: `A5 length(u16 LE)`, then sequence, CRC-8, command, `length` bytes and CRC-16.
-pub struct RefereeLengths;
+pub struct RefereeFormat;
 
-impl Lengths for RefereeLengths {
+impl Format for RefereeFormat {
     const HEADER: usize = 3;
     #[inline(always)]
     fn frame_len(header: &[u8]) -> usize {
@@ -87,7 +88,7 @@ const MOVE: usize = 128;
 /// `CHECKS`) and returns the bytes they cover. Checks may read past `avail` (window checksums,
 /// as in the engine), which decides nothing.
 #[inline(always)]
-fn walk<L: Lengths, const CHECKS: bool, F: FnMut(&[u8])>(
+fn walk<L: Format, const CHECKS: bool, F: FnMut(&[u8])>(
     data: &[u8],
     avail: usize,
     sink: &mut F,
@@ -113,24 +114,24 @@ pub type LengthWalk<L> = Walk<L, false>;
 pub type CheckedWalk<L> = Walk<L, true>;
 
 /// The walk, fed in chunks.
-pub struct Walk<L: Lengths, const CHECKS: bool> {
+pub struct Walk<L: Format, const CHECKS: bool> {
     /// The cut frame's bytes are `buf[..len]`.
     buf: Vec<u8>,
     len: usize,
-    lengths: PhantomData<L>,
+    format: PhantomData<L>,
 }
 
-impl<L: Lengths, const CHECKS: bool> Default for Walk<L, CHECKS> {
+impl<L: Format, const CHECKS: bool> Default for Walk<L, CHECKS> {
     fn default() -> Self {
         Walk {
             buf: vec![0; 4096],
             len: 0,
-            lengths: PhantomData,
+            format: PhantomData,
         }
     }
 }
 
-impl<L: Lengths, const CHECKS: bool> ChunkDecoder for Walk<L, CHECKS> {
+impl<L: Format, const CHECKS: bool> ChunkDecoder for Walk<L, CHECKS> {
     #[inline]
     fn feed<F: FnMut(&[u8])>(&mut self, chunk: &[u8], sink: &mut F) {
         if self.len == 0 {

@@ -3,7 +3,7 @@
 //! full-size checks before it times anything; these catch a broken decoder in `cargo test`.
 
 use protocol_benches::encode;
-use protocol_benches::floor::{CheckedWalk, HfLinkLengths, LengthWalk, RefereeLengths};
+use protocol_benches::floor::{CheckedWalk, HfLinkFormat, LengthWalk, RefereeFormat};
 use protocol_benches::hand::{self, Staged};
 use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
 use protocol_benches::verify::{collect, compare, count, exact};
@@ -156,12 +156,12 @@ fn floors_return_exactly_the_frames_of_clean_streams() {
     for w in workloads().into_iter().filter(|w| w.noise == Noise::Clean) {
         match w.protocol {
             Protocol::HfLink => {
-                check_exact("floor", &w, LengthWalk::<HfLinkLengths>::default);
-                check_exact("floor-checked", &w, CheckedWalk::<HfLinkLengths>::default);
+                check_exact("floor", &w, LengthWalk::<HfLinkFormat>::default);
+                check_exact("floor-checked", &w, CheckedWalk::<HfLinkFormat>::default);
             }
             Protocol::Referee => {
-                check_exact("floor", &w, LengthWalk::<RefereeLengths>::default);
-                check_exact("floor-checked", &w, CheckedWalk::<RefereeLengths>::default);
+                check_exact("floor", &w, LengthWalk::<RefereeFormat>::default);
+                check_exact("floor-checked", &w, CheckedWalk::<RefereeFormat>::default);
             }
         }
     }
@@ -178,20 +178,18 @@ fn the_checked_floor_drops_a_frame_whose_check_fails() {
         for chunk in [1, 64, usize::MAX] {
             let checked = match protocol {
                 Protocol::HfLink => {
-                    collect(&mut CheckedWalk::<HfLinkLengths>::default(), &stream, chunk)
+                    collect(&mut CheckedWalk::<HfLinkFormat>::default(), &stream, chunk)
                 }
-                Protocol::Referee => collect(
-                    &mut CheckedWalk::<RefereeLengths>::default(),
-                    &stream,
-                    chunk,
-                ),
+                Protocol::Referee => {
+                    collect(&mut CheckedWalk::<RefereeFormat>::default(), &stream, chunk)
+                }
             };
             let unchecked = match protocol {
                 Protocol::HfLink => {
-                    collect(&mut LengthWalk::<HfLinkLengths>::default(), &stream, chunk)
+                    collect(&mut LengthWalk::<HfLinkFormat>::default(), &stream, chunk)
                 }
                 Protocol::Referee => {
-                    collect(&mut LengthWalk::<RefereeLengths>::default(), &stream, chunk)
+                    collect(&mut LengthWalk::<RefereeFormat>::default(), &stream, chunk)
                 }
             };
             assert_eq!(unchecked.frames(), w.frames.len(), "{protocol:?}");

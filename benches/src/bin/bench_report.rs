@@ -52,37 +52,37 @@ fn main() -> ExitCode {
         eprintln!("bench-report: no criterion results in {}", dir.display());
         return ExitCode::FAILURE;
     }
+    // The workloads are drawn once (fixed seeds); both tables read them.
+    let workloads: Vec<Workload> = [Protocol::HfLink, Protocol::Referee]
+        .into_iter()
+        .flat_map(|p| [Noise::Clean, Noise::Noisy].map(|n| Workload::standard(p, n)))
+        .collect();
+    let rows = || {
+        workloads.iter().flat_map(|w| {
+            [("whole", "whole"), ("64", "64-byte chunks")]
+                .map(|(feed, feed_name)| (w, format!("{}-{feed}", w.name()), feed_name))
+        })
+    };
     println!(
         "| stream | feed | frames | generated | hand-written | byte-at-a-time port | generated, layout by reference | generated vs hand | generated vs port | hand vs port | by reference vs hand |"
     );
     println!("|---|---|---:|---|---|---|---|---:|---:|---:|---:|");
-    for protocol in [Protocol::HfLink, Protocol::Referee] {
-        for noise in [Noise::Clean, Noise::Noisy] {
-            let w = Workload::standard(protocol, noise);
-            let (bytes, frames) = (w.stream.len(), w.frames.len());
-            for feed in ["whole", "64"] {
-                let group = format!("{}-{feed}", w.name());
-                let feed_name = if feed == "whole" {
-                    "whole"
-                } else {
-                    "64-byte chunks"
-                };
-                let [g, h, p, r] = ["generated", "hand", "port", "generated-by-ref"]
-                    .map(|id| median(&dir, &group, id));
-                println!(
-                    "| {} | {feed_name} | {frames} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                    w.name(),
-                    cell(g, bytes, frames),
-                    cell(h, bytes, frames),
-                    cell(p, bytes, frames),
-                    cell(r, bytes, frames),
-                    ratio(h, g),
-                    ratio(p, g),
-                    ratio(p, h),
-                    ratio(h, r),
-                );
-            }
-        }
+    for (w, group, feed_name) in rows() {
+        let (bytes, frames) = (w.stream.len(), w.frames.len());
+        let [g, h, p, r] =
+            ["generated", "hand", "port", "generated-by-ref"].map(|id| median(&dir, &group, id));
+        println!(
+            "| {} | {feed_name} | {frames} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            w.name(),
+            cell(g, bytes, frames),
+            cell(h, bytes, frames),
+            cell(p, bytes, frames),
+            cell(r, bytes, frames),
+            ratio(h, g),
+            ratio(p, g),
+            ratio(p, h),
+            ratio(h, r),
+        );
     }
     println!();
     // What the rows can reach: the floors (framing only, and framing with the runtime's checks;
@@ -92,46 +92,35 @@ fn main() -> ExitCode {
         "| stream | feed | generated | floor: length walk | floor: length walk and checks | port, one call per byte | floor vs port | checked floor vs port | generated vs checked floor | generated vs port per byte |"
     );
     println!("|---|---|---|---|---|---|---:|---:|---:|---:|");
-    for protocol in [Protocol::HfLink, Protocol::Referee] {
-        for noise in [Noise::Clean, Noise::Noisy] {
-            let w = Workload::standard(protocol, noise);
-            let (bytes, frames) = (w.stream.len(), w.frames.len());
-            for feed in ["whole", "64"] {
-                let group = format!("{}-{feed}", w.name());
-                let feed_name = if feed == "whole" {
-                    "whole"
-                } else {
-                    "64-byte chunks"
-                };
-                let [g, f, c, p, b] = [
-                    "generated",
-                    "floor",
-                    "floor-checked",
-                    "port",
-                    "port-per-byte",
-                ]
-                .map(|id| median(&dir, &group, id));
-                let floor_cell = |ns| {
-                    if noise == Noise::Clean {
-                        cell(ns, bytes, frames)
-                    } else {
-                        "(clean streams only)".into()
-                    }
-                };
-                println!(
-                    "| {} | {feed_name} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                    w.name(),
-                    cell(g, bytes, frames),
-                    floor_cell(f),
-                    floor_cell(c),
-                    cell(b, bytes, frames),
-                    ratio(p, f),
-                    ratio(p, c),
-                    ratio(c, g),
-                    ratio(b, g),
-                );
+    for (w, group, feed_name) in rows() {
+        let (bytes, frames) = (w.stream.len(), w.frames.len());
+        let ids = [
+            "generated",
+            "floor",
+            "floor-checked",
+            "port",
+            "port-per-byte",
+        ];
+        let [g, f, c, p, b] = ids.map(|id| median(&dir, &group, id));
+        let floor_cell = |ns| {
+            if w.noise == Noise::Clean {
+                cell(ns, bytes, frames)
+            } else {
+                "(clean streams only)".into()
             }
-        }
+        };
+        println!(
+            "| {} | {feed_name} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            w.name(),
+            cell(g, bytes, frames),
+            floor_cell(f),
+            floor_cell(c),
+            cell(b, bytes, frames),
+            ratio(p, f),
+            ratio(p, c),
+            ratio(c, g),
+            ratio(b, g),
+        );
     }
     println!();
     println!(
