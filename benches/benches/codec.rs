@@ -1,10 +1,11 @@
 //! The performance issue's benchmarks, in one run so that ratios compare like with like:
 //!
 //! - decoders (generated, hand-written, byte-at-a-time port) on 16 MiB streams of HFLink and
-//!   referee frames, clean and noisy, fed whole and in 64-byte chunks: 8 groups, each with the
-//!   port also driven with one call per byte and, on clean streams, the length-walk floor (plus,
-//!   with `PROTOCOL_BENCH_ABLATION=1`, the generated decoder reading its layout through a
-//!   reference, as the CLI's interpreter does);
+//!   referee frames, clean and noisy, fed whole and in 64-byte chunks: 8 groups; in each, the
+//!   port is also driven with one call per byte, and on clean streams the two length-walk floors
+//!   are timed (framing only, and framing with the runtime's checks); with
+//!   `PROTOCOL_BENCH_ABLATION=1`, also the generated decoder reading its layout through a
+//!   reference, as the CLI's interpreter does;
 //! - encoders (generated, hand-written): a million frames into a reused buffer, for each
 //!   protocol.
 //!
