@@ -23,6 +23,12 @@ use crate::generated::{hflink, referee};
 
 /// What the walk knows of a protocol's frames: where the length is (the one field it reads) and
 /// how to check a frame.
+///
+/// The lengths are read by hand, not through the generated layout's rule
+/// (`FrameLayout::frame_len`, what the engine reads): a bound should be the cheapest walk, and
+/// through the layout's general rule the walk that checks nothing measured 5-17% slower on whole
+/// streams and 0-9% on 64-byte chunks (quick runs, HFLink and referee), the checked walk within
+/// 5%. The checks are the layout's own.
 pub trait Format {
     /// Bytes up to and including the length field.
     const HEADER: usize;

@@ -3,10 +3,10 @@
 //! full-size checks before it times anything; these catch a broken decoder in `cargo test`.
 
 use protocol_benches::encode;
-use protocol_benches::floor::{CheckedWalk, HfLinkFormat, LengthWalk, RefereeFormat};
+use protocol_benches::floor::{CheckedWalk, Format, HfLinkFormat, LengthWalk, RefereeFormat};
 use protocol_benches::hand::{self, Staged};
 use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
-use protocol_benches::verify::{collect, compare, count, exact};
+use protocol_benches::verify::{Output, collect, compare, count, exact};
 use protocol_benches::workload::{Noise, Protocol, Workload, reference_frames};
 use protocol_benches::{ChunkDecoder, generated};
 
@@ -167,6 +167,20 @@ fn floors_return_exactly_the_frames_of_clean_streams() {
     }
 }
 
+/// The frames the two floors return on `stream` fed in `chunk`-byte chunks: unchecked, checked.
+fn floor_frames(protocol: Protocol, stream: &[u8], chunk: usize) -> (Output, Output) {
+    fn both<F: Format>(stream: &[u8], chunk: usize) -> (Output, Output) {
+        (
+            collect(&mut LengthWalk::<F>::default(), stream, chunk),
+            collect(&mut CheckedWalk::<F>::default(), stream, chunk),
+        )
+    }
+    match protocol {
+        Protocol::HfLink => both::<HfLinkFormat>(stream, chunk),
+        Protocol::Referee => both::<RefereeFormat>(stream, chunk),
+    }
+}
+
 #[test]
 fn the_checked_floor_drops_a_frame_whose_check_fails() {
     for protocol in [Protocol::HfLink, Protocol::Referee] {
@@ -176,22 +190,7 @@ fn the_checked_floor_drops_a_frame_whose_check_fails() {
         let second = w.frames[1].clone();
         stream[second.end - 1] ^= 0x01;
         for chunk in [1, 64, usize::MAX] {
-            let checked = match protocol {
-                Protocol::HfLink => {
-                    collect(&mut CheckedWalk::<HfLinkFormat>::default(), &stream, chunk)
-                }
-                Protocol::Referee => {
-                    collect(&mut CheckedWalk::<RefereeFormat>::default(), &stream, chunk)
-                }
-            };
-            let unchecked = match protocol {
-                Protocol::HfLink => {
-                    collect(&mut LengthWalk::<HfLinkFormat>::default(), &stream, chunk)
-                }
-                Protocol::Referee => {
-                    collect(&mut LengthWalk::<RefereeFormat>::default(), &stream, chunk)
-                }
-            };
+            let (unchecked, checked) = floor_frames(protocol, &stream, chunk);
             assert_eq!(unchecked.frames(), w.frames.len(), "{protocol:?}");
             assert_eq!(checked.frames(), w.frames.len() - 1, "{protocol:?}");
             assert_ne!(checked.iter().nth(1), Some(&stream[second.clone()]));
