@@ -1,4 +1,4 @@
-//! The performance issue's benchmarks, in one run so that ratios compare like with like:
+//! The benchmarks behind `BENCHMARKS.md`, in one run so that ratios compare like with like:
 //!
 //! - decoders (generated, hand-written, byte-at-a-time port) on 16 MiB streams of HFLink and
 //!   referee frames, clean and noisy, fed whole and in 64-byte chunks: 8 groups; in each, the

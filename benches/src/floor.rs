@@ -6,12 +6,12 @@
 //! engine runs): what any decoder that checks the frames with it pays at the least.
 //!
 //! Fed in chunks, it appends each chunk behind the bytes of the frame the previous chunk cut,
-//! walks the whole, and moves the new cut frame to the front: the staging that `PERF.md` found
-//! cheapest for small chunks (measured here too: keeping the cut frame aside and completing it
-//! from the next chunk was 1.6x slower on 64-byte chunks). The move is a fixed-size copy (the
-//! bytes after the cut frame go along, unused): a `copy_within` of the cut frame's own length,
-//! a call to `memmove`, made the chunked walk 1.3x slower. Its chunked time over its whole-stream
-//! time is what cutting the input into chunks costs at the least.
+//! walks the whole, and moves the new cut frame to the front: the cheapest staging for small
+//! chunks (keeping the cut frame aside and completing it from the next chunk makes the walk
+//! 1.6x slower on 64-byte chunks). The move is a fixed-size copy (the bytes after the cut frame
+//! go along, unused): a `copy_within` of the cut frame's own length, a call to `memmove`, makes
+//! the chunked walk 1.3x slower. Its chunked time over its whole-stream time is what cutting the
+//! input into chunks costs at the least.
 
 use core::marker::PhantomData;
 

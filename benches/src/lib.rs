@@ -10,8 +10,8 @@
 //!   drives it;
 //! - [`hand`]: hand-written, optimized decoders and encoders (slice scan, memchr, masked sums,
 //!   slicing-by-16 CRC, zero-copy, small-chunk staging);
-//! - [`port`]: ports of the C originals' byte-at-a-time state machines, written from the
-//!   descriptions in the protocol fact sheet, driven as one loop or with one call per byte;
+//! - [`port`]: ports of the C originals' byte-at-a-time state machines, written from their
+//!   behaviour, driven as one loop or with one call per byte;
 //! - [`floor`]: a lower bound for any decoder, frames found by their length fields alone;
 //! - [`verify`]: running any decoder over a workload and comparing its frames with the ground
 //!   truth, which the benchmark does before it times anything;

@@ -1,8 +1,7 @@
 //! The benchmark's input: fixed-seed streams of HFLink and referee frames, clean or noisy, and
 //! their ground truth (where every frame a correct decoder must return lies).
 //!
-//! The streams follow the workloads of the project's performance notes, so that figures can be
-//! compared with them:
+//! What the streams hold:
 //!
 //! - HFLink: `FF FF sender receiver length(u16 BE) command payload sum%255`; `length` (command
 //!   and payload) is `1 + min(a, b)` for `a`, `b` uniform in `0..120`, so frames are 8..=127

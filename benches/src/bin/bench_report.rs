@@ -1,6 +1,6 @@
 //! Turns the medians criterion saved after `cargo bench -p protocol-benches` into the Markdown
-//! tables of `BENCHMARKS.md`: throughput, time per frame, and the ratios the performance issue
-//! sets targets for.
+//! tables of `BENCHMARKS.md`: throughput, time per frame, and the ratios its targets are set
+//! on.
 //!
 //! Usage: `bench-report [CRITERION_DIR]`; by default `$CARGO_TARGET_DIR/criterion`, else
 //! `target/criterion`. It draws the workloads again (they are fixed-seed) to count their frames.

@@ -5,7 +5,7 @@
 //! at once, verify the check over the frame in place, hand the frame to the sink without copying
 //! it, resume one byte after a rejected start. Chunked input goes through [`Staged`], which
 //! copies small chunks behind the pending bytes and scans contiguously (cheaper than completing
-//! a partial frame aside, per the performance notes). [`hflink`] and [`referee`] hold the
+//! a partial frame aside: see [`crate::floor`]). [`hflink`] and [`referee`] hold the
 //! protocol-specific parts and the encoders; [`crc`] the table-driven CRCs.
 
 pub mod crc;

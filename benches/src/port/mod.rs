@@ -1,6 +1,6 @@
 //! Ports of the C originals' receivers: byte-at-a-time state machines, written from the
-//! descriptions in the protocol fact sheet (no original code was copied). They are the "as the
-//! robots do it today" baseline.
+//! originals' behaviour (no original code was copied; `tests/vectors/README.md` names the
+//! functions and commits). They are the "as the robots do it today" baseline.
 //!
 //! Each keeps the original's behaviour, including its losses: no rescan after a failed
 //! candidate, so a stray sync byte or a truncated frame costs the next valid frame too. Where
@@ -11,14 +11,13 @@
 //!
 //! - as a [`ChunkDecoder`] itself: the state machine inlined into the loop over the chunk, so
 //!   that its state can stay in registers from one byte to the next (the benchmark's "port"
-//!   column, against which the issue's 10x target is computed);
+//!   column, against which the 10x target of `BENCHMARKS.md` is computed);
 //! - through [`OneCallPerByte`]: one call per byte into a receiver that keeps its state in
 //!   memory, the shape of the originals' interfaces. HFLink's `StateMachine::receiveStates`
 //!   takes one byte per call (`const unsigned char rx_data`), called in a loop over the bytes
-//!   taken from the serial receive queue, as HANDS-FREE's own notes on hf_link describe it; the
-//!   referee's `referee_unpack_fifo_data` takes each byte from its FIFO with a call to
-//!   `fifo_s_get`, its state in a global struct. Slower, and closer to what `PERF.md` measured
-//!   for the originals' state machines.
+//!   taken from the serial receive queue; the referee's `referee_unpack_fifo_data` takes each
+//!   byte from its FIFO with a call to `fifo_s_get`, its state in a global struct. Slower than
+//!   the fused loop on HFLink, and steadier from build to build (`BENCHMARKS.md`).
 
 use crate::ChunkDecoder;
 
