@@ -370,7 +370,8 @@ static DJI_CRC32: crc::Algorithm<u32> = crc::Algorithm {
 fn dji_custom_crcs_match_their_check_values() {
     assert_eq!(check_all_tables!(u16, Crc16, &DJI_CRC16), 0x2752);
     assert_eq!(check_all_tables!(u32, Crc32, &DJI_CRC32), 0xE4D9_DC14);
-    // And its check value (protocols.md: 0x0B; the catalogue's MAXIM-DOW with init 0 is 0xA1).
+    // And its check value: 0x0B, where the catalogue's MAXIM-DOW with init 0 gives 0xA1 (the DJI
+    // CRC-8 starts from 0xFF).
     assert_eq!(check_all_tables!(u8, Crc8, &DJI_CRC8), 0x0B);
     // The referee header A5 03 00 00 carries CRC-8 0x27 (a published frame), whatever the
     // table and however far the input runs past the header.
