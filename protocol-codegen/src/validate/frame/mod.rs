@@ -4,6 +4,12 @@
 
 use toml::Spanned;
 
+mod elements;
+mod options;
+
+use elements::{byte_list, check_element_keys};
+use options::lower_transport;
+
 use super::checksum::resolve_algorithm;
 use super::names::{check_snake_name, parse_byte_order, parse_prim};
 use super::types::{Enums, Structs, fit, lower_bits, mask};
@@ -51,108 +57,6 @@ struct El<'s> {
     def: Option<&'s Spanned<ElementDef>>,
     kind: Kind,
     size: usize,
-}
-
-/// The keys an element may carry besides its kind key, per kind.
-const FIELD_KEYS: &[&str] = &[
-    "field",
-    "type",
-    "addresses",
-    "length_of",
-    "value",
-    "bits",
-    "doc",
-];
-const SYNC_KEYS: &[&str] = &["sync", "doc"];
-const PAYLOAD_KEYS: &[&str] = &["payload", "doc"];
-const CHECK_KEYS: &[&str] = &["check", "over", "byte_order", "name", "doc"];
-const TRAILER_KEYS: &[&str] = &["trailer", "name", "doc"];
-
-fn present_keys(e: &ElementDef) -> Vec<(&'static str, std::ops::Range<usize>)> {
-    let mut v = Vec::new();
-    macro_rules! k {
-        ($($f:ident => $n:literal),*) => {$(
-            if let Some(x) = &e.$f { v.push(($n, x.span())); }
-        )*};
-    }
-    k!(sync => "sync", field => "field", payload => "payload", check => "check", trailer => "trailer",
-       ty => "type", addresses => "addresses", length_of => "length_of", value => "value",
-       bits => "bits", over => "over", byte_order => "byte_order", name => "name", doc => "doc");
-    v
-}
-
-/// Rule: each element has exactly one kind key (`sync`, `field`, `payload`, `check`,
-/// `trailer`) and only the keys that apply to that kind.
-fn check_element_keys(ctx: &mut Ctx<'_>, el: &Spanned<ElementDef>) -> Option<&'static str> {
-    let keys = present_keys(el.get_ref());
-    let kinds: Vec<_> = keys
-        .iter()
-        .filter(|(k, _)| ["sync", "field", "payload", "check", "trailer"].contains(k))
-        .collect();
-    let kind = match kinds.as_slice() {
-        [one] => one.0,
-        [] => {
-            ctx.error(el.span(), "layout element has no kind", "start it with one of `sync = [...]`, `field = \"name\"`, `payload = { max = N }`, `check = \"algorithm\"` or `trailer = [...]`");
-            return None;
-        }
-        [_, second, ..] => {
-            ctx.error(
-                second.1.clone(),
-                format!(
-                    "layout element has two kinds (`{}` and `{}`)",
-                    kinds[0].0, second.0
-                ),
-                "split it into two elements",
-            );
-            return None;
-        }
-    };
-    let allowed = match kind {
-        "sync" => SYNC_KEYS,
-        "field" => FIELD_KEYS,
-        "payload" => PAYLOAD_KEYS,
-        "check" => CHECK_KEYS,
-        _ => TRAILER_KEYS,
-    };
-    for (k, span) in &keys {
-        if !allowed.contains(k) {
-            ctx.error(
-                span.clone(),
-                format!("key `{k}` does not apply to a `{kind}` element"),
-                format!(
-                    "a `{kind}` element takes {}",
-                    allowed
-                        .iter()
-                        .map(|a| format!("`{a}`"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-            );
-        }
-    }
-    Some(kind)
-}
-
-fn byte_list(ctx: &mut Ctx<'_>, list: &Spanned<Vec<Spanned<i64>>>, what: &str) -> Vec<u8> {
-    if list.get_ref().is_empty() {
-        ctx.error(
-            list.span(),
-            format!("{what} is empty"),
-            "list at least one byte, e.g. `[0xFF, 0xFF]`",
-        );
-    }
-    let mut out = Vec::new();
-    for b in list.get_ref() {
-        match u8::try_from(*b.get_ref()) {
-            Ok(v) => out.push(v),
-            Err(_) => ctx.error(
-                b.span(),
-                format!("{} is not a byte", b.get_ref()),
-                "use a value from 0x00 to 0xFF",
-            ),
-        }
-    }
-    out
 }
 
 #[allow(clippy::too_many_lines)]
@@ -944,44 +848,6 @@ fn lower_frame(
         stuffing,
         message,
     })
-}
-
-/// Rule: `transport` is `"serial"` (default) or `"can"`; `can_id` (`"standard"` or
-/// `"extended"`) applies to CAN frames only.
-fn lower_transport(ctx: &mut Ctx<'_>, def: &FrameDef) -> Transport {
-    let extended = match def.can_id.as_ref().map(|c| (c, c.get_ref().as_str())) {
-        None | Some((_, "standard")) => false,
-        Some((_, "extended")) => true,
-        Some((c, other)) => {
-            ctx.error(
-                c.span(),
-                format!("unknown CAN id kind `{other}`"),
-                "write `\"standard\"` (11-bit ids) or `\"extended\"` (29-bit ids)",
-            );
-            false
-        }
-    };
-    match def.transport.as_ref().map(|t| (t, t.get_ref().as_str())) {
-        None | Some((_, "serial")) => {
-            if let Some(c) = &def.can_id {
-                ctx.error(
-                    c.span(),
-                    "`can_id` applies to CAN frames",
-                    "add `transport = \"can\"` or remove `can_id`",
-                );
-            }
-            Transport::Serial
-        }
-        Some((_, "can")) => Transport::Can { extended },
-        Some((t, other)) => {
-            let help = match did_you_mean(other, ["serial", "can"]) {
-                Some(b) => format!("did you mean `{b}`?"),
-                None => "write `\"serial\"` (a byte stream) or `\"can\"`".to_string(),
-            };
-            ctx.error(t.span(), format!("unknown transport `{other}`"), help);
-            Transport::Serial
-        }
-    }
 }
 
 fn length_decl_once<'s>(
