@@ -1,10 +1,38 @@
-//! Rules for the shape of one layout element: its kind key and the keys that apply to it, and
-//! lists of bytes (sync, trailers, stuffing patterns).
+//! Rules for one layout element at a time: its kind key and the keys that apply to it, the
+//! sync, the payload bounds, checks and trailers (header fields are in `header`), and the
+//! rules over the element list (unique names, the sync first).
 
 use toml::Spanned;
 
-use super::super::Ctx;
-use crate::spec::model::ElementDef;
+use super::super::checksum::resolve_algorithm;
+use super::super::names::{check_snake_name, parse_byte_order};
+use super::super::types::Enums;
+use super::super::{Ctx, text};
+use super::{Draft, El, Kind, algorithm_size, header};
+use crate::ir::{Check, Pos, Trailer, Transport};
+use crate::spec::model::{ElementDef, FrameDef, SStr};
+
+/// Lower element `i` of the layout into the draft, by its kind. `None` when the element's kind
+/// key has no value to read.
+pub(super) fn lower_element<'s>(
+    ctx: &mut Ctx<'_>,
+    draft: &mut Draft<'s>,
+    i: usize,
+    el: &'s Spanned<ElementDef>,
+    enums: &Enums,
+) -> Option<()> {
+    let Some(kind) = check_element_keys(ctx, el) else {
+        draft.broken = true;
+        return Some(());
+    };
+    match kind {
+        "sync" => lower_sync(ctx, draft, i, el),
+        "field" => header::lower_field_element(ctx, draft, el, enums),
+        "payload" => lower_payload(ctx, draft, el),
+        "check" => lower_check(ctx, draft, el),
+        _ => lower_trailer(ctx, draft, el),
+    }
+}
 
 /// The keys an element may carry besides its kind key, per kind.
 const FIELD_KEYS: &[&str] = &[
@@ -113,4 +141,197 @@ pub(super) fn byte_list(
         }
     }
     out
+}
+
+/// Rule: sync bytes are a non-empty list of bytes, the first element of a serial frame's
+/// layout; a CAN frame has none.
+fn lower_sync<'s>(
+    ctx: &mut Ctx<'_>,
+    draft: &mut Draft<'s>,
+    i: usize,
+    el: &'s Spanned<ElementDef>,
+) -> Option<()> {
+    let bytes = byte_list(ctx, el.get_ref().sync.as_ref()?, "sync");
+    if matches!(draft.transport, Transport::Can { .. }) {
+        ctx.error(
+            el.span(),
+            "a CAN frame has no sync bytes",
+            "remove the `sync` element: CAN delivers whole frames",
+        );
+    } else if i != 0 {
+        ctx.error(el.span(), "sync bytes must be the first element of the layout", "move the `sync` element to the start; constant bytes after the payload are a `trailer`");
+        draft.broken = true;
+    }
+    draft.els.push(El {
+        name: "sync".into(),
+        def: Some(el),
+        size: bytes.len(),
+        kind: Kind::Sync(bytes),
+    });
+    Some(())
+}
+
+/// Rule: a frame has one payload, with a `max` size and bounds 0 <= min <= max.
+fn lower_payload<'s>(
+    ctx: &mut Ctx<'_>,
+    draft: &mut Draft<'s>,
+    el: &'s Spanned<ElementDef>,
+) -> Option<()> {
+    let p = el.get_ref().payload.as_ref()?;
+    if draft.payload.is_some() {
+        ctx.error(
+            el.span(),
+            "a frame has one payload",
+            "remove the second `payload` element",
+        );
+        return Some(());
+    }
+    let min = p.get_ref().min.as_ref().map_or(0, |m| *m.get_ref());
+    let max = match &p.get_ref().max {
+        Some(m) => *m.get_ref(),
+        None => {
+            ctx.error(
+                p.span(),
+                "the payload needs a `max` size",
+                "write `payload = { max = N }`: decoders size their buffer from it",
+            );
+            draft.broken = true;
+            min.max(0)
+        }
+    };
+    if min < 0 || max < min {
+        ctx.error(
+            p.span(),
+            format!("payload bounds {min}..={max} are not valid"),
+            "use 0 <= min <= max",
+        );
+        draft.broken = true;
+    }
+    draft.payload = Some((draft.els.len(), min.max(0) as usize, max.max(0) as usize));
+    draft.els.push(El {
+        name: "payload".into(),
+        def: Some(el),
+        size: 0,
+        kind: Kind::Payload,
+    });
+    Some(())
+}
+
+/// Rule: a check names a known algorithm, an optional byte order and an optional snake_case
+/// name (default `checksum`); a check before the payload is a header check.
+fn lower_check<'s>(
+    ctx: &mut Ctx<'_>,
+    draft: &mut Draft<'s>,
+    el: &'s Spanned<ElementDef>,
+) -> Option<()> {
+    let d = el.get_ref();
+    let alg_name = d.check.as_ref()?;
+    let algorithm = resolve_algorithm(ctx, alg_name);
+    let endian = match &d.byte_order {
+        Some(o) => parse_byte_order(ctx, o).unwrap_or(ctx.default_endian),
+        None => ctx.default_endian,
+    };
+    let name = d
+        .name
+        .as_ref()
+        .map_or_else(|| "checksum".to_string(), |n| n.get_ref().clone());
+    if let Some(n) = &d.name {
+        check_snake_name(ctx, n, "check name");
+    }
+    let Some(algorithm) = algorithm else {
+        draft.broken = true;
+        return Some(());
+    };
+    let size = algorithm_size(&algorithm);
+    let ci = draft.checks.len();
+    draft.checks.push((
+        Check {
+            name: name.clone(),
+            doc: text(&d.doc),
+            algorithm,
+            at: Pos::Start(0),
+            size,
+            endian,
+            from: Pos::Start(0),
+            to: Pos::Start(0),
+            header: draft.payload.is_none(),
+        },
+        draft.els.len(),
+    ));
+    draft.els.push(El {
+        name,
+        def: Some(el),
+        size,
+        kind: Kind::Check(ci),
+    });
+    Some(())
+}
+
+/// Rule: a trailer is a non-empty list of bytes after the payload, named `trailer` unless it
+/// says otherwise.
+fn lower_trailer<'s>(
+    ctx: &mut Ctx<'_>,
+    draft: &mut Draft<'s>,
+    el: &'s Spanned<ElementDef>,
+) -> Option<()> {
+    let d = el.get_ref();
+    let bytes = byte_list(ctx, d.trailer.as_ref()?, "trailer");
+    if draft.payload.is_none() {
+        ctx.error(
+            el.span(),
+            "a trailer comes after the payload",
+            "constant bytes before the payload are a field with `value = ...`, or the sync",
+        );
+    }
+    let name = d
+        .name
+        .as_ref()
+        .map_or_else(|| "trailer".to_string(), |n| n.get_ref().clone());
+    let ti = draft.trailers.len();
+    draft.trailers.push(Trailer {
+        name: name.clone(),
+        doc: text(&d.doc),
+        at: Pos::Start(0),
+        bytes: bytes.clone(),
+    });
+    draft.els.push(El {
+        name,
+        def: Some(el),
+        size: bytes.len(),
+        kind: Kind::Trailer(ti),
+    });
+    Some(())
+}
+
+/// Rule: element names are unique within a frame (they are what `over` and `length_of` name).
+pub(super) fn check_unique_names(ctx: &mut Ctx<'_>, fname: &SStr, els: &[El<'_>]) {
+    for (i, e) in els.iter().enumerate() {
+        let Some(edef) = e.def else { continue };
+        if els[..i].iter().any(|p| p.name == e.name) {
+            let span = edef
+                .get_ref()
+                .field
+                .as_ref()
+                .or(edef.get_ref().name.as_ref())
+                .map_or(edef.span(), Spanned::span);
+            ctx.error(span, format!("two elements of frame `{}` are named `{}`", fname.get_ref(), e.name), "give every field, check and trailer its own name (checks and trailers take `name = \"...\"`)");
+        }
+    }
+}
+
+/// Rule: the first element of a serial frame is the sync (checked only when every element
+/// lowered: a broken element may be the sync).
+pub(super) fn check_serial_sync(
+    ctx: &mut Ctx<'_>,
+    fname: &SStr,
+    def: &FrameDef,
+    draft: &mut Draft<'_>,
+) {
+    if draft.transport == Transport::Serial
+        && !matches!(draft.els.first().map(|e| &e.kind), Some(Kind::Sync(_)))
+        && !draft.broken
+    {
+        ctx.error(def.layout.span(), format!("frame `{}` has no sync bytes", fname.get_ref()), "start the layout with `{ sync = [0xFF, 0xFF] }`: a stream decoder finds frames by their sync");
+        draft.broken = true;
+    }
 }
