@@ -10,7 +10,7 @@ use super::types::{Structs, mask};
 use super::{Ctx, text};
 use crate::diag::did_you_mean;
 use crate::ir::{AddressSet, Command, Direction, DirectionRule, Frame, Role, Transport};
-use crate::spec::model::{IdDef, SStr};
+use crate::spec::model::{DirectionDef, IdDef, SStr};
 
 /// Rule: an address set is `{ range = [first, last] }` with first <= last, or `{ value = v }`;
 /// addresses are not negative.
@@ -113,49 +113,8 @@ pub(crate) fn lower_directions(
             );
             continue;
         }
-        let rule = match (&d.in_set, &d.equals) {
-            (Some(set), None) => match addresses.iter().position(|a| &a.name == set.get_ref()) {
-                Some(si) => DirectionRule::InSet { value: vi, set: si },
-                None => {
-                    let help = match did_you_mean(
-                        set.get_ref(),
-                        addresses.iter().map(|a| a.name.as_str()),
-                    ) {
-                        Some(b) => format!("did you mean `{b}`?"),
-                        None => "declare the set under `[addresses]`".to_string(),
-                    };
-                    ctx.error(
-                        set.span(),
-                        format!("unknown address set `{}`", set.get_ref()),
-                        help,
-                    );
-                    continue;
-                }
-            },
-            (None, Some(v))
-                if *v.get_ref() >= 0 && (*v.get_ref() as u64) <= mask(frame.values[vi].width) =>
-            {
-                DirectionRule::Equals {
-                    value: vi,
-                    equals: *v.get_ref() as u64,
-                }
-            }
-            (None, Some(v)) => {
-                ctx.error(
-                    v.span(),
-                    format!(
-                        "{} does not fit in field `{}`",
-                        v.get_ref(),
-                        d.field.get_ref()
-                    ),
-                    "use a value the field can hold",
-                );
-                continue;
-            }
-            _ => {
-                ctx.error(def.span(), format!("direction `{n}` needs exactly one of `in` and `equals`"), "write `{ field = \"sender\", in = \"master\" }` or `{ field = \"is_ack\", equals = 1 }`");
-                continue;
-            }
+        let Some(rule) = lower_direction_rule(ctx, n, def, frame, vi, addresses) else {
+            continue;
         };
         out.push(Direction {
             name: n.clone(),
@@ -183,6 +142,61 @@ pub(crate) fn lower_directions(
     } // Request first, then response, whatever the spec's order.
     out.sort_by_key(|d| d.name != "request");
     out
+}
+
+/// Rule: a direction tells its frames by the header value lying in a declared address set
+/// (`in`), or equalling a value the field can hold (`equals`), exactly one of the two.
+fn lower_direction_rule(
+    ctx: &mut Ctx<'_>,
+    n: &str,
+    def: &Spanned<DirectionDef>,
+    frame: &Frame,
+    vi: usize,
+    addresses: &[AddressSet],
+) -> Option<DirectionRule> {
+    let d = def.get_ref();
+    Some(match (&d.in_set, &d.equals) {
+        (Some(set), None) => match addresses.iter().position(|a| &a.name == set.get_ref()) {
+            Some(si) => DirectionRule::InSet { value: vi, set: si },
+            None => {
+                let help =
+                    match did_you_mean(set.get_ref(), addresses.iter().map(|a| a.name.as_str())) {
+                        Some(b) => format!("did you mean `{b}`?"),
+                        None => "declare the set under `[addresses]`".to_string(),
+                    };
+                ctx.error(
+                    set.span(),
+                    format!("unknown address set `{}`", set.get_ref()),
+                    help,
+                );
+                return None;
+            }
+        },
+        (None, Some(v))
+            if *v.get_ref() >= 0 && (*v.get_ref() as u64) <= mask(frame.values[vi].width) =>
+        {
+            DirectionRule::Equals {
+                value: vi,
+                equals: *v.get_ref() as u64,
+            }
+        }
+        (None, Some(v)) => {
+            ctx.error(
+                v.span(),
+                format!(
+                    "{} does not fit in field `{}`",
+                    v.get_ref(),
+                    d.field.get_ref()
+                ),
+                "use a value the field can hold",
+            );
+            return None;
+        }
+        _ => {
+            ctx.error(def.span(), format!("direction `{n}` needs exactly one of `in` and `equals`"), "write `{ field = \"sender\", in = \"master\" }` or `{ field = \"is_ack\", equals = 1 }`");
+            return None;
+        }
+    })
 }
 
 /// Rule: every command has a SCREAMING_SNAKE_CASE name whose Rust form is unique, an id with

@@ -1,0 +1,229 @@
+//! Rules for payload structs as a whole: dependency order and cycles, unique field names, and
+//! which fields may take the bytes left in a payload.
+
+use std::collections::HashMap;
+
+use toml::Spanned;
+
+use super::super::names::{check_pascal_name, parse_byte_order};
+use super::super::{Ctx, text};
+use super::Enums;
+use super::fields::lower_field;
+use crate::ir::{Constant, Endian, Field, FieldKind, Struct, ValueType};
+use crate::spec::model::{SStr, StructDef};
+
+/// The structs in dependency order, with a name index.
+pub(crate) struct Structs {
+    pub structs: Vec<Struct>,
+    pub by_name: HashMap<String, usize>,
+    /// Per struct: the `size` names it could not resolve itself, with the span of each `size`
+    /// value and the names of the fields before it (for diagnostics where it is used).
+    pub size_refs: HashMap<String, Vec<SizeRef>>,
+}
+
+/// A `size` a struct could not resolve itself: the field it names, the span of the `size`
+/// value, and the names of the fields before it.
+pub(crate) type SizeRef = (String, std::ops::Range<usize>, Vec<String>);
+
+/// Rule: structs have PascalCase names and resolve in dependency order; a struct that
+/// contains itself, directly or not, is an error (its size would be infinite).
+pub(crate) fn lower_structs(ctx: &mut Ctx<'_>, enums: &Enums, constants: &[Constant]) -> Structs {
+    let spec = ctx.spec;
+    for name in spec.structs.keys() {
+        check_pascal_name(ctx, name, "struct");
+    }
+    let mut out = Structs {
+        structs: Vec::new(),
+        by_name: HashMap::new(),
+        size_refs: HashMap::new(),
+    };
+    let mut state: HashMap<String, Visit> = HashMap::new();
+    for name in spec.structs.keys() {
+        visit_struct(
+            ctx,
+            name.get_ref(),
+            &mut state,
+            &mut out,
+            enums,
+            constants,
+            None,
+        );
+    }
+    out
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Visit {
+    InProgress,
+    Done,
+}
+
+/// Lower struct `name` after the structs it refers to (reached through `from`, the reference
+/// that names it). Gives its index in `out`.
+fn visit_struct(
+    ctx: &mut Ctx<'_>,
+    name: &str,
+    state: &mut HashMap<String, Visit>,
+    out: &mut Structs,
+    enums: &Enums,
+    constants: &[Constant],
+    from: Option<&SStr>,
+) -> Option<usize> {
+    match state.get(name) {
+        Some(Visit::Done) => return out.by_name.get(name).copied(),
+        Some(Visit::InProgress) => {
+            if let Some(r) = from {
+                ctx.error(r.span(), format!("struct `{name}` contains itself"), "a struct cannot hold itself, directly or through other structs: its size would be infinite");
+            }
+            return None;
+        }
+        None => {}
+    }
+    let spec = ctx.spec;
+    let (_, def) = spec.structs.iter().find(|(k, _)| k.get_ref() == name)?;
+    state.insert(name.to_string(), Visit::InProgress);
+    let d: &StructDef = def.get_ref();
+    let endian = match &d.byte_order {
+        Some(o) => parse_byte_order(ctx, o).unwrap_or(ctx.default_endian),
+        None => ctx.default_endian,
+    };
+    // Resolve the structs this one refers to first, so indices point backwards.
+    for f in d.fields.get_ref() {
+        if let Some(ty) = &f.get_ref().ty {
+            if spec.structs.keys().any(|k| k.get_ref() == ty.get_ref()) {
+                visit_struct(ctx, ty.get_ref(), state, out, enums, constants, Some(ty));
+            }
+        }
+    }
+    let fields = lower_fields(ctx, name, d, endian, out, enums, constants);
+    let (min_size, unresolved) = check_tail_fields(ctx, name, d, &fields, out);
+    state.insert(name.to_string(), Visit::Done);
+    let index = out.structs.len();
+    out.by_name.insert(name.to_string(), index);
+    out.structs.push(Struct {
+        name: name.to_string(),
+        doc: text(&d.doc),
+        size: fields.iter().map(|f| f.size).sum(),
+        fields,
+        min_size,
+        context: unresolved,
+    });
+    Some(index)
+}
+
+/// Rule: a struct has fields, each named once. Gives the fields at their offsets.
+fn lower_fields(
+    ctx: &mut Ctx<'_>,
+    name: &str,
+    d: &StructDef,
+    endian: Endian,
+    out: &Structs,
+    enums: &Enums,
+    constants: &[Constant],
+) -> Vec<Field> {
+    let mut fields: Vec<Field> = Vec::new();
+    let mut offset = 0usize;
+    for f in d.fields.get_ref() {
+        if let Some(mut field) = lower_field(ctx, f, endian, out, enums, constants, offset) {
+            if f.get_ref().optional.as_ref().is_some_and(|o| *o.get_ref()) {
+                field.kind = FieldKind::Optional(Box::new(field.kind));
+            }
+            if !field.name.is_empty() && fields.iter().any(|x| x.name == field.name) {
+                let span = f
+                    .get_ref()
+                    .name
+                    .as_ref()
+                    .map(Spanned::span)
+                    .unwrap_or(f.span());
+                ctx.error(
+                    span,
+                    format!("field `{}` appears twice in struct `{name}`", field.name),
+                    "rename one of the fields",
+                );
+                continue;
+            }
+            offset += field.size;
+            fields.push(field);
+        }
+    }
+    if d.fields.get_ref().is_empty() {
+        ctx.error(
+            d.fields.span(),
+            format!("struct `{name}` has no fields"),
+            "a command without payload names no struct; remove the struct or add fields",
+        );
+    }
+    fields
+}
+
+/// Rule: what takes every byte left (variable bytes without `size`, a repeated group, an
+/// optional field) can only be the last field; sized bytes must name an earlier integer
+/// field of this struct, or be resolved by the struct that repeats this one. Gives the
+/// struct's smallest size and the `size` names left to the struct that repeats it.
+fn check_tail_fields(
+    ctx: &mut Ctx<'_>,
+    name: &str,
+    d: &StructDef,
+    fields: &[Field],
+    out: &mut Structs,
+) -> (usize, Vec<String>) {
+    let mut min_size = 0usize;
+    let mut unresolved = Vec::new();
+    for (i, f) in fields.iter().enumerate() {
+        let def_of = || {
+            d.fields.get_ref().iter().find(|x| {
+                x.get_ref()
+                    .name
+                    .as_ref()
+                    .is_some_and(|n| n.get_ref() == &f.name)
+            })
+        };
+        let span = || def_of().map_or(d.fields.span(), Spanned::span);
+        let tail = match &f.kind {
+            FieldKind::Bytes {
+                size_from: None, ..
+            } => Some("variable bytes"),
+            FieldKind::Group { .. } => Some("a repeated group"),
+            FieldKind::Optional(_) => Some("an optional field"),
+            _ => None,
+        };
+        if let Some(what) = tail {
+            if i + 1 != fields.len() {
+                ctx.error(
+                    span(),
+                    format!("`{}` is {what} but not the last field of `{name}`", f.name),
+                    "it takes every byte left in the payload: move it to the end",
+                );
+            }
+        }
+        match &f.kind {
+            FieldKind::Bytes {
+                size_from: Some(src),
+                ..
+            } => {
+                let prior = fields[..i].iter().find(|x| &x.name == src);
+                match prior {
+                    Some(x) if matches!(&x.kind, FieldKind::Value { ty: ValueType::Scalar { scalar, scale: None }, count: None } if scalar.prim.is_unsigned()) => {}
+                    Some(_) => ctx.error(span(), format!("`{src}` is not an unsigned integer field, so it cannot give the size of `{}`", f.name), "name an earlier `u8`/`u16`/`u32` field that holds the number of bytes"),
+                    None => {
+                        unresolved.push(src.clone());
+                        let span = def_of().and_then(|x| x.get_ref().size.as_ref()).map_or(d.fields.span(), Spanned::span);
+                        let earlier = fields[..i].iter().filter(|x| !x.name.is_empty()).map(|x| x.name.clone()).collect();
+                        out.size_refs.entry(name.to_string()).or_default().push((src.clone(), span, earlier));
+                    }
+                }
+            }
+            FieldKind::Group { elem, .. } => {
+                // The element's sized bytes may name fields of this struct before the group.
+                for need in &out.structs[*elem].context {
+                    if !fields[..i].iter().any(|x| &x.name == need) {
+                        ctx.error(span(), format!("the elements of `{}` take their size from `{need}`, which `{name}` does not have before the group", f.name), format!("add an integer field `{need}` before `{}`", f.name));
+                    }
+                }
+            }
+            FieldKind::Bytes { .. } | FieldKind::Optional(_) => {}
+            _ => min_size += f.size,
+        }
+    }
+    (min_size, unresolved)
+}
