@@ -119,6 +119,26 @@ impl Prim {
         }
     }
 
+    /// The primitive a Rust type name (`u8` ... `i64`, `f32`, `f64`, `bool`) stands for: the
+    /// inverse of [`Prim::rust_name`].
+    pub fn from_rust_name(name: &str) -> Option<Prim> {
+        [
+            Prim::U8,
+            Prim::I8,
+            Prim::U16,
+            Prim::I16,
+            Prim::U32,
+            Prim::I32,
+            Prim::U64,
+            Prim::I64,
+            Prim::F32,
+            Prim::F64,
+            Prim::Bool,
+        ]
+        .into_iter()
+        .find(|p| p.rust_name() == name)
+    }
+
     /// True for the unsigned integer types.
     pub fn is_unsigned(self) -> bool {
         matches!(self, Prim::U8 | Prim::U16 | Prim::U32 | Prim::U64)
@@ -349,6 +369,8 @@ pub const CAN_PREFIX_LEN: usize = 5;
 pub struct Frame {
     /// Name as written (snake_case).
     pub name: String,
+    /// The Rust names of the frame format's items.
+    pub names: FrameNames,
     /// How the frames travel.
     pub transport: Transport,
     /// Documentation.
@@ -359,6 +381,10 @@ pub struct Frame {
     pub header_len: usize,
     /// Bytes after the payload (frame checks, trailers).
     pub trailer_len: usize,
+    /// Bytes a stream decoder needs before it knows a frame's length and has verified its
+    /// header: through the sync, the length field, the constants and the header checks
+    /// (fields after them, such as a command id, are part of what the length counts).
+    pub decide_len: usize,
     /// Smallest payload.
     pub payload_min: usize,
     /// Largest payload.
@@ -402,6 +428,27 @@ impl Frame {
     pub fn max_len(&self) -> usize {
         self.header_len + self.payload_max + self.trailer_len
     }
+}
+
+/// The Rust names of a frame format's items. The first (default) frame format's items have
+/// the plain names (`Header`, `Decoder`, ...); another's carry its PascalCase name
+/// (`ScoutHeader`, `ScoutDecoder`, ...), and its consts its upper-case name (`SCOUT_`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FrameNames {
+    /// PascalCase of the frame name (`scout` -> `Scout`).
+    pub pascal: String,
+    /// Prefix of the frame's consts and statics: empty for the first frame, else `NAME_`.
+    pub const_prefix: String,
+    /// The struct of the header values a sender sets.
+    pub header: String,
+    /// The type of a whole decoded frame.
+    pub packet: String,
+    /// The type of the frame's layout.
+    pub layout: String,
+    /// The stream decoder type.
+    pub decoder: String,
+    /// The function that makes a stream decoder.
+    pub decoder_fn: String,
 }
 
 /// One element of a frame layout, for docs.
@@ -565,6 +612,8 @@ pub struct Trailer {
 pub struct Direction {
     /// Name (`request` or `response`).
     pub name: String,
+    /// Rust name of the direction's message enum and variant (PascalCase of `name`).
+    pub rust_name: String,
     /// Documentation.
     pub doc: String,
     /// How a decoder tells this direction from the header.

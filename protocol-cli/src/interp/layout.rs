@@ -9,7 +9,6 @@
 
 use std::sync::Mutex;
 
-use protocol_codegen::codegen::frame::decide_len;
 use protocol_codegen::ir::{self, Algorithm, CrcParams, Endian, HeaderValue, Length, Role};
 use protocol_runtime::checksum::{Checksum, CrcImpl, Slicing16};
 use protocol_runtime::layout::{
@@ -275,7 +274,7 @@ impl<'a> FrameParts<'a> {
             sync: &self.frame.sync,
             // What the engine needs before the length is known and the header verified, as
             // generated code computes it (a command id after the length is not needed).
-            header_len: decide_len(self.frame),
+            header_len: self.frame.decide_len,
             min_len: self.frame.min_len(),
             max_len: self.frame.max_len(),
             length: self.length,

@@ -20,7 +20,6 @@ use syn::{Data, DeriveInput, Expr, Fields, Lit, Type};
 use super::RuntimePath;
 use super::payload::{PField, PKind, PayloadDef, emit_payload_impl};
 use crate::ir::{Endian, Prim, Rounding, Scalar, Scale};
-use crate::validate::parse_prim_public as parse_prim;
 
 #[derive(Default)]
 struct FieldAttrs {
@@ -44,8 +43,7 @@ fn parse_endian(lit: &syn::LitStr) -> syn::Result<Endian> {
 }
 
 fn parse_prim_lit(lit: &syn::LitStr) -> syn::Result<Prim> {
-    parse_prim(&lit.value(), Endian::Little)
-        .map(|s| s.prim)
+    Prim::from_rust_name(&lit.value())
         .filter(|p| p.is_signed() || p.is_unsigned())
         .ok_or_else(|| {
             syn::Error::new(
@@ -160,16 +158,8 @@ pub fn derive_payload(input: &DeriveInput) -> syn::Result<TokenStream> {
             Type::Path(tp) if tp.qself.is_none() => tp
                 .path
                 .get_ident()
-                .and_then(|i| parse_prim(&i.to_string(), endian))
-                .filter(|s| {
-                    // `u16le` and friends are not Rust types.
-                    s.prim.rust_name()
-                        == tp
-                            .path
-                            .get_ident()
-                            .map(ToString::to_string)
-                            .unwrap_or_default()
-                }),
+                .and_then(|i| Prim::from_rust_name(&i.to_string()))
+                .map(|prim| Scalar { prim, endian }),
             _ => None,
         };
         let kind = if let Some(repr) = a.repr {

@@ -6,7 +6,7 @@ use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
 use super::docs::doc_attrs;
-use super::frame::{frame_prefix, user_values, value_const};
+use super::frame::{user_values, value_const};
 use super::payload::prim_type;
 use super::types::int_lit;
 use super::{RuntimePath, ident};
@@ -32,7 +32,7 @@ pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         ));
     } else {
         for (di, d) in p.directions.iter().enumerate() {
-            let name = format_ident!("{}", super::super::validate::pascal_case(&d.name));
+            let name = format_ident!("{}", d.rust_name);
             let doc = format!(
                 "A {} message: one variant per command, holding its {} payload. {}",
                 d.name, d.name, d.doc
@@ -48,7 +48,7 @@ pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
                 p,
                 mf,
                 si,
-                &frame_prefix(p, &p.frames[fi]),
+                &p.frames[fi].names.const_prefix,
                 &rt,
             ));
         }
@@ -56,7 +56,7 @@ pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     if p.directions.is_empty() {
         for (fi, cf) in p.frames.iter().enumerate().skip(1) {
             if matches!(cf.transport, Transport::Can { .. }) {
-                out.extend(emit_can_packet(cf, &frame_prefix(p, &p.frames[fi]), &rt));
+                out.extend(emit_can_packet(cf, &p.frames[fi].names.const_prefix, &rt));
             }
         }
     }
@@ -66,9 +66,8 @@ pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
 /// `<Name>Packet` for a CAN frame format: decode from and encode to a `CanFrame`, through the
 /// frame's virtual layout (id, length, data) so the runtime verifies and seals its checks.
 fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> TokenStream {
-    let pascal = super::super::validate::pascal_case(&f.name);
-    let header = format_ident!("{}Header", pascal);
-    let packet = format_ident!("{}Packet", pascal);
+    let header = format_ident!("{}", f.names.header);
+    let packet = format_ident!("{}", f.names.packet);
     let layout = super::const_ident(&format!("{prefix}LAYOUT"));
     let header_len = super::const_ident(&format!("{prefix}HEADER_LEN"));
     let trailer_len = super::const_ident(&format!("{prefix}TRAILER_LEN"));
@@ -391,14 +390,14 @@ fn emit_message_enum(
 
 fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
     let variants = p.directions.iter().map(|d| {
-        let v = format_ident!("{}", super::super::validate::pascal_case(&d.name));
+        let v = format_ident!("{}", d.rust_name);
         let doc = doc_attrs(&format!("A {}. {}", d.name, d.doc));
         quote!(#doc #v(#v))
     });
     let names: Vec<_> = p
         .directions
         .iter()
-        .map(|d| format_ident!("{}", super::super::validate::pascal_case(&d.name)))
+        .map(|d| format_ident!("{}", d.rust_name))
         .collect();
     quote! {
         /// A decoded message: its direction, then the command and payload.
@@ -489,7 +488,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         quote!(Message::read_payload(command, payload)?)
     } else {
         let arms = p.directions.iter().map(|d| {
-            let v = format_ident!("{}", super::super::validate::pascal_case(&d.name));
+            let v = format_ident!("{}", d.rust_name);
             let test = direction_test(p, f, &d.rule);
             quote!(if #test { Message::#v(#v::read_payload(command, payload)?) } else)
         });
@@ -499,7 +498,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         quote!()
     } else {
         let arms = p.directions.iter().map(|d| {
-            let v = format_ident!("{}", super::super::validate::pascal_case(&d.name));
+            let v = format_ident!("{}", d.rust_name);
             let test = direction_test(p, f, &d.rule);
             quote!(Message::#v(_) => #test,)
         });
@@ -704,9 +703,8 @@ fn emit_message_packet(
     prefix: &str,
     rt: &TokenStream,
 ) -> TokenStream {
-    let pascal = super::super::validate::pascal_case(&f.name);
-    let header = format_ident!("{}Header", pascal);
-    let packet = format_ident!("{}Packet", pascal);
+    let header = format_ident!("{}", f.names.header);
+    let packet = format_ident!("{}", f.names.packet);
     let st = ident(&p.structs[si].name);
     let layout = super::const_ident(&format!("{prefix}LAYOUT"));
     let header_len = super::const_ident(&format!("{prefix}HEADER_LEN"));

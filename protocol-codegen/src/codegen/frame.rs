@@ -12,47 +12,6 @@ use crate::ir::{
     Algorithm, Check, Endian, Frame, HeaderValue, Length, Pos, Prim, Protocol, Role, Transport,
 };
 
-/// Bytes the stream engine needs before it knows a frame's length and has verified its header:
-/// through the length field, the constants and the header checks (fields after them, such as a
-/// command id, are part of what the length counts).
-pub fn decide_len(f: &Frame) -> usize {
-    let word_end = |v: &HeaderValue| match v.at {
-        Pos::Start(o) => o + v.word.prim.size(),
-        Pos::End(_) => 0,
-    };
-    let length = match &f.length {
-        Length::Field { value, .. } => word_end(&f.values[*value]),
-        Length::Fixed(_) => 0,
-    };
-    let constants = f
-        .values
-        .iter()
-        .filter(|v| matches!(v.role, Role::Const(_)))
-        .map(word_end)
-        .max()
-        .unwrap_or(0);
-    let checks = f
-        .checks
-        .iter()
-        .filter(|c| c.header)
-        .map(|c| match c.at {
-            Pos::Start(o) => o + c.size,
-            Pos::End(_) => 0,
-        })
-        .max()
-        .unwrap_or(0);
-    f.sync.len().max(length).max(constants).max(checks)
-}
-
-/// Prefix of a frame's items: empty for the first (default) frame, `NAME_` for the others.
-pub fn frame_prefix(p: &Protocol, f: &Frame) -> String {
-    if p.frames.first().is_some_and(|first| first.name == f.name) {
-        String::new()
-    } else {
-        format!("{}_", f.name.to_ascii_uppercase())
-    }
-}
-
 fn pos(rt: &TokenStream, p: Pos) -> TokenStream {
     match p {
         Pos::Start(n) => quote!(#rt::Pos::Start(#n)),
@@ -165,7 +124,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     let rt = paths.private();
     let mut out = TokenStream::new();
     for f in &p.frames {
-        let prefix = frame_prefix(p, f);
+        let prefix = f.names.const_prefix.clone();
         let c = |n: &str| const_ident(&format!("{prefix}{n}"));
         let (max_frame, min_frame, max_payload, min_payload, header_len, trailer_len) = (
             c("MAX_FRAME_LEN"),
@@ -198,7 +157,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
                 }
             }
         };
-        let decide = decide_len(f);
+        let decide = f.decide_len;
         let constants = f.values.iter().filter_map(|v| match v.role {
             Role::Const(value) => {
                 let field = value_const(&prefix, v);
@@ -232,16 +191,8 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
             quote!(#rt::Marker { at: #at, bytes: &[#(#bytes),*] })
         });
         let sync = &f.sync;
-        let decoder_name = if prefix.is_empty() {
-            format_ident!("Decoder")
-        } else {
-            format_ident!("{}Decoder", super::super::validate::pascal_case(&f.name))
-        };
-        let decoder_fn = if prefix.is_empty() {
-            format_ident!("decoder")
-        } else {
-            format_ident!("{}_decoder", f.name)
-        };
+        let decoder_name = format_ident!("{}", f.names.decoder);
+        let decoder_fn = format_ident!("{}", f.names.decoder_fn);
         let decoder_doc = format!(
             " A streaming decoder of `{fname}` frames: a fixed buffer of `{}` bytes, no heap.",
             c("DECODER_BUFFER_LEN")
@@ -277,11 +228,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         if f.transport == Transport::Serial {
             let buffer = decoder_buffer_len(f.max_len());
             let buffer_name = c("DECODER_BUFFER_LEN");
-            let layout_type = if prefix.is_empty() {
-                format_ident!("Layout")
-            } else {
-                format_ident!("{}Layout", super::super::validate::pascal_case(&f.name))
-            };
+            let layout_type = format_ident!("{}", f.names.layout);
             let buffer_doc = format!(
                 " Bytes of the buffer of a [`{decoder_name}`]: a pending frame, a chunk of input \
                  staged behind it, and room for a checksum window."
@@ -313,7 +260,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     }
     // Header value positions of every frame, in one module.
     let wire_items = p.frames.iter().flat_map(|f| {
-        let prefix = frame_prefix(p, f);
+        let prefix = f.names.const_prefix.clone();
         let fname = f.name.clone();
         let rt = rt.clone();
         f.values
@@ -333,7 +280,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         }
     });
     if let Some(f) = p.frames.first() {
-        out.extend(emit_header(f, &format_ident!("Header")));
+        out.extend(emit_header(f, &format_ident!("{}", f.names.header)));
     }
     for f in p
         .frames
@@ -341,10 +288,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         .skip(1)
         .filter(|f| f.transport != Transport::Serial || f.message.is_some())
     {
-        out.extend(emit_header(
-            f,
-            &format_ident!("{}Header", super::super::validate::pascal_case(&f.name)),
-        ));
+        out.extend(emit_header(f, &format_ident!("{}", f.names.header)));
     }
     out
 }

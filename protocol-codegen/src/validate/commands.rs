@@ -118,6 +118,7 @@ pub(crate) fn lower_directions(
         };
         out.push(Direction {
             name: n.clone(),
+            rust_name: pascal_case(n),
             doc: text(&d.doc),
             rule,
         });

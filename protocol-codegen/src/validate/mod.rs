@@ -91,8 +91,3 @@ pub(crate) fn text(s: &Option<SStr>) -> String {
         .map(|s| s.get_ref().trim().to_string())
         .unwrap_or_default()
 }
-
-/// Parse a primitive wire type spelling (`u16`, `u16be`, `f32`, `bool`); for the derive macro.
-pub fn parse_prim_public(name: &str, default: Endian) -> Option<ir::Scalar> {
-    names::parse_prim(name, default)
-}

@@ -8,7 +8,7 @@ use super::super::Ctx;
 use super::super::types::mask;
 use super::{El, Kind};
 use crate::diag::did_you_mean;
-use crate::ir::{CAN_PREFIX_LEN, HeaderValue, Length, Pos, Transport};
+use crate::ir::{CAN_PREFIX_LEN, Check, HeaderValue, Length, Pos, Role, Transport};
 use crate::spec::model::{FrameDef, SStr};
 
 /// A frame's elements with the payload placed.
@@ -217,4 +217,39 @@ pub(super) fn lower_length(
         *ok = false;
     }
     Some(Length::Field { value: vi, adjust })
+}
+
+/// Bytes a stream decoder needs before it knows a frame's length and has verified its header:
+/// through the sync, the length field, the constants and the header checks (fields after them,
+/// such as a command id, are part of what the length counts).
+pub(super) fn lower_decide_len(
+    sync: &[u8],
+    values: &[HeaderValue],
+    length: &Length,
+    checks: &[Check],
+) -> usize {
+    let word_end = |v: &HeaderValue| match v.at {
+        Pos::Start(o) => o + v.word.prim.size(),
+        Pos::End(_) => 0,
+    };
+    let length = match length {
+        Length::Field { value, .. } => word_end(&values[*value]),
+        Length::Fixed(_) => 0,
+    };
+    let constants = values
+        .iter()
+        .filter(|v| matches!(v.role, Role::Const(_)))
+        .map(word_end)
+        .max()
+        .unwrap_or(0);
+    let checks = checks
+        .iter()
+        .filter(|c| c.header)
+        .map(|c| match c.at {
+            Pos::Start(o) => o + c.size,
+            Pos::End(_) => 0,
+        })
+        .max()
+        .unwrap_or(0);
+    sync.len().max(length).max(constants).max(checks)
 }

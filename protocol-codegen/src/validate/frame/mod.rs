@@ -14,10 +14,12 @@ mod options;
 
 use toml::Spanned;
 
-use super::names::check_snake_name;
+use super::names::{check_snake_name, pascal_case};
 use super::types::{Enums, Structs};
 use super::{Ctx, text};
-use crate::ir::{Algorithm, Check, Element, Frame, HeaderValue, Pos, Scalar, Trailer, Transport};
+use crate::ir::{
+    Algorithm, Check, Element, Frame, FrameNames, HeaderValue, Pos, Scalar, Trailer, Transport,
+};
 use crate::spec::model::{ElementDef, FrameDef, SStr};
 use length::Layout;
 
@@ -32,9 +34,9 @@ pub(crate) fn lower_frames(ctx: &mut Ctx<'_>, structs: &Structs, enums: &Enums) 
         );
     }
     let mut out = Vec::new();
-    for (name, def) in &spec.frames {
+    for (i, (name, def)) in spec.frames.iter().enumerate() {
         check_snake_name(ctx, name, "frame name");
-        if let Some(f) = lower_frame(ctx, name, def.get_ref(), structs, enums) {
+        if let Some(f) = lower_frame(ctx, name, i == 0, def.get_ref(), structs, enums) {
             out.push(f);
         }
     }
@@ -78,11 +80,12 @@ struct Draft<'s> {
     broken: bool,
 }
 
-/// Lower one frame format: the element rules, then the rules over the whole layout. `None`
+/// Lower one frame format (`first`: the spec's first, default one): the element rules, then the rules over the whole layout. `None`
 /// when any rule failed (its error is recorded).
 fn lower_frame(
     ctx: &mut Ctx<'_>,
     fname: &SStr,
+    first: bool,
     def: &FrameDef,
     structs: &Structs,
     enums: &Enums,
@@ -141,14 +144,18 @@ fn lower_frame(
         // The commands cannot be checked against a frame whose layout is broken.
         return None;
     }
+    let sync = match &els[0].kind {
+        Kind::Sync(b) => b.clone(),
+        _ => Vec::new(),
+    };
+    let checks = order_checks(checks);
     Some(Frame {
         name: fname.get_ref().clone(),
+        names: lower_names(fname.get_ref(), first),
         transport,
         doc: text(&def.doc),
-        sync: match &els[0].kind {
-            Kind::Sync(b) => b.clone(),
-            _ => Vec::new(),
-        },
+        decide_len: length::lower_decide_len(&sync, &values, &length, &checks),
+        sync,
         header_len: lay.header_len,
         trailer_len: lay.trailer_len,
         payload_min,
@@ -157,13 +164,43 @@ fn lower_frame(
         values,
         length,
         dispatch,
-        checks: order_checks(checks),
+        checks,
         trailers,
         ack,
         bare_len,
         stuffing,
         message,
     })
+}
+
+/// The Rust names of a frame format's items: plain for the first frame format, prefixed with
+/// the frame's name for the others (so two frame formats never define the same item).
+fn lower_names(name: &str, first: bool) -> FrameNames {
+    let pascal = pascal_case(name);
+    let item = |plain: &str| {
+        if first {
+            plain.to_string()
+        } else {
+            format!("{pascal}{plain}")
+        }
+    };
+    FrameNames {
+        const_prefix: if first {
+            String::new()
+        } else {
+            format!("{}_", name.to_ascii_uppercase())
+        },
+        header: item("Header"),
+        packet: item("Packet"),
+        layout: item("Layout"),
+        decoder: item("Decoder"),
+        decoder_fn: if first {
+            "decoder".to_string()
+        } else {
+            format!("{name}_decoder")
+        },
+        pascal,
+    }
 }
 
 /// The wire elements in order, for docs and diagrams.
