@@ -82,7 +82,7 @@ pub(super) fn lower_field_element<'s>(
         draft.broken = true;
         return Some(());
     };
-    let Some(word) = header_word(ctx, ty) else {
+    let Some(word) = lower_header_word(ctx, ty) else {
         draft.broken = true;
         return Some(());
     };
@@ -101,7 +101,7 @@ pub(super) fn lower_field_element<'s>(
 }
 
 /// Rule: a header field's type is an unsigned integer (flags are `bits` of one).
-fn header_word(ctx: &mut Ctx<'_>, ty: &SStr) -> Option<Scalar> {
+fn lower_header_word(ctx: &mut Ctx<'_>, ty: &SStr) -> Option<Scalar> {
     match parse_prim(ty.get_ref(), ctx.default_endian) {
         Some(s) if s.prim.is_unsigned() => Some(s),
         Some(_) => {
@@ -148,7 +148,7 @@ fn lower_whole_value<'s>(
         }
         Role::Const(*v.get_ref() as u64)
     } else if let Some(cov) = &d.length_of {
-        length_decl_once(ctx, draft, cov);
+        check_one_length_field(ctx, draft, cov);
         Role::Length
     } else {
         Role::User {
@@ -203,7 +203,7 @@ fn lower_member_values<'s>(
             }
             Role::Const(*v.get_ref() as u64)
         } else if let Some(cov) = &b.length_of {
-            length_decl_once(ctx, draft, cov);
+            check_one_length_field(ctx, draft, cov);
             Role::Length
         } else {
             Role::User { addresses }
@@ -231,7 +231,7 @@ fn lower_member_values<'s>(
 }
 
 /// Rule: a frame has one length field. The next value pushed is the one `cov` belongs to.
-fn length_decl_once<'s>(ctx: &mut Ctx<'_>, draft: &mut Draft<'s>, cov: &'s SStr) {
+fn check_one_length_field<'s>(ctx: &mut Ctx<'_>, draft: &mut Draft<'s>, cov: &'s SStr) {
     if draft.length_decl.is_some() {
         ctx.error(
             cov.span(),
