@@ -412,6 +412,24 @@ pub struct Frame {
     /// For a frame format without dispatch key: the struct (index into [`Protocol::structs`])
     /// every frame carries.
     pub message: Option<usize>,
+    /// What a whole decoded frame of this format holds, when it has a packet type.
+    pub packet: PacketKind,
+}
+
+/// The packet type of a frame format: what a whole decoded frame holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PacketKind {
+    /// No packet type of its own.
+    None,
+    /// The first frame format, with a dispatch key: a header and a command's message.
+    Command,
+    /// A serial frame format without dispatch key, in a spec whose first frame format has one:
+    /// a header and the struct (index into [`Protocol::structs`]) every frame carries.
+    Message(usize),
+    /// A CAN frame format other than the first, in a spec without directions whose first frame
+    /// format has a dispatch key: a header and a command's message, the command found from the
+    /// CAN id.
+    Can,
 }
 
 impl Frame {

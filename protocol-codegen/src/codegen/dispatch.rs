@@ -10,7 +10,7 @@ use super::frame::{user_values, value_const};
 use super::payload::prim_type;
 use super::types::int_lit;
 use super::{RuntimePath, ident};
-use crate::ir::{Command, DirectionRule, Frame, Prim, Protocol, Transport};
+use crate::ir::{Command, DirectionRule, Frame, PacketKind, Prim, Protocol, Transport};
 
 /// Everything about commands and messages, for the first frame.
 pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
@@ -42,22 +42,14 @@ pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         out.extend(emit_direction_message(p, &rt));
     }
     out.extend(emit_packet(p, f, &rt));
-    for (fi, mf) in p.frames.iter().enumerate().skip(1) {
-        if let (Transport::Serial, Some(si)) = (mf.transport, mf.message) {
-            out.extend(emit_message_packet(
-                p,
-                mf,
-                si,
-                &p.frames[fi].names.const_prefix,
-                &rt,
-            ));
+    for mf in &p.frames {
+        if let PacketKind::Message(si) = mf.packet {
+            out.extend(emit_message_packet(p, mf, si, &mf.names.const_prefix, &rt));
         }
     }
-    if p.directions.is_empty() {
-        for (fi, cf) in p.frames.iter().enumerate().skip(1) {
-            if matches!(cf.transport, Transport::Can { .. }) {
-                out.extend(emit_can_packet(cf, &p.frames[fi].names.const_prefix, &rt));
-            }
+    for cf in &p.frames {
+        if cf.packet == PacketKind::Can {
+            out.extend(emit_can_packet(cf, &cf.names.const_prefix, &rt));
         }
     }
     out

@@ -70,6 +70,8 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
         None => Vec::new(),
     };
     let commands = commands::lower_commands(&mut ctx, &frames, &directions, &structs);
+    let mut frames = frames;
+    frame::lower_packets(&mut frames, !directions.is_empty());
 
     Some(ir::Protocol {
         name: p.name.get_ref().clone(),

@@ -18,7 +18,8 @@ use super::names::{check_snake_name, pascal_case};
 use super::types::{Enums, Structs};
 use super::{Ctx, text};
 use crate::ir::{
-    Algorithm, Check, Element, Frame, FrameNames, HeaderValue, Pos, Scalar, Trailer, Transport,
+    Algorithm, Check, Element, Frame, FrameNames, HeaderValue, PacketKind, Pos, Scalar, Trailer,
+    Transport,
 };
 use crate::spec::model::{ElementDef, FrameDef, SStr};
 use length::Layout;
@@ -170,7 +171,25 @@ fn lower_frame(
         bare_len,
         stuffing,
         message,
+        packet: PacketKind::None,
     })
+}
+
+/// The packet type of each frame format, once the directions are known: the first frame
+/// format has one when it has a dispatch key, and then so do the other serial frame formats
+/// that carry one `message` and, in a spec without directions, the other CAN frame formats.
+pub(crate) fn lower_packets(frames: &mut [Frame], directions: bool) {
+    if frames.first().is_none_or(|f| f.dispatch.is_empty()) {
+        return;
+    }
+    frames[0].packet = PacketKind::Command;
+    for f in frames.iter_mut().skip(1) {
+        f.packet = match (f.transport, f.message) {
+            (Transport::Serial, Some(si)) => PacketKind::Message(si),
+            (Transport::Can { .. }, _) if !directions => PacketKind::Can,
+            _ => PacketKind::None,
+        };
+    }
 }
 
 /// The Rust names of a frame format's items: plain for the first frame format, prefixed with
