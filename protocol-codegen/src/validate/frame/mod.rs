@@ -1,4 +1,4 @@
-//! Rules for frame formats. `lower_frame` runs them in order over a [`Draft`]: each layout
+//! Rules for frame formats. `lower_frame` runs them in order over a `Draft`: each layout
 //! element is lowered on its own (`elements`, `header`), then, once the payload's place is
 //! known, the offsets and the length rule (`length`), what each check covers (`checks`), the
 //! dispatch key, acknowledgements and bare headers (`ack`), and the settings outside the
@@ -65,7 +65,7 @@ struct El<'s> {
 
 /// A frame format while its element rules run: the elements lowered so far and the values,
 /// checks and trailers they declare. Positions are placeholders until the payload's place is
-/// known ([`Layout`]).
+/// known (`Layout`).
 struct Draft<'s> {
     transport: Transport,
     els: Vec<El<'s>>,
@@ -81,8 +81,8 @@ struct Draft<'s> {
     broken: bool,
 }
 
-/// Lower one frame format (`first`: the spec's first, default one): the element rules, then the rules over the whole layout. `None`
-/// when any rule failed (its error is recorded).
+/// Lower one frame format (`first`: the spec's first, default one): the element rules, then
+/// the rules over the whole layout. `None` when any rule failed (its error is recorded).
 fn lower_frame(
     ctx: &mut Ctx<'_>,
     fname: &SStr,
