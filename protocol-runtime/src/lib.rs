@@ -11,6 +11,9 @@
 //!   counting what it dropped ([`Stats`]);
 //! - [`encoder`]: sealing a frame written in place ([`FrameLayout::seal`]) and the [`Payload`]
 //!   trait of payload structs;
+//! - [`field`]: field semantics (scaling, rounding, clamping, enum policy, bit members,
+//!   sized bytes, optional fields and repeated groups), shared by generated code and the
+//!   run-time codec;
 //! - [`wire`]: the cursors payload code reads and writes with ([`Reader`], [`Writer`]);
 //! - [`checksum`]: sums, xor and CRCs ([`Checksum`]);
 //! - [`error`]: [`DecodeError`] and [`EncodeError`].
@@ -107,6 +110,7 @@ pub mod checksum;
 pub mod decoder;
 pub mod encoder;
 pub mod error;
+pub mod field;
 pub mod group;
 #[cfg(any(feature = "std", feature = "embedded-io"))]
 pub mod io;
@@ -132,8 +136,8 @@ pub use protocol_macros::{Payload, protocol};
 #[doc(hidden)]
 pub mod __private {
     pub use crate::{
-        bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, group::*, layout::*,
-        stuffing::*, wire::*,
+        bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, field::*, group::*,
+        layout::*, stuffing::*, wire::*,
     };
     pub use core;
     pub use crc;

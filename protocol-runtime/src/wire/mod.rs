@@ -438,15 +438,6 @@ impl<'a> Writer<'a> {
     }
 }
 
-/// Whether a decoded physical value lies in the clamp range `lo..=hi` of its scaled field,
-/// allowing for the rounding of `raw * factor + offset` (a raw value at the limit is inside).
-/// Generated code and the interpreter both decide with this function.
-#[inline]
-pub fn within_clamp(physical: f64, lo: f64, hi: f64) -> bool {
-    let slack = 1e-9 * (if hi - lo > 1.0 { hi - lo } else { 1.0 });
-    physical >= lo - slack && physical <= hi + slack
-}
-
 #[cfg(test)]
 #[allow(clippy::indexing_slicing, clippy::unwrap_used)]
 mod tests {

@@ -198,7 +198,7 @@ fn read_elem(
             let raw = read_scalar(r, *scalar)?.as_f64();
             let physical = raw * sc.factor + sc.offset;
             if let Some((lo, hi)) = sc.clamp {
-                if !protocol_runtime::wire::within_clamp(physical, lo, hi) {
+                if !protocol_runtime::field::within_clamp(physical, lo, hi) {
                     return Err(ReadFail::Runtime(DecodeError::ValueOutOfRange));
                 }
             }

@@ -1,0 +1,429 @@
+//! Field semantics: the rules that turn a payload field's wire value into its Rust value and
+//! back, once for every codec. Generated payload code calls these functions with its field's
+//! constants (so each call folds to the same straight-line code a hand-written codec has), and
+//! the run-time codec calls them with the values of its spec.
+//!
+//! - scaled fields: `physical = raw * factor + offset` ([`to_physical`]); encoding clamps the
+//!   physical value when the spec gives a clamp range ([`clamp`]), divides back and rounds
+//!   ([`quantize`] by a [`Rounding`]), and a raw value that does not fit its integer type is an
+//!   error ([`fit`]), never a saturated value; decoding refuses a value outside the clamp range
+//!   ([`check_clamp`]), which could not encode back to the same bytes;
+//! - enums: an unknown value is an error or kept, by the enum's [`UnknownPolicy`]; a value
+//!   encodes only if it decodes back to itself ([`enum_raw`]);
+//! - bitfields: members are `width` bits at `shift` of an unsigned word ([`get_bits`],
+//!   [`set_bits`]); a member value wider than its bits is an error, bits no member declares are
+//!   written as zero and ignored when read;
+//! - sized bytes: a run of bytes whose length another field states ([`take_sized`],
+//!   [`check_stated_len`]);
+//! - optional fields and repeated groups: present while bytes remain ([`more`]); a group that
+//!   holds more elements than its capacity is a payload of the wrong length ([`group_full`]).
+//!
+//! It does not own the wire cursors ([`crate::wire`]) or the payload trait
+//! ([`crate::Payload`]).
+
+use crate::error::{DecodeError, EncodeError};
+use crate::wire::Reader;
+
+/// How a scaled field's physical value becomes its raw integer when encoding.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Rounding {
+    /// To the nearest integer, halves away from zero.
+    #[default]
+    Nearest,
+    /// Toward zero, as a C cast; but a quotient within float noise (a relative 1e-6) of an
+    /// integer is that integer, so that a decoded value (`raw * factor`, rounded to `f32`)
+    /// encodes back to the same raw value.
+    Truncate,
+}
+
+/// The physical value of a scaled field's raw value: `raw * factor + offset`.
+///
+/// ```
+/// assert_eq!(protocol_runtime::field::to_physical(250.0, 0.1, -5.0), 20.0);
+/// ```
+#[inline(always)]
+pub fn to_physical(raw: f64, factor: f64, offset: f64) -> f64 {
+    raw * factor + offset
+}
+
+/// Whether a decoded physical value lies in the clamp range `lo..=hi` of its scaled field,
+/// allowing for the rounding of `raw * factor + offset` (a raw value at the limit is inside).
+///
+/// ```
+/// use protocol_runtime::field::within_clamp;
+/// assert!(within_clamp(0.5235000000000001, -0.5235, 0.5235));
+/// assert!(!within_clamp(0.56, -0.5235, 0.5235));
+/// ```
+#[inline(always)]
+pub fn within_clamp(physical: f64, lo: f64, hi: f64) -> bool {
+    let slack = 1e-9 * (if hi - lo > 1.0 { hi - lo } else { 1.0 });
+    physical >= lo - slack && physical <= hi + slack
+}
+
+/// A decoded physical value, if it lies in its field's clamp range (see [`within_clamp`]).
+///
+/// # Errors
+///
+/// [`DecodeError::ValueOutOfRange`] outside the range: the encoder would clamp the value, so
+/// the bytes would not encode back to themselves.
+///
+/// ```
+/// use protocol_runtime::{DecodeError, field::check_clamp};
+/// assert_eq!(check_clamp(0.25, -0.5, 0.5), Ok(0.25));
+/// assert_eq!(check_clamp(0.75, -0.5, 0.5), Err(DecodeError::ValueOutOfRange));
+/// ```
+#[inline(always)]
+pub fn check_clamp(physical: f64, lo: f64, hi: f64) -> Result<f64, DecodeError> {
+    if within_clamp(physical, lo, hi) {
+        Ok(physical)
+    } else {
+        Err(DecodeError::ValueOutOfRange)
+    }
+}
+
+/// A physical value clamped to `lo..=hi`, as a scaled field with a clamp range encodes it
+/// (NaN stays NaN, which [`fit`] refuses).
+///
+/// ```
+/// assert_eq!(protocol_runtime::field::clamp(7.0, -1.0, 1.0), 1.0);
+/// ```
+#[inline(always)]
+pub fn clamp(physical: f64, lo: f64, hi: f64) -> f64 {
+    physical.clamp(lo, hi)
+}
+
+/// The raw value of a physical one, before the cast to the raw type: `(physical - offset) /
+/// factor`, rounded by `rounding`. The result's integer part, toward zero, is the raw value
+/// ([`fit`] takes it); `core` has no `round` or `trunc`, so rounding to nearest adds a half
+/// away from zero and leaves the cut to the cast.
+///
+/// ```
+/// use protocol_runtime::field::{Rounding, quantize};
+/// assert_eq!(quantize(0.26, 0.1, 0.0, Rounding::Nearest) as i64, 3);
+/// assert_eq!(quantize(0.26, 0.1, 0.0, Rounding::Truncate) as i64, 2);
+/// // 0.3 / 0.1 is 2.9999999999999996: within float noise of 3.
+/// assert_eq!(quantize(0.3, 0.1, 0.0, Rounding::Truncate) as i64, 3);
+/// ```
+#[inline(always)]
+pub fn quantize(physical: f64, factor: f64, offset: f64, rounding: Rounding) -> f64 {
+    let q = (physical - offset) / factor;
+    let nearest = if q >= 0.0 { q + 0.5 } else { q - 0.5 };
+    match rounding {
+        Rounding::Nearest => nearest,
+        Rounding::Truncate => {
+            let nearest = nearest as i64 as f64;
+            let off = if q >= nearest {
+                q - nearest
+            } else {
+                nearest - q
+            };
+            let magnitude = if q >= 0.0 { q } else { -q };
+            if off <= 1e-6 * (if magnitude > 1.0 { magnitude } else { 1.0 }) {
+                nearest
+            } else {
+                q
+            }
+        }
+    }
+}
+
+/// An integer type a scaled field's raw value has on the wire.
+pub trait RawInt: Copy {
+    /// The largest `f64` below every value whose integer part fits (exclusive bound).
+    const BELOW: f64;
+    /// The smallest `f64` above every value whose integer part fits (exclusive bound).
+    const ABOVE: f64;
+    /// `x` cut toward zero (an `as` cast); `x` lies strictly between the bounds.
+    fn cut(x: f64) -> Self;
+}
+
+macro_rules! raw_ints {
+    ($($t:ty: $below:expr, $above:expr;)*) => {$(
+        impl RawInt for $t {
+            const BELOW: f64 = $below;
+            const ABOVE: f64 = $above;
+            #[inline(always)]
+            fn cut(x: f64) -> Self {
+                x as $t
+            }
+        }
+    )*};
+}
+
+raw_ints! {
+    u8: -1.0, 256.0;
+    u16: -1.0, 65_536.0;
+    u32: -1.0, 4_294_967_296.0;
+    u64: -1.0, 18_446_744_073_709_551_616.0;
+    i8: -129.0, 128.0;
+    i16: -32_769.0, 32_768.0;
+    i32: -2_147_483_649.0, 2_147_483_648.0;
+    // -2^63 - 1 is no f64; the next one below -2^63 is -2^63 - 2048.
+    i64: -9_223_372_036_854_777_856.0, 9_223_372_036_854_775_808.0;
+}
+
+/// The raw integer of a quantized value ([`quantize`]): its integer part, toward zero.
+///
+/// # Errors
+///
+/// [`EncodeError::ValueOutOfRange`] if that integer does not fit `T`, or the value is NaN:
+/// a value the field cannot carry is refused, never saturated.
+///
+/// ```
+/// use protocol_runtime::{EncodeError, field::fit};
+/// assert_eq!(fit::<u8>(255.9), Ok(255));
+/// assert_eq!(fit::<i8>(-128.7), Ok(-128));
+/// assert_eq!(fit::<u8>(256.0), Err(EncodeError::ValueOutOfRange));
+/// assert_eq!(fit::<u16>(f64::NAN), Err(EncodeError::ValueOutOfRange));
+/// ```
+#[inline(always)]
+pub fn fit<T: RawInt>(x: f64) -> Result<T, EncodeError> {
+    if x > T::BELOW && x < T::ABOVE {
+        Ok(T::cut(x))
+    } else {
+        Err(EncodeError::ValueOutOfRange)
+    }
+}
+
+/// What an enum does with a wire value that names none of its variants.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum UnknownPolicy {
+    /// The value is a decode error ([`DecodeError::InvalidEnum`]).
+    #[default]
+    Reject,
+    /// The value is kept as it was on the wire (a generated enum's `Unknown(raw)`).
+    Keep,
+}
+
+impl UnknownPolicy {
+    /// Decoding `raw`, which names no variant.
+    ///
+    /// # Errors
+    ///
+    /// [`DecodeError::InvalidEnum`] with `raw` when unknown values are rejected.
+    ///
+    /// ```
+    /// use protocol_runtime::{DecodeError, field::UnknownPolicy};
+    /// assert_eq!(UnknownPolicy::Keep.unknown(9), Ok(()));
+    /// assert_eq!(UnknownPolicy::Reject.unknown(9), Err(DecodeError::InvalidEnum { value: 9 }));
+    /// ```
+    #[inline(always)]
+    pub const fn unknown(self, raw: u64) -> Result<(), DecodeError> {
+        match self {
+            UnknownPolicy::Keep => Ok(()),
+            UnknownPolicy::Reject => Err(DecodeError::InvalidEnum { value: raw }),
+        }
+    }
+
+    /// Encoding a raw value; `known` says whether it names a variant.
+    ///
+    /// # Errors
+    ///
+    /// [`EncodeError::ValueOutOfRange`] for an unknown value when unknown values are rejected.
+    #[inline(always)]
+    pub const fn encode(self, known: bool) -> Result<(), EncodeError> {
+        match (self, known) {
+            (UnknownPolicy::Reject, false) => Err(EncodeError::ValueOutOfRange),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// The raw value of an enum value, if it decodes back to the same value: an `Unknown(raw)`
+/// holding a known variant's value would decode as that variant, so it is refused.
+///
+/// # Errors
+///
+/// [`EncodeError::ValueOutOfRange`] when `from_raw(to_raw(value))` is not `value`.
+///
+/// ```
+/// use protocol_runtime::{DecodeError, EncodeError, field::enum_raw};
+///
+/// #[derive(Debug, Clone, Copy, PartialEq)]
+/// enum Mode { Idle, Unknown(u8) }
+/// fn to_raw(m: Mode) -> u8 { match m { Mode::Idle => 0, Mode::Unknown(r) => r } }
+/// fn from_raw(r: u8) -> Result<Mode, DecodeError> {
+///     Ok(match r { 0 => Mode::Idle, r => Mode::Unknown(r) })
+/// }
+/// assert_eq!(enum_raw(Mode::Unknown(7), to_raw, from_raw), Ok(7));
+/// assert_eq!(enum_raw(Mode::Unknown(0), to_raw, from_raw), Err(EncodeError::ValueOutOfRange));
+/// ```
+#[inline(always)]
+pub fn enum_raw<E: Copy + PartialEq, R: Copy>(
+    value: E,
+    to_raw: fn(E) -> R,
+    from_raw: fn(R) -> Result<E, DecodeError>,
+) -> Result<R, EncodeError> {
+    let raw = to_raw(value);
+    match from_raw(raw) {
+        Ok(back) if back == value => Ok(raw),
+        _ => Err(EncodeError::ValueOutOfRange),
+    }
+}
+
+/// The mask of a bit member `width` bits wide (all bits from 64 on).
+///
+/// ```
+/// assert_eq!(protocol_runtime::field::bit_mask(4), 0xF);
+/// ```
+#[inline(always)]
+pub const fn bit_mask(width: u32) -> u64 {
+    match 1u64.checked_shl(width) {
+        Some(bit) => bit.wrapping_sub(1),
+        None => u64::MAX,
+    }
+}
+
+/// The value of the bit member `width` bits wide at bit `shift` of `word`.
+///
+/// ```
+/// assert_eq!(protocol_runtime::field::get_bits(0b1011_0110, 4, 3), 0b011);
+/// ```
+#[inline(always)]
+pub const fn get_bits(word: u64, shift: u32, width: u32) -> u64 {
+    match word.checked_shr(shift) {
+        Some(bits) => bits & bit_mask(width),
+        None => 0,
+    }
+}
+
+/// `word` with the bit member `width` bits wide at bit `shift` set to `value` (or-ed in: the
+/// member's bits of `word` start as zero).
+///
+/// # Errors
+///
+/// [`EncodeError::ValueOutOfRange`] if `value` does not fit `width` bits: the member would be
+/// cut, and decode as another value.
+///
+/// ```
+/// use protocol_runtime::{EncodeError, field::set_bits};
+/// assert_eq!(set_bits(0b0001, 0b101, 1, 3), Ok(0b1011));
+/// assert_eq!(set_bits(0, 16, 0, 4), Err(EncodeError::ValueOutOfRange));
+/// ```
+#[inline(always)]
+pub const fn set_bits(word: u64, value: u64, shift: u32, width: u32) -> Result<u64, EncodeError> {
+    if value > bit_mask(width) {
+        return Err(EncodeError::ValueOutOfRange);
+    }
+    match value.checked_shl(shift) {
+        Some(bits) => Ok(word | bits),
+        None => Err(EncodeError::ValueOutOfRange),
+    }
+}
+
+/// The `len` bytes of a sized-bytes field, at most `max`, from `r`.
+///
+/// # Errors
+///
+/// [`DecodeError::Truncated`] if fewer than `len` bytes remain, [`DecodeError::SizeMismatch`]
+/// if `len` exceeds `max`.
+///
+/// ```
+/// use protocol_runtime::{DecodeError, Reader, field::take_sized};
+/// let mut r = Reader::new(&[1, 2, 3]);
+/// assert_eq!(take_sized(&mut r, 2, 4), Ok(&[1, 2][..]));
+/// assert_eq!(take_sized(&mut Reader::new(&[1, 2, 3]), 3, 2), Err(DecodeError::SizeMismatch));
+/// ```
+#[inline(always)]
+pub fn take_sized<'a>(r: &mut Reader<'a>, len: u64, max: usize) -> Result<&'a [u8], DecodeError> {
+    let taken = r.take(usize::try_from(len).unwrap_or(usize::MAX))?;
+    if taken.len() > max {
+        return Err(DecodeError::SizeMismatch);
+    }
+    Ok(taken)
+}
+
+/// Whether sized bytes of `len` bytes agree with the field that states their length.
+///
+/// # Errors
+///
+/// [`EncodeError::ValueOutOfRange`] when `stated` is not `len`.
+///
+/// ```
+/// use protocol_runtime::field::check_stated_len;
+/// assert!(check_stated_len(3, 3).is_ok());
+/// assert!(check_stated_len(3, 4).is_err());
+/// ```
+#[inline(always)]
+pub fn check_stated_len(len: usize, stated: u64) -> Result<(), EncodeError> {
+    if len as u64 == stated {
+        Ok(())
+    } else {
+        Err(EncodeError::ValueOutOfRange)
+    }
+}
+
+/// Whether an optional field is present, or a repeated group has another element: bytes
+/// remain.
+///
+/// ```
+/// use protocol_runtime::{Reader, field::more};
+/// assert!(more(&Reader::new(&[0])));
+/// assert!(!more(&Reader::new(&[])));
+/// ```
+#[inline(always)]
+pub fn more(r: &Reader<'_>) -> bool {
+    r.remaining() > 0
+}
+
+/// The error of a repeated group with more elements than its capacity: a payload longer than
+/// its struct's largest wire size `size` (`actual` is every byte of the payload).
+///
+/// ```
+/// use protocol_runtime::{DecodeError, Reader, field::group_full};
+/// let r = Reader::new(&[0; 9]);
+/// assert_eq!(group_full(&r, 8), DecodeError::PayloadLength { expected: 8, actual: 9 });
+/// ```
+#[inline(always)]
+pub fn group_full(r: &Reader<'_>, size: usize) -> DecodeError {
+    DecodeError::PayloadLength {
+        expected: size,
+        actual: r.position().saturating_add(r.remaining()),
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::float_cmp)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fit_accepts_every_integer_of_the_type_and_nothing_else() {
+        assert_eq!(
+            fit::<u64>(18_446_744_073_709_549_568.0),
+            Ok(u64::MAX - 2047)
+        );
+        assert!(fit::<u64>(18_446_744_073_709_551_616.0).is_err());
+        assert_eq!(fit::<i64>(-9_223_372_036_854_775_808.0), Ok(i64::MIN));
+        assert!(fit::<i64>(9_223_372_036_854_775_808.0).is_err());
+        assert_eq!(fit::<i32>(-2_147_483_648.9), Ok(i32::MIN));
+        assert!(fit::<i32>(-2_147_483_649.0).is_err());
+        assert_eq!(fit::<u8>(-0.9), Ok(0));
+        assert!(fit::<u8>(f64::INFINITY).is_err());
+    }
+
+    #[test]
+    fn quantize_rounds_halves_away_from_zero() {
+        assert_eq!(
+            fit::<i16>(quantize(-2.5, 1.0, 0.0, Rounding::Nearest)),
+            Ok(-3)
+        );
+        assert_eq!(
+            fit::<i16>(quantize(2.5, 1.0, 0.0, Rounding::Nearest)),
+            Ok(3)
+        );
+        assert_eq!(
+            fit::<i16>(quantize(-2.7, 1.0, 0.0, Rounding::Truncate)),
+            Ok(-2)
+        );
+    }
+
+    #[test]
+    fn bits_round_trip_at_every_position() {
+        for shift in 0..60 {
+            let word = set_bits(0, 0b1010, shift, 4).unwrap();
+            assert_eq!(get_bits(word, shift, 4), 0b1010);
+        }
+        assert_eq!(get_bits(u64::MAX, 0, 64), u64::MAX);
+    }
+}
