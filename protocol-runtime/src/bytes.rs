@@ -6,6 +6,7 @@ use core::fmt;
 use core::hash::{Hash, Hasher};
 use core::ops::Deref;
 
+use crate::encoder::Payload;
 use crate::error::{DecodeError, EncodeError};
 use crate::wire::{Reader, Writer};
 
@@ -60,6 +61,17 @@ impl<const N: usize> Bytes<N> {
         Ok(out)
     }
 
+    /// Reads `len` bytes, the length another field states ([`crate::field::take_sized`]).
+    ///
+    /// # Errors
+    ///
+    /// [`DecodeError::Truncated`] if fewer than `len` bytes remain,
+    /// [`DecodeError::SizeMismatch`] if `len` exceeds `N`.
+    #[inline]
+    pub fn read_sized(r: &mut Reader<'_>, len: u64) -> Result<Self, DecodeError> {
+        Self::from_slice(crate::field::take_sized(r, len, N)?).ok_or(DecodeError::SizeMismatch)
+    }
+
     /// Writes the bytes at the writer's position.
     ///
     /// # Errors
@@ -67,6 +79,27 @@ impl<const N: usize> Bytes<N> {
     /// [`EncodeError::BufferTooSmall`] if the writer has too little room.
     pub fn write(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
         w.put_bytes(self.as_slice())
+    }
+}
+
+/// Every byte left: the data of an acknowledgement, as a message's payload.
+impl<const N: usize> Payload for Bytes<N> {
+    const SIZE: usize = N;
+    const MIN_SIZE: usize = 0;
+
+    #[inline]
+    fn wire_len(&self) -> usize {
+        self.len
+    }
+
+    #[inline]
+    fn write(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
+        Bytes::write(self, w)
+    }
+
+    #[inline]
+    fn read(r: &mut Reader<'_>) -> Result<Self, DecodeError> {
+        Self::read_rest(r)
     }
 }
 

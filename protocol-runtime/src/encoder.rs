@@ -240,6 +240,57 @@ pub trait Payload: Sized {
     }
 }
 
+/// An operation on the payload of a message, whatever the payload's type. A generated message
+/// enum opens itself in one place (`visit_payload`, one arm per variant) and hands the payload
+/// to a visitor: [`WireLen`] measures it, [`WritePayload`] writes it. Each call is
+/// monomorphised, so it compiles to the same code as a match per operation.
+pub trait PayloadVisitor {
+    /// What the operation gives.
+    type Output;
+    /// Applies the operation to `payload`.
+    fn visit<P: Payload>(self, payload: &P) -> Self::Output;
+}
+
+/// The payload's size on the wire ([`Payload::wire_len`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct WireLen;
+
+impl PayloadVisitor for WireLen {
+    type Output = usize;
+    #[inline(always)]
+    fn visit<P: Payload>(self, payload: &P) -> usize {
+        payload.wire_len()
+    }
+}
+
+/// Writing the payload at the writer's position ([`Payload::write`]).
+#[derive(Debug)]
+pub struct WritePayload<'w, 'b>(pub &'w mut Writer<'b>);
+
+impl PayloadVisitor for WritePayload<'_, '_> {
+    type Output = Result<(), EncodeError>;
+    #[inline(always)]
+    fn visit<P: Payload>(self, payload: &P) -> Result<(), EncodeError> {
+        payload.write(self.0)
+    }
+}
+
+/// The message `message` of a command without payload, if `payload` is empty.
+///
+/// # Errors
+///
+/// [`DecodeError::PayloadLength`] (expected 0) if it is not.
+///
+/// ```
+/// use protocol_runtime::{DecodeError, encoder::read_empty};
+/// assert_eq!(read_empty(&[], "ping"), Ok("ping"));
+/// assert_eq!(read_empty(&[1], "ping"), Err(DecodeError::PayloadLength { expected: 0, actual: 1 }));
+/// ```
+#[inline(always)]
+pub fn read_empty<M>(payload: &[u8], message: M) -> Result<M, DecodeError> {
+    <() as Payload>::from_bytes(payload).map(|()| message)
+}
+
 /// No payload: a command that carries nothing.
 impl Payload for () {
     const SIZE: usize = 0;

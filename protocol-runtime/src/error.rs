@@ -170,3 +170,9 @@ impl fmt::Display for EncodeError {
 }
 
 impl core::error::Error for EncodeError {}
+
+/// The result of decoding a `T`.
+pub type DecodeResult<T> = Result<T, DecodeError>;
+
+/// The result of encoding: nothing, or why not.
+pub type EncodeResult = Result<(), EncodeError>;

@@ -122,8 +122,8 @@ pub use bytes::Bytes;
 pub use can::CanFrame;
 pub use checksum::Checksum;
 pub use decoder::{Event, Frame, Reject, Stats, StreamDecoder};
-pub use encoder::Payload;
-pub use error::{DecodeError, EncodeError};
+pub use encoder::{Payload, PayloadVisitor};
+pub use error::{DecodeError, DecodeResult, EncodeError, EncodeResult};
 pub use group::Group;
 pub use layout::FrameLayout;
 pub use wire::{Reader, Writer};
@@ -140,5 +140,7 @@ pub mod __private {
         layout::*, stuffing::*, wire::*,
     };
     pub use core;
+    pub use core::option::Option::{self, None, Some};
+    pub use core::result::Result::{self, Err, Ok};
     pub use crc;
 }

@@ -221,5 +221,5 @@ pub fn derive_payload(input: &DeriveInput) -> syn::Result<TokenStream> {
         size: None,
         min_size: None,
     };
-    Ok(emit_payload_impl(&def, &paths))
+    Ok(emit_payload_impl(&def, &paths.private()))
 }

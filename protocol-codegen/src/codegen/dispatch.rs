@@ -9,19 +9,19 @@ use super::docs::doc_attrs;
 use super::frame::{user_values, value_const};
 use super::payload::prim_type;
 use super::types::int_lit;
-use super::{RuntimePath, ident};
+use super::{ident, rt};
 use crate::ir::{Command, DirectionRule, Frame, PacketKind, Prim, Protocol, Transport};
 
 /// Everything about commands and messages, for the first frame.
-pub fn emit_dispatch(p: &Protocol, paths: &RuntimePath) -> TokenStream {
+pub fn emit_dispatch(p: &Protocol) -> TokenStream {
     let Some(f) = p.frames.first() else {
         return quote!();
     };
     if f.dispatch.is_empty() {
         return quote!();
     }
-    let rt = paths.private();
-    let mut out = emit_command_enum(p, f);
+    let rt = rt();
+    let mut out = emit_command_enum(p, f, &rt);
     if p.directions.is_empty() {
         out.extend(emit_message_enum(
             p,
@@ -86,14 +86,14 @@ fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> TokenStream {
             /// `DecodeError::Frame` when a check fails or the length is wrong,
             /// `UnknownCommand` for an id the spec does not have, `PayloadLength` when the
             /// payload's size is not the command's.
-            pub fn decode(can: &#rt::CanFrame) -> ::core::result::Result<Self, #rt::DecodeError> {
+            pub fn decode(can: &#rt::CanFrame) -> #rt::DecodeResult<Self> {
                 let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
                 let frame = #layout.parse(can.to_virtual(&mut virt))?;
                 let command = Command::from_can_id(can.id).ok_or(#rt::DecodeError::UnknownCommand { key: can.id as u64 })?;
                 let payload = frame
                     .get(#header_len..frame.len().saturating_sub(#trailer_len))
                     .ok_or(#rt::DecodeError::Truncated { needed: #header_len + #trailer_len, available: frame.len() })?;
-                ::core::result::Result::Ok(#packet {
+                #rt::Ok(#packet {
                     header: #header { #(#reads,)* },
                     message: Message::read_payload(command, payload)?,
                 })
@@ -103,7 +103,7 @@ fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> TokenStream {
             /// # Errors
             /// `EncodeError::ValueOutOfRange` when the command has no CAN id or a header value
             /// does not fit its field.
-            pub fn encode(&self) -> ::core::result::Result<#rt::CanFrame, #rt::EncodeError> {
+            pub fn encode(&self) -> #rt::Result<#rt::CanFrame, #rt::EncodeError> {
                 let id = self.message.command().can_id().ok_or(#rt::EncodeError::ValueOutOfRange)?;
                 let total = #header_len.saturating_add(self.message.payload_len()).saturating_add(#trailer_len);
                 let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
@@ -147,7 +147,7 @@ fn id_value(f: &Frame, c: &Command) -> TokenStream {
     }
 }
 
-fn emit_command_enum(p: &Protocol, f: &Frame) -> TokenStream {
+fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let id_ty = id_type(f);
     let keys: Vec<&str> = f
         .dispatch
@@ -177,7 +177,7 @@ fn emit_command_enum(p: &Protocol, f: &Frame) -> TokenStream {
     let from_id = p.commands.iter().map(|c| {
         let v = ident(&c.rust_name);
         let id = id_value(f, c);
-        quote!(#id => ::core::option::Option::Some(Self::#v),)
+        quote!(#id => #rt::Some(Self::#v),)
     });
     let names = p.commands.iter().map(|c| {
         let v = ident(&c.rust_name);
@@ -199,28 +199,28 @@ fn emit_command_enum(p: &Protocol, f: &Frame) -> TokenStream {
             match c.can_id {
                 Some(id) => {
                     let id = id as u32;
-                    quote!(Self::#v => ::core::option::Option::Some(#id),)
+                    quote!(Self::#v => #rt::Some(#id),)
                 }
-                None => quote!(Self::#v => ::core::option::Option::None,),
+                None => quote!(Self::#v => #rt::None,),
             }
         });
         let from = p.commands.iter().filter_map(|c| {
             let v = ident(&c.rust_name);
             let id = c.can_id? as u32;
-            Some(quote!(#id => ::core::option::Option::Some(Self::#v),))
+            Some(quote!(#id => #rt::Some(Self::#v),))
         });
         quote! {
             /// The command's CAN id, if it has one.
-            pub const fn can_id(self) -> ::core::option::Option<u32> {
+            pub const fn can_id(self) -> #rt::Option<u32> {
                 match self {
                     #(#to)*
                 }
             }
             /// The command with this CAN id, if any.
-            pub const fn from_can_id(id: u32) -> ::core::option::Option<Self> {
+            pub const fn from_can_id(id: u32) -> #rt::Option<Self> {
                 match id {
                     #(#from)*
-                    _ => ::core::option::Option::None,
+                    _ => #rt::None,
                 }
             }
         }
@@ -245,10 +245,10 @@ fn emit_command_enum(p: &Protocol, f: &Frame) -> TokenStream {
                 }
             }
             /// The command with this id, if any.
-            pub const fn from_id(id: CommandId) -> ::core::option::Option<Self> {
+            pub const fn from_id(id: CommandId) -> #rt::Option<Self> {
                 match id {
                     #(#from_id)*
-                    _ => ::core::option::Option::None,
+                    _ => #rt::None,
                 }
             }
             /// The command's name in the spec.
@@ -277,8 +277,7 @@ fn emit_message_enum(
     let doc = doc_attrs(doc);
     let mut variants = Vec::new();
     let mut command_arms = Vec::new();
-    let mut len_arms = Vec::new();
-    let mut write_arms = Vec::new();
+    let mut visit_arms = Vec::new();
     let mut read_arms = Vec::new();
     for c in &p.commands {
         let v = ident(&c.rust_name);
@@ -291,24 +290,16 @@ fn emit_message_enum(
                 ));
                 variants.push(quote!(#d #v(#s)));
                 command_arms.push(quote!(Self::#v(_) => Command::#v,));
-                len_arms.push(quote!(Self::#v(payload) => #rt::Payload::wire_len(payload),));
-                write_arms.push(quote!(Self::#v(payload) => #rt::Payload::write(payload, w),));
-                read_arms.push(
-                    quote!(Command::#v => Self::#v(<#s as #rt::Payload>::from_bytes(payload)?),),
-                );
+                visit_arms.push(quote!(Self::#v(p) => v.visit(p),));
+                read_arms
+                    .push(quote!(Command::#v => #rt::Payload::from_bytes(payload).map(Self::#v),));
             }
             None => {
                 let d = doc_attrs(&format!("`{}`, with an empty payload. {}", c.name, c.doc));
                 variants.push(quote!(#d #v));
                 command_arms.push(quote!(Self::#v => Command::#v,));
-                len_arms.push(quote!(Self::#v => 0,));
-                write_arms.push(quote!(Self::#v => ::core::result::Result::Ok(()),));
-                read_arms.push(quote!(Command::#v => {
-                    if !payload.is_empty() {
-                        return ::core::result::Result::Err(#rt::DecodeError::PayloadLength { expected: 0, actual: payload.len() });
-                    }
-                    Self::#v
-                }));
+                visit_arms.push(quote!(Self::#v => v.visit(&()),));
+                read_arms.push(quote!(Command::#v => #rt::read_empty(payload, Self::#v),));
             }
         }
     }
@@ -327,20 +318,20 @@ fn emit_message_enum(
                 #[doc = " An acknowledgement: no command, the acknowledgement data."]
                 Ack(#rt::Bytes<#max>)
             });
-            len_arms.push(quote!(Self::Ack(data) => data.len(),));
-            write_arms.push(quote!(Self::Ack(data) => data.write(w),));
+            visit_arms.push(quote!(Self::Ack(data) => v.visit(data),));
             quote! {
                 /// The command of this message (`None` for an acknowledgement).
                 #[inline(always)]
-                pub const fn command(&self) -> ::core::option::Option<Command> {
-                    ::core::option::Option::Some(match self {
+                pub const fn command(&self) -> #rt::Option<Command> {
+                    #rt::Some(match self {
                         #(#command_arms)*
-                        Self::Ack(_) => return ::core::option::Option::None,
+                        Self::Ack(_) => return #rt::None,
                     })
                 }
             }
         }
     };
+    let payload_fns = emit_payload_fns(rt, quote!(match self { #(#visit_arms)* }));
     quote! {
         #doc
         #[derive(Debug, Clone, Copy, PartialEq)]
@@ -349,33 +340,45 @@ fn emit_message_enum(
         }
         impl #name {
             #command_fn
-            /// Bytes of the payload on the wire.
-            #[inline(always)]
-            pub fn payload_len(&self) -> usize {
-                match self {
-                    #(#len_arms)*
-                }
-            }
-            /// Write the payload.
-            ///
-            /// # Errors
-            /// `EncodeError::BufferTooSmall` if `w` has too little room.
-            #[inline(always)]
-            pub fn write_payload(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
-                match self {
-                    #(#write_arms)*
-                }
-            }
+            #payload_fns
             /// Read the payload of `command`.
             ///
             /// # Errors
             /// `DecodeError::PayloadLength` if the payload's size is not the command's, or any
             /// error of the payload's fields (an unknown enum value, ...).
-            pub fn read_payload(command: Command, payload: &[u8]) -> ::core::result::Result<Self, #rt::DecodeError> {
-                ::core::result::Result::Ok(match command {
+            pub fn read_payload(command: Command, payload: &[u8]) -> #rt::DecodeResult<Self> {
+                match command {
                     #(#read_arms)*
-                })
+                }
             }
+        }
+    }
+}
+
+/// `visit_payload` (whose body, `visit`, opens the message once), and `payload_len` and
+/// `write_payload` through it.
+fn emit_payload_fns(rt: &TokenStream, visit: TokenStream) -> TokenStream {
+    quote! {
+        /// Hands the payload to `v` (`&()` when the command carries none): the one place
+        /// that opens the message, for [`payload_len`](Self::payload_len) and
+        /// [`write_payload`](Self::write_payload).
+        #[inline(always)]
+        pub fn visit_payload<V: #rt::PayloadVisitor>(&self, v: V) -> V::Output {
+            #visit
+        }
+        /// Bytes of the payload on the wire.
+        #[inline(always)]
+        pub fn payload_len(&self) -> usize {
+            self.visit_payload(#rt::WireLen)
+        }
+        /// Write the payload.
+        ///
+        /// # Errors
+        /// `EncodeError::BufferTooSmall` if `w` has too little room, `ValueOutOfRange` if a
+        /// field's value does not fit its wire form.
+        #[inline(always)]
+        pub fn write_payload(&self, w: &mut #rt::Writer<'_>) -> #rt::EncodeResult {
+            self.visit_payload(#rt::WritePayload(w))
         }
     }
 }
@@ -391,6 +394,10 @@ fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
         .iter()
         .map(|d| format_ident!("{}", d.rust_name))
         .collect();
+    let payload_fns = emit_payload_fns(
+        rt,
+        quote!(match self { #(Self::#names(m) => m.visit_payload(v),)* }),
+    );
     quote! {
         /// A decoded message: its direction, then the command and payload.
         #[derive(Debug, Clone, Copy, PartialEq)]
@@ -405,23 +412,7 @@ fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
                     #(Self::#names(m) => m.command(),)*
                 }
             }
-            /// Bytes of the payload on the wire.
-            #[inline(always)]
-            pub fn payload_len(&self) -> usize {
-                match self {
-                    #(Self::#names(m) => m.payload_len(),)*
-                }
-            }
-            /// Write the payload.
-            ///
-            /// # Errors
-            /// `EncodeError::BufferTooSmall` if `w` has too little room.
-            #[inline(always)]
-            pub fn write_payload(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
-                match self {
-                    #(Self::#names(m) => m.write_payload(w),)*
-                }
-            }
+            #payload_fns
         }
     }
 }
@@ -443,149 +434,195 @@ fn direction_test(p: &Protocol, f: &Frame, rule: &DirectionRule) -> TokenStream 
     }
 }
 
-fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
-    let (header_fields, header_writes) = header_codec(f, "", rt);
-    let key_consts: Vec<_> = f
+/// Reading the dispatch key of a frame into `id`, its value as a `u64` for
+/// `UnknownCommand`, and writing `command`'s id into `frame`.
+struct Key {
+    read: TokenStream,
+    as_u64: TokenStream,
+    write: TokenStream,
+}
+
+fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
+    let consts: Vec<_> = f
         .dispatch
         .iter()
         .map(|&i| value_const("", &f.values[i]))
         .collect();
-    let key_prims = key_prims(f);
-    let (read_key, key_u64, write_key) = if key_consts.len() == 1 {
-        let c = &key_consts[0];
-        let t = prim_type(key_prims[0]);
-        (
-            quote!(let id: CommandId = header_value(frame, wire::#c)? as #t;),
-            quote!(id as u64),
-            quote!(wire::#c.write(frame, command.id() as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;),
-        )
-    } else {
-        let vars: Vec<_> = (0..key_consts.len())
-            .map(|i| format_ident!("k{}", i))
-            .collect();
-        let types: Vec<_> = key_prims.iter().map(|p| prim_type(*p)).collect();
-        let idx: Vec<syn::Index> = (0..key_consts.len()).map(syn::Index::from).collect();
-        let widths: Vec<u32> = f.dispatch.iter().map(|&i| f.values[i].width).collect();
-        let mut key = quote!(0u64);
-        for (v, w) in vars.iter().zip(&widths) {
-            key = quote!(((#key) << #w) | (#v as u64));
+    let prims = key_prims(f);
+    if let ([c], [prim]) = (&consts[..], &prims[..]) {
+        let t = prim_type(*prim);
+        return Key {
+            read: quote!(let id: CommandId = header_value(frame, wire::#c)? as #t;),
+            as_u64: quote!(id as u64),
+            write: quote!(wire::#c.write(frame, command.id() as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;),
+        };
+    }
+    let vars: Vec<_> = (0..consts.len()).map(|i| format_ident!("k{}", i)).collect();
+    let types: Vec<_> = prims.iter().map(|p| prim_type(*p)).collect();
+    let idx: Vec<syn::Index> = (0..consts.len()).map(syn::Index::from).collect();
+    let widths: Vec<u32> = f.dispatch.iter().map(|&i| f.values[i].width).collect();
+    let mut key = quote!(0u64);
+    for (v, w) in vars.iter().zip(&widths) {
+        key = quote!(((#key) << #w) | (#v as u64));
+    }
+    Key {
+        read: quote!(#(let #vars = header_value(frame, wire::#consts)? as #types;)* let id: CommandId = (#(#vars),*);),
+        as_u64: quote!({ let (#(#vars),*) = id; #key }),
+        write: quote!(let id = command.id(); #(wire::#consts.write(frame, id.#idx as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)*),
+    }
+}
+
+/// The message of a decoded frame (by direction when the spec has directions), and the check
+/// that an encoded message's direction matches its header.
+fn packet_direction(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
+    if p.directions.is_empty() {
+        return (quote!(Message::read_payload(command, payload)?), quote!());
+    }
+    let names: Vec<_> = p
+        .directions
+        .iter()
+        .map(|d| format_ident!("{}", d.rust_name))
+        .collect();
+    let tests: Vec<_> = p
+        .directions
+        .iter()
+        .map(|d| direction_test(p, f, &d.rule))
+        .collect();
+    let message = quote! {
+        #(if #tests { Message::#names(#names::read_payload(command, payload)?) } else)*
+        { return #rt::Err(#rt::DecodeError::UnknownDirection); }
+    };
+    let check = quote! {
+        let header = &self.header;
+        let matches = match &self.message { #(Message::#names(_) => #tests,)* };
+        if !matches {
+            return #rt::Err(#rt::EncodeError::ValueOutOfRange);
         }
-        (
-            quote!(#(let #vars = header_value(frame, wire::#key_consts)? as #types;)* let id: CommandId = (#(#vars),*);),
-            quote!({ let (#(#vars),*) = id; #key }),
-            quote!(let id = command.id(); #(wire::#key_consts.write(frame, id.#idx as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)*),
-        )
     };
-    let message = if p.directions.is_empty() {
-        quote!(Message::read_payload(command, payload)?)
+    (message, check)
+}
+
+/// What acknowledgements add to `Packet`: their decoding (before the dispatch key, which they
+/// lack), their length, the flag written on encoding, where the payload starts, and the
+/// command id written (none for an acknowledgement).
+#[derive(Default)]
+struct AckParts {
+    decode: TokenStream,
+    len_arms: TokenStream,
+    flag: TokenStream,
+    start: TokenStream,
+    write_key: TokenStream,
+}
+
+fn packet_ack(f: &Frame, key: &Key, rt: &TokenStream) -> AckParts {
+    let write = &key.write;
+    let Some((vi, ack_header_len)) = f.ack else {
+        return AckParts {
+            start: quote!(HEADER_LEN),
+            write_key: quote!(let command = self.message.command(); #write),
+            ..AckParts::default()
+        };
+    };
+    let flag = value_const("", &f.values[vi]);
+    // Validation gives the flag the role `Ack`; 1 is its only other possible value.
+    let equals = match f.values[vi].role {
+        crate::ir::Role::Ack(equals) => equals,
+        _ => 1,
+    };
+    let other = 1 - equals;
+    let max = f.max_len() - ack_header_len - f.trailer_len;
+    let bare = f.bare_len.is_some();
+    let end = if bare {
+        quote!(if frame.len() == #ack_header_len { frame.len() } else { frame.len().saturating_sub(TRAILER_LEN) })
     } else {
-        let arms = p.directions.iter().map(|d| {
-            let v = format_ident!("{}", d.rust_name);
-            let test = direction_test(p, f, &d.rule);
-            quote!(if #test { Message::#v(#v::read_payload(command, payload)?) } else)
-        });
-        quote!(#(#arms)* { return ::core::result::Result::Err(#rt::DecodeError::UnknownDirection); })
+        quote!(frame.len().saturating_sub(TRAILER_LEN))
     };
-    let direction_check = if p.directions.is_empty() {
+    let bare_arm = if bare {
+        quote!(Message::Ack(data) if data.is_empty() => #ack_header_len,)
+    } else {
         quote!()
-    } else {
-        let arms = p.directions.iter().map(|d| {
-            let v = format_ident!("{}", d.rust_name);
-            let test = direction_test(p, f, &d.rule);
-            quote!(Message::#v(_) => #test,)
-        });
-        quote! {
-            let header = &self.header;
-            let matches = match &self.message { #(#arms)* };
-            if !matches {
-                return ::core::result::Result::Err(#rt::EncodeError::ValueOutOfRange);
+    };
+    AckParts {
+        decode: quote! {
+            if header_value(frame, wire::#flag)? == #equals {
+                let data = frame
+                    .get(#ack_header_len..#end)
+                    .ok_or(#rt::DecodeError::Truncated { needed: #ack_header_len, available: frame.len() })?;
+                let data = #rt::Bytes::from_slice(data).ok_or(#rt::DecodeError::PayloadLength { expected: #max, actual: data.len() })?;
+                return #rt::Ok(Packet { header, message: Message::Ack(data) });
             }
-        }
+        },
+        len_arms: quote! {
+            #bare_arm
+            Message::Ack(data) => (#ack_header_len as usize).saturating_add(data.len()).saturating_add(TRAILER_LEN),
+        },
+        flag: quote! {
+            let is_ack = matches!(self.message, Message::Ack(_));
+            wire::#flag.write(frame, if is_ack { #equals } else { #other }).ok_or(#rt::EncodeError::ValueOutOfRange)?;
+        },
+        start: quote!(if matches!(self.message, Message::Ack(_)) { #ack_header_len } else { HEADER_LEN }),
+        write_key: quote!(if let #rt::Some(command) = self.message.command() { #write }),
+    }
+}
+
+/// `Packet::encoded_len`'s body: the frame's length, with acknowledgements' own lengths, and
+/// with the bytes stuffing inserts (counted by writing the payload aside).
+fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStream {
+    let plain = quote!(
+        HEADER_LEN
+            .saturating_add(self.message.payload_len())
+            .saturating_add(TRAILER_LEN)
+    );
+    let unstuffed = if ack.len_arms.is_empty() {
+        plain
+    } else {
+        let arms = &ack.len_arms;
+        quote!(match &self.message { #arms _ => #plain })
     };
-    // Acknowledgements: decoded before the dispatch key (they have none), encoded with their
-    // flag set and no key.
-    let (ack_decode, ack_len, ack_flag, start_of, command_of) = match f.ack {
-        Some((vi, ack_header_len)) => {
-            let flag = value_const("", &f.values[vi]);
-            // Validation gives the flag the role `Ack`; 1 is its only other possible value.
-            let equals = match f.values[vi].role {
-                crate::ir::Role::Ack(equals) => equals,
-                _ => 1,
-            };
-            let other = 1 - equals;
-            let max = f.max_len() - ack_header_len - f.trailer_len;
-            let bare = f.bare_len.is_some();
-            let end = if bare {
-                quote!(if frame.len() == #ack_header_len { frame.len() } else { frame.len().saturating_sub(TRAILER_LEN) })
-            } else {
-                quote!(frame.len().saturating_sub(TRAILER_LEN))
-            };
-            let bare_arm = if bare {
-                quote!(Message::Ack(data) if data.is_empty() => #ack_header_len,)
-            } else {
-                quote!()
-            };
-            (
-                quote! {
-                    if header_value(frame, wire::#flag)? == #equals {
-                        let data = frame
-                            .get(#ack_header_len..#end)
-                            .ok_or(#rt::DecodeError::Truncated { needed: #ack_header_len, available: frame.len() })?;
-                        let data = #rt::Bytes::from_slice(data).ok_or(#rt::DecodeError::PayloadLength { expected: #max, actual: data.len() })?;
-                        return ::core::result::Result::Ok(Packet { header, message: Message::Ack(data) });
-                    }
-                },
-                quote! {
-                    #bare_arm
-                    Message::Ack(data) => (#ack_header_len as usize).saturating_add(data.len()).saturating_add(TRAILER_LEN),
-                },
-                quote! {
-                    let is_ack = matches!(self.message, Message::Ack(_));
-                    wire::#flag.write(frame, if is_ack { #equals } else { #other }).ok_or(#rt::EncodeError::ValueOutOfRange)?;
-                },
-                quote!(if matches!(self.message, Message::Ack(_)) { #ack_header_len } else { HEADER_LEN }),
-                quote!(self.message.command()),
-            )
-        }
-        None => (
-            quote!(),
-            quote!(),
-            quote!(),
-            quote!(HEADER_LEN),
-            quote!(::core::option::Option::Some(self.message.command())),
-        ),
-    };
+    if f.stuffing.is_none() {
+        return unstuffed;
+    }
+    quote! {
+        let mut scratch = [0u8; MAX_PAYLOAD_LEN];
+        let mut w = #rt::Writer::new(&mut scratch);
+        let inserted = match self.message.write_payload(&mut w) {
+            #rt::Ok(()) => STUFFING.count(w.written()),
+            #rt::Err(_) => 0,
+        };
+        (#unstuffed).saturating_add(inserted)
+    }
+}
+
+/// `Packet`: the header values and the message of the first frame format, decoded from and
+/// encoded to a frame through `LAYOUT`.
+fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
+    let (header_fields, header_writes) = header_codec(f, "", rt);
+    let key = packet_key(f, rt);
+    let (message, direction_check) = packet_direction(p, f, rt);
+    let ack = packet_ack(f, &key, rt);
+    let encoded_len = packet_encoded_len(f, &ack, rt);
+    let (read_key, key_u64) = (&key.read, &key.as_u64);
+    let AckParts {
+        decode: ack_decode,
+        flag: ack_flag,
+        start: start_of,
+        write_key,
+        ..
+    } = &ack;
     // Byte stuffing: the payload is unstuffed before it is read, stuffed after it is written.
-    let (unstuff, stuff) = match &f.stuffing {
-        Some(_) => (
+    let (unstuff, stuff, stuffing_const) = match &f.stuffing {
+        Some((after, insert)) => (
             quote! {
                 let mut unstuffed = [0u8; MAX_PAYLOAD_LEN];
                 let payload = STUFFING.unstuff(payload, &mut unstuffed)?;
             },
             quote!(let plen = STUFFING.stuff_in_place(region, plen)?;),
+            quote! {
+                /// The payload's byte stuffing: the sender inserts `insert` after every `after`.
+                pub const STUFFING: #rt::Stuffing<'static> = #rt::Stuffing { after: &[#(#after),*], insert: #insert };
+            },
         ),
-        None => (quote!(), quote!()),
-    };
-    // With stuffing, the inserted bytes count too: write the payload aside to count them.
-    let stuffed_extra = match &f.stuffing {
-        Some(_) => quote! {
-        .saturating_add({
-                        let mut scratch = [0u8; MAX_PAYLOAD_LEN];
-                        let mut w = #rt::Writer::new(&mut scratch);
-                        match self.message.write_payload(&mut w) {
-                            ::core::result::Result::Ok(()) => STUFFING.count(w.written()),
-                            ::core::result::Result::Err(_) => 0,
-                        }
-                    })
-                },
-        None => quote!(),
-    };
-    let stuffing_const = match &f.stuffing {
-        Some((after, insert)) => quote! {
-            /// The payload's byte stuffing: the sender inserts `insert` after every `after`.
-            pub const STUFFING: #rt::Stuffing<'static> = #rt::Stuffing { after: &[#(#after),*], insert: #insert };
-        },
-        None => quote!(),
+        None => (quote!(), quote!(), quote!()),
     };
     // A bare header (the header alone) has no trailer either.
     let trailer_of = if f.bare_len.is_some() {
@@ -601,7 +638,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         #stuffing_const
         /// A header value of a frame (inlined: with the field a constant, a load at a fixed offset).
         #[inline(always)]
-        fn header_value(frame: &[u8], field: #rt::WordField) -> ::core::result::Result<u64, #rt::DecodeError> {
+        fn header_value(frame: &[u8], field: #rt::WordField) -> #rt::DecodeResult<u64> {
             field.read(frame).ok_or(#rt::DecodeError::Truncated { needed: HEADER_LEN, available: frame.len() })
         }
         /// A whole frame, decoded: the header values and the message.
@@ -619,9 +656,8 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             /// # Errors
             /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they
             /// end early, and the errors of [`Packet::from_frame`].
-            pub fn decode(bytes: &[u8]) -> ::core::result::Result<Self, #rt::DecodeError> {
-                let frame = LAYOUT.parse(bytes)?;
-                Self::from_frame(frame)
+            pub fn decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
+                Self::from_frame(LAYOUT.parse(bytes)?)
             }
             /// Decode a frame whose framing a decoder already checked.
             ///
@@ -629,7 +665,7 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             /// `UnknownCommand` for an id the spec does not have, `UnknownDirection` when the
             /// header matches no direction, `PayloadLength` when the payload's size is not the
             /// command's, and errors of the payload's fields.
-            pub fn from_frame(frame: &[u8]) -> ::core::result::Result<Self, #rt::DecodeError> {
+            pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
                 let header = Header { #(#header_fields,)* };
                 #ack_decode
                 #read_key
@@ -639,16 +675,12 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                     .ok_or(#rt::DecodeError::Truncated { needed: HEADER_LEN + TRAILER_LEN, available: frame.len() })?;
                 #unstuff
                 let message = #message;
-                ::core::result::Result::Ok(Packet { header, message })
+                #rt::Ok(Packet { header, message })
             }
             /// Bytes of the encoded frame.
             #[inline(always)]
             pub fn encoded_len(&self) -> usize {
-                let unstuffed = match &self.message {
-                    #ack_len
-                    message => HEADER_LEN.saturating_add(message.payload_len()).saturating_add(TRAILER_LEN),
-                };
-                unstuffed #stuffed_extra
+                #encoded_len
             }
             /// Encode the frame into the start of `buf`; returns its length.
             ///
@@ -657,12 +689,12 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
             /// `ValueOutOfRange` if a header value does not fit its field or does not match the
             /// message's direction.
             #[inline(always)]
-            pub fn encode(&self, buf: &mut [u8]) -> ::core::result::Result<usize, #rt::EncodeError> {
+            pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
                 #direction_check
                 let needed = self.encoded_len();
                 let available = buf.len();
                 if available < needed {
-                    return ::core::result::Result::Err(#rt::EncodeError::BufferTooSmall { needed, available });
+                    return #rt::Err(#rt::EncodeError::BufferTooSmall { needed, available });
                 }
                 let start = #start_of;
                 // The payload first, in place: its size on the wire decides the frame's length.
@@ -677,11 +709,9 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 let frame = buf.get_mut(..total).ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
                 #(#header_writes)*
                 #ack_flag
-                if let ::core::option::Option::Some(command) = #command_of {
-                    #write_key
-                }
+                #write_key
                 LAYOUT.seal(frame)?;
-                ::core::result::Result::Ok(total)
+                #rt::Ok(total)
             }
         }
     }
@@ -721,22 +751,21 @@ fn emit_message_packet(
             /// # Errors
             /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they end
             /// early, `PayloadLength` if the payload's size does not fit the struct.
-            pub fn decode(bytes: &[u8]) -> ::core::result::Result<Self, #rt::DecodeError> {
-                let frame = #layout.parse(bytes)?;
-                Self::from_frame(frame)
+            pub fn decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
+                Self::from_frame(#layout.parse(bytes)?)
             }
             /// Decode a frame whose framing a decoder already checked.
             ///
             /// # Errors
             /// `PayloadLength` if the payload's size does not fit the struct, and errors of its
             /// fields.
-            pub fn from_frame(frame: &[u8]) -> ::core::result::Result<Self, #rt::DecodeError> {
+            pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
                 let payload = frame
                     .get(#header_len..frame.len().saturating_sub(#trailer_len))
                     .ok_or(#rt::DecodeError::Truncated { needed: #header_len + #trailer_len, available: frame.len() })?;
-                ::core::result::Result::Ok(#packet {
+                #rt::Ok(#packet {
                     header: #header { #(#reads,)* },
-                    payload: <#st as #rt::Payload>::from_bytes(payload)?,
+                    payload: #rt::Payload::from_bytes(payload)?,
                 })
             }
             /// Bytes of the encoded frame.
@@ -750,7 +779,7 @@ fn emit_message_packet(
             /// `EncodeError::BufferTooSmall` if `buf` is too short, `ValueOutOfRange` if a
             /// header value does not fit its field.
             #[inline(always)]
-            pub fn encode(&self, buf: &mut [u8]) -> ::core::result::Result<usize, #rt::EncodeError> {
+            pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
                 let total = self.encoded_len();
                 let available = buf.len();
                 let frame = buf.get_mut(..total).ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
@@ -760,7 +789,7 @@ fn emit_message_packet(
                     .ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
                 #rt::Payload::write(&self.payload, &mut #rt::Writer::new(payload))?;
                 #layout.seal(frame)?;
-                ::core::result::Result::Ok(total)
+                #rt::Ok(total)
             }
         }
     }

@@ -197,18 +197,25 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
             " A streaming decoder of `{fname}` frames: a fixed buffer of `{}` bytes, no heap.",
             c("DECODER_BUFFER_LEN")
         );
+        let doc_max_frame = format!(" Largest `{fname}` frame, in bytes.");
+        let doc_min_frame = format!(" Smallest `{fname}` frame, in bytes.");
+        let doc_max_payload = format!(" Largest payload of a `{fname}` frame, in bytes.");
+        let doc_min_payload = format!(" Smallest payload of a `{fname}` frame, in bytes.");
+        let doc_header_len = format!(" Bytes of a `{fname}` frame before its payload.");
+        let doc_trailer_len = format!(" Bytes of a `{fname}` frame after its payload.");
+        let doc_new_decoder = format!(" A new decoder of `{fname}` frames.");
         out.extend(quote! {
-            #[doc = concat!(" Largest `", #fname, "` frame, in bytes.")]
+            #[doc = #doc_max_frame]
             pub const #max_frame: usize = #maxf;
-            #[doc = concat!(" Smallest `", #fname, "` frame, in bytes.")]
+            #[doc = #doc_min_frame]
             pub const #min_frame: usize = #minf;
-            #[doc = concat!(" Largest payload of a `", #fname, "` frame, in bytes.")]
+            #[doc = #doc_max_payload]
             pub const #max_payload: usize = #maxp;
-            #[doc = concat!(" Smallest payload of a `", #fname, "` frame, in bytes.")]
+            #[doc = #doc_min_payload]
             pub const #min_payload: usize = #minp;
-            #[doc = concat!(" Bytes of a `", #fname, "` frame before its payload.")]
+            #[doc = #doc_header_len]
             pub const #header_len: usize = #hl;
-            #[doc = concat!(" Bytes of a `", #fname, "` frame after its payload.")]
+            #[doc = #doc_trailer_len]
             pub const #trailer_len: usize = #tl;
             #(#statics)*
             #layout_doc
@@ -251,7 +258,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
                 pub const #buffer_name: usize = #buffer;
                 #[doc = #decoder_doc]
                 pub type #decoder_name = #rt::StreamDecoder<#layout_type, #buffer_name>;
-                #[doc = concat!(" A new decoder of `", #fname, "` frames.")]
+                #[doc = #doc_new_decoder]
                 pub const fn #decoder_fn() -> #decoder_name {
                     #rt::StreamDecoder::new(#layout_type)
                 }

@@ -42,6 +42,13 @@ pub fn const_ident(name: &str) -> Ident {
     Ident::new(&name.to_ascii_uppercase(), Span::call_site())
 }
 
+/// How items of the generated module name the runtime's `__private` module: the module imports
+/// it once (`use <runtime>::__private as __rt;`), which keeps every path of the expansion short.
+/// Nested modules and the derive, which have no such import, use [`RuntimePath::private`].
+pub fn rt() -> TokenStream {
+    quote!(__rt)
+}
+
 /// Expand a protocol into its module.
 pub fn expand(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     let module = ident(&p.name);
@@ -56,15 +63,17 @@ pub fn expand(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     let doc = docs::doc_attrs(&doc);
     let constants = types::emit_constants(p);
     let addresses = types::emit_addresses(p);
-    let enums = types::emit_enums(p, paths);
-    let structs = types::emit_structs(p, paths);
+    let enums = types::emit_enums(p);
+    let structs = types::emit_structs(p);
     let frames = frame::emit_frames(p, paths);
-    let dispatch = dispatch::emit_dispatch(p, paths);
+    let dispatch = dispatch::emit_dispatch(p);
+    let private = paths.private();
     quote! {
         #doc
         // Numbers in a spec are taken as written: a robot's 0.5235 rad/s limit is not pi/6.
         #[allow(clippy::approx_constant)]
         pub mod #module {
+            use #private as __rt;
             #constants
             #addresses
             #enums

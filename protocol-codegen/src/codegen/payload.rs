@@ -5,8 +5,7 @@
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use super::paths::RuntimePath;
-use crate::ir::{Endian, Prim, Scalar, Scale};
+use crate::ir::{Endian, Prim, Rounding, Scalar, Scale};
 
 /// A struct as the payload generator sees it.
 pub struct PayloadDef {
@@ -151,7 +150,16 @@ fn float_lit(x: f64) -> TokenStream {
     quote!(#lit)
 }
 
-/// Reading one element of a field.
+/// The runtime's name of a rounding mode.
+fn rounding(rt: &TokenStream, r: Rounding) -> TokenStream {
+    match r {
+        Rounding::Nearest => quote!(#rt::Rounding::Nearest),
+        Rounding::Truncate => quote!(#rt::Rounding::Truncate),
+    }
+}
+
+/// Reading one element of a field. The field rules are the runtime's (`field`), called with
+/// the field's constants.
 ///
 /// Whatever can fail here other than for want of bytes (clamped scales, enums) must also make
 /// [`needs_only_bytes`] answer `None`; a kind it does not know it answers `None` for.
@@ -170,19 +178,14 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
             let raw = read_scalar(*scalar);
             let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
             let phys = prim_type(sc.physical);
+            let value = quote!(#rt::to_physical(#raw as f64, #f, #o));
             match sc.clamp {
                 // A value outside the clamp range would not encode back to the same bytes.
                 Some((lo, hi)) => {
                     let (lo, hi) = (float_lit(lo), float_lit(hi));
-                    quote!({
-                        let v = (#raw as f64) * #f + #o;
-                        if !#rt::within_clamp(v, #lo, #hi) {
-                            return ::core::result::Result::Err(#rt::DecodeError::ValueOutOfRange);
-                        }
-                        v as #phys
-                    })
+                    quote!(#rt::check_clamp(#value, #lo, #hi)? as #phys)
                 }
-                None => quote!(((#raw as f64) * #f + #o) as #phys),
+                None => quote!(#value as #phys),
             }
         }
         PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::read(r)?),
@@ -201,7 +204,7 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
             ..
         } => {
             let var = local(n);
-            quote!(<#ty>::from_slice(r.take(#var as usize)?).ok_or(#rt::DecodeError::SizeMismatch)?)
+            quote!(<#ty>::read_sized(r, #var as u64)?)
         }
         PKind::Pad(_) | PKind::Bits { .. } | PKind::Group { .. } | PKind::Optional(_) => quote!(()),
     }
@@ -217,7 +220,7 @@ fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
     match kind {
         PKind::Optional(inner) => {
             let read = read_value(inner, rt);
-            quote!(if r.remaining() > 0 { ::core::option::Option::Some(#read) } else { ::core::option::Option::None })
+            quote!(if #rt::more(r) { #rt::Some(#read) } else { #rt::None })
         }
         PKind::Group {
             ty, elem_ty, elem, ..
@@ -238,12 +241,10 @@ fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
             }
             quote! {{
                 let mut group = <#ty>::new();
-                while r.remaining() > 0 {
+                while #rt::more(r) {
                     #(#lets)*
-                    let available = r.position().saturating_add(r.remaining());
-                    group
-                        .push(#elem_ty { #(#inits),* })
-                        .map_err(|_| #rt::DecodeError::PayloadLength { expected: <Self as #rt::Payload>::SIZE, actual: available })?;
+                    let size = <Self as #rt::Payload>::SIZE;
+                    group.push(#elem_ty { #(#inits),* }).map_err(|_| #rt::group_full(r, size))?;
                 }
                 group
             }}
@@ -274,7 +275,7 @@ fn write_value(
     match kind {
         PKind::Optional(inner) => {
             let w = write_value(inner, quote!((*v)), owner, rt);
-            quote!(if let ::core::option::Option::Some(v) = &#value { #w })
+            quote!(if let #rt::Some(v) = &#value { #w })
         }
         PKind::Group { elem, .. } => {
             let parts = elem.iter().map(|f| match (&f.kind, &f.ident) {
@@ -287,9 +288,7 @@ fn write_value(
         PKind::Bytes {
             size_from: Some(n), ..
         } => quote! {
-            if #value.len() != #owner.#n as usize {
-                return ::core::result::Result::Err(#rt::EncodeError::ValueOutOfRange);
-            }
+            #rt::check_stated_len(#value.len(), #owner.#n as u64)?;
             #value.write(w)?;
         },
         k => match count_of(k) {
@@ -308,9 +307,7 @@ fn variable_len(kind: &PKind, value: TokenStream, rt: &TokenStream) -> Option<To
         PKind::Bytes { .. } => Some(quote!(#value.len())),
         PKind::Optional(inner) => {
             let size = variable_len(inner, quote!(v), rt).unwrap_or_else(|| size_expr(inner, rt));
-            Some(
-                quote!(match &#value { ::core::option::Option::Some(v) => #size, ::core::option::Option::None => 0 }),
-            )
+            Some(quote!(match &#value { #rt::Some(v) => #size, #rt::None => 0 }))
         }
         PKind::Group { elem, .. } => {
             let mut fixed = Vec::new();
@@ -350,7 +347,9 @@ fn fixed_size(kind: &PKind) -> usize {
     }
 }
 
-/// Writing one element `value` (an expression of the field's element type).
+/// Writing one element `value` (an expression of the field's element type). A scaled value
+/// is clamped (if its field clamps), quantized and fitted to its raw type by the runtime: a
+/// value the raw type cannot hold is an error.
 fn write_elem(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream {
     match kind {
         PKind::Scalar {
@@ -364,47 +363,22 @@ fn write_elem(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream
             ..
         } => {
             let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
-            let raw_ty = prim_type(scalar.prim);
-            let clamped = match sc.clamp {
+            let physical = match sc.clamp {
                 Some((lo, hi)) => {
                     let (lo, hi) = (float_lit(lo), float_lit(hi));
-                    quote!(((#value) as f64).clamp(#lo, #hi))
+                    quote!(#rt::clamp((#value) as f64, #lo, #hi))
                 }
-                None => quote!(((#value) as f64)),
+                None => quote!((#value) as f64),
             };
-            // `as` saturates out-of-range values and maps NaN to 0. No `round`/`trunc`: they are
-            // not in `core`.
-            let raw = match sc.rounding {
-                crate::ir::Rounding::Nearest => quote! {{
-                    let q = (#clamped - #o) / #f;
-                    (if q >= 0.0 { q + 0.5 } else { q - 0.5 }) as #raw_ty
-                }},
-                // Toward zero, as a C cast; but a value within float noise of an integer is that
-                // integer, so that a decoded value (raw * factor, rounded to f32) encodes back
-                // to the same raw value.
-                crate::ir::Rounding::Truncate => quote! {{
-                    let q = (#clamped - #o) / #f;
-                    let nearest = (if q >= 0.0 { q + 0.5 } else { q - 0.5 }) as i64 as f64;
-                    let off = if q >= nearest { q - nearest } else { nearest - q };
-                    let mag = if q >= 0.0 { q } else { -q };
-                    (if off <= 1e-6 * (if mag > 1.0 { mag } else { 1.0 }) { nearest } else { q }) as #raw_ty
-                }},
-            };
+            let mode = rounding(rt, sc.rounding);
+            let raw = quote!(#rt::fit(#rt::quantize(#physical, #f, #o, #mode))?);
             write_scalar(*scalar, raw)
         }
         PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::write(&#value, w)?;),
-        // An `Unknown(raw)` holding a known variant's value would decode as that variant.
-        PKind::Enum { ty, scalar, .. } => {
-            let w = write_scalar(*scalar, quote!(raw));
-            quote! {{
-                let v = #value;
-                let raw = v.to_raw();
-                if #ty::from_raw(raw) != ::core::result::Result::Ok(v) {
-                    return ::core::result::Result::Err(#rt::EncodeError::ValueOutOfRange);
-                }
-                #w
-            }}
-        }
+        PKind::Enum { ty, scalar, .. } => write_scalar(
+            *scalar,
+            quote!(#rt::enum_raw(#value, #ty::to_raw, #ty::from_raw)?),
+        ),
         PKind::Bytes { .. } => quote!(#value.write(w)?;),
         PKind::Pad(_) | PKind::Bits { .. } | PKind::Group { .. } | PKind::Optional(_) => quote!(),
     }
@@ -470,121 +444,162 @@ fn size_expr(kind: &PKind, rt: &TokenStream) -> TokenStream {
     }
 }
 
-/// `impl Payload for NAME`: SIZE, write and read, fields in wire order.
-pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
-    let rt = paths.private();
-    let name = &def.name;
-    let mut sizes = Vec::new();
-    let mut writes = Vec::new();
-    let mut reads = Vec::new();
-    let mut inits = Vec::new();
-    for (i, f) in def.fields.iter().enumerate() {
-        sizes.push(size_expr(&f.kind, &rt));
-        match &f.kind {
-            PKind::Pad(n) => {
-                writes.push(quote!(w.zeros(#n)?;));
-                reads.push(quote!(r.skip(#n)?;));
-            }
-            PKind::Bits { word, members } => {
-                let wt = prim_type(word.prim);
-                let var = format_ident!("word{}", i);
-                let mut parts = Vec::new();
-                for m in members {
-                    let id = &m.ident;
-                    let shift = m.shift;
-                    let mask = bit_mask(m.width, word.prim);
-                    let raw = match &m.ty {
-                        BitType::Bool => quote!(#wt::from(self.#id)),
-                        BitType::Uint(_) => quote!((self.#id as #wt)),
-                        BitType::Enum(ty, _) => quote!({
-                            let raw = self.#id.to_raw();
-                            if #ty::from_raw(raw) != ::core::result::Result::Ok(self.#id) {
-                                return ::core::result::Result::Err(#rt::EncodeError::ValueOutOfRange);
-                            }
-                            raw as #wt
-                        }),
-                    };
-                    // A member value wider than its bits would be cut: refuse it.
-                    if !matches!(m.ty, BitType::Bool) {
-                        parts.push(quote! {
-                            if (#raw as u64) > (#mask as u64) {
-                                return ::core::result::Result::Err(#rt::EncodeError::ValueOutOfRange);
-                            }
-                        });
-                    }
-                    parts.push(quote!(#var |= (#raw & #mask) << #shift;));
-                    let field = quote!(((#var >> #shift) & #mask));
-                    let value = match &m.ty {
-                        BitType::Bool => quote!(#field != 0),
-                        BitType::Uint(p) => {
-                            let t = prim_type(*p);
-                            quote!(#field as #t)
-                        }
-                        BitType::Enum(ty, p) => {
-                            let t = prim_type(*p);
-                            quote!(#ty::from_raw(#field as #t)?)
-                        }
-                    };
-                    inits.push(quote!(#id: #value));
+/// The code of one struct's `write` and `read`, field by field in wire order.
+#[derive(Default)]
+struct Body {
+    /// Statements of `write`.
+    writes: Vec<TokenStream>,
+    /// Statements of `read` before the value is built.
+    reads: Vec<TokenStream>,
+    /// `field: expression` of the value `read` builds.
+    inits: Vec<TokenStream>,
+    /// Whether a read expression needs an earlier field (sized bytes, groups) or a statement
+    /// comes between fields (padding, a bit word): then every field is read into a local first.
+    sequenced: bool,
+}
+
+impl Body {
+    fn of(fields: &[PField], rt: &TokenStream) -> Body {
+        let mut b = Body::default();
+        for (i, f) in fields.iter().enumerate() {
+            match &f.kind {
+                PKind::Pad(n) => {
+                    b.writes.push(quote!(w.zeros(#n)?;));
+                    b.reads.push(quote!(r.skip(#n)?;));
+                    b.sequenced = true;
                 }
-                writes.push(quote! {
-                    let mut #var: #wt = 0;
-                    #(#parts)*
-                });
-                writes.push(write_scalar(*word, quote!(#var)));
-                let read = read_scalar(*word);
-                reads.push(quote!(let #var: #wt = #read;));
-            }
-            kind => {
-                let Some(id) = &f.ident else { continue };
-                let var = local(id);
-                writes.push(write_value(kind, quote!(self.#id), &quote!(self), &rt));
-                let read = read_value(kind, &rt);
-                reads.push(quote!(let #var = #read;));
-                inits.push(quote!(#id: #var));
+                PKind::Bits { word, members } => {
+                    b.bits(&format_ident!("word{}", i), *word, members, rt);
+                    b.sequenced = true;
+                }
+                kind => {
+                    let Some(id) = &f.ident else { continue };
+                    b.sequenced |= needs_locals(kind);
+                    b.writes
+                        .push(write_value(kind, quote!(self.#id), &quote!(self), rt));
+                    let var = local(id);
+                    let read = read_value(kind, rt);
+                    b.reads.push(quote!(let #var = #read;));
+                    b.inits.push(quote!(#id: #var));
+                }
             }
         }
+        if !b.sequenced {
+            // Nothing between the fields: read each straight into the value, in order.
+            b.inits = fields
+                .iter()
+                .filter_map(|f| {
+                    let id = f.ident.as_ref()?;
+                    let read = read_value(&f.kind, rt);
+                    Some(quote!(#id: #read))
+                })
+                .collect();
+            b.reads.clear();
+        }
+        b
     }
+
+    /// A bitfield word: each member set into (and got from) its bits by the runtime.
+    fn bits(&mut self, var: &Ident, word: Scalar, members: &[PBit], rt: &TokenStream) {
+        let wt = prim_type(word.prim);
+        let mut sets = Vec::new();
+        for m in members {
+            let (id, shift, width) = (&m.ident, m.shift, m.width);
+            let raw = match &m.ty {
+                BitType::Bool => quote!(u64::from(self.#id)),
+                BitType::Uint(_) => quote!(self.#id as u64),
+                // Through the word type, as the word holds it (a signed raw value's bits).
+                BitType::Enum(ty, _) => {
+                    quote!(#rt::enum_raw(self.#id, #ty::to_raw, #ty::from_raw)? as #wt as u64)
+                }
+            };
+            sets.push(quote!(#var = #rt::set_bits(#var, #raw, #shift, #width)?;));
+            let field = quote!(#rt::get_bits(#var, #shift, #width));
+            let value = match &m.ty {
+                BitType::Bool => quote!(#field != 0),
+                BitType::Uint(p) => {
+                    let t = prim_type(*p);
+                    quote!(#field as #t)
+                }
+                BitType::Enum(ty, p) => {
+                    let t = prim_type(*p);
+                    quote!(#ty::from_raw(#field as #t)?)
+                }
+            };
+            self.inits.push(quote!(#id: #value));
+        }
+        self.writes.push(quote!(let mut #var = 0u64; #(#sets)*));
+        self.writes.push(write_scalar(word, quote!(#var as #wt)));
+        let read = read_scalar(word);
+        self.reads.push(quote!(let #var = u64::from(#read);));
+    }
+}
+
+/// Whether reading a field names an earlier field (sized bytes; a group, whose elements' sized
+/// bytes may name the repeating struct's fields).
+fn needs_locals(kind: &PKind) -> bool {
+    match kind {
+        PKind::Group { .. } => true,
+        PKind::Bytes { size_from, .. } => size_from.is_some(),
+        PKind::Optional(inner) => needs_locals(inner),
+        _ => false,
+    }
+}
+
+/// `const MIN_SIZE` and `fn wire_len` of a struct with fields of variable size (nothing for
+/// a struct of fixed size); `None` when the struct has a fixed size.
+fn emit_variable_size(def: &PayloadDef, rt: &TokenStream) -> Option<TokenStream> {
+    let mut fixed = Vec::new();
+    let mut lens = Vec::new();
+    for f in &def.fields {
+        match (variable_len(&f.kind, quote!(x), rt), &f.ident) {
+            (Some(_), Some(id)) => lens.extend(variable_len(&f.kind, quote!(self.#id), rt)),
+            _ => fixed.push(size_expr(&f.kind, rt)),
+        }
+    }
+    if lens.is_empty() {
+        return None;
+    }
+    let min = match def.min_size {
+        Some(n) => quote!(#n),
+        None => quote!(0 #(+ #fixed)*),
+    };
+    Some(quote! {
+        const MIN_SIZE: usize = #min;
+        #[inline]
+        fn wire_len(&self) -> usize {
+            const FIXED: usize = 0 #(+ #fixed)*;
+            FIXED #(.saturating_add(#lens))*
+        }
+    })
+}
+
+/// `impl Payload for NAME`: SIZE, write and read, fields in wire order. `rt` is the path of the
+/// runtime's `__private` module as the impl sees it.
+pub fn emit_payload_impl(def: &PayloadDef, rt: &TokenStream) -> TokenStream {
+    let name = &def.name;
+    let sizes: Vec<TokenStream> = def.fields.iter().map(|f| size_expr(&f.kind, rt)).collect();
+    let Body {
+        writes,
+        reads,
+        inits,
+        ..
+    } = Body::of(&def.fields, rt);
     let size = match def.size {
         Some(n) => quote!(#n),
         None if sizes.is_empty() => quote!(0),
         None => quote!(#(#sizes)+*),
     };
-    // A struct with fields of variable size: its minimum size and its actual size.
-    let mut fixed = Vec::new();
-    let mut lens = Vec::new();
-    for f in &def.fields {
-        match (variable_len(&f.kind, quote!(x), &rt), &f.ident) {
-            (Some(_), Some(id)) => lens.extend(variable_len(&f.kind, quote!(self.#id), &rt)),
-            _ => fixed.push(size_expr(&f.kind, &rt)),
-        }
-    }
-    let variable = if lens.is_empty() {
-        quote!()
-    } else {
-        let min = match def.min_size {
-            Some(n) => quote!(#n),
-            None => quote!(0 #(+ #fixed)*),
-        };
-        quote! {
-            const MIN_SIZE: usize = #min;
-            #[inline]
-            fn wire_len(&self) -> usize {
-                const FIXED: usize = 0 #(+ #fixed)*;
-                FIXED #(.saturating_add(#lens))*
-            }
-        }
-    };
+    let variable = emit_variable_size(def, rt);
     // A value of fixed size: its room checked once, not per field.
-    let reserve = if lens.is_empty() && !writes.is_empty() {
+    let reserve = if variable.is_none() && !writes.is_empty() {
         quote!(let w = &mut w.reserve(<Self as #rt::Payload>::SIZE)?;)
     } else {
         quote!()
     };
-    let only_bytes = if lens.is_empty() {
-        needs_only_bytes(&def.fields, &rt)
-    } else {
-        None
+    let only_bytes = match variable {
+        None => needs_only_bytes(&def.fields, rt),
+        Some(_) => None,
     };
     let only_bytes = only_bytes.map(|parts| {
         let parts = if parts.is_empty() {
@@ -600,15 +615,15 @@ pub fn emit_payload_impl(def: &PayloadDef, paths: &RuntimePath) -> TokenStream {
             #variable
             #only_bytes
             #[inline]
-            fn write(&self, w: &mut #rt::Writer<'_>) -> ::core::result::Result<(), #rt::EncodeError> {
+            fn write(&self, w: &mut #rt::Writer<'_>) -> #rt::EncodeResult {
                 #reserve
                 #(#writes)*
-                ::core::result::Result::Ok(())
+                #rt::Ok(())
             }
             #[inline]
-            fn read(r: &mut #rt::Reader<'_>) -> ::core::result::Result<Self, #rt::DecodeError> {
+            fn read(r: &mut #rt::Reader<'_>) -> #rt::DecodeResult<Self> {
                 #(#reads)*
-                ::core::result::Result::Ok(Self { #(#inits),* })
+                #rt::Ok(Self { #(#inits),* })
             }
         }
     }
@@ -641,19 +656,4 @@ fn needs_only_bytes(fields: &[PField], rt: &TokenStream) -> Option<Vec<TokenStre
         }
     }
     Some(nested)
-}
-
-fn bit_mask(width: u32, word: Prim) -> TokenStream {
-    let m: u64 = if width >= 64 {
-        u64::MAX
-    } else {
-        (1u64 << width) - 1
-    };
-    let lit = match word {
-        Prim::U8 => proc_macro2::Literal::u8_suffixed(m as u8),
-        Prim::U16 => proc_macro2::Literal::u16_suffixed(m as u16),
-        Prim::U32 => proc_macro2::Literal::u32_suffixed(m as u32),
-        _ => proc_macro2::Literal::u64_suffixed(m),
-    };
-    quote!(#lit)
 }

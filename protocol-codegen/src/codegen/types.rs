@@ -8,7 +8,7 @@ use super::docs::{doc_attrs, struct_doc};
 use super::payload::{
     BitType, PBit, PField, PKind, PayloadDef, emit_payload_impl, field_type, prim_type,
 };
-use super::{RuntimePath, const_ident, ident};
+use super::{const_ident, ident};
 use crate::ir::{Enum, FieldKind, Prim, Protocol, Struct, UnknownPolicy, ValueType};
 
 /// A literal of the given integer type holding `value` (two's complement bits for signed).
@@ -89,13 +89,13 @@ pub fn address_prim(p: &Protocol) -> Prim {
 }
 
 /// Every enum with `to_raw` and `from_raw`.
-pub fn emit_enums(p: &Protocol, paths: &RuntimePath) -> TokenStream {
-    let items = p.enums.iter().map(|e| emit_enum(e, paths));
+pub fn emit_enums(p: &Protocol) -> TokenStream {
+    let items = p.enums.iter().map(emit_enum);
     quote!(#(#items)*)
 }
 
-fn emit_enum(e: &Enum, paths: &RuntimePath) -> TokenStream {
-    let rt = paths.private();
+fn emit_enum(e: &Enum) -> TokenStream {
+    let rt = super::rt();
     let name = ident(&e.name);
     let raw = prim_type(e.prim);
     let mut doc = e.doc.clone();
@@ -124,12 +124,12 @@ fn emit_enum(e: &Enum, paths: &RuntimePath) -> TokenStream {
         UnknownPolicy::Keep => (
             quote!(#[doc = " A value with no variant, kept as it was on the wire."] Unknown(#raw),),
             quote!(Self::Unknown(raw) => raw,),
-            quote!(other => ::core::result::Result::Ok(Self::Unknown(other)),),
+            quote!(other => #rt::Ok(Self::Unknown(other)),),
         ),
         UnknownPolicy::Reject => (
             quote!(),
             quote!(),
-            quote!(other => ::core::result::Result::Err(#rt::DecodeError::InvalidEnum { value: other as u64 }),),
+            quote!(other => #rt::Err(#rt::DecodeError::InvalidEnum { value: other as u64 }),),
         ),
     };
     let to = e.variants.iter().map(|v| {
@@ -140,7 +140,7 @@ fn emit_enum(e: &Enum, paths: &RuntimePath) -> TokenStream {
     let from = e.variants.iter().map(|v| {
         let vn = ident(&v.rust_name);
         let lit = int_lit(e.prim, v.value);
-        quote!(#lit => ::core::result::Result::Ok(Self::#vn),)
+        quote!(#lit => #rt::Ok(Self::#vn),)
     });
     quote! {
         #doc
@@ -162,7 +162,7 @@ fn emit_enum(e: &Enum, paths: &RuntimePath) -> TokenStream {
             /// # Errors
             /// `DecodeError::InvalidEnum` for a value with no variant, unless the enum keeps
             /// unknown values.
-            pub const fn from_raw(raw: #raw) -> ::core::result::Result<Self, #rt::DecodeError> {
+            pub const fn from_raw(raw: #raw) -> #rt::DecodeResult<Self> {
                 match raw {
                     #(#from)*
                     #unknown_from
@@ -173,27 +173,27 @@ fn emit_enum(e: &Enum, paths: &RuntimePath) -> TokenStream {
 }
 
 /// Lower an IR struct into the payload generator's model.
-pub fn payload_def(p: &Protocol, s: &Struct, paths: &RuntimePath) -> PayloadDef {
+pub fn payload_def(p: &Protocol, s: &Struct) -> PayloadDef {
     PayloadDef {
         name: ident(&s.name),
-        fields: payload_fields(p, s, paths),
+        fields: payload_fields(p, s),
         size: Some(s.size),
         min_size: Some(s.min_size),
     }
 }
 
-fn payload_fields(p: &Protocol, s: &Struct, paths: &RuntimePath) -> Vec<PField> {
+fn payload_fields(p: &Protocol, s: &Struct) -> Vec<PField> {
     s.fields
         .iter()
         .map(|f| PField {
             ident: (!f.name.is_empty()).then(|| ident(&f.name)),
-            kind: payload_kind(p, &f.kind, f.size, paths),
+            kind: payload_kind(p, &f.kind, f.size),
         })
         .collect()
 }
 
-fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize, paths: &RuntimePath) -> PKind {
-    let rt = paths.private();
+fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize) -> PKind {
+    let rt = super::rt();
     match kind {
         FieldKind::Padding => PKind::Pad(size),
         FieldKind::Bytes { max, size_from } => PKind::Bytes {
@@ -207,14 +207,12 @@ fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize, paths: &RuntimePath
             PKind::Group {
                 ty: quote!(#rt::Group<#elem_ty, #max>),
                 elem_ty: quote!(#elem_ty),
-                elem: payload_fields(p, e, paths),
+                elem: payload_fields(p, e),
                 max: *max,
                 elem_size: e.size,
             }
         }
-        FieldKind::Optional(inner) => {
-            PKind::Optional(Box::new(payload_kind(p, inner, size, paths)))
-        }
+        FieldKind::Optional(inner) => PKind::Optional(Box::new(payload_kind(p, inner, size))),
         FieldKind::Bits { word, members } => PKind::Bits {
             word: *word,
             members: members
@@ -260,9 +258,9 @@ fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize, paths: &RuntimePath
 }
 
 /// Every struct: declaration (with layout docs) and its `Payload` impl.
-pub fn emit_structs(p: &Protocol, paths: &RuntimePath) -> TokenStream {
+pub fn emit_structs(p: &Protocol) -> TokenStream {
     let items = p.structs.iter().map(|s| {
-        let def = payload_def(p, s, paths);
+        let def = payload_def(p, s);
         let name = &def.name;
         let doc = doc_attrs(&struct_doc(p, s));
         let mut fields = Vec::new();
@@ -341,7 +339,7 @@ pub fn emit_structs(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         // A struct whose sized bytes take their size from the struct that repeats it is read
         // and written by that struct's code: it has no wire form of its own.
         let imp = if s.context.is_empty() {
-            emit_payload_impl(&def, paths)
+            emit_payload_impl(&def, &super::rt())
         } else {
             quote!()
         };
