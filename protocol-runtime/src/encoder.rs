@@ -8,7 +8,7 @@
 
 use crate::decoder::Probe;
 use crate::error::{DecodeError, EncodeError};
-use crate::layout::{FrameLayout, LengthRule, all_hold};
+use crate::layout::{FrameLayout, LengthRule, WordField, all_hold};
 use crate::wire::{Reader, Writer};
 
 impl FrameLayout<'_> {
@@ -289,6 +289,30 @@ impl PayloadVisitor for WritePayload<'_, '_> {
 #[inline(always)]
 pub fn read_empty<M>(payload: &[u8], message: M) -> Result<M, DecodeError> {
     <() as Payload>::from_bytes(payload).map(|()| message)
+}
+
+/// The message `variant(payload)` of the payload read from exactly `payload` (a message enum's
+/// `read_payload` arm: `read_as(bytes, Self::Variant)`).
+///
+/// # Errors
+///
+/// The errors of [`Payload::from_bytes`].
+#[inline(always)]
+pub fn read_as<P: Payload, M>(payload: &[u8], variant: fn(P) -> M) -> Result<M, DecodeError> {
+    P::from_bytes(payload).map(variant)
+}
+
+/// Writes a header value into `frame` at `field`.
+///
+/// # Errors
+///
+/// [`EncodeError::ValueOutOfRange`] if the value does not fit the field or the field lies
+/// outside the frame.
+#[inline(always)]
+pub fn write_header(frame: &mut [u8], field: WordField, value: u64) -> Result<(), EncodeError> {
+    field
+        .write(frame, value)
+        .ok_or(EncodeError::ValueOutOfRange)
 }
 
 /// No payload: a command that carries nothing.

@@ -361,24 +361,6 @@ pub fn json_bits(v: &Value, prim: Prim) -> Result<u64, NumError> {
     }
 }
 
-/// `f64 as T` for an integer type, as a Rust cast does it (saturating, NaN to 0), returned as
-/// the raw bits of the `T`.
-pub fn saturating_cast(prim: Prim, x: f64) -> u64 {
-    match prim {
-        Prim::U8 => u64::from(x as u8),
-        Prim::I8 => x as i8 as u8 as u64,
-        Prim::U16 => u64::from(x as u16),
-        Prim::I16 => x as i16 as u16 as u64,
-        Prim::U32 => u64::from(x as u32),
-        Prim::I32 => x as i32 as u32 as u64,
-        Prim::U64 => x as u64,
-        Prim::I64 => x as i64 as u64,
-        Prim::F32 => u64::from((x as f32).to_bits()),
-        Prim::F64 => x.to_bits(),
-        Prim::Bool => u64::from(x != 0.0),
-    }
-}
-
 /// The value of raw bits of an integer primitive as an `f64` (`raw as f64` in generated code).
 pub fn bits_as_f64(prim: Prim, bits: u64) -> f64 {
     match prim {

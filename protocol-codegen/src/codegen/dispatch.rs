@@ -108,7 +108,7 @@ fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> TokenStream {
                 let total = #header_len.saturating_add(self.message.payload_len()).saturating_add(#trailer_len);
                 let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
                 let frame = virt.get_mut(..total).ok_or(#rt::EncodeError::PayloadTooLarge { len: total, max: #rt::CAN_VIRTUAL_LEN })?;
-                wire::#prefix_can_id.write(frame, u64::from(id)).ok_or(#rt::EncodeError::ValueOutOfRange)?;
+                #rt::write_header(frame, wire::#prefix_can_id, u64::from(id))?;
                 #(#writes)*
                 let payload = frame
                     .get_mut(#header_len..total.saturating_sub(#trailer_len))
@@ -149,6 +149,7 @@ fn id_value(f: &Frame, c: &Command) -> TokenStream {
 
 fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let id_ty = id_type(f);
+    let single = f.dispatch.len() == 1;
     let keys: Vec<&str> = f
         .dispatch
         .iter()
@@ -162,18 +163,34 @@ fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 .collect::<Vec<_>>()
                 .join(", ");
         let d = doc_attrs(&format!("`{}` (id {ids}). {}", c.name, c.doc));
-        quote!(#d #v)
+        // One key field: the id is the variant's discriminant.
+        if single {
+            let id = id_value(f, c);
+            quote!(#d #v = #id)
+        } else {
+            quote!(#d #v)
+        }
     });
     let all = p.commands.iter().map(|c| {
         let v = ident(&c.rust_name);
         quote!(Self::#v)
     });
     let n = p.commands.len();
-    let to_id = p.commands.iter().map(|c| {
-        let v = ident(&c.rust_name);
-        let id = id_value(f, c);
-        quote!(Self::#v => #id,)
-    });
+    let to_id = if single {
+        quote!(self as CommandId)
+    } else {
+        let arms = p.commands.iter().map(|c| {
+            let v = ident(&c.rust_name);
+            let id = id_value(f, c);
+            quote!(Self::#v => #id,)
+        });
+        quote!(match self { #(#arms)* })
+    };
+    let repr = if single {
+        quote!(#[repr(#id_ty)])
+    } else {
+        quote!()
+    };
     let from_id = p.commands.iter().map(|c| {
         let v = ident(&c.rust_name);
         let id = id_value(f, c);
@@ -188,8 +205,44 @@ fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         " A command id: the value of the dispatch key ({}).",
         keys.join(", ")
     );
-    let can = if p
-        .frames
+    let can = emit_can_ids(p, rt);
+    quote! {
+        #[doc = #id_doc]
+        pub type CommandId = #id_ty;
+        /// Every command of the spec, with its id.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        #repr
+        pub enum Command {
+            #(#variants,)*
+        }
+        impl Command {
+            /// Every command, in spec order.
+            pub const ALL: [Command; #n] = [#(#all),*];
+            /// The command's id.
+            pub const fn id(self) -> CommandId {
+                #to_id
+            }
+            /// The command with this id, if any.
+            pub const fn from_id(id: CommandId) -> #rt::Option<Self> {
+                match id {
+                    #(#from_id)*
+                    _ => #rt::None,
+                }
+            }
+            /// The command's name in the spec.
+            pub const fn name(self) -> &'static str {
+                match self {
+                    #(#names)*
+                }
+            }
+            #can
+        }
+    }
+}
+
+/// `Command::can_id` and `Command::from_can_id`, when a frame format is CAN.
+fn emit_can_ids(p: &Protocol, rt: &TokenStream) -> TokenStream {
+    if p.frames
         .iter()
         .skip(1)
         .any(|f| matches!(f.transport, Transport::Can { .. }))
@@ -226,39 +279,6 @@ fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         }
     } else {
         quote!()
-    };
-    quote! {
-        #[doc = #id_doc]
-        pub type CommandId = #id_ty;
-        /// Every command of the spec, with its id.
-        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-        pub enum Command {
-            #(#variants,)*
-        }
-        impl Command {
-            /// Every command, in spec order.
-            pub const ALL: [Command; #n] = [#(#all),*];
-            /// The command's id.
-            pub const fn id(self) -> CommandId {
-                match self {
-                    #(#to_id)*
-                }
-            }
-            /// The command with this id, if any.
-            pub const fn from_id(id: CommandId) -> #rt::Option<Self> {
-                match id {
-                    #(#from_id)*
-                    _ => #rt::None,
-                }
-            }
-            /// The command's name in the spec.
-            pub const fn name(self) -> &'static str {
-                match self {
-                    #(#names)*
-                }
-            }
-            #can
-        }
     }
 }
 
@@ -291,15 +311,14 @@ fn emit_message_enum(
                 variants.push(quote!(#d #v(#s)));
                 command_arms.push(quote!(Self::#v(_) => Command::#v,));
                 visit_arms.push(quote!(Self::#v(p) => v.visit(p),));
-                read_arms
-                    .push(quote!(Command::#v => #rt::Payload::from_bytes(payload).map(Self::#v),));
+                read_arms.push(quote!(Command::#v => #rt::read_as(bytes, Self::#v),));
             }
             None => {
                 let d = doc_attrs(&format!("`{}`, with an empty payload. {}", c.name, c.doc));
                 variants.push(quote!(#d #v));
                 command_arms.push(quote!(Self::#v => Command::#v,));
                 visit_arms.push(quote!(Self::#v => v.visit(&()),));
-                read_arms.push(quote!(Command::#v => #rt::read_empty(payload, Self::#v),));
+                read_arms.push(quote!(Command::#v => #rt::read_empty(bytes, Self::#v),));
             }
         }
     }
@@ -341,12 +360,12 @@ fn emit_message_enum(
         impl #name {
             #command_fn
             #payload_fns
-            /// Read the payload of `command`.
+            /// Read the payload of `command` from exactly `bytes`.
             ///
             /// # Errors
             /// `DecodeError::PayloadLength` if the payload's size is not the command's, or any
             /// error of the payload's fields (an unknown enum value, ...).
-            pub fn read_payload(command: Command, payload: &[u8]) -> #rt::DecodeResult<Self> {
+            pub fn read_payload(command: Command, bytes: &[u8]) -> #rt::DecodeResult<Self> {
                 match command {
                     #(#read_arms)*
                 }
@@ -454,7 +473,7 @@ fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
         return Key {
             read: quote!(let id: CommandId = header_value(frame, wire::#c)? as #t;),
             as_u64: quote!(id as u64),
-            write: quote!(wire::#c.write(frame, command.id() as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;),
+            write: quote!(#rt::write_header(frame, wire::#c, command.id() as u64)?;),
         };
     }
     let vars: Vec<_> = (0..consts.len()).map(|i| format_ident!("k{}", i)).collect();
@@ -468,7 +487,7 @@ fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
     Key {
         read: quote!(#(let #vars = header_value(frame, wire::#consts)? as #types;)* let id: CommandId = (#(#vars),*);),
         as_u64: quote!({ let (#(#vars),*) = id; #key }),
-        write: quote!(let id = command.id(); #(wire::#consts.write(frame, id.#idx as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;)*),
+        write: quote!(let id = command.id(); #(#rt::write_header(frame, wire::#consts, id.#idx as u64)?;)*),
     }
 }
 
@@ -558,7 +577,7 @@ fn packet_ack(f: &Frame, key: &Key, rt: &TokenStream) -> AckParts {
         },
         flag: quote! {
             let is_ack = matches!(self.message, Message::Ack(_));
-            wire::#flag.write(frame, if is_ack { #equals } else { #other }).ok_or(#rt::EncodeError::ValueOutOfRange)?;
+            #rt::write_header(frame, wire::#flag, if is_ack { #equals } else { #other })?;
         },
         start: quote!(if matches!(self.message, Message::Ack(_)) { #ack_header_len } else { HEADER_LEN }),
         write_key: quote!(if let #rt::Some(command) = self.message.command() { #write }),
@@ -808,7 +827,7 @@ fn header_codec(f: &Frame, prefix: &str, rt: &TokenStream) -> (Vec<TokenStream>,
                 let t = prim_type(v.prim);
                 quote!(#id: header_value(frame, wire::#c)? as #t)
             };
-            let write = quote!(wire::#c.write(frame, self.header.#id as u64).ok_or(#rt::EncodeError::ValueOutOfRange)?;);
+            let write = quote!(#rt::write_header(frame, wire::#c, self.header.#id as u64)?;);
             (read, write)
         })
         .unzip()

@@ -1,7 +1,8 @@
 //! Payload structs between the wire and JSON: the dynamic counterpart of the `impl Payload`
 //! that `emit_payload_impl` (`protocol-codegen/src/codegen/payload.rs`) generates, field for
-//! field and in the same order, with the same conversions (scaling, rounding, clamping, bit
-//! masks, enum lookups) and the same errors.
+//! field and in the same order, with the same errors; the field rules themselves (scaling,
+//! rounding, clamping, bit members, enum policy, sized bytes, groups) are the runtime's
+//! (`protocol_runtime::field`), which generated code calls too.
 //!
 //! A struct is a JSON object with its fields in spec order: nested structs are objects,
 //! arrays and repeated groups are arrays, bytes are a lowercase hex string, an optional field
@@ -15,7 +16,7 @@ mod write;
 pub use read::{ReadFail, read_payload};
 pub use write::write_payload;
 
-use protocol_codegen::ir::{BitMember, Enum, Field, FieldKind, Prim, UnknownPolicy};
+use protocol_codegen::ir::{Enum, Field, FieldKind, Prim, UnknownPolicy};
 
 use super::value::truncate;
 
@@ -24,14 +25,6 @@ fn join(path: &str, name: &str) -> String {
         name.to_string()
     } else {
         format!("{path}.{name}")
-    }
-}
-
-fn member_mask(m: &BitMember) -> u64 {
-    if m.width >= 64 {
-        u64::MAX
-    } else {
-        (1u64 << m.width) - 1
     }
 }
 
@@ -51,9 +44,12 @@ fn variant(e: &Enum, raw: u64) -> Option<&protocol_codegen::ir::EnumVariant> {
     e.variants.iter().find(|v| truncate(e.prim, v.value) == raw)
 }
 
-/// Whether unknown values of `e` are kept.
-fn keeps_unknown(e: &Enum) -> bool {
-    e.unknown == UnknownPolicy::Keep
+/// What `e` does with unknown values, as the runtime's field rules name it.
+fn policy(e: &Enum) -> protocol_runtime::field::UnknownPolicy {
+    match e.unknown {
+        UnknownPolicy::Keep => protocol_runtime::field::UnknownPolicy::Keep,
+        UnknownPolicy::Reject => protocol_runtime::field::UnknownPolicy::Reject,
+    }
 }
 
 /// The JSON keys a field takes in its struct's object: its name, or its bit members' names.

@@ -1,10 +1,10 @@
 //! Reading a payload struct into JSON, as the generated `Payload::read` and `from_bytes` do.
 
 use protocol_codegen::ir::{BitMember, Enum, Field, FieldKind, Prim, Protocol, ValueType};
-use protocol_runtime::{DecodeError, Reader};
+use protocol_runtime::{DecodeError, Reader, field};
 use serde_json::{Map, Value};
 
-use super::{join, keeps_unknown, member_mask, signed_value, variant};
+use super::{join, policy, signed_value, variant};
 use crate::interp::frame::hex;
 use crate::interp::value::{f32_json, f64_json, read_scalar, truncate};
 
@@ -91,7 +91,7 @@ fn read_field(
             }
         }
         FieldKind::Optional(inner) => {
-            if r.remaining() > 0 {
+            if field::more(r) {
                 read_field(p, f, inner, size, r, path, out, owner)?;
             } else {
                 for key in super::keys(f) {
@@ -134,11 +134,7 @@ fn read_field(
                         .get(n)
                         .and_then(Value::as_u64)
                         .unwrap_or(0);
-                    let taken = r.take(count as usize)?;
-                    if taken.len() > *max {
-                        return Err(ReadFail::Runtime(DecodeError::SizeMismatch));
-                    }
-                    hex(taken)
+                    hex(field::take_sized(r, count, *max)?)
                 }
             };
             out.insert(f.name.clone(), Value::from(v));
@@ -147,18 +143,14 @@ fn read_field(
             let sizes = owner.unwrap_or(out);
             let mut items = Vec::new();
             let fpath = join(path, &f.name);
-            while r.remaining() > 0 {
+            while field::more(r) {
                 let mut item = Map::new();
                 let epath = format!("{fpath}[{}]", items.len());
                 for ef in &p.structs[*elem].fields {
                     read_field(p, ef, &ef.kind, size, r, &epath, &mut item, Some(sizes))?;
                 }
-                let available = r.position() + r.remaining();
                 if items.len() == *max {
-                    return Err(ReadFail::Runtime(DecodeError::PayloadLength {
-                        expected: size,
-                        actual: available,
-                    }));
+                    return Err(ReadFail::Runtime(field::group_full(r, size)));
                 }
                 items.push(Value::Object(item));
             }
@@ -169,14 +161,14 @@ fn read_field(
 }
 
 fn read_member(p: &Protocol, m: &BitMember, word: u64, path: &str) -> Result<Value, ReadFail> {
-    let field = (word >> m.shift) & member_mask(m);
+    let bits = field::get_bits(word, m.shift, m.width);
     Ok(match m.enum_index {
         Some(ei) => {
             let e = &p.enums[ei];
-            enum_json(e, ei, truncate(e.prim, field), path)?
+            enum_json(e, ei, truncate(e.prim, bits), path)?
         }
-        None if m.prim == Prim::Bool => Value::Bool(field != 0),
-        None => Value::from(truncate(m.prim, field)),
+        None if m.prim == Prim::Bool => Value::Bool(bits != 0),
+        None => Value::from(truncate(m.prim, bits)),
     })
 }
 
@@ -196,11 +188,9 @@ fn read_elem(
             scale: Some(sc),
         } => {
             let raw = read_scalar(r, *scalar)?.as_f64();
-            let physical = raw * sc.factor + sc.offset;
+            let mut physical = field::to_physical(raw, sc.factor, sc.offset);
             if let Some((lo, hi)) = sc.clamp {
-                if !protocol_runtime::field::within_clamp(physical, lo, hi) {
-                    return Err(ReadFail::Runtime(DecodeError::ValueOutOfRange));
-                }
+                physical = field::check_clamp(physical, lo, hi)?;
             }
             match sc.physical {
                 Prim::F32 => f32_json(physical as f32),
@@ -226,7 +216,7 @@ fn enum_json(e: &Enum, ei: usize, raw: u64, path: &str) -> Result<Value, ReadFai
         return Ok(Value::from(v.name.clone()));
     }
     let signed = signed_value(e.prim, raw);
-    if keeps_unknown(e) {
+    if policy(e).unknown(raw).is_ok() {
         return Ok(match signed {
             Some(i) => Value::from(i),
             None => Value::from(raw),

@@ -5,14 +5,14 @@
 use protocol_codegen::ir::{
     BitMember, Enum, Field, FieldKind, Prim, Protocol, Rounding, Scalar, Scale, Struct, ValueType,
 };
-use protocol_runtime::Writer;
+use protocol_runtime::{EncodeError, Writer, field};
 use serde_json::{Map, Value};
 
-use super::{join, keeps_unknown, member_mask, signed_value, variant};
+use super::{join, policy, signed_value, variant};
 use crate::interp::error::EncodeIssue;
 use crate::interp::frame::parse_hex;
 use crate::interp::value::{
-    NumError, bits_as_f64, json_bits, json_f32, json_f64, saturating_cast, truncate, write_bits,
+    NumError, bits_as_f64, json_bits, json_f32, json_f64, truncate, write_bits,
 };
 
 fn issue(path: &str, e: NumError) -> EncodeIssue {
@@ -88,7 +88,9 @@ fn write_field(
                     .get(&m.name)
                     .ok_or_else(|| EncodeIssue::missing(&mpath))?;
                 let raw = member_raw(p, m, v, &mpath)?;
-                bits |= (raw & member_mask(m)) << m.shift;
+                bits = field::set_bits(bits, raw, m.shift, m.width).map_err(|_| {
+                    EncodeIssue::new(&mpath, format!("{raw} does not fit {} bits", m.width))
+                })?;
             }
             write_bits(w, *word, truncate(word.prim, bits)).map_err(buffer)
         }
@@ -143,7 +145,7 @@ fn write_field(
             }
             if let Some(n) = size_from {
                 let stated = owner.get(n).and_then(Value::as_u64);
-                if stated != Some(bytes.len() as u64) {
+                if stated.is_none_or(|s| field::check_stated_len(bytes.len(), s).is_err()) {
                     return Err(EncodeIssue::new(
                         &fpath,
                         format!(
@@ -197,33 +199,17 @@ fn json_bytes(v: &Value) -> Option<Vec<u8>> {
     }
 }
 
-/// The raw bits of a bit member. Values that do not fit the member's width are refused, as
-/// generated code refuses them (`EncodeError::ValueOutOfRange`).
+/// The raw bits of a bit member; [`field::set_bits`] refuses those that do not fit the
+/// member's width, as generated code does.
 fn member_raw(p: &Protocol, m: &BitMember, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
     match m.enum_index {
-        // `to_raw() as word`: a negative value of a signed enum is sign-extended, then masked.
+        // `to_raw() as word`: a negative value of a signed enum is sign-extended.
         Some(ei) => {
             let e = &p.enums[ei];
             let raw = enum_raw(e, v, path)?;
-            let raw = signed_value(e.prim, raw).map_or(raw, |i| i as u64);
-            if raw & !member_mask(m) != 0 {
-                return Err(EncodeIssue::new(
-                    path,
-                    format!("{raw} does not fit {} bits", m.width),
-                ));
-            }
-            Ok(raw)
+            Ok(signed_value(e.prim, raw).map_or(raw, |i| i as u64))
         }
-        None => {
-            let raw = json_bits(v, m.prim).map_err(|e| issue(path, e))?;
-            if raw & !member_mask(m) != 0 {
-                return Err(EncodeIssue::new(
-                    path,
-                    format!("{raw} does not fit {} bits", m.width),
-                ));
-            }
-            Ok(raw)
-        }
+        None => json_bits(v, m.prim).map_err(|e| issue(path, e)),
     }
 }
 
@@ -258,41 +244,51 @@ fn write_elem(
     }
 }
 
-/// The raw integer of a scaled field's physical value, computed as generated code computes it
-/// (`write_elem` in `protocol-codegen/src/codegen/payload.rs`): the value in its Rust type,
-/// clamped, `(value - offset) / factor`, rounded, `as` the raw type.
+/// The raw integer of a scaled field's physical value, by the runtime's field rules (as
+/// generated code computes it): the value in its Rust type, clamped, quantized, fitted to the
+/// raw type; a value the raw type cannot hold is refused.
 fn scaled_raw(scalar: Scalar, sc: &Scale, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
     let value = match sc.physical {
         Prim::F32 => json_f32(v).map(f64::from),
         _ => json_f64(v),
     }
     .map_err(|e| issue(path, e))?;
-    let clamped = match sc.clamp {
-        Some((lo, hi)) => value.clamp(lo, hi),
+    let physical = match sc.clamp {
+        Some((lo, hi)) => field::clamp(value, lo, hi),
         None => value,
     };
-    let q = (clamped - sc.offset) / sc.factor;
-    let nearest = if q >= 0.0 { q + 0.5 } else { q - 0.5 };
-    let rounded = match sc.rounding {
-        Rounding::Nearest => nearest,
-        // Toward zero, but a value within float noise of an integer is that integer, so that
-        // a decoded value (raw * factor, rounded to f32) encodes back to its raw value.
-        Rounding::Truncate => {
-            let nearest = nearest as i64 as f64;
-            let off = if q >= nearest {
-                q - nearest
-            } else {
-                nearest - q
-            };
-            let magnitude = if q >= 0.0 { q } else { -q };
-            if off <= 1e-6 * (if magnitude > 1.0 { magnitude } else { 1.0 }) {
-                nearest
-            } else {
-                q
-            }
-        }
+    let rounding = match sc.rounding {
+        Rounding::Nearest => field::Rounding::Nearest,
+        Rounding::Truncate => field::Rounding::Truncate,
     };
-    Ok(truncate(scalar.prim, saturating_cast(scalar.prim, rounded)))
+    let q = field::quantize(physical, sc.factor, sc.offset, rounding);
+    let raw = fit_bits(scalar.prim, q).map_err(|_| {
+        EncodeIssue::new(
+            path,
+            format!(
+                "{value} does not fit the raw type {}",
+                scalar.prim.rust_name()
+            ),
+        )
+    })?;
+    Ok(truncate(scalar.prim, raw))
+}
+
+/// [`field::fit`] for the raw type `prim`, as two's complement bits.
+fn fit_bits(prim: Prim, q: f64) -> Result<u64, EncodeError> {
+    use field::fit;
+    Ok(match prim {
+        Prim::U8 => u64::from(fit::<u8>(q)?),
+        Prim::U16 => u64::from(fit::<u16>(q)?),
+        Prim::U32 => u64::from(fit::<u32>(q)?),
+        Prim::U64 => fit::<u64>(q)?,
+        Prim::I8 => fit::<i8>(q)? as u64,
+        Prim::I16 => fit::<i16>(q)? as u64,
+        Prim::I32 => fit::<i32>(q)? as u64,
+        Prim::I64 => fit::<i64>(q)? as u64,
+        // Validation gives scaled fields an integer raw type.
+        Prim::F32 | Prim::F64 | Prim::Bool => return Err(EncodeError::ValueOutOfRange),
+    })
 }
 
 /// The raw bits (truncated to the enum's type) of an enum value: a variant's spec or Rust
@@ -323,7 +319,7 @@ fn enum_raw(e: &Enum, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
         ),
         NumError::Range(m) => EncodeIssue::new(path, m),
     })?;
-    if variant(e, raw).is_some() || keeps_unknown(e) {
+    if policy(e).encode(variant(e, raw).is_some()).is_ok() {
         Ok(raw)
     } else {
         Err(EncodeIssue::new(
