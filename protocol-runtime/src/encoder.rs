@@ -275,31 +275,29 @@ impl PayloadVisitor for WritePayload<'_, '_> {
     }
 }
 
-/// The message `message` of a command without payload, if `payload` is empty.
-///
-/// # Errors
-///
-/// [`DecodeError::PayloadLength`] (expected 0) if it is not.
+/// The error of a command without payload that arrived with `bytes`.
 ///
 /// ```
-/// use protocol_runtime::{DecodeError, encoder::read_empty};
-/// assert_eq!(read_empty(&[], "ping"), Ok("ping"));
-/// assert_eq!(read_empty(&[1], "ping"), Err(DecodeError::PayloadLength { expected: 0, actual: 1 }));
+/// use protocol_runtime::{DecodeError, encoder::expected_empty};
+/// assert_eq!(expected_empty(&[1]), DecodeError::PayloadLength { expected: 0, actual: 1 });
 /// ```
 #[inline(always)]
-pub fn read_empty<M>(payload: &[u8], message: M) -> Result<M, DecodeError> {
-    <() as Payload>::from_bytes(payload).map(|()| message)
+pub fn expected_empty(bytes: &[u8]) -> DecodeError {
+    DecodeError::PayloadLength {
+        expected: 0,
+        actual: bytes.len(),
+    }
 }
 
-/// The message `variant(payload)` of the payload read from exactly `payload` (a message enum's
-/// `read_payload` arm: `read_as(bytes, Self::Variant)`).
+/// The payload read from exactly `bytes` ([`Payload::from_bytes`] as a function, so that a
+/// message enum's `read_payload` arm infers the type from the variant it fills).
 ///
 /// # Errors
 ///
 /// The errors of [`Payload::from_bytes`].
 #[inline(always)]
-pub fn read_as<P: Payload, M>(payload: &[u8], variant: fn(P) -> M) -> Result<M, DecodeError> {
-    P::from_bytes(payload).map(variant)
+pub fn read_payload<P: Payload>(bytes: &[u8]) -> Result<P, DecodeError> {
+    P::from_bytes(bytes)
 }
 
 /// Writes a header value into `frame` at `field`.

@@ -299,6 +299,7 @@ fn emit_message_enum(
     let mut command_arms = Vec::new();
     let mut visit_arms = Vec::new();
     let mut read_arms = Vec::new();
+    let mut any_empty = false;
     for c in &p.commands {
         let v = ident(&c.rust_name);
         match c.payloads.get(di).copied().flatten() {
@@ -311,14 +312,15 @@ fn emit_message_enum(
                 variants.push(quote!(#d #v(#s)));
                 command_arms.push(quote!(Self::#v(_) => Command::#v,));
                 visit_arms.push(quote!(Self::#v(p) => v.visit(p),));
-                read_arms.push(quote!(Command::#v => #rt::read_as(bytes, Self::#v),));
+                read_arms.push(quote!(Command::#v => Self::#v(#rt::read_payload(bytes)?),));
             }
             None => {
                 let d = doc_attrs(&format!("`{}`, with an empty payload. {}", c.name, c.doc));
                 variants.push(quote!(#d #v));
                 command_arms.push(quote!(Self::#v => Command::#v,));
                 visit_arms.push(quote!(Self::#v => v.visit(&()),));
-                read_arms.push(quote!(Command::#v => #rt::read_empty(bytes, Self::#v),));
+                read_arms.push(quote!(Command::#v if bytes.is_empty() => Self::#v,));
+                any_empty = true;
             }
         }
     }
@@ -351,6 +353,10 @@ fn emit_message_enum(
         }
     };
     let payload_fns = emit_payload_fns(rt, quote!(match self { #(#visit_arms)* }));
+    // The commands without payload match only an empty one; any other bytes fall through.
+    if any_empty {
+        read_arms.push(quote!(_ => return #rt::Err(#rt::expected_empty(bytes)),));
+    }
     quote! {
         #doc
         #[derive(Debug, Clone, Copy, PartialEq)]
@@ -366,9 +372,10 @@ fn emit_message_enum(
             /// `DecodeError::PayloadLength` if the payload's size is not the command's, or any
             /// error of the payload's fields (an unknown enum value, ...).
             pub fn read_payload(command: Command, bytes: &[u8]) -> #rt::DecodeResult<Self> {
-                match command {
+                // `?` in each arm and one `Ok`: every error leaves by one path.
+                #rt::Ok(match command {
                     #(#read_arms)*
-                }
+                })
             }
         }
     }
