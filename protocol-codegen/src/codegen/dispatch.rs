@@ -373,9 +373,10 @@ fn emit_message_enum(
             /// error of the payload's fields (an unknown enum value, ...).
             pub fn read_payload(command: Command, bytes: &[u8]) -> #rt::DecodeResult<Self> {
                 // `?` in each arm and one `Ok`: every error leaves by one path.
-                #rt::Ok(match command {
+                let message = match command {
                     #(#read_arms)*
-                })
+                };
+                #rt::Ok(message)
             }
         }
     }
