@@ -620,6 +620,38 @@ fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStrea
     }
 }
 
+/// Byte stuffing: the payload is unstuffed before it is read, stuffed after it is written;
+/// the `STUFFING` const.
+fn packet_stuffing(f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream, TokenStream) {
+    match &f.stuffing {
+        Some((after, insert)) => (
+            quote! {
+                let mut unstuffed = [0u8; MAX_PAYLOAD_LEN];
+                let payload = STUFFING.unstuff(payload, &mut unstuffed)?;
+            },
+            quote!(let plen = STUFFING.stuff_in_place(region, plen)?;),
+            quote! {
+                /// The payload's byte stuffing: the sender inserts `insert` after every `after`.
+                pub const STUFFING: #rt::Stuffing<'static> = #rt::Stuffing { after: &[#(#after),*], insert: #insert };
+            },
+        ),
+        None => (quote!(), quote!(), quote!()),
+    }
+}
+
+/// The trailer's length in an encoded frame: a bare header (the header alone) has none.
+fn packet_trailer(f: &Frame) -> TokenStream {
+    if f.bare_len.is_some() {
+        quote!(if start == HEADER_LEN || plen > 0 {
+            TRAILER_LEN
+        } else {
+            0
+        })
+    } else {
+        quote!(TRAILER_LEN)
+    }
+}
+
 /// `Packet`: the header values and the message of the first frame format, decoded from and
 /// encoded to a frame through `LAYOUT`.
 fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
@@ -636,31 +668,8 @@ fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         write_key,
         ..
     } = &ack;
-    // Byte stuffing: the payload is unstuffed before it is read, stuffed after it is written.
-    let (unstuff, stuff, stuffing_const) = match &f.stuffing {
-        Some((after, insert)) => (
-            quote! {
-                let mut unstuffed = [0u8; MAX_PAYLOAD_LEN];
-                let payload = STUFFING.unstuff(payload, &mut unstuffed)?;
-            },
-            quote!(let plen = STUFFING.stuff_in_place(region, plen)?;),
-            quote! {
-                /// The payload's byte stuffing: the sender inserts `insert` after every `after`.
-                pub const STUFFING: #rt::Stuffing<'static> = #rt::Stuffing { after: &[#(#after),*], insert: #insert };
-            },
-        ),
-        None => (quote!(), quote!(), quote!()),
-    };
-    // A bare header (the header alone) has no trailer either.
-    let trailer_of = if f.bare_len.is_some() {
-        quote!(if start == HEADER_LEN || plen > 0 {
-            TRAILER_LEN
-        } else {
-            0
-        })
-    } else {
-        quote!(TRAILER_LEN)
-    };
+    let (unstuff, stuff, stuffing_const) = packet_stuffing(f, rt);
+    let trailer_of = packet_trailer(f);
     quote! {
         #stuffing_const
         /// A header value of a frame (inlined: with the field a constant, a load at a fixed offset).
