@@ -149,7 +149,13 @@ fn id_value(f: &Frame, c: &Command) -> TokenStream {
 
 fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let id_ty = id_type(f);
-    let single = f.dispatch.len() == 1;
+    // Ids 0, 1, 2, ... of one key field are the variants' discriminants: `id` is a cast. (Other
+    // ids stay a match: sparse discriminants would make every match on a command sparse too.)
+    let single = f.dispatch.len() == 1
+        && p.commands
+            .iter()
+            .enumerate()
+            .all(|(i, c)| c.id == [i as u64]);
     let keys: Vec<&str> = f
         .dispatch
         .iter()
@@ -163,7 +169,6 @@ fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 .collect::<Vec<_>>()
                 .join(", ");
         let d = doc_attrs(&format!("`{}` (id {ids}). {}", c.name, c.doc));
-        // One key field: the id is the variant's discriminant.
         if single {
             let id = id_value(f, c);
             quote!(#d #v = #id)
