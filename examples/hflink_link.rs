@@ -6,7 +6,7 @@
 //!
 //! Run: `cargo run -p protocol-examples --example hflink_link`
 
-use protocol_runtime::protocol;
+use protocol::protocol;
 
 protocol!("../specs/hflink.toml");
 

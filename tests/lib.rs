@@ -67,13 +67,13 @@ pub fn stream_vector(stream: &Value) -> (Vec<u8>, Vec<(u64, Vec<u8>)>) {
 /// # Panics
 /// On the first chunk size whose frames differ.
 pub fn assert_stream_at_every_chunk_size<const N: usize>(
-    layout: &'static protocol_runtime::FrameLayout<'static>,
+    layout: &'static protocol::FrameLayout<'static>,
     bytes: &[u8],
     expected: &[(u64, Vec<u8>)],
     mut each: impl FnMut(&[u8]),
 ) {
     for chunk in 1..=bytes.len() {
-        let mut dec = protocol_runtime::StreamDecoder::<_, N>::new(layout);
+        let mut dec = protocol::StreamDecoder::<_, N>::new(layout);
         let mut got = Vec::new();
         for part in bytes.chunks(chunk) {
             let mut input = part;

@@ -15,8 +15,8 @@
 
 use core::marker::PhantomData;
 
-use protocol_runtime::FrameLayout;
-use protocol_runtime::layout::LayoutRef;
+use protocol::FrameLayout;
+use protocol::layout::LayoutRef;
 
 use crate::ChunkDecoder;
 use crate::generated::{hflink, referee};

@@ -1,14 +1,14 @@
-//! The code under test: what `protocol_runtime::protocol!` generates from the two specs, used
+//! The code under test: what `protocol::protocol!` generates from the two specs, used
 //! the way its documentation shows (a decoder from `decoder()`, `decode` in a loop per chunk,
 //! `flush` at the end; `Packet::encode` into the caller's buffer).
 
-use protocol_runtime::StreamDecoder;
-use protocol_runtime::layout::LayoutRef;
+use protocol::StreamDecoder;
+use protocol::layout::LayoutRef;
 
 use crate::ChunkDecoder;
 
-protocol_runtime::protocol!("../specs/hflink.toml");
-protocol_runtime::protocol!("../specs/referee.toml");
+protocol::protocol!("../specs/hflink.toml");
+protocol::protocol!("../specs/referee.toml");
 
 /// A generated decoder of either spec.
 pub struct Generated<L: LayoutRef, const N: usize>(pub StreamDecoder<L, N>);
@@ -25,13 +25,13 @@ pub fn referee_decoder() -> Generated<referee::Layout, { referee::DECODER_BUFFER
 
 /// The generated HFLink layout read through a reference, as the CLI's interpreter reads its own.
 pub fn hflink_decoder_by_ref()
--> Generated<&'static protocol_runtime::FrameLayout<'static>, { hflink::DECODER_BUFFER_LEN }> {
+-> Generated<&'static protocol::FrameLayout<'static>, { hflink::DECODER_BUFFER_LEN }> {
     Generated(StreamDecoder::new(&hflink::LAYOUT))
 }
 
 /// The generated referee layout read through a reference, as the CLI's interpreter reads its own.
 pub fn referee_decoder_by_ref()
--> Generated<&'static protocol_runtime::FrameLayout<'static>, { referee::DECODER_BUFFER_LEN }> {
+-> Generated<&'static protocol::FrameLayout<'static>, { referee::DECODER_BUFFER_LEN }> {
     Generated(StreamDecoder::new(&referee::LAYOUT))
 }
 
@@ -60,7 +60,7 @@ pub fn encode_system_info(
     sender: u8,
     receiver: u8,
     info: [f32; 5],
-) -> Result<usize, protocol_runtime::EncodeError> {
+) -> Result<usize, protocol::EncodeError> {
     use hflink::{Header, Message, Packet, Response, SystemInfo};
     let [
         system_time,
@@ -93,7 +93,7 @@ pub fn encode_robot_pos(
     buf: &mut [u8],
     seq: u8,
     pos: [f32; 4],
-) -> Result<usize, protocol_runtime::EncodeError> {
+) -> Result<usize, protocol::EncodeError> {
     use referee::{GameRobotPos, Header, Message, Packet};
     let [x, y, z, yaw] = pos;
     Packet {

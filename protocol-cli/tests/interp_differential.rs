@@ -10,19 +10,19 @@
 
 mod support;
 
+use protocol::{CanFrame, DecodeError, EncodeError, Event, FrameLayout, StreamDecoder};
 use protocol_cli::interp::{Codec, DecodeIssue, Decoded, Interpreter, hex, word_field};
 use protocol_codegen::ir::{DirectionRule, Protocol, Transport};
-use protocol_runtime::{CanFrame, DecodeError, EncodeError, Event, FrameLayout, StreamDecoder};
 use serde_json::Value;
 use support::{Rng, interpreter, rust_debug, unhex, vectors};
 
-protocol_runtime::protocol!("../specs/hflink.toml");
-protocol_runtime::protocol!("../specs/referee.toml");
-protocol_runtime::protocol!("../specs/referee2018.toml");
-protocol_runtime::protocol!("../specs/scout.toml");
-protocol_runtime::protocol!("../specs/dynamixel.toml");
-protocol_runtime::protocol!("../specs/roborts.toml");
-protocol_runtime::protocol!("tests/fixtures/features.toml");
+protocol::protocol!("../specs/hflink.toml");
+protocol::protocol!("../specs/referee.toml");
+protocol::protocol!("../specs/referee2018.toml");
+protocol::protocol!("../specs/scout.toml");
+protocol::protocol!("../specs/dynamixel.toml");
+protocol::protocol!("../specs/roborts.toml");
+protocol::protocol!("tests/fixtures/features.toml");
 
 /// A decoded message as `{:?}` prints it, and its bytes encoded again.
 type Generated<T> = Result<(String, T), DecodeError>;

@@ -1,5 +1,5 @@
 //! The `protocol!` macro's entry: its arguments (a spec path, or an inline spec; an optional
-//! `crate = path` override), reading the spec file relative to the calling crate, and turning
+//! `crate = path` naming the `protocol` crate when it is not `::protocol`), reading the spec file relative to the calling crate, and turning
 //! diagnostics into compile errors placed on the macro's argument.
 
 use std::path::PathBuf;
@@ -21,7 +21,7 @@ pub const MANIFEST_DIR_OVERRIDE: &str = "PROTOCOL_SPEC_DIR";
 pub struct MacroInput {
     /// `"specs/x.toml"` or `inline = "..."`.
     pub spec: SpecArg,
-    /// Runtime crate path.
+    /// Where generated code finds the `protocol` crate (`::protocol` unless `crate = path`).
     pub paths: RuntimePath,
 }
 
@@ -47,7 +47,12 @@ impl Parse for MacroInput {
                     "path" => spec = Some(SpecArg::Path(input.parse()?)),
                     "inline" => spec = Some(SpecArg::Inline(input.parse()?)),
                     "crate" => {
-                        let p: syn::Path = input.parse()?;
+                        // `crate = ::my::protocol`, or as a string as in the derive.
+                        let p: syn::Path = if input.peek(LitStr) {
+                            input.parse::<LitStr>()?.parse()?
+                        } else {
+                            input.parse()?
+                        };
                         paths = RuntimePath(quote!(#p));
                     }
                     _ => {

@@ -4,6 +4,11 @@
 //! Nothing here carries a span, a default still to apply or a string still to parse: every
 //! size, offset, byte order and reference is resolved. Downstream code trusts it and never
 //! reports a user error. Order is always the spec's order.
+//!
+//! The wire vocabulary is the runtime's own ([`ByteOrder`], [`Pos`]): what the IR says is what
+//! the engine runs, with nothing to translate in between.
+
+pub use protocol_runtime::layout::{ByteOrder, Pos};
 
 /// A whole protocol spec, checked.
 #[derive(Debug, Clone, PartialEq)]
@@ -53,15 +58,6 @@ pub struct AddressSet {
     pub last: u64,
     /// Documentation.
     pub doc: String,
-}
-
-/// Byte order of a multi-byte value.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Endian {
-    /// Least significant byte first.
-    Little,
-    /// Most significant byte first.
-    Big,
 }
 
 /// A primitive wire type.
@@ -161,7 +157,7 @@ pub struct Scalar {
     /// The type.
     pub prim: Prim,
     /// The byte order.
-    pub endian: Endian,
+    pub endian: ByteOrder,
 }
 
 /// A payload struct.
@@ -335,16 +331,6 @@ pub enum UnknownPolicy {
     Reject,
     /// Decoding keeps the raw value in an `Unknown(raw)` variant.
     Keep,
-}
-
-/// A position in a frame: counted from its first byte, or back from its end.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Pos {
-    /// Offset from the first byte of the frame.
-    Start(usize),
-    /// Offset from the end of the frame: `End(2)` is the byte two before the end, i.e. the
-    /// second-to-last byte starts at `End(2)`.
-    End(usize),
 }
 
 /// How frames travel.
@@ -562,7 +548,7 @@ pub struct Check {
     /// Bytes of the stored check value.
     pub size: usize,
     /// Byte order of the stored value.
-    pub endian: Endian,
+    pub endian: ByteOrder,
     /// First byte covered.
     pub from: Pos,
     /// One past the last byte covered.

@@ -1,5 +1,6 @@
 //! The `protocol!` and `#[derive(Payload)]` macros. A thin shim: all logic is in
-//! `protocol-codegen`. Use them through `protocol-runtime`, which re-exports them.
+//! `protocol-codegen`. Use them through the `protocol` crate, which re-exports them with the
+//! runtime the generated code names (`::protocol`).
 
 use proc_macro::TokenStream;
 
@@ -9,14 +10,17 @@ use proc_macro::TokenStream;
 /// `Cargo.toml` and expands to `pub mod <name> { ... }`: payload structs, enums, the `Command`
 /// and `Message` enums, `Header`, `Packet` (decode/encode), the `LAYOUT` the runtime's stream
 /// decoder uses, and size consts. Errors in the spec are compile errors that quote the spec's
-/// line and column. Also accepts `inline = "..."` (the spec text) and `crate = path`.
+/// line and column. Also accepts `inline = "..."` (the spec text instead of a path) and
+/// `crate = ::path::to::protocol`, where the generated code finds the `protocol` crate when a
+/// crate re-exports it rather than depending on it under its own name.
 #[proc_macro]
 pub fn protocol(input: TokenStream) -> TokenStream {
     protocol_codegen::input::protocol_macro(input.into()).into()
 }
 
 /// Derive `Payload` (wire encoding and decoding) for a hand-written struct. See
-/// `protocol_codegen::codegen::derive` for the attributes.
+/// `protocol_codegen::codegen::derive` for the attributes; `#[payload(crate = "::path")]`
+/// names the `protocol` crate when it is not `::protocol`.
 #[proc_macro_derive(Payload, attributes(payload))]
 pub fn derive_payload(input: TokenStream) -> TokenStream {
     let input = syn::parse_macro_input!(input as syn::DeriveInput);

@@ -18,14 +18,15 @@
 //! - [`checksum`]: sums, xor and CRCs ([`Checksum`]);
 //! - [`error`]: [`DecodeError`] and [`EncodeError`].
 //!
-//! Generated code names this crate's items through `protocol_runtime::__private`; users depend
-//! on this crate alone, which re-exports the macros behind the default `macros` feature.
+//! Users depend on the `protocol` crate, which re-exports this one and the macros; generated
+//! code names this crate's items through `protocol::__private`. This crate does not depend on
+//! the macros, so the code generator can use its types (byte order, positions, check
+//! algorithms, frame layouts) as its own vocabulary.
 //!
 //! # Features
 //!
 //! | feature | what it adds |
 //! |---|---|
-//! | `macros` (default) | the `protocol!` and `#[derive(Payload)]` macros |
 //! | `std` | reading frames from a `std::io::Read` |
 //! | `embedded-io` | reading frames from an `embedded-io` reader |
 //! | `stage-input` | every input chunk staged in the decoder's buffer before it is scanned, as on targets without 64-bit pointers (where it is the default: less code); on hosts, to test that path. Frames and stats are the same either way; only whether a frame borrows the caller's input changes |
@@ -127,9 +128,6 @@ pub use error::{DecodeError, DecodeResult, EncodeError, EncodeResult};
 pub use group::Group;
 pub use layout::FrameLayout;
 pub use wire::{Reader, Writer};
-
-#[cfg(feature = "macros")]
-pub use protocol_macros::{Payload, protocol};
 
 /// Everything generated code names, under one path. Not a public API: it changes with the
 /// code generator.

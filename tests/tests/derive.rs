@@ -1,7 +1,7 @@
 //! `#[derive(Payload)]` on hand-written structs: the same generator as spec structs, driven by
 //! attributes. Each case checks the exact wire bytes in both directions.
 
-use protocol_runtime::{DecodeError, Payload};
+use protocol::{DecodeError, Payload};
 
 #[derive(Debug, Clone, Copy, PartialEq, Default, Payload)]
 struct Pose {

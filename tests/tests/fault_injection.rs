@@ -3,7 +3,7 @@
 //!
 //! - every frame no fault touched is decoded, in order, unless an accepted false frame (a check
 //!   collision) overlaps it, or (fed in chunks only) a valid frame lies inside it: the
-//!   decoder's documented rule (module docs of `protocol_runtime::decoder`);
+//!   decoder's documented rule (module docs of `protocol::decoder`);
 //! - every frame the decoder accepts that was not sent as such really passes its checks,
 //!   verified here independently of the runtime (sums and CRCs from the spec's IR, via the
 //!   `crc` crate); their number is compared with what the checks' widths predict;
@@ -100,11 +100,11 @@ fn checks_hold(frame: &ir::Frame, bytes: &[u8]) -> bool {
         };
         let stored = &bytes[at(c.at)..at(c.at) + c.size];
         let stored = match c.endian {
-            ir::Endian::Little => stored
+            ir::ByteOrder::Little => stored
                 .iter()
                 .rev()
                 .fold(0u64, |a, &b| (a << 8) | u64::from(b)),
-            ir::Endian::Big => stored.iter().fold(0u64, |a, &b| (a << 8) | u64::from(b)),
+            ir::ByteOrder::Big => stored.iter().fold(0u64, |a, &b| (a << 8) | u64::from(b)),
         };
         stored == expected
     })

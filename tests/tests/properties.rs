@@ -16,7 +16,7 @@ mod support;
 
 use proptest::prelude::*;
 use proptest::test_runner::Config;
-use protocol_runtime::{DecodeError, EncodeError, Event, Reject};
+use protocol::{DecodeError, EncodeError, Event, Reject};
 
 use support::model::{Model, model};
 use support::stream::{assert_chunking_invariant, assert_same_packet, check_packet, run};
@@ -238,7 +238,7 @@ macro_rules! properties {
 
 support::for_each_spec!(properties);
 
-/// The decoder's documented rule (module docs of `protocol_runtime::decoder`): a valid frame
+/// The decoder's documented rule (module docs of `protocol::decoder`): a valid frame
 /// whose payload holds another complete valid frame is yielded whole when it arrives whole; cut
 /// by a chunk boundary just after the inner frame, the inner frame is yielded and the outer one
 /// is rejected as truncated. Checked here as documented, for every spec whose payloads can hold
@@ -336,9 +336,9 @@ fn specs_dir_is_covered() {
 /// Minimized cases found by the properties: each states what the spec allows and checks that
 /// the generated code does it.
 mod regressions {
-    use protocol_runtime::Bytes;
+    use protocol::Bytes;
 
-    use protocol_runtime::EncodeError;
+    use protocol::EncodeError;
 
     use super::support::{dynamixel, referee, roborts, scout};
 

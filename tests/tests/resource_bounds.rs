@@ -6,8 +6,8 @@ mod support;
 
 use std::mem::{align_of, size_of};
 
-use protocol_runtime::layout::LayoutRef;
-use protocol_runtime::{FrameLayout, StreamDecoder};
+use protocol::layout::LayoutRef;
+use protocol::{FrameLayout, StreamDecoder};
 use support::{Dec, Spec};
 
 /// A layout known at compile time, as generated code names it: a zero-sized type.

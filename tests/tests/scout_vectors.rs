@@ -3,11 +3,11 @@
 //! UART stream yields its expected frames at every chunk size, the CAN sequence rejects exactly
 //! the frames with a wrong checksum, and motion commands scale like `SetMotionCommand`.
 
-use protocol_runtime::{CanFrame, DecodeError, Reject};
+use protocol::{CanFrame, DecodeError, Reject};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
-protocol_runtime::protocol!("../specs/scout.toml");
+protocol::protocol!("../specs/scout.toml");
 
 use scout::*;
 

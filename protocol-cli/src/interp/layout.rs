@@ -9,36 +9,18 @@
 
 use std::sync::Mutex;
 
-use protocol_codegen::ir::{self, Algorithm, CrcParams, Endian, HeaderValue, Length, Role};
+use protocol_codegen::ir::{self, Algorithm, CrcParams, HeaderValue, Length, Role};
 use protocol_runtime::checksum::{Checksum, CrcImpl, Slicing16};
-use protocol_runtime::layout::{
-    ByteOrder, Check, Constant, FrameLayout, LengthRule, Marker, Pos, WordField,
-};
+use protocol_runtime::layout::{Check, Constant, FrameLayout, LengthRule, Marker, WordField};
 
 /// Where a header value sits, as the runtime reads and writes it (the generated `wire::NAME`).
 pub fn word_field(v: &HeaderValue) -> WordField {
     WordField {
-        at: pos(v.at),
+        at: v.at,
         size: v.word.prim.size() as u8,
-        order: order(v.word.endian),
+        order: v.word.endian,
         shift: v.shift as u8,
         width: v.width as u8,
-    }
-}
-
-/// An IR position as a runtime position.
-pub fn pos(p: ir::Pos) -> Pos {
-    match p {
-        ir::Pos::Start(n) => Pos::Start(n),
-        ir::Pos::End(n) => Pos::End(n),
-    }
-}
-
-/// An IR byte order as a runtime byte order.
-pub fn order(e: Endian) -> ByteOrder {
-    match e {
-        Endian::Little => ByteOrder::Little,
-        Endian::Big => ByteOrder::Big,
     }
 }
 
@@ -239,10 +221,10 @@ impl<'a> FrameParts<'a> {
         for (i, c) in frame.checks.iter().enumerate() {
             let check = Check {
                 checksum: store.checksum(index, i, &c.algorithm),
-                from: pos(c.from),
-                to: pos(c.to),
-                at: pos(c.at),
-                order: order(c.endian),
+                from: c.from,
+                to: c.to,
+                at: c.at,
+                order: c.endian,
             };
             if c.header {
                 header_checks.push(check);
@@ -254,7 +236,7 @@ impl<'a> FrameParts<'a> {
             .trailers
             .iter()
             .map(|t| Marker {
-                at: pos(t.at),
+                at: t.at,
                 bytes: &t.bytes,
             })
             .collect();

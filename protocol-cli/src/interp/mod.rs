@@ -42,7 +42,7 @@ mod value;
 
 pub use error::{DecodeIssue, EncodeIssue};
 pub use frame::{Decoded, Dispatch, ack_value, dispatch_of, hex, parse_hex};
-pub use layout::{order, pos, word_field};
+pub use layout::word_field;
 pub use value::{NumError, f32_json, f64_json, json_f32, json_f64};
 
 use protocol_codegen::ir::{Protocol, Transport};

@@ -9,7 +9,7 @@
 //! cannot hold, are the strings `"inf"`, `"-inf"` and `"NaN"` (or `"NaN(0x7fc00001)"`, with its
 //! bits, for a NaN other than the default one).
 
-use protocol_codegen::ir::{Endian, Prim, Scalar};
+use protocol_codegen::ir::{ByteOrder, Prim, Scalar};
 use protocol_runtime::{DecodeError, EncodeError, Reader, Writer};
 use serde_json::Value;
 
@@ -67,8 +67,8 @@ impl Num {
 macro_rules! by_order {
     ($r:expr, $e:expr, $le:ident, $be:ident) => {
         match $e {
-            Endian::Little => $r.$le(),
-            Endian::Big => $r.$be(),
+            ByteOrder::Little => $r.$le(),
+            ByteOrder::Big => $r.$be(),
         }
     };
 }
@@ -96,8 +96,8 @@ pub fn read_scalar(r: &mut Reader<'_>, s: Scalar) -> Result<Num, DecodeError> {
 macro_rules! put_by_order {
     ($w:expr, $e:expr, $le:ident, $be:ident, $v:expr) => {
         match $e {
-            Endian::Little => $w.$le($v),
-            Endian::Big => $w.$be($v),
+            ByteOrder::Little => $w.$le($v),
+            ByteOrder::Big => $w.$be($v),
         }
     };
 }

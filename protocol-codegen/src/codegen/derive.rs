@@ -3,7 +3,9 @@
 //! structs use.
 //!
 //! Attributes:
-//! - on the struct: `#[payload(byte_order = "big")]` (default `"little"`), `#[payload(crate = path)]`;
+//! - on the struct: `#[payload(byte_order = "big")]` (default `"little"`),
+//!   `#[payload(crate = "::my::protocol")]` (where the `protocol` crate is, when it is not
+//!   `::protocol`; a bare path works too);
 //! - on a field: `#[payload(byte_order = "big")]`, `#[payload(pad_before = 3)]`,
 //!   `#[payload(pad_after = 1)]`, `#[payload(scale = 0.001, raw = "i16")]` (an `f32`/`f64` field
 //!   stored as a scaled integer), `#[payload(repr = "u8")]` (a type with `to_raw`/`from_raw`,
@@ -19,11 +21,11 @@ use syn::{Data, DeriveInput, Expr, Fields, Lit, Type};
 
 use super::RuntimePath;
 use super::payload::{PField, PKind, PayloadDef, emit_payload_impl};
-use crate::ir::{Endian, Prim, Rounding, Scalar, Scale};
+use crate::ir::{ByteOrder, Prim, Rounding, Scalar, Scale};
 
 #[derive(Default)]
 struct FieldAttrs {
-    endian: Option<Endian>,
+    endian: Option<ByteOrder>,
     pad_before: usize,
     pad_after: usize,
     scale: Option<f64>,
@@ -31,15 +33,25 @@ struct FieldAttrs {
     repr: Option<Prim>,
 }
 
-fn parse_endian(lit: &syn::LitStr) -> syn::Result<Endian> {
+fn parse_endian(lit: &syn::LitStr) -> syn::Result<ByteOrder> {
     match lit.value().as_str() {
-        "little" => Ok(Endian::Little),
-        "big" => Ok(Endian::Big),
+        "little" => Ok(ByteOrder::Little),
+        "big" => Ok(ByteOrder::Big),
         _ => Err(syn::Error::new(
             lit.span(),
             "expected \"little\" or \"big\"",
         )),
     }
+}
+
+/// `crate = "::my::protocol"` (as serde's `crate = "..."`) or `crate = ::my::protocol`.
+fn parse_crate_path(value: syn::parse::ParseStream<'_>) -> syn::Result<RuntimePath> {
+    let path: syn::Path = if value.peek(syn::LitStr) {
+        value.parse::<syn::LitStr>()?.parse()?
+    } else {
+        value.parse()?
+    };
+    Ok(RuntimePath(quote!(#path)))
 }
 
 fn parse_prim_lit(lit: &syn::LitStr) -> syn::Result<Prim> {
@@ -77,7 +89,7 @@ pub fn derive_payload(input: &DeriveInput) -> syn::Result<TokenStream> {
             "#[derive(Payload)] needs named fields",
         ));
     };
-    let mut struct_endian = Endian::Little;
+    let mut struct_endian = ByteOrder::Little;
     let mut paths = RuntimePath::default();
     for attr in input.attrs.iter().filter(|a| a.path().is_ident("payload")) {
         attr.parse_nested_meta(|meta| {
@@ -85,8 +97,7 @@ pub fn derive_payload(input: &DeriveInput) -> syn::Result<TokenStream> {
                 struct_endian = parse_endian(&meta.value()?.parse()?)?;
                 Ok(())
             } else if meta.path.is_ident("crate") {
-                let path: syn::Path = meta.value()?.parse()?;
-                paths = RuntimePath(quote!(#path));
+                paths = parse_crate_path(meta.value()?)?;
                 Ok(())
             } else {
                 Err(meta.error("unknown payload attribute; expected `byte_order` or `crate`"))

@@ -5,7 +5,7 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use crate::ir::{
-    Algorithm, Endian, Field, FieldKind, Frame, Pos, Protocol, Role, Struct, ValueType,
+    Algorithm, ByteOrder, Field, FieldKind, Frame, Pos, Protocol, Role, Struct, ValueType,
 };
 
 /// `#[doc = "..."]` attributes, one per line (so rustdoc and prettyplease keep the layout).
@@ -20,13 +20,13 @@ pub fn doc_attrs(text: &str) -> TokenStream {
     quote!(#(#[doc = #lines])*)
 }
 
-fn order_name(e: Endian, size: usize) -> &'static str {
+fn order_name(e: ByteOrder, size: usize) -> &'static str {
     if size <= 1 {
         "-"
     } else {
         match e {
-            Endian::Little => "little",
-            Endian::Big => "big",
+            ByteOrder::Little => "little",
+            ByteOrder::Big => "big",
         }
     }
 }

@@ -9,7 +9,7 @@ use super::docs::{doc_attrs, frame_doc};
 use super::payload::prim_type;
 use super::{RuntimePath, const_ident, ident};
 use crate::ir::{
-    Algorithm, Check, Endian, Frame, HeaderValue, Length, Pos, Prim, Protocol, Role, Transport,
+    Algorithm, ByteOrder, Check, Frame, HeaderValue, Length, Pos, Prim, Protocol, Role, Transport,
 };
 
 fn pos(rt: &TokenStream, p: Pos) -> TokenStream {
@@ -19,10 +19,10 @@ fn pos(rt: &TokenStream, p: Pos) -> TokenStream {
     }
 }
 
-fn order(rt: &TokenStream, e: Endian) -> TokenStream {
+fn order(rt: &TokenStream, e: ByteOrder) -> TokenStream {
     match e {
-        Endian::Little => quote!(#rt::ByteOrder::Little),
-        Endian::Big => quote!(#rt::ByteOrder::Big),
+        ByteOrder::Little => quote!(#rt::ByteOrder::Little),
+        ByteOrder::Big => quote!(#rt::ByteOrder::Big),
     }
 }
 

@@ -1,6 +1,7 @@
 //! Every path the expansion names in the runtime, in one place. Generated code reaches the
-//! runtime only through `::protocol_runtime::__private` (or the `crate = ...` override), so a
-//! user's own `use` items never shadow it.
+//! runtime only through `::protocol::__private`, the facade crate users depend on, or through
+//! the path a user names instead (`protocol!(crate = ::my::protocol, ...)`,
+//! `#[payload(crate = "::my::protocol")]`), so a user's own `use` items never shadow it.
 
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -11,7 +12,7 @@ pub struct RuntimePath(pub TokenStream);
 
 impl Default for RuntimePath {
     fn default() -> Self {
-        RuntimePath(quote!(::protocol_runtime))
+        RuntimePath(quote!(::protocol))
     }
 }
 

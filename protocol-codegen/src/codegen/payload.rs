@@ -5,7 +5,7 @@
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::ir::{Endian, Prim, Rounding, Scalar, Scale};
+use crate::ir::{ByteOrder, Prim, Rounding, Scalar, Scale};
 
 /// A struct as the payload generator sees it.
 pub struct PayloadDef {
@@ -127,8 +127,8 @@ fn suffix(s: Scalar) -> String {
         base.to_string()
     } else {
         match s.endian {
-            Endian::Little => format!("{base}_le"),
-            Endian::Big => format!("{base}_be"),
+            ByteOrder::Little => format!("{base}_le"),
+            ByteOrder::Big => format!("{base}_be"),
         }
     }
 }

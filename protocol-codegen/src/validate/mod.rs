@@ -13,7 +13,7 @@ mod types;
 use std::ops::Range;
 
 use crate::diag::Diagnostics;
-use crate::ir::{self, Endian};
+use crate::ir::{self, ByteOrder};
 use crate::spec::model::{SStr, SpecFile};
 
 pub use catalog::{catalog, display_name};
@@ -24,7 +24,7 @@ pub use names::{RESERVED_TYPE_NAMES, pascal_case};
 pub(crate) struct Ctx<'a> {
     pub spec: &'a SpecFile,
     pub diags: &'a mut Diagnostics,
-    pub default_endian: Endian,
+    pub default_endian: ByteOrder,
 }
 
 impl Ctx<'_> {
@@ -45,12 +45,12 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
     let mut ctx = Ctx {
         spec,
         diags,
-        default_endian: Endian::Little,
+        default_endian: ByteOrder::Little,
     };
     let p = spec.protocol.get_ref();
     ctx.default_endian = match &p.byte_order {
-        Some(order) => names::parse_byte_order(&mut ctx, order).unwrap_or(Endian::Little),
-        None => Endian::Little,
+        Some(order) => names::parse_byte_order(&mut ctx, order).unwrap_or(ByteOrder::Little),
+        None => ByteOrder::Little,
     };
     names::check_snake_name(&mut ctx, &p.name, "protocol name");
 

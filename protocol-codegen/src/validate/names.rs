@@ -3,7 +3,7 @@
 
 use super::Ctx;
 use crate::diag::did_you_mean;
-use crate::ir::{Endian, Prim, Scalar};
+use crate::ir::{ByteOrder, Prim, Scalar};
 use crate::spec::model::SStr;
 
 /// Type names the expansion defines in every generated module; specs cannot reuse them.
@@ -186,10 +186,10 @@ pub(crate) fn check_type_names(ctx: &mut Ctx<'_>) {
 }
 
 /// Rule: a byte order is `"little"` or `"big"`.
-pub(crate) fn parse_byte_order(ctx: &mut Ctx<'_>, s: &SStr) -> Option<Endian> {
+pub(crate) fn parse_byte_order(ctx: &mut Ctx<'_>, s: &SStr) -> Option<ByteOrder> {
     match s.get_ref().as_str() {
-        "little" | "le" => Some(Endian::Little),
-        "big" | "be" => Some(Endian::Big),
+        "little" | "le" => Some(ByteOrder::Little),
+        "big" | "be" => Some(ByteOrder::Big),
         other => {
             ctx.error(
                 s.span(),
@@ -203,11 +203,11 @@ pub(crate) fn parse_byte_order(ctx: &mut Ctx<'_>, s: &SStr) -> Option<Endian> {
 
 /// Parse a primitive type spelling: `u16`, `u16le`, `u16be`, `f32`, `bool`, ... The byte order
 /// defaults to `default`. `None` when the name is not a primitive (it may be a struct or enum).
-pub fn parse_prim(name: &str, default: Endian) -> Option<Scalar> {
+pub fn parse_prim(name: &str, default: ByteOrder) -> Option<Scalar> {
     let (base, endian) = if let Some(b) = name.strip_suffix("le") {
-        (b, Endian::Little)
+        (b, ByteOrder::Little)
     } else if let Some(b) = name.strip_suffix("be") {
-        (b, Endian::Big)
+        (b, ByteOrder::Big)
     } else {
         (name, default)
     };

@@ -6,12 +6,12 @@
 #![forbid(unsafe_code)]
 #![deny(warnings, missing_docs)]
 
-protocol_runtime::protocol!("../../specs/hflink.toml");
-protocol_runtime::protocol!("../../specs/referee.toml");
-protocol_runtime::protocol!("../../specs/referee2018.toml");
-protocol_runtime::protocol!("../../specs/scout.toml");
-protocol_runtime::protocol!("../../specs/roborts.toml");
-protocol_runtime::protocol!("../../specs/dynamixel.toml");
+protocol::protocol!("../../specs/hflink.toml");
+protocol::protocol!("../../specs/referee.toml");
+protocol::protocol!("../../specs/referee2018.toml");
+protocol::protocol!("../../specs/scout.toml");
+protocol::protocol!("../../specs/roborts.toml");
+protocol::protocol!("../../specs/dynamixel.toml");
 
 use hflink::{Header, Message, Packet, Request};
 
@@ -44,7 +44,7 @@ pub fn firmware_step(input: &[u8], out: &mut [u8; hflink::MAX_FRAME_LEN]) -> usi
 
 /// Decode a Scout CAN frame, as a CAN interrupt handler would.
 pub fn scout_can(id: u32, data: &[u8]) -> Option<scout::Message> {
-    let frame = protocol_runtime::CanFrame::new(id, data).ok()?;
+    let frame = protocol::CanFrame::new(id, data).ok()?;
     scout::CanPacket::decode(&frame).ok().map(|p| p.message)
 }
 

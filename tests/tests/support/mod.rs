@@ -17,8 +17,8 @@ pub mod stream;
 
 use std::fmt::Debug;
 
-use protocol_runtime::layout::LayoutRef;
-use protocol_runtime::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stats, StreamDecoder};
+use protocol::layout::LayoutRef;
+use protocol::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stats, StreamDecoder};
 
 /// Calls `$callback!(module, "path relative to the crate")` for every spec under test.
 ///
@@ -40,7 +40,7 @@ pub(crate) use for_each_spec;
 /// Expands a spec with `protocol!` and implements [`Spec`] for its `Packet`.
 macro_rules! expand_spec {
     ($name:ident, $path:literal) => {
-        protocol_runtime::protocol!($path);
+        protocol::protocol!($path);
 
         impl $crate::support::Spec for $name::Packet {
             const NAME: &'static str = stringify!($name);
@@ -51,19 +51,19 @@ macro_rules! expand_spec {
             const DECODER_BUFFER_LEN: usize = $name::DECODER_BUFFER_LEN;
             type Decoder = $name::Decoder;
 
-            fn layout() -> &'static protocol_runtime::FrameLayout<'static> {
+            fn layout() -> &'static protocol::FrameLayout<'static> {
                 &$name::LAYOUT
             }
             fn decoder() -> Self::Decoder {
                 $name::decoder()
             }
-            fn from_frame(frame: &[u8]) -> Result<Self, protocol_runtime::DecodeError> {
+            fn from_frame(frame: &[u8]) -> Result<Self, protocol::DecodeError> {
                 $name::Packet::from_frame(frame)
             }
-            fn decode(bytes: &[u8]) -> Result<Self, protocol_runtime::DecodeError> {
+            fn decode(bytes: &[u8]) -> Result<Self, protocol::DecodeError> {
                 $name::Packet::decode(bytes)
             }
-            fn encode(&self, buf: &mut [u8]) -> Result<usize, protocol_runtime::EncodeError> {
+            fn encode(&self, buf: &mut [u8]) -> Result<usize, protocol::EncodeError> {
                 $name::Packet::encode(self, buf)
             }
             fn encoded_len(&self) -> usize {

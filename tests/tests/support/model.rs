@@ -10,13 +10,13 @@
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
 
+use protocol::FrameLayout;
+use protocol::decoder::Probe;
+use protocol::layout::LengthRule;
+use protocol::layout::WordField;
+use protocol::stuffing::Stuffing;
 use protocol_codegen::ir;
 use protocol_codegen::source::SpecSource;
-use protocol_runtime::FrameLayout;
-use protocol_runtime::decoder::Probe;
-use protocol_runtime::layout::LengthRule;
-use protocol_runtime::layout::{ByteOrder, Pos, WordField};
-use protocol_runtime::stuffing::Stuffing;
 
 use super::payload::Ctx;
 use super::{Source, Spec};
@@ -359,26 +359,15 @@ pub struct Refused {
     /// Its length.
     pub len: usize,
     /// What `seal` said.
-    pub error: protocol_runtime::EncodeError,
-}
-
-/// The runtime position of an IR position.
-pub fn pos(p: ir::Pos) -> Pos {
-    match p {
-        ir::Pos::Start(n) => Pos::Start(n),
-        ir::Pos::End(n) => Pos::End(n),
-    }
+    pub error: protocol::EncodeError,
 }
 
 /// The runtime word field of a header value.
 pub fn word_field(v: &ir::HeaderValue) -> WordField {
     WordField {
-        at: pos(v.at),
+        at: v.at,
         size: v.word.prim.size() as u8,
-        order: match v.word.endian {
-            ir::Endian::Little => ByteOrder::Little,
-            ir::Endian::Big => ByteOrder::Big,
-        },
+        order: v.word.endian,
         shift: v.shift as u8,
         width: v.width as u8,
     }

@@ -222,7 +222,7 @@ fn put_uint(out: &mut Vec<u8>, scalar: ir::Scalar, value: u64) {
     let le = value.to_le_bytes();
     let bytes = &le[..size];
     match scalar.endian {
-        ir::Endian::Little => out.extend_from_slice(bytes),
-        ir::Endian::Big => out.extend(bytes.iter().rev()),
+        ir::ByteOrder::Little => out.extend_from_slice(bytes),
+        ir::ByteOrder::Big => out.extend(bytes.iter().rev()),
     }
 }

@@ -1,3 +1,3 @@
-protocol_runtime::protocol!(spec = "specs/hflink.toml");
+protocol::protocol!(spec = "specs/hflink.toml");
 
 fn main() {}

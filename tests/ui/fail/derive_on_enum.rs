@@ -1,4 +1,4 @@
-#[derive(protocol_runtime::Payload)]
+#[derive(protocol::Payload)]
 enum NotAStruct {
     A,
 }

@@ -1,4 +1,4 @@
-protocol_runtime::protocol!(inline = r#"
+protocol::protocol!(inline = r#"
 [protocol]
 name = "inline"
 

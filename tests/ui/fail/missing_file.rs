@@ -1,3 +1,3 @@
-protocol_runtime::protocol!("specs/does_not_exist.toml");
+protocol::protocol!("specs/does_not_exist.toml");
 
 fn main() {}

@@ -1,6 +1,6 @@
 // An unknown struct in a command line: exactly one error, not a cascade of unresolved types in
 // generated code.
-protocol_runtime::protocol!(inline = r#"
+protocol::protocol!(inline = r#"
 [protocol]
 name = "one"
 

@@ -1,4 +1,4 @@
 // Every error of the spec, in one compile error.
-protocol_runtime::protocol!("protocol-codegen/tests/invalid/many_errors_at_once.toml");
+protocol::protocol!("protocol-codegen/tests/invalid/many_errors_at_once.toml");
 
 fn main() {}

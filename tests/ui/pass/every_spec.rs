@@ -1,16 +1,16 @@
 //! Every bundled spec and every feature fixture compiles under `deny(warnings, missing_docs)`.
 #![deny(warnings, missing_docs)]
 
-protocol_runtime::protocol!("specs/hflink.toml");
-protocol_runtime::protocol!("specs/referee.toml");
-protocol_runtime::protocol!("specs/referee2018.toml");
-protocol_runtime::protocol!("specs/scout.toml");
-protocol_runtime::protocol!("specs/roborts.toml");
-protocol_runtime::protocol!("specs/dynamixel.toml");
-protocol_runtime::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
-protocol_runtime::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
-protocol_runtime::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
-protocol_runtime::protocol!("protocol-codegen/tests/features/can_and_trailer_field.toml");
+protocol::protocol!("specs/hflink.toml");
+protocol::protocol!("specs/referee.toml");
+protocol::protocol!("specs/referee2018.toml");
+protocol::protocol!("specs/scout.toml");
+protocol::protocol!("specs/roborts.toml");
+protocol::protocol!("specs/dynamixel.toml");
+protocol::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
+protocol::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
+protocol::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
+protocol::protocol!("protocol-codegen/tests/features/can_and_trailer_field.toml");
 
 fn main() {
     let _ = hflink::decoder();

@@ -13,7 +13,7 @@ use core::hint::black_box;
 
 use cortex_m_rt::entry;
 
-protocol_runtime::protocol!("../../../specs/hflink.toml");
+protocol::protocol!("../../../specs/hflink.toml");
 
 use hflink::Packet;
 

@@ -10,7 +10,7 @@ use core::hint::black_box;
 
 use cortex_m_rt::entry;
 
-protocol_runtime::protocol!("synth.toml");
+protocol::protocol!("synth.toml");
 
 use synth::Packet;
 

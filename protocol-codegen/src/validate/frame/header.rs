@@ -8,7 +8,7 @@ use super::super::names::{check_snake_name, parse_prim, unknown_type};
 use super::super::types::{Enums, fit, lower_bits, mask};
 use super::super::{Ctx, text};
 use super::{Draft, El, Kind};
-use crate::ir::{Endian, HeaderValue, Pos, Prim, Role, Scalar, Transport};
+use crate::ir::{ByteOrder, HeaderValue, Pos, Prim, Role, Scalar, Transport};
 use crate::spec::model::{ElementDef, SStr};
 
 /// The virtual prefix every CAN frame starts with: the id and the data length, so that checks
@@ -19,11 +19,11 @@ pub(super) fn push_can_prefix(draft: &mut Draft<'_>) {
     };
     let id_word = Scalar {
         prim: Prim::U32,
-        endian: Endian::Big,
+        endian: ByteOrder::Big,
     };
     let dlc_word = Scalar {
         prim: Prim::U8,
-        endian: Endian::Big,
+        endian: ByteOrder::Big,
     };
     draft.values.push(HeaderValue {
         name: "can_id".into(),

@@ -5,7 +5,7 @@ use toml::Spanned;
 use super::super::names::{check_snake_name, parse_prim, unknown_type};
 use super::super::{Ctx, text};
 use super::{Enums, mask};
-use crate::ir::{BitMember, Endian, Prim};
+use crate::ir::{BitMember, ByteOrder, Prim};
 use crate::spec::model::BitDef;
 
 /// Rule: bit members have snake_case names, unique, at least one bit each, and together no
@@ -47,7 +47,7 @@ pub(crate) fn lower_bits(
         let (prim, enum_index) = match &m.ty {
             None if width == 1 => (Prim::Bool, None),
             None => (smallest_uint(width), None),
-            Some(t) => match parse_prim(t.get_ref(), Endian::Little) {
+            Some(t) => match parse_prim(t.get_ref(), ByteOrder::Little) {
                 Some(s) if s.prim == Prim::Bool && width == 1 => (Prim::Bool, None),
                 Some(s) if s.prim.is_unsigned() && (s.prim.size() * 8) as u32 >= width => {
                     (s.prim, None)

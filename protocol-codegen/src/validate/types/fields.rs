@@ -8,7 +8,7 @@ use super::super::{Ctx, text};
 use super::bits::lower_bits;
 use super::{Enums, Structs};
 use crate::diag::did_you_mean;
-use crate::ir::{Constant, Endian, Field, FieldKind, Prim, Rounding, Scalar, Scale, ValueType};
+use crate::ir::{ByteOrder, Constant, Field, FieldKind, Prim, Rounding, Scalar, Scale, ValueType};
 use crate::spec::model::{CountDef, FieldDef, SStr};
 
 /// Rule: a field is either `{ pad = N }` (N > 0, nothing else but `doc`) or a named value with a
@@ -17,7 +17,7 @@ use crate::spec::model::{CountDef, FieldDef, SStr};
 pub(super) fn lower_field(
     ctx: &mut Ctx<'_>,
     f: &Spanned<FieldDef>,
-    endian: Endian,
+    endian: ByteOrder,
     structs: &Structs,
     enums: &Enums,
     constants: &[Constant],
@@ -262,7 +262,7 @@ fn lower_value_type(
     f: &Spanned<FieldDef>,
     ty: &SStr,
     scalar: Option<Scalar>,
-    endian: Endian,
+    endian: ByteOrder,
     structs: &Structs,
     enums: &Enums,
 ) -> Option<(ValueType, usize)> {

@@ -12,7 +12,7 @@ use toml::Spanned;
 
 use super::names::{check_pascal_name, check_screaming_name, parse_prim, pascal_case};
 use super::{Ctx, text};
-use crate::ir::{Constant, Endian, Enum, EnumVariant, Prim, Scalar, UnknownPolicy};
+use crate::ir::{ByteOrder, Constant, Enum, EnumVariant, Prim, Scalar, UnknownPolicy};
 use crate::spec::model::ConstantDef;
 
 pub(crate) use bits::lower_bits;
@@ -95,7 +95,7 @@ pub(crate) fn lower_enums(ctx: &mut Ctx<'_>) -> Enums {
                 );
                 Scalar {
                     prim: Prim::U8,
-                    endian: Endian::Little,
+                    endian: ByteOrder::Little,
                 }
             }
         };

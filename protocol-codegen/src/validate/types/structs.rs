@@ -9,7 +9,7 @@ use super::super::names::{check_pascal_name, parse_byte_order};
 use super::super::{Ctx, text};
 use super::Enums;
 use super::fields::lower_field;
-use crate::ir::{Constant, Endian, Field, FieldKind, Struct, ValueType};
+use crate::ir::{ByteOrder, Constant, Field, FieldKind, Struct, ValueType};
 use crate::spec::model::{SStr, StructDef};
 
 /// The structs in dependency order, with a name index.
@@ -116,7 +116,7 @@ fn lower_fields(
     ctx: &mut Ctx<'_>,
     name: &str,
     d: &StructDef,
-    endian: Endian,
+    endian: ByteOrder,
     out: &Structs,
     enums: &Enums,
     constants: &[Constant],

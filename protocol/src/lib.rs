@@ -1,0 +1,88 @@
+//! Typed codecs for serial and CAN links, generated from a TOML spec: `no_std`, no allocation,
+//! no panics, no `unsafe`.
+//!
+//! A spec describes a link: how bytes are framed (sync bytes, a length field, checks,
+//! trailers), which commands exist and what each carries. [`protocol!`] turns it into a module
+//! of payload structs, enums, a `Command` table, a `Message` enum, `Packet::encode` and
+//! `Packet::decode`, and a streaming decoder with a fixed buffer. [`derive@Payload`] gives a
+//! hand-written struct the same wire encoding. Everything those need at run time is the
+//! runtime re-exported here: frame layouts, the stream engine, checksums, cursors and errors.
+//!
+//! This crate is the one dependency to add; it holds no code of its own.
+//!
+//! # Example
+//!
+//! A spec inline (a file is `protocol!("specs/NAME.toml")`, relative to the crate's
+//! `Cargo.toml`): a frame is a sync byte, the payload's length, a command id, the payload and a
+//! sum of every preceding byte.
+//!
+//! ```
+//! protocol::protocol!(inline = r#"
+//! [protocol]
+//! name = "lamp"
+//!
+//! [frames.main]
+//! layout = [
+//!   { sync = [0xAA] },
+//!   { field = "len", type = "u8", length_of = "payload" },
+//!   { field = "cmd", type = "u8" },
+//!   { payload = { max = 8 } },
+//!   { check = "sum8", over = "frame" },
+//! ]
+//! dispatch = ["cmd"]
+//!
+//! [commands]
+//! SET_LEVEL = { id = 1, payload = "Level" }
+//! PING = { id = 2 }
+//!
+//! [structs.Level]
+//! fields = [
+//!   { name = "brightness", type = "u8" },
+//!   { name = "fade_ms", type = "u16" },
+//! ]
+//! "#);
+//! use lamp::{Header, Level, Message, Packet};
+//!
+//! // Encode into a caller's buffer: no allocation, an error on a short buffer.
+//! let packet = Packet {
+//!     header: Header {},
+//!     message: Message::SetLevel(Level { brightness: 200, fade_ms: 500 }),
+//! };
+//! let mut buf = [0u8; lamp::MAX_FRAME_LEN];
+//! let n = packet.encode(&mut buf)?;
+//! assert_eq!(buf[..n], [0xAA, 3, 1, 200, 0xF4, 0x01, 0x6B]);
+//!
+//! // Decode a stream arriving in pieces, after a stray byte.
+//! let stream = [&[0x00][..], &buf[..2], &buf[2..n]].concat();
+//! let mut decoder = lamp::decoder();
+//! let mut decoded = Vec::new();
+//! for mut chunk in stream.chunks(3) {
+//!     while let Some(frame) = decoder.decode(&mut chunk) {
+//!         decoded.push(Packet::from_frame(frame.bytes)?);
+//!     }
+//! }
+//! assert_eq!(decoded, [packet]);
+//! assert_eq!(decoder.stats().skipped_bytes, 1);
+//! # Ok::<(), Box<dyn core::error::Error>>(())
+//! ```
+//!
+//! # Naming this crate under another path
+//!
+//! Generated code reaches the runtime through `::protocol`. A crate that re-exports this one
+//! under another path says where: `protocol!(crate = ::my_link::protocol, "specs/x.toml")` and
+//! `#[payload(crate = "::my_link::protocol")]` on a `#[derive(Payload)]` struct.
+//!
+//! # Features
+//!
+//! | feature | what it adds |
+//! |---|---|
+//! | `std` | reading frames from a `std::io::Read` |
+//! | `embedded-io` | reading frames from an `embedded-io` reader |
+//! | `stage-input` | every input chunk staged in the decoder's buffer before it is scanned, as on targets without 64-bit pointers (where it is the default: less code); on hosts, to test that path |
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+pub use protocol_macros::{Payload, protocol};
+#[doc(inline)]
+pub use protocol_runtime::*;
