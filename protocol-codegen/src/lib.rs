@@ -9,6 +9,7 @@ pub mod diag;
 pub mod docs_md;
 pub mod input;
 pub mod ir;
+pub mod layout;
 pub mod source;
 pub mod spec;
 pub mod validate;

@@ -1,78 +1,21 @@
-//! A spec's frame formats as runtime [`FrameLayout`] values: the same data the generated
-//! `LAYOUT` statics hold (`protocol-codegen/src/codegen/frame.rs` emits them as tokens, this
-//! module builds them as values), so the interpreter and generated code run the same engine on
-//! the same description.
+//! A spec's frame formats as runtime [`FrameLayout`] values, built from the same lowering the
+//! generated `LAYOUT` statics are printed from ([`lower_layout`]), so the interpreter and
+//! generated code run the same engine on the same description.
 //!
-//! This module owns the CRC objects a layout's checks borrow ([`CrcStore`]) and the per-frame
-//! slices of checks, constants and markers ([`FrameParts`]). Which bytes a check covers and how
-//! a frame is verified or sealed is the runtime's business.
+//! This module owns the CRC objects a layout's checks borrow ([`CrcStore`]: the codec owns it,
+//! its layouts borrow it; only a CRC's parameters are interned for `'static`, see
+//! [`protocol_codegen::layout::crc_algorithm16`]) and the per-frame slices of constants and
+//! checks ([`FrameParts`]). Which bytes a check covers and how a frame is verified or sealed is
+//! the runtime's business.
 
-use std::sync::Mutex;
-
-use protocol_codegen::ir::{self, Algorithm, CrcParams, HeaderValue, Length, Role};
+use protocol_codegen::ir::{self, Algorithm, CrcParams};
+pub use protocol_codegen::layout::word_field;
+use protocol_codegen::layout::{
+    self, LayoutPlan, crc_algorithm8, crc_algorithm16, crc_algorithm32, crc_algorithm64,
+    lower_layout,
+};
 use protocol_runtime::checksum::{Checksum, CrcImpl, Slicing16};
-use protocol_runtime::layout::{Check, Constant, FrameLayout, LengthRule, Marker, WordField};
-
-/// Where a header value sits, as the runtime reads and writes it (the generated `wire::NAME`).
-pub fn word_field(v: &HeaderValue) -> WordField {
-    WordField {
-        at: v.at,
-        size: v.word.prim.size() as u8,
-        order: v.word.endian,
-        shift: v.shift as u8,
-        width: v.width as u8,
-    }
-}
-
-/// `crc::Crc::new` takes a `&'static crc::Algorithm`. A spec's parameters are only known at
-/// run time, so each distinct parameter set is leaked once per process and reused: memory is
-/// bounded by the number of distinct CRC algorithms, however many specs are loaded.
-macro_rules! interned_algorithm {
-    ($name:ident, $w:ty) => {
-        fn $name(p: &CrcParams) -> &'static crc::Algorithm<$w> {
-            static CACHE: Mutex<Vec<&'static crc::Algorithm<$w>>> = Mutex::new(Vec::new());
-            // The parameters come from a checked IR and fit the width; `as` keeps their bits.
-            let wanted = crc::Algorithm::<$w> {
-                width: p.width,
-                poly: p.poly as $w,
-                init: p.init as $w,
-                refin: p.refin,
-                refout: p.refout,
-                xorout: p.xorout as $w,
-                check: p.check as $w,
-                residue: p.residue as $w,
-            };
-            // A poisoned lock only means another thread panicked while pushing: the list is
-            // still a list of valid algorithms.
-            let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-            let same = |a: &crc::Algorithm<$w>| {
-                (
-                    a.width, a.poly, a.init, a.refin, a.refout, a.xorout, a.check, a.residue,
-                ) == (
-                    wanted.width,
-                    wanted.poly,
-                    wanted.init,
-                    wanted.refin,
-                    wanted.refout,
-                    wanted.xorout,
-                    wanted.check,
-                    wanted.residue,
-                )
-            };
-            if let Some(found) = cache.iter().find(|a| same(a)) {
-                return found;
-            }
-            let leaked: &'static crc::Algorithm<$w> = Box::leak(Box::new(wanted));
-            cache.push(leaked);
-            leaked
-        }
-    };
-}
-
-interned_algorithm!(algorithm8, u8);
-interned_algorithm!(algorithm16, u16);
-interned_algorithm!(algorithm32, u32);
-interned_algorithm!(algorithm64, u64);
+use protocol_runtime::layout::{Check, Constant, FrameLayout};
 
 /// A CRC object of one width, with the table size the spec chose (as generated code builds):
 /// the `crc` crate's for no table and one table, the runtime's [`Slicing16`] for sixteen.
@@ -114,10 +57,10 @@ enum CrcObject {
 impl CrcObject {
     fn new(p: &CrcParams) -> Self {
         match p.width {
-            8 => CrcObject::W8(tables!(u8, algorithm8(p), p.table)),
-            16 => CrcObject::W16(tables!(u16, algorithm16(p), p.table)),
-            32 => CrcObject::W32(tables!(u32, algorithm32(p), p.table)),
-            _ => CrcObject::W64(tables!(u64, algorithm64(p), p.table)),
+            8 => CrcObject::W8(tables!(u8, crc_algorithm8(p), p.table)),
+            16 => CrcObject::W16(tables!(u16, crc_algorithm16(p), p.table)),
+            32 => CrcObject::W32(tables!(u32, crc_algorithm32(p), p.table)),
+            _ => CrcObject::W64(tables!(u64, crc_algorithm64(p), p.table)),
         }
     }
 
@@ -178,92 +121,36 @@ impl CrcStore {
 
 /// The slices a [`FrameLayout`] borrows, for one frame format.
 pub struct FrameParts<'a> {
-    frame: &'a ir::Frame,
-    length: LengthRule,
+    plan: LayoutPlan<'a>,
     constants: Vec<Constant>,
     header_checks: Vec<Check<'a>>,
     frame_checks: Vec<Check<'a>>,
-    markers: Vec<Marker<'a>>,
 }
 
 impl<'a> FrameParts<'a> {
     /// The parts of frame format `index` of a protocol, its CRCs borrowed from `store`.
     pub fn new(frame: &'a ir::Frame, index: usize, store: &'a CrcStore) -> Self {
-        let length = match &frame.length {
-            Length::Fixed(n) => LengthRule::Fixed(*n),
-            Length::Field { value, adjust } => match (frame.values.get(*value), frame.bare_len) {
-                (Some(v), None) => LengthRule::Field {
-                    field: word_field(v),
-                    adjust: *adjust,
-                },
-                (Some(v), Some(bare)) => LengthRule::FieldOrBare {
-                    field: word_field(v),
-                    adjust: *adjust,
-                    bare,
-                },
-                // Unreachable for a checked IR; a length that never fits rejects every frame.
-                (None, _) => LengthRule::Fixed(0),
-            },
+        let plan = lower_layout(frame);
+        let checks = |indices: &[usize]| -> Vec<Check<'a>> {
+            indices
+                .iter()
+                .filter_map(|&i| {
+                    let c = frame.checks.get(i)?;
+                    Some(layout::check(c, store.checksum(index, i, &c.algorithm)))
+                })
+                .collect()
         };
-        let constants = frame
-            .values
-            .iter()
-            .filter_map(|v| match v.role {
-                Role::Const(value) => Some(Constant {
-                    field: word_field(v),
-                    value,
-                }),
-                _ => None,
-            })
-            .collect();
-        let mut header_checks = Vec::new();
-        let mut frame_checks = Vec::new();
-        for (i, c) in frame.checks.iter().enumerate() {
-            let check = Check {
-                checksum: store.checksum(index, i, &c.algorithm),
-                from: c.from,
-                to: c.to,
-                at: c.at,
-                order: c.endian,
-            };
-            if c.header {
-                header_checks.push(check);
-            } else {
-                frame_checks.push(check);
-            }
-        }
-        let markers = frame
-            .trailers
-            .iter()
-            .map(|t| Marker {
-                at: t.at,
-                bytes: &t.bytes,
-            })
-            .collect();
         FrameParts {
-            frame,
-            length,
-            constants,
-            header_checks,
-            frame_checks,
-            markers,
+            constants: plan.constants.iter().map(|&(_, c)| c).collect(),
+            header_checks: checks(&plan.header_checks),
+            frame_checks: checks(&plan.frame_checks),
+            plan,
         }
     }
 
     /// The layout, as generated code's `LAYOUT` static holds it.
     pub fn layout(&self) -> FrameLayout<'_> {
-        FrameLayout {
-            sync: &self.frame.sync,
-            // What the engine needs before the length is known and the header verified, as
-            // generated code computes it (a command id after the length is not needed).
-            header_len: self.frame.decide_len,
-            min_len: self.frame.min_len(),
-            max_len: self.frame.max_len(),
-            length: self.length,
-            constants: &self.constants,
-            header_checks: &self.header_checks,
-            frame_checks: &self.frame_checks,
-            markers: &self.markers,
-        }
+        self.plan
+            .layout(&self.constants, &self.header_checks, &self.frame_checks)
     }
 }

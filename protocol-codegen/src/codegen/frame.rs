@@ -1,6 +1,8 @@
 //! Frame formats as runtime data: size consts, where each header value sits (`wire`), the
 //! `FrameLayout` static the runtime engine decodes and seals with, the CRC tables, the `Header`
-//! struct and the `Decoder` type. The wire rules themselves live in the runtime, not here.
+//! struct and the `Decoder` type. What the layout holds is decided by the lowering
+//! ([`crate::layout::lower_layout`]); this module prints it. The wire rules themselves live in
+//! the runtime, not here.
 
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -9,8 +11,10 @@ use super::docs::{doc_attrs, frame_doc};
 use super::payload::prim_type;
 use super::{RuntimePath, const_ident, ident};
 use crate::ir::{
-    Algorithm, ByteOrder, Check, Frame, HeaderValue, Length, Pos, Prim, Protocol, Role, Transport,
+    Algorithm, ByteOrder, Check, Frame, HeaderValue, Pos, Prim, Protocol, Role, Transport,
 };
+use crate::layout::{self, LayoutPlan, lower_layout};
+use protocol_runtime::layout::{LengthRule, WordField};
 
 fn pos(rt: &TokenStream, p: Pos) -> TokenStream {
     match p {
@@ -28,11 +32,14 @@ fn order(rt: &TokenStream, e: ByteOrder) -> TokenStream {
 
 /// A `WordField` literal for a header value.
 pub fn word_field(rt: &TokenStream, v: &HeaderValue) -> TokenStream {
-    let at = pos(rt, v.at);
-    let size = v.word.prim.size() as u8;
-    let ord = order(rt, v.word.endian);
-    let shift = v.shift as u8;
-    let width = v.width as u8;
+    let WordField {
+        at,
+        size,
+        order: ord,
+        shift,
+        width,
+    } = layout::word_field(v);
+    let (at, ord) = (pos(rt, at), order(rt, ord));
     quote!(#rt::WordField { at: #at, size: #size, order: #ord, shift: #shift, width: #width })
 }
 
@@ -119,6 +126,70 @@ fn width_prim(width: u8) -> Prim {
     }
 }
 
+/// The `LAYOUT` static of a frame format, as [`lower_layout`] plans it, with the CRC tables
+/// its checks borrow.
+fn emit_layout(rt: &TokenStream, prefix: &str, f: &Frame, name: &Ident) -> TokenStream {
+    let doc = doc_attrs(&frame_doc(f));
+    let plan: LayoutPlan<'_> = lower_layout(f);
+    let field = |value: usize| value_const(prefix, &f.values[value]);
+    let length = match (plan.length, plan.length_value) {
+        (LengthRule::Field { adjust, .. }, Some(v)) => {
+            let field = field(v);
+            quote!(#rt::LengthRule::Field { field: wire::#field, adjust: #adjust })
+        }
+        (LengthRule::FieldOrBare { adjust, bare, .. }, Some(v)) => {
+            let field = field(v);
+            quote!(#rt::LengthRule::FieldOrBare { field: wire::#field, adjust: #adjust, bare: #bare })
+        }
+        (LengthRule::Fixed(n), _) => quote!(#rt::LengthRule::Fixed(#n)),
+        // Unreachable: the plan names the header value of every length field.
+        (_, None) => quote!(#rt::LengthRule::Fixed(0usize)),
+    };
+    let constants = plan.constants.iter().map(|(v, c)| {
+        let (field, value) = (field(*v), c.value);
+        quote!(#rt::Constant { field: wire::#field, value: #value })
+    });
+    let mut statics = Vec::new();
+    let checks: Vec<TokenStream> = f
+        .checks
+        .iter()
+        .map(|ch| {
+            let sname = const_ident(&format!("{prefix}{}_TABLE", ch.name));
+            let cs = checksum_expr(rt, ch, &mut statics, &sname);
+            let (from, to, at, ord) = (
+                pos(rt, ch.from),
+                pos(rt, ch.to),
+                pos(rt, ch.at),
+                order(rt, ch.endian),
+            );
+            quote!(#rt::Check { checksum: #cs, from: #from, to: #to, at: #at, order: #ord })
+        })
+        .collect();
+    let header_checks = plan.header_checks.iter().map(|&i| &checks[i]);
+    let frame_checks = plan.frame_checks.iter().map(|&i| &checks[i]);
+    let markers = plan.markers.iter().map(|m| {
+        let (at, bytes) = (pos(rt, m.at), m.bytes);
+        quote!(#rt::Marker { at: #at, bytes: &[#(#bytes),*] })
+    });
+    let (sync, header_len, min_len, max_len) =
+        (plan.sync, plan.header_len, plan.min_len, plan.max_len);
+    quote! {
+        #(#statics)*
+        #doc
+        pub static #name: #rt::FrameLayout<'static> = #rt::FrameLayout {
+            sync: &[#(#sync),*],
+            header_len: #header_len,
+            min_len: #min_len,
+            max_len: #max_len,
+            length: #length,
+            constants: &[#(#constants),*],
+            header_checks: &[#(#header_checks),*],
+            frame_checks: &[#(#frame_checks),*],
+            markers: &[#(#markers),*],
+        };
+    }
+}
+
 /// Every frame format: consts, `wire` fields, layout, header struct (first frame), decoder.
 pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     let rt = paths.private();
@@ -144,53 +215,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
         );
         let layout_name = c("LAYOUT");
         let fname = &f.name;
-        let layout_doc = doc_attrs(&frame_doc(f));
-        let length = match &f.length {
-            Length::Fixed(n) => quote!(#rt::LengthRule::Fixed(#n)),
-            Length::Field { value, adjust } => {
-                let field = value_const(&prefix, &f.values[*value]);
-                match f.bare_len {
-                    Some(bare) => {
-                        quote!(#rt::LengthRule::FieldOrBare { field: wire::#field, adjust: #adjust, bare: #bare })
-                    }
-                    None => quote!(#rt::LengthRule::Field { field: wire::#field, adjust: #adjust }),
-                }
-            }
-        };
-        let decide = f.decide_len;
-        let constants = f.values.iter().filter_map(|v| match v.role {
-            Role::Const(value) => {
-                let field = value_const(&prefix, v);
-                Some(quote!(#rt::Constant { field: wire::#field, value: #value }))
-            }
-            _ => None,
-        });
-        let mut statics = Vec::new();
-        let mut header_checks = Vec::new();
-        let mut frame_checks = Vec::new();
-        for ch in &f.checks {
-            let sname = const_ident(&format!("{prefix}{}_TABLE", ch.name));
-            let cs = checksum_expr(&rt, ch, &mut statics, &sname);
-            let (from, to, at, ord) = (
-                pos(&rt, ch.from),
-                pos(&rt, ch.to),
-                pos(&rt, ch.at),
-                order(&rt, ch.endian),
-            );
-            let lit =
-                quote!(#rt::Check { checksum: #cs, from: #from, to: #to, at: #at, order: #ord });
-            if ch.header {
-                header_checks.push(lit);
-            } else {
-                frame_checks.push(lit);
-            }
-        }
-        let markers = f.trailers.iter().map(|t| {
-            let at = pos(&rt, t.at);
-            let bytes = &t.bytes;
-            quote!(#rt::Marker { at: #at, bytes: &[#(#bytes),*] })
-        });
-        let sync = &f.sync;
+        let layout = emit_layout(&rt, &prefix, f, &layout_name);
         let decoder_name = format_ident!("{}", f.names.decoder);
         let decoder_fn = format_ident!("{}", f.names.decoder_fn);
         let decoder_doc = format!(
@@ -217,19 +242,7 @@ pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
             pub const #header_len: usize = #hl;
             #[doc = #doc_trailer_len]
             pub const #trailer_len: usize = #tl;
-            #(#statics)*
-            #layout_doc
-            pub static #layout_name: #rt::FrameLayout<'static> = #rt::FrameLayout {
-                sync: &[#(#sync),*],
-                header_len: #decide,
-                min_len: #minf,
-                max_len: #maxf,
-                length: #length,
-                constants: &[#(#constants),*],
-                header_checks: &[#(#header_checks),*],
-                frame_checks: &[#(#frame_checks),*],
-                markers: &[#(#markers),*],
-            };
+            #layout
         });
         // A CAN frame arrives whole: it has a packet type, not a stream decoder.
         if f.transport == Transport::Serial {

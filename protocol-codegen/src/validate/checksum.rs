@@ -143,29 +143,15 @@ fn lower_custom(ctx: &mut Ctx<'_>, key: &SStr, def: &Spanned<ChecksumDef>) -> Op
     Some(Algorithm::Crc(params))
 }
 
-/// Compute a CRC with the `crc` crate (the same code the generated decoders run).
+/// Compute a CRC with the `crc` crate (the same code the generated decoders run), its
+/// parameters interned ([`crate::layout::crc_algorithm16`] and its siblings).
 pub fn crc_of(p: &CrcParams, data: &[u8]) -> u64 {
-    // The crate wants `&'static Algorithm`; specs are validated once per expansion, so the few
-    // bytes leaked per custom CRC are acceptable.
-    macro_rules! run {
-        ($w:ty) => {{
-            let alg: &'static crc::Algorithm<$w> = Box::leak(Box::new(crc::Algorithm {
-                width: p.width,
-                poly: p.poly as $w,
-                init: p.init as $w,
-                refin: p.refin,
-                refout: p.refout,
-                xorout: p.xorout as $w,
-                check: p.check as $w,
-                residue: p.residue as $w,
-            }));
-            u64::from(crc::Crc::<$w, crc::NoTable>::new(alg).checksum(data))
-        }};
-    }
+    use crate::layout::{crc_algorithm8, crc_algorithm16, crc_algorithm32, crc_algorithm64};
+    use crc::{Crc, NoTable};
     match p.width {
-        8 => run!(u8),
-        16 => run!(u16),
-        32 => run!(u32),
-        _ => run!(u64),
+        8 => u64::from(Crc::<u8, NoTable>::new(crc_algorithm8(p)).checksum(data)),
+        16 => u64::from(Crc::<u16, NoTable>::new(crc_algorithm16(p)).checksum(data)),
+        32 => u64::from(Crc::<u32, NoTable>::new(crc_algorithm32(p)).checksum(data)),
+        _ => Crc::<u64, NoTable>::new(crc_algorithm64(p)).checksum(data),
     }
 }

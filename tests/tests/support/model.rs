@@ -16,6 +16,7 @@ use protocol::layout::LengthRule;
 use protocol::layout::WordField;
 use protocol::stuffing::Stuffing;
 use protocol_codegen::ir;
+pub use protocol_codegen::layout::word_field;
 use protocol_codegen::source::SpecSource;
 
 use super::payload::Ctx;
@@ -360,17 +361,6 @@ pub struct Refused {
     pub len: usize,
     /// What `seal` said.
     pub error: protocol::EncodeError,
-}
-
-/// The runtime word field of a header value.
-pub fn word_field(v: &ir::HeaderValue) -> WordField {
-    WordField {
-        at: v.at,
-        size: v.word.prim.size() as u8,
-        order: v.word.endian,
-        shift: v.shift as u8,
-        width: v.width as u8,
-    }
 }
 
 /// The length field of the layout, with the adjustment (`None` for fixed-length frames).

@@ -1,0 +1,200 @@
+//! The lowering of a frame format ([`ir::Frame`]) to the runtime's [`FrameLayout`], once.
+//!
+//! [`lower_layout`] turns what validation decided (the sync bytes, how many bytes the engine
+//! needs before it knows a frame's length, the length bounds and rule, the constants, which
+//! checks are header checks and which frame checks, the markers) into the runtime's own
+//! values: the length rule, word fields, constants and markers. Two backends take its
+//! result as it is: the expansion prints it as the `LAYOUT` static (`codegen::frame`), and the
+//! run-time codec builds a [`FrameLayout`] value from it. What stays to each is the one thing
+//! that differs: how a check's algorithm becomes a [`Checksum`] (a `static` table in generated
+//! code, an object the codec owns), for which this module gives the parameters of a CRC as the
+//! `crc` crate takes them ([`crc_algorithm8`] and its siblings).
+
+use protocol_runtime::checksum::Checksum;
+use protocol_runtime::layout::{Check, Constant, FrameLayout, LengthRule, Marker, WordField};
+
+use std::sync::Mutex;
+
+use crate::ir::{self, CrcParams, HeaderValue, Length, Role};
+
+/// A frame format as the runtime's [`FrameLayout`] holds it, with the checks still to be given
+/// their [`Checksum`]s, and the header values its fields come from (so the expansion can name
+/// them as `wire::NAME`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayoutPlan<'f> {
+    /// Bytes every frame starts with.
+    pub sync: &'f [u8],
+    /// Bytes the engine needs before it knows a frame's length and has verified its header.
+    pub header_len: usize,
+    /// Smallest valid total length.
+    pub min_len: usize,
+    /// Largest valid total length.
+    pub max_len: usize,
+    /// How the total length is known.
+    pub length: LengthRule,
+    /// The header value (index into [`ir::Frame::values`]) of the length rule's field.
+    pub length_value: Option<usize>,
+    /// Values that must hold, each with its header value (index into [`ir::Frame::values`]).
+    pub constants: Vec<(usize, Constant)>,
+    /// Checks verified before the length is trusted (indices into [`ir::Frame::checks`]).
+    pub header_checks: Vec<usize>,
+    /// Checks over the whole frame (indices into [`ir::Frame::checks`]), in order.
+    pub frame_checks: Vec<usize>,
+    /// Constant byte runs after the payload.
+    pub markers: Vec<Marker<'f>>,
+}
+
+/// Lowers a frame format to its layout plan.
+pub fn lower_layout(f: &ir::Frame) -> LayoutPlan<'_> {
+    let (length, length_value) = match &f.length {
+        Length::Fixed(n) => (LengthRule::Fixed(*n), None),
+        Length::Field { value, adjust } => {
+            let field = word_field(&f.values[*value]);
+            let adjust = *adjust;
+            let rule = match f.bare_len {
+                Some(bare) => LengthRule::FieldOrBare {
+                    field,
+                    adjust,
+                    bare,
+                },
+                None => LengthRule::Field { field, adjust },
+            };
+            (rule, Some(*value))
+        }
+    };
+    let constants = f
+        .values
+        .iter()
+        .enumerate()
+        .filter_map(|(i, v)| match v.role {
+            Role::Const(value) => Some((
+                i,
+                Constant {
+                    field: word_field(v),
+                    value,
+                },
+            )),
+            _ => None,
+        })
+        .collect();
+    let (header_checks, frame_checks) = (0..f.checks.len()).partition(|&i| f.checks[i].header);
+    let markers = f
+        .trailers
+        .iter()
+        .map(|t| Marker {
+            at: t.at,
+            bytes: &t.bytes,
+        })
+        .collect();
+    LayoutPlan {
+        sync: &f.sync,
+        header_len: f.decide_len,
+        min_len: f.min_len(),
+        max_len: f.max_len(),
+        length,
+        length_value,
+        constants,
+        header_checks,
+        frame_checks,
+        markers,
+    }
+}
+
+impl LayoutPlan<'_> {
+    /// The layout, with the constants and checks built from this plan.
+    pub fn layout<'a>(
+        &'a self,
+        constants: &'a [Constant],
+        header_checks: &'a [Check<'a>],
+        frame_checks: &'a [Check<'a>],
+    ) -> FrameLayout<'a> {
+        FrameLayout {
+            sync: self.sync,
+            header_len: self.header_len,
+            min_len: self.min_len,
+            max_len: self.max_len,
+            length: self.length,
+            constants,
+            header_checks,
+            frame_checks,
+            markers: &self.markers,
+        }
+    }
+}
+
+/// The runtime check of `check` (one of [`ir::Frame::checks`]), computed with `checksum`.
+pub fn check<'c>(check: &ir::Check, checksum: Checksum<'c>) -> Check<'c> {
+    Check {
+        checksum,
+        from: check.from,
+        to: check.to,
+        at: check.at,
+        order: check.endian,
+    }
+}
+
+/// Where a header value sits, as the runtime reads and writes it (the generated `wire::NAME`).
+pub fn word_field(v: &HeaderValue) -> WordField {
+    WordField {
+        at: v.at,
+        size: v.word.prim.size() as u8,
+        order: v.word.endian,
+        shift: v.shift as u8,
+        width: v.width as u8,
+    }
+}
+
+/// The parameters of a CRC as the `crc` crate's `Crc::new` and the runtime's `Slicing16::new`
+/// take them: a `&'static crc::Algorithm`. A custom CRC's parameters are known only once a spec
+/// is loaded, so each distinct parameter set is leaked once per process and reused: memory is
+/// bounded by the number of distinct CRC algorithms, however many specs are validated or
+/// loaded (a proc macro process expands many).
+macro_rules! interned_algorithm {
+    ($(#[$doc:meta])* $name:ident, $w:ty) => {
+        $(#[$doc])*
+        pub fn $name(p: &CrcParams) -> &'static crc::Algorithm<$w> {
+            static CACHE: Mutex<Vec<&'static crc::Algorithm<$w>>> = Mutex::new(Vec::new());
+            // The parameters come from a checked IR and fit the width; `as` keeps their bits.
+            let wanted = crc::Algorithm::<$w> {
+                width: p.width,
+                poly: p.poly as $w,
+                init: p.init as $w,
+                refin: p.refin,
+                refout: p.refout,
+                xorout: p.xorout as $w,
+                check: p.check as $w,
+                residue: p.residue as $w,
+            };
+            // A poisoned lock only means another thread panicked while pushing: the list is
+            // still a list of valid algorithms.
+            let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+            if let Some(found) = cache.iter().find(|a| ***a == wanted) {
+                return found;
+            }
+            let leaked: &'static crc::Algorithm<$w> = Box::leak(Box::new(wanted));
+            cache.push(leaked);
+            leaked
+        }
+    };
+}
+
+interned_algorithm!(
+    /// The parameters of an 8-bit CRC, interned.
+    crc_algorithm8,
+    u8
+);
+interned_algorithm!(
+    /// The parameters of a 16-bit CRC, interned.
+    crc_algorithm16,
+    u16
+);
+interned_algorithm!(
+    /// The parameters of a 32-bit CRC, interned.
+    crc_algorithm32,
+    u32
+);
+interned_algorithm!(
+    /// The parameters of a 64-bit CRC, interned.
+    crc_algorithm64,
+    u64
+);
