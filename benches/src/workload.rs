@@ -150,13 +150,22 @@ pub struct Workload {
 impl Workload {
     /// The benchmark's workload for `protocol` and `noise`: [`STREAM_LEN`] bytes.
     pub fn standard(protocol: Protocol, noise: Noise) -> Self {
-        let seed = match (protocol, noise) {
+        Self::generate(
+            protocol,
+            noise,
+            STREAM_LEN,
+            Self::standard_seed(protocol, noise),
+        )
+    }
+
+    /// The seed [`standard`](Self::standard) draws the workload from (the first one tried).
+    pub const fn standard_seed(protocol: Protocol, noise: Noise) -> u64 {
+        match (protocol, noise) {
             (Protocol::HfLink, Noise::Clean) => 0x4846_4C31,
             (Protocol::HfLink, Noise::Noisy) => 0x4846_4C32,
             (Protocol::Referee, Noise::Clean) => 0x5245_4631,
             (Protocol::Referee, Noise::Noisy) => 0x5245_4632,
-        };
-        Self::generate(protocol, noise, STREAM_LEN, seed)
+        }
     }
 
     /// A stream of at most `len` bytes drawn from `seed` (or, if the noise forged a frame, from
