@@ -4,9 +4,10 @@
 //! smaller table choices (`crc::NoTable`, `crc::Table<1>`) are the parent module's business.
 //!
 //! We do not use the `crc` crate's `Table<16>`: it runs a byte-wise loop over the last
-//! `n % 16` bytes, and a loop whose trip count follows the frame length mispredicts about once
-//! per frame (`PERF.md` lessons 2 and 3). Here the leading `n % 16` bytes are
-//! one zero-padded 16-byte block and everything after them whole blocks.
+//! `n % 16` bytes, and a loop whose trip count follows the frame length mispredicts its exit
+//! about once per frame, since the length changes from one frame to the next (see
+//! BENCHMARKS.md). Here the leading `n % 16` bytes are one zero-padded 16-byte block and
+//! everything after them whole blocks.
 //!
 //! # How
 //!

@@ -5,9 +5,9 @@
 //!
 //! - exact: whole 16-byte steps then the last bytes as one masked step, for any length;
 //! - window: when the input holds [`WINDOW`] bytes and the check covers at most that many, the
-//!   whole window under a mask, with no loop or branch on the covered length (a loop whose trip
-//!   count follows the frame length mispredicts about once per frame, `PERF.md`,
-//!   lesson 3).
+//!   whole window under a mask, with no loop or branch on the covered length: a loop whose trip
+//!   count follows the frame length mispredicts its exit about once per frame, since the length
+//!   changes from one frame to the next (see BENCHMARKS.md).
 //!
 //! Nothing here divides a 64-bit number: on 32-bit targets that links a division routine
 //! (`__aeabi_uldivmod`, 864 bytes on thumbv7em).
