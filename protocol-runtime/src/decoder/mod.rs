@@ -34,49 +34,18 @@
 //!
 //! [`LengthRule`]: crate::layout::LengthRule
 
-use core::fmt;
-
+mod buffer;
+mod event;
+mod scan;
+mod search;
 mod stream;
 
-pub use stream::{Event, Frame, Stats, StreamDecoder};
+pub use event::{Event, Frame, Reject, Stats};
+pub use stream::StreamDecoder;
 
 use crate::error::DecodeError;
 use crate::layout::{Check, Constant, FrameLayout, LayoutRef, LengthRule, Marker, all_hold};
 use crate::wire::{read_uint, write_uint};
-
-/// Why a candidate frame was rejected.
-#[non_exhaustive]
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Reject {
-    /// The sync bytes or a [`Constant`] of the header do not match.
-    BadHeader,
-    /// A header check does not match.
-    BadHeaderCheck,
-    /// The length is outside the format's bounds or the decoder's buffer.
-    BadLength,
-    /// A frame check does not match.
-    BadChecksum,
-    /// A trailing [`Marker`] does not match.
-    BadTrailer,
-    /// The frame's bytes never came: a complete valid frame started inside its claimed length,
-    /// or the input was declared ended ([`StreamDecoder::flush`]).
-    Truncated,
-}
-
-impl fmt::Display for Reject {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Reject::BadHeader => "bad header",
-            Reject::BadHeaderCheck => "bad header check",
-            Reject::BadLength => "bad length",
-            Reject::BadChecksum => "bad checksum",
-            Reject::BadTrailer => "bad trailer",
-            Reject::Truncated => "truncated frame",
-        })
-    }
-}
-
-impl core::error::Error for Reject {}
 
 /// What [`FrameLayout::probe`] found at the start of some bytes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

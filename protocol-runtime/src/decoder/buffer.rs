@@ -1,0 +1,135 @@
+//! The decoder's buffer: the bytes of a candidate cut by the end of a chunk, the chunks staged
+//! behind them, and the bytes taken off the caller's input.
+//!
+//! This module owns how bytes enter and leave `buf[start..end]` of a [`StreamDecoder`]: copying
+//! (whole chunks, a candidate's missing bytes), compaction (the pending bytes move to the front
+//! when what comes would not fit behind them), and the count of bytes taken from the input
+//! ([`StreamDecoder::position`]). It does not decide what is pending: the scan and the steps
+//! do, by moving `start`.
+
+use super::StreamDecoder;
+use crate::layout::LayoutRef;
+
+/// Takes the first `len` bytes off `input` (all of it if shorter).
+#[inline(always)]
+pub(super) fn take<'i>(input: &mut &'i [u8], len: usize) -> &'i [u8] {
+    let data: &'i [u8] = input;
+    let (head, rest) = data.split_at_checked(len).unwrap_or((data, &[]));
+    *input = rest;
+    head
+}
+
+/// Bytes kept free behind staged input: a window checksum reads a fixed-size block from a
+/// candidate's start (up to 128 bytes), which then stays inside the buffer instead of falling
+/// back to an exact loop.
+const STAGE_SLACK: usize = if cfg!(target_pointer_width = "64") {
+    128
+} else {
+    // No window checksums there.
+    0
+};
+
+impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
+    /// Keeps the whole input, with nothing pending, as the pending bytes (the start of a
+    /// candidate that needs more). Returns `false`, copying nothing, if it does not fit.
+    #[inline(always)]
+    pub(super) fn hold(&mut self, input: &mut &[u8]) -> bool {
+        let data: &[u8] = input;
+        let Some(dst) = self.buf.get_mut(..data.len()) else {
+            return false;
+        };
+        dst.copy_from_slice(data);
+        self.start = 0;
+        self.end = data.len();
+        self.position = self.position.wrapping_add(data.len() as u64);
+        *input = &[];
+        true
+    }
+
+    /// Advances `input` by `n` bytes (at most its length) and returns the bytes skipped.
+    #[inline(always)]
+    pub(super) fn consume<'i>(&mut self, input: &mut &'i [u8], n: usize) -> &'i [u8] {
+        let data: &'i [u8] = input;
+        let (head, rest) = data.split_at_checked(n).unwrap_or((data, &[]));
+        *input = rest;
+        self.position = self.position.wrapping_add(head.len() as u64);
+        head
+    }
+
+    /// Appends the whole input behind the pending bytes if it fits the buffer with room for
+    /// a checksum window after it (moving the pending bytes to the front first if needed).
+    /// Returns `false`, copying nothing, otherwise.
+    #[inline(always)]
+    pub(super) fn stage(&mut self, input: &mut &[u8]) -> bool {
+        let data: &[u8] = input;
+        let room = N.saturating_sub(STAGE_SLACK);
+        if self.pending().saturating_add(data.len()) > room {
+            return false;
+        }
+        if self.end.saturating_add(data.len()) > room {
+            self.buf.copy_within(self.start..self.end, 0);
+            self.end = self.end.wrapping_sub(self.start);
+            self.start = 0;
+        }
+        let end = self.end.wrapping_add(data.len());
+        let Some(dst) = self.buf.get_mut(self.end..end) else {
+            return false;
+        };
+        dst.copy_from_slice(data);
+        self.end = end;
+        self.position = self.position.wrapping_add(data.len() as u64);
+        *input = &[];
+        true
+    }
+
+    /// With nothing pending, copies the start of the input into the buffer: all of it if it
+    /// fits with room for a checksum window after it, else as much as fits (at least a byte).
+    #[inline(always)]
+    pub(super) fn stage_prefix(&mut self, input: &mut &[u8]) {
+        let room = if N > STAGE_SLACK {
+            N.wrapping_sub(STAGE_SLACK)
+        } else {
+            N
+        };
+        let data: &[u8] = input;
+        let (head, rest) = data.split_at_checked(room).unwrap_or((data, &[]));
+        if let Some(dst) = self.buf.get_mut(..head.len()) {
+            dst.copy_from_slice(head);
+            self.start = 0;
+            self.end = head.len();
+            self.position = self.position.wrapping_add(head.len() as u64);
+            *input = rest;
+        }
+    }
+
+    /// Copies from `input` until the pending bytes number `needed` or the input is exhausted,
+    /// moving the pending bytes to the front of the buffer first if they would not fit.
+    /// Returns `false`, copying nothing, if `needed` exceeds the buffer.
+    pub(super) fn fill(&mut self, input: &mut &[u8], needed: usize) -> bool {
+        if needed > N {
+            return false;
+        }
+        if self.start.saturating_add(needed) > N && self.buf.get(self.start..self.end).is_some() {
+            self.buf.copy_within(self.start..self.end, 0);
+            self.end = self.end.wrapping_sub(self.start);
+            self.start = 0;
+        }
+        let want = needed.saturating_sub(self.pending()).min(input.len());
+        let data: &[u8] = input;
+        let Some((src, rest)) = data.split_at_checked(want) else {
+            return false;
+        };
+        let Some(dst) = self
+            .end
+            .checked_add(want)
+            .and_then(|to| self.buf.get_mut(self.end..to))
+        else {
+            return false;
+        };
+        dst.copy_from_slice(src);
+        *input = rest;
+        self.position = self.position.wrapping_add(want as u64);
+        self.end = self.end.wrapping_add(want);
+        true
+    }
+}
