@@ -4,9 +4,8 @@
 //! This module owns the decoder's state and the order of its work: the public calls, the
 //! choice between scanning the caller's chunk in place and staging it, and the steps that hand
 //! out one event at a time, with the rule that a rejection costs one byte. It leans on its
-//! siblings for the rest: the searches ([`search`](super::search)), the scan loop
-//! ([`scan`](super::scan)), the buffer's copies ([`buffer`](super::buffer)) and the event types
-//! ([`event`](super::event)); whether a candidate is a frame is decided by
+//! siblings for the rest: the searches (`search`), the scan loop (`scan`), the buffer's copies
+//! (`buffer`) and the event types (`event`); whether a candidate is a frame is decided by
 //! [`FrameLayout::probe`]'s rules, in the parent module.
 
 use core::fmt;
