@@ -1,13 +1,10 @@
-//! The library behind the `protocol` command: the interpreter that encodes and decodes any
-//! checked spec at run time on the runtime's own engine ([`interp`]), and the parts of the
-//! command worth testing without a process: spec loading and diagnostics ([`spec`]), decoding
-//! sessions ([`session`], [`table`]), CAN logs ([`candump`]) and the compatibility report
-//! ([`compat`]).
+//! The library behind the `protocol` command: the parts of the command worth testing without
+//! a process: spec loading and diagnostics ([`spec`]), decoding sessions ([`session`],
+//! [`table`]) and CAN logs ([`candump`]). Decoding and encoding run on the
+//! [`protocol_dynamic`] codec.
 #![forbid(unsafe_code)]
 
 pub mod candump;
-pub mod compat;
-pub mod interp;
 pub mod session;
 pub mod spec;
 pub mod table;

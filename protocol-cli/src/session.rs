@@ -12,8 +12,8 @@ use protocol_runtime::{CanFrame, DecodeError, Event, Reject, Stats};
 use serde_json::{Map, Value};
 
 use crate::candump::CanRecord;
-use crate::interp::{Codec, DecodeIssue, Decoded, hex};
 use crate::table::{Widths, event_line, frame_line};
+use protocol_dynamic::{Codec, DecodeIssue, Decoded, hex};
 
 /// How frames and events are printed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -220,7 +220,8 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
             None => self.counts.raw_frames += 1,
         }
         let line = match self.output {
-            Output::Json => self.codec.frame_json(&d, offset, shown).to_string(),
+            Output::Json => serde_json::to_string(&self.codec.frame_value(&d, offset, shown))
+                .map_err(io::Error::other)?,
             Output::Table => frame_line(p, self.widths, &d, offset, shown.len()),
         };
         writeln!(self.out, "{line}")

@@ -8,7 +8,7 @@
 use protocol_codegen::ir::{Field, FieldKind, Protocol, Struct, ValueType};
 use serde_json::Value;
 
-use crate::interp::Decoded;
+use protocol_dynamic::Decoded;
 
 /// Column widths of a spec's table.
 #[derive(Debug, Clone, Copy)]
@@ -31,6 +31,11 @@ impl Widths {
             direction: p.directions.iter().map(|d| d.name.len()).max().unwrap_or(0),
         }
     }
+}
+
+/// The JSON form of a decoded value (what `--format json` prints of it).
+fn json(v: &protocol_dynamic::Value) -> Value {
+    serde_json::to_value(v).unwrap_or(Value::Null)
 }
 
 /// A JSON value as a short text: numbers as JSON prints them (shortest round-trip decimals),
@@ -121,12 +126,13 @@ pub fn frame_line(p: &Protocol, w: Widths, d: &Decoded, offset: u64, len: usize)
     let mut parts: Vec<String> = d
         .header
         .iter()
-        .map(|(k, v)| format!("{k}={}", header_text(v)))
+        .map(|(k, v)| format!("{k}={}", header_text(&json(v))))
         .collect();
     if let Some(can_id) = d.can_id {
         parts.insert(0, format!("can_id={can_id:#05x}"));
     }
     let mut fields = Vec::new();
+    let payload = json(&d.payload);
     let payload_struct = match d.command {
         Some(ci) => p.commands[ci]
             .payloads
@@ -136,9 +142,9 @@ pub fn frame_line(p: &Protocol, w: Widths, d: &Decoded, offset: u64, len: usize)
         None => p.frames[d.format].message,
     };
     match payload_struct {
-        Some(si) => struct_fields(p, &p.structs[si], &d.payload, "", &mut fields),
+        Some(si) => struct_fields(p, &p.structs[si], &payload, "", &mut fields),
         None => {
-            if let Value::String(hex) = &d.payload {
+            if let Value::String(hex) = &payload {
                 fields.push(format!("{}={hex}", if d.ack { "data" } else { "payload" }));
             }
         }

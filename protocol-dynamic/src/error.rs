@@ -3,7 +3,7 @@
 //!
 //! Decoding mirrors the runtime's [`DecodeError`] one for one (so that the interpreter can be
 //! compared with generated code), with the names a person needs: the command, the field.
-//! Encoding reports the JSON path of the offending value (`payload.utc_time.year`).
+//! Encoding reports the path of the offending value (`payload.utc_time.year`).
 
 use std::fmt;
 
@@ -103,7 +103,7 @@ impl std::error::Error for DecodeIssue {}
 /// Why a frame object could not be encoded. Nothing is written for it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EncodeIssue {
-    /// JSON path of the offending value (`payload.speed.x`, `header.sender`, `command`); empty
+    /// path of the offending value (`payload.speed.x`, `header.sender`, `command`); empty
     /// for the object as a whole.
     pub path: String,
     /// What is wrong.

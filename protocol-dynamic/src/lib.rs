@@ -1,53 +1,75 @@
-//! The interpreter: encodes and decodes the frames of any checked spec at run time, without
-//! compiling anything, for the `protocol` command.
+//! A run-time codec for `protocol` specs: load a spec while the program runs, then decode
+//! and encode its frames to and from a dynamic [`Value`], without generating or compiling
+//! code. The `protocol` command's `decode` and `encode` run on it; so can any tool or host
+//! program that learns its spec at run time.
 //!
-//! It reads the same checked IR as the `protocol!` macro ([`protocol_codegen::ir`]) and runs
-//! the runtime's own engine on it: every frame format becomes a runtime
+//! It reads the same checked IR as the `protocol!` macro ([`protocol_codegen::ir`], loaded and
+//! checked by [`protocol_codegen::compile`], so a bad spec gives the macro's diagnostics) and
+//! runs the runtime's own engine on it: every frame format becomes a runtime
 //! [`FrameLayout`] value (what generated code holds as its `LAYOUT` static), so finding frames
-//! in a stream ([`protocol_runtime::StreamDecoder`]), verifying them and sealing them use the
-//! very code generated codecs use, and the wire rules exist once. What the interpreter adds is
-//! the dynamic half of generated code: header values, dispatch, directions and payload structs,
-//! to and from [`serde_json::Value`] (the JSON Lines shape of `protocol decode`).
+//! in a stream ([`protocol_runtime::StreamDecoder`], with [`Codec::layout`]), verifying them
+//! and sealing them use the very code generated codecs use, and the wire rules exist once.
+//! What this crate adds is the dynamic half of generated code: header values, dispatch,
+//! directions and payload structs, to and from [`Value`] (see [`model`] for how each IR type
+//! maps to a value). The wire compatibility of two versions of a spec is [`compat`].
 //!
 //! ```
-//! use protocol_cli::interp::Interpreter;
-//! use protocol_codegen::source::SpecSource;
+//! use protocol_dynamic::{Fields, Interpreter, Value};
 //!
-//! let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../specs/hflink.toml"))?;
-//! let protocol = protocol_codegen::compile(&SpecSource::new("specs/hflink.toml", text))
-//!     .map_err(|_| "invalid spec")?;
-//! let interp = Interpreter::new(protocol);
+//! let interp = Interpreter::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../specs/hflink.toml"))?;
 //! let codec = interp.codec();
 //!
-//! let frame = codec.encode(&serde_json::json!({
-//!     "command": "SET_ROBOT_SPEED",
-//!     "header": { "sender": 1, "receiver": 17 },
-//!     "payload": { "x": 0.5, "y": 0.0, "z": 0.1 },
-//! }))?;
+//! let header: Fields = [("sender", Value::from(1u64)), ("receiver", Value::from(17u64))]
+//!     .into_iter()
+//!     .collect();
+//! let payload: Fields = [("x", 0.5f32), ("y", 0.0), ("z", 0.1)]
+//!     .into_iter()
+//!     .map(|(k, v)| (k, Value::F32(v)))
+//!     .collect();
+//! let message: Fields = [
+//!     ("command", Value::from("SET_ROBOT_SPEED")),
+//!     ("header", Value::Struct(header)),
+//!     ("payload", Value::Struct(payload)),
+//! ]
+//! .into_iter()
+//! .collect();
+//! let frame = codec.encode(&Value::Struct(message))?;
+//!
 //! let decoded = codec.parse(0, &frame.bytes)?;
 //! assert_eq!(interp.protocol().commands[decoded.command.unwrap()].name, "SET_ROBOT_SPEED");
-//! assert_eq!(decoded.payload["x"], 0.5);
+//! assert_eq!(decoded.payload["x"], Value::F32(0.5));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! With the `serde` feature, a [`Value`] is `Serialize` and `Deserialize`: a frame value
+//! ([`Codec::frame_value`]) serialized with `serde_json` is one line of `protocol decode`'s JSON
+//! Lines output, and such a line deserialized is what [`Codec::encode`] takes.
 //!
 //! Layouts borrow CRC objects, so they cannot live in the same struct as them: an
 //! [`Interpreter`] owns the protocol and its CRC objects, and a [`Codec`] borrowed from it holds
 //! the layouts' slices.
+#![forbid(unsafe_code)]
 
+pub mod compat;
 mod error;
 mod frame;
 mod layout;
+mod load;
+pub mod model;
 mod payload;
+#[cfg(feature = "serde")]
+mod serde_impl;
 mod value;
 
 pub use error::{DecodeIssue, EncodeIssue};
 pub use frame::{Decoded, Dispatch, ack_value, dispatch_of, hex, parse_hex};
 pub use layout::word_field;
-pub use value::{NumError, f32_json, f64_json, json_f32, json_f64};
+pub use load::LoadError;
+pub use model::{Fields, Value};
+pub use value::{NumError, value_f32, value_f64};
 
 use protocol_codegen::ir::{Protocol, Transport};
 use protocol_runtime::{CanFrame, DecodeError, FrameLayout};
-use serde_json::{Map, Value};
 
 use layout::{CrcStore, FrameParts};
 
@@ -159,38 +181,38 @@ impl Codec<'_> {
         self.parse(format, can.to_virtual(&mut virt))
     }
 
-    /// The JSON Lines object of a decoded frame: offset, length, format, command, id, header,
-    /// payload, hex (`can_id` for a CAN frame; `"ack": true` instead of a command for an
-    /// acknowledgement, whose payload is its data as hex). `bytes` are the frame's bytes as
-    /// received (a CAN frame's data bytes).
-    pub fn frame_json(&self, d: &Decoded, offset: u64, bytes: &[u8]) -> Value {
+    /// The value of a decoded frame, in the shape of a line of `protocol decode`'s JSON Lines
+    /// output: offset, length, format, command, id, header, payload, hex (`can_id` for a CAN
+    /// frame; `ack: true` instead of a command for an acknowledgement, whose payload is its
+    /// data). `bytes` are the frame's bytes as received (a CAN frame's data bytes).
+    pub fn frame_value(&self, d: &Decoded, offset: u64, bytes: &[u8]) -> Value {
         let p = self.protocol;
-        let mut o = Map::new();
-        o.insert("offset".into(), Value::from(offset));
-        o.insert("length".into(), Value::from(bytes.len()));
+        let mut o = Fields::new();
+        o.insert("offset", Value::UInt(offset));
+        o.insert("length", Value::from(bytes.len()));
         let format = p.frames.get(d.format).map_or("", |f| f.name.as_str());
-        o.insert("format".into(), Value::from(format));
+        o.insert("format", Value::from(format));
         if let Some(c) = d.command.and_then(|ci| p.commands.get(ci)) {
-            o.insert("command".into(), Value::from(c.name.clone()));
+            o.insert("command", Value::from(c.name.clone()));
             let id = match d.id.as_slice() {
-                [one] => Value::from(*one),
-                many => Value::from(many.to_vec()),
+                [one] => Value::UInt(*one),
+                many => Value::Array(many.iter().map(|x| Value::UInt(*x)).collect()),
             };
-            o.insert("id".into(), id);
+            o.insert("id", id);
         }
         if d.ack {
-            o.insert("ack".into(), Value::Bool(true));
+            o.insert("ack", Value::Bool(true));
         }
         if let Some(can_id) = d.can_id {
-            o.insert("can_id".into(), Value::from(can_id));
+            o.insert("can_id", Value::UInt(can_id));
         }
-        o.insert("header".into(), Value::Object(d.header.clone()));
-        o.insert("payload".into(), d.payload.clone());
-        o.insert("hex".into(), Value::from(hex(bytes)));
-        Value::Object(o)
+        o.insert("header", Value::Struct(d.header.clone()));
+        o.insert("payload", d.payload.clone());
+        o.insert("hex", Value::Bytes(bytes.to_vec()));
+        Value::Struct(o)
     }
 
-    /// Encodes a frame object in the shape [`frame_json`](Self::frame_json) gives (`format`
+    /// Encodes a frame value in the shape [`frame_value`](Self::frame_value) gives (`format`
     /// defaults to the first; `offset`, `length` and `hex` are ignored; values the spec
     /// computes, such as lengths and checks, are computed).
     ///
@@ -198,7 +220,7 @@ impl Codec<'_> {
     /// [`EncodeIssue`] naming the first missing, ill-typed or out-of-range value.
     pub fn encode(&self, object: &Value) -> Result<Encoded, EncodeIssue> {
         let obj = object
-            .as_object()
+            .as_struct()
             .ok_or_else(|| EncodeIssue::new("", "expected a frame object"))?;
         let format = match obj.get("format") {
             None | Some(Value::Null) => 0,

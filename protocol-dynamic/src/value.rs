@@ -1,17 +1,18 @@
-//! Numbers between the wire and JSON: every primitive read and written with the runtime's
-//! cursors ([`Reader`], [`Writer`]), and converted to and from [`serde_json::Value`] so that
-//! decoding then encoding gives the same bits back.
+//! Numbers between the wire and [`Value`]: every primitive read and written with the runtime's
+//! cursors ([`Reader`], [`Writer`]), and converted to and from values so that decoding then
+//! encoding gives the same bits back, also through text.
 //!
-//! This module owns the JSON form of a number. Floats are written as the shortest decimal that
-//! reads back as the same float (`0.48`, not `0.47999998927116394`); when a JSON number is
-//! encoded into an `f32`, the float whose shortest decimal is that number is preferred, so a
+//! This module owns the text form of a float. A float is written as the shortest decimal that
+//! reads back as the same float (`0.48`, not `0.47999998927116394`); when a decimal (an `f64`)
+//! is encoded into an `f32`, the float whose shortest decimal is that number is preferred, so a
 //! value printed by `decode` always encodes to its original bits. Non-finite floats, which JSON
 //! cannot hold, are the strings `"inf"`, `"-inf"` and `"NaN"` (or `"NaN(0x7fc00001)"`, with its
 //! bits, for a NaN other than the default one).
 
 use protocol_codegen::ir::{ByteOrder, Prim, Scalar};
 use protocol_runtime::{DecodeError, EncodeError, Reader, Writer};
-use serde_json::Value;
+
+use crate::model::Value;
 
 /// A primitive value as read from the wire.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,13 +53,13 @@ impl Num {
         }
     }
 
-    /// The JSON form of the value.
-    pub fn to_json(self) -> Value {
+    /// The value.
+    pub fn to_value(self) -> Value {
         match self {
-            Num::U(v) => Value::from(v),
-            Num::I(v) => Value::from(v),
-            Num::F32(v) => f32_json(v),
-            Num::F64(v) => f64_json(v),
+            Num::U(v) => Value::UInt(v),
+            Num::I(v) => Value::Int(v),
+            Num::F32(v) => Value::F32(v),
+            Num::F64(v) => Value::F64(v),
             Num::Bool(b) => Value::Bool(b),
         }
     }
@@ -129,36 +130,44 @@ pub fn truncate(prim: Prim, value: u64) -> u64 {
     }
 }
 
-/// The JSON form of an `f32`: its shortest decimal, or a string when it is not finite.
-pub fn f32_json(x: f32) -> Value {
+/// The shortest decimal that reads back as `x`, as an `f64` (what JSON prints for it), or
+/// the text of a non-finite `x`.
+pub fn f32_text(x: f32) -> Result<f64, String> {
     if x.is_nan() {
-        return nan_json(u64::from(x.to_bits()), u64::from(f32::NAN.to_bits()), 8);
+        return Err(nan_text(
+            u64::from(x.to_bits()),
+            u64::from(f32::NAN.to_bits()),
+            8,
+        ));
     }
     if x.is_infinite() {
-        return Value::from(if x > 0.0 { "inf" } else { "-inf" });
+        return Err(infinite_text(x > 0.0));
     }
     // `Display` prints the shortest decimal that reads back as the same f32; as an f64 it
     // prints the same way again, so the JSON text is that decimal.
-    let shortest: f64 = x.to_string().parse().unwrap_or(f64::from(x));
-    Value::from(shortest)
+    Ok(x.to_string().parse().unwrap_or(f64::from(x)))
 }
 
-/// The JSON form of an `f64`: itself, or a string when it is not finite.
-pub fn f64_json(x: f64) -> Value {
+/// `x` itself, or the text of a non-finite `x`.
+pub fn f64_text(x: f64) -> Result<f64, String> {
     if x.is_nan() {
-        return nan_json(x.to_bits(), f64::NAN.to_bits(), 16);
+        return Err(nan_text(x.to_bits(), f64::NAN.to_bits(), 16));
     }
     if x.is_infinite() {
-        return Value::from(if x > 0.0 { "inf" } else { "-inf" });
+        return Err(infinite_text(x > 0.0));
     }
-    Value::from(x)
+    Ok(x)
 }
 
-fn nan_json(bits: u64, default: u64, digits: usize) -> Value {
+fn infinite_text(positive: bool) -> String {
+    (if positive { "inf" } else { "-inf" }).to_string()
+}
+
+fn nan_text(bits: u64, default: u64, digits: usize) -> String {
     if bits == default {
-        Value::from("NaN")
+        "NaN".to_string()
     } else {
-        Value::from(format!("NaN(0x{bits:0digits$x})"))
+        format!("NaN(0x{bits:0digits$x})")
     }
 }
 
@@ -182,31 +191,24 @@ enum SpecialFloat {
     Nan(Option<u64>),
 }
 
-/// Why a JSON value could not be read as a number of some type.
+/// Why a value could not be read as a number of some type.
 #[derive(Debug, Clone, PartialEq)]
 pub enum NumError {
-    /// The value has the wrong JSON type; the text says what was expected.
+    /// The value has the wrong type; the text says what was expected.
     Type(String),
     /// The value does not fit the type.
     Range(String),
 }
 
-fn describe(v: &Value) -> String {
-    match v {
-        Value::Null => "null".into(),
-        Value::Bool(b) => b.to_string(),
-        Value::Number(n) => n.to_string(),
-        Value::String(s) => format!("the string {s:?}"),
-        Value::Array(_) => "an array".into(),
-        Value::Object(_) => "an object".into(),
-    }
-}
-
-/// An `f32` from JSON, preferring the float whose shortest decimal is the number written.
+/// An `f32` from a value: an `f32` as it is; another number preferring the float whose
+/// shortest decimal is that number.
 ///
 /// # Errors
 /// [`NumError::Type`] for anything but a number or a non-finite float's string.
-pub fn json_f32(v: &Value) -> Result<f32, NumError> {
+pub fn value_f32(v: &Value) -> Result<f32, NumError> {
+    if let Value::F32(x) = v {
+        return Ok(*x);
+    }
     if let Value::String(s) = v {
         return match special_float(s) {
             Some(SpecialFloat::Inf(neg)) => Ok(if neg {
@@ -222,13 +224,13 @@ pub fn json_f32(v: &Value) -> Result<f32, NumError> {
                 .ok_or_else(|| NumError::Range(format!("{s} is not an f32 NaN"))),
             None => Err(NumError::Type(format!(
                 "expected a number (f32), got {}",
-                describe(v)
+                v.describe()
             ))),
         };
     }
     let d = v
         .as_f64()
-        .ok_or_else(|| NumError::Type(format!("expected a number (f32), got {}", describe(v))))?;
+        .ok_or_else(|| NumError::Type(format!("expected a number (f32), got {}", v.describe())))?;
     let near = d as f32;
     if !near.is_finite() {
         return Err(NumError::Range(format!("{d} does not fit an f32")));
@@ -250,11 +252,11 @@ pub fn json_f32(v: &Value) -> Result<f32, NumError> {
         .unwrap_or(near))
 }
 
-/// An `f64` from JSON.
+/// An `f64` from a value.
 ///
 /// # Errors
 /// [`NumError::Type`] for anything but a number or a non-finite float's string.
-pub fn json_f64(v: &Value) -> Result<f64, NumError> {
+pub fn value_f64(v: &Value) -> Result<f64, NumError> {
     if let Value::String(s) = v {
         return match special_float(s) {
             Some(SpecialFloat::Inf(neg)) => Ok(if neg {
@@ -268,31 +270,30 @@ pub fn json_f64(v: &Value) -> Result<f64, NumError> {
                 .ok_or_else(|| NumError::Range(format!("{s} is not an f64 NaN"))),
             None => Err(NumError::Type(format!(
                 "expected a number (f64), got {}",
-                describe(v)
+                v.describe()
             ))),
         };
     }
     v.as_f64()
-        .ok_or_else(|| NumError::Type(format!("expected a number (f64), got {}", describe(v))))
+        .ok_or_else(|| NumError::Type(format!("expected a number (f64), got {}", v.describe())))
 }
 
-/// An integer from JSON: a number without a fraction, or a `"0x..."` string.
-fn json_integer(v: &Value, prim: Prim) -> Result<i128, NumError> {
+/// An integer from a value: an integer, a float without a fraction, or a `"0x..."` string.
+fn value_integer(v: &Value, prim: Prim) -> Result<i128, NumError> {
     let name = prim.rust_name();
-    let wrong = || NumError::Type(format!("expected an integer ({name}), got {}", describe(v)));
+    let wrong = || {
+        NumError::Type(format!(
+            "expected an integer ({name}), got {}",
+            v.describe()
+        ))
+    };
     match v {
-        Value::Number(n) => {
-            if let Some(u) = n.as_u64() {
-                Ok(i128::from(u))
-            } else if let Some(i) = n.as_i64() {
-                Ok(i128::from(i))
-            } else {
-                match n.as_f64() {
-                    Some(f) if f.fract() == 0.0 && f.abs() < 1.8e19 => Ok(f as i128),
-                    _ => Err(wrong()),
-                }
-            }
-        }
+        Value::UInt(u) => Ok(i128::from(*u)),
+        Value::Int(i) => Ok(i128::from(*i)),
+        Value::F32(_) | Value::F64(_) => match v.as_f64() {
+            Some(f) if f.fract() == 0.0 && f.abs() < 1.8e19 => Ok(f as i128),
+            _ => Err(wrong()),
+        },
         Value::String(s) => {
             let (neg, body) = match s.strip_prefix('-') {
                 Some(rest) => (true, rest),
@@ -327,27 +328,26 @@ fn int_range(prim: Prim) -> (i128, i128) {
     }
 }
 
-/// A primitive from JSON, as raw bits for [`write_bits`] (two's complement for signed
+/// A primitive from a value, as raw bits for [`write_bits`] (two's complement for signed
 /// integers, the bit pattern for floats).
 ///
 /// # Errors
 /// [`NumError`] when the value has the wrong type or does not fit.
-pub fn json_bits(v: &Value, prim: Prim) -> Result<u64, NumError> {
+pub fn value_bits(v: &Value, prim: Prim) -> Result<u64, NumError> {
     match prim {
-        Prim::F32 => json_f32(v).map(|x| u64::from(x.to_bits())),
-        Prim::F64 => json_f64(v).map(f64::to_bits),
+        Prim::F32 => value_f32(v).map(|x| u64::from(x.to_bits())),
+        Prim::F64 => value_f64(v).map(f64::to_bits),
         Prim::Bool => match v {
             Value::Bool(b) => Ok(u64::from(*b)),
-            Value::Number(n) if n.as_u64() == Some(0) || n.as_u64() == Some(1) => {
-                Ok(n.as_u64().unwrap_or(0))
-            }
+            Value::UInt(n @ (0 | 1)) => Ok(*n),
+            Value::Int(n @ (0 | 1)) => Ok(*n as u64),
             _ => Err(NumError::Type(format!(
                 "expected true or false, got {}",
-                describe(v)
+                v.describe()
             ))),
         },
         _ => {
-            let x = json_integer(v, prim)?;
+            let x = value_integer(v, prim)?;
             let (lo, hi) = int_range(prim);
             if x < lo || x > hi {
                 return Err(NumError::Range(format!(
@@ -377,7 +377,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn f32_values_print_short_and_encode_to_their_bits() {
+    fn f32_values_have_short_decimals_that_encode_to_their_bits() {
         for x in [
             0.48f32,
             std::f32::consts::PI,
@@ -388,54 +388,46 @@ mod tests {
             12.3,
             0.1,
         ] {
-            let v = f32_json(x);
-            let text = v.to_string();
-            let back: Value = serde_json::from_str(&text).expect("json");
-            let y = json_f32(&back).expect("f32");
-            assert_eq!(y.to_bits(), x.to_bits(), "{x} printed as {text}");
+            let d = f32_text(x).expect("finite");
+            let y = value_f32(&Value::F64(d)).expect("f32");
+            assert_eq!(y.to_bits(), x.to_bits(), "{x} written as {d}");
         }
-        assert_eq!(f32_json(0.48).to_string(), "0.48");
+        assert_eq!(f32_text(0.48), Ok(0.48));
     }
 
     #[test]
-    fn every_f32_bit_pattern_of_a_sample_round_trips() {
-        let mut bits = 0x1234_5678u32;
-        for _ in 0..20_000 {
-            bits ^= bits << 13;
-            bits ^= bits >> 17;
-            bits ^= bits << 5;
-            let x = f32::from_bits(bits);
-            let text = f32_json(x).to_string();
-            let back: Value = serde_json::from_str(&text).expect("json");
-            assert_eq!(json_f32(&back).map(f32::to_bits), Ok(bits), "{text}");
-        }
-    }
-
-    #[test]
-    fn special_floats_are_strings() {
-        assert_eq!(f32_json(f32::INFINITY), Value::from("inf"));
-        assert_eq!(f64_json(f64::NEG_INFINITY), Value::from("-inf"));
-        assert_eq!(f32_json(f32::NAN), Value::from("NaN"));
+    fn special_floats_are_text() {
+        assert_eq!(f32_text(f32::INFINITY), Err("inf".to_string()));
+        assert_eq!(f64_text(f64::NEG_INFINITY), Err("-inf".to_string()));
+        assert_eq!(f32_text(f32::NAN), Err("NaN".to_string()));
         let odd = f32::from_bits(0x7fc0_0001);
-        assert_eq!(f32_json(odd), Value::from("NaN(0x7fc00001)"));
-        assert_eq!(json_f32(&f32_json(odd)).map(f32::to_bits), Ok(0x7fc0_0001));
+        let text = f32_text(odd).expect_err("not finite");
+        assert_eq!(text, "NaN(0x7fc00001)");
+        assert_eq!(
+            value_f32(&Value::String(text)).map(f32::to_bits),
+            Ok(0x7fc0_0001)
+        );
+        assert_eq!(
+            value_f32(&Value::F32(odd)).map(f32::to_bits),
+            Ok(0x7fc0_0001)
+        );
     }
 
     #[test]
     fn integers_are_range_checked() {
-        assert_eq!(json_bits(&Value::from(255), Prim::U8), Ok(255));
+        assert_eq!(value_bits(&Value::from(255u64), Prim::U8), Ok(255));
         assert!(matches!(
-            json_bits(&Value::from(256), Prim::U8),
+            value_bits(&Value::from(256u64), Prim::U8),
             Err(NumError::Range(_))
         ));
-        assert_eq!(json_bits(&Value::from(-1), Prim::I16), Ok(0xFFFF));
-        assert_eq!(json_bits(&Value::from("0x1F"), Prim::U8), Ok(0x1F));
+        assert_eq!(value_bits(&Value::from(-1i64), Prim::I16), Ok(0xFFFF));
+        assert_eq!(value_bits(&Value::from("0x1F"), Prim::U8), Ok(0x1F));
         assert!(matches!(
-            json_bits(&Value::from(1.5), Prim::U8),
+            value_bits(&Value::from(1.5f64), Prim::U8),
             Err(NumError::Type(_))
         ));
         assert!(matches!(
-            json_bits(&Value::from("7"), Prim::U8),
+            value_bits(&Value::from("7"), Prim::U8),
             Err(NumError::Type(_))
         ));
     }

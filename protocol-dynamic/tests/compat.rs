@@ -1,9 +1,9 @@
 //! The compatibility report (`protocol diff`), in process: one edit of a spec per kind of
 //! change, and the class and reason each gets.
 
-use protocol_cli::compat::{Change, Class, diff};
 use protocol_codegen::ir::Protocol;
 use protocol_codegen::source::SpecSource;
+use protocol_dynamic::compat::{Change, Class, diff};
 
 fn compile(name: &str, text: &str) -> Protocol {
     protocol_codegen::compile(&SpecSource::new(name, text))

@@ -2,7 +2,8 @@
 //! the runtime's `Debug` prints them), and for every golden vector and thousands of random
 //! frames per spec the same decoded values (compared with the generated `Packet`'s `{:?}`,
 //! field for field), the same errors, and the same bytes when the decoded message is encoded
-//! again (the interpreter's message going through JSON text, as in `decode | encode`).
+//! again (the interpreter's message going through JSON text with the `serde` feature, as in
+//! `decode | encode`).
 //!
 //! Besides the bundled specs, `tests/fixtures/features.toml` holds every feature of the spec
 //! language that they do not use. A spec added to `specs/` joins by one `protocol!` line and one
@@ -11,9 +12,8 @@
 mod support;
 
 use protocol::{CanFrame, DecodeError, EncodeError, Event, FrameLayout, StreamDecoder};
-use protocol_cli::interp::{Codec, DecodeIssue, Decoded, Interpreter, hex, word_field};
 use protocol_codegen::ir::{DirectionRule, Protocol, Transport};
-use serde_json::Value;
+use protocol_dynamic::{Codec, DecodeIssue, Decoded, Interpreter, Value, hex, word_field};
 use support::{Rng, interpreter, rust_debug, unhex, vectors};
 
 protocol::protocol!("../specs/hflink.toml");
@@ -147,8 +147,8 @@ impl Tally {
 }
 
 /// The interpreter's message, through JSON text as `decode | encode` carries it, encoded.
-fn reencode(codec: &Codec<'_>, d: &Decoded, label: &str) -> protocol_cli::interp::Encoded {
-    let text = codec.frame_json(d, 0, &[]).to_string();
+fn reencode(codec: &Codec<'_>, d: &Decoded, label: &str) -> protocol_dynamic::Encoded {
+    let text = serde_json::to_string(&codec.frame_value(d, 0, &[])).expect("a value serializes");
     let back: Value = serde_json::from_str(&text).expect("JSON text reads back");
     codec
         .encode(&back)
@@ -390,7 +390,7 @@ fn random_messages_decode_and_encode_alike() {
                     }
                     if let Some((flag, _)) = f.ack {
                         // Mostly a command; sometimes an acknowledgement.
-                        let equals = protocol_cli::interp::ack_value(f, flag);
+                        let equals = protocol_dynamic::ack_value(f, flag);
                         let value = if round % 4 == 0 { equals } else { 1 - equals };
                         word_field(&f.values[flag])
                             .write(&mut frame, value)

@@ -15,9 +15,9 @@ use std::time::Duration;
 use indicatif::{ProgressBar, ProgressStyle};
 use miette::{IntoDiagnostic, Result, WrapErr, miette};
 use protocol_cli::candump;
-use protocol_cli::interp::{Codec, Interpreter, parse_hex};
 use protocol_cli::session::{Output, Session};
 use protocol_codegen::ir::Transport;
+use protocol_dynamic::{Codec, Interpreter, parse_hex};
 use protocol_runtime::{FrameLayout, StreamDecoder};
 
 use super::load_checked;

@@ -5,7 +5,7 @@ use std::path::Path;
 use std::process::ExitCode;
 
 use miette::Result;
-use protocol_cli::compat::{Class, diff};
+use protocol_dynamic::compat::{Class, diff};
 use serde_json::{Value, json};
 
 use super::load_checked;

@@ -12,9 +12,8 @@ use std::process::ExitCode;
 
 use miette::{IntoDiagnostic, Result, WrapErr};
 use protocol_cli::candump::format_log;
-use protocol_cli::interp::{Encoded, Interpreter, hex};
 use protocol_codegen::ir::Transport;
-use serde_json::Value;
+use protocol_dynamic::{Encoded, Interpreter, Value, hex};
 
 use super::{INVALID, load_checked};
 

@@ -1,22 +1,22 @@
-//! Frame objects (the JSON shape `decode` prints) to frames, as the generated packets'
+//! Frame values (the shape [`Codec::frame_value`](crate::Codec::frame_value) gives) to frames, as the generated packets'
 //! `encode` builds them: the payload written first (its size on the wire decides the frame's
 //! length) and stuffed, then the header values, the acknowledgement flag and the dispatch key
 //! (or CAN id), then the runtime seals the frame.
 
 use protocol_codegen::ir::{Frame, Protocol, Role};
 use protocol_runtime::{EncodeError, FrameLayout, Writer};
-use serde_json::{Map, Value};
 
 use super::{
     Dispatch, ack_max, ack_value, direction_of, dispatch_of, is_can_id, parse_hex, stuffing,
 };
-use crate::interp::error::EncodeIssue;
-use crate::interp::layout::word_field;
-use crate::interp::payload::write_payload;
-use crate::interp::value::{NumError, json_bits, truncate};
+use crate::error::EncodeIssue;
+use crate::layout::word_field;
+use crate::model::{Fields, Value};
+use crate::payload::write_payload;
+use crate::value::{NumError, truncate, value_bits};
 
-/// The command a frame object names: `command` (spec or Rust name), else its `id` or `can_id`.
-fn command_of(p: &Protocol, by_can: bool, obj: &Map<String, Value>) -> Result<usize, EncodeIssue> {
+/// The command a frame value names: `command` (spec or Rust name), else its `id` or `can_id`.
+fn command_of(p: &Protocol, by_can: bool, obj: &Fields) -> Result<usize, EncodeIssue> {
     if let Some(name) = obj.get("command") {
         let name = name
             .as_str()
@@ -50,12 +50,12 @@ fn command_of(p: &Protocol, by_can: bool, obj: &Map<String, Value>) -> Result<us
         .ok_or_else(|| EncodeIssue::new(key, format!("no command has the id {value}")))
 }
 
-/// The user-set header values of a frame object, checked against their types: (value index,
+/// The user-set header values of a frame value, checked against their types: (value index,
 /// raw value).
-fn header_values(f: &Frame, obj: &Map<String, Value>) -> Result<Vec<(usize, u64)>, EncodeIssue> {
-    let empty = Map::new();
+fn header_values(f: &Frame, obj: &Fields) -> Result<Vec<(usize, u64)>, EncodeIssue> {
+    let empty = Fields::new();
     let header = match obj.get("header") {
-        Some(Value::Object(h)) => h,
+        Some(Value::Struct(h)) => h,
         Some(Value::Null) | None => &empty,
         Some(_) => return Err(EncodeIssue::new("header", "expected an object")),
     };
@@ -78,7 +78,7 @@ fn header_values(f: &Frame, obj: &Map<String, Value>) -> Result<Vec<(usize, u64)
         let given = header
             .get(&v.name)
             .ok_or_else(|| EncodeIssue::missing(&path))?;
-        let raw = json_bits(given, v.prim).map_err(|e| match e {
+        let raw = value_bits(given, v.prim).map_err(|e| match e {
             NumError::Type(m) | NumError::Range(m) => EncodeIssue::new(&path, m),
         })?;
         values.push((vi, raw));
@@ -95,7 +95,7 @@ enum Body {
     Raw,
 }
 
-/// Encodes a frame object of format `fi` with its layout. Returns the frame's bytes (for a CAN
+/// Encodes a frame value of format `fi` with its layout. Returns the frame's bytes (for a CAN
 /// format, its virtual frame).
 ///
 /// # Errors
@@ -105,7 +105,7 @@ pub fn encode(
     p: &Protocol,
     fi: usize,
     layout: &FrameLayout<'_>,
-    obj: &Map<String, Value>,
+    obj: &Fields,
 ) -> Result<Vec<u8>, EncodeIssue> {
     let f = &p.frames[fi];
     let dispatch = dispatch_of(p, fi);
@@ -198,7 +198,7 @@ fn write_body(
     p: &Protocol,
     f: &Frame,
     body: &Body,
-    obj: &Map<String, Value>,
+    obj: &Fields,
     region: &mut [u8],
 ) -> Result<usize, EncodeIssue> {
     let payload = obj.get("payload");
@@ -211,6 +211,9 @@ fn write_body(
         other => EncodeIssue::runtime(other),
     };
     let bytes_of = |what: &str| -> Result<Vec<u8>, EncodeIssue> {
+        if let Some(Value::Bytes(b)) = payload {
+            return Ok(b.clone());
+        }
         let text = payload
             .and_then(Value::as_str)
             .ok_or_else(|| EncodeIssue::new("payload", format!("expected {what} as hex")))?;
@@ -221,7 +224,7 @@ fn write_body(
         Body::Command(ci, None) => {
             let empty = match payload {
                 None | Some(Value::Null) => true,
-                Some(Value::Object(m)) => m.is_empty(),
+                Some(Value::Struct(m)) => m.is_empty(),
                 Some(_) => false,
             };
             if !empty {
@@ -274,7 +277,7 @@ fn write_key(
     f: &Frame,
     dispatch: Dispatch,
     ci: usize,
-    obj: &Map<String, Value>,
+    obj: &Fields,
     frame: &mut [u8],
 ) -> Result<(), EncodeIssue> {
     let c = &p.commands[ci];

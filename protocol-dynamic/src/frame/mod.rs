@@ -1,4 +1,4 @@
-//! Whole frames between the wire and JSON: header values, acknowledgements, the dispatch key,
+//! Whole frames between the wire and [`Value`](crate::Value)s: header values, acknowledgements, the dispatch key,
 //! byte stuffing, the direction and the payload, in the order the generated packets take them
 //! (`Packet::from_frame`, and the `<Name>Packet` of a CAN or message-only frame format, in
 //! `protocol-codegen/src/codegen/dispatch.rs`), so that both report the same error for the same
@@ -14,12 +14,12 @@ pub use encode::encode;
 use protocol_codegen::ir::{DirectionRule, Frame, HeaderValue, Prim, Protocol, Role, Transport};
 use protocol_runtime::DecodeError;
 use protocol_runtime::stuffing::Stuffing;
-use serde_json::{Map, Value};
 
-use super::error::DecodeIssue;
-use super::layout::word_field;
-use super::payload::{ReadFail, read_payload};
-use super::value::truncate;
+use crate::error::DecodeIssue;
+use crate::layout::word_field;
+use crate::model::{Fields, Value};
+use crate::payload::{ReadFail, read_payload};
+use crate::value::truncate;
 
 /// What the frames of a format carry, as generated code decodes them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -91,7 +91,7 @@ fn header_json(v: &HeaderValue, raw: u64) -> Value {
     if v.prim == Prim::Bool {
         Value::Bool(raw != 0)
     } else {
-        Value::from(truncate(v.prim, raw))
+        Value::UInt(truncate(v.prim, raw))
     }
 }
 
@@ -103,9 +103,9 @@ fn header_truncated(p: &Protocol, frame: &[u8]) -> DecodeIssue {
     })
 }
 
-/// The user-set header values of a frame, as JSON, in wire order.
-fn read_header(p: &Protocol, f: &Frame, frame: &[u8]) -> Result<Map<String, Value>, DecodeIssue> {
-    let mut out = Map::new();
+/// The user-set header values of a frame, in wire order.
+fn read_header(p: &Protocol, f: &Frame, frame: &[u8]) -> Result<Fields, DecodeIssue> {
+    let mut out = Fields::new();
     for v in f
         .values
         .iter()
@@ -137,9 +137,9 @@ pub struct Decoded {
     /// The CAN id, for a CAN frame.
     pub can_id: Option<u64>,
     /// The user-set header values, in wire order.
-    pub header: Map<String, Value>,
-    /// The payload: an object (empty for a command without payload), or the raw bytes as a hex
-    /// string (an acknowledgement's data, a format without commands).
+    pub header: Fields,
+    /// The payload: a struct (empty for a command without payload), or bytes (an
+    /// acknowledgement's data, a format without commands).
     pub payload: Value,
 }
 
@@ -218,7 +218,7 @@ fn read_struct_payload(
 ) -> Result<Value, DecodeIssue> {
     let Some(si) = si else {
         if payload.is_empty() {
-            return Ok(Value::Object(Map::new()));
+            return Ok(Value::Struct(Fields::new()));
         }
         return Err(DecodeIssue::PayloadLength {
             command: command.to_string(),
@@ -227,7 +227,7 @@ fn read_struct_payload(
         });
     };
     read_payload(p, si, payload)
-        .map(Value::Object)
+        .map(Value::Struct)
         .map_err(|e| match e {
             ReadFail::Runtime(DecodeError::PayloadLength { expected, actual }) => {
                 DecodeIssue::PayloadLength {
@@ -262,7 +262,7 @@ pub fn decode(p: &Protocol, fi: usize, frame: &[u8]) -> Result<Decoded, DecodeIs
         ack: false,
         id: Vec::new(),
         can_id: None,
-        header: Map::new(),
+        header: Fields::new(),
         payload: Value::Null,
     };
     if let Some(v) = f.values.iter().find(|v| is_can_id(f, v)) {
@@ -276,7 +276,7 @@ pub fn decode(p: &Protocol, fi: usize, frame: &[u8]) -> Result<Decoded, DecodeIs
     match dispatch_of(p, fi) {
         Dispatch::None => {
             out.header = read_header(p, f, frame)?;
-            out.payload = Value::from(hex(payload_of(f, frame)?));
+            out.payload = Value::Bytes(payload_of(f, frame)?.to_vec());
         }
         Dispatch::Message(si) => {
             let payload = payload_of(f, frame)?;
@@ -324,7 +324,7 @@ pub fn decode(p: &Protocol, fi: usize, frame: &[u8]) -> Result<Decoded, DecodeIs
                         }));
                     }
                     out.ack = true;
-                    out.payload = Value::from(hex(data));
+                    out.payload = Value::Bytes(data.to_vec());
                     return Ok(out);
                 }
             }

@@ -1,14 +1,14 @@
-//! Payload structs between the wire and JSON: the dynamic counterpart of the `impl Payload`
+//! Payload structs between the wire and [`Value`](crate::Value)s: the dynamic counterpart of the `impl Payload`
 //! that `emit_payload_impl` (`protocol-codegen/src/codegen/payload.rs`) generates, field for
 //! field and in the same order, with the same errors; the field rules themselves (scaling,
 //! rounding, clamping, bit members, enum policy, sized bytes, groups) are the runtime's
 //! (`protocol_runtime::field`), which generated code calls too.
 //!
-//! A struct is a JSON object with its fields in spec order: nested structs are objects,
-//! arrays and repeated groups are arrays, bytes are a lowercase hex string, an optional field
-//! that is absent is `null`, enums are their spec name (the number when unknown and kept),
-//! scaled fields their physical value, bitfield members their own keys; padding does not
-//! appear. Reading lives in [`read`], writing in [`write`].
+//! A struct is a [`Value::Struct`](crate::Value::Struct) with its fields in spec order:
+//! nested structs are structs, arrays and repeated groups are arrays, bytes are bytes, an
+//! optional field that is absent is `Null`, enums are their spec name (the number when unknown
+//! and kept), scaled fields their physical value, bitfield members their own fields; padding
+//! does not appear. Reading lives in [`read`], writing in [`write`].
 
 mod read;
 mod write;
@@ -18,7 +18,7 @@ pub use write::write_payload;
 
 use protocol_codegen::ir::{Enum, Field, FieldKind, Prim, UnknownPolicy};
 
-use super::value::truncate;
+use crate::value::truncate;
 
 fn join(path: &str, name: &str) -> String {
     if path.is_empty() {
@@ -52,7 +52,7 @@ fn policy(e: &Enum) -> protocol_runtime::field::UnknownPolicy {
     }
 }
 
-/// The JSON keys a field takes in its struct's object: its name, or its bit members' names.
+/// The names a field takes in its struct's object: its name, or its bit members' names.
 fn keys(f: &Field) -> Vec<&str> {
     fn of<'a>(name: &'a str, kind: &'a FieldKind) -> Vec<&'a str> {
         match kind {

@@ -1,12 +1,11 @@
-//! Reading a payload struct into JSON, as the generated `Payload::read` and `from_bytes` do.
+//! Reading a payload struct into a [`Value`], as the generated `Payload::read` and `from_bytes` do.
 
 use protocol_codegen::ir::{BitMember, Enum, Field, FieldKind, Prim, Protocol, ValueType};
 use protocol_runtime::{DecodeError, Reader, field};
-use serde_json::{Map, Value};
 
 use super::{join, policy, signed_value, variant};
-use crate::interp::frame::hex;
-use crate::interp::value::{f32_json, f64_json, read_scalar, truncate};
+use crate::model::{Fields, Value};
+use crate::value::{read_scalar, truncate};
 
 /// Why a payload could not be read.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,7 +35,7 @@ impl From<DecodeError> for ReadFail {
 ///
 /// # Errors
 /// [`ReadFail`] as generated code fails on the same bytes.
-pub fn read_payload(p: &Protocol, si: usize, bytes: &[u8]) -> Result<Map<String, Value>, ReadFail> {
+pub fn read_payload(p: &Protocol, si: usize, bytes: &[u8]) -> Result<Fields, ReadFail> {
     let mut r = Reader::new(bytes);
     let value = read_struct(p, si, &mut r, "").map_err(|e| match e {
         ReadFail::Runtime(DecodeError::Truncated { .. }) => {
@@ -57,9 +56,9 @@ fn read_struct(
     si: usize,
     r: &mut Reader<'_>,
     path: &str,
-) -> Result<Map<String, Value>, ReadFail> {
+) -> Result<Fields, ReadFail> {
     let s = &p.structs[si];
-    let mut out = Map::new();
+    let mut out = Fields::new();
     for f in &s.fields {
         read_field(p, f, &f.kind, s.size, r, path, &mut out, None)?;
     }
@@ -78,8 +77,8 @@ fn read_field(
     size: usize,
     r: &mut Reader<'_>,
     path: &str,
-    out: &mut Map<String, Value>,
-    owner: Option<&Map<String, Value>>,
+    out: &mut Fields,
+    owner: Option<&Fields>,
 ) -> Result<(), ReadFail> {
     match kind {
         FieldKind::Padding => r.skip(f.size)?,
@@ -126,7 +125,7 @@ fn read_field(
                         }));
                     }
                     r.skip(rest.len())?;
-                    hex(rest)
+                    rest.to_vec()
                 }
                 Some(n) => {
                     let count = owner
@@ -134,17 +133,17 @@ fn read_field(
                         .get(n)
                         .and_then(Value::as_u64)
                         .unwrap_or(0);
-                    hex(field::take_sized(r, count, *max)?)
+                    field::take_sized(r, count, *max)?.to_vec()
                 }
             };
-            out.insert(f.name.clone(), Value::from(v));
+            out.insert(f.name.clone(), Value::Bytes(v));
         }
         FieldKind::Group { elem, max } => {
             let sizes = owner.unwrap_or(out);
             let mut items = Vec::new();
             let fpath = join(path, &f.name);
             while field::more(r) {
-                let mut item = Map::new();
+                let mut item = Fields::new();
                 let epath = format!("{fpath}[{}]", items.len());
                 for ef in &p.structs[*elem].fields {
                     read_field(p, ef, &ef.kind, size, r, &epath, &mut item, Some(sizes))?;
@@ -152,7 +151,7 @@ fn read_field(
                 if items.len() == *max {
                     return Err(ReadFail::Runtime(field::group_full(r, size)));
                 }
-                items.push(Value::Object(item));
+                items.push(Value::Struct(item));
             }
             out.insert(f.name.clone(), Value::Array(items));
         }
@@ -182,7 +181,7 @@ fn read_elem(
         ValueType::Scalar {
             scalar,
             scale: None,
-        } => read_scalar(r, *scalar)?.to_json(),
+        } => read_scalar(r, *scalar)?.to_value(),
         ValueType::Scalar {
             scalar,
             scale: Some(sc),
@@ -193,11 +192,11 @@ fn read_elem(
                 physical = field::check_clamp(physical, lo, hi)?;
             }
             match sc.physical {
-                Prim::F32 => f32_json(physical as f32),
-                _ => f64_json(physical),
+                Prim::F32 => Value::F32(physical as f32),
+                _ => Value::F64(physical),
             }
         }
-        ValueType::Struct(si) => Value::Object(read_struct(p, *si, r, path)?),
+        ValueType::Struct(si) => Value::Struct(read_struct(p, *si, r, path)?),
         ValueType::Enum(ei, scalar) => {
             let raw = read_scalar(r, *scalar)?;
             enum_json(
@@ -210,7 +209,7 @@ fn read_elem(
     })
 }
 
-/// The JSON form of an enum's raw value (bits truncated to the enum's type).
+/// The value of an enum's raw value (bits truncated to the enum's type).
 fn enum_json(e: &Enum, ei: usize, raw: u64, path: &str) -> Result<Value, ReadFail> {
     if let Some(v) = variant(e, raw) {
         return Ok(Value::from(v.name.clone()));
@@ -218,8 +217,8 @@ fn enum_json(e: &Enum, ei: usize, raw: u64, path: &str) -> Result<Value, ReadFai
     let signed = signed_value(e.prim, raw);
     if policy(e).unknown(raw).is_ok() {
         return Ok(match signed {
-            Some(i) => Value::from(i),
-            None => Value::from(raw),
+            Some(i) => Value::Int(i),
+            None => Value::UInt(raw),
         });
     }
     Err(ReadFail::Enum {

@@ -1,4 +1,4 @@
-//! Writing a payload struct from JSON, as the generated `Payload::write` does. Values that
+//! Writing a payload struct from a [`Value`], as the generated `Payload::write` does. Values that
 //! generated code cannot even hold (a number too large for its type, bytes beyond a field's
 //! `max`, an unknown variant of a rejecting enum) are refused with the path of the value.
 
@@ -6,14 +6,12 @@ use protocol_codegen::ir::{
     BitMember, Enum, Field, FieldKind, Prim, Protocol, Rounding, Scalar, Scale, Struct, ValueType,
 };
 use protocol_runtime::{EncodeError, Writer, field};
-use serde_json::{Map, Value};
 
 use super::{join, policy, signed_value, variant};
-use crate::interp::error::EncodeIssue;
-use crate::interp::frame::parse_hex;
-use crate::interp::value::{
-    NumError, bits_as_f64, json_bits, json_f32, json_f64, truncate, write_bits,
-};
+use crate::error::EncodeIssue;
+use crate::frame::parse_hex;
+use crate::model::{Fields, Value};
+use crate::value::{NumError, bits_as_f64, truncate, value_bits, value_f32, value_f64, write_bits};
 
 fn issue(path: &str, e: NumError) -> EncodeIssue {
     match e {
@@ -21,7 +19,7 @@ fn issue(path: &str, e: NumError) -> EncodeIssue {
     }
 }
 
-/// Writes struct `si` from a JSON object; returns the bytes written.
+/// Writes struct `si` from a struct value; returns the bytes written.
 ///
 /// # Errors
 /// [`EncodeIssue`] naming the first missing, ill-typed, out-of-range or unknown value.
@@ -43,7 +41,7 @@ fn write_struct(
     path: &str,
 ) -> Result<(), EncodeIssue> {
     let s = &p.structs[si];
-    let obj = v.as_object().ok_or_else(|| {
+    let obj = v.as_struct().ok_or_else(|| {
         EncodeIssue::new(path, format!("expected an object (struct `{}`)", s.name))
     })?;
     check_keys(s, obj, path)?;
@@ -54,7 +52,7 @@ fn write_struct(
 }
 
 /// Every key of `obj` must name a field or bit member of `s`.
-fn check_keys(s: &Struct, obj: &Map<String, Value>, path: &str) -> Result<(), EncodeIssue> {
+fn check_keys(s: &Struct, obj: &Fields, path: &str) -> Result<(), EncodeIssue> {
     let known = |k: &str| s.fields.iter().any(|f| super::keys(f).contains(&k));
     match obj.keys().find(|k| !known(k)) {
         Some(k) => Err(EncodeIssue::new(
@@ -71,10 +69,10 @@ fn write_field(
     p: &Protocol,
     f: &Field,
     kind: &FieldKind,
-    obj: &Map<String, Value>,
+    obj: &Fields,
     w: &mut Writer<'_>,
     path: &str,
-    owner: &Map<String, Value>,
+    owner: &Fields,
 ) -> Result<(), EncodeIssue> {
     let buffer = |e| EncodeIssue::runtime(e);
     let fpath = join(path, &f.name);
@@ -131,7 +129,7 @@ fn write_field(
             let v = obj
                 .get(&f.name)
                 .ok_or_else(|| EncodeIssue::missing(&fpath))?;
-            let bytes = json_bytes(v).ok_or_else(|| {
+            let bytes = value_bytes(v).ok_or_else(|| {
                 EncodeIssue::new(
                     &fpath,
                     "expected bytes: a hex string or an array of numbers 0..=255",
@@ -174,7 +172,7 @@ fn write_field(
             let es = &p.structs[*elem];
             for (i, item) in items.iter().enumerate() {
                 let ipath = format!("{fpath}[{i}]");
-                let iobj = item.as_object().ok_or_else(|| {
+                let iobj = item.as_struct().ok_or_else(|| {
                     EncodeIssue::new(&ipath, format!("expected an object (struct `{}`)", es.name))
                 })?;
                 check_keys(es, iobj, &ipath)?;
@@ -187,9 +185,10 @@ fn write_field(
     }
 }
 
-/// Bytes from JSON: a hex string, or an array of numbers.
-fn json_bytes(v: &Value) -> Option<Vec<u8>> {
+/// Bytes from a value: bytes, a hex string, or an array of numbers.
+fn value_bytes(v: &Value) -> Option<Vec<u8>> {
     match v {
+        Value::Bytes(b) => Some(b.clone()),
         Value::String(s) => parse_hex(s),
         Value::Array(items) => items
             .iter()
@@ -209,7 +208,7 @@ fn member_raw(p: &Protocol, m: &BitMember, v: &Value, path: &str) -> Result<u64,
             let raw = enum_raw(e, v, path)?;
             Ok(signed_value(e.prim, raw).map_or(raw, |i| i as u64))
         }
-        None => json_bits(v, m.prim).map_err(|e| issue(path, e)),
+        None => value_bits(v, m.prim).map_err(|e| issue(path, e)),
     }
 }
 
@@ -226,7 +225,7 @@ fn write_elem(
             scalar,
             scale: None,
         } => {
-            let bits = json_bits(v, scalar.prim).map_err(|e| issue(path, e))?;
+            let bits = value_bits(v, scalar.prim).map_err(|e| issue(path, e))?;
             write_bits(w, *scalar, bits).map_err(buffer)
         }
         ValueType::Scalar {
@@ -249,8 +248,8 @@ fn write_elem(
 /// raw type; a value the raw type cannot hold is refused.
 fn scaled_raw(scalar: Scalar, sc: &Scale, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
     let value = match sc.physical {
-        Prim::F32 => json_f32(v).map(f64::from),
-        _ => json_f64(v),
+        Prim::F32 => value_f32(v).map(f64::from),
+        _ => value_f64(v),
     }
     .map_err(|e| issue(path, e))?;
     let physical = match sc.clamp {
@@ -312,7 +311,7 @@ fn enum_raw(e: &Enum, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
                 )
             });
     }
-    let raw = json_bits(v, e.prim).map_err(|err| match err {
+    let raw = value_bits(v, e.prim).map_err(|err| match err {
         NumError::Type(_) => EncodeIssue::new(
             path,
             format!("expected a variant name of `{}` or its value", e.name),

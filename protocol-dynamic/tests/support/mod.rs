@@ -3,10 +3,8 @@
 //! generated `Packet` of the same frame, so the two codecs are compared field for field.
 #![allow(dead_code)]
 
-use protocol_cli::interp::{Decoded, Interpreter, json_f32, json_f64};
 use protocol_codegen::ir::{FieldKind, Prim, Protocol, Role, UnknownPolicy, ValueType};
-use protocol_codegen::source::SpecSource;
-use serde_json::Value;
+use protocol_dynamic::{Decoded, Interpreter, Value, hex, value_f32, value_f64};
 
 /// The interpreter of `specs/NAME.toml`, or of `tests/fixtures/NAME.toml` when there is no
 /// such spec.
@@ -26,13 +24,11 @@ pub fn interpreter(name: &str) -> Interpreter {
     .find(|(p, _)| std::path::Path::new(p).exists())
     .unwrap_or_else(|| panic!("no spec named {name}"));
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let p = protocol_codegen::compile(&SpecSource::new(shown, text))
-        .unwrap_or_else(|d| panic!("{name} is invalid: {d:?}"));
-    Interpreter::new(p)
+    Interpreter::from_text(shown, text).unwrap_or_else(|e| panic!("{name} is invalid:\n{e}"))
 }
 
 /// `tests/vectors/NAME`.
-pub fn vectors(name: &str) -> Value {
+pub fn vectors(name: &str) -> serde_json::Value {
     let path = format!("{}/../tests/vectors/{name}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
     serde_json::from_str(&text).expect("vector file is JSON")
@@ -40,7 +36,7 @@ pub fn vectors(name: &str) -> Value {
 
 /// Bytes of hex text.
 pub fn unhex(text: &str) -> Vec<u8> {
-    protocol_cli::interp::parse_hex(text).expect("valid hex")
+    protocol_dynamic::parse_hex(text).expect("valid hex")
 }
 
 /// xorshift64*: deterministic test data without dependencies.
@@ -76,8 +72,8 @@ pub fn pascal(name: &str) -> String {
 fn int_text(prim: Prim, v: &Value) -> String {
     match prim {
         Prim::Bool => v.as_bool().expect("bool").to_string(),
-        Prim::F32 => format!("{:?}", json_f32(v).expect("f32")),
-        Prim::F64 => format!("{:?}", json_f64(v).expect("f64")),
+        Prim::F32 => format!("{:?}", value_f32(v).expect("f32")),
+        Prim::F64 => format!("{:?}", value_f64(v).expect("f64")),
         _ if prim.is_signed() => v.as_i64().expect("integer").to_string(),
         _ => v.as_u64().expect("integer").to_string(),
     }
@@ -137,7 +133,7 @@ fn field_text(p: &Protocol, name: &str, kind: &FieldKind, v: &Value, out: &mut V
         FieldKind::Padding => {}
         FieldKind::Bits { members, .. } => {
             for m in members {
-                let x = &v[&m.name];
+                let x = &v[m.name.as_str()];
                 let text = match m.enum_index {
                     Some(ei) => enum_text(p, ei, x),
                     None => int_text(m.prim, x),
@@ -158,7 +154,10 @@ fn field_text(p: &Protocol, name: &str, kind: &FieldKind, v: &Value, out: &mut V
             }
         }
         FieldKind::Bytes { .. } => {
-            out.push(format!("{name}: Bytes({})", v[name].as_str().expect("hex")));
+            out.push(format!(
+                "{name}: Bytes({})",
+                hex(v[name].as_bytes().expect("bytes"))
+            ));
         }
         FieldKind::Group { elem, .. } => {
             let items: Vec<String> = v[name]
@@ -204,7 +203,13 @@ pub fn rust_debug(p: &Protocol, d: &Decoded) -> String {
         .values
         .iter()
         .filter(|v| matches!(v.role, Role::User { .. }))
-        .map(|v| format!("{}: {}", v.name, int_text(v.prim, &d.header[&v.name])))
+        .map(|v| {
+            format!(
+                "{}: {}",
+                v.name,
+                int_text(v.prim, &d.header[v.name.as_str()])
+            )
+        })
         .collect();
     let header = if header_fields.is_empty() {
         header
@@ -219,7 +224,7 @@ pub fn rust_debug(p: &Protocol, d: &Decoded) -> String {
         );
     }
     let message = if d.ack {
-        format!("Ack(Bytes({}))", d.payload.as_str().expect("hex"))
+        format!("Ack(Bytes({}))", hex(d.payload.as_bytes().expect("bytes")))
     } else {
         let c = &p.commands[d.command.expect("a command")];
         let slot = d.direction.unwrap_or(0);
@@ -233,58 +238,4 @@ pub fn rust_debug(p: &Protocol, d: &Decoded) -> String {
         }
     };
     format!("{packet} {{ header: {header}, message: {message} }}")
-}
-
-/// The workspace root: commands run there, so that paths read as a user types them.
-pub fn root() -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("the crate is in the workspace")
-        .to_path_buf()
-}
-
-/// Runs the `protocol` binary in the workspace root, with `stdin` as its input.
-pub fn protocol(args: &[&str], stdin: &[u8]) -> std::process::Output {
-    use std::io::Write;
-    use std::process::{Command, Stdio};
-    let mut child = Command::new(env!("CARGO_BIN_EXE_protocol"))
-        .args(args)
-        .current_dir(root())
-        .env("NO_COLOR", "1")
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary runs");
-    let mut input = child.stdin.take().expect("stdin");
-    let data = stdin.to_vec();
-    // A thread, so that a child that writes much before reading cannot deadlock the test.
-    let writer = std::thread::spawn(move || {
-        let _ = input.write_all(&data);
-    });
-    let out = child.wait_with_output().expect("the binary ends");
-    let _ = writer.join();
-    out
-}
-
-/// Text of an output stream.
-pub fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
-
-/// JSON Lines of an output stream.
-pub fn json_lines(bytes: &[u8]) -> Vec<Value> {
-    text(bytes)
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("not JSON: {l}: {e}")))
-        .collect()
-}
-
-/// The ground truth the capture script wrote for `examples/captures/NAME`.
-pub fn truth(name: &str) -> Vec<Value> {
-    let path = root()
-        .join("examples/captures")
-        .join(format!("{name}.truth.jsonl"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    json_lines(text.as_bytes())
 }

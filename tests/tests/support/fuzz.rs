@@ -5,10 +5,10 @@
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
 
-use protocol_cli::interp::Interpreter;
 use protocol_codegen::codegen::{RuntimePath, expand_pretty};
 use protocol_codegen::diag::render_all;
 use protocol_codegen::source::SpecSource;
+use protocol_dynamic::{Interpreter, Value};
 
 use super::stream::{assert_chunking_invariant, check_packet};
 use super::{Rng, Source, Spec};
@@ -84,9 +84,10 @@ fn interpreter<S: Spec>() -> &'static Interpreter {
     })
 }
 
-/// The interpreter (`protocol_cli::interp`) and the generated code of `S` on the same bytes:
+/// The run-time codec (`protocol_dynamic`) and the generated code of `S` on the same bytes:
 /// neither panics, they accept and reject the same inputs, and what they accept they re-encode
-/// to the same bytes.
+/// to the same bytes (the codec's frame value going through its JSON form, as
+/// `decode | encode` carries it).
 pub fn interp<S: Spec>(data: &[u8]) {
     let interp = interpreter::<S>();
     let codec = interp.codec();
@@ -103,7 +104,9 @@ pub fn interp<S: Spec>(data: &[u8]) {
         return;
     };
     let frame = S::layout().parse(data).expect("a decoded frame");
-    let object = codec.frame_json(&decoded, 0, frame);
+    let json = serde_json::to_value(codec.frame_value(&decoded, 0, frame))
+        .expect("a frame value has a JSON form");
+    let object: Value = serde_json::from_value(json).expect("the JSON form reads back");
     let encoded = codec.encode(&object).unwrap_or_else(|e| {
         panic!(
             "{}: the interpreter does not re-encode {object}: {e:?}",
