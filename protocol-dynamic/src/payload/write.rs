@@ -95,7 +95,7 @@ fn write_field(
         FieldKind::Optional(inner) => {
             let present = super::keys(f)
                 .iter()
-                .any(|k| obj.get(*k).is_some_and(|v| !v.is_null()));
+                .any(|k| obj.get(k).is_some_and(|v| !v.is_null()));
             if present {
                 write_field(p, f, inner, obj, w, path, owner)
             } else {
