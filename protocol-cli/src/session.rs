@@ -1,5 +1,5 @@
-//! A decoding session of `protocol decode`: turns the engine's events (and CAN log records)
-//! into output lines, JSON Lines or table, and counts what it saw for `--stats`.
+//! A decoding session of `protocol decode`: turns the items of a decoded stream (and CAN log
+//! records) into output lines, JSON Lines or table, and counts what it saw for `--stats`.
 //!
 //! Unknown commands and bad frames are events like any other: they are printed and counted,
 //! and the decode goes on. The byte accounting of a serial stream is the engine's
@@ -8,12 +8,12 @@
 
 use std::io::{self, Write};
 
-use protocol_runtime::{CanFrame, DecodeError, Event, Reject, Stats};
+use protocol_dynamic::{Codec, DecodeIssue, Decoded, Item, hex};
+use protocol_runtime::{CanFrame, DecodeError, Reject, Stats};
 use serde_json::{Map, Value};
 
 use crate::candump::CanRecord;
 use crate::table::{Widths, event_line, frame_line};
-use protocol_dynamic::{Codec, DecodeIssue, Decoded, hex};
 
 /// How frames and events are printed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -92,17 +92,21 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
         }
     }
 
-    /// Handles one event of the stream engine.
+    /// Handles one item of a decoded stream ([`protocol_dynamic::Stream`]).
     ///
     /// # Errors
     /// When the output cannot be written.
-    pub fn event(&mut self, event: &Event<'_>) -> io::Result<()> {
-        match event {
-            Event::Frame(f) => self.frame(f.offset, f.bytes, f.bytes),
-            Event::Rejected { offset, reason } => {
-                self.emit(*offset, reject_name(*reason), 1, Map::new())
+    pub fn item(&mut self, item: Item<'_>) -> io::Result<()> {
+        match item {
+            Item::Frame {
+                offset,
+                bytes,
+                decoded,
+            } => self.decoded(offset, bytes, decoded, Map::new()),
+            Item::Rejected { offset, reason } => {
+                self.emit(offset, reject_name(reason), 1, Map::new())
             }
-            Event::Skipped { offset, len } => self.emit(*offset, "skipped", *len, Map::new()),
+            Item::Skipped { offset, len } => self.emit(offset, "skipped", len, Map::new()),
         }
     }
 
@@ -157,12 +161,6 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
             None => self.counts.can_rejected.push((name.to_string(), 1)),
         }
         self.emit(index, name, record.data.len(), extra)
-    }
-
-    /// A frame the engine accepted.
-    fn frame(&mut self, offset: u64, frame: &[u8], shown: &[u8]) -> io::Result<()> {
-        let result = self.codec.decode_frame(self.format, frame);
-        self.decoded(offset, shown, result, Map::new())
     }
 
     fn decoded(

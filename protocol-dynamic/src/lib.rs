@@ -7,7 +7,7 @@
 //! checked by [`protocol_codegen::compile`], so a bad spec gives the macro's diagnostics) and
 //! runs the runtime's own engine on it: every frame format becomes a runtime
 //! [`FrameLayout`] value (what generated code holds as its `LAYOUT` static), so finding frames
-//! in a stream ([`protocol_runtime::StreamDecoder`], with [`Codec::layout`]), verifying them
+//! in a stream ([`Codec::stream`], on [`protocol_runtime::StreamDecoder`]), verifying them
 //! and sealing them use the very code generated codecs use, and the wire rules exist once.
 //! What this crate adds is the dynamic half of generated code: header values, dispatch,
 //! directions and payload structs, to and from [`Value`] (see [`model`] for how each IR type
@@ -59,6 +59,7 @@ pub mod model;
 mod payload;
 #[cfg(feature = "serde")]
 mod serde_impl;
+mod stream;
 mod value;
 
 pub use error::{DecodeIssue, EncodeIssue};
@@ -66,6 +67,7 @@ pub use frame::{Decoded, Dispatch, ack_value, dispatch_of, hex, parse_hex};
 pub use layout::word_field;
 pub use load::LoadError;
 pub use model::{Fields, Value};
+pub use stream::{Item, Stream};
 pub use value::{NumError, value_f32, value_f64};
 
 use protocol_codegen::ir::{Protocol, Transport};
@@ -134,6 +136,14 @@ impl Codec<'_> {
     /// generated code's `LAYOUT` holds it. `None` for an index out of range.
     pub fn layout(&self, format: usize) -> Option<FrameLayout<'_>> {
         self.frames.get(format).map(FrameParts::layout)
+    }
+
+    /// A stream decoder of frame format `format`: the runtime's engine on its layout, each
+    /// frame it finds decoded ([`decode_frame`](Self::decode_frame)). `None` for an index out
+    /// of range.
+    pub fn stream(&self, format: usize) -> Option<Stream<'_>> {
+        let layout = self.layout(format)?;
+        Some(Stream::new(self, format, layout))
     }
 
     /// The index of the frame format named `name`.

@@ -13,7 +13,7 @@ mod support;
 
 use protocol::{CanFrame, DecodeError, EncodeError, Event, FrameLayout, StreamDecoder};
 use protocol_codegen::ir::{DirectionRule, Protocol, Transport};
-use protocol_dynamic::{Codec, DecodeIssue, Decoded, Interpreter, Value, hex, word_field};
+use protocol_dynamic::{Codec, DecodeIssue, Decoded, Interpreter, Item, Value, hex, word_field};
 use support::{Rng, interpreter, rust_debug, unhex, vectors};
 
 protocol::protocol!("../specs/hflink.toml");
@@ -505,8 +505,41 @@ fn random_messages_decode_and_encode_alike() {
     }
 }
 
+/// The items of the codec's own stream decoder over `bytes` in chunks of `n`, as event texts;
+/// every frame's decoded message is compared with the generated `Packet::decode` of it.
+fn stream_items(codec: &Codec<'_>, g: &Gen, bytes: &[u8], n: usize) -> Vec<String> {
+    let mut stream = codec.stream(0).expect("a stream");
+    let mut texts = Vec::new();
+    let mut tally = Tally::default();
+    let mut take = |item: Item<'_>, texts: &mut Vec<String>| match item {
+        Item::Frame {
+            offset,
+            bytes,
+            decoded,
+        } => {
+            let label = format!("{}: stream frame @{offset}", g.spec);
+            compare(codec, &label, (g.decode)(bytes), decoded, &mut tally);
+            texts.push(format!("frame @{offset} {}", hex(bytes)));
+        }
+        Item::Rejected { offset, reason } => {
+            texts.push(event_text(&Event::Rejected { offset, reason }));
+        }
+        Item::Skipped { offset, len } => texts.push(event_text(&Event::Skipped { offset, len })),
+    };
+    for mut chunk in bytes.chunks(n) {
+        while let Some(item) = stream.next_item(&mut chunk) {
+            take(item, &mut texts);
+        }
+    }
+    while let Some(item) = stream.flush_item() {
+        take(item, &mut texts);
+    }
+    texts
+}
+
 /// The streams of the vector files, in chunks of several sizes: the interpreter's layout in
-/// the engine yields the events of the generated decoder.
+/// the engine yields the events of the generated decoder, and so does the codec's stream
+/// decoder, whose frames decode as generated code decodes them.
 #[test]
 fn vector_streams_yield_the_same_events() {
     let files: &[(&str, &str)] = &[
@@ -542,6 +575,11 @@ fn vector_streams_yield_the_same_events() {
                 assert!(
                     events.iter().any(|e| e.starts_with("frame")),
                     "{spec}: no frame"
+                );
+                assert_eq!(
+                    stream_items(&codec, g, &bytes, n),
+                    events,
+                    "{spec}: the codec's stream in chunks of {n}"
                 );
             }
         }

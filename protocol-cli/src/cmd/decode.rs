@@ -17,8 +17,7 @@ use miette::{IntoDiagnostic, Result, WrapErr, miette};
 use protocol_cli::candump;
 use protocol_cli::session::{Output, Session};
 use protocol_codegen::ir::Transport;
-use protocol_dynamic::{Codec, Interpreter, parse_hex};
-use protocol_runtime::{FrameLayout, StreamDecoder};
+use protocol_dynamic::{Codec, Interpreter, Stream, parse_hex};
 
 use super::load_checked;
 use crate::Format;
@@ -79,11 +78,19 @@ pub fn run(args: &Args) -> Result<ExitCode> {
             .wrap_err_with(|| format!("cannot read `{}`", path.display()))?;
         decode_candump(&mut session, &path.display().to_string(), &text).map(|()| None)
     } else {
-        let layout = codec
-            .layout(format)
-            .ok_or_else(|| miette!("no frame format {format}"))?;
         let mut input = open_input(args)?;
-        stream(&layout, &mut input, &mut session).map(Some)
+        let (decoder, layout) = codec
+            .stream(format)
+            .zip(codec.layout(format))
+            .ok_or_else(|| miette!("no frame format {format}"))?;
+        if layout.max_len > decoder.capacity() {
+            eprintln!(
+                "warning: frames longer than {} bytes (the format allows {}) are rejected as bad lengths",
+                decoder.capacity(),
+                layout.max_len
+            );
+        }
+        stream(decoder, &mut input, &mut session).map(Some)
     }
     .and_then(|engine| session.flush().map(|()| engine));
     let engine = match decoded {
@@ -275,34 +282,12 @@ impl Input {
     }
 }
 
-/// Runs the engine over the whole input; returns its stats.
+/// Runs the stream decoder over the whole input; returns the engine's stats.
 fn stream<W: Write>(
-    layout: &FrameLayout<'_>,
+    mut decoder: Stream<'_>,
     input: &mut Input,
     session: &mut Session<'_, '_, W>,
 ) -> io::Result<protocol_runtime::Stats> {
-    // The engine's buffer is a const generic: the smallest of a few sizes that holds the
-    // format's largest frame, so that no valid frame is refused for want of room.
-    match layout.max_len {
-        0..=256 => stream_n::<256, W>(layout, input, session),
-        257..=4096 => stream_n::<4096, W>(layout, input, session),
-        4097..=65_600 => stream_n::<65_600, W>(layout, input, session),
-        _ => stream_n::<{ 1 << 20 }, W>(layout, input, session),
-    }
-}
-
-fn stream_n<const N: usize, W: Write>(
-    layout: &FrameLayout<'_>,
-    input: &mut Input,
-    session: &mut Session<'_, '_, W>,
-) -> io::Result<protocol_runtime::Stats> {
-    if layout.max_len > N {
-        eprintln!(
-            "warning: frames longer than {N} bytes (the format allows {}) are rejected as bad lengths",
-            layout.max_len
-        );
-    }
-    let mut decoder = Box::new(StreamDecoder::<_, N>::new(layout));
     let mut buf = vec![0u8; CHUNK];
     let live = input.live();
     loop {
@@ -311,15 +296,15 @@ fn stream_n<const N: usize, W: Write>(
             break;
         }
         session.fed(chunk.len());
-        while let Some(event) = decoder.next_event(&mut chunk) {
-            session.event(&event)?;
+        while let Some(item) = decoder.next_item(&mut chunk) {
+            session.item(item)?;
         }
         if live {
             session.flush()?;
         }
     }
-    while let Some(event) = decoder.flush_event() {
-        session.event(&event)?;
+    while let Some(item) = decoder.flush_item() {
+        session.item(item)?;
     }
     Ok(*decoder.stats())
 }

@@ -1,0 +1,141 @@
+//! Decoding a byte stream: the runtime's [`StreamDecoder`] on a format's layout finds the
+//! frames, rejections and skipped bytes, and the codec decodes each frame it finds.
+//!
+//! This module owns the engine's buffer size: a const generic, chosen at run time as the
+//! smallest of a few sizes that holds the format's largest frame, so that no valid frame is
+//! refused for want of room. Finding and verifying frames is the engine's business.
+
+use protocol_runtime::layout::LayoutRef;
+use protocol_runtime::{Event, FrameLayout, Reject, Stats, StreamDecoder};
+
+use crate::{Codec, DecodeIssue, Decoded};
+
+/// A layout held by value, so that a [`Stream`] owns what its engine reads.
+#[derive(Clone, Copy)]
+struct Held<'c>(FrameLayout<'c>);
+
+impl LayoutRef for Held<'_> {
+    fn layout(&self) -> &FrameLayout<'_> {
+        &self.0
+    }
+}
+
+/// The engine with a buffer of one of the sizes a frame format may need. Boxed: the largest
+/// buffer is a megabyte.
+enum Engine<'c> {
+    B256(Box<StreamDecoder<Held<'c>, 256>>),
+    B4096(Box<StreamDecoder<Held<'c>, 4096>>),
+    B65600(Box<StreamDecoder<Held<'c>, 65_600>>),
+    B1M(Box<StreamDecoder<Held<'c>, { 1 << 20 }>>),
+}
+
+/// What a [`Stream`] reports: the runtime's [`Event`]s, with each frame decoded.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Item<'s> {
+    /// A frame the engine accepted, and what the codec made of it.
+    Frame {
+        /// Offset of its first byte in the whole stream.
+        offset: u64,
+        /// The frame's bytes.
+        bytes: &'s [u8],
+        /// The decoded frame, or why the frame holds no message of the spec.
+        decoded: Result<Decoded, DecodeIssue>,
+    },
+    /// A candidate starting at `offset` was rejected (as [`Event::Rejected`]).
+    Rejected {
+        /// Offset of the candidate's first byte in the stream.
+        offset: u64,
+        /// Why it was rejected.
+        reason: Reject,
+    },
+    /// A run of bytes where no candidate starts (as [`Event::Skipped`]).
+    Skipped {
+        /// Offset of the run's first byte in the stream.
+        offset: u64,
+        /// Bytes in the run.
+        len: usize,
+    },
+}
+
+/// A stream decoder of one frame format. Made by [`Codec::stream`].
+pub struct Stream<'c> {
+    codec: &'c Codec<'c>,
+    format: usize,
+    engine: Engine<'c>,
+}
+
+impl<'c> Stream<'c> {
+    pub(crate) fn new(codec: &'c Codec<'c>, format: usize, layout: FrameLayout<'c>) -> Self {
+        let held = Held(layout);
+        let engine = match layout.max_len {
+            0..=256 => Engine::B256(Box::new(StreamDecoder::new(held))),
+            257..=4096 => Engine::B4096(Box::new(StreamDecoder::new(held))),
+            4097..=65_600 => Engine::B65600(Box::new(StreamDecoder::new(held))),
+            _ => Engine::B1M(Box::new(StreamDecoder::new(held))),
+        };
+        Stream {
+            codec,
+            format,
+            engine,
+        }
+    }
+
+    /// The largest frame the engine's buffer holds. A format whose frames may be longer (more
+    /// than a megabyte) has its longer frames rejected as bad lengths.
+    pub fn capacity(&self) -> usize {
+        match self.engine {
+            Engine::B256(_) => 256,
+            Engine::B4096(_) => 4096,
+            Engine::B65600(_) => 65_600,
+            Engine::B1M(_) => 1 << 20,
+        }
+    }
+
+    /// The next item of the stream, consuming `input` as the engine reads it
+    /// ([`StreamDecoder::next_event`]); `None` when `input` is used up and more is needed.
+    pub fn next_item<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Item<'s>> {
+        let (codec, format) = (self.codec, self.format);
+        let event = match &mut self.engine {
+            Engine::B256(d) => d.next_event(input),
+            Engine::B4096(d) => d.next_event(input),
+            Engine::B65600(d) => d.next_event(input),
+            Engine::B1M(d) => d.next_event(input),
+        }?;
+        Some(item(codec, format, event))
+    }
+
+    /// The items left in the engine's buffer at the end of the input
+    /// ([`StreamDecoder::flush_event`]); `None` when none is left.
+    pub fn flush_item(&mut self) -> Option<Item<'_>> {
+        let (codec, format) = (self.codec, self.format);
+        let event = match &mut self.engine {
+            Engine::B256(d) => d.flush_event(),
+            Engine::B4096(d) => d.flush_event(),
+            Engine::B65600(d) => d.flush_event(),
+            Engine::B1M(d) => d.flush_event(),
+        }?;
+        Some(item(codec, format, event))
+    }
+
+    /// The engine's counts so far.
+    pub fn stats(&self) -> &Stats {
+        match &self.engine {
+            Engine::B256(d) => d.stats(),
+            Engine::B4096(d) => d.stats(),
+            Engine::B65600(d) => d.stats(),
+            Engine::B1M(d) => d.stats(),
+        }
+    }
+}
+
+fn item<'s>(codec: &Codec<'_>, format: usize, event: Event<'s>) -> Item<'s> {
+    match event {
+        Event::Frame(f) => Item::Frame {
+            offset: f.offset,
+            bytes: f.bytes,
+            decoded: codec.decode_frame(format, f.bytes),
+        },
+        Event::Rejected { offset, reason } => Item::Rejected { offset, reason },
+        Event::Skipped { offset, len } => Item::Skipped { offset, len },
+    }
+}
