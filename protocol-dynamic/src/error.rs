@@ -1,7 +1,7 @@
-//! What can go wrong when the interpreter decodes a frame ([`DecodeIssue`]) or encodes a frame
-//! object ([`EncodeIssue`]).
+//! What can go wrong when the codec decodes a frame ([`DecodeIssue`]) or encodes a frame
+//! value ([`EncodeIssue`]).
 //!
-//! Decoding mirrors the runtime's [`DecodeError`] one for one (so that the interpreter can be
+//! Decoding mirrors the runtime's [`DecodeError`] one for one (so that the codec can be
 //! compared with generated code), with the names a person needs: the command, the field.
 //! Encoding reports the path of the offending value (`payload.utc_time.year`).
 

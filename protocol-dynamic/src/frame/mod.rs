@@ -87,7 +87,7 @@ pub fn stuffing(f: &Frame) -> Option<Stuffing<'_>> {
 }
 
 /// A header value as generated header structs hold it: `value as T`, or `value != 0`.
-fn header_json(v: &HeaderValue, raw: u64) -> Value {
+fn header_value(v: &HeaderValue, raw: u64) -> Value {
     if v.prim == Prim::Bool {
         Value::Bool(raw != 0)
     } else {
@@ -115,7 +115,7 @@ fn read_header(p: &Protocol, f: &Frame, frame: &[u8]) -> Result<Fields, DecodeIs
             .read(frame)
             .ok_or_else(|| header_truncated(p, frame))?;
         if !is_can_id(f, v) {
-            out.insert(v.name.clone(), header_json(v, raw));
+            out.insert(v.name.clone(), header_value(v, raw));
         }
     }
     Ok(out)

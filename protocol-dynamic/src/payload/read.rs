@@ -164,7 +164,7 @@ fn read_member(p: &Protocol, m: &BitMember, word: u64, path: &str) -> Result<Val
     Ok(match m.enum_index {
         Some(ei) => {
             let e = &p.enums[ei];
-            enum_json(e, ei, truncate(e.prim, bits), path)?
+            enum_value(e, ei, truncate(e.prim, bits), path)?
         }
         None if m.prim == Prim::Bool => Value::Bool(bits != 0),
         None => Value::from(truncate(m.prim, bits)),
@@ -199,7 +199,7 @@ fn read_elem(
         ValueType::Struct(si) => Value::Struct(read_struct(p, *si, r, path)?),
         ValueType::Enum(ei, scalar) => {
             let raw = read_scalar(r, *scalar)?;
-            enum_json(
+            enum_value(
                 &p.enums[*ei],
                 *ei,
                 truncate(scalar.prim, raw.as_u64()),
@@ -210,7 +210,7 @@ fn read_elem(
 }
 
 /// The value of an enum's raw value (bits truncated to the enum's type).
-fn enum_json(e: &Enum, ei: usize, raw: u64, path: &str) -> Result<Value, ReadFail> {
+fn enum_value(e: &Enum, ei: usize, raw: u64, path: &str) -> Result<Value, ReadFail> {
     if let Some(v) = variant(e, raw) {
         return Ok(Value::from(v.name.clone()));
     }
