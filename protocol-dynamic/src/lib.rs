@@ -45,6 +45,21 @@
 //! ([`Codec::frame_value`]) serialized with `serde_json` is one line of `protocol decode`'s JSON
 //! Lines output, and such a line deserialized is what [`Codec::encode`] takes.
 //!
+//! ```
+//! # #[cfg(feature = "serde")] {
+//! # let interp = protocol_dynamic::Interpreter::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../specs/hflink.toml"))?;
+//! # let codec = interp.codec();
+//! let line = r#"{"command":"SET_ROBOT_SPEED","header":{"sender":1,"receiver":17},"payload":{"x":0.5,"y":0.0,"z":0.1}}"#;
+//! let object: protocol_dynamic::Value = serde_json::from_str(line)?;
+//! let frame = codec.encode(&object)?;
+//! let decoded = codec.parse(0, &frame.bytes)?;
+//! let printed = serde_json::to_string(&codec.frame_value(&decoded, 0, &frame.bytes))?;
+//! // The f32 0.1 prints as the shortest decimal that reads back as the same bits.
+//! assert!(printed.contains(r#""payload":{"x":0.5,"y":0.0,"z":0.1}"#), "{printed}");
+//! # }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! Layouts borrow CRC objects, so they cannot live in the same struct as them: an
 //! [`Interpreter`] owns the protocol and its CRC objects, and a [`Codec`] borrowed from it holds
 //! the layouts' slices.
