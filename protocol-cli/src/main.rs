@@ -1,6 +1,7 @@
 //! The `protocol` command: check, document, decode, encode, expand and diff protocol specs,
 //! without compiling anything. Every command reads a spec through the same pipeline as the
-//! `protocol!` macro; `decode` and `encode` run the interpreter on the runtime's own engine.
+//! `protocol!` macro; `decode` and `encode` run the run-time codec of `protocol-dynamic` on the
+//! runtime's own engine.
 //!
 //! This file owns the command line (clap) and the exit status; each command lives in
 //! [`cmd`].

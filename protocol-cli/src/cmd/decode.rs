@@ -1,6 +1,6 @@
 //! `protocol decode SPEC [INPUT|-] [--hex] [--serial PORT --baud N] [--candump FILE]
 //! [--format table|json] [--stats]`: find and decode the frames of a byte stream with the
-//! runtime's stream engine, on the interpreter's layout of the spec.
+//! runtime's stream engine, on the layout `protocol-dynamic` builds of the spec.
 //!
 //! This module owns where the bytes come from (a file, stdin, hex text, a serial port, a CAN
 //! log) and when the input ends; what a line says is the session's business.
