@@ -5,7 +5,7 @@
 //!   port is also driven with one call per byte, and on clean streams the two length-walk floors
 //!   are timed (framing only, and framing with the runtime's checks); with
 //!   `PROTOCOL_BENCH_ABLATION=1`, also the generated decoder reading its layout through a
-//!   reference, as the CLI's interpreter does;
+//!   reference, as the run-time codec does;
 //! - encoders (generated, hand-written): a million frames into a reused buffer, for each
 //!   protocol.
 //!
@@ -43,7 +43,7 @@ use protocol_benches::{ChunkDecoder, generated};
 const CHUNK: usize = 64;
 
 /// Whether to also time the generated decoders with the layout read through a reference (as
-/// the CLI's interpreter does), to show what a compile-time layout buys.
+/// the run-time codec does), to show what a compile-time layout buys.
 fn ablation() -> bool {
     std::env::var_os("PROTOCOL_BENCH_ABLATION").is_some_and(|v| v != "0")
 }

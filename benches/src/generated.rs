@@ -23,13 +23,13 @@ pub fn referee_decoder() -> Generated<referee::Layout, { referee::DECODER_BUFFER
     Generated(referee::decoder())
 }
 
-/// The generated HFLink layout read through a reference, as the CLI's interpreter reads its own.
+/// The generated HFLink layout read through a reference, as the run-time codec reads its own.
 pub fn hflink_decoder_by_ref()
 -> Generated<&'static protocol::FrameLayout<'static>, { hflink::DECODER_BUFFER_LEN }> {
     Generated(StreamDecoder::new(&hflink::LAYOUT))
 }
 
-/// The generated referee layout read through a reference, as the CLI's interpreter reads its own.
+/// The generated referee layout read through a reference, as the run-time codec reads its own.
 pub fn referee_decoder_by_ref()
 -> Generated<&'static protocol::FrameLayout<'static>, { referee::DECODER_BUFFER_LEN }> {
     Generated(StreamDecoder::new(&referee::LAYOUT))

@@ -3,7 +3,7 @@
 //!
 //! This module owns the encoding rules of every frame format: which parts of a frame the
 //! runtime computes (sync, length, constants, checks, markers) and in which order. The caller
-//! (generated code, or the CLI's interpreter) writes the user's header fields and the payload
+//! (generated code, or the run-time codec) writes the user's header fields and the payload
 //! straight into the output buffer, then seals it: no frame is built on the stack and copied.
 
 use crate::decoder::Probe;

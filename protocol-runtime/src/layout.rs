@@ -1,5 +1,5 @@
 //! The description of a frame format as data: where the sync bytes, the length, the checks and
-//! the trailers are. Generated code builds one as a `static`; the CLI's interpreter builds one
+//! the trailers are. Generated code builds one as a `static`; the run-time codec builds one
 //! at run time from a spec. Both hand it to the same engine ([`crate::decoder`]) and the same
 //! sealing step ([`FrameLayout::seal`]), so the wire rules exist once.
 
@@ -153,7 +153,7 @@ pub struct FrameLayout<'a> {
 }
 
 /// Where the engine finds a frame format: a [`FrameLayout`] reference built at run time (the
-/// CLI's interpreter), or a zero-sized type whose [`layout`](Self::layout) returns a `static`
+/// run-time codec), or a zero-sized type whose [`layout`](Self::layout) returns a `static`
 /// (generated code).
 ///
 /// Why a trait and not always a reference: the engine reads the layout for every candidate

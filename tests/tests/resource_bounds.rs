@@ -19,7 +19,7 @@ impl LayoutRef for Static {
     }
 }
 
-/// A decoder of a layout built at run time (the CLI's interpreter): a reference to it.
+/// A decoder of a layout built at run time (the run-time codec): a reference to it.
 type ByRef<const N: usize> = StreamDecoder<&'static FrameLayout<'static>, N>;
 /// A decoder of a generated layout.
 type ByType<const N: usize> = StreamDecoder<Static, N>;
