@@ -8,6 +8,10 @@
 //! The wire vocabulary is the runtime's own ([`ByteOrder`], [`Pos`]): what the IR says is what
 //! the engine runs, with nothing to translate in between.
 
+/// How a scaled value is rounded to its raw integer, and what an enum does with a value that
+/// has no variant: the runtime's own field rules ([`protocol_runtime::field`]), which the
+/// generated code and the run-time codec both apply.
+pub use protocol_runtime::field::{Rounding, UnknownPolicy};
 pub use protocol_runtime::layout::{ByteOrder, Pos};
 
 /// A whole protocol spec, checked.
@@ -269,15 +273,6 @@ pub struct Scale {
     pub clamp: Option<(f64, f64)>,
 }
 
-/// Rounding of a scaled value to its raw integer.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Rounding {
-    /// To the nearest integer, halves away from zero.
-    Nearest,
-    /// Toward zero (as a C cast does).
-    Truncate,
-}
-
 /// A named group of bits inside a `Bits` field or a header word.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BitMember {
@@ -322,15 +317,6 @@ pub struct EnumVariant {
     pub value: u64,
     /// Documentation.
     pub doc: String,
-}
-
-/// What an enum does with a value that has no variant.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum UnknownPolicy {
-    /// Decoding fails.
-    Reject,
-    /// Decoding keeps the raw value in an `Unknown(raw)` variant.
-    Keep,
 }
 
 /// How frames travel.

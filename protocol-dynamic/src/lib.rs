@@ -41,6 +41,34 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! A stream ([`Codec::stream`]) takes bytes in chunks of any size and yields [`Item`]s: frames
+//! with their decoded message, rejected candidates and skipped bytes.
+//!
+//! ```
+//! use protocol_dynamic::{Interpreter, Item};
+//!
+//! let interp = Interpreter::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../specs/hflink.toml"))?;
+//! let codec = interp.codec();
+//! // A stray byte, then a READ_ROBOT_SPEED request (FF FF sender receiver length command sum).
+//! let capture = [0x42, 0xFF, 0xFF, 0x01, 0x11, 0x00, 0x01, 0x0D, 0x20];
+//! let mut stream = codec.stream(0).expect("hflink has a frame format");
+//! let mut seen = Vec::new();
+//! for mut chunk in capture.chunks(4) {
+//!     while let Some(item) = stream.next_item(&mut chunk) {
+//!         seen.push(match item {
+//!             Item::Frame { offset, decoded: Ok(d), .. } => {
+//!                 format!("{offset}: {}", interp.protocol().commands[d.command.unwrap()].name)
+//!             }
+//!             Item::Frame { offset, .. } => format!("{offset}: no message"),
+//!             Item::Rejected { offset, .. } => format!("{offset}: rejected"),
+//!             Item::Skipped { offset, len } => format!("{offset}: {len} skipped"),
+//!         });
+//!     }
+//! }
+//! assert_eq!(seen, ["0: 1 skipped", "1: READ_ROBOT_SPEED"]);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! With the `serde` feature, a [`Value`] is `Serialize` and `Deserialize`: a frame value
 //! ([`Codec::frame_value`]) serialized with `serde_json` is one line of `protocol decode`'s JSON
 //! Lines output, and such a line deserialized is what [`Codec::encode`] takes.

@@ -110,27 +110,17 @@ fn checks_hold(frame: &ir::Frame, bytes: &[u8]) -> bool {
     })
 }
 
+/// The CRC of `data` by the `crc` crate's own implementation (not the runtime's tables), on the
+/// parameters the codecs intern.
 fn crc_of(p: &ir::CrcParams, data: &[u8]) -> u64 {
-    macro_rules! crc {
-        ($t:ty) => {{
-            let alg: &'static crc::Algorithm<$t> = Box::leak(Box::new(crc::Algorithm {
-                width: p.width,
-                poly: p.poly as $t,
-                init: p.init as $t,
-                refin: p.refin,
-                refout: p.refout,
-                xorout: p.xorout as $t,
-                check: p.check as $t,
-                residue: p.residue as $t,
-            }));
-            u64::from(crc::Crc::<$t>::new(alg).checksum(data))
-        }};
-    }
+    use protocol_codegen::layout::{
+        crc_algorithm8, crc_algorithm16, crc_algorithm32, crc_algorithm64,
+    };
     match p.width {
-        8 => crc!(u8),
-        16 => crc!(u16),
-        32 => crc!(u32),
-        _ => crc!(u64),
+        8 => u64::from(crc::Crc::<u8>::new(crc_algorithm8(p)).checksum(data)),
+        16 => u64::from(crc::Crc::<u16>::new(crc_algorithm16(p)).checksum(data)),
+        32 => u64::from(crc::Crc::<u32>::new(crc_algorithm32(p)).checksum(data)),
+        _ => crc::Crc::<u64>::new(crc_algorithm64(p)).checksum(data),
     }
 }
 

@@ -16,7 +16,7 @@ mod write;
 pub use read::{ReadFail, read_payload};
 pub use write::write_payload;
 
-use protocol_codegen::ir::{Enum, Field, FieldKind, Prim, UnknownPolicy};
+use protocol_codegen::ir::{Enum, Field, FieldKind, Prim};
 
 use crate::value::truncate;
 
@@ -42,14 +42,6 @@ fn signed_value(prim: Prim, raw: u64) -> Option<i64> {
 /// The variant of an enum with raw value `raw` (bits truncated to the enum's type).
 fn variant(e: &Enum, raw: u64) -> Option<&protocol_codegen::ir::EnumVariant> {
     e.variants.iter().find(|v| truncate(e.prim, v.value) == raw)
-}
-
-/// What `e` does with unknown values, as the runtime's field rules name it.
-fn policy(e: &Enum) -> protocol_runtime::field::UnknownPolicy {
-    match e.unknown {
-        UnknownPolicy::Keep => protocol_runtime::field::UnknownPolicy::Keep,
-        UnknownPolicy::Reject => protocol_runtime::field::UnknownPolicy::Reject,
-    }
 }
 
 /// The names a field takes in its struct's object: its name, or its bit members' names.

@@ -3,7 +3,7 @@
 use protocol_codegen::ir::{BitMember, Enum, Field, FieldKind, Prim, Protocol, ValueType};
 use protocol_runtime::{DecodeError, Reader, field};
 
-use super::{join, policy, signed_value, variant};
+use super::{join, signed_value, variant};
 use crate::model::{Fields, Value};
 use crate::value::{read_scalar, truncate};
 
@@ -215,7 +215,7 @@ fn enum_value(e: &Enum, ei: usize, raw: u64, path: &str) -> Result<Value, ReadFa
         return Ok(Value::from(v.name.clone()));
     }
     let signed = signed_value(e.prim, raw);
-    if policy(e).unknown(raw).is_ok() {
+    if e.unknown.unknown(raw).is_ok() {
         return Ok(match signed {
             Some(i) => Value::Int(i),
             None => Value::UInt(raw),

@@ -3,11 +3,11 @@
 //! `max`, an unknown variant of a rejecting enum) are refused with the path of the value.
 
 use protocol_codegen::ir::{
-    BitMember, Enum, Field, FieldKind, Prim, Protocol, Rounding, Scalar, Scale, Struct, ValueType,
+    BitMember, Enum, Field, FieldKind, Prim, Protocol, Scalar, Scale, Struct, ValueType,
 };
 use protocol_runtime::{EncodeError, Writer, field};
 
-use super::{join, policy, signed_value, variant};
+use super::{join, signed_value, variant};
 use crate::error::EncodeIssue;
 use crate::frame::parse_hex;
 use crate::model::{Fields, Value};
@@ -256,11 +256,7 @@ fn scaled_raw(scalar: Scalar, sc: &Scale, v: &Value, path: &str) -> Result<u64, 
         Some((lo, hi)) => field::clamp(value, lo, hi),
         None => value,
     };
-    let rounding = match sc.rounding {
-        Rounding::Nearest => field::Rounding::Nearest,
-        Rounding::Truncate => field::Rounding::Truncate,
-    };
-    let q = field::quantize(physical, sc.factor, sc.offset, rounding);
+    let q = field::quantize(physical, sc.factor, sc.offset, sc.rounding);
     let raw = fit_bits(scalar.prim, q).map_err(|_| {
         EncodeIssue::new(
             path,
@@ -318,7 +314,7 @@ fn enum_raw(e: &Enum, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
         ),
         NumError::Range(m) => EncodeIssue::new(path, m),
     })?;
-    if policy(e).encode(variant(e, raw).is_some()).is_ok() {
+    if e.unknown.encode(variant(e, raw).is_some()).is_ok() {
         Ok(raw)
     } else {
         Err(EncodeIssue::new(
