@@ -241,24 +241,37 @@ pub trait Payload: Sized {
 }
 
 /// An operation on the payload of a message, whatever the payload's type. A generated message
-/// enum opens itself in one place (`visit_payload`, one arm per variant) and hands the payload
-/// to a visitor: [`WireLen`] measures it, [`WritePayload`] writes it. Each call is
-/// monomorphised, so it compiles to the same code as a match per operation.
-pub trait PayloadVisitor {
+/// enum opens itself in one place (`visit_payload`, one arm per variant) and hands the variant's
+/// command (of type `C`) and payload to a visitor: [`CommandOf`] takes the command, [`WireLen`]
+/// measures the payload, [`WritePayload`] writes it. Each call is monomorphised, so it compiles
+/// to the same code as a match per operation.
+pub trait PayloadVisitor<C> {
     /// What the operation gives.
     type Output;
-    /// Applies the operation to `payload`.
-    fn visit<P: Payload>(self, payload: &P) -> Self::Output;
+    /// Applies the operation to the message of `command` carrying `payload`.
+    fn visit<P: Payload>(self, command: C, payload: &P) -> Self::Output;
+}
+
+/// The message's command.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CommandOf;
+
+impl<C> PayloadVisitor<C> for CommandOf {
+    type Output = C;
+    #[inline(always)]
+    fn visit<P: Payload>(self, command: C, _: &P) -> C {
+        command
+    }
 }
 
 /// The payload's size on the wire ([`Payload::wire_len`]).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct WireLen;
 
-impl PayloadVisitor for WireLen {
+impl<C> PayloadVisitor<C> for WireLen {
     type Output = usize;
     #[inline(always)]
-    fn visit<P: Payload>(self, payload: &P) -> usize {
+    fn visit<P: Payload>(self, _: C, payload: &P) -> usize {
         payload.wire_len()
     }
 }
@@ -267,10 +280,10 @@ impl PayloadVisitor for WireLen {
 #[derive(Debug)]
 pub struct WritePayload<'w, 'b>(pub &'w mut Writer<'b>);
 
-impl PayloadVisitor for WritePayload<'_, '_> {
+impl<C> PayloadVisitor<C> for WritePayload<'_, '_> {
     type Output = Result<(), EncodeError>;
     #[inline(always)]
-    fn visit<P: Payload>(self, payload: &P) -> Result<(), EncodeError> {
+    fn visit<P: Payload>(self, _: C, payload: &P) -> Result<(), EncodeError> {
         payload.write(self.0)
     }
 }
@@ -298,6 +311,20 @@ pub fn expected_empty(bytes: &[u8]) -> DecodeError {
 #[inline(always)]
 pub fn read_payload<P: Payload>(bytes: &[u8]) -> Result<P, DecodeError> {
     P::from_bytes(bytes)
+}
+
+/// Reads a header value of `frame` at `field`; a frame too short for it is
+/// [`DecodeError::Truncated`], needing the `header_len` bytes every frame of its format has.
+///
+/// # Errors
+///
+/// [`DecodeError::Truncated`] if `frame` ends before the field.
+#[inline(always)]
+pub fn header_value(frame: &[u8], field: WordField, header_len: usize) -> Result<u64, DecodeError> {
+    field.read(frame).ok_or(DecodeError::Truncated {
+        needed: header_len,
+        available: frame.len(),
+    })
 }
 
 /// Writes a header value into `frame` at `field`.

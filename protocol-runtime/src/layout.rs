@@ -57,6 +57,43 @@ pub struct WordField {
     pub width: u8,
 }
 
+impl WordField {
+    /// A whole little-endian word of `size` bytes at `at` bytes from the frame's start (a
+    /// single byte has no byte order; it is written as little-endian).
+    #[must_use]
+    pub const fn le(at: usize, size: u8) -> Self {
+        Self::whole(Pos::Start(at), size, ByteOrder::Little)
+    }
+
+    /// A whole big-endian word of `size` bytes at `at` bytes from the frame's start.
+    #[must_use]
+    pub const fn be(at: usize, size: u8) -> Self {
+        Self::whole(Pos::Start(at), size, ByteOrder::Big)
+    }
+
+    /// A whole word of `size` bytes at `at`, in byte order `order`.
+    #[must_use]
+    pub const fn whole(at: Pos, size: u8, order: ByteOrder) -> Self {
+        Self {
+            at,
+            size,
+            order,
+            shift: 0,
+            width: size.saturating_mul(8),
+        }
+    }
+
+    /// The same word narrowed to `width` bits starting at bit `shift`.
+    #[must_use]
+    pub const fn bits(self, shift: u8, width: u8) -> Self {
+        Self {
+            shift,
+            width,
+            ..self
+        }
+    }
+}
+
 /// How the total length of a frame is known.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum LengthRule {

@@ -9,7 +9,7 @@ use quote::{format_ident, quote};
 
 use super::docs::{doc_attrs, frame_doc};
 use super::payload::prim_type;
-use super::{RuntimePath, const_ident, ident};
+use super::{const_ident, ident, rt};
 use crate::ir::{
     Algorithm, ByteOrder, Check, Frame, HeaderValue, Pos, Prim, Protocol, Role, Transport,
 };
@@ -39,8 +39,19 @@ pub fn word_field(rt: &TokenStream, v: &HeaderValue) -> TokenStream {
         shift,
         width,
     } = layout::word_field(v);
-    let (at, ord) = (pos(rt, at), order(rt, ord));
-    quote!(#rt::WordField { at: #at, size: #size, order: #ord, shift: #shift, width: #width })
+    let whole = match (at, ord) {
+        (Pos::Start(n), ByteOrder::Little) => quote!(#rt::WordField::le(#n, #size)),
+        (Pos::Start(n), ByteOrder::Big) => quote!(#rt::WordField::be(#n, #size)),
+        (at, ord) => {
+            let (at, ord) = (pos(rt, at), order(rt, ord));
+            quote!(#rt::WordField::whole(#at, #size, #ord))
+        }
+    };
+    if shift == 0 && u32::from(width) == u32::from(size) * 8 {
+        whole
+    } else {
+        quote!(#whole.bits(#shift, #width))
+    }
 }
 
 /// Name of the `wire` const of a header value.
@@ -128,8 +139,8 @@ fn width_prim(width: u8) -> Prim {
 
 /// The `LAYOUT` static of a frame format, as [`lower_layout`] plans it, with the CRC tables
 /// its checks borrow.
-fn emit_layout(rt: &TokenStream, prefix: &str, f: &Frame, name: &Ident) -> TokenStream {
-    let doc = doc_attrs(&frame_doc(f));
+fn emit_layout(rt: &TokenStream, prefix: &str, f: &Frame, name: &Ident, doc: &str) -> TokenStream {
+    let doc = doc_attrs(doc);
     let plan: LayoutPlan<'_> = lower_layout(f);
     let field = |value: usize| value_const(prefix, &f.values[value]);
     let length = match (plan.length, plan.length_value) {
@@ -190,127 +201,143 @@ fn emit_layout(rt: &TokenStream, prefix: &str, f: &Frame, name: &Ident) -> Token
     }
 }
 
-/// Every frame format: consts, `wire` fields, layout, header struct (first frame), decoder.
-pub fn emit_frames(p: &Protocol, paths: &RuntimePath) -> TokenStream {
-    let rt = paths.private();
+/// Every frame format: consts, layout, decoder; then the `wire` fields of all, and the header
+/// structs.
+pub fn emit_frames(p: &Protocol) -> TokenStream {
     let mut out = TokenStream::new();
-    for f in &p.frames {
-        let prefix = f.names.const_prefix.clone();
-        let c = |n: &str| const_ident(&format!("{prefix}{n}"));
-        let (max_frame, min_frame, max_payload, min_payload, header_len, trailer_len) = (
-            c("MAX_FRAME_LEN"),
-            c("MIN_FRAME_LEN"),
-            c("MAX_PAYLOAD_LEN"),
-            c("MIN_PAYLOAD_LEN"),
-            c("HEADER_LEN"),
-            c("TRAILER_LEN"),
-        );
-        let (maxf, minf, maxp, minp, hl, tl) = (
-            f.max_len(),
-            f.min_len(),
-            f.payload_max,
-            f.payload_min,
-            f.header_len,
-            f.trailer_len,
-        );
-        let layout_name = c("LAYOUT");
-        let fname = &f.name;
-        let layout = emit_layout(&rt, &prefix, f, &layout_name);
-        let decoder_name = format_ident!("{}", f.names.decoder);
-        let decoder_fn = format_ident!("{}", f.names.decoder_fn);
-        let decoder_doc = format!(
-            " A streaming decoder of `{fname}` frames: a fixed buffer of `{}` bytes, no heap.",
-            c("DECODER_BUFFER_LEN")
-        );
-        let doc_max_frame = format!(" Largest `{fname}` frame, in bytes.");
-        let doc_min_frame = format!(" Smallest `{fname}` frame, in bytes.");
-        let doc_max_payload = format!(" Largest payload of a `{fname}` frame, in bytes.");
-        let doc_min_payload = format!(" Smallest payload of a `{fname}` frame, in bytes.");
-        let doc_header_len = format!(" Bytes of a `{fname}` frame before its payload.");
-        let doc_trailer_len = format!(" Bytes of a `{fname}` frame after its payload.");
-        let doc_new_decoder = format!(" A new decoder of `{fname}` frames.");
-        out.extend(quote! {
-            #[doc = #doc_max_frame]
-            pub const #max_frame: usize = #maxf;
-            #[doc = #doc_min_frame]
-            pub const #min_frame: usize = #minf;
-            #[doc = #doc_max_payload]
-            pub const #max_payload: usize = #maxp;
-            #[doc = #doc_min_payload]
-            pub const #min_payload: usize = #minp;
-            #[doc = #doc_header_len]
-            pub const #header_len: usize = #hl;
-            #[doc = #doc_trailer_len]
-            pub const #trailer_len: usize = #tl;
-            #layout
-        });
+    for (i, f) in p.frames.iter().enumerate() {
+        out.extend(emit_frame_consts(f));
+        // The module's page shows the first frame's table; the others' layouts carry their own.
+        let doc = if i == 0 {
+            format!(
+                " The `{}` frame format (its table is on the module's page).",
+                f.name
+            )
+        } else {
+            frame_doc(f)
+        };
+        let layout = const_ident(&format!("{}LAYOUT", f.names.const_prefix));
+        out.extend(emit_layout(&rt(), &f.names.const_prefix, f, &layout, &doc));
         // A CAN frame arrives whole: it has a packet type, not a stream decoder.
         if f.transport == Transport::Serial {
-            let buffer = decoder_buffer_len(f.max_len());
-            let buffer_name = c("DECODER_BUFFER_LEN");
-            let layout_type = format_ident!("{}", f.names.layout);
-            let buffer_doc = format!(
-                " Bytes of the buffer of a [`{decoder_name}`]: a pending frame, a chunk of input \
-                 staged behind it, and room for a checksum window."
-            );
-            let layout_type_doc = format!(
-                " [`{layout_name}`] as a type: the engine reads the layout as a compile-time \
-                 constant and compiles to code for `{fname}` frames alone."
-            );
-            out.extend(quote! {
-                #[doc = #layout_type_doc]
-                #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
-                pub struct #layout_type;
-                impl #rt::LayoutRef for #layout_type {
-                    #[inline(always)]
-                    fn layout(&self) -> &#rt::FrameLayout<'_> {
-                        &#layout_name
-                    }
-                }
-                #[doc = #buffer_doc]
-                pub const #buffer_name: usize = #buffer;
-                #[doc = #decoder_doc]
-                pub type #decoder_name = #rt::StreamDecoder<#layout_type, #buffer_name>;
-                #[doc = #doc_new_decoder]
-                pub const fn #decoder_fn() -> #decoder_name {
-                    #rt::StreamDecoder::new(#layout_type)
-                }
-            });
+            out.extend(emit_decoder(f, &layout));
         }
     }
-    // Header value positions of every frame, in one module.
-    let wire_items = p.frames.iter().flat_map(|f| {
-        let prefix = f.names.const_prefix.clone();
-        let fname = f.name.clone();
-        let rt = rt.clone();
-        f.values
-            .iter()
-            .map(move |v| {
-                let name = value_const(&prefix, v);
-                let lit = word_field(&rt, v);
-                let doc = format!(" Where `{}` sits in a `{fname}` frame.", v.name);
-                quote!(#[doc = #doc] pub const #name: #rt::WordField = #lit;)
-            })
-            .collect::<Vec<_>>()
-    });
-    out.extend(quote! {
-        /// Where each header value sits in a frame (for reading raw frames).
-        pub mod wire {
-            #(#wire_items)*
+    out.extend(emit_wire(p));
+    for (i, f) in p.frames.iter().enumerate() {
+        if i == 0 || f.transport != Transport::Serial || f.message.is_some() {
+            out.extend(emit_header(f, &format_ident!("{}", f.names.header)));
         }
-    });
-    if let Some(f) = p.frames.first() {
-        out.extend(emit_header(f, &format_ident!("{}", f.names.header)));
-    }
-    for f in p
-        .frames
-        .iter()
-        .skip(1)
-        .filter(|f| f.transport != Transport::Serial || f.message.is_some())
-    {
-        out.extend(emit_header(f, &format_ident!("{}", f.names.header)));
     }
     out
+}
+
+/// The size consts of a frame format.
+fn emit_frame_consts(f: &Frame) -> TokenStream {
+    let fname = &f.name;
+    let consts = [
+        (
+            "MAX_FRAME_LEN",
+            f.max_len(),
+            "Largest `{}` frame, in bytes.",
+        ),
+        (
+            "MIN_FRAME_LEN",
+            f.min_len(),
+            "Smallest `{}` frame, in bytes.",
+        ),
+        (
+            "MAX_PAYLOAD_LEN",
+            f.payload_max,
+            "Largest payload of a `{}` frame, in bytes.",
+        ),
+        (
+            "MIN_PAYLOAD_LEN",
+            f.payload_min,
+            "Smallest payload of a `{}` frame, in bytes.",
+        ),
+        (
+            "HEADER_LEN",
+            f.header_len,
+            "Bytes of a `{}` frame before its payload.",
+        ),
+        (
+            "TRAILER_LEN",
+            f.trailer_len,
+            "Bytes of a `{}` frame after its payload.",
+        ),
+    ];
+    consts
+        .into_iter()
+        .map(|(name, value, doc)| {
+            let name = const_ident(&format!("{}{name}", f.names.const_prefix));
+            let doc = format!(" {}", doc.replace("{}", fname));
+            quote!(#[doc = #doc] pub const #name: usize = #value;)
+        })
+        .collect()
+}
+
+/// The layout type, buffer size, decoder type and constructor of a serial frame format.
+fn emit_decoder(f: &Frame, layout: &Ident) -> TokenStream {
+    let rt = rt();
+    let fname = &f.name;
+    let buffer = decoder_buffer_len(f.max_len());
+    let buffer_name = const_ident(&format!("{}DECODER_BUFFER_LEN", f.names.const_prefix));
+    let layout_type = format_ident!("{}", f.names.layout);
+    let decoder = format_ident!("{}", f.names.decoder);
+    let decoder_fn = format_ident!("{}", f.names.decoder_fn);
+    let buffer_doc = format!(
+        " Bytes of the buffer of a [`{decoder}`]: a pending frame, a chunk of input staged \
+         behind it, and room for a checksum window."
+    );
+    let layout_type_doc = format!(
+        " [`{layout}`] as a type: the engine reads the layout as a compile-time constant and \
+         compiles to code for `{fname}` frames alone."
+    );
+    let decoder_doc = format!(
+        " A streaming decoder of `{fname}` frames: a fixed buffer of `{buffer_name}` bytes, no heap."
+    );
+    let new_doc = format!(" A new decoder of `{fname}` frames.");
+    quote! {
+        #[doc = #layout_type_doc]
+        #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+        pub struct #layout_type;
+        impl #rt::LayoutRef for #layout_type {
+            #[inline(always)]
+            fn layout(&self) -> &#rt::FrameLayout<'_> {
+                &#layout
+            }
+        }
+        #[doc = #buffer_doc]
+        pub const #buffer_name: usize = #buffer;
+        #[doc = #decoder_doc]
+        pub type #decoder = #rt::StreamDecoder<#layout_type, #buffer_name>;
+        #[doc = #new_doc]
+        pub const fn #decoder_fn() -> #decoder {
+            #rt::StreamDecoder::new(#layout_type)
+        }
+    }
+}
+
+/// The `wire` module: where each header value of every frame format sits.
+fn emit_wire(p: &Protocol) -> TokenStream {
+    let rt = rt();
+    let items = p.frames.iter().flat_map(|f| {
+        f.values.iter().map(|v| {
+            let name = value_const(&f.names.const_prefix, v);
+            let lit = word_field(&rt, v);
+            let doc = format!(" Where `{}` sits in a `{}` frame.", v.name, f.name);
+            quote!(#[doc = #doc] pub const #name: #rt::WordField = #lit;)
+        })
+    });
+    let items: Vec<TokenStream> = items.collect();
+    quote! {
+        /// Where each header value sits in a frame (for reading raw frames).
+        pub mod wire {
+            use super::__rt;
+            #(#items)*
+        }
+    }
 }
 
 /// The user-set header values of the first frame.

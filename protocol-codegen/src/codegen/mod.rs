@@ -65,7 +65,7 @@ pub fn expand(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     let addresses = types::emit_addresses(p);
     let enums = types::emit_enums(p);
     let structs = types::emit_structs(p);
-    let frames = frame::emit_frames(p, paths);
+    let frames = frame::emit_frames(p);
     let dispatch = dispatch::emit_dispatch(p);
     let private = paths.private();
     quote! {

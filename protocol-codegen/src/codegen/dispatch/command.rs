@@ -1,0 +1,164 @@
+//! The `Command` enum: every command of the spec with its id and name, and its CAN ids.
+
+use proc_macro2::TokenStream;
+use quote::quote;
+
+use super::{id_type, id_value};
+use crate::codegen::docs::doc_attrs;
+use crate::codegen::ident;
+use crate::ir::{Frame, Protocol, Transport};
+
+pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
+    let id_ty = id_type(f);
+    // Ids 0, 1, 2, ... of one key field are the variants' discriminants: `id` is a cast. (Other
+    // ids stay a match: sparse discriminants would make every match on a command sparse too.)
+    let single = f.dispatch.len() == 1
+        && p.commands
+            .iter()
+            .enumerate()
+            .all(|(i, c)| c.id == [i as u64]);
+    let keys: Vec<&str> = f
+        .dispatch
+        .iter()
+        .map(|&i| f.values[i].name.as_str())
+        .collect();
+    let variants = p.commands.iter().map(|c| {
+        let v = ident(&c.rust_name);
+        let ids =
+            c.id.iter()
+                .map(|x| format!("{x:#04x}"))
+                .collect::<Vec<_>>()
+                .join(", ");
+        let d = doc_attrs(&format!("`{}` (id {ids}). {}", c.name, c.doc));
+        if single {
+            let id = id_value(f, c);
+            quote!(#d #v = #id)
+        } else {
+            quote!(#d #v)
+        }
+    });
+    let all = p.commands.iter().map(|c| {
+        let v = ident(&c.rust_name);
+        quote!(Self::#v)
+    });
+    let n = p.commands.len();
+    let to_id = if single {
+        quote!(self as CommandId)
+    } else {
+        let arms = p.commands.iter().map(|c| {
+            let v = ident(&c.rust_name);
+            let id = id_value(f, c);
+            quote!(Self::#v => #id,)
+        });
+        quote!(match self { #(#arms)* })
+    };
+    let repr = if single {
+        quote!(#[repr(#id_ty)])
+    } else {
+        quote!()
+    };
+    // Dense ids index `ALL`; other ids are a match.
+    let lookups = if single {
+        quote! {
+            /// The command with this id, if any.
+            pub const fn from_id(id: CommandId) -> #rt::Option<Self> {
+                if (id as usize) < Self::ALL.len() {
+                    #rt::Some(Self::ALL[id as usize])
+                } else {
+                    #rt::None
+                }
+            }
+        }
+    } else {
+        let from_id = p.commands.iter().map(|c| {
+            let v = ident(&c.rust_name);
+            let id = id_value(f, c);
+            quote!(#id => #rt::Some(Self::#v),)
+        });
+        quote! {
+            /// The command with this id, if any.
+            pub const fn from_id(id: CommandId) -> #rt::Option<Self> {
+                match id {
+                    #(#from_id)*
+                    _ => #rt::None,
+                }
+            }
+        }
+    };
+    let names = p.commands.iter().map(|c| &c.name);
+    let id_doc = format!(
+        " A command id: the value of the dispatch key ({}).",
+        keys.join(", ")
+    );
+    let can = emit_can_ids(p, rt);
+    quote! {
+        #[doc = #id_doc]
+        pub type CommandId = #id_ty;
+        /// Every command of the spec, with its id.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        #repr
+        pub enum Command {
+            #(#variants,)*
+        }
+        impl Command {
+            /// Every command, in spec order.
+            pub const ALL: [Command; #n] = [#(#all),*];
+            /// Every command's name in the spec, in spec order.
+            pub const NAMES: [&'static str; #n] = [#(#names),*];
+            /// The command's id.
+            pub const fn id(self) -> CommandId {
+                #to_id
+            }
+            #lookups
+            /// The command's name in the spec.
+            pub const fn name(self) -> &'static str {
+                // The variants' discriminants are their places in spec order (or, with dense
+                // ids, the ids, which are the same).
+                Self::NAMES[self as usize]
+            }
+            #can
+        }
+    }
+}
+
+/// `Command::can_id` and `Command::from_can_id`, when a frame format is CAN.
+fn emit_can_ids(p: &Protocol, rt: &TokenStream) -> TokenStream {
+    if p.frames
+        .iter()
+        .skip(1)
+        .any(|f| matches!(f.transport, Transport::Can { .. }))
+    {
+        let to = p.commands.iter().map(|c| {
+            let v = ident(&c.rust_name);
+            match c.can_id {
+                Some(id) => {
+                    let id = id as u32;
+                    quote!(Self::#v => #rt::Some(#id),)
+                }
+                None => quote!(Self::#v => #rt::None,),
+            }
+        });
+        let from = p.commands.iter().filter_map(|c| {
+            let v = ident(&c.rust_name);
+            let id = c.can_id? as u32;
+            Some(quote!(#id => #rt::Some(Self::#v),))
+        });
+        quote! {
+            /// The command's CAN id, if it has one.
+            pub const fn can_id(self) -> #rt::Option<u32> {
+                match self {
+                    #(#to)*
+                }
+            }
+            /// The command with this CAN id, if any.
+            pub const fn from_can_id(id: u32) -> #rt::Option<Self> {
+                match id {
+                    #(#from)*
+                    _ => #rt::None,
+                }
+            }
+        }
+    } else {
+        quote!()
+    }
+}

@@ -1,0 +1,179 @@
+//! The packets of the frame formats after the first: `<Name>Packet` for a format that carries
+//! one struct, and for a CAN format; and the header codec every packet uses.
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use crate::codegen::frame::{user_values, value_const};
+use crate::codegen::payload::prim_type;
+use crate::codegen::{const_ident, ident};
+use crate::ir::{Frame, Prim, Protocol};
+
+/// `<Name>Packet` for a CAN frame format: decode from and encode to a `CanFrame`, through the
+/// frame's virtual layout (id, length, data) so the runtime verifies and seals its checks.
+pub(super) fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> TokenStream {
+    let header = format_ident!("{}", f.names.header);
+    let packet = format_ident!("{}", f.names.packet);
+    let layout = const_ident(&format!("{prefix}LAYOUT"));
+    let header_len = const_ident(&format!("{prefix}HEADER_LEN"));
+    let trailer_len = const_ident(&format!("{prefix}TRAILER_LEN"));
+    let prefix_can_id = const_ident(&format!("{prefix}can_id"));
+    let (reads, writes) = header_codec(f, prefix, rt);
+    let doc = format!(
+        " A whole `{}` CAN frame, decoded: the header values and the message.",
+        f.name
+    );
+    let decode_doc = " Decode a received CAN frame, verifying its checks.";
+    quote! {
+        #[doc = #doc]
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct #packet {
+            /// The header values the sender set.
+            pub header: #header,
+            /// The command and its payload.
+            pub message: Message,
+        }
+        impl #packet {
+            #[doc = #decode_doc]
+            ///
+            /// # Errors
+            /// `DecodeError::Frame` when a check fails or the length is wrong,
+            /// `UnknownCommand` for an id the spec does not have, `PayloadLength` when the
+            /// payload's size is not the command's.
+            pub fn decode(can: &#rt::CanFrame) -> #rt::DecodeResult<Self> {
+                let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
+                let frame = #layout.parse(can.to_virtual(&mut virt))?;
+                let command = Command::from_can_id(can.id).ok_or(#rt::DecodeError::UnknownCommand { key: can.id as u64 })?;
+                let payload = frame
+                    .get(#header_len..frame.len().saturating_sub(#trailer_len))
+                    .ok_or(#rt::DecodeError::Truncated { needed: #header_len + #trailer_len, available: frame.len() })?;
+                #rt::Ok(#packet {
+                    header: #header { #(#reads,)* },
+                    message: Message::read_payload(command, payload)?,
+                })
+            }
+            /// Encode into a CAN frame.
+            ///
+            /// # Errors
+            /// `EncodeError::ValueOutOfRange` when the command has no CAN id or a header value
+            /// does not fit its field.
+            pub fn encode(&self) -> #rt::Result<#rt::CanFrame, #rt::EncodeError> {
+                let id = self.message.command().can_id().ok_or(#rt::EncodeError::ValueOutOfRange)?;
+                let total = #header_len.saturating_add(self.message.payload_len()).saturating_add(#trailer_len);
+                let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
+                let frame = virt.get_mut(..total).ok_or(#rt::EncodeError::PayloadTooLarge { len: total, max: #rt::CAN_VIRTUAL_LEN })?;
+                #rt::write_header(frame, wire::#prefix_can_id, u64::from(id))?;
+                #(#writes)*
+                let payload = frame
+                    .get_mut(#header_len..total.saturating_sub(#trailer_len))
+                    .ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available: #rt::CAN_VIRTUAL_LEN })?;
+                self.message.write_payload(&mut #rt::Writer::new(payload))?;
+                #layout.seal(frame)?;
+                #rt::CanFrame::from_virtual(frame)
+            }
+        }
+    }
+}
+
+/// `<Name>Packet` for a frame format without dispatch key: every frame carries one struct.
+pub(super) fn emit_message_packet(
+    p: &Protocol,
+    f: &Frame,
+    si: usize,
+    prefix: &str,
+    rt: &TokenStream,
+) -> TokenStream {
+    let header = format_ident!("{}", f.names.header);
+    let packet = format_ident!("{}", f.names.packet);
+    let st = ident(&p.structs[si].name);
+    let layout = const_ident(&format!("{prefix}LAYOUT"));
+    let header_len = const_ident(&format!("{prefix}HEADER_LEN"));
+    let trailer_len = const_ident(&format!("{prefix}TRAILER_LEN"));
+    let (reads, writes) = header_codec(f, prefix, rt);
+    let doc = format!(
+        " A whole `{}` frame, decoded: the header values and its `{}`.",
+        f.name, p.structs[si].name
+    );
+    quote! {
+        #[doc = #doc]
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct #packet {
+            /// The header values the sender set.
+            pub header: #header,
+            /// What the frame carries.
+            pub payload: #st,
+        }
+        impl #packet {
+            /// Decode the frame at the start of `bytes`, checking its framing first.
+            ///
+            /// # Errors
+            /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they end
+            /// early, `PayloadLength` if the payload's size does not fit the struct.
+            pub fn decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
+                Self::from_frame(#layout.parse(bytes)?)
+            }
+            /// Decode a frame whose framing a decoder already checked.
+            ///
+            /// # Errors
+            /// `PayloadLength` if the payload's size does not fit the struct, and errors of its
+            /// fields.
+            pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
+                let payload = frame
+                    .get(#header_len..frame.len().saturating_sub(#trailer_len))
+                    .ok_or(#rt::DecodeError::Truncated { needed: #header_len + #trailer_len, available: frame.len() })?;
+                #rt::Ok(#packet {
+                    header: #header { #(#reads,)* },
+                    payload: #rt::Payload::from_bytes(payload)?,
+                })
+            }
+            /// Bytes of the encoded frame.
+            #[inline(always)]
+            pub fn encoded_len(&self) -> usize {
+                #header_len.saturating_add(#rt::Payload::wire_len(&self.payload)).saturating_add(#trailer_len)
+            }
+            /// Encode the frame into the start of `buf`; returns its length.
+            ///
+            /// # Errors
+            /// `EncodeError::BufferTooSmall` if `buf` is too short, `ValueOutOfRange` if a
+            /// header value does not fit its field.
+            #[inline(always)]
+            pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
+                let total = self.encoded_len();
+                let available = buf.len();
+                let frame = buf.get_mut(..total).ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
+                #(#writes)*
+                let payload = frame
+                    .get_mut(#header_len..total.saturating_sub(#trailer_len))
+                    .ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
+                #rt::Payload::write(&self.payload, &mut #rt::Writer::new(payload))?;
+                #layout.seal(frame)?;
+                #rt::Ok(total)
+            }
+        }
+    }
+}
+
+/// Reading the user-set header values of frame `f` into a header struct's fields, and writing
+/// them back from `self.header`, through the `wire` consts of the frame (named with `prefix`).
+pub(super) fn header_codec(
+    f: &Frame,
+    prefix: &str,
+    rt: &TokenStream,
+) -> (Vec<TokenStream>, Vec<TokenStream>) {
+    let header_len = const_ident(&format!("{prefix}HEADER_LEN"));
+    user_values(f)
+        .map(|v| {
+            let id = ident(&v.name);
+            let c = value_const(prefix, v);
+            let value = quote!(#rt::header_value(frame, wire::#c, #header_len)?);
+            let read = if v.prim == Prim::Bool {
+                quote!(#id: #value != 0)
+            } else {
+                let t = prim_type(v.prim);
+                quote!(#id: #value as #t)
+            };
+            let write = quote!(#rt::write_header(frame, wire::#c, self.header.#id as u64)?;);
+            (read, write)
+        })
+        .unzip()
+}

@@ -1,0 +1,163 @@
+//! The message enums: one variant per command holding its payload (`Message`, or one enum per
+//! direction and a `Message` over them), opened in one place by `visit_payload`.
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use crate::codegen::docs::doc_attrs;
+use crate::codegen::ident;
+use crate::ir::Protocol;
+
+pub(super) fn emit_message_enum(
+    p: &Protocol,
+    di: usize,
+    name: &proc_macro2::Ident,
+    doc: &str,
+    rt: &TokenStream,
+) -> TokenStream {
+    // Acknowledgements (a frame format with `ack`): a variant without a command.
+    let ack_max = p
+        .frames
+        .first()
+        .and_then(|f| f.ack.map(|(_, hl)| f.max_len() - hl - f.trailer_len));
+    let doc = doc_attrs(doc);
+    let mut variants = Vec::new();
+    let mut visit_arms = Vec::new();
+    let mut read_arms = Vec::new();
+    let mut any_empty = false;
+    for c in &p.commands {
+        let v = ident(&c.rust_name);
+        let command = match ack_max {
+            None => quote!(C::#v),
+            Some(_) => quote!(#rt::Some(C::#v)),
+        };
+        match c.payloads.get(di).copied().flatten() {
+            Some(si) => {
+                let s = ident(&p.structs[si].name);
+                let d = doc_attrs(&format!(
+                    "`{}`, carrying a `{}`. {}",
+                    c.name, p.structs[si].name, c.doc
+                ));
+                variants.push(quote!(#d #v(#s)));
+                visit_arms.push(quote!(Self::#v(p) => v.visit(#command, p),));
+                read_arms.push(quote!(C::#v => Self::#v(read(b)?),));
+            }
+            None => {
+                let d = doc_attrs(&format!("`{}`, with an empty payload. {}", c.name, c.doc));
+                variants.push(quote!(#d #v));
+                visit_arms.push(quote!(Self::#v => v.visit(#command, &()),));
+                read_arms.push(quote!(C::#v if b.is_empty() => Self::#v,));
+                any_empty = true;
+            }
+        }
+    }
+    if let Some(max) = ack_max {
+        variants.push(quote! {
+            #[doc = " An acknowledgement: no command, the acknowledgement data."]
+            Ack(#rt::Bytes<#max>)
+        });
+        visit_arms.push(quote!(Self::Ack(data) => v.visit(#rt::None, data),));
+    }
+    let payload_fns = emit_payload_fns(
+        rt,
+        ack_max.is_some(),
+        quote!(use Command as C; match self { #(#visit_arms)* }),
+    );
+    // The commands without payload match only an empty one; any other bytes fall through.
+    if any_empty {
+        read_arms.push(quote!(_ => return #rt::Err(#rt::expected_empty(b)),));
+    }
+    quote! {
+        #doc
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub enum #name {
+            #(#variants,)*
+        }
+        impl #name {
+            #payload_fns
+            /// Read the payload of `command` from exactly `b`.
+            ///
+            /// # Errors
+            /// `DecodeError::PayloadLength` if the payload's size is not the command's, or any
+            /// error of the payload's fields (an unknown enum value, ...).
+            pub fn read_payload(command: Command, b: &[u8]) -> #rt::DecodeResult<Self> {
+                use #rt::read_payload as read;
+                use Command as C;
+                // `?` in each arm and one `Ok`: every error leaves by one path.
+                let message = match command {
+                    #(#read_arms)*
+                };
+                #rt::Ok(message)
+            }
+        }
+    }
+}
+
+/// `visit_payload` (whose body, `visit`, opens the message once), and `command`,
+/// `payload_len` and `write_payload` through it.
+fn emit_payload_fns(rt: &TokenStream, acks: bool, visit: TokenStream) -> TokenStream {
+    let (command_ty, command_doc) = if acks {
+        (
+            quote!(#rt::Option<Command>),
+            " The command of this message (`None` for an acknowledgement).",
+        )
+    } else {
+        (quote!(Command), " The command of this message.")
+    };
+    quote! {
+        /// Hands the command and the payload to `v` (`&()` when the command carries none): the
+        /// one place that opens the message, for [`command`](Self::command),
+        /// [`payload_len`](Self::payload_len) and [`write_payload`](Self::write_payload).
+        #[inline(always)]
+        pub fn visit_payload<V: #rt::PayloadVisitor<#command_ty>>(&self, v: V) -> V::Output {
+            #visit
+        }
+        #[doc = #command_doc]
+        #[inline(always)]
+        pub fn command(&self) -> #command_ty {
+            self.visit_payload(#rt::CommandOf)
+        }
+        /// Bytes of the payload on the wire.
+        #[inline(always)]
+        pub fn payload_len(&self) -> usize {
+            self.visit_payload(#rt::WireLen)
+        }
+        /// Write the payload.
+        ///
+        /// # Errors
+        /// `EncodeError::BufferTooSmall` if `w` has too little room, `ValueOutOfRange` if a
+        /// field's value does not fit its wire form.
+        #[inline(always)]
+        pub fn write_payload(&self, w: &mut #rt::Writer<'_>) -> #rt::EncodeResult {
+            self.visit_payload(#rt::WritePayload(w))
+        }
+    }
+}
+
+pub(super) fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
+    let variants = p.directions.iter().map(|d| {
+        let v = format_ident!("{}", d.rust_name);
+        let doc = doc_attrs(&format!("A {}. {}", d.name, d.doc));
+        quote!(#doc #v(#v))
+    });
+    let names: Vec<_> = p
+        .directions
+        .iter()
+        .map(|d| format_ident!("{}", d.rust_name))
+        .collect();
+    let payload_fns = emit_payload_fns(
+        rt,
+        p.frames.first().is_some_and(|f| f.ack.is_some()),
+        quote!(match self { #(Self::#names(m) => m.visit_payload(v),)* }),
+    );
+    quote! {
+        /// A decoded message: its direction, then the command and payload.
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub enum Message {
+            #(#variants,)*
+        }
+        impl Message {
+            #payload_fns
+        }
+    }
+}

@@ -1,0 +1,90 @@
+//! Commands and messages: the `Command` id enum ([`command`]), the dispatch enums (`Message`, or
+//! `Request` and `Response` when the spec has directions; [`message`]), `Packet`, which decodes a
+//! frame into a header and a message and encodes one back through the runtime's
+//! `FrameLayout::seal` ([`packet`]), and the packets of the other frame formats ([`frames`]).
+
+mod command;
+mod frames;
+mod message;
+mod packet;
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use super::payload::prim_type;
+use super::rt;
+use super::types::int_lit;
+use crate::ir::{Command, Frame, PacketKind, Prim, Protocol};
+use command::emit_command_enum;
+use frames::{emit_can_packet, emit_message_packet};
+use message::{emit_direction_message, emit_message_enum};
+use packet::emit_packet;
+
+/// Everything about commands and messages, for the first frame.
+pub fn emit_dispatch(p: &Protocol) -> TokenStream {
+    let Some(f) = p.frames.first() else {
+        return quote!();
+    };
+    if f.dispatch.is_empty() {
+        return quote!();
+    }
+    let rt = rt();
+    let mut out = emit_command_enum(p, f, &rt);
+    if p.directions.is_empty() {
+        out.extend(emit_message_enum(
+            p,
+            0,
+            &format_ident!("Message"),
+            "A decoded message: one variant per command, holding its payload.",
+            &rt,
+        ));
+    } else {
+        for (di, d) in p.directions.iter().enumerate() {
+            let name = format_ident!("{}", d.rust_name);
+            let doc = format!(
+                "A {} message: one variant per command, holding its {} payload. {}",
+                d.name, d.name, d.doc
+            );
+            out.extend(emit_message_enum(p, di, &name, &doc, &rt));
+        }
+        out.extend(emit_direction_message(p, &rt));
+    }
+    out.extend(emit_packet(p, f, &rt));
+    for mf in &p.frames {
+        if let PacketKind::Message(si) = mf.packet {
+            out.extend(emit_message_packet(p, mf, si, &mf.names.const_prefix, &rt));
+        }
+    }
+    for cf in &p.frames {
+        if cf.packet == PacketKind::Can {
+            out.extend(emit_can_packet(cf, &cf.names.const_prefix, &rt));
+        }
+    }
+    out
+}
+
+pub(super) fn key_prims(f: &Frame) -> Vec<Prim> {
+    f.dispatch.iter().map(|&i| f.values[i].prim).collect()
+}
+
+pub(super) fn id_type(f: &Frame) -> TokenStream {
+    let prims: Vec<TokenStream> = key_prims(f).into_iter().map(prim_type).collect();
+    if prims.len() == 1 {
+        prims[0].clone()
+    } else {
+        quote!((#(#prims),*))
+    }
+}
+
+pub(super) fn id_value(f: &Frame, c: &Command) -> TokenStream {
+    let lits: Vec<TokenStream> = key_prims(f)
+        .into_iter()
+        .zip(&c.id)
+        .map(|(p, v)| int_lit(p, *v))
+        .collect();
+    if lits.len() == 1 {
+        lits[0].clone()
+    } else {
+        quote!((#(#lits),*))
+    }
+}

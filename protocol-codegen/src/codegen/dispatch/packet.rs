@@ -1,0 +1,318 @@
+//! `Packet`: the header values and the message of the first frame format, decoded from and
+//! encoded to a frame through `LAYOUT`, with the dispatch key, directions, acknowledgements and
+//! byte stuffing the frame has.
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use super::frames::header_codec;
+use super::key_prims;
+use crate::codegen::frame::value_const;
+use crate::codegen::ident;
+use crate::codegen::payload::prim_type;
+use crate::codegen::types::int_lit;
+use crate::ir::{DirectionRule, Frame, Protocol};
+
+/// The condition that a header is of direction `rule`, as an expression over `header`.
+fn direction_test(p: &Protocol, f: &Frame, rule: &DirectionRule) -> TokenStream {
+    match rule {
+        DirectionRule::InSet { value, set } => {
+            let v = &f.values[*value];
+            let id = ident(&v.name);
+            let a = &p.addresses[*set];
+            let (first, last) = (int_lit(v.prim, a.first), int_lit(v.prim, a.last));
+            quote!((#first..=#last).contains(&header.#id))
+        }
+        DirectionRule::Equals { value, equals } => {
+            let id = ident(&f.values[*value].name);
+            quote!((header.#id as u64) == #equals)
+        }
+    }
+}
+
+/// Reading the dispatch key of a frame into `id`, its value as a `u64` for
+/// `UnknownCommand`, and writing `command`'s id into `frame`.
+struct Key {
+    read: TokenStream,
+    as_u64: TokenStream,
+    write: TokenStream,
+}
+
+fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
+    let consts: Vec<_> = f
+        .dispatch
+        .iter()
+        .map(|&i| value_const("", &f.values[i]))
+        .collect();
+    let prims = key_prims(f);
+    if let ([c], [prim]) = (&consts[..], &prims[..]) {
+        let t = prim_type(*prim);
+        return Key {
+            read: quote!(let id: CommandId = #rt::header_value(frame, wire::#c, HEADER_LEN)? as #t;),
+            as_u64: quote!(id as u64),
+            write: quote!(#rt::write_header(frame, wire::#c, command.id() as u64)?;),
+        };
+    }
+    let vars: Vec<_> = (0..consts.len()).map(|i| format_ident!("k{}", i)).collect();
+    let types: Vec<_> = prims.iter().map(|p| prim_type(*p)).collect();
+    let idx: Vec<syn::Index> = (0..consts.len()).map(syn::Index::from).collect();
+    let widths: Vec<u32> = f.dispatch.iter().map(|&i| f.values[i].width).collect();
+    let mut key = quote!(0u64);
+    for (v, w) in vars.iter().zip(&widths) {
+        key = quote!(((#key) << #w) | (#v as u64));
+    }
+    Key {
+        read: quote!(#(let #vars = #rt::header_value(frame, wire::#consts, HEADER_LEN)? as #types;)* let id: CommandId = (#(#vars),*);),
+        as_u64: quote!({ let (#(#vars),*) = id; #key }),
+        write: quote!(let id = command.id(); #(#rt::write_header(frame, wire::#consts, id.#idx as u64)?;)*),
+    }
+}
+
+/// The message of a decoded frame (by direction when the spec has directions), and the check
+/// that an encoded message's direction matches its header.
+fn packet_direction(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
+    if p.directions.is_empty() {
+        return (quote!(Message::read_payload(command, payload)?), quote!());
+    }
+    let names: Vec<_> = p
+        .directions
+        .iter()
+        .map(|d| format_ident!("{}", d.rust_name))
+        .collect();
+    let tests: Vec<_> = p
+        .directions
+        .iter()
+        .map(|d| direction_test(p, f, &d.rule))
+        .collect();
+    let message = quote! {
+        #(if #tests { Message::#names(#names::read_payload(command, payload)?) } else)*
+        { return #rt::Err(#rt::DecodeError::UnknownDirection); }
+    };
+    let check = quote! {
+        let header = &self.header;
+        let matches = match &self.message { #(Message::#names(_) => #tests,)* };
+        if !matches {
+            return #rt::Err(#rt::EncodeError::ValueOutOfRange);
+        }
+    };
+    (message, check)
+}
+
+/// What acknowledgements add to `Packet`: their decoding (before the dispatch key, which they
+/// lack), their length, the flag written on encoding, where the payload starts, and the
+/// command id written (none for an acknowledgement).
+#[derive(Default)]
+struct AckParts {
+    decode: TokenStream,
+    len_arms: TokenStream,
+    flag: TokenStream,
+    start: TokenStream,
+    write_key: TokenStream,
+}
+
+fn packet_ack(f: &Frame, key: &Key, rt: &TokenStream) -> AckParts {
+    let write = &key.write;
+    let Some((vi, ack_header_len)) = f.ack else {
+        return AckParts {
+            start: quote!(HEADER_LEN),
+            write_key: quote!(let command = self.message.command(); #write),
+            ..AckParts::default()
+        };
+    };
+    let flag = value_const("", &f.values[vi]);
+    // Validation gives the flag the role `Ack`; 1 is its only other possible value.
+    let equals = match f.values[vi].role {
+        crate::ir::Role::Ack(equals) => equals,
+        _ => 1,
+    };
+    let other = 1 - equals;
+    let max = f.max_len() - ack_header_len - f.trailer_len;
+    let bare = f.bare_len.is_some();
+    let end = if bare {
+        quote!(if frame.len() == #ack_header_len { frame.len() } else { frame.len().saturating_sub(TRAILER_LEN) })
+    } else {
+        quote!(frame.len().saturating_sub(TRAILER_LEN))
+    };
+    let bare_arm = if bare {
+        quote!(Message::Ack(data) if data.is_empty() => #ack_header_len,)
+    } else {
+        quote!()
+    };
+    AckParts {
+        decode: quote! {
+            if #rt::header_value(frame, wire::#flag, HEADER_LEN)? == #equals {
+                let data = frame
+                    .get(#ack_header_len..#end)
+                    .ok_or(#rt::DecodeError::Truncated { needed: #ack_header_len, available: frame.len() })?;
+                let data = #rt::Bytes::from_slice(data).ok_or(#rt::DecodeError::PayloadLength { expected: #max, actual: data.len() })?;
+                return #rt::Ok(Packet { header, message: Message::Ack(data) });
+            }
+        },
+        len_arms: quote! {
+            #bare_arm
+            Message::Ack(data) => (#ack_header_len as usize).saturating_add(data.len()).saturating_add(TRAILER_LEN),
+        },
+        flag: quote! {
+            let is_ack = matches!(self.message, Message::Ack(_));
+            #rt::write_header(frame, wire::#flag, if is_ack { #equals } else { #other })?;
+        },
+        start: quote!(if matches!(self.message, Message::Ack(_)) { #ack_header_len } else { HEADER_LEN }),
+        write_key: quote!(if let #rt::Some(command) = self.message.command() { #write }),
+    }
+}
+
+/// `Packet::encoded_len`'s body: the frame's length, with acknowledgements' own lengths, and
+/// with the bytes stuffing inserts (counted by writing the payload aside).
+fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStream {
+    let plain = quote!(
+        HEADER_LEN
+            .saturating_add(self.message.payload_len())
+            .saturating_add(TRAILER_LEN)
+    );
+    let unstuffed = if ack.len_arms.is_empty() {
+        plain
+    } else {
+        let arms = &ack.len_arms;
+        quote!(match &self.message { #arms _ => #plain })
+    };
+    if f.stuffing.is_none() {
+        return unstuffed;
+    }
+    quote! {
+        let mut scratch = [0u8; MAX_PAYLOAD_LEN];
+        let mut w = #rt::Writer::new(&mut scratch);
+        let inserted = match self.message.write_payload(&mut w) {
+            #rt::Ok(()) => STUFFING.count(w.written()),
+            #rt::Err(_) => 0,
+        };
+        (#unstuffed).saturating_add(inserted)
+    }
+}
+
+/// Byte stuffing: the payload is unstuffed before it is read, stuffed after it is written;
+/// the `STUFFING` const.
+fn packet_stuffing(f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream, TokenStream) {
+    match &f.stuffing {
+        Some((after, insert)) => (
+            quote! {
+                let mut unstuffed = [0u8; MAX_PAYLOAD_LEN];
+                let payload = STUFFING.unstuff(payload, &mut unstuffed)?;
+            },
+            quote!(let plen = STUFFING.stuff_in_place(region, plen)?;),
+            quote! {
+                /// The payload's byte stuffing: the sender inserts `insert` after every `after`.
+                pub const STUFFING: #rt::Stuffing<'static> = #rt::Stuffing { after: &[#(#after),*], insert: #insert };
+            },
+        ),
+        None => (quote!(), quote!(), quote!()),
+    }
+}
+
+/// The trailer's length in an encoded frame: a bare header (the header alone) has none.
+fn packet_trailer(f: &Frame) -> TokenStream {
+    if f.bare_len.is_some() {
+        quote!(if start == HEADER_LEN || plen > 0 {
+            TRAILER_LEN
+        } else {
+            0
+        })
+    } else {
+        quote!(TRAILER_LEN)
+    }
+}
+
+/// `Packet`: the header values and the message of the first frame format, decoded from and
+/// encoded to a frame through `LAYOUT`.
+pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
+    let (header_fields, header_writes) = header_codec(f, "", rt);
+    let key = packet_key(f, rt);
+    let (message, direction_check) = packet_direction(p, f, rt);
+    let ack = packet_ack(f, &key, rt);
+    let encoded_len = packet_encoded_len(f, &ack, rt);
+    let (read_key, key_u64) = (&key.read, &key.as_u64);
+    let AckParts {
+        decode: ack_decode,
+        flag: ack_flag,
+        start: start_of,
+        write_key,
+        ..
+    } = &ack;
+    let (unstuff, stuff, stuffing_const) = packet_stuffing(f, rt);
+    let trailer_of = packet_trailer(f);
+    quote! {
+        #stuffing_const
+        /// A whole frame, decoded: the header values and the message.
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct Packet {
+            /// The header values the sender set.
+            pub header: Header,
+            /// The command and its payload.
+            pub message: Message,
+        }
+        impl Packet {
+            /// Decode the frame at the start of `bytes`, checking its framing (sync, length,
+            /// checks) first.
+            ///
+            /// # Errors
+            /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they
+            /// end early, and the errors of [`Packet::from_frame`].
+            pub fn decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
+                Self::from_frame(LAYOUT.parse(bytes)?)
+            }
+            /// Decode a frame whose framing a decoder already checked.
+            ///
+            /// # Errors
+            /// `UnknownCommand` for an id the spec does not have, `UnknownDirection` when the
+            /// header matches no direction, `PayloadLength` when the payload's size is not the
+            /// command's, and errors of the payload's fields.
+            pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
+                let header = Header { #(#header_fields,)* };
+                #ack_decode
+                #read_key
+                let command = Command::from_id(id).ok_or(#rt::DecodeError::UnknownCommand { key: #key_u64 })?;
+                let payload = frame
+                    .get(HEADER_LEN..frame.len().saturating_sub(TRAILER_LEN))
+                    .ok_or(#rt::DecodeError::Truncated { needed: HEADER_LEN + TRAILER_LEN, available: frame.len() })?;
+                #unstuff
+                let message = #message;
+                #rt::Ok(Packet { header, message })
+            }
+            /// Bytes of the encoded frame.
+            #[inline(always)]
+            pub fn encoded_len(&self) -> usize {
+                #encoded_len
+            }
+            /// Encode the frame into the start of `buf`; returns its length.
+            ///
+            /// # Errors
+            /// `EncodeError::BufferTooSmall` if `buf` is shorter than [`Packet::encoded_len`],
+            /// `ValueOutOfRange` if a header value does not fit its field or does not match the
+            /// message's direction.
+            #[inline(always)]
+            pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
+                #direction_check
+                let needed = self.encoded_len();
+                let available = buf.len();
+                if available < needed {
+                    return #rt::Err(#rt::EncodeError::BufferTooSmall { needed, available });
+                }
+                let start = #start_of;
+                // The payload first, in place: its size on the wire decides the frame's length.
+                let region = buf
+                    .get_mut(start..available.saturating_sub(TRAILER_LEN))
+                    .ok_or(#rt::EncodeError::BufferTooSmall { needed, available })?;
+                let mut w = #rt::Writer::new(region);
+                self.message.write_payload(&mut w)?;
+                let plen = w.position();
+                #stuff
+                let total = start.saturating_add(plen).saturating_add(#trailer_of);
+                let frame = buf.get_mut(..total).ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
+                #(#header_writes)*
+                #ack_flag
+                #write_key
+                LAYOUT.seal(frame)?;
+                #rt::Ok(total)
+            }
+        }
+    }
+}
