@@ -327,6 +327,69 @@ pub fn header_value(frame: &[u8], field: WordField, header_len: usize) -> Result
     })
 }
 
+/// The error of a frame whose dispatch key `key` names no command.
+#[inline(always)]
+#[must_use]
+pub const fn unknown_command(key: u64) -> DecodeError {
+    DecodeError::UnknownCommand { key }
+}
+
+/// The payload of a checked frame: its bytes between the `header_len` bytes of its header and
+/// the `trailer_len` bytes of its trailer.
+///
+/// # Errors
+///
+/// [`DecodeError::Truncated`] if `frame` is shorter than its header and trailer.
+#[inline(always)]
+pub fn payload_of(
+    frame: &[u8],
+    header_len: usize,
+    trailer_len: usize,
+) -> Result<&[u8], DecodeError> {
+    frame
+        .get(header_len..frame.len().saturating_sub(trailer_len))
+        .ok_or(DecodeError::Truncated {
+            needed: header_len.saturating_add(trailer_len),
+            available: frame.len(),
+        })
+}
+
+/// Where an encoder writes a payload into `buf`: from `start` up to the `trailer_len` bytes the
+/// trailer needs at the end, once `buf` is known to hold the `needed` bytes of the frame.
+///
+/// # Errors
+///
+/// [`EncodeError::BufferTooSmall`] if `buf` is shorter than `needed` or than `start` and the
+/// trailer.
+#[inline(always)]
+pub fn payload_room(
+    buf: &mut [u8],
+    needed: usize,
+    start: usize,
+    trailer_len: usize,
+) -> Result<&mut [u8], EncodeError> {
+    let available = buf.len();
+    if available < needed {
+        return Err(EncodeError::BufferTooSmall { needed, available });
+    }
+    buf.get_mut(start..available.saturating_sub(trailer_len))
+        .ok_or(EncodeError::BufferTooSmall { needed, available })
+}
+
+/// The first `total` bytes of `buf`: the frame an encoder seals.
+///
+/// # Errors
+///
+/// [`EncodeError::BufferTooSmall`] if `buf` is shorter than `total`.
+#[inline(always)]
+pub fn frame_room(buf: &mut [u8], total: usize) -> Result<&mut [u8], EncodeError> {
+    let available = buf.len();
+    buf.get_mut(..total).ok_or(EncodeError::BufferTooSmall {
+        needed: total,
+        available,
+    })
+}
+
 /// Writes a header value into `frame` at `field`.
 ///
 /// # Errors

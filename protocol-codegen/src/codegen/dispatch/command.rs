@@ -62,10 +62,9 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
         quote! {
             /// The command with this id, if any.
             pub const fn from_id(id: CommandId) -> #rt::Option<Self> {
-                if (id as usize) < Self::ALL.len() {
-                    #rt::Some(Self::ALL[id as usize])
-                } else {
-                    #rt::None
+                match Self::ALL.split_at_checked(id as usize) {
+                    #rt::Some((_, [command, ..])) => #rt::Some(*command),
+                    _ => #rt::None,
                 }
             }
         }
@@ -112,9 +111,12 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
             #lookups
             /// The command's name in the spec.
             pub const fn name(self) -> &'static str {
-                // The variants' discriminants are their places in spec order (or, with dense
-                // ids, the ids, which are the same).
-                Self::NAMES[self as usize]
+                // The variants' discriminants are their places in spec order (with dense ids,
+                // the ids, which are the same), so the name is always found.
+                match Self::NAMES.split_at_checked(self as usize) {
+                    #rt::Some((_, [name, ..])) => name,
+                    _ => "",
+                }
             }
             #can
         }

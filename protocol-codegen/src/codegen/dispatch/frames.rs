@@ -44,9 +44,7 @@ pub(super) fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> Toke
                 let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
                 let frame = #layout.parse(can.to_virtual(&mut virt))?;
                 let command = Command::from_can_id(can.id).ok_or(#rt::DecodeError::UnknownCommand { key: can.id as u64 })?;
-                let payload = frame
-                    .get(#header_len..frame.len().saturating_sub(#trailer_len))
-                    .ok_or(#rt::DecodeError::Truncated { needed: #header_len + #trailer_len, available: frame.len() })?;
+                let payload = #rt::payload_of(frame, #header_len, #trailer_len)?;
                 #rt::Ok(#packet {
                     header: #header { #(#reads,)* },
                     message: Message::read_payload(command, payload)?,
@@ -64,9 +62,7 @@ pub(super) fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> Toke
                 let frame = virt.get_mut(..total).ok_or(#rt::EncodeError::PayloadTooLarge { len: total, max: #rt::CAN_VIRTUAL_LEN })?;
                 #rt::write_header(frame, wire::#prefix_can_id, u64::from(id))?;
                 #(#writes)*
-                let payload = frame
-                    .get_mut(#header_len..total.saturating_sub(#trailer_len))
-                    .ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available: #rt::CAN_VIRTUAL_LEN })?;
+                let payload = #rt::payload_room(frame, total, #header_len, #trailer_len)?;
                 self.message.write_payload(&mut #rt::Writer::new(payload))?;
                 #layout.seal(frame)?;
                 #rt::CanFrame::from_virtual(frame)
@@ -118,9 +114,7 @@ pub(super) fn emit_message_packet(
             /// `PayloadLength` if the payload's size does not fit the struct, and errors of its
             /// fields.
             pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
-                let payload = frame
-                    .get(#header_len..frame.len().saturating_sub(#trailer_len))
-                    .ok_or(#rt::DecodeError::Truncated { needed: #header_len + #trailer_len, available: frame.len() })?;
+                let payload = #rt::payload_of(frame, #header_len, #trailer_len)?;
                 #rt::Ok(#packet {
                     header: #header { #(#reads,)* },
                     payload: #rt::Payload::from_bytes(payload)?,
@@ -139,12 +133,9 @@ pub(super) fn emit_message_packet(
             #[inline(always)]
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
                 let total = self.encoded_len();
-                let available = buf.len();
-                let frame = buf.get_mut(..total).ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
+                let frame = #rt::frame_room(buf, total)?;
                 #(#writes)*
-                let payload = frame
-                    .get_mut(#header_len..total.saturating_sub(#trailer_len))
-                    .ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
+                let payload = #rt::payload_room(frame, total, #header_len, #trailer_len)?;
                 #rt::Payload::write(&self.payload, &mut #rt::Writer::new(payload))?;
                 #layout.seal(frame)?;
                 #rt::Ok(total)

@@ -48,7 +48,7 @@ fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
     if let ([c], [prim]) = (&consts[..], &prims[..]) {
         let t = prim_type(*prim);
         return Key {
-            read: quote!(let id: CommandId = #rt::header_value(frame, wire::#c, HEADER_LEN)? as #t;),
+            read: quote!(let id = #rt::header_value(frame, wire::#c, HEADER_LEN)? as #t;),
             as_u64: quote!(id as u64),
             write: quote!(#rt::write_header(frame, wire::#c, command.id() as u64)?;),
         };
@@ -198,7 +198,7 @@ fn packet_stuffing(f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream, To
                 let mut unstuffed = [0u8; MAX_PAYLOAD_LEN];
                 let payload = STUFFING.unstuff(payload, &mut unstuffed)?;
             },
-            quote!(let plen = STUFFING.stuff_in_place(region, plen)?;),
+            quote!(let plen = STUFFING.stuff_in_place(room, plen)?;),
             quote! {
                 /// The payload's byte stuffing: the sender inserts `insert` after every `after`.
                 pub const STUFFING: #rt::Stuffing<'static> = #rt::Stuffing { after: &[#(#after),*], insert: #insert };
@@ -269,10 +269,8 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
                 let header = Header { #(#header_fields,)* };
                 #ack_decode
                 #read_key
-                let command = Command::from_id(id).ok_or(#rt::DecodeError::UnknownCommand { key: #key_u64 })?;
-                let payload = frame
-                    .get(HEADER_LEN..frame.len().saturating_sub(TRAILER_LEN))
-                    .ok_or(#rt::DecodeError::Truncated { needed: HEADER_LEN + TRAILER_LEN, available: frame.len() })?;
+                let command = Command::from_id(id).ok_or(#rt::unknown_command(#key_u64))?;
+                let payload = #rt::payload_of(frame, HEADER_LEN, TRAILER_LEN)?;
                 #unstuff
                 let message = #message;
                 #rt::Ok(Packet { header, message })
@@ -291,22 +289,15 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
             #[inline(always)]
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
                 #direction_check
-                let needed = self.encoded_len();
-                let available = buf.len();
-                if available < needed {
-                    return #rt::Err(#rt::EncodeError::BufferTooSmall { needed, available });
-                }
                 let start = #start_of;
                 // The payload first, in place: its size on the wire decides the frame's length.
-                let region = buf
-                    .get_mut(start..available.saturating_sub(TRAILER_LEN))
-                    .ok_or(#rt::EncodeError::BufferTooSmall { needed, available })?;
-                let mut w = #rt::Writer::new(region);
+                let room = #rt::payload_room(buf, self.encoded_len(), start, TRAILER_LEN)?;
+                let mut w = #rt::Writer::new(room);
                 self.message.write_payload(&mut w)?;
                 let plen = w.position();
                 #stuff
                 let total = start.saturating_add(plen).saturating_add(#trailer_of);
-                let frame = buf.get_mut(..total).ok_or(#rt::EncodeError::BufferTooSmall { needed: total, available })?;
+                let frame = #rt::frame_room(buf, total)?;
                 #(#header_writes)*
                 #ack_flag
                 #write_key
