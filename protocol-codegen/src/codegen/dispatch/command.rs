@@ -57,33 +57,12 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
     } else {
         quote!()
     };
-    // Dense ids index `ALL`; other ids are a match.
-    let lookups = if single {
-        quote! {
-            /// The command with this id, if any.
-            pub const fn from_id(id: CommandId) -> #rt::Option<Self> {
-                match Self::ALL.split_at_checked(id as usize) {
-                    #rt::Some((_, [command, ..])) => #rt::Some(*command),
-                    _ => #rt::None,
-                }
-            }
-        }
-    } else {
-        let from_id = p.commands.iter().map(|c| {
-            let v = ident(&c.rust_name);
-            let id = id_value(f, c);
-            quote!(#id => #rt::Some(Self::#v),)
-        });
-        quote! {
-            /// The command with this id, if any.
-            pub const fn from_id(id: CommandId) -> #rt::Option<Self> {
-                match id {
-                    #(#from_id)*
-                    _ => #rt::None,
-                }
-            }
-        }
-    };
+    // A match, not a lookup in `ALL`: with dense ids it compiles to a range test and no table.
+    let from_id = p.commands.iter().map(|c| {
+        let v = ident(&c.rust_name);
+        let id = id_value(f, c);
+        quote!(#id => #rt::Some(Self::#v),)
+    });
     let names = p.commands.iter().map(|c| &c.name);
     let id_doc = format!(
         " A command id: the value of the dispatch key ({}).",
@@ -108,7 +87,13 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
             pub const fn id(self) -> CommandId {
                 #to_id
             }
-            #lookups
+            /// The command with this id, if any.
+            pub const fn from_id(id: CommandId) -> #rt::Option<Self> {
+                match id {
+                    #(#from_id)*
+                    _ => #rt::None,
+                }
+            }
             /// The command's name in the spec.
             pub const fn name(self) -> &'static str {
                 // The variants' discriminants are their places in spec order (with dense ids,
