@@ -439,6 +439,31 @@ pub struct FrameNames {
     pub decoder: String,
     /// The function that makes a stream decoder.
     pub decoder_fn: String,
+    /// The `FrameLayout` static (`LAYOUT`, `SCOUT_CAN_LAYOUT`).
+    pub layout_static: String,
+    /// The size consts (`MAX_FRAME_LEN`, `SCOUT_CAN_HEADER_LEN`, ...).
+    pub sizes: FrameSizeNames,
+    /// The `wire` const of each header value, in the order of [`Frame::values`].
+    pub wire: Vec<String>,
+}
+
+/// The names of a frame format's size consts.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FrameSizeNames {
+    /// Largest frame.
+    pub max_frame_len: String,
+    /// Smallest frame.
+    pub min_frame_len: String,
+    /// Largest payload.
+    pub max_payload_len: String,
+    /// Smallest payload.
+    pub min_payload_len: String,
+    /// Bytes before the payload.
+    pub header_len: String,
+    /// Bytes after the payload.
+    pub trailer_len: String,
+    /// The stream decoder's buffer.
+    pub decoder_buffer_len: String,
 }
 
 /// One element of a frame layout, for docs.

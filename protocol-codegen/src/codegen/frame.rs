@@ -54,9 +54,9 @@ pub fn word_field(rt: &TokenStream, v: &HeaderValue) -> TokenStream {
     }
 }
 
-/// Name of the `wire` const of a header value.
-pub fn value_const(prefix: &str, v: &HeaderValue) -> Ident {
-    const_ident(&format!("{prefix}{}", v.name))
+/// The `wire` const of header value `value` of frame `f`, as validation named it.
+pub fn wire_const(f: &Frame, value: usize) -> Ident {
+    format_ident!("{}", f.names.wire[value])
 }
 
 /// The buffer of a generated decoder for frames of at most `max_frame` bytes: the frame, as
@@ -142,7 +142,7 @@ fn width_prim(width: u8) -> Prim {
 fn emit_layout(rt: &TokenStream, prefix: &str, f: &Frame, name: &Ident, doc: &str) -> TokenStream {
     let doc = doc_attrs(doc);
     let plan: LayoutPlan<'_> = lower_layout(f);
-    let field = |value: usize| value_const(prefix, &f.values[value]);
+    let field = |value: usize| wire_const(f, value);
     let length = match (plan.length, plan.length_value) {
         (LengthRule::Field { adjust, .. }, Some(v)) => {
             let field = field(v);
@@ -216,7 +216,7 @@ pub fn emit_frames(p: &Protocol) -> TokenStream {
         } else {
             frame_doc(f)
         };
-        let layout = const_ident(&format!("{}LAYOUT", f.names.const_prefix));
+        let layout = format_ident!("{}", f.names.layout_static);
         out.extend(emit_layout(&rt(), &f.names.const_prefix, f, &layout, &doc));
         // A CAN frame arrives whole: it has a packet type, not a stream decoder.
         if f.transport == Transport::Serial {
@@ -234,35 +234,35 @@ pub fn emit_frames(p: &Protocol) -> TokenStream {
 
 /// The size consts of a frame format.
 fn emit_frame_consts(f: &Frame) -> TokenStream {
-    let fname = &f.name;
+    let n = &f.names.sizes;
     let consts = [
         (
-            "MAX_FRAME_LEN",
+            &n.max_frame_len,
             f.max_len(),
             "Largest `{}` frame, in bytes.",
         ),
         (
-            "MIN_FRAME_LEN",
+            &n.min_frame_len,
             f.min_len(),
             "Smallest `{}` frame, in bytes.",
         ),
         (
-            "MAX_PAYLOAD_LEN",
+            &n.max_payload_len,
             f.payload_max,
             "Largest payload of a `{}` frame, in bytes.",
         ),
         (
-            "MIN_PAYLOAD_LEN",
+            &n.min_payload_len,
             f.payload_min,
             "Smallest payload of a `{}` frame, in bytes.",
         ),
         (
-            "HEADER_LEN",
+            &n.header_len,
             f.header_len,
             "Bytes of a `{}` frame before its payload.",
         ),
         (
-            "TRAILER_LEN",
+            &n.trailer_len,
             f.trailer_len,
             "Bytes of a `{}` frame after its payload.",
         ),
@@ -270,8 +270,8 @@ fn emit_frame_consts(f: &Frame) -> TokenStream {
     consts
         .into_iter()
         .map(|(name, value, doc)| {
-            let name = const_ident(&format!("{}{name}", f.names.const_prefix));
-            let doc = format!(" {}", doc.replace("{}", fname));
+            let name = format_ident!("{name}");
+            let doc = format!(" {}", doc.replace("{}", &f.name));
             quote!(#[doc = #doc] pub const #name: usize = #value;)
         })
         .collect()
@@ -282,7 +282,7 @@ fn emit_decoder(f: &Frame, layout: &Ident) -> TokenStream {
     let rt = rt();
     let fname = &f.name;
     let buffer = decoder_buffer_len(f.max_len());
-    let buffer_name = const_ident(&format!("{}DECODER_BUFFER_LEN", f.names.const_prefix));
+    let buffer_name = format_ident!("{}", f.names.sizes.decoder_buffer_len);
     let layout_type = format_ident!("{}", f.names.layout);
     let decoder = format_ident!("{}", f.names.decoder);
     let decoder_fn = format_ident!("{}", f.names.decoder_fn);
@@ -323,8 +323,8 @@ fn emit_decoder(f: &Frame, layout: &Ident) -> TokenStream {
 fn emit_wire(p: &Protocol) -> TokenStream {
     let rt = rt();
     let items = p.frames.iter().flat_map(|f| {
-        f.values.iter().map(|v| {
-            let name = value_const(&f.names.const_prefix, v);
+        f.values.iter().enumerate().map(|(i, v)| {
+            let name = wire_const(f, i);
             let lit = word_field(&rt, v);
             let doc = format!(" Where `{}` sits in a `{}` frame.", v.name, f.name);
             quote!(#[doc = #doc] pub const #name: #rt::WordField = #lit;)
@@ -340,15 +340,16 @@ fn emit_wire(p: &Protocol) -> TokenStream {
     }
 }
 
-/// The user-set header values of the first frame.
-pub fn user_values(f: &Frame) -> impl Iterator<Item = &HeaderValue> {
+/// The user-set header values of a frame, with their indices in [`Frame::values`].
+pub fn user_values(f: &Frame) -> impl Iterator<Item = (usize, &HeaderValue)> {
     f.values
         .iter()
-        .filter(|v| matches!(v.role, Role::User { .. }))
+        .enumerate()
+        .filter(|(_, v)| matches!(v.role, Role::User { .. }))
 }
 
 fn emit_header(f: &Frame, name: &Ident) -> TokenStream {
-    let fields = user_values(f).map(|v| {
+    let fields = user_values(f).map(|(_, v)| {
         let id = ident(&v.name);
         let ty = prim_type(v.prim);
         let d = doc_attrs(if v.doc.is_empty() {

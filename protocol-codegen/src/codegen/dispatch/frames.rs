@@ -4,21 +4,22 @@
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
-use crate::codegen::frame::{user_values, value_const};
+use crate::codegen::frame::{user_values, wire_const};
+use crate::codegen::ident;
 use crate::codegen::payload::prim_type;
-use crate::codegen::{const_ident, ident};
 use crate::ir::{Frame, Prim, Protocol};
 
 /// `<Name>Packet` for a CAN frame format: decode from and encode to a `CanFrame`, through the
 /// frame's virtual layout (id, length, data) so the runtime verifies and seals its checks.
-pub(super) fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> TokenStream {
+pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
     let header = format_ident!("{}", f.names.header);
     let packet = format_ident!("{}", f.names.packet);
-    let layout = const_ident(&format!("{prefix}LAYOUT"));
-    let header_len = const_ident(&format!("{prefix}HEADER_LEN"));
-    let trailer_len = const_ident(&format!("{prefix}TRAILER_LEN"));
-    let prefix_can_id = const_ident(&format!("{prefix}can_id"));
-    let (reads, writes) = header_codec(f, prefix, rt);
+    let layout = format_ident!("{}", f.names.layout_static);
+    let header_len = format_ident!("{}", f.names.sizes.header_len);
+    let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
+    // Validation puts a CAN frame's id first among its values.
+    let can_id = wire_const(f, 0);
+    let (reads, writes) = header_codec(f, rt);
     let doc = format!(
         " A whole `{}` CAN frame, decoded: the header values and the message.",
         f.name
@@ -60,7 +61,7 @@ pub(super) fn emit_can_packet(f: &Frame, prefix: &str, rt: &TokenStream) -> Toke
                 let total = #header_len.saturating_add(self.message.payload_len()).saturating_add(#trailer_len);
                 let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
                 let frame = virt.get_mut(..total).ok_or(#rt::EncodeError::PayloadTooLarge { len: total, max: #rt::CAN_VIRTUAL_LEN })?;
-                #rt::write_header(frame, wire::#prefix_can_id, u64::from(id))?;
+                #rt::write_header(frame, wire::#can_id, u64::from(id))?;
                 #(#writes)*
                 let payload = #rt::payload_room(frame, total, #header_len, #trailer_len)?;
                 self.message.write_payload(&mut #rt::Writer::new(payload))?;
@@ -76,16 +77,15 @@ pub(super) fn emit_message_packet(
     p: &Protocol,
     f: &Frame,
     si: usize,
-    prefix: &str,
     rt: &TokenStream,
 ) -> TokenStream {
     let header = format_ident!("{}", f.names.header);
     let packet = format_ident!("{}", f.names.packet);
     let st = ident(&p.structs[si].name);
-    let layout = const_ident(&format!("{prefix}LAYOUT"));
-    let header_len = const_ident(&format!("{prefix}HEADER_LEN"));
-    let trailer_len = const_ident(&format!("{prefix}TRAILER_LEN"));
-    let (reads, writes) = header_codec(f, prefix, rt);
+    let layout = format_ident!("{}", f.names.layout_static);
+    let header_len = format_ident!("{}", f.names.sizes.header_len);
+    let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
+    let (reads, writes) = header_codec(f, rt);
     let doc = format!(
         " A whole `{}` frame, decoded: the header values and its `{}`.",
         f.name, p.structs[si].name
@@ -145,17 +145,13 @@ pub(super) fn emit_message_packet(
 }
 
 /// Reading the user-set header values of frame `f` into a header struct's fields, and writing
-/// them back from `self.header`, through the `wire` consts of the frame (named with `prefix`).
-pub(super) fn header_codec(
-    f: &Frame,
-    prefix: &str,
-    rt: &TokenStream,
-) -> (Vec<TokenStream>, Vec<TokenStream>) {
-    let header_len = const_ident(&format!("{prefix}HEADER_LEN"));
+/// them back from `self.header`, through the frame's `wire` consts.
+pub(super) fn header_codec(f: &Frame, rt: &TokenStream) -> (Vec<TokenStream>, Vec<TokenStream>) {
+    let header_len = format_ident!("{}", f.names.sizes.header_len);
     user_values(f)
-        .map(|v| {
+        .map(|(i, v)| {
             let id = ident(&v.name);
-            let c = value_const(prefix, v);
+            let c = wire_const(f, i);
             let value = quote!(#rt::header_value(frame, wire::#c, #header_len)?);
             let read = if v.prim == Prim::Bool {
                 quote!(#id: #value != 0)

@@ -52,12 +52,12 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
     out.extend(emit_packet(p, f, &rt));
     for mf in &p.frames {
         if let PacketKind::Message(si) = mf.packet {
-            out.extend(emit_message_packet(p, mf, si, &mf.names.const_prefix, &rt));
+            out.extend(emit_message_packet(p, mf, si, &rt));
         }
     }
     for cf in &p.frames {
         if cf.packet == PacketKind::Can {
-            out.extend(emit_can_packet(cf, &cf.names.const_prefix, &rt));
+            out.extend(emit_can_packet(cf, &rt));
         }
     }
     out

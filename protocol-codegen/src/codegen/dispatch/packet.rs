@@ -2,16 +2,40 @@
 //! encoded to a frame through `LAYOUT`, with the dispatch key, directions, acknowledgements and
 //! byte stuffing the frame has.
 
-use proc_macro2::TokenStream;
+use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
 use super::frames::header_codec;
 use super::key_prims;
-use crate::codegen::frame::value_const;
+use crate::codegen::frame::wire_const;
 use crate::codegen::ident;
 use crate::codegen::payload::prim_type;
 use crate::codegen::types::int_lit;
 use crate::ir::{DirectionRule, Frame, Protocol};
+
+/// The items of the first frame format that `Packet` names, as validation named them.
+struct Items {
+    header_len: Ident,
+    trailer_len: Ident,
+    max_payload_len: Ident,
+    layout: Ident,
+    packet: Ident,
+    header: Ident,
+}
+
+impl Items {
+    fn of(f: &Frame) -> Items {
+        let id = |name: &str| format_ident!("{name}");
+        Items {
+            header_len: id(&f.names.sizes.header_len),
+            trailer_len: id(&f.names.sizes.trailer_len),
+            max_payload_len: id(&f.names.sizes.max_payload_len),
+            layout: id(&f.names.layout_static),
+            packet: id(&f.names.packet),
+            header: id(&f.names.header),
+        }
+    }
+}
 
 /// The condition that a header is of direction `rule`, as an expression over `header`.
 fn direction_test(p: &Protocol, f: &Frame, rule: &DirectionRule) -> TokenStream {
@@ -39,16 +63,13 @@ struct Key {
 }
 
 fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
-    let consts: Vec<_> = f
-        .dispatch
-        .iter()
-        .map(|&i| value_const("", &f.values[i]))
-        .collect();
+    let header_len = Items::of(f).header_len;
+    let consts: Vec<_> = f.dispatch.iter().map(|&i| wire_const(f, i)).collect();
     let prims = key_prims(f);
     if let ([c], [prim]) = (&consts[..], &prims[..]) {
         let t = prim_type(*prim);
         return Key {
-            read: quote!(let id = #rt::header_value(frame, wire::#c, HEADER_LEN)? as #t;),
+            read: quote!(let id = #rt::header_value(frame, wire::#c, #header_len)? as #t;),
             as_u64: quote!(id as u64),
             write: quote!(#rt::write_header(frame, wire::#c, command.id() as u64)?;),
         };
@@ -62,7 +83,7 @@ fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
         key = quote!(((#key) << #w) | (#v as u64));
     }
     Key {
-        read: quote!(#(let #vars = #rt::header_value(frame, wire::#consts, HEADER_LEN)? as #types;)* let id: CommandId = (#(#vars),*);),
+        read: quote!(#(let #vars = #rt::header_value(frame, wire::#consts, #header_len)? as #types;)* let id: CommandId = (#(#vars),*);),
         as_u64: quote!({ let (#(#vars),*) = id; #key }),
         write: quote!(let id = command.id(); #(#rt::write_header(frame, wire::#consts, id.#idx as u64)?;)*),
     }
@@ -111,15 +132,21 @@ struct AckParts {
 }
 
 fn packet_ack(f: &Frame, key: &Key, rt: &TokenStream) -> AckParts {
+    let Items {
+        header_len,
+        trailer_len,
+        packet,
+        ..
+    } = Items::of(f);
     let write = &key.write;
     let Some((vi, ack_header_len)) = f.ack else {
         return AckParts {
-            start: quote!(HEADER_LEN),
+            start: quote!(#header_len),
             write_key: quote!(let command = self.message.command(); #write),
             ..AckParts::default()
         };
     };
-    let flag = value_const("", &f.values[vi]);
+    let flag = wire_const(f, vi);
     // Validation gives the flag the role `Ack`; 1 is its only other possible value.
     let equals = match f.values[vi].role {
         crate::ir::Role::Ack(equals) => equals,
@@ -129,9 +156,9 @@ fn packet_ack(f: &Frame, key: &Key, rt: &TokenStream) -> AckParts {
     let max = f.max_len() - ack_header_len - f.trailer_len;
     let bare = f.bare_len.is_some();
     let end = if bare {
-        quote!(if frame.len() == #ack_header_len { frame.len() } else { frame.len().saturating_sub(TRAILER_LEN) })
+        quote!(if frame.len() == #ack_header_len { frame.len() } else { frame.len().saturating_sub(#trailer_len) })
     } else {
-        quote!(frame.len().saturating_sub(TRAILER_LEN))
+        quote!(frame.len().saturating_sub(#trailer_len))
     };
     let bare_arm = if bare {
         quote!(Message::Ack(data) if data.is_empty() => #ack_header_len,)
@@ -140,23 +167,23 @@ fn packet_ack(f: &Frame, key: &Key, rt: &TokenStream) -> AckParts {
     };
     AckParts {
         decode: quote! {
-            if #rt::header_value(frame, wire::#flag, HEADER_LEN)? == #equals {
+            if #rt::header_value(frame, wire::#flag, #header_len)? == #equals {
                 let data = frame
                     .get(#ack_header_len..#end)
                     .ok_or(#rt::DecodeError::Truncated { needed: #ack_header_len, available: frame.len() })?;
                 let data = #rt::Bytes::from_slice(data).ok_or(#rt::DecodeError::PayloadLength { expected: #max, actual: data.len() })?;
-                return #rt::Ok(Packet { header, message: Message::Ack(data) });
+                return #rt::Ok(#packet { header, message: Message::Ack(data) });
             }
         },
         len_arms: quote! {
             #bare_arm
-            Message::Ack(data) => (#ack_header_len as usize).saturating_add(data.len()).saturating_add(TRAILER_LEN),
+            Message::Ack(data) => (#ack_header_len as usize).saturating_add(data.len()).saturating_add(#trailer_len),
         },
         flag: quote! {
             let is_ack = matches!(self.message, Message::Ack(_));
             #rt::write_header(frame, wire::#flag, if is_ack { #equals } else { #other })?;
         },
-        start: quote!(if matches!(self.message, Message::Ack(_)) { #ack_header_len } else { HEADER_LEN }),
+        start: quote!(if matches!(self.message, Message::Ack(_)) { #ack_header_len } else { #header_len }),
         write_key: quote!(if let #rt::Some(command) = self.message.command() { #write }),
     }
 }
@@ -164,10 +191,16 @@ fn packet_ack(f: &Frame, key: &Key, rt: &TokenStream) -> AckParts {
 /// `Packet::encoded_len`'s body: the frame's length, with acknowledgements' own lengths, and
 /// with the bytes stuffing inserts (counted by writing the payload aside).
 fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStream {
+    let Items {
+        header_len,
+        trailer_len,
+        max_payload_len,
+        ..
+    } = Items::of(f);
     let plain = quote!(
-        HEADER_LEN
+        #header_len
             .saturating_add(self.message.payload_len())
-            .saturating_add(TRAILER_LEN)
+            .saturating_add(#trailer_len)
     );
     let unstuffed = if ack.len_arms.is_empty() {
         plain
@@ -179,7 +212,7 @@ fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStrea
         return unstuffed;
     }
     quote! {
-        let mut scratch = [0u8; MAX_PAYLOAD_LEN];
+        let mut scratch = [0u8; #max_payload_len];
         let mut w = #rt::Writer::new(&mut scratch);
         let inserted = match self.message.write_payload(&mut w) {
             #rt::Ok(()) => STUFFING.count(w.written()),
@@ -192,10 +225,11 @@ fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStrea
 /// Byte stuffing: the payload is unstuffed before it is read, stuffed after it is written;
 /// the `STUFFING` const.
 fn packet_stuffing(f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream, TokenStream) {
+    let max_payload_len = Items::of(f).max_payload_len;
     match &f.stuffing {
         Some((after, insert)) => (
             quote! {
-                let mut unstuffed = [0u8; MAX_PAYLOAD_LEN];
+                let mut unstuffed = [0u8; #max_payload_len];
                 let payload = STUFFING.unstuff(payload, &mut unstuffed)?;
             },
             quote!(let plen = STUFFING.stuff_in_place(room, plen)?;),
@@ -210,21 +244,34 @@ fn packet_stuffing(f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream, To
 
 /// The trailer's length in an encoded frame: a bare header (the header alone) has none.
 fn packet_trailer(f: &Frame) -> TokenStream {
+    let Items {
+        header_len,
+        trailer_len,
+        ..
+    } = Items::of(f);
     if f.bare_len.is_some() {
-        quote!(if start == HEADER_LEN || plen > 0 {
-            TRAILER_LEN
+        quote!(if start == #header_len || plen > 0 {
+            #trailer_len
         } else {
             0
         })
     } else {
-        quote!(TRAILER_LEN)
+        quote!(#trailer_len)
     }
 }
 
 /// `Packet`: the header values and the message of the first frame format, decoded from and
 /// encoded to a frame through `LAYOUT`.
 pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
-    let (header_fields, header_writes) = header_codec(f, "", rt);
+    let Items {
+        header_len,
+        trailer_len,
+        layout,
+        packet,
+        header,
+        ..
+    } = Items::of(f);
+    let (header_fields, header_writes) = header_codec(f, rt);
     let key = packet_key(f, rt);
     let (message, direction_check) = packet_direction(p, f, rt);
     let ack = packet_ack(f, &key, rt);
@@ -243,21 +290,21 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
         #stuffing_const
         /// A whole frame, decoded: the header values and the message.
         #[derive(Debug, Clone, Copy, PartialEq)]
-        pub struct Packet {
+        pub struct #packet {
             /// The header values the sender set.
-            pub header: Header,
+            pub header: #header,
             /// The command and its payload.
             pub message: Message,
         }
-        impl Packet {
+        impl #packet {
             /// Decode the frame at the start of `bytes`, checking its framing (sync, length,
             /// checks) first.
             ///
             /// # Errors
             /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they
-            /// end early, and the errors of [`Packet::from_frame`].
+            /// end early, and the errors of [`Self::from_frame`].
             pub fn decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
-                Self::from_frame(LAYOUT.parse(bytes)?)
+                Self::from_frame(#layout.parse(bytes)?)
             }
             /// Decode a frame whose framing a decoder already checked.
             ///
@@ -266,14 +313,14 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
             /// header matches no direction, `PayloadLength` when the payload's size is not the
             /// command's, and errors of the payload's fields.
             pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
-                let header = Header { #(#header_fields,)* };
+                let header = #header { #(#header_fields,)* };
                 #ack_decode
                 #read_key
                 let command = Command::from_id(id).ok_or(#rt::unknown_command(#key_u64))?;
-                let payload = #rt::payload_of(frame, HEADER_LEN, TRAILER_LEN)?;
+                let payload = #rt::payload_of(frame, #header_len, #trailer_len)?;
                 #unstuff
                 let message = #message;
-                #rt::Ok(Packet { header, message })
+                #rt::Ok(#packet { header, message })
             }
             /// Bytes of the encoded frame.
             #[inline(always)]
@@ -283,7 +330,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
             /// Encode the frame into the start of `buf`; returns its length.
             ///
             /// # Errors
-            /// `EncodeError::BufferTooSmall` if `buf` is shorter than [`Packet::encoded_len`],
+            /// `EncodeError::BufferTooSmall` if `buf` is shorter than [`Self::encoded_len`],
             /// `ValueOutOfRange` if a header value does not fit its field or does not match the
             /// message's direction.
             #[inline(always)]
@@ -291,7 +338,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
                 #direction_check
                 let start = #start_of;
                 // The payload first, in place: its size on the wire decides the frame's length.
-                let room = #rt::payload_room(buf, self.encoded_len(), start, TRAILER_LEN)?;
+                let room = #rt::payload_room(buf, self.encoded_len(), start, #trailer_len)?;
                 let mut w = #rt::Writer::new(room);
                 self.message.write_payload(&mut w)?;
                 let plen = w.position();
@@ -301,7 +348,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
                 #(#header_writes)*
                 #ack_flag
                 #write_key
-                LAYOUT.seal(frame)?;
+                #layout.seal(frame)?;
                 #rt::Ok(total)
             }
         }

@@ -18,8 +18,8 @@ use super::names::{check_snake_name, pascal_case};
 use super::types::{Enums, Structs};
 use super::{Ctx, text};
 use crate::ir::{
-    Algorithm, Check, Element, Frame, FrameNames, HeaderValue, PacketKind, Pos, Scalar, Trailer,
-    Transport,
+    Algorithm, Check, Element, Frame, FrameNames, FrameSizeNames, HeaderValue, PacketKind, Pos,
+    Scalar, Trailer, Transport,
 };
 use crate::spec::model::{ElementDef, FrameDef, SStr};
 use length::Layout;
@@ -152,7 +152,7 @@ fn lower_frame(
     let checks = order_checks(checks);
     Some(Frame {
         name: fname.get_ref().clone(),
-        names: lower_names(fname.get_ref(), first),
+        names: lower_names(fname.get_ref(), first, &values),
         transport,
         doc: text(&def.doc),
         decide_len: length::lower_decide_len(&sync, &values, &length, &checks),
@@ -194,7 +194,7 @@ pub(crate) fn lower_packets(frames: &mut [Frame], directions: bool) {
 
 /// The Rust names of a frame format's items: plain for the first frame format, prefixed with
 /// the frame's name for the others (so two frame formats never define the same item).
-fn lower_names(name: &str, first: bool) -> FrameNames {
+fn lower_names(name: &str, first: bool, values: &[HeaderValue]) -> FrameNames {
     let pascal = pascal_case(name);
     let item = |plain: &str| {
         if first {
@@ -203,12 +203,13 @@ fn lower_names(name: &str, first: bool) -> FrameNames {
             format!("{pascal}{plain}")
         }
     };
+    let prefix = if first {
+        String::new()
+    } else {
+        format!("{}_", name.to_ascii_uppercase())
+    };
+    let constant = |plain: &str| format!("{prefix}{plain}").to_ascii_uppercase();
     FrameNames {
-        const_prefix: if first {
-            String::new()
-        } else {
-            format!("{}_", name.to_ascii_uppercase())
-        },
         header: item("Header"),
         packet: item("Packet"),
         layout: item("Layout"),
@@ -218,6 +219,18 @@ fn lower_names(name: &str, first: bool) -> FrameNames {
         } else {
             format!("{name}_decoder")
         },
+        layout_static: constant("LAYOUT"),
+        sizes: FrameSizeNames {
+            max_frame_len: constant("MAX_FRAME_LEN"),
+            min_frame_len: constant("MIN_FRAME_LEN"),
+            max_payload_len: constant("MAX_PAYLOAD_LEN"),
+            min_payload_len: constant("MIN_PAYLOAD_LEN"),
+            header_len: constant("HEADER_LEN"),
+            trailer_len: constant("TRAILER_LEN"),
+            decoder_buffer_len: constant("DECODER_BUFFER_LEN"),
+        },
+        wire: values.iter().map(|v| constant(&v.name)).collect(),
+        const_prefix: prefix,
         pascal,
     }
 }
