@@ -22,7 +22,7 @@ use serde_json::Value;
 /// On a malformed string: the vectors are part of the test, a bad one is a test failure.
 pub fn hex(text: &str) -> Vec<u8> {
     let digits: Vec<u8> = text.bytes().filter(|b| !b.is_ascii_whitespace()).collect();
-    assert!(digits.len() % 2 == 0, "odd hex length: {text}");
+    assert!(digits.len().is_multiple_of(2), "odd hex length: {text}");
     digits
         .chunks(2)
         .map(|pair| {

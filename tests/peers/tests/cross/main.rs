@@ -5,3 +5,5 @@
 //! `protocol_peers::harness`.
 
 mod dynamixel2;
+mod mavlink;
+mod values;
