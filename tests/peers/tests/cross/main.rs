@@ -6,4 +6,5 @@
 
 mod dynamixel2;
 mod mavlink;
+mod ublox;
 mod values;

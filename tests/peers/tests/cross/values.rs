@@ -14,6 +14,8 @@ pub enum V {
     S(String),
     /// A list of integers.
     List(Vec<i128>),
+    /// A list of texts.
+    Strings(Vec<String>),
 }
 
 impl V {
@@ -28,6 +30,9 @@ impl V {
             V::List(xs) => recorded.as_array().is_some_and(|a| {
                 a.len() == xs.len() && a.iter().zip(xs).all(|(r, x)| V::I(*x).matches(r))
             }),
+            V::Strings(xs) => recorded.as_array().is_some_and(|a| {
+                a.len() == xs.len() && a.iter().zip(xs).all(|(r, x)| r.as_str() == Some(x))
+            }),
         }
     }
 
@@ -37,6 +42,7 @@ impl V {
             V::F(x) => *x == 0.0,
             V::S(s) => s.is_empty(),
             V::List(xs) => xs.iter().all(|x| *x == 0),
+            V::Strings(xs) => xs.is_empty(),
         }
     }
 }
