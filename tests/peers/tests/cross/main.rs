@@ -4,6 +4,7 @@
 //! Dynamixel 2.0 (a spec this project ships), the random round trip of
 //! `protocol_peers::harness`.
 
+mod crsf;
 mod dynamixel2;
 mod mavlink;
 mod ublox;
