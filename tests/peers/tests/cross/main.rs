@@ -7,5 +7,6 @@
 mod crsf;
 mod dynamixel2;
 mod mavlink;
+mod msp;
 mod ublox;
 mod values;
