@@ -5,6 +5,7 @@
 //! `protocol_peers::harness`.
 
 mod crsf;
+mod dynamixel1;
 mod dynamixel2;
 mod mavlink;
 mod msp;
