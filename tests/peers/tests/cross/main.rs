@@ -9,5 +9,6 @@ mod dynamixel1;
 mod dynamixel2;
 mod mavlink;
 mod msp;
+mod rc;
 mod ublox;
 mod values;
