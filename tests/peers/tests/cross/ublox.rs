@@ -15,9 +15,15 @@ fn text(bytes: &[u8]) -> V {
     V::S(String::from_utf8(bytes[..end].to_vec()).expect("ascii"))
 }
 
+/// Decoded fields, by name.
+type Fields = Vec<(&'static str, V)>;
+
+/// A packet the peer does not decode: class, id, payload.
+type Unknown = (u8, u8, Vec<u8>);
+
 /// The peer's raw fields under the snake_case u-blox names, or the unknown packet's class, id
 /// and payload.
-fn fields(packet: &PacketRef<'_>) -> Result<Vec<(&'static str, V)>, (u8, u8, Vec<u8>)> {
+fn fields(packet: &PacketRef<'_>) -> Result<Fields, Unknown> {
     use V::I;
     Ok(match packet {
         PacketRef::NavPosLlh(p) => vec![
