@@ -50,8 +50,9 @@ enum Command {
         /// The spec file.
         spec: PathBuf,
     },
-    /// Report every change between two versions of a spec as breaking or compatible; exit 1 if
-    /// anything breaks the wire, 2 if a spec is invalid.
+    /// Report every change between two versions of a spec, once, as breaking the wire, breaking
+    /// the generated Rust source, or compatible; exit 1 if anything breaks, 2 if a spec cannot
+    /// be read or is invalid.
     Diff {
         /// The old version.
         old: PathBuf,

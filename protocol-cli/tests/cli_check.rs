@@ -209,7 +209,8 @@ fn diff_exit_status_guards_a_ci() {
     let same = protocol(&["diff", "specs/hflink.toml", "specs/hflink.toml"], b"");
     assert!(same.status.success());
     assert!(
-        text(&same.stdout).contains("0 breaking, 0 compatible: wire-compatible"),
+        text(&same.stdout)
+            .contains("0 breaking, 0 source-breaking, 0 compatible: wire- and source-compatible"),
         "{}",
         text(&same.stdout)
     );
@@ -230,7 +231,7 @@ fn diff_exit_status_guards_a_ci() {
     );
     assert!(out.status.success(), "{}", text(&out.stdout));
     assert!(
-        text(&out.stdout).contains("compatible  command READ_BATTERY (id 0x1b): added"),
+        text(&out.stdout).contains("compatible       command READ_BATTERY (id 0x1b): added"),
         "{}",
         text(&out.stdout)
     );
@@ -252,7 +253,8 @@ fn diff_exit_status_guards_a_ci() {
     );
     assert_eq!(out.status.code(), Some(1));
     let report: Value = serde_json::from_slice(&out.stdout).expect("JSON");
-    assert_eq!(report["breaking"], true);
+    assert_eq!(report["wire_compatible"], false);
+    assert_eq!(report["source_compatible"], false);
     let reasons: Vec<&str> = report["changes"]
         .as_array()
         .expect("changes")
@@ -266,10 +268,41 @@ fn diff_exit_status_guards_a_ci() {
         "{reasons:?}"
     );
 
+    let renamed = edited("hflink", |s| {
+        s.replace("{ name = \"cpu_usage\"", "{ name = \"cpu_load\"")
+    });
+    let out = protocol(
+        &[
+            "diff",
+            "specs/hflink.toml",
+            renamed.path().to_str().expect("path"),
+        ],
+        b"",
+    );
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stdout));
+    assert!(
+        text(&out.stdout).contains("renamed from `cpu_usage`")
+            && text(&out.stdout)
+                .contains("0 breaking, 1 source-breaking, 0 compatible: wire-compatible, NOT source-compatible"),
+        "a renamed field keeps the wire and breaks the source:\n{}",
+        text(&out.stdout)
+    );
+
     let invalid = protocol(&["diff", "specs/hflink.toml", BAD], b"");
     assert_eq!(
         invalid.status.code(),
         Some(2),
         "an invalid spec cannot be compared"
     );
+    let unreadable = protocol(
+        &["diff", "specs/hflink.toml", "specs/no-such-spec.toml"],
+        b"",
+    );
+    assert_eq!(
+        unreadable.status.code(),
+        Some(2),
+        "an unreadable spec cannot be compared: {}",
+        text(&unreadable.stderr)
+    );
+    assert!(text(&unreadable.stderr).contains("no-such-spec.toml"));
 }

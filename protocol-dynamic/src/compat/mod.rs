@@ -1,11 +1,13 @@
-//! Wire compatibility between two versions of a spec (`protocol diff OLD NEW`): every change,
-//! classified as breaking (a frame written by one version is read differently, or refused, by
-//! the other) or compatible (names, docs, added commands), each with its reason.
+//! Compatibility between two versions of a spec (`protocol diff OLD NEW`) at two levels: the
+//! wire (a frame written by one version is read differently, or refused, by the other) and the
+//! Rust source generated from it (code written against one version's module no longer
+//! compiles against the other's). Every change is reported once, with its reason, at the most
+//! severe level it reaches.
 //!
 //! This module compares two checked IRs. Commands are matched by their id (what is on the
-//! wire), frame formats by name, struct fields by position; a rename is compatible for the wire
-//! (and reported, since it changes the generated API). Struct and field comparison lives in
-//! the `payload` submodule.
+//! wire), frame formats by name, struct fields by position; a rename keeps the wire and breaks
+//! the source (the generated item's name changes). Struct and field comparison lives in the
+//! `payload` submodule.
 
 mod payload;
 
@@ -13,19 +15,37 @@ use std::fmt;
 
 use protocol_codegen::ir::{Algorithm, Command, DirectionRule, Frame, Protocol, Role};
 
-/// How a change affects the wire.
+/// How a change affects the wire and the generated Rust source, most severe first.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Class {
-    /// Frames of one version are refused or misread by the other.
+    /// Frames of one version are refused or misread by the other. Such a change mostly
+    /// changes the generated types too; it is reported at this level only.
     Breaking,
-    /// The wire format is unchanged (names, docs, additions).
+    /// The wire format is unchanged, but the generated module is not: code written against
+    /// one version does not compile against the other (a renamed field, command, enum value
+    /// or module; another physical type).
+    SourceBreaking,
+    /// Neither the wire nor the names and types of the generated API change: docs, units, and
+    /// additions (commands, enum values old decoders keep, frame formats). An addition gives an
+    /// enum a variant, so a `match` without a catch-all arm needs one more arm.
     Compatible,
+}
+
+impl Class {
+    /// The word `protocol diff` prints for the class.
+    pub const fn label(self) -> &'static str {
+        match self {
+            Class::Breaking => "breaking",
+            Class::SourceBreaking => "source-breaking",
+            Class::Compatible => "compatible",
+        }
+    }
 }
 
 /// One change between two specs.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Change {
-    /// Breaking or compatible.
+    /// Breaking the wire, breaking the source only, or compatible.
     pub class: Class,
     /// What changed (`command READ_SYSTEM_INFO (id 0x01)`, `frame link`).
     pub subject: String,
@@ -35,11 +55,13 @@ pub struct Change {
 
 impl fmt::Display for Change {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let class = match self.class {
-            Class::Breaking => "breaking  ",
-            Class::Compatible => "compatible",
-        };
-        write!(f, "{class}  {}: {}", self.subject, self.reason)
+        write!(
+            f,
+            "{:<15}  {}: {}",
+            self.class.label(),
+            self.subject,
+            self.reason
+        )
     }
 }
 
@@ -53,6 +75,14 @@ impl Report<'_> {
     fn breaking(&mut self, reason: impl Into<String>) {
         self.out.push(Change {
             class: Class::Breaking,
+            subject: self.subject.clone(),
+            reason: reason.into(),
+        });
+    }
+
+    fn source(&mut self, reason: impl Into<String>) {
+        self.out.push(Change {
+            class: Class::SourceBreaking,
             subject: self.subject.clone(),
             reason: reason.into(),
         });
@@ -76,7 +106,7 @@ pub fn diff(old: &Protocol, new: &Protocol) -> Vec<Change> {
             subject: format!("protocol {}", new.name),
         };
         if old.name != new.name {
-            r.compatible(format!(
+            r.source(format!(
                 "renamed from `{}` (the generated module's name changes)",
                 old.name
             ));
@@ -200,8 +230,8 @@ fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
                 role_name(&nv.role)
             ));
         } else if ov.name != nv.name {
-            r.compatible(format!(
-                "header value `{}` renamed to `{}`",
+            r.source(format!(
+                "header value `{}` renamed to `{}` (a field of `Header`)",
                 ov.name, nv.name
             ));
         }
@@ -325,7 +355,7 @@ fn diff_commands(old: &Protocol, new: &Protocol, out: &mut Vec<Change>) {
             continue;
         };
         if nc.name != oc.name {
-            r.compatible(format!(
+            r.source(format!(
                 "renamed to {} (same id; the generated variant's name changes)",
                 nc.name
             ));
@@ -381,7 +411,12 @@ fn diff_commands(old: &Protocol, new: &Protocol, out: &mut Vec<Change>) {
         }
     }
     for nc in &new.commands {
-        if !old.commands.iter().any(|c| c.id == nc.id) {
+        // A command whose id changed is reported above, as that change, not again as added.
+        let known = old
+            .commands
+            .iter()
+            .any(|c| c.id == nc.id || c.name == nc.name);
+        if !known {
             let mut r = Report {
                 out,
                 subject: format!("command {} (id {})", nc.name, id_text(nc)),

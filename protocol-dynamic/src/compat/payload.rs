@@ -124,7 +124,7 @@ fn diff_field(
         return false;
     }
     if of.name != nf.name {
-        r.compatible(format!("{at}: renamed from `{}`", of.name));
+        r.source(format!("{at}: renamed from `{}`", of.name));
     }
     if of.unit != nf.unit {
         r.compatible(format!("{at}: unit `{}` → `{}`", of.unit, nf.unit));
@@ -215,7 +215,7 @@ fn diff_scale(a: Option<&Scale>, b: Option<&Scale>, at: &str, r: &mut Report<'_>
                 return false;
             }
             if x.physical != y.physical {
-                r.compatible(format!(
+                r.source(format!(
                     "{at}: physical type {:?} → {:?}",
                     x.physical, y.physical
                 ));
@@ -256,7 +256,7 @@ fn diff_members(
             _ => return false,
         }
         if x.name != y.name {
-            r.compatible(format!(
+            r.source(format!(
                 "{at}: bits {}..{} renamed `{}` → `{}`",
                 y.shift,
                 y.shift + y.width,
@@ -284,7 +284,7 @@ fn diff_enum(a: &Enum, b: &Enum, at: &str, r: &mut Report<'_>) -> bool {
                 ));
             }
             Some(w) if w.name != v.name => {
-                r.compatible(format!(
+                r.source(format!(
                     "{at}: enum `{}` value {} renamed {} → {}",
                     b.name, v.value, v.name, w.name
                 ));
@@ -307,7 +307,8 @@ fn diff_enum(a: &Enum, b: &Enum, at: &str, r: &mut Report<'_>) -> bool {
         }
     }
     if a.unknown != b.unknown {
-        r.compatible(format!(
+        // `keep` adds the generated enum's `Unknown(raw)` variant.
+        r.source(format!(
             "{at}: enum `{}` unknown values: {:?} → {:?}",
             b.name, a.unknown, b.unknown
         ));
