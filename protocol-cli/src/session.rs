@@ -49,6 +49,10 @@ pub struct Counts {
     pub can_skipped: u64,
     /// Bytes received (serial), or data bytes of the CAN records.
     pub input_bytes: u64,
+    /// Bytes of the `skipped` events (serial).
+    pub skipped_event_bytes: u64,
+    /// Rejected candidates (serial): each an event of 1 byte.
+    pub rejected: u64,
 }
 
 /// The JSON name of a rejection.
@@ -104,9 +108,13 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                 decoded,
             } => self.decoded(offset, bytes, decoded, Map::new()),
             Item::Rejected { offset, reason } => {
+                self.counts.rejected += 1;
                 self.emit(offset, reject_name(reason), 1, Map::new())
             }
-            Item::Skipped { offset, len } => self.emit(offset, "skipped", len, Map::new()),
+            Item::Skipped { offset, len } => {
+                self.counts.skipped_event_bytes += len as u64;
+                self.emit(offset, "skipped", len, Map::new())
+            }
         }
     }
 
@@ -312,10 +320,14 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                     "other rejections: bad header {}, bad trailer {}, truncated {}\n",
                     e.bad_header, e.bad_trailer, e.truncated
                 ));
+                // The engine's count holds the first byte of every rejected candidate too; the
+                // line says so, and splits it as the events do.
                 s.push_str(&format!(
-                    "bytes skipped: {} ({})\n",
+                    "bytes skipped: {} ({}): {} in skipped events, {} the first bytes of rejected candidates\n",
                     e.skipped_bytes,
-                    percent(e.skipped_bytes, total)
+                    percent(e.skipped_bytes, total),
+                    c.skipped_event_bytes,
+                    c.rejected
                 ));
             }
             None => {

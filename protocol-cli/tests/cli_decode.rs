@@ -218,7 +218,7 @@ fn every_input_form_gives_the_same_output() {
     let bad_hex = protocol(&["decode", spec, "--hex"], b"ff ff 0g");
     assert_eq!(bad_hex.status.code(), Some(1));
     assert!(
-        text(&bad_hex.stderr).contains("not hex"),
+        text(&bad_hex.stderr).contains("stdin:1:8: `g` is not a hex digit"),
         "{}",
         text(&bad_hex.stderr)
     );

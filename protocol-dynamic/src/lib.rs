@@ -106,7 +106,9 @@ mod stream;
 mod value;
 
 pub use error::{DecodeIssue, EncodeIssue};
-pub use frame::{Decoded, Dispatch, ack_value, dispatch_of, hex, parse_hex};
+pub use frame::{
+    Decoded, Dispatch, HexError, ack_value, dispatch_of, hex, parse_hex, parse_hex_located,
+};
 pub use layout::word_field;
 pub use load::LoadError;
 pub use model::{Fields, Value};

@@ -17,7 +17,7 @@ use miette::{IntoDiagnostic, Result, WrapErr, miette};
 use protocol_cli::candump;
 use protocol_cli::session::{Output, Session};
 use protocol_codegen::ir::Transport;
-use protocol_dynamic::{Codec, Interpreter, Stream, parse_hex};
+use protocol_dynamic::{Codec, Interpreter, Stream, parse_hex_located};
 
 use super::load_checked;
 use crate::Format;
@@ -99,6 +99,9 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         Err(e) if e.kind() == io::ErrorKind::BrokenPipe => return Ok(ExitCode::SUCCESS),
         Err(e) => return Err(e).into_diagnostic().wrap_err("decoding failed"),
     };
+    if let Some(hint) = wrong_format_hint(&session, &codec, format) {
+        eprintln!("{hint}");
+    }
     if args.stats {
         let summary = session.summary(engine.as_ref());
         let written = match output {
@@ -113,6 +116,43 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Inputs shorter than this get no hint: a few bytes of noise are no sign of a wrong format.
+const HINT_ABOVE: u64 = 64;
+
+/// A hint when nearly nothing of a sizeable input was in frames (under 10%): the capture is
+/// probably of another link, another frame format, or hex text read as binary.
+fn wrong_format_hint(
+    session: &Session<'_, '_, impl Write>,
+    codec: &Codec<'_>,
+    format: usize,
+) -> Option<String> {
+    let c = &session.counts;
+    if c.input_bytes < HINT_ABOVE || c.frame_bytes.saturating_mul(10) >= c.input_bytes {
+        return None;
+    }
+    let p = codec.protocol();
+    let name = p.frames.get(format).map_or("?", |f| f.name.as_str());
+    let others: Vec<&str> = p
+        .frames
+        .iter()
+        .filter(|f| !matches!(f.transport, Transport::Can { .. }))
+        .map(|f| f.name.as_str())
+        .filter(|n| *n != name)
+        .collect();
+    let other = if others.is_empty() {
+        String::new()
+    } else {
+        format!(
+            ", another frame format (`--frame {}`)",
+            others.join("` or `--frame ")
+        )
+    };
+    Some(format!(
+        "hint: {} of {} bytes decoded as `{name}` frames of {}: is this a capture of that link{other}, or hex text (`--hex`)?",
+        c.frame_bytes, c.input_bytes, p.name
+    ))
 }
 
 /// The frame format to decode: `--frame NAME`, else the first with the input's transport.
@@ -209,9 +249,20 @@ fn open_input(args: &Args) -> Result<Input> {
             .wrap_err_with(|| format!("cannot read `{}`", p.display()))?,
     };
     let data = if args.hex {
-        let text = String::from_utf8(raw).map_err(|_| miette!("--hex input is not text"))?;
-        parse_hex(&text).ok_or_else(|| {
-            miette!("--hex input is not hex: expected pairs of hex digits (whitespace and 0x are ignored)")
+        let name = path.map_or("stdin".into(), |p| p.display().to_string());
+        let text = String::from_utf8(raw).map_err(|e| {
+            miette!(
+                "--hex input {name} is not text: byte {} is not UTF-8",
+                e.utf8_error().valid_up_to()
+            )
+        })?;
+        parse_hex_located(&text).map_err(|e| {
+            miette!(
+                "--hex input {name}:{}:{}: {} (expected pairs of hex digits; whitespace, `,`, `:` and `0x` are ignored)",
+                e.line,
+                e.column,
+                e.what
+            )
         })?
     } else {
         raw

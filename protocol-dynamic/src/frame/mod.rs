@@ -150,25 +150,80 @@ pub fn hex(bytes: &[u8]) -> String {
 
 /// Bytes from hex text: whitespace, `0x` prefixes and `:`/`,` separators are ignored.
 pub fn parse_hex(text: &str) -> Option<Vec<u8>> {
-    let digits: String = text
-        .split(|c: char| c.is_whitespace() || c == ',' || c == ':')
-        .map(|w| {
-            w.strip_prefix("0x")
-                .or_else(|| w.strip_prefix("0X"))
-                .unwrap_or(w)
-        })
-        .collect();
-    if digits.len() % 2 != 0 {
-        return None;
+    parse_hex_located(text).ok()
+}
+
+/// Where hex text stops being hex ([`parse_hex_located`]): a line and a column (both from
+/// 1, the column in characters) and what is wrong there.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct HexError {
+    /// Line of the offending character.
+    pub line: usize,
+    /// Column of the offending character.
+    pub column: usize,
+    /// What is wrong there.
+    pub what: String,
+}
+
+impl std::fmt::Display for HexError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "line {}, column {}: {}",
+            self.line, self.column, self.what
+        )
     }
-    (0..digits.len())
-        .step_by(2)
-        .map(|i| {
-            digits
-                .get(i..i + 2)
-                .and_then(|d| u8::from_str_radix(d, 16).ok())
-        })
-        .collect()
+}
+
+impl std::error::Error for HexError {}
+
+/// Bytes from hex text, as [`parse_hex`], or where and why the text is not hex.
+///
+/// # Errors
+///
+/// A [`HexError`] at the first character that is neither a hex digit nor a separator, or at
+/// the last digit when the digits do not pair up.
+pub fn parse_hex_located(text: &str) -> Result<Vec<u8>, HexError> {
+    let mut bytes = Vec::new();
+    // The first digit of the pending pair, and where it stands.
+    let mut high: Option<(u8, usize, usize)> = None;
+    for (l, line) in text.lines().enumerate() {
+        let chars: Vec<char> = line.chars().collect();
+        let mut c = 0;
+        while let Some(&ch) = chars.get(c) {
+            let word_start = c == 0 || chars.get(c - 1).is_some_and(|&p| is_separator(p));
+            if word_start && ch == '0' && matches!(chars.get(c + 1), Some('x' | 'X')) {
+                c += 2;
+                continue;
+            }
+            if !is_separator(ch) {
+                let Some(d) = ch.to_digit(16) else {
+                    return Err(HexError {
+                        line: l + 1,
+                        column: c + 1,
+                        what: format!("`{ch}` is not a hex digit"),
+                    });
+                };
+                match high.take() {
+                    None => high = Some((d as u8, l + 1, c + 1)),
+                    Some((h, _, _)) => bytes.push((h << 4) | d as u8),
+                }
+            }
+            c += 1;
+        }
+    }
+    match high {
+        None => Ok(bytes),
+        Some((_, line, column)) => Err(HexError {
+            line,
+            column,
+            what: "the last hex digit has no pair (an odd number of digits)".into(),
+        }),
+    }
+}
+
+fn is_separator(c: char) -> bool {
+    c.is_whitespace() || c == ',' || c == ':'
 }
 
 /// The payload bytes of a frame.
