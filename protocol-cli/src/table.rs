@@ -161,6 +161,8 @@ pub fn frame_line(p: &Protocol, w: Widths, d: &Decoded, offset: u64, len: usize)
         line.push_str("  | ");
         line.push_str(&fields.join("  "));
     }
+    // A frame without header values or fields ends at its padded command name.
+    line.truncate(line.trim_end().len());
     line
 }
 
