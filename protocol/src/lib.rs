@@ -1,15 +1,6 @@
 //! Typed codecs for serial and CAN links, generated from a TOML spec: `no_std`, no allocation,
 //! no panics, no `unsafe`.
 //!
-//! A spec describes a link: how bytes are framed (sync bytes, a length field, checks,
-//! trailers), which commands exist and what each carries. [`protocol!`] turns it into a module
-//! of payload structs, enums, a `Command` table, a `Message` enum, `Packet::encode` and
-//! `Packet::decode`, and a streaming decoder with a fixed buffer. [`derive@Payload`] gives a
-//! hand-written struct the same wire encoding. Everything those need at run time is the
-//! runtime re-exported here: frame layouts, the stream engine, checksums, cursors and errors.
-//!
-//! This crate is the one dependency to add; it holds no code of its own.
-//!
 //! # Example
 //!
 //! A spec inline (a file is `protocol!("specs/NAME.toml")`, relative to the crate's
@@ -65,6 +56,18 @@
 //! assert_eq!(decoder.stats().skipped_bytes, 1);
 //! # Ok::<(), Box<dyn core::error::Error>>(())
 //! ```
+//!
+//! # What it is
+//!
+//! A spec describes a link: how bytes are framed (sync bytes, a length field, checks,
+//! trailers), which commands exist and what each carries. [`protocol!`] turns it into a module
+//! of payload structs, enums, a `Command` table, a `Message` enum, `Packet::encode` and
+//! `Packet::decode`, and a streaming decoder with a fixed buffer. [`derive@Payload`] gives a
+//! hand-written struct the same wire encoding. Everything those need at run time is the
+//! runtime re-exported here: frame layouts, the stream engine, checksums, cursors and errors.
+//!
+//! This crate is the one dependency to add; it holds no code of its own. The repository's
+//! `docs/tutorial.md` goes from a new link to firmware, a capture and a checked change.
 //!
 //! # Naming this crate under another path
 //!
