@@ -100,11 +100,67 @@ fn field_order(f: &Field) -> &'static str {
     }
 }
 
-/// The doc of a struct: its spec text and a table of its wire layout.
+/// `1 byte`, `n bytes`.
+pub fn bytes(n: usize) -> String {
+    if n == 1 {
+        "1 byte".into()
+    } else {
+        format!("{n} bytes")
+    }
+}
+
+/// `` `A` ``, `` `A` and `B` ``, `` `A`, `B` and `C` ``.
+fn name_list(names: &[&str]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+    match quoted.split_last() {
+        None => String::new(),
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+/// The first sentence of an undocumented struct's doc: what carries it.
+fn struct_summary(p: &Protocol, s: &Struct) -> String {
+    let index = p.structs.iter().position(|x| x.name == s.name);
+    let carriers: Vec<&str> = p
+        .commands
+        .iter()
+        .filter(|c| c.payloads.iter().any(|&x| x.is_some() && x == index))
+        .map(|c| c.name.as_str())
+        .collect();
+    if !carriers.is_empty() {
+        return format!("The payload of {}.", name_list(&carriers));
+    }
+    let holders: Vec<&str> = p
+        .structs
+        .iter()
+        .filter(|outer| {
+            outer.fields.iter().any(|f| match &f.kind {
+                FieldKind::Value {
+                    ty: ValueType::Struct(i),
+                    ..
+                }
+                | FieldKind::Group { elem: i, .. } => Some(*i) == index,
+                _ => false,
+            })
+        })
+        .map(|outer| outer.name.as_str())
+        .collect();
+    if !holders.is_empty() {
+        return format!("A part of {}.", name_list(&holders));
+    }
+    format!("`{}`, a struct of the spec.", s.name)
+}
+
+/// The doc of a struct: its spec text (or a summary saying what carries it) and a table of
+/// its wire layout.
 pub fn struct_doc(p: &Protocol, s: &Struct) -> String {
-    let mut out = String::new();
-    out.push_str(&s.doc);
-    out.push_str(&format!("\n\nWire layout, {} bytes:\n\n| offset | size | field | type | byte order | unit |\n|---:|---:|---|---|---|---|\n", s.size));
+    let mut out = if s.doc.trim().is_empty() {
+        struct_summary(p, s)
+    } else {
+        s.doc.clone()
+    };
+    out.push_str(&format!("\n\nWire layout, {}:\n\n| offset | size | field | type | byte order | unit |\n|---:|---:|---|---|---|---|\n", bytes(s.size)));
     for f in &s.fields {
         let name = match &f.kind {
             FieldKind::Padding => "*(padding)*".to_string(),
@@ -157,6 +213,66 @@ pub fn algorithm_text(a: &Algorithm) -> String {
             ),
         },
     }
+}
+
+/// The doc of the generated module: the spec's text, its version, the first frame format's
+/// table and the command table.
+pub fn module_doc(p: &Protocol) -> String {
+    let mut doc = p.doc.clone();
+    if !p.version.is_empty() {
+        doc.push_str(&format!("\n\nSpec version: {}.", p.version));
+    }
+    if let Some(f) = p.frames.first() {
+        doc.push_str("\n\n");
+        doc.push_str(&frame_doc(f));
+    }
+    if !p.commands.is_empty() {
+        doc.push('\n');
+        doc.push_str(&commands_doc(p));
+    }
+    doc
+}
+
+/// The command table: id, name (a link to its `Command` variant), payload per direction and
+/// the first line of the command's doc.
+///
+/// Links name the module: rustdoc resolves the outer doc of a module in its parent's scope.
+fn commands_doc(p: &Protocol) -> String {
+    let m = &p.name;
+    let dirs: Vec<&str> = p.directions.iter().map(|d| d.name.as_str()).collect();
+    let payload_heads = if dirs.is_empty() {
+        "payload".to_string()
+    } else {
+        dirs.join(" | ")
+    };
+    let columns = dirs.len().max(1);
+    let mut out = format!(
+        "| id | command | {payload_heads} | doc |\n|---|---|{}---|\n",
+        "---|".repeat(columns)
+    );
+    for c in &p.commands {
+        let ids: Vec<String> = c.id.iter().map(|v| format!("{v:#04x}")).collect();
+        let payloads: Vec<String> = c
+            .payloads
+            .iter()
+            .map(|x| {
+                x.map_or("-".into(), |i| {
+                    format!("[`{0}`]({m}::{0})", p.structs[i].name)
+                })
+            })
+            .collect();
+        let summary = c.doc.lines().next().unwrap_or("");
+        let row = format!(
+            "| {} | [`{}`]({m}::Command::{}) | {} | {summary}",
+            ids.join(", "),
+            c.name,
+            c.rust_name,
+            payloads.join(" | ")
+        );
+        out.push_str(row.trim_end());
+        out.push_str(" |\n");
+    }
+    out
 }
 
 /// The doc of a frame format: a table of its elements.

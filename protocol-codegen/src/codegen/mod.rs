@@ -52,15 +52,7 @@ pub fn rt() -> TokenStream {
 /// Expand a protocol into its module.
 pub fn expand(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     let module = ident(&p.name);
-    let mut doc = p.doc.clone();
-    if !p.version.is_empty() {
-        doc.push_str(&format!("\n\nSpec version: {}.", p.version));
-    }
-    if let Some(f) = p.frames.first() {
-        doc.push_str("\n\n");
-        doc.push_str(&docs::frame_doc(f));
-    }
-    let doc = docs::doc_attrs(&doc);
+    let doc = docs::doc_attrs(&docs::module_doc(p));
     let constants = types::emit_constants(p);
     let addresses = types::emit_addresses(p);
     let enums = types::emit_enums(p);

@@ -242,7 +242,7 @@ pub fn packet_diagram(f: &Frame) -> String {
     draw_rows(&head, &mut out, true);
     let full = ROW_BYTES * BYTE_CHARS - 1;
     let payload = if f.payload_min == f.payload_max {
-        format!("payload, {} bytes", f.payload_max)
+        format!("payload, {}", crate::codegen::docs::bytes(f.payload_max))
     } else {
         format!("payload, {} to {} bytes", f.payload_min, f.payload_max)
     };
