@@ -5,6 +5,7 @@
 #![forbid(unsafe_code)]
 
 pub mod candump;
+pub mod report;
 pub mod session;
 pub mod spec;
 pub mod table;

@@ -45,6 +45,20 @@ enum Command {
     Decode(cmd::decode::Args),
     /// Encode frame objects (JSON Lines, as `decode --format json` prints them) into frames.
     Encode(cmd::encode::Args),
+    /// Write one self-contained HTML page about a capture: link statistics, frames per
+    /// command, link quality over the capture, and a hex view with every field outlined.
+    Report {
+        /// The spec file.
+        spec: PathBuf,
+        /// The capture (raw bytes).
+        capture: PathBuf,
+        /// Write to this file (default: the capture's path with `.html`).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// The frame format to decode (default: the first).
+        #[arg(long)]
+        frame: Option<String>,
+    },
     /// Print the Rust code the `protocol!` macro generates for a spec, formatted.
     Expand {
         /// The spec file.
@@ -81,6 +95,12 @@ fn main() -> ExitCode {
         Command::Decode(args) => cmd::decode::run(&args),
         Command::Encode(args) => cmd::encode::run(&args),
         Command::Expand { spec } => cmd::expand::run(&spec),
+        Command::Report {
+            spec,
+            capture,
+            output,
+            frame,
+        } => cmd::report::run(&spec, &capture, output.as_deref(), frame.as_deref()),
         Command::Diff { old, new, json } => cmd::diff::run(&old, &new, json),
     };
     match result {
