@@ -441,7 +441,7 @@ td.n{text-align:right;font-variant-numeric:tabular-nums}\
 .frame.bad{background:#fff1df}.rejected{background:#fde0e0;color:#a00}.skipped{color:#888;background:#f2f2f2}\
 #tip{position:fixed;right:16px;bottom:16px;background:#222;color:#fff;padding:6px 10px;border-radius:4px;font:12px monospace;display:none}";
 
-const SCRIPT: &str = "var tip=document.getElementById('tip');\
+const SCRIPT: &str = "document.body.dataset.ready='1';var tip=document.getElementById('tip');\
 document.getElementById('hex').addEventListener('mouseover',function(e){var f=e.target.closest('.field');\
 if(!f){tip.style.display='none';return;}var fr=f.closest('.frame');\
 tip.textContent=(fr?fr.dataset.command+' @'+fr.dataset.offset+': ':'')+f.dataset.name+' = '+f.dataset.value;tip.style.display='block';});\
