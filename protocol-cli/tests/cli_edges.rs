@@ -100,3 +100,28 @@ fn skipped_bytes_in_the_stats_add_up_to_the_events() {
     );
     assert!(stats.contains(&want), "`{want}` not in:\n{stats}");
 }
+
+#[test]
+fn encode_refuses_a_value_its_field_cannot_carry() {
+    let spec = "examples/tutorial/specs/rover.toml";
+    let out = protocol(
+        &["encode", spec, "--hex"],
+        b"{\"command\":\"STATUS\",\"payload\":{\"battery\":1234.5,\"odometer\":0}}\n\
+          {\"command\":\"STATUS\",\"payload\":{\"battery\":\"NaN\",\"odometer\":0}}\n\
+          {\"command\":\"STATUS\",\"payload\":{\"battery\":12.5,\"odometer\":0}}\n",
+    );
+    assert_eq!(out.status.code(), Some(1), "a refused line fails the run");
+    let err = text(&out.stderr);
+    assert!(
+        err.contains("stdin:1: `payload.battery`: 1234.5 does not fit the raw type u16")
+            && err.contains("stdin:2: `payload.battery`: NaN does not fit the raw type u16"),
+        "{err}"
+    );
+    // Only the valid line is written.
+    assert_eq!(
+        text(&out.stdout).lines().count(),
+        1,
+        "{}",
+        text(&out.stdout)
+    );
+}
