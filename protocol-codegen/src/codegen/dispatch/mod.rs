@@ -1,7 +1,7 @@
-//! Commands and messages: the `Command` id enum ([`command`]), the dispatch enums (`Message`, or
-//! `Request` and `Response` when the spec has directions; [`message`]), `Packet`, which decodes a
-//! frame into a header and a message and encodes one back through the runtime's
-//! `FrameLayout::seal` ([`packet`]), and the packets of the other frame formats ([`frames`]).
+//! Commands and messages: the `Command` id enum (module `command`), the dispatch enums
+//! (`Message`, or `Request` and `Response` when the spec has directions; `message`), `Packet`,
+//! which decodes a frame into a header and a message and encodes one back through the runtime's
+//! `FrameLayout::seal` (`packet`), and the packets of the other frame formats (`frames`).
 
 mod command;
 mod frames;
