@@ -27,8 +27,10 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod int24;
 mod word;
 
+pub use int24::{fit_i24, fit_u24};
 pub use word::{read_uint, write_uint};
 
 use crate::error::{DecodeError, EncodeError};
