@@ -75,6 +75,11 @@ pub enum Prim {
     U16,
     /// `i16`
     I16,
+    /// `u24`: three bytes, a `u32` in Rust; a value above 24 bits is an encode error
+    U24,
+    /// `i24`: three bytes of two's complement, an `i32` in Rust (sign-extended on decode); a
+    /// value outside the 24-bit range is an encode error
+    I24,
     /// `u32`
     U32,
     /// `i32`
@@ -97,14 +102,17 @@ impl Prim {
         match self {
             Prim::U8 | Prim::I8 | Prim::Bool => 1,
             Prim::U16 | Prim::I16 => 2,
+            Prim::U24 | Prim::I24 => 3,
             Prim::U32 | Prim::I32 | Prim::F32 => 4,
             Prim::U64 | Prim::I64 | Prim::F64 => 8,
         }
     }
 
-    /// The Rust type name.
+    /// The Rust type name (`u32` for `u24`, `i32` for `i24`).
     pub fn rust_name(self) -> &'static str {
         match self {
+            Prim::U24 => "u32",
+            Prim::I24 => "i32",
             Prim::U8 => "u8",
             Prim::I8 => "i8",
             Prim::U16 => "u16",
@@ -116,6 +124,16 @@ impl Prim {
             Prim::F32 => "f32",
             Prim::F64 => "f64",
             Prim::Bool => "bool",
+        }
+    }
+
+    /// The name a spec writes (before an optional `le`/`be` suffix): the Rust type name, but
+    /// `u24` and `i24` for the 24-bit integers.
+    pub fn spec_name(self) -> &'static str {
+        match self {
+            Prim::U24 => "u24",
+            Prim::I24 => "i24",
+            other => other.rust_name(),
         }
     }
 
@@ -139,14 +157,30 @@ impl Prim {
         .find(|p| p.rust_name() == name)
     }
 
+    /// The primitive a spec name (`u8` ... `i64`, `u24`, `i24`, `f32`, `f64`, `bool`) stands
+    /// for: the inverse of [`Prim::spec_name`].
+    pub fn from_spec_name(name: &str) -> Option<Prim> {
+        match name {
+            "u24" => Some(Prim::U24),
+            "i24" => Some(Prim::I24),
+            other => Prim::from_rust_name(other),
+        }
+    }
+
     /// True for the unsigned integer types.
     pub fn is_unsigned(self) -> bool {
-        matches!(self, Prim::U8 | Prim::U16 | Prim::U32 | Prim::U64)
+        matches!(
+            self,
+            Prim::U8 | Prim::U16 | Prim::U24 | Prim::U32 | Prim::U64
+        )
     }
 
     /// True for the signed integer types.
     pub fn is_signed(self) -> bool {
-        matches!(self, Prim::I8 | Prim::I16 | Prim::I32 | Prim::I64)
+        matches!(
+            self,
+            Prim::I8 | Prim::I16 | Prim::I24 | Prim::I32 | Prim::I64
+        )
     }
 
     /// True for `f32` and `f64`.

@@ -85,6 +85,8 @@ pub fn read_scalar(r: &mut Reader<'_>, s: Scalar) -> Result<Num, DecodeError> {
         Prim::Bool => Num::Bool(r.bool()?),
         Prim::U16 => Num::U(u64::from(by_order!(r, s.endian, u16_le, u16_be)?)),
         Prim::I16 => Num::I(i64::from(by_order!(r, s.endian, i16_le, i16_be)?)),
+        Prim::U24 => Num::U(u64::from(by_order!(r, s.endian, u24_le, u24_be)?)),
+        Prim::I24 => Num::I(i64::from(by_order!(r, s.endian, i24_le, i24_be)?)),
         Prim::U32 => Num::U(u64::from(by_order!(r, s.endian, u32_le, u32_be)?)),
         Prim::I32 => Num::I(i64::from(by_order!(r, s.endian, i32_le, i32_be)?)),
         Prim::U64 => Num::U(by_order!(r, s.endian, u64_le, u64_be)?),
@@ -113,6 +115,11 @@ pub fn write_bits(w: &mut Writer<'_>, s: Scalar, bits: u64) -> Result<(), Encode
         Prim::U8 | Prim::I8 => w.put_u8(bits as u8),
         Prim::Bool => w.put_u8(u8::from(bits != 0)),
         Prim::U16 | Prim::I16 => put_by_order!(w, s.endian, put_u16_le, put_u16_be, bits as u16),
+        // Callers have fitted the value to 24 bits (`value_bits`, `fit_u24`/`fit_i24`); the
+        // low 24 bits are the wire bytes of either sign.
+        Prim::U24 | Prim::I24 => {
+            put_by_order!(w, s.endian, put_u24_le, put_u24_be, bits as u32 & 0xFF_FFFF)
+        }
         Prim::U32 | Prim::I32 | Prim::F32 => {
             put_by_order!(w, s.endian, put_u32_le, put_u32_be, bits as u32)
         }
@@ -280,7 +287,7 @@ pub fn value_f64(v: &Value) -> Result<f64, NumError> {
 
 /// An integer from a value: an integer, a float without a fraction, or a `"0x..."` string.
 fn value_integer(v: &Value, prim: Prim) -> Result<i128, NumError> {
-    let name = prim.rust_name();
+    let name = prim.spec_name();
     let wrong = || {
         NumError::Type(format!(
             "expected an integer ({name}), got {}",
@@ -321,6 +328,8 @@ fn int_range(prim: Prim) -> (i128, i128) {
         Prim::I8 => (i128::from(i8::MIN), i128::from(i8::MAX)),
         Prim::U16 => (0, i128::from(u16::MAX)),
         Prim::I16 => (i128::from(i16::MIN), i128::from(i16::MAX)),
+        Prim::U24 => (0, 0xFF_FFFF),
+        Prim::I24 => (-0x80_0000, 0x7F_FFFF),
         Prim::U32 => (0, i128::from(u32::MAX)),
         Prim::I32 => (i128::from(i32::MIN), i128::from(i32::MAX)),
         Prim::I64 => (i128::from(i64::MIN), i128::from(i64::MAX)),
@@ -352,7 +361,7 @@ pub fn value_bits(v: &Value, prim: Prim) -> Result<u64, NumError> {
             if x < lo || x > hi {
                 return Err(NumError::Range(format!(
                     "{x} does not fit {} ({lo}..={hi})",
-                    prim.rust_name()
+                    prim.spec_name()
                 )));
             }
             // Two's complement bits of a signed value, truncated to the type.
@@ -366,6 +375,7 @@ pub fn bits_as_f64(prim: Prim, bits: u64) -> f64 {
     match prim {
         Prim::I8 => f64::from(bits as u8 as i8),
         Prim::I16 => f64::from(bits as u16 as i16),
+        Prim::I24 => f64::from(((bits as u32) << 8) as i32 >> 8),
         Prim::I32 => f64::from(bits as u32 as i32),
         Prim::I64 => bits as i64 as f64,
         _ => bits as f64,

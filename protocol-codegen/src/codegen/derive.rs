@@ -8,8 +8,9 @@
 //!   `::protocol`; a bare path works too);
 //! - on a field: `#[payload(byte_order = "big")]`, `#[payload(pad_before = 3)]`,
 //!   `#[payload(pad_after = 1)]`, `#[payload(scale = 0.001, raw = "i16")]` (an `f32`/`f64` field
-//!   stored as a scaled integer), `#[payload(repr = "u8")]` (a type with `to_raw`/`from_raw`,
-//!   such as a generated enum).
+//!   stored as a scaled integer), `#[payload(raw = "u24")]` alone on an integer field (a `u32`
+//!   or `i32` on the wire as the 24-bit `u24`/`i24`), `#[payload(repr = "u8")]` (a type with
+//!   `to_raw`/`from_raw`, such as a generated enum).
 //!
 //! Fields of primitive types (`u8` … `i64`, `f32`, `f64`, `bool`) and arrays of them are
 //! encoded directly; any other type must implement `Payload` itself.
@@ -55,7 +56,7 @@ fn parse_crate_path(value: syn::parse::ParseStream<'_>) -> syn::Result<RuntimePa
 }
 
 fn parse_prim_lit(lit: &syn::LitStr) -> syn::Result<Prim> {
-    Prim::from_rust_name(&lit.value())
+    Prim::from_spec_name(&lit.value())
         .filter(|p| p.is_signed() || p.is_unsigned())
         .ok_or_else(|| {
             syn::Error::new(
@@ -248,6 +249,27 @@ fn field_kind(f: &syn::Field, a: &FieldAttrs, endian: ByteOrder) -> syn::Result<
                 rounding: Rounding::Nearest,
                 clamp: None,
             }),
+            count,
+        });
+    }
+    if let Some(raw) = a.raw {
+        // Without `scale`, `raw` is the wire form of an integer of the same Rust type.
+        let Some(field) = prim.filter(|s| s.prim.rust_name() == raw.rust_name()) else {
+            return Err(syn::Error::new(
+                f.ty.span(),
+                format!(
+                    "`raw = \"{}\"` without `scale` needs a `{}` field",
+                    raw.spec_name(),
+                    raw.rust_name()
+                ),
+            ));
+        };
+        return Ok(PKind::Scalar {
+            scalar: Scalar {
+                prim: raw,
+                endian: field.endian,
+            },
+            scale: None,
             count,
         });
     }

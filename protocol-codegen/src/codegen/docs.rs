@@ -54,13 +54,13 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
             };
             format!("optional {}", field_type_name(p, &inner))
         }
-        FieldKind::Bits { word, .. } => format!("{} bits", word.prim.rust_name()),
+        FieldKind::Bits { word, .. } => format!("{} bits", word.prim.spec_name()),
         FieldKind::Value { ty, count } => {
             let base = match ty {
                 ValueType::Scalar {
                     scalar,
                     scale: None,
-                } => scalar.prim.rust_name().to_string(),
+                } => scalar.prim.spec_name().to_string(),
                 ValueType::Scalar {
                     scalar,
                     scale: Some(s),
@@ -70,10 +70,10 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
                     } else {
                         String::new()
                     };
-                    format!("{} × {}{off}", scalar.prim.rust_name(), s.factor)
+                    format!("{} × {}{off}", scalar.prim.spec_name(), s.factor)
                 }
                 ValueType::Struct(i) => format!("`{}`", p.structs[*i].name),
-                ValueType::Enum(i, s) => format!("`{}` ({})", p.enums[*i].name, s.prim.rust_name()),
+                ValueType::Enum(i, s) => format!("`{}` ({})", p.enums[*i].name, s.prim.spec_name()),
             };
             match count {
                 Some(n) => format!("[{base}; {n}]"),
@@ -337,7 +337,7 @@ pub fn frame_doc(f: &Frame) -> String {
                 out.push_str(&format!(
                     "| {offset} | {} | `{name}` | {} {} | {meaning} |\n",
                     scalar.prim.size(),
-                    scalar.prim.rust_name(),
+                    scalar.prim.spec_name(),
                     order_name(scalar.endian, scalar.prim.size())
                 ));
             }

@@ -122,7 +122,7 @@ pub fn prim_type(prim: Prim) -> TokenStream {
 }
 
 fn suffix(s: Scalar) -> String {
-    let base = s.prim.rust_name();
+    let base = s.prim.spec_name();
     if s.prim.size() == 1 {
         base.to_string()
     } else {

@@ -18,8 +18,10 @@ pub fn int_lit(prim: Prim, value: u64) -> TokenStream {
         Prim::I8 => Literal::i8_suffixed(value as u8 as i8),
         Prim::U16 => Literal::u16_suffixed(value as u16),
         Prim::I16 => Literal::i16_suffixed(value as u16 as i16),
-        Prim::U32 => Literal::u32_suffixed(value as u32),
+        Prim::U32 | Prim::U24 => Literal::u32_suffixed(value as u32),
         Prim::I32 => Literal::i32_suffixed(value as u32 as i32),
+        // Two's complement bits of 24 bits, sign-extended.
+        Prim::I24 => Literal::i32_suffixed(((value as u32) << 8) as i32 >> 8),
         Prim::I64 => Literal::i64_suffixed(value as i64),
         _ => Literal::u64_suffixed(value),
     };
@@ -101,7 +103,7 @@ fn emit_enum(e: &Enum) -> TokenStream {
     let mut doc = e.doc.clone();
     doc.push_str(&format!(
         "\n\nOn the wire as `{}`. {}",
-        e.prim.rust_name(),
+        e.prim.spec_name(),
         match e.unknown {
             UnknownPolicy::Reject => "A value with no variant is a decode error.",
             UnknownPolicy::Keep => "A value with no variant decodes to `Unknown(raw)`.",

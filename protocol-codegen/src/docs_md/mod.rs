@@ -503,7 +503,7 @@ fn enum_section(e: &Enum, out: &mut String) {
         UnknownPolicy::Reject => "a value with no variant is a decode error",
         UnknownPolicy::Keep => "a value with no variant is kept as it is",
     };
-    let _ = writeln!(out, "On the wire as `{}`; {unknown}.\n", e.prim.rust_name());
+    let _ = writeln!(out, "On the wire as `{}`; {unknown}.\n", e.prim.spec_name());
     out.push_str("| value | name | meaning |\n|---:|---|---|\n");
     for v in &e.variants {
         let _ = writeln!(

@@ -26,7 +26,7 @@ const NOT_RAW: &[&str] = &["self", "Self", "super", "crate", "_"];
 
 /// The primitive type names a spec may write (before an optional `le`/`be` suffix).
 pub const PRIM_NAMES: &[&str] = &[
-    "u8", "i8", "u16", "i16", "u32", "i32", "u64", "i64", "f32", "f64", "bool",
+    "u8", "i8", "u16", "i16", "u24", "i24", "u32", "i32", "u64", "i64", "f32", "f64", "bool",
 ];
 
 /// `SHAKING_HANDS` -> `ShakingHands`, `chassis_coord` -> `ChassisCoord`.
@@ -216,6 +216,8 @@ pub fn parse_prim(name: &str, default: ByteOrder) -> Option<Scalar> {
         "i8" => Prim::I8,
         "u16" => Prim::U16,
         "i16" => Prim::I16,
+        "u24" => Prim::U24,
+        "i24" => Prim::I24,
         "u32" => Prim::U32,
         "i32" => Prim::I32,
         "u64" => Prim::U64,

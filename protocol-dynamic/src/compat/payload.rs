@@ -31,9 +31,9 @@ fn kind_text(p: &Protocol, f: &Field, kind: &FieldKind) -> String {
                         None => String::new(),
                     };
                     if scalar.prim.size() > 1 {
-                        format!("{} {:?}{s}", scalar.prim.rust_name(), scalar.endian)
+                        format!("{} {:?}{s}", scalar.prim.spec_name(), scalar.endian)
                     } else {
-                        format!("{}{s}", scalar.prim.rust_name())
+                        format!("{}{s}", scalar.prim.spec_name())
                     }
                 }
                 ValueType::Struct(i) => format!("struct {}", p.structs[*i].name),
@@ -41,7 +41,7 @@ fn kind_text(p: &Protocol, f: &Field, kind: &FieldKind) -> String {
                     format!(
                         "enum {} ({} {:?})",
                         p.enums[*i].name,
-                        s.prim.rust_name(),
+                        s.prim.spec_name(),
                         s.endian
                     )
                 }

@@ -262,7 +262,7 @@ fn scaled_raw(scalar: Scalar, sc: &Scale, v: &Value, path: &str) -> Result<u64, 
             path,
             format!(
                 "{value} does not fit the raw type {}",
-                scalar.prim.rust_name()
+                scalar.prim.spec_name()
             ),
         )
     })?;
@@ -272,13 +272,16 @@ fn scaled_raw(scalar: Scalar, sc: &Scale, v: &Value, path: &str) -> Result<u64, 
 /// [`field::fit`] for the raw type `prim`, as two's complement bits.
 fn fit_bits(prim: Prim, q: f64) -> Result<u64, EncodeError> {
     use field::fit;
+    use protocol_runtime::wire::{fit_i24, fit_u24};
     Ok(match prim {
         Prim::U8 => u64::from(fit::<u8>(q)?),
         Prim::U16 => u64::from(fit::<u16>(q)?),
+        Prim::U24 => u64::from(fit_u24(fit::<u32>(q)?)?),
         Prim::U32 => u64::from(fit::<u32>(q)?),
         Prim::U64 => fit::<u64>(q)?,
         Prim::I8 => fit::<i8>(q)? as u64,
         Prim::I16 => fit::<i16>(q)? as u64,
+        Prim::I24 => fit_i24(fit::<i32>(q)?)? as u64,
         Prim::I32 => fit::<i32>(q)? as u64,
         Prim::I64 => fit::<i64>(q)? as u64,
         // Validation gives scaled fields an integer raw type.

@@ -141,7 +141,7 @@ fn lower_whole_value<'s>(
                 format!(
                     "value {} does not fit in {}",
                     v.get_ref(),
-                    word.prim.rust_name()
+                    word.prim.spec_name()
                 ),
                 "use a smaller value or a wider type",
             );

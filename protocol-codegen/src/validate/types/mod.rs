@@ -128,7 +128,7 @@ pub(crate) fn lower_enums(ctx: &mut Ctx<'_>) -> Enums {
                     format!(
                         "value {raw} of `{}` does not fit in {}",
                         vname.get_ref(),
-                        scalar.prim.rust_name()
+                        scalar.prim.spec_name()
                     ),
                     "use a wider enum type or a smaller value",
                 );
