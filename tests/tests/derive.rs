@@ -69,3 +69,35 @@ fn derived_payloads_have_the_declared_layout() {
     );
     assert!(report.to_bytes(&mut buf[..n - 1]).is_err());
 }
+
+/// `raw` alone gives an integer field a narrower wire form of its Rust type: a `u32` as the
+/// three bytes of a `u24`, an `i32` as an `i24`.
+#[derive(Debug, Clone, Copy, PartialEq, Payload)]
+#[payload(byte_order = "big")]
+struct Wide {
+    #[payload(raw = "u24")]
+    total: u32,
+    #[payload(raw = "i24", byte_order = "little")]
+    delta: i32,
+}
+
+#[test]
+fn derived_24_bit_fields_take_three_bytes() {
+    assert_eq!(Wide::SIZE, 6);
+    let w = Wide {
+        total: 0x12_3456,
+        delta: -2,
+    };
+    let mut buf = [0u8; 6];
+    assert_eq!(w.to_bytes(&mut buf), Ok(6));
+    assert_eq!(buf, [0x12, 0x34, 0x56, 0xFE, 0xFF, 0xFF]);
+    assert_eq!(Wide::from_bytes(&buf), Ok(w));
+    let too_big = Wide {
+        total: 0x100_0000,
+        ..w
+    };
+    assert_eq!(
+        too_big.to_bytes(&mut buf),
+        Err(protocol::EncodeError::ValueOutOfRange)
+    );
+}

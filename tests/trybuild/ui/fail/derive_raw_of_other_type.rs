@@ -1,0 +1,7 @@
+#[derive(protocol::Payload)]
+struct Meter {
+    #[payload(raw = "u24")]
+    total: u16,
+}
+
+fn main() {}
