@@ -8,11 +8,18 @@ use protocol::{EncodeError, Payload};
 use protocol_dynamic::{Interpreter, Value};
 
 protocol::protocol!("../protocol-codegen/tests/features/int24.toml");
+protocol::protocol!("../protocol-codegen/tests/features/reserved_bits.toml");
 
 /// The spec behind the `int24` module, for the run-time codec.
 const INT24_SPEC: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/../protocol-codegen/tests/features/int24.toml"
+);
+
+/// The spec behind the `reserved_bits` module.
+const RESERVED_BITS_SPEC: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../protocol-codegen/tests/features/reserved_bits.toml"
 );
 
 /// A CRSF `BATTERY_SENSOR` frame (type 0x08) laid out as the CRSF working group's packet
@@ -135,5 +142,61 @@ proptest! {
         prop_assert_eq!(s.to_bytes(&mut buf), Ok(18));
         prop_assert_eq!(&buf[..], &bytes[..]);
         prop_assert_eq!(int24::Samples::from_bytes(&buf), Ok(s));
+    }
+}
+
+/// A `Validity` payload: the NAV-PVT-style `valid` flags 0x37 (date, time, fully resolved, and
+/// the reserved bits 4 and 5 set), a status word 0xF2A5 (mode 5, level 84, reserved bits
+/// 12..16 all set) and a reserved-zero byte 0x81 (ready, bit 7 set).
+const VALIDITY_PAYLOAD: [u8; 4] = [0x37, 0xA5, 0xF2, 0x81];
+
+#[test]
+fn undeclared_bits_are_kept_unless_the_spec_declares_them_reserved_zero() {
+    let v = reserved_bits::Validity::from_bytes(&VALIDITY_PAYLOAD).expect("it decodes");
+    assert!(v.valid_date && v.valid_time && v.fully_resolved && !v.valid_mag);
+    assert_eq!(v.valid_reserved, 0b11);
+    assert_eq!((v.mode, v.level, v.status_reserved), (5, 84, 0xF));
+    assert!(v.ready);
+    let mut buf = [0u8; 4];
+    assert_eq!(v.to_bytes(&mut buf), Ok(4));
+    // The kept bits come back; the reserved-zero bit 7 of the last byte is written as 0.
+    assert_eq!(buf, [0x37, 0xA5, 0xF2, 0x01]);
+    let too_wide = reserved_bits::Validity {
+        valid_reserved: 0x10,
+        ..v
+    };
+    assert_eq!(
+        too_wide.to_bytes(&mut buf),
+        Err(EncodeError::ValueOutOfRange)
+    );
+
+    // The same frame through the run-time codec: the same values, the same bytes.
+    let mut frame = vec![0xB5, 0x62, 0x07, 0x04, 0x00];
+    frame.extend_from_slice(&VALIDITY_PAYLOAD);
+    frame.push(frame[2..].iter().fold(0u8, |a, b| a.wrapping_add(*b)));
+    let packet = reserved_bits::Packet::decode(&frame).expect("the frame decodes");
+    let interp = Interpreter::load(RESERVED_BITS_SPEC).expect("the spec loads");
+    let codec = interp.codec();
+    let d = codec.parse(0, &frame).expect("the codec decodes it");
+    assert_eq!(d.payload["valid_reserved"], Value::UInt(0b11));
+    assert_eq!(d.payload["status_reserved"], Value::UInt(0xF));
+    assert_eq!(d.payload["ready"], Value::Bool(true));
+    let mut generated = [0u8; reserved_bits::MAX_FRAME_LEN];
+    let n = packet.encode(&mut generated).expect("it encodes");
+    let value = codec.frame_value(&d, 0, &frame);
+    assert_eq!(codec.encode(&value).expect("encodes").bytes, generated[..n]);
+    assert_eq!(generated[5..9], [0x37, 0xA5, 0xF2, 0x01]);
+}
+
+proptest! {
+    #[test]
+    fn any_word_with_kept_bits_round_trips(valid in any::<u8>(), status in any::<u16>(), ready in 0u8..2) {
+        let mut bytes = vec![valid];
+        bytes.extend_from_slice(&status.to_le_bytes());
+        bytes.push(ready);
+        let v = reserved_bits::Validity::from_bytes(&bytes).expect("every word decodes");
+        let mut buf = [0u8; 4];
+        prop_assert_eq!(v.to_bytes(&mut buf), Ok(4));
+        prop_assert_eq!(&buf[..], &bytes[..]);
     }
 }

@@ -164,11 +164,19 @@ pub fn struct_doc(p: &Protocol, s: &Struct) -> String {
     for f in &s.fields {
         let name = match &f.kind {
             FieldKind::Padding => "*(padding)*".to_string(),
-            FieldKind::Bits { members, .. } => members
-                .iter()
-                .map(|m| format!("`{}` (bits {}..{})", m.name, m.shift, m.shift + m.width))
-                .collect::<Vec<_>>()
-                .join(", "),
+            FieldKind::Bits { word, members } => {
+                let mut names: Vec<String> = members
+                    .iter()
+                    .map(|m| format!("`{}` (bits {}..{})", m.name, m.shift, m.shift + m.width))
+                    .collect();
+                // Bits above the members that no member keeps are reserved-zero.
+                let used: u32 = members.iter().map(|m| m.width).sum();
+                let bits = 8 * word.prim.size() as u32;
+                if used < bits {
+                    names.push(format!("bits {used}..{bits} reserved, zero"));
+                }
+                names.join(", ")
+            }
             _ => format!("`{}`", f.name),
         };
         let unit = if f.unit.is_empty() {

@@ -377,7 +377,7 @@ pub struct FieldDef {
     /// Field name.
     #[schemars(with = "Option<String>")]
     pub name: Option<SStr>,
-    /// Type: primitive (`u16`, `i32be`, `f32`, `bool`), struct or enum name.
+    /// Type: primitive (`u16`, `i32be`, `u24le`, `f32`, `bool`), struct or enum name.
     #[serde(rename = "type")]
     #[schemars(with = "Option<String>")]
     pub ty: Option<SStr>,
@@ -403,6 +403,11 @@ pub struct FieldDef {
     /// Bit members of an integer field.
     #[schemars(with = "Option<Vec<BitDef>>")]
     pub bits: Option<Spanned<Vec<Spanned<BitDef>>>>,
+    /// With `bits`, the bits above the members: `"keep"` (default: held in a member named
+    /// `<field>_reserved`, so that decoding then encoding gives the same bytes) or `"zero"`
+    /// (reserved-zero: written as zero, ignored when read).
+    #[schemars(with = "Option<String>")]
+    pub reserved: Option<SStr>,
     /// Physical value = raw * scale (+ offset).
     #[schemars(with = "Option<f64>")]
     pub scale: Option<Spanned<f64>>,

@@ -108,7 +108,8 @@ pub(crate) fn lower_bits(
     members
 }
 
-fn smallest_uint(width: u32) -> Prim {
+/// The smallest unsigned type that holds `width` bits.
+pub(super) fn smallest_uint(width: u32) -> Prim {
     match width {
         0..=8 => Prim::U8,
         9..=16 => Prim::U16,

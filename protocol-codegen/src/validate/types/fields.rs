@@ -5,10 +5,12 @@ use toml::Spanned;
 
 use super::super::names::{check_snake_name, parse_prim, prim_spellings, unknown_type};
 use super::super::{Ctx, text};
-use super::bits::lower_bits;
+use super::bits::{lower_bits, smallest_uint};
 use super::{Enums, Structs};
 use crate::diag::did_you_mean;
-use crate::ir::{ByteOrder, Constant, Field, FieldKind, Prim, Rounding, Scalar, Scale, ValueType};
+use crate::ir::{
+    BitMember, ByteOrder, Constant, Field, FieldKind, Prim, Rounding, Scalar, Scale, ValueType,
+};
 use crate::spec::model::{CountDef, FieldDef, SStr};
 
 /// Rule: a field is either `{ pad = N }` (N > 0, nothing else but `doc`) or a named value with a
@@ -44,6 +46,13 @@ pub(super) fn lower_field(
         );
         return None;
     };
+    if let (Some(r), None) = (&d.reserved, &d.bits) {
+        ctx.error(
+            r.span(),
+            "`reserved` applies to fields with `bits`",
+            "remove `reserved`",
+        );
+    }
     let count = lower_count(ctx, d, constants);
     let field = |size, kind, doc: &Option<SStr>| Field {
         name: name.get_ref().clone(),
@@ -96,19 +105,76 @@ pub(super) fn lower_field(
                 "remove `count`, or wrap the bitfield in a struct and make an array of it",
             );
         }
-        let members = lower_bits(ctx, bits.get_ref(), word.prim, enums, &|m| {
+        let mut members = lower_bits(ctx, bits.get_ref(), word.prim, enums, &|m| {
             if m.length_of.is_some() || m.value.is_some() {
                 Some("`length_of` and `value` apply to header bitfields only")
             } else {
                 None
             }
         });
+        members.extend(lower_reserved_bits(ctx, d, name, word.prim, &members));
         let kind = FieldKind::Bits { word, members };
         return Some(field(word.prim.size(), kind, &d.doc));
     }
     let (elem, elem_size) = lower_value_type(ctx, f, ty, scalar, endian, structs, enums)?;
     let kind = FieldKind::Value { ty: elem, count };
     Some(field(elem_size * count.unwrap_or(1), kind, &d.doc))
+}
+
+/// Rule: the bits of a payload bitfield word above its members are never silently zeroed:
+/// `reserved = "keep"` (the default) holds them in one more member, `<field>_reserved`, the
+/// smallest unsigned type that fits them, so that decoding then encoding gives the same
+/// bytes; `reserved = "zero"` declares them reserved-zero (written as zero, ignored when
+/// read). `reserved` is `"keep"` or `"zero"`, and the kept member's name is not a member's
+/// already. Gives the member that keeps them, if any.
+fn lower_reserved_bits(
+    ctx: &mut Ctx<'_>,
+    d: &FieldDef,
+    name: &SStr,
+    word: Prim,
+    members: &[BitMember],
+) -> Option<BitMember> {
+    let keep = match d.reserved.as_ref().map(|r| (r, r.get_ref().as_str())) {
+        None | Some((_, "keep")) => true,
+        Some((_, "zero")) => false,
+        Some((r, other)) => {
+            ctx.error(
+                r.span(),
+                format!("unknown `reserved` policy `{other}`"),
+                "write `reserved = \"keep\"` (the bits above the members are kept in `<field>_reserved`) or `reserved = \"zero\"` (they are written as zero and ignored when read)",
+            );
+            false
+        }
+    };
+    let word_bits = (word.size() * 8) as u32;
+    let shift: u32 = members.iter().map(|m| m.width).sum();
+    if !keep || shift >= word_bits {
+        return None;
+    }
+    let member = format!("{}_reserved", name.get_ref());
+    if members.iter().any(|m| m.name == member) {
+        ctx.error(
+            name.span(),
+            format!(
+                "bit member `{member}` would also hold the bits of `{}` above its members",
+                name.get_ref()
+            ),
+            "rename the member, or write `reserved = \"zero\"` if those bits are always zero",
+        );
+        return None;
+    }
+    let width = word_bits - shift;
+    Some(BitMember {
+        doc: format!(
+            "Bits {shift}..{word_bits} of `{}`, which the spec declares no member for: kept so that decoding then encoding gives the same bytes.",
+            name.get_ref()
+        ),
+        name: member,
+        shift,
+        width,
+        prim: smallest_uint(width),
+        enum_index: None,
+    })
 }
 
 /// Rule: a padding entry takes only `pad` (and `doc`), at least one byte.

@@ -146,6 +146,7 @@ fn lower_fields(
             fields.push(field);
         }
     }
+    check_member_names(ctx, name, d, &fields);
     if d.fields.get_ref().is_empty() {
         ctx.error(
             d.fields.span(),
@@ -154,6 +155,50 @@ fn lower_fields(
         );
     }
     fields
+}
+
+/// Rule: a bit member is a field of the generated struct, so its name is no other field's
+/// and no other bitfield's member's.
+fn check_member_names(ctx: &mut Ctx<'_>, name: &str, d: &StructDef, fields: &[Field]) {
+    let rust_names = |f: &Field| -> Vec<String> {
+        match &f.kind {
+            FieldKind::Bits { members, .. } => members.iter().map(|m| m.name.clone()).collect(),
+            FieldKind::Padding => Vec::new(),
+            _ => vec![f.name.clone()],
+        }
+    };
+    for (i, f) in fields.iter().enumerate() {
+        let FieldKind::Bits { members, .. } = &f.kind else {
+            continue;
+        };
+        for m in members {
+            let clash = fields
+                .iter()
+                .enumerate()
+                .any(|(j, other)| j != i && rust_names(other).contains(&m.name));
+            if clash {
+                let span = d
+                    .fields
+                    .get_ref()
+                    .iter()
+                    .find(|x| {
+                        x.get_ref()
+                            .name
+                            .as_ref()
+                            .is_some_and(|n| n.get_ref() == &f.name)
+                    })
+                    .map_or(d.fields.span(), Spanned::span);
+                ctx.error(
+                    span,
+                    format!(
+                        "bit member `{}` of `{}` is also a field of struct `{name}`",
+                        m.name, f.name
+                    ),
+                    "rename one: the members of a bitfield are fields of the struct",
+                );
+            }
+        }
+    }
 }
 
 /// Rule: what takes every byte left (variable bytes without `size`, a repeated group, an
