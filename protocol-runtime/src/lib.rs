@@ -167,6 +167,7 @@ pub mod group;
 #[cfg(any(feature = "std", feature = "embedded-io"))]
 pub mod io;
 pub mod layout;
+pub mod packed;
 pub mod stuffing;
 pub mod wire;
 
@@ -186,7 +187,7 @@ pub use wire::{Reader, Writer};
 pub mod __private {
     pub use crate::{
         bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, field::*, group::*,
-        layout::*, stuffing::*, wire::*,
+        layout::*, packed::*, stuffing::*, wire::*,
     };
     pub use core;
     pub use core::option::Option::{self, None, Some};
