@@ -99,7 +99,10 @@ fn field_text(
             let nested = format!("{prefix}{}.", f.name);
             struct_fields(p, &p.structs[*si], &v[&f.name], &nested, out);
         }
-        FieldKind::Value { .. } | FieldKind::Bytes { .. } | FieldKind::Group { .. } => {
+        FieldKind::Value { .. }
+        | FieldKind::Bytes { .. }
+        | FieldKind::Group { .. }
+        | FieldKind::Packed { .. } => {
             if let Some(value) = v.get(&f.name) {
                 out.push(format!(
                     "{prefix}{}={}",

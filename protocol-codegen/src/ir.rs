@@ -13,6 +13,8 @@
 /// generated code and the run-time codec both apply.
 pub use protocol_runtime::field::{Rounding, UnknownPolicy};
 pub use protocol_runtime::layout::{ByteOrder, Pos};
+/// How the bits of a packed array fill its bytes: the runtime's own.
+pub use protocol_runtime::packed::BitOrder;
 
 /// A whole protocol spec, checked.
 #[derive(Debug, Clone, PartialEq)]
@@ -263,6 +265,21 @@ pub enum FieldKind {
         elem: usize,
         /// The most elements.
         max: usize,
+    },
+    /// `count` unsigned integers of `bits` bits each, back to back in `ceil(count * bits / 8)`
+    /// bytes (the runtime's [`protocol_runtime::packed`]); an array of `prim` in Rust, or of
+    /// the physical type with `scale`.
+    Packed {
+        /// Elements.
+        count: usize,
+        /// Bits of each element, 1 to 32.
+        bits: u32,
+        /// How the bits fill the bytes.
+        order: BitOrder,
+        /// Rust type of a raw element: the smallest unsigned type that holds `bits` bits.
+        prim: Prim,
+        /// Scaling of each element from raw to physical value.
+        scale: Option<Scale>,
     },
     /// A value present only when bytes remain in the payload (only at the end of a struct).
     Optional(Box<FieldKind>),

@@ -38,9 +38,7 @@ fn shift(order: BitOrder, bytes: usize, skip: u32, bits: u32) -> u32 {
         BitOrder::LsbFirst => skip,
         // The word is the bytes in order, most significant first: the element ends
         // `8 * bytes - skip - bits` bits above its least significant bit.
-        BitOrder::MsbFirst => (8 * bytes as u32)
-            .wrapping_sub(skip)
-            .wrapping_sub(bits),
+        BitOrder::MsbFirst => (8 * bytes as u32).wrapping_sub(skip).wrapping_sub(bits),
     }
 }
 
@@ -127,7 +125,11 @@ pub fn set_packed(
 }
 
 #[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::arithmetic_side_effects)]
+#[allow(
+    clippy::unwrap_used,
+    clippy::indexing_slicing,
+    clippy::arithmetic_side_effects
+)]
 mod tests {
     use super::*;
 
@@ -154,7 +156,11 @@ mod tests {
                 let count = bytes.len() * 8 / bits as usize;
                 for index in 0..count {
                     let v = get_packed(&bytes, index, bits, order);
-                    assert_eq!(v, slow_get(&bytes, index, bits, order), "{order:?} {bits} {index}");
+                    assert_eq!(
+                        v,
+                        slow_get(&bytes, index, bits, order),
+                        "{order:?} {bits} {index}"
+                    );
                     let mut copy = bytes;
                     set_packed(&mut copy, index, bits, order, v ^ bit_mask(bits)).unwrap();
                     assert_eq!(get_packed(&copy, index, bits, order), v ^ bit_mask(bits));

@@ -5,7 +5,7 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use crate::ir::{
-    Algorithm, ByteOrder, Field, FieldKind, Frame, Pos, Protocol, Role, Struct, ValueType,
+    Algorithm, BitOrder, ByteOrder, Field, FieldKind, Frame, Pos, Protocol, Role, Struct, ValueType,
 };
 
 /// `#[doc = "..."]` attributes, one per line (so rustdoc and prettyplease keep the layout).
@@ -54,6 +54,19 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
             };
             format!("optional {}", field_type_name(p, &inner))
         }
+        FieldKind::Packed {
+            count, bits, scale, ..
+        } => match scale {
+            None => format!("[u{bits}; {count}] packed"),
+            Some(s) => {
+                let off = if s.offset != 0.0 {
+                    format!(" + {}", s.offset)
+                } else {
+                    String::new()
+                };
+                format!("[u{bits} × {}{off}; {count}] packed", s.factor)
+            }
+        },
         FieldKind::Bits { word, .. } => format!("{} bits", word.prim.spec_name()),
         FieldKind::Value { ty, count } => {
             let base = match ty {
@@ -91,6 +104,10 @@ fn field_order(f: &Field) -> &'static str {
             ..f.clone()
         }),
         FieldKind::Bits { word, .. } => order_name(word.endian, word.prim.size()),
+        FieldKind::Packed { order, .. } => match order {
+            BitOrder::LsbFirst => "LSB first",
+            BitOrder::MsbFirst => "MSB first",
+        },
         FieldKind::Value { ty, .. } => match ty {
             ValueType::Scalar { scalar, .. } | ValueType::Enum(_, scalar) => {
                 order_name(scalar.endian, scalar.prim.size())

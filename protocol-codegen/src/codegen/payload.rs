@@ -5,7 +5,7 @@
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::ir::{ByteOrder, Prim, Rounding, Scalar, Scale};
+use crate::ir::{BitOrder, ByteOrder, Prim, Rounding, Scalar, Scale};
 
 /// A struct as the payload generator sees it.
 pub struct PayloadDef {
@@ -81,6 +81,21 @@ pub enum PKind {
         max: usize,
         /// The element's largest wire size.
         elem_size: usize,
+    },
+    /// A bit-packed array (the runtime's `packed`), read and written as `size` bytes.
+    Packed {
+        /// Elements.
+        count: usize,
+        /// Bits of each element.
+        bits: u32,
+        /// How the bits fill the bytes.
+        order: BitOrder,
+        /// Rust type of a raw element.
+        prim: Prim,
+        /// Raw to physical scaling of each element.
+        scale: Option<Scale>,
+        /// Bytes on the wire.
+        size: usize,
     },
     /// A value present when bytes remain.
     Optional(Box<PKind>),
@@ -174,20 +189,7 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
             scalar,
             scale: Some(sc),
             ..
-        } => {
-            let raw = read_scalar(*scalar);
-            let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
-            let phys = prim_type(sc.physical);
-            let value = quote!(#rt::to_physical(#raw as f64, #f, #o));
-            match sc.clamp {
-                // A value outside the clamp range would not encode back to the same bytes.
-                Some((lo, hi)) => {
-                    let (lo, hi) = (float_lit(lo), float_lit(hi));
-                    quote!(#rt::check_clamp(#value, #lo, #hi)? as #phys)
-                }
-                None => quote!(#value as #phys),
-            }
-        }
+        } => to_physical(read_scalar(*scalar), sc, rt),
         PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::read(r)?),
         PKind::Enum { ty, scalar, .. } => {
             let raw = read_scalar(*scalar);
@@ -206,8 +208,118 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
             let var = local(n);
             quote!(<#ty>::read_sized(r, #var as u64)?)
         }
-        PKind::Pad(_) | PKind::Bits { .. } | PKind::Group { .. } | PKind::Optional(_) => quote!(()),
+        PKind::Pad(_)
+        | PKind::Bits { .. }
+        | PKind::Group { .. }
+        | PKind::Optional(_)
+        | PKind::Packed { .. } => quote!(()),
     }
+}
+
+/// The physical value of the raw integer expression `raw`.
+fn to_physical(raw: TokenStream, sc: &Scale, rt: &TokenStream) -> TokenStream {
+    let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
+    let phys = prim_type(sc.physical);
+    let value = quote!(#rt::to_physical(#raw as f64, #f, #o));
+    match sc.clamp {
+        // A value outside the clamp range would not encode back to the same bytes.
+        Some((lo, hi)) => {
+            let (lo, hi) = (float_lit(lo), float_lit(hi));
+            quote!(#rt::check_clamp(#value, #lo, #hi)? as #phys)
+        }
+        None => quote!(#value as #phys),
+    }
+}
+
+/// The raw integer (of type `raw`) of the physical value `value`: clamped (if the field
+/// clamps), quantized and fitted by the runtime; a value the raw type cannot hold is an error.
+fn to_raw(value: TokenStream, sc: &Scale, raw: Option<Prim>, rt: &TokenStream) -> TokenStream {
+    let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
+    let physical = match sc.clamp {
+        Some((lo, hi)) => {
+            let (lo, hi) = (float_lit(lo), float_lit(hi));
+            quote!(#rt::clamp((#value) as f64, #lo, #hi))
+        }
+        None => quote!((#value) as f64),
+    };
+    let mode = rounding(rt, sc.rounding);
+    let fit = match raw {
+        Some(p) => {
+            let t = prim_type(p);
+            quote!(#rt::fit::<#t>)
+        }
+        None => quote!(#rt::fit),
+    };
+    quote!(#fit(#rt::quantize(#physical, #f, #o, #mode))?)
+}
+
+/// The runtime's name of a bit order.
+fn bit_order(rt: &TokenStream, order: BitOrder) -> TokenStream {
+    match order {
+        BitOrder::LsbFirst => quote!(#rt::BitOrder::LsbFirst),
+        BitOrder::MsbFirst => quote!(#rt::BitOrder::MsbFirst),
+    }
+}
+
+/// Reading a bit-packed array: its bytes at once, then each element from them.
+fn read_packed(kind: &PKind, rt: &TokenStream) -> TokenStream {
+    let PKind::Packed {
+        count,
+        bits,
+        order,
+        prim,
+        scale,
+        size,
+    } = kind
+    else {
+        return quote!(());
+    };
+    let order = bit_order(rt, *order);
+    let raw = quote!(#rt::get_packed(bytes, i, #bits, #order));
+    let (t, elem) = match scale {
+        None => {
+            let t = prim_type(*prim);
+            (t.clone(), quote!(#raw as #t))
+        }
+        Some(sc) => (prim_type(sc.physical), to_physical(raw, sc, rt)),
+    };
+    quote! {{
+        let bytes = r.take(#size)?;
+        let mut a: [#t; #count] = [<#t as ::core::default::Default>::default(); #count];
+        for (i, e) in a.iter_mut().enumerate() { *e = #elem; }
+        a
+    }}
+}
+
+/// Writing a bit-packed array `value`: each element into its bits of a zeroed run of bytes,
+/// then the run.
+fn write_packed(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream {
+    let PKind::Packed {
+        bits,
+        order,
+        prim,
+        scale,
+        size,
+        ..
+    } = kind
+    else {
+        return quote!();
+    };
+    let order = bit_order(rt, *order);
+    let raw = match scale {
+        None => quote!(*e as u64),
+        Some(sc) => {
+            let raw = to_raw(quote!(*e), sc, Some(*prim), rt);
+            quote!(#raw as u64)
+        }
+    };
+    quote! {{
+        let mut bytes = [0u8; #size];
+        for (i, e) in #value.iter().enumerate() {
+            #rt::set_packed(&mut bytes, i, #bits, #order, #raw)?;
+        }
+        w.put_bytes(&bytes)?;
+    }}
 }
 
 /// The local variable a struct's read code holds field `id` in.
@@ -222,6 +334,7 @@ fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
             let read = read_value(inner, rt);
             quote!(if #rt::more(r) { #rt::Some(#read) } else { #rt::None })
         }
+        PKind::Packed { .. } => read_packed(kind, rt),
         PKind::Group {
             ty, elem_ty, elem, ..
         } => {
@@ -277,6 +390,7 @@ fn write_value(
             let w = write_value(inner, quote!((*v)), owner, rt);
             quote!(if let #rt::Some(v) = &#value { #w })
         }
+        PKind::Packed { .. } => write_packed(kind, value, rt),
         PKind::Group { elem, .. } => {
             let parts = elem.iter().map(|f| match (&f.kind, &f.ident) {
                 (PKind::Pad(n), _) => quote!(w.zeros(#n)?;),
@@ -338,6 +452,7 @@ fn fixed_size(kind: &PKind) -> usize {
         PKind::Pad(len) => *len,
         PKind::Scalar { scalar, .. } | PKind::Enum { scalar, .. } => scalar.prim.size() * n,
         PKind::Bits { word, .. } => word.prim.size(),
+        PKind::Packed { size, .. } => *size,
         PKind::Bytes { max, .. } => *max,
         PKind::Group { max, elem_size, .. } => max * elem_size,
         PKind::Optional(inner) => fixed_size(inner),
@@ -361,26 +476,18 @@ fn write_elem(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream
             scalar,
             scale: Some(sc),
             ..
-        } => {
-            let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
-            let physical = match sc.clamp {
-                Some((lo, hi)) => {
-                    let (lo, hi) = (float_lit(lo), float_lit(hi));
-                    quote!(#rt::clamp((#value) as f64, #lo, #hi))
-                }
-                None => quote!((#value) as f64),
-            };
-            let mode = rounding(rt, sc.rounding);
-            let raw = quote!(#rt::fit(#rt::quantize(#physical, #f, #o, #mode))?);
-            write_scalar(*scalar, raw)
-        }
+        } => write_scalar(*scalar, to_raw(value, sc, None, rt)),
         PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::write(&#value, w)?;),
         PKind::Enum { ty, scalar, .. } => write_scalar(
             *scalar,
             quote!(#rt::enum_raw(#value, #ty::to_raw, #ty::from_raw)?),
         ),
         PKind::Bytes { .. } => quote!(#value.write(w)?;),
-        PKind::Pad(_) | PKind::Bits { .. } | PKind::Group { .. } | PKind::Optional(_) => quote!(),
+        PKind::Pad(_)
+        | PKind::Bits { .. }
+        | PKind::Group { .. }
+        | PKind::Optional(_)
+        | PKind::Packed { .. } => quote!(),
     }
 }
 
@@ -399,6 +506,10 @@ pub fn elem_type(kind: &PKind) -> TokenStream {
             let t = field_type(inner);
             quote!(::core::option::Option<#t>)
         }
+        PKind::Packed {
+            scale: Some(sc), ..
+        } => prim_type(sc.physical),
+        PKind::Packed { prim, .. } => prim_type(*prim),
         PKind::Pad(_) | PKind::Bits { .. } => quote!(()),
     }
 }
@@ -417,6 +528,7 @@ fn count_of(kind: &PKind) -> Option<usize> {
         PKind::Scalar { count, .. } | PKind::Nested { count, .. } | PKind::Enum { count, .. } => {
             *count
         }
+        PKind::Packed { count, .. } => Some(*count),
         _ => None,
     }
 }
@@ -437,6 +549,7 @@ fn size_expr(kind: &PKind, rt: &TokenStream) -> TokenStream {
             quote!(#s)
         }
         PKind::Bytes { max, .. } => quote!(#max),
+        PKind::Packed { size, .. } => quote!(#size),
         PKind::Group { .. } | PKind::Optional(_) => {
             let s = fixed_size(kind);
             quote!(#s)
@@ -652,6 +765,7 @@ fn needs_only_bytes(fields: &[PField], rt: &TokenStream) -> Option<Vec<TokenStre
             }
             PKind::Bits { members, .. }
                 if members.iter().all(|m| !matches!(m.ty, BitType::Enum(..))) => {}
+            PKind::Packed { scale, .. } if scale.as_ref().is_none_or(|s| s.clamp.is_none()) => {}
             _ => return None,
         }
     }

@@ -215,6 +215,20 @@ fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize) -> PKind {
             }
         }
         FieldKind::Optional(inner) => PKind::Optional(Box::new(payload_kind(p, inner, size))),
+        FieldKind::Packed {
+            count,
+            bits,
+            order,
+            prim,
+            scale,
+        } => PKind::Packed {
+            count: *count,
+            bits: *bits,
+            order: *order,
+            prim: *prim,
+            scale: *scale,
+            size,
+        },
         FieldKind::Bits { word, members } => PKind::Bits {
             word: *word,
             members: members
@@ -308,6 +322,7 @@ pub fn emit_structs(p: &Protocol) -> TokenStream {
                         PKind::Scalar { count, .. }
                         | PKind::Nested { count, .. }
                         | PKind::Enum { count, .. } => *count,
+                        PKind::Packed { count, .. } => Some(*count),
                         _ => None,
                     } {
                         all_small &= n <= 32;
@@ -361,6 +376,7 @@ pub fn emit_structs(p: &Protocol) -> TokenStream {
 fn kind_is_eq(kind: &PKind) -> bool {
     match kind {
         PKind::Scalar { scalar, scale, .. } => !scalar.prim.is_float() && scale.is_none(),
+        PKind::Packed { scale, .. } => scale.is_none(),
         PKind::Nested { .. } | PKind::Group { .. } => false,
         PKind::Optional(inner) => kind_is_eq(inner),
         PKind::Pad(_) | PKind::Enum { .. } | PKind::Bytes { .. } | PKind::Bits { .. } => true,

@@ -403,6 +403,10 @@ pub struct FieldDef {
     /// Bit members of an integer field.
     #[schemars(with = "Option<Vec<BitDef>>")]
     pub bits: Option<Spanned<Vec<Spanned<BitDef>>>>,
+    /// A bit-packed array: `count` unsigned elements of `bits` bits each, back to back, in
+    /// the bit order `order`.
+    #[schemars(with = "Option<PackedDef>")]
+    pub packed: Option<Spanned<PackedDef>>,
     /// With `bits`, the bits above the members: `"keep"` (default: held in a member named
     /// `<field>_reserved`, so that decoding then encoding gives the same bytes) or `"zero"`
     /// (reserved-zero: written as zero, ignored when read).
@@ -426,6 +430,18 @@ pub struct FieldDef {
     /// Documentation.
     #[schemars(with = "Option<String>")]
     pub doc: Option<SStr>,
+}
+
+/// `packed = { bits = 11, order = "lsb-first" }`: the elements of a bit-packed array.
+#[derive(Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PackedDef {
+    /// Bits of each element, 1 to 32.
+    #[schemars(with = "i64")]
+    pub bits: SInt,
+    /// `"lsb-first"` (bit 0 of byte 0 first, as CRSF and SBUS) or `"msb-first"`.
+    #[schemars(with = "String")]
+    pub order: SStr,
 }
 
 /// An array count: `8` or `"SERVO_COUNT"`.

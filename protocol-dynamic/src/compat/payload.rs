@@ -23,6 +23,19 @@ fn kind_text(p: &Protocol, f: &Field, kind: &FieldKind) -> String {
         FieldKind::Optional(inner) => format!("optional {}", kind_text(p, f, inner)),
         FieldKind::Padding => format!("{} padding bytes", f.size),
         FieldKind::Bits { word, .. } => format!("{:?} {:?} bits", word.prim, word.endian),
+        FieldKind::Packed {
+            count,
+            bits,
+            order,
+            scale,
+            ..
+        } => {
+            let s = match scale {
+                Some(s) => format!(" × {} + {}", s.factor, s.offset),
+                None => String::new(),
+            };
+            format!("{count} × {bits} bits packed {order:?}{s}")
+        }
         FieldKind::Value { ty, count } => {
             let base = match ty {
                 ValueType::Scalar { scalar, scale } => {
@@ -107,6 +120,23 @@ fn diff_field(
                 members: mb,
             },
         ) => a == b && diff_members(op, ma, np, mb, at, r),
+        // A packed array's wire form is all of its parameters but the Rust type.
+        (
+            FieldKind::Packed {
+                count: ca,
+                bits: ba,
+                order: oa,
+                scale: sa,
+                ..
+            },
+            FieldKind::Packed {
+                count: cb,
+                bits: bb,
+                order: ob,
+                scale: sb,
+                ..
+            },
+        ) => ca == cb && ba == bb && oa == ob && sa == sb,
         (FieldKind::Value { ty: ta, count: ca }, FieldKind::Value { ty: tb, count: cb }) => {
             ca == cb && diff_value(op, ta, np, tb, at, r)
         }

@@ -52,7 +52,10 @@ fn keys(f: &Field) -> Vec<&str> {
             FieldKind::Padding => Vec::new(),
             FieldKind::Bits { members, .. } => members.iter().map(|m| m.name.as_str()).collect(),
             FieldKind::Optional(inner) => of(name, inner),
-            FieldKind::Value { .. } | FieldKind::Bytes { .. } | FieldKind::Group { .. } => {
+            FieldKind::Value { .. }
+            | FieldKind::Bytes { .. }
+            | FieldKind::Group { .. }
+            | FieldKind::Packed { .. } => {
                 vec![name]
             }
         }

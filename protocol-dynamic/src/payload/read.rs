@@ -1,7 +1,9 @@
 //! Reading a payload struct into a [`Value`], as the generated `Payload::read` and `from_bytes` do.
 
-use protocol_codegen::ir::{BitMember, Enum, Field, FieldKind, Prim, Protocol, ValueType};
-use protocol_runtime::{DecodeError, Reader, field};
+use protocol_codegen::ir::{
+    BitMember, BitOrder, Enum, Field, FieldKind, Prim, Protocol, Scale, ValueType,
+};
+use protocol_runtime::{DecodeError, Reader, field, packed};
 
 use super::{join, signed_value, variant};
 use crate::model::{Fields, Value};
@@ -88,6 +90,16 @@ fn read_field(
                 let v = read_member(p, m, raw, &join(path, &m.name))?;
                 out.insert(m.name.clone(), v);
             }
+        }
+        FieldKind::Packed {
+            count,
+            bits,
+            order,
+            scale,
+            ..
+        } => {
+            let v = read_packed(r, f.size, *count, *bits, *order, scale.as_ref())?;
+            out.insert(f.name.clone(), v);
         }
         FieldKind::Optional(inner) => {
             if field::more(r) {
@@ -185,17 +197,7 @@ fn read_elem(
         ValueType::Scalar {
             scalar,
             scale: Some(sc),
-        } => {
-            let raw = read_scalar(r, *scalar)?.as_f64();
-            let mut physical = field::to_physical(raw, sc.factor, sc.offset);
-            if let Some((lo, hi)) = sc.clamp {
-                physical = field::check_clamp(physical, lo, hi)?;
-            }
-            match sc.physical {
-                Prim::F32 => Value::F32(physical as f32),
-                _ => Value::F64(physical),
-            }
-        }
+        } => physical_value(read_scalar(r, *scalar)?.as_f64(), sc)?,
         ValueType::Struct(si) => Value::Struct(read_struct(p, *si, r, path)?),
         ValueType::Enum(ei, scalar) => {
             let raw = read_scalar(r, *scalar)?;
@@ -207,6 +209,40 @@ fn read_elem(
             )?
         }
     })
+}
+
+/// The physical value of a scaled raw value, by the runtime's field rules.
+fn physical_value(raw: f64, sc: &Scale) -> Result<Value, ReadFail> {
+    let mut physical = field::to_physical(raw, sc.factor, sc.offset);
+    if let Some((lo, hi)) = sc.clamp {
+        physical = field::check_clamp(physical, lo, hi)?;
+    }
+    Ok(match sc.physical {
+        Prim::F32 => Value::F32(physical as f32),
+        _ => Value::F64(physical),
+    })
+}
+
+/// A bit-packed array's elements, each read by the runtime's `get_packed` from the array's
+/// bytes.
+fn read_packed(
+    r: &mut Reader<'_>,
+    size: usize,
+    count: usize,
+    bits: u32,
+    order: BitOrder,
+    scale: Option<&Scale>,
+) -> Result<Value, ReadFail> {
+    let bytes = r.take(size)?;
+    let mut items = Vec::with_capacity(count);
+    for i in 0..count {
+        let raw = packed::get_packed(bytes, i, bits, order);
+        items.push(match scale {
+            None => Value::UInt(raw),
+            Some(sc) => physical_value(raw as f64, sc)?,
+        });
+    }
+    Ok(Value::Array(items))
 }
 
 /// The value of an enum's raw value (bits truncated to the enum's type).

@@ -3,9 +3,9 @@
 //! `max`, an unknown variant of a rejecting enum) are refused with the path of the value.
 
 use protocol_codegen::ir::{
-    BitMember, Enum, Field, FieldKind, Prim, Protocol, Scalar, Scale, Struct, ValueType,
+    BitMember, ByteOrder, Enum, Field, FieldKind, Prim, Protocol, Scalar, Scale, Struct, ValueType,
 };
-use protocol_runtime::{EncodeError, Writer, field};
+use protocol_runtime::{EncodeError, Writer, field, packed};
 
 use super::{join, signed_value, variant};
 use crate::error::EncodeIssue;
@@ -91,6 +91,39 @@ fn write_field(
                 })?;
             }
             write_bits(w, *word, truncate(word.prim, bits)).map_err(buffer)
+        }
+        FieldKind::Packed {
+            count,
+            bits,
+            order,
+            prim,
+            scale,
+        } => {
+            let v = obj
+                .get(&f.name)
+                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
+            let items = v
+                .as_array()
+                .filter(|items| items.len() == *count)
+                .ok_or_else(|| {
+                    EncodeIssue::new(&fpath, format!("expected an array of {count} elements"))
+                })?;
+            let mut bytes = vec![0u8; f.size];
+            let raw_type = Scalar {
+                prim: *prim,
+                endian: ByteOrder::Little,
+            };
+            for (i, item) in items.iter().enumerate() {
+                let ipath = format!("{fpath}[{i}]");
+                let raw = match scale {
+                    None => value_bits(item, *prim).map_err(|e| issue(&ipath, e))?,
+                    Some(sc) => scaled_raw(raw_type, sc, item, &ipath)?,
+                };
+                packed::set_packed(&mut bytes, i, *bits, *order, raw).map_err(|_| {
+                    EncodeIssue::new(&ipath, format!("{raw} does not fit {bits} bits"))
+                })?;
+            }
+            w.put_bytes(&bytes).map_err(buffer)
         }
         FieldKind::Optional(inner) => {
             let present = super::keys(f)

@@ -3,7 +3,9 @@
 //! generated `Packet` of the same frame, so the two codecs are compared field for field.
 #![allow(dead_code)]
 
-use protocol_codegen::ir::{FieldKind, Prim, Protocol, Role, UnknownPolicy, ValueType};
+use protocol_codegen::ir::{
+    ByteOrder, FieldKind, Prim, Protocol, Role, Scalar, UnknownPolicy, ValueType,
+};
 use protocol_dynamic::{Decoded, Interpreter, Value, hex, value_f32, value_f64};
 
 /// The interpreter of `specs/NAME.toml`, or of `tests/fixtures/NAME.toml` when there is no
@@ -165,6 +167,22 @@ fn field_text(p: &Protocol, name: &str, kind: &FieldKind, v: &Value, out: &mut V
                 .expect("array")
                 .iter()
                 .map(|e| struct_text(p, *elem, e))
+                .collect();
+            out.push(format!("{name}: [{}]", items.join(", ")));
+        }
+        FieldKind::Packed { prim, scale, .. } => {
+            let ty = ValueType::Scalar {
+                scalar: Scalar {
+                    prim: *prim,
+                    endian: ByteOrder::Little,
+                },
+                scale: *scale,
+            };
+            let items: Vec<String> = v[name]
+                .as_array()
+                .expect("array")
+                .iter()
+                .map(|e| elem_text(p, &ty, e))
                 .collect();
             out.push(format!("{name}: [{}]", items.join(", ")));
         }

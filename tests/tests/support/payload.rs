@@ -76,6 +76,20 @@ impl Model {
                 }
                 put_uint(out, *word, bits);
             }
+            ir::FieldKind::Packed {
+                count, bits, order, ..
+            } => {
+                // Random elements (scaled ones as raw values: clamping is for `Value` fields
+                // of the specs this generator serves); the bits after the last element stay 0,
+                // as the encoder writes them.
+                let mut bytes = vec![0u8; field.size];
+                for i in 0..*count {
+                    let raw = src.next_u64() & mask(*bits);
+                    protocol::packed::set_packed(&mut bytes, i, *bits, *order, raw)
+                        .expect("the element fits its bits");
+                }
+                out.extend(bytes);
+            }
             ir::FieldKind::Bytes { max, size_from } => {
                 let n = match size_from {
                     Some(name) => ctx.values.get(name).copied().unwrap_or(0) as usize,

@@ -9,9 +9,10 @@ use super::bits::{lower_bits, smallest_uint};
 use super::{Enums, Structs};
 use crate::diag::did_you_mean;
 use crate::ir::{
-    BitMember, ByteOrder, Constant, Field, FieldKind, Prim, Rounding, Scalar, Scale, ValueType,
+    BitMember, BitOrder, ByteOrder, Constant, Field, FieldKind, Prim, Rounding, Scalar, Scale,
+    ValueType,
 };
-use crate::spec::model::{CountDef, FieldDef, SStr};
+use crate::spec::model::{CountDef, FieldDef, PackedDef, SStr};
 
 /// Rule: a field is either `{ pad = N }` (N > 0, nothing else but `doc`) or a named value with a
 /// type; `count` makes a fixed array (> 0); `bits` splits an unsigned integer into members
@@ -38,6 +39,21 @@ pub(super) fn lower_field(
         return None;
     };
     check_snake_name(ctx, name, "field name");
+    if let Some(packed) = &d.packed {
+        let kind = lower_packed(ctx, f, packed, constants)?;
+        let FieldKind::Packed { count, bits, .. } = kind else {
+            return None;
+        };
+        let size = (count * bits as usize).div_ceil(8);
+        return Some(Field {
+            name: name.get_ref().clone(),
+            doc: text(&d.doc),
+            offset,
+            size,
+            kind,
+            unit: text(&d.unit),
+        });
+    }
     let Some(ty) = &d.ty else {
         ctx.error(
             f.span(),
@@ -174,6 +190,78 @@ fn lower_reserved_bits(
         width,
         prim: smallest_uint(width),
         enum_index: None,
+    })
+}
+
+/// Rule: a bit-packed array has a `count`, elements of 1 to 32 bits, a stated bit order
+/// (`"lsb-first"` or `"msb-first"`), no `type` (its elements are the smallest unsigned type
+/// that holds them), and may be scaled as an integer field is.
+fn lower_packed(
+    ctx: &mut Ctx<'_>,
+    f: &Spanned<FieldDef>,
+    packed: &Spanned<PackedDef>,
+    constants: &[Constant],
+) -> Option<FieldKind> {
+    let d = f.get_ref();
+    let p = packed.get_ref();
+    if let Some(ty) = &d.ty {
+        ctx.error(
+            ty.span(),
+            "a packed array takes no `type`: its elements are the smallest unsigned type that holds `bits`",
+            "remove `type`",
+        );
+    }
+    if d.bits.is_some() || d.repeat.is_some() || d.max.is_some() || d.size.is_some() {
+        ctx.error(
+            f.span(),
+            "a packed array takes `name`, `packed`, `count`, scaling keys, `unit` and `doc`",
+            "remove the other keys",
+        );
+    }
+    let bits = *p.bits.get_ref();
+    if !(1..=32).contains(&bits) {
+        ctx.error(
+            p.bits.span(),
+            format!("packed elements of {bits} bits"),
+            "an element has 1 to 32 bits",
+        );
+        return None;
+    }
+    let bits = bits as u32;
+    let order = match p.order.get_ref().as_str() {
+        "lsb-first" => BitOrder::LsbFirst,
+        "msb-first" => BitOrder::MsbFirst,
+        other => {
+            ctx.error(
+                p.order.span(),
+                format!("unknown bit order `{other}`"),
+                "write `order = \"lsb-first\"` (bit 0 of byte 0 first, as CRSF and SBUS) or `order = \"msb-first\"` (bit 7 of byte 0 first)",
+            );
+            return None;
+        }
+    };
+    let Some(count) = lower_count(ctx, d, constants) else {
+        if d.count.is_none() {
+            ctx.error(
+                packed.span(),
+                "a packed array needs a `count`",
+                "add `count = N`, the number of elements",
+            );
+        }
+        return None;
+    };
+    let prim = smallest_uint(bits);
+    let raw = Scalar {
+        prim,
+        endian: ByteOrder::Little,
+    };
+    let scale = lower_scale(ctx, f, prim.spec_name(), raw);
+    Some(FieldKind::Packed {
+        count,
+        bits,
+        order,
+        prim,
+        scale,
     })
 }
 
@@ -334,7 +422,7 @@ fn lower_value_type(
 ) -> Option<(ValueType, usize)> {
     let d = f.get_ref();
     if let Some(scalar) = scalar {
-        let scale = lower_scale(ctx, f, ty, scalar);
+        let scale = lower_scale(ctx, f, ty.get_ref(), scalar);
         return Some((ValueType::Scalar { scalar, scale }, scalar.prim.size()));
     }
     if let Some(&i) = structs.by_name.get(ty.get_ref()) {
@@ -367,7 +455,7 @@ fn lower_value_type(
 fn lower_scale(
     ctx: &mut Ctx<'_>,
     f: &Spanned<FieldDef>,
-    ty: &SStr,
+    ty: &str,
     scalar: Scalar,
 ) -> Option<Scale> {
     let d = f.get_ref();
@@ -383,7 +471,7 @@ fn lower_scale(
             .unwrap_or(f.span());
         ctx.error(
             span,
-            format!("`scale` applies to integer fields, not `{}`", ty.get_ref()),
+            format!("`scale` applies to integer fields, not `{ty}`"),
             "remove `scale`/`offset`, or use an integer wire type",
         );
         return None;
