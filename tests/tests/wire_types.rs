@@ -9,6 +9,50 @@ use protocol_dynamic::{Interpreter, Value};
 
 protocol::protocol!("../protocol-codegen/tests/features/int24.toml");
 protocol::protocol!("../protocol-codegen/tests/features/reserved_bits.toml");
+protocol::protocol!("../protocol-codegen/tests/features/packed.toml");
+
+/// The spec behind the `packed` module.
+const PACKED_SPEC: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../protocol-codegen/tests/features/packed.toml"
+);
+
+/// A CRSF RC_CHANNELS_PACKED frame, as the README of kielerrr/CRSFv2-elrs shows it (address
+/// 0xEE, length 24, type 0x16, 22 bytes of channels, CRC-8/DVB-S2 0x36); its channels are the
+/// 11-bit LSB-first values of those bytes.
+const CRSF_RC_FRAME: [u8; 26] = [
+    0xEE, 0x18, 0x16, 0xE1, 0xE3, 0xDE, 0x09, 0xC7, 0xD7, 0x8A, 0x56, 0x80, 0x0F, 0x7C, 0xE0, 0x03,
+    0x1F, 0xF8, 0xC0, 0x07, 0x3E, 0xF0, 0x81, 0x0F, 0x7C, 0x36,
+];
+const CRSF_RC_CHANNELS: [u16; 16] = [
+    993, 988, 1063, 995, 173, 173, 992, 992, 992, 992, 992, 992, 992, 992, 992, 992,
+];
+
+/// SBUS frames with the channels their sources assert: zklapow/sbus `tests/parse_tester.rs`
+/// (flags 0x03: both digital channels on) and LapochnihIvan/SBUSParser
+/// `tests/src/parsing_test.c` (flags 0x4D: ch17, frame lost, failsafe, and the reserved bit 6).
+const SBUS_FRAMES: [([u8; 25], [u16; 16], u8); 2] = [
+    (
+        [
+            0x0F, 0xE0, 0x03, 0x1F, 0x58, 0xC0, 0x07, 0x16, 0xB0, 0x80, 0x05, 0x2C, 0x60, 0x01,
+            0x0B, 0xF8, 0xC0, 0x07, 0x00, 0x00, 0x00, 0x00, 0x00, 0x03, 0x00,
+        ],
+        [
+            992, 992, 352, 992, 352, 352, 352, 352, 352, 352, 992, 992, 0, 0, 0, 0,
+        ],
+        0x03,
+    ),
+    (
+        [
+            15, 41, 107, 214, 235, 44, 169, 3, 33, 187, 239, 95, 95, 76, 252, 16, 236, 190, 212,
+            237, 81, 6, 69, 77, 0,
+        ],
+        [
+            809, 717, 943, 1174, 58, 1602, 1006, 767, 1119, 1929, 67, 1910, 1355, 987, 404, 552,
+        ],
+        0x4D,
+    ),
+];
 
 /// The spec behind the `int24` module, for the run-time codec.
 const INT24_SPEC: &str = concat!(
@@ -198,5 +242,112 @@ proptest! {
         let mut buf = [0u8; 4];
         prop_assert_eq!(v.to_bytes(&mut buf), Ok(4));
         prop_assert_eq!(&buf[..], &bytes[..]);
+    }
+}
+
+#[test]
+fn a_crsf_rc_channels_frame_decodes_and_encodes_as_16_packed_channels() {
+    let packet = packed::Packet::decode(&CRSF_RC_FRAME).expect("the frame decodes");
+    let packed::Message::RcChannelsPacked(rc) = &packet.message else {
+        panic!("not RC channels: {packet:?}");
+    };
+    assert_eq!(rc.channels, CRSF_RC_CHANNELS);
+    let mut buf = [0u8; packed::MAX_FRAME_LEN];
+    let n = packet.encode(&mut buf).expect("it encodes");
+    assert_eq!(buf[..n], CRSF_RC_FRAME);
+
+    let interp = Interpreter::load(PACKED_SPEC).expect("the spec loads");
+    let codec = interp.codec();
+    let d = codec
+        .parse(0, &CRSF_RC_FRAME)
+        .expect("the codec decodes it");
+    let expected: Vec<Value> = CRSF_RC_CHANNELS
+        .iter()
+        .map(|&c| Value::UInt(u64::from(c)))
+        .collect();
+    assert_eq!(d.payload["channels"], Value::Array(expected));
+    let v = codec.frame_value(&d, 0, &CRSF_RC_FRAME);
+    assert_eq!(codec.encode(&v).expect("encodes").bytes, CRSF_RC_FRAME);
+}
+
+#[test]
+fn sbus_frames_decode_to_the_channels_their_sources_assert() {
+    let interp = Interpreter::load(PACKED_SPEC).expect("the spec loads");
+    let codec = interp.codec();
+    let sbus = codec.format_index("sbus").expect("the sbus format");
+    for (frame, channels, flags) in SBUS_FRAMES {
+        let packet = packed::SbusPacket::decode(&frame).expect("the frame decodes");
+        let data = &packet.payload;
+        assert_eq!(data.channels, channels);
+        assert_eq!(data.ch17, flags & 1 != 0);
+        assert_eq!(data.ch18, flags & 2 != 0);
+        assert_eq!(data.frame_lost, flags & 4 != 0);
+        assert_eq!(data.failsafe, flags & 8 != 0);
+        assert_eq!(data.flags_reserved, flags >> 4);
+        let mut buf = [0u8; 25];
+        let n = packet.encode(&mut buf).expect("it encodes");
+        assert_eq!(buf[..n], frame);
+
+        let d = codec.parse(sbus, &frame).expect("the codec decodes it");
+        assert_eq!(
+            d.payload["flags_reserved"],
+            Value::UInt(u64::from(flags >> 4))
+        );
+        let v = codec.frame_value(&d, 0, &frame);
+        assert_eq!(codec.encode(&v).expect("encodes").bytes, frame);
+    }
+}
+
+#[test]
+fn msb_first_elements_scale_and_refuse_what_does_not_fit() {
+    // Six 5-bit elements MSB-first: raw 0, 1, 10, 20, 30, 31 in 30 bits, then 2 zero bits.
+    let raw = [0u64, 1, 10, 20, 30, 31];
+    let word = raw.iter().fold(0u64, |w, r| (w << 5) | r) << 2;
+    let mut payload = (word as u32).to_be_bytes().to_vec();
+    payload.push(0xAB);
+    let l = packed::Levels::from_bytes(&payload).expect("it decodes");
+    for (level, r) in l.levels.iter().zip(raw) {
+        assert!(
+            (f64::from(*level) - (r as f64 * 0.1 - 1.0)).abs() < 1e-6,
+            "{l:?}"
+        );
+    }
+    assert_eq!(l.tail, 0xAB);
+    let mut buf = [0u8; 5];
+    assert_eq!(l.to_bytes(&mut buf), Ok(5));
+    assert_eq!(buf[..], payload[..]);
+    let mut too_high = l;
+    // Raw 32 does not fit 5 bits.
+    too_high.levels[2] = 2.2;
+    assert_eq!(
+        too_high.to_bytes(&mut buf),
+        Err(EncodeError::ValueOutOfRange)
+    );
+    let mut crsf = packed::RcChannels {
+        channels: CRSF_RC_CHANNELS,
+    };
+    crsf.channels[3] = 0x800;
+    let mut buf = [0u8; 22];
+    assert_eq!(crsf.to_bytes(&mut buf), Err(EncodeError::ValueOutOfRange));
+}
+
+proptest! {
+    #[test]
+    fn any_packed_channels_round_trip(channels in proptest::array::uniform16(0u16..0x800)) {
+        let rc = packed::RcChannels { channels };
+        let mut buf = [0u8; 22];
+        prop_assert_eq!(rc.to_bytes(&mut buf), Ok(22));
+        prop_assert_eq!(packed::RcChannels::from_bytes(&buf), Ok(rc));
+        // LSB-first: channel i is bits 11 i .. 11 i + 11 of the bytes read as one little-endian
+        // number.
+        for (i, c) in channels.iter().enumerate() {
+            let bit = 11 * i;
+            let mut v = 0u16;
+            for j in 0..11 {
+                let k = bit + j;
+                v |= u16::from((buf[k / 8] >> (k % 8)) & 1) << j;
+            }
+            prop_assert_eq!(v, *c);
+        }
     }
 }
