@@ -38,7 +38,10 @@ fn shift(order: BitOrder, bytes: usize, skip: u32, bits: u32) -> u32 {
         BitOrder::LsbFirst => skip,
         // The word is the bytes in order, most significant first: the element ends
         // `8 * bytes - skip - bits` bits above its least significant bit.
-        BitOrder::MsbFirst => (8 * bytes as u32).wrapping_sub(skip).wrapping_sub(bits),
+        BitOrder::MsbFirst => (bytes as u32)
+            .wrapping_mul(8)
+            .wrapping_sub(skip)
+            .wrapping_sub(bits),
     }
 }
 
@@ -119,7 +122,7 @@ pub fn set_packed(
             BitOrder::LsbFirst => i,
             BitOrder::MsbFirst => n.wrapping_sub(1).wrapping_sub(i),
         };
-        *byte = (w >> (8 * k as u32)) as u8;
+        *byte = w.checked_shr((k as u32).wrapping_mul(8)).unwrap_or(0) as u8;
     }
     Ok(())
 }
