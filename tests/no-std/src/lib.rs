@@ -12,6 +12,11 @@ protocol::protocol!("../../specs/referee2018.toml");
 protocol::protocol!("../../specs/scout.toml");
 protocol::protocol!("../../specs/roborts.toml");
 protocol::protocol!("../../specs/dynamixel.toml");
+// The payload types beyond fixed-width primitives: 24-bit integers, kept bitfield bits,
+// bit-packed arrays.
+protocol::protocol!("../../protocol-codegen/tests/features/int24.toml");
+protocol::protocol!("../../protocol-codegen/tests/features/reserved_bits.toml");
+protocol::protocol!("../../protocol-codegen/tests/features/packed.toml");
 
 use hflink::{Header, Message, Packet, Request};
 
