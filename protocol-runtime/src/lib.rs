@@ -168,6 +168,7 @@ pub mod group;
 pub mod io;
 pub mod layout;
 pub mod packed;
+pub mod packet;
 pub mod stuffing;
 pub mod wire;
 
@@ -178,7 +179,8 @@ pub use decoder::{Event, Frame, Reject, Stats, StreamDecoder};
 pub use encoder::{Payload, PayloadVisitor};
 pub use error::{DecodeError, DecodeResult, EncodeError, EncodeResult};
 pub use group::Group;
-pub use layout::FrameLayout;
+pub use layout::{FrameLayout, LayoutRef};
+pub use packet::{EncodePacket, PacketDecoder, PacketEvent, PacketLayout, Packets};
 pub use wire::{Reader, Writer};
 
 /// Everything generated code names, under one path. Not a public API: it changes with the
@@ -187,7 +189,7 @@ pub use wire::{Reader, Writer};
 pub mod __private {
     pub use crate::{
         bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, field::*, group::*,
-        layout::*, packed::*, stuffing::*, wire::*,
+        layout::*, packed::*, packet::*, stuffing::*, wire::*,
     };
     pub use core;
     pub use core::option::Option::{self, None, Some};

@@ -9,6 +9,7 @@ pub mod derive;
 pub mod dispatch;
 pub mod docs;
 pub mod frame;
+pub mod packets;
 pub mod paths;
 pub mod payload;
 pub mod types;
@@ -59,6 +60,7 @@ pub fn expand(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     let structs = types::emit_structs(p);
     let frames = frame::emit_frames(p);
     let dispatch = dispatch::emit_dispatch(p);
+    let packet_traits = packets::emit_packet_traits(p);
     let private = paths.private();
     quote! {
         #doc
@@ -72,6 +74,7 @@ pub fn expand(p: &Protocol, paths: &RuntimePath) -> TokenStream {
             #structs
             #frames
             #dispatch
+            #packet_traits
         }
     }
 }

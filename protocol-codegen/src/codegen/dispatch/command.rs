@@ -72,8 +72,10 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
     quote! {
         #[doc = #id_doc]
         pub type CommandId = #id_ty;
-        /// Every command of the spec, with its id.
+        /// Every command of the spec, with its id. Non-exhaustive, so that a command added to
+        /// the spec is a compatible change for crates that use this one.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        #[non_exhaustive]
         #repr
         pub enum Command {
             #(#variants,)*

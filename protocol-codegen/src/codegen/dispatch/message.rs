@@ -70,6 +70,7 @@ pub(super) fn emit_message_enum(
     quote! {
         #doc
         #[derive(Debug, Clone, Copy, PartialEq)]
+        #[non_exhaustive]
         pub enum #name {
             #(#variants,)*
         }

@@ -1,0 +1,52 @@
+//! The runtime's packet traits for each serial frame format that has a packet type:
+//! `PacketLayout` on its `Layout` type (the stream's frames decoded into its `Packet`) and
+//! `EncodePacket` on its `Packet`, so that the runtime's `PacketDecoder` and the integrations
+//! (the `tokio` codec, the `embedded-io-async` reader and writer) drive generated codecs.
+//!
+//! This module owns only those impls; each delegates to the packet's own `from_frame`,
+//! `encoded_len` and `encode` (`dispatch`). A CAN format has no stream, so no impl.
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use super::rt;
+use crate::ir::{PacketKind, Protocol, Transport};
+
+/// The packet trait impls of every serial frame format with a packet type.
+pub fn emit_packet_traits(p: &Protocol) -> TokenStream {
+    let rt = rt();
+    let mut out = TokenStream::new();
+    for (fi, f) in p.frames.iter().enumerate() {
+        let has_packet = match f.packet {
+            PacketKind::Command => fi == 0 && !f.dispatch.is_empty(),
+            PacketKind::Message(_) => true,
+            PacketKind::None | PacketKind::Can => false,
+        };
+        if !has_packet || f.transport != Transport::Serial {
+            continue;
+        }
+        let layout = format_ident!("{}", f.names.layout);
+        let packet = format_ident!("{}", f.names.packet);
+        out.extend(quote! {
+            impl #rt::PacketLayout for #layout {
+                type Packet = #packet;
+                type Error = #rt::DecodeError;
+                #[inline(always)]
+                fn decode_packet(&self, frame: &[u8]) -> #rt::DecodeResult<#packet> {
+                    #packet::from_frame(frame)
+                }
+            }
+            impl #rt::EncodePacket for #packet {
+                #[inline(always)]
+                fn encoded_len(&self) -> usize {
+                    #packet::encoded_len(self)
+                }
+                #[inline(always)]
+                fn encode_into(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
+                    #packet::encode(self, buf)
+                }
+            }
+        });
+    }
+    out
+}
