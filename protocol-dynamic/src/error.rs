@@ -100,6 +100,14 @@ impl fmt::Display for DecodeIssue {
 
 impl std::error::Error for DecodeIssue {}
 
+impl From<protocol_runtime::Reject> for DecodeIssue {
+    /// A candidate the engine rejected, as generated code reports it
+    /// (`DecodeError::Frame`).
+    fn from(reason: protocol_runtime::Reject) -> Self {
+        DecodeIssue::Frame(DecodeError::Frame(reason))
+    }
+}
+
 /// Why a frame object could not be encoded. Nothing is written for it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EncodeIssue {

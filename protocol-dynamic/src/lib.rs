@@ -112,7 +112,7 @@ pub use frame::{
 pub use layout::word_field;
 pub use load::LoadError;
 pub use model::{Fields, Value};
-pub use stream::{Item, Stream};
+pub use stream::{Format, Item, Stream};
 pub use value::{NumError, value_f32, value_f64};
 
 use protocol_codegen::ir::{Protocol, Transport};
@@ -189,6 +189,14 @@ impl Codec<'_> {
     pub fn stream(&self, format: usize) -> Option<Stream<'_>> {
         let layout = self.layout(format)?;
         Some(Stream::new(self, format, layout))
+    }
+
+    /// Frame format `format` as the runtime's [`PacketLayout`](protocol_runtime::PacketLayout),
+    /// for the runtime's `PacketDecoder` (a buffer size of the caller's choice) and the
+    /// integrations built on it. `None` for an index out of range.
+    pub fn packet_layout(&self, format: usize) -> Option<Format<'_>> {
+        let layout = self.layout(format)?;
+        Some(Format::new(self, format, layout))
     }
 
     /// The index of the frame format named `name`.

@@ -6,7 +6,7 @@
 //! refused for want of room. Finding and verifying frames is the engine's business.
 
 use protocol_runtime::layout::LayoutRef;
-use protocol_runtime::{Event, FrameLayout, Reject, Stats, StreamDecoder};
+use protocol_runtime::{Event, FrameLayout, PacketLayout, Reject, Stats, StreamDecoder};
 
 use crate::{Codec, DecodeIssue, Decoded};
 
@@ -17,6 +17,42 @@ struct Held<'c>(FrameLayout<'c>);
 impl LayoutRef for Held<'_> {
     fn layout(&self) -> &FrameLayout<'_> {
         &self.0
+    }
+}
+
+/// A frame format of a codec as the runtime's [`PacketLayout`]: its frames decode into
+/// [`Decoded`] values, so that the runtime's `PacketDecoder` and the integrations built on it
+/// (the `tokio` codec, the `embedded-io-async` reader) drive the run-time codec as they drive
+/// generated code. Made by [`Codec::packet_layout`].
+#[derive(Clone, Copy)]
+pub struct Format<'c> {
+    codec: &'c Codec<'c>,
+    format: usize,
+    layout: FrameLayout<'c>,
+}
+
+impl<'c> Format<'c> {
+    pub(crate) fn new(codec: &'c Codec<'c>, format: usize, layout: FrameLayout<'c>) -> Self {
+        Format {
+            codec,
+            format,
+            layout,
+        }
+    }
+}
+
+impl LayoutRef for Format<'_> {
+    fn layout(&self) -> &FrameLayout<'_> {
+        &self.layout
+    }
+}
+
+impl PacketLayout for Format<'_> {
+    type Packet = Decoded;
+    type Error = DecodeIssue;
+
+    fn decode_packet(&self, frame: &[u8]) -> Result<Decoded, DecodeIssue> {
+        self.codec.decode_frame(self.format, frame)
     }
 }
 
