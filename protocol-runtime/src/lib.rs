@@ -14,6 +14,9 @@
 //! - [`field`]: field semantics (scaling, rounding, clamping, enum policy, bit members,
 //!   sized bytes, optional fields and repeated groups), shared by generated code and the
 //!   run-time codec;
+//! - [`packet`]: typed packets from the stream ([`PacketDecoder`], [`PacketEvent`]) and the
+//!   traits generated code and the run-time codec implement for it ([`PacketLayout`],
+//!   [`EncodePacket`]);
 //! - [`wire`]: the cursors payload code reads and writes with ([`Reader`], [`Writer`]);
 //! - [`checksum`]: sums, xor and CRCs ([`Checksum`]);
 //! - [`error`]: [`DecodeError`] and [`EncodeError`].
@@ -29,6 +32,8 @@
 //! |---|---|
 //! | `std` | reading frames from a `std::io::Read` |
 //! | `embedded-io` | reading frames from an `embedded-io` reader |
+//! | `embedded-io-async` | packets from an `embedded-io-async` reader (`io_async::PacketReader`) and written to a writer (`io_async::write_packet`); re-exports `embedded-io-async` and `embedded-io` at the versions they take |
+//! | `tokio` | `codec::PacketCodec`, a `tokio_util::codec` decoder and encoder of a spec's packets; re-exports `tokio-util` |
 //! | `stage-input` | every input chunk staged in the decoder's buffer before it is scanned, as on targets without 64-bit pointers (where it is the default: less code); on hosts, to test that path. Frames and stats are the same either way; only whether a frame borrows the caller's input changes |
 //!
 //! # Example
@@ -159,6 +164,8 @@ extern crate std;
 pub mod bytes;
 pub mod can;
 pub mod checksum;
+#[cfg(feature = "tokio")]
+pub mod codec;
 pub mod decoder;
 pub mod encoder;
 pub mod error;
@@ -166,6 +173,8 @@ pub mod field;
 pub mod group;
 #[cfg(any(feature = "std", feature = "embedded-io"))]
 pub mod io;
+#[cfg(feature = "embedded-io-async")]
+pub mod io_async;
 pub mod layout;
 pub mod packed;
 pub mod packet;
@@ -182,6 +191,16 @@ pub use group::Group;
 pub use layout::{FrameLayout, LayoutRef};
 pub use packet::{EncodePacket, PacketDecoder, PacketEvent, PacketLayout, Packets};
 pub use wire::{Reader, Writer};
+
+/// The `embedded-io` crate at the version this crate's readers take.
+#[cfg(feature = "embedded-io")]
+pub use embedded_io;
+/// The `embedded-io-async` crate at the version this crate's readers and writers take.
+#[cfg(feature = "embedded-io-async")]
+pub use embedded_io_async;
+/// The `tokio-util` crate at the version [`codec::PacketCodec`] implements the codec traits of.
+#[cfg(feature = "tokio")]
+pub use tokio_util;
 
 /// Everything generated code names, under one path. Not a public API: it changes with the
 /// code generator.

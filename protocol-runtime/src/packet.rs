@@ -47,6 +47,17 @@ pub trait EncodePacket {
     fn encode_into(&self, buf: &mut [u8]) -> Result<usize, EncodeError>;
 }
 
+impl<P: EncodePacket + ?Sized> EncodePacket for &P {
+    #[inline(always)]
+    fn encoded_len(&self) -> usize {
+        P::encoded_len(self)
+    }
+    #[inline(always)]
+    fn encode_into(&self, buf: &mut [u8]) -> Result<usize, EncodeError> {
+        P::encode_into(self, buf)
+    }
+}
+
 /// What a [`PacketDecoder`] reports: the engine's [`Event`]s, with every frame decoded.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PacketEvent<P, E = DecodeError> {
