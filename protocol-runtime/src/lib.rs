@@ -33,6 +33,7 @@
 //! | `std` | reading frames from a `std::io::Read` |
 //! | `embedded-io` | reading frames from an `embedded-io` reader |
 //! | `embedded-io-async` | packets from an `embedded-io-async` reader (`io_async::PacketReader`) and written to a writer (`io_async::write_packet`); re-exports `embedded-io-async` and `embedded-io` at the versions they take |
+//! | `embedded-can` | `CanFrame` as an `embedded_can::Frame`, `CanFrame::from_frame` and `CanFrame::to_frame` for a CAN driver's frames; re-exports `embedded-can` |
 //! | `tokio` | `codec::PacketCodec`, a `tokio_util::codec` decoder and encoder of a spec's packets; re-exports `tokio-util` |
 //! | `stage-input` | every input chunk staged in the decoder's buffer before it is scanned, as on targets without 64-bit pointers (where it is the default: less code); on hosts, to test that path. Frames and stats are the same either way; only whether a frame borrows the caller's input changes |
 //!
@@ -192,6 +193,9 @@ pub use layout::{FrameLayout, LayoutRef};
 pub use packet::{EncodePacket, PacketDecoder, PacketEvent, PacketLayout, Packets};
 pub use wire::{Reader, Writer};
 
+/// The `embedded-can` crate at the version [`CanFrame`] implements `Frame` of.
+#[cfg(feature = "embedded-can")]
+pub use embedded_can;
 /// The `embedded-io` crate at the version this crate's readers take.
 #[cfg(feature = "embedded-io")]
 pub use embedded_io;

@@ -82,6 +82,7 @@
 //! | `std` | reading frames from a `std::io::Read` |
 //! | `embedded-io` | reading frames from an `embedded-io` reader |
 //! | `embedded-io-async` | packets from an `embedded-io-async` reader (`io_async::PacketReader`) and written to a writer (`io_async::write_packet`); re-exports `embedded-io-async` and `embedded-io` at the versions they take |
+//! | `embedded-can` | `CanFrame` as an `embedded_can::Frame`, `CanFrame::from_frame` and `CanFrame::to_frame` for a CAN driver's frames; re-exports `embedded-can` |
 //! | `tokio` | `codec::PacketCodec`, a `tokio_util::codec` decoder and encoder of a spec's packets; re-exports `tokio-util` |
 //! | `stage-input` | every input chunk staged in the decoder's buffer before it is scanned, as on targets without 64-bit pointers (where it is the default: less code); on hosts, to test that path |
 #![no_std]

@@ -7,7 +7,7 @@ use quote::{format_ident, quote};
 use crate::codegen::frame::{user_values, wire_const};
 use crate::codegen::ident;
 use crate::codegen::payload::prim_type;
-use crate::ir::{Frame, Prim, Protocol};
+use crate::ir::{Frame, Prim, Protocol, Transport};
 
 /// `<Name>Packet` for a CAN frame format: decode from and encode to a `CanFrame`, through the
 /// frame's virtual layout (id, length, data) so the runtime verifies and seals its checks.
@@ -20,6 +20,11 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
     // Validation puts a CAN frame's id first among its values.
     let can_id = wire_const(f, 0);
     let (reads, writes) = header_codec(f, rt);
+    // The virtual frame holds the identifier's number; its kind is the spec's.
+    let extended = match f.transport {
+        Transport::Can { extended: true } => quote!(.map(#rt::CanFrame::into_extended)),
+        _ => quote!(),
+    };
     let doc = format!(
         " A whole `{}` CAN frame, decoded: the header values and the message.",
         f.name
@@ -66,7 +71,7 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
                 let payload = #rt::payload_room(frame, total, #header_len, #trailer_len)?;
                 self.message.write_payload(&mut #rt::Writer::new(payload))?;
                 #layout.seal(frame)?;
-                #rt::CanFrame::from_virtual(frame)
+                #rt::CanFrame::from_virtual(frame)#extended
             }
         }
     }
