@@ -1,11 +1,14 @@
 //! The library behind the `protocol` command: the parts of the command worth testing without
 //! a process: spec loading and diagnostics ([`spec`]), decoding sessions ([`session`],
-//! [`table`]) and CAN logs ([`candump`]). Decoding and encoding run on the
+//! [`table`]), CAN logs ([`candump`]) and, on Linux, live SocketCAN input (`socketcan`).
+//! Decoding and encoding run on the
 //! [`protocol_dynamic`] codec.
 #![forbid(unsafe_code)]
 
 pub mod candump;
 pub mod report;
 pub mod session;
+#[cfg(target_os = "linux")]
+pub mod socketcan;
 pub mod spec;
 pub mod table;

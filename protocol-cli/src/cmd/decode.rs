@@ -1,9 +1,9 @@
 //! `protocol decode SPEC [INPUT|-] [--hex] [--serial PORT --baud N] [--candump FILE]
-//! [--format table|json] [--stats]`: find and decode the frames of a byte stream with the
+//! [--can IFACE] [--format table|json] [--stats]`: find and decode the frames of a byte stream with the
 //! runtime's stream engine, on the layout `protocol-dynamic` builds of the spec.
 //!
 //! This module owns where the bytes come from (a file, stdin, hex text, a serial port, a CAN
-//! log) and when the input ends; what a line says is the session's business.
+//! log, a live SocketCAN interface) and when the input ends; what a line says is the session's business.
 
 use std::io::{self, IsTerminal, Read, Write};
 use std::path::PathBuf;
@@ -28,13 +28,13 @@ pub struct Args {
     /// The spec file.
     spec: PathBuf,
     /// The input: a binary file, or `-` for stdin (the default).
-    #[arg(conflicts_with_all = ["serial", "candump"])]
+    #[arg(conflicts_with_all = ["serial", "candump", "can"])]
     input: Option<PathBuf>,
     /// The input is hex text (whitespace, `0x`, `,` and `:` are ignored).
     #[arg(long)]
     hex: bool,
     /// Read a live serial port (runs until interrupted, or until the port hangs up).
-    #[arg(long, value_name = "PORT", conflicts_with = "candump")]
+    #[arg(long, value_name = "PORT", conflicts_with_all = ["candump", "can"])]
     serial: Option<String>,
     /// Baud rate of the serial port.
     #[arg(long, value_name = "N", default_value_t = 115_200, requires = "serial")]
@@ -42,6 +42,10 @@ pub struct Args {
     /// Read a Linux `candump -L` or `candump` log (the spec needs a CAN frame format).
     #[arg(long, value_name = "FILE")]
     candump: Option<PathBuf>,
+    /// Read a live SocketCAN interface (`can0`, `vcan0`; Linux only), until interrupted (the
+    /// spec needs a CAN frame format).
+    #[arg(long, value_name = "IFACE", conflicts_with = "candump")]
+    can: Option<String>,
     /// Output format [default: table on a terminal, json otherwise].
     #[arg(long, value_enum)]
     format: Option<Format>,
@@ -68,11 +72,14 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         None if io::stdout().is_terminal() => Output::Table,
         None => Output::Json,
     };
-    let can = args.candump.is_some();
+    let can = args.candump.is_some() || args.can.is_some();
     let format = pick_format(&codec, args.frame.as_deref(), can)?;
     let stdout = io::stdout();
     let mut session = Session::new(&codec, format, output, io::BufWriter::new(stdout.lock()));
-    let decoded = if let Some(path) = &args.candump {
+    let decoded = if let Some(interface) = &args.can {
+        let live = open_can(interface)?;
+        decode_live_can(&mut session, live).map(|()| None)
+    } else if let Some(path) = &args.candump {
         let text = std::fs::read_to_string(path)
             .into_diagnostic()
             .wrap_err_with(|| format!("cannot read `{}`", path.display()))?;
@@ -173,7 +180,7 @@ fn pick_format(codec: &Codec<'_>, name: Option<&str>, can: bool) -> Result<usize
                 "frame format `{name}` is {} frame format; {}",
                 if can { "not a CAN" } else { "a CAN" },
                 if can {
-                    "--candump needs a CAN one"
+                    "--candump and --can need a CAN one"
                 } else {
                     "read it with --candump"
                 }
@@ -188,7 +195,7 @@ fn pick_format(codec: &Codec<'_>, name: Option<&str>, can: bool) -> Result<usize
             if can {
                 miette!(
                     help = "a CAN frame format has `transport = \"can\"` in its `[frames.NAME]` table",
-                    "spec `{}` has no CAN transport: --candump needs a frame format carried over CAN",
+                    "spec `{}` has no CAN transport: --candump and --can need a frame format carried over CAN",
                     p.name
                 )
             } else {
@@ -358,6 +365,50 @@ fn stream<W: Write>(
         session.item(item)?;
     }
     Ok(*decoder.stats())
+}
+
+/// The live CAN input (Linux: SocketCAN).
+#[cfg(target_os = "linux")]
+type LiveCan = protocol_cli::socketcan::Live;
+#[cfg(not(target_os = "linux"))]
+type LiveCan = std::convert::Infallible;
+
+#[cfg(target_os = "linux")]
+fn open_can(interface: &str) -> Result<LiveCan> {
+    LiveCan::open(interface)
+        .into_diagnostic()
+        .wrap_err_with(|| format!("cannot open CAN interface `{interface}`"))
+}
+
+#[cfg(not(target_os = "linux"))]
+fn open_can(_interface: &str) -> Result<LiveCan> {
+    Err(miette!(
+        "--can reads SocketCAN interfaces, which only Linux has; replay a log with --candump"
+    ))
+}
+
+/// Decodes the frames of a live CAN interface as they arrive, until SIGINT.
+#[cfg(target_os = "linux")]
+fn decode_live_can<W: Write>(
+    session: &mut Session<'_, '_, W>,
+    mut live: LiveCan,
+) -> io::Result<()> {
+    let mut errors = 0;
+    let mut index = 0;
+    while let Some(record) = live.next(&mut errors)? {
+        session.can(index, &record)?;
+        session.flush()?;
+        index += 1;
+    }
+    if errors > 0 {
+        eprintln!("warning: {errors} CAN error frames skipped");
+    }
+    Ok(())
+}
+
+#[cfg(not(target_os = "linux"))]
+fn decode_live_can<W: Write>(_: &mut Session<'_, '_, W>, live: LiveCan) -> io::Result<()> {
+    match live {}
 }
 
 /// Decodes every record of a CAN log; lines that are not frames are reported on stderr.
