@@ -4,7 +4,8 @@
 //! (the `tokio` codec, the `embedded-io-async` reader and writer) drive generated codecs.
 //!
 //! This module owns only those impls; each delegates to the packet's own `from_frame`,
-//! `encoded_len` and `encode` (`dispatch`). A CAN format has no stream, so no impl.
+//! `encoded_len` and `encode` (`dispatch`), which the optimiser inlines (the impls are
+//! generic code's callees in the same crate). A CAN format has no stream, so no impl.
 
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -31,17 +32,14 @@ pub fn emit_packet_traits(p: &Protocol) -> TokenStream {
             impl #rt::PacketLayout for #layout {
                 type Packet = #packet;
                 type Error = #rt::DecodeError;
-                #[inline(always)]
                 fn decode_packet(&self, frame: &[u8]) -> #rt::DecodeResult<#packet> {
                     #packet::from_frame(frame)
                 }
             }
             impl #rt::EncodePacket for #packet {
-                #[inline(always)]
                 fn encoded_len(&self) -> usize {
                     #packet::encoded_len(self)
                 }
-                #[inline(always)]
                 fn encode_into(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
                     #packet::encode(self, buf)
                 }

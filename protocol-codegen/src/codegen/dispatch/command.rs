@@ -72,8 +72,7 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
     quote! {
         #[doc = #id_doc]
         pub type CommandId = #id_ty;
-        /// Every command of the spec, with its id. Non-exhaustive, so that a command added to
-        /// the spec is a compatible change for crates that use this one.
+        /// Every command of the spec, with its id (non-exhaustive: adding one is a compatible change).
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
         #[non_exhaustive]
         #repr
