@@ -26,7 +26,8 @@ pub fn read_frames<R: embedded_io::Read, L: LayoutRef, const N: usize>(
     Ok(n)
 }
 
-/// [`read_frames`] for a `std::io::Read` (a serial port, a file, a socket).
+/// `read_frames` (the `embedded-io` reader) for a `std::io::Read` (a serial port, a file, a
+/// socket).
 ///
 /// # Errors
 ///

@@ -26,12 +26,15 @@ fn seen<P, E>(e: &PacketEvent<P, E>, to_runtime: impl Fn(&E) -> DecodeError) -> 
     }
 }
 
+/// The events of a format's packets.
+type Events<L> = Vec<PacketEvent<<L as PacketLayout>::Packet, <L as PacketLayout>::Error>>;
+
 /// Every event of `bytes` fed in chunks of `chunk` bytes, then flushed.
 fn events<L: PacketLayout, const N: usize>(
     layout: L,
     bytes: &[u8],
     chunk: usize,
-) -> (Vec<PacketEvent<L::Packet, L::Error>>, protocol::Stats) {
+) -> (Events<L>, protocol::Stats) {
     let mut decoder = PacketDecoder::<L, N>::new(layout);
     let mut out = Vec::new();
     for part in bytes.chunks(chunk) {
