@@ -1,7 +1,9 @@
-//! Frame check algorithms: byte sums, xor, and CRCs.
+//! Frame check algorithms: byte sums (plain, complemented, 16-bit), xor, Fletcher sums, and
+//! CRCs.
 //!
 //! This module owns computing a check value over a byte range ([`Checksum::compute`],
-//! [`Checksum::compute_prefix`]) and its size on the wire ([`Checksum::width`]). Which bytes a
+//! [`Checksum::compute_prefix`]), its size on the wire ([`Checksum::width`]), and the
+//! table-free description of an algorithm that an IR holds ([`Algorithm`]). Which bytes a
 //! check covers and where its value is stored is the frame layout's business
 //! ([`crate::layout::Check`]).
 //!
@@ -34,11 +36,14 @@
 
 use core::fmt;
 
+mod algorithm;
+mod fletcher;
 mod slicing;
 mod sum;
 #[cfg(test)]
 mod tests;
 
+pub use algorithm::{Algorithm, CrcSpec, CrcTable};
 pub use slicing::Slicing16;
 
 /// A check algorithm.
@@ -50,6 +55,22 @@ pub enum Checksum<'a> {
     SumMod255,
     /// Xor of the bytes.
     Xor8,
+    /// The sum of the bytes modulo 2^(8 × `width`) (`width` 1 or 2; any other counts as 2),
+    /// xored with `xorout`. All ones is the one's complement of the sum: `~sum & 0xFF`
+    /// (Dynamixel Protocol 1.0), `0xFFFF - sum` (iBUS).
+    Sum {
+        /// Bytes of the stored value: 1 or 2.
+        width: u8,
+        /// Xored into the sum.
+        xorout: u16,
+    },
+    /// Fletcher-16: two running sums modulo 255 (`A` of the bytes, `B` of the successive
+    /// `A`s), the value `B << 8 | A` (Fletcher, "An Arithmetic Checksum for Serial
+    /// Transmissions", 1982; the 8-bit Fletcher of RFC 1146).
+    Fletcher16,
+    /// Fletcher's two running sums modulo 256, the value `B << 8 | A`: the pair u-blox UBX
+    /// stores as `CK_A, CK_B` (a little-endian `u16`).
+    Fletcher16Mod256,
     /// An 8-bit CRC.
     Crc8(CrcImpl<'a, u8>),
     /// A 16-bit CRC.
@@ -139,6 +160,13 @@ impl fmt::Debug for Checksum<'_> {
             Checksum::Sum8 => f.write_str("Sum8"),
             Checksum::SumMod255 => f.write_str("SumMod255"),
             Checksum::Xor8 => f.write_str("Xor8"),
+            Checksum::Sum { width, xorout } => f
+                .debug_struct("Sum")
+                .field("width", width)
+                .field("xorout", xorout)
+                .finish(),
+            Checksum::Fletcher16 => f.write_str("Fletcher16"),
+            Checksum::Fletcher16Mod256 => f.write_str("Fletcher16Mod256"),
             Checksum::Crc8(c) => f.debug_tuple("Crc8").field(c).finish(),
             Checksum::Crc16(c) => f.debug_tuple("Crc16").field(c).finish(),
             Checksum::Crc32(c) => f.debug_tuple("Crc32").field(c).finish(),
@@ -153,12 +181,15 @@ impl fmt::Debug for Checksum<'_> {
 // matters for firmware flash (at `opt-level = "s"` a plain `#[inline]` dispatcher stays out of
 // line and links every table size of its width).
 impl Checksum<'_> {
-    /// Bytes of the stored check value: 1 for the sums, xor and CRC-8, then 2, 4 or 8.
+    /// Bytes of the stored check value: 1 for the 8-bit sums, xor and CRC-8, 2 for the
+    /// 16-bit sums, the Fletcher pairs and CRC-16, then 4 or 8.
     #[inline]
     pub const fn width(&self) -> usize {
         match self {
             Checksum::Sum8 | Checksum::SumMod255 | Checksum::Xor8 | Checksum::Crc8(_) => 1,
-            Checksum::Crc16(_) => 2,
+            Checksum::Sum { width: 1, .. } => 1,
+            Checksum::Sum { .. } => 2,
+            Checksum::Fletcher16 | Checksum::Fletcher16Mod256 | Checksum::Crc16(_) => 2,
             Checksum::Crc32(_) => 4,
             Checksum::Crc64(_) => 8,
         }
@@ -178,6 +209,9 @@ impl Checksum<'_> {
             Checksum::Sum8 => u64::from(sum::sum8(data)),
             Checksum::SumMod255 => u64::from(sum::sum_mod255(data)),
             Checksum::Xor8 => u64::from(sum::xor8(data)),
+            Checksum::Sum { width, xorout } => sum::sum_xorout(data, *width, *xorout),
+            Checksum::Fletcher16 => u64::from(fletcher::fletcher16(data)),
+            Checksum::Fletcher16Mod256 => u64::from(fletcher::fletcher16_mod256(data)),
             Checksum::Crc8(c) => u64::from(c.checksum(data)),
             Checksum::Crc16(c) => u64::from(c.checksum(data)),
             Checksum::Crc32(c) => u64::from(c.checksum(data)),
@@ -210,6 +244,9 @@ impl Checksum<'_> {
             Checksum::Sum8 => u64::from(sum::sum8_prefix(data, n)),
             Checksum::SumMod255 => u64::from(sum::sum_mod255_prefix(data, n)),
             Checksum::Xor8 => u64::from(sum::xor8_prefix(data, n)),
+            Checksum::Sum { .. } | Checksum::Fletcher16 | Checksum::Fletcher16Mod256 => {
+                self.compute(data.get(..n).unwrap_or(data))
+            }
             Checksum::Crc8(c) => u64::from(c.checksum_prefix(data, n)),
             Checksum::Crc16(c) => u64::from(c.checksum_prefix(data, n)),
             Checksum::Crc32(c) => u64::from(c.checksum_prefix(data, n)),

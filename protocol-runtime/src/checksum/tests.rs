@@ -188,11 +188,14 @@ fn prefix_past_the_input_is_none() {
 /// Checks `Slicing16` (built at run time, the way the interpreter builds it) against
 /// `crc::Crc<W, NoTable>` for every algorithm named: the check value, random data of every
 /// length in `0..=300`, and prefixes with bytes past them. Returns the number of algorithms.
+/// Each algorithm is checked in a closure of its own: its stack frame (a `Slicing16` is built
+/// on the stack) is reused by the next, not added to one frame of every algorithm.
 macro_rules! check_catalogue {
     ($w:ty, $variant:ident: $($alg:ident),* $(,)?) => {{
         let buf = random(0x5EED, 300 + 40);
         let mut count = 0;
         $(
+            (|| {
             let alg: &'static crc::Algorithm<$w> = &crc::$alg;
             let reference = crc::Crc::<$w, crc::NoTable>::new(alg);
             let fast = std::boxed::Box::new(Slicing16::<$w>::new(alg));
@@ -212,6 +215,7 @@ macro_rules! check_catalogue {
                 }
                 assert_eq!(check.compute_prefix(&buf, n), Some(u64::from(want)));
             }
+            })();
             count += 1;
         )*
         count
@@ -422,4 +426,139 @@ fn debug_names_the_algorithm_and_table() {
     assert_eq!(format!("{:?}", Checksum::SumMod255), "SumMod255");
     assert_eq!(CrcImpl::Table16(&T).table_lanes(), 16);
     assert_eq!(*T.algorithm(), crc::CRC_16_UMTS);
+}
+
+// ---- complemented and wider sums, Fletcher ----
+
+/// Fletcher-16 (two sums modulo 255) against the test vectors of Wikipedia's "Fletcher's
+/// checksum" article ("abcde" 0xC8F0, "abcdef" 0x2057, "abcdefgh" 0x0627).
+#[test]
+fn fletcher16_matches_its_published_vectors() {
+    assert_eq!(Checksum::Fletcher16.compute(b"abcde"), 0xC8F0);
+    assert_eq!(Checksum::Fletcher16.compute(b"abcdef"), 0x2057);
+    assert_eq!(Checksum::Fletcher16.compute(b"abcdefgh"), 0x0627);
+    assert_eq!(Checksum::Fletcher16.width(), 2);
+}
+
+/// The modulo-256 Fletcher pair over UBX-CFG-RATE frames as u-blox u-center writes them
+/// (class..payload of `B5 62 06 08 06 00 64 00 01 00 01 00 7A 12`, 100 ms, and of
+/// `... C8 00 01 00 01 00 DE 6A`, 200 ms): `CK_A` in the low byte, `CK_B` in the high one.
+#[test]
+fn fletcher16_mod256_matches_ubx_frames() {
+    let rate_100ms = [0x06, 0x08, 0x06, 0x00, 0x64, 0x00, 0x01, 0x00, 0x01, 0x00];
+    assert_eq!(Checksum::Fletcher16Mod256.compute(&rate_100ms), 0x127A);
+    let rate_200ms = [0x06, 0x08, 0x06, 0x00, 0xC8, 0x00, 0x01, 0x00, 0x01, 0x00];
+    assert_eq!(Checksum::Fletcher16Mod256.compute(&rate_200ms), 0x6ADE);
+}
+
+fn naive_fletcher(data: &[u8], modulus: u64) -> u64 {
+    let (mut a, mut b) = (0u64, 0u64);
+    for &x in data {
+        a = (a + u64::from(x)) % modulus;
+        b = (b + a) % modulus;
+    }
+    (b << 8) | a
+}
+
+#[test]
+fn fletcher_sums_match_naive_definitions_for_every_length_and_overrun() {
+    for buf in [random(7, 1200), std::vec![0xFF; 1200]] {
+        for n in (0..=1100).step_by(7) {
+            let data = &buf[..n];
+            assert_eq!(
+                Checksum::Fletcher16.compute(data),
+                naive_fletcher(data, 255),
+                "n {n}"
+            );
+            assert_eq!(
+                Checksum::Fletcher16Mod256.compute(data),
+                naive_fletcher(data, 256)
+            );
+            for extra in OVERRUNS {
+                let input = &buf[..n + extra];
+                let f = Checksum::Fletcher16.compute_prefix(input, n);
+                assert_eq!(f, Some(naive_fletcher(data, 255)), "n {n} + {extra}");
+            }
+        }
+    }
+}
+
+/// Complemented sums against the examples of their protocols' documents: ROBOTIS
+/// Dynamixel Protocol 1.0 (`FF FF 01 04 02 2B 01 CC`, READ_DATA of the temperature; the check
+/// `~(ID + LENGTH + INSTRUCTION + PARAMETERS) & 0xFF`) and the iBUS frame of ArduPilot's RC
+/// protocol test (`ibus_bytes`: 30 bytes, then `0xFFFF - sum` little-endian `47 F3`).
+#[test]
+fn complemented_sums_match_protocol_examples() {
+    let dynamixel = Checksum::Sum {
+        width: 1,
+        xorout: 0xFF,
+    };
+    assert_eq!(dynamixel.width(), 1);
+    assert_eq!(dynamixel.compute(&[0x01, 0x04, 0x02, 0x2B, 0x01]), 0xCC);
+    assert_eq!(dynamixel.compute(&[0x01, 0x03, 0x00, 0x20]), 0xDB);
+    let mut ibus = std::vec![0x20, 0x40];
+    for ch in [
+        1500u16, 1500, 1000, 1500, 1500, 1500, 1500, 1500, 1500, 1500, 1500, 1500, 1500, 1500,
+    ] {
+        ibus.extend_from_slice(&ch.to_le_bytes());
+    }
+    let complement16 = Checksum::Sum {
+        width: 2,
+        xorout: 0xFFFF,
+    };
+    assert_eq!(complement16.width(), 2);
+    assert_eq!(complement16.compute(&ibus), 0xF347);
+    assert_eq!(
+        complement16.compute(&ibus),
+        0xFFFF - naive_sum(&ibus) % 65536
+    );
+}
+
+#[test]
+fn wide_sums_match_naive_definitions() {
+    let buf = random(11, 700);
+    for n in 0..=600 {
+        let data = &buf[..n];
+        let sum16 = Checksum::Sum {
+            width: 2,
+            xorout: 0,
+        };
+        assert_eq!(sum16.compute(data), naive_sum(data) % 65536, "n {n}");
+        let sum8 = Checksum::Sum {
+            width: 1,
+            xorout: 0x5A,
+        };
+        assert_eq!(sum8.compute(data), (naive_sum(data) % 256) ^ 0x5A, "n {n}");
+        assert_eq!(
+            sum16.compute_prefix(&buf[..n + 40], n),
+            Some(naive_sum(data) % 65536)
+        );
+    }
+}
+
+#[test]
+fn algorithm_values_describe_their_checksums() {
+    let crc = Algorithm::Crc16(CrcSpec {
+        params: crc::CRC_16_MCRF4XX,
+        table: CrcTable::Table1,
+    });
+    assert_eq!(crc.width(), 2);
+    assert_eq!(crc.tableless().map(|c| c.width()), None);
+    assert_eq!(crc.crc_table(), Some(CrcTable::Table1));
+    assert_eq!(CrcTable::Table16.lanes(), 16);
+    for a in [
+        Algorithm::Sum8,
+        Algorithm::SumMod255,
+        Algorithm::Xor8,
+        Algorithm::Sum {
+            width: 2,
+            xorout: 0xFFFF,
+        },
+        Algorithm::Fletcher16,
+        Algorithm::Fletcher16Mod256,
+    ] {
+        let c = a.tableless().unwrap();
+        assert_eq!(c.width(), a.width(), "{a:?}");
+        assert_eq!(a.crc_table(), None);
+    }
 }
