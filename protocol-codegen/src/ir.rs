@@ -5,9 +5,11 @@
 //! size, offset, byte order and reference is resolved. Downstream code trusts it and never
 //! reports a user error. Order is always the spec's order.
 //!
-//! The wire vocabulary is the runtime's own ([`ByteOrder`], [`Pos`]): what the IR says is what
-//! the engine runs, with nothing to translate in between.
+//! The wire vocabulary is the runtime's own ([`ByteOrder`], [`Pos`], the check [`Algorithm`]):
+//! what the IR says is what the engine runs, with nothing to translate in between.
 
+/// What a check computes: the runtime's table-free description, decided in validation.
+pub use protocol_runtime::checksum::{Algorithm, CrcSpec, CrcTable};
 /// How a scaled value is rounded to its raw integer, and what an enum does with a value that
 /// has no variant: the runtime's own field rules ([`protocol_runtime::field`]), which the
 /// generated code and the run-time codec both apply.
@@ -603,8 +605,10 @@ pub struct Check {
     pub name: String,
     /// Documentation.
     pub doc: String,
-    /// The algorithm.
+    /// The algorithm, as the runtime describes it: backends print or execute it as it is.
     pub algorithm: Algorithm,
+    /// How the algorithm is named.
+    pub naming: CheckNaming,
     /// Where the check value is stored.
     pub at: Pos,
     /// Bytes of the stored check value.
@@ -619,45 +623,18 @@ pub struct Check {
     pub header: bool,
 }
 
-/// A checksum algorithm.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Algorithm {
-    /// Sum of the bytes modulo `modulus` (256 or 255).
-    Sum {
-        /// 255 or 256.
-        modulus: u32,
-    },
-    /// XOR of the bytes.
-    Xor,
-    /// A CRC.
-    Crc(CrcParams),
-}
-
-/// Parameters of a CRC in the Rocksoft model (as the `crc` crate's `Algorithm`).
-#[derive(Debug, Clone, PartialEq)]
-pub struct CrcParams {
-    /// Catalogue constant of the `crc` crate (`CRC_16_UMTS`), or `None` for a custom CRC.
-    pub catalog: Option<String>,
-    /// Name to show in docs (`CRC-16/UMTS`, or the spec's name of a custom CRC).
+/// The names of a check's algorithm: what docs show, and the Rust items a CRC is printed with.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CheckNaming {
+    /// The name docs show: `sum-mod-255`, `CRC-16/UMTS`, or the `[checksums]` name of a
+    /// custom algorithm.
     pub display: String,
-    /// Width in bits: 8, 16, 32 or 64.
-    pub width: u8,
-    /// Polynomial, normal form.
-    pub poly: u64,
-    /// Initial register value (un-reflected).
-    pub init: u64,
-    /// Reflect input bytes.
-    pub refin: bool,
-    /// Reflect the result.
-    pub refout: bool,
-    /// XOR applied to the result.
-    pub xorout: u64,
-    /// CRC of `b"123456789"`.
-    pub check: u64,
-    /// Residue (for the `crc` crate's `Algorithm`).
-    pub residue: u64,
-    /// Lookup table slices: 0 (no table), 1 or 16.
-    pub table: u8,
+    /// True for an algorithm defined under `[checksums]`.
+    pub custom: bool,
+    /// For a catalogue CRC, the `crc` crate's constant (`CRC_16_UMTS`).
+    pub crc_constant: Option<String>,
+    /// For a CRC, the `static` its table lives in (`CRC_TABLE`, `SCOUT_CRC_TABLE`).
+    pub table_static: Option<String>,
 }
 
 /// A constant byte run after the payload.

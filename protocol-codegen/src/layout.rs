@@ -7,15 +7,15 @@
 //! result as it is: the expansion prints it as the `LAYOUT` static (`codegen::frame`), and the
 //! run-time codec builds a [`FrameLayout`] value from it. What stays to each is the one thing
 //! that differs: how a check's algorithm becomes a [`Checksum`] (a `static` table in generated
-//! code, an object the codec owns), for which this module gives the parameters of a CRC as the
-//! `crc` crate takes them ([`crc_algorithm8`] and its siblings).
+//! code, an object the codec owns), for which this module interns the parameters of a CRC as
+//! the `crc` crate takes them ([`intern`]).
 
 use protocol_runtime::checksum::Checksum;
 use protocol_runtime::layout::{Check, Constant, FrameLayout, LengthRule, Marker, WordField};
 
 use std::sync::Mutex;
 
-use crate::ir::{self, CrcParams, HeaderValue, Length, Role};
+use crate::ir::{self, HeaderValue, Length, Role};
 
 /// A frame format as the runtime's [`FrameLayout`] holds it, with the checks still to be given
 /// their [`Checksum`]s, and the header values its fields come from (so the expansion can name
@@ -149,52 +149,33 @@ pub fn word_field(v: &HeaderValue) -> WordField {
 /// is loaded, so each distinct parameter set is leaked once per process and reused: memory is
 /// bounded by the number of distinct CRC algorithms, however many specs are validated or
 /// loaded (a proc macro process expands many).
-macro_rules! interned_algorithm {
-    ($(#[$doc:meta])* $name:ident, $w:ty) => {
-        $(#[$doc])*
-        pub fn $name(p: &CrcParams) -> &'static crc::Algorithm<$w> {
-            static CACHE: Mutex<Vec<&'static crc::Algorithm<$w>>> = Mutex::new(Vec::new());
-            // The parameters come from a checked IR and fit the width; `as` keeps their bits.
-            let wanted = crc::Algorithm::<$w> {
-                width: p.width,
-                poly: p.poly as $w,
-                init: p.init as $w,
-                refin: p.refin,
-                refout: p.refout,
-                xorout: p.xorout as $w,
-                check: p.check as $w,
-                residue: p.residue as $w,
-            };
-            // A poisoned lock only means another thread panicked while pushing: the list is
-            // still a list of valid algorithms.
-            let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-            if let Some(found) = cache.iter().find(|a| ***a == wanted) {
-                return found;
-            }
-            let leaked: &'static crc::Algorithm<$w> = Box::leak(Box::new(wanted));
-            cache.push(leaked);
-            leaked
-        }
-    };
+pub fn intern<W: Intern>(params: &crc::Algorithm<W>) -> &'static crc::Algorithm<W> {
+    W::intern(params)
 }
 
-interned_algorithm!(
-    /// The parameters of an 8-bit CRC, interned.
-    crc_algorithm8,
-    u8
-);
-interned_algorithm!(
-    /// The parameters of a 16-bit CRC, interned.
-    crc_algorithm16,
-    u16
-);
-interned_algorithm!(
-    /// The parameters of a 32-bit CRC, interned.
-    crc_algorithm32,
-    u32
-);
-interned_algorithm!(
-    /// The parameters of a 64-bit CRC, interned.
-    crc_algorithm64,
-    u64
-);
+/// A CRC width whose parameter sets [`intern`] keeps (one list per width: a `static` cannot be
+/// generic).
+pub trait Intern: crc::Width + PartialEq {
+    /// The interned copy of `params`.
+    fn intern(params: &crc::Algorithm<Self>) -> &'static crc::Algorithm<Self>;
+}
+
+macro_rules! intern_width {
+    ($($w:ty),*) => {$(
+        impl Intern for $w {
+            fn intern(params: &crc::Algorithm<$w>) -> &'static crc::Algorithm<$w> {
+                static CACHE: Mutex<Vec<&'static crc::Algorithm<$w>>> = Mutex::new(Vec::new());
+                // A poisoned lock only means another thread panicked while pushing: the list
+                // is still a list of valid algorithms.
+                let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+                if let Some(found) = cache.iter().find(|a| ***a == *params) {
+                    return found;
+                }
+                let leaked: &'static crc::Algorithm<$w> = Box::leak(Box::new(*params));
+                cache.push(leaked);
+                leaked
+            }
+        }
+    )*};
+}
+intern_width!(u8, u16, u32, u64);

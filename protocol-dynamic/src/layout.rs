@@ -4,16 +4,13 @@
 //!
 //! This module owns the CRC objects a layout's checks borrow ([`CrcStore`]: the codec owns it,
 //! its layouts borrow it; only a CRC's parameters are interned for `'static`, see
-//! [`protocol_codegen::layout::crc_algorithm16`]) and the per-frame slices of constants and
-//! checks ([`FrameParts`]). Which bytes a check covers and how a frame is verified or sealed is
-//! the runtime's business.
+//! [`protocol_codegen::layout::intern`]) and the per-frame slices of constants and checks
+//! ([`FrameParts`]). A check's algorithm is the IR's runtime [`Algorithm`], executed as it is;
+//! which bytes a check covers and how a frame is verified or sealed is the runtime's business.
 
-use protocol_codegen::ir::{self, Algorithm, CrcParams};
+use protocol_codegen::ir::{self, Algorithm, CrcSpec, CrcTable};
 pub use protocol_codegen::layout::word_field;
-use protocol_codegen::layout::{
-    self, LayoutPlan, crc_algorithm8, crc_algorithm16, crc_algorithm32, crc_algorithm64,
-    lower_layout,
-};
+use protocol_codegen::layout::{self, LayoutPlan, intern, lower_layout};
 use protocol_runtime::checksum::{Checksum, CrcImpl, Slicing16};
 use protocol_runtime::layout::{Check, Constant, FrameLayout};
 
@@ -36,15 +33,27 @@ impl<W: crc::Width> Tables<W> {
 }
 
 macro_rules! tables {
-    ($w:ty, $alg:expr, $table:expr) => {{
-        let alg = $alg;
-        match $table {
-            0 => Tables::NoTable(Box::new(crc::Crc::<$w, crc::NoTable>::new(alg))),
-            1 => Tables::Table1(Box::new(crc::Crc::<$w, crc::Table<1>>::new(alg))),
-            _ => Tables::Table16(Box::new(Slicing16::<$w>::new(alg))),
+    ($w:ty) => {
+        impl From<&CrcSpec<$w>> for Tables<$w> {
+            fn from(spec: &CrcSpec<$w>) -> Self {
+                let alg = intern(&spec.params);
+                match spec.table {
+                    CrcTable::NoTable => {
+                        Tables::NoTable(Box::new(crc::Crc::<$w, crc::NoTable>::new(alg)))
+                    }
+                    CrcTable::Table1 => {
+                        Tables::Table1(Box::new(crc::Crc::<$w, crc::Table<1>>::new(alg)))
+                    }
+                    CrcTable::Table16 => Tables::Table16(Box::new(Slicing16::<$w>::new(alg))),
+                }
+            }
         }
-    }};
+    };
 }
+tables!(u8);
+tables!(u16);
+tables!(u32);
+tables!(u64);
 
 /// The CRC object of one check.
 enum CrcObject {
@@ -55,13 +64,15 @@ enum CrcObject {
 }
 
 impl CrcObject {
-    fn new(p: &CrcParams) -> Self {
-        match p.width {
-            8 => CrcObject::W8(tables!(u8, crc_algorithm8(p), p.table)),
-            16 => CrcObject::W16(tables!(u16, crc_algorithm16(p), p.table)),
-            32 => CrcObject::W32(tables!(u32, crc_algorithm32(p), p.table)),
-            _ => CrcObject::W64(tables!(u64, crc_algorithm64(p), p.table)),
-        }
+    /// The CRC object of a CRC algorithm; `None` for the other algorithms.
+    fn new(a: &Algorithm) -> Option<Self> {
+        Some(match a {
+            Algorithm::Crc8(spec) => CrcObject::W8(spec.into()),
+            Algorithm::Crc16(spec) => CrcObject::W16(spec.into()),
+            Algorithm::Crc32(spec) => CrcObject::W32(spec.into()),
+            Algorithm::Crc64(spec) => CrcObject::W64(spec.into()),
+            _ => return None,
+        })
     }
 
     fn checksum(&self) -> Checksum<'_> {
@@ -90,10 +101,7 @@ impl CrcStore {
             .map(|f| {
                 f.checks
                     .iter()
-                    .map(|c| match &c.algorithm {
-                        Algorithm::Crc(params) => Some(CrcObject::new(params)),
-                        Algorithm::Sum { .. } | Algorithm::Xor => None,
-                    })
+                    .map(|c| CrcObject::new(&c.algorithm))
                     .collect()
             })
             .collect();
@@ -101,20 +109,18 @@ impl CrcStore {
     }
 
     fn checksum(&self, frame: usize, check: usize, algorithm: &Algorithm) -> Checksum<'_> {
-        match algorithm {
-            Algorithm::Sum { modulus: 255 } => Checksum::SumMod255,
-            Algorithm::Sum { .. } => Checksum::Sum8,
-            Algorithm::Xor => Checksum::Xor8,
-            Algorithm::Crc(_) => match self
-                .crcs
-                .get(frame)
-                .and_then(|f| f.get(check))
-                .and_then(Option::as_ref)
-            {
-                Some(crc) => crc.checksum(),
-                // Unreachable: the store was built from the same protocol.
-                None => Checksum::Sum8,
-            },
+        if let Some(checksum) = algorithm.tableless() {
+            return checksum;
+        }
+        match self
+            .crcs
+            .get(frame)
+            .and_then(|f| f.get(check))
+            .and_then(Option::as_ref)
+        {
+            Some(crc) => crc.checksum(),
+            // Unreachable: the store was built from the same protocol.
+            None => Checksum::Sum8,
         }
     }
 }

@@ -5,7 +5,8 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use crate::ir::{
-    Algorithm, BitOrder, ByteOrder, Field, FieldKind, Frame, Pos, Protocol, Role, Struct, ValueType,
+    Algorithm, BitOrder, ByteOrder, Check, Field, FieldKind, Frame, Pos, Protocol, Role, Struct,
+    ValueType,
 };
 
 /// `#[doc = "..."]` attributes, one per line (so rustdoc and prettyplease keep the layout).
@@ -221,22 +222,53 @@ fn pos_text(pos: Pos) -> String {
     }
 }
 
-/// Text for a checksum algorithm.
-pub fn algorithm_text(a: &Algorithm) -> String {
-    match a {
-        Algorithm::Sum { modulus } => format!("sum of the bytes modulo {modulus}"),
-        Algorithm::Xor => "XOR of the bytes".into(),
-        Algorithm::Crc(c) => match &c.catalog {
-            Some(_) => format!(
-                "{} (catalogue CRC, check {:#x})",
-                c.display.to_uppercase(),
-                c.check
-            ),
-            None => format!(
-                "custom CRC `{}`: width {}, poly {:#x}, init {:#x}, refin {}, refout {}, xorout {:#x}, check {:#x}",
-                c.display, c.width, c.poly, c.init, c.refin, c.refout, c.xorout, c.check
-            ),
-        },
+/// Text for a check's algorithm.
+pub fn algorithm_text(c: &Check) -> String {
+    let n = &c.naming;
+    macro_rules! crc {
+        ($spec:expr) => {{
+            let p = &$spec.params;
+            if n.custom {
+                format!(
+                    "custom CRC `{}`: width {}, poly {:#x}, init {:#x}, refin {}, refout {}, xorout {:#x}, check {:#x}",
+                    n.display, p.width, p.poly, p.init, p.refin, p.refout, p.xorout, p.check
+                )
+            } else {
+                format!("{} (catalogue CRC, check {:#x})", n.display.to_uppercase(), p.check)
+            }
+        }};
+    }
+    let sum = |text: String| {
+        if n.custom {
+            format!("custom sum `{}`: {text}", n.display)
+        } else {
+            text
+        }
+    };
+    match &c.algorithm {
+        Algorithm::Sum8 => sum("sum of the bytes modulo 256".into()),
+        Algorithm::SumMod255 => sum("sum of the bytes modulo 255".into()),
+        Algorithm::Xor8 => "XOR of the bytes".into(),
+        Algorithm::Sum { width, xorout: 0 } => sum(format!(
+            "sum of the bytes modulo {}",
+            1u32 << (8 * u32::from(*width))
+        )),
+        Algorithm::Sum { width, xorout } => sum(format!(
+            "sum of the bytes modulo {}, xored with {xorout:#x}",
+            1u32 << (8 * u32::from(*width))
+        )),
+        Algorithm::Fletcher16 => {
+            "Fletcher-16: sums A (of the bytes) and B (of the As) modulo 255, stored as B << 8 | A"
+                .into()
+        }
+        Algorithm::Fletcher16Mod256 => {
+            "Fletcher sums A (of the bytes) and B (of the As) modulo 256, stored as B << 8 | A"
+                .into()
+        }
+        Algorithm::Crc8(s) => crc!(s),
+        Algorithm::Crc16(s) => crc!(s),
+        Algorithm::Crc32(s) => crc!(s),
+        Algorithm::Crc64(s) => crc!(s),
     }
 }
 
@@ -377,7 +409,7 @@ pub fn frame_doc(f: &Frame) -> String {
                     pos_text(c.at),
                     c.size,
                     c.name,
-                    algorithm_text(&c.algorithm),
+                    algorithm_text(c),
                     pos_text(c.from),
                     pos_text(c.to)
                 ));

@@ -11,7 +11,7 @@ use super::docs::{doc_attrs, frame_doc};
 use super::payload::prim_type;
 use super::{const_ident, ident, rt};
 use crate::ir::{
-    Algorithm, ByteOrder, Check, Frame, HeaderValue, Pos, Prim, Protocol, Role, Transport,
+    Algorithm, ByteOrder, Check, CrcTable, Frame, HeaderValue, Pos, Prim, Protocol, Role, Transport,
 };
 use crate::layout::{self, LayoutPlan, lower_layout};
 use protocol_runtime::layout::{LengthRule, WordField};
@@ -71,69 +71,74 @@ pub fn decoder_buffer_len(max_frame: usize) -> usize {
         .next_multiple_of(64)
 }
 
-fn checksum_expr(
-    rt: &TokenStream,
-    c: &Check,
-    statics: &mut Vec<TokenStream>,
-    static_name: &Ident,
-) -> TokenStream {
-    match &c.algorithm {
-        Algorithm::Sum { modulus: 255 } => quote!(#rt::Checksum::SumMod255),
-        Algorithm::Sum { .. } => quote!(#rt::Checksum::Sum8),
-        Algorithm::Xor => quote!(#rt::Checksum::Xor8),
-        Algorithm::Crc(p) => {
-            let w = Ident::new(&format!("u{}", p.width), Span::call_site());
-            let (table_ty, variant) = match p.table {
-                0 => (Some(quote!(#rt::crc::NoTable)), quote!(NoTable)),
-                1 => (Some(quote!(#rt::crc::Table<1>)), quote!(Table1)),
-                _ => (None, quote!(Table16)),
-            };
-            let alg = match &p.catalog {
+/// The `Checksum` constant of a check, as the IR's algorithm says; a CRC's table goes into
+/// `statics`, under the name the IR gives it.
+fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>) -> TokenStream {
+    macro_rules! crc {
+        ($spec:expr, $w:ident, $ctor:ident, $prim:expr) => {{
+            let spec = $spec;
+            let params = &spec.params;
+            let alg = match &c.naming.crc_constant {
                 Some(name) => {
                     let n = Ident::new(name, Span::call_site());
                     quote!(#rt::crc::#n)
                 }
                 None => {
-                    let lit = |v: u64| super::types::int_lit(width_prim(p.width), v);
+                    let lit = |v: u64| super::types::int_lit($prim, v);
                     let (poly, init, xorout, check, residue) = (
-                        lit(p.poly),
-                        lit(p.init),
-                        lit(p.xorout),
-                        lit(p.check),
-                        lit(p.residue),
+                        lit(u64::from(params.poly)),
+                        lit(u64::from(params.init)),
+                        lit(u64::from(params.xorout)),
+                        lit(u64::from(params.check)),
+                        lit(u64::from(params.residue)),
                     );
-                    let width = p.width;
-                    let (refin, refout) = (p.refin, p.refout);
+                    let (width, refin, refout) = (params.width, params.refin, params.refout);
                     quote!(#rt::crc::Algorithm { width: #width, poly: #poly, init: #init, refin: #refin, refout: #refout, xorout: #xorout, check: #check, residue: #residue })
                 }
             };
-            let doc = format!(" Lookup table of the `{}` check ({}).", c.name, p.display);
-            let (ty, init) = match table_ty {
-                Some(table_ty) => (
-                    quote!(#rt::crc::Crc<#w, #table_ty>),
-                    quote!(#rt::crc::Crc::<#w, #table_ty>::new(&#alg)),
+            let w = quote!($w);
+            let (ty, init, variant) = match spec.table {
+                CrcTable::NoTable => (
+                    quote!(#rt::crc::Crc<#w, #rt::crc::NoTable>),
+                    quote!(#rt::crc::Crc::<#w, #rt::crc::NoTable>::new(&#alg)),
+                    quote!(NoTable),
                 ),
-                None => (
+                CrcTable::Table1 => (
+                    quote!(#rt::crc::Crc<#w, #rt::crc::Table<1>>),
+                    quote!(#rt::crc::Crc::<#w, #rt::crc::Table<1>>::new(&#alg)),
+                    quote!(Table1),
+                ),
+                CrcTable::Table16 => (
                     quote!(#rt::Slicing16<#w>),
                     quote!(#rt::Slicing16::<#w>::new(&#alg)),
+                    quote!(Table16),
                 ),
             };
+            let static_name = Ident::new(
+                c.naming.table_static.as_deref().unwrap_or("CRC_TABLE"),
+                Span::call_site(),
+            );
+            let doc = format!(" Lookup table of the `{}` check ({}).", c.name, c.naming.display);
             statics.push(quote! {
                 #[doc = #doc]
                 static #static_name: #ty = #init;
             });
-            let ctor = format_ident!("Crc{}", p.width);
-            quote!(#rt::Checksum::#ctor(#rt::CrcImpl::#variant(&#static_name)))
-        }
+            quote!(#rt::Checksum::$ctor(#rt::CrcImpl::#variant(&#static_name)))
+        }};
     }
-}
-
-fn width_prim(width: u8) -> Prim {
-    match width {
-        8 => Prim::U8,
-        16 => Prim::U16,
-        32 => Prim::U32,
-        _ => Prim::U64,
+    match &c.algorithm {
+        Algorithm::Sum8 => quote!(#rt::Checksum::Sum8),
+        Algorithm::SumMod255 => quote!(#rt::Checksum::SumMod255),
+        Algorithm::Xor8 => quote!(#rt::Checksum::Xor8),
+        Algorithm::Sum { width, xorout } => {
+            quote!(#rt::Checksum::Sum { width: #width, xorout: #xorout })
+        }
+        Algorithm::Fletcher16 => quote!(#rt::Checksum::Fletcher16),
+        Algorithm::Fletcher16Mod256 => quote!(#rt::Checksum::Fletcher16Mod256),
+        Algorithm::Crc8(spec) => crc!(spec, u8, Crc8, Prim::U8),
+        Algorithm::Crc16(spec) => crc!(spec, u16, Crc16, Prim::U16),
+        Algorithm::Crc32(spec) => crc!(spec, u32, Crc32, Prim::U32),
+        Algorithm::Crc64(spec) => crc!(spec, u64, Crc64, Prim::U64),
     }
 }
 
@@ -165,8 +170,7 @@ fn emit_layout(rt: &TokenStream, prefix: &str, f: &Frame, name: &Ident, doc: &st
         .checks
         .iter()
         .map(|ch| {
-            let sname = const_ident(&format!("{prefix}{}_TABLE", ch.name));
-            let cs = checksum_expr(rt, ch, &mut statics, &sname);
+            let cs = checksum_expr(rt, ch, &mut statics);
             let (from, to, at, ord) = (
                 pos(rt, ch.from),
                 pos(rt, ch.to),

@@ -121,12 +121,28 @@ pub struct ChecksumDef {
     /// CRC parameters (Rocksoft model).
     #[schemars(with = "Option<CrcDef>")]
     pub crc: Option<Spanned<CrcDef>>,
-    /// Lookup table slices: 0, 1 or 16 (default 16).
+    /// Sum parameters: a sum of the bytes of a width, with a final xor.
+    #[schemars(with = "Option<SumDef>")]
+    pub sum: Option<Spanned<SumDef>>,
+    /// Lookup table slices of a CRC: 0, 1 or 16 (default 16).
     #[schemars(with = "Option<i64>")]
     pub table: Option<SInt>,
     /// Documentation.
     #[schemars(with = "Option<String>")]
     pub doc: Option<SStr>,
+}
+
+/// A sum of the bytes: modulo 2^`width`, then xored with `xorout` (all ones: the one's
+/// complement of the sum, as Dynamixel Protocol 1.0 `~sum & 0xFF` and iBUS `0xFFFF - sum`).
+#[derive(Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SumDef {
+    /// 8 or 16.
+    #[schemars(with = "i64")]
+    pub width: SInt,
+    /// Final XOR (default 0).
+    #[schemars(with = "Option<i64>")]
+    pub xorout: Option<SInt>,
 }
 
 /// CRC parameters in the Rocksoft model (as in the `crc` crate's `Algorithm`).

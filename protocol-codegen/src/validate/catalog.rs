@@ -1,15 +1,23 @@
-//! The CRC catalogue of the `crc` crate (crc-catalog), by constant name: which names a spec
-//! may use in `check = "..."`. Only byte-sized widths (8, 16, 32, 64) can be stored in a frame.
-//! The parameters come from the crate's own constants, so they cannot drift from what the
-//! generated code computes.
+//! The CRC catalogue of the `crc` crate (crc-catalog), by constant name, and the other names
+//! users know its entries by: which names a spec may use in `check = "..."`. Only byte-sized
+//! widths (8, 16, 32, 64) can be stored in a frame. The parameters come from the crate's own
+//! constants, so they cannot drift from what the generated code computes.
 
-use crate::ir::CrcParams;
+use crate::ir::{Algorithm, CrcSpec, CrcTable};
+
+/// A catalogue CRC: the `crc` crate's constant name and the algorithm (with the fastest table).
+pub struct Entry {
+    /// The constant (`CRC_16_UMTS`).
+    pub constant: &'static str,
+    /// The algorithm.
+    pub algorithm: Algorithm,
+}
 
 macro_rules! catalog {
     ($($name:ident),* $(,)?) => {
-        /// Every byte-width catalogue CRC: (constant name, parameters).
-        pub fn catalog() -> Vec<(&'static str, CrcParams)> {
-            vec![$((stringify!($name), params(stringify!($name), &crc::$name))),*]
+        /// Every byte-width catalogue CRC.
+        pub fn catalog() -> Vec<Entry> {
+            vec![$(Entry { constant: stringify!($name), algorithm: crc::$name.into_algorithm() }),*]
         }
     };
 }
@@ -87,21 +95,68 @@ catalog!(
     CRC_64_XZ,
 );
 
-fn params<W: crc::Width + Into<u64> + Copy>(name: &str, a: &crc::Algorithm<W>) -> CrcParams {
-    CrcParams {
-        catalog: Some(name.to_string()),
-        display: display_name(name),
-        width: a.width,
-        poly: a.poly.into(),
-        init: a.init.into(),
-        refin: a.refin,
-        refout: a.refout,
-        xorout: a.xorout.into(),
-        check: a.check.into(),
-        residue: a.residue.into(),
-        table: 16,
-    }
+/// A catalogue constant as an algorithm computed with sixteen tables.
+trait IntoAlgorithm {
+    fn into_algorithm(self) -> Algorithm;
 }
+
+macro_rules! into_algorithm {
+    ($($w:ty => $variant:ident),*) => {$(
+        impl IntoAlgorithm for crc::Algorithm<$w> {
+            fn into_algorithm(self) -> Algorithm {
+                Algorithm::$variant(CrcSpec { params: self, table: CrcTable::Table16 })
+            }
+        }
+    )*};
+}
+into_algorithm!(u8 => Crc8, u16 => Crc16, u32 => Crc32, u64 => Crc64);
+
+/// Names users know catalogue CRCs by, each with the catalogue constant it names: the aliases
+/// of Greg Cook's "Catalogue of parametrised CRC algorithms" (reveng), on which crc-catalog is
+/// built, for the entries links use. In the order a did-you-mean prefers them: a name users
+/// write first (`CRC-32` before `CRC-32/MEF`).
+pub const ALIASES: &[(&str, &str)] = &[
+    ("CRC_32", "CRC_32_ISO_HDLC"),
+    ("CRC_32_ADCCP", "CRC_32_ISO_HDLC"),
+    ("CRC_32_V_42", "CRC_32_ISO_HDLC"),
+    ("CRC_32_XZ", "CRC_32_ISO_HDLC"),
+    ("PKZIP", "CRC_32_ISO_HDLC"),
+    ("CRC_32C", "CRC_32_ISCSI"),
+    ("CRC_32_CASTAGNOLI", "CRC_32_ISCSI"),
+    ("CRC_32_NVME", "CRC_32_ISCSI"),
+    ("CRC_32_AAL5", "CRC_32_BZIP2"),
+    ("CRC_32_POSIX", "CRC_32_CKSUM"),
+    ("CRC_16_CCITT_FALSE", "CRC_16_IBM_3740"),
+    ("CRC_16_AUTOSAR", "CRC_16_IBM_3740"),
+    ("CRC_16_CCITT", "CRC_16_KERMIT"),
+    ("CRC_16_CCITT_TRUE", "CRC_16_KERMIT"),
+    ("CRC_CCITT", "CRC_16_KERMIT"),
+    ("CRC_16_BLUETOOTH", "CRC_16_KERMIT"),
+    ("CRC_16_V_41_LSB", "CRC_16_KERMIT"),
+    ("KERMIT", "CRC_16_KERMIT"),
+    ("CRC_16_V_41_MSB", "CRC_16_XMODEM"),
+    ("CRC_16_ACORN", "CRC_16_XMODEM"),
+    ("CRC_16_LTE", "CRC_16_XMODEM"),
+    ("XMODEM", "CRC_16_XMODEM"),
+    ("ZMODEM", "CRC_16_XMODEM"),
+    ("MODBUS", "CRC_16_MODBUS"),
+    ("CRC_16", "CRC_16_ARC"),
+    ("CRC_16_LHA", "CRC_16_ARC"),
+    ("CRC_IBM", "CRC_16_ARC"),
+    ("ARC", "CRC_16_ARC"),
+    ("CRC_16_X_25", "CRC_16_IBM_SDLC"),
+    ("X_25", "CRC_16_IBM_SDLC"),
+    ("CRC_16_ISO_HDLC", "CRC_16_IBM_SDLC"),
+    ("CRC_16_BUYPASS", "CRC_16_UMTS"),
+    ("CRC_16_VERIFONE", "CRC_16_UMTS"),
+    ("CRC_16_MAXIM", "CRC_16_MAXIM_DOW"),
+    ("CRC_8", "CRC_8_SMBUS"),
+    ("CRC_8_MAXIM", "CRC_8_MAXIM_DOW"),
+    ("DOW_CRC", "CRC_8_MAXIM_DOW"),
+    ("CRC_8_ITU", "CRC_8_I_432_1"),
+    ("CRC_64", "CRC_64_ECMA_182"),
+    ("CRC_64_GO_ECMA", "CRC_64_XZ"),
+];
 
 /// `CRC_16_UMTS` -> `crc-16-umts`, the spelling specs use.
 pub fn display_name(constant: &str) -> String {

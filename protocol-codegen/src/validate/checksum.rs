@@ -1,26 +1,44 @@
-//! Rules for checksum algorithms: built-in sums, the `crc` catalogue by name, and custom CRCs
-//! of `[checksums]` verified against their declared check value.
+//! Rules for checksum algorithms: built-in sums, the `crc` catalogue by name or alias, and the
+//! custom algorithms of `[checksums]` (CRCs verified against their declared check value, and
+//! sums of a width with a final xor). What comes out is the runtime's own
+//! [`Algorithm`](crate::ir::Algorithm): no backend translates it.
 
-use super::catalog::{catalog, display_name};
+use super::catalog::{ALIASES, catalog, display_name};
 use super::{Ctx, text};
 use crate::diag::did_you_mean;
-use crate::ir::{Algorithm, CrcParams};
-use crate::spec::model::{ChecksumDef, SStr};
+use crate::ir::{Algorithm, CheckNaming, CrcSpec, CrcTable};
+use crate::spec::model::{ChecksumDef, CrcDef, SStr, SumDef};
+use protocol_runtime::checksum::{Checksum, CrcImpl};
 use toml::Spanned;
 
-/// Built-in algorithms that are not CRCs: (spelling, algorithm, description).
+/// Built-in algorithms that are not CRCs: (spelling, description).
 pub const BUILTINS: &[(&str, &str)] = &[
     ("sum8", "sum of the bytes modulo 256"),
     ("sum-mod-256", "sum of the bytes modulo 256"),
     ("sum-mod-255", "sum of the bytes modulo 255"),
+    ("sum16", "sum of the bytes modulo 65536"),
     ("xor8", "XOR of the bytes"),
+    (
+        "fletcher-16",
+        "Fletcher-16: two running sums modulo 255, stored as one 16-bit value B << 8 | A",
+    ),
+    (
+        "fletcher-16-mod-256",
+        "Fletcher's two running sums modulo 256 (u-blox UBX's CK_A, CK_B), stored as one 16-bit value B << 8 | A",
+    ),
 ];
 
 fn builtin(name: &str) -> Option<Algorithm> {
     match name {
-        "sum8" | "sum-mod-256" => Some(Algorithm::Sum { modulus: 256 }),
-        "sum-mod-255" => Some(Algorithm::Sum { modulus: 255 }),
-        "xor8" => Some(Algorithm::Xor),
+        "sum8" | "sum-mod-256" => Some(Algorithm::Sum8),
+        "sum-mod-255" => Some(Algorithm::SumMod255),
+        "sum16" => Some(Algorithm::Sum {
+            width: 2,
+            xorout: 0,
+        }),
+        "xor8" => Some(Algorithm::Xor8),
+        "fletcher-16" => Some(Algorithm::Fletcher16),
+        "fletcher-16-mod-256" => Some(Algorithm::Fletcher16Mod256),
         _ => None,
     }
 }
@@ -32,27 +50,59 @@ fn normalize(s: &str) -> String {
         .collect()
 }
 
-/// Rule: a check names a built-in sum, a CRC of the `crc` catalogue (spelled `crc-16-umts`,
-/// `CRC-16/UMTS` or `CRC_16_UMTS`), or an entry of `[checksums]`.
-pub(crate) fn resolve_algorithm(ctx: &mut Ctx<'_>, name: &SStr) -> Option<Algorithm> {
+fn naming(display: String, custom: bool, crc_constant: Option<String>) -> CheckNaming {
+    CheckNaming {
+        display,
+        custom,
+        crc_constant,
+        table_static: None,
+    }
+}
+
+/// The catalogue CRC a name (a constant name or an alias, in any of the spellings
+/// `crc-16-umts`, `CRC-16/UMTS`, `CRC_16_UMTS`) names: (constant, algorithm).
+fn catalogue_crc(name: &str) -> Option<(&'static str, Algorithm)> {
+    let wanted = normalize(name);
+    let constant = ALIASES
+        .iter()
+        .find(|(alias, _)| normalize(alias) == wanted)
+        .map(|(_, constant)| *constant);
+    catalog()
+        .into_iter()
+        .find(|e| match constant {
+            Some(c) => e.constant == c,
+            None => normalize(e.constant) == wanted,
+        })
+        .map(|e| (e.constant, e.algorithm))
+}
+
+/// Rule: a check names a built-in sum, a CRC of the `crc` catalogue by its constant name or an
+/// alias users know it by (spelled `crc-16-umts`, `CRC-16/UMTS` or `CRC_16_UMTS`), or an entry
+/// of `[checksums]`. A misspelled name is answered with the closest name, aliases first.
+pub(crate) fn resolve_algorithm(
+    ctx: &mut Ctx<'_>,
+    name: &SStr,
+) -> Option<(Algorithm, CheckNaming)> {
     let n = name.get_ref();
     if let Some(a) = builtin(n) {
-        return Some(a);
+        return Some((a, naming(n.clone(), false, None)));
     }
     let spec = ctx.spec;
     if let Some((key, def)) = spec.checksums.iter().find(|(k, _)| k.get_ref() == n) {
-        return lower_custom(ctx, key, def);
+        let algorithm = lower_custom(ctx, key, def)?;
+        return Some((algorithm, naming(key.get_ref().clone(), true, None)));
     }
-    let wanted = normalize(n);
-    if let Some((_, params)) = catalog().into_iter().find(|(c, _)| normalize(c) == wanted) {
-        return Some(Algorithm::Crc(params));
+    if let Some((constant, algorithm)) = catalogue_crc(n) {
+        let shown = naming(display_name(constant), false, Some(constant.to_string()));
+        return Some((algorithm, shown));
     }
-    let mut known: Vec<String> = BUILTINS.iter().map(|(b, _)| (*b).to_string()).collect();
-    known.extend(catalog().iter().map(|(c, _)| display_name(c)));
+    let mut known: Vec<String> = ALIASES.iter().map(|(a, _)| display_name(a)).collect();
+    known.extend(BUILTINS.iter().map(|(b, _)| (*b).to_string()));
+    known.extend(catalog().iter().map(|e| display_name(e.constant)));
     known.extend(spec.checksums.keys().map(|k| k.get_ref().clone()));
     let help = match did_you_mean(n, known.iter().map(String::as_str)) {
         Some(best) => format!("did you mean `{best}`?"),
-        None => "use `sum8`, `sum-mod-255`, `xor8`, a CRC of the crc catalogue such as `crc-16-umts`, or define one under `[checksums.NAME]`".to_string(),
+        None => "use `sum8`, `sum-mod-255`, `sum16`, `xor8`, `fletcher-16`, a CRC of the crc catalogue such as `crc-16-umts` or `crc-32`, or define one under `[checksums.NAME]`".to_string(),
     };
     ctx.error(
         name.span(),
@@ -62,15 +112,82 @@ pub(crate) fn resolve_algorithm(ctx: &mut Ctx<'_>, name: &SStr) -> Option<Algori
     None
 }
 
-/// Rule: a custom checksum has `crc` parameters with a width of 8, 16, 32 or 64; poly, init and
-/// xorout fit that width; the declared `check` equals the CRC of "123456789" computed from the
-/// parameters; `table` is 0, 1 or 16.
+/// Rule: a custom checksum is either a CRC (`crc = {...}`) or a sum (`sum = {...}`), not both;
+/// `table` applies to a CRC only.
 fn lower_custom(ctx: &mut Ctx<'_>, key: &SStr, def: &Spanned<ChecksumDef>) -> Option<Algorithm> {
     let d = def.get_ref();
-    let Some(crc) = &d.crc else {
-        ctx.error(def.span(), format!("checksum `{}` has no `crc` parameters", key.get_ref()), "add `crc = { width = 16, poly = 0x1021, init = 0xFFFF, refin = false, refout = false, xorout = 0, check = 0x29B1 }`");
+    let _ = text(&d.doc);
+    match (&d.crc, &d.sum) {
+        (Some(crc), None) => lower_custom_crc(ctx, key, crc, d.table.as_ref()),
+        (None, Some(sum)) => {
+            if let Some(t) = &d.table {
+                ctx.error(
+                    t.span(),
+                    format!("checksum `{}` is a sum: it has no table", key.get_ref()),
+                    "remove `table` (it sizes a CRC's lookup table)",
+                );
+            }
+            lower_custom_sum(ctx, sum)
+        }
+        (Some(_), Some(sum)) => {
+            ctx.error(
+                sum.span(),
+                format!(
+                    "checksum `{}` has both `crc` and `sum` parameters",
+                    key.get_ref()
+                ),
+                "keep one: a custom checksum is either a CRC or a sum",
+            );
+            None
+        }
+        (None, None) => {
+            ctx.error(def.span(), format!("checksum `{}` has no `crc` or `sum` parameters", key.get_ref()), "add `crc = { width = 16, poly = 0x1021, init = 0xFFFF, refin = false, refout = false, xorout = 0, check = 0x29B1 }`, or `sum = { width = 8, xorout = 0xFF }` for a complemented sum");
+            None
+        }
+    }
+}
+
+/// Rule: a custom sum has a width of 8 or 16 bits, and its `xorout` (default 0; all ones for
+/// the one's complement) fits that width.
+fn lower_custom_sum(ctx: &mut Ctx<'_>, sum: &Spanned<SumDef>) -> Option<Algorithm> {
+    let s = sum.get_ref();
+    let width = *s.width.get_ref();
+    if width != 8 && width != 16 {
+        ctx.error(
+            s.width.span(),
+            format!("sum width {width} is not offered"),
+            "use a width of 8 (a sum modulo 256) or 16 (a sum modulo 65536)",
+        );
         return None;
+    }
+    let max = (1i64 << width) - 1;
+    let xorout = match &s.xorout {
+        None => 0,
+        Some(x) if (0..=max).contains(x.get_ref()) => *x.get_ref(),
+        Some(x) => {
+            ctx.error(
+                x.span(),
+                format!("`xorout` {:#x} does not fit in {width} bits", x.get_ref()),
+                format!("use a value from 0 to {max:#x} ({max:#x} stores the one's complement of the sum)"),
+            );
+            return None;
+        }
     };
+    Some(Algorithm::Sum {
+        width: (width / 8) as u8,
+        xorout: xorout as u16,
+    })
+}
+
+/// Rule: a custom CRC has a width of 8, 16, 32 or 64; poly, init and xorout fit that width;
+/// the declared `check` equals the CRC of "123456789" computed from the parameters; `table`
+/// is 0, 1 or 16.
+fn lower_custom_crc(
+    ctx: &mut Ctx<'_>,
+    key: &SStr,
+    crc: &Spanned<CrcDef>,
+    table: Option<&Spanned<i64>>,
+) -> Option<Algorithm> {
     let c = crc.get_ref();
     let width = *c.width.get_ref();
     if ![8, 16, 32, 64].contains(&width) {
@@ -102,56 +219,90 @@ fn lower_custom(ctx: &mut Ctx<'_>, key: &SStr, def: &Spanned<ChecksumDef>) -> Op
             ok = false;
         }
     }
-    let table = match &d.table {
-        None => 16,
-        Some(t) if [0, 1, 16].contains(t.get_ref()) => *t.get_ref() as u8,
-        Some(t) => {
-            ctx.error(
-                t.span(),
-                format!("table size {} is not offered", t.get_ref()),
-                "use 0 (no table, smallest), 1 (256 entries) or 16 (slicing-by-16, fastest)",
-            );
-            16
-        }
+    let table = match table {
+        None => CrcTable::Table16,
+        Some(t) => match t.get_ref() {
+            0 => CrcTable::NoTable,
+            1 => CrcTable::Table1,
+            16 => CrcTable::Table16,
+            other => {
+                ctx.error(
+                    t.span(),
+                    format!("table size {other} is not offered"),
+                    "use 0 (no table, smallest), 1 (256 entries) or 16 (slicing-by-16, fastest)",
+                );
+                CrcTable::Table16
+            }
+        },
     };
     if !ok {
         return None;
     }
-    let params = CrcParams {
-        catalog: None,
-        display: key.get_ref().clone(),
-        width: width as u8,
-        poly: *c.poly.get_ref() as u64,
-        init: *c.init.get_ref() as u64,
-        refin: *c.refin.get_ref(),
-        refout: *c.refout.get_ref(),
-        xorout: *c.xorout.get_ref() as u64,
-        check: *c.check.get_ref() as u64,
-        residue: 0,
-        table,
+    // The values fit the width (checked above); `as` keeps their bits.
+    let (poly, init, xorout, check) = (
+        *c.poly.get_ref() as u64,
+        *c.init.get_ref() as u64,
+        *c.xorout.get_ref() as u64,
+        *c.check.get_ref() as u64,
+    );
+    let (refin, refout) = (*c.refin.get_ref(), *c.refout.get_ref());
+    macro_rules! spec {
+        ($w:ty, $variant:ident) => {
+            Algorithm::$variant(CrcSpec {
+                params: crc::Algorithm::<$w> {
+                    width: width as u8,
+                    poly: poly as $w,
+                    init: init as $w,
+                    refin,
+                    refout,
+                    xorout: xorout as $w,
+                    check: check as $w,
+                    residue: 0,
+                },
+                table,
+            })
+        };
+    }
+    let algorithm = match width {
+        8 => spec!(u8, Crc8),
+        16 => spec!(u16, Crc16),
+        32 => spec!(u32, Crc32),
+        _ => spec!(u64, Crc64),
     };
-    let actual = crc_of(&params, b"123456789");
-    if actual != params.check {
+    let actual = crc_of(&algorithm, b"123456789").unwrap_or(0);
+    if actual != check {
         ctx.error(
             c.check.span(),
-            format!("custom CRC `{}` declares check {:#x}, but its parameters give {actual:#x}", key.get_ref(), params.check),
+            format!("custom CRC `{}` declares check {check:#x}, but its parameters give {actual:#x}", key.get_ref()),
             "fix the parameters or the check value; for a reflected CRC, `init` is the un-reflected register value (a C table that starts at R uses init = reflect(R))",
         );
         return None;
     }
-    let _ = text(&d.doc);
-    Some(Algorithm::Crc(params))
+    Some(algorithm)
 }
 
-/// Compute a CRC with the `crc` crate (the same code the generated decoders run), its
-/// parameters interned ([`crate::layout::crc_algorithm16`] and its siblings).
-pub fn crc_of(p: &CrcParams, data: &[u8]) -> u64 {
-    use crate::layout::{crc_algorithm8, crc_algorithm16, crc_algorithm32, crc_algorithm64};
+/// The CRC of `data` by the runtime's own code (the `crc` crate without a table, its
+/// parameters interned: [`crate::layout::intern`]); `None` for an algorithm that is not a CRC.
+pub fn crc_of(a: &Algorithm, data: &[u8]) -> Option<u64> {
+    use crate::layout::intern;
     use crc::{Crc, NoTable};
-    match p.width {
-        8 => u64::from(Crc::<u8, NoTable>::new(crc_algorithm8(p)).checksum(data)),
-        16 => u64::from(Crc::<u16, NoTable>::new(crc_algorithm16(p)).checksum(data)),
-        32 => u64::from(Crc::<u32, NoTable>::new(crc_algorithm32(p)).checksum(data)),
-        _ => Crc::<u64, NoTable>::new(crc_algorithm64(p)).checksum(data),
-    }
+    Some(match a {
+        Algorithm::Crc8(c) => Checksum::Crc8(CrcImpl::NoTable(&Crc::<u8, NoTable>::new(intern(
+            &c.params,
+        ))))
+        .compute(data),
+        Algorithm::Crc16(c) => Checksum::Crc16(CrcImpl::NoTable(&Crc::<u16, NoTable>::new(
+            intern(&c.params),
+        )))
+        .compute(data),
+        Algorithm::Crc32(c) => Checksum::Crc32(CrcImpl::NoTable(&Crc::<u32, NoTable>::new(
+            intern(&c.params),
+        )))
+        .compute(data),
+        Algorithm::Crc64(c) => Checksum::Crc64(CrcImpl::NoTable(&Crc::<u64, NoTable>::new(
+            intern(&c.params),
+        )))
+        .compute(data),
+        _ => return None,
+    })
 }

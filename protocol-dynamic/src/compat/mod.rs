@@ -13,7 +13,7 @@ mod payload;
 
 use std::fmt;
 
-use protocol_codegen::ir::{Algorithm, Command, DirectionRule, Frame, Protocol, Role};
+use protocol_codegen::ir::{Algorithm, Check, Command, DirectionRule, Frame, Protocol, Role};
 
 /// How a change affects the wire and the generated Rust source, most severe first.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -132,14 +132,30 @@ fn hex_bytes(b: &[u8]) -> String {
         .join(" ")
 }
 
-fn algorithm_name(a: &Algorithm) -> String {
-    match a {
-        Algorithm::Sum { modulus } => format!("sum mod {modulus}"),
-        Algorithm::Xor => "xor".into(),
-        Algorithm::Crc(c) => format!(
-            "{} (poly {:#x}, init {:#x}, refin {}, refout {}, xorout {:#x})",
-            c.display, c.poly, c.init, c.refin, c.refout, c.xorout
+fn algorithm_name(c: &Check) -> String {
+    macro_rules! crc {
+        ($s:expr) => {{
+            let p = &$s.params;
+            format!(
+                "{} (poly {:#x}, init {:#x}, refin {}, refout {}, xorout {:#x})",
+                c.naming.display, p.poly, p.init, p.refin, p.refout, p.xorout
+            )
+        }};
+    }
+    match &c.algorithm {
+        Algorithm::Sum8 => "sum mod 256".into(),
+        Algorithm::SumMod255 => "sum mod 255".into(),
+        Algorithm::Xor8 => "xor".into(),
+        Algorithm::Sum { width, xorout } => format!(
+            "sum mod {}, xorout {xorout:#x}",
+            1u32 << (8 * u32::from(*width))
         ),
+        Algorithm::Fletcher16 => "fletcher-16".into(),
+        Algorithm::Fletcher16Mod256 => "fletcher-16-mod-256".into(),
+        Algorithm::Crc8(s) => crc!(s),
+        Algorithm::Crc16(s) => crc!(s),
+        Algorithm::Crc32(s) => crc!(s),
+        Algorithm::Crc64(s) => crc!(s),
     }
 }
 
@@ -254,8 +270,8 @@ fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
             r.breaking(format!(
                 "check `{}`: {} → {}",
                 nc.name,
-                algorithm_name(&oc.algorithm),
-                algorithm_name(&nc.algorithm)
+                algorithm_name(oc),
+                algorithm_name(nc)
             ));
         } else if (oc.at, oc.size, oc.endian, oc.from, oc.to, oc.header)
             != (nc.at, nc.size, nc.endian, nc.from, nc.to, nc.header)

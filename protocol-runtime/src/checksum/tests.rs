@@ -188,14 +188,16 @@ fn prefix_past_the_input_is_none() {
 /// Checks `Slicing16` (built at run time, the way the interpreter builds it) against
 /// `crc::Crc<W, NoTable>` for every algorithm named: the check value, random data of every
 /// length in `0..=300`, and prefixes with bytes past them. Returns the number of algorithms.
-/// Each algorithm is checked in a closure of its own: its stack frame (a `Slicing16` is built
+/// Each algorithm is checked in a function of its own: its stack frame (a `Slicing16` is built
 /// on the stack) is reused by the next, not added to one frame of every algorithm.
 macro_rules! check_catalogue {
     ($w:ty, $variant:ident: $($alg:ident),* $(,)?) => {{
         let buf = random(0x5EED, 300 + 40);
         let mut count = 0;
         $(
-            (|| {
+            {
+            #[inline(never)]
+            fn one(buf: &[u8]) {
             let alg: &'static crc::Algorithm<$w> = &crc::$alg;
             let reference = crc::Crc::<$w, crc::NoTable>::new(alg);
             let fast = std::boxed::Box::new(Slicing16::<$w>::new(alg));
@@ -215,7 +217,9 @@ macro_rules! check_catalogue {
                 }
                 assert_eq!(check.compute_prefix(&buf, n), Some(u64::from(want)));
             }
-            })();
+            }
+            one(&buf);
+            }
             count += 1;
         )*
         count

@@ -8,7 +8,7 @@ use super::super::checksum::resolve_algorithm;
 use super::super::names::{check_snake_name, parse_byte_order};
 use super::super::types::Enums;
 use super::super::{Ctx, text};
-use super::{Draft, El, Kind, algorithm_size, header};
+use super::{Draft, El, Kind, header};
 use crate::ir::{Check, Pos, Trailer, Transport};
 use crate::spec::model::{ElementDef, FrameDef, SStr};
 
@@ -238,17 +238,18 @@ fn lower_check<'s>(
     if let Some(n) = &d.name {
         check_snake_name(ctx, n, "check name");
     }
-    let Some(algorithm) = algorithm else {
+    let Some((algorithm, naming)) = algorithm else {
         draft.broken = true;
         return Some(());
     };
-    let size = algorithm_size(&algorithm);
+    let size = algorithm.width();
     let ci = draft.checks.len();
     draft.checks.push((
         Check {
             name: name.clone(),
             doc: text(&d.doc),
             algorithm,
+            naming,
             at: Pos::Start(0),
             size,
             endian,

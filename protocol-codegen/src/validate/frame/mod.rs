@@ -18,8 +18,8 @@ use super::names::{check_snake_name, pascal_case};
 use super::types::{Enums, Structs};
 use super::{Ctx, text};
 use crate::ir::{
-    Algorithm, Check, Element, Frame, FrameNames, FrameSizeNames, HeaderValue, PacketKind, Pos,
-    Scalar, Trailer, Transport,
+    Check, Element, Frame, FrameNames, FrameSizeNames, HeaderValue, PacketKind, Pos, Scalar,
+    Trailer, Transport,
 };
 use crate::spec::model::{ElementDef, FrameDef, SStr};
 use length::Layout;
@@ -149,10 +149,11 @@ fn lower_frame(
         Kind::Sync(b) => b.clone(),
         _ => Vec::new(),
     };
-    let checks = order_checks(checks);
+    let names = lower_names(fname.get_ref(), first, &values);
+    let checks = name_tables(order_checks(checks), &names);
     Some(Frame {
         name: fname.get_ref().clone(),
-        names: lower_names(fname.get_ref(), first, &values),
+        names,
         transport,
         doc: text(&def.doc),
         decide_len: length::lower_decide_len(&sync, &values, &length, &checks),
@@ -173,6 +174,18 @@ fn lower_frame(
         message,
         packet: PacketKind::None,
     })
+}
+
+/// The `static` each CRC's table lives in: the frame's const prefix, the check's name, `_TABLE`
+/// (unique, since element names are).
+fn name_tables(mut checks: Vec<Check>, names: &FrameNames) -> Vec<Check> {
+    for c in &mut checks {
+        if c.algorithm.crc_table().is_some() {
+            let name = format!("{}{}_TABLE", names.const_prefix, c.name);
+            c.naming.table_static = Some(name.to_ascii_uppercase());
+        }
+    }
+    checks
 }
 
 /// The packet type of each frame format, once the directions are known: the first frame
@@ -261,12 +274,4 @@ fn order_checks(checks: Vec<(Check, usize)>) -> Vec<Check> {
         checks.into_iter().map(|(c, _)| c).partition(|c| c.header);
     ordered.extend(frame);
     ordered
-}
-
-/// Bytes of a check value.
-pub(crate) fn algorithm_size(a: &Algorithm) -> usize {
-    match a {
-        Algorithm::Sum { .. } | Algorithm::Xor => 1,
-        Algorithm::Crc(p) => usize::from(p.width / 8),
-    }
 }
