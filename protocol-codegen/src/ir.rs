@@ -14,7 +14,7 @@ pub use protocol_runtime::checksum::{Algorithm, CrcSpec, CrcTable};
 /// has no variant: the runtime's own field rules ([`protocol_runtime::field`]), which the
 /// generated code and the run-time codec both apply.
 pub use protocol_runtime::field::{Rounding, UnknownPolicy};
-pub use protocol_runtime::layout::{ByteOrder, Pos};
+pub use protocol_runtime::layout::{ByteOrder, Pos, WordField};
 /// How the bits of a packed array fill its bytes: the runtime's own.
 pub use protocol_runtime::packed::BitOrder;
 
@@ -609,6 +609,8 @@ pub struct Check {
     pub algorithm: Algorithm,
     /// How the algorithm is named.
     pub naming: CheckNaming,
+    /// A byte folded in after the covered bytes, picked by the command.
+    pub extra: Option<CheckExtra>,
     /// Where the check value is stored.
     pub at: Pos,
     /// Bytes of the stored check value.
@@ -623,6 +625,19 @@ pub struct Check {
     pub header: bool,
 }
 
+/// The byte a check folds in after the bytes it covers, one per command (MAVLink's
+/// CRC_EXTRA): the runtime's [`Extra`](protocol_runtime::checksum::Extra) without its CRC.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CheckExtra {
+    /// The header value (index into [`Frame::values`]) whose value is the key: the frame's one
+    /// dispatch field.
+    pub value: usize,
+    /// Where the key sits, from the first covered byte.
+    pub key: WordField,
+    /// `(command id, byte)` of every command, sorted by id.
+    pub bytes: Vec<(u32, u8)>,
+}
+
 /// The names of a check's algorithm: what docs show, and the Rust items a CRC is printed with.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct CheckNaming {
@@ -635,6 +650,9 @@ pub struct CheckNaming {
     pub crc_constant: Option<String>,
     /// For a CRC, the `static` its table lives in (`CRC_TABLE`, `SCOUT_CRC_TABLE`).
     pub table_static: Option<String>,
+    /// For a check with a per-command extra byte, the `static` of its runtime `Extra`
+    /// (`CRC_EXTRA`).
+    pub extra_static: Option<String>,
 }
 
 /// A constant byte run after the payload.
@@ -694,6 +712,8 @@ pub struct Command {
     pub id: Vec<u64>,
     /// The CAN id, when the spec has a CAN frame.
     pub can_id: Option<u64>,
+    /// The byte a check with a per-command extra folds in for this command.
+    pub check_extra: Option<u8>,
     /// Documentation.
     pub doc: String,
     /// Payload struct (index into [`Protocol::structs`]) per direction, in the order of

@@ -5,14 +5,16 @@
 //! This module owns the CRC objects a layout's checks borrow ([`CrcStore`]: the codec owns it,
 //! its layouts borrow it; only a CRC's parameters are interned for `'static`, see
 //! [`protocol_codegen::layout::intern`]) and the per-frame slices of constants and checks
-//! ([`FrameParts`]). A check's algorithm is the IR's runtime [`Algorithm`], executed as it is;
+//! ([`FrameParts`]); a check with a per-command byte is an interned runtime [`Extra`]. A
+//! check's algorithm is the IR's runtime [`Algorithm`], executed as it is;
 //! which bytes a check covers and how a frame is verified or sealed is the runtime's business.
 
 use protocol_codegen::ir::{self, Algorithm, CrcSpec, CrcTable};
 pub use protocol_codegen::layout::word_field;
 use protocol_codegen::layout::{self, LayoutPlan, intern, lower_layout};
-use protocol_runtime::checksum::{Checksum, CrcImpl, Slicing16};
+use protocol_runtime::checksum::{Checksum, CrcImpl, Extra, Slicing16};
 use protocol_runtime::layout::{Check, Constant, FrameLayout};
+use std::sync::Mutex;
 
 /// A CRC object of one width, with the table size the spec chose (as generated code builds):
 /// the `crc` crate's for no table and one table, the runtime's [`Slicing16`] for sixteen.
@@ -85,6 +87,35 @@ impl CrcObject {
     }
 }
 
+/// The runtime [`Extra`] of a check with a per-command byte: interned, since it borrows its
+/// CRC for `'static` as generated code's `static`s do. Each distinct (algorithm, key, bytes)
+/// is built and leaked once per process, its CRC table with it: memory is bounded by the
+/// number of distinct such checks, however many times specs are loaded.
+fn interned_extra(algorithm: &Algorithm, extra: &ir::CheckExtra) -> &'static Extra<'static> {
+    type Key = (Algorithm, ir::WordField, Vec<(u32, u8)>);
+    static CACHE: Mutex<Vec<(Key, &'static Extra<'static>)>> = Mutex::new(Vec::new());
+    let key: Key = (*algorithm, extra.key, extra.bytes.clone());
+    // A poisoned lock only means another thread panicked while pushing: the list is still a
+    // list of valid entries.
+    let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, found)) = cache.iter().find(|(k, _)| *k == key) {
+        return found;
+    }
+    let crc = match CrcObject::new(algorithm) {
+        Some(object) => Box::leak(Box::new(object)).checksum(),
+        // Unreachable: validation allows an extra byte on CRCs only.
+        None => algorithm.tableless().unwrap_or(Checksum::Sum8),
+    };
+    let bytes: &'static [(u32, u8)] = Box::leak(extra.bytes.clone().into_boxed_slice());
+    let leaked: &'static Extra<'static> = Box::leak(Box::new(Extra {
+        crc,
+        key: extra.key,
+        bytes,
+    }));
+    cache.push((key, leaked));
+    leaked
+}
+
 /// The CRC objects of every check of every frame format of a spec, owned so that layouts can
 /// borrow them.
 pub struct CrcStore {
@@ -101,14 +132,22 @@ impl CrcStore {
             .map(|f| {
                 f.checks
                     .iter()
-                    .map(|c| CrcObject::new(&c.algorithm))
+                    .map(|c| match c.extra {
+                        // Its CRC lives in its interned `Extra`.
+                        Some(_) => None,
+                        None => CrcObject::new(&c.algorithm),
+                    })
                     .collect()
             })
             .collect();
         CrcStore { crcs }
     }
 
-    fn checksum(&self, frame: usize, check: usize, algorithm: &Algorithm) -> Checksum<'_> {
+    fn checksum(&self, frame: usize, check: usize, c: &ir::Check) -> Checksum<'_> {
+        let algorithm = &c.algorithm;
+        if let Some(extra) = &c.extra {
+            return Checksum::Extra(interned_extra(algorithm, extra));
+        }
         if let Some(checksum) = algorithm.tableless() {
             return checksum;
         }
@@ -142,7 +181,7 @@ impl<'a> FrameParts<'a> {
                 .iter()
                 .filter_map(|&i| {
                     let c = frame.checks.get(i)?;
-                    Some(layout::check(c, store.checksum(index, i, &c.algorithm)))
+                    Some(layout::check(c, store.checksum(index, i, c)))
                 })
                 .collect()
         };

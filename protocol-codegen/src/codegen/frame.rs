@@ -32,13 +32,18 @@ fn order(rt: &TokenStream, e: ByteOrder) -> TokenStream {
 
 /// A `WordField` literal for a header value.
 pub fn word_field(rt: &TokenStream, v: &HeaderValue) -> TokenStream {
+    word_field_lit(rt, layout::word_field(v))
+}
+
+/// A `WordField` literal.
+fn word_field_lit(rt: &TokenStream, f: WordField) -> TokenStream {
     let WordField {
         at,
         size,
         order: ord,
         shift,
         width,
-    } = layout::word_field(v);
+    } = f;
     let whole = match (at, ord) {
         (Pos::Start(n), ByteOrder::Little) => quote!(#rt::WordField::le(#n, #size)),
         (Pos::Start(n), ByteOrder::Big) => quote!(#rt::WordField::be(#n, #size)),
@@ -126,7 +131,7 @@ fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>) ->
             quote!(#rt::Checksum::$ctor(#rt::CrcImpl::#variant(&#static_name)))
         }};
     }
-    match &c.algorithm {
+    let checksum = match &c.algorithm {
         Algorithm::Sum8 => quote!(#rt::Checksum::Sum8),
         Algorithm::SumMod255 => quote!(#rt::Checksum::SumMod255),
         Algorithm::Xor8 => quote!(#rt::Checksum::Xor8),
@@ -139,7 +144,29 @@ fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>) ->
         Algorithm::Crc16(spec) => crc!(spec, u16, Crc16, Prim::U16),
         Algorithm::Crc32(spec) => crc!(spec, u32, Crc32, Prim::U32),
         Algorithm::Crc64(spec) => crc!(spec, u64, Crc64, Prim::U64),
-    }
+    };
+    let Some(extra) = &c.extra else {
+        return checksum;
+    };
+    let name = Ident::new(
+        c.naming.extra_static.as_deref().unwrap_or("CHECK_EXTRA"),
+        Span::call_site(),
+    );
+    let key = word_field_lit(rt, extra.key);
+    let bytes = extra.bytes.iter().map(|(k, b)| quote!((#k, #b)));
+    let doc = format!(
+        " The `{}` check with the byte each command folds in after the covered bytes.",
+        c.name
+    );
+    statics.push(quote! {
+        #[doc = #doc]
+        static #name: #rt::Extra<'static> = #rt::Extra {
+            crc: #checksum,
+            key: #key,
+            bytes: &[#(#bytes),*],
+        };
+    });
+    quote!(#rt::Checksum::Extra(&#name))
 }
 
 /// The `LAYOUT` static of a frame format, as [`lower_layout`] plans it, with the CRC tables

@@ -272,6 +272,10 @@ pub struct ElementDef {
     /// Byte order of a check value (default: the protocol's).
     #[schemars(with = "Option<String>")]
     pub byte_order: Option<SStr>,
+    /// A byte a check folds in after the bytes it covers: `"command"`, the `check_extra` each
+    /// command declares (MAVLink's CRC_EXTRA).
+    #[schemars(with = "Option<String>")]
+    pub extra: Option<SStr>,
     /// Name of a check or trailer.
     #[schemars(with = "Option<String>")]
     pub name: Option<SStr>,
@@ -356,6 +360,9 @@ pub struct CommandDef {
     /// The command's CAN id, for specs with a CAN frame.
     #[schemars(with = "Option<i64>")]
     pub can_id: Option<SInt>,
+    /// The byte a check with `extra = "command"` folds in for this command (0 to 255).
+    #[schemars(with = "Option<i64>")]
+    pub check_extra: Option<SInt>,
     /// Documentation.
     #[schemars(with = "Option<String>")]
     pub doc: Option<SStr>,

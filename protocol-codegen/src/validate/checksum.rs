@@ -56,6 +56,7 @@ fn naming(display: String, custom: bool, crc_constant: Option<String>) -> CheckN
         custom,
         crc_constant,
         table_static: None,
+        extra_static: None,
     }
 }
 

@@ -262,9 +262,11 @@ pub(crate) fn lower_commands(
         let id = frame.and_then(|frame| lower_id(ctx, name, d, frame, &mut ids));
         let payloads = lower_payload_refs(ctx, name, d, frame, directions, structs);
         let can_id = lower_can_id(ctx, name, d.can_id.as_ref(), can_frame, &mut can_ids);
+        let check_extra = super::extra::lower_check_extra(ctx, name, d);
         if let (true, Some(id)) = (valid, id) {
             out.push(Command {
                 can_id,
+                check_extra,
                 name: name.get_ref().clone(),
                 rust_name,
                 id,

@@ -6,6 +6,7 @@
 mod catalog;
 mod checksum;
 mod commands;
+mod extra;
 mod frame;
 mod names;
 mod types;
@@ -72,6 +73,7 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
     let commands = commands::lower_commands(&mut ctx, &frames, &directions, &structs);
     let mut frames = frames;
     frame::lower_packets(&mut frames, !directions.is_empty());
+    extra::lower_extra_bytes(&mut frames, &commands);
 
     Some(ir::Protocol {
         name: p.name.get_ref().clone(),

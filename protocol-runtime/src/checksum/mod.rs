@@ -37,6 +37,7 @@
 use core::fmt;
 
 mod algorithm;
+mod extra;
 mod fletcher;
 mod slicing;
 mod sum;
@@ -44,6 +45,7 @@ mod sum;
 mod tests;
 
 pub use algorithm::{Algorithm, CrcSpec, CrcTable};
+pub use extra::Extra;
 pub use slicing::Slicing16;
 
 /// A check algorithm.
@@ -79,6 +81,8 @@ pub enum Checksum<'a> {
     Crc32(CrcImpl<'a, u32>),
     /// A 64-bit CRC.
     Crc64(CrcImpl<'a, u64>),
+    /// A CRC that folds in one more byte, picked by a key in the covered bytes ([`Extra`]).
+    Extra(&'a Extra<'a>),
 }
 
 /// A CRC with its table size.
@@ -171,6 +175,7 @@ impl fmt::Debug for Checksum<'_> {
             Checksum::Crc16(c) => f.debug_tuple("Crc16").field(c).finish(),
             Checksum::Crc32(c) => f.debug_tuple("Crc32").field(c).finish(),
             Checksum::Crc64(c) => f.debug_tuple("Crc64").field(c).finish(),
+            Checksum::Extra(e) => f.debug_tuple("Extra").field(e).finish(),
         }
     }
 }
@@ -192,6 +197,17 @@ impl Checksum<'_> {
             Checksum::Fletcher16 | Checksum::Fletcher16Mod256 | Checksum::Crc16(_) => 2,
             Checksum::Crc32(_) => 4,
             Checksum::Crc64(_) => 8,
+            Checksum::Extra(e) => e.crc.width_of_crc(),
+        }
+    }
+
+    /// [`width`](Self::width) of a checksum inside an [`Extra`] (which holds no other
+    /// [`Extra`]: 0 for one).
+    #[inline]
+    const fn width_of_crc(&self) -> usize {
+        match self {
+            Checksum::Extra(_) => 0,
+            other => other.width(),
         }
     }
 
@@ -216,6 +232,20 @@ impl Checksum<'_> {
             Checksum::Crc16(c) => u64::from(c.checksum(data)),
             Checksum::Crc32(c) => u64::from(c.checksum(data)),
             Checksum::Crc64(c) => c.checksum(data),
+            Checksum::Extra(e) => match e.byte(data) {
+                Some(byte) => e.fold(data, byte),
+                None => e.crc.compute_plain(data),
+            },
+        }
+    }
+
+    /// [`compute`](Self::compute) of a checksum inside an [`Extra`] (0 for another
+    /// [`Extra`], which it never holds).
+    #[inline]
+    fn compute_plain(&self, data: &[u8]) -> u64 {
+        match self {
+            Checksum::Extra(_) => 0,
+            other => other.compute(data),
         }
     }
 
@@ -251,6 +281,7 @@ impl Checksum<'_> {
             Checksum::Crc16(c) => u64::from(c.checksum_prefix(data, n)),
             Checksum::Crc32(c) => u64::from(c.checksum_prefix(data, n)),
             Checksum::Crc64(c) => c.checksum_prefix(data, n),
+            Checksum::Extra(e) => return e.compute(data.get(..n)?),
         })
     }
 }

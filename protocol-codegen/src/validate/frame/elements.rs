@@ -9,7 +9,10 @@ use super::super::names::{check_snake_name, parse_byte_order};
 use super::super::types::Enums;
 use super::super::{Ctx, text};
 use super::{Draft, El, Kind, header};
-use crate::ir::{Check, Pos, Trailer, Transport};
+use crate::ir::{
+    Algorithm, ByteOrder, Check, CheckExtra, CrcTable, Pos, Trailer, Transport, WordField,
+};
+
 use crate::spec::model::{ElementDef, FrameDef, SStr};
 
 /// Lower element `i` of the layout into the draft, by its kind. `None` when the element's kind
@@ -46,7 +49,7 @@ const FIELD_KEYS: &[&str] = &[
 ];
 const SYNC_KEYS: &[&str] = &["sync", "doc"];
 const PAYLOAD_KEYS: &[&str] = &["payload", "doc"];
-const CHECK_KEYS: &[&str] = &["check", "over", "byte_order", "name", "doc"];
+const CHECK_KEYS: &[&str] = &["check", "over", "byte_order", "extra", "name", "doc"];
 const TRAILER_KEYS: &[&str] = &["trailer", "name", "doc"];
 
 fn present_keys(e: &ElementDef) -> Vec<(&'static str, std::ops::Range<usize>)> {
@@ -58,7 +61,8 @@ fn present_keys(e: &ElementDef) -> Vec<(&'static str, std::ops::Range<usize>)> {
     }
     k!(sync => "sync", field => "field", payload => "payload", check => "check", trailer => "trailer",
        ty => "type", addresses => "addresses", length_of => "length_of", value => "value",
-       bits => "bits", over => "over", byte_order => "byte_order", name => "name", doc => "doc");
+       bits => "bits", over => "over", byte_order => "byte_order", extra => "extra", name => "name",
+       doc => "doc");
     v
 }
 
@@ -238,9 +242,19 @@ fn lower_check<'s>(
     if let Some(n) = &d.name {
         check_snake_name(ctx, n, "check name");
     }
-    let Some((algorithm, naming)) = algorithm else {
+    let Some((mut algorithm, naming)) = algorithm else {
         draft.broken = true;
         return Some(());
+    };
+    let extra = match &d.extra {
+        None => None,
+        Some(e) => {
+            let Some(extra) = lower_extra(ctx, e, &mut algorithm) else {
+                draft.broken = true;
+                return Some(());
+            };
+            Some(extra)
+        }
     };
     let size = algorithm.width();
     let ci = draft.checks.len();
@@ -250,6 +264,7 @@ fn lower_check<'s>(
             doc: text(&d.doc),
             algorithm,
             naming,
+            extra,
             at: Pos::Start(0),
             size,
             endian,
@@ -266,6 +281,52 @@ fn lower_check<'s>(
         kind: Kind::Check(ci),
     });
     Some(())
+}
+
+/// Rule: a check's `extra` is `"command"` (each command's `check_extra` byte, folded in after
+/// the covered bytes), on a CRC. Such a CRC runs the `crc` crate's streaming digest, so it is
+/// computed with at most one table (sixteen become one).
+fn lower_extra(ctx: &mut Ctx<'_>, e: &SStr, algorithm: &mut Algorithm) -> Option<CheckExtra> {
+    if e.get_ref() != "command" {
+        ctx.error(
+            e.span(),
+            format!("unknown check extra `{}`", e.get_ref()),
+            "use `extra = \"command\"`: each command's `check_extra` byte is folded in after the covered bytes",
+        );
+        return None;
+    }
+    macro_rules! one_table {
+        ($spec:expr) => {
+            if $spec.table == CrcTable::Table16 {
+                $spec.table = CrcTable::Table1;
+            }
+        };
+    }
+    match algorithm {
+        Algorithm::Crc8(s) => one_table!(s),
+        Algorithm::Crc16(s) => one_table!(s),
+        Algorithm::Crc32(s) => one_table!(s),
+        Algorithm::Crc64(s) => one_table!(s),
+        _ => {
+            ctx.error(
+                e.span(),
+                "a per-command extra byte is folded into CRCs only",
+                "use a CRC for this check, or remove `extra`",
+            );
+            return None;
+        }
+    }
+    Some(CheckExtra {
+        value: 0,
+        key: WordField {
+            at: Pos::Start(0),
+            size: 1,
+            order: ByteOrder::Little,
+            shift: 0,
+            width: 8,
+        },
+        bytes: Vec::new(),
+    })
 }
 
 /// Rule: a trailer is a non-empty list of bytes after the payload, named `trailer` unless it

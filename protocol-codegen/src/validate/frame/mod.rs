@@ -137,6 +137,7 @@ fn lower_frame(
     checks::lower_coverage(ctx, &lay, &mut checks, &mut ok);
     checks::place_trailers(&lay, &mut trailers);
     let dispatch = ack::lower_dispatch(ctx, fname, def, &mut values, &mut ok);
+    checks::lower_extra_keys(ctx, &lay, &mut checks, &values, &dispatch, &mut ok);
     let ack = ack::lower_ack(ctx, fname, def, &lay, &mut values, &dispatch, &mut ok);
     let bare_len = ack::lower_bare_header(ctx, def, &length, lay.header_len, ack, &mut ok);
     let stuffing = options::lower_stuffing(ctx, def);
@@ -176,13 +177,18 @@ fn lower_frame(
     })
 }
 
-/// The `static` each CRC's table lives in: the frame's const prefix, the check's name, `_TABLE`
-/// (unique, since element names are).
+/// The `static` each CRC's table lives in (the frame's const prefix, the check's name,
+/// `_TABLE`), and the `static` of a per-command extra (`_EXTRA`); unique, since element names
+/// are.
 fn name_tables(mut checks: Vec<Check>, names: &FrameNames) -> Vec<Check> {
     for c in &mut checks {
         if c.algorithm.crc_table().is_some() {
             let name = format!("{}{}_TABLE", names.const_prefix, c.name);
             c.naming.table_static = Some(name.to_ascii_uppercase());
+        }
+        if c.extra.is_some() {
+            let name = format!("{}{}_EXTRA", names.const_prefix, c.name);
+            c.naming.extra_static = Some(name.to_ascii_uppercase());
         }
     }
     checks

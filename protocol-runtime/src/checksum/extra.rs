@@ -1,0 +1,109 @@
+//! A CRC that folds in one more byte after the bytes it covers, the byte picked by a key read
+//! from those bytes: [`Extra`] (MAVLink's CRC_EXTRA, one byte per message id).
+//!
+//! This module owns looking the byte up and folding it in. Which key field and which table
+//! come from the spec is validation's business; where the check sits is the layout's.
+
+use super::{Checksum, CrcImpl};
+use crate::layout::WordField;
+
+/// A CRC over the covered bytes, then one byte that the value of `key` picks from `bytes`.
+///
+/// A key without a byte cannot be verified: [`Checksum::compute_prefix`] gives `None` for it
+/// (a decoder rejects the candidate as a bad check and resumes its search at the next byte),
+/// and [`Checksum::compute`], which encoders call for the keys they know, gives the CRC of
+/// the covered bytes alone.
+///
+/// ```
+/// use protocol_runtime::checksum::{Checksum, CrcImpl, Extra};
+/// use protocol_runtime::layout::{ByteOrder, Pos, WordField};
+///
+/// static CRC: crc::Crc<u16, crc::Table<1>> = crc::Crc::<u16, crc::Table<1>>::new(&crc::CRC_16_MCRF4XX);
+/// // MAVLink v1: the CRC covers LEN..payload; the message id is its fifth byte.
+/// static EXTRA: Extra<'static> = Extra {
+///     crc: Checksum::Crc16(CrcImpl::Table1(&CRC)),
+///     key: WordField { at: Pos::Start(4), size: 1, order: ByteOrder::Little, shift: 0, width: 8 },
+///     bytes: &[(0, 50)],
+/// };
+/// let check = Checksum::Extra(&EXTRA);
+/// // HEARTBEAT (id 0, CRC_EXTRA 50): `FE 09 4E 01 01 00 00 00 00 00 02 03 51 04 03 1C 7F`.
+/// let covered = [0x09, 0x4E, 0x01, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x02, 0x03, 0x51, 0x04, 0x03];
+/// assert_eq!(check.compute_prefix(&covered, covered.len()), Some(0x7F1C));
+/// let mut unknown = covered;
+/// unknown[4] = 7;
+/// assert_eq!(check.compute_prefix(&unknown, unknown.len()), None);
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct Extra<'a> {
+    /// The CRC (any other checksum folds no byte).
+    pub crc: Checksum<'a>,
+    /// Where the key sits, from the first covered byte.
+    pub key: WordField,
+    /// `(key, byte)` pairs, sorted by key.
+    pub bytes: &'a [(u32, u8)],
+}
+
+impl Extra<'_> {
+    /// The byte of the key the covered bytes `data` hold, if it has one.
+    #[inline]
+    pub fn byte(&self, data: &[u8]) -> Option<u8> {
+        let key = u32::try_from(self.key.read(data)?).ok()?;
+        let at = self.bytes.binary_search_by_key(&key, |&(k, _)| k).ok()?;
+        self.bytes.get(at).map(|&(_, b)| b)
+    }
+
+    /// The CRC of `data`, then `byte`.
+    #[inline]
+    pub fn fold(&self, data: &[u8], byte: u8) -> u64 {
+        match &self.crc {
+            Checksum::Crc8(c) => u64::from(c.checksum_then(data, byte)),
+            Checksum::Crc16(c) => u64::from(c.checksum_then(data, byte)),
+            Checksum::Crc32(c) => u64::from(c.checksum_then(data, byte)),
+            Checksum::Crc64(c) => c.checksum_then(data, byte),
+            other => other.compute(data),
+        }
+    }
+
+    /// The check value of `data`: `None` when its key has no byte.
+    #[inline]
+    pub fn compute(&self, data: &[u8]) -> Option<u64> {
+        Some(self.fold(data, self.byte(data)?))
+    }
+}
+
+macro_rules! checksum_then {
+    ($($w:ty),*) => {$(
+        impl CrcImpl<'_, $w> {
+            #[doc = concat!("The CRC of `data` then `byte`, as a `", stringify!($w), "`.")]
+            ///
+            /// A streaming digest of the `crc` crate; a [`CrcImpl::Table16`] runs it without a
+            /// table, since slicing by 16 has no streaming form (validation gives a check with
+            /// an extra byte one table).
+            #[inline]
+            pub fn checksum_then(&self, data: &[u8], byte: u8) -> $w {
+                match self {
+                    CrcImpl::NoTable(c) => {
+                        let mut d = c.digest();
+                        d.update(data);
+                        d.update(&[byte]);
+                        d.finalize()
+                    }
+                    CrcImpl::Table1(c) => {
+                        let mut d = c.digest();
+                        d.update(data);
+                        d.update(&[byte]);
+                        d.finalize()
+                    }
+                    CrcImpl::Table16(c) => {
+                        let crc = crc::Crc::<$w, crc::NoTable>::new(c.algorithm());
+                        let mut d = crc.digest();
+                        d.update(data);
+                        d.update(&[byte]);
+                        d.finalize()
+                    }
+                }
+            }
+        }
+    )*};
+}
+checksum_then!(u8, u16, u32, u64);
