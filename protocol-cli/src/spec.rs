@@ -9,7 +9,7 @@ use std::fmt;
 use std::path::Path;
 
 use miette::{GraphicalReportHandler, GraphicalTheme, LabeledSpan, NamedSource, SourceSpan};
-use protocol_codegen::diag::Diagnostic;
+use protocol_codegen::diag::{Diagnostic, Severity};
 use protocol_codegen::ir::Protocol;
 use protocol_codegen::source::SpecSource;
 use serde_json::{Value, json};
@@ -57,6 +57,7 @@ pub fn load(path: &Path) -> Result<Loaded, ReadError> {
 /// A pipeline diagnostic as a miette diagnostic, with the spec as its source code.
 #[derive(Debug)]
 pub struct SpecDiagnostic {
+    severity: Severity,
     message: String,
     help: Option<String>,
     span: SourceSpan,
@@ -68,6 +69,7 @@ impl SpecDiagnostic {
     pub fn new(d: &Diagnostic, source: &SpecSource) -> Self {
         let span = source.clamp(d.span.clone());
         SpecDiagnostic {
+            severity: d.severity,
             message: d.message.clone(),
             help: d.help.clone(),
             span: (span.start, span.end - span.start).into(),
@@ -86,6 +88,13 @@ impl fmt::Display for SpecDiagnostic {
 impl std::error::Error for SpecDiagnostic {}
 
 impl miette::Diagnostic for SpecDiagnostic {
+    fn severity(&self) -> Option<miette::Severity> {
+        Some(match self.severity {
+            Severity::Error => miette::Severity::Error,
+            Severity::Warning => miette::Severity::Warning,
+        })
+    }
+
     fn help<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
         self.help
             .as_ref()
@@ -127,7 +136,8 @@ pub fn render(diagnostics: &[Diagnostic], source: &SpecSource, color: bool) -> S
     out
 }
 
-/// One diagnostic as JSON: file, 1-based line and column of its start and end, message, help.
+/// One diagnostic as JSON: file, 1-based line and column of its start and end, severity
+/// (`error` or `warning`), message, help.
 pub fn to_json(d: &Diagnostic, source: &SpecSource) -> Value {
     let span = source.clamp(d.span.clone());
     let (line, column) = source.line_col(span.start);
@@ -138,7 +148,7 @@ pub fn to_json(d: &Diagnostic, source: &SpecSource) -> Value {
         "column": column,
         "end_line": end_line,
         "end_column": end_column,
-        "severity": "error",
+        "severity": d.severity.as_str(),
         "message": d.message,
         "help": d.help,
     })

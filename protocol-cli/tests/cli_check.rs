@@ -306,3 +306,21 @@ fn diff_exit_status_guards_a_ci() {
     );
     assert!(text(&unreadable.stderr).contains("no-such-spec.toml"));
 }
+
+#[test]
+fn a_frame_without_a_check_is_a_warning_not_an_error() {
+    const UNCHECKED: &str = "protocol-cli/tests/fixtures/unchecked.toml";
+    let out = protocol(&["check", UNCHECKED], b"");
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("frame `main` has no check"), "{stderr}");
+    assert!(stderr.contains(&format!("[{UNCHECKED}:4:9]")), "{stderr}");
+    assert!(text(&out.stdout).contains(&format!("{UNCHECKED}: ok (1 command")));
+    let json = protocol(&["check", "--json", UNCHECKED], b"");
+    assert!(json.status.success());
+    let v: Value = serde_json::from_str(&text(&json.stdout)).expect("JSON");
+    let items = v.as_array().expect("an array");
+    assert_eq!(items.len(), 1, "{v}");
+    assert_eq!(items[0]["severity"], "warning");
+    assert_eq!(items[0]["line"], 4);
+}

@@ -9,9 +9,31 @@ use std::ops::Range;
 
 use crate::source::SpecSource;
 
-/// One error in a spec.
+/// How serious a diagnostic is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub enum Severity {
+    /// The spec cannot be compiled.
+    #[default]
+    Error,
+    /// The spec compiles, but something in it is likely a mistake or a risk (a lint).
+    Warning,
+}
+
+impl Severity {
+    /// `error` or `warning`, as rendered.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        }
+    }
+}
+
+/// One error (or lint warning) in a spec.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Diagnostic {
+    /// An error, or a lint's warning.
+    pub severity: Severity,
     /// Byte range in the spec text (empty range: a point; `0..0` when the error is the whole
     /// file, e.g. a missing file).
     pub span: Range<usize>,
@@ -36,10 +58,18 @@ impl Diagnostics {
     /// Record an error. Returns it so a help line can be attached.
     pub fn error(&mut self, span: Range<usize>, message: impl Into<String>) -> &mut Diagnostic {
         self.items.push(Diagnostic {
+            severity: Severity::Error,
             span,
             message: message.into(),
             help: None,
         });
+        let last = self.items.len() - 1;
+        &mut self.items[last]
+    }
+
+    /// Record a lint's warning. Returns it so a help line can be attached.
+    pub fn warning(&mut self, span: Range<usize>, message: impl Into<String>) -> &mut Diagnostic {
+        self.error(span, message).severity = Severity::Warning;
         let last = self.items.len() - 1;
         &mut self.items[last]
     }
@@ -81,12 +111,12 @@ impl Diagnostic {
         self
     }
 
-    /// Render as text: message, location, quoted line with carets, help.
+    /// Render as text: severity and message, location, quoted line with carets, help.
     pub fn render(&self, source: &SpecSource) -> String {
         let span = source.clamp(self.span.clone());
         let (line, col) = source.line_col(span.start);
         let mut out = String::new();
-        let _ = writeln!(out, "error: {}", self.message);
+        let _ = writeln!(out, "{}: {}", self.severity.as_str(), self.message);
         let _ = writeln!(out, "  --> {}:{}:{}", source.path, line, col);
         if !source.text.is_empty() {
             let text = source.line_text(line);

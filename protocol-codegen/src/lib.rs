@@ -10,6 +10,7 @@ pub mod docs_md;
 pub mod input;
 pub mod ir;
 pub mod layout;
+pub mod lint;
 pub mod source;
 pub mod spec;
 pub mod validate;

@@ -1,4 +1,6 @@
 //! `protocol check SPEC... [--json]`: validate specs, print every diagnostic, exit 1 on error.
+//! A valid spec's lint warnings ([`protocol_codegen::lint`]) are printed too; they do not
+//! change the exit status.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -32,6 +34,15 @@ pub fn run(specs: &[PathBuf], as_json: bool) -> Result<ExitCode> {
         };
         match &loaded.result {
             Ok(p) => {
+                let warnings = protocol_codegen::lint::lint(&loaded.source);
+                if as_json {
+                    all.extend(warnings.iter().map(|d| spec::to_json(d, &loaded.source)));
+                } else if !warnings.is_empty() {
+                    eprint!(
+                        "{}",
+                        spec::render(&warnings, &loaded.source, stderr_color())
+                    );
+                }
                 if !as_json {
                     println!(
                         "{}: ok ({} command{}, {} frame format{}, {} struct{})",
