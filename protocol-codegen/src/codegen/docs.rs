@@ -222,8 +222,16 @@ fn pos_text(pos: Pos) -> String {
     }
 }
 
-/// Text for a check's algorithm.
+/// Text for a check's algorithm, with the per-command byte it folds in.
 pub fn algorithm_text(c: &Check) -> String {
+    let text = algorithm_name_text(c);
+    match &c.extra {
+        Some(_) => format!("{text}, then the command's `check_extra` byte"),
+        None => text,
+    }
+}
+
+fn algorithm_name_text(c: &Check) -> String {
     let n = &c.naming;
     macro_rules! crc {
         ($spec:expr) => {{
