@@ -9,7 +9,7 @@ use quote::{format_ident, quote};
 
 use super::docs::{doc_attrs, frame_doc};
 use super::payload::prim_type;
-use super::{const_ident, ident, rt};
+use super::{ident, rt};
 use crate::ir::{
     Algorithm, ByteOrder, Check, CrcTable, Frame, HeaderValue, Pos, Prim, Protocol, Role, Transport,
 };
@@ -171,7 +171,7 @@ fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>) ->
 
 /// The `LAYOUT` static of a frame format, as [`lower_layout`] plans it, with the CRC tables
 /// its checks borrow.
-fn emit_layout(rt: &TokenStream, prefix: &str, f: &Frame, name: &Ident, doc: &str) -> TokenStream {
+fn emit_layout(rt: &TokenStream, f: &Frame, name: &Ident, doc: &str) -> TokenStream {
     let doc = doc_attrs(doc);
     let plan: LayoutPlan<'_> = lower_layout(f);
     let field = |value: usize| wire_const(f, value);
@@ -248,7 +248,7 @@ pub fn emit_frames(p: &Protocol) -> TokenStream {
             frame_doc(f)
         };
         let layout = format_ident!("{}", f.names.layout_static);
-        out.extend(emit_layout(&rt(), &f.names.const_prefix, f, &layout, &doc));
+        out.extend(emit_layout(&rt(), f, &layout, &doc));
         // A CAN frame arrives whole: it has a packet type, not a stream decoder.
         if f.transport == Transport::Serial {
             out.extend(emit_decoder(f, &layout));
