@@ -272,3 +272,43 @@ fn breaking_changes_come_first() {
     sorted.sort();
     assert_eq!(classes, sorted);
 }
+
+const MAVLINK1: &str = "../tests/check_specs/mavlink1.toml";
+
+#[test]
+fn check_changes_that_keep_the_bytes_are_compatible_and_others_break() {
+    // An alias of the same catalogue entry, or another table size, changes no byte.
+    let c = changes(
+        "../specs/referee.toml",
+        "{ check = \"crc-16-mcrf4xx\"",
+        "{ check = \"CRC-16/MCRF4XX\"",
+    );
+    assert_eq!(breaking(&c), 0, "{c:?}");
+    let c = changes(
+        "../specs/roborts.toml",
+        "check = 0x2752 }",
+        "check = 0x2752 }\ntable = 1",
+    );
+    assert_eq!(breaking(&c), 0, "{c:?}");
+    // A complemented sum is another algorithm.
+    let c = changes(
+        HFLINK,
+        "{ check = \"sum-mod-255\"",
+        "{ check = \"fletcher-16\"",
+    );
+    assert!(breaking(&c) > 0, "{c:?}");
+    // A command's extra byte, and folding one in at all.
+    let c = changes(
+        MAVLINK1,
+        "payload = \"Heartbeat\", check_extra = 50",
+        "payload = \"Heartbeat\", check_extra = 51",
+    );
+    assert_one(&c, Class::Breaking, "check_extra 50 → 51");
+    let old = spec(MAVLINK1);
+    let new = old
+        .replacen(", extra = \"command\"", "", 1)
+        .replace(", check_extra = 50", "")
+        .replace(", check_extra = 137", "");
+    let c = diff(&compile("old.toml", &old), &compile("new.toml", &new));
+    assert_one(&c, Class::Breaking, "no longer folds in a byte per command");
+}

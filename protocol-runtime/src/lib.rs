@@ -18,7 +18,9 @@
 //!   traits generated code and the run-time codec implement for it ([`PacketLayout`],
 //!   [`EncodePacket`]);
 //! - [`wire`]: the cursors payload code reads and writes with ([`Reader`], [`Writer`]);
-//! - [`checksum`]: sums, xor and CRCs ([`Checksum`]);
+//! - [`checksum`]: sums (plain, complemented, 16-bit), xor, Fletcher sums and CRCs ([`Checksum`]),
+//!   a CRC with a per-command byte folded in ([`checksum::Extra`]), and the table-free
+//!   description an IR holds ([`checksum::Algorithm`]);
 //! - [`error`]: [`DecodeError`] and [`EncodeError`].
 //!
 //! Users depend on the `protocol` crate, which re-exports this one and the macros; generated

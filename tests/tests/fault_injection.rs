@@ -100,6 +100,18 @@ fn checks_hold(frame: &ir::Frame, bytes: &[u8]) -> bool {
     };
     frame.checks.iter().filter(|c| c.header || !bare).all(|c| {
         let data = &bytes[at(c.from)..at(c.to)];
+        // A per-command byte after the covered bytes, looked up by the key they hold: a key
+        // without a byte never verifies.
+        let extra: Option<u8> = match &c.extra {
+            None => None,
+            Some(e) => {
+                let key = e.key.read(data).and_then(|k| u32::try_from(k).ok());
+                match e.bytes.iter().find(|(k, _)| Some(*k) == key) {
+                    Some(&(_, b)) => Some(b),
+                    None => return false,
+                }
+            }
+        };
         let sum = data.iter().map(|&b| u64::from(b)).sum::<u64>();
         let fletcher = |modulus: u64| {
             let (a, b) = data.iter().fold((0u64, 0u64), |(a, b), &x| {
@@ -118,15 +130,33 @@ fn checks_hold(frame: &ir::Frame, bytes: &[u8]) -> bool {
             ir::Algorithm::Fletcher16 => fletcher(255),
             ir::Algorithm::Fletcher16Mod256 => fletcher(256),
             ir::Algorithm::Crc8(p) => {
-                u64::from(crc::Crc::<u8>::new(intern(&p.params)).checksum(data))
+                let crc = crc::Crc::<u8>::new(intern(&p.params));
+                let mut d = crc.digest();
+                d.update(data);
+                d.update(extra.as_slice());
+                u64::from(d.finalize())
             }
             ir::Algorithm::Crc16(p) => {
-                u64::from(crc::Crc::<u16>::new(intern(&p.params)).checksum(data))
+                let crc = crc::Crc::<u16>::new(intern(&p.params));
+                let mut d = crc.digest();
+                d.update(data);
+                d.update(extra.as_slice());
+                u64::from(d.finalize())
             }
             ir::Algorithm::Crc32(p) => {
-                u64::from(crc::Crc::<u32>::new(intern(&p.params)).checksum(data))
+                let crc = crc::Crc::<u32>::new(intern(&p.params));
+                let mut d = crc.digest();
+                d.update(data);
+                d.update(extra.as_slice());
+                u64::from(d.finalize())
             }
-            ir::Algorithm::Crc64(p) => crc::Crc::<u64>::new(intern(&p.params)).checksum(data),
+            ir::Algorithm::Crc64(p) => {
+                let crc = crc::Crc::<u64>::new(intern(&p.params));
+                let mut d = crc.digest();
+                d.update(data);
+                d.update(extra.as_slice());
+                d.finalize()
+            }
         };
         let stored = &bytes[at(c.at)..at(c.at) + c.size];
         let stored = match c.endian {

@@ -13,7 +13,9 @@ mod payload;
 
 use std::fmt;
 
-use protocol_codegen::ir::{Algorithm, Check, Command, DirectionRule, Frame, Protocol, Role};
+use protocol_codegen::ir::{
+    Algorithm, Check, Command, CrcTable, DirectionRule, Frame, Protocol, Role,
+};
 
 /// How a change affects the wire and the generated Rust source, most severe first.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -130,6 +132,19 @@ fn hex_bytes(b: &[u8]) -> String {
         .map(|x| format!("{x:02X}"))
         .collect::<Vec<_>>()
         .join(" ")
+}
+
+/// A check algorithm as the wire sees it: the table a CRC is computed with changes no byte.
+fn on_the_wire(a: &Algorithm) -> Algorithm {
+    let mut a = *a;
+    match &mut a {
+        Algorithm::Crc8(s) => s.table = CrcTable::Table16,
+        Algorithm::Crc16(s) => s.table = CrcTable::Table16,
+        Algorithm::Crc32(s) => s.table = CrcTable::Table16,
+        Algorithm::Crc64(s) => s.table = CrcTable::Table16,
+        _ => {}
+    }
+    a
 }
 
 fn algorithm_name(c: &Check) -> String {
@@ -266,7 +281,7 @@ fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
         r.breaking("the dispatch key's fields changed");
     }
     for (k, (oc, nc)) in o.checks.iter().zip(&n.checks).enumerate() {
-        if oc.algorithm != nc.algorithm {
+        if on_the_wire(&oc.algorithm) != on_the_wire(&nc.algorithm) {
             r.breaking(format!(
                 "check `{}`: {} → {}",
                 nc.name,
@@ -280,6 +295,19 @@ fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
                 "check `{}` (#{}) covers other bytes or is stored elsewhere",
                 nc.name,
                 k + 1
+            ));
+        }
+    }
+    for (oc, nc) in o.checks.iter().zip(&n.checks) {
+        if oc.extra.is_some() != nc.extra.is_some() {
+            r.breaking(format!(
+                "check `{}` {} a byte per command",
+                nc.name,
+                if nc.extra.is_some() {
+                    "now folds in"
+                } else {
+                    "no longer folds in"
+                }
             ));
         }
     }
@@ -374,6 +402,13 @@ fn diff_commands(old: &Protocol, new: &Protocol, out: &mut Vec<Change>) {
             r.source(format!(
                 "renamed to {} (same id; the generated variant's name changes)",
                 nc.name
+            ));
+        }
+        if nc.check_extra != oc.check_extra {
+            r.breaking(format!(
+                "check_extra {} → {}: the frames of one version fail the other's check",
+                oc.check_extra.map_or("none".into(), |v| v.to_string()),
+                nc.check_extra.map_or("none".into(), |v| v.to_string())
             ));
         }
         if nc.can_id != oc.can_id {
