@@ -17,7 +17,7 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
     let layout = format_ident!("{}", f.names.layout_static);
     let header_len = format_ident!("{}", f.names.sizes.header_len);
     let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
-    // Validation puts a CAN frame's id first among its values.
+    // A CAN frame's first value is its virtual `can_id` (the IR's `Transport::Can` contract).
     let can_id = wire_const(f, 0);
     let (reads, writes) = header_codec(f, rt);
     // The virtual frame holds the identifier's number; its kind is the spec's.
