@@ -1,8 +1,19 @@
 //! Diagnostics: one error with its span and help, the accumulator every stage reports into,
-//! and rendering to the text shown by the macro, the CLI and the snapshot tests.
+//! and the one renderer of a spec's errors: the `protocol!` macro's compile error, every
+//! `protocol` command that loads a spec, `protocol-dynamic`'s load error and the snapshot tests
+//! all print [`render_report`] / [`render_all`], so one mistake reads the same, byte for byte,
+//! wherever it is found.
 //!
 //! Every message points into the spec twice over: `--> path:line:col`, then the offending line
-//! with a caret underline, then `= help:` with a fix.
+//! with a caret underline, then `= help:` with a fix. A file that cannot be read is
+//! [`render_read_error`], in the same form.
+//!
+//! The renderer is this module's own rather than a crate's (annotate-snippets, miette): the
+//! text is rustc's layout for a single-line span, which is all a spec diagnostic needs; the
+//! macro crate builds it without a further dependency (it is compiled by every user of
+//! `protocol!`); and its bytes are pinned by the diagnostics catalogue's snapshots, so a
+//! renderer upgrade cannot change them unnoticed. Colour ([`Color::Ansi`]) is for a terminal
+//! only; a compile error, a pipe and `NO_COLOR` get [`Color::Plain`].
 
 use std::fmt::Write as _;
 use std::ops::Range;
@@ -111,13 +122,34 @@ impl Diagnostic {
         self
     }
 
-    /// Render as text: severity and message, location, quoted line with carets, help.
+    /// Render as plain text: severity and message, location, quoted line with carets, help.
     pub fn render(&self, source: &SpecSource) -> String {
+        self.render_styled(source, Color::Plain)
+    }
+
+    /// Render as text, with ANSI colours when `color` says so (the same text otherwise).
+    pub fn render_styled(&self, source: &SpecSource, color: Color) -> String {
         let span = source.clamp(self.span.clone());
         let (line, col) = source.line_col(span.start);
+        let level = match self.severity {
+            Severity::Error => Paint::Error,
+            Severity::Warning => Paint::Warning,
+        };
         let mut out = String::new();
-        let _ = writeln!(out, "{}: {}", self.severity.as_str(), self.message);
-        let _ = writeln!(out, "  --> {}:{}:{}", source.path, line, col);
+        let _ = writeln!(
+            out,
+            "{}{}",
+            color.paint(level, self.severity.as_str()),
+            color.paint(Paint::Bold, &format!(": {}", self.message))
+        );
+        let _ = writeln!(
+            out,
+            "  {} {}:{}:{}",
+            color.paint(Paint::Gutter, "-->"),
+            source.path,
+            line,
+            col
+        );
         if !source.text.is_empty() {
             let text = source.line_text(line);
             let gutter = line.to_string();
@@ -131,29 +163,116 @@ impl Diagnostic {
                 line_chars + 1
             };
             let width = last_col.saturating_sub(col).max(1);
-            let _ = writeln!(out, "{pad} |");
-            let _ = writeln!(out, "{gutter} | {text}");
+            let bar = color.paint(Paint::Gutter, &format!("{pad} |"));
+            let _ = writeln!(out, "{bar}");
             let _ = writeln!(
                 out,
-                "{pad} | {}{}",
+                "{} {text}",
+                color.paint(Paint::Gutter, &format!("{gutter} |"))
+            );
+            let _ = writeln!(
+                out,
+                "{bar} {}{}",
                 " ".repeat(col.saturating_sub(1)),
-                "^".repeat(width)
+                color.paint(level, &"^".repeat(width))
             );
         }
         if let Some(help) = &self.help {
-            let _ = writeln!(out, "  = help: {help}");
+            let _ = writeln!(out, "  {} {help}", color.paint(Paint::Bold, "= help:"));
         }
         out
     }
 }
 
+/// Whether rendered text carries ANSI colours.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Color {
+    /// No escape codes: compile errors, pipes, files, `NO_COLOR`.
+    #[default]
+    Plain,
+    /// rustc's colours, for a terminal.
+    Ansi,
+}
+
+/// The roles text plays in a rendering, each with its colour.
+#[derive(Debug, Clone, Copy)]
+enum Paint {
+    Error,
+    Warning,
+    Gutter,
+    Bold,
+}
+
+impl Color {
+    fn paint(self, role: Paint, text: &str) -> String {
+        let code = match (self, role) {
+            (Color::Plain, _) => return text.to_string(),
+            (Color::Ansi, Paint::Error) => "1;31",
+            (Color::Ansi, Paint::Warning) => "1;33",
+            (Color::Ansi, Paint::Gutter) => "1;34",
+            (Color::Ansi, Paint::Bold) => "1",
+        };
+        format!("\x1b[{code}m{text}\x1b[0m")
+    }
+}
+
 /// Render a list of diagnostics, separated by blank lines.
 pub fn render_all(diagnostics: &[Diagnostic], source: &SpecSource) -> String {
+    render_all_styled(diagnostics, source, Color::Plain)
+}
+
+/// [`render_all`], with colours when `color` says so.
+pub fn render_all_styled(diagnostics: &[Diagnostic], source: &SpecSource, color: Color) -> String {
     diagnostics
         .iter()
-        .map(|d| d.render(source))
+        .map(|d| d.render_styled(source, color))
         .collect::<Vec<_>>()
         .join("\n")
+}
+
+/// A spec's errors as one report: `N errors in spec PATH`, a blank line, then every
+/// diagnostic. The `protocol!` macro's compile error and every `protocol` command that loads
+/// the spec print exactly this text (plain, or coloured on a terminal).
+pub fn render_report(diagnostics: &[Diagnostic], source: &SpecSource, color: Color) -> String {
+    let n = diagnostics.len();
+    let headline = format!(
+        "{n} error{} in spec {}",
+        if n == 1 { "" } else { "s" },
+        source.path
+    );
+    format!(
+        "{}\n\n{}",
+        color.paint(Paint::Bold, &headline),
+        render_all_styled(diagnostics, source, color)
+    )
+}
+
+/// A file that cannot be read, in the form of a spec diagnostic: `error: cannot read WHAT
+/// `PATH`: REASON`, and the help when there is one. `what` is `spec`, `capture`, `input`...
+pub fn render_read_error(
+    what: &str,
+    path: &str,
+    error: &std::io::Error,
+    help: Option<&str>,
+    color: Color,
+) -> String {
+    let mut out = format!(
+        "{}{}\n",
+        color.paint(Paint::Error, "error"),
+        color.paint(
+            Paint::Bold,
+            &format!(": {}", read_error_message(what, path, error))
+        )
+    );
+    if let Some(help) = help {
+        let _ = writeln!(out, "  {} {help}", color.paint(Paint::Bold, "= help:"));
+    }
+    out
+}
+
+/// The one sentence saying a file cannot be read: `cannot read WHAT `PATH`: REASON`.
+pub fn read_error_message(what: &str, path: &str, error: &std::io::Error) -> String {
+    format!("cannot read {what} `{path}`: {error}")
 }
 
 /// The closest candidate to a misspelled name, if one is close enough to suggest.

@@ -10,7 +10,7 @@ use syn::parse::{Parse, ParseStream};
 use syn::{LitStr, Token};
 
 use crate::codegen::{RuntimePath, expand};
-use crate::diag::{Diagnostic, render_all};
+use crate::diag::{Color, Diagnostic, render_read_error, render_report};
 use crate::source::SpecSource;
 
 /// Environment variable that overrides the directory spec paths are relative to (trybuild
@@ -74,17 +74,15 @@ impl Parse for MacroInput {
     }
 }
 
+/// The spec's errors as one compile error on the macro's argument: the report every
+/// `protocol` command prints for the same spec, without colour.
 fn errors_to_tokens(diags: &[Diagnostic], source: &SpecSource, span: Span) -> TokenStream {
-    let text = render_all(diags, source);
-    let n = diags.len();
-    let msg = format!(
-        "{} error{} in spec {}\n\n{text}",
-        n,
-        if n == 1 { "" } else { "s" },
-        source.path
-    );
-    syn::Error::new(span, msg).to_compile_error()
+    syn::Error::new(span, render_report(diags, source, Color::Plain)).to_compile_error()
 }
+
+/// The help of a spec path the macro cannot read.
+pub const READ_HELP: &str =
+    "the path is relative to the directory of the calling crate's Cargo.toml";
 
 /// Expand `protocol!(...)`. Never panics: every failure is a compile error.
 pub fn protocol_macro(tokens: TokenStream) -> TokenStream {
@@ -108,9 +106,9 @@ pub fn protocol_macro(tokens: TokenStream) -> TokenStream {
             match std::fs::read_to_string(&full) {
                 Ok(text) => (SpecSource::new(rel.clone(), text), lit.span(), Some(full)),
                 Err(e) => {
-                    let msg = format!(
-                        "cannot read spec `{rel}`: {e}\n  = help: the path is relative to the directory of the calling crate's Cargo.toml"
-                    );
+                    let msg = render_read_error("spec", &rel, &e, Some(READ_HELP), Color::Plain);
+                    // rustc writes the `error: ` itself.
+                    let msg = msg.strip_prefix("error: ").unwrap_or(&msg).trim_end();
                     return syn::Error::new(lit.span(), msg).to_compile_error();
                 }
             }

@@ -21,18 +21,21 @@ use source::SpecSource;
 /// Load and validate a spec: the checked IR, or every error found, sorted.
 pub fn compile(source: &SpecSource) -> Result<ir::Protocol, Vec<Diagnostic>> {
     let mut diags = Diagnostics::new();
-    let Some(spec) = spec::load_spec(source, &mut diags) else {
+    let (spec, repaired_tables) = spec::load_spec_repaired(source, &mut diags);
+    let Some(spec) = spec else {
         return Err(diags.into_sorted());
     };
     let shape_errors = diags.spans();
     let mut semantic = Diagnostics::new();
     let protocol = validate::validate(&spec, &mut semantic);
     // A semantic error about an element whose ill-typed or unknown entry was dropped is a
-    // consequence of that shape error, not a second mistake: report the shape error alone.
+    // consequence of that shape error, not a second mistake: report the shape error alone. So
+    // is an error about the whole table the entry was dropped from.
     for d in semantic.into_sorted() {
         let follows = shape_errors
             .iter()
-            .any(|s| d.span.start <= s.start && s.end <= d.span.end);
+            .any(|s| d.span.start <= s.start && s.end <= d.span.end)
+            || repaired_tables.contains(&d.span);
         if !follows {
             diags.push(d);
         }

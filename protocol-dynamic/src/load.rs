@@ -4,7 +4,7 @@
 use std::fmt;
 use std::path::Path;
 
-use protocol_codegen::diag::{Diagnostic, render_all};
+use protocol_codegen::diag::{Color, Diagnostic, read_error_message, render_report};
 use protocol_codegen::source::SpecSource;
 
 use crate::Interpreter;
@@ -29,15 +29,17 @@ pub enum LoadError {
 }
 
 impl fmt::Display for LoadError {
-    /// For a spec with errors: every diagnostic rendered (`--> path:line:col`, the line, a
-    /// caret underline, the help).
+    /// For a spec with errors: the report the macro and the CLI print (`N errors in spec
+    /// PATH`, then every diagnostic: `--> path:line:col`, the line, a caret underline, the help).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            LoadError::Read { path, error } => write!(f, "cannot read spec `{path}`: {error}"),
+            LoadError::Read { path, error } => {
+                f.write_str(&read_error_message("spec", path, error))
+            }
             LoadError::Spec {
                 source,
                 diagnostics,
-            } => f.write_str(render_all(diagnostics, source).trim_end()),
+            } => f.write_str(render_report(diagnostics, source, Color::Plain).trim_end()),
         }
     }
 }

@@ -243,14 +243,68 @@ pub fn prim_spellings() -> Vec<String> {
     out
 }
 
-/// Report an unknown type name, suggesting the closest known one.
+/// Report an unknown type name, suggesting the closest known one. A primitive's spelling with a
+/// width the wire does not have (`u48`, `f16`) is answered with the widths there are and the
+/// narrowest that holds it, not with the nearest spelling (`u8`, `u16`), which means something
+/// else.
 pub(crate) fn unknown_type(ctx: &mut Ctx<'_>, ty: &SStr, known: &[String], what: &str) {
     let n = ty.get_ref();
-    let help = match did_you_mean(n, known.iter().map(String::as_str)) {
-        Some(best) => format!("did you mean `{best}`?"),
+    let nearest = did_you_mean(n, known.iter().map(String::as_str));
+    // Transposed letters (`i61`, `u42be`) are a typo of that name, whatever the width says.
+    let transposed = nearest.filter(|b| same_letters(b, n));
+    let help = match transposed
+        .map(|b| format!("did you mean `{b}`?"))
+        .or_else(|| width_help(n))
+        .or_else(|| nearest.map(|b| format!("did you mean `{b}`?")))
+    {
+        Some(help) => help,
         None => format!(
             "{what} is a primitive (`u8`, `u16be`, `f32`, `bool`, ...), or the name of a struct or enum of this spec"
         ),
     };
     ctx.error(ty.span(), format!("unknown type `{n}`"), help);
+}
+
+/// Whether `a` and `b` are spelled with the same letters, in some order.
+fn same_letters(a: &str, b: &str) -> bool {
+    let sorted = |s: &str| {
+        let mut c: Vec<char> = s.chars().collect();
+        c.sort_unstable();
+        c
+    };
+    sorted(a) == sorted(b)
+}
+
+/// For `u48`, `i12be`, `f16`: the widths of that kind of number, and the narrowest that holds
+/// the one written. `None` when the name is not a number's spelling.
+fn width_help(name: &str) -> Option<String> {
+    let (base, order) = match (name.strip_suffix("le"), name.strip_suffix("be")) {
+        (Some(b), _) => (b, "le"),
+        (_, Some(b)) => (b, "be"),
+        _ => (name, ""),
+    };
+    let mut chars = base.chars();
+    let kind = chars.next()?;
+    let bits: u32 = chars.as_str().parse().ok()?;
+    let (what, widths): (&str, &[u32]) = match kind {
+        'u' => ("unsigned integers", &[8, 16, 24, 32, 64]),
+        'i' => ("signed integers", &[8, 16, 24, 32, 64]),
+        'f' => ("floats", &[32, 64]),
+        _ => return None,
+    };
+    let list = widths
+        .iter()
+        .map(|w| format!("`{kind}{w}`"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    Some(match widths.iter().find(|w| **w >= bits) {
+        Some(_) if kind == 'f' && [8, 16, 24].contains(&bits) => {
+            format!("{what} are {list}; declare a {bits}-bit float's raw bits as `u{bits}{order}`")
+        }
+        Some(_) if kind == 'f' => format!("{what} are {list}"),
+        Some(w) => {
+            format!("{what} are {list} (with `le` or `be`); `{kind}{w}{order}` holds {bits} bits")
+        }
+        None => format!("{what} are {list}: none is wider than 64 bits"),
+    })
 }
