@@ -106,7 +106,7 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("{:?}", e);
+            cmd::print_error(&e);
             ExitCode::FAILURE
         }
     }

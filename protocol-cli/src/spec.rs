@@ -1,15 +1,15 @@
 //! Loading a spec file for a command, and showing what is wrong with it.
 //!
-//! This module owns the path shown in messages (as the user wrote it), the miette rendering of
-//! the pipeline's [`Diagnostic`]s (file:line:col, the quoted line, the underline, the help) and
-//! their JSON form for editors and CI. The diagnostics themselves come from
-//! [`protocol_codegen::compile`], the same pipeline the macro runs.
+//! This module owns the path shown in messages (as the user wrote it), which of the pipeline's
+//! renderings a command prints, their JSON form for editors and CI, and "cannot read FILE",
+//! the one error every command gives for a file it cannot read. The diagnostics and their
+//! text come from [`protocol_codegen::compile`] and [`protocol_codegen::diag`], the pipeline
+//! and renderer the macro uses, so a spec's error reads the same in both.
 
 use std::fmt;
 use std::path::Path;
 
-use miette::{GraphicalReportHandler, GraphicalTheme, LabeledSpan, NamedSource, SourceSpan};
-use protocol_codegen::diag::{Diagnostic, Severity};
+use protocol_codegen::diag::{self, Color, Diagnostic};
 use protocol_codegen::ir::Protocol;
 use protocol_codegen::source::SpecSource;
 use serde_json::{Value, json};
@@ -22,22 +22,70 @@ pub struct Loaded {
     pub result: Result<Protocol, Vec<Diagnostic>>,
 }
 
-/// Why a spec file could not even be read.
+/// Why a file (a spec, a capture, an input) could not even be read.
 #[derive(Debug)]
 pub struct ReadError {
+    /// What the file is to the command: `spec`, `capture`, `input`, `candump log`.
+    pub what: &'static str,
     /// The path as given.
     pub path: String,
     /// The I/O error.
     pub error: std::io::Error,
 }
 
+impl ReadError {
+    /// The error reading `path`, which is the command's `what`.
+    pub fn new(what: &'static str, path: &Path, error: std::io::Error) -> Self {
+        ReadError {
+            what,
+            path: path.display().to_string(),
+            error,
+        }
+    }
+
+    /// The rendering every command prints: `error: cannot read WHAT `PATH`: REASON`.
+    pub fn render(&self, color: bool) -> String {
+        diag::render_read_error(self.what, &self.path, &self.error, None, paint(color))
+    }
+}
+
 impl fmt::Display for ReadError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "cannot read spec `{}`: {}", self.path, self.error)
+        f.write_str(&diag::read_error_message(
+            self.what,
+            &self.path,
+            &self.error,
+        ))
     }
 }
 
 impl std::error::Error for ReadError {}
+
+impl miette::Diagnostic for ReadError {}
+
+/// Reads a whole file that is the command's `what`.
+///
+/// # Errors
+/// [`ReadError`] when it cannot be read.
+pub fn read(what: &'static str, path: &Path) -> Result<Vec<u8>, ReadError> {
+    std::fs::read(path).map_err(|error| ReadError::new(what, path, error))
+}
+
+/// Reads a whole text file that is the command's `what`.
+///
+/// # Errors
+/// [`ReadError`] when it cannot be read or is not UTF-8.
+pub fn read_text(what: &'static str, path: &Path) -> Result<String, ReadError> {
+    std::fs::read_to_string(path).map_err(|error| ReadError::new(what, path, error))
+}
+
+/// Opens a file that is the command's `what` for reading.
+///
+/// # Errors
+/// [`ReadError`] when it cannot be opened.
+pub fn open(what: &'static str, path: &Path) -> Result<std::fs::File, ReadError> {
+    std::fs::File::open(path).map_err(|error| ReadError::new(what, path, error))
+}
 
 /// Reads and checks the spec at `path`.
 ///
@@ -45,95 +93,25 @@ impl std::error::Error for ReadError {}
 /// [`ReadError`] when the file cannot be read; errors in the spec are in [`Loaded::result`].
 pub fn load(path: &Path) -> Result<Loaded, ReadError> {
     let shown = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|error| ReadError {
-        path: shown.clone(),
-        error,
-    })?;
+    let text = read_text("spec", path)?;
     let source = SpecSource::new(shown, text);
     let result = protocol_codegen::compile(&source);
     Ok(Loaded { source, result })
 }
 
-/// A pipeline diagnostic as a miette diagnostic, with the spec as its source code.
-#[derive(Debug)]
-pub struct SpecDiagnostic {
-    severity: Severity,
-    message: String,
-    help: Option<String>,
-    span: SourceSpan,
-    source: NamedSource<String>,
+/// Renders a spec's errors: the report the `protocol!` macro's compile error carries, byte for
+/// byte ([`protocol_codegen::diag::render_report`]), coloured when `color` is true.
+pub fn render_errors(diagnostics: &[Diagnostic], source: &SpecSource, color: bool) -> String {
+    diag::render_report(diagnostics, source, paint(color))
 }
 
-impl SpecDiagnostic {
-    /// Wraps `d`, which points into `source`.
-    pub fn new(d: &Diagnostic, source: &SpecSource) -> Self {
-        let span = source.clamp(d.span.clone());
-        SpecDiagnostic {
-            severity: d.severity,
-            message: d.message.clone(),
-            help: d.help.clone(),
-            span: (span.start, span.end - span.start).into(),
-            source: NamedSource::new(source.path.clone(), source.text.clone())
-                .with_language("TOML"),
-        }
-    }
+/// Renders lint warnings (no headline: the spec is valid), coloured when `color` is true.
+pub fn render_warnings(diagnostics: &[Diagnostic], source: &SpecSource, color: bool) -> String {
+    diag::render_all_styled(diagnostics, source, paint(color))
 }
 
-impl fmt::Display for SpecDiagnostic {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-impl std::error::Error for SpecDiagnostic {}
-
-impl miette::Diagnostic for SpecDiagnostic {
-    fn severity(&self) -> Option<miette::Severity> {
-        Some(match self.severity {
-            Severity::Error => miette::Severity::Error,
-            Severity::Warning => miette::Severity::Warning,
-        })
-    }
-
-    fn help<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
-        self.help
-            .as_ref()
-            .map(|h| Box::new(h) as Box<dyn fmt::Display + 'a>)
-    }
-
-    fn source_code(&self) -> Option<&dyn miette::SourceCode> {
-        Some(&self.source)
-    }
-
-    fn labels(&self) -> Option<Box<dyn Iterator<Item = LabeledSpan> + '_>> {
-        Some(Box::new(std::iter::once(LabeledSpan::new_with_span(
-            Some("here".into()),
-            self.span,
-        ))))
-    }
-}
-
-/// Renders diagnostics as text: the message, `[file:line:col]`, the quoted spec lines with the
-/// offending span underlined, and the help. Colours only when `color` is true.
-pub fn render(diagnostics: &[Diagnostic], source: &SpecSource, color: bool) -> String {
-    let theme = if color {
-        GraphicalTheme::unicode()
-    } else {
-        GraphicalTheme::unicode_nocolor()
-    };
-    let handler = GraphicalReportHandler::new_themed(theme)
-        .with_context_lines(1)
-        .with_width(100);
-    let mut out = String::new();
-    for d in diagnostics {
-        let wrapped = SpecDiagnostic::new(d, source);
-        if handler.render_report(&mut out, &wrapped).is_err() {
-            // The renderer writes into a String, which cannot fail; keep the plain form anyway.
-            out.push_str(&d.render(source));
-        }
-        out.push('\n');
-    }
-    out
+fn paint(color: bool) -> Color {
+    if color { Color::Ansi } else { Color::Plain }
 }
 
 /// One diagnostic as JSON: file, 1-based line and column of its start and end, severity

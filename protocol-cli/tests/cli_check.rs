@@ -43,20 +43,23 @@ fn good_specs_check_and_bad_ones_fail_with_located_diagnostics() {
     for ((line, col), message) in mistakes() {
         assert!(stderr.contains(message), "{stderr}");
         assert!(
-            stderr.contains(&format!("[{BAD}:{line}:{col}]")),
+            stderr.contains(&format!("--> {BAD}:{line}:{col}\n")),
             "{message} at {line}:{col}:\n{stderr}"
         );
     }
     // The spec line is quoted, the span underlined, the help given.
     assert!(
-        stderr.contains("18 │ MOVE = { id = 2, payload = \"Moov\" }"),
+        stderr.contains("18 | MOVE = { id = 2, payload = \"Moov\" }"),
         "{stderr}"
     );
     assert!(
         stderr.contains("help: declare it as `[structs.NAME]`"),
         "{stderr}"
     );
-    assert!(stderr.contains(&format!("{BAD}: 3 errors")), "{stderr}");
+    assert!(
+        stderr.contains(&format!("3 errors in spec {BAD}\n")),
+        "{stderr}"
+    );
     // The good spec of the same run is still checked.
     assert!(text(&bad.stdout).contains("specs/hflink.toml: ok"));
 }
@@ -314,7 +317,10 @@ fn a_frame_without_a_check_is_a_warning_not_an_error() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stderr = text(&out.stderr);
     assert!(stderr.contains("frame `main` has no check"), "{stderr}");
-    assert!(stderr.contains(&format!("[{UNCHECKED}:4:9]")), "{stderr}");
+    assert!(
+        stderr.contains(&format!("--> {UNCHECKED}:4:9\n")),
+        "{stderr}"
+    );
     assert!(text(&out.stdout).contains(&format!("{UNCHECKED}: ok (1 command")));
     let json = protocol(&["check", "--json", UNCHECKED], b"");
     assert!(json.status.success());

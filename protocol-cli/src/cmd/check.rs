@@ -27,7 +27,7 @@ pub fn run(specs: &[PathBuf], as_json: bool) -> Result<ExitCode> {
                         "severity": "error", "message": e.to_string(), "help": Value::Null,
                     }));
                 } else {
-                    eprintln!("error: {e}");
+                    eprint!("{}", e.render(stderr_color()));
                 }
                 continue;
             }
@@ -40,7 +40,7 @@ pub fn run(specs: &[PathBuf], as_json: bool) -> Result<ExitCode> {
                 } else if !warnings.is_empty() {
                     eprint!(
                         "{}",
-                        spec::render(&warnings, &loaded.source, stderr_color())
+                        spec::render_warnings(&warnings, &loaded.source, stderr_color())
                     );
                 }
                 if !as_json {
@@ -61,12 +61,9 @@ pub fn run(specs: &[PathBuf], as_json: bool) -> Result<ExitCode> {
                 if as_json {
                     all.extend(diags.iter().map(|d| spec::to_json(d, &loaded.source)));
                 } else {
-                    eprint!("{}", spec::render(diags, &loaded.source, stderr_color()));
-                    eprintln!(
-                        "{}: {} error{}",
-                        loaded.source.path,
-                        diags.len(),
-                        plural(diags.len())
+                    eprint!(
+                        "{}",
+                        spec::render_errors(diags, &loaded.source, stderr_color())
                     );
                 }
             }

@@ -14,8 +14,8 @@ use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use miette::{IntoDiagnostic, Result, WrapErr, miette};
-use protocol_cli::candump;
 use protocol_cli::session::{Output, Session};
+use protocol_cli::{candump, spec};
 use protocol_codegen::ir::Transport;
 use protocol_dynamic::{Codec, Interpreter, Stream, parse_hex_located};
 
@@ -80,9 +80,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         let live = open_can(interface)?;
         decode_live_can(&mut session, live).map(|()| None)
     } else if let Some(path) = &args.candump {
-        let text = std::fs::read_to_string(path)
-            .into_diagnostic()
-            .wrap_err_with(|| format!("cannot read `{}`", path.display()))?;
+        let text = spec::read_text("candump log", path)?;
         decode_candump(&mut session, &path.display().to_string(), &text).map(|()| None)
     } else {
         let mut input = open_input(args)?;
@@ -251,9 +249,7 @@ fn open_input(args: &Args) -> Result<Input> {
             io::stdin().read_to_end(&mut text).into_diagnostic()?;
             text
         }
-        (Some(p), _) => std::fs::read(p)
-            .into_diagnostic()
-            .wrap_err_with(|| format!("cannot read `{}`", p.display()))?,
+        (Some(p), _) => spec::read("input", p)?,
     };
     let data = if args.hex {
         let name = path.map_or("stdin".into(), |p| p.display().to_string());

@@ -26,7 +26,7 @@ pub fn run(old: &Path, new: &Path, as_json: bool) -> Result<ExitCode> {
             // Invalid: its errors are printed.
             Ok(Err(_)) => return Ok(ExitCode::from(UNCOMPARABLE)),
             Err(unreadable) => {
-                eprintln!("{unreadable:?}");
+                super::print_error(&unreadable);
                 return Ok(ExitCode::from(UNCOMPARABLE));
             }
         }

@@ -12,6 +12,7 @@ use std::process::ExitCode;
 
 use miette::{IntoDiagnostic, Result, WrapErr};
 use protocol_cli::candump::format_log;
+use protocol_cli::spec;
 use protocol_codegen::ir::Transport;
 use protocol_dynamic::{Encoded, Interpreter, Value, hex};
 
@@ -42,14 +43,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     let codec = interp.codec();
     let (name, reader): (String, Box<dyn Read>) =
         match args.input.as_ref().filter(|p| p.as_os_str() != "-") {
-            Some(p) => (
-                p.display().to_string(),
-                Box::new(
-                    std::fs::File::open(p)
-                        .into_diagnostic()
-                        .wrap_err_with(|| format!("cannot read `{}`", p.display()))?,
-                ),
-            ),
+            Some(p) => (p.display().to_string(), Box::new(spec::open("input", p)?)),
             None => ("stdin".into(), Box::new(io::stdin())),
         };
     let (mut out, to_terminal): (Box<dyn Write>, bool) = match &args.output {

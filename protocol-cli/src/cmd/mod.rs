@@ -13,7 +13,7 @@ use std::io::IsTerminal;
 use std::path::Path;
 use std::process::ExitCode;
 
-use miette::{IntoDiagnostic, Result};
+use miette::Result;
 use protocol_cli::spec;
 use protocol_codegen::ir::Protocol;
 
@@ -25,20 +25,30 @@ pub fn stderr_color() -> bool {
     std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none()
 }
 
-/// Loads and checks a spec; on errors, prints them and returns the exit status to end with.
+/// Loads and checks a spec; on errors, prints them (the report the macro's compile error
+/// carries) and returns the exit status to end with.
+///
+/// # Errors
+/// The spec cannot be read ([`spec::ReadError`], which `main` prints as every command does).
 pub fn load_checked(path: &Path) -> Result<std::result::Result<Protocol, ExitCode>> {
-    let loaded = spec::load(path).into_diagnostic()?;
+    let loaded = spec::load(path)?;
     match loaded.result {
         Ok(p) => Ok(Ok(p)),
         Err(diags) => {
-            eprint!("{}", spec::render(&diags, &loaded.source, stderr_color()));
-            eprintln!(
-                "{}: {} error{}",
-                loaded.source.path,
-                diags.len(),
-                if diags.len() == 1 { "" } else { "s" }
+            eprint!(
+                "{}",
+                spec::render_errors(&diags, &loaded.source, stderr_color())
             );
             Ok(Err(ExitCode::from(INVALID)))
         }
+    }
+}
+
+/// Prints an error that ends a command: a file that cannot be read as every command words it
+/// ([`spec::ReadError::render`]), anything else as miette renders it.
+pub fn print_error(e: &miette::Report) {
+    match e.downcast_ref::<spec::ReadError>() {
+        Some(unreadable) => eprint!("{}", unreadable.render(stderr_color())),
+        None => eprintln!("{e:?}"),
     }
 }

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use miette::{IntoDiagnostic, Result, WrapErr, miette};
-use protocol_cli::report;
+use protocol_cli::{report, spec};
 use protocol_dynamic::Interpreter;
 
 use super::load_checked;
@@ -21,9 +21,7 @@ pub fn run(
         Ok(p) => p,
         Err(code) => return Ok(code),
     };
-    let data = std::fs::read(capture)
-        .into_diagnostic()
-        .wrap_err_with(|| format!("cannot read `{}`", capture.display()))?;
+    let data = spec::read("capture", capture)?;
     let interp = Interpreter::new(protocol);
     let codec = interp.codec();
     let format = match frame {
