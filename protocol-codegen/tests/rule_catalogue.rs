@@ -18,6 +18,11 @@ const SEVERAL: &[(&str, usize)] = &[
     // A broken frame and a badly named command: the frame's error does not hide the command's.
     ("frame_error_hides_command_errors.toml", 2),
     ("several_errors_across_sections.toml", 7),
+    // `u48`, `f16` and `u12be`: three widths the wire does not have.
+    ("type_width_not_on_the_wire.toml", 3),
+    // A misspelled key in the frame layout, a command, a struct, an enum and a checksum: no
+    // table's error hides another's, and none of them cascades.
+    ("every_table_reports_at_once.toml", 5),
 ];
 
 /// The least number of fixtures the catalogue may hold: it grows, it never shrinks below this.

@@ -116,3 +116,43 @@ fn is_integer_type(name: &str) -> bool {
             | "an integer"
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn key(name: &str, element: bool) -> KeyOf {
+        KeyOf {
+            name: name.to_string(),
+            element,
+            array: None,
+        }
+    }
+
+    #[test]
+    fn serde_wording_becomes_the_spec_words() {
+        // serde's two spellings of an integer that does not fit.
+        for found in [
+            "integer `18446744073709551615`",
+            "integer `18446744073709551615` as i128",
+        ] {
+            let message = format!("invalid value: {found}, expected i64");
+            let (said, help) = wrong_value(&message, Some(&key("id", false))).expect("handled");
+            assert_eq!(
+                said,
+                "`id` is 18446744073709551615, beyond what a spec integer holds"
+            );
+            assert!(help.contains("2^63 - 1"), "{help}");
+        }
+        let (said, _) = wrong_value(
+            "invalid type: sequence, expected i64",
+            Some(&key("sync", true)),
+        )
+        .expect("handled");
+        assert_eq!(said, "each element of `sync` is an integer, not an array");
+        let (said, _) =
+            wrong_value("invalid type: boolean `true`, expected a string", None).expect("handled");
+        assert_eq!(said, "this value takes a string, not `true`");
+        assert!(wrong_value("unknown variant `x`", None).is_none());
+    }
+}
