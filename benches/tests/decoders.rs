@@ -4,7 +4,7 @@
 
 use protocol_benches::encode;
 use protocol_benches::floor::{CheckedWalk, Format, HfLinkFormat, LengthWalk, RefereeFormat};
-use protocol_benches::hand::{self, Staged};
+use protocol_benches::hand::{self, Staged, appending::Appending};
 use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
 use protocol_benches::verify::{Output, collect, compare, count, exact};
 use protocol_benches::workload::{Noise, Protocol, Workload, reference_frames};
@@ -84,6 +84,69 @@ fn hand_written_decoders_return_exactly_the_untouched_frames() {
         match w.protocol {
             Protocol::HfLink => check_exact("hand", &w, Staged::<hand::hflink::HfLink>::default),
             Protocol::Referee => check_exact("hand", &w, Staged::<hand::referee::Referee>::default),
+        }
+    }
+}
+
+#[test]
+fn best_baseline_decoders_return_exactly_the_untouched_frames() {
+    // The 2 KiB appending feed: chunks of 255 and 256 bytes straddle its choice between
+    // appending and scanning in place; 1000 bytes after small chunks stage a frame's worth.
+    let chunks = [1, 7, 64, 65, 255, 256, 1000, usize::MAX];
+    for w in workloads() {
+        match w.protocol {
+            Protocol::HfLink => check_chunks(
+                "best",
+                &w,
+                &chunks,
+                Appending::<hand::hflink::HfLink>::default,
+            ),
+            Protocol::Referee => {
+                let best = Appending::<hand::referee::RefereeClmul>::default;
+                check_chunks("best", &w, &chunks, best);
+                let slicing = Appending::<hand::referee::Referee>::default;
+                check_chunks("best, slicing CRC", &w, &chunks, slicing);
+            }
+        }
+    }
+}
+
+#[test]
+fn best_baseline_survives_alternating_chunk_sizes() {
+    // Small chunks leave bytes pending when a large one comes, and the buffer fills and is
+    // compacted: every combination in one stream.
+    for w in workloads() {
+        let sizes = [3usize, 300, 64, 64, 64, 700, 255, 1, 256, 100];
+        let mut out = Output::default();
+        let mut sink = |frame: &[u8]| {
+            out.bytes.extend_from_slice(frame);
+            out.lengths.push(frame.len());
+        };
+        let mut feed = |d: &mut dyn FnMut(&[u8], &mut dyn FnMut(&[u8]))| {
+            let mut rest = &w.stream[..];
+            for &n in sizes.iter().cycle() {
+                if rest.is_empty() {
+                    break;
+                }
+                let (head, tail) = rest.split_at(n.min(rest.len()));
+                d(head, &mut sink);
+                rest = tail;
+            }
+        };
+        match w.protocol {
+            Protocol::HfLink => {
+                let mut d = Appending::<hand::hflink::HfLink>::default();
+                feed(&mut |c, s| d.feed(c, &mut |f: &[u8]| s(f)));
+                d.finish(&mut sink);
+            }
+            Protocol::Referee => {
+                let mut d = Appending::<hand::referee::RefereeClmul>::default();
+                feed(&mut |c, s| d.feed(c, &mut |f: &[u8]| s(f)));
+                d.finish(&mut sink);
+            }
+        }
+        if let Err(e) = exact(&w, &out) {
+            panic!("{}: {e}", w.name());
         }
     }
 }
