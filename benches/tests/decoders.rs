@@ -106,6 +106,8 @@ fn best_baseline_decoders_return_exactly_the_untouched_frames() {
                 check_chunks("best", &w, &chunks, best);
                 let slicing = Appending::<hand::referee::Referee>::default;
                 check_chunks("best, slicing CRC", &w, &chunks, slicing);
+                let crc_fast = Appending::<hand::referee::RefereeCrcFast>::default;
+                check_chunks("best, crc-fast CRC", &w, &chunks, crc_fast);
             }
         }
     }

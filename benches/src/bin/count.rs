@@ -2,9 +2,10 @@
 //! a decoder's cost that, unlike a timing, does not depend on what else the machine runs.
 //!
 //! Usage: `count PROTOCOL NOISE FEED DECODER [BYTES]`, with `PROTOCOL` `hflink` or `referee`,
-//! `NOISE` `clean` or `noisy`, `FEED` `whole` or a chunk size in bytes (`64`), `DECODER`
-//! `generated`, `hand` (the staged slice scan) or `best` (the 2 KiB appending feed, the
-//! carry-less CRC-16), and `BYTES` the stream's length (default 1 MiB: the workloads of
+//! `NOISE` `clean` or `noisy`, `FEED` `whole` or a chunk size in bytes (`64`), `DECODER` one of
+//! `generated`, `generated-2k` (the same with a 2 KiB buffer), `hand` (the staged slice scan),
+//! `best` (the 2 KiB appending feed, the carry-less CRC-16) or `crcfast` (`best` with the
+//! `crc-fast` crate's CRC-16), and `BYTES` the stream's length (default 1 MiB: the workloads of
 //! [`workload`](protocol_benches::workload) with another length, drawn from the same seeds).
 //!
 //! The stream is drawn and the decoder's frames are checked against the ground truth first;
@@ -53,10 +54,14 @@ enum Decoder {
     Generated,
     Hand,
     Best,
+    /// `best` with the `crc-fast` crate's CRC-16 (the referee only).
+    CrcFast,
+    /// The generated decoder with a 2 KiB buffer.
+    Generated2k,
 }
 
 fn parse(args: &[String]) -> Result<(Workload, usize, Decoder), String> {
-    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|hand|best [BYTES]";
+    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|generated-2k|hand|best|crcfast [BYTES]";
     let [protocol, noise, feed, decoder, rest @ ..] = args else {
         return Err(usage.into());
     };
@@ -74,6 +79,8 @@ fn parse(args: &[String]) -> Result<(Workload, usize, Decoder), String> {
         "generated" => Decoder::Generated,
         "hand" => Decoder::Hand,
         "best" => Decoder::Best,
+        "crcfast" => Decoder::CrcFast,
+        "generated-2k" => Decoder::Generated2k,
         _ => return Err(usage.into()),
     };
     let len = match rest {
@@ -95,10 +102,14 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = parse(&args).and_then(|(w, chunk, decoder)| match (w.protocol, decoder) {
         (Protocol::HfLink, Decoder::Generated) => run(&w, chunk, generated::hflink_decoder),
+        (Protocol::HfLink, Decoder::Generated2k) => run(&w, chunk, generated::hflink_decoder_2k),
+        (Protocol::Referee, Decoder::Generated2k) => {
+            run(&w, chunk, generated::referee_decoder_2k)
+        }
         (Protocol::HfLink, Decoder::Hand) => {
             run(&w, chunk, Staged::<hand::hflink::HfLink>::default)
         }
-        (Protocol::HfLink, Decoder::Best) => {
+        (Protocol::HfLink, Decoder::Best | Decoder::CrcFast) => {
             run(&w, chunk, Appending::<hand::hflink::HfLink>::default)
         }
         (Protocol::Referee, Decoder::Generated) => run(&w, chunk, generated::referee_decoder),
@@ -107,6 +118,9 @@ fn main() -> ExitCode {
         }
         (Protocol::Referee, Decoder::Best) => {
             run(&w, chunk, Appending::<hand::referee::RefereeClmul>::default)
+        }
+        (Protocol::Referee, Decoder::CrcFast) => {
+            run(&w, chunk, Appending::<hand::referee::RefereeCrcFast>::default)
         }
     });
     match result {

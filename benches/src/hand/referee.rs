@@ -62,6 +62,22 @@ impl Scan for RefereeClmul {
     }
 }
 
+/// Referee frames, the CRC-16 computed by the `crc-fast` crate (SIMD folding behind its own
+/// run-time dispatch): what a maintained crate, called once per frame, costs in the scan.
+pub struct RefereeCrcFast;
+
+impl Scan for RefereeCrcFast {
+    const MAX_FRAME: usize = MAX_FRAME;
+
+    #[inline(always)]
+    fn scan<F: FnMut(&[u8])>(buf: &[u8], len: usize, at_end: bool, sink: &mut F) -> usize {
+        scan_with(buf, len, at_end, sink, |data: &[u8], n| {
+            let covered = data.get(..n).unwrap_or(data);
+            crc_fast::checksum(crc_fast::CrcAlgorithm::Crc16Mcrf4xx, covered) as u16
+        })
+    }
+}
+
 /// The scan of [`Scan::scan`], with `crc` the CRC-16 of `data[..n]`.
 #[inline(always)]
 fn scan_with<F: FnMut(&[u8]), C: Fn(&[u8], usize) -> u16>(
