@@ -103,9 +103,7 @@ fn main() -> ExitCode {
     let result = parse(&args).and_then(|(w, chunk, decoder)| match (w.protocol, decoder) {
         (Protocol::HfLink, Decoder::Generated) => run(&w, chunk, generated::hflink_decoder),
         (Protocol::HfLink, Decoder::Generated2k) => run(&w, chunk, generated::hflink_decoder_2k),
-        (Protocol::Referee, Decoder::Generated2k) => {
-            run(&w, chunk, generated::referee_decoder_2k)
-        }
+        (Protocol::Referee, Decoder::Generated2k) => run(&w, chunk, generated::referee_decoder_2k),
         (Protocol::HfLink, Decoder::Hand) => {
             run(&w, chunk, Staged::<hand::hflink::HfLink>::default)
         }
@@ -119,9 +117,11 @@ fn main() -> ExitCode {
         (Protocol::Referee, Decoder::Best) => {
             run(&w, chunk, Appending::<hand::referee::RefereeClmul>::default)
         }
-        (Protocol::Referee, Decoder::CrcFast) => {
-            run(&w, chunk, Appending::<hand::referee::RefereeCrcFast>::default)
-        }
+        (Protocol::Referee, Decoder::CrcFast) => run(
+            &w,
+            chunk,
+            Appending::<hand::referee::RefereeCrcFast>::default,
+        ),
     });
     match result {
         Ok(()) => ExitCode::SUCCESS,
