@@ -109,6 +109,8 @@ catalogue!(
 );
 
 #[cfg(test)]
+// Test code: an index out of bounds is a failed test.
+#[allow(clippy::indexing_slicing)]
 mod tests {
     use crate::checksum::Slicing16;
 
