@@ -113,40 +113,43 @@ fn best_baseline_decoders_return_exactly_the_untouched_frames() {
     }
 }
 
+/// Feeds `stream` to `decoder` in chunks of the sizes of `sizes`, in turn, and keeps every frame.
+fn collect_alternating<D: ChunkDecoder>(mut decoder: D, stream: &[u8], sizes: &[usize]) -> Output {
+    let mut out = Output::default();
+    let mut sink = |frame: &[u8]| {
+        out.bytes.extend_from_slice(frame);
+        out.lengths.push(frame.len());
+    };
+    let mut rest = stream;
+    for &n in sizes.iter().cycle() {
+        if rest.is_empty() {
+            break;
+        }
+        let (head, tail) = rest.split_at(n.min(rest.len()));
+        decoder.feed(head, &mut sink);
+        rest = tail;
+    }
+    decoder.finish(&mut sink);
+    out
+}
+
 #[test]
 fn best_baseline_survives_alternating_chunk_sizes() {
     // Small chunks leave bytes pending when a large one comes, and the buffer fills and is
     // compacted: every combination in one stream.
+    let sizes = [3usize, 300, 64, 64, 64, 700, 255, 1, 256, 100];
     for w in workloads() {
-        let sizes = [3usize, 300, 64, 64, 64, 700, 255, 1, 256, 100];
-        let mut out = Output::default();
-        let mut sink = |frame: &[u8]| {
-            out.bytes.extend_from_slice(frame);
-            out.lengths.push(frame.len());
-        };
-        let mut feed = |d: &mut dyn FnMut(&[u8], &mut dyn FnMut(&[u8]))| {
-            let mut rest = &w.stream[..];
-            for &n in sizes.iter().cycle() {
-                if rest.is_empty() {
-                    break;
-                }
-                let (head, tail) = rest.split_at(n.min(rest.len()));
-                d(head, &mut sink);
-                rest = tail;
-            }
-        };
-        match w.protocol {
-            Protocol::HfLink => {
-                let mut d = Appending::<hand::hflink::HfLink>::default();
-                feed(&mut |c, s| d.feed(c, &mut |f: &[u8]| s(f)));
-                d.finish(&mut sink);
-            }
+        let out = match w.protocol {
+            Protocol::HfLink => collect_alternating(
+                Appending::<hand::hflink::HfLink>::default(),
+                &w.stream,
+                &sizes,
+            ),
             Protocol::Referee => {
-                let mut d = Appending::<hand::referee::RefereeClmul>::default();
-                feed(&mut |c, s| d.feed(c, &mut |f: &[u8]| s(f)));
-                d.finish(&mut sink);
+                let d = Appending::<hand::referee::RefereeClmul>::default();
+                collect_alternating(d, &w.stream, &sizes)
             }
-        }
+        };
         if let Err(e) = exact(&w, &out) {
             panic!("{}: {e}", w.name());
         }

@@ -93,8 +93,11 @@ fn fold(a: __m128i, b: __m128i, k: __m128i) -> __m128i {
 }
 
 /// CRC-16/MCRF4XX of `data[..n]` (`1 <= n <= data.len()`); `data` may run past the covered bytes
-/// (a whole first block is read from there), which decide nothing. The caller checks
-/// [`available`] first.
+/// (a whole first block is read from there), which decide nothing.
+///
+/// # Safety
+///
+/// Called from code not compiled for `pclmulqdq`, only after [`available`] has returned `true`.
 #[inline]
 #[target_feature(enable = "pclmulqdq")]
 pub fn crc16(data: &[u8], n: usize) -> u16 {
