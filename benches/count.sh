@@ -6,8 +6,9 @@
 # For each workload (HFLink and referee, clean and noisy) and feed (the whole stream, 64-byte
 # chunks), runs the `count` tool of protocol-benches once per decoder under callgrind,
 # collecting only its counted decode (see src/bin/count.rs), and prints a Markdown table of
-# instructions per frame and the ratio generated / hand (below 1: the generated decoder
-# executes fewer instructions).
+# instructions per frame and the ratios generated / hand and generated / best (below 1: the
+# generated decoder executes fewer instructions). `hand` is the staged slice scan, `best` the
+# fastest baseline known (2 KiB appending feed, carry-less CRC-16).
 #
 # Usage: bash benches/count.sh [BYTES]   (stream length, default 1 MiB)
 set -euo pipefail
@@ -34,16 +35,18 @@ count() {
   echo "$instructions $frames"
 }
 
-echo "| workload | feed | frames | generated Ir/frame | hand Ir/frame | generated / hand |"
-echo "|---|---|---:|---:|---:|---:|"
+echo "| workload | feed | frames | generated Ir/frame | hand Ir/frame | best Ir/frame | generated / hand | generated / best |"
+echo "|---|---|---:|---:|---:|---:|---:|---:|"
 for protocol in hflink referee; do
   for noise in clean noisy; do
     for feed in whole 64; do
       read -r gen frames < <(count "$protocol" "$noise" "$feed" generated)
       read -r hand hand_frames < <(count "$protocol" "$noise" "$feed" hand)
-      [ "$frames" = "$hand_frames" ] || { echo "count.sh: frame counts differ" >&2; exit 1; }
-      awk -v w="$protocol-$noise" -v f="$feed" -v n="$frames" -v g="$gen" -v h="$hand" \
-        'BEGIN { printf "| %s | %s | %d | %.1f | %.1f | %.3f |\n", w, f, n, g / n, h / n, g / h }'
+      read -r best best_frames < <(count "$protocol" "$noise" "$feed" best)
+      [ "$frames" = "$hand_frames" ] && [ "$frames" = "$best_frames" ] ||
+        { echo "count.sh: frame counts differ" >&2; exit 1; }
+      awk -v w="$protocol-$noise" -v f="$feed" -v n="$frames" -v g="$gen" -v h="$hand" -v b="$best" \
+        'BEGIN { printf "| %s | %s | %d | %.1f | %.1f | %.1f | %.3f | %.3f |\n", w, f, n, g / n, h / n, b / n, g / h, g / b }'
     done
   done
 done

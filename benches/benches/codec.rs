@@ -33,7 +33,7 @@ use criterion::{
 };
 use protocol_benches::encode::{self, FRAMES};
 use protocol_benches::floor::{CheckedWalk, HfLinkFormat, LengthWalk, RefereeFormat};
-use protocol_benches::hand::{self, Staged};
+use protocol_benches::hand::{self, Staged, appending::Appending};
 use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
 use protocol_benches::verify::{self, Output};
 use protocol_benches::workload::{Noise, Protocol, Workload};
@@ -163,6 +163,8 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                         bench_decoder(g, "generated", &w, chunk, Kind::Exact, generated);
                         let hand = Staged::<hand::hflink::HfLink>::default;
                         bench_decoder(g, "hand", &w, chunk, Kind::Exact, hand);
+                        let best = Appending::<hand::hflink::HfLink>::default;
+                        bench_decoder(g, "best", &w, chunk, Kind::Exact, best);
                         bench_decoder(g, "port", &w, chunk, Kind::Port, HfLinkPort::default);
                         let per_byte = OneCallPerByte::<HfLinkPort>::default;
                         bench_decoder(g, "port-per-byte", &w, chunk, Kind::Port, per_byte);
@@ -182,6 +184,8 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                         bench_decoder(g, "generated", &w, chunk, Kind::Exact, generated);
                         let hand = Staged::<hand::referee::Referee>::default;
                         bench_decoder(g, "hand", &w, chunk, Kind::Exact, hand);
+                        let best = Appending::<hand::referee::RefereeClmul>::default;
+                        bench_decoder(g, "best", &w, chunk, Kind::Exact, best);
                         bench_decoder(g, "port", &w, chunk, Kind::Port, RefereePort::default);
                         let per_byte = OneCallPerByte::<RefereePort>::default;
                         bench_decoder(g, "port-per-byte", &w, chunk, Kind::Port, per_byte);

@@ -23,6 +23,19 @@ pub fn referee_decoder() -> Generated<referee::Layout, { referee::DECODER_BUFFER
     Generated(referee::decoder())
 }
 
+/// Bytes of the decoder buffer of the `*_decoder_2k` variants.
+pub const BUFFER_2K: usize = 2048;
+
+/// The generated HFLink decoder with a 2 KiB buffer (`StreamDecoder`'s size is the user's choice).
+pub fn hflink_decoder_2k() -> Generated<hflink::Layout, BUFFER_2K> {
+    Generated(StreamDecoder::new(hflink::Layout))
+}
+
+/// The generated referee decoder with a 2 KiB buffer.
+pub fn referee_decoder_2k() -> Generated<referee::Layout, BUFFER_2K> {
+    Generated(StreamDecoder::new(referee::Layout))
+}
+
 /// The generated HFLink layout read through a reference, as the run-time codec reads its own.
 pub fn hflink_decoder_by_ref()
 -> Generated<&'static protocol::FrameLayout<'static>, { hflink::DECODER_BUFFER_LEN }> {

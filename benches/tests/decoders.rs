@@ -4,7 +4,7 @@
 
 use protocol_benches::encode;
 use protocol_benches::floor::{CheckedWalk, Format, HfLinkFormat, LengthWalk, RefereeFormat};
-use protocol_benches::hand::{self, Staged};
+use protocol_benches::hand::{self, Staged, appending::Appending};
 use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
 use protocol_benches::verify::{Output, collect, compare, count, exact};
 use protocol_benches::workload::{Noise, Protocol, Workload, reference_frames};
@@ -84,6 +84,74 @@ fn hand_written_decoders_return_exactly_the_untouched_frames() {
         match w.protocol {
             Protocol::HfLink => check_exact("hand", &w, Staged::<hand::hflink::HfLink>::default),
             Protocol::Referee => check_exact("hand", &w, Staged::<hand::referee::Referee>::default),
+        }
+    }
+}
+
+#[test]
+fn best_baseline_decoders_return_exactly_the_untouched_frames() {
+    // The 2 KiB appending feed: chunks of 255 and 256 bytes straddle its choice between
+    // appending and scanning in place; 1000 bytes after small chunks stage a frame's worth.
+    let chunks = [1, 7, 64, 65, 255, 256, 1000, usize::MAX];
+    for w in workloads() {
+        match w.protocol {
+            Protocol::HfLink => check_chunks(
+                "best",
+                &w,
+                &chunks,
+                Appending::<hand::hflink::HfLink>::default,
+            ),
+            Protocol::Referee => {
+                let best = Appending::<hand::referee::RefereeClmul>::default;
+                check_chunks("best", &w, &chunks, best);
+                let slicing = Appending::<hand::referee::Referee>::default;
+                check_chunks("best, slicing CRC", &w, &chunks, slicing);
+                let crc_fast = Appending::<hand::referee::RefereeCrcFast>::default;
+                check_chunks("best, crc-fast CRC", &w, &chunks, crc_fast);
+            }
+        }
+    }
+}
+
+/// Feeds `stream` to `decoder` in chunks of the sizes of `sizes`, in turn, and keeps every frame.
+fn collect_alternating<D: ChunkDecoder>(mut decoder: D, stream: &[u8], sizes: &[usize]) -> Output {
+    let mut out = Output::default();
+    let mut sink = |frame: &[u8]| {
+        out.bytes.extend_from_slice(frame);
+        out.lengths.push(frame.len());
+    };
+    let mut rest = stream;
+    for &n in sizes.iter().cycle() {
+        if rest.is_empty() {
+            break;
+        }
+        let (head, tail) = rest.split_at(n.min(rest.len()));
+        decoder.feed(head, &mut sink);
+        rest = tail;
+    }
+    decoder.finish(&mut sink);
+    out
+}
+
+#[test]
+fn best_baseline_survives_alternating_chunk_sizes() {
+    // Small chunks leave bytes pending when a large one comes, and the buffer fills and is
+    // compacted: every combination in one stream.
+    let sizes = [3usize, 300, 64, 64, 64, 700, 255, 1, 256, 100];
+    for w in workloads() {
+        let out = match w.protocol {
+            Protocol::HfLink => collect_alternating(
+                Appending::<hand::hflink::HfLink>::default(),
+                &w.stream,
+                &sizes,
+            ),
+            Protocol::Referee => {
+                let d = Appending::<hand::referee::RefereeClmul>::default();
+                collect_alternating(d, &w.stream, &sizes)
+            }
+        };
+        if let Err(e) = exact(&w, &out) {
+            panic!("{}: {e}", w.name());
         }
     }
 }

@@ -85,6 +85,25 @@ fn main() -> ExitCode {
         );
     }
     println!();
+    // Against the best baseline known: the 2 KiB appending feed and the carry-less CRC-16.
+    println!(
+        "| stream | feed | generated | best baseline | staged hand-written | generated vs best | hand vs best |"
+    );
+    println!("|---|---|---|---|---|---:|---:|");
+    for (w, group, feed_name) in rows() {
+        let (bytes, frames) = (w.stream.len(), w.frames.len());
+        let [g, b, h] = ["generated", "best", "hand"].map(|id| median(&dir, &group, id));
+        println!(
+            "| {} | {feed_name} | {} | {} | {} | {} | {} |",
+            w.name(),
+            cell(g, bytes, frames),
+            cell(b, bytes, frames),
+            cell(h, bytes, frames),
+            ratio(b, g),
+            ratio(b, h),
+        );
+    }
+    println!();
     // What the rows can reach: the floors (framing only, and framing with the runtime's checks;
     // clean streams only) against the port, and the port driven with one call per byte, the
     // originals' interface.

@@ -2,8 +2,10 @@
 //! a decoder's cost that, unlike a timing, does not depend on what else the machine runs.
 //!
 //! Usage: `count PROTOCOL NOISE FEED DECODER [BYTES]`, with `PROTOCOL` `hflink` or `referee`,
-//! `NOISE` `clean` or `noisy`, `FEED` `whole` or a chunk size in bytes (`64`), `DECODER`
-//! `generated` or `hand`, and `BYTES` the stream's length (default 1 MiB: the workloads of
+//! `NOISE` `clean` or `noisy`, `FEED` `whole` or a chunk size in bytes (`64`), `DECODER` one of
+//! `generated`, `generated-2k` (the same with a 2 KiB buffer), `hand` (the staged slice scan),
+//! `best` (the 2 KiB appending feed, the carry-less CRC-16) or `crcfast` (`best` with the
+//! `crc-fast` crate's CRC-16), and `BYTES` the stream's length (default 1 MiB: the workloads of
 //! [`workload`](protocol_benches::workload) with another length, drawn from the same seeds).
 //!
 //! The stream is drawn and the decoder's frames are checked against the ground truth first;
@@ -22,7 +24,7 @@
 use std::hint::black_box;
 use std::process::ExitCode;
 
-use protocol_benches::hand::{self, Staged};
+use protocol_benches::hand::{self, Staged, appending::Appending};
 use protocol_benches::workload::{Noise, Protocol, Workload};
 use protocol_benches::{ChunkDecoder, generated, verify};
 
@@ -46,8 +48,20 @@ fn run<D: ChunkDecoder>(w: &Workload, chunk: usize, make: impl Fn() -> D) -> Res
     Ok(())
 }
 
-fn parse(args: &[String]) -> Result<(Workload, usize, bool), String> {
-    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|hand [BYTES]";
+/// Which decoder to count.
+#[derive(Clone, Copy)]
+enum Decoder {
+    Generated,
+    Hand,
+    Best,
+    /// `best` with the `crc-fast` crate's CRC-16 (the referee only).
+    CrcFast,
+    /// The generated decoder with a 2 KiB buffer.
+    Generated2k,
+}
+
+fn parse(args: &[String]) -> Result<(Workload, usize, Decoder), String> {
+    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|generated-2k|hand|best|crcfast [BYTES]";
     let [protocol, noise, feed, decoder, rest @ ..] = args else {
         return Err(usage.into());
     };
@@ -61,9 +75,12 @@ fn parse(args: &[String]) -> Result<(Workload, usize, bool), String> {
         "noisy" => Noise::Noisy,
         _ => return Err(usage.into()),
     };
-    let generated = match decoder.as_str() {
-        "generated" => true,
-        "hand" => false,
+    let decoder = match decoder.as_str() {
+        "generated" => Decoder::Generated,
+        "hand" => Decoder::Hand,
+        "best" => Decoder::Best,
+        "crcfast" => Decoder::CrcFast,
+        "generated-2k" => Decoder::Generated2k,
         _ => return Err(usage.into()),
     };
     let len = match rest {
@@ -78,24 +95,34 @@ fn parse(args: &[String]) -> Result<(Workload, usize, bool), String> {
         "whole" => w.stream.len(),
         n => n.parse().map_err(|e| format!("CHUNK: {e}"))?,
     };
-    Ok((w, chunk, generated))
+    Ok((w, chunk, decoder))
 }
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let result =
-        parse(&args).and_then(
-            |(w, chunk, use_generated)| match (w.protocol, use_generated) {
-                (Protocol::HfLink, true) => run(&w, chunk, generated::hflink_decoder),
-                (Protocol::HfLink, false) => {
-                    run(&w, chunk, Staged::<hand::hflink::HfLink>::default)
-                }
-                (Protocol::Referee, true) => run(&w, chunk, generated::referee_decoder),
-                (Protocol::Referee, false) => {
-                    run(&w, chunk, Staged::<hand::referee::Referee>::default)
-                }
-            },
-        );
+    let result = parse(&args).and_then(|(w, chunk, decoder)| match (w.protocol, decoder) {
+        (Protocol::HfLink, Decoder::Generated) => run(&w, chunk, generated::hflink_decoder),
+        (Protocol::HfLink, Decoder::Generated2k) => run(&w, chunk, generated::hflink_decoder_2k),
+        (Protocol::Referee, Decoder::Generated2k) => run(&w, chunk, generated::referee_decoder_2k),
+        (Protocol::HfLink, Decoder::Hand) => {
+            run(&w, chunk, Staged::<hand::hflink::HfLink>::default)
+        }
+        (Protocol::HfLink, Decoder::Best | Decoder::CrcFast) => {
+            run(&w, chunk, Appending::<hand::hflink::HfLink>::default)
+        }
+        (Protocol::Referee, Decoder::Generated) => run(&w, chunk, generated::referee_decoder),
+        (Protocol::Referee, Decoder::Hand) => {
+            run(&w, chunk, Staged::<hand::referee::Referee>::default)
+        }
+        (Protocol::Referee, Decoder::Best) => {
+            run(&w, chunk, Appending::<hand::referee::RefereeClmul>::default)
+        }
+        (Protocol::Referee, Decoder::CrcFast) => run(
+            &w,
+            chunk,
+            Appending::<hand::referee::RefereeCrcFast>::default,
+        ),
+    });
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -5,9 +5,14 @@
 //! at once, verify the check over the frame in place, hand the frame to the sink without copying
 //! it, resume one byte after a rejected start. Chunked input goes through [`Staged`], which
 //! copies small chunks behind the pending bytes and scans contiguously (cheaper than completing
-//! a partial frame aside: see [`crate::floor`]). [`hflink`] and [`referee`] hold the
-//! protocol-specific parts and the encoders; [`crc`] the table-driven CRCs.
+//! a partial frame aside: see [`crate::floor`]); [`appending`] is the faster feed of the best
+//! baseline known (a 2 KiB buffer compacted only when full). [`hflink`] and [`referee`] hold
+//! the protocol-specific parts and the encoders; [`crc`] the table-driven CRCs, [`clmul`] the
+//! CRC-16 folded with carry-less multiplication.
 
+pub mod appending;
+#[cfg(target_arch = "x86_64")]
+pub mod clmul;
 pub mod crc;
 pub mod hflink;
 pub mod referee;

@@ -30,40 +30,96 @@ impl Scan for Referee {
 
     #[inline(always)]
     fn scan<F: FnMut(&[u8])>(buf: &[u8], len: usize, at_end: bool, sink: &mut F) -> usize {
-        let data = &buf[..len];
-        let mut at = 0;
-        while let Some(p) = find_sof(data, at) {
-            let rest = &data[p..];
-            let Some(&[h0, h1, h2, h3, h4]) = rest.first_chunk::<5>() else {
-                if at_end {
-                    at = p + 1;
-                    continue;
-                }
-                return p;
-            };
-            let data_len = usize::from(u16::from_le_bytes([h1, h2]));
-            if crc8_header([h0, h1, h2, h3]) != h4 || data_len > MAX_DATA {
+        scan_with(buf, len, at_end, sink, crc16)
+    }
+}
+
+/// Referee frames, the CRC-16 folded with carry-less multiplication where the CPU has it
+/// ([`clmul`](super::clmul)), by slicing-by-16 elsewhere.
+pub struct RefereeClmul;
+
+/// The scan with the carry-less CRC-16, compiled for CPUs with `pclmulqdq`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "pclmulqdq")]
+fn scan_clmul<F: FnMut(&[u8])>(buf: &[u8], len: usize, at_end: bool, sink: &mut F) -> usize {
+    scan_with(buf, len, at_end, sink, |data: &[u8], n| {
+        super::clmul::crc16(data, n)
+    })
+}
+
+impl Scan for RefereeClmul {
+    const MAX_FRAME: usize = MAX_FRAME;
+
+    #[inline(always)]
+    #[allow(unsafe_code)]
+    fn scan<F: FnMut(&[u8])>(buf: &[u8], len: usize, at_end: bool, sink: &mut F) -> usize {
+        #[cfg(target_arch = "x86_64")]
+        if super::clmul::available() {
+            // SAFETY: the CPU has `pclmulqdq`, the one feature `scan_clmul` is compiled for.
+            return unsafe { scan_clmul(buf, len, at_end, sink) };
+        }
+        scan_with(buf, len, at_end, sink, crc16)
+    }
+}
+
+/// Referee frames, the CRC-16 computed by the `crc-fast` crate (SIMD folding behind its own
+/// run-time dispatch): what a maintained crate, called once per frame, costs in the scan.
+pub struct RefereeCrcFast;
+
+impl Scan for RefereeCrcFast {
+    const MAX_FRAME: usize = MAX_FRAME;
+
+    #[inline(always)]
+    fn scan<F: FnMut(&[u8])>(buf: &[u8], len: usize, at_end: bool, sink: &mut F) -> usize {
+        scan_with(buf, len, at_end, sink, |data: &[u8], n| {
+            let covered = data.get(..n).unwrap_or(data);
+            crc_fast::checksum(crc_fast::CrcAlgorithm::Crc16Mcrf4xx, covered) as u16
+        })
+    }
+}
+
+/// The scan of [`Scan::scan`], with `crc` the CRC-16 of `data[..n]`.
+#[inline(always)]
+fn scan_with<F: FnMut(&[u8]), C: Fn(&[u8], usize) -> u16>(
+    buf: &[u8],
+    len: usize,
+    at_end: bool,
+    sink: &mut F,
+    crc: C,
+) -> usize {
+    let data = &buf[..len];
+    let mut at = 0;
+    while let Some(p) = find_sof(data, at) {
+        let rest = &data[p..];
+        let Some(&[h0, h1, h2, h3, h4]) = rest.first_chunk::<5>() else {
+            if at_end {
                 at = p + 1;
                 continue;
             }
-            let total = data_len + 9;
-            let Some(frame) = rest.get(..total) else {
-                if at_end {
-                    at = p + 1;
-                    continue;
-                }
-                return p;
-            };
-            let stored = u16::from_le_bytes([frame[total - 2], frame[total - 1]]);
-            if crc16(&buf[p..], total - 2) == stored {
-                sink(frame);
-                at = p + total;
-            } else {
-                at = p + 1;
-            }
+            return p;
+        };
+        let data_len = usize::from(u16::from_le_bytes([h1, h2]));
+        if crc8_header([h0, h1, h2, h3]) != h4 || data_len > MAX_DATA {
+            at = p + 1;
+            continue;
         }
-        data.len()
+        let total = data_len + 9;
+        let Some(frame) = rest.get(..total) else {
+            if at_end {
+                at = p + 1;
+                continue;
+            }
+            return p;
+        };
+        let stored = u16::from_le_bytes([frame[total - 2], frame[total - 1]]);
+        if crc(&buf[p..], total - 2) == stored {
+            sink(frame);
+            at = p + total;
+        } else {
+            at = p + 1;
+        }
     }
+    data.len()
 }
 
 /// Bytes of a `GAME_ROBOT_POS` frame: 7 header bytes, 16 data bytes, the CRC-16.

@@ -38,6 +38,8 @@ use core::fmt;
 
 mod algorithm;
 mod extra;
+#[cfg(feature = "crc-fast")]
+mod fast;
 mod fletcher;
 mod slicing;
 mod sum;

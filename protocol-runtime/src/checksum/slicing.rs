@@ -60,6 +60,9 @@ pub struct Slicing16<W: crc::Width> {
     /// of a register kept in the high bits.
     shift: u32,
     xorout: W,
+    /// The `crc-fast` algorithm that computes this CRC, if that crate catalogues it.
+    #[cfg(feature = "crc-fast")]
+    fast: Option<super::fast::CrcAlgorithm>,
 }
 
 impl<W: crc::Width> Slicing16<W> {
@@ -83,7 +86,7 @@ impl<W: crc::Width + fmt::Debug> fmt::Debug for Slicing16<W> {
 const SHORT: usize = 8;
 
 macro_rules! slicing16_width {
-    ($($w:ty),*) => {$(
+    ($($w:ty => $fast:ident),*) => {$(
         impl Slicing16<$w> {
             #[doc = concat!("The tables of `alg`, a CRC of 1 to ", stringify!($w), "::BITS bits.")]
             ///
@@ -109,6 +112,22 @@ macro_rules! slicing16_width {
                     reverse: alg.refin != alg.refout,
                     shift: if alg.refout { 0 } else { pad },
                     xorout: alg.xorout,
+                    #[cfg(feature = "crc-fast")]
+                    fast: super::fast::$fast(alg),
+                }
+            }
+
+            /// Whether the CRCs of more than a few bytes are computed by the `crc-fast` crate
+            /// (the `crc-fast` feature, and a CRC that crate catalogues).
+            #[inline]
+            pub const fn uses_crc_fast(&self) -> bool {
+                #[cfg(feature = "crc-fast")]
+                {
+                    self.fast.is_some()
+                }
+                #[cfg(not(feature = "crc-fast"))]
+                {
+                    false
                 }
             }
 
@@ -128,6 +147,11 @@ macro_rules! slicing16_width {
             #[inline(always)]
             pub fn checksum_prefix(&self, data: &[u8], n: usize) -> $w {
                 let n = n.min(data.len());
+                #[cfg(feature = "crc-fast")]
+                if let (Some(fast), true) = (self.fast, n > SHORT) {
+                    // The catalogued CRC, as wide as `$w`.
+                    return crc_fast::checksum(fast, data.get(..n).unwrap_or(data)) as $w;
+                }
                 let register = if self.reflect {
                     self.register::<true>(data, n)
                 } else {
@@ -325,4 +349,4 @@ macro_rules! slicing16_tables {
     }};
 }
 
-slicing16_width!(u8, u16, u32, u64);
+slicing16_width!(u8 => crc8, u16 => crc16, u32 => crc32, u64 => crc64);
