@@ -434,6 +434,9 @@ pub struct Frame {
     pub bare_len: Option<usize>,
     /// Byte stuffing of the payload: the pattern, and the byte inserted after it.
     pub stuffing: Option<(Vec<u8>, u8)>,
+    /// Trailing-zero truncation of command payloads: the sender drops the zeros at the end of
+    /// a payload (keeping its first byte), the receiver zero-fills it to its struct's size.
+    pub truncate_zeros: bool,
     /// For a frame format without dispatch key: the struct (index into [`Protocol::structs`])
     /// every frame carries.
     pub message: Option<usize>,

@@ -20,6 +20,7 @@ protocol::protocol!("../specs/hflink.toml");
 protocol::protocol!("../specs/referee.toml");
 protocol::protocol!("../specs/referee2018.toml");
 protocol::protocol!("../specs/scout.toml");
+protocol::protocol!("../specs/mavlink.toml");
 protocol::protocol!("../specs/dynamixel.toml");
 protocol::protocol!("../specs/roborts.toml");
 protocol::protocol!("tests/fixtures/features.toml");
@@ -121,6 +122,7 @@ fn specs() -> Vec<Gen> {
             Some((1, dynamixel_feedback))
         ),
         generated!(roborts, [LAYOUT], None),
+        generated!(mavlink, [LAYOUT], None),
         generated!(features, [LAYOUT, RAW_LAYOUT], None),
     ]
 }
@@ -243,6 +245,7 @@ fn golden_vectors_decode_and_encode_alike() {
         ("scout", "agilex_scout.json"),
         ("dynamixel", "dynamixel_protocol2.json"),
         ("roborts", "roborts_sdk.json"),
+        ("mavlink", "mavlink.json"),
     ];
     let gens = specs();
     for (spec, file) in files {
@@ -548,6 +551,7 @@ fn vector_streams_yield_the_same_events() {
         ("scout", "agilex_scout.json"),
         ("dynamixel", "dynamixel_protocol2.json"),
         ("roborts", "roborts_sdk.json"),
+        ("mavlink", "mavlink.json"),
     ];
     let gens = specs();
     for (spec, file) in files {

@@ -183,6 +183,7 @@ pub mod packed;
 pub mod packet;
 pub mod stuffing;
 pub mod wire;
+pub mod zeros;
 
 pub use bytes::Bytes;
 pub use can::CanFrame;
@@ -214,7 +215,7 @@ pub use tokio_util;
 pub mod __private {
     pub use crate::{
         bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, field::*, group::*,
-        layout::*, packed::*, packet::*, stuffing::*, wire::*,
+        layout::*, packed::*, packet::*, stuffing::*, wire::*, zeros::*,
     };
     pub use core;
     pub use core::option::Option::{self, None, Some};

@@ -377,6 +377,9 @@ fn frame_notes(p: &Protocol, f: &Frame) -> Vec<String> {
             pattern.join(" ")
         ));
     }
+    if f.truncate_zeros {
+        notes.push("Trailing-zero truncation: the sender drops the zero bytes at the end of a command's payload (keeping its first byte), and the length and the checks count the bytes sent; the receiver zero-fills the payload to its struct's size.".to_string());
+    }
     notes
 }
 

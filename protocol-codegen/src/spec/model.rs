@@ -201,6 +201,10 @@ pub struct FrameDef {
     /// Byte stuffing of the payload.
     #[schemars(with = "Option<StuffingDef>")]
     pub stuffing: Option<Spanned<StuffingDef>>,
+    /// The sender drops the trailing zero bytes of a command's payload (keeping at least one);
+    /// the receiver zero-fills it to its struct's size.
+    #[schemars(with = "Option<bool>")]
+    pub truncate_zeros: Option<Spanned<bool>>,
     /// For a frame format without dispatch key: the struct every frame carries.
     #[schemars(with = "Option<String>")]
     pub message: Option<SStr>,

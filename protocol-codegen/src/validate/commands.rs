@@ -395,6 +395,9 @@ fn lower_payload_refs(
             return Some(i);
         }
         let Some(frame) = frame else { return Some(i) };
+        if frame.truncate_zeros && min_size != size {
+            ctx.error(r.span(), format!("struct `{}` ends with variable bytes, but frame `{}` zero-fills truncated payloads to their struct's size", r.get_ref(), frame.name), "give the struct a fixed size, or remove the frame's `truncate_zeros`");
+        }
         if min_size > frame.payload_max && min_size != size {
             ctx.error(r.span(), format!("struct `{}` takes at least {min_size} bytes, but frame `{}` carries at most {} payload bytes", r.get_ref(), frame.name, frame.payload_max), "raise the payload's `max` or shrink the struct");
         } else if size > frame.payload_max && min_size == size {

@@ -4,6 +4,7 @@
 //! (or CAN id), then the runtime seals the frame.
 
 use protocol_codegen::ir::{Frame, Protocol, Role};
+use protocol_runtime::zeros::trimmed_len;
 use protocol_runtime::{EncodeError, FrameLayout, Writer};
 
 use super::{
@@ -149,6 +150,9 @@ pub fn encode(
         .get_mut(start..region_end)
         .ok_or_else(|| EncodeIssue::runtime(EncodeError::ValueOutOfRange))?;
     let mut plen = write_body(p, f, &body, obj, region)?;
+    if let (true, Body::Command(..)) = (f.truncate_zeros, &body) {
+        plen = trimmed_len(region.get(..plen).unwrap_or_default());
+    }
     if let (Some(s), Body::Command(..)) = (stuffing(f), &body) {
         plen = s
             .stuff_in_place(region, plen)

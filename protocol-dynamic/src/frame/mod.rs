@@ -14,6 +14,7 @@ pub use encode::encode;
 use protocol_codegen::ir::{DirectionRule, Frame, HeaderValue, Prim, Protocol, Role, Transport};
 use protocol_runtime::DecodeError;
 use protocol_runtime::stuffing::Stuffing;
+use protocol_runtime::zeros::zero_filled;
 
 use crate::error::DecodeIssue;
 use crate::layout::word_field;
@@ -439,7 +440,15 @@ fn decode_command(
         out.direction = Some(d);
         d
     };
-    out.payload =
-        read_struct_payload(p, c.payloads.get(slot).copied().flatten(), &c.name, payload)?;
+    let si = c.payloads.get(slot).copied().flatten();
+    // Trailing-zero truncation: a short payload is zero-filled to its struct's size.
+    let mut filled = vec![0u8; f.payload_max];
+    let payload = match si.filter(|_| f.truncate_zeros) {
+        Some(si) => {
+            zero_filled(payload, p.structs[si].size, &mut filled).map_err(DecodeIssue::Frame)?
+        }
+        None => payload,
+    };
+    out.payload = read_struct_payload(p, si, &c.name, payload)?;
     Ok(())
 }

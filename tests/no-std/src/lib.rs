@@ -10,6 +10,7 @@ protocol::protocol!("../../specs/hflink.toml");
 protocol::protocol!("../../specs/referee.toml");
 protocol::protocol!("../../specs/referee2018.toml");
 protocol::protocol!("../../specs/scout.toml");
+protocol::protocol!("../../specs/mavlink.toml");
 protocol::protocol!("../../specs/roborts.toml");
 protocol::protocol!("../../specs/dynamixel.toml");
 // The payload types beyond fixed-width primitives: 24-bit integers, kept bitfield bits,

@@ -29,6 +29,7 @@ macro_rules! for_each_spec {
     ($callback:ident) => {
         $callback!(dynamixel, "../specs/dynamixel.toml");
         $callback!(hflink, "../specs/hflink.toml");
+        $callback!(mavlink, "../specs/mavlink.toml");
         $callback!(referee, "../specs/referee.toml");
         $callback!(referee2018, "../specs/referee2018.toml");
         $callback!(roborts, "../specs/roborts.toml");

@@ -199,6 +199,11 @@ impl Model {
                 break;
             }
         }
+        // With trailing-zero truncation, the encoder sends the payload without its trailing
+        // zeros (keeping its first byte).
+        if self.frame().truncate_zeros && matches!(choice.carries, Carries::Command(_)) {
+            payload.truncate(protocol::zeros::trimmed_len(&payload));
+        }
         self.try_build(src, choice, &payload)
     }
 
@@ -303,11 +308,21 @@ impl Model {
     pub fn raw_with_payload_len(&self, src: &mut impl Source, len: usize) -> Vec<u8> {
         let f = self.frame();
         let mut frame = vec![0u8; f.header_len + len + f.trailer_len];
+        // A check that folds in a per-command byte verifies only the frames of known commands.
+        let known_key = f.checks.iter().any(|c| c.extra.is_some()) && !self.ir.commands.is_empty();
+        let command = src.below(self.ir.commands.len().max(1) as u64) as usize;
         for v in &f.values {
             let field = word_field(v);
             let value = match v.role {
                 ir::Role::Length => continue,
                 ir::Role::Const(c) if !src.one_in(8) => c,
+                ir::Role::Dispatch if known_key => {
+                    let k = f
+                        .dispatch
+                        .iter()
+                        .position(|&d| std::ptr::eq(&f.values[d], v));
+                    self.ir.commands[command].id[k.expect("dispatch value")]
+                }
                 _ => src.next_u64() & field.max_value(),
             };
             field.write(&mut frame, value).expect("header value fits");

@@ -20,6 +20,18 @@ pub(super) fn emit_message_enum(
         .frames
         .first()
         .and_then(|f| f.ack.map(|(_, hl)| f.max_len() - hl - f.trailer_len));
+    // Trailing-zero truncation: a short payload is zero-filled to its struct's size (in a
+    // buffer of the largest payload) before it is read.
+    let (fill, read_fn) = match p.frames.first().filter(|f| f.truncate_zeros) {
+        Some(f) => {
+            let max = f.payload_max;
+            (
+                quote!(let mut filled = [0u8; #max];),
+                quote!(#rt::read_zero_filled(b, &mut filled)),
+            )
+        }
+        None => (quote!(use #rt::read_payload as read;), quote!(read(b))),
+    };
     let doc = doc_attrs(doc);
     let mut variants = Vec::new();
     let mut visit_arms = Vec::new();
@@ -40,7 +52,7 @@ pub(super) fn emit_message_enum(
                 ));
                 variants.push(quote!(#d #v(#s)));
                 visit_arms.push(quote!(Self::#v(p) => v.visit(#command, p),));
-                read_arms.push(quote!(C::#v => Self::#v(read(b)?),));
+                read_arms.push(quote!(C::#v => Self::#v(#read_fn?),));
             }
             None => {
                 let d = doc_attrs(&format!("`{}`, with an empty payload. {}", c.name, c.doc));
@@ -82,7 +94,7 @@ pub(super) fn emit_message_enum(
             /// `DecodeError::PayloadLength` if the payload's size is not the command's, or any
             /// error of the payload's fields (an unknown enum value, ...).
             pub fn read_payload(command: Command, b: &[u8]) -> #rt::DecodeResult<Self> {
-                use #rt::read_payload as read;
+                #fill
                 use Command as C;
                 // `?` in each arm and one `Ok`: every error leaves by one path.
                 let message = match command {

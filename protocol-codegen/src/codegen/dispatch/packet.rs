@@ -197,9 +197,26 @@ fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStrea
         max_payload_len,
         ..
     } = Items::of(f);
+    // With trailing-zero truncation the payload's size on the wire is known once it is
+    // written: it is written aside and trimmed.
+    let (sent, plen) = if f.truncate_zeros {
+        (
+            quote! {
+                let mut aside = [0u8; #max_payload_len];
+                let mut w = #rt::Writer::new(&mut aside);
+                let sent = match self.message.write_payload(&mut w) {
+                    #rt::Ok(()) => #rt::trimmed_len(w.written()),
+                    #rt::Err(_) => self.message.payload_len(),
+                };
+            },
+            quote!(sent),
+        )
+    } else {
+        (quote!(), quote!(self.message.payload_len()))
+    };
     let plain = quote!(
         #header_len
-            .saturating_add(self.message.payload_len())
+            .saturating_add(#plen)
             .saturating_add(#trailer_len)
     );
     let unstuffed = if ack.len_arms.is_empty() {
@@ -209,7 +226,7 @@ fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStrea
         quote!(match &self.message { #arms _ => #plain })
     };
     if f.stuffing.is_none() {
-        return unstuffed;
+        return quote!(#sent #unstuffed);
     }
     quote! {
         let mut scratch = [0u8; #max_payload_len];
@@ -286,6 +303,11 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
     } = &ack;
     let (unstuff, stuff, stuffing_const) = packet_stuffing(f, rt);
     let trailer_of = packet_trailer(f);
+    let trim = if f.truncate_zeros {
+        quote!(let plen = #rt::trimmed_len(room.get(..plen).unwrap_or_default());)
+    } else {
+        quote!()
+    };
     quote! {
         #stuffing_const
         /// A whole frame, decoded: the header values and the message.
@@ -342,6 +364,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
                 let mut w = #rt::Writer::new(room);
                 self.message.write_payload(&mut w)?;
                 let plen = w.position();
+                #trim
                 #stuff
                 let total = start.saturating_add(plen).saturating_add(#trailer_of);
                 let frame = #rt::frame_room(buf, total)?;

@@ -141,6 +141,7 @@ fn lower_frame(
     let ack = ack::lower_ack(ctx, fname, def, &lay, &mut values, &dispatch, &mut ok);
     let bare_len = ack::lower_bare_header(ctx, def, &length, lay.header_len, ack, &mut ok);
     let stuffing = options::lower_stuffing(ctx, def);
+    let truncate_zeros = options::lower_truncate_zeros(ctx, def, first, transport, &mut ok);
     let message = options::lower_message(ctx, fname, def, &dispatch, structs, &lay, &mut ok);
     if !ok {
         // The commands cannot be checked against a frame whose layout is broken.
@@ -172,6 +173,7 @@ fn lower_frame(
         ack,
         bare_len,
         stuffing,
+        truncate_zeros,
         message,
         packet: PacketKind::None,
     })

@@ -1,5 +1,5 @@
-//! Rules for a frame format's settings outside its layout: the transport, byte stuffing and
-//! the one message of a frame format without dispatch key.
+//! Rules for a frame format's settings outside its layout: the transport, byte stuffing,
+//! trailing-zero truncation and the one message of a frame format without dispatch key.
 
 use super::super::Ctx;
 use super::super::types::Structs;
@@ -103,4 +103,45 @@ pub(super) fn lower_message(
         *ok = false;
     }
     Some(i)
+}
+
+/// Rule: trailing-zero truncation applies to command payloads: the first frame format, which
+/// has a dispatch key and travels as a byte stream (the structs it zero-fills must have a
+/// fixed size: checked with the commands).
+pub(super) fn lower_truncate_zeros(
+    ctx: &mut Ctx<'_>,
+    def: &FrameDef,
+    first: bool,
+    transport: Transport,
+    ok: &mut bool,
+) -> bool {
+    let Some(t) = def.truncate_zeros.as_ref() else {
+        return false;
+    };
+    if !*t.get_ref() {
+        return false;
+    }
+    let why = if !first {
+        Some("only the first frame format carries commands whose payloads can be zero-filled")
+    } else if def.dispatch.is_none() {
+        Some("a frame format without a dispatch key carries no command payloads")
+    } else if transport != Transport::Serial {
+        Some("a CAN frame's data length is its DLC, which truncation would not save")
+    } else if def.stuffing.is_some() {
+        Some("byte stuffing and trailing-zero truncation of one payload are not supported together")
+    } else {
+        None
+    };
+    match why {
+        Some(why) => {
+            ctx.error(
+                t.span(),
+                format!("`truncate_zeros` does not apply here: {why}"),
+                "remove `truncate_zeros`, or move it to the first frame format (a serial one with `dispatch`)",
+            );
+            *ok = false;
+            false
+        }
+        None => true,
+    }
 }

@@ -5,12 +5,14 @@ protocol::protocol!("specs/hflink.toml");
 protocol::protocol!("specs/referee.toml");
 protocol::protocol!("specs/referee2018.toml");
 protocol::protocol!("specs/scout.toml");
+protocol::protocol!("specs/mavlink.toml");
 protocol::protocol!("specs/roborts.toml");
 protocol::protocol!("specs/dynamixel.toml");
 protocol::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
 protocol::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
 protocol::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
 protocol::protocol!("protocol-codegen/tests/features/can_and_trailer_field.toml");
+protocol::protocol!("protocol-codegen/tests/features/truncate_zeros.toml");
 
 fn main() {
     let _ = hflink::decoder();
@@ -18,4 +20,6 @@ fn main() {
     let _ = scout::CanPacket::decode;
     let _ = roborts::decoder();
     let _ = dynamixel::feedback_decoder();
+    let _ = mavlink::decoder();
+    let _ = truncated::decoder();
 }

@@ -1,0 +1,115 @@
+//! Trailing-zero payload truncation: a frame format may let its sender drop the zero bytes at
+//! the end of a payload (MAVLink 2 does, to save air time on messages whose last fields are
+//! unset). The length field counts the bytes sent and the checks cover them, so the stream
+//! engine sees sent frames only; payload code zero-fills a short payload to its struct's size
+//! before reading ([`read_zero_filled`]) and trims the zeros after writing
+//! ([`trimmed_len`]).
+//!
+//! The first byte of a payload is always sent, even when it is zero, as the reference
+//! implementations of MAVLink (pymavlink, the `mavlink` crate) do: an all-zero payload goes out
+//! as one zero byte, never as an empty payload.
+
+use crate::encoder::Payload;
+use crate::error::DecodeError;
+
+/// The bytes of `payload` a sender keeps: all but its trailing zeros, and at least the first
+/// byte of a non-empty payload.
+///
+/// ```
+/// use protocol_runtime::zeros::trimmed_len;
+/// assert_eq!(trimmed_len(&[0x16, 0x00, 0x04, 0x00, 0x00]), 3);
+/// assert_eq!(trimmed_len(&[0x00, 0x00, 0x00]), 1);
+/// assert_eq!(trimmed_len(&[0x00, 0x07]), 2);
+/// assert_eq!(trimmed_len(&[]), 0);
+/// ```
+#[inline]
+#[must_use]
+pub fn trimmed_len(payload: &[u8]) -> usize {
+    let kept = payload
+        .iter()
+        .rposition(|&b| b != 0)
+        .map_or(0, |last| last.saturating_add(1));
+    kept.max(payload.len().min(1))
+}
+
+/// `bytes` zero-filled to `size` bytes in `scratch`, or `bytes` itself when it is not shorter
+/// than `size` (a longer payload is left to the reader to refuse).
+///
+/// # Errors
+///
+/// [`DecodeError::PayloadLength`] if `scratch` has fewer than `size` bytes (the payload cannot
+/// be filled; generated code sizes `scratch` as the frame's largest payload, which validation
+/// makes at least every struct's size).
+///
+/// ```
+/// use protocol_runtime::zeros::zero_filled;
+/// let mut scratch = [0xAA; 8];
+/// assert_eq!(zero_filled(&[1, 2], 4, &mut scratch)?, &[1, 2, 0, 0]);
+/// assert_eq!(zero_filled(&[1, 2, 3, 4, 5], 4, &mut scratch)?, &[1, 2, 3, 4, 5]);
+/// # Ok::<(), protocol_runtime::DecodeError>(())
+/// ```
+#[inline]
+pub fn zero_filled<'a>(
+    bytes: &'a [u8],
+    size: usize,
+    scratch: &'a mut [u8],
+) -> Result<&'a [u8], DecodeError> {
+    if bytes.len() >= size {
+        return Ok(bytes);
+    }
+    let too_small = DecodeError::PayloadLength {
+        expected: size,
+        actual: bytes.len(),
+    };
+    let filled = scratch.get_mut(..size).ok_or(too_small)?;
+    let (sent, rest) = filled.split_at_mut(bytes.len());
+    sent.copy_from_slice(bytes);
+    rest.fill(0);
+    Ok(filled)
+}
+
+/// The payload `P` read from `bytes` zero-filled to `P::SIZE` (in `scratch`): a payload whose
+/// trailing zeros the sender dropped decodes to the full value.
+///
+/// # Errors
+///
+/// The errors of [`zero_filled`] and of [`Payload::from_bytes`] (a payload longer than
+/// `P::SIZE` is [`DecodeError::PayloadLength`]).
+#[inline(always)]
+pub fn read_zero_filled<P: Payload>(bytes: &[u8], scratch: &mut [u8]) -> Result<P, DecodeError> {
+    P::from_bytes(zero_filled(bytes, P::SIZE, scratch)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn trimming_keeps_every_byte_up_to_the_last_non_zero_one() {
+        assert_eq!(trimmed_len(&[1, 0, 2]), 3);
+        assert_eq!(trimmed_len(&[1, 0, 2, 0]), 3);
+        assert_eq!(trimmed_len(&[0]), 1);
+        assert_eq!(trimmed_len(&[5]), 1);
+    }
+
+    #[test]
+    fn filling_then_trimming_gives_back_the_sent_bytes() {
+        let sent = [0x16, 0x00, 0x04];
+        let mut scratch = [0xFF; 10];
+        let full = zero_filled(&sent, 10, &mut scratch);
+        assert_eq!(full.map(<[u8]>::len), Ok(10));
+        assert_eq!(full.map(|f| f.get(..trimmed_len(f))), Ok(Some(&sent[..])));
+    }
+
+    #[test]
+    fn a_scratch_smaller_than_the_size_is_an_error_not_a_panic() {
+        let mut scratch = [0u8; 2];
+        assert_eq!(
+            zero_filled(&[1], 4, &mut scratch),
+            Err(DecodeError::PayloadLength {
+                expected: 4,
+                actual: 1
+            })
+        );
+    }
+}
