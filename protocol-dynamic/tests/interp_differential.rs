@@ -19,6 +19,7 @@ use support::{Rng, interpreter, rust_debug, unhex, vectors};
 protocol::protocol!("../specs/hflink.toml");
 protocol::protocol!("../specs/referee.toml");
 protocol::protocol!("../specs/referee2018.toml");
+protocol::protocol!("../specs/crsf.toml");
 protocol::protocol!("../specs/scout.toml");
 protocol::protocol!("../specs/dynamixel.toml");
 protocol::protocol!("../specs/roborts.toml");
@@ -110,6 +111,7 @@ fn dynamixel_feedback(bytes: &[u8]) -> Generated<Vec<u8>> {
 
 fn specs() -> Vec<Gen> {
     vec![
+        generated!(crsf, [LAYOUT], None),
         generated!(hflink, [LAYOUT], None),
         generated!(referee, [LAYOUT], None),
         generated!(referee2018, [LAYOUT], None),
@@ -237,6 +239,7 @@ fn every_layout_is_the_generated_one() {
 #[test]
 fn golden_vectors_decode_and_encode_alike() {
     let files: &[(&str, &str)] = &[
+        ("crsf", "crsf.json"),
         ("hflink", "hflink.json"),
         ("referee", "robomaster_referee.json"),
         ("referee2018", "robomaster_referee.json"),

@@ -303,11 +303,13 @@ impl Model {
     pub fn raw_with_payload_len(&self, src: &mut impl Source, len: usize) -> Vec<u8> {
         let f = self.frame();
         let mut frame = vec![0u8; f.header_len + len + f.trailer_len];
-        for v in &f.values {
+        for (i, v) in f.values.iter().enumerate() {
             let field = word_field(v);
             let value = match v.role {
                 ir::Role::Length => continue,
                 ir::Role::Const(c) if !src.one_in(8) => c,
+                // A sync from a set: the frame is found only with a value of the set.
+                ir::Role::User { .. } if i == 0 && !f.sync_set.is_empty() => self.sync_value(src),
                 _ => src.next_u64() & field.max_value(),
             };
             field.write(&mut frame, value).expect("header value fits");
@@ -329,8 +331,16 @@ impl Model {
         frame
     }
 
+    /// A value of the first frame's sync set.
+    fn sync_value(&self, src: &mut impl Source) -> u64 {
+        let set = &self.frame().sync_set;
+        let k = src.range(0, set.len() as u64 - 1) as usize;
+        u64::from(set[k])
+    }
+
     /// A header value set by the user: the direction's range or value for the field that
-    /// tells the direction, anything that fits otherwise.
+    /// tells the direction, a value of the sync set for a sync from a set, anything that fits
+    /// otherwise.
     fn user_value(
         &self,
         src: &mut impl Source,
@@ -348,8 +358,21 @@ impl Model {
                 _ => {}
             }
         }
+        if index == 0 && !self.frame().sync_set.is_empty() {
+            return self.sync_value(src);
+        }
         src.next_u64() & word_field(v).max_value()
     }
+}
+
+/// A sync as it stands on the wire: the `pick`-th value (modulo their number) of a sync set, if
+/// the layout has one, then the sync bytes.
+pub fn sync_word(layout: &FrameLayout<'_>, pick: usize) -> Vec<u8> {
+    let set = layout.sync_set;
+    let lead = set.get(pick % set.len().max(1)).copied();
+    lead.into_iter()
+        .chain(layout.sync.iter().copied())
+        .collect()
 }
 
 /// A frame the spec allows but the generated layout refuses to seal.
