@@ -412,6 +412,10 @@ fn random_messages_decode_and_encode_alike() {
                             .write(&mut frame, value)
                             .expect("fits");
                     }
+                    // A sync from a set: a value of the set (the layout refuses any other).
+                    if !f.sync_set.is_empty() {
+                        frame[0] = f.sync_set[rng.range(0, f.sync_set.len() as u64 - 1) as usize];
+                    }
                     (g.seal)(0, &mut frame).expect("the generated layout seals");
                     attempts += 1;
                     let label = format!(
