@@ -400,8 +400,12 @@ pub struct Frame {
     pub transport: Transport,
     /// Documentation.
     pub doc: String,
-    /// Sync bytes at offset 0.
+    /// Sync bytes at offset 0 (empty when `sync_set` is not).
     pub sync: Vec<u8>,
+    /// The values of a sync from a set (a field with `one_of` as the first element): the
+    /// frame's first header value, a `u8` at offset 0, holds one of them, and the decoder
+    /// searches for any of them. Empty for a frame that starts with `sync`.
+    pub sync_set: Vec<u8>,
     /// Bytes from the frame start to the payload (sync, header fields, header checks).
     pub header_len: usize,
     /// Bytes after the payload (frame checks, trailers).

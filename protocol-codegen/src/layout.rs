@@ -22,8 +22,10 @@ use crate::ir::{self, HeaderValue, Length, Role};
 /// them as `wire::NAME`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct LayoutPlan<'f> {
-    /// Bytes every frame starts with.
+    /// Bytes every frame starts with (after the byte of `sync_set`, if any).
     pub sync: &'f [u8],
+    /// Bytes one of which every frame starts with: the first header value is the sync.
+    pub sync_set: &'f [u8],
     /// Bytes the engine needs before it knows a frame's length and has verified its header.
     pub header_len: usize,
     /// Smallest valid total length.
@@ -88,6 +90,7 @@ pub fn lower_layout(f: &ir::Frame) -> LayoutPlan<'_> {
         .collect();
     LayoutPlan {
         sync: &f.sync,
+        sync_set: &f.sync_set,
         header_len: f.decide_len,
         min_len: f.min_len(),
         max_len: f.max_len(),
@@ -110,6 +113,7 @@ impl LayoutPlan<'_> {
     ) -> FrameLayout<'a> {
         FrameLayout {
             sync: self.sync,
+            sync_set: self.sync_set,
             header_len: self.header_len,
             min_len: self.min_len,
             max_len: self.max_len,

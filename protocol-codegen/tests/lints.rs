@@ -27,6 +27,7 @@ fn lint_fixtures_compile_and_render_their_warnings() {
 #[test]
 fn the_reference_specs_give_no_warning() {
     for name in [
+        "crsf",
         "hflink",
         "referee",
         "referee2018",

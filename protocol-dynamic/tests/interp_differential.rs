@@ -19,6 +19,7 @@ use support::{Rng, interpreter, rust_debug, unhex, vectors};
 protocol::protocol!("../specs/hflink.toml");
 protocol::protocol!("../specs/referee.toml");
 protocol::protocol!("../specs/referee2018.toml");
+protocol::protocol!("../specs/crsf.toml");
 protocol::protocol!("../specs/scout.toml");
 protocol::protocol!("../specs/mavlink.toml");
 protocol::protocol!("../specs/dynamixel.toml");
@@ -111,6 +112,7 @@ fn dynamixel_feedback(bytes: &[u8]) -> Generated<Vec<u8>> {
 
 fn specs() -> Vec<Gen> {
     vec![
+        generated!(crsf, [LAYOUT], None),
         generated!(hflink, [LAYOUT], None),
         generated!(referee, [LAYOUT], None),
         generated!(referee2018, [LAYOUT], None),
@@ -239,6 +241,7 @@ fn every_layout_is_the_generated_one() {
 #[test]
 fn golden_vectors_decode_and_encode_alike() {
     let files: &[(&str, &str)] = &[
+        ("crsf", "crsf.json"),
         ("hflink", "hflink.json"),
         ("referee", "robomaster_referee.json"),
         ("referee2018", "robomaster_referee.json"),
@@ -411,6 +414,10 @@ fn random_messages_decode_and_encode_alike() {
                         word_field(&f.values[vi])
                             .write(&mut frame, value)
                             .expect("fits");
+                    }
+                    // A sync from a set: a value of the set (the layout refuses any other).
+                    if !f.sync_set.is_empty() {
+                        frame[0] = f.sync_set[rng.range(0, f.sync_set.len() as u64 - 1) as usize];
                     }
                     (g.seal)(0, &mut frame).expect("the generated layout seals");
                     attempts += 1;

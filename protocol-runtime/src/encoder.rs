@@ -13,7 +13,8 @@ use crate::wire::{Reader, Writer};
 
 impl FrameLayout<'_> {
     /// Fills in the computed parts of `frame`, whose user header fields and payload are already
-    /// written: the sync bytes, the length field (from `frame.len()` by the length rule), the
+    /// written: the sync bytes (with a sync set, the first byte is a header value the caller
+    /// wrote, which must be one of the set), the length field (from `frame.len()` by the length rule), the
     /// constants, the header checks, the markers, then the frame checks in order.
     ///
     /// Header items resolve their positions against the header, as when decoding.
@@ -22,7 +23,8 @@ impl FrameLayout<'_> {
     ///
     /// - [`EncodeError::BufferTooSmall`] if `frame` is shorter than `min_len` (or the header),
     /// - [`EncodeError::PayloadTooLarge`] if it is longer than `max_len`,
-    /// - [`EncodeError::ValueOutOfRange`] if the length does not fit its field, the rule is
+    /// - [`EncodeError::ValueOutOfRange`] if the first byte is not one of a non-empty sync set,
+    ///   the length does not fit its field, the rule is
     ///   [`LengthRule::Fixed`] and the length differs, a constant does not fit its field, or an
     ///   item lies outside the frame (an inconsistent layout).
     ///
@@ -32,6 +34,7 @@ impl FrameLayout<'_> {
     ///
     /// let hflink = FrameLayout {
     ///     sync: &[0xFF, 0xFF],
+    ///     sync_set: &[],
     ///     header_len: 6,
     ///     min_len: 8,
     ///     max_len: 127,
@@ -78,8 +81,14 @@ impl FrameLayout<'_> {
             });
         }
         let header = frame.get_mut(..span).ok_or(EncodeError::ValueOutOfRange)?;
+        // With a sync set, the first byte is a header value the caller wrote: one of the set.
+        let lead = match (self.sync_set, header.first()) {
+            ([], _) => 0usize,
+            (set, Some(first)) if set.contains(first) => 1,
+            _ => return Err(EncodeError::ValueOutOfRange),
+        };
         let sync = header
-            .get_mut(..self.sync.len())
+            .get_mut(lead..lead.wrapping_add(self.sync.len()))
             .ok_or(EncodeError::ValueOutOfRange)?;
         sync.copy_from_slice(self.sync);
         match self.length {

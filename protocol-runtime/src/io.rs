@@ -65,6 +65,7 @@ mod tests {
 
     static LAYOUT: FrameLayout<'static> = FrameLayout {
         sync: &[0xFF, 0xFF],
+        sync_set: &[],
         header_len: 6,
         min_len: 8,
         max_len: 127,

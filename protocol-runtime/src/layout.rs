@@ -167,8 +167,13 @@ pub struct Check<'a> {
 /// A frame format, as data.
 #[derive(Debug, Clone, Copy)]
 pub struct FrameLayout<'a> {
-    /// Bytes every frame starts with (at least one).
+    /// Bytes every frame starts with (at least one, unless `sync_set` is not empty); after the
+    /// byte of `sync_set`, if there is one.
     pub sync: &'a [u8],
+    /// Bytes one of which every frame starts with (before `sync`): the frame's first header
+    /// value is then the sync the decoder searches for (a CRSF device address: `C8`, `EA`,
+    /// ...). Empty: the frame starts with `sync` alone.
+    pub sync_set: &'a [u8],
     /// Bytes needed to know the frame's length and verify its header checks.
     pub header_len: usize,
     /// Smallest valid total length.
@@ -204,7 +209,7 @@ pub struct FrameLayout<'a> {
 /// use protocol_runtime::layout::{FrameLayout, LayoutRef, LengthRule};
 ///
 /// static FIXED: FrameLayout<'static> = FrameLayout {
-///     sync: &[0xAA], header_len: 1, min_len: 4, max_len: 4, length: LengthRule::Fixed(4),
+///     sync: &[0xAA], sync_set: &[], header_len: 1, min_len: 4, max_len: 4, length: LengthRule::Fixed(4),
 ///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
 /// };
 ///

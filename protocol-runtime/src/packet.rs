@@ -127,6 +127,7 @@ fn packet_event<L: PacketLayout>(layout: &L, event: Event<'_>) -> PacketEvent<L:
 /// # use protocol_runtime::{Checksum, DecodeError, FrameLayout, LayoutRef, PacketLayout};
 /// # static LAMP: FrameLayout<'static> = FrameLayout {
 /// #     sync: &[0xAA],
+/// #     sync_set: &[],
 /// #     header_len: 3,
 /// #     min_len: 4,
 /// #     max_len: 12,

@@ -4,7 +4,10 @@
 
 mod common;
 
-use common::{REFEREE, REFEREE_GOLDEN, ROBORTS, Rng, TRAILER, check, hex, random_frame};
+use common::{
+    CRSF, CRSF_GOLDEN, REFEREE, REFEREE_GOLDEN, ROBORTS, Rng, SET_THEN_SYNC, TRAILER, check, hex,
+    random_frame,
+};
 use protocol_runtime::decoder::{Probe, Reject};
 use protocol_runtime::layout::{FrameLayout, LengthRule};
 use protocol_runtime::{EncodeError, StreamDecoder};
@@ -198,4 +201,73 @@ fn frame_len_edge_cases() {
     let mut input = &[0x5A, 3, 0x5A][..];
     assert!(decoder.decode(&mut input).is_none());
     assert_eq!(decoder.stats().bad_length, 1);
+}
+
+#[test]
+fn a_sync_from_a_set_is_found_with_every_value_and_no_other() {
+    let frame = hex(CRSF_GOLDEN);
+    assert_eq!(CRSF.probe(&frame), Probe::Frame(6));
+    for lead in 0..=0xFFu8 {
+        let mut copy = frame.clone();
+        copy[0] = lead;
+        let expected = if CRSF.sync_set.contains(&lead) {
+            Probe::Frame(6)
+        } else {
+            Probe::Reject(Reject::BadHeader)
+        };
+        assert_eq!(CRSF.probe(&copy), expected, "{lead:#04x}");
+        // The decoder finds the frame after one garbage byte, whatever its first byte.
+        let mut stream = vec![0x11];
+        stream.extend_from_slice(&copy);
+        let mut decoder = StreamDecoder::<_, 64>::new(&CRSF);
+        let mut input = &stream[..];
+        let found = decoder
+            .decode(&mut input)
+            .map(|f| (f.offset, f.bytes.to_vec()));
+        let expected = CRSF.sync_set.contains(&lead).then(|| (1, copy.clone()));
+        assert_eq!(found, expected, "{lead:#04x}");
+    }
+}
+
+#[test]
+fn sealing_keeps_the_value_of_the_set_and_refuses_another() {
+    let frame = hex(CRSF_GOLDEN);
+    for &lead in CRSF.sync_set {
+        let mut built = frame.clone();
+        built[0] = lead;
+        built[1] = 0;
+        built[5] = 0;
+        CRSF.seal(&mut built).unwrap();
+        assert_eq!(built[0], lead);
+        assert_eq!(&built[1..], &frame[1..]);
+    }
+    let mut built = frame.clone();
+    built[0] = 0xC9;
+    assert_eq!(CRSF.seal(&mut built), Err(EncodeError::ValueOutOfRange));
+}
+
+#[test]
+fn a_set_value_followed_by_sync_bytes() {
+    let mut rng = Rng(7);
+    let frame = random_frame(&mut rng, &SET_THEN_SYNC, 9);
+    assert!(SET_THEN_SYNC.sync_set.contains(&frame[0]));
+    assert_eq!(frame[1], 0x5A);
+    let mut wrong = frame.clone();
+    wrong[1] = 0x5B;
+    assert_eq!(
+        SET_THEN_SYNC.probe(&wrong),
+        Probe::Reject(Reject::BadHeader)
+    );
+    // A set value alone is a prefix of a sync: the header is awaited.
+    assert_eq!(SET_THEN_SYNC.probe(&frame[..1]), Probe::Need(3));
+    let seen = check::<64>(
+        &SET_THEN_SYNC,
+        &[&[0xA1, 0x00][..], &frame].concat(),
+        &[1],
+        true,
+    );
+    assert!(seen.contains(&common::Seen::Frame {
+        offset: 2,
+        bytes: frame.clone()
+    }));
 }

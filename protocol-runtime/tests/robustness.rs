@@ -14,11 +14,14 @@ use protocol_runtime::layout::{FrameLayout, LengthRule};
 fn hostile_garbage(rng: &mut Rng, layout: &FrameLayout<'_>, len: usize) -> Vec<u8> {
     (0..len)
         .map(|_| match rng.below(4) {
-            0 => layout
-                .sync
-                .get(rng.below(layout.sync.len().max(1)))
-                .copied()
-                .unwrap_or(0),
+            0 => {
+                let sync = if layout.sync_set.is_empty() {
+                    layout.sync
+                } else {
+                    layout.sync_set
+                };
+                sync.get(rng.below(sync.len().max(1))).copied().unwrap_or(0)
+            }
             1 => rng.below(16) as u8,
             _ => rng.byte(),
         })
@@ -128,7 +131,7 @@ fn small_buffer<const N: usize>(rng: &mut Rng) {
         let stream = mixed_stream(rng, layout, 40);
         for flush in [false, true] {
             for sizes in [vec![1], vec![3, 11], vec![stream.len()]] {
-                if N >= layout.sync.len() {
+                if N >= layout.sync_len() {
                     check::<N>(layout, &stream, &sizes, flush);
                 } else {
                     // The sync does not fit: nothing can be decoded, and a sync prefix cut by
@@ -183,6 +186,7 @@ fn degenerate_layouts_still_progress() {
     let base = common::TRAILER;
     let no_sync_fixed = FrameLayout {
         sync: &[],
+        sync_set: &[],
         header_len: 0,
         min_len: 0,
         length: LengthRule::Fixed(3),
@@ -200,6 +204,7 @@ fn degenerate_layouts_still_progress() {
     };
     let long_sync = FrameLayout {
         sync: &[1, 2, 3, 4, 5, 6, 7, 8, 9, 10],
+        sync_set: &[],
         ..base
     };
     for layout in [no_sync_fixed, empty_frames, header_beyond_max, long_sync] {

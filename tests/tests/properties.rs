@@ -18,7 +18,7 @@ use proptest::prelude::*;
 use proptest::test_runner::Config;
 use protocol::{DecodeError, EncodeError, Event, Reject};
 
-use support::model::{Model, model};
+use support::model::{Model, model, sync_word};
 use support::stream::{assert_chunking_invariant, assert_same_packet, check_packet, run};
 use support::{Entropy, Source, Spec, hex};
 
@@ -136,7 +136,7 @@ fn back_to_back<S: Spec>(entropy: &[u8], sizes: &[usize]) {
 /// Bytes that reach deep into the decoder: garbage, sync bytes, whole and cut frames, frames
 /// with a flipped bit.
 fn hostile(m: &Model, src: &mut impl Source) -> Vec<u8> {
-    let sync = m.layout.sync;
+    let sync = sync_word(m.layout, src.below(256) as usize);
     let mut out = Vec::new();
     for _ in 0..src.below(12) {
         match src.below(6) {
@@ -144,7 +144,7 @@ fn hostile(m: &Model, src: &mut impl Source) -> Vec<u8> {
                 let n = src.below(8) as usize;
                 out.extend(src.bytes(n));
             }
-            1 => out.extend_from_slice(sync),
+            1 => out.extend_from_slice(&sync),
             2 => out.extend(m.canonical(src)),
             3 => {
                 let frame = m.raw(src);

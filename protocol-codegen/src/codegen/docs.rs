@@ -340,6 +340,15 @@ fn commands_doc(p: &Protocol) -> String {
     out
 }
 
+/// Bytes as code spans: `` `C8` `EA` ``.
+fn hex_list(bytes: &[u8]) -> String {
+    bytes
+        .iter()
+        .map(|x| format!("`{x:02X}`"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// The doc of a frame format: a table of its elements.
 pub fn frame_doc(f: &Frame) -> String {
     let mut out = String::new();
@@ -362,10 +371,7 @@ pub fn frame_doc(f: &Frame) -> String {
             crate::ir::Element::Sync(b) => out.push_str(&format!(
                 "| 0 | {} | sync | bytes | {} |\n",
                 b.len(),
-                b.iter()
-                    .map(|x| format!("`{x:02X}`"))
-                    .collect::<Vec<_>>()
-                    .join(" ")
+                hex_list(b)
             )),
             crate::ir::Element::Word {
                 name,
@@ -384,6 +390,9 @@ pub fn frame_doc(f: &Frame) -> String {
                             format!("bits {}..{} ", v.shift, v.shift + v.width)
                         };
                         let role = match &v.role {
+                            Role::User { .. } if i == 0 && !f.sync_set.is_empty() => {
+                                format!(": the sync, one of {}", hex_list(&f.sync_set))
+                            }
                             Role::User { .. } => String::new(),
                             Role::Length => match &f.length {
                                 crate::ir::Length::Field { adjust, .. } => {

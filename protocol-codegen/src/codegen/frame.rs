@@ -213,13 +213,19 @@ fn emit_layout(rt: &TokenStream, f: &Frame, name: &Ident, doc: &str) -> TokenStr
         let (at, bytes) = (pos(rt, m.at), m.bytes);
         quote!(#rt::Marker { at: #at, bytes: &[#(#bytes),*] })
     });
-    let (sync, header_len, min_len, max_len) =
-        (plan.sync, plan.header_len, plan.min_len, plan.max_len);
+    let (sync, sync_set, header_len, min_len, max_len) = (
+        plan.sync,
+        plan.sync_set,
+        plan.header_len,
+        plan.min_len,
+        plan.max_len,
+    );
     quote! {
         #(#statics)*
         #doc
         pub static #name: #rt::FrameLayout<'static> = #rt::FrameLayout {
             sync: &[#(#sync),*],
+            sync_set: &[#(#sync_set),*],
             header_len: #header_len,
             min_len: #min_len,
             max_len: #max_len,

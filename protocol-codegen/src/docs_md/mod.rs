@@ -197,6 +197,10 @@ pub fn packet_diagram(f: &Frame) -> String {
                     .map(|&i| format!("{}:{}", f.values[i].name, f.values[i].width))
                     .collect::<Vec<_>>()
                     .join(" ");
+                if values.first() == Some(&0) && !f.sync_set.is_empty() {
+                    let set: Vec<String> = f.sync_set.iter().map(|x| format!("{x:02X}")).collect();
+                    legend.push(format!("{name} = the sync, one of {}", set.join(" ")));
+                }
                 let label =
                     if values.len() > 1 && members.len() < scalar.prim.size() * BYTE_CHARS - 1 {
                         members

@@ -267,6 +267,10 @@ pub struct ElementDef {
     /// The field must hold this value.
     #[schemars(with = "Option<i64>")]
     pub value: Option<SInt>,
+    /// The field, a `u8` and the layout's first element, is the sync: it holds one of these
+    /// values, and a decoder searches for any of them (a CRSF device address).
+    #[schemars(with = "Option<Vec<i64>>")]
+    pub one_of: Option<Spanned<Vec<SInt>>>,
     /// The field is split into bit members.
     #[schemars(with = "Option<Vec<BitDef>>")]
     pub bits: Option<Spanned<Vec<Spanned<BitDef>>>>,

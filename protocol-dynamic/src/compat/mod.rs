@@ -224,6 +224,14 @@ fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
             hex_bytes(&n.sync)
         ));
     }
+    if o.sync_set != n.sync_set {
+        // A value removed rejects old frames; a value added is one old decoders reject.
+        r.breaking(format!(
+            "sync set {} → {}",
+            hex_bytes(&o.sync_set),
+            hex_bytes(&n.sync_set)
+        ));
+    }
     if (o.header_len, o.trailer_len) != (n.header_len, n.trailer_len) {
         r.breaking(format!(
             "header/trailer {}/{} bytes → {}/{} bytes",

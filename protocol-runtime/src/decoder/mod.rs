@@ -144,11 +144,41 @@ impl FrameLayout<'_> {
     /// `max(header_len, sync.len())`.
     #[inline(always)]
     pub const fn header_span(&self) -> usize {
-        if self.header_len > self.sync.len() {
+        if self.header_len > self.sync_len() {
             self.header_len
         } else {
-            self.sync.len()
+            self.sync_len()
         }
+    }
+
+    /// Bytes of the sync: the byte of [`sync_set`](Self::sync_set), if any, and
+    /// [`sync`](Self::sync).
+    #[inline(always)]
+    pub const fn sync_len(&self) -> usize {
+        if self.sync_set.is_empty() {
+            self.sync.len()
+        } else {
+            self.sync.len().saturating_add(1)
+        }
+    }
+
+    /// Whether `bytes`, the start of a candidate, match the sync as far as they go (a prefix cut
+    /// by the end of `bytes` matches).
+    #[inline(always)]
+    pub fn sync_matches(&self, bytes: &[u8]) -> bool {
+        let rest = match (self.sync_set, bytes) {
+            ([], _) => bytes,
+            (_, []) => return true,
+            (set, [lead, rest @ ..]) => {
+                if !set.contains(lead) {
+                    return false;
+                }
+                rest
+            }
+        };
+        // A byte loop, not `==` on slices: sync words are a few bytes, a call to memcmp costs
+        // more.
+        rest.iter().zip(self.sync).all(|(a, b)| a == b)
     }
 
     /// The total length of a frame from its header, by the length rule.
@@ -161,7 +191,7 @@ impl FrameLayout<'_> {
     /// # use protocol_runtime::layout::*;
     /// # use protocol_runtime::Checksum;
     /// # let hflink = FrameLayout {
-    /// #     sync: &[0xFF, 0xFF], header_len: 6, min_len: 8, max_len: 127,
+    /// #     sync: &[0xFF, 0xFF], sync_set: &[], header_len: 6, min_len: 8, max_len: 127,
     /// #     length: LengthRule::Field {
     /// #         field: WordField { at: Pos::Start(4), size: 2, order: ByteOrder::Big, shift: 0, width: 16 },
     /// #         adjust: 7,
@@ -193,7 +223,7 @@ impl FrameLayout<'_> {
     /// # use protocol_runtime::layout::*;
     /// # use protocol_runtime::{Checksum, decoder::{Probe, Reject}};
     /// # let hflink = FrameLayout {
-    /// #     sync: &[0xFF, 0xFF], header_len: 6, min_len: 8, max_len: 127,
+    /// #     sync: &[0xFF, 0xFF], sync_set: &[], header_len: 6, min_len: 8, max_len: 127,
     /// #     length: LengthRule::Field {
     /// #         field: WordField { at: Pos::Start(4), size: 2, order: ByteOrder::Big, shift: 0, width: 16 },
     /// #         adjust: 7,
@@ -228,7 +258,7 @@ impl FrameLayout<'_> {
     /// # use protocol_runtime::layout::*;
     /// # use protocol_runtime::{Checksum, DecodeError, decoder::Reject};
     /// # let hflink = FrameLayout {
-    /// #     sync: &[0xFF, 0xFF], header_len: 6, min_len: 8, max_len: 127,
+    /// #     sync: &[0xFF, 0xFF], sync_set: &[], header_len: 6, min_len: 8, max_len: 127,
     /// #     length: LengthRule::Field {
     /// #         field: WordField { at: Pos::Start(4), size: 2, order: ByteOrder::Big, shift: 0, width: 16 },
     /// #         adjust: 7,
@@ -277,11 +307,8 @@ pub(crate) fn probe<L: LayoutRef>(
     let layout_ref = layout;
     let layout = layout.layout();
     let bytes = readable.get(..avail).unwrap_or(readable);
-    // A byte loop, not `==` on slices: sync words are a few bytes, a call to memcmp costs more.
-    for (a, b) in bytes.iter().zip(layout.sync) {
-        if a != b {
-            return Probe::Reject(Reject::BadHeader);
-        }
+    if !layout.sync_matches(bytes) {
+        return Probe::Reject(Reject::BadHeader);
     }
     probe_synced(layout_ref, readable, avail, limit)
 }
@@ -302,8 +329,8 @@ pub(crate) fn probe_synced<L: LayoutRef>(
         // No frame fits; but a sync prefix cut by the end of the bytes may not be a
         // candidate at all: decide that first, so that the verdict does not depend on
         // where the input was cut.
-        if bytes.len() < layout.sync.len() {
-            return Probe::Need(layout.sync.len());
+        if bytes.len() < layout.sync_len() {
+            return Probe::Need(layout.sync_len());
         }
         return Probe::Reject(Reject::BadLength);
     }

@@ -34,7 +34,7 @@ pub(super) fn scan<L: LayoutRef>(
     stats: &mut Stats,
     sink: &mut impl FnMut(Frame<'_>),
 ) -> usize {
-    let sync = layout.layout().sync;
+    let format = layout.layout();
     let skipped_before = stats.skipped_bytes;
     let (mut at, mut frames) = (0usize, 0u64);
     // One comparison per step (`at` never passes `len`: every step advances it by at most what
@@ -42,7 +42,7 @@ pub(super) fn scan<L: LayoutRef>(
     while at < len {
         let from = readable.get(at..).unwrap_or_default();
         let avail = len.wrapping_sub(at);
-        let skip = find_candidate(sync, from.get(..avail).unwrap_or(from));
+        let skip = find_candidate(format, from.get(..avail).unwrap_or(from));
         if skip > 0 {
             stats.skipped_bytes = stats.skipped_bytes.wrapping_add(skip as u64);
             at = at.wrapping_add(skip);

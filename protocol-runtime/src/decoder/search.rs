@@ -12,10 +12,45 @@
 use super::{Probe, probe};
 use crate::layout::{FrameLayout, LayoutRef};
 
-/// Where the first candidate of `data` starts: the first offset where `data` holds the sync
-/// bytes, or a prefix of them that runs to the end of `data`; `data.len()` if there is none.
+/// Where the first candidate of `data` for `layout` starts: the first offset where `data` holds
+/// the sync, or a prefix of it that runs to the end of `data`; `data.len()` if there is none.
+///
+/// A layout known at compile time has a constant [`FrameLayout::sync_set`]: the branch on it
+/// folds away, and a single sync costs what it did before sync sets existed.
+#[inline(always)]
+pub(super) fn find_candidate(layout: &FrameLayout<'_>, data: &[u8]) -> usize {
+    if layout.sync_set.is_empty() {
+        find_sync(layout.sync, data)
+    } else {
+        find_sync_set(layout.sync_set, layout.sync, data)
+    }
+}
+
+/// The first offset where `data` holds one of the bytes of `set` followed by `more` (or by a
+/// prefix of it that runs to the end of `data`); `data.len()` if there is none.
+///
+/// A byte loop that tests each byte against the set: sets are a few bytes (CRSF's five device
+/// addresses), and on a clean stream the next frame starts at the first byte.
+#[inline(never)]
+fn find_sync_set(set: &[u8], more: &[u8], data: &[u8]) -> usize {
+    let mut from = 0;
+    while let Some(hit) = data
+        .get(from..)
+        .and_then(|rest| rest.iter().position(|b| set.contains(b)))
+    {
+        let at = from.wrapping_add(hit);
+        let after = data.get(at.wrapping_add(1)..).unwrap_or_default();
+        if after.iter().zip(more).all(|(a, b)| a == b) {
+            return at;
+        }
+        from = at.wrapping_add(1);
+    }
+    data.len()
+}
+
+/// [`find_candidate`] for a layout whose frames start with the bytes `sync`.
 #[inline]
-pub(super) fn find_candidate(sync: &[u8], data: &[u8]) -> usize {
+fn find_sync(sync: &[u8], data: &[u8]) -> usize {
     let Some((&first, more)) = sync.split_first() else {
         return 0;
     };
@@ -189,6 +224,30 @@ fn find_first_byte(sync: &[u8], data: &[u8]) -> usize {
         .map_or(data.len(), |at| base.wrapping_add(at))
 }
 
+/// [`may_start_sync`] for `layout`: with a sync set, always `true` (the exact search then
+/// decides).
+#[inline(always)]
+fn may_start(layout: &FrameLayout<'_>, data: &[u8], n: usize) -> bool {
+    if layout.sync_set.is_empty() {
+        may_start_sync(layout.sync, data, n)
+    } else {
+        n > 0
+    }
+}
+
+/// The first offset of `data` holding the first byte of `layout`'s sync (any byte of its sync
+/// set), or `data.len()`.
+#[inline(always)]
+fn find_lead(layout: &FrameLayout<'_>, data: &[u8]) -> usize {
+    if layout.sync_set.is_empty() {
+        find_first_byte(layout.sync, data)
+    } else {
+        data.iter()
+            .position(|b| layout.sync_set.contains(b))
+            .unwrap_or(data.len())
+    }
+}
+
 /// The shortest frame of `layout`: no candidate with fewer bytes after its start is decided.
 #[inline(always)]
 fn shortest_frame(layout: &FrameLayout<'_>) -> usize {
@@ -226,7 +285,7 @@ pub(super) fn frame_inside<L: LayoutRef>(
     }
     let window = last_start.wrapping_sub(known).wrapping_add(1);
     let from = readable.get(known..).unwrap_or_default();
-    if cfg!(target_pointer_width = "64") && !may_start_sync(format.sync, from, window) {
+    if cfg!(target_pointer_width = "64") && !may_start(format, from, window) {
         // None of these bytes starts a frame, now or later; the ones too close to the end may
         // once more bytes arrive.
         *dead = last_start.wrapping_add(1);
@@ -260,13 +319,12 @@ fn search_inside<L: LayoutRef>(
         let readable_rest = readable.get(at..).unwrap_or_default();
         // (The masked block test only where words are 64 bits: on a microcontroller the plain
         // search is smaller and as fast.)
-        let skip = if cfg!(not(target_pointer_width = "64"))
-            || may_start_sync(format.sync, readable_rest, window)
-        {
-            find_first_byte(format.sync, rest.get(..window).unwrap_or(rest))
-        } else {
-            window
-        };
+        let skip =
+            if cfg!(not(target_pointer_width = "64")) || may_start(format, readable_rest, window) {
+                find_lead(format, rest.get(..window).unwrap_or(rest))
+            } else {
+                window
+            };
         if skip >= window {
             // No start left with room for a frame: none of these bytes starts one, now or
             // later, but the ones too close to the end may once more bytes arrive.

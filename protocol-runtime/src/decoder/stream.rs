@@ -81,6 +81,7 @@ enum Step {
 ///
 /// static HFLINK: FrameLayout<'static> = FrameLayout {
 ///     sync: &[0xFF, 0xFF],
+///     sync_set: &[],
 ///     header_len: 6,
 ///     min_len: 8,
 ///     max_len: 127,
@@ -417,7 +418,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         let layout = self.layout;
         let layout = layout.layout();
         let offset = self.position;
-        let skip = find_candidate(layout.sync, data);
+        let skip = find_candidate(layout, data);
         if skip > 0 {
             let len = self.consume(input, skip).len();
             self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(len as u64);
@@ -468,7 +469,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             };
             let pending = region.len();
             let offset = self.position.wrapping_sub(pending as u64);
-            let skip = find_candidate(layout.sync, region);
+            let skip = find_candidate(layout, region);
             if skip > 0 {
                 self.start = self.start.wrapping_add(skip);
                 self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);

@@ -22,6 +22,7 @@ pub fn hex(s: &str) -> Vec<u8> {
 /// `FF FF sender receiver len(u16 BE) command payload sum`, `len` counting command + payload.
 pub static HFLINK: FrameLayout<'static> = FrameLayout {
     sync: &[0xFF, 0xFF],
+    sync_set: &[],
     header_len: 6,
     min_len: 8,
     max_len: 127,
@@ -96,6 +97,7 @@ static ROBORTS_CRC32: Slicing16<u32> = Slicing16::<u32>::new(&DJI_CRC32);
 /// `A5 len(u16 LE, payload only) seq crc8 | cmd(u16 LE) data crc16(LE)`.
 pub static REFEREE: FrameLayout<'static> = FrameLayout {
     sync: &[0xA5],
+    sync_set: &[],
     header_len: 5,
     min_len: 9,
     max_len: 9 + 128,
@@ -133,6 +135,7 @@ pub const REFEREE_GOLDEN: &str = "a503000027010043b40091fe";
 /// data crc32`, the 10-bit length counting the whole frame, the version a constant 0.
 pub static ROBORTS: FrameLayout<'static> = FrameLayout {
     sync: &[0xAA],
+    sync_set: &[],
     header_len: 12,
     min_len: 16,
     max_len: 300,
@@ -176,6 +179,7 @@ pub static ROBORTS: FrameLayout<'static> = FrameLayout {
 /// `5A len(u8) payload xor 1F 2F`, `len` counting the payload.
 pub static TRAILER: FrameLayout<'static> = FrameLayout {
     sync: &[0x5A],
+    sync_set: &[],
     header_len: 2,
     min_len: 5,
     max_len: 64,
@@ -204,13 +208,81 @@ pub static TRAILER: FrameLayout<'static> = FrameLayout {
     }],
 };
 
+static CRSF_CRC8: crc::Crc<u8, crc::Table<1>> =
+    crc::Crc::<u8, crc::Table<1>>::new(&crc::CRC_8_DVB_S2);
+
+/// CRSF: `address(one of C8 EA EE EC 00) len type payload crc8`, `len` counting type, payload
+/// and CRC; the CRC-8/DVB-S2 over type and payload. The sync is a set of values.
+pub static CRSF: FrameLayout<'static> = FrameLayout {
+    sync: &[],
+    sync_set: &[0xC8, 0xEA, 0xEE, 0xEC, 0x00],
+    header_len: 2,
+    min_len: 4,
+    max_len: 64,
+    length: LengthRule::Field {
+        field: WordField {
+            at: Pos::Start(1),
+            size: 1,
+            order: ByteOrder::Little,
+            shift: 0,
+            width: 8,
+        },
+        adjust: 2,
+    },
+    constants: &[],
+    header_checks: &[],
+    frame_checks: &[Check {
+        checksum: Checksum::Crc8(CrcImpl::Table1(&CRSF_CRC8)),
+        from: Pos::Start(2),
+        to: Pos::End(1),
+        at: Pos::End(1),
+        order: ByteOrder::Little,
+    }],
+    markers: &[],
+};
+
+/// A CRSF heartbeat (type 0x0B, origin 0x00EA) to the flight controller: the `heartbeat` frame
+/// of the CRSF golden vectors (`tests/vectors/crsf.json`).
+pub const CRSF_GOLDEN: &str = "c8040b00ea36";
+
+/// A sync set followed by sync bytes: `(A1 | B2) 5A len payload sum8`.
+pub static SET_THEN_SYNC: FrameLayout<'static> = FrameLayout {
+    sync: &[0x5A],
+    sync_set: &[0xA1, 0xB2],
+    header_len: 3,
+    min_len: 4,
+    max_len: 40,
+    length: LengthRule::Field {
+        field: WordField {
+            at: Pos::Start(2),
+            size: 1,
+            order: ByteOrder::Little,
+            shift: 0,
+            width: 8,
+        },
+        adjust: 4,
+    },
+    constants: &[],
+    header_checks: &[],
+    frame_checks: &[Check {
+        checksum: Checksum::Sum8,
+        from: Pos::Start(0),
+        to: Pos::End(1),
+        at: Pos::End(1),
+        order: ByteOrder::Little,
+    }],
+    markers: &[],
+};
+
 /// Every layout above with a name.
-pub fn layouts() -> [(&'static str, &'static FrameLayout<'static>); 4] {
+pub fn layouts() -> [(&'static str, &'static FrameLayout<'static>); 6] {
     [
         ("hflink", &HFLINK),
         ("referee", &REFEREE),
         ("roborts", &ROBORTS),
         ("trailer", &TRAILER),
+        ("crsf", &CRSF),
+        ("set_then_sync", &SET_THEN_SYNC),
     ]
 }
 
@@ -243,6 +315,9 @@ impl Rng {
 pub fn random_frame(rng: &mut Rng, layout: &FrameLayout<'_>, len: usize) -> Vec<u8> {
     let mut frame = vec![0u8; len];
     rng.fill(&mut frame);
+    if !layout.sync_set.is_empty() {
+        frame[0] = layout.sync_set[rng.below(layout.sync_set.len())];
+    }
     layout.seal(&mut frame).unwrap();
     assert_eq!(layout.probe(&frame), Probe::Frame(len));
     frame
@@ -379,8 +454,12 @@ pub fn reference(
     for (end, at_end) in horizons {
         while pos < end {
             let avail = &stream[pos..end];
-            let n = avail.len().min(layout.sync.len());
-            if avail[..n] != layout.sync[..n] {
+            // A value of the sync set, if any, then the sync bytes (as far as they have come).
+            let lead = usize::from(!layout.sync_set.is_empty());
+            let in_set = lead == 0 || layout.sync_set.contains(&avail[0]);
+            let rest = &avail[lead.min(avail.len())..];
+            let n = rest.len().min(layout.sync.len());
+            if !in_set || rest[..n] != layout.sync[..n] {
                 push(
                     &mut seen,
                     Event::Skipped {

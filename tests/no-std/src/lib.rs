@@ -13,6 +13,7 @@ protocol::protocol!("../../specs/scout.toml");
 protocol::protocol!("../../specs/mavlink.toml");
 protocol::protocol!("../../specs/roborts.toml");
 protocol::protocol!("../../specs/dynamixel.toml");
+protocol::protocol!("../../specs/crsf.toml");
 // The payload types beyond fixed-width primitives: 24-bit integers, kept bitfield bits,
 // bit-packed arrays.
 protocol::protocol!("../../protocol-codegen/tests/features/int24.toml");

@@ -11,7 +11,7 @@
 
 use protocol::FrameLayout;
 
-use super::model::{Model, length_field};
+use super::model::{Model, length_field, sync_word};
 use super::payload::Ctx;
 use super::{Rng, Source};
 
@@ -118,7 +118,7 @@ pub fn build(model: &Model, rng: &mut Rng, frames: usize, touch_one_in: u64) -> 
 
 /// Garbage, or a sync word with part of a header, between two frames.
 fn between(model: &Model, rng: &mut Rng, out: &mut FaultStream) {
-    let sync = model.layout.sync;
+    let sync = sync_word(model.layout, rng.below(256) as usize);
     if rng.one_in(2) {
         let n = rng.range(1, 16) as usize;
         for _ in 0..n {
@@ -175,7 +175,7 @@ fn touch(layout: &FrameLayout<'_>, rng: &mut Rng, frame: &mut Vec<u8>) -> Kind {
         }
         4 => {
             let at = rng.range(1, len as u64 - 1) as usize;
-            frame.splice(at..at, layout.sync.iter().copied());
+            frame.splice(at..at, sync_word(layout, rng.below(256) as usize));
             Kind::SyncInside
         }
         5 | 6 if length_field(layout).is_some() => {

@@ -27,6 +27,7 @@ use protocol::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stats, Strea
 /// is missing from this list.
 macro_rules! for_each_spec {
     ($callback:ident) => {
+        $callback!(crsf, "../specs/crsf.toml");
         $callback!(dynamixel, "../specs/dynamixel.toml");
         $callback!(hflink, "../specs/hflink.toml");
         $callback!(mavlink, "../specs/mavlink.toml");

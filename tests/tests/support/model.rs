@@ -311,7 +311,7 @@ impl Model {
         // A check that folds in a per-command byte verifies only the frames of known commands.
         let known_key = f.checks.iter().any(|c| c.extra.is_some()) && !self.ir.commands.is_empty();
         let command = src.below(self.ir.commands.len().max(1) as u64) as usize;
-        for v in &f.values {
+        for (i, v) in f.values.iter().enumerate() {
             let field = word_field(v);
             let value = match v.role {
                 ir::Role::Length => continue,
@@ -323,6 +323,8 @@ impl Model {
                         .position(|&d| std::ptr::eq(&f.values[d], v));
                     self.ir.commands[command].id[k.expect("dispatch value")]
                 }
+                // A sync from a set: the frame is found only with a value of the set.
+                ir::Role::User { .. } if i == 0 && !f.sync_set.is_empty() => self.sync_value(src),
                 _ => src.next_u64() & field.max_value(),
             };
             field.write(&mut frame, value).expect("header value fits");
@@ -344,8 +346,16 @@ impl Model {
         frame
     }
 
+    /// A value of the first frame's sync set.
+    fn sync_value(&self, src: &mut impl Source) -> u64 {
+        let set = &self.frame().sync_set;
+        let k = src.range(0, set.len() as u64 - 1) as usize;
+        u64::from(set[k])
+    }
+
     /// A header value set by the user: the direction's range or value for the field that
-    /// tells the direction, anything that fits otherwise.
+    /// tells the direction, a value of the sync set for a sync from a set, anything that fits
+    /// otherwise.
     fn user_value(
         &self,
         src: &mut impl Source,
@@ -363,8 +373,21 @@ impl Model {
                 _ => {}
             }
         }
+        if index == 0 && !self.frame().sync_set.is_empty() {
+            return self.sync_value(src);
+        }
         src.next_u64() & word_field(v).max_value()
     }
+}
+
+/// A sync as it stands on the wire: the `pick`-th value (modulo their number) of a sync set, if
+/// the layout has one, then the sync bytes.
+pub fn sync_word(layout: &FrameLayout<'_>, pick: usize) -> Vec<u8> {
+    let set = layout.sync_set;
+    let lead = set.get(pick % set.len().max(1)).copied();
+    lead.into_iter()
+        .chain(layout.sync.iter().copied())
+        .collect()
 }
 
 /// A frame the spec allows but the generated layout refuses to seal.

@@ -44,6 +44,7 @@ const FIELD_KEYS: &[&str] = &[
     "addresses",
     "length_of",
     "value",
+    "one_of",
     "bits",
     "doc",
 ];
@@ -61,7 +62,7 @@ fn present_keys(e: &ElementDef) -> Vec<(&'static str, std::ops::Range<usize>)> {
     }
     k!(sync => "sync", field => "field", payload => "payload", check => "check", trailer => "trailer",
        ty => "type", addresses => "addresses", length_of => "length_of", value => "value",
-       bits => "bits", over => "over", byte_order => "byte_order", extra => "extra", name => "name",
+       one_of => "one_of", bits => "bits", over => "over", byte_order => "byte_order", extra => "extra", name => "name",
        doc => "doc");
     v
 }
@@ -381,8 +382,8 @@ pub(super) fn check_unique_names(ctx: &mut Ctx<'_>, fname: &SStr, els: &[El<'_>]
     }
 }
 
-/// Rule: the first element of a serial frame is the sync (checked only when every element
-/// lowered: a broken element may be the sync).
+/// Rule: the first element of a serial frame is the sync, or a field that is the sync (`one_of`)
+/// (checked only when every element lowered: a broken element may be the sync).
 pub(super) fn check_serial_sync(
     ctx: &mut Ctx<'_>,
     fname: &SStr,
@@ -391,9 +392,10 @@ pub(super) fn check_serial_sync(
 ) {
     if draft.transport == Transport::Serial
         && !matches!(draft.els.first().map(|e| &e.kind), Some(Kind::Sync(_)))
+        && draft.sync_set.is_none()
         && !draft.broken
     {
-        ctx.error(def.layout.span(), format!("frame `{}` has no sync bytes", fname.get_ref()), "start the layout with `{ sync = [0xFF, 0xFF] }`: a stream decoder finds frames by their sync");
+        ctx.error(def.layout.span(), format!("frame `{}` has no sync bytes", fname.get_ref()), "start the layout with `{ sync = [0xFF, 0xFF] }` (or a `u8` field with `one_of = [...]`): a stream decoder finds frames by their sync");
         draft.broken = true;
     }
 }

@@ -7,6 +7,7 @@ use toml::Spanned;
 use super::super::names::{check_snake_name, parse_prim, unknown_type};
 use super::super::types::{Enums, fit, lower_bits, mask};
 use super::super::{Ctx, text};
+use super::elements::byte_list;
 use super::{Draft, El, Kind};
 use crate::ir::{ByteOrder, HeaderValue, Pos, Prim, Role, Scalar, Transport};
 use crate::spec::model::{ElementDef, SStr};
@@ -86,6 +87,9 @@ pub(super) fn lower_field_element<'s>(
         draft.broken = true;
         return Some(());
     };
+    if let Some(set) = &d.one_of {
+        lower_sync_set(ctx, draft, el, set, word);
+    }
     let idx = if d.bits.is_some() {
         lower_member_values(ctx, draft, el, word, enums)
     } else {
@@ -98,6 +102,63 @@ pub(super) fn lower_field_element<'s>(
         kind: Kind::Word(word, idx),
     });
     Some(())
+}
+
+/// Rule: a field with `one_of` is the frame's sync taken from a set of values: the first element
+/// of a serial frame's layout, a `u8`, without `value`, `length_of` or `bits`, its values
+/// distinct bytes. The decoder searches for any of them; the matched one is the field's value,
+/// which the sender sets (a CRSF device address).
+fn lower_sync_set(
+    ctx: &mut Ctx<'_>,
+    draft: &mut Draft<'_>,
+    el: &Spanned<ElementDef>,
+    set: &Spanned<Vec<Spanned<i64>>>,
+    word: Scalar,
+) {
+    let d = el.get_ref();
+    let bytes = byte_list(ctx, set, "one_of");
+    let fix = "a field that is the sync is `{ field = \"address\", type = \"u8\", one_of = [0xC8, 0xEA] }`, the first element of a serial frame";
+    if matches!(draft.transport, Transport::Can { .. }) {
+        ctx.error(
+            set.span(),
+            "a CAN frame has no sync",
+            "remove `one_of`: CAN delivers whole frames",
+        );
+    } else if !draft.els.is_empty() {
+        ctx.error(
+            set.span(),
+            "a field with `one_of` is the sync: it must be the first element of the layout",
+            fix,
+        );
+    } else if word.prim != Prim::U8 {
+        ctx.error(
+            set.span(),
+            "a field with `one_of` is the sync: its type is `u8`",
+            fix,
+        );
+    } else if d.value.is_some() || d.length_of.is_some() || d.bits.is_some() {
+        ctx.error(
+            set.span(),
+            "a field with `one_of` takes no `value`, `length_of` or `bits`",
+            fix,
+        );
+    } else if let Some(twice) = set.get_ref().iter().enumerate().find_map(|(i, b)| {
+        let earlier = &set.get_ref()[..i];
+        earlier
+            .iter()
+            .any(|e| e.get_ref() == b.get_ref())
+            .then_some(b)
+    }) {
+        ctx.error(
+            twice.span(),
+            format!("value {:#04X} appears twice in `one_of`", twice.get_ref()),
+            "list each value once",
+        );
+    } else if !bytes.is_empty() {
+        draft.sync_set = Some(bytes);
+        return;
+    }
+    draft.broken = true;
 }
 
 /// Rule: a header field's type is an unsigned integer (flags are `bits` of one).

@@ -223,7 +223,7 @@ pub(super) fn lower_length(
 /// through the sync, the length field, the constants and the header checks (fields after them,
 /// such as a command id, are part of what the length counts).
 pub(super) fn lower_decide_len(
-    sync: &[u8],
+    sync_len: usize,
     values: &[HeaderValue],
     length: &Length,
     checks: &[Check],
@@ -251,5 +251,5 @@ pub(super) fn lower_decide_len(
         })
         .max()
         .unwrap_or(0);
-    sync.len().max(length).max(constants).max(checks)
+    sync_len.max(length).max(constants).max(checks)
 }

@@ -79,6 +79,8 @@ struct Draft<'s> {
     length_decl: Option<(usize, &'s SStr)>,
     /// An element could not be lowered, so offsets after it are unknown.
     broken: bool,
+    /// The values of a field that is the sync (`one_of`), once lowered.
+    sync_set: Option<Vec<u8>>,
 }
 
 /// Lower one frame format (`first`: the spec's first, default one): the element rules, then
@@ -101,6 +103,7 @@ fn lower_frame(
         payload: None,
         length_decl: None,
         broken: false,
+        sync_set: None,
     };
     header::push_can_prefix(&mut draft);
     for (i, el) in def.layout.get_ref().iter().enumerate() {
@@ -127,8 +130,10 @@ fn lower_frame(
         mut checks,
         mut trailers,
         length_decl,
+        sync_set,
         ..
     } = draft;
+    let sync_set = sync_set.unwrap_or_default();
     let lay = Layout::new(fname, &els, pi, payload_min, payload_max);
     lay.place_values(&mut values);
     length::check_can_length(ctx, def, &lay, transport, length_decl)?;
@@ -158,8 +163,14 @@ fn lower_frame(
         names,
         transport,
         doc: text(&def.doc),
-        decide_len: length::lower_decide_len(&sync, &values, &length, &checks),
+        decide_len: length::lower_decide_len(
+            sync.len() + usize::from(!sync_set.is_empty()),
+            &values,
+            &length,
+            &checks,
+        ),
         sync,
+        sync_set,
         header_len: lay.header_len,
         trailer_len: lay.trailer_len,
         payload_min,

@@ -4,6 +4,7 @@
 protocol::protocol!("specs/hflink.toml");
 protocol::protocol!("specs/referee.toml");
 protocol::protocol!("specs/referee2018.toml");
+protocol::protocol!("specs/crsf.toml");
 protocol::protocol!("specs/scout.toml");
 protocol::protocol!("specs/mavlink.toml");
 protocol::protocol!("specs/roborts.toml");

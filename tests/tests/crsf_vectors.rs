@@ -1,0 +1,376 @@
+//! CRSF golden vectors (`tests/vectors/crsf.json`, each frame's provenance recorded there) against
+//! `specs/crsf.toml`, whose sync is a set of device addresses: every frame decodes to its
+//! recorded values and encodes to its exact bytes, by generated code and by the run-time codec
+//! (`protocol_dynamic`); the mixed stream yields exactly its expected frames at every chunk size,
+//! through the generated decoder, a decoder on the layout value and the run-time codec.
+//!
+//! What the spec carries as raw bytes (strings, DEVICE_INFO after its addresses, a COMMAND's
+//! data and inner CRC) is compared as the bytes the vector's values make up.
+
+use protocol::{DecodeError, EncodeError, Reject};
+use protocol_dynamic::{Interpreter, Item};
+use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
+use serde_json::{Value, json};
+
+protocol::protocol!("../specs/crsf.toml");
+
+use crsf::*;
+
+fn u(v: &Value, k: &str) -> u64 {
+    v[k].as_u64().unwrap_or_else(|| panic!("field {k} missing"))
+}
+
+fn i(v: &Value, k: &str) -> i64 {
+    v[k].as_i64().unwrap_or_else(|| panic!("field {k} missing"))
+}
+
+fn ints(v: &Value, k: &str) -> Vec<i64> {
+    v[k].as_array()
+        .unwrap_or_else(|| panic!("field {k} missing"))
+        .iter()
+        .map(|x| x.as_i64().expect("an integer"))
+        .collect()
+}
+
+fn bytes<const N: usize>(b: &[u8]) -> protocol::Bytes<N> {
+    protocol::Bytes::from_slice(b).expect("fits")
+}
+
+/// DEVICE_INFO after its addresses, from the vector's values: the NUL-terminated name, then
+/// the big-endian integers.
+fn device_info_rest(f: &Value) -> Vec<u8> {
+    let mut out = f["device_name"].as_str().expect("name").as_bytes().to_vec();
+    out.push(0);
+    for k in ["serial_number", "hardware_id", "firmware_id"] {
+        out.extend_from_slice(&(u(f, k) as u32).to_be_bytes());
+    }
+    out.push(u(f, "parameters_total") as u8);
+    out.push(u(f, "parameter_version_number") as u8);
+    out
+}
+
+/// The message a vector records, built from its JSON fields (not from its bytes).
+fn expected_message(ty: u64, f: &Value) -> Message {
+    match ty {
+        0x02 => Message::Gps(Gps {
+            latitude: i(f, "latitude") as i32,
+            longitude: i(f, "longitude") as i32,
+            groundspeed: u(f, "groundspeed") as u16,
+            heading: u(f, "heading") as u16,
+            altitude: u(f, "altitude") as u16,
+            satellites: u(f, "satellites") as u8,
+        }),
+        0x07 => Message::Vario(Vario {
+            vertical_speed: i(f, "vertical_speed") as i16,
+        }),
+        0x08 => Message::BatterySensor(BatterySensor {
+            voltage: u(f, "voltage") as u16,
+            current: u(f, "current") as u16,
+            capacity_used: u(f, "capacity_used") as u32,
+            remaining: u(f, "remaining") as u8,
+        }),
+        0x09 => Message::BaroAltitude(BaroAltitude {
+            altitude_packed: u(f, "altitude_packed") as u16,
+            vertical_speed_packed: i(f, "vertical_speed_packed") as i8,
+        }),
+        0x0A => Message::Airspeed(Airspeed {
+            speed: u(f, "speed") as u16,
+        }),
+        0x0B => Message::Heartbeat(Heartbeat {
+            origin_address: i(f, "origin_address") as i16,
+        }),
+        0x0C => {
+            let values: Vec<RpmValue> = ints(f, "rpm_value")
+                .into_iter()
+                .map(|v| RpmValue { value: v as i32 })
+                .collect();
+            Message::Rpm(Rpm {
+                rpm_source_id: u(f, "rpm_source_id") as u8,
+                rpm_value: protocol::Group::from_slice(&values).expect("fits"),
+            })
+        }
+        0x0D => {
+            let values: Vec<TemperatureValue> = ints(f, "temperature")
+                .into_iter()
+                .map(|v| TemperatureValue { value: v as i16 })
+                .collect();
+            Message::Temperature(Temperature {
+                temp_source_id: u(f, "temp_source_id") as u8,
+                temperature: protocol::Group::from_slice(&values).expect("fits"),
+            })
+        }
+        0x14 => Message::LinkStatistics(LinkStatistics {
+            up_rssi_ant1: u(f, "up_rssi_ant1") as u8,
+            up_rssi_ant2: u(f, "up_rssi_ant2") as u8,
+            up_link_quality: u(f, "up_link_quality") as u8,
+            up_snr: i(f, "up_snr") as i8,
+            active_antenna: u(f, "active_antenna") as u8,
+            rf_profile: u(f, "rf_profile") as u8,
+            up_rf_power: u(f, "up_rf_power") as u8,
+            down_rssi: u(f, "down_rssi") as u8,
+            down_link_quality: u(f, "down_link_quality") as u8,
+            down_snr: i(f, "down_snr") as i8,
+        }),
+        0x16 => {
+            let channels: Vec<u16> = ints(f, "channels").iter().map(|&c| c as u16).collect();
+            Message::RcChannelsPacked(RcChannels {
+                channels: channels.try_into().expect("16 channels"),
+            })
+        }
+        0x1C => Message::LinkStatisticsRx(LinkStatisticsRx {
+            rssi_db: u(f, "rssi_db") as u8,
+            rssi_percent: u(f, "rssi_percent") as u8,
+            link_quality: u(f, "link_quality") as u8,
+            snr: i(f, "snr") as i8,
+            rf_power_db: u(f, "rf_power_db") as u8,
+        }),
+        0x1D => Message::LinkStatisticsTx(LinkStatisticsTx {
+            rssi_db: u(f, "rssi_db") as u8,
+            rssi_percent: u(f, "rssi_percent") as u8,
+            link_quality: u(f, "link_quality") as u8,
+            snr: i(f, "snr") as i8,
+            rf_power_db: u(f, "rf_power_db") as u8,
+            fps: u(f, "fps") as u8,
+        }),
+        0x1E => Message::Attitude(Attitude {
+            pitch: i(f, "pitch") as i16,
+            roll: i(f, "roll") as i16,
+            yaw: i(f, "yaw") as i16,
+        }),
+        0x21 => {
+            let mut name = f["flight_mode"].as_str().expect("mode").as_bytes().to_vec();
+            name.push(0);
+            Message::FlightMode(FlightMode {
+                flight_mode: bytes(&name),
+            })
+        }
+        0x28 => Message::DevicePing(DevicePing {
+            destination: u(f, "destination") as u8,
+            origin: u(f, "origin") as u8,
+        }),
+        0x29 => Message::DeviceInfo(DeviceInfo {
+            destination: u(f, "destination") as u8,
+            origin: u(f, "origin") as u8,
+            info: bytes(&device_info_rest(f)),
+        }),
+        0x2C => Message::ParameterRead(ParameterRead {
+            destination: u(f, "destination") as u8,
+            origin: u(f, "origin") as u8,
+            field_index: u(f, "field_index") as u8,
+            field_chunk: u(f, "field_chunk") as u8,
+        }),
+        0x2D => {
+            let value: Vec<u8> = ints(f, "value").iter().map(|&b| b as u8).collect();
+            Message::ParameterWrite(ParameterWrite {
+                destination: u(f, "destination") as u8,
+                origin: u(f, "origin") as u8,
+                field_index: u(f, "field_index") as u8,
+                value: bytes(&value),
+            })
+        }
+        0x32 => {
+            let mut data: Vec<u8> = ints(f, "payload").iter().map(|&b| b as u8).collect();
+            data.push(u(f, "command_crc") as u8);
+            Message::Command(CommandFrame {
+                destination: u(f, "destination") as u8,
+                origin: u(f, "origin") as u8,
+                command: u(f, "command") as u8,
+                data: bytes(&data),
+            })
+        }
+        other => panic!("frame type {other:#04x} not covered by this test"),
+    }
+}
+
+/// The vector's fields in the run-time codec's JSON shape: a repeated group of one-value
+/// structs as objects, what the spec carries as raw bytes as lowercase hex.
+fn dynamic_fields(ty: u64, f: &Value) -> Value {
+    let hex_of = |b: &[u8]| b.iter().map(|x| format!("{x:02x}")).collect::<String>();
+    let small = |k: &str| ints(f, k).iter().map(|&b| b as u8).collect::<Vec<u8>>();
+    let objects = |k: &str| {
+        Value::Array(
+            ints(f, k)
+                .into_iter()
+                .map(|v| json!({ "value": v }))
+                .collect(),
+        )
+    };
+    let mut out = f.clone();
+    match ty {
+        0x0C => out["rpm_value"] = objects("rpm_value"),
+        0x0D => out["temperature"] = objects("temperature"),
+        0x21 => {
+            let mut name = f["flight_mode"].as_str().expect("mode").as_bytes().to_vec();
+            name.push(0);
+            out["flight_mode"] = Value::String(hex_of(&name));
+        }
+        0x29 => {
+            out = json!({
+                "destination": f["destination"],
+                "origin": f["origin"],
+                "info": hex_of(&device_info_rest(f)),
+            });
+        }
+        0x2D => out["value"] = Value::String(hex_of(&small("value"))),
+        0x32 => {
+            let mut data = small("payload");
+            data.push(u(f, "command_crc") as u8);
+            out = json!({
+                "destination": f["destination"],
+                "origin": f["origin"],
+                "command": f["command"],
+                "data": hex_of(&data),
+            });
+        }
+        _ => {}
+    }
+    out
+}
+
+fn interpreter() -> Interpreter {
+    let path = format!("{}/../specs/crsf.toml", env!("CARGO_MANIFEST_DIR"));
+    Interpreter::load(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+#[test]
+fn every_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
+    let v = load_vectors("crsf.json");
+    let interp = interpreter();
+    let codec = interp.codec();
+    let frames = v["frames"].as_array().expect("frames");
+    for frame in frames {
+        let name = frame["name"].as_str().unwrap_or("?");
+        let bytes = hex(frame["hex"].as_str().expect("hex"));
+        let ty = u(frame, "type");
+        assert_eq!(LAYOUT.parse(&bytes), Ok(&bytes[..]), "{name}: framing");
+        let expected = Packet {
+            header: Header {
+                address: u(frame, "sync") as u8,
+            },
+            message: expected_message(ty, &frame["fields"]),
+        };
+        assert_eq!(Packet::decode(&bytes), Ok(expected), "{name}: decode");
+        let mut buf = [0u8; MAX_FRAME_LEN];
+        let n = expected
+            .encode(&mut buf)
+            .unwrap_or_else(|e| panic!("{name}: encode failed: {e}"));
+        assert_eq!(F(&buf[..n]), F(&bytes), "{name}: encode");
+
+        // The run-time codec: the same values, the same bytes.
+        let decoded = codec
+            .parse(0, &bytes)
+            .unwrap_or_else(|e| panic!("{name}: dynamic decode: {e:?}"));
+        let value = codec.frame_value(&decoded, 0, &bytes);
+        let json = serde_json::to_value(&value).expect("serializes");
+        assert_eq!(
+            json["header"],
+            json!({ "address": u(frame, "sync") }),
+            "{name}"
+        );
+        assert_eq!(json["id"], json!(ty), "{name}: dynamic type");
+        assert_eq!(
+            json["payload"],
+            dynamic_fields(ty, &frame["fields"]),
+            "{name}: dynamic decode"
+        );
+        let encoded = codec
+            .encode(&value)
+            .unwrap_or_else(|e| panic!("{name}: dynamic encode: {e:?}"));
+        assert_eq!(F(&encoded.bytes), F(&bytes), "{name}: dynamic encode");
+    }
+    assert_eq!(
+        frames.len(),
+        23,
+        "every frame of the vector file was checked"
+    );
+}
+
+#[test]
+fn every_address_of_the_set_is_a_sync_and_no_other_byte_is() {
+    let frame = hex("c8040b00ea36");
+    for address in 0..=0xFFu8 {
+        let mut copy = frame.clone();
+        copy[0] = address;
+        let in_set = [0xC8, 0xEA, 0xEE, 0xEC, 0x00].contains(&address);
+        let parsed = LAYOUT.parse(&copy);
+        if in_set {
+            assert_eq!(parsed, Ok(&copy[..]), "{address:#04x}");
+            let packet = Packet::decode(&copy).expect("decodes");
+            assert_eq!(packet.header.address, address);
+            // Encoding writes the address the header holds.
+            let mut buf = [0u8; MAX_FRAME_LEN];
+            let n = packet.encode(&mut buf).expect("encodes");
+            assert_eq!(F(&buf[..n]), F(&copy));
+        } else {
+            assert_eq!(
+                parsed,
+                Err(DecodeError::Frame(Reject::BadHeader)),
+                "{address:#04x}"
+            );
+        }
+    }
+}
+
+#[test]
+fn an_address_outside_the_set_is_an_encode_error() {
+    let packet = Packet {
+        header: Header { address: 0xC9 },
+        message: Message::Airspeed(Airspeed { speed: 360 }),
+    };
+    let mut buf = [0u8; MAX_FRAME_LEN];
+    assert_eq!(packet.encode(&mut buf), Err(EncodeError::ValueOutOfRange));
+    let codec = interpreter();
+    let codec = codec.codec();
+    let value: protocol_dynamic::Value = serde_json::from_value(json!({
+        "command": "AIRSPEED",
+        "header": { "address": 0xC9 },
+        "payload": { "speed": 360 },
+    }))
+    .expect("a frame value");
+    assert!(
+        codec.encode(&value).is_err(),
+        "the run-time codec refuses it too"
+    );
+}
+
+#[test]
+fn stream_yields_expected_frames_at_every_chunk_size() {
+    let v = load_vectors("crsf.json");
+    let (bytes, expected) = stream_vector(&v["streams"][0]);
+    // The layout as a value (the engine interpreting it).
+    assert_stream_at_every_chunk_size::<MAX_FRAME_LEN>(&LAYOUT, &bytes, &expected, |frame| {
+        Packet::from_frame(frame).expect("every expected frame decodes");
+    });
+    let interp = interpreter();
+    let codec = interp.codec();
+    for chunk in 1..=bytes.len() {
+        // The generated decoder (the layout a constant).
+        let mut dec = decoder();
+        let mut got = Vec::new();
+        for part in bytes.chunks(chunk) {
+            let mut input = part;
+            while let Some(frame) = dec.decode(&mut input) {
+                got.push((frame.offset, frame.bytes.to_vec()));
+            }
+        }
+        assert_eq!(got, expected, "generated decoder, chunk size {chunk}");
+        // The run-time codec.
+        let mut s = codec.stream(0).expect("a frame format");
+        let mut got = Vec::new();
+        for part in bytes.chunks(chunk) {
+            let mut input = part;
+            while let Some(item) = s.next_item(&mut input) {
+                if let Item::Frame {
+                    offset,
+                    bytes,
+                    decoded,
+                } = item
+                {
+                    assert!(decoded.is_ok(), "chunk {chunk}: {decoded:?}");
+                    got.push((offset, bytes.to_vec()));
+                }
+            }
+        }
+        assert_eq!(got, expected, "run-time codec, chunk size {chunk}");
+    }
+}
