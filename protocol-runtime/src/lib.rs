@@ -182,6 +182,7 @@ pub mod layout;
 pub mod packed;
 pub mod packet;
 pub mod stuffing;
+pub mod text;
 pub mod wire;
 
 pub use bytes::Bytes;
@@ -193,6 +194,7 @@ pub use error::{DecodeError, DecodeResult, EncodeError, EncodeResult};
 pub use group::Group;
 pub use layout::{FrameLayout, LayoutRef};
 pub use packet::{EncodePacket, PacketDecoder, PacketEvent, PacketLayout, Packets};
+pub use text::FixedStr;
 pub use wire::{Reader, Writer};
 
 /// The `embedded-can` crate at the version [`CanFrame`] implements `Frame` of.
@@ -214,7 +216,7 @@ pub use tokio_util;
 pub mod __private {
     pub use crate::{
         bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, field::*, group::*,
-        layout::*, packed::*, packet::*, stuffing::*, wire::*,
+        layout::*, packed::*, packet::*, stuffing::*, text::FixedStr, wire::*,
     };
     pub use core;
     pub use core::option::Option::{self, None, Some};
