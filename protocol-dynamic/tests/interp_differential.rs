@@ -22,6 +22,9 @@ protocol::protocol!("../specs/referee2018.toml");
 protocol::protocol!("../specs/scout.toml");
 protocol::protocol!("../specs/dynamixel.toml");
 protocol::protocol!("../specs/roborts.toml");
+protocol::protocol!("../specs/ibus.toml");
+protocol::protocol!("../specs/sbus.toml");
+protocol::protocol!("../specs/ubx.toml");
 protocol::protocol!("tests/fixtures/features.toml");
 
 /// A decoded message as `{:?}` prints it, and its bytes encoded again.
@@ -108,6 +111,15 @@ fn dynamixel_feedback(bytes: &[u8]) -> Generated<Vec<u8>> {
     Ok((format!("{packet:?}"), buf[..n].to_vec()))
 }
 
+fn sbus_packet(bytes: &[u8]) -> Generated<Vec<u8>> {
+    let packet = sbus::Packet::decode(bytes)?;
+    let mut buf = vec![0u8; sbus::MAX_FRAME_LEN];
+    let n = packet
+        .encode(&mut buf)
+        .expect("generated code encodes what it decoded");
+    Ok((format!("{packet:?}"), buf[..n].to_vec()))
+}
+
 fn specs() -> Vec<Gen> {
     vec![
         generated!(hflink, [LAYOUT], None),
@@ -121,6 +133,9 @@ fn specs() -> Vec<Gen> {
             Some((1, dynamixel_feedback))
         ),
         generated!(roborts, [LAYOUT], None),
+        generated!(ibus, [LAYOUT], None),
+        generated!(sbus, [LAYOUT], None, Some((0, sbus_packet))),
+        generated!(ubx, [LAYOUT], None),
         generated!(features, [LAYOUT, RAW_LAYOUT], None),
     ]
 }
@@ -243,6 +258,9 @@ fn golden_vectors_decode_and_encode_alike() {
         ("scout", "agilex_scout.json"),
         ("dynamixel", "dynamixel_protocol2.json"),
         ("roborts", "roborts_sdk.json"),
+        ("ibus", "ibus.json"),
+        ("sbus", "sbus.json"),
+        ("ubx", "ubx.json"),
     ];
     let gens = specs();
     for (spec, file) in files {
@@ -548,6 +566,9 @@ fn vector_streams_yield_the_same_events() {
         ("scout", "agilex_scout.json"),
         ("dynamixel", "dynamixel_protocol2.json"),
         ("roborts", "roborts_sdk.json"),
+        ("ibus", "ibus.json"),
+        ("sbus", "sbus.json"),
+        ("ubx", "ubx.json"),
     ];
     let gens = specs();
     for (spec, file) in files {

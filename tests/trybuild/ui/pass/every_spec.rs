@@ -7,10 +7,14 @@ protocol::protocol!("specs/referee2018.toml");
 protocol::protocol!("specs/scout.toml");
 protocol::protocol!("specs/roborts.toml");
 protocol::protocol!("specs/dynamixel.toml");
+protocol::protocol!("specs/ibus.toml");
+protocol::protocol!("specs/sbus.toml");
+protocol::protocol!("specs/ubx.toml");
 protocol::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
 protocol::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
 protocol::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
 protocol::protocol!("protocol-codegen/tests/features/can_and_trailer_field.toml");
+protocol::protocol!("protocol-codegen/tests/features/text.toml");
 
 fn main() {
     let _ = hflink::decoder();
@@ -18,4 +22,7 @@ fn main() {
     let _ = scout::CanPacket::decode;
     let _ = roborts::decoder();
     let _ = dynamixel::feedback_decoder();
+    let _ = ibus::decoder();
+    let _ = sbus::Packet::decode;
+    let _ = ubx::decoder();
 }
