@@ -16,15 +16,15 @@ use crate::wire::{Reader, Writer};
 /// The text of a NUL-padded field's bytes: the bytes before the first NUL (all of them when
 /// there is none).
 pub fn text_of(bytes: &[u8]) -> &[u8] {
-    let end = bytes.iter().position(|&b| b == 0).unwrap_or(bytes.len());
-    &bytes[..end]
+    bytes.split(|&b| b == 0).next().unwrap_or(bytes)
 }
 
 /// Whether a NUL-padded field's bytes are what [`pad_text`] makes of their text: UTF-8, and
 /// only NUL bytes after it.
 pub fn is_canonical(bytes: &[u8]) -> bool {
     let text = text_of(bytes);
-    core::str::from_utf8(text).is_ok() && bytes[text.len()..].iter().all(|&b| b == 0)
+    let rest = bytes.get(text.len()..).unwrap_or_default();
+    core::str::from_utf8(text).is_ok() && rest.iter().all(|&b| b == 0)
 }
 
 /// Fills `out` with `text` followed by NUL bytes; `None` (and `out` untouched) when the text
