@@ -147,6 +147,14 @@ impl<const N: usize> fmt::Display for FixedStr<N> {
 }
 
 #[cfg(test)]
+// Tests may index and unwrap: a panic there is a failed test, not a runtime fault.
+#[allow(
+    clippy::indexing_slicing,
+    clippy::arithmetic_side_effects,
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic
+)]
 mod tests {
     use super::*;
 

@@ -1,6 +1,7 @@
 //! The run-time codec (`protocol_dynamic`) on the golden vectors of a bundled spec: what the
 //! generated-code tests check of the typed values, checked here of the JSON values that
-//! `protocol decode` prints and `protocol encode` reads.
+//! `protocol decode` prints and `protocol encode` reads. Each test file uses part of it.
+#![allow(dead_code)]
 
 use protocol_dynamic::{Interpreter, Item, Value};
 use protocol_tests::F;
