@@ -309,6 +309,9 @@ pub enum ValueType {
     Struct(usize),
     /// An enum (index into [`Protocol::enums`]) with its wire integer.
     Enum(usize, Scalar),
+    /// This many bytes of NUL-padded text (a C `char[N]`): the runtime's `FixedStr<N>`, which
+    /// keeps every byte as received.
+    Text(usize),
 }
 
 /// Scaling of a raw integer into a physical value: `physical = raw * factor + offset`.

@@ -1,5 +1,6 @@
 //! Every lint fixture in `tests/lints/` compiles (a lint never fails the macro) and renders its
-//! warnings into an insta snapshot; the reference specs give none.
+//! warnings into an insta snapshot; the reference specs give none, but SBUS (which has no check)
+//! gets its one.
 
 use protocol_codegen::diag::{Severity, render_all};
 use protocol_codegen::lint::lint;
@@ -35,6 +36,8 @@ fn the_reference_specs_give_no_warning() {
         "dynamixel",
         "scout",
         "mavlink",
+        "ibus",
+        "ubx",
     ] {
         let path = format!("{}/../specs/{name}.toml", env!("CARGO_MANIFEST_DIR"));
         let text = std::fs::read_to_string(&path).expect("spec");
@@ -42,4 +45,16 @@ fn the_reference_specs_give_no_warning() {
         let warnings = lint(&source);
         assert!(warnings.is_empty(), "{}", render_all(&warnings, &source));
     }
+}
+
+/// SBUS carries no check: its spec gets exactly the warning about that, on its frame format.
+#[test]
+fn the_sbus_spec_gets_the_warning_for_a_frame_without_check() {
+    let path = format!("{}/../specs/sbus.toml", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("spec");
+    let source = SpecSource::new("specs/sbus.toml", text);
+    let warnings = lint(&source);
+    let rendered = render_all(&warnings, &source);
+    assert_eq!(warnings.len(), 1, "{rendered}");
+    assert!(rendered.contains("frame `sbus` has no check"), "{rendered}");
 }

@@ -24,6 +24,9 @@ protocol::protocol!("../specs/scout.toml");
 protocol::protocol!("../specs/mavlink.toml");
 protocol::protocol!("../specs/dynamixel.toml");
 protocol::protocol!("../specs/roborts.toml");
+protocol::protocol!("../specs/ibus.toml");
+protocol::protocol!("../specs/sbus.toml");
+protocol::protocol!("../specs/ubx.toml");
 protocol::protocol!("tests/fixtures/features.toml");
 
 /// A decoded message as `{:?}` prints it, and its bytes encoded again.
@@ -110,6 +113,15 @@ fn dynamixel_feedback(bytes: &[u8]) -> Generated<Vec<u8>> {
     Ok((format!("{packet:?}"), buf[..n].to_vec()))
 }
 
+fn sbus_packet(bytes: &[u8]) -> Generated<Vec<u8>> {
+    let packet = sbus::Packet::decode(bytes)?;
+    let mut buf = vec![0u8; sbus::MAX_FRAME_LEN];
+    let n = packet
+        .encode(&mut buf)
+        .expect("generated code encodes what it decoded");
+    Ok((format!("{packet:?}"), buf[..n].to_vec()))
+}
+
 fn specs() -> Vec<Gen> {
     vec![
         generated!(crsf, [LAYOUT], None),
@@ -125,6 +137,9 @@ fn specs() -> Vec<Gen> {
         ),
         generated!(roborts, [LAYOUT], None),
         generated!(mavlink, [LAYOUT], None),
+        generated!(ibus, [LAYOUT], None),
+        generated!(sbus, [LAYOUT], None, Some((0, sbus_packet))),
+        generated!(ubx, [LAYOUT], None),
         generated!(features, [LAYOUT, RAW_LAYOUT], None),
     ]
 }
@@ -249,6 +264,9 @@ fn golden_vectors_decode_and_encode_alike() {
         ("dynamixel", "dynamixel_protocol2.json"),
         ("roborts", "roborts_sdk.json"),
         ("mavlink", "mavlink.json"),
+        ("ibus", "ibus.json"),
+        ("sbus", "sbus.json"),
+        ("ubx", "ubx.json"),
     ];
     let gens = specs();
     for (spec, file) in files {
@@ -559,6 +577,9 @@ fn vector_streams_yield_the_same_events() {
         ("dynamixel", "dynamixel_protocol2.json"),
         ("roborts", "roborts_sdk.json"),
         ("mavlink", "mavlink.json"),
+        ("ibus", "ibus.json"),
+        ("sbus", "sbus.json"),
+        ("ubx", "ubx.json"),
     ];
     let gens = specs();
     for (spec, file) in files {

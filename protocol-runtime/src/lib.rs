@@ -183,6 +183,7 @@ pub mod layout;
 pub mod packed;
 pub mod packet;
 pub mod stuffing;
+pub mod text;
 pub mod wire;
 pub mod zeros;
 
@@ -195,6 +196,7 @@ pub use error::{DecodeError, DecodeResult, EncodeError, EncodeResult};
 pub use group::Group;
 pub use layout::{FrameLayout, LayoutRef};
 pub use packet::{EncodePacket, PacketDecoder, PacketEvent, PacketLayout, Packets};
+pub use text::FixedStr;
 pub use wire::{Reader, Writer};
 
 /// The `embedded-can` crate at the version [`CanFrame`] implements `Frame` of.
@@ -216,7 +218,7 @@ pub use tokio_util;
 pub mod __private {
     pub use crate::{
         bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, field::*, group::*,
-        layout::*, packed::*, packet::*, stuffing::*, wire::*, zeros::*,
+        layout::*, packed::*, packet::*, stuffing::*, text::FixedStr, wire::*, zeros::*,
     };
     pub use core;
     pub use core::option::Option::{self, None, Some};

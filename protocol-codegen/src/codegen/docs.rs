@@ -88,6 +88,7 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
                 }
                 ValueType::Struct(i) => format!("`{}`", p.structs[*i].name),
                 ValueType::Enum(i, s) => format!("`{}` ({})", p.enums[*i].name, s.prim.spec_name()),
+                ValueType::Text(n) => format!("char[{n}] (NUL-padded text)"),
             };
             match count {
                 Some(n) => format!("[{base}; {n}]"),
@@ -113,7 +114,7 @@ fn field_order(f: &Field) -> &'static str {
             ValueType::Scalar { scalar, .. } | ValueType::Enum(_, scalar) => {
                 order_name(scalar.endian, scalar.prim.size())
             }
-            ValueType::Struct(_) => "-",
+            ValueType::Struct(_) | ValueType::Text(_) => "-",
         },
     }
 }

@@ -269,6 +269,10 @@ fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize) -> PKind {
                     count: *count,
                 }
             }
+            ValueType::Text(n) => PKind::Nested {
+                ty: quote!(#rt::FixedStr<#n>),
+                count: *count,
+            },
         },
     }
 }
@@ -327,7 +331,15 @@ pub fn emit_structs(p: &Protocol) -> TokenStream {
                     } {
                         all_small &= n <= 32;
                     }
-                    eq &= kind_is_eq(kind);
+                    // Text is a nested payload of the runtime's, and `Eq`.
+                    let text = matches!(
+                        &f.kind,
+                        FieldKind::Value {
+                            ty: ValueType::Text(_),
+                            ..
+                        }
+                    );
+                    eq &= text || kind_is_eq(kind);
                     let id = pf
                         .ident
                         .clone()

@@ -408,7 +408,8 @@ pub struct FieldDef {
     /// Field name.
     #[schemars(with = "Option<String>")]
     pub name: Option<SStr>,
-    /// Type: primitive (`u16`, `i32be`, `u24le`, `f32`, `bool`), struct or enum name.
+    /// Type: primitive (`u16`, `i32be`, `u24le`, `f32`, `bool`), `char[N]` (N bytes of
+    /// NUL-padded text), struct or enum name.
     #[serde(rename = "type")]
     #[schemars(with = "Option<String>")]
     pub ty: Option<SStr>,

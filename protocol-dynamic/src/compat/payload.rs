@@ -58,6 +58,7 @@ fn kind_text(p: &Protocol, f: &Field, kind: &FieldKind) -> String {
                         s.endian
                     )
                 }
+                ValueType::Text(n) => format!("char[{n}]"),
             };
             match count {
                 Some(n) => format!("[{base}; {n}]"),
@@ -233,6 +234,7 @@ fn diff_value(
         (ValueType::Enum(x, sa), ValueType::Enum(y, sb)) => {
             sa == sb && diff_enum(&op.enums[*x], &np.enums[*y], at, r)
         }
+        (ValueType::Text(x), ValueType::Text(y)) => x == y,
         _ => false,
     }
 }

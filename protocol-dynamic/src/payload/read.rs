@@ -3,7 +3,7 @@
 use protocol_codegen::ir::{
     BitMember, BitOrder, Enum, Field, FieldKind, Prim, Protocol, Scale, ValueType,
 };
-use protocol_runtime::{DecodeError, Reader, field, packed};
+use protocol_runtime::{DecodeError, Reader, field, packed, text};
 
 use super::{join, signed_value, variant};
 use crate::model::{Fields, Value};
@@ -208,7 +208,17 @@ fn read_elem(
                 path,
             )?
         }
+        ValueType::Text(n) => text_value(r.take(*n)?),
     })
+}
+
+/// A NUL-padded text's value: its text as a string when the bytes are canonical (the
+/// runtime's `text::is_canonical`), else every byte, so that encoding gives them back.
+fn text_value(bytes: &[u8]) -> Value {
+    match core::str::from_utf8(text::text_of(bytes)) {
+        Ok(s) if text::is_canonical(bytes) => Value::from(s.to_string()),
+        _ => Value::Array(bytes.iter().map(|&b| Value::UInt(u64::from(b))).collect()),
+    }
 }
 
 /// The physical value of a scaled raw value, by the runtime's field rules.

@@ -5,7 +5,7 @@
 use protocol_codegen::ir::{
     BitMember, ByteOrder, Enum, Field, FieldKind, Prim, Protocol, Scalar, Scale, Struct, ValueType,
 };
-use protocol_runtime::{EncodeError, Writer, field, packed};
+use protocol_runtime::{EncodeError, Writer, field, packed, text};
 
 use super::{join, signed_value, variant};
 use crate::error::EncodeIssue;
@@ -273,7 +273,37 @@ fn write_elem(
             let raw = enum_raw(&p.enums[*ei], v, path)?;
             write_bits(w, *scalar, raw).map_err(buffer)
         }
+        ValueType::Text(n) => {
+            let bytes = text_bytes(v, *n, path)?;
+            w.put_bytes(&bytes).map_err(buffer)
+        }
     }
+}
+
+/// The `n` bytes of a NUL-padded text: a string padded by the runtime's `text::pad_text`, or
+/// exactly `n` bytes as numbers.
+fn text_bytes(v: &Value, n: usize, path: &str) -> Result<Vec<u8>, EncodeIssue> {
+    let mut out = vec![0u8; n];
+    match v {
+        Value::String(s) => text::pad_text(s.as_bytes(), &mut out).ok_or_else(|| {
+            EncodeIssue::new(
+                path,
+                format!("a text of {} bytes does not fit char[{n}]", s.len()),
+            )
+        })?,
+        Value::Array(items) if items.len() == n => {
+            for (o, item) in out.iter_mut().zip(items) {
+                *o = value_bits(item, Prim::U8).map_err(|e| issue(path, e))? as u8;
+            }
+        }
+        _ => {
+            return Err(EncodeIssue::new(
+                path,
+                format!("expected a string, or an array of {n} bytes"),
+            ));
+        }
+    }
+    Ok(out)
 }
 
 /// The raw integer of a scaled field's physical value, by the runtime's field rules (as

@@ -112,7 +112,23 @@ fn elem_text(p: &Protocol, ty: &ValueType, v: &Value) -> String {
         } => int_text(sc.physical, v),
         ValueType::Struct(si) => struct_text(p, *si, v),
         ValueType::Enum(ei, _) => enum_text(p, *ei, v),
+        ValueType::Text(n) => text_debug(*n, v),
     }
+}
+
+/// A text value as `{:?}` prints the runtime's `FixedStr`.
+fn text_debug(n: usize, v: &Value) -> String {
+    let mut bytes = vec![0u8; n];
+    match v {
+        Value::String(s) => bytes[..s.len()].copy_from_slice(s.as_bytes()),
+        Value::Array(items) => {
+            for (b, item) in bytes.iter_mut().zip(items) {
+                *b = item.as_u64().expect("a byte") as u8;
+            }
+        }
+        other => panic!("not a text: {other:?}"),
+    }
+    format!("{:?}", protocol::text::TextDebug(&bytes))
 }
 
 /// A struct value as `{:?}` prints the generated struct.

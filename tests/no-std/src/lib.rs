@@ -14,11 +14,15 @@ protocol::protocol!("../../specs/mavlink.toml");
 protocol::protocol!("../../specs/roborts.toml");
 protocol::protocol!("../../specs/dynamixel.toml");
 protocol::protocol!("../../specs/crsf.toml");
+protocol::protocol!("../../specs/ibus.toml");
+protocol::protocol!("../../specs/sbus.toml");
+protocol::protocol!("../../specs/ubx.toml");
 // The payload types beyond fixed-width primitives: 24-bit integers, kept bitfield bits,
-// bit-packed arrays.
+// bit-packed arrays, text.
 protocol::protocol!("../../protocol-codegen/tests/features/int24.toml");
 protocol::protocol!("../../protocol-codegen/tests/features/reserved_bits.toml");
 protocol::protocol!("../../protocol-codegen/tests/features/packed.toml");
+protocol::protocol!("../../protocol-codegen/tests/features/text.toml");
 
 use hflink::{Header, Message, Packet, Request};
 

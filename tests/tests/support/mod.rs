@@ -31,10 +31,13 @@ macro_rules! for_each_spec {
         $callback!(dynamixel, "../specs/dynamixel.toml");
         $callback!(hflink, "../specs/hflink.toml");
         $callback!(mavlink, "../specs/mavlink.toml");
+        $callback!(ibus, "../specs/ibus.toml");
         $callback!(referee, "../specs/referee.toml");
         $callback!(referee2018, "../specs/referee2018.toml");
         $callback!(roborts, "../specs/roborts.toml");
+        $callback!(sbus, "../specs/sbus.toml");
         $callback!(scout, "../specs/scout.toml");
+        $callback!(ubx, "../specs/ubx.toml");
     };
 }
 pub(crate) use for_each_spec;

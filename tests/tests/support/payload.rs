@@ -149,6 +149,11 @@ impl Model {
                 put_uint(out, *scalar, value);
                 value
             }
+            // Every byte string is a text that encodes back to itself.
+            ir::ValueType::Text(n) => {
+                out.extend((0..*n).map(|_| src.next_u64() as u8));
+                0
+            }
             ir::ValueType::Scalar { scalar, scale } => {
                 let mut value = match (scalar.prim, limit) {
                     (ir::Prim::Bool, _) => src.below(2),

@@ -25,10 +25,13 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
     let Some(f) = p.frames.first() else {
         return quote!();
     };
-    if f.dispatch.is_empty() {
-        return quote!();
-    }
     let rt = rt();
+    if f.dispatch.is_empty() {
+        return match f.packet {
+            PacketKind::Message(si) => emit_message_packet(p, f, si, &rt),
+            _ => quote!(),
+        };
+    }
     let mut out = emit_command_enum(p, f, &rt);
     if p.directions.is_empty() {
         out.extend(emit_message_enum(

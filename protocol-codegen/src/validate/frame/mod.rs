@@ -210,8 +210,16 @@ fn name_tables(mut checks: Vec<Check>, names: &FrameNames) -> Vec<Check> {
 /// The packet type of each frame format, once the directions are known: the first frame
 /// format has one when it has a dispatch key, and then so do the other serial frame formats
 /// that carry one `message` and, in a spec without directions, the other CAN frame formats.
+/// A first (and only) serial frame format that carries one `message` has its packet too (a
+/// link whose frames have no command, as SBUS).
 pub(crate) fn lower_packets(frames: &mut [Frame], directions: bool) {
-    if frames.first().is_none_or(|f| f.dispatch.is_empty()) {
+    let Some(first) = frames.first_mut() else {
+        return;
+    };
+    if first.dispatch.is_empty() {
+        if let (Transport::Serial, Some(si), 1) = (first.transport, first.message, frames.len()) {
+            frames[0].packet = PacketKind::Message(si);
+        }
         return;
     }
     frames[0].packet = PacketKind::Command;

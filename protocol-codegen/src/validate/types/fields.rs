@@ -425,6 +425,10 @@ fn lower_value_type(
         let scale = lower_scale(ctx, f, ty.get_ref(), scalar);
         return Some((ValueType::Scalar { scalar, scale }, scalar.prim.size()));
     }
+    if let Some(len) = lower_text(ctx, ty) {
+        reject_scale(ctx, d, "text");
+        return len.map(|n| (ValueType::Text(n), n));
+    }
     if let Some(&i) = structs.by_name.get(ty.get_ref()) {
         reject_scale(ctx, d, "a struct");
         if structs.structs[i].min_size != structs.structs[i].size {
@@ -448,6 +452,29 @@ fn lower_value_type(
         unknown_type(ctx, ty, &known, "a field type");
     }
     None
+}
+
+/// The most bytes of a `char[N]` text field.
+const MAX_TEXT_LEN: usize = 65535;
+
+/// Rule: `char[N]` is N bytes of NUL-padded text, N from 1 to [`MAX_TEXT_LEN`]. `None` when
+/// `ty` is no `char[...]` type; `Some(None)` when its length is wrong (reported).
+fn lower_text(ctx: &mut Ctx<'_>, ty: &SStr) -> Option<Option<usize>> {
+    let inner = ty.get_ref().strip_prefix("char[")?.strip_suffix(']')?;
+    match inner.trim().parse::<usize>() {
+        Ok(n) if (1..=MAX_TEXT_LEN).contains(&n) => Some(Some(n)),
+        _ => {
+            ctx.error(
+                ty.span(),
+                format!(
+                    "`{}` has no text length: `char[N]` takes N from 1 to {MAX_TEXT_LEN}",
+                    ty.get_ref()
+                ),
+                "write the field's size in bytes, as C's `char name[30]` is `char[30]`",
+            );
+            Some(None)
+        }
+    }
 }
 
 /// Rule: `scale` and `offset` apply to integer fields; the factor is finite and not 0; the

@@ -9,11 +9,15 @@ protocol::protocol!("specs/scout.toml");
 protocol::protocol!("specs/mavlink.toml");
 protocol::protocol!("specs/roborts.toml");
 protocol::protocol!("specs/dynamixel.toml");
+protocol::protocol!("specs/ibus.toml");
+protocol::protocol!("specs/sbus.toml");
+protocol::protocol!("specs/ubx.toml");
 protocol::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
 protocol::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
 protocol::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
 protocol::protocol!("protocol-codegen/tests/features/can_and_trailer_field.toml");
 protocol::protocol!("protocol-codegen/tests/features/truncate_zeros.toml");
+protocol::protocol!("protocol-codegen/tests/features/text.toml");
 
 fn main() {
     let _ = hflink::decoder();
@@ -23,4 +27,7 @@ fn main() {
     let _ = dynamixel::feedback_decoder();
     let _ = mavlink::decoder();
     let _ = truncated::decoder();
+    let _ = ibus::decoder();
+    let _ = sbus::Packet::decode;
+    let _ = ubx::decoder();
 }
