@@ -436,13 +436,18 @@ fn compare(spec: &str, exe: &Path, input: &str, expected: Vec<Vec<String>>) {
         let mut want = normalize(want);
         want.pop(); // "end"
         let have = normalize(got.next().unwrap_or_default().to_vec());
-        let command = input.lines().nth(i).unwrap_or_default();
-        assert_eq!(
-            have,
-            want,
-            "{spec}: C and Rust differ on `{}`",
-            &command[..command.len().min(120)]
-        );
+        if have != want {
+            let command = input.lines().nth(i).unwrap_or_default();
+            let at = have.iter().zip(&want).take_while(|(a, b)| a == b).count();
+            panic!(
+                "{spec}: C and Rust differ on `{}` at its line {at}:\n  C:    {:?}\n  Rust: {:?}\n({} lines from C, {} from Rust)",
+                &command[..command.len().min(120)],
+                have.get(at),
+                want.get(at),
+                have.len(),
+                want.len()
+            );
+        }
     }
 }
 
@@ -514,7 +519,7 @@ fn check_spec(path: &Path, support: &mut BTreeMap<String, String>) {
     tally.random_frames = frames.len();
     let stream = faulty_stream(p, &frames, &mut rng);
     tally.stream_bytes = stream.len();
-    for chunk in [1, 3, 17, 64, 1000, stream.len()] {
+    for chunk in [1, 17, 1000, stream.len()] {
         writeln!(input, "S {chunk} {}", hex(&stream)).unwrap();
         expected.push(rust_stream(&codec, chunk, &stream));
     }

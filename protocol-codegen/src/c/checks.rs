@@ -187,7 +187,7 @@ fn crc(name: &str, c: &Crc) -> String {
         (_, true) => {
             table(&mut out, name, ty, c);
             let shifted = if w > 8 {
-                format!("(r >> 8)")
+                "(r >> 8)".to_string()
             } else {
                 "0u".into()
             };
@@ -196,7 +196,7 @@ fn crc(name: &str, c: &Crc) -> String {
         (_, false) => {
             table(&mut out, name, ty, c);
             let shifted = if w > 8 {
-                format!("((uint64_t)r << 8)")
+                "((uint64_t)r << 8)".to_string()
             } else {
                 "0u".into()
             };

@@ -105,10 +105,10 @@ static size_t {lo}find_candidate(const uint8_t *b, size_t len)
     size_t i, j;
     for (i = 0; i < len; i++) {{
         if (b[i] != {lo}sync[0]) continue;
-        for (j = 1; j < {lo}SYNC_LEN && i + j < len; j++) {{
+        for (j = 1; j < {up}SYNC_LEN && i + j < len; j++) {{
             if (b[i + j] != {lo}sync[j]) break;
         }}
-        if (j == {lo}SYNC_LEN || i + j == len) return i;
+        if (j == {up}SYNC_LEN || i + j == len) return i;
     }}
     return len;
 }}

@@ -55,7 +55,7 @@ fn helpers(f: &Frame, n: &Names, out: &mut String) {
     let sync: Vec<String> = f.sync.iter().map(|b| format!("{b:#04x}")).collect();
     let _ = write!(
         out,
-        "/* What a probe found: a frame, or the need of more bytes (else a rejection's reason). */\n#define {up}PROBE_FRAME 0\n#define {up}PROBE_NEED (-1)\n\nstatic const uint8_t {lo}sync[{len}] = {{{sync}}};\n#define {lo}SYNC_LEN {len}u\n\n\
+        "/* What a probe found: a frame, or the need of more bytes (else a rejection's reason). */\n#define {up}PROBE_FRAME 0\n#define {up}PROBE_NEED (-1)\n\nstatic const uint8_t {lo}sync[{len}] = {{{sync}}};\n#define {up}SYNC_LEN {len}u\n\n\
 /* A position from the frame's start or back from its end, in a frame of `len` bytes;\n * SIZE_MAX when it falls outside. */\n{up}UNUSED static size_t {lo}pos(size_t len, int from_end, size_t n)\n{{\n    if (from_end) return len >= n ? len - n : SIZE_MAX;\n    return n <= len ? n : SIZE_MAX;\n}}\n\n\
 /* A value of `width` bits at bit `shift` of the word of `size` bytes at a position. */\n{up}UNUSED static int {lo}field(const uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t *out)\n{{\n    size_t o = {lo}pos(len, from_end, at);\n    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);\n    if (o == SIZE_MAX || len - o < size) return 0;\n    *out = ({lo}get(f + o, size, big) >> shift) & m;\n    return 1;\n}}\n\n\
 {up}UNUSED static int {lo}put_field(uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t value)\n{{\n    size_t o = {lo}pos(len, from_end, at);\n    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);\n    if (o == SIZE_MAX || len - o < size || value > m) return 0;\n    {lo}set(f + o, size, big, {lo}get(f + o, size, big) | (value << shift));\n    return 1;\n}}\n\n\
@@ -84,7 +84,7 @@ fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, out: &mut String) {
     let shortest = span.max(plan.min_len).max(1);
     let _ = write!(
         out,
-        "/* The engine's rules for a candidate whose first bytes match the sync bytes (as many\n * as there are), in `b[0..avail]`; frames longer than `limit` are too long. Returns\n * {up}PROBE_FRAME with the frame's length in `*n`, {up}PROBE_NEED with the bytes needed\n * in `*n`, or the reason of a rejection. */\nstatic int {lo}probe_synced(const uint8_t *b, size_t avail, size_t limit, size_t *n)\n{{\n    const size_t span = {span}u;\n    size_t total;\n    uint64_t raw = 0;\n    if (span > limit) {{\n        if (avail < {lo}SYNC_LEN) {{\n            *n = {lo}SYNC_LEN;\n            return {up}PROBE_NEED;\n        }}\n        return {up}REJECT_BAD_LENGTH;\n    }}\n    if (avail < span) {{\n        *n = span;\n        return {up}PROBE_NEED;\n    }}\n"
+        "/* The engine's rules for a candidate whose first bytes match the sync bytes (as many\n * as there are), in `b[0..avail]`; frames longer than `limit` are too long. Returns\n * {up}PROBE_FRAME with the frame's length in `*n`, {up}PROBE_NEED with the bytes needed\n * in `*n`, or the reason of a rejection. */\nstatic int {lo}probe_synced(const uint8_t *b, size_t avail, size_t limit, size_t *n)\n{{\n    const size_t span = {span}u;\n    size_t total;\n    uint64_t raw = 0;\n    if (span > limit) {{\n        if (avail < {up}SYNC_LEN) {{\n            *n = {up}SYNC_LEN;\n            return {up}PROBE_NEED;\n        }}\n        return {up}REJECT_BAD_LENGTH;\n    }}\n    if (avail < span) {{\n        *n = span;\n        return {up}PROBE_NEED;\n    }}\n"
     );
     for (vi, c) in &plan.constants {
         let _ = writeln!(
@@ -103,9 +103,9 @@ fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, out: &mut String) {
     }
     match (plan.length, plan.length_value) {
         (LengthRule::Field { adjust, .. }, Some(vi)) => {
-            let _ = write!(
+            let _ = writeln!(
                 out,
-                "    if (!{lo}field(b, span, {}, &raw) || raw > (uint64_t)INT64_MAX) return {up}REJECT_BAD_LENGTH;\n",
+                "    if (!{lo}field(b, span, {}, &raw) || raw > (uint64_t)INT64_MAX) return {up}REJECT_BAD_LENGTH;",
                 word(&f.values[vi])
             );
             if adjust >= 0 {
@@ -154,7 +154,7 @@ fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, out: &mut String) {
     let _ = write!(
         out,
         "    (void)raw;\n    *n = total;\n    return {up}PROBE_FRAME;\n}}\n\n\
-/* The probe of a candidate: the sync bytes, then the rules above. */\nstatic int {lo}probe(const uint8_t *b, size_t avail, size_t limit, size_t *n)\n{{\n    size_t i;\n    for (i = 0; i < avail && i < {lo}SYNC_LEN; i++) {{\n        if (b[i] != {lo}sync[i]) return {up}REJECT_BAD_HEADER;\n    }}\n    return {lo}probe_synced(b, avail, limit, n);\n}}\n\n"
+/* The probe of a candidate: the sync bytes, then the rules above. */\nstatic int {lo}probe(const uint8_t *b, size_t avail, size_t limit, size_t *n)\n{{\n    size_t i;\n    for (i = 0; i < avail && i < {up}SYNC_LEN; i++) {{\n        if (b[i] != {lo}sync[i]) return {up}REJECT_BAD_HEADER;\n    }}\n    return {lo}probe_synced(b, avail, limit, n);\n}}\n\n"
     );
 }
 
@@ -298,19 +298,26 @@ fn truncate(prim: Prim, value: u64) -> u64 {
 fn encode(p: &Protocol, n: &Names, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
     let f = &p.frames[0];
+    let widest = f
+        .dispatch
+        .iter()
+        .map(|&vi| f.values[vi].prim.size())
+        .max()
+        .unwrap_or(1);
     let _ = writeln!(
         out,
-        "/* The dispatch key of every command, in command order. */\nstatic const uint64_t {lo}ids[{}][{}] = {{",
+        "/* The dispatch key of every command, in command order. */\nstatic const {} {lo}ids[{}][{}] = {{",
+        names::unsigned_of(widest),
         p.commands.len().max(1),
         f.dispatch.len()
     );
     for c in &p.commands {
-        let ids: Vec<String> = c.id.iter().map(|&v| names::u64_lit(v)).collect();
+        let ids: Vec<String> = c.id.iter().map(|&v| format!("{v:#x}u")).collect();
         let _ = writeln!(out, "    {{{}}},", ids.join(", "));
     }
     let _ = write!(
         out,
-        "}};\n\n/* The frame around a payload of `payload_len` bytes already written after the header. */\nstatic int {lo}seal(uint8_t *buf, size_t payload_len, const {lo}header *h, {lo}command command)\n{{\n    size_t total = {up}HEADER_LEN + payload_len + {up}TRAILER_LEN;\n    if (payload_len > {up}MAX_PAYLOAD_LEN) return {up}ERR_OUT_OF_RANGE;\n    memset(buf, 0, {up}HEADER_LEN);\n    memset(buf + {up}HEADER_LEN + payload_len, 0, {up}TRAILER_LEN);\n    memcpy(buf, {lo}sync, {lo}SYNC_LEN);\n"
+        "}};\n\n/* The frame around a payload of `payload_len` bytes already written after the header. */\nstatic int {lo}seal(uint8_t *buf, size_t payload_len, const {lo}header *h, {lo}command command)\n{{\n    size_t total = {up}HEADER_LEN + payload_len + {up}TRAILER_LEN;\n    if (payload_len > {up}MAX_PAYLOAD_LEN) return {up}ERR_OUT_OF_RANGE;\n    memset(buf, 0, {up}HEADER_LEN);\n    memset(buf + {up}HEADER_LEN + payload_len, 0, {up}TRAILER_LEN);\n    memcpy(buf, {lo}sync, {up}SYNC_LEN);\n"
     );
     for (vi, v) in f.values.iter().enumerate() {
         let value = match &v.role {
@@ -327,14 +334,15 @@ fn encode(p: &Protocol, n: &Names, out: &mut String) {
             },
             Role::Dispatch => {
                 let k = f.dispatch.iter().position(|&d| d == vi).unwrap_or(0);
-                format!("{lo}ids[command][{k}]")
+                format!("(uint64_t){lo}ids[command][{k}]")
             }
             Role::Const(c) => names::u64_lit(*c),
             Role::Ack(_) => unreachable!("refused by support::unsupported"),
         };
         let _ = writeln!(
             out,
-            "    if (!{lo}put_field(buf, total, {}, {value})) return {up}ERR_OUT_OF_RANGE;",
+            "    /* {} */\n    if (!{lo}put_field(buf, total, {}, {value})) return {up}ERR_OUT_OF_RANGE;",
+            v.name,
             word(v)
         );
     }
