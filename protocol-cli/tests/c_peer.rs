@@ -1,4 +1,5 @@
-//! The C peer against the Rust codec: for every bundled spec (`specs/*.toml`), the C code
+//! The C peer against the Rust codec: for every bundled spec (`specs/*.toml`) and fixture
+//! (`protocol-codegen/tests/features`, `tests/c_peer/*.toml`), the C code
 //! `protocol gen c` prints is compiled with the system C compiler (strict C99, warnings as
 //! errors, AddressSanitizer and UndefinedBehaviorSanitizer) together with a small driver
 //! (`tests/c_peer/driver.c`), and its output is compared line by line with what the run-time
@@ -7,8 +8,8 @@
 //! * every golden vector frame (`tests/vectors/*.json`): the decoded values, and the bytes the
 //!   decoded packet encodes to;
 //! * every vector stream at every chunk size, event by event, and its expected frames;
-//! * 10,000 random frames per spec (valid, and with unknown commands, wrong payload sizes,
-//!   values without variant), decoded and encoded again;
+//! * 10,000 random frames per bundled spec, 2,000 per fixture (valid, and with unknown
+//!   commands, wrong payload sizes, values without variant), decoded and encoded again;
 //! * a fault-injection stream of those frames (garbage, flipped bits, truncations, stray
 //!   sync bytes) at several chunk sizes, event by event, with the counters.
 //!
@@ -33,14 +34,29 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
 
-/// The bundled specs, by name.
-fn specs() -> Vec<PathBuf> {
-    let mut out: Vec<PathBuf> = std::fs::read_dir(root().join("specs"))
-        .expect("specs/")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+/// The specs to compare, each with its number of random frames: the bundled specs (10,000
+/// each), then the feature fixtures of `protocol-codegen/tests/features` and this test's own
+/// (`tests/c_peer/*.toml`, paths no bundled spec takes), 2,000 each.
+fn specs() -> Vec<(PathBuf, usize)> {
+    let toml_in = |dir: &str| {
+        let mut out: Vec<PathBuf> = std::fs::read_dir(root().join(dir))
+            .unwrap_or_else(|e| panic!("{dir}: {e}"))
+            .map(|e| e.expect("entry").path())
+            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+            .collect();
+        out.sort();
+        out
+    };
+    let mut out: Vec<(PathBuf, usize)> = toml_in("specs")
+        .into_iter()
+        .map(|p| (p, RANDOM_FRAMES))
         .collect();
-    out.sort();
+    for dir in [
+        "protocol-codegen/tests/features",
+        "protocol-cli/tests/c_peer",
+    ] {
+        out.extend(toml_in(dir).into_iter().map(|p| (p, RANDOM_FRAMES / 5)));
+    }
     out
 }
 
@@ -451,14 +467,19 @@ fn compare(spec: &str, exe: &Path, input: &str, expected: Vec<Vec<String>>) {
     }
 }
 
-fn check_spec(path: &Path, support: &mut BTreeMap<String, String>) {
+fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, String>) {
+    let shown = path
+        .strip_prefix(root())
+        .unwrap_or(path)
+        .display()
+        .to_string();
     let interp = Interpreter::load(path).expect("a valid spec");
     let p = interp.protocol();
     let codec = interp.codec();
     let files = match protocol_codegen::c::generate(p) {
         Ok(files) => files,
         Err(refused) => {
-            support.insert(p.name.clone(), format!("refused: {}", refused.join("; ")));
+            support.insert(shown, format!("refused: {}", refused.join("; ")));
             return;
         }
     };
@@ -509,7 +530,7 @@ fn check_spec(path: &Path, support: &mut BTreeMap<String, String>) {
 
     // Random frames, then the fault-injection stream of them at several chunk sizes.
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ p.name.len() as u64);
-    let frames: Vec<Vec<u8>> = (0..RANDOM_FRAMES)
+    let frames: Vec<Vec<u8>> = (0..random_frames)
         .map(|_| random_frame(p, &codec, &mut rng))
         .collect();
     for frame in &frames {
@@ -525,7 +546,7 @@ fn check_spec(path: &Path, support: &mut BTreeMap<String, String>) {
     }
     compare(&p.name, &exe, &input, expected);
     support.insert(
-        p.name.clone(),
+        shown,
         format!(
             "C matches Rust: {} vector frames, {} vector streams, {} random frames, a {}-byte fault-injection stream",
             tally.vector_frames, tally.vector_streams, tally.random_frames, tally.stream_bytes
@@ -545,8 +566,8 @@ fn check_spec(path: &Path, support: &mut BTreeMap<String, String>) {
 #[test]
 fn c_peer_matches_the_rust_codec() {
     let mut support = BTreeMap::new();
-    for path in specs() {
-        check_spec(&path, &mut support);
+    for (path, random_frames) in specs() {
+        check_spec(&path, random_frames, &mut support);
     }
     let table: String = support
         .iter()

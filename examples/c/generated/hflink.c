@@ -853,6 +853,8 @@ static int hflink_seal(uint8_t *buf, size_t payload_len, const hflink_header *h,
     memset(buf, 0, HFLINK_HEADER_LEN);
     memset(buf + HFLINK_HEADER_LEN + payload_len, 0, HFLINK_TRAILER_LEN);
     memcpy(buf, hflink_sync, HFLINK_SYNC_LEN);
+    (void)h;
+    (void)command;
     /* sender */
     if (!hflink_put_field(buf, total, 0, 2u, 1u, 0, 0u, 8u, (uint64_t)h->sender)) return HFLINK_ERR_OUT_OF_RANGE;
     /* receiver */

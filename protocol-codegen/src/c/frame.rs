@@ -317,7 +317,7 @@ fn encode(p: &Protocol, n: &Names, out: &mut String) {
     }
     let _ = write!(
         out,
-        "}};\n\n/* The frame around a payload of `payload_len` bytes already written after the header. */\nstatic int {lo}seal(uint8_t *buf, size_t payload_len, const {lo}header *h, {lo}command command)\n{{\n    size_t total = {up}HEADER_LEN + payload_len + {up}TRAILER_LEN;\n    if (payload_len > {up}MAX_PAYLOAD_LEN) return {up}ERR_OUT_OF_RANGE;\n    memset(buf, 0, {up}HEADER_LEN);\n    memset(buf + {up}HEADER_LEN + payload_len, 0, {up}TRAILER_LEN);\n    memcpy(buf, {lo}sync, {up}SYNC_LEN);\n"
+        "}};\n\n/* The frame around a payload of `payload_len` bytes already written after the header. */\nstatic int {lo}seal(uint8_t *buf, size_t payload_len, const {lo}header *h, {lo}command command)\n{{\n    size_t total = {up}HEADER_LEN + payload_len + {up}TRAILER_LEN;\n    if (payload_len > {up}MAX_PAYLOAD_LEN) return {up}ERR_OUT_OF_RANGE;\n    memset(buf, 0, {up}HEADER_LEN);\n    memset(buf + {up}HEADER_LEN + payload_len, 0, {up}TRAILER_LEN);\n    memcpy(buf, {lo}sync, {up}SYNC_LEN);\n    (void)h;\n    (void)command;\n"
     );
     for (vi, v) in f.values.iter().enumerate() {
         let value = match &v.role {

@@ -3,20 +3,20 @@
 //! Like the Rust expansion, this backend decides nothing: every size, offset, byte order,
 //! length rule and check comes from the IR (the frame engine's values from
 //! [`crate::layout::lower_layout`], the lowering the Rust backends share). What the C printer
-//! does not support yet is refused by [`support::unsupported`] with one line per feature,
+//! does not support yet is refused by [`unsupported`] with one line per feature,
 //! before anything is printed: a spec gets correct C or a clear error, never wrong code.
 //!
 //! The generated code needs nothing beyond the C standard headers and never allocates:
 //!
 //! * a struct (fixed-width types) per payload struct, an integer type and constants per enum,
-//!   a header struct, a command enum and a packet struct ([`types`]);
+//!   a header struct, a command enum and a packet struct (`types`);
 //! * a reader and a writer per payload struct, with explicit byte order (shifts), never
-//!   relying on struct layout or packing ([`payload`]);
+//!   relying on struct layout or packing (`payload`);
 //! * the frame rules: each check's algorithm (sums, bitwise or table CRCs from the IR's
 //!   parameters), the probe of a candidate, a decoder of one frame's bytes and an encoder per
-//!   command into the caller's buffer ([`frame`], [`checks`]);
-//! * the stream decoder, with the runtime engine's rules over a fixed buffer ([`engine`]);
-//! * optionally (`<PREFIX>_WITH_FORMAT`), a text form of a packet, with `snprintf` ([`format`]).
+//!   command into the caller's buffer (`frame`, `checks`);
+//! * the stream decoder, with the runtime engine's rules over a fixed buffer (`engine`);
+//! * optionally (`<PREFIX>_WITH_FORMAT`), a text form of a packet, with `snprintf` (`format`).
 //!
 //! The code every spec needs (byte readers, the stream engine) is printed into each source
 //! file as `static` functions, not shipped as a shared `protocol_rt.h`: the two files of a
