@@ -64,6 +64,9 @@ enum Command {
         /// The spec file.
         spec: PathBuf,
     },
+    /// Generate a peer codec in another language from a spec.
+    #[command(subcommand)]
+    Gen(Gen),
     /// Report every change between two versions of a spec, once, as breaking the wire, breaking
     /// the generated Rust source, or compatible; exit 1 if anything breaks, 2 if a spec cannot
     /// be read or is invalid.
@@ -75,6 +78,20 @@ enum Command {
         /// Print the changes as JSON.
         #[arg(long)]
         json: bool,
+    },
+}
+
+/// The languages of `gen`.
+#[derive(Debug, Subcommand)]
+enum Gen {
+    /// A C99 header and source file (`NAME.h`, `NAME.c`): structs, encoders, a frame decoder
+    /// and a stream decoder, no heap, no dependency beyond the C standard headers.
+    C {
+        /// The spec file.
+        spec: PathBuf,
+        /// The directory to write the two files into (created if missing).
+        #[arg(short, long)]
+        output: PathBuf,
     },
 }
 
@@ -101,6 +118,7 @@ fn main() -> ExitCode {
             output,
             frame,
         } => cmd::report::run(&spec, &capture, output.as_deref(), frame.as_deref()),
+        Command::Gen(Gen::C { spec, output }) => cmd::generate::c(&spec, &output),
         Command::Diff { old, new, json } => cmd::diff::run(&old, &new, json),
     };
     match result {

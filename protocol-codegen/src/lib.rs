@@ -4,6 +4,7 @@
 //! The pipeline is `spec::load_spec` → `validate::validate` → `codegen::expand`; [`compile`]
 //! runs the first two and is what the macros, the CLI and the tests call.
 
+pub mod c;
 pub mod codegen;
 pub mod diag;
 pub mod docs_md;

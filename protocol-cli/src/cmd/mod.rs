@@ -7,6 +7,7 @@ pub mod diff;
 pub mod doc;
 pub mod encode;
 pub mod expand;
+pub mod generate;
 pub mod report;
 
 use std::io::IsTerminal;

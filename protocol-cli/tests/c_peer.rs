@@ -1,0 +1,577 @@
+//! The C peer against the Rust codec: for every bundled spec (`specs/*.toml`) and fixture
+//! (`protocol-codegen/tests/features`, `tests/c_peer/*.toml`), the C code
+//! `protocol gen c` prints is compiled with the system C compiler (strict C99, warnings as
+//! errors, AddressSanitizer and UndefinedBehaviorSanitizer) together with a small driver
+//! (`tests/c_peer/driver.c`), and its output is compared line by line with what the run-time
+//! codec (`protocol-dynamic`) gives for the same input:
+//!
+//! * every golden vector frame (`tests/vectors/*.json`): the decoded values, and the bytes the
+//!   decoded packet encodes to;
+//! * every vector stream at every chunk size, event by event, and its expected frames;
+//! * 10,000 random frames per bundled spec, 2,000 per fixture (valid, and with unknown
+//!   commands, wrong payload sizes, values without variant), decoded and encoded again;
+//! * a fault-injection stream of those frames (garbage, flipped bits, truncations, stray
+//!   sync bytes) at several chunk sizes, event by event, with the counters.
+//!
+//! A spec the C printer refuses is listed with its unsupported features in the snapshot
+//! `c_support` (a new spec changes it: the gap is visible in review, never a silent pass).
+//! Also compiled, warnings as errors: the generated code with `gcc` and `clang` where found.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+use protocol_codegen::ir::{DirectionRule, Protocol};
+use protocol_codegen::layout::word_field;
+use protocol_dynamic::{Codec, DecodeIssue, Interpreter, Item, Value};
+use protocol_runtime::DecodeError;
+
+const RANDOM_FRAMES: usize = 10_000;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// The specs to compare, each with its number of random frames: the bundled specs (10,000
+/// each), then the feature fixtures of `protocol-codegen/tests/features` and this test's own
+/// (`tests/c_peer/*.toml`, paths no bundled spec takes), 2,000 each.
+fn specs() -> Vec<(PathBuf, usize)> {
+    let toml_in = |dir: &str| {
+        let mut out: Vec<PathBuf> = std::fs::read_dir(root().join(dir))
+            .unwrap_or_else(|e| panic!("{dir}: {e}"))
+            .map(|e| e.expect("entry").path())
+            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+            .collect();
+        out.sort();
+        out
+    };
+    let mut out: Vec<(PathBuf, usize)> = toml_in("specs")
+        .into_iter()
+        .map(|p| (p, RANDOM_FRAMES))
+        .collect();
+    for dir in [
+        "protocol-codegen/tests/features",
+        "protocol-cli/tests/c_peer",
+    ] {
+        out.extend(toml_in(dir).into_iter().map(|p| (p, RANDOM_FRAMES / 5)));
+    }
+    out
+}
+
+/// The vector files of a spec, and whether their streams' expected frames are the spec's.
+fn vector_files(spec: &str) -> Vec<(String, bool)> {
+    let known: &[(&str, &str, bool)] = &[
+        ("referee", "robomaster_referee.json", true),
+        ("referee2018", "robomaster_referee.json", false),
+        ("scout", "agilex_scout.json", true),
+        ("dynamixel", "dynamixel_protocol2.json", true),
+        ("dynamixel1", "dynamixel_protocol1.json", true),
+        ("roborts", "roborts_sdk.json", true),
+    ];
+    let mut out: Vec<(String, bool)> = known
+        .iter()
+        .filter(|(s, _, _)| *s == spec)
+        .map(|(_, f, primary)| (f.to_string(), *primary))
+        .collect();
+    if out.is_empty() && root().join(format!("tests/vectors/{spec}.json")).exists() {
+        out.push((format!("{spec}.json"), true));
+    }
+    out
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+fn unhex(text: &str) -> Vec<u8> {
+    (0..text.len() / 2)
+        .map(|i| u8::from_str_radix(&text[2 * i..2 * i + 2], 16).expect("hex"))
+        .collect()
+}
+
+// ---- The Rust side: the text the driver prints, from protocol-dynamic ----
+
+fn issue_name(e: &DecodeIssue) -> &'static str {
+    match e {
+        DecodeIssue::Frame(DecodeError::PayloadLength { .. })
+        | DecodeIssue::PayloadLength { .. } => "payload_length",
+        DecodeIssue::Frame(DecodeError::InvalidEnum { .. }) | DecodeIssue::InvalidEnum { .. } => {
+            "invalid_enum"
+        }
+        DecodeIssue::UnknownCommand { .. } => "unknown_command",
+        DecodeIssue::UnknownDirection { .. } => "unknown_direction",
+        DecodeIssue::Frame(_) => "frame",
+    }
+}
+
+fn value_text(out: &mut String, path: &str, v: &Value) {
+    match v {
+        Value::Struct(fields) => {
+            for (k, v) in fields.iter() {
+                value_text(out, &format!("{path}.{k}"), v);
+            }
+        }
+        Value::Array(items) => {
+            for (i, v) in items.iter().enumerate() {
+                value_text(out, &format!("{path}[{i}]"), v);
+            }
+        }
+        Value::UInt(u) => write!(out, " {path}={u}").unwrap(),
+        Value::Int(i) => write!(out, " {path}={i}").unwrap(),
+        Value::Bool(b) => write!(out, " {path}={b}").unwrap(),
+        Value::F32(f) => write!(out, " {path}=f32:{:08x}", f.to_bits()).unwrap(),
+        Value::F64(f) => write!(out, " {path}=f64:{:016x}", f.to_bits()).unwrap(),
+        Value::String(s) => write!(out, " {path}={s}").unwrap(),
+        Value::Bytes(b) => write!(out, " {path}=hex:{}", hex(b)).unwrap(),
+        Value::Null => write!(out, " {path}=null").unwrap(),
+    }
+}
+
+/// `ok TEXT` or `err NAME` (and `enc HEX` or `enc err`), as the driver's `describe`.
+fn describe(
+    codec: &Codec<'_>,
+    decoded: Result<protocol_dynamic::Decoded, DecodeIssue>,
+    bytes: &[u8],
+    encode: bool,
+) -> Vec<String> {
+    let p = codec.protocol();
+    let d = match decoded {
+        Ok(d) => d,
+        Err(e) => return vec![format!("err {}", issue_name(&e))],
+    };
+    let mut text = format!(
+        "ok cmd={}",
+        d.command.map_or("?", |c| p.commands[c].name.as_str())
+    );
+    if let Some(di) = d.direction {
+        write!(text, " dir={}", p.directions[di].name).unwrap();
+    }
+    for (k, v) in d.header.iter() {
+        value_text(&mut text, &format!("header.{k}"), v);
+    }
+    value_text(&mut text, "payload", &d.payload);
+    let mut out = vec![text];
+    if encode {
+        out.push(match codec.encode(&codec.frame_value(&d, 0, bytes)) {
+            Ok(e) => format!("enc {}", hex(&e.bytes)),
+            Err(_) => "enc err".into(),
+        });
+    }
+    out
+}
+
+fn rust_frame(codec: &Codec<'_>, bytes: &[u8]) -> Vec<String> {
+    let mut out = describe(codec, codec.parse(0, bytes), bytes, true);
+    out.push("end".into());
+    out
+}
+
+fn rust_stream(codec: &Codec<'_>, chunk: usize, data: &[u8]) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut stream = codec.stream(0).expect("a stream");
+    let item_text = |item: Item<'_>, out: &mut Vec<String>| match item {
+        Item::Frame {
+            offset,
+            bytes,
+            decoded,
+        } => {
+            let d = describe(codec, decoded, bytes, false);
+            out.push(format!("frame {offset} {} {}", hex(bytes), d[0]));
+        }
+        Item::Rejected { offset, reason } => out.push(format!("rejected {offset} {reason}")),
+        Item::Skipped { offset, len } => out.push(format!("skipped {offset} {len}")),
+    };
+    for mut c in data.chunks(chunk.max(1)) {
+        while let Some(item) = stream.next_item(&mut c) {
+            item_text(item, &mut out);
+        }
+    }
+    while let Some(item) = stream.flush_item() {
+        item_text(item, &mut out);
+    }
+    let s = stream.stats();
+    out.push(format!(
+        "stats {} {} {} {} {} {} {} {} {}",
+        s.frames,
+        s.frame_bytes,
+        s.skipped_bytes,
+        s.bad_header,
+        s.bad_header_check,
+        s.bad_length,
+        s.bad_checksum,
+        s.bad_trailer,
+        s.truncated
+    ));
+    out.push("end".into());
+    out
+}
+
+/// Adjacent skipped runs merged: how a run of garbage is cut into events depends on where
+/// the input was cut and where each engine holds it; the bytes skipped do not.
+fn normalize(lines: Vec<String>) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for line in lines {
+        let run = |l: &str| -> Option<(u64, u64)> {
+            let mut w = l.strip_prefix("skipped ")?.split(' ');
+            Some((w.next()?.parse().ok()?, w.next()?.parse().ok()?))
+        };
+        if let (Some((o2, n2)), Some((o1, n1))) = (run(&line), out.last().and_then(|l| run(l))) {
+            if o1 + n1 == o2 {
+                *out.last_mut().expect("a line") = format!("skipped {o1} {}", n1 + n2);
+                continue;
+            }
+        }
+        out.push(line);
+    }
+    out
+}
+
+// ---- Inputs ----
+
+/// xorshift64*: the same inputs every run.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+/// A random frame, sealed by the runtime: a command's payload of random bytes (its size, or
+/// now and then another), the dispatch key of a command (now and then random), a sender in
+/// the direction's address set (now and then random).
+fn random_frame(p: &Protocol, codec: &Codec<'_>, rng: &mut Rng) -> Vec<u8> {
+    let f = &p.frames[0];
+    let layout = codec.layout(0).expect("a layout");
+    let c = &p.commands[rng.below(p.commands.len())];
+    let slot = rng.below(c.payloads.len());
+    let (min, max) = match c.payloads[slot] {
+        Some(si) => (p.structs[si].min_size, p.structs[si].size),
+        None => (0, 0),
+    };
+    let mut payload = min + rng.below(max - min + 1);
+    if rng.below(8) == 0 {
+        payload = f.payload_min + rng.below(f.payload_max - f.payload_min + 1);
+    }
+    let total = (f.header_len + payload + f.trailer_len).clamp(f.min_len(), f.max_len());
+    let mut frame: Vec<u8> = (0..total).map(|_| rng.next() as u8).collect();
+    if rng.below(16) != 0 {
+        for (&vi, &id) in f.dispatch.iter().zip(&c.id) {
+            word_field(&f.values[vi])
+                .write(&mut frame, id)
+                .expect("dispatch value");
+        }
+    }
+    if let Some(d) = p.directions.get(slot).filter(|_| rng.below(8) != 0) {
+        match &d.rule {
+            DirectionRule::InSet { value, set } => {
+                let a = &p.addresses[*set];
+                let v = a.first + (rng.next() % (a.last - a.first + 1));
+                word_field(&f.values[*value])
+                    .write(&mut frame, v)
+                    .expect("direction value");
+            }
+            DirectionRule::Equals { value, equals } => {
+                word_field(&f.values[*value])
+                    .write(&mut frame, *equals)
+                    .expect("direction value");
+            }
+        }
+    }
+    layout.seal(&mut frame).expect("a sealed frame");
+    frame
+}
+
+/// The frames with faults between and in them: garbage (stray sync bytes among it), flipped
+/// bits, cut frames.
+fn faulty_stream(p: &Protocol, frames: &[Vec<u8>], rng: &mut Rng) -> Vec<u8> {
+    let sync = &p.frames[0].sync;
+    let mut out = Vec::new();
+    for frame in frames {
+        match rng.below(12) {
+            0 => out.extend((0..rng.below(9)).map(|_| rng.next() as u8)),
+            1 => out.extend_from_slice(&sync[..1 + rng.below(sync.len())]),
+            _ => {}
+        }
+        let mut frame = frame.clone();
+        match rng.below(10) {
+            0 => {
+                let bit = rng.below(frame.len() * 8);
+                frame[bit / 8] ^= 1 << (bit % 8);
+            }
+            1 => frame.truncate(1 + rng.below(frame.len() - 1)),
+            _ => {}
+        }
+        out.extend_from_slice(&frame);
+    }
+    out
+}
+
+// ---- The C side ----
+
+/// The C compilers found on PATH, by name.
+fn compilers() -> Vec<&'static str> {
+    ["gcc", "clang"]
+        .into_iter()
+        .filter(|cc| {
+            Command::new(cc)
+                .arg("--version")
+                .output()
+                .is_ok_and(|o| o.status.success())
+        })
+        .collect()
+}
+
+const STRICT: &[&str] = &["-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror"];
+
+fn run_cc(cc: &str, args: &[&str], dir: &Path) {
+    let out = Command::new(cc)
+        .args(STRICT)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap_or_else(|e| panic!("{cc}: {e}"));
+    assert!(
+        out.status.success(),
+        "{cc} {args:?} failed:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// Builds the driver with the spec's C code, sanitized, and checks the code compiles
+/// cleanly with every compiler found.
+fn build(p: &Protocol, files: &protocol_codegen::c::CFiles, dir: &Path) -> PathBuf {
+    std::fs::write(dir.join(&files.header_name), &files.header).unwrap();
+    std::fs::write(dir.join(&files.source_name), &files.source).unwrap();
+    std::fs::copy(
+        root().join("protocol-cli/tests/c_peer/driver.c"),
+        dir.join("driver.c"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("spec.h"),
+        format!(
+            "#include \"{}\"\n#define P(x) {}_##x\n#define U(x) {}_##x\n",
+            files.header_name,
+            p.name,
+            p.name.to_uppercase()
+        ),
+    )
+    .unwrap();
+    let with_format = format!("-D{}_WITH_FORMAT", p.name.to_uppercase());
+    let compilers = compilers();
+    assert!(
+        !compilers.is_empty(),
+        "no C compiler (gcc or clang) on PATH"
+    );
+    for cc in &compilers {
+        run_cc(
+            cc,
+            &["-c", "-O2", &files.source_name, "-o", "/dev/null"],
+            dir,
+        );
+        run_cc(
+            cc,
+            &[
+                "-c",
+                "-O2",
+                &with_format,
+                &files.source_name,
+                "-o",
+                "/dev/null",
+            ],
+            dir,
+        );
+    }
+    let exe = dir.join("driver");
+    run_cc(
+        compilers[0],
+        &[
+            "-O1",
+            "-g",
+            "-fsanitize=address,undefined",
+            "-fno-sanitize-recover=all",
+            &with_format,
+            "driver.c",
+            &files.source_name,
+            "-o",
+            "driver",
+        ],
+        dir,
+    );
+    exe
+}
+
+fn run_driver(exe: &Path, input: &str) -> Vec<String> {
+    let mut child = Command::new(exe)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the driver runs");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let input = input.to_string();
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
+    let out = child.wait_with_output().expect("the driver ends");
+    writer.join().expect("writer").expect("input written");
+    assert!(
+        out.status.success(),
+        "the driver failed: {}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout)
+        .expect("utf-8")
+        .lines()
+        .map(String::from)
+        .collect()
+}
+
+/// What was compared for a spec.
+#[derive(Default)]
+struct Tally {
+    vector_frames: usize,
+    vector_streams: usize,
+    chunkings: usize,
+    random_frames: usize,
+    stream_bytes: usize,
+}
+
+/// Compares the C driver's output for `input` with the Rust lines, command by command.
+fn compare(spec: &str, exe: &Path, input: &str, expected: Vec<Vec<String>>) {
+    let got = run_driver(exe, input);
+    let mut got = got.split(|l| l == "end");
+    for (i, want) in expected.into_iter().enumerate() {
+        let mut want = normalize(want);
+        want.pop(); // "end"
+        let have = normalize(got.next().unwrap_or_default().to_vec());
+        if have != want {
+            let command = input.lines().nth(i).unwrap_or_default();
+            let at = have.iter().zip(&want).take_while(|(a, b)| a == b).count();
+            panic!(
+                "{spec}: C and Rust differ on `{}` at its line {at}:\n  C:    {:?}\n  Rust: {:?}\n({} lines from C, {} from Rust)",
+                &command[..command.len().min(120)],
+                have.get(at),
+                want.get(at),
+                have.len(),
+                want.len()
+            );
+        }
+    }
+}
+
+fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, String>) {
+    let shown = path
+        .strip_prefix(root())
+        .unwrap_or(path)
+        .display()
+        .to_string();
+    let interp = Interpreter::load(path).expect("a valid spec");
+    let p = interp.protocol();
+    let codec = interp.codec();
+    let files = match protocol_codegen::c::generate(p) {
+        Ok(files) => files,
+        Err(refused) => {
+            support.insert(shown, format!("refused: {}", refused.join("; ")));
+            return;
+        }
+    };
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let exe = build(p, &files, dir.path());
+    let mut tally = Tally::default();
+    let (mut input, mut expected) = (String::new(), Vec::new());
+
+    // Golden vectors: frames, then streams at every chunk size.
+    for (file, primary) in vector_files(&p.name) {
+        let text = std::fs::read_to_string(root().join("tests/vectors").join(&file)).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        for frame in v["frames"].as_array().into_iter().flatten() {
+            let Some(h) = frame["hex"].as_str().or(frame["uart"]["hex"].as_str()) else {
+                continue;
+            };
+            let bytes = unhex(h);
+            writeln!(input, "P {h}").unwrap();
+            expected.push(rust_frame(&codec, &bytes));
+            tally.vector_frames += 1;
+        }
+        for s in v["streams"].as_array().into_iter().flatten() {
+            let Some(h) = s["hex"].as_str() else { continue };
+            let data = unhex(h);
+            tally.vector_streams += 1;
+            for chunk in 1..=data.len() {
+                writeln!(input, "S {chunk} {h}").unwrap();
+                let lines = rust_stream(&codec, chunk, &data);
+                if primary {
+                    let frames: Vec<String> = lines
+                        .iter()
+                        .filter_map(|l| l.strip_prefix("frame "))
+                        .map(|l| l.split(' ').take(2).collect::<Vec<_>>().join(" "))
+                        .collect();
+                    let want: Vec<String> = s["expected_frames"]
+                        .as_array()
+                        .into_iter()
+                        .flatten()
+                        .map(|f| format!("{} {}", f["offset"], f["hex"].as_str().unwrap_or("")))
+                        .collect();
+                    assert_eq!(frames, want, "{}: {file} stream at chunk {chunk}", p.name);
+                }
+                expected.push(lines);
+                tally.chunkings += 1;
+            }
+        }
+    }
+
+    // Random frames, then the fault-injection stream of them at several chunk sizes.
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ p.name.len() as u64);
+    let frames: Vec<Vec<u8>> = (0..random_frames)
+        .map(|_| random_frame(p, &codec, &mut rng))
+        .collect();
+    for frame in &frames {
+        writeln!(input, "P {}", hex(frame)).unwrap();
+        expected.push(rust_frame(&codec, frame));
+    }
+    tally.random_frames = frames.len();
+    let stream = faulty_stream(p, &frames, &mut rng);
+    tally.stream_bytes = stream.len();
+    for chunk in [1, 17, 1000, stream.len()] {
+        writeln!(input, "S {chunk} {}", hex(&stream)).unwrap();
+        expected.push(rust_stream(&codec, chunk, &stream));
+    }
+    compare(&p.name, &exe, &input, expected);
+    support.insert(
+        shown,
+        format!(
+            "C matches Rust: {} vector frames, {} vector streams, {} random frames, a {}-byte fault-injection stream",
+            tally.vector_frames, tally.vector_streams, tally.random_frames, tally.stream_bytes
+        ),
+    );
+    eprintln!(
+        "{}: {} vector frames, {} vector streams at {} chunkings, {} random frames, {} stream bytes",
+        p.name,
+        tally.vector_frames,
+        tally.vector_streams,
+        tally.chunkings,
+        tally.random_frames,
+        tally.stream_bytes
+    );
+}
+
+#[test]
+fn c_peer_matches_the_rust_codec() {
+    let mut support = BTreeMap::new();
+    for (path, random_frames) in specs() {
+        check_spec(&path, random_frames, &mut support);
+    }
+    let table: String = support
+        .iter()
+        .map(|(spec, what)| format!("{spec}: {what}\n"))
+        .collect();
+    insta::assert_snapshot!("c_support", table);
+}

@@ -1,0 +1,77 @@
+//! The C peer (`protocol gen c`): a C99 header and source file per spec, printed from the IR.
+//!
+//! Like the Rust expansion, this backend decides nothing: every size, offset, byte order,
+//! length rule and check comes from the IR (the frame engine's values from
+//! [`crate::layout::lower_layout`], the lowering the Rust backends share). What the C printer
+//! does not support yet is refused by [`unsupported`] with one line per feature,
+//! before anything is printed: a spec gets correct C or a clear error, never wrong code.
+//!
+//! The generated code needs nothing beyond the C standard headers and never allocates:
+//!
+//! * a struct (fixed-width types) per payload struct, an integer type and constants per enum,
+//!   a header struct, a command enum and a packet struct (`types`);
+//! * a reader and a writer per payload struct, with explicit byte order (shifts), never
+//!   relying on struct layout or packing (`payload`);
+//! * the frame rules: each check's algorithm (sums, bitwise or table CRCs from the IR's
+//!   parameters), the probe of a candidate, a decoder of one frame's bytes and an encoder per
+//!   command into the caller's buffer (`frame`, `checks`);
+//! * the stream decoder, with the runtime engine's rules over a fixed buffer (`engine`);
+//! * optionally (`<PREFIX>_WITH_FORMAT`), a text form of a packet, with `snprintf` (`format`).
+//!
+//! The code every spec needs (byte readers, the stream engine) is printed into each source
+//! file as `static` functions, not shipped as a shared `protocol_rt.h`: the two files of a
+//! spec are all a firmware vendors, two specs linked into one firmware cannot clash, and the
+//! engine's constants (sync bytes, buffer size) are compile-time constants of that file.
+
+mod checks;
+mod engine;
+mod format;
+mod frame;
+mod names;
+mod payload;
+mod support;
+mod types;
+
+pub use support::unsupported;
+
+use crate::ir::Protocol;
+
+/// The two files of a spec's C code.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CFiles {
+    /// File name of the header (`hflink.h`).
+    pub header_name: String,
+    /// The header.
+    pub header: String,
+    /// File name of the source (`hflink.c`).
+    pub source_name: String,
+    /// The source.
+    pub source: String,
+}
+
+/// The C code of a spec, or every feature of the spec the C printer does not support (one
+/// line each).
+///
+/// # Errors
+/// The unsupported features, when there are any.
+pub fn generate(p: &Protocol) -> Result<CFiles, Vec<String>> {
+    let refused = unsupported(p);
+    if !refused.is_empty() {
+        return Err(refused);
+    }
+    let n = names::Names::new(p);
+    let header = types::header(p, &n);
+    let mut source = String::new();
+    source.push_str(&types::source_prelude(p, &n));
+    source.push_str(&checks::checks(p, &n));
+    source.push_str(&payload::payloads(p, &n));
+    source.push_str(&frame::frame(p, &n));
+    source.push_str(&engine::engine(p, &n));
+    source.push_str(&format::format(p, &n));
+    Ok(CFiles {
+        header_name: format!("{}.h", p.name),
+        header,
+        source_name: format!("{}.c", p.name),
+        source,
+    })
+}
