@@ -11,16 +11,25 @@
 # commands (written to a temporary directory, found by the macro through PROTOCOL_SPEC_DIR) and
 # prints their sizes and the in-process expansion time of those specs.
 #
-# Usage: bash benches/footprint.sh [--scaling]
+# The Scout firmware (scaled fields) is measured alone, with the list of the double-precision
+# soft-float helpers (`__aeabi_d*`) it links: none when every scaled field computes in `f32`.
+#
+# With --crc-tables, also builds the referee firmware (a CRC-8 header check and a CRC-16 frame
+# check; the spec copied as the synthetic crate's `synth.toml`) with each table size written on
+# both checks (`table = 0`, `1`, `16`) and prints their sizes.
+#
+# Usage: bash benches/footprint.sh [--scaling | --crc-tables]
 # The firmware is built in "${CARGO_TARGET_DIR:-target}/firmware".
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 scaling=0
+crc_tables=0
 case "${1:-}" in
   --scaling) scaling=1 ;;
+  --crc-tables) crc_tables=1 ;;
   "") ;;
-  *) echo "usage: bash benches/footprint.sh [--scaling]" >&2; exit 2 ;;
+  *) echo "usage: bash benches/footprint.sh [--scaling | --crc-tables]" >&2; exit 2 ;;
 esac
 
 target=thumbv7em-none-eabihf
@@ -48,6 +57,29 @@ echo "== HFLink firmware: encode and decode every command ($target, opt-level s,
 fw_build -p footprint-empty -p footprint-hand -p footprint-generated
 sizes --baseline "empty=$out/footprint-empty" "hand-written=$out/footprint-hand" \
   "generated=$out/footprint-generated"
+
+echo
+echo "== Scout firmware: scaled fields (f32 in Rust, 8- and 16-bit on the wire), UART echo"
+fw_build -p footprint-scout
+sizes --baseline "empty=$out/footprint-empty" "scout=$out/footprint-scout"
+echo "double-precision soft-float helpers linked:"
+sizes --symbols __aeabi_d "$out/footprint-scout"
+
+if [ "$crc_tables" = 1 ]; then
+  tmp="$(mktemp -d)"
+  trap 'rm -rf "$tmp"' EXIT
+  rows=()
+  for t in 0 1 16; do
+    sed -e 's/^name = "referee"$/name = "synth"/' \
+      -e "s/{ check = \([^,]*\),/{ check = \1, table = $t,/" specs/referee.toml > "$tmp/synth.toml"
+    PROTOCOL_SPEC_DIR="$tmp" fw_build -p footprint-synth
+    cp "$out/footprint-synth" "$tmp/referee-$t"
+    rows+=("referee table $t=$tmp/referee-$t")
+  done
+  echo
+  echo "== referee firmware (CRC-8 header check, CRC-16 frame check) by CRC table size"
+  sizes --baseline "empty=$out/footprint-empty" "${rows[@]}"
+fi
 
 if [ "$scaling" = 1 ]; then
   tmp="$(mktemp -d)"

@@ -145,7 +145,10 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
             return self.emit(index, "skipped", record.data.len(), extra);
         }
         let frame = match CanFrame::new(record.id, &record.data) {
-            Ok(f) => f,
+            Ok(f) => CanFrame {
+                extended: record.extended,
+                ..f
+            },
             Err(_) => return self.can_reject(index, record, Reject::BadLength, extra),
         };
         match self.codec.decode_can(self.format, &frame) {

@@ -7,6 +7,11 @@ use protocol_codegen::source::SpecSource;
 
 /// A one-frame spec whose only check is `check` (plus extra `[checksums]` text).
 fn spec_with(check: &str, checksums: &str) -> Protocol {
+    spec_with_check_keys(check, "", checksums)
+}
+
+/// A one-frame spec whose only check is `check` with more keys (`keys`: `, table = 0`).
+fn spec_with_check_keys(check: &str, keys: &str, checksums: &str) -> Protocol {
     let text = format!(
         r#"
 [protocol]
@@ -18,7 +23,7 @@ layout = [
   {{ field = "length", type = "u8", length_of = "payload" }},
   {{ field = "command", type = "u8" }},
   {{ payload = {{ max = 16 }} }},
-  {{ check = "{check}", over = "frame" }},
+  {{ check = "{check}", over = "frame"{keys} }},
 ]
 dispatch = ["command"]
 
@@ -142,4 +147,35 @@ fn a_custom_crc_keeps_its_table_choice() {
     let c = &p.frames[0].checks[0];
     assert_eq!(c.algorithm.crc_table(), Some(CrcTable::NoTable));
     assert_eq!(c.naming.crc_constant, None);
+}
+
+#[test]
+fn a_check_sizes_a_catalogue_crcs_table_keeping_its_parameters() {
+    for (table, want) in [
+        (0, CrcTable::NoTable),
+        (1, CrcTable::Table1),
+        (16, CrcTable::Table16),
+    ] {
+        let p = spec_with_check_keys("crc-16-umts", &format!(", table = {table}"), "");
+        match &p.frames[0].checks[0].algorithm {
+            Algorithm::Crc16(spec) => {
+                assert_eq!(spec.params, crc::CRC_16_UMTS, "table {table}");
+                assert_eq!(spec.table, want, "table {table}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+}
+
+#[test]
+fn a_checks_table_overrides_a_custom_crcs() {
+    let p = spec_with_check_keys(
+        "mine",
+        ", table = 1",
+        "[checksums.mine]\ncrc = { width = 8, poly = 0x07, init = 0, refin = false, refout = false, xorout = 0, check = 0xF4 }\ntable = 0\n",
+    );
+    assert_eq!(
+        p.frames[0].checks[0].algorithm.crc_table(),
+        Some(CrcTable::Table1)
+    );
 }

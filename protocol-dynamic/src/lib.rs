@@ -238,8 +238,15 @@ impl Codec<'_> {
     /// frame, as generated `<Name>Packet::decode` does.
     ///
     /// # Errors
-    /// As [`parse`](Self::parse).
+    /// As [`parse`](Self::parse); [`DecodeIssue::Frame`] with `Reject::BadHeader` for an
+    /// identifier of the other kind (standard or extended) than the format's.
     pub fn decode_can(&self, format: usize, can: &CanFrame) -> Result<Decoded, DecodeIssue> {
+        let extended = self
+            .protocol
+            .frames
+            .get(format)
+            .is_some_and(|f| matches!(f.transport, Transport::Can { extended: true }));
+        let can = can.of_kind(extended).map_err(DecodeIssue::Frame)?;
         let mut virt = [0u8; protocol_runtime::can::CAN_VIRTUAL_LEN];
         self.parse(format, can.to_virtual(&mut virt))
     }

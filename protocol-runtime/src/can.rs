@@ -65,6 +65,29 @@ impl CanFrame {
         }
     }
 
+    /// The frame, if its identifier's kind is `extended` (a spec's `can_id`): on the bus a
+    /// standard and an extended frame with the same number are different frames, so a frame of
+    /// the other kind belongs to another protocol. Generated `<Name>Packet::decode` and
+    /// `protocol-dynamic` both call this before anything else.
+    ///
+    /// # Errors
+    /// [`DecodeError::Frame`] with [`Reject::BadHeader`] for a frame of the other kind.
+    ///
+    /// ```
+    /// use protocol_runtime::{CanFrame, DecodeError, Reject};
+    /// let standard = CanFrame::new(0x130, &[1, 2])?;
+    /// assert_eq!(standard.of_kind(false), Ok(&standard));
+    /// assert_eq!(standard.of_kind(true), Err(DecodeError::Frame(Reject::BadHeader)));
+    /// # Ok::<(), DecodeError>(())
+    /// ```
+    pub fn of_kind(&self, extended: bool) -> Result<&Self, DecodeError> {
+        if self.extended == extended {
+            Ok(self)
+        } else {
+            Err(DecodeError::Frame(Reject::BadHeader))
+        }
+    }
+
     /// The data bytes.
     pub fn data(&self) -> &[u8] {
         self.data.get(..usize::from(self.len)).unwrap_or(&self.data)

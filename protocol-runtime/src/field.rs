@@ -3,7 +3,8 @@
 //! constants (so each call folds to the same straight-line code a hand-written codec has), and
 //! the run-time codec calls them with the values of its spec.
 //!
-//! - scaled fields: `physical = raw * factor + offset` ([`to_physical`]); encoding clamps the
+//! - scaled fields: `physical = raw * factor + offset` ([`to_physical`]), computed in the
+//!   field's Rust type ([`Float`]: `f32` or `f64`); encoding clamps the
 //!   physical value when the spec gives a clamp range ([`clamp`]), divides back and rounds
 //!   ([`quantize`] by a [`Rounding`]), and a raw value that does not fit its integer type is an
 //!   error ([`fit`]), never a saturated value; decoding refuses a value outside the clamp range
@@ -22,6 +23,7 @@
 //! ([`crate::Payload`]).
 
 use crate::error::{DecodeError, EncodeError};
+pub use crate::float::Float;
 use crate::wire::Reader;
 
 /// How a scaled field's physical value becomes its raw integer when encoding.
@@ -36,27 +38,65 @@ pub enum Rounding {
     Truncate,
 }
 
-/// The physical value of a scaled field's raw value: `raw * factor + offset`.
+/// The physical value of a scaled field's raw value: `raw * factor + offset`, in the field's
+/// float type. A factor that is the reciprocal of an integer `n` (`0.1`, `0.001`: most scales)
+/// divides by `n` instead, which rounds once, so that `-1500` at `0.001` is exactly `-1.5` in
+/// `f32` too (`0.001f32` is not `0.001`, and the product would be off by one unit in the last
+/// place). With constant arguments, as generated code passes them, the choice folds away.
 ///
 /// ```
-/// assert_eq!(protocol_runtime::field::to_physical(250.0, 0.1, -5.0), 20.0);
+/// use protocol_runtime::field::to_physical;
+/// assert_eq!(to_physical(250.0, 0.1, -5.0), 20.0);
+/// assert_eq!(to_physical(-1500.0f32, 0.001, 0.0), -1.5);
+/// assert_eq!(to_physical(100.0f32, 0.015, 0.0), 1.5);
 /// ```
+#[allow(
+    clippy::arithmetic_side_effects,
+    reason = "float arithmetic (F is f32 or f64): it neither wraps nor panics"
+)]
 #[inline(always)]
-pub fn to_physical(raw: f64, factor: f64, offset: f64) -> f64 {
-    raw * factor + offset
+pub fn to_physical<F: Float>(raw: F, factor: F, offset: F) -> F {
+    match reciprocal_integer(factor) {
+        Some(n) => raw / n + offset,
+        None => raw * factor + offset,
+    }
+}
+
+/// The integer `n` whose reciprocal `factor` is, within float noise (`1 / 0.001f32` is
+/// `999.99994`), if there is one.
+#[allow(
+    clippy::arithmetic_side_effects,
+    reason = "float arithmetic (F is f32 or f64): it neither wraps nor panics"
+)]
+#[inline(always)]
+fn reciprocal_integer<F: Float>(factor: F) -> Option<F> {
+    let inv = F::ONE / factor;
+    let n = if inv >= F::ZERO {
+        inv + F::HALF
+    } else {
+        inv - F::HALF
+    }
+    .cut_int();
+    let off = (inv - n).magnitude();
+    (n != F::ZERO && off <= F::NOISE * n.magnitude()).then_some(n)
 }
 
 /// Whether a decoded physical value lies in the clamp range `lo..=hi` of its scaled field,
-/// allowing for the rounding of `raw * factor + offset` (a raw value at the limit is inside).
+/// allowing for the rounding of `raw * factor + offset` in `F` (a raw value at the limit is
+/// inside).
 ///
 /// ```
 /// use protocol_runtime::field::within_clamp;
 /// assert!(within_clamp(0.5235000000000001, -0.5235, 0.5235));
 /// assert!(!within_clamp(0.56, -0.5235, 0.5235));
 /// ```
+#[allow(
+    clippy::arithmetic_side_effects,
+    reason = "float arithmetic (F is f32 or f64): it neither wraps nor panics"
+)]
 #[inline(always)]
-pub fn within_clamp(physical: f64, lo: f64, hi: f64) -> bool {
-    let slack = 1e-9 * (if hi - lo > 1.0 { hi - lo } else { 1.0 });
+pub fn within_clamp<F: Float>(physical: F, lo: F, hi: F) -> bool {
+    let slack = F::CLAMP_SLACK * (hi - lo).at_least_one();
     physical >= lo - slack && physical <= hi + slack
 }
 
@@ -73,7 +113,7 @@ pub fn within_clamp(physical: f64, lo: f64, hi: f64) -> bool {
 /// assert_eq!(check_clamp(0.75, -0.5, 0.5), Err(DecodeError::ValueOutOfRange));
 /// ```
 #[inline(always)]
-pub fn check_clamp(physical: f64, lo: f64, hi: f64) -> Result<f64, DecodeError> {
+pub fn check_clamp<F: Float>(physical: F, lo: F, hi: F) -> Result<F, DecodeError> {
     if within_clamp(physical, lo, hi) {
         Ok(physical)
     } else {
@@ -88,14 +128,22 @@ pub fn check_clamp(physical: f64, lo: f64, hi: f64) -> Result<f64, DecodeError> 
 /// assert_eq!(protocol_runtime::field::clamp(7.0, -1.0, 1.0), 1.0);
 /// ```
 #[inline(always)]
-pub fn clamp(physical: f64, lo: f64, hi: f64) -> f64 {
-    physical.clamp(lo, hi)
+pub fn clamp<F: Float>(physical: F, lo: F, hi: F) -> F {
+    if physical < lo {
+        lo
+    } else if physical > hi {
+        hi
+    } else {
+        physical
+    }
 }
 
 /// The raw value of a physical one, before the cast to the raw type: `(physical - offset) /
 /// factor`, rounded by `rounding`. The result's integer part, toward zero, is the raw value
 /// ([`fit`] takes it); `core` has no `round` or `trunc`, so rounding to nearest adds a half
-/// away from zero and leaves the cut to the cast.
+/// away from zero and leaves the cut to the cast. Float noise is relative to the quotient and
+/// to the offset's share of it (`offset / factor`), the two magnitudes whose rounding it
+/// carries.
 ///
 /// ```
 /// use protocol_runtime::field::{Rounding, quantize};
@@ -104,21 +152,25 @@ pub fn clamp(physical: f64, lo: f64, hi: f64) -> f64 {
 /// // 0.3 / 0.1 is 2.9999999999999996: within float noise of 3.
 /// assert_eq!(quantize(0.3, 0.1, 0.0, Rounding::Truncate) as i64, 3);
 /// ```
+#[allow(
+    clippy::arithmetic_side_effects,
+    reason = "float arithmetic (F is f32 or f64): it neither wraps nor panics"
+)]
 #[inline(always)]
-pub fn quantize(physical: f64, factor: f64, offset: f64, rounding: Rounding) -> f64 {
+pub fn quantize<F: Float>(physical: F, factor: F, offset: F, rounding: Rounding) -> F {
     let q = (physical - offset) / factor;
-    let nearest = if q >= 0.0 { q + 0.5 } else { q - 0.5 };
+    let nearest = if q >= F::ZERO {
+        q + F::HALF
+    } else {
+        q - F::HALF
+    };
     match rounding {
         Rounding::Nearest => nearest,
         Rounding::Truncate => {
-            let nearest = nearest as i64 as f64;
-            let off = if q >= nearest {
-                q - nearest
-            } else {
-                nearest - q
-            };
-            let magnitude = if q >= 0.0 { q } else { -q };
-            if off <= 1e-6 * (if magnitude > 1.0 { magnitude } else { 1.0 }) {
+            let nearest = nearest.cut_int();
+            let off = (q - nearest).magnitude();
+            let magnitude = q.magnitude() + (offset / factor).magnitude();
+            if off <= F::NOISE * magnitude.at_least_one() {
                 nearest
             } else {
                 q
@@ -133,17 +185,30 @@ pub trait RawInt: Copy {
     const BELOW: f64;
     /// The smallest `f64` above every value whose integer part fits (exclusive bound).
     const ABOVE: f64;
+    /// The largest `f32` below every value whose integer part fits (exclusive bound).
+    const BELOW_F32: f32;
+    /// The smallest `f32` above every value whose integer part fits (exclusive bound).
+    const ABOVE_F32: f32;
     /// `x` cut toward zero (an `as` cast); `x` lies strictly between the bounds.
     fn cut(x: f64) -> Self;
+    /// `x` cut toward zero (an `as` cast); `x` lies strictly between the `f32` bounds.
+    fn cut_f32(x: f32) -> Self;
 }
 
 macro_rules! raw_ints {
-    ($($t:ty: $below:expr, $above:expr;)*) => {$(
+    ($($t:ty: $below:expr, $above:expr, $below32:expr;)*) => {$(
         impl RawInt for $t {
             const BELOW: f64 = $below;
             const ABOVE: f64 = $above;
+            const BELOW_F32: f32 = $below32;
+            // Every upper bound is a power of two: the same number in `f32`.
+            const ABOVE_F32: f32 = $above;
             #[inline(always)]
             fn cut(x: f64) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn cut_f32(x: f32) -> Self {
                 x as $t
             }
         }
@@ -151,15 +216,16 @@ macro_rules! raw_ints {
 }
 
 raw_ints! {
-    u8: -1.0, 256.0;
-    u16: -1.0, 65_536.0;
-    u32: -1.0, 4_294_967_296.0;
-    u64: -1.0, 18_446_744_073_709_551_616.0;
-    i8: -129.0, 128.0;
-    i16: -32_769.0, 32_768.0;
-    i32: -2_147_483_649.0, 2_147_483_648.0;
-    // -2^63 - 1 is no f64; the next one below -2^63 is -2^63 - 2048.
-    i64: -9_223_372_036_854_777_856.0, 9_223_372_036_854_775_808.0;
+    u8: -1.0, 256.0, -1.0;
+    u16: -1.0, 65_536.0, -1.0;
+    u32: -1.0, 4_294_967_296.0, -1.0;
+    u64: -1.0, 18_446_744_073_709_551_616.0, -1.0;
+    i8: -129.0, 128.0, -129.0;
+    i16: -32_769.0, 32_768.0, -32_769.0;
+    // -2^31 - 1 is no f32; the next one below -2^31 is -2^31 - 256.
+    i32: -2_147_483_649.0, 2_147_483_648.0, -2_147_483_904.0;
+    // -2^63 - 1 is no f64; the next one below -2^63 is -2^63 - 2048 (in f32, -2^63 - 2^40).
+    i64: -9_223_372_036_854_777_856.0, 9_223_372_036_854_775_808.0, -9_223_373_136_366_403_584.0;
 }
 
 /// The raw integer of a quantized value ([`quantize`]): its integer part, toward zero.
@@ -175,14 +241,12 @@ raw_ints! {
 /// assert_eq!(fit::<i8>(-128.7), Ok(-128));
 /// assert_eq!(fit::<u8>(256.0), Err(EncodeError::ValueOutOfRange));
 /// assert_eq!(fit::<u16>(f64::NAN), Err(EncodeError::ValueOutOfRange));
+/// assert_eq!(fit::<i32>(-2_147_483_648.0f32), Ok(i32::MIN));
+/// assert_eq!(fit::<i16>(f32::NAN), Err(EncodeError::ValueOutOfRange));
 /// ```
 #[inline(always)]
-pub fn fit<T: RawInt>(x: f64) -> Result<T, EncodeError> {
-    if x > T::BELOW && x < T::ABOVE {
-        Ok(T::cut(x))
-    } else {
-        Err(EncodeError::ValueOutOfRange)
-    }
+pub fn fit<T: RawInt>(x: impl Float) -> Result<T, EncodeError> {
+    x.fit()
 }
 
 /// What an enum does with a wire value that names none of its variants.

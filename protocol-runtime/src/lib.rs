@@ -174,6 +174,7 @@ pub mod decoder;
 pub mod encoder;
 pub mod error;
 pub mod field;
+mod float;
 pub mod group;
 #[cfg(any(feature = "std", feature = "embedded-io"))]
 pub mod io;

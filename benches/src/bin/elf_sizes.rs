@@ -4,10 +4,14 @@
 //! Usage: `elf-sizes [--baseline NAME=PATH] NAME=PATH...`. Each row gives a file's sizes, their
 //! sum, the ratio of that sum to the first file's, and, with a baseline (a firmware that does
 //! nothing), the sizes net of the baseline and their ratio to the first file's net size.
+//!
+//! `elf-sizes --symbols PREFIX PATH` lists instead the symbols of `PATH` whose names start with
+//! `PREFIX` and their sizes (`__aeabi_d`: the double-precision soft-float helpers a Cortex-M4F
+//! binary links when it computes in `f64`).
 
 use std::process::ExitCode;
 
-use object::{Object, ObjectSection};
+use object::{Object, ObjectSection, ObjectSymbol};
 
 /// Sizes of the sections of one file.
 #[derive(Debug, Clone, Copy)]
@@ -49,8 +53,33 @@ fn main() -> ExitCode {
     }
 }
 
+/// The symbols of `path` whose names start with `prefix`, sorted, one line each.
+fn symbols(prefix: &str, path: &str) -> Result<(), String> {
+    let data = std::fs::read(path).map_err(|e| format!("{path}: {e}"))?;
+    let file = object::File::parse(&*data).map_err(|e| format!("{path}: {e}"))?;
+    let mut found: Vec<(String, u64)> = file
+        .symbols()
+        .filter_map(|s| Some((s.name().ok()?.to_string(), s.size())))
+        .filter(|(name, _)| name.starts_with(prefix))
+        .collect();
+    found.sort();
+    found.dedup();
+    println!("{} symbols starting with `{prefix}`", found.len());
+    for (name, size) in found {
+        println!("  {name} ({size} bytes)");
+    }
+    Ok(())
+}
+
 fn run() -> Result<(), String> {
     let mut args = std::env::args().skip(1).peekable();
+    if args.peek().map(String::as_str) == Some("--symbols") {
+        args.next();
+        let (Some(prefix), Some(path)) = (args.next(), args.next()) else {
+            return Err("usage: elf-sizes --symbols PREFIX PATH".into());
+        };
+        return symbols(&prefix, &path);
+    }
     let mut baseline = None;
     if args.peek().map(String::as_str) == Some("--baseline") {
         args.next();

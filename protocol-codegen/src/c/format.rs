@@ -146,6 +146,8 @@ fn value(p: &Protocol, n: &Names, ty: &ValueType, label: &str, v: &str, indent: 
                 names::snake(&p.structs[*si].name)
             )
         }
+        // Refused by `support` before anything is printed.
+        ValueType::Text(_) => String::new(),
     }
 }
 

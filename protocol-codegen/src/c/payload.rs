@@ -30,6 +30,8 @@ pub fn value_type(p: &Protocol, n: &Names, ty: &ValueType) -> String {
         ValueType::Scalar { scalar, .. } => c_prim(scalar.prim).to_string(),
         ValueType::Struct(si) => n.ty(&p.structs[*si].name),
         ValueType::Enum(ei, _) => n.ty(&p.enums[*ei].name),
+        // Refused by `support` before anything is printed.
+        ValueType::Text(_) => String::new(),
     }
 }
 
@@ -191,6 +193,8 @@ fn read_elem(p: &Protocol, n: &Names, ty: &ValueType, dst: &str) -> String {
             let _ = writeln!(s, "    {dst} = ({ety}){};", from_raw(lo, e.prim, "raw"));
             s
         }
+        // Refused by `support` before anything is printed.
+        ValueType::Text(_) => String::new(),
     }
 }
 
@@ -311,6 +315,8 @@ fn write_elem(p: &Protocol, n: &Names, ty: &ValueType, src: &str) -> String {
             );
             s
         }
+        // Refused by `support` before anything is printed.
+        ValueType::Text(_) => String::new(),
     }
 }
 

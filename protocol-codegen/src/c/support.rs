@@ -73,6 +73,7 @@ fn kind_refused(p: &Protocol, kind: &FieldKind) -> Option<&'static str> {
         FieldKind::Padding => None,
         FieldKind::Value { ty, .. } => match ty {
             ValueType::Scalar { scale: Some(_), .. } => Some("scaled values"),
+            ValueType::Text(_) => Some("text fields (`char[N]`)"),
             ValueType::Scalar { .. } | ValueType::Struct(_) => None,
             ValueType::Enum(ei, scalar) => {
                 (p.enums[*ei].prim != scalar.prim).then_some("an enum read as another integer type")

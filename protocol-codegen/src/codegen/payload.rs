@@ -165,6 +165,18 @@ fn float_lit(x: f64) -> TokenStream {
     quote!(#lit)
 }
 
+/// A scaled field's constant in the field's float type: its arithmetic stays in that type
+/// (an `f32` field computes in `f32`, no `f64` soft-float on a target with an `f32` FPU).
+fn scale_lit(x: f64, sc: &Scale) -> TokenStream {
+    match sc.physical {
+        Prim::F32 => {
+            let lit = proc_macro2::Literal::f32_suffixed(x as f32);
+            quote!(#lit)
+        }
+        _ => float_lit(x),
+    }
+}
+
 /// The runtime's name of a rounding mode.
 fn rounding(rt: &TokenStream, r: Rounding) -> TokenStream {
     match r {
@@ -218,29 +230,29 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
 
 /// The physical value of the raw integer expression `raw`.
 fn to_physical(raw: TokenStream, sc: &Scale, rt: &TokenStream) -> TokenStream {
-    let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
+    let (f, o) = (scale_lit(sc.factor, sc), scale_lit(sc.offset, sc));
     let phys = prim_type(sc.physical);
-    let value = quote!(#rt::to_physical(#raw as f64, #f, #o));
+    let value = quote!(#rt::to_physical(#raw as #phys, #f, #o));
     match sc.clamp {
         // A value outside the clamp range would not encode back to the same bytes.
         Some((lo, hi)) => {
-            let (lo, hi) = (float_lit(lo), float_lit(hi));
-            quote!(#rt::check_clamp(#value, #lo, #hi)? as #phys)
+            let (lo, hi) = (scale_lit(lo, sc), scale_lit(hi, sc));
+            quote!(#rt::check_clamp(#value, #lo, #hi)?)
         }
-        None => quote!(#value as #phys),
+        None => value,
     }
 }
 
 /// The raw integer (of type `raw`) of the physical value `value`: clamped (if the field
 /// clamps), quantized and fitted by the runtime; a value the raw type cannot hold is an error.
 fn to_raw(value: TokenStream, sc: &Scale, raw: Option<Prim>, rt: &TokenStream) -> TokenStream {
-    let (f, o) = (float_lit(sc.factor), float_lit(sc.offset));
+    let (f, o) = (scale_lit(sc.factor, sc), scale_lit(sc.offset, sc));
     let physical = match sc.clamp {
         Some((lo, hi)) => {
-            let (lo, hi) = (float_lit(lo), float_lit(hi));
-            quote!(#rt::clamp((#value) as f64, #lo, #hi))
+            let (lo, hi) = (scale_lit(lo, sc), scale_lit(hi, sc));
+            quote!(#rt::clamp(#value, #lo, #hi))
         }
-        None => quote!((#value) as f64),
+        None => value,
     };
     let mode = rounding(rt, sc.rounding);
     let fit = match raw {

@@ -284,6 +284,10 @@ pub struct ElementDef {
     /// command declares (MAVLink's CRC_EXTRA).
     #[schemars(with = "Option<String>")]
     pub extra: Option<SStr>,
+    /// Lookup table slices of a CRC check: 0, 1 or 16 (default: the CRC's, 16 for a
+    /// catalogue CRC).
+    #[schemars(with = "Option<i64>")]
+    pub table: Option<SInt>,
     /// Name of a check or trailer.
     #[schemars(with = "Option<String>")]
     pub name: Option<SStr>,

@@ -180,6 +180,51 @@ fn lower_custom_sum(ctx: &mut Ctx<'_>, sum: &Spanned<SumDef>) -> Option<Algorith
     })
 }
 
+/// Rule: a CRC's `table` is 0, 1 or 16.
+fn crc_table(ctx: &mut Ctx<'_>, t: &Spanned<i64>) -> Option<CrcTable> {
+    match t.get_ref() {
+        0 => Some(CrcTable::NoTable),
+        1 => Some(CrcTable::Table1),
+        16 => Some(CrcTable::Table16),
+        other => {
+            ctx.error(
+                t.span(),
+                format!("table size {other} is not offered"),
+                "use 0 (no table, smallest), 1 (256 entries) or 16 (slicing-by-16, fastest)",
+            );
+            None
+        }
+    }
+}
+
+/// Rule: a check's `table` sizes the lookup table of a CRC (any CRC: of the catalogue, which
+/// keeps its parameters, or of `[checksums]`, whose own `table` it overrides); it is 0, 1 or
+/// 16, and a sum has none. Answers whether the table was set.
+pub(crate) fn set_crc_table(
+    ctx: &mut Ctx<'_>,
+    t: &Spanned<i64>,
+    algorithm: &mut Algorithm,
+) -> bool {
+    let Some(table) = crc_table(ctx, t) else {
+        return false;
+    };
+    match algorithm {
+        Algorithm::Crc8(s) => s.table = table,
+        Algorithm::Crc16(s) => s.table = table,
+        Algorithm::Crc32(s) => s.table = table,
+        Algorithm::Crc64(s) => s.table = table,
+        _ => {
+            ctx.error(
+                t.span(),
+                "this check is not a CRC: it has no table",
+                "remove `table` (it sizes a CRC's lookup table)",
+            );
+            return false;
+        }
+    }
+    true
+}
+
 /// Rule: a custom CRC has a width of 8, 16, 32 or 64; poly, init and xorout fit that width;
 /// the declared `check` equals the CRC of "123456789" computed from the parameters; `table`
 /// is 0, 1 or 16.
@@ -222,19 +267,7 @@ fn lower_custom_crc(
     }
     let table = match table {
         None => CrcTable::Table16,
-        Some(t) => match t.get_ref() {
-            0 => CrcTable::NoTable,
-            1 => CrcTable::Table1,
-            16 => CrcTable::Table16,
-            other => {
-                ctx.error(
-                    t.span(),
-                    format!("table size {other} is not offered"),
-                    "use 0 (no table, smallest), 1 (256 entries) or 16 (slicing-by-16, fastest)",
-                );
-                CrcTable::Table16
-            }
-        },
+        Some(t) => crc_table(ctx, t).unwrap_or(CrcTable::Table16),
     };
     if !ok {
         return None;

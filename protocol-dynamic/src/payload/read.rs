@@ -221,15 +221,24 @@ fn text_value(bytes: &[u8]) -> Value {
     }
 }
 
-/// The physical value of a scaled raw value, by the runtime's field rules.
+/// The physical value of a scaled raw value, by the runtime's field rules, in the field's
+/// Rust type (as generated code computes it).
 fn physical_value(raw: f64, sc: &Scale) -> Result<Value, ReadFail> {
-    let mut physical = field::to_physical(raw, sc.factor, sc.offset);
-    if let Some((lo, hi)) = sc.clamp {
-        physical = field::check_clamp(physical, lo, hi)?;
-    }
     Ok(match sc.physical {
-        Prim::F32 => Value::F32(physical as f32),
-        _ => Value::F64(physical),
+        Prim::F32 => {
+            let mut physical = field::to_physical(raw as f32, sc.factor as f32, sc.offset as f32);
+            if let Some((lo, hi)) = sc.clamp {
+                physical = field::check_clamp(physical, lo as f32, hi as f32)?;
+            }
+            Value::F32(physical)
+        }
+        _ => {
+            let mut physical = field::to_physical(raw, sc.factor, sc.offset);
+            if let Some((lo, hi)) = sc.clamp {
+                physical = field::check_clamp(physical, lo, hi)?;
+            }
+            Value::F64(physical)
+        }
     })
 }
 

@@ -310,21 +310,40 @@ fn text_bytes(v: &Value, n: usize, path: &str) -> Result<Vec<u8>, EncodeIssue> {
 /// generated code computes it): the value in its Rust type, clamped, quantized, fitted to the
 /// raw type; a value the raw type cannot hold is refused.
 fn scaled_raw(scalar: Scalar, sc: &Scale, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
-    let value = match sc.physical {
-        Prim::F32 => value_f32(v).map(f64::from),
-        _ => value_f64(v),
-    }
-    .map_err(|e| issue(path, e))?;
-    let physical = match sc.clamp {
-        Some((lo, hi)) => field::clamp(value, lo, hi),
-        None => value,
+    let shown;
+    // In the field's Rust type, as generated code computes it.
+    let q = match sc.physical {
+        Prim::F32 => {
+            let value = value_f32(v).map_err(|e| issue(path, e))?;
+            shown = f64::from(value);
+            let (factor, offset) = (sc.factor as f32, sc.offset as f32);
+            let physical = match sc.clamp {
+                Some((lo, hi)) => field::clamp(value, lo as f32, hi as f32),
+                None => value,
+            };
+            fit_bits(
+                scalar.prim,
+                field::quantize(physical, factor, offset, sc.rounding),
+            )
+        }
+        _ => {
+            let value = value_f64(v).map_err(|e| issue(path, e))?;
+            shown = value;
+            let physical = match sc.clamp {
+                Some((lo, hi)) => field::clamp(value, lo, hi),
+                None => value,
+            };
+            fit_bits(
+                scalar.prim,
+                field::quantize(physical, sc.factor, sc.offset, sc.rounding),
+            )
+        }
     };
-    let q = field::quantize(physical, sc.factor, sc.offset, sc.rounding);
-    let raw = fit_bits(scalar.prim, q).map_err(|_| {
+    let raw = q.map_err(|_| {
         EncodeIssue::new(
             path,
             format!(
-                "{value} does not fit the raw type {}",
+                "{shown} does not fit the raw type {}",
                 scalar.prim.spec_name()
             ),
         )
@@ -333,7 +352,7 @@ fn scaled_raw(scalar: Scalar, sc: &Scale, v: &Value, path: &str) -> Result<u64, 
 }
 
 /// [`field::fit`] for the raw type `prim`, as two's complement bits.
-fn fit_bits(prim: Prim, q: f64) -> Result<u64, EncodeError> {
+fn fit_bits(prim: Prim, q: impl field::Float) -> Result<u64, EncodeError> {
     use field::fit;
     use protocol_runtime::wire::{fit_i24, fit_u24};
     Ok(match prim {

@@ -21,9 +21,11 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
     let can_id = wire_const(f, 0);
     let (reads, writes) = header_codec(f, rt);
     // The virtual frame holds the identifier's number; its kind is the spec's.
-    let extended = match f.transport {
-        Transport::Can { extended: true } => quote!(.map(#rt::CanFrame::into_extended)),
-        _ => quote!(),
+    let is_extended = matches!(f.transport, Transport::Can { extended: true });
+    let extended = if is_extended {
+        quote!(.map(#rt::CanFrame::into_extended))
+    } else {
+        quote!()
     };
     let doc = format!(
         " A whole `{}` CAN frame, decoded: the header values and the message.",
@@ -45,8 +47,10 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
             /// # Errors
             /// `DecodeError::Frame` when a check fails or the length is wrong,
             /// `UnknownCommand` for an id the spec does not have, `PayloadLength` when the
-            /// payload's size is not the command's.
+            /// payload's size is not the command's; `DecodeError::Frame(Reject::BadHeader)`
+            /// for an identifier of the other kind (standard or extended) than the spec's.
             pub fn decode(can: &#rt::CanFrame) -> #rt::DecodeResult<Self> {
+                let can = can.of_kind(#is_extended)?;
                 let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
                 let frame = #layout.parse(can.to_virtual(&mut virt))?;
                 let command = Command::from_can_id(can.id).ok_or(#rt::DecodeError::UnknownCommand { key: can.id as u64 })?;

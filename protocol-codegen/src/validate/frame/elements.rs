@@ -4,7 +4,7 @@
 
 use toml::Spanned;
 
-use super::super::checksum::resolve_algorithm;
+use super::super::checksum::{resolve_algorithm, set_crc_table};
 use super::super::names::{check_snake_name, parse_byte_order};
 use super::super::types::Enums;
 use super::super::{Ctx, text};
@@ -50,7 +50,15 @@ const FIELD_KEYS: &[&str] = &[
 ];
 const SYNC_KEYS: &[&str] = &["sync", "doc"];
 const PAYLOAD_KEYS: &[&str] = &["payload", "doc"];
-const CHECK_KEYS: &[&str] = &["check", "over", "byte_order", "extra", "name", "doc"];
+const CHECK_KEYS: &[&str] = &[
+    "check",
+    "over",
+    "byte_order",
+    "extra",
+    "table",
+    "name",
+    "doc",
+];
 const TRAILER_KEYS: &[&str] = &["trailer", "name", "doc"];
 
 fn present_keys(e: &ElementDef) -> Vec<(&'static str, std::ops::Range<usize>)> {
@@ -62,7 +70,8 @@ fn present_keys(e: &ElementDef) -> Vec<(&'static str, std::ops::Range<usize>)> {
     }
     k!(sync => "sync", field => "field", payload => "payload", check => "check", trailer => "trailer",
        ty => "type", addresses => "addresses", length_of => "length_of", value => "value",
-       one_of => "one_of", bits => "bits", over => "over", byte_order => "byte_order", extra => "extra", name => "name",
+       one_of => "one_of", bits => "bits", over => "over", byte_order => "byte_order", extra => "extra",
+       table => "table", name => "name",
        doc => "doc");
     v
 }
@@ -247,6 +256,12 @@ fn lower_check<'s>(
         draft.broken = true;
         return Some(());
     };
+    if let Some(t) = &d.table {
+        if !set_crc_table(ctx, t, &mut algorithm) {
+            draft.broken = true;
+            return Some(());
+        }
+    }
     let extra = match &d.extra {
         None => None,
         Some(e) => {
