@@ -21,6 +21,12 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         if f.stuffing.is_some() {
             out.push(format!("{at}: byte stuffing"));
         }
+        if !f.sync_set.is_empty() {
+            out.push(format!("{at}: a sync from a set of values"));
+        }
+        if f.truncate_zeros {
+            out.push(format!("{at}: trailing-zero payload truncation"));
+        }
         if f.ack.is_some() {
             out.push(format!("{at}: acknowledgement frames"));
         }
