@@ -88,7 +88,7 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
                 }
                 ValueType::Struct(i) => format!("`{}`", p.structs[*i].name),
                 ValueType::Enum(i, s) => format!("`{}` ({})", p.enums[*i].name, s.prim.spec_name()),
-                ValueType::Text(n) => format!("char[{n}] (NUL-padded text)"),
+                ValueType::Text(n) => format!("`char[{n}]` (NUL-padded text)"),
             };
             match count {
                 Some(n) => format!("[{base}; {n}]"),
