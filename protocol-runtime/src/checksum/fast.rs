@@ -4,9 +4,9 @@
 //!
 //! This module owns the match between a `crc` crate [`Algorithm`](crc::Algorithm) and the
 //! `crc-fast` catalogue, made once when a [`Slicing16`](super::Slicing16) is built. The
-//! carry-less multiply needs `unsafe` (its intrinsics are `#[target_feature]` functions, which
-//! only `unsafe` code may call from a function without the attribute): the crate owns it, this
-//! crate has none.
+//! carry-less multiply intrinsics are `#[target_feature]` functions, which safe code cannot
+//! call from a function without that attribute: the `crc-fast` crate owns those calls, and this
+//! crate stays `#![forbid(unsafe_code)]`.
 
 pub use crc_fast::CrcAlgorithm;
 
