@@ -7,8 +7,10 @@
 //! What the spec carries as raw bytes (strings, DEVICE_INFO after its addresses, a COMMAND's
 //! data and inner CRC) is compared as the bytes the vector's values make up.
 
+mod golden;
+
 use protocol::{DecodeError, EncodeError, Reject};
-use protocol_dynamic::{Interpreter, Item};
+use protocol_dynamic::Interpreter;
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::{Value, json};
 
@@ -228,8 +230,7 @@ fn dynamic_fields(ty: u64, f: &Value) -> Value {
 }
 
 fn interpreter() -> Interpreter {
-    let path = format!("{}/../specs/crsf.toml", env!("CARGO_MANIFEST_DIR"));
-    Interpreter::load(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+    golden::interpreter("crsf")
 }
 
 #[test]
@@ -341,8 +342,6 @@ fn stream_yields_expected_frames_at_every_chunk_size() {
     assert_stream_at_every_chunk_size::<MAX_FRAME_LEN>(&LAYOUT, &bytes, &expected, |frame| {
         Packet::from_frame(frame).expect("every expected frame decodes");
     });
-    let interp = interpreter();
-    let codec = interp.codec();
     for chunk in 1..=bytes.len() {
         // The generated decoder (the layout a constant).
         let mut dec = decoder();
@@ -354,23 +353,6 @@ fn stream_yields_expected_frames_at_every_chunk_size() {
             }
         }
         assert_eq!(got, expected, "generated decoder, chunk size {chunk}");
-        // The run-time codec.
-        let mut s = codec.stream(0).expect("a frame format");
-        let mut got = Vec::new();
-        for part in bytes.chunks(chunk) {
-            let mut input = part;
-            while let Some(item) = s.next_item(&mut input) {
-                if let Item::Frame {
-                    offset,
-                    bytes,
-                    decoded,
-                } = item
-                {
-                    assert!(decoded.is_ok(), "chunk {chunk}: {decoded:?}");
-                    got.push((offset, bytes.to_vec()));
-                }
-            }
-        }
-        assert_eq!(got, expected, "run-time codec, chunk size {chunk}");
     }
+    golden::stream(&interpreter(), &bytes, &expected);
 }

@@ -7,8 +7,10 @@
 //! The frames the spec does not express are listed by [`not_expressed`], with the reason, and
 //! checked to be refused rather than misread.
 
+mod golden;
+
 use protocol::{DecodeError, Reject};
-use protocol_dynamic::{Interpreter, Item};
+use protocol_dynamic::Interpreter;
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
@@ -367,8 +369,7 @@ fn the_mixed_stream_yields_the_expressed_frames_at_every_chunk_size() {
 }
 
 fn interpreter() -> Interpreter {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../specs/mavlink.toml");
-    Interpreter::load(path).unwrap_or_else(|e| panic!("{path}: {e}"))
+    golden::interpreter("mavlink")
 }
 
 /// Whether the run-time codec's value of a field is the recorded one: `char[N]` is recorded as
@@ -426,26 +427,6 @@ fn the_run_time_codec_decodes_and_encodes_every_expressed_frame() {
 
 #[test]
 fn the_run_time_codec_streams_the_expressed_frames_at_every_chunk_size() {
-    let interp = interpreter();
-    let codec = interp.codec();
     let (bytes, expected) = expressed_stream();
-    for chunk in 1..=bytes.len() {
-        let mut s = codec.stream(0).expect("a frame format");
-        let mut got = Vec::new();
-        for part in bytes.chunks(chunk) {
-            let mut input = part;
-            while let Some(item) = s.next_item(&mut input) {
-                if let Item::Frame {
-                    offset,
-                    bytes,
-                    decoded,
-                } = item
-                {
-                    assert!(decoded.is_ok(), "chunk {chunk}: {decoded:?}");
-                    got.push((offset, bytes.to_vec()));
-                }
-            }
-        }
-        assert_eq!(got, expected, "chunk size {chunk}");
-    }
+    golden::stream(&interpreter(), &bytes, &expected);
 }
