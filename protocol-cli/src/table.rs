@@ -84,7 +84,7 @@ fn field_text(
     out: &mut Vec<String>,
 ) {
     match kind {
-        FieldKind::Padding => {}
+        FieldKind::Padding | FieldKind::Check(_) => {}
         FieldKind::Optional(inner) => field_text(p, f, inner, v, prefix, out),
         FieldKind::Bits { members, .. } => {
             for m in members {
@@ -102,7 +102,8 @@ fn field_text(
         FieldKind::Value { .. }
         | FieldKind::Bytes { .. }
         | FieldKind::Group { .. }
-        | FieldKind::Packed { .. } => {
+        | FieldKind::Packed { .. }
+        | FieldKind::NulText { .. } => {
             if let Some(value) = v.get(&f.name) {
                 out.push(format!(
                     "{prefix}{}={}",

@@ -292,6 +292,45 @@ pub enum FieldKind {
         /// Members, lowest bit first as written in the spec.
         members: Vec<BitMember>,
     },
+    /// NUL-terminated text of at most `max` bytes, the NUL not counted (the runtime's
+    /// `NulStr<max>`): 1 to `max + 1` bytes on the wire, so the struct's size varies and the
+    /// fields after it follow its NUL.
+    NulText {
+        /// The most bytes of text.
+        max: usize,
+    },
+    /// A check value over a run of earlier fields of the struct (a CRC inside the payload):
+    /// verified on decode, computed on encode, no field of the Rust struct.
+    Check(PayloadCheck),
+}
+
+/// A check inside a payload struct ([`FieldKind::Check`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PayloadCheck {
+    /// The algorithm the engine runs: a `prefix` is already folded into a CRC's initial
+    /// value, so the check covers the fields alone.
+    pub algorithm: Algorithm,
+    /// How the algorithm is named (its table's `static` is the struct's own).
+    pub naming: CheckNaming,
+    /// First field covered (index into the struct's fields).
+    pub first: usize,
+    /// Last field covered (index into the struct's fields), at or after `first`, before the
+    /// check.
+    pub last: usize,
+    /// The covered fields as docs name them (`` `destination` to `data` ``).
+    pub covered: String,
+    /// Constant bytes covered before the fields, as the spec gives them (for docs).
+    pub prefix: Vec<u8>,
+    /// Byte order of the stored value.
+    pub endian: ByteOrder,
+}
+
+impl Struct {
+    /// Bytes of the fields after field `i` when they are all of fixed size (the checks that
+    /// follow a field that takes every byte left): what that field leaves to them.
+    pub fn bytes_after(&self, i: usize) -> usize {
+        self.fields.iter().skip(i + 1).map(|f| f.size).sum()
+    }
 }
 
 /// The element type of a value field.

@@ -51,11 +51,22 @@ impl<const N: usize> Bytes<N> {
     /// [`DecodeError::PayloadLength`] if more than `N` bytes are left (`expected` is then the
     /// reader's position plus `N`).
     pub fn read_rest(r: &mut Reader<'_>) -> Result<Self, DecodeError> {
+        Self::read_rest_but(r, 0)
+    }
+
+    /// Reads every byte left in `r` but the last `keep` (the checks after the field:
+    /// [`crate::field::rest_but`]).
+    ///
+    /// # Errors
+    ///
+    /// [`DecodeError::PayloadLength`] if more than `N + keep` bytes are left (`expected` is
+    /// then the reader's position plus `N + keep`).
+    pub fn read_rest_but(r: &mut Reader<'_>, keep: usize) -> Result<Self, DecodeError> {
         let start = r.position();
-        let rest = r.rest();
+        let rest = crate::field::rest_but(r, keep);
         let out = Self::from_slice(rest).ok_or(DecodeError::PayloadLength {
-            expected: start.saturating_add(N),
-            actual: start.saturating_add(rest.len()),
+            expected: start.saturating_add(N).saturating_add(keep),
+            actual: start.saturating_add(r.remaining()),
         })?;
         r.skip(rest.len())?;
         Ok(out)

@@ -65,6 +65,12 @@ pub enum DecodeError {
     /// A field that must have the size another field states does not (a repeated group's
     /// element that does not fit the declared data length).
     SizeMismatch,
+    /// A NUL-terminated text has no NUL within its field's most bytes (or before the payload
+    /// ends).
+    Unterminated,
+    /// A check inside the payload (a CRC over some of its fields) does not match the bytes it
+    /// covers.
+    PayloadCheck,
 }
 
 impl fmt::Display for DecodeError {
@@ -98,6 +104,12 @@ impl fmt::Display for DecodeError {
                 f,
                 "a field's size does not match the size another field states"
             ),
+            DecodeError::Unterminated => {
+                f.write_str("a NUL-terminated text has no NUL within its most bytes")
+            }
+            DecodeError::PayloadCheck => {
+                f.write_str("a check inside the payload does not match the bytes it covers")
+            }
             DecodeError::Frame(reason) => write!(f, "invalid frame: {reason}"),
         }
     }

@@ -17,14 +17,20 @@
 //! - sized bytes: a run of bytes whose length another field states ([`take_sized`],
 //!   [`check_stated_len`]);
 //! - optional fields and repeated groups: present while bytes remain ([`more`]); a group that
-//!   holds more elements than its capacity is a payload of the wrong length ([`group_full`]).
+//!   holds more elements than its capacity is a payload of the wrong length ([`group_full`]);
+//!   a field that takes every byte left but a check after it reads to that check
+//!   ([`rest_but`]);
+//! - checks inside a payload: a check value over a run of the payload's fields, verified on
+//!   decode ([`verify_check`]) and computed on encode ([`put_check`]).
 //!
 //! It does not own the wire cursors ([`crate::wire`]) or the payload trait
 //! ([`crate::Payload`]).
 
+use crate::checksum::Checksum;
 use crate::error::{DecodeError, EncodeError};
 pub use crate::float::Float;
-use crate::wire::Reader;
+use crate::layout::ByteOrder;
+use crate::wire::{Reader, Writer, read_uint, write_uint};
 
 /// How a scaled field's physical value becomes its raw integer when encoding.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -444,6 +450,99 @@ pub fn group_full(r: &Reader<'_>, size: usize) -> DecodeError {
         expected: size,
         actual: r.position().saturating_add(r.remaining()),
     }
+}
+
+/// The bytes a field that takes every byte left reads when `keep` bytes of fixed fields (a
+/// check) follow it: all but the last `keep` (none when fewer remain; the fields after it
+/// then find the payload truncated).
+///
+/// ```
+/// use protocol_runtime::{Reader, field::rest_but};
+/// assert_eq!(rest_but(&Reader::new(&[1, 2, 3]), 1), &[1, 2][..]);
+/// assert_eq!(rest_but(&Reader::new(&[1]), 2), &[][..]);
+/// ```
+#[inline(always)]
+pub fn rest_but<'a>(r: &Reader<'a>, keep: usize) -> &'a [u8] {
+    let rest = r.rest();
+    rest.get(..rest.len().saturating_sub(keep)).unwrap_or_default()
+}
+
+/// Reads a check inside a payload at the reader's position and verifies it: its value, of
+/// the check's width in byte order `order`, must be the check of the bytes from `start` (a
+/// copy of the reader where the covered fields begin) to position `end`.
+///
+/// # Errors
+///
+/// [`DecodeError::Truncated`] if the value's bytes are missing, [`DecodeError::PayloadCheck`]
+/// if it does not match.
+///
+/// ```
+/// use protocol_runtime::{Checksum, DecodeError, Reader, field::verify_check};
+/// use protocol_runtime::layout::ByteOrder;
+/// let bytes = [0x01, 0x02, 0x03];
+/// let mut r = Reader::new(&bytes);
+/// let start = r.clone();
+/// r.skip(2)?;
+/// assert_eq!(verify_check(&mut r, &start, 2, &Checksum::Sum8, ByteOrder::Big), Ok(()));
+/// let bad = [0x01, 0x02, 0x04];
+/// let mut r = Reader::new(&bad);
+/// let start = r.clone();
+/// r.skip(2)?;
+/// assert_eq!(verify_check(&mut r, &start, 2, &Checksum::Sum8, ByteOrder::Big), Err(DecodeError::PayloadCheck));
+/// # Ok::<(), DecodeError>(())
+/// ```
+#[inline]
+pub fn verify_check(
+    r: &mut Reader<'_>,
+    start: &Reader<'_>,
+    end: usize,
+    check: &Checksum<'_>,
+    order: ByteOrder,
+) -> Result<(), DecodeError> {
+    let width = check.width();
+    let stored = read_uint(r.take(width)?, 0, width as u8, order);
+    let covered = start
+        .rest()
+        .get(..end.saturating_sub(start.position()))
+        .unwrap_or_default();
+    if stored == Some(check.compute(covered)) {
+        Ok(())
+    } else {
+        Err(DecodeError::PayloadCheck)
+    }
+}
+
+/// Writes a check inside a payload at the writer's position: the check of the bytes written
+/// from position `start` to `end`, of the check's width in byte order `order`.
+///
+/// # Errors
+///
+/// [`EncodeError::BufferTooSmall`] if the writer has too little room.
+///
+/// ```
+/// use protocol_runtime::{Checksum, Writer, field::put_check};
+/// use protocol_runtime::layout::ByteOrder;
+/// let mut buf = [0u8; 3];
+/// let mut w = Writer::new(&mut buf);
+/// w.put_bytes(&[0x01, 0x02])?;
+/// put_check(&mut w, 0, 2, &Checksum::Sum8, ByteOrder::Big)?;
+/// assert_eq!(buf, [0x01, 0x02, 0x03]);
+/// # Ok::<(), protocol_runtime::EncodeError>(())
+/// ```
+#[inline]
+pub fn put_check(
+    w: &mut Writer<'_>,
+    start: usize,
+    end: usize,
+    check: &Checksum<'_>,
+    order: ByteOrder,
+) -> Result<(), EncodeError> {
+    let covered = w.written().get(start..end).unwrap_or_default();
+    let value = check.compute(covered);
+    let width = check.width();
+    let mut bytes = [0u8; 8];
+    write_uint(&mut bytes, 0, width as u8, order, value).ok_or(EncodeError::ValueOutOfRange)?;
+    w.put_bytes(bytes.get(..width).unwrap_or_default())
 }
 
 #[cfg(test)]

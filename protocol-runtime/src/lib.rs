@@ -197,7 +197,7 @@ pub use error::{DecodeError, DecodeResult, EncodeError, EncodeResult};
 pub use group::Group;
 pub use layout::{FrameLayout, LayoutRef};
 pub use packet::{EncodePacket, PacketDecoder, PacketEvent, PacketLayout, Packets};
-pub use text::FixedStr;
+pub use text::{FixedStr, NulStr};
 pub use wire::{Reader, Writer};
 
 /// The `embedded-can` crate at the version [`CanFrame`] implements `Frame` of.
@@ -219,7 +219,7 @@ pub use tokio_util;
 pub mod __private {
     pub use crate::{
         bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, field::*, group::*,
-        layout::*, packed::*, packet::*, stuffing::*, text::FixedStr, wire::*, zeros::*,
+        layout::*, packed::*, packet::*, stuffing::*, text::{FixedStr, NulStr}, wire::*, zeros::*,
     };
     pub use core;
     pub use core::option::Option::{self, None, Some};

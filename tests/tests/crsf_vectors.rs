@@ -4,8 +4,9 @@
 //! (`protocol_dynamic`); the mixed stream yields exactly its expected frames at every chunk size,
 //! through the generated decoder, a decoder on the layout value and the run-time codec.
 //!
-//! What the spec carries as raw bytes (strings, DEVICE_INFO after its addresses, a COMMAND's
-//! data and inner CRC) is compared as the bytes the vector's values make up.
+//! The NUL-terminated names (FLIGHT_MODE, DEVICE_INFO) are texts; a COMMAND's inner CRC is no
+//! field of its struct: decoding verifies it, encoding computes it, and the byte it writes is
+//! the value the vector records.
 
 mod golden;
 
@@ -38,17 +39,8 @@ fn bytes<const N: usize>(b: &[u8]) -> protocol::Bytes<N> {
     protocol::Bytes::from_slice(b).expect("fits")
 }
 
-/// DEVICE_INFO after its addresses, from the vector's values: the NUL-terminated name, then
-/// the big-endian integers.
-fn device_info_rest(f: &Value) -> Vec<u8> {
-    let mut out = f["device_name"].as_str().expect("name").as_bytes().to_vec();
-    out.push(0);
-    for k in ["serial_number", "hardware_id", "firmware_id"] {
-        out.extend_from_slice(&(u(f, k) as u32).to_be_bytes());
-    }
-    out.push(u(f, "parameters_total") as u8);
-    out.push(u(f, "parameter_version_number") as u8);
-    out
+fn text<const N: usize>(f: &Value, k: &str) -> protocol::NulStr<N> {
+    protocol::NulStr::from_text(f[k].as_str().expect("a text")).expect("fits")
 }
 
 /// The message a vector records, built from its JSON fields (not from its bytes).
@@ -139,13 +131,9 @@ fn expected_message(ty: u64, f: &Value) -> Message {
             roll: i(f, "roll") as i16,
             yaw: i(f, "yaw") as i16,
         }),
-        0x21 => {
-            let mut name = f["flight_mode"].as_str().expect("mode").as_bytes().to_vec();
-            name.push(0);
-            Message::FlightMode(FlightMode {
-                flight_mode: bytes(&name),
-            })
-        }
+        0x21 => Message::FlightMode(FlightMode {
+            flight_mode: text(f, "flight_mode"),
+        }),
         0x28 => Message::DevicePing(DevicePing {
             destination: u(f, "destination") as u8,
             origin: u(f, "origin") as u8,
@@ -153,7 +141,12 @@ fn expected_message(ty: u64, f: &Value) -> Message {
         0x29 => Message::DeviceInfo(DeviceInfo {
             destination: u(f, "destination") as u8,
             origin: u(f, "origin") as u8,
-            info: bytes(&device_info_rest(f)),
+            device_name: text(f, "device_name"),
+            serial_number: u(f, "serial_number") as u32,
+            hardware_id: u(f, "hardware_id") as u32,
+            firmware_id: u(f, "firmware_id") as u32,
+            parameters_total: u(f, "parameters_total") as u8,
+            parameter_version_number: u(f, "parameter_version_number") as u8,
         }),
         0x2C => Message::ParameterRead(ParameterRead {
             destination: u(f, "destination") as u8,
@@ -171,8 +164,7 @@ fn expected_message(ty: u64, f: &Value) -> Message {
             })
         }
         0x32 => {
-            let mut data: Vec<u8> = ints(f, "payload").iter().map(|&b| b as u8).collect();
-            data.push(u(f, "command_crc") as u8);
+            let data: Vec<u8> = ints(f, "payload").iter().map(|&b| b as u8).collect();
             Message::Command(CommandFrame {
                 destination: u(f, "destination") as u8,
                 origin: u(f, "origin") as u8,
@@ -185,7 +177,7 @@ fn expected_message(ty: u64, f: &Value) -> Message {
 }
 
 /// The vector's fields in the run-time codec's JSON shape: a repeated group of one-value
-/// structs as objects, what the spec carries as raw bytes as lowercase hex.
+/// structs as objects, bytes as lowercase hex, no inner CRC (no field of the struct).
 fn dynamic_fields(ty: u64, f: &Value) -> Value {
     let hex_of = |b: &[u8]| b.iter().map(|x| format!("{x:02x}")).collect::<String>();
     let small = |k: &str| ints(f, k).iter().map(|&b| b as u8).collect::<Vec<u8>>();
@@ -201,22 +193,9 @@ fn dynamic_fields(ty: u64, f: &Value) -> Value {
     match ty {
         0x0C => out["rpm_value"] = objects("rpm_value"),
         0x0D => out["temperature"] = objects("temperature"),
-        0x21 => {
-            let mut name = f["flight_mode"].as_str().expect("mode").as_bytes().to_vec();
-            name.push(0);
-            out["flight_mode"] = Value::String(hex_of(&name));
-        }
-        0x29 => {
-            out = json!({
-                "destination": f["destination"],
-                "origin": f["origin"],
-                "info": hex_of(&device_info_rest(f)),
-            });
-        }
         0x2D => out["value"] = Value::String(hex_of(&small("value"))),
         0x32 => {
-            let mut data = small("payload");
-            data.push(u(f, "command_crc") as u8);
+            let data = small("payload");
             out = json!({
                 "destination": f["destination"],
                 "origin": f["origin"],
@@ -256,6 +235,14 @@ fn every_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
             .encode(&mut buf)
             .unwrap_or_else(|e| panic!("{name}: encode failed: {e}"));
         assert_eq!(F(&buf[..n]), F(&bytes), "{name}: encode");
+        if ty == 0x32 {
+            // The inner CRC encoding computed, before the outer one: the recorded value.
+            assert_eq!(
+                u64::from(buf[n - 2]),
+                u(&frame["fields"], "command_crc"),
+                "{name}: inner CRC"
+            );
+        }
 
         // The run-time codec: the same values, the same bytes.
         let decoded = codec
@@ -355,4 +342,81 @@ fn stream_yields_expected_frames_at_every_chunk_size() {
         assert_eq!(got, expected, "generated decoder, chunk size {chunk}");
     }
     golden::stream(&interpreter(), &bytes, &expected);
+}
+
+/// The recorded COMMAND frame with its inner CRC changed and its outer CRC made right again:
+/// the frame is whole, its payload is not.
+fn command_with_bad_inner_crc() -> Vec<u8> {
+    let v = load_vectors("crsf.json");
+    let frame = v["frames"]
+        .as_array()
+        .expect("frames")
+        .iter()
+        .find(|f| f["name"] == "command_bind")
+        .expect("the command frame");
+    let mut bytes = hex(frame["hex"].as_str().expect("hex"));
+    let n = bytes.len();
+    bytes[n - 2] ^= 0x01;
+    let outer = crc::Crc::<u8>::new(&crc::CRC_8_DVB_S2);
+    bytes[n - 1] = outer.checksum(&bytes[2..n - 1]);
+    bytes
+}
+
+#[test]
+fn a_wrong_inner_crc_is_a_payload_error_that_the_event_stream_reports() {
+    let bytes = command_with_bad_inner_crc();
+    assert_eq!(LAYOUT.parse(&bytes), Ok(&bytes[..]), "the frame itself is valid");
+    assert_eq!(Packet::decode(&bytes), Err(DecodeError::PayloadCheck));
+    // The stream: the frame is found, and its payload's error is an event, not a lost frame.
+    let mut stream = bytes.clone();
+    stream.extend_from_slice(&hex("c8040b00ea36"));
+    let mut dec = decoder();
+    let mut input = &stream[..];
+    let mut got = Vec::new();
+    while let Some(frame) = dec.decode(&mut input) {
+        got.push(Packet::from_frame(frame).map(|p| p.message));
+    }
+    assert_eq!(
+        got,
+        vec![
+            Err(DecodeError::PayloadCheck),
+            Ok(Message::Heartbeat(Heartbeat {
+                origin_address: 0xEA
+            }))
+        ]
+    );
+    // The run-time codec: the same error.
+    let interp = interpreter();
+    let codec = interp.codec();
+    let decoded = codec.parse(0, &bytes).expect("framing");
+    let value = serde_json::to_value(codec.frame_value(&decoded, 0, &bytes)).expect("json");
+    assert_eq!(value["event"], "bad_payload", "{value}");
+    assert!(
+        value["error"].as_str().is_some_and(|e| e.contains("check")),
+        "{value}"
+    );
+}
+
+#[test]
+fn a_flight_mode_without_its_nul_or_too_long_is_refused() {
+    // "ANGLE" with its NUL replaced: no terminator before the payload ends.
+    let mut bytes = hex("c80821414e474c450087");
+    bytes[8] = b'!';
+    let outer = crc::Crc::<u8>::new(&crc::CRC_8_DVB_S2);
+    bytes[9] = outer.checksum(&bytes[2..9]);
+    assert_eq!(Packet::decode(&bytes), Err(DecodeError::Unterminated));
+    // A name that does not fit, or holds a NUL, is no value: nothing is cut.
+    assert_eq!(protocol::NulStr::<59>::from_text(&"M".repeat(60)), None);
+    assert_eq!(protocol::NulStr::<59>::from_text("AN\0GLE"), None);
+    let codec = interpreter();
+    let codec = codec.codec();
+    for name in ["M".repeat(60), "AN\u{0}GLE".to_string()] {
+        let value: protocol_dynamic::Value = serde_json::from_value(json!({
+            "command": "FLIGHT_MODE",
+            "header": { "address": 0xC8 },
+            "payload": { "flight_mode": name },
+        }))
+        .expect("a frame value");
+        assert!(codec.encode(&value).is_err(), "{name:?} is refused");
+    }
 }

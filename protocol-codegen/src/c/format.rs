@@ -69,7 +69,11 @@ pub fn format(p: &Protocol, n: &Names) -> String {
                         f.name
                     );
                 }
-                FieldKind::Group { .. } | FieldKind::Packed { .. } | FieldKind::Optional(_) => {
+                FieldKind::Group { .. }
+            | FieldKind::Packed { .. }
+            | FieldKind::Optional(_)
+            | FieldKind::NulText { .. }
+            | FieldKind::Check(_) => {
                     unreachable!("refused by support::unsupported")
                 }
             }

@@ -149,7 +149,11 @@ fn reader(p: &Protocol, n: &Names, s: &Struct) -> String {
                     "    if (r->len - r->pos > {max}u) return {up}ERR_PAYLOAD_LENGTH;\n    out->{name}_len = r->len - r->pos;\n    memcpy(out->{name}, r->p + r->pos, out->{name}_len);\n    r->pos = r->len;"
                 );
             }
-            FieldKind::Group { .. } | FieldKind::Packed { .. } | FieldKind::Optional(_) => {
+            FieldKind::Group { .. }
+            | FieldKind::Packed { .. }
+            | FieldKind::Optional(_)
+            | FieldKind::NulText { .. }
+            | FieldKind::Check(_) => {
                 unreachable!("refused by support::unsupported")
             }
         }
@@ -266,7 +270,11 @@ fn writer(p: &Protocol, n: &Names, s: &Struct) -> String {
                     "    if ({src}_len > {max}u) return {up}ERR_OUT_OF_RANGE;\n    if (w->cap - w->pos < {src}_len) return {up}ERR_SHORT_BUFFER;\n    memcpy(w->p + w->pos, {src}, {src}_len);\n    w->pos += {src}_len;"
                 );
             }
-            FieldKind::Group { .. } | FieldKind::Packed { .. } | FieldKind::Optional(_) => {
+            FieldKind::Group { .. }
+            | FieldKind::Packed { .. }
+            | FieldKind::Optional(_)
+            | FieldKind::NulText { .. }
+            | FieldKind::Check(_) => {
                 unreachable!("refused by support::unsupported")
             }
         }
@@ -357,7 +365,11 @@ pub fn members(p: &Protocol, n: &Names, f: &Field, out: &mut String) {
                 "    size_t {name}_len; /**< Bytes of `{name}` used (at most {max}). */"
             );
         }
-        FieldKind::Group { .. } | FieldKind::Packed { .. } | FieldKind::Optional(_) => {
+        FieldKind::Group { .. }
+            | FieldKind::Packed { .. }
+            | FieldKind::Optional(_)
+            | FieldKind::NulText { .. }
+            | FieldKind::Check(_) => {
             unreachable!("refused by support::unsupported")
         }
     }

@@ -91,6 +91,8 @@ fn kind_refused(p: &Protocol, kind: &FieldKind) -> Option<&'static str> {
         FieldKind::Group { .. } => Some("repeated groups"),
         FieldKind::Packed { .. } => Some("bit-packed arrays"),
         FieldKind::Optional(_) => Some("optional fields"),
+        FieldKind::NulText { .. } => Some("NUL-terminated text (`cstr`)"),
+        FieldKind::Check(_) => Some("a check inside the payload"),
         FieldKind::Bits { members, .. } => members
             .iter()
             .any(|m| {

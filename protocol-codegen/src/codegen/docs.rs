@@ -69,6 +69,19 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
             }
         },
         FieldKind::Bits { word, .. } => format!("{} bits", word.prim.spec_name()),
+        FieldKind::NulText { max } => format!("NUL-terminated text (up to {max} bytes)"),
+        FieldKind::Check(c) => {
+            let prefix = if c.prefix.is_empty() {
+                String::new()
+            } else {
+                let bytes: Vec<String> = c.prefix.iter().map(|b| format!("{b:#04x}")).collect();
+                format!(", after {}", bytes.join(" "))
+            };
+            format!(
+                "check `{}` over {}{prefix}",
+                c.naming.display, c.covered
+            )
+        }
         FieldKind::Value { ty, count } => {
             let base = match ty {
                 ValueType::Scalar {
@@ -100,7 +113,11 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
 
 fn field_order(f: &Field) -> &'static str {
     match &f.kind {
-        FieldKind::Padding | FieldKind::Bytes { .. } | FieldKind::Group { .. } => "-",
+        FieldKind::Padding
+        | FieldKind::Bytes { .. }
+        | FieldKind::Group { .. }
+        | FieldKind::NulText { .. } => "-",
+        FieldKind::Check(c) => order_name(c.endian, f.size),
         FieldKind::Optional(inner) => field_order(&Field {
             kind: (**inner).clone(),
             ..f.clone()

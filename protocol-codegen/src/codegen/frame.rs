@@ -11,7 +11,7 @@ use super::docs::{doc_attrs, frame_doc};
 use super::payload::prim_type;
 use super::{ident, rt};
 use crate::ir::{
-    Algorithm, ByteOrder, Check, CrcTable, Frame, HeaderValue, Pos, Prim, Protocol, Role, Transport,
+    Algorithm, ByteOrder, Check, CheckNaming, CrcTable, Frame, HeaderValue, Pos, Prim, Protocol, Role, Transport,
 };
 use crate::layout::{self, LayoutPlan, lower_layout};
 use protocol_runtime::layout::{LengthRule, WordField};
@@ -79,11 +79,45 @@ pub fn decoder_buffer_len(max_frame: usize) -> usize {
 /// The `Checksum` constant of a check, as the IR's algorithm says; a CRC's table goes into
 /// `statics`, under the name the IR gives it.
 fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>) -> TokenStream {
+    let checksum = algorithm_expr(rt, &c.name, &c.algorithm, &c.naming, statics);
+    let Some(extra) = &c.extra else {
+        return checksum;
+    };
+    let name = Ident::new(
+        c.naming.extra_static.as_deref().unwrap_or("CHECK_EXTRA"),
+        Span::call_site(),
+    );
+    let key = word_field_lit(rt, extra.key);
+    let bytes = extra.bytes.iter().map(|(k, b)| quote!((#k, #b)));
+    let doc = format!(
+        " The `{}` check with the byte each command folds in after the covered bytes.",
+        c.name
+    );
+    statics.push(quote! {
+        #[doc = #doc]
+        static #name: #rt::Extra<'static> = #rt::Extra {
+            crc: #checksum,
+            key: #key,
+            bytes: &[#(#bytes),*],
+        };
+    });
+    quote!(#rt::Checksum::Extra(&#name))
+}
+
+/// The `Checksum` constant of the algorithm of check `name`; a CRC's table goes into
+/// `statics`, under the name `naming` gives it.
+pub fn algorithm_expr(
+    rt: &TokenStream,
+    name: &str,
+    algorithm: &Algorithm,
+    naming: &CheckNaming,
+    statics: &mut Vec<TokenStream>,
+) -> TokenStream {
     macro_rules! crc {
         ($spec:expr, $w:ident, $ctor:ident, $prim:expr) => {{
             let spec = $spec;
             let params = &spec.params;
-            let alg = match &c.naming.crc_constant {
+            let alg = match &naming.crc_constant {
                 Some(name) => {
                     let n = Ident::new(name, Span::call_site());
                     quote!(#rt::crc::#n)
@@ -120,10 +154,10 @@ fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>) ->
                 ),
             };
             let static_name = Ident::new(
-                c.naming.table_static.as_deref().unwrap_or("CRC_TABLE"),
+                naming.table_static.as_deref().unwrap_or("CRC_TABLE"),
                 Span::call_site(),
             );
-            let doc = format!(" Lookup table of the `{}` check ({}).", c.name, c.naming.display);
+            let doc = format!(" Lookup table of the `{}` check ({}).", name, naming.display);
             statics.push(quote! {
                 #[doc = #doc]
                 static #static_name: #ty = #init;
@@ -131,7 +165,7 @@ fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>) ->
             quote!(#rt::Checksum::$ctor(#rt::CrcImpl::#variant(&#static_name)))
         }};
     }
-    let checksum = match &c.algorithm {
+    match algorithm {
         Algorithm::Sum8 => quote!(#rt::Checksum::Sum8),
         Algorithm::SumMod255 => quote!(#rt::Checksum::SumMod255),
         Algorithm::Xor8 => quote!(#rt::Checksum::Xor8),
@@ -144,29 +178,7 @@ fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>) ->
         Algorithm::Crc16(spec) => crc!(spec, u16, Crc16, Prim::U16),
         Algorithm::Crc32(spec) => crc!(spec, u32, Crc32, Prim::U32),
         Algorithm::Crc64(spec) => crc!(spec, u64, Crc64, Prim::U64),
-    };
-    let Some(extra) = &c.extra else {
-        return checksum;
-    };
-    let name = Ident::new(
-        c.naming.extra_static.as_deref().unwrap_or("CHECK_EXTRA"),
-        Span::call_site(),
-    );
-    let key = word_field_lit(rt, extra.key);
-    let bytes = extra.bytes.iter().map(|(k, b)| quote!((#k, #b)));
-    let doc = format!(
-        " The `{}` check with the byte each command folds in after the covered bytes.",
-        c.name
-    );
-    statics.push(quote! {
-        #[doc = #doc]
-        static #name: #rt::Extra<'static> = #rt::Extra {
-            crc: #checksum,
-            key: #key,
-            bytes: &[#(#bytes),*],
-        };
-    });
-    quote!(#rt::Checksum::Extra(&#name))
+    }
 }
 
 /// The `LAYOUT` static of a frame format, as [`lower_layout`] plans it, with the CRC tables

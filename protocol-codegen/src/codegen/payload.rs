@@ -106,6 +106,27 @@ pub enum PKind {
         /// Members, each a field of the struct.
         members: Vec<PBit>,
     },
+    /// A runtime type whose wire size varies (`NulStr<N>`), read, written and sized by its
+    /// own `Payload` impl; fields may follow it.
+    Var {
+        /// The type.
+        ty: TokenStream,
+    },
+    /// A check value over the fields `first..=last` of the struct (indices into its fields),
+    /// verified on read and computed on write by the runtime (`verify_check`, `put_check`);
+    /// no field of the Rust struct.
+    Check {
+        /// The `Checksum` expression.
+        checksum: TokenStream,
+        /// First field covered.
+        first: usize,
+        /// Last field covered.
+        last: usize,
+        /// Byte order of the stored value.
+        endian: ByteOrder,
+        /// Bytes of the stored value.
+        width: usize,
+    },
 }
 
 /// A bit member of a [`PKind::Bits`] word.
@@ -212,6 +233,7 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
             size_from: None,
             ..
         } => quote!(<#ty>::read_rest(r)?),
+        PKind::Var { ty } => quote!(<#ty as #rt::Payload>::read(r)?),
         PKind::Bytes {
             ty,
             size_from: Some(n),
@@ -224,7 +246,8 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
         | PKind::Bits { .. }
         | PKind::Group { .. }
         | PKind::Optional(_)
-        | PKind::Packed { .. } => quote!(()),
+        | PKind::Packed { .. }
+        | PKind::Check { .. } => quote!(()),
     }
 }
 
@@ -431,6 +454,7 @@ fn write_value(
 fn variable_len(kind: &PKind, value: TokenStream, rt: &TokenStream) -> Option<TokenStream> {
     match kind {
         PKind::Bytes { .. } => Some(quote!(#value.len())),
+        PKind::Var { ty } => Some(quote!(<#ty as #rt::Payload>::wire_len(&#value))),
         PKind::Optional(inner) => {
             let size = variable_len(inner, quote!(v), rt).unwrap_or_else(|| size_expr(inner, rt));
             Some(quote!(match &#value { #rt::Some(v) => #size, #rt::None => 0 }))
@@ -468,9 +492,10 @@ fn fixed_size(kind: &PKind) -> usize {
         PKind::Bytes { max, .. } => *max,
         PKind::Group { max, elem_size, .. } => max * elem_size,
         PKind::Optional(inner) => fixed_size(inner),
-        // Nested payloads are sized by their own impl; only spec structs call this, whose
+        PKind::Check { width, .. } => *width,
+        // Nested payloads and variable runtime types are sized by their own impl; only spec structs call this, whose
         // nested structs are fixed and whose size the IR knows.
-        PKind::Nested { .. } => 0,
+        PKind::Nested { .. } | PKind::Var { .. } => 0,
     }
 }
 
@@ -495,11 +520,13 @@ fn write_elem(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream
             quote!(#rt::enum_raw(#value, #ty::to_raw, #ty::from_raw)?),
         ),
         PKind::Bytes { .. } => quote!(#value.write(w)?;),
+        PKind::Var { ty } => quote!(<#ty as #rt::Payload>::write(&#value, w)?;),
         PKind::Pad(_)
         | PKind::Bits { .. }
         | PKind::Group { .. }
         | PKind::Optional(_)
-        | PKind::Packed { .. } => quote!(),
+        | PKind::Packed { .. }
+        | PKind::Check { .. } => quote!(),
     }
 }
 
@@ -513,7 +540,8 @@ pub fn elem_type(kind: &PKind) -> TokenStream {
         PKind::Nested { ty, .. }
         | PKind::Enum { ty, .. }
         | PKind::Bytes { ty, .. }
-        | PKind::Group { ty, .. } => ty.clone(),
+        | PKind::Group { ty, .. }
+        | PKind::Var { ty } => ty.clone(),
         PKind::Optional(inner) => {
             let t = field_type(inner);
             quote!(::core::option::Option<#t>)
@@ -522,7 +550,7 @@ pub fn elem_type(kind: &PKind) -> TokenStream {
             scale: Some(sc), ..
         } => prim_type(sc.physical),
         PKind::Packed { prim, .. } => prim_type(*prim),
-        PKind::Pad(_) | PKind::Bits { .. } => quote!(()),
+        PKind::Pad(_) | PKind::Bits { .. } | PKind::Check { .. } => quote!(()),
     }
 }
 
@@ -561,6 +589,8 @@ fn size_expr(kind: &PKind, rt: &TokenStream) -> TokenStream {
             quote!(#s)
         }
         PKind::Bytes { max, .. } => quote!(#max),
+        PKind::Var { ty } => quote!(<#ty as #rt::Payload>::SIZE),
+        PKind::Check { width, .. } => quote!(#width),
         PKind::Packed { size, .. } => quote!(#size),
         PKind::Group { .. } | PKind::Optional(_) => {
             let s = fixed_size(kind);
@@ -587,6 +617,7 @@ impl Body {
     fn of(fields: &[PField], rt: &TokenStream) -> Body {
         let mut b = Body::default();
         for (i, f) in fields.iter().enumerate() {
+            b.check_starts(fields, i);
             match &f.kind {
                 PKind::Pad(n) => {
                     b.writes.push(quote!(w.zeros(#n)?;));
@@ -596,6 +627,32 @@ impl Body {
                 PKind::Bits { word, members } => {
                     b.bits(&format_ident!("word{}", i), *word, members, rt);
                     b.sequenced = true;
+                }
+                PKind::Check {
+                    checksum,
+                    endian,
+                    ..
+                } => {
+                    let (start, end) = (format_ident!("check{i}_start"), format_ident!("check{i}_end"));
+                    let order = match endian {
+                        ByteOrder::Little => quote!(#rt::ByteOrder::Little),
+                        ByteOrder::Big => quote!(#rt::ByteOrder::Big),
+                    };
+                    b.reads.push(quote!(#rt::verify_check(r, &#start, #end, &#checksum, #order)?;));
+                    b.writes.push(quote!(#rt::put_check(w, #start, #end, &#checksum, #order)?;));
+                }
+                PKind::Bytes {
+                    ty,
+                    size_from: None,
+                    ..
+                } if i + 1 < fields.len() => {
+                    // Every byte left but the checks after it.
+                    let Some(id) = &f.ident else { continue };
+                    let keep: usize = fields[i + 1..].iter().map(|f| fixed_size(&f.kind)).sum();
+                    b.writes.push(quote!(self.#id.write(w)?;));
+                    let var = local(id);
+                    b.reads.push(quote!(let #var = <#ty>::read_rest_but(r, #keep)?;));
+                    b.inits.push(quote!(#id: #var));
                 }
                 kind => {
                     let Some(id) = &f.ident else { continue };
@@ -608,6 +665,7 @@ impl Body {
                     b.inits.push(quote!(#id: #var));
                 }
             }
+            b.check_ends(fields, i);
         }
         if !b.sequenced {
             // Nothing between the fields: read each straight into the value, in order.
@@ -622,6 +680,34 @@ impl Body {
             b.reads.clear();
         }
         b
+    }
+
+    /// Where the checks whose covered fields start at field `i` begin: a copy of the reader,
+    /// the writer's position.
+    fn check_starts(&mut self, fields: &[PField], i: usize) {
+        for (k, f) in fields.iter().enumerate() {
+            if let PKind::Check { first, .. } = f.kind {
+                if first == i {
+                    let start = format_ident!("check{k}_start");
+                    self.reads.push(quote!(let #start = r.clone();));
+                    self.writes.push(quote!(let #start = w.position();));
+                    self.sequenced = true;
+                }
+            }
+        }
+    }
+
+    /// Where the checks whose covered fields end at field `i` end: the position after it.
+    fn check_ends(&mut self, fields: &[PField], i: usize) {
+        for (k, f) in fields.iter().enumerate() {
+            if let PKind::Check { last, .. } = f.kind {
+                if last == i {
+                    let end = format_ident!("check{k}_end");
+                    self.reads.push(quote!(let #end = r.position();));
+                    self.writes.push(quote!(let #end = w.position();));
+                }
+            }
+        }
     }
 
     /// A bitfield word: each member set into (and got from) its bits by the runtime.

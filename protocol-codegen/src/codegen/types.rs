@@ -4,6 +4,7 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
+use super::frame::algorithm_expr;
 use super::docs::{doc_attrs, struct_doc};
 use super::payload::{
     BitType, PBit, PField, PKind, PayloadDef, emit_payload_impl, field_type, prim_type,
@@ -188,7 +189,8 @@ fn payload_fields(p: &Protocol, s: &Struct) -> Vec<PField> {
     s.fields
         .iter()
         .map(|f| PField {
-            ident: (!f.name.is_empty()).then(|| ident(&f.name)),
+            ident: (!f.name.is_empty() && !matches!(f.kind, FieldKind::Check(_)))
+                .then(|| ident(&f.name)),
             kind: payload_kind(p, &f.kind, f.size),
         })
         .collect()
@@ -215,6 +217,17 @@ fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize) -> PKind {
             }
         }
         FieldKind::Optional(inner) => PKind::Optional(Box::new(payload_kind(p, inner, size))),
+        FieldKind::NulText { max } => PKind::Var {
+            ty: quote!(#rt::NulStr<#max>),
+        },
+        FieldKind::Check(c) => PKind::Check {
+            // Its table's `static` is printed once, by `check_statics`.
+            checksum: algorithm_expr(&rt, "", &c.algorithm, &c.naming, &mut Vec::new()),
+            first: c.first,
+            last: c.last,
+            endian: c.endian,
+            width: size,
+        },
         FieldKind::Packed {
             count,
             bits,
@@ -277,8 +290,21 @@ fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize) -> PKind {
     }
 }
 
+/// The tables of the CRCs of the checks inside payloads, one `static` each.
+fn check_statics(p: &Protocol) -> TokenStream {
+    let rt = super::rt();
+    let mut statics = Vec::new();
+    for f in p.structs.iter().flat_map(|s| &s.fields) {
+        if let FieldKind::Check(c) = &f.kind {
+            algorithm_expr(&rt, &f.name, &c.algorithm, &c.naming, &mut statics);
+        }
+    }
+    quote!(#(#statics)*)
+}
+
 /// Every struct: declaration (with layout docs) and its `Payload` impl.
 pub fn emit_structs(p: &Protocol) -> TokenStream {
+    let statics = check_statics(p);
     let items = p.structs.iter().map(|s| {
         let def = payload_def(p, s);
         let name = &def.name;
@@ -293,7 +319,7 @@ pub fn emit_structs(p: &Protocol) -> TokenStream {
                 format!(" Unit: {}.", f.unit)
             };
             match &pf.kind {
-                PKind::Pad(_) => {}
+                PKind::Pad(_) | PKind::Check { .. } => {}
                 PKind::Bits { members, .. } => {
                     let FieldKind::Bits {
                         members: ir_members,
@@ -381,7 +407,7 @@ pub fn emit_structs(p: &Protocol) -> TokenStream {
             #imp
         }
     });
-    quote!(#(#items)*)
+    quote!(#statics #(#items)*)
 }
 
 /// Whether a field's Rust type is `Eq` and `Hash` (no floats, no nested payloads or groups).
@@ -391,6 +417,11 @@ fn kind_is_eq(kind: &PKind) -> bool {
         PKind::Packed { scale, .. } => scale.is_none(),
         PKind::Nested { .. } | PKind::Group { .. } => false,
         PKind::Optional(inner) => kind_is_eq(inner),
-        PKind::Pad(_) | PKind::Enum { .. } | PKind::Bytes { .. } | PKind::Bits { .. } => true,
+        PKind::Pad(_)
+        | PKind::Enum { .. }
+        | PKind::Bytes { .. }
+        | PKind::Bits { .. }
+        | PKind::Var { .. }
+        | PKind::Check { .. } => true,
     }
 }

@@ -413,21 +413,25 @@ pub struct FieldDef {
     #[schemars(with = "Option<String>")]
     pub name: Option<SStr>,
     /// Type: primitive (`u16`, `i32be`, `u24le`, `f32`, `bool`), `char[N]` (N bytes of
-    /// NUL-padded text), struct or enum name.
+    /// NUL-padded text), `cstr` (NUL-terminated text of at most `max` bytes), struct or enum
+    /// name.
     #[serde(rename = "type")]
     #[schemars(with = "Option<String>")]
     pub ty: Option<SStr>,
     /// Fixed array length: an integer or a constant's name.
     #[schemars(with = "Option<CountDef>")]
     pub count: Option<Spanned<CountDef>>,
-    /// For `type = "bytes"`: the most bytes the field holds; with `repeat`: the most elements.
+    /// For `type = "bytes"`: the most bytes the field holds; with `repeat`: the most elements;
+    /// for `type = "cstr"`: the most bytes of text, the NUL not counted.
     #[schemars(with = "Option<i64>")]
     pub max: Option<SInt>,
-    /// For `type = "bytes"`: the name of an earlier integer field (of this struct, or of the
-    /// struct that repeats this one) that holds the number of bytes.
+    /// For `type = "bytes"` and `repeat` of a primitive: the name of an earlier integer field
+    /// (of this struct, or of the struct that repeats this one) that holds the number of bytes
+    /// or elements.
     #[schemars(with = "Option<String>")]
     pub size: Option<SStr>,
-    /// The field is a group of elements of its struct type, repeated to the end of the payload.
+    /// The field is a group of elements of its type (a struct, or a primitive), repeated to
+    /// the end of the payload, or as many times as `size` says.
     #[schemars(with = "Option<bool>")]
     pub repeat: Option<Spanned<bool>>,
     /// The field may be absent: it is present when bytes remain in the payload.
@@ -463,6 +467,20 @@ pub struct FieldDef {
     /// Unit of the (physical) value, for docs.
     #[schemars(with = "Option<String>")]
     pub unit: Option<SStr>,
+    /// The field is a check value over earlier fields of this struct: a built-in checksum, a
+    /// CRC of the catalogue, or a `[checksums]` entry (a CRC inside the payload).
+    #[schemars(with = "Option<String>")]
+    pub check: Option<SStr>,
+    /// With `check`: the fields it covers, `"a..b"` (a run, both ends included) or `"a"`.
+    #[schemars(with = "Option<String>")]
+    pub over: Option<SStr>,
+    /// With a CRC `check`: constant bytes it covers before the fields (the frame type a CRSF
+    /// command's inner CRC starts with).
+    #[schemars(with = "Option<Vec<i64>>")]
+    pub prefix: Option<Spanned<Vec<SInt>>>,
+    /// With `check`: byte order of the check value (default: the struct's).
+    #[schemars(with = "Option<String>")]
+    pub byte_order: Option<SStr>,
     /// Documentation.
     #[schemars(with = "Option<String>")]
     pub doc: Option<SStr>,

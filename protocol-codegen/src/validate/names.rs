@@ -124,7 +124,7 @@ pub(crate) fn check_screaming_name(ctx: &mut Ctx<'_>, name: &SStr, what: &str) -
     true
 }
 
-fn to_snake(name: &str) -> String {
+pub(crate) fn to_snake(name: &str) -> String {
     let chars: Vec<char> = name.chars().collect();
     let mut out = String::new();
     for (i, &c) in chars.iter().enumerate() {

@@ -22,6 +22,11 @@ fn kind_text(p: &Protocol, f: &Field, kind: &FieldKind) -> String {
         }
         FieldKind::Optional(inner) => format!("optional {}", kind_text(p, f, inner)),
         FieldKind::Padding => format!("{} padding bytes", f.size),
+        FieldKind::NulText { max } => format!("NUL-terminated text (at most {max})"),
+        FieldKind::Check(c) => format!(
+            "check {} over {} after {:?}, {} bytes {:?}",
+            c.naming.display, c.covered, c.prefix, f.size, c.endian
+        ),
         FieldKind::Bits { word, .. } => format!("{:?} {:?} bits", word.prim, word.endian),
         FieldKind::Packed {
             count,

@@ -10,6 +10,7 @@
 //! and kept), scaled fields their physical value, bitfield members their own fields; padding
 //! does not appear. Reading lives in [`read`], writing in [`write`].
 
+mod check;
 mod read;
 mod write;
 
@@ -49,13 +50,14 @@ fn variant(e: &Enum, raw: u64) -> Option<&protocol_codegen::ir::EnumVariant> {
 fn keys(f: &Field) -> Vec<&str> {
     fn of<'a>(name: &'a str, kind: &'a FieldKind) -> Vec<&'a str> {
         match kind {
-            FieldKind::Padding => Vec::new(),
+            FieldKind::Padding | FieldKind::Check(_) => Vec::new(),
             FieldKind::Bits { members, .. } => members.iter().map(|m| m.name.as_str()).collect(),
             FieldKind::Optional(inner) => of(name, inner),
             FieldKind::Value { .. }
             | FieldKind::Bytes { .. }
             | FieldKind::Group { .. }
-            | FieldKind::Packed { .. } => {
+            | FieldKind::Packed { .. }
+            | FieldKind::NulText { .. } => {
                 vec![name]
             }
         }

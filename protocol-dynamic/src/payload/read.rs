@@ -61,10 +61,42 @@ fn read_struct(
 ) -> Result<Fields, ReadFail> {
     let s = &p.structs[si];
     let mut out = Fields::new();
-    for f in &s.fields {
-        read_field(p, f, &f.kind, s.size, r, path, &mut out, None)?;
+    // Per field read: a copy of the reader at its start, and the position after it.
+    let mut spans: Vec<(Reader<'_>, usize)> = Vec::with_capacity(s.fields.len());
+    for (i, f) in s.fields.iter().enumerate() {
+        let start = r.clone();
+        match &f.kind {
+            FieldKind::Check(c) => {
+                let (from, end) = (&spans[c.first].0, spans[c.last].1);
+                super::check::verify(c, r, from, end)?;
+            }
+            // Every byte left but the checks after it (`Bytes::read_rest_but`).
+            FieldKind::Bytes {
+                max,
+                size_from: None,
+            } if s.bytes_after(i) > 0 => {
+                let v = read_rest_bytes(r, *max, s.bytes_after(i))?;
+                out.insert(f.name.clone(), Value::Bytes(v));
+            }
+            _ => read_field(p, f, &f.kind, s.size, r, path, &mut out, None)?,
+        }
+        spans.push((start, r.position()));
     }
     Ok(out)
+}
+
+/// Every byte left but the last `keep`, at most `max` (`Bytes::<max>::read_rest_but`).
+fn read_rest_bytes(r: &mut Reader<'_>, max: usize, keep: usize) -> Result<Vec<u8>, ReadFail> {
+    let start = r.position();
+    let rest = field::rest_but(r, keep);
+    if rest.len() > max {
+        return Err(ReadFail::Runtime(DecodeError::PayloadLength {
+            expected: start + max + keep,
+            actual: start + r.remaining(),
+        }));
+    }
+    r.skip(rest.len())?;
+    Ok(rest.to_vec())
 }
 
 /// Reads one field into `out`. `size` is the wire size of the struct whose read code runs (a
@@ -126,19 +158,8 @@ fn read_field(
         }
         FieldKind::Bytes { max, size_from } => {
             let v = match size_from {
-                None => {
-                    // `Bytes::<max>::read_rest`.
-                    let start = r.position();
-                    let rest = r.rest();
-                    if rest.len() > *max {
-                        return Err(ReadFail::Runtime(DecodeError::PayloadLength {
-                            expected: start + max,
-                            actual: start + rest.len(),
-                        }));
-                    }
-                    r.skip(rest.len())?;
-                    rest.to_vec()
-                }
+                // `Bytes::<max>::read_rest`.
+                None => read_rest_bytes(r, *max, 0)?,
                 Some(n) => {
                     let count = owner
                         .unwrap_or(out)
@@ -150,6 +171,13 @@ fn read_field(
             };
             out.insert(f.name.clone(), Value::Bytes(v));
         }
+        FieldKind::NulText { max } => {
+            let v = super::check::read_nul_text(r, *max)?;
+            out.insert(f.name.clone(), v);
+        }
+        // Read by `read_struct`, which knows the covered fields; validation keeps checks
+        // out of repeated elements.
+        FieldKind::Check(_) => {}
         FieldKind::Group { elem, max } => {
             let sizes = owner.unwrap_or(out);
             let mut items = Vec::new();

@@ -45,8 +45,18 @@ fn write_struct(
         EncodeIssue::new(path, format!("expected an object (struct `{}`)", s.name))
     })?;
     check_keys(s, obj, path)?;
+    // Per field written: where it starts and ends.
+    let mut spans: Vec<(usize, usize)> = Vec::with_capacity(s.fields.len());
     for f in &s.fields {
-        write_field(p, f, &f.kind, obj, w, path, obj)?;
+        let start = w.position();
+        match &f.kind {
+            FieldKind::Check(c) => {
+                super::check::put(c, w, spans[c.first].0, spans[c.last].1)
+                    .map_err(EncodeIssue::runtime)?;
+            }
+            _ => write_field(p, f, &f.kind, obj, w, path, obj)?,
+        }
+        spans.push((start, w.position()));
     }
     Ok(())
 }
@@ -189,6 +199,14 @@ fn write_field(
             }
             w.put_bytes(&bytes).map_err(buffer)
         }
+        FieldKind::NulText { max } => {
+            let v = obj
+                .get(&f.name)
+                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
+            super::check::write_nul_text(v, *max, w, &fpath)
+        }
+        // Written by `write_struct`, which knows the covered fields.
+        FieldKind::Check(_) => Ok(()),
         FieldKind::Group { elem, max } => {
             let v = obj
                 .get(&f.name)

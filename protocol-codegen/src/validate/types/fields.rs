@@ -1,5 +1,5 @@
 //! Rules for one field of a payload struct: padding, names and types, arrays, variable bytes,
-//! repeated groups, bitfields and scaling.
+//! NUL-terminated text, repeated groups, bitfields and scaling.
 
 use toml::Spanned;
 
@@ -62,6 +62,18 @@ pub(super) fn lower_field(
         );
         return None;
     };
+    for (key, span) in [
+        ("prefix", d.prefix.as_ref().map(Spanned::span)),
+        ("byte_order", d.byte_order.as_ref().map(Spanned::span)),
+    ] {
+        if let Some(span) = span {
+            ctx.error(
+                span,
+                format!("`{key}` applies to check fields"),
+                format!("add `check = \"algorithm\"` and `over`, or remove `{key}`"),
+            );
+        }
+    }
     if let (Some(r), None) = (&d.reserved, &d.bits) {
         ctx.error(
             r.span(),
@@ -81,6 +93,10 @@ pub(super) fn lower_field(
     if ty.get_ref() == "bytes" {
         let (max, size_from) = lower_bytes(ctx, f, name, ty, count)?;
         return Some(field(max, FieldKind::Bytes { max, size_from }, &d.doc));
+    }
+    if ty.get_ref() == "cstr" {
+        let max = lower_nul_text(ctx, f, name, ty, count)?;
+        return Some(field(max + 1, FieldKind::NulText { max }, &d.doc));
     }
     if let Some(sz) = &d.size {
         ctx.error(
@@ -373,6 +389,54 @@ fn lower_bytes(
     }
     let size_from = d.size.as_ref().map(|s| s.get_ref().clone());
     Some((*max.get_ref() as usize, size_from))
+}
+
+/// The most bytes of a NUL-terminated text, as of a `char[N]`.
+const MAX_NUL_TEXT_LEN: usize = 65534;
+
+/// Rule: NUL-terminated text (`type = "cstr"`) has a `max` of 1 to [`MAX_NUL_TEXT_LEN`]
+/// bytes of text (the NUL not counted) and takes only `name`, `type`, `max`, `optional` and
+/// `doc`. Gives `max`.
+fn lower_nul_text(
+    ctx: &mut Ctx<'_>,
+    f: &Spanned<FieldDef>,
+    name: &SStr,
+    ty: &SStr,
+    count: Option<usize>,
+) -> Option<usize> {
+    let d = f.get_ref();
+    if count.is_some()
+        || d.bits.is_some()
+        || d.scale.is_some()
+        || d.size.is_some()
+        || d.repeat.is_some()
+        || d.unit.is_some()
+    {
+        ctx.error(
+            f.span(),
+            format!("NUL-terminated text `{}` takes only `name`, `type`, `max`, `optional` and `doc`", name.get_ref()),
+            "remove the other keys (an array of texts is `char[N]` with `count`)",
+        );
+    }
+    let Some(max) = &d.max else {
+        ctx.error(
+            ty.span(),
+            format!("NUL-terminated text `{}` needs a `max`", name.get_ref()),
+            "add `max = N`: the most bytes of text, the NUL not counted (decoders store them inline)",
+        );
+        return None;
+    };
+    match usize::try_from(*max.get_ref()) {
+        Ok(n) if (1..=MAX_NUL_TEXT_LEN).contains(&n) => Some(n),
+        _ => {
+            ctx.error(
+                max.span(),
+                format!("`max` of a NUL-terminated text is 1 to {MAX_NUL_TEXT_LEN}"),
+                "give the most bytes of text, the NUL not counted",
+            );
+            None
+        }
+    }
 }
 
 /// Rule: a repeated group repeats a struct, at most `max` (at least 1) times. Gives the

@@ -8,6 +8,7 @@ use toml::Spanned;
 use super::super::names::{check_pascal_name, parse_byte_order};
 use super::super::{Ctx, text};
 use super::Enums;
+use super::checks::{lower_check_field, resolve_check_runs};
 use super::fields::lower_field;
 use crate::ir::{ByteOrder, Constant, Field, FieldKind, Struct, ValueType};
 use crate::spec::model::{SStr, StructDef};
@@ -124,7 +125,13 @@ fn lower_fields(
     let mut fields: Vec<Field> = Vec::new();
     let mut offset = 0usize;
     for f in d.fields.get_ref() {
-        if let Some(mut field) = lower_field(ctx, f, endian, out, enums, constants, offset) {
+        let lowered = match &f.get_ref().name {
+            Some(n) if f.get_ref().check.is_some() => {
+                lower_check_field(ctx, f, n, name, endian, offset)
+            }
+            _ => lower_field(ctx, f, endian, out, enums, constants, offset),
+        };
+        if let Some(mut field) = lowered {
             if f.get_ref().optional.as_ref().is_some_and(|o| *o.get_ref()) {
                 field.kind = FieldKind::Optional(Box::new(field.kind));
             }
@@ -147,6 +154,7 @@ fn lower_fields(
         }
     }
     check_member_names(ctx, name, d, &fields);
+    resolve_check_runs(ctx, name, d, &mut fields);
     if d.fields.get_ref().is_empty() {
         ctx.error(
             d.fields.span(),
@@ -232,12 +240,17 @@ fn check_tail_fields(
             FieldKind::Optional(_) => Some("an optional field"),
             _ => None,
         };
+        // Variable bytes may leave the bytes of the checks after them.
+        let checks_after = fields[i + 1..]
+            .iter()
+            .all(|x| matches!(x.kind, FieldKind::Check(_)));
+        let bytes = matches!(f.kind, FieldKind::Bytes { .. });
         if let Some(what) = tail {
-            if i + 1 != fields.len() {
+            if i + 1 != fields.len() && !(bytes && checks_after) {
                 ctx.error(
                     span(),
                     format!("`{}` is {what} but not the last field of `{name}`", f.name),
-                    "it takes every byte left in the payload: move it to the end",
+                    "it takes every byte left in the payload: move it to the end (only checks may follow variable bytes)",
                 );
             }
         }
@@ -259,6 +272,10 @@ fn check_tail_fields(
                 }
             }
             FieldKind::Group { elem, .. } => {
+                let inner = &out.structs[*elem];
+                if inner.fields.iter().any(|x| matches!(x.kind, FieldKind::Check(_) | FieldKind::NulText { .. })) {
+                    ctx.error(span(), format!("the elements of `{}` hold a check or NUL-terminated text, which a repeated element cannot", f.name), format!("move them out of `{}`", inner.name));
+                }
                 // The element's sized bytes may name fields of this struct before the group.
                 for need in &out.structs[*elem].context {
                     if !fields[..i].iter().any(|x| &x.name == need) {
@@ -267,6 +284,8 @@ fn check_tail_fields(
                 }
             }
             FieldKind::Bytes { .. } | FieldKind::Optional(_) => {}
+            // The empty text: its NUL.
+            FieldKind::NulText { .. } => min_size += 1,
             _ => min_size += f.size,
         }
     }
