@@ -464,7 +464,8 @@ pub fn group_full(r: &Reader<'_>, size: usize) -> DecodeError {
 #[inline(always)]
 pub fn rest_but<'a>(r: &Reader<'a>, keep: usize) -> &'a [u8] {
     let rest = r.rest();
-    rest.get(..rest.len().saturating_sub(keep)).unwrap_or_default()
+    rest.get(..rest.len().saturating_sub(keep))
+        .unwrap_or_default()
 }
 
 /// Reads a check inside a payload at the reader's position and verifies it: its value, of

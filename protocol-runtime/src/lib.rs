@@ -218,8 +218,21 @@ pub use tokio_util;
 #[doc(hidden)]
 pub mod __private {
     pub use crate::{
-        bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, field::*, group::*,
-        layout::*, packed::*, packet::*, stuffing::*, text::{FixedStr, NulStr}, wire::*, zeros::*,
+        bytes::*,
+        can::*,
+        checksum::*,
+        decoder::*,
+        encoder::*,
+        error::*,
+        field::*,
+        group::*,
+        layout::*,
+        packed::*,
+        packet::*,
+        stuffing::*,
+        text::{FixedStr, NulStr},
+        wire::*,
+        zeros::*,
     };
     pub use core;
     pub use core::option::Option::{self, None, Some};

@@ -356,15 +356,28 @@ mod tests {
         assert_eq!(w.written(), b"\xFFab\0");
         let mut r = Reader::new(&buf[..5]);
         assert_eq!(NulStr::<3>::read(&mut r), Ok(s));
-        assert_eq!(r.remaining(), 1, "the byte after the NUL is the next field's");
+        assert_eq!(
+            r.remaining(),
+            1,
+            "the byte after the NUL is the next field's"
+        );
         // No NUL within N + 1 bytes, or none before the end: an error, the reader unmoved.
         let mut r = Reader::new(b"abcd\0");
         assert_eq!(NulStr::<3>::read(&mut r), Err(DecodeError::Unterminated));
         assert_eq!(r.position(), 0);
-        assert_eq!(NulStr::<8>::read(&mut Reader::new(b"ab")), Err(DecodeError::Unterminated));
-        assert_eq!(NulStr::<8>::read(&mut Reader::new(b"")), Err(DecodeError::Unterminated));
+        assert_eq!(
+            NulStr::<8>::read(&mut Reader::new(b"ab")),
+            Err(DecodeError::Unterminated)
+        );
+        assert_eq!(
+            NulStr::<8>::read(&mut Reader::new(b"")),
+            Err(DecodeError::Unterminated)
+        );
         // The empty text is one NUL.
-        assert_eq!(NulStr::<8>::read(&mut Reader::new(b"\0")), Ok(NulStr::new()));
+        assert_eq!(
+            NulStr::<8>::read(&mut Reader::new(b"\0")),
+            Ok(NulStr::new())
+        );
         // Never truncated: too long or holding a NUL is no value.
         assert_eq!(NulStr::<2>::from_text("abc"), None);
         assert_eq!(NulStr::<8>::from_text("a\0"), None);

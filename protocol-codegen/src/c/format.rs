@@ -70,10 +70,10 @@ pub fn format(p: &Protocol, n: &Names) -> String {
                     );
                 }
                 FieldKind::Group { .. }
-            | FieldKind::Packed { .. }
-            | FieldKind::Optional(_)
-            | FieldKind::NulText { .. }
-            | FieldKind::Check(_) => {
+                | FieldKind::Packed { .. }
+                | FieldKind::Optional(_)
+                | FieldKind::NulText { .. }
+                | FieldKind::Check(_) => {
                     unreachable!("refused by support::unsupported")
                 }
             }

@@ -366,10 +366,10 @@ pub fn members(p: &Protocol, n: &Names, f: &Field, out: &mut String) {
             );
         }
         FieldKind::Group { .. }
-            | FieldKind::Packed { .. }
-            | FieldKind::Optional(_)
-            | FieldKind::NulText { .. }
-            | FieldKind::Check(_) => {
+        | FieldKind::Packed { .. }
+        | FieldKind::Optional(_)
+        | FieldKind::NulText { .. }
+        | FieldKind::Check(_) => {
             unreachable!("refused by support::unsupported")
         }
     }

@@ -77,10 +77,7 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
                 let bytes: Vec<String> = c.prefix.iter().map(|b| format!("{b:#04x}")).collect();
                 format!(", after {}", bytes.join(" "))
             };
-            format!(
-                "check `{}` over {}{prefix}",
-                c.naming.display, c.covered
-            )
+            format!("check `{}` over {}{prefix}", c.naming.display, c.covered)
         }
         FieldKind::Value { ty, count } => {
             let base = match ty {

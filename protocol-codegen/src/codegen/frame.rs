@@ -11,7 +11,8 @@ use super::docs::{doc_attrs, frame_doc};
 use super::payload::prim_type;
 use super::{ident, rt};
 use crate::ir::{
-    Algorithm, ByteOrder, Check, CheckNaming, CrcTable, Frame, HeaderValue, Pos, Prim, Protocol, Role, Transport,
+    Algorithm, ByteOrder, Check, CheckNaming, CrcTable, Frame, HeaderValue, Pos, Prim, Protocol,
+    Role, Transport,
 };
 use crate::layout::{self, LayoutPlan, lower_layout};
 use protocol_runtime::layout::{LengthRule, WordField};

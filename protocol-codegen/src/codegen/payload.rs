@@ -629,17 +629,20 @@ impl Body {
                     b.sequenced = true;
                 }
                 PKind::Check {
-                    checksum,
-                    endian,
-                    ..
+                    checksum, endian, ..
                 } => {
-                    let (start, end) = (format_ident!("check{i}_start"), format_ident!("check{i}_end"));
+                    let (start, end) = (
+                        format_ident!("check{i}_start"),
+                        format_ident!("check{i}_end"),
+                    );
                     let order = match endian {
                         ByteOrder::Little => quote!(#rt::ByteOrder::Little),
                         ByteOrder::Big => quote!(#rt::ByteOrder::Big),
                     };
-                    b.reads.push(quote!(#rt::verify_check(r, &#start, #end, &#checksum, #order)?;));
-                    b.writes.push(quote!(#rt::put_check(w, #start, #end, &#checksum, #order)?;));
+                    b.reads
+                        .push(quote!(#rt::verify_check(r, &#start, #end, &#checksum, #order)?;));
+                    b.writes
+                        .push(quote!(#rt::put_check(w, #start, #end, &#checksum, #order)?;));
                 }
                 PKind::Bytes {
                     ty,
@@ -651,7 +654,8 @@ impl Body {
                     let keep: usize = fields[i + 1..].iter().map(|f| fixed_size(&f.kind)).sum();
                     b.writes.push(quote!(self.#id.write(w)?;));
                     let var = local(id);
-                    b.reads.push(quote!(let #var = <#ty>::read_rest_but(r, #keep)?;));
+                    b.reads
+                        .push(quote!(let #var = <#ty>::read_rest_but(r, #keep)?;));
                     b.inits.push(quote!(#id: #var));
                 }
                 kind => {

@@ -4,8 +4,8 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
-use super::frame::algorithm_expr;
 use super::docs::{doc_attrs, struct_doc};
+use super::frame::algorithm_expr;
 use super::payload::{
     BitType, PBit, PField, PKind, PayloadDef, emit_payload_impl, field_type, prim_type,
 };

@@ -2,7 +2,7 @@
 //! the runtime's `field::verify_check` and `field::put_check` over the covered fields'
 //! bytes, and `text::read_nul_text` / `text::nul_text_fits`.
 
-use protocol_codegen::ir::{Algorithm, Prim, PayloadCheck};
+use protocol_codegen::ir::{Algorithm, PayloadCheck, Prim};
 use protocol_codegen::layout::intern;
 use protocol_runtime::checksum::{Checksum, CrcImpl};
 use protocol_runtime::{DecodeError, EncodeError, Reader, Writer, field, text};
@@ -53,7 +53,9 @@ pub(super) fn put(
     start: usize,
     end: usize,
 ) -> Result<(), EncodeError> {
-    with_checksum(&c.algorithm, |k| field::put_check(w, start, end, k, c.endian))
+    with_checksum(&c.algorithm, |k| {
+        field::put_check(w, start, end, k, c.endian)
+    })
 }
 
 /// A NUL-terminated text of at most `max` bytes, read: a string when it is UTF-8, else the
@@ -82,7 +84,12 @@ pub(super) fn write_nul_text(
             .map(|item| value_bits(item, Prim::U8).map(|b| b as u8))
             .collect::<Result<Vec<u8>, _>>()
             .map_err(|_| EncodeIssue::new(path, "expected a string or an array of bytes"))?,
-        _ => return Err(EncodeIssue::new(path, "expected a string or an array of bytes")),
+        _ => {
+            return Err(EncodeIssue::new(
+                path,
+                "expected a string or an array of bytes",
+            ));
+        }
     };
     if !text::nul_text_fits(&bytes, max) {
         return Err(EncodeIssue::new(
@@ -90,7 +97,11 @@ pub(super) fn write_nul_text(
             format!(
                 "a text of {} bytes{} does not fit a NUL-terminated text of at most {max}",
                 bytes.len(),
-                if bytes.contains(&0) { " holding a NUL" } else { "" }
+                if bytes.contains(&0) {
+                    " holding a NUL"
+                } else {
+                    ""
+                }
             ),
         ));
     }

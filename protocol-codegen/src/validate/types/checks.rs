@@ -197,16 +197,31 @@ pub(super) fn resolve_check_runs(
         let (first, last) = match (find(a), find(b)) {
             (Some(first), Some(last)) if first <= last => (first, last),
             (Some(_), Some(_)) => {
-                ctx.error(over.span(), format!("`{text}` starts after it ends"), "name the first covered field first: `over = \"first..last\"`");
+                ctx.error(
+                    over.span(),
+                    format!("`{text}` starts after it ends"),
+                    "name the first covered field first: `over = \"first..last\"`",
+                );
                 continue;
             }
             (x, _) => {
                 let missing = if x.is_none() { a } else { b };
                 let help = match did_you_mean(missing.trim(), before.iter().copied()) {
                     Some(best) => format!("did you mean `{best}`?"),
-                    None => format!("a check covers fields of `{struct_name}` before it: {}", before.join(", ")),
+                    None => format!(
+                        "a check covers fields of `{struct_name}` before it: {}",
+                        before.join(", ")
+                    ),
                 };
-                ctx.error(over.span(), format!("`{}` is no field of `{struct_name}` before check `{}`", missing.trim(), name.get_ref()), help);
+                ctx.error(
+                    over.span(),
+                    format!(
+                        "`{}` is no field of `{struct_name}` before check `{}`",
+                        missing.trim(),
+                        name.get_ref()
+                    ),
+                    help,
+                );
                 continue;
             }
         };
@@ -214,7 +229,11 @@ pub(super) fn resolve_check_runs(
             .iter()
             .any(|f| matches!(f.kind, FieldKind::Check(_)))
         {
-            ctx.error(over.span(), format!("check `{}` covers another check", name.get_ref()), "cover the fields between the checks only");
+            ctx.error(
+                over.span(),
+                format!("check `{}` covers another check", name.get_ref()),
+                "cover the fields between the checks only",
+            );
             continue;
         }
         let covered = if first == last {

@@ -414,7 +414,10 @@ fn lower_nul_text(
     {
         ctx.error(
             f.span(),
-            format!("NUL-terminated text `{}` takes only `name`, `type`, `max`, `optional` and `doc`", name.get_ref()),
+            format!(
+                "NUL-terminated text `{}` takes only `name`, `type`, `max`, `optional` and `doc`",
+                name.get_ref()
+            ),
             "remove the other keys (an array of texts is `char[N]` with `count`)",
         );
     }

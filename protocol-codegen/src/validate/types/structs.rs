@@ -273,7 +273,11 @@ fn check_tail_fields(
             }
             FieldKind::Group { elem, .. } => {
                 let inner = &out.structs[*elem];
-                if inner.fields.iter().any(|x| matches!(x.kind, FieldKind::Check(_) | FieldKind::NulText { .. })) {
+                if inner
+                    .fields
+                    .iter()
+                    .any(|x| matches!(x.kind, FieldKind::Check(_) | FieldKind::NulText { .. }))
+                {
                     ctx.error(span(), format!("the elements of `{}` hold a check or NUL-terminated text, which a repeated element cannot", f.name), format!("move them out of `{}`", inner.name));
                 }
                 // The element's sized bytes may name fields of this struct before the group.
