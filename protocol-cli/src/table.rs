@@ -103,7 +103,8 @@ fn field_text(
         | FieldKind::Bytes { .. }
         | FieldKind::Group { .. }
         | FieldKind::Packed { .. }
-        | FieldKind::NulText { .. } => {
+        | FieldKind::NulText { .. }
+        | FieldKind::Array { .. } => {
             if let Some(value) = v.get(&f.name) {
                 out.push(format!(
                     "{prefix}{}={}",

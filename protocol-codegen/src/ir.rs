@@ -292,6 +292,17 @@ pub enum FieldKind {
         /// Members, lowest bit first as written in the spec.
         members: Vec<BitMember>,
     },
+    /// Elements of a primitive or an enum, as many as the payload has left (only as the last
+    /// field of a struct) or as an earlier integer field says: the runtime's `Group<T, max>`.
+    Array {
+        /// The element type: [`ValueType::Scalar`] (scaled or not) or [`ValueType::Enum`].
+        ty: ValueType,
+        /// The most elements.
+        max: usize,
+        /// The integer field that holds the number of elements: a field of this struct before
+        /// this one, or of the struct that repeats this one.
+        size_from: Option<String>,
+    },
     /// NUL-terminated text of at most `max` bytes, the NUL not counted (the runtime's
     /// `NulStr<max>`): 1 to `max + 1` bytes on the wire, so the struct's size varies and the
     /// fields after it follow its NUL.

@@ -14,8 +14,8 @@
 //! - bitfields: members are `width` bits at `shift` of an unsigned word ([`get_bits`],
 //!   [`set_bits`]); a member value wider than its bits is an error, bits no member declares are
 //!   written as zero and ignored when read;
-//! - sized bytes: a run of bytes whose length another field states ([`take_sized`],
-//!   [`check_stated_len`]);
+//! - sized bytes and arrays: a run of bytes or elements whose length another field states
+//!   ([`take_sized`], [`array_len`], [`check_stated_len`]);
 //! - optional fields and repeated groups: present while bytes remain ([`more`]); a group that
 //!   holds more elements than its capacity is a payload of the wrong length ([`group_full`]);
 //!   a field that takes every byte left but a check after it reads to that check
@@ -401,6 +401,26 @@ pub fn take_sized<'a>(r: &mut Reader<'a>, len: u64, max: usize) -> Result<&'a [u
         return Err(DecodeError::SizeMismatch);
     }
     Ok(taken)
+}
+
+/// The number of elements of a variable-length array that another field states, `len`, when
+/// the array holds it: at most `max`.
+///
+/// # Errors
+///
+/// [`DecodeError::SizeMismatch`] if `len` exceeds `max`.
+///
+/// ```
+/// use protocol_runtime::{DecodeError, field::array_len};
+/// assert_eq!(array_len(3, 4), Ok(3));
+/// assert_eq!(array_len(5, 4), Err(DecodeError::SizeMismatch));
+/// ```
+#[inline(always)]
+pub fn array_len(len: u64, max: usize) -> Result<usize, DecodeError> {
+    match usize::try_from(len) {
+        Ok(n) if n <= max => Ok(n),
+        _ => Err(DecodeError::SizeMismatch),
+    }
 }
 
 /// Whether sized bytes of `len` bytes agree with the field that states their length.

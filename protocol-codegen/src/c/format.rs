@@ -73,6 +73,7 @@ pub fn format(p: &Protocol, n: &Names) -> String {
                 | FieldKind::Packed { .. }
                 | FieldKind::Optional(_)
                 | FieldKind::NulText { .. }
+                | FieldKind::Array { .. }
                 | FieldKind::Check(_) => {
                     unreachable!("refused by support::unsupported")
                 }

@@ -153,6 +153,7 @@ fn reader(p: &Protocol, n: &Names, s: &Struct) -> String {
             | FieldKind::Packed { .. }
             | FieldKind::Optional(_)
             | FieldKind::NulText { .. }
+            | FieldKind::Array { .. }
             | FieldKind::Check(_) => {
                 unreachable!("refused by support::unsupported")
             }
@@ -274,6 +275,7 @@ fn writer(p: &Protocol, n: &Names, s: &Struct) -> String {
             | FieldKind::Packed { .. }
             | FieldKind::Optional(_)
             | FieldKind::NulText { .. }
+            | FieldKind::Array { .. }
             | FieldKind::Check(_) => {
                 unreachable!("refused by support::unsupported")
             }
@@ -369,6 +371,7 @@ pub fn members(p: &Protocol, n: &Names, f: &Field, out: &mut String) {
         | FieldKind::Packed { .. }
         | FieldKind::Optional(_)
         | FieldKind::NulText { .. }
+        | FieldKind::Array { .. }
         | FieldKind::Check(_) => {
             unreachable!("refused by support::unsupported")
         }

@@ -92,6 +92,7 @@ fn kind_refused(p: &Protocol, kind: &FieldKind) -> Option<&'static str> {
         FieldKind::Packed { .. } => Some("bit-packed arrays"),
         FieldKind::Optional(_) => Some("optional fields"),
         FieldKind::NulText { .. } => Some("NUL-terminated text (`cstr`)"),
+        FieldKind::Array { .. } => Some("variable-length arrays of primitives"),
         FieldKind::Check(_) => Some("a check inside the payload"),
         FieldKind::Bits { members, .. } => members
             .iter()

@@ -70,6 +70,22 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
         },
         FieldKind::Bits { word, .. } => format!("{} bits", word.prim.spec_name()),
         FieldKind::NulText { max } => format!("NUL-terminated text (up to {max} bytes)"),
+        FieldKind::Array { ty, max, size_from } => {
+            let elem = field_type_name(
+                p,
+                &Field {
+                    kind: FieldKind::Value {
+                        ty: ty.clone(),
+                        count: None,
+                    },
+                    ..f.clone()
+                },
+            );
+            match size_from {
+                None => format!("[{elem}] to the end (up to {max})"),
+                Some(n) => format!("[{elem}], `{n}` of them (up to {max})"),
+            }
+        }
         FieldKind::Check(c) => {
             let prefix = if c.prefix.is_empty() {
                 String::new()
@@ -114,6 +130,13 @@ fn field_order(f: &Field) -> &'static str {
         | FieldKind::Bytes { .. }
         | FieldKind::Group { .. }
         | FieldKind::NulText { .. } => "-",
+        FieldKind::Array { ty, .. } => field_order(&Field {
+            kind: FieldKind::Value {
+                ty: ty.clone(),
+                count: None,
+            },
+            ..f.clone()
+        }),
         FieldKind::Check(c) => order_name(c.endian, f.size),
         FieldKind::Optional(inner) => field_order(&Field {
             kind: (**inner).clone(),

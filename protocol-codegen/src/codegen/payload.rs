@@ -106,6 +106,21 @@ pub enum PKind {
         /// Members, each a field of the struct.
         members: Vec<PBit>,
     },
+    /// Elements of a primitive or enum (`elem`, without count) as `ty` (the runtime's
+    /// `Group<T, max>`): to the end of the payload, or as many as the integer field
+    /// `size_from` says.
+    Array {
+        /// The field's type.
+        ty: TokenStream,
+        /// One element.
+        elem: Box<PKind>,
+        /// The most elements.
+        max: usize,
+        /// The field holding the number of elements.
+        size_from: Option<Ident>,
+        /// Bytes of one element.
+        elem_size: usize,
+    },
     /// A runtime type whose wire size varies (`NulStr<N>`), read, written and sized by its
     /// own `Payload` impl; fields may follow it.
     Var {
@@ -245,6 +260,7 @@ fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
         PKind::Pad(_)
         | PKind::Bits { .. }
         | PKind::Group { .. }
+        | PKind::Array { .. }
         | PKind::Optional(_)
         | PKind::Packed { .. }
         | PKind::Check { .. } => quote!(()),
@@ -370,6 +386,37 @@ fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
             quote!(if #rt::more(r) { #rt::Some(#read) } else { #rt::None })
         }
         PKind::Packed { .. } => read_packed(kind, rt),
+        PKind::Array {
+            ty,
+            elem,
+            max,
+            size_from,
+            ..
+        } => {
+            let read = read_elem(elem, rt);
+            match size_from {
+                None => quote! {{
+                    let mut a = <#ty>::new();
+                    while #rt::more(r) {
+                        let e = #read;
+                        let size = <Self as #rt::Payload>::SIZE;
+                        a.push(e).map_err(|_| #rt::group_full(r, size))?;
+                    }
+                    a
+                }},
+                Some(n) => {
+                    let var = local(n);
+                    quote! {{
+                        let n = #rt::array_len(#var as u64, #max)?;
+                        let mut a = <#ty>::new();
+                        for _ in 0..n {
+                            a.push(#read).map_err(|_| #rt::DecodeError::SizeMismatch)?;
+                        }
+                        a
+                    }}
+                }
+            }
+        }
         PKind::Group {
             ty, elem_ty, elem, ..
         } => {
@@ -426,6 +473,15 @@ fn write_value(
             quote!(if let #rt::Some(v) = &#value { #w })
         }
         PKind::Packed { .. } => write_packed(kind, value, rt),
+        PKind::Array {
+            elem, size_from, ..
+        } => {
+            let w1 = write_elem(elem, quote!(*e), rt);
+            let stated = size_from
+                .as_ref()
+                .map(|n| quote!(#rt::check_stated_len(#value.len(), #owner.#n as u64)?;));
+            quote!(#stated for e in #value.iter() { #w1 })
+        }
         PKind::Group { elem, .. } => {
             let parts = elem.iter().map(|f| match (&f.kind, &f.ident) {
                 (PKind::Pad(n), _) => quote!(w.zeros(#n)?;),
@@ -455,6 +511,7 @@ fn variable_len(kind: &PKind, value: TokenStream, rt: &TokenStream) -> Option<To
     match kind {
         PKind::Bytes { .. } => Some(quote!(#value.len())),
         PKind::Var { ty } => Some(quote!(<#ty as #rt::Payload>::wire_len(&#value))),
+        PKind::Array { elem_size, .. } => Some(quote!(#value.len().saturating_mul(#elem_size))),
         PKind::Optional(inner) => {
             let size = variable_len(inner, quote!(v), rt).unwrap_or_else(|| size_expr(inner, rt));
             Some(quote!(match &#value { #rt::Some(v) => #size, #rt::None => 0 }))
@@ -490,7 +547,9 @@ fn fixed_size(kind: &PKind) -> usize {
         PKind::Bits { word, .. } => word.prim.size(),
         PKind::Packed { size, .. } => *size,
         PKind::Bytes { max, .. } => *max,
-        PKind::Group { max, elem_size, .. } => max * elem_size,
+        PKind::Group { max, elem_size, .. } | PKind::Array { max, elem_size, .. } => {
+            max * elem_size
+        }
         PKind::Optional(inner) => fixed_size(inner),
         PKind::Check { width, .. } => *width,
         // Nested payloads and variable runtime types are sized by their own impl; only spec structs call this, whose
@@ -524,6 +583,7 @@ fn write_elem(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream
         PKind::Pad(_)
         | PKind::Bits { .. }
         | PKind::Group { .. }
+        | PKind::Array { .. }
         | PKind::Optional(_)
         | PKind::Packed { .. }
         | PKind::Check { .. } => quote!(),
@@ -541,6 +601,7 @@ pub fn elem_type(kind: &PKind) -> TokenStream {
         | PKind::Enum { ty, .. }
         | PKind::Bytes { ty, .. }
         | PKind::Group { ty, .. }
+        | PKind::Array { ty, .. }
         | PKind::Var { ty } => ty.clone(),
         PKind::Optional(inner) => {
             let t = field_type(inner);
@@ -592,7 +653,7 @@ fn size_expr(kind: &PKind, rt: &TokenStream) -> TokenStream {
         PKind::Var { ty } => quote!(<#ty as #rt::Payload>::SIZE),
         PKind::Check { width, .. } => quote!(#width),
         PKind::Packed { size, .. } => quote!(#size),
-        PKind::Group { .. } | PKind::Optional(_) => {
+        PKind::Group { .. } | PKind::Array { .. } | PKind::Optional(_) => {
             let s = fixed_size(kind);
             quote!(#s)
         }
@@ -755,7 +816,7 @@ impl Body {
 fn needs_locals(kind: &PKind) -> bool {
     match kind {
         PKind::Group { .. } => true,
-        PKind::Bytes { size_from, .. } => size_from.is_some(),
+        PKind::Bytes { size_from, .. } | PKind::Array { size_from, .. } => size_from.is_some(),
         PKind::Optional(inner) => needs_locals(inner),
         _ => false,
     }

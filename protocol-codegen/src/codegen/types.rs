@@ -217,6 +217,24 @@ fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize) -> PKind {
             }
         }
         FieldKind::Optional(inner) => PKind::Optional(Box::new(payload_kind(p, inner, size))),
+        FieldKind::Array { ty, max, size_from } => {
+            let elem = payload_kind(
+                p,
+                &FieldKind::Value {
+                    ty: ty.clone(),
+                    count: None,
+                },
+                size / max,
+            );
+            let t = field_type(&elem);
+            PKind::Array {
+                ty: quote!(#rt::Group<#t, #max>),
+                elem: Box::new(elem),
+                max: *max,
+                size_from: size_from.as_deref().map(ident),
+                elem_size: size / max,
+            }
+        }
         FieldKind::NulText { max } => PKind::Var {
             ty: quote!(#rt::NulStr<#max>),
         },
@@ -416,6 +434,7 @@ fn kind_is_eq(kind: &PKind) -> bool {
         PKind::Scalar { scalar, scale, .. } => !scalar.prim.is_float() && scale.is_none(),
         PKind::Packed { scale, .. } => scale.is_none(),
         PKind::Nested { .. } | PKind::Group { .. } => false,
+        PKind::Array { elem, .. } => kind_is_eq(elem),
         PKind::Optional(inner) => kind_is_eq(inner),
         PKind::Pad(_)
         | PKind::Enum { .. }

@@ -23,6 +23,17 @@ fn kind_text(p: &Protocol, f: &Field, kind: &FieldKind) -> String {
         FieldKind::Optional(inner) => format!("optional {}", kind_text(p, f, inner)),
         FieldKind::Padding => format!("{} padding bytes", f.size),
         FieldKind::NulText { max } => format!("NUL-terminated text (at most {max})"),
+        FieldKind::Array { ty, max, size_from } => {
+            let elem = FieldKind::Value {
+                ty: ty.clone(),
+                count: None,
+            };
+            let n = match size_from {
+                Some(n) => format!("as many as `{n}`"),
+                None => "the rest".to_string(),
+            };
+            format!("array of {} ({n}, at most {max})", kind_text(p, f, &elem))
+        }
         FieldKind::Check(c) => format!(
             "check {} over {} after {:?}, {} bytes {:?}",
             c.naming.display, c.covered, c.prefix, f.size, c.endian

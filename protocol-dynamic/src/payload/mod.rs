@@ -57,7 +57,8 @@ fn keys(f: &Field) -> Vec<&str> {
             | FieldKind::Bytes { .. }
             | FieldKind::Group { .. }
             | FieldKind::Packed { .. }
-            | FieldKind::NulText { .. } => {
+            | FieldKind::NulText { .. }
+            | FieldKind::Array { .. } => {
                 vec![name]
             }
         }

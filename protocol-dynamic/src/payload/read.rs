@@ -171,6 +171,32 @@ fn read_field(
             };
             out.insert(f.name.clone(), Value::Bytes(v));
         }
+        FieldKind::Array { ty, max, size_from } => {
+            let fpath = join(path, &f.name);
+            let mut items = Vec::new();
+            match size_from {
+                None => {
+                    while field::more(r) {
+                        let v = read_elem(p, ty, r, &format!("{fpath}[{}]", items.len()))?;
+                        if items.len() == *max {
+                            return Err(ReadFail::Runtime(field::group_full(r, size)));
+                        }
+                        items.push(v);
+                    }
+                }
+                Some(n) => {
+                    let stated = owner
+                        .unwrap_or(out)
+                        .get(n)
+                        .and_then(Value::as_u64)
+                        .unwrap_or(0);
+                    for i in 0..field::array_len(stated, *max)? {
+                        items.push(read_elem(p, ty, r, &format!("{fpath}[{i}]"))?);
+                    }
+                }
+            }
+            out.insert(f.name.clone(), Value::Array(items));
+        }
         FieldKind::NulText { max } => {
             let v = super::check::read_nul_text(r, *max)?;
             out.insert(f.name.clone(), v);

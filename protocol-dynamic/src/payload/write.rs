@@ -199,6 +199,37 @@ fn write_field(
             }
             w.put_bytes(&bytes).map_err(buffer)
         }
+        FieldKind::Array { ty, max, size_from } => {
+            let v = obj
+                .get(&f.name)
+                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
+            let items = v
+                .as_array()
+                .ok_or_else(|| EncodeIssue::new(&fpath, "expected an array of elements"))?;
+            if items.len() > *max {
+                return Err(EncodeIssue::new(
+                    &fpath,
+                    format!("{} elements, at most {max} allowed", items.len()),
+                ));
+            }
+            if let Some(n) = size_from {
+                let stated = owner.get(n).and_then(Value::as_u64);
+                if stated.is_none_or(|s| field::check_stated_len(items.len(), s).is_err()) {
+                    return Err(EncodeIssue::new(
+                        &fpath,
+                        format!(
+                            "{} elements, but `{n}` says {}",
+                            items.len(),
+                            stated.map_or("nothing".into(), |s| s.to_string())
+                        ),
+                    ));
+                }
+            }
+            for (i, item) in items.iter().enumerate() {
+                write_elem(p, ty, item, w, &format!("{fpath}[{i}]"))?;
+            }
+            Ok(())
+        }
         FieldKind::NulText { max } => {
             let v = obj
                 .get(&f.name)

@@ -98,17 +98,32 @@ pub(super) fn lower_field(
         let max = lower_nul_text(ctx, f, name, ty, count)?;
         return Some(field(max + 1, FieldKind::NulText { max }, &d.doc));
     }
-    if let Some(sz) = &d.size {
+    let repeat = d.repeat.as_ref().is_some_and(|r| *r.get_ref());
+    let of_struct = structs.by_name.contains_key(ty.get_ref())
+        || ctx.spec.structs.keys().any(|k| k.get_ref() == ty.get_ref());
+    if let Some(sz) = d.size.as_ref().filter(|_| !repeat || of_struct) {
         ctx.error(
             sz.span(),
-            "`size` applies to `type = \"bytes\"` fields",
+            "`size` applies to `type = \"bytes\"` fields and repeated primitives",
             "remove `size`",
         );
     }
-    if d.repeat.as_ref().is_some_and(|r| *r.get_ref()) {
+    if repeat && of_struct {
         let (elem, max) = lower_group(ctx, f, name, ty, structs)?;
         let size = structs.structs[elem].size * max;
         return Some(field(size, FieldKind::Group { elem, max }, &d.doc));
+    }
+    if repeat {
+        let scalar = parse_prim(ty.get_ref(), endian);
+        let (elem, elem_size) = lower_value_type(ctx, f, ty, scalar, endian, structs, enums)?;
+        let max = lower_array(ctx, f, name, &elem, count)?;
+        let size_from = d.size.as_ref().map(|s| s.get_ref().clone());
+        let kind = FieldKind::Array {
+            ty: elem,
+            max,
+            size_from,
+        };
+        return Some(field(elem_size * max, kind, &d.doc));
     }
     if let Some(max) = &d.max {
         ctx.error(
@@ -440,6 +455,42 @@ fn lower_nul_text(
             None
         }
     }
+}
+
+/// Rule: a variable-length array repeats a primitive (scaled or not) or an enum, at most
+/// `max` (at least 1) times, and has no `count` (a fixed array) or `bits`. Gives `max`.
+fn lower_array(
+    ctx: &mut Ctx<'_>,
+    f: &Spanned<FieldDef>,
+    name: &SStr,
+    elem: &ValueType,
+    count: Option<usize>,
+) -> Option<usize> {
+    let d = f.get_ref();
+    if !matches!(elem, ValueType::Scalar { .. } | ValueType::Enum(..)) {
+        ctx.error(
+            d.ty.as_ref().map_or(f.span(), Spanned::span),
+            format!("`{}` repeats text: a variable-length array repeats a primitive, an enum or a struct", name.get_ref()),
+            "use `count` for a fixed array of texts",
+        );
+        return None;
+    }
+    if count.is_some() || d.bits.is_some() {
+        ctx.error(
+            f.span(),
+            format!("variable-length array `{}` takes no `count` or `bits`", name.get_ref()),
+            "remove `count` (`repeat` and `max` make the array variable) or `repeat`",
+        );
+    }
+    let Some(max) = d.max.as_ref().filter(|m| *m.get_ref() > 0) else {
+        ctx.error(
+            f.span(),
+            format!("variable-length array `{}` needs `max`, the most elements (at least 1)", name.get_ref()),
+            "add `max = N`: decoders store the elements inline",
+        );
+        return None;
+    };
+    Some(*max.get_ref() as usize)
 }
 
 /// Rule: a repeated group repeats a struct, at most `max` (at least 1) times. Gives the

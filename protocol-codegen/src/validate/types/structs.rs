@@ -236,6 +236,9 @@ fn check_tail_fields(
             FieldKind::Bytes {
                 size_from: None, ..
             } => Some("variable bytes"),
+            FieldKind::Array {
+                size_from: None, ..
+            } => Some("a variable-length array"),
             FieldKind::Group { .. } => Some("a repeated group"),
             FieldKind::Optional(_) => Some("an optional field"),
             _ => None,
@@ -256,6 +259,10 @@ fn check_tail_fields(
         }
         match &f.kind {
             FieldKind::Bytes {
+                size_from: Some(src),
+                ..
+            }
+            | FieldKind::Array {
                 size_from: Some(src),
                 ..
             } => {
@@ -287,7 +294,7 @@ fn check_tail_fields(
                     }
                 }
             }
-            FieldKind::Bytes { .. } | FieldKind::Optional(_) => {}
+            FieldKind::Bytes { .. } | FieldKind::Array { .. } | FieldKind::Optional(_) => {}
             // The empty text: its NUL.
             FieldKind::NulText { .. } => min_size += 1,
             _ => min_size += f.size,
