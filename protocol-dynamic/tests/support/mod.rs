@@ -148,7 +148,28 @@ pub fn struct_text(p: &Protocol, si: usize, v: &Value) -> String {
 /// `name: value` of a field (its members' for a bitfield), as `{:?}` prints it.
 fn field_text(p: &Protocol, name: &str, kind: &FieldKind, v: &Value, out: &mut Vec<String>) {
     match kind {
-        FieldKind::Padding => {}
+        FieldKind::Padding | FieldKind::Check(_) => {}
+        FieldKind::NulText { .. } => {
+            let bytes: Vec<u8> = match &v[name] {
+                Value::String(s) => s.as_bytes().to_vec(),
+                Value::Array(items) => items
+                    .iter()
+                    .map(|b| b.as_u64().expect("a byte") as u8)
+                    .collect(),
+                other => panic!("not a text: {other:?}"),
+            };
+            // As the runtime's `NulStr` prints: its text's bytes, escaped, in quotes.
+            out.push(format!("{name}: \"{}\"", bytes.escape_ascii()));
+        }
+        FieldKind::Array { ty, .. } => {
+            let items: Vec<String> = v[name]
+                .as_array()
+                .expect("array")
+                .iter()
+                .map(|e| elem_text(p, ty, e))
+                .collect();
+            out.push(format!("{name}: [{}]", items.join(", ")));
+        }
         FieldKind::Bits { members, .. } => {
             for m in members {
                 let x = &v[m.name.as_str()];
