@@ -75,6 +75,14 @@ impl<T: Copy + Default + PartialEq, const N: usize> PartialEq for Group<T, N> {
     }
 }
 
+impl<T: Copy + Default + Eq, const N: usize> Eq for Group<T, N> {}
+
+impl<T: Copy + Default + core::hash::Hash, const N: usize> core::hash::Hash for Group<T, N> {
+    fn hash<H: core::hash::Hasher>(&self, state: &mut H) {
+        self.as_slice().hash(state);
+    }
+}
+
 impl<T: Copy + Default + fmt::Debug, const N: usize> fmt::Debug for Group<T, N> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_list().entries(self.as_slice()).finish()

@@ -478,14 +478,20 @@ fn lower_array(
     if count.is_some() || d.bits.is_some() {
         ctx.error(
             f.span(),
-            format!("variable-length array `{}` takes no `count` or `bits`", name.get_ref()),
+            format!(
+                "variable-length array `{}` takes no `count` or `bits`",
+                name.get_ref()
+            ),
             "remove `count` (`repeat` and `max` make the array variable) or `repeat`",
         );
     }
     let Some(max) = d.max.as_ref().filter(|m| *m.get_ref() > 0) else {
         ctx.error(
             f.span(),
-            format!("variable-length array `{}` needs `max`, the most elements (at least 1)", name.get_ref()),
+            format!(
+                "variable-length array `{}` needs `max`, the most elements (at least 1)",
+                name.get_ref()
+            ),
             "add `max = N`: decoders store the elements inline",
         );
         return None;
