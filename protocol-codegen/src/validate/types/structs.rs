@@ -250,10 +250,15 @@ fn check_tail_fields(
         let bytes = matches!(f.kind, FieldKind::Bytes { .. });
         if let Some(what) = tail {
             if i + 1 != fields.len() && !(bytes && checks_after) {
+                let help = if bytes {
+                    "it takes every byte left in the payload but the checks after it: move it to the end, before the checks only"
+                } else {
+                    "it takes every byte left in the payload: move it to the end"
+                };
                 ctx.error(
                     span(),
                     format!("`{}` is {what} but not the last field of `{name}`", f.name),
-                    "it takes every byte left in the payload: move it to the end (only checks may follow variable bytes)",
+                    help,
                 );
             }
         }
@@ -269,7 +274,7 @@ fn check_tail_fields(
                 let prior = fields[..i].iter().find(|x| &x.name == src);
                 match prior {
                     Some(x) if matches!(&x.kind, FieldKind::Value { ty: ValueType::Scalar { scalar, scale: None }, count: None } if scalar.prim.is_unsigned()) => {}
-                    Some(_) => ctx.error(span(), format!("`{src}` is not an unsigned integer field, so it cannot give the size of `{}`", f.name), "name an earlier `u8`/`u16`/`u32` field that holds the number of bytes"),
+                    Some(_) => ctx.error(span(), format!("`{src}` is not an unsigned integer field, so it cannot give the size of `{}`", f.name), "name an earlier `u8`/`u16`/`u32` field that holds the number of bytes or elements"),
                     None => {
                         unresolved.push(src.clone());
                         let span = def_of().and_then(|x| x.get_ref().size.as_ref()).map_or(d.fields.span(), Spanned::span);
