@@ -217,7 +217,23 @@ pub fn struct_doc(p: &Protocol, s: &Struct) -> String {
         s.doc.clone()
     };
     out.push_str(&format!("\n\nWire layout, {}:\n\n| offset | size | field | type | byte order | unit |\n|---:|---:|---|---|---|---|\n", bytes(s.size)));
+    // After a field of variable size, offsets count from its end (its largest size's end
+    // would be a wrong offset for most payloads).
+    let mut after: Option<(&str, usize)> = None;
     for f in &s.fields {
+        let offset = match after {
+            None => f.offset.to_string(),
+            Some((name, end)) => format!("`{name}` end + {}", f.offset - end),
+        };
+        if matches!(
+            f.kind,
+            FieldKind::NulText { .. }
+                | FieldKind::Array { .. }
+                | FieldKind::Bytes { .. }
+                | FieldKind::Group { .. }
+        ) {
+            after = Some((&f.name, f.offset + f.size));
+        }
         let name = match &f.kind {
             FieldKind::Padding => "*(padding)*".to_string(),
             FieldKind::Bits { word, members } => {
@@ -242,7 +258,7 @@ pub fn struct_doc(p: &Protocol, s: &Struct) -> String {
         };
         out.push_str(&format!(
             "| {} | {} | {} | {} | {} | {} |\n",
-            f.offset,
+            offset,
             f.size,
             name,
             field_type_name(p, f),
