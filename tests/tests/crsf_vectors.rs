@@ -74,20 +74,14 @@ fn expected_message(ty: u64, f: &Value) -> Message {
             origin_address: i(f, "origin_address") as i16,
         }),
         0x0C => {
-            let values: Vec<RpmValue> = ints(f, "rpm_value")
-                .into_iter()
-                .map(|v| RpmValue { value: v as i32 })
-                .collect();
+            let values: Vec<i32> = ints(f, "rpm_value").iter().map(|&v| v as i32).collect();
             Message::Rpm(Rpm {
                 rpm_source_id: u(f, "rpm_source_id") as u8,
                 rpm_value: protocol::Group::from_slice(&values).expect("fits"),
             })
         }
         0x0D => {
-            let values: Vec<TemperatureValue> = ints(f, "temperature")
-                .into_iter()
-                .map(|v| TemperatureValue { value: v as i16 })
-                .collect();
+            let values: Vec<i16> = ints(f, "temperature").iter().map(|&v| v as i16).collect();
             Message::Temperature(Temperature {
                 temp_source_id: u(f, "temp_source_id") as u8,
                 temperature: protocol::Group::from_slice(&values).expect("fits"),
@@ -176,23 +170,13 @@ fn expected_message(ty: u64, f: &Value) -> Message {
     }
 }
 
-/// The vector's fields in the run-time codec's JSON shape: a repeated group of one-value
-/// structs as objects, bytes as lowercase hex, no inner CRC (no field of the struct).
+/// The vector's fields in the run-time codec's JSON shape: bytes as lowercase hex, no inner
+/// CRC (no field of the struct).
 fn dynamic_fields(ty: u64, f: &Value) -> Value {
     let hex_of = |b: &[u8]| b.iter().map(|x| format!("{x:02x}")).collect::<String>();
     let small = |k: &str| ints(f, k).iter().map(|&b| b as u8).collect::<Vec<u8>>();
-    let objects = |k: &str| {
-        Value::Array(
-            ints(f, k)
-                .into_iter()
-                .map(|v| json!({ "value": v }))
-                .collect(),
-        )
-    };
     let mut out = f.clone();
     match ty {
-        0x0C => out["rpm_value"] = objects("rpm_value"),
-        0x0D => out["temperature"] = objects("temperature"),
         0x2D => out["value"] = Value::String(hex_of(&small("value"))),
         0x32 => {
             let data = small("payload");
