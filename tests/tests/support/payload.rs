@@ -22,8 +22,28 @@ impl Model {
         out: &mut Vec<u8>,
     ) {
         self.size_limits(s, &mut ctx.limits);
+        // Where each field starts and ends in `out`, for the checks over them.
+        let mut spans: Vec<(usize, usize)> = Vec::new();
         for field in &self.ir.structs[s].fields {
-            self.canonical_field(src, field, &field.kind, budget, ctx, out);
+            let start = out.len();
+            match &field.kind {
+                ir::FieldKind::Check(c) => {
+                    let covered = &out[spans[c.first].0..spans[c.last].1];
+                    let value = check_value(&c.algorithm, covered);
+                    let scalar = ir::Scalar {
+                        prim: match field.size {
+                            1 => ir::Prim::U8,
+                            2 => ir::Prim::U16,
+                            4 => ir::Prim::U32,
+                            _ => ir::Prim::U64,
+                        },
+                        endian: c.endian,
+                    };
+                    put_uint(out, scalar, value);
+                }
+                kind => self.canonical_field(src, field, kind, budget, ctx, out),
+            }
+            spans.push((start, out.len()));
         }
     }
 
@@ -35,6 +55,11 @@ impl Model {
                 ir::FieldKind::Bytes {
                     max,
                     size_from: Some(name),
+                }
+                | ir::FieldKind::Array {
+                    max,
+                    size_from: Some(name),
+                    ..
                 } => {
                     let limit = limits.entry(name.clone()).or_insert(u64::MAX);
                     *limit = (*limit).min(*max as u64);
@@ -119,6 +144,23 @@ impl Model {
                     }
                 }
             }
+            ir::FieldKind::Array { ty, max, size_from } => {
+                let n = match size_from {
+                    Some(name) => ctx.values.get(name).copied().unwrap_or(0) as usize,
+                    None => src.len(*max).min(room / (field.size / max).max(1)),
+                };
+                for _ in 0..n {
+                    self.canonical_value(src, ty, None, out);
+                }
+            }
+            // Any bytes but NUL, then the NUL.
+            ir::FieldKind::NulText { max } => {
+                let n = src.len((*max).min(room));
+                out.extend((0..n).map(|_| (src.next_u64() as u8).max(1)));
+                out.push(0);
+            }
+            // Written by `canonical_struct`, which knows the covered bytes.
+            ir::FieldKind::Check(_) => {}
             ir::FieldKind::Optional(inner) => {
                 if src.one_in(2) {
                     let before = out.len();
@@ -224,6 +266,26 @@ fn clamp_midpoint(scale: &ir::Scale) -> u64 {
 pub struct Ctx {
     values: HashMap<String, u64>,
     limits: HashMap<String, u64>,
+}
+
+/// The check value of `bytes` by `a`, computed here with the `crc` crate (no table) or the
+/// runtime's sums.
+fn check_value(a: &ir::Algorithm, bytes: &[u8]) -> u64 {
+    use protocol_codegen::layout::intern;
+    match a {
+        ir::Algorithm::Crc8(c) => u64::from(crc::Crc::<u8>::new(intern(&c.params)).checksum(bytes)),
+        ir::Algorithm::Crc16(c) => {
+            u64::from(crc::Crc::<u16>::new(intern(&c.params)).checksum(bytes))
+        }
+        ir::Algorithm::Crc32(c) => {
+            u64::from(crc::Crc::<u32>::new(intern(&c.params)).checksum(bytes))
+        }
+        ir::Algorithm::Crc64(c) => crc::Crc::<u64>::new(intern(&c.params)).checksum(bytes),
+        sum => sum
+            .tableless()
+            .expect("a sum needs no table")
+            .compute(bytes),
+    }
 }
 
 /// The low `width` bits.
