@@ -17,10 +17,10 @@ mod support;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
+use protocol::decoder::Probe;
 use protocol_codegen::ir;
 use protocol_codegen::layout::intern;
 use support::fault::{FaultStream, Kind, build};
-use protocol::decoder::Probe;
 use support::model::{Model, length_field, model};
 use support::stream::run;
 use support::{Rng, Source, Spec, hex};

@@ -62,7 +62,11 @@ pub fn print_error(e: &miette::Report) {
 /// A name the spec does not have, a name for a spec whose header tells its directions, or no
 /// name where one is required.
 pub fn pick_direction(p: &Protocol, name: Option<&str>, required: bool) -> Result<Option<usize>> {
-    let names: Vec<String> = p.directions.iter().map(|d| format!("`{}`", d.name)).collect();
+    let names: Vec<String> = p
+        .directions
+        .iter()
+        .map(|d| format!("`{}`", d.name))
+        .collect();
     let choices = names.join(" or ");
     match name {
         Some(n) if !p.directions_given() => Err(if p.directions.is_empty() {

@@ -100,11 +100,7 @@ pub(crate) fn lower_directions(
             );
             continue;
         };
-        let Some(vi) = frame
-            .values
-            .iter()
-            .position(|v| &v.name == field.get_ref())
-        else {
+        let Some(vi) = frame.values.iter().position(|v| &v.name == field.get_ref()) else {
             let help = match did_you_mean(
                 field.get_ref(),
                 frame.values.iter().map(|v| v.name.as_str()),

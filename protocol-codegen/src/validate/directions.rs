@@ -22,10 +22,7 @@ pub(super) fn lower_given(
 ) -> Option<(DirectionRule, Option<(usize, usize)>)> {
     let d = def.get_ref();
     let Some(given) = d.given.as_ref().filter(|g| *g.get_ref()) else {
-        let span = d
-            .given
-            .as_ref()
-            .map_or_else(|| def.span(), |g| g.span());
+        let span = d.given.as_ref().map_or_else(|| def.span(), |g| g.span());
         ctx.error(
             span,
             format!("direction `{n}` carries a `message`, but it is not given to the decoder"),
@@ -79,13 +76,11 @@ fn lower_message(
 ) -> Option<(usize, usize)> {
     let Some(&si) = structs.by_name.get(m.get_ref()) else {
         if !ctx.spec.structs.keys().any(|k| k.get_ref() == m.get_ref()) {
-            let help = match did_you_mean(
-                m.get_ref(),
-                structs.structs.iter().map(|s| s.name.as_str()),
-            ) {
-                Some(b) => format!("did you mean `{b}`?"),
-                None => "declare it as `[structs.NAME]`".to_string(),
-            };
+            let help =
+                match did_you_mean(m.get_ref(), structs.structs.iter().map(|s| s.name.as_str())) {
+                    Some(b) => format!("did you mean `{b}`?"),
+                    None => "declare it as `[structs.NAME]`".to_string(),
+                };
             ctx.error(m.span(), format!("unknown struct `{}`", m.get_ref()), help);
         }
         return None;
@@ -157,9 +152,8 @@ fn keyless_header_len(frame: &Frame) -> Option<usize> {
 /// Rule: the directions are all given to the decoder, or all told by the header.
 pub(super) fn check_given_agree(ctx: &mut Ctx<'_>) {
     let spec = ctx.spec;
-    let given = |d: &Spanned<DirectionDef>| {
-        d.get_ref().given.is_some() || d.get_ref().message.is_some()
-    };
+    let given =
+        |d: &Spanned<DirectionDef>| d.get_ref().given.is_some() || d.get_ref().message.is_some();
     let (mut given_one, mut told_one) = (None, None);
     for (name, def) in &spec.directions {
         if given(def) {

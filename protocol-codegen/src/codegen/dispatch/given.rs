@@ -23,7 +23,12 @@ pub(super) struct Keyless {
 }
 
 /// `None` when no direction carries a struct in place of the command.
-pub(super) fn keyless(p: &Protocol, f: &Frame, write: &TokenStream, rt: &TokenStream) -> Option<Keyless> {
+pub(super) fn keyless(
+    p: &Protocol,
+    f: &Frame,
+    write: &TokenStream,
+    rt: &TokenStream,
+) -> Option<Keyless> {
     let header_len = format_ident!("{}", f.names.sizes.header_len);
     let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
     let (names, starts): (Vec<_>, Vec<_>) = p

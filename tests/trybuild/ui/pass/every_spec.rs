@@ -9,6 +9,7 @@ protocol::protocol!("specs/scout.toml");
 protocol::protocol!("specs/mavlink.toml");
 protocol::protocol!("specs/roborts.toml");
 protocol::protocol!("specs/dynamixel.toml");
+protocol::protocol!("specs/dynamixel1.toml");
 protocol::protocol!("specs/ibus.toml");
 protocol::protocol!("specs/sbus.toml");
 protocol::protocol!("specs/ubx.toml");
@@ -25,6 +26,7 @@ fn main() {
     let _ = scout::CanPacket::decode;
     let _ = roborts::decoder();
     let _ = dynamixel::feedback_decoder();
+    let _ = dynamixel1::Packet::decode_response;
     let _ = mavlink::decoder();
     let _ = truncated::decoder();
     let _ = ibus::decoder();
