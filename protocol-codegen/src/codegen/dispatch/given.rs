@@ -42,7 +42,7 @@ pub(super) fn keyless(
     Some(Keyless {
         start: quote!(match &self.message { #(Message::#names(_) => #starts,)* _ => #header_len }),
         len_arms: quote! {
-            #(Message::#names(m) => (#starts as usize)
+            #(Message::#names(m) => #starts
                 .saturating_add(#rt::Payload::wire_len(m))
                 .saturating_add(#trailer_len),)*
         },

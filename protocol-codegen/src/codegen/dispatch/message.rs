@@ -33,7 +33,8 @@ pub(super) fn emit_message_enum(
         None => (quote!(use #rt::read_payload as read;), quote!(read(b))),
     };
     // A direction that carries a struct in place of a command makes the command optional.
-    let optional_command = ack_max.is_some() || p.directions.iter().any(|d| d.message.is_some());
+    let none = command_none(p);
+    let optional_command = none.is_some();
     let doc = doc_attrs(doc);
     let mut variants = Vec::new();
     let mut visit_arms = Vec::new();
@@ -75,7 +76,7 @@ pub(super) fn emit_message_enum(
     }
     let payload_fns = emit_payload_fns(
         rt,
-        optional_command,
+        none,
         quote!(use Command as C; match self { #(#visit_arms)* }),
     );
     // The commands without payload match only an empty one; any other bytes fall through.
@@ -111,15 +112,14 @@ pub(super) fn emit_message_enum(
 
 /// `visit_payload` (whose body, `visit`, opens the message once), and `command`,
 /// `payload_len` and `write_payload` through it.
-fn emit_payload_fns(rt: &TokenStream, optional: bool, visit: TokenStream) -> TokenStream {
-    let (command_ty, command_doc) = if optional {
+fn emit_payload_fns(rt: &TokenStream, none: Option<&str>, visit: TokenStream) -> TokenStream {
+    let (command_ty, command_doc) = if let Some(none) = none {
         (
             quote!(#rt::Option<Command>),
-            " The command of this message (`None` for an acknowledgement, or a message that \
-             carries its direction's struct in place of a command).",
+            format!(" The command of this message (`None` for {none})."),
         )
     } else {
-        (quote!(Command), " The command of this message.")
+        (quote!(Command), " The command of this message.".to_string())
     };
     quote! {
         /// Hands the command and the payload to `v` (`&()` when the command carries none): the
@@ -151,6 +151,17 @@ fn emit_payload_fns(rt: &TokenStream, optional: bool, visit: TokenStream) -> Tok
     }
 }
 
+/// What a message without a command is, when a spec has such messages.
+fn command_none(p: &Protocol) -> Option<&'static str> {
+    if p.frames.first().is_some_and(|f| f.ack.is_some()) {
+        Some("an acknowledgement")
+    } else if p.directions.iter().any(|d| d.message.is_some()) {
+        Some("a message that carries its direction's struct in place of a command")
+    } else {
+        None
+    }
+}
+
 pub(super) fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
     let variants = p.directions.iter().map(|d| {
         let v = format_ident!("{}", d.rust_name);
@@ -176,9 +187,7 @@ pub(super) fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStr
             None => quote!(Self::#v(m) => m.visit_payload(v),),
         }
     });
-    let optional = p.frames.first().is_some_and(|f| f.ack.is_some())
-        || p.directions.iter().any(|d| d.message.is_some());
-    let payload_fns = emit_payload_fns(rt, optional, quote!(match self { #(#arms)* }));
+    let payload_fns = emit_payload_fns(rt, command_none(p), quote!(match self { #(#arms)* }));
     quote! {
         /// A decoded message: its direction, then the command and payload.
         #[derive(Debug, Clone, Copy, PartialEq)]
