@@ -149,7 +149,8 @@ fn keyless_header_len(frame: &Frame) -> Option<usize> {
     (!frame.dispatch.is_empty() && held == frame.dispatch.len()).then_some(len)
 }
 
-/// Rule: the directions are all given to the decoder, or all told by the header.
+/// Rule: the directions are all given to the decoder, or all told by header fields (a direction
+/// with neither has its own error).
 pub(super) fn check_given_agree(ctx: &mut Ctx<'_>) {
     let spec = ctx.spec;
     let given =
@@ -158,7 +159,7 @@ pub(super) fn check_given_agree(ctx: &mut Ctx<'_>) {
     for (name, def) in &spec.directions {
         if given(def) {
             given_one = given_one.or(Some(name));
-        } else {
+        } else if def.get_ref().field.is_some() {
             told_one = told_one.or(Some(name));
         }
     }
