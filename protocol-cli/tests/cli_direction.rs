@@ -10,6 +10,15 @@ use support::{json_lines, protocol, root, text, unhex};
 
 const SPEC: &str = "specs/dynamixel1.toml";
 
+/// Stderr with miette's wrapping undone: one line, single spaces.
+fn message(out: &std::process::Output) -> String {
+    text(&out.stderr)
+        .replace('│', " ")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 fn vectors() -> Value {
     let path = root().join("tests/vectors/dynamixel_protocol1.json");
     serde_json::from_str(&std::fs::read_to_string(path).expect("vectors")).expect("JSON")
@@ -37,7 +46,7 @@ fn decode_without_a_direction_names_the_choices() {
     let (_, bytes) = packets("instruction");
     let out = protocol(&["decode", SPEC, "--format", "json"], &bytes);
     assert!(!out.status.success());
-    let err = text(&out.stderr);
+    let err = message(&out);
     assert!(err.contains("--direction"), "{err}");
     assert!(
         err.contains("`request`") && err.contains("`response`"),
@@ -53,7 +62,7 @@ fn a_direction_the_spec_lacks_or_cannot_use_is_refused() {
         b"ffff010200fc",
     );
     assert!(!out.status.success());
-    let err = text(&out.stderr);
+    let err = message(&out);
     assert!(
         err.contains("no such direction") && err.contains("`request`, `response`"),
         "{err}"
@@ -70,7 +79,7 @@ fn a_direction_the_spec_lacks_or_cannot_use_is_refused() {
         b"ff",
     );
     assert!(!out.status.success());
-    let err = text(&out.stderr);
+    let err = message(&out);
     assert!(err.contains("by a header field"), "{err}");
     let out = protocol(
         &[
@@ -82,7 +91,7 @@ fn a_direction_the_spec_lacks_or_cannot_use_is_refused() {
         ],
         b"ff",
     );
-    assert!(text(&out.stderr).contains("has no directions"));
+    assert!(message(&out).contains("has no directions"));
 }
 
 #[test]
@@ -115,7 +124,7 @@ fn instruction_packets_decode_as_requests_and_encode_back() {
         .collect();
     let refused = protocol(&["encode", SPEC], stripped.as_bytes());
     assert!(!refused.status.success());
-    assert!(text(&refused.stderr).contains("`direction`"));
+    assert!(message(&refused).contains("`direction`"));
     let given = protocol(
         &["encode", SPEC, "--direction", "request"],
         stripped.as_bytes(),
