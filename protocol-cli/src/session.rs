@@ -200,6 +200,10 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                         extra.insert("command".into(), Value::from(command.clone()));
                         "unknown_direction"
                     }
+                    DecodeIssue::DirectionNotGiven { .. } => {
+                        self.counts.unknown_direction += 1;
+                        "unknown_direction"
+                    }
                     DecodeIssue::PayloadLength { command, .. }
                     | DecodeIssue::InvalidEnum { command, .. } => {
                         self.counts.bad_payload += 1;

@@ -119,10 +119,20 @@ fn field_text(
 /// The line of a decoded frame: offset, length, command, direction, header values, then the
 /// payload's fields.
 pub fn frame_line(p: &Protocol, w: Widths, d: &Decoded, offset: u64, len: usize) -> String {
+    // A direction whose frames carry a struct in place of a command (a status packet).
+    let carried = d
+        .direction
+        .and_then(|di| p.directions.get(di))
+        .and_then(|x| x.message)
+        .map(|(si, _)| si)
+        .filter(|_| d.command.is_none());
     let command = match d.command.and_then(|ci| p.commands.get(ci)) {
         Some(c) => c.name.clone(),
         None if d.ack => "(ack)".to_string(),
-        None => format!("({})", p.frames[d.format].name),
+        None => match carried {
+            Some(si) => format!("({})", p.structs[si].name),
+            None => format!("({})", p.frames[d.format].name),
+        },
     };
     let direction = d
         .direction
@@ -144,7 +154,7 @@ pub fn frame_line(p: &Protocol, w: Widths, d: &Decoded, offset: u64, len: usize)
             .get(d.direction.unwrap_or(0))
             .copied()
             .flatten(),
-        None => p.frames[d.format].message,
+        None => carried.or(p.frames[d.format].message),
     };
     match payload_struct {
         Some(si) => struct_fields(p, &p.structs[si], &payload, "", &mut fields),

@@ -739,6 +739,10 @@ pub struct Direction {
     pub doc: String,
     /// How a decoder tells this direction from the header.
     pub rule: DirectionRule,
+    /// A direction the decoder is given ([`DirectionRule::Given`]) may carry one struct in
+    /// every frame instead of a command: the struct's index, and the header length without the
+    /// dispatch key, whose bytes the struct takes (they are the last header bytes).
+    pub message: Option<(usize, usize)>,
 }
 
 /// How a decoder recognises a direction.
@@ -759,6 +763,18 @@ pub enum DirectionRule {
         /// The constant.
         equals: u64,
     },
+    /// No header value tells the direction: the decoding side is given it (generated code has
+    /// a decoder per direction; the run-time codec takes it as a parameter).
+    Given,
+}
+
+impl Protocol {
+    /// True when the decoder is given the direction instead of reading it from the header.
+    pub fn directions_given(&self) -> bool {
+        self.directions
+            .iter()
+            .any(|d| d.rule == DirectionRule::Given)
+    }
 }
 
 /// A command.

@@ -34,6 +34,7 @@ fn the_reference_specs_give_no_warning() {
         "referee2018",
         "roborts",
         "dynamixel",
+        "dynamixel1",
         "scout",
         "mavlink",
         "ibus",

@@ -26,6 +26,11 @@ pub enum DecodeIssue {
         /// The command.
         command: String,
     },
+    /// No header field tells the spec's directions, and the decoder was given none.
+    DirectionNotGiven {
+        /// The spec's directions.
+        directions: Vec<String>,
+    },
     /// The payload's size is not the command's.
     PayloadLength {
         /// The command.
@@ -54,7 +59,9 @@ impl DecodeIssue {
         match self {
             DecodeIssue::Frame(e) => *e,
             DecodeIssue::UnknownCommand { key, .. } => DecodeError::UnknownCommand { key: *key },
-            DecodeIssue::UnknownDirection { .. } => DecodeError::UnknownDirection,
+            DecodeIssue::UnknownDirection { .. } | DecodeIssue::DirectionNotGiven { .. } => {
+                DecodeError::UnknownDirection
+            }
             DecodeIssue::PayloadLength {
                 expected, actual, ..
             } => DecodeError::PayloadLength {
@@ -77,6 +84,11 @@ impl fmt::Display for DecodeIssue {
             DecodeIssue::UnknownDirection { command } => {
                 write!(f, "{command}: the header matches no direction")
             }
+            DecodeIssue::DirectionNotGiven { directions } => write!(
+                f,
+                "no header field tells the direction, and none was given (one of {})",
+                directions.join(", ")
+            ),
             DecodeIssue::PayloadLength {
                 command,
                 expected,

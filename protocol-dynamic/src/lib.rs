@@ -150,6 +150,7 @@ impl Interpreter {
         Codec {
             protocol: &self.protocol,
             frames,
+            direction: None,
         }
     }
 }
@@ -169,12 +170,35 @@ pub struct Encoded {
 pub struct Codec<'a> {
     protocol: &'a Protocol,
     frames: Vec<FrameParts<'a>>,
+    direction: Option<usize>,
 }
 
 impl Codec<'_> {
     /// The protocol.
     pub fn protocol(&self) -> &Protocol {
         self.protocol
+    }
+
+    /// This codec decoding (and, for frame values that name none, encoding) frames of
+    /// direction `direction` (an index into the protocol's directions): for a spec whose
+    /// directions no header field tells (`given = true`), the decoding side's parameter, as
+    /// generated code's `Packet::decode_<direction>`. Without one, such a spec's frames do not
+    /// decode ([`DecodeIssue::DirectionNotGiven`]). A spec whose header tells its directions
+    /// ignores it.
+    #[must_use]
+    pub fn with_direction(mut self, direction: Option<usize>) -> Self {
+        self.direction = direction;
+        self
+    }
+
+    /// The direction this codec is given ([`with_direction`](Self::with_direction)).
+    pub fn direction(&self) -> Option<usize> {
+        self.direction
+    }
+
+    /// The index of the direction named `name`.
+    pub fn direction_index(&self, name: &str) -> Option<usize> {
+        self.protocol.directions.iter().position(|d| d.name == name)
     }
 
     /// The runtime layout of frame format `format` (an index into the protocol's frames), as
@@ -215,7 +239,7 @@ impl Codec<'_> {
                 protocol_runtime::Reject::BadHeader,
             )));
         }
-        frame::decode(self.protocol, format, frame)
+        frame::decode(self.protocol, format, frame, self.direction)
     }
 
     /// Verifies the framing of the frame at the start of `bytes`, then decodes it, as
@@ -262,6 +286,14 @@ impl Codec<'_> {
         o.insert("length", Value::from(bytes.len()));
         let format = p.frames.get(d.format).map_or("", |f| f.name.as_str());
         o.insert("format", Value::from(format));
+        // A direction no header field tells is part of the frame's value (encode reads it).
+        if let Some(dir) = d
+            .direction
+            .filter(|_| p.directions_given())
+            .and_then(|di| p.directions.get(di))
+        {
+            o.insert("direction", Value::from(dir.name.clone()));
+        }
         if let Some(c) = d.command.and_then(|ci| p.commands.get(ci)) {
             o.insert("command", Value::from(c.name.clone()));
             let id = match d.id.as_slice() {
@@ -302,7 +334,7 @@ impl Codec<'_> {
         let layout = self
             .layout(format)
             .ok_or_else(|| EncodeIssue::new("format", "no such frame format"))?;
-        let bytes = frame::encode(self.protocol, format, &layout, obj)?;
+        let bytes = frame::encode(self.protocol, format, &layout, obj, self.direction)?;
         let can = match self.protocol.frames[format].transport {
             Transport::Can { .. } => {
                 Some(CanFrame::from_virtual(&bytes).map_err(EncodeIssue::runtime)?)

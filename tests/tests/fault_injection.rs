@@ -17,10 +17,11 @@ mod support;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
+use protocol::decoder::Probe;
 use protocol_codegen::ir;
 use protocol_codegen::layout::intern;
 use support::fault::{FaultStream, Kind, build};
-use support::model::{Model, model};
+use support::model::{Model, length_field, model};
 use support::stream::run;
 use support::{Rng, Source, Spec, hex};
 
@@ -58,6 +59,37 @@ struct Tally {
     touched: BTreeMap<Kind, u64>,
     /// The first false frames, for the report.
     examples: Vec<String>,
+    /// False frames a complemented sum accepts by construction ([`extended_by_its_check`]).
+    extended_by_check: u64,
+}
+
+/// A complemented 8-bit sum (`xorout = 0xFF`, Dynamixel 1.0's) over bytes that end with their
+/// own check sums to 0xFF: a frame whose length claims one byte more than a valid frame's (a
+/// forged or stale length) passes its check exactly when the byte after it is 0xFF, the first
+/// sync byte of the next frame. Such a false frame is certain, not one in 256, so it is counted
+/// apart from the collisions the check width predicts. True when `bytes` is one: its last byte
+/// is 0xFF, and without it, its length one less, it is a valid frame.
+fn extended_by_its_check(m: &Model, bytes: &[u8]) -> bool {
+    let complemented = m.frame().checks.iter().any(|c| {
+        matches!(
+            c.algorithm,
+            ir::Algorithm::Sum {
+                width: 1,
+                xorout: 0xFF
+            }
+        )
+    });
+    let (Some((field, _)), Some((&0xFF, shorter))) = (length_field(m.layout), bytes.split_last())
+    else {
+        return false;
+    };
+    let mut frame = shorter.to_vec();
+    let Some(len) = field.read(&frame).filter(|&l| l > 0) else {
+        return false;
+    };
+    complemented
+        && field.write(&mut frame, len - 1).is_some()
+        && m.layout.probe(&frame) == Probe::Frame(frame.len())
 }
 
 impl Tally {
@@ -245,6 +277,11 @@ fn check_stream<S: Spec>(
                     false_frames.push((at, end, false));
                     continue;
                 }
+                if extended_by_its_check(m, bytes) {
+                    t.extended_by_check += 1;
+                    false_frames.push((at, end, true));
+                    continue;
+                }
                 *t.collisions.entry(owner.map(|s| s.kind)).or_default() += 1;
                 if t.examples.len() < 4 {
                     let from = at.saturating_sub(16);
@@ -365,6 +402,14 @@ fn faults<S: Spec>() {
          predicted {expected:.2} at {rate:.3e} per candidate",
         t.collisions
     );
+    if t.extended_by_check > 0 {
+        let _ = writeln!(
+            report,
+            "  false frames a complemented sum accepts by construction (a length one too long, \
+             then 0xFF): {}",
+            t.extended_by_check
+        );
+    }
     for e in &t.examples {
         let _ = writeln!(report, "    {e}");
     }
@@ -384,7 +429,7 @@ fn faults<S: Spec>() {
 }
 
 macro_rules! fault_suite {
-    ($name:ident, $path:literal) => {
+    ($name:ident, $path:literal $(, $given:tt)*) => {
         #[test]
         fn $name() {
             faults::<support::$name::Packet>();

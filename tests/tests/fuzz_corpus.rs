@@ -42,7 +42,7 @@ fn replay(target: &str, f: impl Fn(&[u8])) {
 }
 
 macro_rules! stream_corpus {
-    ($name:ident, $path:literal) => {
+    ($name:ident, $path:literal $(, $given:tt)*) => {
         #[test]
         fn $name() {
             replay(
@@ -74,7 +74,7 @@ fn interp() {
 fn every_corpus_is_replayed() {
     let mut known = vec!["spec".to_string(), "interp".to_string()];
     macro_rules! name {
-        ($name:ident, $path:literal) => {
+        ($name:ident, $path:literal $(, $given:tt)*) => {
             known.push(concat!("stream_", stringify!($name)).to_string());
         };
     }

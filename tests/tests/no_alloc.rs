@@ -86,7 +86,7 @@ fn no_alloc<S: Spec>() {
 }
 
 macro_rules! no_alloc_suite {
-    ($name:ident, $path:literal) => {
+    ($name:ident, $path:literal $(, $given:tt)*) => {
         #[test]
         fn $name() {
             no_alloc::<support::$name::Packet>();

@@ -185,7 +185,7 @@ fn interpreter_agrees<S: Spec>(entropy: &[u8]) {
 }
 
 macro_rules! properties {
-    ($name:ident, $path:literal) => {
+    ($name:ident, $path:literal $(, $given:tt)*) => {
         mod $name {
             use super::*;
 
@@ -313,7 +313,7 @@ fn nested_frame_rule<S: Spec>() {
 fn specs_dir_is_covered() {
     let mut listed: Vec<String> = Vec::new();
     macro_rules! list {
-        ($name:ident, $path:literal) => {
+        ($name:ident, $path:literal $(, $given:tt)*) => {
             listed.push($path.trim_start_matches("../").to_string());
         };
     }

@@ -87,7 +87,7 @@ fn bounds<S: Spec>() {
 }
 
 macro_rules! bounds_suite {
-    ($name:ident, $path:literal) => {
+    ($name:ident, $path:literal $(, $given:tt)*) => {
         #[test]
         fn $name() {
             bounds::<support::$name::Packet>();

@@ -1,5 +1,5 @@
 //! `protocol decode SPEC [INPUT|-] [--hex] [--serial PORT --baud N] [--candump FILE]
-//! [--can IFACE] [--format table|json] [--stats]`: find and decode the frames of a byte stream with the
+//! [--can IFACE] [--format table|json] [--stats] [--frame NAME] [--direction NAME]`: find and decode the frames of a byte stream with the
 //! runtime's stream engine, on the layout `protocol-dynamic` builds of the spec.
 //!
 //! This module owns where the bytes come from (a file, stdin, hex text, a serial port, a CAN
@@ -19,7 +19,7 @@ use protocol_cli::{candump, spec};
 use protocol_codegen::ir::Transport;
 use protocol_dynamic::{Codec, Interpreter, Stream, parse_hex_located};
 
-use super::load_checked;
+use super::{load_checked, pick_direction};
 use crate::Format;
 
 /// Arguments of `protocol decode`.
@@ -56,6 +56,10 @@ pub struct Args {
     /// The frame format to look for [default: the first of the spec with a matching transport].
     #[arg(long, value_name = "NAME")]
     frame: Option<String>,
+    /// The direction of the frames, for a spec whose directions no header field tells
+    /// (`given = true`): a direction named in the spec (`request`, `response`).
+    #[arg(long, value_name = "NAME")]
+    direction: Option<String>,
 }
 
 /// Decodes the input.
@@ -64,8 +68,9 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         Ok(p) => p,
         Err(code) => return Ok(code),
     };
+    let direction = pick_direction(&protocol, args.direction.as_deref(), true)?;
     let interp = Interpreter::new(protocol);
-    let codec = interp.codec();
+    let codec = interp.codec().with_direction(direction);
     let output = match args.format {
         Some(Format::Table) => Output::Table,
         Some(Format::Json) => Output::Json,

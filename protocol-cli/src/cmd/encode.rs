@@ -1,4 +1,4 @@
-//! `protocol encode SPEC [INPUT|-] [--hex] [-o FILE]`: frame objects (JSON Lines, the shape
+//! `protocol encode SPEC [INPUT|-] [--hex] [-o FILE] [--direction NAME]`: frame objects (JSON Lines, the shape
 //! `decode --format json` prints) to frames. Event objects (`"event": ...`) are skipped, so
 //! `decode --format json | encode` gives back every valid frame of the input.
 //!
@@ -16,7 +16,7 @@ use protocol_cli::spec;
 use protocol_codegen::ir::Transport;
 use protocol_dynamic::{Encoded, Interpreter, Value, hex};
 
-use super::{INVALID, load_checked};
+use super::{INVALID, load_checked, pick_direction};
 
 /// Arguments of `protocol encode`.
 #[derive(Debug, clap::Args)]
@@ -31,6 +31,10 @@ pub struct Args {
     /// Write to this file instead of stdout.
     #[arg(short, long)]
     output: Option<PathBuf>,
+    /// The direction of frame objects that name none, for a spec whose directions no header
+    /// field tells (`given = true`): a direction named in the spec.
+    #[arg(long, value_name = "NAME")]
+    direction: Option<String>,
 }
 
 /// Encodes every line of the input.
@@ -39,8 +43,9 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         Ok(p) => p,
         Err(code) => return Ok(code),
     };
+    let direction = pick_direction(&protocol, args.direction.as_deref(), false)?;
     let interp = Interpreter::new(protocol);
-    let codec = interp.codec();
+    let codec = interp.codec().with_direction(direction);
     let (name, reader): (String, Box<dyn Read>) =
         match args.input.as_ref().filter(|p| p.as_os_str() != "-") {
             Some(p) => (p.display().to_string(), Box::new(spec::open("input", p)?)),

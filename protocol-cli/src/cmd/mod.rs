@@ -14,7 +14,7 @@ use std::io::IsTerminal;
 use std::path::Path;
 use std::process::ExitCode;
 
-use miette::Result;
+use miette::{Result, miette};
 use protocol_cli::spec;
 use protocol_codegen::ir::Protocol;
 
@@ -51,5 +51,48 @@ pub fn print_error(e: &miette::Report) {
     match e.downcast_ref::<spec::ReadError>() {
         Some(unreadable) => eprint!("{}", unreadable.render(stderr_color())),
         None => eprintln!("{e:?}"),
+    }
+}
+
+/// The direction `--direction NAME` gives the codec: only for a spec whose directions no header
+/// field tells (`given = true`), where decoding (`required`) needs one; an error names the
+/// choices.
+///
+/// # Errors
+/// A name the spec does not have, a name for a spec whose header tells its directions, or no
+/// name where one is required.
+pub fn pick_direction(p: &Protocol, name: Option<&str>, required: bool) -> Result<Option<usize>> {
+    let names: Vec<String> = p
+        .directions
+        .iter()
+        .map(|d| format!("`{}`", d.name))
+        .collect();
+    let choices = names.join(" or ");
+    match name {
+        Some(n) if !p.directions_given() => Err(if p.directions.is_empty() {
+            miette!("`--direction {n}`: spec `{}` has no directions", p.name)
+        } else {
+            miette!(
+                "`--direction {n}`: spec `{}` tells its directions by a header field, so the decoder finds each frame's direction itself; remove `--direction`",
+                p.name
+            )
+        }),
+        Some(n) => p
+            .directions
+            .iter()
+            .position(|d| d.name == n)
+            .map(Some)
+            .ok_or_else(|| {
+                miette!(
+                    "`--direction {n}`: spec `{}` has no such direction (it has {})",
+                    p.name,
+                    names.join(", ")
+                )
+            }),
+        None if required && p.directions_given() => Err(miette!(
+            "spec `{}` does not tell its directions by a header field: say which frames these are with `--direction NAME`, NAME {choices}",
+            p.name
+        )),
+        None => Ok(None),
     }
 }

@@ -250,6 +250,8 @@ fn decode(p: &Protocol, n: &Names, out: &mut String) {
                         names::u64_lit(*equals)
                     )
                 }
+                // Refused by `support::unsupported`: nothing in the header tells it.
+                DirectionRule::Given => "0".to_string(),
             };
             let _ = write!(
                 out,

@@ -51,6 +51,9 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
             }
         }
     }
+    if p.directions_given() {
+        out.push("directions given to the decoder (no header field tells them)".to_string());
+    }
     for s in &p.structs {
         for field in &s.fields {
             if let Some(why) = kind_refused(p, &field.kind) {

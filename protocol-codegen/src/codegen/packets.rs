@@ -28,6 +28,12 @@ pub fn emit_packet_traits(p: &Protocol) -> TokenStream {
         }
         let layout = format_ident!("{}", f.names.layout);
         let packet = format_ident!("{}", f.names.packet);
+        if fi == 0 && p.directions_given() {
+            // No header field tells the direction: a layout type per direction decodes.
+            out.extend(super::dispatch::direction_layouts(p, f, &rt));
+            out.extend(encode_packet(&packet, &rt));
+            continue;
+        }
         out.extend(quote! {
             impl #rt::PacketLayout for #layout {
                 type Packet = #packet;
@@ -36,15 +42,22 @@ pub fn emit_packet_traits(p: &Protocol) -> TokenStream {
                     #packet::from_frame(frame)
                 }
             }
-            impl #rt::EncodePacket for #packet {
-                fn encoded_len(&self) -> usize {
-                    #packet::encoded_len(self)
-                }
-                fn encode_into(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
-                    #packet::encode(self, buf)
-                }
-            }
         });
+        out.extend(encode_packet(&packet, &rt));
     }
     out
+}
+
+/// `EncodePacket` on a packet type.
+fn encode_packet(packet: &proc_macro2::Ident, rt: &TokenStream) -> TokenStream {
+    quote! {
+        impl #rt::EncodePacket for #packet {
+            fn encoded_len(&self) -> usize {
+                #packet::encoded_len(self)
+            }
+            fn encode_into(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
+                #packet::encode(self, buf)
+            }
+        }
+    }
 }

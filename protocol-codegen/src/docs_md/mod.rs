@@ -95,6 +95,10 @@ fn directions(p: &Protocol, out: &mut String) {
     if p.directions.is_empty() {
         return;
     }
+    if p.directions_given() {
+        given_directions(p, out);
+        return;
+    }
     out.push_str("## Directions\n\nA command's payload depends on the direction of the frame, told by its header (rules tested in order):\n\n| direction | when | meaning |\n|---|---|---|\n");
     let value = |i: usize| {
         p.frames
@@ -112,8 +116,26 @@ fn directions(p: &Protocol, out: &mut String) {
             DirectionRule::Equals { value: v, equals } => {
                 format!("`{}` = `{equals:#x}`", value(*v))
             }
+            DirectionRule::Given => "given to the decoder".to_string(),
         };
         let _ = writeln!(out, "| {} | {rule} | {} |", d.name, cell(&d.doc));
+    }
+    out.push('\n');
+}
+
+/// Directions no header field tells: which one a frame goes is the decoding side's to say.
+fn given_directions(p: &Protocol, out: &mut String) {
+    out.push_str("## Directions\n\nNo header field tells the directions apart: a decoder is given the direction of the frames it reads (generated code has a decoder per direction, `protocol decode` takes `--direction NAME`).\n\n| direction | frames carry | meaning |\n|---|---|---|\n");
+    for d in &p.directions {
+        let carries = match d.message.and_then(|(si, _)| p.structs.get(si)) {
+            Some(s) => format!(
+                "[`{}`](#{}) in place of the command",
+                s.name,
+                s.name.to_lowercase()
+            ),
+            None => "a command and its payload".to_string(),
+        };
+        let _ = writeln!(out, "| {} | {carries} | {} |", d.name, cell(&d.doc));
     }
     out.push('\n');
 }

@@ -334,13 +334,22 @@ pub struct BitDef {
     pub doc: Option<SStr>,
 }
 
-/// `request = { field = "sender", in = "master" }` or `{ field = "is_ack", equals = 0 }`.
+/// `request = { field = "sender", in = "master" }` or `{ field = "is_ack", equals = 0 }`: a
+/// header field tells the direction; or `request = { given = true }`: the decoder is given it.
 #[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DirectionDef {
     /// Header field that tells the direction.
-    #[schemars(with = "String")]
-    pub field: SStr,
+    #[schemars(with = "Option<String>")]
+    pub field: Option<SStr>,
+    /// No header field tells the direction: the decoding side is given it (a decoder per
+    /// direction).
+    #[schemars(with = "Option<bool>")]
+    pub given: Option<Spanned<bool>>,
+    /// With `given`: every frame of this direction carries this struct in place of the
+    /// dispatch key and the command's payload (a status packet that has no command).
+    #[schemars(with = "Option<String>")]
+    pub message: Option<SStr>,
     /// The field lies in this address set.
     #[serde(rename = "in")]
     #[schemars(with = "Option<String>")]

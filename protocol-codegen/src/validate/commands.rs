@@ -7,7 +7,7 @@ use toml::Spanned;
 
 use super::names::{check_screaming_name, check_snake_name, pascal_case};
 use super::types::{Structs, mask};
-use super::{Ctx, text};
+use super::{Ctx, directions as given, text};
 use crate::diag::did_you_mean;
 use crate::ir::{AddressSet, Command, Direction, DirectionRule, Frame, Role, Transport};
 use crate::spec::model::{DirectionDef, IdDef, SStr};
@@ -65,6 +65,7 @@ pub(crate) fn lower_directions(
     ctx: &mut Ctx<'_>,
     frame: &Frame,
     addresses: &[AddressSet],
+    structs: &Structs,
 ) -> Vec<Direction> {
     let spec = ctx.spec;
     let mut out = Vec::new();
@@ -79,24 +80,40 @@ pub(crate) fn lower_directions(
             continue;
         }
         let d = def.get_ref();
-        let Some(vi) = frame
-            .values
-            .iter()
-            .position(|v| &v.name == d.field.get_ref())
-        else {
+        if d.given.is_some() || d.message.is_some() {
+            if let Some((rule, message)) = given::lower_given(ctx, n, def, frame, structs) {
+                out.push(Direction {
+                    name: n.clone(),
+                    rust_name: pascal_case(n),
+                    doc: text(&d.doc),
+                    rule,
+                    message,
+                });
+            }
+            continue;
+        }
+        let Some(field) = &d.field else {
+            ctx.error(
+                def.span(),
+                format!("direction `{n}` needs `field` or `given`"),
+                "write `{ field = \"sender\", in = \"master\" }` when a header field tells the direction, or `{ given = true }` when the decoder is given it",
+            );
+            continue;
+        };
+        let Some(vi) = frame.values.iter().position(|v| &v.name == field.get_ref()) else {
             let help = match did_you_mean(
-                d.field.get_ref(),
+                field.get_ref(),
                 frame.values.iter().map(|v| v.name.as_str()),
             ) {
                 Some(b) => format!("did you mean `{b}`?"),
                 None => "name a header field of the first frame".to_string(),
             };
             ctx.error(
-                d.field.span(),
+                field.span(),
                 format!(
                     "frame `{}` has no header field `{}`",
                     frame.name,
-                    d.field.get_ref()
+                    field.get_ref()
                 ),
                 help,
             );
@@ -104,10 +121,10 @@ pub(crate) fn lower_directions(
         };
         if !matches!(frame.values[vi].role, Role::User { .. }) {
             ctx.error(
-                d.field.span(),
+                field.span(),
                 format!(
                     "`{}` is computed by the codec, so it cannot tell the direction",
-                    d.field.get_ref()
+                    field.get_ref()
                 ),
                 "use a field the sender sets, such as an address or a flag",
             );
@@ -121,8 +138,10 @@ pub(crate) fn lower_directions(
             rust_name: pascal_case(n),
             doc: text(&d.doc),
             rule,
+            message: None,
         });
     }
+    given::check_given_agree(ctx);
     // Rule: both directions, or neither. Report a lone direction only when the spec declares
     // one; when a declared direction failed to lower, its own error says why.
     if spec.directions.len() == 1 {
@@ -187,7 +206,7 @@ fn lower_direction_rule(
                 format!(
                     "{} does not fit in field `{}`",
                     v.get_ref(),
-                    d.field.get_ref()
+                    frame.values[vi].name
                 ),
                 "use a value the field can hold",
             );
@@ -444,10 +463,17 @@ fn lower_payload_refs(
         directions
             .iter()
             .map(|dir| {
-                if dir.name == "request" {
-                    resolve(ctx, &d.request)
+                let r = if dir.name == "request" {
+                    &d.request
                 } else {
-                    resolve(ctx, &d.response)
+                    &d.response
+                };
+                match (dir.message, r) {
+                    (Some((si, _)), Some(r)) => {
+                        ctx.error(r.span(), format!("direction `{}` carries `{}` in every frame, so command `{}` has no {} payload of its own", dir.name, structs.structs[si].name, name.get_ref(), dir.name), format!("remove `{}` from the command", dir.name));
+                        None
+                    }
+                    _ => resolve(ctx, r),
                 }
             })
             .collect()

@@ -6,6 +6,7 @@
 mod catalog;
 mod checksum;
 mod commands;
+mod directions;
 mod extra;
 mod frame;
 mod names;
@@ -67,7 +68,7 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
         .first()
         .filter(|f| Some(f.name.as_str()) == first_spec_frame)
     {
-        Some(first) => commands::lower_directions(&mut ctx, first, &addresses),
+        Some(first) => commands::lower_directions(&mut ctx, first, &addresses, &structs),
         None => Vec::new(),
     };
     let commands = commands::lower_commands(&mut ctx, &frames, &directions, &structs);

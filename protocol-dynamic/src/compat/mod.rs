@@ -352,6 +352,16 @@ fn rule_text(p: &Protocol, rule: &DirectionRule) -> String {
         DirectionRule::Equals { value, equals } => {
             format!("`{}` == {equals:#x}", value_name(*value))
         }
+        DirectionRule::Given => "given to the decoder".to_string(),
+    }
+}
+
+/// A direction's rule and what its frames carry in place of a command, for comparison.
+fn direction_text(p: &Protocol, d: &protocol_codegen::ir::Direction) -> String {
+    let rule = rule_text(p, &d.rule);
+    match d.message.and_then(|(si, _)| p.structs.get(si)) {
+        Some(s) => format!("{rule}, carrying `{}`", s.name),
+        None => rule,
     }
 }
 
@@ -375,7 +385,7 @@ fn diff_directions(old: &Protocol, new: &Protocol, out: &mut Vec<Change>) {
         return;
     }
     for (od, nd) in old.directions.iter().zip(&new.directions) {
-        let (a, b) = (rule_text(old, &od.rule), rule_text(new, &nd.rule));
+        let (a, b) = (direction_text(old, od), direction_text(new, nd));
         if a != b {
             r.breaking(format!("`{}`: {a} → {b}", nd.name));
         }

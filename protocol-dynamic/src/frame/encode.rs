@@ -93,7 +93,45 @@ enum Body {
     Command(usize, Option<usize>),
     Ack,
     Message(usize),
+    /// A struct a direction carries in place of the dispatch key, from this header length.
+    Keyless(usize, usize),
     Raw,
+}
+
+/// The direction of a frame value of a spec whose directions are given: its `direction`, else
+/// `default` (the codec's).
+fn given_direction(
+    p: &Protocol,
+    obj: &Fields,
+    default: Option<usize>,
+) -> Result<usize, EncodeIssue> {
+    let names = || {
+        let n: Vec<&str> = p.directions.iter().map(|d| d.name.as_str()).collect();
+        n.join(", ")
+    };
+    match obj.get("direction") {
+        Some(Value::String(name)) => {
+            p.directions
+                .iter()
+                .position(|d| &d.name == name)
+                .ok_or_else(|| {
+                    EncodeIssue::new(
+                        "direction",
+                        format!("no direction `{name}` in the spec (it has {})", names()),
+                    )
+                })
+        }
+        Some(Value::Null) | None => default.ok_or_else(|| {
+            EncodeIssue::new(
+                "direction",
+                format!(
+                    "missing: no header field tells this spec's directions, so a frame names one ({})",
+                    names()
+                ),
+            )
+        }),
+        Some(_) => Err(EncodeIssue::new("direction", "expected a direction name")),
+    }
 }
 
 /// Encodes a frame value of format `fi` with its layout. Returns the frame's bytes (for a CAN
@@ -107,6 +145,7 @@ pub fn encode(
     fi: usize,
     layout: &FrameLayout<'_>,
     obj: &Fields,
+    given: Option<usize>,
 ) -> Result<Vec<u8>, EncodeIssue> {
     let f = &p.frames[fi];
     let dispatch = dispatch_of(p, fi);
@@ -122,6 +161,16 @@ pub fn encode(
                 ));
             }
             Body::Ack
+        }
+        Dispatch::Key if p.directions_given() => {
+            let d = given_direction(p, obj, given)?;
+            match p.directions[d].message {
+                Some((si, start)) => Body::Keyless(si, start),
+                None => {
+                    let ci = command_of(p, false, obj)?;
+                    Body::Command(ci, p.commands[ci].payloads.get(d).copied().flatten())
+                }
+            }
         }
         Dispatch::Key | Dispatch::CanId => {
             let ci = command_of(p, dispatch == Dispatch::CanId, obj)?;
@@ -140,6 +189,7 @@ pub fn encode(
     };
     let start = match (&body, f.ack) {
         (Body::Ack, Some((_, ack_header_len))) => ack_header_len,
+        (Body::Keyless(_, start), _) => *start,
         _ => f.header_len,
     };
     // The payload first, in place, in a buffer of the largest frame (as generated code's
@@ -239,7 +289,7 @@ fn write_body(
                 ));
             }
         }
-        Body::Command(_, Some(si)) | Body::Message(si) => {
+        Body::Command(_, Some(si)) | Body::Message(si) | Body::Keyless(si, _) => {
             let v = payload.ok_or_else(|| EncodeIssue::missing("payload"))?;
             // The only error without a path is the writer's: the payload does not fit.
             write_payload(p, *si, v, &mut w, "payload").map_err(|e| {

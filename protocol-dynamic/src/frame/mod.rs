@@ -248,6 +248,8 @@ fn direction_of(p: &Protocol, raw: &dyn Fn(usize) -> Option<u64>) -> Option<usiz
             let x = raw(*value).map(|r| truncate(v.prim, r));
             x.is_some_and(|x| truncate(v.prim, a.first) <= x && x <= truncate(v.prim, a.last))
         }
+        // The decoder is given it: no header tells it.
+        DirectionRule::Given => false,
         DirectionRule::Equals { value, equals } => {
             let Some(v) = f.values.get(*value) else {
                 return false;
@@ -307,8 +309,14 @@ fn read_struct_payload(
 }
 
 /// Decodes a frame of format `fi` that the engine accepted (for a CAN format: its virtual
-/// frame), as the generated packet of the format does.
-pub fn decode(p: &Protocol, fi: usize, frame: &[u8]) -> Result<Decoded, DecodeIssue> {
+/// frame), as the generated packet of the format does; `given` is the direction the decoder is
+/// given, for a spec whose header does not tell it (as generated `from_<direction>_frame`).
+pub fn decode(
+    p: &Protocol,
+    fi: usize,
+    frame: &[u8],
+    given: Option<usize>,
+) -> Result<Decoded, DecodeIssue> {
     let f = &p.frames[fi];
     let read = |i: usize| f.values.get(i).and_then(|v| word_field(v).read(frame));
     let mut out = Decoded {
@@ -384,6 +392,23 @@ pub fn decode(p: &Protocol, fi: usize, frame: &[u8]) -> Result<Decoded, DecodeIs
                     return Ok(out);
                 }
             }
+            if p.directions_given() {
+                let d = given.filter(|&d| d < p.directions.len()).ok_or_else(|| {
+                    DecodeIssue::DirectionNotGiven {
+                        directions: p.directions.iter().map(|d| d.name.clone()).collect(),
+                    }
+                })?;
+                out.direction = Some(d);
+                if let Some((si, start)) = p.directions[d].message {
+                    let payload = frame.get(start..frame.len().saturating_sub(f.trailer_len));
+                    let payload = payload.ok_or(DecodeIssue::Frame(DecodeError::Truncated {
+                        needed: start + f.trailer_len,
+                        available: frame.len(),
+                    }))?;
+                    out.payload = read_struct_payload(p, Some(si), &p.directions[d].name, payload)?;
+                    return Ok(out);
+                }
+            }
             decode_command(p, f, frame, &read, &mut out)?;
         }
     }
@@ -431,7 +456,9 @@ fn decode_command(
             .map_err(DecodeIssue::Frame)?,
         None => stuffed,
     };
-    let slot = if p.directions.is_empty() {
+    let slot = if let Some(d) = out.direction.filter(|_| p.directions_given()) {
+        d
+    } else if p.directions.is_empty() {
         0
     } else {
         let d = direction_of(p, read).ok_or_else(|| DecodeIssue::UnknownDirection {

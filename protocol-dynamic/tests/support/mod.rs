@@ -271,6 +271,18 @@ pub fn rust_debug(p: &Protocol, d: &Decoded) -> String {
     } else {
         format!("{header} {{ {} }}", header_fields.join(", "))
     };
+    // A direction that carries a struct in place of a command.
+    if let Some((di, (si, _))) = d
+        .direction
+        .and_then(|di| Some((di, p.directions.get(di)?.message?)))
+        .filter(|_| d.command.is_none())
+    {
+        return format!(
+            "{packet} {{ header: {header}, message: {}({}) }}",
+            pascal(&p.directions[di].name),
+            struct_text(p, si, &d.payload)
+        );
+    }
     if d.command.is_none() && !d.ack {
         let si = f.message.expect("a message frame format");
         return format!(

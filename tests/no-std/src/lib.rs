@@ -13,6 +13,7 @@ protocol::protocol!("../../specs/scout.toml");
 protocol::protocol!("../../specs/mavlink.toml");
 protocol::protocol!("../../specs/roborts.toml");
 protocol::protocol!("../../specs/dynamixel.toml");
+protocol::protocol!("../../specs/dynamixel1.toml");
 protocol::protocol!("../../specs/crsf.toml");
 protocol::protocol!("../../specs/ibus.toml");
 protocol::protocol!("../../specs/sbus.toml");

@@ -91,6 +91,8 @@ fn interpreter<S: Spec>() -> &'static Interpreter {
 pub fn interp<S: Spec>(data: &[u8]) {
     let interp = interpreter::<S>();
     let codec = interp.codec();
+    let direction = S::DIRECTION.and_then(|d| codec.direction_index(d));
+    let codec = codec.with_direction(direction);
     let generated = S::decode(data);
     let interpreted = codec.parse(0, data);
     assert_eq!(
@@ -130,7 +132,7 @@ pub fn interp_any(data: &[u8]) {
     };
     let mut targets: Vec<fn(&[u8])> = Vec::new();
     macro_rules! target {
-        ($name:ident, $path:literal) => {
+        ($name:ident, $path:literal $(, $given:tt)*) => {
             targets.push(interp::<super::$name::Packet>);
         };
     }

@@ -24,11 +24,19 @@ use protocol::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stats, Strea
 ///
 /// Adding a spec to every robustness suite (properties, faults, bounds, no-alloc, fuzz corpus)
 /// is one line here; `specs_dir_is_covered` (in `properties.rs`) fails when a spec in `specs/`
-/// is missing from this list.
+/// is missing from this list. A spec whose directions are given to the decoder (no header field
+/// tells them) names the direction the suites decode and its decoders, after the path.
 macro_rules! for_each_spec {
     ($callback:ident) => {
         $callback!(crsf, "../specs/crsf.toml");
         $callback!(dynamixel, "../specs/dynamixel.toml");
+        $callback!(
+            dynamixel1,
+            "../specs/dynamixel1.toml",
+            "request",
+            from_request_frame,
+            decode_request
+        );
         $callback!(hflink, "../specs/hflink.toml");
         $callback!(mavlink, "../specs/mavlink.toml");
         $callback!(ibus, "../specs/ibus.toml");
@@ -45,10 +53,17 @@ pub(crate) use for_each_spec;
 /// Expands a spec with `protocol!` and implements [`Spec`] for its `Packet`.
 macro_rules! expand_spec {
     ($name:ident, $path:literal) => {
+        expand_spec!(@ $name, $path, None, from_frame, decode);
+    };
+    ($name:ident, $path:literal, $direction:literal, $from_frame:ident, $decode:ident) => {
+        expand_spec!(@ $name, $path, Some($direction), $from_frame, $decode);
+    };
+    (@ $name:ident, $path:literal, $direction:expr, $from_frame:ident, $decode:ident) => {
         protocol::protocol!($path);
 
         impl $crate::support::Spec for $name::Packet {
             const NAME: &'static str = stringify!($name);
+            const DIRECTION: Option<&'static str> = $direction;
             const PATH: &'static str = $path;
             const TEXT: &'static str =
                 include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/", $path));
@@ -63,10 +78,10 @@ macro_rules! expand_spec {
                 $name::decoder()
             }
             fn from_frame(frame: &[u8]) -> Result<Self, protocol::DecodeError> {
-                $name::Packet::from_frame(frame)
+                $name::Packet::$from_frame(frame)
             }
             fn decode(bytes: &[u8]) -> Result<Self, protocol::DecodeError> {
-                $name::Packet::decode(bytes)
+                $name::Packet::$decode(bytes)
             }
             fn encode(&self, buf: &mut [u8]) -> Result<usize, protocol::EncodeError> {
                 $name::Packet::encode(self, buf)
@@ -84,6 +99,10 @@ for_each_spec!(expand_spec);
 pub trait Spec: Sized + Debug + Clone + PartialEq + 'static {
     /// The module name.
     const NAME: &'static str;
+    /// For a spec whose directions are given to the decoder: the direction the suites decode
+    /// (`from_frame` and `decode` are that direction's decoders, and generated frames are of
+    /// it).
+    const DIRECTION: Option<&'static str>;
     /// The spec path, relative to the tests crate.
     const PATH: &'static str;
     /// The spec text (for the IR the generators work from).

@@ -100,7 +100,12 @@ impl Model {
                     payload,
                 });
             } else {
-                for direction in 0..ir.directions.len() {
+                // A decoder given its direction reads only the frames of that direction.
+                let decoded =
+                    S::DIRECTION.and_then(|d| ir.directions.iter().position(|x| x.name == d));
+                for direction in
+                    (0..ir.directions.len()).filter(|&d| decoded.is_none_or(|x| x == d))
+                {
                     let payload = c.payloads.get(direction).copied().flatten();
                     choices.push(Choice {
                         carries,

@@ -32,6 +32,9 @@ pub(super) fn emit_message_enum(
         }
         None => (quote!(use #rt::read_payload as read;), quote!(read(b))),
     };
+    // A direction that carries a struct in place of a command makes the command optional.
+    let none = command_none(p);
+    let optional_command = none.is_some();
     let doc = doc_attrs(doc);
     let mut variants = Vec::new();
     let mut visit_arms = Vec::new();
@@ -39,9 +42,10 @@ pub(super) fn emit_message_enum(
     let mut any_empty = false;
     for c in &p.commands {
         let v = ident(&c.rust_name);
-        let command = match ack_max {
-            None => quote!(C::#v),
-            Some(_) => quote!(#rt::Some(C::#v)),
+        let command = if optional_command {
+            quote!(#rt::Some(C::#v))
+        } else {
+            quote!(C::#v)
         };
         match c.payloads.get(di).copied().flatten() {
             Some(si) => {
@@ -72,7 +76,7 @@ pub(super) fn emit_message_enum(
     }
     let payload_fns = emit_payload_fns(
         rt,
-        ack_max.is_some(),
+        none,
         quote!(use Command as C; match self { #(#visit_arms)* }),
     );
     // The commands without payload match only an empty one; any other bytes fall through.
@@ -108,14 +112,14 @@ pub(super) fn emit_message_enum(
 
 /// `visit_payload` (whose body, `visit`, opens the message once), and `command`,
 /// `payload_len` and `write_payload` through it.
-fn emit_payload_fns(rt: &TokenStream, acks: bool, visit: TokenStream) -> TokenStream {
-    let (command_ty, command_doc) = if acks {
+fn emit_payload_fns(rt: &TokenStream, none: Option<&str>, visit: TokenStream) -> TokenStream {
+    let (command_ty, command_doc) = if let Some(none) = none {
         (
             quote!(#rt::Option<Command>),
-            " The command of this message (`None` for an acknowledgement).",
+            format!(" The command of this message (`None` for {none})."),
         )
     } else {
-        (quote!(Command), " The command of this message.")
+        (quote!(Command), " The command of this message.".to_string())
     };
     quote! {
         /// Hands the command and the payload to `v` (`&()` when the command carries none): the
@@ -147,22 +151,43 @@ fn emit_payload_fns(rt: &TokenStream, acks: bool, visit: TokenStream) -> TokenSt
     }
 }
 
+/// What a message without a command is, when a spec has such messages.
+fn command_none(p: &Protocol) -> Option<&'static str> {
+    if p.frames.first().is_some_and(|f| f.ack.is_some()) {
+        Some("an acknowledgement")
+    } else if p.directions.iter().any(|d| d.message.is_some()) {
+        Some("a message that carries its direction's struct in place of a command")
+    } else {
+        None
+    }
+}
+
 pub(super) fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStream {
     let variants = p.directions.iter().map(|d| {
         let v = format_ident!("{}", d.rust_name);
-        let doc = doc_attrs(&format!("A {}. {}", d.name, d.doc));
-        quote!(#doc #v(#v))
+        match d.message {
+            Some((si, _)) => {
+                let s = ident(&p.structs[si].name);
+                let doc = doc_attrs(&format!(
+                    "A {}, carrying a `{}` (no command). {}",
+                    d.name, p.structs[si].name, d.doc
+                ));
+                quote!(#doc #v(#s))
+            }
+            None => {
+                let doc = doc_attrs(&format!("A {}. {}", d.name, d.doc));
+                quote!(#doc #v(#v))
+            }
+        }
     });
-    let names: Vec<_> = p
-        .directions
-        .iter()
-        .map(|d| format_ident!("{}", d.rust_name))
-        .collect();
-    let payload_fns = emit_payload_fns(
-        rt,
-        p.frames.first().is_some_and(|f| f.ack.is_some()),
-        quote!(match self { #(Self::#names(m) => m.visit_payload(v),)* }),
-    );
+    let arms = p.directions.iter().map(|d| {
+        let v = format_ident!("{}", d.rust_name);
+        match d.message {
+            Some(_) => quote!(Self::#v(m) => v.visit(#rt::None, m),),
+            None => quote!(Self::#v(m) => m.visit_payload(v),),
+        }
+    });
+    let payload_fns = emit_payload_fns(rt, command_none(p), quote!(match self { #(#arms)* }));
     quote! {
         /// A decoded message: its direction, then the command and payload.
         #[derive(Debug, Clone, Copy, PartialEq)]

@@ -5,6 +5,7 @@
 
 mod command;
 mod frames;
+mod given;
 mod message;
 mod packet;
 
@@ -17,6 +18,7 @@ use super::types::int_lit;
 use crate::ir::{Command, Frame, PacketKind, Prim, Protocol};
 use command::emit_command_enum;
 use frames::{emit_can_packet, emit_message_packet};
+pub use given::direction_layouts;
 use message::{emit_direction_message, emit_message_enum};
 use packet::emit_packet;
 
@@ -43,6 +45,10 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
         ));
     } else {
         for (di, d) in p.directions.iter().enumerate() {
+            if d.message.is_some() {
+                // The direction's frames carry one struct, held by `Message` itself.
+                continue;
+            }
             let name = format_ident!("{}", d.rust_name);
             let doc = format!(
                 "A {} message: one variant per command, holding its {} payload. {}",

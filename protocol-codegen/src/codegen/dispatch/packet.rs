@@ -6,6 +6,7 @@ use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
 use super::frames::header_codec;
+use super::given;
 use super::key_prims;
 use crate::codegen::frame::wire_const;
 use crate::codegen::ident;
@@ -51,6 +52,8 @@ fn direction_test(p: &Protocol, f: &Frame, rule: &DirectionRule) -> TokenStream 
             let id = ident(&f.values[*value].name);
             quote!((header.#id as u64) == #equals)
         }
+        // `packet_direction` leaves given directions to their own decoders.
+        DirectionRule::Given => quote!(true),
     }
 }
 
@@ -92,6 +95,10 @@ fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
 /// The message of a decoded frame (by direction when the spec has directions), and the check
 /// that an encoded message's direction matches its header.
 fn packet_direction(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
+    if p.directions_given() {
+        // Each direction has its own decoder (`given`); a message is written as it is.
+        return (quote!(), quote!());
+    }
     if p.directions.is_empty() {
         return (quote!(Message::read_payload(command, payload)?), quote!());
     }
@@ -131,7 +138,7 @@ struct AckParts {
     write_key: TokenStream,
 }
 
-fn packet_ack(f: &Frame, key: &Key, rt: &TokenStream) -> AckParts {
+fn packet_ack(p: &Protocol, f: &Frame, key: &Key, rt: &TokenStream) -> AckParts {
     let Items {
         header_len,
         trailer_len,
@@ -139,6 +146,14 @@ fn packet_ack(f: &Frame, key: &Key, rt: &TokenStream) -> AckParts {
         ..
     } = Items::of(f);
     let write = &key.write;
+    if let Some(k) = given::keyless(p, f, write, rt) {
+        return AckParts {
+            len_arms: k.len_arms,
+            start: k.start,
+            write_key: k.write_key,
+            ..AckParts::default()
+        };
+    }
     let Some((vi, ack_header_len)) = f.ack else {
         return AckParts {
             start: quote!(#header_len),
@@ -291,7 +306,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
     let (header_fields, header_writes) = header_codec(f, rt);
     let key = packet_key(f, rt);
     let (message, direction_check) = packet_direction(p, f, rt);
-    let ack = packet_ack(f, &key, rt);
+    let ack = packet_ack(p, f, &key, rt);
     let encoded_len = packet_encoded_len(f, &ack, rt);
     let (read_key, key_u64) = (&key.read, &key.as_u64);
     let AckParts {
@@ -308,17 +323,16 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
     } else {
         quote!()
     };
-    quote! {
-        #stuffing_const
-        /// A whole frame, decoded: the header values and the message.
-        #[derive(Debug, Clone, Copy, PartialEq)]
-        pub struct #packet {
-            /// The header values the sender set.
-            pub header: #header,
-            /// The command and its payload.
-            pub message: Message,
-        }
-        impl #packet {
+    let decoders = if p.directions_given() {
+        let reads = given::Reads {
+            header_fields: &header_fields,
+            read_key,
+            key_u64,
+            unstuff: &unstuff,
+        };
+        given::decoders(p, f, &reads, rt)
+    } else {
+        quote! {
             /// Decode the frame at the start of `bytes`, checking its framing (sync, length,
             /// checks) first.
             ///
@@ -344,6 +358,20 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
                 let message = #message;
                 #rt::Ok(#packet { header, message })
             }
+        }
+    };
+    quote! {
+        #stuffing_const
+        /// A whole frame, decoded: the header values and the message.
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct #packet {
+            /// The header values the sender set.
+            pub header: #header,
+            /// The command and its payload.
+            pub message: Message,
+        }
+        impl #packet {
+            #decoders
             /// Bytes of the encoded frame.
             #[inline(always)]
             pub fn encoded_len(&self) -> usize {

@@ -9,6 +9,7 @@ protocol::protocol!("specs/scout.toml");
 protocol::protocol!("specs/mavlink.toml");
 protocol::protocol!("specs/roborts.toml");
 protocol::protocol!("specs/dynamixel.toml");
+protocol::protocol!("specs/dynamixel1.toml");
 protocol::protocol!("specs/ibus.toml");
 protocol::protocol!("specs/sbus.toml");
 protocol::protocol!("specs/ubx.toml");
@@ -18,6 +19,7 @@ protocol::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_cr
 protocol::protocol!("protocol-codegen/tests/features/can_and_trailer_field.toml");
 protocol::protocol!("protocol-codegen/tests/features/truncate_zeros.toml");
 protocol::protocol!("protocol-codegen/tests/features/text.toml");
+protocol::protocol!("protocol-codegen/tests/features/given_directions.toml");
 
 fn main() {
     let _ = hflink::decoder();
@@ -25,6 +27,8 @@ fn main() {
     let _ = scout::CanPacket::decode;
     let _ = roborts::decoder();
     let _ = dynamixel::feedback_decoder();
+    let _ = dynamixel1::Packet::decode_response;
+    let _ = told::Packet::decode_request;
     let _ = mavlink::decoder();
     let _ = truncated::decoder();
     let _ = ibus::decoder();

@@ -1,0 +1,179 @@
+//! Directions the decoder is given: no header field tells a request from a response, so
+//! `Packet` has a decoder per direction (`decode_request`, `from_response_frame`, ...) instead
+//! of `decode` and `from_frame`, and each direction has a layout type (`RequestLayout`) that
+//! runtime stream decoders and integrations run. A direction that carries one struct in place of
+//! the dispatch key starts its payload where the key would be.
+//!
+//! Named decoders rather than a direction argument: a program is one side of a link, so the
+//! direction it decodes is a fact of its source, and `Packet::decode_response` says in rustdoc,
+//! with its own documentation, what it decodes; no direction value has to be built or matched.
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use crate::codegen::docs::doc_attrs;
+use crate::ir::{Direction, Frame, Protocol};
+
+/// What a direction carrying a struct changes in encoding: where the payload starts, the
+/// frame's length, and the dispatch key written only for a command.
+pub(super) struct Keyless {
+    pub start: TokenStream,
+    pub len_arms: TokenStream,
+    pub write_key: TokenStream,
+}
+
+/// `None` when no direction carries a struct in place of the command.
+pub(super) fn keyless(
+    p: &Protocol,
+    f: &Frame,
+    write: &TokenStream,
+    rt: &TokenStream,
+) -> Option<Keyless> {
+    let header_len = format_ident!("{}", f.names.sizes.header_len);
+    let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
+    let (names, starts): (Vec<_>, Vec<_>) = p
+        .directions
+        .iter()
+        .filter_map(|d| Some((format_ident!("{}", d.rust_name), d.message?.1)))
+        .unzip();
+    if names.is_empty() {
+        return None;
+    }
+    Some(Keyless {
+        start: quote!(match &self.message { #(Message::#names(_) => #starts,)* _ => #header_len }),
+        len_arms: quote! {
+            #(Message::#names(m) => #starts
+                .saturating_add(#rt::Payload::wire_len(m))
+                .saturating_add(#trailer_len),)*
+        },
+        write_key: quote!(if let #rt::Some(command) = self.message.command() { #write }),
+    })
+}
+
+/// What a frame's decoding reads before the payload: the header values, the dispatch key, the
+/// command and the (unstuffed) payload.
+pub(super) struct Reads<'a> {
+    pub header_fields: &'a [TokenStream],
+    pub read_key: &'a TokenStream,
+    pub key_u64: &'a TokenStream,
+    pub unstuff: &'a TokenStream,
+}
+
+/// `decode_<direction>` and `from_<direction>_frame` for every direction.
+pub(super) fn decoders(p: &Protocol, f: &Frame, r: &Reads<'_>, rt: &TokenStream) -> TokenStream {
+    let layout = format_ident!("{}", f.names.layout_static);
+    let packet = format_ident!("{}", f.names.packet);
+    let header = format_ident!("{}", f.names.header);
+    let header_len = format_ident!("{}", f.names.sizes.header_len);
+    let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
+    let header_fields = r.header_fields;
+    let mut out = TokenStream::new();
+    for d in &p.directions {
+        let v = format_ident!("{}", d.rust_name);
+        let decode = format_ident!("decode_{}", d.name);
+        let from_frame = format_ident!("from_{}_frame", d.name);
+        let body = match d.message {
+            Some((_, start)) => quote! {
+                let payload = #rt::payload_of(frame, #start, #trailer_len)?;
+                let message = Message::#v(#rt::read_payload(payload)?);
+            },
+            None => {
+                let (read_key, key_u64, unstuff) = (r.read_key, r.key_u64, r.unstuff);
+                quote! {
+                    #read_key
+                    let command = Command::from_id(id).ok_or(#rt::unknown_command(#key_u64))?;
+                    let payload = #rt::payload_of(frame, #header_len, #trailer_len)?;
+                    #unstuff
+                    let message = Message::#v(#v::read_payload(command, payload)?);
+                }
+            }
+        };
+        let what = what(d);
+        let decode_doc = doc_attrs(&format!(
+            "Decode the frame at the start of `bytes` as {what}, checking its framing (sync, \
+             length, checks) first. {}",
+            d.doc
+        ));
+        let from_doc = doc_attrs(&format!(
+            "Decode a frame whose framing a decoder already checked as {what}."
+        ));
+        let errors = match d.message {
+            Some(_) => quote! {
+                /// `PayloadLength` when the payload's size is not the struct's, and errors of
+                /// its fields.
+            },
+            None => quote! {
+                /// `UnknownCommand` for an id the spec does not have, `PayloadLength` when the
+                /// payload's size is not the command's, and errors of the payload's fields.
+            },
+        };
+        out.extend(quote! {
+            #decode_doc
+            ///
+            /// # Errors
+            /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they
+            /// end early, and the errors of the frame's decoding.
+            pub fn #decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
+                Self::#from_frame(#layout.parse(bytes)?)
+            }
+            #from_doc
+            ///
+            /// # Errors
+            #errors
+            pub fn #from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
+                let header = #header { #(#header_fields,)* };
+                #body
+                #rt::Ok(#packet { header, message })
+            }
+        });
+    }
+    out
+}
+
+/// The words that say what a direction's decoder makes of a frame.
+fn what(d: &Direction) -> String {
+    match d.message {
+        Some(_) => format!("a {} (`Message::{}`)", d.name, d.rust_name),
+        None => format!(
+            "a {} (`Message::{}`, by the command's {} payload)",
+            d.name, d.rust_name, d.name
+        ),
+    }
+}
+
+/// A layout type per direction, for the runtime's `PacketDecoder` and integrations: the frame
+/// format's layout, each frame decoded in that direction.
+pub fn direction_layouts(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
+    let layout = format_ident!("{}", f.names.layout_static);
+    let packet = format_ident!("{}", f.names.packet);
+    let mut out = TokenStream::new();
+    for d in &p.directions {
+        let ty = format_ident!("{}Layout", d.rust_name);
+        let from_frame = format_ident!("from_{}_frame", d.name);
+        let doc = doc_attrs(&format!(
+            "[`{}`] decoding {}s: what a `PacketDecoder` (or an integration) of the side \
+             that receives them runs; each frame becomes a `{}` through \
+             [`{}::{from_frame}`].",
+            f.names.layout_static, d.name, f.names.packet, f.names.packet
+        ));
+        out.extend(quote! {
+            #doc
+            #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+            pub struct #ty;
+            impl #rt::LayoutRef for #ty {
+                #[inline(always)]
+                fn layout(&self) -> &#rt::FrameLayout<'_> {
+                    &#layout
+                }
+            }
+            impl #rt::PacketLayout for #ty {
+                type Packet = #packet;
+                type Error = #rt::DecodeError;
+                fn decode_packet(&self, frame: &[u8]) -> #rt::DecodeResult<#packet> {
+                    #packet::#from_frame(frame)
+                }
+            }
+        });
+    }
+    out
+}
