@@ -173,6 +173,19 @@ pub(crate) fn lower_enums(ctx: &mut Ctx<'_>) -> Enums {
             prim: scalar.prim,
             variants,
             unknown,
+            foreign: false,
+        });
+    }
+    // A derive's enum-like types of the user's crate, known by their `repr` alone.
+    for (f, prim) in ctx.foreign.iter().filter_map(|f| Some((f, f.repr?))) {
+        by_name.insert(f.path.clone(), enums.len());
+        enums.push(Enum {
+            name: f.path.clone(),
+            doc: String::new(),
+            prim,
+            variants: Vec::new(),
+            unknown: UnknownPolicy::Reject,
+            foreign: true,
         });
     }
     Enums { enums, by_name }
