@@ -57,7 +57,10 @@ pub fn derive_payload(input: &DeriveInput) -> syn::Result<TokenStream> {
         return Err(e);
     }
     let Some(s) = protocol.as_ref().and_then(|p| Some((p, p.structs.last()?))) else {
-        return Err(syn::Error::new(input.ident.span(), "#[derive(Payload)] failed"));
+        return Err(syn::Error::new(
+            input.ident.span(),
+            "#[derive(Payload)] failed",
+        ));
     };
     let def = PayloadDef {
         size: None,
@@ -173,7 +176,7 @@ impl Draft {
             t if t == "Self" => owner.to_string(),
             t => t,
         };
-        let order = a.endian.as_ref().map(|e| &e.1);
+        let order = a.endian.as_ref();
         let ty = match (a.repr, &a.raw) {
             (Some(repr), _) => {
                 self.foreign_type(elem, &elem_text, Some(repr))?;
@@ -261,7 +264,7 @@ fn with_order(ty: &str, order: Option<&ByteOrder>) -> String {
 /// A field's `#[payload(...)]` attributes, each with the span of its value.
 #[derive(Default)]
 struct FieldAttrs {
-    endian: Option<(Span, ByteOrder)>,
+    endian: Option<ByteOrder>,
     pad_before: Option<(Span, i64)>,
     pad_after: Option<(Span, i64)>,
     scale: Option<(Span, f64)>,
@@ -357,7 +360,7 @@ fn parse_field_attrs(f: &syn::Field) -> syn::Result<FieldAttrs> {
         attr.parse_nested_meta(|meta| {
             if meta.path.is_ident("byte_order") {
                 let lit: syn::LitStr = meta.value()?.parse()?;
-                a.endian = Some((lit.span(), parse_endian(&lit)?));
+                a.endian = Some(parse_endian(&lit)?);
             } else if meta.path.is_ident("pad_before") {
                 let lit: syn::LitInt = meta.value()?.parse()?;
                 a.pad_before = Some((lit.span(), lit.base10_parse()?));

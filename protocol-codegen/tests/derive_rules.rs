@@ -114,8 +114,10 @@ fn a_declared_rust_type_must_be_the_decoded_one() {
     let errors = derive_errors("struct S { #[payload(raw = \"u24\")] total: u16 }");
     assert_eq!(
         errors,
-        ["field `total` is `u16`, but its wire type `u24` decodes to `u32`\n= help: declare \
-          `total` as `u32`, or give it a wire type that decodes to `u16`"]
+        [
+            "field `total` is `u16`, but its wire type `u24` decodes to `u32`\n= help: declare \
+          `total` as `u32`, or give it a wire type that decodes to `u16`"
+        ]
     );
     let errors = derive_errors("struct S { #[payload(scale = 0.5, raw = \"i16\")] speed: i32 }");
     assert_eq!(errors.len(), 1, "{errors:#?}");
@@ -137,5 +139,8 @@ fn user_types_are_named_not_declared() {
     );
     let errors = derive_errors("struct S { a: u8, next: Self }");
     assert_eq!(errors.len(), 1, "{errors:#?}");
-    assert!(errors[0].starts_with("struct `S` contains itself"), "{errors:#?}");
+    assert!(
+        errors[0].starts_with("struct `S` contains itself"),
+        "{errors:#?}"
+    );
 }

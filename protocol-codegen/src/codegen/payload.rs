@@ -684,18 +684,20 @@ impl Body {
 /// Whether the padding of `fields` can be skipped by the read of the field after it: that
 /// field is read in one step (a single value, not an array, group or optional field).
 fn pads_fold(fields: &[PField]) -> bool {
-    fields.windows(2).all(|pair| match (&pair[0].kind, &pair[1].kind) {
-        (PKind::Pad(_), PKind::Pad(_)) => true,
-        (PKind::Pad(_), next) => {
-            matches!(
-                next,
-                PKind::Scalar { count: None, .. }
-                    | PKind::Nested { count: None, .. }
-                    | PKind::Enum { count: None, .. }
-            )
-        }
-        _ => true,
-    })
+    fields
+        .windows(2)
+        .all(|pair| match (&pair[0].kind, &pair[1].kind) {
+            (PKind::Pad(_), PKind::Pad(_)) => true,
+            (PKind::Pad(_), next) => {
+                matches!(
+                    next,
+                    PKind::Scalar { count: None, .. }
+                        | PKind::Nested { count: None, .. }
+                        | PKind::Enum { count: None, .. }
+                )
+            }
+            _ => true,
+        })
 }
 
 /// Whether reading a field names an earlier field (sized bytes; a group, whose elements' sized
