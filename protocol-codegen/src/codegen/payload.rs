@@ -383,10 +383,23 @@ fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
         k => match count_of(k) {
             None => read_elem(k, &quote!(r), rt),
             Some(_) => {
-                let read = read_elem(k, &quote!(r), rt);
-                quote!(r.array(|r| #rt::Ok(#read))?)
+                let read = ok_of(read_elem(k, &quote!(r), rt), rt);
+                quote!(r.array(|r| #read)?)
             }
         },
+    }
+}
+
+/// `Ok(read)`, the value of a closure that reads: `read` without its final `?` when it has
+/// one (`Ok(x?)` is `x`).
+fn ok_of(read: TokenStream, rt: &TokenStream) -> TokenStream {
+    let mut tokens: Vec<proc_macro2::TokenTree> = read.clone().into_iter().collect();
+    match tokens.last() {
+        Some(proc_macro2::TokenTree::Punct(p)) if p.as_char() == '?' => {
+            tokens.pop();
+            tokens.into_iter().collect()
+        }
+        _ => quote!(#rt::Ok(#read)),
     }
 }
 

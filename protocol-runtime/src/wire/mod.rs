@@ -162,7 +162,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Reads an array of `N` elements, each with `read`, in order (the read of an array
-    /// field: `r.array(|r| Ok(r.u16_le()?))?`).
+    /// field: `r.array(|r| r.u16_le())?`).
     ///
     /// ```
     /// use protocol_runtime::{DecodeError, Reader};
