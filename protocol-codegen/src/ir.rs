@@ -219,6 +219,10 @@ pub struct Struct {
     /// Fields of the struct that repeats this one, which this struct's sized bytes take their
     /// size from (empty for a struct that stands alone).
     pub context: Vec<String>,
+    /// A type of the user's crate that a `#[derive(Payload)]` field names: `name` is its Rust
+    /// type as written; it implements `Payload` itself, and its fields and size are not known
+    /// here (no field, size 0). Never set for a spec's structs.
+    pub foreign: bool,
 }
 
 /// One field of a payload struct.
@@ -410,6 +414,10 @@ pub struct Enum {
     pub variants: Vec<EnumVariant>,
     /// What a value with no variant becomes.
     pub unknown: UnknownPolicy,
+    /// A type of the user's crate that a `#[derive(Payload)]` field names with `repr`: `name` is
+    /// its Rust type as written; it has `to_raw` and `from_raw` over `prim`, and its variants
+    /// are not known here. Never set for a spec's enums.
+    pub foreign: bool,
 }
 
 /// One enum variant.

@@ -19,12 +19,12 @@ pub fn protocol(input: TokenStream) -> TokenStream {
 }
 
 /// Derive `Payload` (wire encoding and decoding) for a hand-written struct. See
-/// `protocol_codegen::codegen::derive` for the attributes; `#[payload(crate = "::path")]`
+/// `protocol_codegen::derive` for the attributes; `#[payload(crate = "::path")]`
 /// names the `protocol` crate when it is not `::protocol`.
 #[proc_macro_derive(Payload, attributes(payload))]
 pub fn derive_payload(input: TokenStream) -> TokenStream {
     let input = syn::parse_macro_input!(input as syn::DeriveInput);
-    match protocol_codegen::codegen::derive::derive_payload(&input) {
+    match protocol_codegen::derive::derive_payload(&input) {
         Ok(tokens) => tokens.into(),
         Err(e) => e.to_compile_error().into(),
     }

@@ -1,11 +1,10 @@
 //! Expansion: the checked IR to Rust tokens. Infallible: everything that could be wrong was
 //! reported by validation. Output order is the spec's order, so expansion is deterministic.
 //!
-//! One module per concern: [`payload`] (the single payload generator, shared with the derive),
+//! One module per concern: [`payload`] (the one payload printer, which also prints the derive's),
 //! [`types`] (structs and enums), [`frame`] (layout statics and header), [`dispatch`]
 //! (commands, messages, packets), [`docs`] (rustdoc text), [`paths`] (runtime paths).
 
-pub mod derive;
 pub mod dispatch;
 pub mod docs;
 pub mod frame;

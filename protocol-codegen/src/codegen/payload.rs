@@ -1,6 +1,7 @@
 //! The one payload code generator: `impl Payload` (wire read and write) for a struct described
-//! as a [`PayloadDef`]. `protocol!` lowers the spec's structs into it and `#[derive(Payload)]`
-//! lowers a hand-written struct into it, so both produce the same code for the same layout.
+//! as a [`PayloadDef`], which `types::payload_def` makes of an IR struct. A spec's structs and a
+//! `#[derive(Payload)]` struct reach it through the same validation and the same IR, so both
+//! produce the same code for the same layout.
 
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -186,8 +187,13 @@ fn suffix(s: Scalar) -> String {
 
 /// `r.u16_le()?`
 pub fn read_scalar(s: Scalar) -> TokenStream {
+    read_scalar_from(&quote!(r), s)
+}
+
+/// `reader.u16_le()?`, `reader` an expression of type `&mut Reader`.
+fn read_scalar_from(reader: &TokenStream, s: Scalar) -> TokenStream {
     let m = format_ident!("{}", suffix(s));
-    quote!(r.#m()?)
+    quote!(#reader.#m()?)
 }
 
 /// `w.put_u16_le(value)?`
@@ -221,26 +227,26 @@ fn rounding(rt: &TokenStream, r: Rounding) -> TokenStream {
     }
 }
 
-/// Reading one element of a field. The field rules are the runtime's (`field`), called with
-/// the field's constants.
+/// Reading one element of a field from `reader` (`r`, or `r.pad(n)?` after padding). The
+/// field rules are the runtime's (`field`), called with the field's constants.
 ///
 /// Whatever can fail here other than for want of bytes (clamped scales, enums) must also make
 /// [`needs_only_bytes`] answer `None`; a kind it does not know it answers `None` for.
-fn read_elem(kind: &PKind, rt: &TokenStream) -> TokenStream {
+fn read_elem(kind: &PKind, reader: &TokenStream, rt: &TokenStream) -> TokenStream {
     match kind {
         PKind::Scalar {
             scalar,
             scale: None,
             ..
-        } => read_scalar(*scalar),
+        } => read_scalar_from(reader, *scalar),
         PKind::Scalar {
             scalar,
             scale: Some(sc),
             ..
-        } => to_physical(read_scalar(*scalar), sc, rt),
-        PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::read(r)?),
+        } => to_physical(read_scalar_from(reader, *scalar), sc, rt),
+        PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::read(#reader)?),
         PKind::Enum { ty, scalar, .. } => {
-            let raw = read_scalar(*scalar);
+            let raw = read_scalar_from(reader, *scalar);
             quote!(#ty::from_raw(#raw)?)
         }
         PKind::Bytes {
@@ -393,7 +399,7 @@ fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
             size_from,
             ..
         } => {
-            let read = read_elem(elem, rt);
+            let read = read_elem(elem, &quote!(r), rt);
             match size_from {
                 None => quote! {{
                     let mut a = <#ty>::new();
@@ -445,17 +451,25 @@ fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
             }}
         }
         k => match count_of(k) {
-            None => read_elem(k, rt),
-            Some(n) => {
-                let read = read_elem(k, rt);
-                let t = elem_type(k);
-                quote! {{
-                    let mut a: [#t; #n] = [<#t as ::core::default::Default>::default(); #n];
-                    for e in a.iter_mut() { *e = #read; }
-                    a
-                }}
+            None => read_elem(k, &quote!(r), rt),
+            Some(_) => {
+                let read = ok_of(read_elem(k, &quote!(r), rt), rt);
+                quote!(r.array(|r| #read)?)
             }
         },
+    }
+}
+
+/// `Ok(read)`, the value of a closure that reads: `read` without its final `?` when it has
+/// one (`Ok(x?)` is `x`).
+fn ok_of(read: TokenStream, rt: &TokenStream) -> TokenStream {
+    let mut tokens: Vec<proc_macro2::TokenTree> = read.clone().into_iter().collect();
+    match tokens.last() {
+        Some(proc_macro2::TokenTree::Punct(p)) if p.as_char() == '?' => {
+            tokens.pop();
+            tokens.into_iter().collect()
+        }
+        _ => quote!(#rt::Ok(#read)),
     }
 }
 
@@ -669,8 +683,11 @@ struct Body {
     reads: Vec<TokenStream>,
     /// `field: expression` of the value `read` builds.
     inits: Vec<TokenStream>,
-    /// Whether a read expression needs an earlier field (sized bytes, groups) or a statement
-    /// comes between fields (padding, a bit word): then every field is read into a local first.
+    /// Statements of `read` after the value is built (trailing padding).
+    after: Vec<TokenStream>,
+    /// Whether a read expression needs an earlier field (sized bytes, groups), a statement
+    /// comes between fields (a bit word) or padding comes before a field that is read in more
+    /// than one step (an array): then every field is read into a local first.
     sequenced: bool,
 }
 
@@ -683,7 +700,6 @@ impl Body {
                 PKind::Pad(n) => {
                     b.writes.push(quote!(w.zeros(#n)?;));
                     b.reads.push(quote!(r.skip(#n)?;));
-                    b.sequenced = true;
                 }
                 PKind::Bits { word, members } => {
                     b.bits(&format_ident!("word{}", i), *word, members, rt);
@@ -732,17 +748,9 @@ impl Body {
             }
             b.check_ends(fields, i);
         }
+        b.sequenced |= !pads_fold(fields);
         if !b.sequenced {
-            // Nothing between the fields: read each straight into the value, in order.
-            b.inits = fields
-                .iter()
-                .filter_map(|f| {
-                    let id = f.ident.as_ref()?;
-                    let read = read_value(&f.kind, rt);
-                    Some(quote!(#id: #read))
-                })
-                .collect();
-            b.reads.clear();
+            b.inline_reads(fields, rt);
         }
         b
     }
@@ -772,6 +780,32 @@ impl Body {
                     self.writes.push(quote!(let #end = w.position();));
                 }
             }
+        }
+    }
+
+    /// Nothing but padding between the fields: each field read straight into the value, in
+    /// order, the padding before it skipped by the read itself (`r.pad(3)?.f32_le()?`), and
+    /// the padding after the last field once the value is built.
+    fn inline_reads(&mut self, fields: &[PField], rt: &TokenStream) {
+        self.reads.clear();
+        self.inits.clear();
+        let mut pad = 0usize;
+        for f in fields {
+            match (&f.kind, &f.ident) {
+                (PKind::Pad(n), _) => pad += n,
+                (kind, Some(id)) => {
+                    let read = match pad {
+                        0 => read_value(kind, rt),
+                        n => read_elem(kind, &quote!(r.pad(#n)?), rt),
+                    };
+                    pad = 0;
+                    self.inits.push(quote!(#id: #read));
+                }
+                _ => {}
+            }
+        }
+        if pad > 0 {
+            self.after.push(quote!(r.skip(#pad)?;));
         }
     }
 
@@ -809,6 +843,25 @@ impl Body {
         let read = read_scalar(word);
         self.reads.push(quote!(let #var = u64::from(#read);));
     }
+}
+
+/// Whether the padding of `fields` can be skipped by the read of the field after it: that
+/// field is read in one step (a single value, not an array, group or optional field).
+fn pads_fold(fields: &[PField]) -> bool {
+    fields
+        .windows(2)
+        .all(|pair| match (&pair[0].kind, &pair[1].kind) {
+            (PKind::Pad(_), PKind::Pad(_)) => true,
+            (PKind::Pad(_), next) => {
+                matches!(
+                    next,
+                    PKind::Scalar { count: None, .. }
+                        | PKind::Nested { count: None, .. }
+                        | PKind::Enum { count: None, .. }
+                )
+            }
+            _ => true,
+        })
 }
 
 /// Whether reading a field names an earlier field (sized bytes; a group, whose elements' sized
@@ -859,8 +912,19 @@ pub fn emit_payload_impl(def: &PayloadDef, rt: &TokenStream) -> TokenStream {
         writes,
         reads,
         inits,
+        after,
         ..
     } = Body::of(&def.fields, rt);
+    // Padding after the last field is skipped once the value is built.
+    let value = if after.is_empty() {
+        quote!(#rt::Ok(Self { #(#inits),* }))
+    } else {
+        quote! {
+            let value = Self { #(#inits),* };
+            #(#after)*
+            #rt::Ok(value)
+        }
+    };
     let size = match def.size {
         Some(n) => quote!(#n),
         None if sizes.is_empty() => quote!(0),
@@ -899,7 +963,7 @@ pub fn emit_payload_impl(def: &PayloadDef, rt: &TokenStream) -> TokenStream {
             #[inline]
             fn read(r: &mut #rt::Reader<'_>) -> #rt::DecodeResult<Self> {
                 #(#reads)*
-                #rt::Ok(Self { #(#inits),* })
+                #value
             }
         }
     }

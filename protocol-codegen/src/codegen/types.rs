@@ -269,10 +269,10 @@ fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize) -> PKind {
                     shift: m.shift,
                     width: m.width,
                     ty: match m.enum_index {
-                        Some(i) => {
-                            let n = ident(&p.enums[i].name);
-                            BitType::Enum(quote!(#n), p.enums[i].prim)
-                        }
+                        Some(i) => BitType::Enum(
+                            named_type(&p.enums[i].name, p.enums[i].foreign),
+                            p.enums[i].prim,
+                        ),
                         None if m.prim == Prim::Bool => BitType::Bool,
                         None => BitType::Uint(m.prim),
                     },
@@ -285,21 +285,15 @@ fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize) -> PKind {
                 scale: *scale,
                 count: *count,
             },
-            ValueType::Struct(i) => {
-                let n = ident(&p.structs[*i].name);
-                PKind::Nested {
-                    ty: quote!(#n),
-                    count: *count,
-                }
-            }
-            ValueType::Enum(i, scalar) => {
-                let n = ident(&p.enums[*i].name);
-                PKind::Enum {
-                    ty: quote!(#n),
-                    scalar: *scalar,
-                    count: *count,
-                }
-            }
+            ValueType::Struct(i) => PKind::Nested {
+                ty: named_type(&p.structs[*i].name, p.structs[*i].foreign),
+                count: *count,
+            },
+            ValueType::Enum(i, scalar) => PKind::Enum {
+                ty: named_type(&p.enums[*i].name, p.enums[*i].foreign),
+                scalar: *scalar,
+                count: *count,
+            },
             ValueType::Text(n) => PKind::Nested {
                 ty: quote!(#rt::FixedStr<#n>),
                 count: *count,
@@ -318,6 +312,18 @@ fn check_statics(p: &Protocol) -> TokenStream {
         }
     }
     quote!(#(#statics)*)
+}
+
+/// The Rust type of a struct or enum a field names: a generated type's identifier, or a type
+/// of the user's crate (a derive's) as written.
+fn named_type(name: &str, foreign: bool) -> TokenStream {
+    if foreign {
+        // The derive printed it from tokens, so it parses back.
+        name.parse().unwrap_or_default()
+    } else {
+        let n = ident(name);
+        quote!(#n)
+    }
 }
 
 /// Every struct: declaration (with layout docs) and its `Payload` impl.

@@ -415,7 +415,7 @@ pub struct StructDef {
 }
 
 /// A struct field, or `{ pad = N }`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Default, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FieldDef {
     /// Field name.
@@ -493,6 +493,11 @@ pub struct FieldDef {
     /// Documentation.
     #[schemars(with = "Option<String>")]
     pub doc: Option<SStr>,
+    /// The Rust type a `#[derive(Payload)]` field declares (its element type, for an array);
+    /// never in a spec file.
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub rust: Option<SStr>,
 }
 
 /// `packed = { bits = 11, order = "lsb-first" }`: the elements of a bit-packed array.

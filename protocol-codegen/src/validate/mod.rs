@@ -7,6 +7,7 @@ mod catalog;
 mod checksum;
 mod commands;
 mod directions;
+pub mod derive;
 mod extra;
 mod frame;
 mod names;
@@ -27,6 +28,8 @@ pub(crate) struct Ctx<'a> {
     pub spec: &'a SpecFile,
     pub diags: &'a mut Diagnostics,
     pub default_endian: ByteOrder,
+    /// The types of the user's crate a derive's draft may name (none for a spec).
+    pub foreign: &'a [derive::Foreign],
 }
 
 impl Ctx<'_> {
@@ -48,6 +51,7 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
         spec,
         diags,
         default_endian: ByteOrder::Little,
+        foreign: &[],
     };
     let p = spec.protocol.get_ref();
     ctx.default_endian = match &p.byte_order {

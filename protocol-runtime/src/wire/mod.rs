@@ -161,6 +161,43 @@ impl<'a> Reader<'a> {
         self.take(n).map(|_| ())
     }
 
+    /// Reads an array of `N` elements, each with `read`, in order (the read of an array
+    /// field: `r.array(|r| r.u16_le())?`).
+    ///
+    /// ```
+    /// use protocol_runtime::{DecodeError, Reader};
+    ///
+    /// let mut r = Reader::new(&[1, 0, 2, 0, 3]);
+    /// assert_eq!(r.array(|r| r.u16_le()), Ok([1u16, 2]));
+    /// assert_eq!(r.array::<u16, 1>(|r| r.u16_le()), Err(DecodeError::Truncated { needed: 6, available: 5 }));
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// The first error of `read`.
+    #[inline(always)]
+    pub fn array<T: Copy + Default, const N: usize>(
+        &mut self,
+        mut read: impl FnMut(&mut Self) -> Result<T, DecodeError>,
+    ) -> Result<[T; N], DecodeError> {
+        let mut a = [T::default(); N];
+        for e in a.iter_mut() {
+            *e = read(self)?;
+        }
+        Ok(a)
+    }
+
+    /// Skips `n` bytes of padding and gives the reader back for the read of the field after
+    /// them: `r.pad(3)?.u32_le()?`.
+    ///
+    /// # Errors
+    ///
+    /// [`DecodeError::Truncated`] if fewer than `n` bytes remain.
+    #[inline]
+    pub fn pad(&mut self, n: usize) -> Result<&mut Self, DecodeError> {
+        self.skip(n).map(|()| self)
+    }
+
     /// Reads a `u8`.
     ///
     /// # Errors

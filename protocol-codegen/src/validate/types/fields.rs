@@ -602,7 +602,8 @@ fn lower_text(ctx: &mut Ctx<'_>, ty: &SStr) -> Option<Option<usize>> {
 }
 
 /// Rule: `scale` and `offset` apply to integer fields; the factor is finite and not 0; the
-/// physical value is an `f32` for wire integers of up to two bytes, else an `f64`.
+/// physical value is the Rust type a derive's field declares (`f32` or `f64`), else an `f32`
+/// for wire integers of up to two bytes and an `f64` for wider ones.
 fn lower_scale(
     ctx: &mut Ctx<'_>,
     f: &Spanned<FieldDef>,
@@ -636,10 +637,15 @@ fn lower_scale(
             "write e.g. `scale = 0.001` for mm/s on the wire and m/s in Rust",
         );
     }
-    let physical = if scalar.prim.size() <= 2 {
-        Prim::F32
-    } else {
-        Prim::F64
+    let declared = d
+        .rust
+        .as_ref()
+        .and_then(|r| Prim::from_rust_name(r.get_ref()))
+        .filter(|p| p.is_float());
+    let physical = match declared {
+        Some(p) => p,
+        None if scalar.prim.size() <= 2 => Prim::F32,
+        None => Prim::F64,
     };
     Some(Scale {
         factor,

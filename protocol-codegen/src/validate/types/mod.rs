@@ -174,7 +174,26 @@ pub(crate) fn lower_enums(ctx: &mut Ctx<'_>) -> Enums {
             prim: scalar.prim,
             variants,
             unknown,
+            foreign: false,
         });
     }
-    Enums { enums, by_name }
+    let mut out = Enums { enums, by_name };
+    add_foreign_enums(ctx, &mut out);
+    out
+}
+
+/// A derive's enum-like types of the user's crate (fields with `repr`): known by their integer
+/// alone, with no variants; their own `from_raw` decides which values they take.
+fn add_foreign_enums(ctx: &Ctx<'_>, out: &mut Enums) {
+    for (f, prim) in ctx.foreign.iter().filter_map(|f| Some((f, f.repr?))) {
+        out.by_name.insert(f.path.clone(), out.enums.len());
+        out.enums.push(Enum {
+            name: f.path.clone(),
+            doc: String::new(),
+            prim,
+            variants: Vec::new(),
+            unknown: UnknownPolicy::Reject,
+            foreign: true,
+        });
+    }
 }

@@ -38,6 +38,19 @@ pub(crate) fn lower_structs(ctx: &mut Ctx<'_>, enums: &Enums, constants: &[Const
         by_name: HashMap::new(),
         size_refs: HashMap::new(),
     };
+    // A derive's nested payloads of the user's crate: their own `Payload` impls know their size.
+    for f in ctx.foreign.iter().filter(|f| f.repr.is_none()) {
+        out.by_name.insert(f.path.clone(), out.structs.len());
+        out.structs.push(Struct {
+            name: f.path.clone(),
+            doc: String::new(),
+            fields: Vec::new(),
+            size: 0,
+            min_size: 0,
+            context: Vec::new(),
+            foreign: true,
+        });
+    }
     let mut state: HashMap<String, Visit> = HashMap::new();
     for name in spec.structs.keys() {
         visit_struct(
@@ -108,6 +121,7 @@ fn visit_struct(
         fields,
         min_size,
         context: unresolved,
+        foreign: false,
     });
     Some(index)
 }
