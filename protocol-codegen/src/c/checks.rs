@@ -58,7 +58,10 @@ fn check(n: &Names, c: &Check) -> String {
         (parts.step)("p[i]")
     );
     if c.extra.is_some() && parts.folds {
-        body.push_str(&(parts.step)("extra"));
+        // The loop body's statements, one level out.
+        for line in (parts.step)("extra").lines() {
+            let _ = writeln!(body, "{}", line.strip_prefix("    ").unwrap_or(line));
+        }
     }
     format!(
         "{table}static int {name}(const uint8_t *p, size_t n, uint64_t *out)\n{{\n{state}    size_t i;\n{body}{finish}    *out = {value};\n    return 1;\n}}\n",
