@@ -10,6 +10,8 @@
 //! * every vector stream at every chunk size, event by event, and its expected frames;
 //! * 10,000 random frames per bundled spec, 2,000 per fixture (valid, and with unknown
 //!   commands, wrong payload sizes, values without variant), decoded and encoded again;
+//! * edge frames per command: payloads of all-zero and all-`0xFF` bytes, and of one zero byte
+//!   (the field rules' extreme values, trailing-zero truncation's kept first byte);
 //! * a fault-injection stream of those frames (garbage, flipped bits, truncations, stray
 //!   sync bytes) at several chunk sizes, event by event, with the counters.
 //!
@@ -23,7 +25,7 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use protocol_codegen::ir::{DirectionRule, Protocol};
+use protocol_codegen::ir::{Command as Cmd, Direction, DirectionRule, Frame, Protocol};
 use protocol_codegen::layout::word_field;
 use protocol_dynamic::{Codec, DecodeIssue, Interpreter, Item, Value};
 use protocol_runtime::DecodeError;
@@ -69,6 +71,10 @@ fn vector_files(spec: &str) -> Vec<(String, bool)> {
         ("dynamixel", "dynamixel_protocol2.json", true),
         ("dynamixel1", "dynamixel_protocol1.json", true),
         ("roborts", "roborts_sdk.json", true),
+        // The stream mixes MAVLink 1 frames (and a signed one) into the spec's MAVLink 2.
+        ("mavlink", "mavlink.json", false),
+        // The stream holds an SBUS2 frame, whose footer the spec refuses.
+        ("sbus", "sbus.json", false),
     ];
     let mut out: Vec<(String, bool)> = known
         .iter()
@@ -125,7 +131,17 @@ fn value_text(out: &mut String, path: &str, v: &Value) {
         Value::Bool(b) => write!(out, " {path}={b}").unwrap(),
         Value::F32(f) => write!(out, " {path}=f32:{:08x}", f.to_bits()).unwrap(),
         Value::F64(f) => write!(out, " {path}=f64:{:016x}", f.to_bits()).unwrap(),
-        Value::String(s) => write!(out, " {path}={s}").unwrap(),
+        Value::String(s) => {
+            // As the C text form: a control character or backslash as `\xNN`.
+            write!(out, " {path}=").unwrap();
+            for c in s.chars() {
+                if c < ' ' || c == '\x7f' || c == '\\' {
+                    write!(out, "\\x{:02x}", u32::from(c)).unwrap();
+                } else {
+                    out.push(c);
+                }
+            }
+        }
         Value::Bytes(b) => write!(out, " {path}=hex:{}", hex(b)).unwrap(),
         Value::Null => write!(out, " {path}=null").unwrap(),
     }
@@ -252,9 +268,16 @@ impl Rng {
 fn random_frame(p: &Protocol, codec: &Codec<'_>, rng: &mut Rng) -> Vec<u8> {
     let f = &p.frames[0];
     let layout = codec.layout(0).expect("a layout");
-    let c = &p.commands[rng.below(p.commands.len())];
-    let slot = rng.below(c.payloads.len());
-    let (min, max) = match c.payloads[slot] {
+    // A command and its payload slot; a format without commands carries its message.
+    let (c, slot, si) = match p.commands.len() {
+        0 => (None, 0, f.message),
+        len => {
+            let c = &p.commands[rng.below(len)];
+            let slot = rng.below(c.payloads.len());
+            (Some(c), slot, c.payloads[slot])
+        }
+    };
+    let (min, max) = match si {
         Some(si) => (p.structs[si].min_size, p.structs[si].size),
         None => (0, 0),
     };
@@ -264,44 +287,106 @@ fn random_frame(p: &Protocol, codec: &Codec<'_>, rng: &mut Rng) -> Vec<u8> {
     }
     let total = (f.header_len + payload + f.trailer_len).clamp(f.min_len(), f.max_len());
     let mut frame: Vec<u8> = (0..total).map(|_| rng.next() as u8).collect();
-    if rng.below(16) != 0 {
-        for (&vi, &id) in f.dispatch.iter().zip(&c.id) {
-            word_field(&f.values[vi])
-                .write(&mut frame, id)
-                .expect("dispatch value");
-        }
+    if !f.sync_set.is_empty() {
+        frame[0] = f.sync_set[rng.below(f.sync_set.len())];
+    }
+    if let Some(c) = c.filter(|_| rng.below(16) != 0) {
+        write_key(f, c, &mut frame);
     }
     if let Some(d) = p.directions.get(slot).filter(|_| rng.below(8) != 0) {
-        match &d.rule {
-            DirectionRule::InSet { value, set } => {
+        let sender = match &d.rule {
+            DirectionRule::InSet { set, .. } => {
                 let a = &p.addresses[*set];
-                let v = a.first + (rng.next() % (a.last - a.first + 1));
-                word_field(&f.values[*value])
-                    .write(&mut frame, v)
-                    .expect("direction value");
+                a.first + (rng.next() % (a.last - a.first + 1))
             }
-            DirectionRule::Equals { value, equals } => {
-                word_field(&f.values[*value])
-                    .write(&mut frame, *equals)
-                    .expect("direction value");
-            }
+            DirectionRule::Equals { equals, .. } => *equals,
             // The C printer refuses directions given to the decoder: no such spec gets here.
-            DirectionRule::Given => {}
-        }
+            DirectionRule::Given => unreachable!("refused by the C printer"),
+        };
+        write_direction(f, d, sender, &mut frame);
     }
     layout.seal(&mut frame).expect("a sealed frame");
     frame
 }
 
+/// Writes the dispatch key of `c`.
+fn write_key(f: &Frame, c: &Cmd, frame: &mut [u8]) {
+    for (&vi, &id) in f.dispatch.iter().zip(&c.id) {
+        word_field(&f.values[vi])
+            .write(frame, id)
+            .expect("dispatch value");
+    }
+}
+
+/// Writes `sender` (an address of the direction's set, or the value it equals).
+fn write_direction(f: &Frame, d: &Direction, sender: u64, frame: &mut [u8]) {
+    let (DirectionRule::InSet { value, .. } | DirectionRule::Equals { value, .. }) = &d.rule
+    else {
+        return;
+    };
+    word_field(&f.values[*value])
+        .write(frame, sender)
+        .expect("direction value");
+}
+
+/// Frames at the edges of the field rules, for every command (and direction): the payload's
+/// bytes all zero and all `0xFF` (every field's smallest and largest raw value, or none of an
+/// enum's variants), at the struct's size and at one byte (a payload a sender cut short of
+/// its trailing zeros keeps its first byte).
+fn edge_frames(p: &Protocol, codec: &Codec<'_>) -> Vec<Vec<u8>> {
+    let f = &p.frames[0];
+    let layout = codec.layout(0).expect("a layout");
+    let mut slots: Vec<(Option<&Cmd>, usize, Option<usize>)> = Vec::new();
+    for c in &p.commands {
+        slots.extend((0..c.payloads.len()).map(|slot| (Some(c), slot, c.payloads[slot])));
+    }
+    if p.commands.is_empty() {
+        slots.push((None, 0, f.message));
+    }
+    let mut out = Vec::new();
+    for (c, slot, si) in slots {
+        let size = si.map_or(0, |si| p.structs[si].size);
+        for (fill, payload) in [(0x00, size), (0xFF, size), (0x00, size.min(1))] {
+            let total = (f.header_len + payload + f.trailer_len).clamp(f.min_len(), f.max_len());
+            let mut frame = vec![fill; total];
+            if let Some(&lead) = f.sync_set.first() {
+                frame[0] = lead;
+            }
+            if let Some(c) = c {
+                write_key(f, c, &mut frame);
+            }
+            if let Some(d) = p.directions.get(slot) {
+                let sender = match &d.rule {
+                    DirectionRule::InSet { set, .. } => p.addresses[*set].first,
+                    DirectionRule::Equals { equals, .. } => *equals,
+                    // Refused by the C printer: no such spec gets here.
+                    DirectionRule::Given => unreachable!("refused by the C printer"),
+                };
+                write_direction(f, d, sender, &mut frame);
+            }
+            layout.seal(&mut frame).expect("a sealed frame");
+            out.push(frame);
+        }
+    }
+    out
+}
+
 /// The frames with faults between and in them: garbage (stray sync bytes among it), flipped
 /// bits, cut frames.
 fn faulty_stream(p: &Protocol, frames: &[Vec<u8>], rng: &mut Rng) -> Vec<u8> {
-    let sync = &p.frames[0].sync;
+    let f = &p.frames[0];
     let mut out = Vec::new();
     for frame in frames {
         match rng.below(12) {
             0 => out.extend((0..rng.below(9)).map(|_| rng.next() as u8)),
-            1 => out.extend_from_slice(&sync[..1 + rng.below(sync.len())]),
+            1 if f.sync_set.is_empty() => {
+                out.extend_from_slice(&f.sync[..1 + rng.below(f.sync.len())]);
+            }
+            1 => {
+                // A byte of the sync set and a prefix of the sync bytes after it.
+                out.push(f.sync_set[rng.below(f.sync_set.len())]);
+                out.extend_from_slice(&f.sync[..rng.below(f.sync.len() + 1)]);
+            }
             _ => {}
         }
         let mut frame = frame.clone();
@@ -445,6 +530,7 @@ struct Tally {
     vector_streams: usize,
     chunkings: usize,
     random_frames: usize,
+    edge_frames: usize,
     stream_bytes: usize,
 }
 
@@ -542,6 +628,11 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
         expected.push(rust_frame(&codec, frame));
     }
     tally.random_frames = frames.len();
+    for frame in edge_frames(p, &codec) {
+        writeln!(input, "P {}", hex(&frame)).unwrap();
+        expected.push(rust_frame(&codec, &frame));
+        tally.edge_frames += 1;
+    }
     let stream = faulty_stream(p, &frames, &mut rng);
     tally.stream_bytes = stream.len();
     for chunk in [1, 17, 1000, stream.len()] {
@@ -552,17 +643,22 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
     support.insert(
         shown,
         format!(
-            "C matches Rust: {} vector frames, {} vector streams, {} random frames, a {}-byte fault-injection stream",
-            tally.vector_frames, tally.vector_streams, tally.random_frames, tally.stream_bytes
+            "C matches Rust: {} vector frames, {} vector streams, {} random frames, {} edge frames, a {}-byte fault-injection stream",
+            tally.vector_frames,
+            tally.vector_streams,
+            tally.random_frames,
+            tally.edge_frames,
+            tally.stream_bytes
         ),
     );
     eprintln!(
-        "{}: {} vector frames, {} vector streams at {} chunkings, {} random frames, {} stream bytes",
+        "{}: {} vector frames, {} vector streams at {} chunkings, {} random frames, {} edge frames, {} stream bytes at 4 chunkings",
         p.name,
         tally.vector_frames,
         tally.vector_streams,
         tally.chunkings,
         tally.random_frames,
+        tally.edge_frames,
         tally.stream_bytes
     );
 }

@@ -109,6 +109,33 @@ HFLINK_UNUSED static int hflink_zero(struct hflink_wr *w, size_t n)
     return 0;
 }
 
+/* A position from the frame's start or back from its end, in a frame of `len` bytes;
+ * SIZE_MAX when it falls outside. */
+HFLINK_UNUSED static size_t hflink_pos(size_t len, int from_end, size_t n)
+{
+    if (from_end) return len >= n ? len - n : SIZE_MAX;
+    return n <= len ? n : SIZE_MAX;
+}
+
+/* A value of `width` bits at bit `shift` of the word of `size` bytes at a position. */
+HFLINK_UNUSED static int hflink_field(const uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t *out)
+{
+    size_t o = hflink_pos(len, from_end, at);
+    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);
+    if (o == SIZE_MAX || len - o < size) return 0;
+    *out = (hflink_get(f + o, size, big) >> shift) & m;
+    return 1;
+}
+
+HFLINK_UNUSED static int hflink_put_field(uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t value)
+{
+    size_t o = hflink_pos(len, from_end, at);
+    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);
+    if (o == SIZE_MAX || len - o < size || value > m) return 0;
+    hflink_set(f + o, size, big, hflink_get(f + o, size, big) | (value << shift));
+    return 1;
+}
+
 /* ---- Names ---- */
 
 const char *hflink_command_name(hflink_command command)
@@ -157,14 +184,15 @@ const char *hflink_direction_name(hflink_direction direction)
 /* ---- Checks ---- */
 
 /* sum-mod-255 */
-static uint64_t hflink_check_checksum(const uint8_t *p, size_t n)
+static int hflink_check_checksum(const uint8_t *p, size_t n, uint64_t *out)
 {
     uint32_t s = 0;
     size_t i;
     for (i = 0; i < n; i++) {
         s = (s + p[i]) % 255u;
     }
-    return s;
+    *out = s;
+    return 1;
 }
 
 /* ---- Payload structs ---- */
@@ -173,7 +201,7 @@ static uint64_t hflink_check_checksum(const uint8_t *p, size_t n)
 static int hflink_read_chassis_coord(struct hflink_rd *r, hflink_chassis_coord *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->x = hflink_f32(raw);
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
@@ -181,6 +209,7 @@ static int hflink_read_chassis_coord(struct hflink_rd *r, hflink_chassis_coord *
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->z = hflink_f32(raw);
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -201,7 +230,7 @@ static int hflink_write_chassis_coord(struct hflink_wr *w, const hflink_chassis_
 static int hflink_read_chassis_dof_vector(struct hflink_rd *r, hflink_chassis_dof_vector *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->servo1 = hflink_f32(raw);
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
@@ -211,6 +240,7 @@ static int hflink_read_chassis_dof_vector(struct hflink_rd *r, hflink_chassis_do
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->servo4 = hflink_f32(raw);
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -232,7 +262,7 @@ static int hflink_write_chassis_dof_vector(struct hflink_wr *w, const hflink_cha
 static int hflink_read_head_pose(struct hflink_rd *r, hflink_head_pose *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->pitch = hflink_f32(raw);
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
@@ -240,6 +270,7 @@ static int hflink_read_head_pose(struct hflink_rd *r, hflink_head_pose *out)
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->yaw = hflink_f32(raw);
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -260,13 +291,14 @@ static int hflink_write_head_pose(struct hflink_wr *w, const hflink_head_pose *v
 static int hflink_read_arm_dof_vector(struct hflink_rd *r, hflink_arm_dof_vector *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     size_t i;
     for (i = 0; i < 8u; i++) {
         if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
         out->servo[i] = hflink_f32(raw);
     }
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -288,7 +320,7 @@ static int hflink_write_arm_dof_vector(struct hflink_wr *w, const hflink_arm_dof
 static int hflink_read_system_info(struct hflink_rd *r, hflink_system_info *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->system_time = hflink_f32(raw);
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
@@ -300,6 +332,7 @@ static int hflink_read_system_info(struct hflink_rd *r, hflink_system_info *out)
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->power_remain = hflink_f32(raw);
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -322,7 +355,7 @@ static int hflink_write_system_info(struct hflink_wr *w, const hflink_system_inf
 static int hflink_read_imu_sensor_data(struct hflink_rd *r, hflink_imu_sensor_data *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->pitch = hflink_f32(raw);
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
@@ -334,6 +367,7 @@ static int hflink_read_imu_sensor_data(struct hflink_rd *r, hflink_imu_sensor_da
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->magnetic_angle = hflink_f32(raw);
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -356,7 +390,7 @@ static int hflink_write_imu_sensor_data(struct hflink_wr *w, const hflink_imu_se
 static int hflink_read_utc_time(struct hflink_rd *r, hflink_utc_time *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read(r, 2u, 0, &raw)) != 0) return e;
     out->year = (uint16_t)raw;
     if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
@@ -371,6 +405,7 @@ static int hflink_read_utc_time(struct hflink_rd *r, hflink_utc_time *out)
     out->sec = (uint8_t)raw;
     if ((e = hflink_skip(r, 1u)) != 0) return e;
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -395,7 +430,7 @@ static int hflink_write_utc_time(struct hflink_wr *w, const hflink_utc_time *v)
 static int hflink_read_gps_data(struct hflink_rd *r, hflink_gps_data *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read_utc_time(r, &out->utc_time)) != 0) return e;
     if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
     out->satellite_num = (uint8_t)raw;
@@ -415,6 +450,7 @@ static int hflink_read_gps_data(struct hflink_rd *r, hflink_gps_data *out)
     out->ewhemi = (uint8_t)raw;
     if ((e = hflink_skip(r, 3u)) != 0) return e;
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -443,7 +479,7 @@ static int hflink_write_gps_data(struct hflink_wr *w, const hflink_gps_data *v)
 static int hflink_read_chassis_parameters(struct hflink_rd *r, hflink_chassis_parameters *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->type = (uint32_t)raw;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
@@ -463,6 +499,7 @@ static int hflink_read_chassis_parameters(struct hflink_rd *r, hflink_chassis_pa
     if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
     out->control_enable = (uint8_t)raw;
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -489,7 +526,7 @@ static int hflink_write_chassis_parameters(struct hflink_wr *w, const hflink_cha
 static int hflink_read_head_parameters(struct hflink_rd *r, hflink_head_parameters *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->type = (uint32_t)raw;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
@@ -503,6 +540,7 @@ static int hflink_read_head_parameters(struct hflink_rd *r, hflink_head_paramete
     out->control_enable = (uint8_t)raw;
     if ((e = hflink_skip(r, 2u)) != 0) return e;
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -528,7 +566,7 @@ static int hflink_write_head_parameters(struct hflink_wr *w, const hflink_head_p
 static int hflink_read_arm_parameters(struct hflink_rd *r, hflink_arm_parameters *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->type = (uint32_t)raw;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
@@ -541,6 +579,7 @@ static int hflink_read_arm_parameters(struct hflink_rd *r, hflink_arm_parameters
     out->control_enable = (uint8_t)raw;
     if ((e = hflink_skip(r, 1u)) != 0) return e;
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -564,7 +603,7 @@ static int hflink_write_arm_parameters(struct hflink_wr *w, const hflink_arm_par
 static int hflink_read_pid_parameters(struct hflink_rd *r, hflink_pid_parameters *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->p1 = hflink_f32(raw);
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
@@ -578,6 +617,7 @@ static int hflink_read_pid_parameters(struct hflink_rd *r, hflink_pid_parameters
     if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
     out->d2 = hflink_f32(raw);
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -601,7 +641,7 @@ static int hflink_write_pid_parameters(struct hflink_wr *w, const hflink_pid_par
 static int hflink_read_motor_parameters(struct hflink_rd *r, hflink_motor_parameters *out)
 {
     int e = 0;
-    uint64_t raw = 0;
+    uint64_t raw = 0, word = 0;
     if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
     out->motor_id = (uint8_t)raw;
     if ((e = hflink_skip(r, 3u)) != 0) return e;
@@ -617,6 +657,7 @@ static int hflink_read_motor_parameters(struct hflink_rd *r, hflink_motor_parame
     out->protect_current = hflink_f32(raw);
     if ((e = hflink_read_pid_parameters(r, &out->pid)) != 0) return e;
     (void)raw;
+    (void)word;
     return e;
 }
 
@@ -644,48 +685,39 @@ static int hflink_write_motor_parameters(struct hflink_wr *w, const hflink_motor
 #define HFLINK_PROBE_FRAME 0
 #define HFLINK_PROBE_NEED (-1)
 
-static const uint8_t hflink_sync[2] = {0xff, 0xff};
 #define HFLINK_SYNC_LEN 2u
 
-/* A position from the frame's start or back from its end, in a frame of `len` bytes;
- * SIZE_MAX when it falls outside. */
-HFLINK_UNUSED static size_t hflink_pos(size_t len, int from_end, size_t n)
+/* Whether `b[0..avail]` matches the sync as far as it goes. */
+static int hflink_sync_matches(const uint8_t *b, size_t avail)
 {
-    if (from_end) return len >= n ? len - n : SIZE_MAX;
-    return n <= len ? n : SIZE_MAX;
-}
-
-/* A value of `width` bits at bit `shift` of the word of `size` bytes at a position. */
-HFLINK_UNUSED static int hflink_field(const uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t *out)
-{
-    size_t o = hflink_pos(len, from_end, at);
-    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);
-    if (o == SIZE_MAX || len - o < size) return 0;
-    *out = (hflink_get(f + o, size, big) >> shift) & m;
+    {
+        static const uint8_t rest[2] = {0xff, 0xff};
+        size_t i;
+        for (i = 0; i < 2u && 0 + i < avail; i++) {
+            if (b[0 + i] != rest[i]) return 0;
+        }
+    }
+    (void)b;
+    (void)avail;
     return 1;
 }
 
-HFLINK_UNUSED static int hflink_put_field(uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t value)
+/* Whether the check stored at `at` is the check of the bytes `from..to` (a check without
+ * value, such as one whose per-command byte names no command, matches nothing). */
+HFLINK_UNUSED static int hflink_verify(const uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))
 {
-    size_t o = hflink_pos(len, from_end, at);
-    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);
-    if (o == SIZE_MAX || len - o < size || value > m) return 0;
-    hflink_set(f + o, size, big, hflink_get(f + o, size, big) | (value << shift));
-    return 1;
-}
-
-/* Whether the check stored at `at` is the check of the bytes `from..to`. */
-HFLINK_UNUSED static int hflink_verify(const uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, uint64_t (*check)(const uint8_t *, size_t))
-{
+    uint64_t value = 0;
     if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;
-    return hflink_get(f + at, width, big) == check(f + from, to - from);
+    return check(f + from, to - from, &value) && hflink_get(f + at, width, big) == value;
 }
 
 /* Computes the check of `from..to` and stores it at `at`. */
-HFLINK_UNUSED static int hflink_store(uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, uint64_t (*check)(const uint8_t *, size_t))
+HFLINK_UNUSED static int hflink_store(uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))
 {
+    uint64_t value = 0;
     if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;
-    hflink_set(f + at, width, big, check(f + from, to - from));
+    if (!check(f + from, to - from, &value)) return 0;
+    hflink_set(f + at, width, big, value);
     return 1;
 }
 
@@ -728,10 +760,7 @@ static int hflink_probe_synced(const uint8_t *b, size_t avail, size_t limit, siz
 /* The probe of a candidate: the sync bytes, then the rules above. */
 static int hflink_probe(const uint8_t *b, size_t avail, size_t limit, size_t *n)
 {
-    size_t i;
-    for (i = 0; i < avail && i < HFLINK_SYNC_LEN; i++) {
-        if (b[i] != hflink_sync[i]) return HFLINK_REJECT_BAD_HEADER;
-    }
+    if (!hflink_sync_matches(b, avail)) return HFLINK_REJECT_BAD_HEADER;
     return hflink_probe_synced(b, avail, limit, n);
 }
 
@@ -743,6 +772,7 @@ int hflink_decode(const uint8_t *bytes, size_t len, hflink_packet *out)
     int e = 0;
     if (hflink_probe(bytes, len, HFLINK_MAX_FRAME_LEN, &n) != HFLINK_PROBE_FRAME || n != len) return HFLINK_ERR_FRAME;
     memset(out, 0, sizeof *out);
+    (void)raw;
     if (!hflink_field(bytes, len, 0, 2u, 1u, 0, 0u, 8u, &raw)) return HFLINK_ERR_FRAME;
     out->header.sender = (uint8_t)raw;
     if (!hflink_field(bytes, len, 0, 3u, 1u, 0, 0u, 8u, &raw)) return HFLINK_ERR_FRAME;
@@ -846,13 +876,16 @@ static const uint8_t hflink_ids[27][1] = {
 };
 
 /* The frame around a payload of `payload_len` bytes already written after the header. */
-static int hflink_seal(uint8_t *buf, size_t payload_len, const hflink_header *h, hflink_command command)
+static int hflink_seal(uint8_t *buf, size_t payload_len, const hflink_header *h, size_t command)
 {
     size_t total = HFLINK_HEADER_LEN + payload_len + HFLINK_TRAILER_LEN;
     if (payload_len > HFLINK_MAX_PAYLOAD_LEN) return HFLINK_ERR_OUT_OF_RANGE;
     memset(buf, 0, HFLINK_HEADER_LEN);
     memset(buf + HFLINK_HEADER_LEN + payload_len, 0, HFLINK_TRAILER_LEN);
-    memcpy(buf, hflink_sync, HFLINK_SYNC_LEN);
+    {
+        static const uint8_t rest[2] = {0xff, 0xff};
+        memcpy(buf + 0, rest, 2u);
+    }
     (void)h;
     (void)command;
     /* sender */
@@ -1622,13 +1655,9 @@ void hflink_decoder_init(hflink_decoder *d)
  * runs to the end; `len` when there is none. */
 static size_t hflink_find_candidate(const uint8_t *b, size_t len)
 {
-    size_t i, j;
+    size_t i;
     for (i = 0; i < len; i++) {
-        if (b[i] != hflink_sync[0]) continue;
-        for (j = 1; j < HFLINK_SYNC_LEN && i + j < len; j++) {
-            if (b[i + j] != hflink_sync[j]) break;
-        }
-        if (j == HFLINK_SYNC_LEN || i + j == len) return i;
+        if (hflink_sync_matches(b + i, len - i)) return i;
     }
     return len;
 }
@@ -1639,7 +1668,7 @@ static int hflink_frame_inside(const uint8_t *b, size_t pending)
 {
     size_t k, n = 0;
     for (k = 1; k < pending; k++) {
-        if (b[k] == hflink_sync[0] && hflink_probe(b + k, pending - k, HFLINK_DECODER_BUFFER_LEN, &n) == HFLINK_PROBE_FRAME) return 1;
+        if (hflink_probe(b + k, pending - k, HFLINK_DECODER_BUFFER_LEN, &n) == HFLINK_PROBE_FRAME) return 1;
     }
     return 0;
 }
@@ -1759,6 +1788,15 @@ static void hflink_emit(struct hflink_txt *t, const char *fmt, ...)
     if (n > 0) t->len += (size_t)n;
 }
 
+/* The path of a nested value into `sub` (cut short when it does not fit). */
+HFLINK_UNUSED static void hflink_path(char *sub, size_t cap, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(sub, cap, fmt, ap);
+    va_end(ap);
+}
+
 static void hflink_fmt_chassis_coord(struct hflink_txt *t, const char *path, const hflink_chassis_coord *v)
 {
     char sub[192];
@@ -1848,7 +1886,7 @@ static void hflink_fmt_utc_time(struct hflink_txt *t, const char *path, const hf
 static void hflink_fmt_gps_data(struct hflink_txt *t, const char *path, const hflink_gps_data *v)
 {
     char sub[192];
-    snprintf(sub, sizeof sub, "%s.utc_time", path);
+    hflink_path(sub, sizeof sub, "%s.utc_time", path);
     hflink_fmt_utc_time(t, sub, &v->utc_time);
     hflink_emit(t, " %s.satellite_num=%llu", path, (unsigned long long)v->satellite_num);
     hflink_emit(t, " %s.altitude=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->altitude));
@@ -1884,11 +1922,11 @@ static void hflink_fmt_head_parameters(struct hflink_txt *t, const char *path, c
     char sub[192];
     hflink_emit(t, " %s.type=%llu", path, (unsigned long long)v->type);
     hflink_emit(t, " %s.speed_low_filter=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->speed_low_filter));
-    snprintf(sub, sizeof sub, "%s.range", path);
+    hflink_path(sub, sizeof sub, "%s.range", path);
     hflink_fmt_head_pose(t, sub, &v->range);
-    snprintf(sub, sizeof sub, "%s.offset", path);
+    hflink_path(sub, sizeof sub, "%s.offset", path);
     hflink_fmt_head_pose(t, sub, &v->offset);
-    snprintf(sub, sizeof sub, "%s.id", path);
+    hflink_path(sub, sizeof sub, "%s.id", path);
     hflink_fmt_head_pose(t, sub, &v->id);
     hflink_emit(t, " %s.imu_fusion_enalbe=%llu", path, (unsigned long long)v->imu_fusion_enalbe);
     hflink_emit(t, " %s.control_enable=%llu", path, (unsigned long long)v->control_enable);
@@ -1933,7 +1971,7 @@ static void hflink_fmt_motor_parameters(struct hflink_txt *t, const char *path, 
     hflink_emit(t, " %s.pwm_dead_zone=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->pwm_dead_zone));
     hflink_emit(t, " %s.speed_low_filter=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->speed_low_filter));
     hflink_emit(t, " %s.protect_current=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->protect_current));
-    snprintf(sub, sizeof sub, "%s.pid", path);
+    hflink_path(sub, sizeof sub, "%s.pid", path);
     hflink_fmt_pid_parameters(t, sub, &v->pid);
     (void)sub;
     (void)v;
@@ -1948,6 +1986,7 @@ int hflink_format(const hflink_packet *packet, char *out, size_t cap)
     text.cap = cap;
     text.len = 0;
     if (cap > 0) out[0] = 0;
+
     hflink_emit(t, "cmd=%s", hflink_command_name(packet->command));
     hflink_emit(t, " dir=%s", hflink_direction_name(packet->direction));
     hflink_emit(t, " header.sender=%llu", (unsigned long long)packet->header.sender);

@@ -2,23 +2,141 @@
 //! from the IR's [`Algorithm`] as it is. A CRC is computed bitwise when the spec asks for no
 //! table, else with one 256-entry table computed here from the CRC's parameters (a spec's
 //! 16-table slicing is a speed choice of the Rust engine; the C code keeps one table).
+//!
+//! Every check function has one shape, `int pfx_check_<name>(p, n, &value)`: 1 with the check
+//! value of `p[0..n]`, or 0 when it has none. Only a check that folds in a per-command byte
+//! (the IR's [`CheckExtra`], MAVLink's CRC_EXTRA) can have none: its key, read from the
+//! covered bytes, may name no command (the runtime's `Extra::compute` gives `None` then, and
+//! a decoder rejects the candidate as a bad check).
 
 use std::fmt::Write as _;
 
-use crate::ir::{Algorithm, CrcTable, Protocol};
+use crate::ir::{Algorithm, Check, CheckExtra, CrcTable, Protocol};
+use protocol_runtime::checksum::CrcSpec;
 
-use super::names::{Names, unsigned_of};
+use super::names::{Names, u64_lit, unsigned_of};
+use super::payload::mask;
 
 /// The check functions (`pfx_check_<name>`), one per check of the first frame format.
 pub fn checks(p: &Protocol, n: &Names) -> String {
     let mut out = String::from("/* ---- Checks ---- */\n\n");
     for c in &p.frames[0].checks {
-        let name = format!("{}check_{}", n.lo, c.name);
         let _ = writeln!(out, "/* {} */", c.naming.display);
-        out.push_str(&algorithm(&name, &c.algorithm));
+        out.push_str(&check(n, c));
         out.push('\n');
     }
     out
+}
+
+/// How an algorithm is printed: its state, what one byte does to it, and its value.
+struct Parts {
+    /// Declarations of the state, initialised.
+    state: String,
+    /// A table the steps use, printed before the function.
+    table: String,
+    /// The statements one byte `b` (a C expression) runs.
+    step: Box<dyn Fn(&str) -> String>,
+    /// Statements after the last byte, before `value`.
+    finish: String,
+    /// The check value, a `uint64_t` expression.
+    value: String,
+    /// Whether a folded-in byte goes through `step` (a CRC; a sum folds nothing, as the
+    /// runtime's `Extra::fold` does).
+    folds: bool,
+}
+
+fn check(n: &Names, c: &Check) -> String {
+    let name = format!("{}check_{}", n.lo, c.name);
+    let parts = parts(&name, &c.algorithm);
+    let mut body = String::new();
+    if let Some(x) = &c.extra {
+        body.push_str(&extra_lookup(n, x));
+    }
+    let _ = write!(
+        body,
+        "    for (i = 0; i < n; i++) {{\n{}    }}\n",
+        (parts.step)("p[i]")
+    );
+    if c.extra.is_some() && parts.folds {
+        // The loop body's statements, one level out.
+        for line in (parts.step)("extra").lines() {
+            let _ = writeln!(body, "{}", line.strip_prefix("    ").unwrap_or(line));
+        }
+    }
+    format!(
+        "{table}static int {name}(const uint8_t *p, size_t n, uint64_t *out)\n{{\n{state}    size_t i;\n{body}{finish}    *out = {value};\n    return 1;\n}}\n",
+        table = parts.table,
+        state = parts.state,
+        finish = parts.finish,
+        value = parts.value,
+    )
+}
+
+/// The byte the key in the covered bytes picks (`uint8_t extra`), or `return 0` for a key
+/// without one.
+fn extra_lookup(n: &Names, x: &CheckExtra) -> String {
+    let (from_end, at) = match x.key.at {
+        crate::ir::Pos::Start(a) => (0, a),
+        crate::ir::Pos::End(a) => (1, a),
+    };
+    let mut out = format!(
+        "    uint64_t key = 0;\n    uint8_t extra;\n    if (!{lo}field(p, n, {from_end}, {at}u, {}u, {}, {}u, {}u, &key)) return 0;\n    switch (key) {{\n",
+        x.key.size,
+        u8::from(x.key.order == crate::ir::ByteOrder::Big),
+        x.key.shift,
+        x.key.width,
+        lo = n.lo
+    );
+    for (key, byte) in &x.bytes {
+        let _ = writeln!(out, "    case {key}u: extra = {byte}u; break;");
+    }
+    out.push_str("    default: return 0;\n    }\n");
+    out
+}
+
+fn parts(name: &str, a: &Algorithm) -> Parts {
+    let sum = |ty: &str, step: &'static str, value: String| Parts {
+        state: format!("    {ty} s = 0;\n"),
+        table: String::new(),
+        step: Box::new(move |b| format!("        {}\n", step.replace("BYTE", b))),
+        finish: String::new(),
+        value,
+        folds: false,
+    };
+    match a {
+        Algorithm::Sum8 => sum("uint8_t", "s = (uint8_t)(s + BYTE);", "s".into()),
+        Algorithm::SumMod255 => sum("uint32_t", "s = (s + BYTE) % 255u;", "s".into()),
+        Algorithm::Xor8 => sum("uint8_t", "s = (uint8_t)(s ^ BYTE);", "s".into()),
+        Algorithm::Sum { width, xorout } => {
+            let mask = if *width == 1 { 0xFF } else { 0xFFFF };
+            sum(
+                "uint64_t",
+                "s += BYTE;",
+                format!("(s ^ {xorout:#x}u) & {mask:#x}u"),
+            )
+        }
+        Algorithm::Fletcher16 => fletcher("% 255u"),
+        Algorithm::Fletcher16Mod256 => fletcher("& 0xFFu"),
+        Algorithm::Crc8(c) => crc(name, &Crc::of(c)),
+        Algorithm::Crc16(c) => crc(name, &Crc::of(c)),
+        Algorithm::Crc32(c) => crc(name, &Crc::of(c)),
+        Algorithm::Crc64(c) => crc(name, &Crc::of(c)),
+    }
+}
+
+/// A Fletcher-16 sum, its two running sums reduced by `reduce` after every byte (the same
+/// value as the runtime's reduction per block).
+fn fletcher(reduce: &'static str) -> Parts {
+    Parts {
+        state: "    uint32_t a = 0, b = 0;\n".into(),
+        table: String::new(),
+        step: Box::new(move |byte| {
+            format!("        a = (a + {byte}) {reduce};\n        b = (b + a) {reduce};\n")
+        }),
+        finish: String::new(),
+        value: "((uint64_t)b << 8) | a".into(),
+        folds: false,
+    }
 }
 
 /// A CRC's parameters, widened to 64 bits.
@@ -32,114 +150,17 @@ struct Crc {
     table: CrcTable,
 }
 
-fn algorithm(name: &str, a: &Algorithm) -> String {
-    let body = |ty: &str, text: &str| {
-        format!(
-            "static uint64_t {name}(const uint8_t *p, size_t n)\n{{\n    {ty} s = 0;\n    size_t i;\n    for (i = 0; i < n; i++) {{\n{text}    }}\n"
-        )
-    };
-    match a {
-        Algorithm::Sum8 => {
-            body("uint8_t", "        s = (uint8_t)(s + p[i]);\n") + "    return s;\n}\n"
+impl Crc {
+    fn of<W: crc::Width + Copy + Into<u64>>(c: &CrcSpec<W>) -> Crc {
+        Crc {
+            width: u32::from(c.params.width),
+            poly: c.params.poly.into(),
+            init: c.params.init.into(),
+            refin: c.params.refin,
+            refout: c.params.refout,
+            xorout: c.params.xorout.into(),
+            table: c.table,
         }
-        Algorithm::SumMod255 => {
-            body("uint32_t", "        s = (s + p[i]) % 255u;\n") + "    return s;\n}\n"
-        }
-        Algorithm::Xor8 => {
-            body("uint8_t", "        s = (uint8_t)(s ^ p[i]);\n") + "    return s;\n}\n"
-        }
-        Algorithm::Sum { width, xorout } => {
-            let mask = if *width == 1 { 0xFF } else { 0xFFFF };
-            body("uint64_t", "        s += p[i];\n")
-                + &format!("    return (s ^ {xorout:#x}u) & {mask:#x}u;\n}}\n")
-        }
-        Algorithm::Fletcher16 => fletcher(name, "% 255u"),
-        Algorithm::Fletcher16Mod256 => fletcher(name, "& 0xFFu"),
-        Algorithm::Crc8(c) => crc(
-            name,
-            &widen(
-                c.params.width,
-                c.params.poly.into(),
-                c.params.init.into(),
-                c.params.refin,
-                c.params.refout,
-                c.params.xorout.into(),
-                c.table,
-            ),
-        ),
-        Algorithm::Crc16(c) => crc(
-            name,
-            &widen(
-                c.params.width,
-                c.params.poly.into(),
-                c.params.init.into(),
-                c.params.refin,
-                c.params.refout,
-                c.params.xorout.into(),
-                c.table,
-            ),
-        ),
-        Algorithm::Crc32(c) => crc(
-            name,
-            &widen(
-                c.params.width,
-                c.params.poly.into(),
-                c.params.init.into(),
-                c.params.refin,
-                c.params.refout,
-                c.params.xorout.into(),
-                c.table,
-            ),
-        ),
-        Algorithm::Crc64(c) => crc(
-            name,
-            &widen(
-                c.params.width,
-                c.params.poly,
-                c.params.init,
-                c.params.refin,
-                c.params.refout,
-                c.params.xorout,
-                c.table,
-            ),
-        ),
-    }
-}
-
-#[allow(clippy::too_many_arguments)]
-fn widen(
-    width: u8,
-    poly: u64,
-    init: u64,
-    refin: bool,
-    refout: bool,
-    xorout: u64,
-    table: CrcTable,
-) -> Crc {
-    Crc {
-        width: u32::from(width),
-        poly,
-        init,
-        refin,
-        refout,
-        xorout,
-        table,
-    }
-}
-
-/// A Fletcher-16 sum, its two running sums reduced by `reduce` after every byte (the same
-/// value as the runtime's reduction per block).
-fn fletcher(name: &str, reduce: &str) -> String {
-    format!(
-        "static uint64_t {name}(const uint8_t *p, size_t n)\n{{\n    uint32_t a = 0, b = 0;\n    size_t i;\n    for (i = 0; i < n; i++) {{\n        a = (a + p[i]) {reduce};\n        b = (b + a) {reduce};\n    }}\n    return ((uint64_t)b << 8) | a;\n}}\n"
-    )
-}
-
-fn mask(width: u32) -> u64 {
-    if width >= 64 {
-        u64::MAX
-    } else {
-        (1u64 << width) - 1
     }
 }
 
@@ -167,62 +188,69 @@ fn entry(c: &Crc, i: u64) -> u64 {
 /// A CRC by its Rocksoft parameters: the register starts at `init` (reflected for a
 /// reflected input), each byte goes in low bit first (reflected) or high bit first, and the
 /// result is reflected when `refout` differs from `refin`, then xored with `xorout`.
-fn crc(name: &str, c: &Crc) -> String {
+fn crc(name: &str, c: &Crc) -> Parts {
     let ty = unsigned_of((c.width / 8) as usize);
     let w = c.width;
-    let m = mask(w);
     let init = if c.refin { reflect(c.init, w) } else { c.init };
-    let mut out = String::new();
-    let step = match (c.table, c.refin) {
-        (CrcTable::NoTable, true) => format!(
-            "        int k;\n        r ^= p[i];\n        for (k = 0; k < 8; k++) {{\n            r = (r & 1u) ? (({ty})(r >> 1) ^ ({ty}){:#x}u) : ({ty})(r >> 1);\n        }}\n",
-            reflect(c.poly, w)
-        ),
-        (CrcTable::NoTable, false) => format!(
-            "        int k;\n        r ^= ({ty})((uint64_t)p[i] << {});\n        for (k = 0; k < 8; k++) {{\n            r = (r >> {}) & 1u ? ({ty})(((uint64_t)r << 1) ^ {:#x}u) : ({ty})((uint64_t)r << 1);\n        }}\n",
-            w - 8,
-            w - 1,
-            c.poly
-        ),
-        (_, true) => {
-            table(&mut out, name, ty, c);
-            let shifted = if w > 8 {
-                "(r >> 8)".to_string()
-            } else {
-                "0u".into()
-            };
-            format!("        r = ({ty})({name}_table[(r ^ p[i]) & 0xFFu] ^ {shifted});\n")
+    let poly = if c.refin { reflect(c.poly, w) } else { c.poly };
+    let mut table = String::new();
+    let mut state = format!("    {ty} r = ({ty}){init:#x}u;\n");
+    let step: Box<dyn Fn(&str) -> String> = match (c.table, c.refin) {
+        (CrcTable::NoTable, true) => {
+            state.push_str("    int k;\n");
+            Box::new(move |b| {
+                format!(
+                    "        r ^= {b};\n        for (k = 0; k < 8; k++) {{\n            r = (r & 1u) ? (({ty})(r >> 1) ^ ({ty}){poly:#x}u) : ({ty})(r >> 1);\n        }}\n"
+                )
+            })
         }
-        (_, false) => {
-            table(&mut out, name, ty, c);
-            let shifted = if w > 8 {
-                "((uint64_t)r << 8)".to_string()
-            } else {
-                "0u".into()
-            };
-            format!(
-                "        r = ({ty})({name}_table[((r >> {}) ^ p[i]) & 0xFFu] ^ {shifted});\n",
-                w - 8
-            )
+        (CrcTable::NoTable, false) => {
+            state.push_str("    int k;\n");
+            Box::new(move |b| {
+                format!(
+                    "        r ^= ({ty})((uint64_t){b} << {});\n        for (k = 0; k < 8; k++) {{\n            r = (r >> {}) & 1u ? ({ty})(((uint64_t)r << 1) ^ {poly:#x}u) : ({ty})((uint64_t)r << 1);\n        }}\n",
+                    w - 8,
+                    w - 1
+                )
+            })
+        }
+        (_, refin) => {
+            print_table(&mut table, name, ty, c);
+            let name = name.to_string();
+            Box::new(move |b| match (refin, w > 8) {
+                (true, true) => {
+                    format!("        r = ({ty})({name}_table[(r ^ {b}) & 0xFFu] ^ (r >> 8));\n")
+                }
+                (false, true) => format!(
+                    "        r = ({ty})({name}_table[((r >> {}) ^ {b}) & 0xFFu] ^ ((uint64_t)r << 8));\n",
+                    w - 8
+                ),
+                (_, false) => format!("        r = {name}_table[(r ^ {b}) & 0xFFu];\n"),
+            })
         }
     };
-    let refout = if c.refin != c.refout {
+    let finish = if c.refin != c.refout {
         format!(
-            "    {{\n        {ty} o = 0;\n        int k;\n        for (k = 0; k < {w}; k++) {{\n            o = ({ty})(o | (((r >> k) & 1u) << ({w} - 1 - k)));\n        }}\n        r = o;\n    }}\n"
+            "    {{\n        {ty} o = 0;\n        int j;\n        for (j = 0; j < {w}; j++) {{\n            o = ({ty})(o | (((r >> j) & 1u) << ({w} - 1 - j)));\n        }}\n        r = o;\n    }}\n"
         )
     } else {
         String::new()
     };
-    let _ = write!(
-        out,
-        "static uint64_t {name}(const uint8_t *p, size_t n)\n{{\n    {ty} r = ({ty}){init:#x}u;\n    size_t i;\n    for (i = 0; i < n; i++) {{\n{step}    }}\n{refout}    return (uint64_t)(r ^ ({ty}){:#x}u) & {};\n}}\n",
-        c.xorout,
-        super::names::u64_lit(m)
-    );
-    out
+    Parts {
+        state,
+        table,
+        step,
+        finish,
+        value: format!(
+            "(uint64_t)(r ^ ({ty}){:#x}u) & {}",
+            c.xorout,
+            u64_lit(mask(w))
+        ),
+        folds: true,
+    }
 }
 
-fn table(out: &mut String, name: &str, ty: &str, c: &Crc) {
+fn print_table(out: &mut String, name: &str, ty: &str, c: &Crc) {
     let digits = (c.width / 4) as usize;
     let _ = writeln!(out, "static const {ty} {name}_table[256] = {{");
     for row in 0..32u64 {

@@ -1,5 +1,6 @@
 //! The stream decoder in C, with the runtime engine's rules (`protocol_runtime::decoder`): the
-//! search for the sync bytes (or a prefix of them at the end of the input), the probe of each
+//! search for the sync (its bytes, or a byte of its set and the bytes after it; or a prefix
+//! of them at the end of the input), the probe of each
 //! candidate, a rejection that costs one byte (the search resumes at the byte after the
 //! rejected start), the early-truncation rule (a candidate still waiting for bytes is
 //! rejected as truncated as soon as a complete valid frame starts inside it), and the
@@ -102,13 +103,9 @@ void {lo}decoder_init({lo}decoder *d)
  * runs to the end; `len` when there is none. */
 static size_t {lo}find_candidate(const uint8_t *b, size_t len)
 {{
-    size_t i, j;
+    size_t i;
     for (i = 0; i < len; i++) {{
-        if (b[i] != {lo}sync[0]) continue;
-        for (j = 1; j < {up}SYNC_LEN && i + j < len; j++) {{
-            if (b[i + j] != {lo}sync[j]) break;
-        }}
-        if (j == {up}SYNC_LEN || i + j == len) return i;
+        if ({lo}sync_matches(b + i, len - i)) return i;
     }}
     return len;
 }}
@@ -119,7 +116,7 @@ static int {lo}frame_inside(const uint8_t *b, size_t pending)
 {{
     size_t k, n = 0;
     for (k = 1; k < pending; k++) {{
-        if (b[k] == {lo}sync[0] && {lo}probe(b + k, pending - k, {up}DECODER_BUFFER_LEN, &n) == {up}PROBE_FRAME) return 1;
+        if ({lo}probe(b + k, pending - k, {up}DECODER_BUFFER_LEN, &n) == {up}PROBE_FRAME) return 1;
     }}
     return 0;
 }}

@@ -6,10 +6,11 @@
 
 use std::fmt::Write as _;
 
-use crate::ir::{FieldKind, Prim, Protocol, Role, ValueType};
+use crate::ir::{Field, FieldKind, Prim, Protocol, Role, ValueType};
 
 use super::names::{self, Names};
-use super::types::{slot_name, slots};
+use super::payload::any_field;
+use super::types::{keyed, slots};
 
 /// The formatter, inside `#ifdef <PREFIX>_WITH_FORMAT`.
 pub fn format(p: &Protocol, n: &Names) -> String {
@@ -17,68 +18,24 @@ pub fn format(p: &Protocol, n: &Names) -> String {
     let mut out = format!(
         "/* ---- Text form ---- */\n\n#ifdef {up}WITH_FORMAT\n#include <stdarg.h>\n#include <stdio.h>\n\nstruct {lo}txt {{ char *p; size_t cap; size_t len; }};\n\nstatic void {lo}emit(struct {lo}txt *t, const char *fmt, ...)\n{{\n    va_list ap;\n    int n;\n    va_start(ap, fmt);\n    n = vsnprintf(t->len < t->cap ? t->p + t->len : NULL, t->len < t->cap ? t->cap - t->len : 0, fmt, ap);\n    va_end(ap);\n    if (n > 0) t->len += (size_t)n;\n}}\n\n"
     );
+    out.push_str(&path_helper(n));
+    if any_field(p, |k| {
+        matches!(
+            k,
+            FieldKind::Value {
+                ty: ValueType::Text(_),
+                ..
+            }
+        )
+    }) {
+        out.push_str(&text_helpers(n));
+    }
     for s in &p.structs {
         let mut body = String::new();
-        let mut loops = false;
         for f in &s.fields {
-            let name = names::field(&f.name);
-            match &f.kind {
-                FieldKind::Padding => {}
-                FieldKind::Value { ty, count } => match count {
-                    None => body.push_str(&value(
-                        p,
-                        n,
-                        ty,
-                        &format!("\"%s.{}=\", path", f.name),
-                        &format!("v->{name}"),
-                        "",
-                    )),
-                    Some(c) => {
-                        loops = true;
-                        let _ = writeln!(body, "    for (i = 0; i < {c}u; i++) {{");
-                        body.push_str(&value(
-                            p,
-                            n,
-                            ty,
-                            &format!("\"%s.{}[%u]=\", path, (unsigned)i", f.name),
-                            &format!("v->{name}[i]"),
-                            "    ",
-                        ));
-                        body.push_str("    }\n");
-                    }
-                },
-                FieldKind::Bits { members, .. } => {
-                    for m in members {
-                        let v = format!("v->{}", names::field(&m.name));
-                        let label = format!("\"%s.{}=\", path", m.name);
-                        let _ = match m.enum_index {
-                            Some(ei) => write!(
-                                body,
-                                "{}",
-                                enum_value(n, &p.enums[ei].name, p.enums[ei].prim, &label, &v, "")
-                            ),
-                            None => write!(body, "{}", scalar(lo, m.prim, &label, &v, "")),
-                        };
-                    }
-                }
-                FieldKind::Bytes { .. } => {
-                    loops = true;
-                    let _ = writeln!(
-                        body,
-                        "    {lo}emit(t, \" %s.{}=hex:\", path);\n    for (i = 0; i < v->{name}_len; i++) {lo}emit(t, \"%02x\", (unsigned)v->{name}[i]);",
-                        f.name
-                    );
-                }
-                FieldKind::Group { .. }
-                | FieldKind::Packed { .. }
-                | FieldKind::Optional(_)
-                | FieldKind::NulText { .. }
-                | FieldKind::Array { .. }
-                | FieldKind::Check(_) => {
-                    unreachable!("refused by support::unsupported")
-                }
-            }
+            body.push_str(&field(p, n, f, &f.kind));
         }
+        let loops = body.contains("(i = 0;");
         let decls = if loops { "    size_t i;\n" } else { "" };
         let _ = write!(
             out,
@@ -89,8 +46,16 @@ pub fn format(p: &Protocol, n: &Names) -> String {
     }
     let _ = writeln!(
         out,
-        "int {lo}format(const {lo}packet *packet, char *out, size_t cap)\n{{\n    struct {lo}txt text;\n    struct {lo}txt *t = &text;\n    text.p = out;\n    text.cap = cap;\n    text.len = 0;\n    if (cap > 0) out[0] = 0;\n    {lo}emit(t, \"cmd=%s\", {lo}command_name(packet->command));"
+        "int {lo}format(const {lo}packet *packet, char *out, size_t cap)\n{{\n    struct {lo}txt text;\n    struct {lo}txt *t = &text;\n    text.p = out;\n    text.cap = cap;\n    text.len = 0;\n    if (cap > 0) out[0] = 0;\n"
     );
+    if keyed(p) {
+        let _ = writeln!(
+            out,
+            "    {lo}emit(t, \"cmd=%s\", {lo}command_name(packet->command));"
+        );
+    } else {
+        let _ = writeln!(out, "    {lo}emit(t, \"cmd=?\");");
+    }
     if !p.directions.is_empty() {
         let _ = writeln!(
             out,
@@ -111,28 +76,179 @@ pub fn format(p: &Protocol, n: &Names) -> String {
         };
         out.push_str(&scalar(lo, prim, &label, &value, ""));
     }
-    for (ci, di, si) in slots(p) {
-        let dir = if p.directions.is_empty() {
-            String::new()
-        } else {
-            format!(
-                " && packet->direction == {up}{}",
-                p.directions[di].name.to_uppercase()
-            )
-        };
-        let _ = writeln!(
-            out,
-            "    if (packet->command == {up}{}{dir}) {lo}fmt_{}(t, \"payload\", &packet->payload.{});",
-            p.commands[ci].name,
-            names::snake(&p.structs[si].name),
-            slot_name(p, ci, di)
-        );
+    for slot in slots(p) {
+        if let Some(si) = slot.si {
+            let _ = writeln!(
+                out,
+                "    {}{lo}fmt_{}(t, \"payload\", &packet->payload.{});",
+                slot.guard(p, n, "packet"),
+                names::snake(&p.structs[si].name),
+                slot.name
+            );
+        }
     }
     let _ = writeln!(
         out,
         "    return (int)text.len;\n}}\n#endif /* {up}WITH_FORMAT */"
     );
     out
+}
+
+/// The text of one field (`kind`: the field's, or what an optional field holds).
+fn field(p: &Protocol, n: &Names, f: &Field, kind: &FieldKind) -> String {
+    let lo = &n.lo;
+    let name = names::field(&f.name);
+    let mut body = String::new();
+    let each = |count: &dyn std::fmt::Display, what: String| {
+        format!("    for (i = 0; i < {count}; i++) {{\n{what}    }}\n")
+    };
+    let item = format!("\"%s.{}[%u]=\", path, (unsigned)i", f.name);
+    match kind {
+        FieldKind::NulText { .. } | FieldKind::Array { .. } | FieldKind::Check(_) => {
+            unreachable!("refused by support::unsupported")
+        }
+        FieldKind::Padding => {}
+        FieldKind::Value { ty, count } => match count {
+            None => body.push_str(&value(
+                p,
+                n,
+                ty,
+                &format!("\"%s.{}=\", path", f.name),
+                &format!("v->{name}"),
+                "",
+            )),
+            Some(c) => body.push_str(&each(
+                &format!("{c}u"),
+                value(p, n, ty, &item, &format!("v->{name}[i]"), "    "),
+            )),
+        },
+        FieldKind::Bits { members, .. } => {
+            for m in members {
+                let v = format!("v->{}", names::field(&m.name));
+                let label = format!("\"%s.{}=\", path", m.name);
+                body.push_str(&match m.enum_index {
+                    Some(ei) => enum_value(n, &p.enums[ei].name, p.enums[ei].prim, &label, &v, ""),
+                    None => scalar(lo, m.prim, &label, &v, ""),
+                });
+            }
+        }
+        FieldKind::Bytes { .. } => {
+            let _ = writeln!(
+                body,
+                "    {lo}emit(t, \" %s.{}=hex:\", path);\n    for (i = 0; i < v->{name}_len; i++) {lo}emit(t, \"%02x\", (unsigned)v->{name}[i]);",
+                f.name
+            );
+        }
+        FieldKind::Packed { count, prim, .. } => body.push_str(&each(
+            &format!("{count}u"),
+            scalar(lo, *prim, &item, &format!("v->{name}[i]"), "    "),
+        )),
+        FieldKind::Group { elem, .. } => body.push_str(&each(
+            &format!("v->{name}_len"),
+            value(
+                p,
+                n,
+                &ValueType::Struct(*elem),
+                &item,
+                &format!("v->{name}[i]"),
+                "    ",
+            ),
+        )),
+        FieldKind::Optional(inner) => {
+            let keys: String = match &**inner {
+                FieldKind::Bits { members, .. } => members
+                    .iter()
+                    .map(|m| format!("    {lo}emit(t, \" %s.{}=null\", path);\n", m.name))
+                    .collect(),
+                _ => format!("    {lo}emit(t, \" %s.{}=null\", path);\n", f.name),
+            };
+            let _ = write!(
+                body,
+                "    if (v->{name}_present) {{\n{}    }} else {{\n{}    }}\n",
+                indent(&field(p, n, f, inner)),
+                indent(&keys)
+            );
+        }
+    }
+    body
+}
+
+/// The text of a `char[N]` field, as the run-time codec shows it: ` PATH=TEXT` when the bytes
+/// are canonical (UTF-8 text, then only NUL bytes: the runtime's `text::is_canonical`), else
+/// every byte, ` PATH[i]=BYTE`. A control character or backslash in the text is written
+/// `\xNN`, so that the text form stays one line.
+fn text_helpers(n: &Names) -> String {
+    let (lo, up) = (&n.lo, &n.up);
+    format!(
+        "/* Whether `s[0..n]` is UTF-8 (no overlong form, no surrogate, nothing above U+10FFFF). */
+{up}UNUSED static int {lo}utf8(const uint8_t *s, size_t n)
+{{
+    size_t i = 0, k, more;
+    while (i < n) {{
+        uint8_t c = s[i], lo = 0x80, hi = 0xBF;
+        if (c < 0x80) {{
+            i++;
+            continue;
+        }}
+        if (c >= 0xC2 && c <= 0xDF) more = 1;
+        else if (c >= 0xE0 && c <= 0xEF) more = 2;
+        else if (c >= 0xF0 && c <= 0xF4) more = 3;
+        else return 0;
+        if (c == 0xE0) lo = 0xA0;
+        if (c == 0xED) hi = 0x9F;
+        if (c == 0xF0) lo = 0x90;
+        if (c == 0xF4) hi = 0x8F;
+        if (n - i - 1 < more) return 0;
+        for (k = 1; k <= more; k++) {{
+            if (s[i + k] < (k == 1 ? lo : 0x80) || s[i + k] > (k == 1 ? hi : 0xBF)) return 0;
+        }}
+        i += more + 1;
+    }}
+    return 1;
+}}
+
+{up}UNUSED static void {lo}fmt_text(struct {lo}txt *t, const char *path, const uint8_t *b, size_t n)
+{{
+    size_t len = 0, i;
+    int canonical;
+    while (len < n && b[len] != 0) len++;
+    canonical = {lo}utf8(b, len);
+    for (i = len; i < n; i++) canonical = canonical && b[i] == 0;
+    if (canonical) {{
+        {lo}emit(t, \" %s=\", path);
+        for (i = 0; i < len; i++) {{
+            if (b[i] < 0x20 || b[i] == 0x7F || b[i] == '\\\\') {lo}emit(t, \"\\\\x%02x\", (unsigned)b[i]);
+            else {lo}emit(t, \"%c\", b[i]);
+        }}
+        return;
+    }}
+    for (i = 0; i < n; i++) {lo}emit(t, \" %s[%u]=%u\", path, (unsigned)i, (unsigned)b[i]);
+}}
+
+"
+    )
+}
+
+/// The path of a nested value, for the text of its fields.
+fn path_helper(n: &Names) -> String {
+    let (lo, up) = (&n.lo, &n.up);
+    format!(
+        "/* The path of a nested value into `sub` (cut short when it does not fit). */
+{up}UNUSED static void {lo}path(char *sub, size_t cap, const char *fmt, ...)
+{{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(sub, cap, fmt, ap);
+    va_end(ap);
+}}
+
+"
+    )
+}
+
+/// Lines indented one level more.
+fn indent(text: &str) -> String {
+    text.lines().map(|l| format!("    {l}\n")).collect()
 }
 
 /// One value: ` LABEL=VALUE`, `label` being the format and arguments of the label.
@@ -145,14 +261,20 @@ fn value(p: &Protocol, n: &Names, ty: &ValueType, label: &str, v: &str, indent: 
         ValueType::Struct(si) => {
             let (fmt, args) = split(label);
             format!(
-                "{indent}    snprintf(sub, sizeof sub, {}{args});\n{indent}    {}fmt_{}(t, sub, &{v});\n",
+                "{indent}    {lo}path(sub, sizeof sub, {}{args});\n{indent}    {lo}fmt_{}(t, sub, &{v});\n",
                 fmt.replace("=\"", "\""),
-                n.lo,
-                names::snake(&p.structs[*si].name)
+                names::snake(&p.structs[*si].name),
+                lo = n.lo
             )
         }
-        // Refused by `support` before anything is printed.
-        ValueType::Text(_) => String::new(),
+        ValueType::Text(len) => {
+            let (fmt, args) = split(label);
+            format!(
+                "{indent}    {lo}path(sub, sizeof sub, {}{args});\n{indent}    {lo}fmt_text(t, sub, (const uint8_t *){v}, {len}u);\n",
+                fmt.replace("=\"", "\""),
+                lo = n.lo
+            )
+        }
     }
 }
 

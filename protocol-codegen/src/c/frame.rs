@@ -12,7 +12,7 @@ use protocol_runtime::layout::LengthRule;
 
 use super::names::{self, Names};
 use super::payload::mask;
-use super::types::{slot_name, slots};
+use super::types::{Slot, keyed, slots};
 
 /// `(from_end, n)` of a position, as the C helpers take it.
 fn pos(p: Pos) -> String {
@@ -52,17 +52,13 @@ pub fn frame(p: &Protocol, n: &Names) -> String {
 
 fn helpers(f: &Frame, n: &Names, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
-    let sync: Vec<String> = f.sync.iter().map(|b| format!("{b:#04x}")).collect();
     let _ = write!(
         out,
-        "/* What a probe found: a frame, or the need of more bytes (else a rejection's reason). */\n#define {up}PROBE_FRAME 0\n#define {up}PROBE_NEED (-1)\n\nstatic const uint8_t {lo}sync[{len}] = {{{sync}}};\n#define {up}SYNC_LEN {len}u\n\n\
-/* A position from the frame's start or back from its end, in a frame of `len` bytes;\n * SIZE_MAX when it falls outside. */\n{up}UNUSED static size_t {lo}pos(size_t len, int from_end, size_t n)\n{{\n    if (from_end) return len >= n ? len - n : SIZE_MAX;\n    return n <= len ? n : SIZE_MAX;\n}}\n\n\
-/* A value of `width` bits at bit `shift` of the word of `size` bytes at a position. */\n{up}UNUSED static int {lo}field(const uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t *out)\n{{\n    size_t o = {lo}pos(len, from_end, at);\n    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);\n    if (o == SIZE_MAX || len - o < size) return 0;\n    *out = ({lo}get(f + o, size, big) >> shift) & m;\n    return 1;\n}}\n\n\
-{up}UNUSED static int {lo}put_field(uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t value)\n{{\n    size_t o = {lo}pos(len, from_end, at);\n    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);\n    if (o == SIZE_MAX || len - o < size || value > m) return 0;\n    {lo}set(f + o, size, big, {lo}get(f + o, size, big) | (value << shift));\n    return 1;\n}}\n\n\
-/* Whether the check stored at `at` is the check of the bytes `from..to`. */\n{up}UNUSED static int {lo}verify(const uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, uint64_t (*check)(const uint8_t *, size_t))\n{{\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    return {lo}get(f + at, width, big) == check(f + from, to - from);\n}}\n\n\
-/* Computes the check of `from..to` and stores it at `at`. */\n{up}UNUSED static int {lo}store(uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, uint64_t (*check)(const uint8_t *, size_t))\n{{\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    {lo}set(f + at, width, big, check(f + from, to - from));\n    return 1;\n}}\n\n",
-        len = f.sync.len(),
-        sync = sync.join(", ")
+        "/* What a probe found: a frame, or the need of more bytes (else a rejection's reason). */\n#define {up}PROBE_FRAME 0\n#define {up}PROBE_NEED (-1)\n\n{sync}\
+/* Whether the check stored at `at` is the check of the bytes `from..to` (a check without
+ * value, such as one whose per-command byte names no command, matches nothing). */\n{up}UNUSED static int {lo}verify(const uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))\n{{\n    uint64_t value = 0;\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    return check(f + from, to - from, &value) && {lo}get(f + at, width, big) == value;\n}}\n\n\
+/* Computes the check of `from..to` and stores it at `at`. */\n{up}UNUSED static int {lo}store(uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))\n{{\n    uint64_t value = 0;\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    if (!check(f + from, to - from, &value)) return 0;\n    {lo}set(f + at, width, big, value);\n    return 1;\n}}\n\n",
+        sync = sync_matches(f, n)
     );
 }
 
@@ -80,7 +76,9 @@ fn check_args(lo: &str, c: &Check, len: &str) -> String {
 
 fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
-    let span = plan.header_len.max(plan.sync.len());
+    let span = plan
+        .header_len
+        .max(plan.sync.len() + usize::from(!f.sync_set.is_empty()));
     let shortest = span.max(plan.min_len).max(1);
     let _ = write!(
         out,
@@ -154,8 +152,46 @@ fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, out: &mut String) {
     let _ = write!(
         out,
         "    (void)raw;\n    *n = total;\n    return {up}PROBE_FRAME;\n}}\n\n\
-/* The probe of a candidate: the sync bytes, then the rules above. */\nstatic int {lo}probe(const uint8_t *b, size_t avail, size_t limit, size_t *n)\n{{\n    size_t i;\n    for (i = 0; i < avail && i < {up}SYNC_LEN; i++) {{\n        if (b[i] != {lo}sync[i]) return {up}REJECT_BAD_HEADER;\n    }}\n    return {lo}probe_synced(b, avail, limit, n);\n}}\n\n"
+/* The probe of a candidate: the sync bytes, then the rules above. */\nstatic int {lo}probe(const uint8_t *b, size_t avail, size_t limit, size_t *n)\n{{\n    if (!{lo}sync_matches(b, avail)) return {up}REJECT_BAD_HEADER;\n    return {lo}probe_synced(b, avail, limit, n);\n}}\n\n"
     );
+}
+
+/// The sync's bytes after its lead byte: all of them, or those after the byte of a sync set.
+fn sync_rest(f: &Frame) -> String {
+    let bytes: Vec<String> = f.sync.iter().map(|b| format!("{b:#04x}")).collect();
+    bytes.join(", ")
+}
+
+/// `SYNC_LEN` and `pfx_sync_matches`: whether a candidate's first bytes match the sync as
+/// far as they go (the runtime's `sync_matches`): the sync bytes, or after a byte of the sync
+/// set the sync bytes that follow it.
+fn sync_matches(f: &Frame, n: &Names) -> String {
+    let (lo, up) = (&n.lo, &n.up);
+    let lead = usize::from(!f.sync_set.is_empty());
+    let mut body = String::new();
+    if lead == 1 {
+        let cases: String = f
+            .sync_set
+            .iter()
+            .map(|b| format!("    case {b:#04x}:\n"))
+            .collect();
+        let _ = write!(
+            body,
+            "    if (avail == 0) return 1;\n    switch (b[0]) {{\n{cases}        break;\n    default:\n        return 0;\n    }}\n"
+        );
+    }
+    if !f.sync.is_empty() {
+        let _ = write!(
+            body,
+            "    {{\n        static const uint8_t rest[{len}] = {{{}}};\n        size_t i;\n        for (i = 0; i < {len}u && {lead} + i < avail; i++) {{\n            if (b[{lead} + i] != rest[i]) return 0;\n        }}\n    }}\n",
+            sync_rest(f),
+            len = f.sync.len()
+        );
+    }
+    format!(
+        "#define {up}SYNC_LEN {}u\n\n/* Whether `b[0..avail]` matches the sync as far as it goes. */\nstatic int {lo}sync_matches(const uint8_t *b, size_t avail)\n{{\n{body}    (void)b;\n    (void)avail;\n    return 1;\n}}\n\n",
+        lead + f.sync.len()
+    )
 }
 
 /// A header value's bits truncated to its type (`truncate` of the runtime codec).
@@ -175,7 +211,7 @@ fn decode(p: &Protocol, n: &Names, out: &mut String) {
     let f = &p.frames[0];
     let _ = write!(
         out,
-        "int {lo}decode(const uint8_t *bytes, size_t len, {lo}packet *out)\n{{\n    size_t n = 0;\n    uint64_t raw = 0;\n    struct {lo}rd r;\n    int e = 0;\n    if ({lo}probe(bytes, len, {up}MAX_FRAME_LEN, &n) != {up}PROBE_FRAME || n != len) return {up}ERR_FRAME;\n    memset(out, 0, sizeof *out);\n"
+        "int {lo}decode(const uint8_t *bytes, size_t len, {lo}packet *out)\n{{\n    size_t n = 0;\n    uint64_t raw = 0;\n    struct {lo}rd r;\n    int e = 0;\n    if ({lo}probe(bytes, len, {up}MAX_FRAME_LEN, &n) != {up}PROBE_FRAME || n != len) return {up}ERR_FRAME;\n    memset(out, 0, sizeof *out);\n    (void)raw;\n"
     );
     for v in f
         .values
@@ -194,37 +230,9 @@ fn decode(p: &Protocol, n: &Names, out: &mut String) {
             names::field(&v.name)
         );
     }
-    // The dispatch key, one variable per field, then the command it names.
-    let _ = writeln!(out, "    {{\n        uint64_t key[{}];", f.dispatch.len());
-    for (k, &vi) in f.dispatch.iter().enumerate() {
-        let v = &f.values[vi];
-        let _ = writeln!(
-            out,
-            "        if (!{lo}field(bytes, len, {}, &raw)) return {up}ERR_FRAME;\n        key[{k}] = {};",
-            word(v),
-            truncated(v, "raw")
-        );
+    if keyed(p) {
+        dispatch_key(p, n, out);
     }
-    out.push_str("        ");
-    for c in &p.commands {
-        let conds: Vec<String> = f
-            .dispatch
-            .iter()
-            .zip(&c.id)
-            .enumerate()
-            .map(|(k, (&vi, id))| {
-                let v = &f.values[vi];
-                format!("key[{k}] == {}", names::u64_lit(truncate(v.prim, *id)))
-            })
-            .collect();
-        let _ = write!(
-            out,
-            "if ({}) out->command = {up}{};\n        else ",
-            conds.join(" && "),
-            c.name
-        );
-    }
-    let _ = writeln!(out, "return {up}ERR_UNKNOWN_COMMAND;\n    }}");
     if !p.directions.is_empty() {
         out.push_str("    ");
         for d in &p.directions {
@@ -261,25 +269,93 @@ fn decode(p: &Protocol, n: &Names, out: &mut String) {
         }
         let _ = writeln!(out, "return {up}ERR_UNKNOWN_DIRECTION;");
     }
+    read_payload(p, n, out);
+}
+
+/// The dispatch key, one variable per field, then the command it names.
+fn dispatch_key(p: &Protocol, n: &Names, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let f = &p.frames[0];
+    let _ = writeln!(out, "    {{\n        uint64_t key[{}];", f.dispatch.len());
+    for (k, &vi) in f.dispatch.iter().enumerate() {
+        let v = &f.values[vi];
+        let _ = writeln!(
+            out,
+            "        if (!{lo}field(bytes, len, {}, &raw)) return {up}ERR_FRAME;\n        key[{k}] = {};",
+            word(v),
+            truncated(v, "raw")
+        );
+    }
+    out.push_str("        ");
+    for c in &p.commands {
+        let conds: Vec<String> = f
+            .dispatch
+            .iter()
+            .zip(&c.id)
+            .enumerate()
+            .map(|(k, (&vi, id))| {
+                let v = &f.values[vi];
+                format!("key[{k}] == {}", names::u64_lit(truncate(v.prim, *id)))
+            })
+            .collect();
+        let _ = write!(
+            out,
+            "if ({}) out->command = {up}{};\n        else ",
+            conds.join(" && "),
+            c.name
+        );
+    }
+    let _ = writeln!(out, "return {up}ERR_UNKNOWN_COMMAND;\n    }}");
+}
+
+/// The payload of the frame `bytes[0..len]` read into the packet's member of its slot
+/// (zero-filled to its struct's size first when the format truncates trailing zeros).
+fn read_payload(p: &Protocol, n: &Names, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
     let _ = writeln!(
         out,
         "    r.p = bytes + {up}HEADER_LEN;\n    r.len = len - {up}HEADER_LEN - {up}TRAILER_LEN;\n    r.pos = 0;"
     );
-    for (ci, di, si) in slots(p) {
-        let dir = if p.directions.is_empty() {
-            String::new()
-        } else {
-            format!(
-                " && out->direction == {up}{}",
-                p.directions[di].name.to_uppercase()
-            )
-        };
+    let slots: Vec<Slot> = slots(p).into_iter().filter(|s| s.si.is_some()).collect();
+    if p.frames[0].truncate_zeros {
+        out.push_str(
+            "    {
+        /* A payload its sender cut short of trailing zeros is zero-filled. */
+        static uint8_t filled[",
+        );
         let _ = writeln!(
             out,
-            "    if (out->command == {up}{}{dir}) e = {lo}read_{}(&r, &out->payload.{});",
-            p.commands[ci].name,
+            "{up}MAX_PAYLOAD_LEN];
+        size_t size = 0;"
+        );
+        for slot in &slots {
+            let si = slot.si.unwrap_or_default();
+            let _ = writeln!(
+                out,
+                "        if ({}) size = {}u;",
+                slot.test(p, n, "out"),
+                p.structs[si].size
+            );
+        }
+        out.push_str(
+            "        if (r.len < size) {
+            memcpy(filled, r.p, r.len);
+            memset(filled + r.len, 0, size - r.len);
+            r.p = filled;
+            r.len = size;
+        }
+    }
+",
+        );
+    }
+    for slot in &slots {
+        let si = slot.si.unwrap_or_default();
+        let _ = writeln!(
+            out,
+            "    {}e = {lo}read_{}(&r, &out->payload.{});",
+            slot.guard(p, n, "out"),
             names::snake(&p.structs[si].name),
-            slot_name(p, ci, di)
+            slot.name
         );
     }
     let _ = writeln!(
@@ -306,20 +382,39 @@ fn encode(p: &Protocol, n: &Names, out: &mut String) {
         .map(|&vi| f.values[vi].prim.size())
         .max()
         .unwrap_or(1);
-    let _ = writeln!(
-        out,
-        "/* The dispatch key of every command, in command order. */\nstatic const {} {lo}ids[{}][{}] = {{",
-        names::unsigned_of(widest),
-        p.commands.len().max(1),
-        f.dispatch.len()
-    );
-    for c in &p.commands {
-        let ids: Vec<String> = c.id.iter().map(|&v| format!("{v:#x}u")).collect();
-        let _ = writeln!(out, "    {{{}}},", ids.join(", "));
+    if keyed(p) {
+        let _ = writeln!(
+            out,
+            "/* The dispatch key of every command, in command order. */\nstatic const {} {lo}ids[{}][{}] = {{",
+            names::unsigned_of(widest),
+            p.commands.len().max(1),
+            f.dispatch.len()
+        );
+        for c in &p.commands {
+            let ids: Vec<String> = c.id.iter().map(|&v| format!("{v:#x}u")).collect();
+            let _ = writeln!(out, "    {{{}}},", ids.join(", "));
+        }
+        out.push_str("};\n\n");
+    }
+    if f.truncate_zeros {
+        let _ = write!(
+            out,
+            "/* The bytes of a payload its sender keeps: all but its trailing zeros, and at least the\n * first byte of a non-empty payload (the runtime's `zeros::trimmed_len`). */\nstatic size_t {lo}trimmed(const uint8_t *p, size_t len)\n{{\n    size_t kept = len;\n    while (kept > 0 && p[kept - 1] == 0) kept--;\n    return kept == 0 && len > 0 ? 1 : kept;\n}}\n\n"
+        );
     }
     let _ = write!(
         out,
-        "}};\n\n/* The frame around a payload of `payload_len` bytes already written after the header. */\nstatic int {lo}seal(uint8_t *buf, size_t payload_len, const {lo}header *h, {lo}command command)\n{{\n    size_t total = {up}HEADER_LEN + payload_len + {up}TRAILER_LEN;\n    if (payload_len > {up}MAX_PAYLOAD_LEN) return {up}ERR_OUT_OF_RANGE;\n    memset(buf, 0, {up}HEADER_LEN);\n    memset(buf + {up}HEADER_LEN + payload_len, 0, {up}TRAILER_LEN);\n    memcpy(buf, {lo}sync, {up}SYNC_LEN);\n    (void)h;\n    (void)command;\n"
+        "/* The frame around a payload of `payload_len` bytes already written after the header. */\nstatic int {lo}seal(uint8_t *buf, size_t payload_len, const {lo}header *h, size_t command)\n{{\n    size_t total = {up}HEADER_LEN + payload_len + {up}TRAILER_LEN;\n    if (payload_len > {up}MAX_PAYLOAD_LEN) return {up}ERR_OUT_OF_RANGE;\n    memset(buf, 0, {up}HEADER_LEN);\n    memset(buf + {up}HEADER_LEN + payload_len, 0, {up}TRAILER_LEN);\n{sync}    (void)h;\n    (void)command;\n",
+        sync = if f.sync.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "    {{\n        static const uint8_t rest[{len}] = {{{}}};\n        memcpy(buf + {lead}, rest, {len}u);\n    }}\n",
+                sync_rest(f),
+                len = f.sync.len(),
+                lead = usize::from(!f.sync_set.is_empty())
+            )
+        }
     );
     for (vi, v) in f.values.iter().enumerate() {
         let value = match &v.role {
@@ -348,6 +443,12 @@ fn encode(p: &Protocol, n: &Names, out: &mut String) {
             word(v)
         );
     }
+    if !f.sync_set.is_empty() {
+        let _ = writeln!(
+            out,
+            "    /* The first header value is the sync: one of its set. */\n    if (!{lo}sync_matches(buf, 1)) return {up}ERR_OUT_OF_RANGE;"
+        );
+    }
     for c in &f.checks {
         let _ = writeln!(
             out,
@@ -366,51 +467,55 @@ fn encode(p: &Protocol, n: &Names, out: &mut String) {
         );
     }
     let _ = writeln!(out, "    return (int)total;\n}}\n");
-    for (ci, c) in p.commands.iter().enumerate() {
-        for (di, si) in c.payloads.iter().enumerate() {
-            let (arg, write) = match si {
-                Some(si) => (
-                    format!("const {} *payload, ", n.ty(&p.structs[*si].name)),
-                    format!(
-                        "    if ((e = {lo}write_{}(&w, payload)) != 0) return e;\n",
-                        names::snake(&p.structs[*si].name)
-                    ),
-                ),
-                None => (String::new(), String::new()),
-            };
-            let _ = write!(
-                out,
-                "int {lo}encode_{}(const {lo}header *header, {arg}uint8_t *buf, size_t cap)\n{{\n    struct {lo}wr w;\n    int e = 0;\n    if (cap < {up}HEADER_LEN + {up}TRAILER_LEN) return {up}ERR_SHORT_BUFFER;\n    w.p = buf + {up}HEADER_LEN;\n    w.cap = cap - {up}HEADER_LEN - {up}TRAILER_LEN;\n    w.pos = 0;\n{write}    (void)e;\n    return {lo}seal(buf, w.pos, header, {up}{});\n}}\n\n",
-                slot_name(p, ci, di),
-                c.name
-            );
-        }
+    for slot in slots(p) {
+        encoder(p, n, &slot, out);
     }
     let _ = writeln!(
         out,
         "int {lo}encode(const {lo}packet *packet, uint8_t *buf, size_t cap)\n{{"
     );
-    for (ci, c) in p.commands.iter().enumerate() {
-        for (di, si) in c.payloads.iter().enumerate() {
-            let dir = if p.directions.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    " && packet->direction == {up}{}",
-                    p.directions[di].name.to_uppercase()
-                )
-            };
-            let payload = match si {
-                Some(_) => format!("&packet->payload.{}, ", slot_name(p, ci, di)),
-                None => String::new(),
-            };
-            let _ = writeln!(
-                out,
-                "    if (packet->command == {up}{}{dir}) return {lo}encode_{}(&packet->header, {payload}buf, cap);",
-                c.name,
-                slot_name(p, ci, di)
-            );
-        }
+    for slot in slots(p) {
+        let payload = match slot.si {
+            Some(_) => format!("&packet->payload.{}, ", slot.name),
+            None => String::new(),
+        };
+        let _ = writeln!(
+            out,
+            "    {}return {lo}encode_{}(&packet->header, {payload}buf, cap);",
+            slot.guard(p, n, "packet"),
+            slot.name
+        );
     }
-    let _ = writeln!(out, "    return {up}ERR_OUT_OF_RANGE;\n}}\n");
+    if keyed(p) {
+        let _ = writeln!(out, "    return {up}ERR_OUT_OF_RANGE;");
+    }
+    out.push_str("}\n\n");
+}
+
+/// The encoder of one slot: its payload written after the header (and cut short of its
+/// trailing zeros where the format says so), then the frame sealed around it.
+fn encoder(p: &Protocol, n: &Names, slot: &Slot, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let (arg, mut write) = match slot.si {
+        Some(si) => (
+            format!("const {} *payload, ", n.ty(&p.structs[si].name)),
+            format!(
+                "    if ((e = {lo}write_{}(&w, payload)) != 0) return e;\n",
+                names::snake(&p.structs[si].name)
+            ),
+        ),
+        None => (String::new(), String::new()),
+    };
+    if p.frames[0].truncate_zeros && slot.command.is_some() {
+        write.push_str(&format!("    w.pos = {lo}trimmed(w.p, w.pos);\n"));
+    }
+    let command = match slot.command {
+        Some(ci) => format!("{up}{}", p.commands[ci].name),
+        None => "0".into(),
+    };
+    let _ = write!(
+        out,
+        "int {lo}encode_{}(const {lo}header *header, {arg}uint8_t *buf, size_t cap)\n{{\n    struct {lo}wr w;\n    int e = 0;\n    if (cap < {up}HEADER_LEN + {up}TRAILER_LEN) return {up}ERR_SHORT_BUFFER;\n    w.p = buf + {up}HEADER_LEN;\n    w.cap = cap - {up}HEADER_LEN - {up}TRAILER_LEN;\n    w.pos = 0;\n{write}    (void)e;\n    return {lo}seal(buf, w.pos, header, {command});\n}}\n\n",
+        slot.name
+    );
 }

@@ -7,7 +7,8 @@
 use std::fmt::Write as _;
 
 use crate::ir::{
-    BitMember, Enum, Field, FieldKind, Prim, Protocol, Scalar, Struct, UnknownPolicy, ValueType,
+    BitMember, BitOrder, Enum, Field, FieldKind, Prim, Protocol, Scalar, Struct, UnknownPolicy,
+    ValueType,
 };
 
 use super::names::{self, Names, prim as c_prim};
@@ -16,12 +17,19 @@ use super::names::{self, Names, prim as c_prim};
 pub fn payloads(p: &Protocol, n: &Names) -> String {
     let mut out = String::from("/* ---- Payload structs ---- */\n\n");
     for s in &p.structs {
-        out.push_str(&reader(p, n, s));
+        out.push_str(&walk(p, n, s, Dir::Read));
         out.push('\n');
-        out.push_str(&writer(p, n, s));
+        out.push_str(&walk(p, n, s, Dir::Write));
         out.push('\n');
     }
     out
+}
+
+/// Which way a struct's walk goes: from the payload into the C struct, or back.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Dir {
+    Read,
+    Write,
 }
 
 /// The C type of a value field's element.
@@ -30,8 +38,15 @@ pub fn value_type(p: &Protocol, n: &Names, ty: &ValueType) -> String {
         ValueType::Scalar { scalar, .. } => c_prim(scalar.prim).to_string(),
         ValueType::Struct(si) => n.ty(&p.structs[*si].name),
         ValueType::Enum(ei, _) => n.ty(&p.enums[*ei].name),
-        // Refused by `support` before anything is printed.
-        ValueType::Text(_) => String::new(),
+        ValueType::Text(_) => "char".into(),
+    }
+}
+
+/// What follows a value field's name in its declaration: a text's bytes (`[30]`).
+fn value_suffix(ty: &ValueType) -> String {
+    match ty {
+        ValueType::Text(len) => format!("[{len}]"),
+        _ => String::new(),
     }
 }
 
@@ -87,88 +102,200 @@ fn rejects(e: &Enum) -> bool {
     e.unknown == UnknownPolicy::Reject
 }
 
-fn reader(p: &Protocol, n: &Names, s: &Struct) -> String {
-    let (lo, up) = (&n.lo, &n.up);
-    let ty = n.ty(&s.name);
+/// A struct's reader or writer: its fields in wire order.
+fn walk(p: &Protocol, n: &Names, s: &Struct, dir: Dir) -> String {
+    let lo = &n.lo;
+    let this = if dir == Dir::Read { "out" } else { "v" };
     let mut body = String::new();
-    let mut loops = false;
     for f in &s.fields {
-        let name = names::field(&f.name);
-        let dst = format!("out->{name}");
-        match &f.kind {
-            FieldKind::Padding => {
-                let _ = writeln!(
-                    body,
-                    "    if ((e = {lo}skip(r, {}u)) != 0) return e;",
-                    f.size
-                );
+        let here = format!("{this}->{}", names::field(&f.name));
+        body.push_str(&field(p, n, f, &f.kind, dir, &here));
+    }
+    let mut decls = String::from("    int e = 0;\n    uint64_t raw = 0, word = 0;\n");
+    if body.contains("[i]") {
+        decls.push_str("    size_t i;\n");
+    }
+    let (what, signature) = match dir {
+        Dir::Read => (
+            format!("Reads `{}` ({} bytes on the wire)", s.name, s.size),
+            format!(
+                "read_{}(struct {lo}rd *r, {} *out)",
+                names::snake(&s.name),
+                n.ty(&s.name)
+            ),
+        ),
+        Dir::Write => (
+            format!("Writes `{}`", s.name),
+            format!(
+                "write_{}(struct {lo}wr *w, const {} *v)",
+                names::snake(&s.name),
+                n.ty(&s.name)
+            ),
+        ),
+    };
+    format!(
+        "/* {what}. */\nstatic int {lo}{signature}\n{{\n{decls}{body}    (void)raw;\n    (void)word;\n    return e;\n}}\n"
+    )
+}
+
+/// The statements that read or write one field (`kind`: the field's, or what an optional
+/// field holds), whose C value is `here`.
+fn field(p: &Protocol, n: &Names, f: &Field, kind: &FieldKind, dir: Dir, here: &str) -> String {
+    let (lo, up) = (&n.lo, &n.up);
+    let read = dir == Dir::Read;
+    match kind {
+        FieldKind::NulText { .. } | FieldKind::Array { .. } | FieldKind::Check(_) => {
+            unreachable!("refused by support::unsupported")
+        }
+        FieldKind::Padding => {
+            let op = if read { "skip(r" } else { "zero(w" };
+            format!("    if ((e = {lo}{op}, {}u)) != 0) return e;\n", f.size)
+        }
+        FieldKind::Value { ty, count } => {
+            let (here, indent, close) = match count {
+                Some(c) => (
+                    format!("{here}[i]"),
+                    "    ",
+                    format!("    for (i = 0; i < {c}u; i++) {{\n"),
+                ),
+                None => (here.to_string(), "", String::new()),
+            };
+            let elem = if read {
+                read_elem(p, n, ty, &here)
+            } else {
+                write_elem(p, n, ty, &here)
+            };
+            let mut out = close.clone();
+            for line in elem.lines() {
+                let _ = writeln!(out, "{indent}{line}");
             }
-            FieldKind::Value { ty, count } => {
-                let (dst, indent) = match count {
-                    Some(c) => {
-                        loops = true;
-                        let _ = writeln!(body, "    for (i = 0; i < {c}u; i++) {{");
-                        (format!("{dst}[i]"), "    ")
-                    }
-                    None => (dst, ""),
-                };
-                for line in read_elem(p, n, ty, &dst).lines() {
-                    let _ = writeln!(body, "{indent}{line}");
-                }
-                if count.is_some() {
-                    body.push_str("    }\n");
-                }
+            if count.is_some() {
+                out.push_str("    }\n");
             }
-            FieldKind::Bits { word, members } => {
-                let _ = writeln!(
-                    body,
-                    "    if ((e = {lo}read(r, {}u, {}, &raw)) != 0) return e;",
-                    word.prim.size(),
-                    big(*word)
-                );
-                for m in members {
-                    let bits =
-                        format!("((raw >> {}) & {})", m.shift, names::u64_lit(mask(m.width)));
-                    if let Some(ei) = m.enum_index.filter(|&ei| rejects(&p.enums[ei])) {
-                        let _ = writeln!(
-                            body,
-                            "    if (!{}known({bits})) return {up}ERR_INVALID_ENUM;",
-                            n.ty(&p.enums[ei].name) + "_"
-                        );
-                    }
-                    let value = match m.enum_index {
-                        Some(ei) => format!("({}){bits}", n.ty(&p.enums[ei].name)),
-                        None => from_raw(lo, m.prim, &bits),
-                    };
-                    let _ = writeln!(body, "    out->{} = {value};", names::field(&m.name));
-                }
+            out
+        }
+        FieldKind::Bits { word, members } if read => read_bits(p, n, *word, members),
+        FieldKind::Bits { word, members } => write_bits(p, n, *word, members),
+        FieldKind::Bytes { max, .. } if read => format!(
+            "    if (r->len - r->pos > {max}u) return {up}ERR_PAYLOAD_LENGTH;\n    {here}_len = r->len - r->pos;\n    memcpy({here}, r->p + r->pos, {here}_len);\n    r->pos = r->len;\n"
+        ),
+        FieldKind::Bytes { max, .. } => format!(
+            "    if ({here}_len > {max}u) return {up}ERR_OUT_OF_RANGE;\n    if (w->cap - w->pos < {here}_len) return {up}ERR_SHORT_BUFFER;\n    memcpy(w->p + w->pos, {here}, {here}_len);\n    w->pos += {here}_len;\n"
+        ),
+        FieldKind::Packed {
+            count,
+            bits,
+            order,
+            prim,
+            ..
+        } => {
+            let msb = u8::from(*order == BitOrder::MsbFirst);
+            let size = f.size;
+            if read {
+                format!(
+                    "    if (r->len - r->pos < {size}u) return {up}ERR_PAYLOAD_LENGTH;\n    for (i = 0; i < {count}u; i++) {{\n        {here}[i] = ({}){lo}get_packed(r->p + r->pos, {size}u, i, {bits}u, {msb});\n    }}\n    r->pos += {size}u;\n",
+                    c_prim(*prim)
+                )
+            } else {
+                format!(
+                    "    if (w->cap - w->pos < {size}u) return {up}ERR_SHORT_BUFFER;\n    memset(w->p + w->pos, 0, {size}u);\n    for (i = 0; i < {count}u; i++) {{\n        if (!{lo}set_packed(w->p + w->pos, {size}u, i, {bits}u, {msb}, (uint64_t){here}[i])) return {up}ERR_OUT_OF_RANGE;\n    }}\n    w->pos += {size}u;\n"
+                )
             }
-            FieldKind::Bytes { max, .. } => {
-                let _ = writeln!(
-                    body,
-                    "    if (r->len - r->pos > {max}u) return {up}ERR_PAYLOAD_LENGTH;\n    out->{name}_len = r->len - r->pos;\n    memcpy(out->{name}, r->p + r->pos, out->{name}_len);\n    r->pos = r->len;"
-                );
+        }
+        FieldKind::Group { elem, max } => {
+            let (ety, esnake) = (
+                n.ty(&p.structs[*elem].name),
+                names::snake(&p.structs[*elem].name),
+            );
+            if read {
+                // An element past the capacity is read (its own errors first, as the runtime
+                // reads it), then refused: the payload is longer than the struct's largest.
+                format!(
+                    "    {here}_len = 0;\n    while (r->pos < r->len) {{\n        if ({here}_len == {max}u) {{\n            {ety} spare;\n            if ((e = {lo}read_{esnake}(r, &spare)) != 0) return e;\n            return {up}ERR_PAYLOAD_LENGTH;\n        }}\n        if ((e = {lo}read_{esnake}(r, &{here}[{here}_len])) != 0) return e;\n        {here}_len++;\n    }}\n"
+                )
+            } else {
+                format!(
+                    "    if ({here}_len > {max}u) return {up}ERR_OUT_OF_RANGE;\n    for (i = 0; i < {here}_len; i++) {{\n        if ((e = {lo}write_{esnake}(w, &{here}[i])) != 0) return e;\n    }}\n"
+                )
             }
-            FieldKind::Group { .. }
-            | FieldKind::Packed { .. }
-            | FieldKind::Optional(_)
-            | FieldKind::NulText { .. }
-            | FieldKind::Array { .. }
-            | FieldKind::Check(_) => {
-                unreachable!("refused by support::unsupported")
+        }
+        FieldKind::Optional(inner) => {
+            let inner = field(p, n, f, inner, dir, here);
+            let inner: String = inner.lines().map(|l| format!("    {l}\n")).collect();
+            let present = optional_flag(here, f);
+            if read {
+                format!("    {present} = r->pos < r->len;\n    if ({present}) {{\n{inner}    }}\n")
+            } else {
+                format!("    if ({present}) {{\n{inner}    }}\n")
             }
         }
     }
-    let mut decls = String::from("    int e = 0;\n    uint64_t raw = 0;\n");
-    if loops {
-        decls.push_str("    size_t i;\n");
+}
+
+/// The flag of an optional field whose value is `here` (`out->ports` -> `out->ports_present`).
+pub fn optional_flag(here: &str, f: &Field) -> String {
+    let base = here.rsplit_once("->").map_or("", |(b, _)| b);
+    format!("{base}->{}_present", names::field(&f.name))
+}
+
+/// The members of a bit field, read from its word.
+fn read_bits(p: &Protocol, n: &Names, word: Scalar, members: &[BitMember]) -> String {
+    let (lo, up) = (&n.lo, &n.up);
+    let mut body = format!(
+        "    if ((e = {lo}read(r, {}u, {}, &raw)) != 0) return e;\n",
+        word.prim.size(),
+        big(word)
+    );
+    for m in members {
+        let bits = format!("((raw >> {}) & {})", m.shift, names::u64_lit(mask(m.width)));
+        if let Some(ei) = m.enum_index.filter(|&ei| rejects(&p.enums[ei])) {
+            let _ = writeln!(
+                body,
+                "    if (!{}_known({bits})) return {up}ERR_INVALID_ENUM;",
+                n.ty(&p.enums[ei].name)
+            );
+        }
+        let value = match m.enum_index {
+            Some(ei) => format!("({}){bits}", n.ty(&p.enums[ei].name)),
+            None => from_raw(lo, m.prim, &bits),
+        };
+        let _ = writeln!(body, "    out->{} = {value};", names::field(&m.name));
     }
-    format!(
-        "/* Reads `{name}` ({size} bytes on the wire). */\nstatic int {lo}read_{snake}(struct {lo}rd *r, {ty} *out)\n{{\n{decls}{body}    (void)raw;\n    return e;\n}}\n",
-        name = s.name,
-        size = s.size,
-        snake = names::snake(&s.name),
-    )
+    body
+}
+
+/// The members of a bit field, each checked to fit, written as their word.
+fn write_bits(p: &Protocol, n: &Names, word: Scalar, members: &[BitMember]) -> String {
+    let (lo, up) = (&n.lo, &n.up);
+    let mut body = String::from("    word = 0;\n");
+    for m in members {
+        let v = format!("v->{}", names::field(&m.name));
+        let bits = match m.enum_index {
+            Some(_) => format!("(uint64_t){v}"),
+            None => to_raw(lo, m.prim, &v),
+        };
+        let _ = writeln!(body, "    raw = {bits};");
+        if let Some(ei) = m.enum_index.filter(|&ei| rejects(&p.enums[ei])) {
+            let _ = writeln!(
+                body,
+                "    if (!{}_known(raw)) return {up}ERR_OUT_OF_RANGE;",
+                n.ty(&p.enums[ei].name)
+            );
+        }
+        let _ = writeln!(
+            body,
+            "    if (raw > {}) return {up}ERR_OUT_OF_RANGE;\n    word |= raw << {};",
+            names::u64_lit(mask(m.width)),
+            m.shift
+        );
+    }
+    let _ = writeln!(
+        body,
+        "    if ((e = {lo}write(w, {}u, {}, word)) != 0) return e;",
+        word.prim.size(),
+        big(word)
+    );
+    body
 }
 
 fn read_elem(p: &Protocol, n: &Names, ty: &ValueType, dst: &str) -> String {
@@ -198,98 +325,11 @@ fn read_elem(p: &Protocol, n: &Names, ty: &ValueType, dst: &str) -> String {
             let _ = writeln!(s, "    {dst} = ({ety}){};", from_raw(lo, e.prim, "raw"));
             s
         }
-        // Refused by `support` before anything is printed.
-        ValueType::Text(_) => String::new(),
+        // Every byte as received (the runtime's `FixedStr` keeps them).
+        ValueType::Text(len) => format!(
+            "    if (r->len - r->pos < {len}u) return {up}ERR_PAYLOAD_LENGTH;\n    memcpy({dst}, r->p + r->pos, {len}u);\n    r->pos += {len}u;\n"
+        ),
     }
-}
-
-fn writer(p: &Protocol, n: &Names, s: &Struct) -> String {
-    let (lo, up) = (&n.lo, &n.up);
-    let ty = n.ty(&s.name);
-    let mut body = String::new();
-    let mut loops = false;
-    for f in &s.fields {
-        let name = names::field(&f.name);
-        let src = format!("v->{name}");
-        match &f.kind {
-            FieldKind::Padding => {
-                let _ = writeln!(
-                    body,
-                    "    if ((e = {lo}zero(w, {}u)) != 0) return e;",
-                    f.size
-                );
-            }
-            FieldKind::Value { ty, count } => {
-                let (src, indent) = match count {
-                    Some(c) => {
-                        loops = true;
-                        let _ = writeln!(body, "    for (i = 0; i < {c}u; i++) {{");
-                        (format!("{src}[i]"), "    ")
-                    }
-                    None => (src, ""),
-                };
-                for line in write_elem(p, n, ty, &src).lines() {
-                    let _ = writeln!(body, "{indent}{line}");
-                }
-                if count.is_some() {
-                    body.push_str("    }\n");
-                }
-            }
-            FieldKind::Bits { word, members } => {
-                body.push_str("    word = 0;\n");
-                for m in members {
-                    let v = format!("v->{}", names::field(&m.name));
-                    let bits = match m.enum_index {
-                        Some(_) => format!("(uint64_t){v}"),
-                        None => to_raw(lo, m.prim, &v),
-                    };
-                    let _ = writeln!(body, "    raw = {bits};");
-                    if let Some(ei) = m.enum_index.filter(|&ei| rejects(&p.enums[ei])) {
-                        let _ = writeln!(
-                            body,
-                            "    if (!{}_known(raw)) return {up}ERR_OUT_OF_RANGE;",
-                            n.ty(&p.enums[ei].name)
-                        );
-                    }
-                    let _ = writeln!(
-                        body,
-                        "    if (raw > {}) return {up}ERR_OUT_OF_RANGE;\n    word |= raw << {};",
-                        names::u64_lit(mask(m.width)),
-                        m.shift
-                    );
-                }
-                let _ = writeln!(
-                    body,
-                    "    if ((e = {lo}write(w, {}u, {}, word)) != 0) return e;",
-                    word.prim.size(),
-                    big(*word)
-                );
-            }
-            FieldKind::Bytes { max, .. } => {
-                let _ = writeln!(
-                    body,
-                    "    if ({src}_len > {max}u) return {up}ERR_OUT_OF_RANGE;\n    if (w->cap - w->pos < {src}_len) return {up}ERR_SHORT_BUFFER;\n    memcpy(w->p + w->pos, {src}, {src}_len);\n    w->pos += {src}_len;"
-                );
-            }
-            FieldKind::Group { .. }
-            | FieldKind::Packed { .. }
-            | FieldKind::Optional(_)
-            | FieldKind::NulText { .. }
-            | FieldKind::Array { .. }
-            | FieldKind::Check(_) => {
-                unreachable!("refused by support::unsupported")
-            }
-        }
-    }
-    let mut decls = String::from("    int e = 0;\n    uint64_t raw = 0, word = 0;\n");
-    if loops {
-        decls.push_str("    size_t i;\n");
-    }
-    format!(
-        "/* Writes `{name}`. */\nstatic int {lo}write_{snake}(struct {lo}wr *w, const {ty} *v)\n{{\n{decls}{body}    (void)raw;\n    (void)word;\n    return e;\n}}\n",
-        name = s.name,
-        snake = names::snake(&s.name),
-    )
 }
 
 fn write_elem(p: &Protocol, n: &Names, ty: &ValueType, src: &str) -> String {
@@ -325,9 +365,24 @@ fn write_elem(p: &Protocol, n: &Names, ty: &ValueType, src: &str) -> String {
             );
             s
         }
-        // Refused by `support` before anything is printed.
-        ValueType::Text(_) => String::new(),
+        ValueType::Text(len) => format!(
+            "    if (w->cap - w->pos < {len}u) return {up}ERR_SHORT_BUFFER;\n    memcpy(w->p + w->pos, {src}, {len}u);\n    w->pos += {len}u;\n"
+        ),
     }
+}
+
+/// Whether a field of a struct of `p` is a `kind` (or an optional field holds one): the
+/// helpers only some fields need are printed for the specs that have them.
+pub fn any_field(p: &Protocol, kind: fn(&FieldKind) -> bool) -> bool {
+    fn holds(k: &FieldKind, kind: fn(&FieldKind) -> bool) -> bool {
+        match k {
+            FieldKind::Optional(inner) => holds(inner, kind),
+            k => kind(k),
+        }
+    }
+    p.structs
+        .iter()
+        .any(|s| s.fields.iter().any(|f| holds(&f.kind, kind)))
 }
 
 /// The low `width` bits set.
@@ -344,10 +399,18 @@ pub fn members(p: &Protocol, n: &Names, f: &Field, out: &mut String) {
     let name = names::field(&f.name);
     let doc = doc_comment(&f.doc, &f.unit);
     match &f.kind {
+        FieldKind::NulText { .. } | FieldKind::Array { .. } | FieldKind::Check(_) => {
+            unreachable!("refused by support::unsupported")
+        }
         FieldKind::Padding => {}
         FieldKind::Value { ty, count } => {
             let count = count.map(|c| format!("[{c}]")).unwrap_or_default();
-            let _ = writeln!(out, "    {} {name}{count};{doc}", value_type(p, n, ty));
+            let _ = writeln!(
+                out,
+                "    {} {name}{count}{};{doc}",
+                value_type(p, n, ty),
+                value_suffix(ty)
+            );
         }
         FieldKind::Bits { members, .. } => {
             for m in members {
@@ -367,13 +430,30 @@ pub fn members(p: &Protocol, n: &Names, f: &Field, out: &mut String) {
                 "    size_t {name}_len; /**< Bytes of `{name}` used (at most {max}). */"
             );
         }
-        FieldKind::Group { .. }
-        | FieldKind::Packed { .. }
-        | FieldKind::Optional(_)
-        | FieldKind::NulText { .. }
-        | FieldKind::Array { .. }
-        | FieldKind::Check(_) => {
-            unreachable!("refused by support::unsupported")
+        FieldKind::Packed { count, prim, .. } => {
+            let _ = writeln!(out, "    {} {name}[{count}];{doc}", c_prim(*prim));
+        }
+        FieldKind::Group { elem, max } => {
+            let _ = writeln!(
+                out,
+                "    {} {name}[{max}];{doc}",
+                n.ty(&p.structs[*elem].name)
+            );
+            let _ = writeln!(
+                out,
+                "    size_t {name}_len; /**< Elements of `{name}` used (at most {max}). */"
+            );
+        }
+        FieldKind::Optional(inner) => {
+            let _ = writeln!(
+                out,
+                "    bool {name}_present; /**< Whether the payload holds `{name}`. */"
+            );
+            let inner = Field {
+                kind: (**inner).clone(),
+                ..f.clone()
+            };
+            members(p, n, &inner, out);
         }
     }
 }

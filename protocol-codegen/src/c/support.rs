@@ -21,31 +21,21 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         if f.stuffing.is_some() {
             out.push(format!("{at}: byte stuffing"));
         }
-        if !f.sync_set.is_empty() {
-            out.push(format!("{at}: a sync from a set of values"));
-        }
-        if f.truncate_zeros {
-            out.push(format!("{at}: trailing-zero payload truncation"));
-        }
         if f.ack.is_some() {
             out.push(format!("{at}: acknowledgement frames"));
         }
         if f.bare_len.is_some() {
             out.push(format!("{at}: bare headers"));
         }
-        if f.dispatch.is_empty() {
-            out.push(format!("{at}: a frame format without dispatch key"));
+        if f.dispatch.is_empty() && f.message.is_none() {
+            out.push(format!(
+                "{at}: a frame format without dispatch key or message"
+            ));
         }
         if f.values.iter().any(|v| matches!(v.role, Role::Ack(_))) {
             out.push(format!("{at}: an acknowledgement flag"));
         }
         for c in &f.checks {
-            if c.extra.is_some() {
-                out.push(format!(
-                    "{at}: check `{}` folds in a per-command byte",
-                    c.name
-                ));
-            }
             if let Some(why) = algorithm_refused(&c.algorithm) {
                 out.push(format!("{at}: check `{}`: {why}", c.name));
             }
@@ -79,11 +69,10 @@ fn algorithm_refused(a: &Algorithm) -> Option<&'static str> {
 /// Why the C printer refuses a field kind, if it does.
 fn kind_refused(p: &Protocol, kind: &FieldKind) -> Option<&'static str> {
     match kind {
-        FieldKind::Padding => None,
+        FieldKind::Padding | FieldKind::Group { .. } => None,
         FieldKind::Value { ty, .. } => match ty {
             ValueType::Scalar { scale: Some(_), .. } => Some("scaled values"),
-            ValueType::Text(_) => Some("text fields (`char[N]`)"),
-            ValueType::Scalar { .. } | ValueType::Struct(_) => None,
+            ValueType::Scalar { .. } | ValueType::Struct(_) | ValueType::Text(_) => None,
             ValueType::Enum(ei, scalar) => {
                 (p.enums[*ei].prim != scalar.prim).then_some("an enum read as another integer type")
             }
@@ -91,9 +80,8 @@ fn kind_refused(p: &Protocol, kind: &FieldKind) -> Option<&'static str> {
         FieldKind::Bytes { size_from, .. } => size_from
             .is_some()
             .then_some("bytes sized by another field"),
-        FieldKind::Group { .. } => Some("repeated groups"),
-        FieldKind::Packed { .. } => Some("bit-packed arrays"),
-        FieldKind::Optional(_) => Some("optional fields"),
+        FieldKind::Packed { scale, .. } => scale.is_some().then_some("scaled values"),
+        FieldKind::Optional(inner) => kind_refused(p, inner),
         FieldKind::NulText { .. } => Some("NUL-terminated text (`cstr`)"),
         FieldKind::Array { .. } => Some("variable-length arrays of primitives"),
         FieldKind::Check(_) => Some("a check inside the payload"),

@@ -4,10 +4,10 @@
 
 use std::fmt::Write as _;
 
-use crate::ir::{Enum, Prim, Protocol, Role};
+use crate::ir::{Enum, FieldKind, Prim, Protocol, Role};
 
 use super::names::{self, Names, unsigned_of};
-use super::payload::{doc_comment, mask, members};
+use super::payload::{any_field, doc_comment, mask, members};
 
 /// The whole header file.
 pub fn header(p: &Protocol, n: &Names) -> String {
@@ -215,44 +215,97 @@ fn commands(p: &Protocol, n: &Names, out: &mut String) {
     }
     let _ = writeln!(
         out,
-        "}} {lo}header;\n\n/** A whole frame: header, command and the command's payload. */\ntypedef struct {lo}packet {{\n    {lo}header header;\n    {lo}command command;"
+        "}} {lo}header;\n\n/** A whole frame: header, command and the command's payload. */\ntypedef struct {lo}packet {{\n    {lo}header header;"
     );
+    if keyed(p) {
+        let _ = writeln!(out, "    {lo}command command;");
+    }
     if !p.directions.is_empty() {
         let _ = writeln!(out, "    {lo}direction direction;");
     }
     out.push_str("    /** The payload of the command (and direction): the member named after them. */\n    union {\n        uint8_t none_; /**< Commands without payload. */\n");
-    for (c, d, si) in slots(p) {
-        let _ = writeln!(
-            out,
-            "        {} {};",
-            n.ty(&p.structs[si].name),
-            slot_name(p, c, d)
-        );
+    for slot in slots(p) {
+        if let Some(si) = slot.si {
+            let _ = writeln!(out, "        {} {};", n.ty(&p.structs[si].name), slot.name);
+        }
     }
     let _ = writeln!(out, "    }} payload;\n}} {lo}packet;\n");
 }
 
-/// Every (command, direction, struct) with a payload struct.
-pub fn slots(p: &Protocol) -> Vec<(usize, usize, usize)> {
+/// A payload a packet can carry: a command's in a direction, or the struct every frame of a
+/// format without dispatch key carries (its `message`).
+pub struct Slot {
+    /// The command (`None` for the message of a format without dispatch key).
+    pub command: Option<usize>,
+    /// The direction (index into [`Protocol::directions`]; 0 when the spec has none).
+    pub direction: usize,
+    /// The payload struct (`None`: the payload is empty).
+    pub si: Option<usize>,
+    /// The name of the packet's union member and of the encoder's suffix: `set_robot_speed`,
+    /// `set_robot_speed_request`, `message`.
+    pub name: String,
+}
+
+impl Slot {
+    /// The C condition under which `packet` (a pointer) holds this slot's payload.
+    pub fn test(&self, p: &Protocol, n: &Names, packet: &str) -> String {
+        let Some(ci) = self.command else {
+            return "1".into();
+        };
+        let mut out = format!("{packet}->command == {}{}", n.up, p.commands[ci].name);
+        if let Some(d) = p.directions.get(self.direction) {
+            let _ = write!(
+                out,
+                " && {packet}->direction == {}{}",
+                n.up,
+                d.name.to_uppercase()
+            );
+        }
+        out
+    }
+
+    /// `if (TEST) ` before a statement for this slot only, or nothing for the one slot of a
+    /// format without dispatch key.
+    pub fn guard(&self, p: &Protocol, n: &Names, packet: &str) -> String {
+        match self.command {
+            Some(_) => format!("if ({}) ", self.test(p, n, packet)),
+            None => String::new(),
+        }
+    }
+}
+
+/// Whether the spec's frames have a dispatch key (commands); else each frame carries its
+/// format's one `message` struct.
+pub fn keyed(p: &Protocol) -> bool {
+    !p.frames[0].dispatch.is_empty()
+}
+
+/// Every payload a packet can carry, commands in spec order, then directions.
+pub fn slots(p: &Protocol) -> Vec<Slot> {
+    if !keyed(p) {
+        return vec![Slot {
+            command: None,
+            direction: 0,
+            si: p.frames[0].message,
+            name: "message".into(),
+        }];
+    }
     let mut out = Vec::new();
     for (ci, c) in p.commands.iter().enumerate() {
         for (di, si) in c.payloads.iter().enumerate() {
-            if let Some(si) = si {
-                out.push((ci, di, *si));
-            }
+            let name = c.name.to_lowercase();
+            out.push(Slot {
+                command: Some(ci),
+                direction: di,
+                si: *si,
+                name: match p.directions.get(di) {
+                    Some(dir) => format!("{name}_{}", dir.name),
+                    None => name,
+                },
+            });
         }
     }
     out
-}
-
-/// The name of a command's payload (and encoder suffix) in a direction: `set_robot_speed`,
-/// `set_robot_speed_request`.
-pub fn slot_name(p: &Protocol, c: usize, d: usize) -> String {
-    let name = p.commands[c].name.to_lowercase();
-    match p.directions.get(d) {
-        Some(dir) => format!("{name}_{}", dir.name),
-        None => name,
-    }
 }
 
 fn functions(p: &Protocol, n: &Names, out: &mut String) {
@@ -265,18 +318,16 @@ fn functions(p: &Protocol, n: &Names, out: &mut String) {
     out.push_str(
         "/* One encoder per command (and direction): the frame's length, or a negative error. */\n",
     );
-    for (ci, c) in p.commands.iter().enumerate() {
-        for (di, si) in c.payloads.iter().enumerate() {
-            let payload = match si {
-                Some(si) => format!("const {} *payload, ", n.ty(&p.structs[*si].name)),
-                None => String::new(),
-            };
-            let _ = writeln!(
-                out,
-                "int {lo}encode_{}(const {lo}header *header, {payload}uint8_t *buf, size_t cap);",
-                slot_name(p, ci, di)
-            );
-        }
+    for slot in slots(p) {
+        let payload = match slot.si {
+            Some(si) => format!("const {} *payload, ", n.ty(&p.structs[si].name)),
+            None => String::new(),
+        };
+        let _ = writeln!(
+            out,
+            "int {lo}encode_{}(const {lo}header *header, {payload}uint8_t *buf, size_t cap);",
+            slot.name
+        );
     }
     let _ = writeln!(
         out,
@@ -309,6 +360,20 @@ pub fn source_prelude(p: &Protocol, n: &Names) -> String {
 {up}UNUSED static int {lo}write(struct {lo}wr *w, unsigned n, int big, uint64_t v)\n{{\n    if (w->cap - w->pos < n) return {up}ERR_SHORT_BUFFER;\n    {lo}set(w->p + w->pos, n, big, v);\n    w->pos += n;\n    return 0;\n}}\n\n\
 {up}UNUSED static int {lo}zero(struct {lo}wr *w, size_t n)\n{{\n    if (w->cap - w->pos < n) return {up}ERR_SHORT_BUFFER;\n    memset(w->p + w->pos, 0, n);\n    w->pos += n;\n    return 0;\n}}\n\n"
     );
+    let _ = write!(
+        out,
+        "/* A position from the frame's start or back from its end, in a frame of `len` bytes;\n * SIZE_MAX when it falls outside. */\n{up}UNUSED static size_t {lo}pos(size_t len, int from_end, size_t n)\n{{\n    if (from_end) return len >= n ? len - n : SIZE_MAX;\n    return n <= len ? n : SIZE_MAX;\n}}\n\n\
+/* A value of `width` bits at bit `shift` of the word of `size` bytes at a position. */\n{up}UNUSED static int {lo}field(const uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t *out)\n{{\n    size_t o = {lo}pos(len, from_end, at);\n    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);\n    if (o == SIZE_MAX || len - o < size) return 0;\n    *out = ({lo}get(f + o, size, big) >> shift) & m;\n    return 1;\n}}\n\n\
+{up}UNUSED static int {lo}put_field(uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t value)\n{{\n    size_t o = {lo}pos(len, from_end, at);\n    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);\n    if (o == SIZE_MAX || len - o < size || value > m) return 0;\n    {lo}set(f + o, size, big, {lo}get(f + o, size, big) | (value << shift));\n    return 1;\n}}\n\n"
+    );
+    if any_field(p, |k| matches!(k, FieldKind::Packed { .. })) {
+        let _ = write!(
+            out,
+            "/* Bit-packed arrays (the runtime's `packed`): element `index` of `bits`-bit elements in\n * `b[0..len]`, bits filling each byte from its lowest bit (`msb` 0) or its highest (`msb`\n * 1). The element's bytes make one word, little-endian for lowest-bit-first, big-endian for\n * highest-bit-first; `*first`, `*count` and `*at` say where it lies in that word. */\n{up}UNUSED static int {lo}packed_span(size_t len, size_t index, unsigned bits, int msb, size_t *first, unsigned *count, unsigned *at)\n{{\n    size_t start = index * bits, last = (start + bits + 7) / 8;\n    if (bits == 0 || bits > 32 || last > len) return 0;\n    *first = start / 8;\n    *count = (unsigned)(last - *first);\n    *at = msb ? 8u * *count - (unsigned)(start % 8) - bits : (unsigned)(start % 8);\n    return 1;\n}}\n\n\
+{up}UNUSED static uint64_t {lo}get_packed(const uint8_t *b, size_t len, size_t index, unsigned bits, int msb)\n{{\n    size_t first;\n    unsigned count, at;\n    if (!{lo}packed_span(len, index, bits, msb, &first, &count, &at)) return 0;\n    return ({lo}get(b + first, count, msb) >> at) & (((uint64_t)1 << bits) - 1);\n}}\n\n\
+/* Sets an element (the other bits as they are); 0 when the value does not fit `bits`. */\n{up}UNUSED static int {lo}set_packed(uint8_t *b, size_t len, size_t index, unsigned bits, int msb, uint64_t value)\n{{\n    size_t first;\n    unsigned count, at;\n    uint64_t m = ((uint64_t)1 << bits) - 1;\n    if (!{lo}packed_span(len, index, bits, msb, &first, &count, &at) || value > m) return 0;\n    {lo}set(b + first, count, msb, ({lo}get(b + first, count, msb) & ~(m << at)) | (value << at));\n    return 1;\n}}\n\n"
+        );
+    }
     out.push_str("/* ---- Names ---- */\n\n");
     for e in &p.enums {
         enum_fns(n, e, &mut out);
