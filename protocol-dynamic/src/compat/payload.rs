@@ -160,6 +160,11 @@ fn diff_field(
         (a @ (FieldKind::Bytes { .. } | FieldKind::Group { .. } | FieldKind::Optional(_)), b) => {
             same_kind(op, a, np, b, at, r)
         }
+        // Their wire form is all their description says.
+        (
+            FieldKind::NulText { .. } | FieldKind::Array { .. } | FieldKind::Check(_),
+            FieldKind::NulText { .. } | FieldKind::Array { .. } | FieldKind::Check(_),
+        ) => type_text(op, of) == type_text(np, nf),
         _ => false,
     };
     if !same_shape {
