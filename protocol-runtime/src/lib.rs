@@ -171,6 +171,8 @@ pub mod checksum;
 #[cfg(feature = "tokio")]
 pub mod codec;
 pub mod decoder;
+#[cfg(feature = "defmt")]
+mod defmt_impl;
 pub mod encoder;
 pub mod error;
 pub mod field;
@@ -183,6 +185,8 @@ pub mod io_async;
 pub mod layout;
 pub mod packed;
 pub mod packet;
+#[cfg(feature = "serde")]
+pub mod serde_impl;
 pub mod stuffing;
 pub mod text;
 pub mod wire;
@@ -209,6 +213,14 @@ pub use embedded_io;
 /// The `embedded-io-async` crate at the version this crate's readers and writers take.
 #[cfg(feature = "embedded-io-async")]
 pub use embedded_io_async;
+/// The `serde` crate at the version this crate's types and generated types implement the
+/// traits of.
+#[cfg(feature = "serde")]
+pub use serde;
+/// The `defmt` crate at the version this crate's types and generated types implement `Format`
+/// of.
+#[cfg(feature = "defmt")]
+pub use defmt;
 /// The `tokio-util` crate at the version [`codec::PacketCodec`] implements the codec traits of.
 #[cfg(feature = "tokio")]
 pub use tokio_util;
@@ -225,4 +237,10 @@ pub mod __private {
     pub use core::option::Option::{self, None, Some};
     pub use core::result::Result::{self, Err, Ok};
     pub use crc;
+    #[cfg(feature = "defmt")]
+    pub use defmt;
+    #[cfg(feature = "serde")]
+    pub use serde;
+    #[cfg(feature = "serde")]
+    pub use crate::serde_impl as serde_support;
 }
