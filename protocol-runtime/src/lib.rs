@@ -204,6 +204,10 @@ pub use packet::{EncodePacket, PacketDecoder, PacketEvent, PacketLayout, Packets
 pub use text::FixedStr;
 pub use wire::{Reader, Writer};
 
+/// The `defmt` crate at the version this crate's types and generated types implement `Format`
+/// of.
+#[cfg(feature = "defmt")]
+pub use defmt;
 /// The `embedded-can` crate at the version [`CanFrame`] implements `Frame` of.
 #[cfg(feature = "embedded-can")]
 pub use embedded_can;
@@ -217,10 +221,6 @@ pub use embedded_io_async;
 /// traits of.
 #[cfg(feature = "serde")]
 pub use serde;
-/// The `defmt` crate at the version this crate's types and generated types implement `Format`
-/// of.
-#[cfg(feature = "defmt")]
-pub use defmt;
 /// The `tokio-util` crate at the version [`codec::PacketCodec`] implements the codec traits of.
 #[cfg(feature = "tokio")]
 pub use tokio_util;
@@ -229,6 +229,8 @@ pub use tokio_util;
 /// code generator.
 #[doc(hidden)]
 pub mod __private {
+    #[cfg(feature = "serde")]
+    pub use crate::serde_impl as serde_support;
     pub use crate::{
         bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, field::*, group::*,
         layout::*, packed::*, packet::*, stuffing::*, text::FixedStr, wire::*, zeros::*,
@@ -241,6 +243,4 @@ pub mod __private {
     pub use defmt;
     #[cfg(feature = "serde")]
     pub use serde;
-    #[cfg(feature = "serde")]
-    pub use crate::serde_impl as serde_support;
 }

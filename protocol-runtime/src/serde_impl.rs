@@ -160,7 +160,8 @@ impl<'de, const N: usize> Deserialize<'de> for FixedStr<N> {
 impl<T: Copy + Default + Serialize, const N: usize> Serialize for Group<T, N> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let mut seq = s.serialize_seq(Some(self.len()))?;
-        self.iter().try_for_each(|item| seq.serialize_element(item))?;
+        self.iter()
+            .try_for_each(|item| seq.serialize_element(item))?;
         seq.end()
     }
 }
@@ -206,7 +207,9 @@ pub mod array {
         s: S,
     ) -> Result<S::Ok, S::Error> {
         let mut tuple = s.serialize_tuple(N)?;
-        items.iter().try_for_each(|item| tuple.serialize_element(item))?;
+        items
+            .iter()
+            .try_for_each(|item| tuple.serialize_element(item))?;
         tuple.end()
     }
 
@@ -312,7 +315,11 @@ where
     R: TryFrom<i128>,
     F: Fn(R) -> Option<E>,
 {
-    d.deserialize_any(EnumVisitor { names, from_raw, raw: PhantomData })
+    d.deserialize_any(EnumVisitor {
+        names,
+        from_raw,
+        raw: PhantomData,
+    })
 }
 
 struct EnumVisitor<E: 'static, R, F> {
@@ -403,9 +410,7 @@ pub fn serialize_packet<P: SerdePacket, S: Serializer>(p: &P, s: S) -> Result<S:
 /// # Errors
 /// The deserializer's, and errors for an unknown command, a missing key or a payload before
 /// its command or header.
-pub fn deserialize_packet<'de, P: SerdePacket, D: Deserializer<'de>>(
-    d: D,
-) -> Result<P, D::Error> {
+pub fn deserialize_packet<'de, P: SerdePacket, D: Deserializer<'de>>(d: D) -> Result<P, D::Error> {
     d.deserialize_map(PacketVisitor::<P>(PhantomData))
 }
 
@@ -439,8 +444,9 @@ impl<'de, P: SerdePacket> Visitor<'de> for PacketVisitor<P> {
             match key {
                 Key::Command => {
                     let name = map.next_value::<Name>()?;
-                    let c = P::command_named(name.as_str())
-                        .ok_or_else(|| de::Error::custom(format_args!("no command `{}`", name.as_str())))?;
+                    let c = P::command_named(name.as_str()).ok_or_else(|| {
+                        de::Error::custom(format_args!("no command `{}`", name.as_str()))
+                    })?;
                     command = Some(c);
                 }
                 Key::Header => header = Some(map.next_value::<P::Header>()?),
