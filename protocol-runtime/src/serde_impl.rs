@@ -33,6 +33,8 @@ use crate::bytes::Bytes;
 use crate::group::Group;
 use crate::text::FixedStr;
 
+pub mod float;
+
 /// Bytes as lowercase hex, written straight into the serializer (no buffer).
 struct Hex<'a>(&'a [u8]);
 

@@ -72,8 +72,8 @@ pub fn apply(items: TokenStream, p: &Protocol, d: Derives) -> TokenStream {
                     s.attrs
                         .push(syn::parse_quote!(#[serde(crate = #serde_crate)]));
                     for field in &mut s.fields {
-                        if is_long_array(&field.ty) {
-                            let with = quote!(#rt::serde_support::array).to_string();
+                        if let Some(helper) = serde_with(&field.ty) {
+                            let with = quote!(#rt::serde_support::#helper).to_string();
                             field.attrs.push(syn::parse_quote!(#[serde(with = #with)]));
                         }
                     }
@@ -94,18 +94,43 @@ fn defmt_attr(rt: &TokenStream) -> syn::Attribute {
     syn::parse_quote!(#[derive(#rt::defmt::Format)] #[defmt(crate = #rt::defmt)])
 }
 
-/// Whether a field's type is an array longer than serde's own impls take (32 elements).
-fn is_long_array(ty: &syn::Type) -> bool {
-    let syn::Type::Array(a) = ty else {
-        return false;
-    };
-    match &a.len {
-        syn::Expr::Lit(syn::ExprLit {
-            lit: syn::Lit::Int(n),
-            ..
-        }) => n.base10_parse::<usize>().is_ok_and(|n| n > 32),
-        _ => true,
+/// The runtime's serde helper of a field's type, if its type needs one: floats (non-finite
+/// ones as the codec's strings: `float`, `float::floats`, `float::optional`) and arrays longer
+/// than serde's own impls take (32 elements: `array`).
+fn serde_with(ty: &syn::Type) -> Option<TokenStream> {
+    match ty {
+        _ if is_float(ty) => Some(quote!(float)),
+        syn::Type::Array(a) if is_float(&a.elem) => Some(quote!(float::floats)),
+        syn::Type::Array(a) => {
+            let long = match &a.len {
+                syn::Expr::Lit(syn::ExprLit {
+                    lit: syn::Lit::Int(n),
+                    ..
+                }) => n.base10_parse::<usize>().is_ok_and(|n| n > 32),
+                _ => true,
+            };
+            long.then(|| quote!(array))
+        }
+        syn::Type::Path(p) => {
+            let last = p.path.segments.last()?;
+            let syn::PathArguments::AngleBracketed(args) = &last.arguments else {
+                return None;
+            };
+            match args.args.first() {
+                Some(syn::GenericArgument::Type(inner))
+                    if last.ident == "Option" && is_float(inner) =>
+                {
+                    Some(quote!(float::optional))
+                }
+                _ => None,
+            }
+        }
+        _ => None,
     }
+}
+
+fn is_float(ty: &syn::Type) -> bool {
+    matches!(ty, syn::Type::Path(p) if p.path.is_ident("f32") || p.path.is_ident("f64"))
 }
 
 /// The serde impls that are not derived: spec enums, `Command`, messages and packets.
