@@ -63,7 +63,7 @@ pub fn apply(items: TokenStream, p: &Protocol, d: Derives) -> TokenStream {
         match item {
             syn::Item::Struct(s) => {
                 if d.defmt {
-                    s.attrs.push(defmt_attr(&rt));
+                    s.attrs.extend(defmt_attrs(&rt));
                 }
                 if d.serde && !packets.contains(&s.ident.to_string()) {
                     s.attrs.push(syn::parse_quote!(
@@ -79,7 +79,7 @@ pub fn apply(items: TokenStream, p: &Protocol, d: Derives) -> TokenStream {
                     }
                 }
             }
-            syn::Item::Enum(e) if d.defmt => e.attrs.push(defmt_attr(&rt)),
+            syn::Item::Enum(e) if d.defmt => e.attrs.extend(defmt_attrs(&rt)),
             _ => {}
         }
     }
@@ -90,8 +90,11 @@ pub fn apply(items: TokenStream, p: &Protocol, d: Derives) -> TokenStream {
     out
 }
 
-fn defmt_attr(rt: &TokenStream) -> syn::Attribute {
-    syn::parse_quote!(#[derive(#rt::defmt::Format)] #[defmt(crate = #rt::defmt)])
+fn defmt_attrs(rt: &TokenStream) -> [syn::Attribute; 2] {
+    [
+        syn::parse_quote!(#[derive(#rt::defmt::Format)]),
+        syn::parse_quote!(#[defmt(crate = #rt::defmt)]),
+    ]
 }
 
 /// The runtime's serde helper of a field's type, if its type needs one: floats (non-finite
