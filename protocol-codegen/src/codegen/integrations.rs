@@ -52,20 +52,26 @@ pub fn apply(items: TokenStream, p: &Protocol, d: Derives) -> TokenStream {
         return items;
     };
     let rt = rt();
-    let packets: Vec<String> = p
+    // Serde derives on the payload structs and the headers; defmt also on the packets (whose
+    // serde impls are written out below). Other structs (the `Layout` markers) get neither.
+    let mut data: Vec<&str> = p.structs.iter().map(|s| s.name.as_str()).collect();
+    data.extend(p.frames.iter().map(|f| f.names.header.as_str()));
+    let packets: Vec<&str> = p
         .frames
         .iter()
         .filter(|f| f.packet != PacketKind::None)
-        .map(|f| f.names.packet.clone())
+        .map(|f| f.names.packet.as_str())
         .collect();
-    let serde_crate = quote!(#rt::serde).to_string();
+    let serde_crate = path_text(quote!(#rt::serde));
     for item in &mut file.items {
         match item {
             syn::Item::Struct(s) => {
-                if d.defmt {
+                let name = s.ident.to_string();
+                let is_data = data.contains(&name.as_str());
+                if d.defmt && (is_data || packets.contains(&name.as_str())) {
                     s.attrs.extend(defmt_attrs(&rt));
                 }
-                if d.serde && !packets.contains(&s.ident.to_string()) {
+                if d.serde && is_data {
                     s.attrs.push(syn::parse_quote!(
                         #[derive(#rt::serde::Serialize, #rt::serde::Deserialize)]
                     ));
@@ -73,7 +79,7 @@ pub fn apply(items: TokenStream, p: &Protocol, d: Derives) -> TokenStream {
                         .push(syn::parse_quote!(#[serde(crate = #serde_crate)]));
                     for field in &mut s.fields {
                         if let Some(helper) = serde_with(&field.ty) {
-                            let with = quote!(#rt::serde_support::#helper).to_string();
+                            let with = path_text(quote!(#rt::serde_support::#helper));
                             field.attrs.push(syn::parse_quote!(#[serde(with = #with)]));
                         }
                     }
@@ -88,6 +94,11 @@ pub fn apply(items: TokenStream, p: &Protocol, d: Derives) -> TokenStream {
         out.extend(serde_impls(p, &rt));
     }
     out
+}
+
+/// A path as the string serde's attributes take (`"a::b"`).
+fn path_text(path: TokenStream) -> String {
+    path.to_string().replace(' ', "")
 }
 
 fn defmt_attrs(rt: &TokenStream) -> [syn::Attribute; 2] {
