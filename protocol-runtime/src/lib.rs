@@ -225,12 +225,50 @@ pub use serde;
 #[cfg(feature = "tokio")]
 pub use tokio_util;
 
+/// Expanded by `protocol!(..., derive(serde))`: nothing with the `serde` feature, else an error
+/// that names the feature (before the errors of the paths it would have given).
+#[cfg(feature = "serde")]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __require_serde {
+    () => {};
+}
+#[cfg(not(feature = "serde"))]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __require_serde {
+    () => {
+        ::core::compile_error!(
+            "`derive(serde)` needs the `serde` feature of the `protocol` crate: `protocol = { ..., features = [\"serde\"] }`"
+        );
+    };
+}
+/// Expanded by `protocol!(..., derive(defmt))`: nothing with the `defmt` feature, else an error
+/// that names the feature.
+#[cfg(feature = "defmt")]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __require_defmt {
+    () => {};
+}
+#[cfg(not(feature = "defmt"))]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __require_defmt {
+    () => {
+        ::core::compile_error!(
+            "`derive(defmt)` needs the `defmt` feature of the `protocol` crate: `protocol = { ..., features = [\"defmt\"] }`"
+        );
+    };
+}
+
 /// Everything generated code names, under one path. Not a public API: it changes with the
 /// code generator.
 #[doc(hidden)]
 pub mod __private {
     #[cfg(feature = "serde")]
     pub use crate::serde_impl as serde_support;
+    pub use crate::{__require_defmt as require_defmt, __require_serde as require_serde};
     pub use crate::{
         bytes::*, can::*, checksum::*, decoder::*, encoder::*, error::*, field::*, group::*,
         layout::*, packed::*, packet::*, stuffing::*, text::FixedStr, wire::*, zeros::*,

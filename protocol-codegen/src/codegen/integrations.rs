@@ -91,7 +91,11 @@ pub fn apply(items: TokenStream, p: &Protocol, d: Derives) -> TokenStream {
     }
     let mut out = quote!(#file);
     if d.serde {
+        out.extend(quote!(#rt::require_serde!();));
         out.extend(serde_impls(p, &rt));
+    }
+    if d.defmt {
+        out.extend(quote!(#rt::require_defmt!();));
     }
     out
 }
