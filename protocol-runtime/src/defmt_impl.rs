@@ -1,7 +1,8 @@
 //! `defmt::Format` (the `defmt` feature) for the runtime's value types, so that generated
 //! types deriving it (`protocol!(..., derive(defmt))`) can be logged from firmware: [`Bytes`]
 //! as hex bytes, [`FixedStr`] as its text when it is canonical (else its `N` bytes), [`Group`]
-//! as the list of its elements.
+//! as the list of its elements. The errors and the decoder's events derive `Format` where they
+//! are declared.
 //!
 //! A value type added to the runtime gets its `Format` impl here, usually one `write!`.
 
