@@ -8,7 +8,7 @@
 //! - [`Bytes`] is a lowercase hex string in a human-readable format, bytes otherwise;
 //! - [`FixedStr`] is its text as a string when it is canonical (UTF-8 and only NUL bytes after
 //!   it), else the array of its `N` bytes, so that every byte comes back;
-//! - [`Group`] and arrays of any length ([`array`]) are sequences;
+//! - [`Group`] and arrays of any length ([`mod@array`]) are sequences;
 //! - a spec enum is its variant's name in the spec, or its number when it has none
 //!   ([`serialize_enum`], [`deserialize_enum`]);
 //! - a packet is a map of `command` (the command's spec name; absent for an acknowledgement),
