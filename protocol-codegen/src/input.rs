@@ -1,5 +1,6 @@
 //! The `protocol!` macro's entry: its arguments (a spec path, or an inline spec; an optional
-//! `crate = path` naming the `protocol` crate when it is not `::protocol`), reading the spec file relative to the calling crate, and turning
+//! `crate = path` naming the `protocol` crate when it is not `::protocol`; an optional
+//! `derive(serde, defmt)` choosing those derives on the generated types), reading the spec file relative to the calling crate, and turning
 //! diagnostics into compile errors placed on the macro's argument.
 
 use std::path::PathBuf;
@@ -9,7 +10,7 @@ use quote::quote;
 use syn::parse::{Parse, ParseStream};
 use syn::{LitStr, Token};
 
-use crate::codegen::{RuntimePath, expand};
+use crate::codegen::{Derives, RuntimePath, expand_with};
 use crate::diag::{Color, Diagnostic, render_read_error, render_report};
 use crate::source::SpecSource;
 
@@ -23,6 +24,8 @@ pub struct MacroInput {
     pub spec: SpecArg,
     /// Where generated code finds the `protocol` crate (`::protocol` unless `crate = path`).
     pub paths: RuntimePath,
+    /// The derives on generated types: `derive(serde, defmt)`.
+    pub derives: Derives,
 }
 
 /// Where the spec comes from.
@@ -37,9 +40,12 @@ impl Parse for MacroInput {
     fn parse(input: ParseStream<'_>) -> syn::Result<Self> {
         let mut spec = None;
         let mut paths = RuntimePath::default();
+        let mut derives = Derives::default();
         while !input.is_empty() {
             if input.peek(LitStr) {
                 spec = Some(SpecArg::Path(input.parse()?));
+            } else if input.peek2(syn::token::Paren) {
+                derives = parse_derives(input)?;
             } else {
                 let key: syn::Ident = input.call(syn::ext::IdentExt::parse_any)?;
                 input.parse::<Token![=]>()?;
@@ -58,7 +64,7 @@ impl Parse for MacroInput {
                     _ => {
                         return Err(syn::Error::new(
                             key.span(),
-                            "expected `path = \"...\"`, `inline = \"...\"` or `crate = path`",
+                            "expected `path = \"...\"`, `inline = \"...\"`, `crate = path` or `derive(serde, defmt)`",
                         ));
                     }
                 }
@@ -70,8 +76,44 @@ impl Parse for MacroInput {
         let spec = spec.ok_or_else(|| {
             input.error("expected the spec's path: protocol!(\"specs/name.toml\")")
         })?;
-        Ok(MacroInput { spec, paths })
+        Ok(MacroInput {
+            spec,
+            paths,
+            derives,
+        })
     }
+}
+
+/// `derive(serde, defmt)`: the derives on generated types, each named once.
+fn parse_derives(input: ParseStream<'_>) -> syn::Result<Derives> {
+    let key: syn::Ident = input.parse()?;
+    if key != "derive" {
+        return Err(syn::Error::new(
+            key.span(),
+            "expected `derive(serde, defmt)`",
+        ));
+    }
+    let content;
+    syn::parenthesized!(content in input);
+    let names = content.parse_terminated(syn::Ident::parse, Token![,])?;
+    let mut derives = Derives::default();
+    for name in names {
+        let slot = match name.to_string().as_str() {
+            "serde" => &mut derives.serde,
+            "defmt" => &mut derives.defmt,
+            _ => {
+                return Err(syn::Error::new(
+                    name.span(),
+                    "expected `serde` or `defmt` (each needs the `protocol` feature of that name)",
+                ));
+            }
+        };
+        if *slot {
+            return Err(syn::Error::new(name.span(), "named twice"));
+        }
+        *slot = true;
+    }
+    Ok(derives)
 }
 
 /// The spec's errors as one compile error on the macro's argument: the report every
@@ -117,7 +159,7 @@ pub fn protocol_macro(tokens: TokenStream) -> TokenStream {
     match crate::compile(&source) {
         Err(diags) => errors_to_tokens(&diags, &source, span),
         Ok(protocol) => {
-            let code = expand(&protocol, &input.paths);
+            let code = expand_with(&protocol, &input.paths, input.derives);
             let track = track.map(|p| {
                 let p = p.to_string_lossy().into_owned();
                 quote!(

@@ -1,8 +1,10 @@
 //! `Serialize` and `Deserialize` for [`Value`] (the `serde` feature): the JSON Lines shape of
 //! `protocol decode`, and what `protocol encode` reads.
 //!
-//! Serializing writes an `f32` as the shortest decimal that reads back as the same `f32`
-//! (`0.48`), an `f64` as itself, a non-finite float as the string `"inf"`, `"-inf"`, `"NaN"` or
+//! Serializing writes an `f32` as an `f32` (which `serde_json` prints as the shortest decimal
+//! that reads back as the same `f32`: `0.48`, `1.803067e14`), as serde writes the `f32` fields
+//! of generated types (`protocol!(..., derive(serde))`), so that both print the same JSON and
+//! a binary format keeps four bytes; an `f64` as itself, a non-finite float as the string `"inf"`, `"-inf"`, `"NaN"` or
 //! `"NaN(0x..)"`, bytes as a lowercase hex string, a struct as a map in field order and `Null`
 //! as a unit (`null`). Deserializing keeps what the format gives: numbers as `UInt`, `Int` or
 //! `F64`, strings as `String` (the codec reads hex, enum names and non-finite floats from
@@ -29,7 +31,10 @@ impl Serialize for Value {
             Value::Bool(b) => s.serialize_bool(*b),
             Value::UInt(u) => s.serialize_u64(*u),
             Value::Int(i) => s.serialize_i64(*i),
-            Value::F32(x) => float(f32_text(*x), s),
+            Value::F32(x) => match f32_text(*x) {
+                Ok(_) => s.serialize_f32(*x),
+                Err(t) => s.serialize_str(&t),
+            },
             Value::F64(x) => float(f64_text(*x), s),
             Value::String(t) => s.serialize_str(t),
             Value::Bytes(b) => s.serialize_str(&crate::hex(b)),

@@ -13,6 +13,8 @@ use proc_macro::TokenStream;
 /// line and column. Also accepts `inline = "..."` (the spec text instead of a path) and
 /// `crate = ::path::to::protocol`, where the generated code finds the `protocol` crate when a
 /// crate re-exports it rather than depending on it under its own name.
+/// `derive(serde, defmt)` (either or both) derives those crates' traits on the generated types,
+/// through the `protocol` crate's re-exports (its features `serde` and `defmt`).
 #[proc_macro]
 pub fn protocol(input: TokenStream) -> TokenStream {
     protocol_codegen::input::protocol_macro(input.into()).into()

@@ -25,6 +25,7 @@ use crate::decoder::Reject;
 /// ```
 #[non_exhaustive]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum DecodeError {
     /// The input ended early: `needed` bytes (counted from the start of the input) were
     /// required, only `available` exist.
@@ -144,6 +145,7 @@ impl From<Reject> for DecodeError {
 /// ```
 #[non_exhaustive]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum EncodeError {
     /// The output buffer is too small: `needed` bytes (counted from its start) were required,
     /// it holds `available`.

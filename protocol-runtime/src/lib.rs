@@ -37,6 +37,8 @@
 //! | `embedded-io-async` | packets from an `embedded-io-async` reader (`io_async::PacketReader`) and written to a writer (`io_async::write_packet`); re-exports `embedded-io-async` and `embedded-io` at the versions they take |
 //! | `embedded-can` | `CanFrame` as an `embedded_can::Frame`, `CanFrame::from_frame` and `CanFrame::to_frame` for a CAN driver's frames; re-exports `embedded-can` |
 //! | `tokio` | `codec::PacketCodec`, a `tokio_util::codec` decoder and encoder of a spec's packets; re-exports `tokio-util` |
+//! | `serde` | `Serialize` and `Deserialize` for [`Bytes`], [`FixedStr`], [`Group`] and arrays of any length, and the helpers the impls of generated types call (module `serde_impl`); re-exports `serde` |
+//! | `defmt` | `defmt::Format` for [`Bytes`], [`FixedStr`], [`Group`], [`DecodeError`], [`EncodeError`], [`Reject`], [`Event`], [`Frame`] and [`Stats`]; re-exports `defmt` |
 //! | `stage-input` | every input chunk staged in the decoder's buffer before it is scanned, as on targets without 64-bit pointers (where it is the default: less code); on hosts, to test that path. Frames and stats are the same either way; only whether a frame borrows the caller's input changes |
 //!
 //! # Example
@@ -171,6 +173,8 @@ pub mod checksum;
 #[cfg(feature = "tokio")]
 pub mod codec;
 pub mod decoder;
+#[cfg(feature = "defmt")]
+mod defmt_impl;
 pub mod encoder;
 pub mod error;
 pub mod field;
@@ -183,6 +187,8 @@ pub mod io_async;
 pub mod layout;
 pub mod packed;
 pub mod packet;
+#[cfg(feature = "serde")]
+pub mod serde_impl;
 pub mod stuffing;
 pub mod text;
 pub mod wire;
@@ -200,6 +206,10 @@ pub use packet::{EncodePacket, PacketDecoder, PacketEvent, PacketLayout, Packets
 pub use text::{FixedStr, NulStr};
 pub use wire::{Reader, Writer};
 
+/// The `defmt` crate at the version this crate's types and generated types implement `Format`
+/// of.
+#[cfg(feature = "defmt")]
+pub use defmt;
 /// The `embedded-can` crate at the version [`CanFrame`] implements `Frame` of.
 #[cfg(feature = "embedded-can")]
 pub use embedded_can;
@@ -209,14 +219,58 @@ pub use embedded_io;
 /// The `embedded-io-async` crate at the version this crate's readers and writers take.
 #[cfg(feature = "embedded-io-async")]
 pub use embedded_io_async;
+/// The `serde` crate at the version this crate's types and generated types implement the
+/// traits of.
+#[cfg(feature = "serde")]
+pub use serde;
 /// The `tokio-util` crate at the version [`codec::PacketCodec`] implements the codec traits of.
 #[cfg(feature = "tokio")]
 pub use tokio_util;
+
+/// Expanded by `protocol!(..., derive(serde))`: nothing with the `serde` feature, else an error
+/// that names the feature (before the errors of the paths it would have given).
+#[cfg(feature = "serde")]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __require_serde {
+    () => {};
+}
+#[cfg(not(feature = "serde"))]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __require_serde {
+    () => {
+        ::core::compile_error!(
+            "`derive(serde)` needs the `serde` feature of the `protocol` crate: `protocol = { ..., features = [\"serde\"] }`"
+        );
+    };
+}
+/// Expanded by `protocol!(..., derive(defmt))`: nothing with the `defmt` feature, else an error
+/// that names the feature.
+#[cfg(feature = "defmt")]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __require_defmt {
+    () => {};
+}
+#[cfg(not(feature = "defmt"))]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __require_defmt {
+    () => {
+        ::core::compile_error!(
+            "`derive(defmt)` needs the `defmt` feature of the `protocol` crate: `protocol = { ..., features = [\"defmt\"] }`"
+        );
+    };
+}
 
 /// Everything generated code names, under one path. Not a public API: it changes with the
 /// code generator.
 #[doc(hidden)]
 pub mod __private {
+    #[cfg(feature = "serde")]
+    pub use crate::serde_impl as serde_support;
+    pub use crate::{__require_defmt as require_defmt, __require_serde as require_serde};
     pub use crate::{
         bytes::*,
         can::*,
@@ -238,4 +292,8 @@ pub mod __private {
     pub use core::option::Option::{self, None, Some};
     pub use core::result::Result::{self, Err, Ok};
     pub use crc;
+    #[cfg(feature = "defmt")]
+    pub use defmt;
+    #[cfg(feature = "serde")]
+    pub use serde;
 }

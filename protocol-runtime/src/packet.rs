@@ -185,7 +185,6 @@ fn packet_event<L: PacketLayout>(layout: &L, event: Event<'_>) -> PacketEvent<L:
 /// ```
 pub struct PacketDecoder<L: PacketLayout, const N: usize> {
     frames: StreamDecoder<L, N>,
-    layout: L,
 }
 
 impl<L: PacketLayout, const N: usize> PacketDecoder<L, N> {
@@ -193,22 +192,24 @@ impl<L: PacketLayout, const N: usize> PacketDecoder<L, N> {
     pub const fn new(layout: L) -> Self {
         PacketDecoder {
             frames: StreamDecoder::new(layout),
-            layout,
         }
     }
 
     /// The next event, consuming from `*input` as needed (the slice is advanced); `None` when
     /// the input is used up and more is needed (a partial frame stays buffered).
     pub fn next_packet(&mut self, input: &mut &[u8]) -> Option<PacketEvent<L::Packet, L::Error>> {
+        // A copy of the layout (a `Copy` handle): the event borrows the engine.
+        let layout = *self.frames.layout_ref();
         let event = self.frames.next_event(input)?;
-        Some(packet_event(&self.layout, event))
+        Some(packet_event(&layout, event))
     }
 
     /// Declares the end of the input and returns the next event among the pending bytes; call
     /// until `None` (see [`StreamDecoder::flush`]).
     pub fn flush_packet(&mut self) -> Option<PacketEvent<L::Packet, L::Error>> {
+        let layout = *self.frames.layout_ref();
         let event = self.frames.flush_event()?;
-        Some(packet_event(&self.layout, event))
+        Some(packet_event(&layout, event))
     }
 
     /// The events of `chunk`, as an iterator: [`next_packet`](Self::next_packet) until the
@@ -233,7 +234,7 @@ impl<L: PacketLayout, const N: usize> PacketDecoder<L, N> {
 
     /// The frame format.
     pub fn packet_layout(&self) -> &L {
-        &self.layout
+        self.frames.layout_ref()
     }
 }
 

@@ -75,6 +75,22 @@
 //! under another path says where: `protocol!(crate = ::my_link::protocol, "specs/x.toml")` and
 //! `#[payload(crate = "::my_link::protocol")]` on a `#[derive(Payload)]` struct.
 //!
+//! # serde and defmt on generated types
+//!
+//! `protocol!("specs/x.toml", derive(serde, defmt))` (either or both) derives `serde`'s
+//! `Serialize` and `Deserialize` and `defmt`'s `Format` on the generated structs, enums,
+//! messages, headers and packets. It needs this crate's features of the same names, and no
+//! `serde` or `defmt` dependency of the calling crate: generated code names the crates this one
+//! re-exports (`protocol::serde`, `protocol::defmt`). defmt's logging macros name `defmt`, so a
+//! firmware without a `defmt` dependency of its own writes `use protocol::defmt;` first.
+//!
+//! The JSON is that of the run-time codec (`protocol decode --format json`): a packet is the map
+//! of `command` (its name in the spec), `header` and `payload`; an enum is its variant's name in
+//! the spec (its number when it has none); bytes are hex; a text is a string (its bytes when it
+//! is not canonical); a non-finite float is `"inf"`, `"-inf"`, `"NaN"` or `"NaN(0x..)"`. A
+//! packet reads `command` and `header` before `payload` (whose type they decide; nothing is
+//! buffered) and skips other keys, so a line of `protocol decode` reads as a packet.
+//!
 //! # Features
 //!
 //! | feature | what it adds |
@@ -84,6 +100,8 @@
 //! | `embedded-io-async` | packets from an `embedded-io-async` reader (`io_async::PacketReader`) and written to a writer (`io_async::write_packet`); re-exports `embedded-io-async` and `embedded-io` at the versions they take |
 //! | `embedded-can` | `CanFrame` as an `embedded_can::Frame`, `CanFrame::from_frame` and `CanFrame::to_frame` for a CAN driver's frames; re-exports `embedded-can` |
 //! | `tokio` | `codec::PacketCodec`, a `tokio_util::codec` decoder and encoder of a spec's packets; re-exports `tokio-util` |
+//! | `serde` | `Serialize` and `Deserialize` for [`Bytes`], [`FixedStr`], [`Group`], and for the generated types of a `protocol!(..., derive(serde))` call; `no_std`, heap-free; re-exports `serde` |
+//! | `defmt` | `defmt::Format` for the runtime's value types, errors and events, and for the generated types of a `protocol!(..., derive(defmt))` call; re-exports `defmt` |
 //! | `stage-input` | every input chunk staged in the decoder's buffer before it is scanned, as on targets without 64-bit pointers (where it is the default: less code); on hosts, to test that path |
 #![no_std]
 #![forbid(unsafe_code)]

@@ -8,6 +8,7 @@
 pub mod dispatch;
 pub mod docs;
 pub mod frame;
+pub mod integrations;
 pub mod packets;
 pub mod paths;
 pub mod payload;
@@ -17,6 +18,7 @@ use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 
 use crate::ir::Protocol;
+pub use integrations::Derives;
 pub use paths::RuntimePath;
 
 /// Rust keywords that must be written as raw identifiers.
@@ -51,6 +53,12 @@ pub fn rt() -> TokenStream {
 
 /// Expand a protocol into its module.
 pub fn expand(p: &Protocol, paths: &RuntimePath) -> TokenStream {
+    expand_with(p, paths, Derives::default())
+}
+
+/// Expand a protocol into its module, with the derives the user chose
+/// ([`integrations`]).
+pub fn expand_with(p: &Protocol, paths: &RuntimePath, derives: Derives) -> TokenStream {
     let module = ident(&p.name);
     let doc = docs::doc_attrs(&docs::module_doc(p));
     let constants = types::emit_constants(p);
@@ -61,12 +69,8 @@ pub fn expand(p: &Protocol, paths: &RuntimePath) -> TokenStream {
     let dispatch = dispatch::emit_dispatch(p);
     let packet_traits = packets::emit_packet_traits(p);
     let private = paths.private();
-    quote! {
-        #doc
-        // Numbers in a spec are taken as written: a robot's 0.5235 rad/s limit is not pi/6.
-        #[allow(clippy::approx_constant)]
-        pub mod #module {
-            use #private as __rt;
+    let items = integrations::apply(
+        quote! {
             #constants
             #addresses
             #enums
@@ -74,13 +78,29 @@ pub fn expand(p: &Protocol, paths: &RuntimePath) -> TokenStream {
             #frames
             #dispatch
             #packet_traits
+        },
+        p,
+        derives,
+    );
+    quote! {
+        #doc
+        // Numbers in a spec are taken as written: a robot's 0.5235 rad/s limit is not pi/6.
+        #[allow(clippy::approx_constant)]
+        pub mod #module {
+            use #private as __rt;
+            #items
         }
     }
 }
 
 /// Expand and format with prettyplease (for review, snapshots and `protocol expand`).
 pub fn expand_pretty(p: &Protocol, paths: &RuntimePath) -> String {
-    let tokens = expand(p, paths);
+    expand_pretty_with(p, paths, Derives::default())
+}
+
+/// [`expand_pretty`] with the derives the user chose.
+pub fn expand_pretty_with(p: &Protocol, paths: &RuntimePath, derives: Derives) -> String {
+    let tokens = expand_with(p, paths, derives);
     match syn::parse2::<syn::File>(tokens.clone()) {
         Ok(file) => prettyplease::unparse(&file),
         Err(_) => tokens.to_string(),

@@ -16,6 +16,7 @@ use crate::layout::{Constant, Marker};
 /// Why a candidate frame was rejected.
 #[non_exhaustive]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Reject {
     /// The sync bytes or a [`Constant`] of the header do not match.
     BadHeader,
@@ -53,6 +54,7 @@ impl core::error::Error for Reject {}
 /// pending equals the bytes fed ([`StreamDecoder::position`]). A rejected candidate's first
 /// byte counts as skipped (the search resumes right after it).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Stats {
     /// Valid frames yielded.
     pub frames: u64,
@@ -131,6 +133,7 @@ impl Stats {
 
 /// A valid frame found in a stream.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Frame<'a> {
     /// The whole frame, sync to trailer.
     pub bytes: &'a [u8],
@@ -140,6 +143,7 @@ pub struct Frame<'a> {
 
 /// What a [`StreamDecoder`] reports with [`StreamDecoder::next_event`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Event<'a> {
     /// A valid frame.
     Frame(Frame<'a>),

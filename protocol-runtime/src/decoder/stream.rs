@@ -162,6 +162,13 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         self.layout.layout()
     }
 
+    /// The layout value the decoder was made with (a generated `Layout` type, or a run-time
+    /// codec's format), for what it knows besides the frame format (its packets' decoding).
+    #[inline]
+    pub fn layout_ref(&self) -> &L {
+        &self.layout
+    }
+
     /// What was counted since the decoder was created or reset.
     #[inline]
     pub fn stats(&self) -> &Stats {

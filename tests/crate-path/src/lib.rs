@@ -2,6 +2,8 @@
 //! `protocol` crate under another name (`link_kit`) and re-exports it as `crate::kit::protocol`,
 //! as a crate that wraps `protocol` for its users would. `::protocol` does not resolve here, so
 //! the expansion compiles only if every path it names comes from the `crate = ...` override.
+//! The `sensors` spec derives serde and defmt through the same override, with neither crate a
+//! dependency of this one.
 
 #![no_std]
 #![forbid(unsafe_code)]
@@ -38,6 +40,41 @@ fields = [{ name = "brightness", type = "u8" }]
     crate = "crate::kit::protocol"
 );
 
+link_kit::protocol!(
+    crate = crate::kit::protocol,
+    derive(serde, defmt),
+    inline = r#"
+[protocol]
+name = "sensors"
+
+[frames.main]
+layout = [
+  { sync = [0x5A] },
+  { field = "len", type = "u8", length_of = "payload" },
+  { field = "cmd", type = "u8" },
+  { payload = { max = 16 } },
+  { check = "crc-8-smbus", over = "frame" },
+]
+dispatch = ["cmd"]
+
+[commands]
+RANGE = { id = 1, payload = "Range" }
+RESET = { id = 2 }
+
+[enums.Unit]
+type = "u8"
+unknown = "keep"
+values = { MM = 0, CM = 1 }
+
+[structs.Range]
+fields = [
+  { name = "distance", type = "u16", scale = 0.001 },
+  { name = "unit", type = "Unit" },
+  { name = "tag", type = "bytes", max = 4 },
+]
+"#
+);
+
 /// A hand-written payload whose generated impl names the runtime through the override.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, link_kit::Payload)]
 #[payload(crate = "crate::kit::protocol", byte_order = "big")]
@@ -51,7 +88,7 @@ pub struct Level {
 #[cfg(test)]
 mod tests {
     use super::kit::protocol::Payload;
-    use super::{Level, hflink, lamp};
+    use super::{Level, hflink, lamp, sensors};
 
     #[test]
     fn a_spec_expanded_through_the_override_encodes_and_decodes() {
@@ -94,5 +131,27 @@ mod tests {
         let mut input = &frame[..n];
         let decoded = decoder.decode(&mut input).expect("one frame");
         assert_eq!(lamp::Packet::from_frame(decoded.bytes), Ok(packet));
+    }
+
+    #[test]
+    fn derives_through_the_override_serialize_as_the_codec_does() {
+        let packet = sensors::Packet {
+            header: sensors::Header {},
+            message: sensors::Message::Range(sensors::Range {
+                distance: 1.5,
+                unit: sensors::Unit::Unknown(9),
+                tag: link_kit::Bytes::from_slice(&[0xAB, 0x01]).expect("fits"),
+            }),
+        };
+        let json = serde_json::to_string(&packet).expect("serializes");
+        assert_eq!(
+            json,
+            r#"{"command":"RANGE","header":{},"payload":{"distance":1.5,"unit":9,"tag":"ab01"}}"#
+        );
+        let back: sensors::Packet = serde_json::from_str(&json).expect("reads back");
+        assert_eq!(back, packet);
+        let reset: sensors::Packet =
+            serde_json::from_str(r#"{"command":"RESET","header":{},"payload":{}}"#).expect("reads");
+        assert_eq!(reset.message, sensors::Message::Reset);
     }
 }

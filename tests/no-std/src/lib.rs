@@ -1,6 +1,11 @@
 //! A `#![no_std]`, heap-free crate that expands the real specs, built for
 //! `thumbv7em-none-eabihf` in CI: proof that the runtime and all generated code need neither
 //! `std` nor `alloc`, and that generated code passes `deny(warnings, missing_docs)`.
+//!
+//! The [`derived`] module expands specs again with `derive(serde, defmt)`: the same proof for
+//! the serde and defmt impls of generated types, and generated packets logged with
+//! `defmt::info!` as firmware would (built, not linked: the firmware's defmt logger and its
+//! host decoder are not part of this check).
 
 #![no_std]
 #![forbid(unsafe_code)]
@@ -103,4 +108,56 @@ pub fn dynamixel(input: &[u8]) -> (usize, usize) {
         }
     }
     (n, m)
+}
+
+/// Specs expanded with `derive(serde, defmt)`: directions (HFLink), bytes (CRSF), repeated
+/// groups, optional fields and text (u-blox), a frame format without commands (S.BUS), CAN
+/// (Scout), byte stuffing and a second format (Dynamixel), bit-packed arrays and texts.
+pub mod derived {
+    // defmt's logging macros name `defmt::...`: the facade's re-export under that name.
+    use protocol::defmt;
+
+    protocol::protocol!("../../specs/hflink.toml", derive(serde, defmt));
+    protocol::protocol!("../../specs/crsf.toml", derive(serde, defmt));
+    protocol::protocol!("../../specs/ubx.toml", derive(serde, defmt));
+    protocol::protocol!("../../specs/sbus.toml", derive(serde, defmt));
+    protocol::protocol!("../../specs/scout.toml", derive(serde, defmt));
+    protocol::protocol!("../../specs/dynamixel.toml", derive(serde, defmt));
+    protocol::protocol!(
+        "../../protocol-codegen/tests/features/packed.toml",
+        derive(serde, defmt)
+    );
+    protocol::protocol!(
+        "../../protocol-codegen/tests/features/text.toml",
+        derive(serde, defmt)
+    );
+
+    /// Decode every HFLink frame of `input` and log each packet with `defmt::info!` (the
+    /// generated `Format` impls), or the error of a frame that does not decode.
+    pub fn log_hflink(input: &[u8]) -> usize {
+        let mut decoder = hflink::decoder();
+        let mut rest = input;
+        let mut n = 0;
+        while let Some(frame) = decoder.decode(&mut rest) {
+            match hflink::Packet::from_frame(frame.bytes) {
+                Ok(packet) => {
+                    defmt::info!("frame at {}: {}", frame.offset, packet);
+                    n += 1;
+                }
+                Err(e) => defmt::warn!("frame at {}: {}", frame.offset, e),
+            }
+        }
+        n
+    }
+
+    /// Log a u-blox and a Scout CAN packet, whose payloads hold groups, texts, optional fields
+    /// and kept unknown enum values.
+    pub fn log_others(ubx_frame: &[u8], can: &protocol::CanFrame) {
+        if let Ok(packet) = ubx::Packet::decode(ubx_frame) {
+            defmt::info!("u-blox: {}", packet);
+        }
+        if let Ok(packet) = scout::CanPacket::decode(can) {
+            defmt::info!("scout: {}", packet);
+        }
+    }
 }

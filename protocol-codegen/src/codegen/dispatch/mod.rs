@@ -20,6 +20,7 @@ use command::emit_command_enum;
 use frames::{emit_can_packet, emit_message_packet};
 pub use given::direction_layouts;
 use message::{emit_direction_message, emit_message_enum};
+pub(crate) use packet::direction_test;
 use packet::emit_packet;
 
 /// Everything about commands and messages, for the first frame.

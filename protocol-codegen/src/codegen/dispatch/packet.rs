@@ -39,7 +39,7 @@ impl Items {
 }
 
 /// The condition that a header is of direction `rule`, as an expression over `header`.
-fn direction_test(p: &Protocol, f: &Frame, rule: &DirectionRule) -> TokenStream {
+pub(crate) fn direction_test(p: &Protocol, f: &Frame, rule: &DirectionRule) -> TokenStream {
     match rule {
         DirectionRule::InSet { value, set } => {
             let v = &f.values[*value];

@@ -1,0 +1,201 @@
+//! Packets as the map of `command`, `header` and `payload` (see the parent module), and
+//! commands as their names in the spec.
+
+use core::fmt;
+use core::marker::PhantomData;
+
+use serde::de::{self, DeserializeSeed, Deserializer, IgnoredAny, MapAccess, Visitor};
+use serde::ser::{SerializeMap, Serializer};
+use serde::{Deserialize, Serialize};
+
+/// What a generated packet gives and takes for its `Serialize` and `Deserialize` impls (which
+/// call [`serialize_packet`] and [`deserialize_packet`]).
+pub trait SerdePacket: Sized {
+    /// The header values.
+    type Header: Serialize + for<'de> Deserialize<'de>;
+    /// The message: it serializes as its payload alone.
+    type Message: Serialize;
+    /// The command enum.
+    type Command: Copy;
+
+    /// The command's name in the spec (`None` for an acknowledgement), the header and the
+    /// message.
+    fn parts(&self) -> (Option<&'static str>, &Self::Header, &Self::Message);
+    /// The command of a spec name.
+    fn command_named(name: &str) -> Option<Self::Command>;
+    /// Reads the payload of `command` (`None`: no `command` key) sent with `header`.
+    ///
+    /// # Errors
+    /// The deserializer's, and an error for a missing command or a header of no direction.
+    fn payload<'de, D: Deserializer<'de>>(
+        command: Option<Self::Command>,
+        header: &Self::Header,
+        d: D,
+    ) -> Result<Self::Message, D::Error>;
+    /// The packet of a header and a message.
+    fn from_parts(header: Self::Header, message: Self::Message) -> Self;
+}
+
+/// Writes a packet as the map `command` (when it has one), `header`, `payload`.
+///
+/// # Errors
+/// The serializer's.
+pub fn serialize_packet<P: SerdePacket, S: Serializer>(p: &P, s: S) -> Result<S::Ok, S::Error> {
+    let (command, header, message) = p.parts();
+    let mut map = s.serialize_map(Some(if command.is_some() { 3 } else { 2 }))?;
+    if let Some(name) = command {
+        map.serialize_entry("command", name)?;
+    }
+    map.serialize_entry("header", header)?;
+    map.serialize_entry("payload", message)?;
+    map.end()
+}
+
+/// Reads a packet from a map with `command` and `header` before `payload`; other keys are
+/// skipped.
+///
+/// # Errors
+/// The deserializer's, and errors for an unknown command, a missing key or a payload before
+/// its command or header.
+pub fn deserialize_packet<'de, P: SerdePacket, D: Deserializer<'de>>(d: D) -> Result<P, D::Error> {
+    d.deserialize_map(PacketVisitor::<P>(PhantomData))
+}
+
+struct PacketVisitor<P>(PhantomData<P>);
+
+struct PayloadSeed<'a, P: SerdePacket> {
+    command: Option<P::Command>,
+    header: &'a P::Header,
+}
+
+impl<'de, P: SerdePacket> DeserializeSeed<'de> for PayloadSeed<'_, P> {
+    type Value = P::Message;
+
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<P::Message, D::Error> {
+        P::payload(self.command, self.header, d)
+    }
+}
+
+impl<'de, P: SerdePacket> Visitor<'de> for PacketVisitor<P> {
+    type Value = P;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a packet: a map of `command`, `header` and `payload`")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<P, A::Error> {
+        let mut command = None;
+        let mut header = None;
+        let mut message = None;
+        while let Some(key) = map.next_key::<Key>()? {
+            match key {
+                Key::Command => {
+                    let name = map.next_value::<Name>()?;
+                    let c = P::command_named(name.as_str()).ok_or_else(|| {
+                        de::Error::custom(format_args!("no command `{}`", name.as_str()))
+                    })?;
+                    command = Some(c);
+                }
+                Key::Header => header = Some(map.next_value::<P::Header>()?),
+                Key::Payload => {
+                    let header = header.as_ref().ok_or_else(|| {
+                        de::Error::custom("`payload` before `header`: the header must come first")
+                    })?;
+                    message = Some(map.next_value_seed(PayloadSeed::<P> { command, header })?);
+                }
+                Key::Other => {
+                    map.next_value::<IgnoredAny>()?;
+                }
+            }
+        }
+        match (header, message) {
+            (Some(header), Some(message)) => Ok(P::from_parts(header, message)),
+            (None, _) => Err(de::Error::missing_field("header")),
+            (_, None) => Err(de::Error::missing_field("payload")),
+        }
+    }
+}
+
+/// A key of a packet's map.
+enum Key {
+    Command,
+    Header,
+    Payload,
+    Other,
+}
+
+impl<'de> Deserialize<'de> for Key {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct KeyVisitor;
+        impl Visitor<'_> for KeyVisitor {
+            type Value = Key;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a key")
+            }
+            fn visit_str<E: de::Error>(self, key: &str) -> Result<Key, E> {
+                Ok(match key {
+                    "command" => Key::Command,
+                    "header" => Key::Header,
+                    "payload" => Key::Payload,
+                    _ => Key::Other,
+                })
+            }
+        }
+        d.deserialize_identifier(KeyVisitor)
+    }
+}
+
+/// A command name of up to 64 bytes, copied (a borrowed `&str` is not available from every
+/// deserializer, and no heap is).
+struct Name(crate::bytes::Bytes<64>);
+
+impl Name {
+    fn as_str(&self) -> &str {
+        core::str::from_utf8(self.0.as_slice()).unwrap_or_default()
+    }
+}
+
+impl<'de> Deserialize<'de> for Name {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct NameVisitor;
+        impl Visitor<'_> for NameVisitor {
+            type Value = Name;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a command's name")
+            }
+            fn visit_str<E: de::Error>(self, name: &str) -> Result<Name, E> {
+                crate::bytes::Bytes::from_slice(name.as_bytes())
+                    .map(Name)
+                    .ok_or_else(|| E::custom(format_args!("no command `{name}`")))
+            }
+        }
+        d.deserialize_str(NameVisitor)
+    }
+}
+
+/// Writes a command as its name in the spec.
+///
+/// # Errors
+/// The serializer's.
+pub fn serialize_name<S: Serializer>(s: S, name: &str) -> Result<S::Ok, S::Error> {
+    s.serialize_str(name)
+}
+
+/// Reads a command from its name in the spec.
+///
+/// # Errors
+/// The deserializer's, and an error for a name `named` does not know.
+pub fn deserialize_name<'de, D: Deserializer<'de>, C>(
+    d: D,
+    named: impl Fn(&str) -> Option<C>,
+) -> Result<C, D::Error> {
+    let name = Name::deserialize(d)?;
+    named(name.as_str())
+        .ok_or_else(|| de::Error::custom(format_args!("no command `{}`", name.as_str())))
+}
+
+/// An error of a payload's deserializer: a header that matches no direction of the spec, or
+/// a payload with no command in a spec without acknowledgements.
+pub fn payload_error<E: de::Error>(what: &'static str) -> E {
+    E::custom(what)
+}
