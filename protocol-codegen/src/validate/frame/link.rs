@@ -10,6 +10,9 @@ use super::super::types::Structs;
 use crate::ir::{Command, Frame, PacketKind, Transport};
 use crate::spec::model::FrameDef;
 
+/// The most command formats of a link: what the run-time codec's stream holds.
+const MAX_LINK_FORMATS: usize = 8;
+
 /// The largest value of a field of `width` bits.
 fn mask(width: u32) -> u64 {
     if width >= 64 {
@@ -68,6 +71,14 @@ pub(crate) fn lower_link(
                     name.get_ref()
                 ),
                 "give the formats syncs that differ in a byte both have (MAVLink: `FE` and `FD`)",
+            );
+            continue;
+        }
+        if link.len() >= MAX_LINK_FORMATS {
+            ctx.error(
+                flag.span(),
+                format!("frame `{}` would be command format number {} of the link, at most {MAX_LINK_FORMATS} are supported", name.get_ref(), link.len() + 1),
+                "carry the commands in fewer frame formats",
             );
             continue;
         }
