@@ -23,9 +23,9 @@ fn key_codec(first: &Frame, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenS
     let types: Vec<_> = key_prims(first).into_iter().map(prim_type).collect();
     let vars: Vec<_> = (0..consts.len()).map(|i| format_ident!("k{}", i)).collect();
     let widths: Vec<u32> = f.dispatch.iter().map(|&i| f.values[i].width).collect();
-    let mut key = quote!(0u64);
-    for (v, w) in vars.iter().zip(&widths) {
-        key = quote!(((#key) << #w) | #v);
+    let mut key = quote!(k0);
+    for (v, w) in vars.iter().zip(&widths).skip(1) {
+        key = quote!((#key << #w) | #v);
     }
     let fits: Vec<_> = vars
         .iter()
