@@ -94,9 +94,11 @@ fn frame(format: usize, payload: &[u8]) -> Vec<u8> {
     bytes
 }
 
-/// Frames (offset, format, bytes) and rejections (offset) of `stream` fed in chunks of `chunk`
-/// bytes, then flushed.
-type Seen = (Vec<(u64, usize, Vec<u8>)>, Vec<(u64, Reject)>);
+/// Frames found: offset, format, bytes.
+type Found = Vec<(u64, usize, Vec<u8>)>;
+
+/// Frames and rejections (offset) of `stream` fed in chunks of `chunk` bytes, then flushed.
+type Seen = (Found, Vec<(u64, Reject)>);
 
 fn decode<L: LayoutRef>(layout: L, stream: &[u8], chunk: usize) -> Seen {
     let mut decoder = StreamDecoder::<L, 64>::new(layout);
@@ -125,7 +127,7 @@ fn decode<L: LayoutRef>(layout: L, stream: &[u8], chunk: usize) -> Seen {
 }
 
 /// The frames of `stream` through `feed`, in chunks of `chunk` bytes.
-fn feed<L: LayoutRef>(layout: L, stream: &[u8], chunk: usize) -> Vec<(u64, usize, Vec<u8>)> {
+fn feed<L: LayoutRef>(layout: L, stream: &[u8], chunk: usize) -> Found {
     let mut decoder = StreamDecoder::<L, 64>::new(layout);
     let mut frames = Vec::new();
     for piece in stream.chunks(chunk.max(1)) {
@@ -140,7 +142,7 @@ fn feed<L: LayoutRef>(layout: L, stream: &[u8], chunk: usize) -> Vec<(u64, usize
 }
 
 /// A mixed stream: garbage, frames of both formats, a corrupt frame of each.
-fn mixed() -> (Vec<u8>, Vec<(u64, usize, Vec<u8>)>) {
+fn mixed() -> (Vec<u8>, Found) {
     let mut stream = vec![0x00, 0x11];
     let mut expected = Vec::new();
     let mut push = |stream: &mut Vec<u8>, format: usize, payload: &[u8], valid: bool| {
