@@ -72,13 +72,26 @@ pub fn assert_stream_at_every_chunk_size<const N: usize>(
     expected: &[(u64, Vec<u8>)],
     mut each: impl FnMut(&[u8]),
 ) {
+    assert_link_stream_at_every_chunk_size::<_, N>(layout, bytes, expected, |frame| {
+        each(frame.bytes);
+    });
+}
+
+/// [`assert_stream_at_every_chunk_size`] for any layout, a link of several frame formats
+/// too: `each` sees every frame with the format it came in.
+pub fn assert_link_stream_at_every_chunk_size<L: protocol::LayoutRef, const N: usize>(
+    layout: L,
+    bytes: &[u8],
+    expected: &[(u64, Vec<u8>)],
+    mut each: impl FnMut(&protocol::Frame<'_>),
+) {
     for chunk in 1..=bytes.len() {
         let mut dec = protocol::StreamDecoder::<_, N>::new(layout);
         let mut got = Vec::new();
         for part in bytes.chunks(chunk) {
             let mut input = part;
             while let Some(frame) = dec.decode(&mut input) {
-                each(frame.bytes);
+                each(&frame);
                 got.push((frame.offset, frame.bytes.to_vec()));
             }
         }

@@ -42,6 +42,10 @@ pub struct Protocol {
     pub directions: Vec<Direction>,
     /// Commands, in spec order.
     pub commands: Vec<Command>,
+    /// The frame formats (indices into `frames`) of the link's one decoder, in the order of
+    /// the runtime's `Frame::format`: the first format, then those with
+    /// [`PacketKind::Commands`]. Empty when the link has one command format.
+    pub link: Vec<usize>,
 }
 
 /// A named integer constant of the spec.
@@ -223,6 +227,9 @@ pub struct Struct {
     /// type as written; it implements `Payload` itself, and its fields and size are not known
     /// here (no field, size 0). Never set for a spec's structs.
     pub foreign: bool,
+    /// Bytes of the fields before the first extension field, for a struct that has extension
+    /// fields (then of a fixed size): what a frame format without extensions carries of it.
+    pub base_size: Option<usize>,
 }
 
 /// One field of a payload struct.
@@ -507,6 +514,13 @@ pub struct Frame {
     pub message: Option<usize>,
     /// What a whole decoded frame of this format holds, when it has a packet type.
     pub packet: PacketKind,
+    /// False when the format carries payloads without their extension fields (a struct's
+    /// [`Struct::base_size`] bytes).
+    pub extensions: bool,
+    /// The commands (indices into [`Protocol::commands`]) this format carries: every command
+    /// for the first format with a dispatch key; for a format with
+    /// [`PacketKind::Commands`], those whose id fits its dispatch fields; else none.
+    pub commands: Vec<usize>,
 }
 
 /// The packet type of a frame format: what a whole decoded frame holds.
@@ -523,6 +537,10 @@ pub enum PacketKind {
     /// format has a dispatch key: a header and a command's message, the command found from the
     /// CAN id.
     Can,
+    /// A serial frame format after the first that carries the commands too (`commands =
+    /// true`): a header and a command's message, the command found from its own dispatch key.
+    /// The link's decoder finds its frames beside the first format's.
+    Commands,
 }
 
 impl Frame {

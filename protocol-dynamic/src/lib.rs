@@ -212,7 +212,24 @@ impl Codec<'_> {
     /// of range.
     pub fn stream(&self, format: usize) -> Option<Stream<'_>> {
         let layout = self.layout(format)?;
-        Some(Stream::new(self, format, layout))
+        Stream::new(self, vec![format], &[layout])
+    }
+
+    /// A stream decoder of the link: of every command format of the protocol (the first frame
+    /// format and those that carry the commands too, `Protocol::link`), each frame decoded
+    /// by the format it came in; of the first frame format when the link has one. `None` for
+    /// a protocol without frame formats.
+    pub fn link_stream(&self) -> Option<Stream<'_>> {
+        let formats = if self.protocol.link.is_empty() {
+            vec![0]
+        } else {
+            self.protocol.link.clone()
+        };
+        let layouts = formats
+            .iter()
+            .map(|&fi| self.layout(fi))
+            .collect::<Option<Vec<_>>>()?;
+        Stream::new(self, formats, &layouts)
     }
 
     /// Frame format `format` as the runtime's [`PacketLayout`](protocol_runtime::PacketLayout),

@@ -10,13 +10,38 @@ use protocol_runtime::{Event, FrameLayout, PacketLayout, Reject, Stats, StreamDe
 
 use crate::{Codec, DecodeIssue, Decoded};
 
-/// A layout held by value, so that a [`Stream`] owns what its engine reads.
+/// The most frame formats a [`Stream`] decodes at once: a link's command formats.
+pub const LINK_FORMATS: usize = 8;
+
+/// The layouts of a stream's formats held by value, so that a [`Stream`] owns what its engine
+/// reads: the first, and the others of a link of several formats (`others[..n]`; the rest
+/// repeat the first and are never read).
 #[derive(Clone, Copy)]
-struct Held<'c>(FrameLayout<'c>);
+struct Held<'c> {
+    first: FrameLayout<'c>,
+    others: [FrameLayout<'c>; LINK_FORMATS - 1],
+    n: usize,
+}
+
+impl<'c> Held<'c> {
+    /// `layouts` (at least one; at most [`LINK_FORMATS`] are held).
+    fn new(first: FrameLayout<'c>, more: &[FrameLayout<'c>]) -> Self {
+        let mut others = [first; LINK_FORMATS - 1];
+        let n = more.len().min(others.len());
+        for (slot, layout) in others.iter_mut().zip(more) {
+            *slot = *layout;
+        }
+        Held { first, others, n }
+    }
+}
 
 impl LayoutRef for Held<'_> {
     fn layout(&self) -> &FrameLayout<'_> {
-        &self.0
+        &self.first
+    }
+
+    fn others(&self) -> &[FrameLayout<'_>] {
+        self.others.get(..self.n).unwrap_or_default()
     }
 }
 
@@ -93,27 +118,39 @@ pub enum Item<'s> {
     },
 }
 
-/// A stream decoder of one frame format. Made by [`Codec::stream`].
+/// A stream decoder of one frame format, or of the command formats of a link. Made by
+/// [`Codec::stream`] and [`Codec::link_stream`].
 pub struct Stream<'c> {
     codec: &'c Codec<'c>,
-    format: usize,
+    /// The frame format (index into the protocol's frames) of each of the engine's formats.
+    formats: Vec<usize>,
     engine: Engine<'c>,
 }
 
 impl<'c> Stream<'c> {
-    pub(crate) fn new(codec: &'c Codec<'c>, format: usize, layout: FrameLayout<'c>) -> Self {
-        let held = Held(layout);
-        let engine = match layout.max_len {
+    /// A stream of the frame formats `formats` (at least one), whose layouts are `layouts`.
+    pub(crate) fn new(
+        codec: &'c Codec<'c>,
+        formats: Vec<usize>,
+        layouts: &[FrameLayout<'c>],
+    ) -> Option<Self> {
+        let (first, more) = layouts.split_first()?;
+        if layouts.len() > LINK_FORMATS || formats.len() != layouts.len() {
+            return None;
+        }
+        let held = Held::new(*first, more);
+        let max_len = layouts.iter().map(|l| l.max_len).max().unwrap_or(0);
+        let engine = match max_len {
             0..=256 => Engine::B256(Box::new(StreamDecoder::new(held))),
             257..=4096 => Engine::B4096(Box::new(StreamDecoder::new(held))),
             4097..=65_600 => Engine::B65600(Box::new(StreamDecoder::new(held))),
             _ => Engine::B1M(Box::new(StreamDecoder::new(held))),
         };
-        Stream {
+        Some(Stream {
             codec,
-            format,
+            formats,
             engine,
-        }
+        })
     }
 
     /// The largest frame the engine's buffer holds. A format whose frames may be longer (more
@@ -130,27 +167,27 @@ impl<'c> Stream<'c> {
     /// The next item of the stream, consuming `input` as the engine reads it
     /// ([`StreamDecoder::next_event`]); `None` when `input` is used up and more is needed.
     pub fn next_item<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Item<'s>> {
-        let (codec, format) = (self.codec, self.format);
+        let (codec, formats) = (self.codec, &self.formats);
         let event = match &mut self.engine {
             Engine::B256(d) => d.next_event(input),
             Engine::B4096(d) => d.next_event(input),
             Engine::B65600(d) => d.next_event(input),
             Engine::B1M(d) => d.next_event(input),
         }?;
-        Some(item(codec, format, event))
+        Some(item(codec, formats, event))
     }
 
     /// The items left in the engine's buffer at the end of the input
     /// ([`StreamDecoder::flush_event`]); `None` when none is left.
     pub fn flush_item(&mut self) -> Option<Item<'_>> {
-        let (codec, format) = (self.codec, self.format);
+        let (codec, formats) = (self.codec, &self.formats);
         let event = match &mut self.engine {
             Engine::B256(d) => d.flush_event(),
             Engine::B4096(d) => d.flush_event(),
             Engine::B65600(d) => d.flush_event(),
             Engine::B1M(d) => d.flush_event(),
         }?;
-        Some(item(codec, format, event))
+        Some(item(codec, formats, event))
     }
 
     /// The engine's counts so far.
@@ -164,12 +201,16 @@ impl<'c> Stream<'c> {
     }
 }
 
-fn item<'s>(codec: &Codec<'_>, format: usize, event: Event<'s>) -> Item<'s> {
+/// An event of the engine, its frame decoded by the format it came in (`formats[f.format]`).
+fn item<'s>(codec: &Codec<'_>, formats: &[usize], event: Event<'s>) -> Item<'s> {
     match event {
         Event::Frame(f) => Item::Frame {
             offset: f.offset,
             bytes: f.bytes,
-            decoded: codec.decode_frame(format, f.bytes),
+            decoded: codec.decode_frame(
+                formats.get(f.format).copied().unwrap_or(usize::MAX),
+                f.bytes,
+            ),
         },
         Event::Rejected { offset, reason } => Item::Rejected { offset, reason },
         Event::Skipped { offset, len } => Item::Skipped { offset, len },

@@ -224,8 +224,42 @@ pub struct FrameLayout<'a> {
 /// assert_eq!(Fixed.layout().max_len, (&FIXED).layout().max_len);
 /// ```
 pub trait LayoutRef: Copy {
-    /// The frame format.
+    /// The frame format (the link's first, when it has several).
     fn layout(&self) -> &FrameLayout<'_>;
+
+    /// The link's other frame formats, after [`layout`](Self::layout): a candidate is probed
+    /// by the first format whose sync it starts with, and the frame found says which
+    /// ([`Frame::format`](crate::decoder::Frame::format): 0 for `layout`, 1 for the first of
+    /// these, ...). None by default: a link of one format, for which every branch on the
+    /// others folds away. The formats' syncs must tell them apart (none matches a prefix of
+    /// another's).
+    #[inline(always)]
+    fn others(&self) -> &[FrameLayout<'_>] {
+        &[]
+    }
+}
+
+/// The frame formats of a link that has several (MAVLink 1 and 2, found by their start
+/// markers `FE` and `FD`), held by reference: what the run-time codec hands the engine.
+/// Generated code implements [`LayoutRef::others`] on its own zero-sized type instead.
+#[derive(Debug, Clone, Copy)]
+pub struct Formats<'l> {
+    /// The first format.
+    pub first: &'l FrameLayout<'l>,
+    /// The others, in order.
+    pub others: &'l [FrameLayout<'l>],
+}
+
+impl LayoutRef for Formats<'_> {
+    #[inline(always)]
+    fn layout(&self) -> &FrameLayout<'_> {
+        self.first
+    }
+
+    #[inline(always)]
+    fn others(&self) -> &[FrameLayout<'_>] {
+        self.others
+    }
 }
 
 impl<'l> LayoutRef for &'l FrameLayout<'l> {

@@ -165,7 +165,7 @@ fn frames_found_whole_in_the_input_borrow_it() {
     let mut input = &stream[..];
     let range = stream.as_ptr_range();
     let mut frames = Vec::new();
-    while let Some(Frame { bytes, offset }) = decoder.decode(&mut input) {
+    while let Some(Frame { bytes, offset, .. }) = decoder.decode(&mut input) {
         let at = offset as usize;
         assert_eq!(bytes, &stream[at..at + bytes.len()]);
         frames.push((offset, range.contains(&bytes.as_ptr())));

@@ -1,8 +1,9 @@
 //! MAVLink golden vectors (`tests/vectors/mavlink.json`, written by pymavlink 2.4.50 and by the
-//! `mavlink` crate 0.21) against `specs/mavlink.toml`: every frame the spec expresses (MAVLink 2,
-//! unsigned: CRC_EXTRA, extension fields, trailing-zero truncation) decodes to its recorded
-//! values and encodes back to the exact bytes, by generated code and by the run-time codec
-//! (`protocol_dynamic`); the mixed stream yields those frames at every chunk size, in both.
+//! `mavlink` crate 0.21) against `specs/mavlink.toml`: every frame the spec expresses (MAVLink 1,
+//! base fields only; MAVLink 2 unsigned: CRC_EXTRA, extension fields, trailing-zero truncation)
+//! decodes to its recorded values and encodes back to the exact bytes, by generated code and by
+//! the run-time codec (`protocol_dynamic`); the mixed v1/v2 stream yields those frames at every
+//! chunk size through the link's one decoder, in both.
 //!
 //! The frames the spec does not express are listed by [`not_expressed`], with the reason, and
 //! checked to be refused rather than misread.
@@ -11,7 +12,7 @@ mod golden;
 
 use protocol::{DecodeError, Reject};
 use protocol_dynamic::Interpreter;
-use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
+use protocol_tests::{F, assert_link_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
 protocol::protocol!("../specs/mavlink.toml");
@@ -20,12 +21,6 @@ use mavlink::*;
 
 /// Why the spec does not express a frame, or `None` when it does.
 fn not_expressed(frame: &Value) -> Option<&'static str> {
-    if frame["mavlink_version"] == 1 {
-        return Some(
-            "MAVLink 1 (FE): commands bind to the first frame format, and a per-format payload \
-             length (v1 carries no extension fields) is not expressible yet",
-        );
-    }
     if frame["signed"] == true {
         return Some(
             "signed (incompat flag 0x01): a trailer present only when a header flag is set is \
@@ -33,6 +28,33 @@ fn not_expressed(frame: &Value) -> Option<&'static str> {
         );
     }
     None
+}
+
+/// A MAVLink 1 frame carries a message's base fields only: its vector records those, and the
+/// decoded struct holds zero in the extension fields (the fields the spec marks `extension`).
+fn with_extensions_zero(frame: &Value) -> Value {
+    let mut frame = frame.clone();
+    if frame["mavlink_version"] != 1 {
+        return frame;
+    }
+    let interp = interpreter();
+    let p = interp.protocol();
+    let name = frame["message"].as_str().expect("message").to_string();
+    let command = p.commands.iter().find(|c| c.name == name).expect("command");
+    let s = &p.structs[command.payloads[0].expect("payload")];
+    let base = s.base_size.unwrap_or(s.size);
+    let fields = frame["fields"].as_object_mut().expect("fields");
+    for field in s.fields.iter().filter(|f| f.offset >= base) {
+        assert!(!fields.contains_key(&field.name), "{name}.{}", field.name);
+        let zero = match &field.kind {
+            protocol_codegen::ir::FieldKind::Value { count: Some(n), .. } => {
+                Value::from(vec![0; *n])
+            }
+            _ => Value::from(0),
+        };
+        fields.insert(field.name.clone(), zero);
+    }
+    frame
 }
 
 fn frames() -> Vec<Value> {
@@ -72,6 +94,7 @@ fn u16s<const N: usize>(v: &Value, k: &str) -> [u16; N] {
 
 /// The message a vector records, built from its field values.
 fn expected(frame: &Value) -> Message {
+    let frame = &with_extensions_zero(frame);
     let v = &frame["fields"];
     match frame["message"].as_str().expect("message") {
         "HEARTBEAT" => Message::Heartbeat(Heartbeat {
@@ -238,9 +261,40 @@ fn header(frame: &Value) -> Header {
     }
 }
 
+fn v1_header(frame: &Value) -> V1Header {
+    V1Header {
+        seq: u(frame, "seq") as u8,
+        sysid: u(frame, "sysid") as u8,
+        compid: u(frame, "compid") as u8,
+    }
+}
+
+/// A vector's frame decoded by the packet of its format, and encoded back.
+fn decode_and_encode(frame: &Value, bytes: &[u8]) -> (Message, Vec<u8>) {
+    let name = frame["name"].as_str().expect("name");
+    let mut buf = [0u8; ANY_DECODER_BUFFER_LEN];
+    let (message, n) = if frame["mavlink_version"] == 1 {
+        let packet = V1Packet::decode(bytes).unwrap_or_else(|e| panic!("{name}: {e:?}"));
+        assert_eq!(packet.header, v1_header(frame), "{name}");
+        let n = packet.encode(&mut buf).expect("encode");
+        assert_eq!(packet.encoded_len(), n, "{name}: encoded_len");
+        // MAVLink 2 does not decode it.
+        assert!(Packet::decode(bytes).is_err(), "{name}");
+        (packet.message, n)
+    } else {
+        let packet = Packet::decode(bytes).unwrap_or_else(|e| panic!("{name}: {e:?}"));
+        assert_eq!(packet.header, header(frame), "{name}");
+        let n = packet.encode(&mut buf).expect("encode");
+        assert_eq!(packet.encoded_len(), n, "{name}: encoded_len");
+        assert!(V1Packet::decode(bytes).is_err(), "{name}");
+        (packet.message, n)
+    };
+    (message, buf[..n].to_vec())
+}
+
 #[test]
 fn every_expressed_frame_decodes_and_encodes_to_its_bytes() {
-    let mut expressed = 0;
+    let (mut v1, mut v2) = (0, 0);
     let mut truncated = 0;
     for frame in frames() {
         let name = frame["name"].as_str().expect("name");
@@ -248,23 +302,71 @@ fn every_expressed_frame_decodes_and_encodes_to_its_bytes() {
             continue;
         }
         let bytes = hex(frame["hex"].as_str().expect("hex"));
-        let packet = Packet::decode(&bytes).unwrap_or_else(|e| panic!("{name}: {e:?}"));
-        assert_eq!(packet.header, header(&frame), "{name}");
-        assert_eq!(packet.message, expected(&frame), "{name}");
-        let mut buf = [0u8; MAX_FRAME_LEN];
-        let n = packet.encode(&mut buf).expect("encode");
-        assert_eq!(F(&buf[..n]), F(&bytes), "{name}: encode");
-        assert_eq!(packet.encoded_len(), n, "{name}: encoded_len");
+        let (message, encoded) = decode_and_encode(&frame, &bytes);
+        assert_eq!(message, expected(&frame), "{name}");
+        assert_eq!(F(&encoded), F(&bytes), "{name}: encode");
         // The sent payload length is the recorded one, the decoded struct the full message.
         assert_eq!(bytes[1] as u64, u(&frame, "payload_len"), "{name}");
         if frame["truncated"] == true {
             assert!(u(&frame, "payload_len") < u(&frame, "full_payload_len"));
             truncated += 1;
         }
-        expressed += 1;
+        if frame["mavlink_version"] == 1 {
+            v1 += 1;
+        } else {
+            v2 += 1;
+        }
     }
-    assert_eq!(expressed, 14, "the MAVLink 2 unsigned frames");
+    assert_eq!(v1, 13, "the MAVLink 1 frames");
+    assert_eq!(v2, 14, "the MAVLink 2 unsigned frames");
     assert_eq!(truncated, 6, "of which truncated");
+}
+
+#[test]
+fn a_message_with_extension_fields_goes_out_in_mavlink_1_without_them() {
+    let v = frames();
+    let v2 = v.iter().find(|f| f["name"] == "sys_status_v2").expect("v2");
+    let v1 = v.iter().find(|f| f["name"] == "sys_status_v1").expect("v1");
+    let message = Packet::decode(&hex(v2["hex"].as_str().expect("hex")))
+        .expect("v2")
+        .message;
+    let Message::SysStatus(full) = message else {
+        panic!("{message:?}")
+    };
+    assert_ne!(full.onboard_control_sensors_present_extended, 0);
+    let packet = V1Packet {
+        header: v1_header(v1),
+        message,
+    };
+    let mut buf = [0u8; V1_MAX_FRAME_LEN];
+    let n = packet.encode(&mut buf).expect("encode");
+    // The base fields of the v2 message are the v1 vector's: the same bytes.
+    assert_eq!(F(&buf[..n]), F(&hex(v1["hex"].as_str().expect("hex"))));
+    // Decoded back, the extension fields are zero.
+    let back = V1Packet::decode(&buf[..n]).expect("decode").message;
+    assert_eq!(
+        back,
+        Message::SysStatus(SysStatus {
+            onboard_control_sensors_present_extended: 0,
+            onboard_control_sensors_enabled_extended: 0,
+            onboard_control_sensors_health_extended: 0,
+            ..full
+        })
+    );
+    // A v1 payload of the full size (with the extension fields) is refused.
+    let mut long = buf[..5].to_vec();
+    long[1] = 43;
+    long.push(1); // msgid SYS_STATUS
+    long.extend_from_slice(&[0; 43]);
+    long.extend_from_slice(&[0, 0]);
+    V1_LAYOUT.seal(&mut long).expect("seal");
+    assert_eq!(
+        V1Packet::decode(&long),
+        Err(DecodeError::PayloadLength {
+            expected: 31,
+            actual: 43
+        })
+    );
 }
 
 #[test]
@@ -276,7 +378,7 @@ fn the_frames_not_expressed_are_refused_not_misread() {
         };
         let name = frame["name"].as_str().expect("name");
         let bytes = hex(frame["hex"].as_str().expect("hex"));
-        // A v1 frame does not start with FD; a signed one has incompat flag 0x01.
+        // A signed frame has incompat flag 0x01.
         assert_eq!(
             Packet::decode(&bytes).map(|_| ()),
             Err(DecodeError::Frame(Reject::BadHeader)),
@@ -284,7 +386,7 @@ fn the_frames_not_expressed_are_refused_not_misread() {
         );
         listed.push(format!("{name}: {why}"));
     }
-    assert_eq!(listed.len(), 15, "{listed:#?}");
+    assert_eq!(listed.len(), 2, "{listed:#?}");
 }
 
 #[test]
@@ -343,19 +445,19 @@ fn an_all_zero_payload_keeps_its_first_byte() {
     );
 }
 
-/// The vector stream's expected frames that the spec expresses (MAVLink 2, unsigned), and the
-/// others, which are refused.
+/// The vector stream's expected frames that the spec expresses (MAVLink 1, MAVLink 2
+/// unsigned), and the others, which are refused.
 fn expressed_stream() -> (Vec<u8>, Vec<(u64, Vec<u8>)>) {
     let v = load_vectors("mavlink.json");
     let (bytes, all) = stream_vector(&v["streams"][0]);
     let expressed: Vec<_> = all
         .into_iter()
-        .filter(|(_, f)| f[0] == 0xFD && f[2] == 0)
+        .filter(|(_, f)| f[0] == 0xFE || f[2] == 0)
         .collect();
     assert_eq!(
         expressed.len(),
-        2,
-        "sys_status_v2 and command_ack_v2_truncated"
+        4,
+        "heartbeat_v1, sys_status_v2, command_ack_v2_truncated and statustext_v1"
     );
     (bytes, expressed)
 }
@@ -363,9 +465,16 @@ fn expressed_stream() -> (Vec<u8>, Vec<(u64, Vec<u8>)>) {
 #[test]
 fn the_mixed_stream_yields_the_expressed_frames_at_every_chunk_size() {
     let (bytes, expected) = expressed_stream();
-    assert_stream_at_every_chunk_size::<DECODER_BUFFER_LEN>(&LAYOUT, &bytes, &expected, |f| {
-        Packet::from_frame(f).expect("decodes");
-    });
+    assert_link_stream_at_every_chunk_size::<_, ANY_DECODER_BUFFER_LEN>(
+        AnyLayout,
+        &bytes,
+        &expected,
+        |f| {
+            let packet = AnyPacket::from_frame(f).expect("decodes");
+            let v1 = matches!(packet, AnyPacket::V1(_));
+            assert_eq!(v1, f.bytes[0] == 0xFE, "the format it came in");
+        },
+    );
 }
 
 fn interpreter() -> Interpreter {
@@ -395,16 +504,20 @@ fn same(recorded: &Value, dynamic: &Value) -> bool {
 fn the_run_time_codec_decodes_and_encodes_every_expressed_frame() {
     let interp = interpreter();
     let codec = interp.codec();
+    let v1 = codec.format_index("v1").expect("v1");
+    let mut n = 0;
     for frame in frames().iter().filter(|f| not_expressed(f).is_none()) {
         let name = frame["name"].as_str().expect("name");
         let bytes = hex(frame["hex"].as_str().expect("hex"));
+        let format = if frame["mavlink_version"] == 1 { v1 } else { 0 };
         let decoded = codec
-            .parse(0, &bytes)
+            .parse(format, &bytes)
             .unwrap_or_else(|e| panic!("{name}: {e:?}"));
         let value = codec.frame_value(&decoded, 0, &bytes);
         let json = serde_json::to_value(&value).expect("json");
         assert_eq!(json["command"], frame["message"], "{name}");
         let payload = &json["payload"];
+        let frame = &with_extensions_zero(frame);
         let fields = frame["fields"].as_object().expect("fields");
         assert_eq!(
             payload.as_object().map(|o| o.len()),
@@ -422,7 +535,9 @@ fn the_run_time_codec_decodes_and_encodes_every_expressed_frame() {
             .encode(&value)
             .unwrap_or_else(|e| panic!("{name}: {e:?}"));
         assert_eq!(F(&encoded.bytes), F(&bytes), "{name}: dynamic encode");
+        n += 1;
     }
+    assert_eq!(n, 27, "13 MAVLink 1 and 14 MAVLink 2 frames");
 }
 
 #[test]

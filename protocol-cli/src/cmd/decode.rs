@@ -53,7 +53,8 @@ pub struct Args {
     /// bytes skipped, link efficiency (to stdout with `table`, to stderr with `json`).
     #[arg(long)]
     stats: bool,
-    /// The frame format to look for [default: the first of the spec with a matching transport].
+    /// The frame format to look for [default: every command format of a link of several (as
+    /// MAVLink 1 and 2), else the first of the spec with a matching transport].
     #[arg(long, value_name = "NAME")]
     frame: Option<String>,
     /// The direction of the frames, for a spec whose directions no header field tells
@@ -89,8 +90,15 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         decode_candump(&mut session, &path.display().to_string(), &text).map(|()| None)
     } else {
         let mut input = open_input(args)?;
-        let (decoder, layout) = codec
-            .stream(format)
+        // Without `--frame`, every command format of the link (MAVLink 1 and 2), each found by
+        // its sync; with it, the one named.
+        let link = args.frame.is_none() && !codec.protocol().link.is_empty();
+        let decoder = if link {
+            codec.link_stream()
+        } else {
+            codec.stream(format)
+        };
+        let (decoder, layout) = decoder
             .zip(codec.layout(format))
             .ok_or_else(|| miette!("no frame format {format}"))?;
         if layout.max_len > decoder.capacity() {

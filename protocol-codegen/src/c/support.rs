@@ -1,7 +1,7 @@
 //! What the C printer supports: [`unsupported`] lists every feature of a spec it refuses, so
 //! that `protocol gen c` fails with a clear message instead of printing wrong code.
 
-use crate::ir::{Algorithm, FieldKind, Prim, Protocol, Role, Transport, ValueType};
+use crate::ir::{Algorithm, FieldKind, PacketKind, Prim, Protocol, Role, Transport, ValueType};
 
 /// One line per feature of `p` the C printer does not support yet; empty when it prints the
 /// whole spec.
@@ -26,6 +26,11 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         }
         if f.bare_len.is_some() {
             out.push(format!("{at}: bare headers"));
+        }
+        if f.packet == PacketKind::Commands {
+            out.push(format!(
+                "{at}: a second format carrying the commands (several command formats on one link)"
+            ));
         }
         if f.dispatch.is_empty() && f.message.is_none() {
             out.push(format!(

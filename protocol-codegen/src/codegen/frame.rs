@@ -11,7 +11,8 @@ use super::docs::{doc_attrs, frame_doc};
 use super::payload::prim_type;
 use super::{ident, rt};
 use crate::ir::{
-    Algorithm, ByteOrder, Check, CheckNaming, CrcTable, Frame, HeaderValue, Pos, Prim, Protocol,
+    Algorithm, ByteOrder, Check, CheckNaming, CrcTable, Frame, HeaderValue, PacketKind, Pos, Prim,
+    Protocol,
     Role, Transport,
 };
 use crate::layout::{self, LayoutPlan, lower_layout};
@@ -275,7 +276,11 @@ pub fn emit_frames(p: &Protocol) -> TokenStream {
     }
     out.extend(emit_wire(p));
     for (i, f) in p.frames.iter().enumerate() {
-        if i == 0 || f.transport != Transport::Serial || f.message.is_some() {
+        if i == 0
+            || f.transport != Transport::Serial
+            || f.message.is_some()
+            || f.packet == PacketKind::Commands
+        {
             out.extend(emit_header(f, &format_ident!("{}", f.names.header)));
         }
     }

@@ -330,7 +330,7 @@ fn packet_impls(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 }
             }
         }
-        PacketKind::Command | PacketKind::Can => {
+        PacketKind::Command | PacketKind::Commands | PacketKind::Can => {
             let (name, command) = if acks {
                 (
                     quote!(self.message.command().map(Command::name)),

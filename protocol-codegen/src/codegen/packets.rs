@@ -20,7 +20,7 @@ pub fn emit_packet_traits(p: &Protocol) -> TokenStream {
     for (fi, f) in p.frames.iter().enumerate() {
         let has_packet = match f.packet {
             PacketKind::Command => fi == 0 && !f.dispatch.is_empty(),
-            PacketKind::Message(_) => true,
+            PacketKind::Message(_) | PacketKind::Commands => true,
             PacketKind::None | PacketKind::Can => false,
         };
         if !has_packet || f.transport != Transport::Serial {

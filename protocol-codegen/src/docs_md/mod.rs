@@ -20,7 +20,7 @@ use std::fmt::Write as _;
 
 use crate::codegen::docs::{frame_doc, struct_doc};
 use crate::ir::{
-    DirectionRule, Element, Enum, Frame, Pos, Protocol, Role, Transport, UnknownPolicy,
+    DirectionRule, Element, Enum, Frame, PacketKind, Pos, Protocol, Role, Transport, UnknownPolicy,
 };
 
 /// The whole reference, sections in order.
@@ -403,6 +403,17 @@ fn frame_notes(p: &Protocol, f: &Frame) -> Vec<String> {
             pattern.join(" ")
         ));
     }
+    if f.packet == PacketKind::Commands {
+        let first = p.frames.first().map_or("?", |f| f.name.as_str());
+        notes.push(format!(
+            "Carries the commands too, beside `{first}`: each command whose id fits its dispatch key ({} of {}). The link's one decoder finds the frames of every format by its sync.",
+            f.commands.len(),
+            p.commands.len()
+        ));
+    }
+    if !f.extensions {
+        notes.push("Without extension fields: a command's payload is its struct's fields before the first extension field; the extension fields decode as zero and are not sent.".to_string());
+    }
     if f.truncate_zeros {
         notes.push("Trailing-zero truncation: the sender drops the zero bytes at the end of a command's payload (keeping its first byte), and the length and the checks count the bytes sent; the receiver zero-fills the payload to its struct's size.".to_string());
     }
@@ -496,6 +507,12 @@ fn structs(p: &Protocol, out: &mut String) {
         let _ = writeln!(out, "### {}\n", s.name);
         out.push_str(struct_doc(p, s).trim());
         out.push_str("\n\n");
+        if let Some(base) = s.base_size {
+            let _ = writeln!(
+                out,
+                "Extension fields: the fields from byte {base} on. A frame format without extension fields carries the first {base} bytes, and the extension fields decode as zero.\n"
+            );
+        }
     }
 }
 

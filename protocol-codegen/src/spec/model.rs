@@ -208,6 +208,14 @@ pub struct FrameDef {
     /// For a frame format without dispatch key: the struct every frame carries.
     #[schemars(with = "Option<String>")]
     pub message: Option<SStr>,
+    /// A serial frame format after the first that carries the commands too, each whose id fits
+    /// its dispatch fields: another format of the same link (MAVLink 1 beside MAVLink 2).
+    #[schemars(with = "Option<bool>")]
+    pub commands: Option<Spanned<bool>>,
+    /// Whether the format carries the struct fields marked `extension` (default true); with
+    /// `false`, a payload is its struct's fields before the first extension field.
+    #[schemars(with = "Option<bool>")]
+    pub extensions: Option<Spanned<bool>>,
 }
 
 /// `stuffing = { after = [0xFF, 0xFF, 0xFD], insert = 0xFD }`.
@@ -490,6 +498,10 @@ pub struct FieldDef {
     /// With `check`: byte order of the check value (default: the struct's).
     #[schemars(with = "Option<String>")]
     pub byte_order: Option<SStr>,
+    /// The field was appended by a later revision of the struct: it and the fields after it
+    /// are not carried by a frame format with `extensions = false`.
+    #[schemars(with = "Option<bool>")]
+    pub extension: Option<Spanned<bool>>,
     /// Documentation.
     #[schemars(with = "Option<String>")]
     pub doc: Option<SStr>,

@@ -55,6 +55,7 @@ pub fn validate_derive(
         frames: Vec::new(),
         directions: Vec::new(),
         commands: Vec::new(),
+        link: Vec::new(),
     })
 }
 

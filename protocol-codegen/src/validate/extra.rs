@@ -57,17 +57,20 @@ pub(crate) fn lower_check_extra(ctx: &mut Ctx<'_>, name: &SStr, d: &CommandDef) 
     }
 }
 
-/// Each per-command extra byte table: `(id, byte)` of every command, sorted by id.
+/// Each per-command extra byte table: `(id, byte)` of every command the frame format carries
+/// (every command, for a format that carries none: its key then finds no byte), sorted by id.
 pub(crate) fn lower_extra_bytes(frames: &mut [Frame], commands: &[Command]) {
-    let mut bytes: Vec<(u32, u8)> = commands
-        .iter()
-        .filter_map(|c| {
-            let id = u32::try_from(*c.id.first()?).ok()?;
-            Some((id, c.check_extra?))
-        })
-        .collect();
-    bytes.sort_unstable();
     for f in frames {
+        let mut bytes: Vec<(u32, u8)> = commands
+            .iter()
+            .enumerate()
+            .filter(|(ci, _)| f.commands.is_empty() || f.commands.contains(ci))
+            .filter_map(|(_, c)| {
+                let id = u32::try_from(*c.id.first()?).ok()?;
+                Some((id, c.check_extra?))
+            })
+            .collect();
+        bytes.sort_unstable();
         for c in &mut f.checks {
             if let Some(extra) = &mut c.extra {
                 extra.bytes.clone_from(&bytes);

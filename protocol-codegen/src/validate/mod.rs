@@ -77,7 +77,8 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
     };
     let commands = commands::lower_commands(&mut ctx, &frames, &directions, &structs);
     let mut frames = frames;
-    frame::lower_packets(&mut frames, !directions.is_empty());
+    frame::lower_packets(&mut frames, !directions.is_empty(), commands.len());
+    let link = frame::lower_link(&mut ctx, &mut frames, &commands, &structs);
     extra::lower_extra_bytes(&mut frames, &commands);
 
     Some(ir::Protocol {
@@ -91,6 +92,7 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
         frames,
         directions,
         commands,
+        link,
     })
 }
 

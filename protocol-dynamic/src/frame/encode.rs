@@ -3,7 +3,7 @@
 //! length) and stuffed, then the header values, the acknowledgement flag and the dispatch key
 //! (or CAN id), then the runtime seals the frame.
 
-use protocol_codegen::ir::{Frame, Protocol, Role};
+use protocol_codegen::ir::{Frame, PacketKind, Protocol, Role};
 use protocol_runtime::zeros::trimmed_len;
 use protocol_runtime::{EncodeError, FrameLayout, Writer};
 
@@ -182,6 +182,17 @@ pub fn encode(
             } else {
                 0
             };
+            // A format after the first carries the commands whose id fits its dispatch key,
+            // as generated code's `write_header` refuses the others.
+            if f.packet == PacketKind::Commands && !f.commands.contains(&ci) {
+                return Err(EncodeIssue::new(
+                    "command",
+                    format!(
+                        "{} is not carried by frame `{}`: its id does not fit the dispatch key",
+                        p.commands[ci].name, f.name
+                    ),
+                ));
+            }
             Body::Command(ci, p.commands[ci].payloads.get(slot).copied().flatten())
         }
         Dispatch::Message(si) => Body::Message(si),
@@ -200,6 +211,12 @@ pub fn encode(
         .get_mut(start..region_end)
         .ok_or_else(|| EncodeIssue::runtime(EncodeError::ValueOutOfRange))?;
     let mut plen = write_body(p, f, &body, obj, region)?;
+    // A format without extension fields sends the fields before them.
+    if let (false, Body::Command(_, Some(si))) = (f.extensions, &body) {
+        if let Some(base) = p.structs[*si].base_size {
+            plen = plen.min(base);
+        }
+    }
     if let (true, Body::Command(..)) = (f.truncate_zeros, &body) {
         plen = trimmed_len(region.get(..plen).unwrap_or_default());
     }

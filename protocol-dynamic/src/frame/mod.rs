@@ -11,7 +11,9 @@ mod encode;
 
 pub use encode::encode;
 
-use protocol_codegen::ir::{DirectionRule, Frame, HeaderValue, Prim, Protocol, Role, Transport};
+use protocol_codegen::ir::{
+    DirectionRule, Frame, HeaderValue, PacketKind, Prim, Protocol, Role, Transport,
+};
 use protocol_runtime::DecodeError;
 use protocol_runtime::stuffing::Stuffing;
 use protocol_runtime::zeros::zero_filled;
@@ -49,7 +51,7 @@ pub fn dispatch_of(p: &Protocol, fi: usize) -> Dispatch {
     }
     if !keyed {
         Dispatch::None
-    } else if fi == 0 {
+    } else if fi == 0 || f.packet == PacketKind::Commands {
         Dispatch::Key
     } else if matches!(f.transport, Transport::Can { .. }) && p.directions.is_empty() {
         Dispatch::CanId
@@ -431,11 +433,14 @@ fn decode_command(
         out.id.push(x);
         key = key.checked_shl(v.width).unwrap_or(0) | x;
     }
+    // The commands the format carries (a format after the first: those whose id fits).
     let ci = p
         .commands
         .iter()
-        .position(|c| {
-            c.id.len() == out.id.len()
+        .enumerate()
+        .position(|(ci, c)| {
+            f.commands.contains(&ci)
+                && c.id.len() == out.id.len()
                 && c.id
                     .iter()
                     .zip(&out.id)
@@ -468,9 +473,19 @@ fn decode_command(
         d
     };
     let si = c.payloads.get(slot).copied().flatten();
-    // Trailing-zero truncation: a short payload is zero-filled to its struct's size.
-    let mut filled = vec![0u8; f.payload_max];
-    let payload = match si.filter(|_| f.truncate_zeros) {
+    // A format without extension fields carries exactly the fields before them, the others
+    // read as zero; with trailing-zero truncation a short payload is zero-filled to its
+    // struct's size.
+    let base = si.and_then(|si| p.structs[si].base_size.filter(|_| !f.extensions));
+    if let Some(base) = base.filter(|&b| b != payload.len()) {
+        return Err(DecodeIssue::PayloadLength {
+            command: c.name.clone(),
+            expected: base,
+            actual: payload.len(),
+        });
+    }
+    let mut filled = vec![0u8; f.payload_max.max(si.map_or(0, |si| p.structs[si].size))];
+    let payload = match si.filter(|_| f.truncate_zeros || base.is_some()) {
         Some(si) => {
             zero_filled(payload, p.structs[si].size, &mut filled).map_err(DecodeIssue::Frame)?
         }

@@ -139,6 +139,10 @@ pub struct Frame<'a> {
     pub bytes: &'a [u8],
     /// Offset of its first byte in the whole stream.
     pub offset: u64,
+    /// The frame format it came in, on a link of several
+    /// ([`LayoutRef::others`](crate::layout::LayoutRef::others)): 0 for the first, 1 for the
+    /// next, ... Always 0 on a link of one format.
+    pub format: usize,
 }
 
 /// What a [`StreamDecoder`] reports with [`StreamDecoder::next_event`].

@@ -313,6 +313,66 @@ pub(crate) fn probe<L: LayoutRef>(
     probe_synced(layout_ref, readable, avail, limit)
 }
 
+/// The format of `link` that the candidate `bytes` start with, and its index (0: the first):
+/// the first whose sync they match (as far as they go). The first format when none does, and
+/// always for a link of one format (the test then folds away).
+#[inline(always)]
+pub(crate) fn select<'a, L: LayoutRef>(link: &'a L, bytes: &[u8]) -> (usize, &'a FrameLayout<'a>) {
+    let first = link.layout();
+    let others = link.others();
+    if others.is_empty() || first.sync_matches(bytes) {
+        return (0, first);
+    }
+    match others.iter().position(|f| f.sync_matches(bytes)) {
+        Some(i) => (i.wrapping_add(1), others.get(i).unwrap_or(first)),
+        None => (0, first),
+    }
+}
+
+/// The longest frame of any format of `link`.
+#[inline(always)]
+pub(crate) fn link_max_len<L: LayoutRef>(link: &L) -> usize {
+    let first = link.layout().max_len;
+    link.others().iter().fold(first, |m, f| m.max(f.max_len))
+}
+
+/// [`probe`] for a link of one or several formats: the candidate is probed by the format its
+/// sync selects ([`select`]), with frames longer than that format's `max_len` or `limit`
+/// rejected. Returns the format's index with the verdict.
+#[inline(always)]
+pub(crate) fn probe_link<L: LayoutRef>(
+    link: &L,
+    readable: &[u8],
+    avail: usize,
+    limit: usize,
+) -> (usize, Probe) {
+    if link.others().is_empty() {
+        return (0, probe(link, readable, avail, limit));
+    }
+    let bytes = readable.get(..avail).unwrap_or(readable);
+    let (index, format) = select(link, bytes);
+    let limit = limit.min(format.max_len);
+    (index, probe(&format, readable, avail, limit))
+}
+
+/// [`probe_synced`] for a link of one or several formats, once the candidate's bytes are known
+/// to match some format's sync (the engine's search for a candidate has just compared them).
+#[inline(always)]
+pub(crate) fn probe_link_synced<L: LayoutRef>(
+    link: &L,
+    readable: &[u8],
+    avail: usize,
+    limit: usize,
+) -> (usize, Probe) {
+    if link.others().is_empty() {
+        return (0, probe_synced(link, readable, avail, limit));
+    }
+    let bytes = readable.get(..avail).unwrap_or(readable);
+    let (index, format) = select(link, bytes);
+    let limit = limit.min(format.max_len);
+    (index, probe_synced(&format, readable, avail, limit))
+}
+
 /// [`probe`] once the candidate's bytes are known to match the sync bytes, as many of them as
 /// there are (the engine's search for a candidate has just compared them): every other rule.
 #[inline(always)]

@@ -8,8 +8,8 @@
 //! it or reject it), and it decides no candidate itself: [`probe_synced`] does.
 
 use super::event::{Frame, Stats};
-use super::search::find_candidate;
-use super::{Probe, probe_synced};
+use super::search::find_link;
+use super::{Probe, probe_link_synced};
 use crate::layout::LayoutRef;
 
 /// Calls `sink` with every frame of `readable[..len]`, counts the rejected candidates and the
@@ -34,7 +34,6 @@ pub(super) fn scan<L: LayoutRef>(
     stats: &mut Stats,
     sink: &mut impl FnMut(Frame<'_>),
 ) -> usize {
-    let format = layout.layout();
     let skipped_before = stats.skipped_bytes;
     let (mut at, mut frames) = (0usize, 0u64);
     // One comparison per step (`at` never passes `len`: every step advances it by at most what
@@ -42,27 +41,28 @@ pub(super) fn scan<L: LayoutRef>(
     while at < len {
         let from = readable.get(at..).unwrap_or_default();
         let avail = len.wrapping_sub(at);
-        let skip = find_candidate(format, from.get(..avail).unwrap_or(from));
+        let skip = find_link(layout, from.get(..avail).unwrap_or(from));
         if skip > 0 {
             stats.skipped_bytes = stats.skipped_bytes.wrapping_add(skip as u64);
             at = at.wrapping_add(skip);
             continue;
         }
         // The search has just compared the sync bytes (as many as there are).
-        match probe_synced(layout, from, avail, limit) {
-            Probe::Frame(len) => {
+        match probe_link_synced(layout, from, avail, limit) {
+            (format, Probe::Frame(len)) => {
                 sink(Frame {
                     bytes: from.get(..len).unwrap_or(from),
                     offset: base.wrapping_add(at as u64),
+                    format,
                 });
                 frames = frames.wrapping_add(1);
                 at = at.wrapping_add(len);
             }
-            Probe::Reject(reason) => {
+            (_, Probe::Reject(reason)) => {
                 stats.count_reject(reason);
                 at = at.wrapping_add(1);
             }
-            Probe::Need(_) => break,
+            (_, Probe::Need(_)) => break,
         }
     }
     stats.count_scan(frames, at, skipped_before);

@@ -9,8 +9,34 @@
 //! rejection) by the scan and the steps of [`StreamDecoder`](super::StreamDecoder), and which
 //! of a candidate's bytes are already known to start no frame is remembered there.
 
-use super::{Probe, probe};
+use super::{Probe, probe_link};
 use crate::layout::{FrameLayout, LayoutRef};
+
+/// [`find_candidate`] for a link of one or several formats: the first offset where `data`
+/// holds any format's sync, or a prefix of it that runs to the end of `data`.
+///
+/// With several formats, a byte loop that asks every format at each offset (a few formats,
+/// each deciding on its first byte nearly always): the search stops at the first start, so a
+/// stream costs each byte once whatever the formats' syncs.
+#[inline(always)]
+pub(super) fn find_link<L: LayoutRef>(link: &L, data: &[u8]) -> usize {
+    let others = link.others();
+    if others.is_empty() {
+        return find_candidate(link.layout(), data);
+    }
+    find_any(link.layout(), others, data)
+}
+
+/// [`find_link`]'s search with several formats.
+#[inline(never)]
+fn find_any(first: &FrameLayout<'_>, others: &[FrameLayout<'_>], data: &[u8]) -> usize {
+    (0..data.len())
+        .find(|&at| {
+            let rest = data.get(at..).unwrap_or_default();
+            first.sync_matches(rest) || others.iter().any(|f| f.sync_matches(rest))
+        })
+        .unwrap_or(data.len())
+}
 
 /// Where the first candidate of `data` for `layout` starts: the first offset where `data` holds
 /// the sync, or a prefix of it that runs to the end of `data`; `data.len()` if there is none.
@@ -224,21 +250,27 @@ fn find_first_byte(sync: &[u8], data: &[u8]) -> usize {
         .map_or(data.len(), |at| base.wrapping_add(at))
 }
 
-/// [`may_start_sync`] for `layout`: with a sync set, always `true` (the exact search then
-/// decides).
+/// [`may_start_sync`] for `link`: with a sync set or several formats, always `true` (the exact
+/// search then decides).
 #[inline(always)]
-fn may_start(layout: &FrameLayout<'_>, data: &[u8], n: usize) -> bool {
-    if layout.sync_set.is_empty() {
+fn may_start<L: LayoutRef>(link: &L, data: &[u8], n: usize) -> bool {
+    let layout = link.layout();
+    if layout.sync_set.is_empty() && link.others().is_empty() {
         may_start_sync(layout.sync, data, n)
     } else {
         n > 0
     }
 }
 
-/// The first offset of `data` holding the first byte of `layout`'s sync (any byte of its sync
-/// set), or `data.len()`.
+/// The first offset of `data` holding the first byte of `link`'s sync (any byte of its sync
+/// set; of any format's), or `data.len()`.
 #[inline(always)]
-fn find_lead(layout: &FrameLayout<'_>, data: &[u8]) -> usize {
+fn find_lead<L: LayoutRef>(link: &L, data: &[u8]) -> usize {
+    let layout = link.layout();
+    let others = link.others();
+    if !others.is_empty() {
+        return find_any(layout, others, data);
+    }
     if layout.sync_set.is_empty() {
         find_first_byte(layout.sync, data)
     } else {
@@ -248,10 +280,12 @@ fn find_lead(layout: &FrameLayout<'_>, data: &[u8]) -> usize {
     }
 }
 
-/// The shortest frame of `layout`: no candidate with fewer bytes after its start is decided.
+/// The shortest frame of `link`: no candidate with fewer bytes after its start is decided.
 #[inline(always)]
-fn shortest_frame(layout: &FrameLayout<'_>) -> usize {
-    layout.min_len.max(layout.header_span()).max(1)
+fn shortest_frame<L: LayoutRef>(link: &L) -> usize {
+    let shortest = |f: &FrameLayout<'_>| f.min_len.max(f.header_span()).max(1);
+    let first = shortest(link.layout());
+    link.others().iter().fold(first, |m, f| m.min(shortest(f)))
 }
 
 /// Whether a complete valid frame starts after the first byte of the pending candidate
@@ -274,10 +308,9 @@ pub(super) fn frame_inside<L: LayoutRef>(
     dead: &mut usize,
     limit: usize,
 ) -> bool {
-    let format = layout.layout();
     let known = (*dead).max(1);
     // Only a start with room for the shortest frame after it can hold a frame now.
-    let Some(last_start) = pending.checked_sub(shortest_frame(format)) else {
+    let Some(last_start) = pending.checked_sub(shortest_frame(layout)) else {
         return false;
     };
     if known > last_start {
@@ -285,7 +318,7 @@ pub(super) fn frame_inside<L: LayoutRef>(
     }
     let window = last_start.wrapping_sub(known).wrapping_add(1);
     let from = readable.get(known..).unwrap_or_default();
-    if cfg!(target_pointer_width = "64") && !may_start(format, from, window) {
+    if cfg!(target_pointer_width = "64") && !may_start(layout, from, window) {
         // None of these bytes starts a frame, now or later; the ones too close to the end may
         // once more bytes arrive.
         *dead = last_start.wrapping_add(1);
@@ -303,8 +336,7 @@ fn search_inside<L: LayoutRef>(
     dead: &mut usize,
     limit: usize,
 ) -> bool {
-    let format = layout.layout();
-    let shortest = shortest_frame(format);
+    let shortest = shortest_frame(layout);
     let region = readable.get(..pending).unwrap_or_default();
     let mut at = (*dead).max(1);
     let mut undecided = None;
@@ -320,8 +352,8 @@ fn search_inside<L: LayoutRef>(
         // (The masked block test only where words are 64 bits: on a microcontroller the plain
         // search is smaller and as fast.)
         let skip =
-            if cfg!(not(target_pointer_width = "64")) || may_start(format, readable_rest, window) {
-                find_lead(format, rest.get(..window).unwrap_or(rest))
+            if cfg!(not(target_pointer_width = "64")) || may_start(layout, readable_rest, window) {
+                find_lead(layout, rest.get(..window).unwrap_or(rest))
             } else {
                 window
             };
@@ -334,7 +366,7 @@ fn search_inside<L: LayoutRef>(
         }
         at = at.wrapping_add(skip);
         let from = readable.get(at..).unwrap_or_default();
-        match probe(layout, from, region.len().wrapping_sub(at), limit) {
+        match probe_link(layout, from, region.len().wrapping_sub(at), limit).1 {
             Probe::Frame(_) => break true,
             Probe::Need(_) => {
                 undecided.get_or_insert(at);

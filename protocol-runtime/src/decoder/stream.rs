@@ -12,8 +12,8 @@ use core::fmt;
 
 use super::buffer::take;
 use super::event::{Event, Frame, Reject, Stats};
-use super::search::{find_candidate, frame_inside};
-use super::{Probe, probe_synced, scan};
+use super::search::{find_link, frame_inside};
+use super::{Probe, link_max_len, probe_link_synced, scan};
 use crate::layout::{FrameLayout, LayoutRef};
 
 /// Whether the engine scans the caller's input in place when nothing is pending (frames found
@@ -38,11 +38,13 @@ enum Step {
     Input {
         len: usize,
         offset: u64,
+        format: usize,
     },
     Buffered {
         start: usize,
         end: usize,
         offset: u64,
+        format: usize,
     },
     Rejected {
         offset: u64,
@@ -344,14 +346,27 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         // The two kinds of step are matched apart, not through `step`: a step result that
         // comes from either an inlined or a called function is passed through memory, and
         // reading a frame back from there stalled on store forwarding, once per frame.
-        let (start, end, offset) = loop {
+        let (start, end, offset, format) = loop {
             if self.start < self.end {
                 match self.step_buffered(input, at_end) {
-                    Step::Input { len, offset } => {
+                    Step::Input {
+                        len,
+                        offset,
+                        format,
+                    } => {
                         let bytes = take(input, len);
-                        return Some(Frame { bytes, offset });
+                        return Some(Frame {
+                            bytes,
+                            offset,
+                            format,
+                        });
                     }
-                    Step::Buffered { start, end, offset } => break (start, end, offset),
+                    Step::Buffered {
+                        start,
+                        end,
+                        offset,
+                        format,
+                    } => break (start, end, offset, format),
                     Step::Rejected { .. } | Step::Skipped { .. } => {}
                     Step::Idle => return None,
                 }
@@ -359,11 +374,24 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                 self.start = 0;
                 self.end = 0;
                 match self.step_input(input, at_end) {
-                    Step::Input { len, offset } => {
+                    Step::Input {
+                        len,
+                        offset,
+                        format,
+                    } => {
                         let bytes = take(input, len);
-                        return Some(Frame { bytes, offset });
+                        return Some(Frame {
+                            bytes,
+                            offset,
+                            format,
+                        });
                     }
-                    Step::Buffered { start, end, offset } => break (start, end, offset),
+                    Step::Buffered {
+                        start,
+                        end,
+                        offset,
+                        format,
+                    } => break (start, end, offset, format),
                     Step::Rejected { .. } | Step::Skipped { .. } => {}
                     Step::Idle => return None,
                 }
@@ -372,18 +400,30 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         Some(Frame {
             bytes: self.buf.get(start..end).unwrap_or_default(),
             offset,
+            format,
         })
     }
 
     fn event<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8], at_end: bool) -> Option<Event<'s>> {
         Some(match self.step(input, at_end) {
-            Step::Input { len, offset } => Event::Frame(Frame {
+            Step::Input {
+                len,
+                offset,
+                format,
+            } => Event::Frame(Frame {
                 bytes: take(input, len),
                 offset,
+                format,
             }),
-            Step::Buffered { start, end, offset } => Event::Frame(Frame {
+            Step::Buffered {
+                start,
+                end,
+                offset,
+                format,
+            } => Event::Frame(Frame {
                 bytes: self.buf.get(start..end).unwrap_or_default(),
                 offset,
+                format,
             }),
             Step::Rejected { offset, reason } => Event::Rejected { offset, reason },
             Step::Skipped { offset, len } => Event::Skipped { offset, len },
@@ -391,10 +431,10 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         })
     }
 
-    /// Frames longer than this are rejected.
+    /// Frames longer than this are rejected (and longer than their own format's `max_len`).
     #[inline(always)]
     fn limit(&self) -> usize {
-        self.layout.layout().max_len.min(N)
+        link_max_len(&self.layout).min(N)
     }
 
     /// One event's worth of work.
@@ -422,24 +462,26 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             self.stage_prefix(input);
             return self.step_buffered(input, at_end);
         }
-        let layout = self.layout;
-        let layout = layout.layout();
         let offset = self.position;
-        let skip = find_candidate(layout, data);
+        let skip = find_link(&self.layout, data);
         if skip > 0 {
             let len = self.consume(input, skip).len();
             self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(len as u64);
             return Step::Skipped { offset, len };
         }
         // `find_candidate` has compared the sync bytes.
-        let reason = match probe_synced(&self.layout, data, data.len(), self.limit()) {
-            Probe::Frame(len) => {
+        let reason = match probe_link_synced(&self.layout, data, data.len(), self.limit()) {
+            (format, Probe::Frame(len)) => {
                 // `len <= data.len()`: the caller takes the bytes from the input.
                 self.position = self.position.wrapping_add(len as u64);
                 self.stats.count_frame(len);
-                return Step::Input { len, offset };
+                return Step::Input {
+                    len,
+                    offset,
+                    format,
+                };
             }
-            Probe::Need(_) => {
+            (_, Probe::Need(_)) => {
                 // The candidate runs to the end of the input, which is then shorter than what
                 // it needs, itself at most `limit() <= N`: keep it all.
                 if self.hold(input) {
@@ -447,7 +489,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                 }
                 Reject::BadLength
             }
-            Probe::Reject(reason) => reason,
+            (_, Probe::Reject(reason)) => reason,
         };
         self.consume(input, 1);
         self.stats.count_reject(reason);
@@ -457,8 +499,6 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// A step on the pending bytes, completing them from the caller's input as needed.
     #[inline(never)]
     fn step_buffered(&mut self, input: &mut &[u8], at_end: bool) -> Step {
-        let layout = self.layout;
-        let layout = layout.layout();
         let limit = self.limit();
         // A small chunk goes in whole, before anything is probed, and the scan goes on in the
         // buffer: cheaper than probing the pending candidate, completing it with just the
@@ -476,7 +516,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             };
             let pending = region.len();
             let offset = self.position.wrapping_sub(pending as u64);
-            let skip = find_candidate(layout, region);
+            let skip = find_link(&self.layout, region);
             if skip > 0 {
                 self.start = self.start.wrapping_add(skip);
                 self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);
@@ -484,8 +524,8 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             }
             let readable = self.buf.get(self.start..).unwrap_or_default();
             // `find_candidate` has compared the sync bytes.
-            let reason = match probe_synced(&self.layout, readable, pending, limit) {
-                Probe::Frame(len) => {
+            let reason = match probe_link_synced(&self.layout, readable, pending, limit) {
+                (format, Probe::Frame(len)) => {
                     let start = self.start;
                     self.start = start.wrapping_add(len);
                     self.stats.count_frame(len);
@@ -493,17 +533,18 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                         start,
                         end: self.start,
                         offset,
+                        format,
                     };
                 }
-                Probe::Reject(reason) => reason,
-                Probe::Need(_) if input.is_empty() => {
+                (_, Probe::Reject(reason)) => reason,
+                (_, Probe::Need(_)) if input.is_empty() => {
                     if at_end || self.frame_inside(limit) {
                         Reject::Truncated
                     } else {
                         return Step::Idle;
                     }
                 }
-                Probe::Need(needed) => {
+                (_, Probe::Need(needed)) => {
                     if self.fill(input, needed) {
                         continue;
                     }

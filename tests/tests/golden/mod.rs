@@ -39,12 +39,12 @@ pub fn frame(
     assert_eq!(F(&encoded.bytes), F(bytes), "{name}: encoded bytes");
 }
 
-/// The codec's stream decoder on `stream` at every chunk size yields exactly `expected`
-/// (offset and bytes), each frame decoded.
+/// The codec's stream decoder of the link (every command format) on `stream` at every chunk
+/// size yields exactly `expected` (offset and bytes), each frame decoded.
 pub fn stream(interp: &Interpreter, stream: &[u8], expected: &[(u64, Vec<u8>)]) {
     let codec = interp.codec();
     for chunk in 1..=stream.len() {
-        let mut s = codec.stream(0).expect("a frame format");
+        let mut s = codec.link_stream().expect("a frame format");
         let mut got = Vec::new();
         for part in stream.chunks(chunk) {
             let mut input = part;

@@ -6,6 +6,7 @@
 mod command;
 mod frames;
 mod given;
+mod link;
 mod message;
 mod packet;
 
@@ -19,6 +20,7 @@ use crate::ir::{Command, Frame, PacketKind, Prim, Protocol};
 use command::emit_command_enum;
 use frames::{emit_can_packet, emit_message_packet};
 pub use given::direction_layouts;
+use link::{emit_base_payload, emit_commands_packet, emit_link};
 use message::{emit_direction_message, emit_message_enum};
 pub(crate) use packet::direction_test;
 use packet::emit_packet;
@@ -60,6 +62,15 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
         out.extend(emit_direction_message(p, &rt));
     }
     out.extend(emit_packet(p, f, &rt));
+    if p.frames.iter().any(|f| !f.extensions) {
+        out.extend(emit_base_payload(p, &rt));
+    }
+    for lf in &p.frames {
+        if lf.packet == PacketKind::Commands {
+            out.extend(emit_commands_packet(p, lf, &rt));
+        }
+    }
+    out.extend(emit_link(p, &rt));
     for mf in &p.frames {
         if let PacketKind::Message(si) = mf.packet {
             out.extend(emit_message_packet(p, mf, si, &rt));

@@ -10,6 +10,7 @@ mod checks;
 mod elements;
 mod header;
 mod length;
+mod link;
 mod options;
 
 use toml::Spanned;
@@ -23,6 +24,8 @@ use crate::ir::{
 };
 use crate::spec::model::{ElementDef, FrameDef, SStr};
 use length::Layout;
+
+pub(crate) use link::lower_link;
 
 /// Rule: a spec has at least one frame format, each with a snake_case name.
 pub(crate) fn lower_frames(ctx: &mut Ctx<'_>, structs: &Structs, enums: &Enums) -> Vec<Frame> {
@@ -187,6 +190,8 @@ fn lower_frame(
         truncate_zeros,
         message,
         packet: PacketKind::None,
+        extensions: def.extensions.as_ref().is_none_or(|e| *e.get_ref()),
+        commands: Vec::new(),
     })
 }
 
@@ -212,7 +217,7 @@ fn name_tables(mut checks: Vec<Check>, names: &FrameNames) -> Vec<Check> {
 /// that carry one `message` and, in a spec without directions, the other CAN frame formats.
 /// A first (and only) serial frame format that carries one `message` has its packet too (a
 /// link whose frames have no command, as SBUS).
-pub(crate) fn lower_packets(frames: &mut [Frame], directions: bool) {
+pub(crate) fn lower_packets(frames: &mut [Frame], directions: bool, commands: usize) {
     let Some(first) = frames.first_mut() else {
         return;
     };
@@ -223,6 +228,7 @@ pub(crate) fn lower_packets(frames: &mut [Frame], directions: bool) {
         return;
     }
     frames[0].packet = PacketKind::Command;
+    frames[0].commands = (0..commands).collect();
     for f in frames.iter_mut().skip(1) {
         f.packet = match (f.transport, f.message) {
             (Transport::Serial, Some(si)) => PacketKind::Message(si),

@@ -48,6 +48,7 @@ pub(crate) fn lower_structs(ctx: &mut Ctx<'_>, enums: &Enums, constants: &[Const
             size: 0,
             min_size: 0,
             context: Vec::new(),
+            base_size: None,
             foreign: true,
         });
     }
@@ -111,6 +112,7 @@ fn visit_struct(
     }
     let fields = lower_fields(ctx, name, d, endian, out, enums, constants);
     let (min_size, unresolved) = check_tail_fields(ctx, name, d, &fields, out);
+    let base_size = lower_base_size(ctx, name, d, &fields);
     state.insert(name.to_string(), Visit::Done);
     let index = out.structs.len();
     out.by_name.insert(name.to_string(), index);
@@ -122,6 +124,7 @@ fn visit_struct(
         min_size,
         context: unresolved,
         foreign: false,
+        base_size,
     });
     Some(index)
 }
@@ -320,4 +323,70 @@ fn check_tail_fields(
         }
     }
     (min_size, unresolved)
+}
+
+/// Rule: extension fields (`extension = true`) end a struct: every field after the first one
+/// is an extension too, and the struct has a fixed size (a format without extensions carries
+/// the bytes before them). Gives the size of the fields before the first extension field.
+fn lower_base_size(
+    ctx: &mut Ctx<'_>,
+    name: &str,
+    d: &StructDef,
+    fields: &[Field],
+) -> Option<usize> {
+    let defs = d.fields.get_ref();
+    let is_ext = |f: &Spanned<crate::spec::model::FieldDef>| {
+        f.get_ref().extension.as_ref().is_some_and(|e| *e.get_ref())
+    };
+    let first = defs.iter().position(is_ext)?;
+    let first_name = defs[first]
+        .get_ref()
+        .name
+        .as_ref()
+        .map_or("", |n| n.get_ref().as_str());
+    let mut ok = true;
+    for f in defs.iter().skip(first + 1).filter(|f| !is_ext(f)) {
+        let field = f
+            .get_ref()
+            .name
+            .as_ref()
+            .map_or("padding", |n| n.get_ref().as_str());
+        ctx.error(
+            f.span(),
+            format!("field `{field}` of struct `{name}` follows the extension field `{first_name}` but is not one"),
+            "extension fields end a struct: mark it `extension = true`, or move it before the first extension field",
+        );
+        ok = false;
+    }
+    let variable = fields.iter().any(|f| {
+        matches!(
+            f.kind,
+            FieldKind::Bytes { .. } | FieldKind::Group { .. } | FieldKind::Optional(_)
+        )
+    });
+    if variable {
+        ctx.error(
+            defs[first].span(),
+            format!("struct `{name}` has extension fields but no fixed size"),
+            "a format without extensions carries the bytes before them: give the struct a fixed size (no `bytes`, `repeat` or `optional` field)",
+        );
+        ok = false;
+    }
+    // The fields before the first extension field, as lowered (each def lowers to at most one).
+    let base = defs
+        .iter()
+        .take(first)
+        .filter_map(|def| match def.get_ref().name.as_ref() {
+            Some(n) => fields
+                .iter()
+                .find(|f| &f.name == n.get_ref())
+                .map(|f| f.size),
+            None => def
+                .get_ref()
+                .pad
+                .as_ref()
+                .map(|p| usize::try_from(*p.get_ref()).unwrap_or(0)),
+        })
+        .sum();
+    ok.then_some(base)
 }

@@ -1,0 +1,298 @@
+//! A link of several command formats: `<Name>Packet` for a format after the first that carries
+//! the commands (its own dispatch key and header, the link's one `Message`), the payload rule
+//! of a format without extension fields (`Message::base_len`, `read_base_payload`), and the
+//! link's one decoder (`AnyLayout`, `any_decoder`) whose frames decode into an `AnyPacket`
+//! that says which format each came in.
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use super::frames::header_codec;
+use super::key_prims;
+use crate::codegen::frame::{decoder_buffer_len, wire_const};
+use crate::codegen::ident;
+use crate::codegen::payload::prim_type;
+use crate::ir::{Frame, Protocol};
+
+/// Reading frame `f`'s dispatch key into the first format's `CommandId` (a value that does
+/// not fit it is an unknown command), and writing a command's id into `f`'s fields (an id
+/// that does not fit them is `ValueOutOfRange`: the format does not carry the command).
+fn key_codec(first: &Frame, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
+    let header_len = format_ident!("{}", f.names.sizes.header_len);
+    let consts: Vec<_> = f.dispatch.iter().map(|&i| wire_const(f, i)).collect();
+    let types: Vec<_> = key_prims(first).into_iter().map(prim_type).collect();
+    let vars: Vec<_> = (0..consts.len()).map(|i| format_ident!("k{}", i)).collect();
+    let widths: Vec<u32> = f.dispatch.iter().map(|&i| f.values[i].width).collect();
+    let mut key = quote!(k0);
+    for (v, w) in vars.iter().zip(&widths).skip(1) {
+        key = quote!((#key << #w) | #v);
+    }
+    let fits: Vec<_> = vars
+        .iter()
+        .zip(&types)
+        .map(|(v, t)| quote!(#t::try_from(#v).map_err(|_| #rt::unknown_command(key))?))
+        .collect();
+    let id = if fits.len() == 1 {
+        fits[0].clone()
+    } else {
+        quote!((#(#fits),*))
+    };
+    let read = quote! {
+        #(let #vars = #rt::header_value(frame, wire::#consts, #header_len)?;)*
+        let key = #key;
+        let id: CommandId = #id;
+    };
+    let write = if consts.len() == 1 {
+        let c = &consts[0];
+        quote!(#rt::write_header(frame, wire::#c, u64::from(id))?;)
+    } else {
+        let idx: Vec<syn::Index> = (0..consts.len()).map(syn::Index::from).collect();
+        quote!(#(#rt::write_header(frame, wire::#consts, u64::from(id.#idx))?;)*)
+    };
+    (read, write)
+}
+
+/// `<Name>Packet` for a frame format with [`PacketKind::Commands`](crate::ir::PacketKind):
+/// its header and the link's `Message`, decoded through its own layout and dispatch key.
+pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
+    let first = &p.frames[0];
+    let header = format_ident!("{}", f.names.header);
+    let packet = format_ident!("{}", f.names.packet);
+    let layout = format_ident!("{}", f.names.layout_static);
+    let header_len = format_ident!("{}", f.names.sizes.header_len);
+    let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
+    let aside_len = format_ident!("{}", first.names.sizes.max_payload_len);
+    let (reads, writes) = header_codec(f, rt);
+    let (read_key, write_key) = key_codec(first, f, rt);
+    let (read, base) = if f.extensions {
+        (quote!(Message::read_payload(command, payload)?), quote!())
+    } else {
+        (
+            quote!(Message::read_base_payload(command, payload)?),
+            quote! {
+                let len = match Message::base_len(self.message.command()) {
+                    #rt::Some((base, _)) => base.min(len),
+                    #rt::None => len,
+                };
+            },
+        )
+    };
+    let doc = format!(
+        " A whole `{}` frame, decoded: the header values and the message (a command whose id \
+         fits the format's dispatch key).",
+        f.name
+    );
+    quote! {
+        #[doc = #doc]
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct #packet {
+            /// The header values the sender set.
+            pub header: #header,
+            /// The command and its payload.
+            pub message: Message,
+        }
+        impl #packet {
+            /// Decode the frame at the start of `bytes`, checking its framing first.
+            ///
+            /// # Errors
+            /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they
+            /// end early, and the errors of [`Self::from_frame`].
+            pub fn decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
+                Self::from_frame(#layout.parse(bytes)?)
+            }
+            /// Decode a frame whose framing a decoder already checked.
+            ///
+            /// # Errors
+            /// `UnknownCommand` for an id the spec does not have, `PayloadLength` when the
+            /// payload's size is not what this format carries of the command's, and errors
+            /// of the payload's fields.
+            pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
+                let header = #header { #(#reads,)* };
+                #read_key
+                let command = Command::from_id(id).ok_or(#rt::unknown_command(key))?;
+                let payload = #rt::payload_of(frame, #header_len, #trailer_len)?;
+                let message = #read;
+                #rt::Ok(#packet { header, message })
+            }
+            /// The payload as this format carries it, written into `aside`; its length.
+            fn write_aside(&self, aside: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
+                let mut w = #rt::Writer::new(aside);
+                self.message.write_payload(&mut w)?;
+                let len = w.position();
+                #base
+                #rt::Ok(len)
+            }
+            /// Bytes of the encoded frame.
+            pub fn encoded_len(&self) -> usize {
+                let mut aside = [0u8; #aside_len];
+                let plen = self.write_aside(&mut aside).unwrap_or_else(|_| self.message.payload_len());
+                #header_len.saturating_add(plen).saturating_add(#trailer_len)
+            }
+            /// Encode the frame into the start of `buf`; returns its length.
+            ///
+            /// # Errors
+            /// `EncodeError::BufferTooSmall` if `buf` is too short, `ValueOutOfRange` if the
+            /// command's id does not fit this format's dispatch key (the format does not carry
+            /// it) or a header value does not fit its field.
+            pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
+                let mut aside = [0u8; #aside_len];
+                let plen = self.write_aside(&mut aside)?;
+                let total = #header_len.saturating_add(plen).saturating_add(#trailer_len);
+                let frame = #rt::frame_room(buf, total)?;
+                let room = #rt::payload_room(frame, total, #header_len, #trailer_len)?;
+                for (to, from) in room.iter_mut().zip(aside.iter()) {
+                    *to = *from;
+                }
+                #(#writes)*
+                let id = self.message.command().id();
+                #write_key
+                #layout.seal(frame)?;
+                #rt::Ok(total)
+            }
+        }
+    }
+}
+
+/// `Message::base_len` and `Message::read_base_payload`: what a format without extension
+/// fields carries of each command's payload.
+pub(super) fn emit_base_payload(p: &Protocol, rt: &TokenStream) -> TokenStream {
+    let first = &p.frames[0];
+    let filled_len = format_ident!("{}", first.names.sizes.max_payload_len);
+    let arms = p.commands.iter().filter_map(|c| {
+        let si = c.payloads.first().copied().flatten()?;
+        let s = &p.structs[si];
+        let base = s.base_size?;
+        let (v, size) = (ident(&c.rust_name), s.size);
+        Some(quote!(Command::#v => #rt::Some((#base, #size)),))
+    });
+    quote! {
+        impl Message {
+            /// The bytes of `command`'s payload without its extension fields, and with them,
+            /// for a command whose struct has extension fields.
+            #[allow(clippy::match_same_arms)]
+            pub const fn base_len(command: Command) -> #rt::Option<(usize, usize)> {
+                match command {
+                    #(#arms)*
+                    #[allow(unreachable_patterns)]
+                    _ => #rt::None,
+                }
+            }
+            /// Read the payload of `command` as a format without extension fields carries it:
+            /// exactly its fields before the extension fields, the extension fields zero.
+            ///
+            /// # Errors
+            /// `DecodeError::PayloadLength` if the payload's size is not that, and the errors
+            /// of [`Self::read_payload`].
+            pub fn read_base_payload(command: Command, b: &[u8]) -> #rt::DecodeResult<Self> {
+                match Self::base_len(command) {
+                    #rt::Some((base, size)) => {
+                        if b.len() != base {
+                            return #rt::Err(#rt::DecodeError::PayloadLength { expected: base, actual: b.len() });
+                        }
+                        let mut filled = [0u8; #filled_len];
+                        Self::read_payload(command, #rt::zero_filled(b, size, &mut filled)?)
+                    }
+                    #rt::None => Self::read_payload(command, b),
+                }
+            }
+        }
+    }
+}
+
+/// The link's one decoder: `AnyLayout` (the first format's layout and the others'),
+/// `any_decoder`, and `AnyPacket`, a frame of any format decoded.
+pub(super) fn emit_link(p: &Protocol, rt: &TokenStream) -> TokenStream {
+    let formats: Vec<&Frame> = p.link.iter().map(|&i| &p.frames[i]).collect();
+    let Some((first, others)) = formats.split_first() else {
+        return quote!();
+    };
+    let first_layout = format_ident!("{}", first.names.layout_static);
+    let other_layouts: Vec<_> = others
+        .iter()
+        .map(|f| format_ident!("{}", f.names.layout_static))
+        .collect();
+    let n_others = others.len();
+    let buffer = decoder_buffer_len(formats.iter().map(|f| f.max_len()).max().unwrap_or(0));
+    let variants: Vec<_> = formats
+        .iter()
+        .map(|f| format_ident!("{}", f.names.pascal))
+        .collect();
+    let packets: Vec<_> = formats
+        .iter()
+        .map(|f| format_ident!("{}", f.names.packet))
+        .collect();
+    let variant_docs: Vec<_> = formats
+        .iter()
+        .map(|f| format!(" A `{}` frame.", f.name))
+        .collect();
+    let indices: Vec<usize> = (0..formats.len()).collect();
+    quote! {
+        /// The link's other command formats, after the first: the formats
+        /// [`AnyLayout`] hands the engine.
+        pub static ANY_OTHER_LAYOUTS: [#rt::FrameLayout<'static>; #n_others] = [#(#other_layouts),*];
+        /// Every command format of the link as a type: the link's one decoder finds each
+        /// format's frames by its sync, and says which format each came in (`Frame::format`,
+        /// the index of its [`AnyPacket`] variant).
+        #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+        pub struct AnyLayout;
+        impl #rt::LayoutRef for AnyLayout {
+            #[inline(always)]
+            fn layout(&self) -> &#rt::FrameLayout<'_> {
+                &#first_layout
+            }
+            #[inline(always)]
+            fn others(&self) -> &[#rt::FrameLayout<'_>] {
+                &ANY_OTHER_LAYOUTS
+            }
+        }
+        /// Bytes of the buffer of an [`AnyDecoder`]: the largest frame of any format, a chunk
+        /// staged behind it, and room for a checksum window.
+        pub const ANY_DECODER_BUFFER_LEN: usize = #buffer;
+        /// A streaming decoder of the frames of every command format of the link.
+        pub type AnyDecoder = #rt::StreamDecoder<AnyLayout, ANY_DECODER_BUFFER_LEN>;
+        /// A new decoder of the frames of every command format of the link.
+        pub const fn any_decoder() -> AnyDecoder {
+            #rt::StreamDecoder::new(AnyLayout)
+        }
+        /// A frame of any command format of the link, decoded: the variant says which format
+        /// it came in.
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub enum AnyPacket {
+            #(#[doc = #variant_docs] #variants(#packets),)*
+        }
+        impl AnyPacket {
+            /// Decode a frame an [`AnyDecoder`] found, by the format it came in.
+            ///
+            /// # Errors
+            /// The errors of the format's packet's `from_frame`;
+            /// `DecodeError::Frame(Reject::BadHeader)` for a format the link does not have.
+            pub fn from_frame(frame: &#rt::Frame<'_>) -> #rt::DecodeResult<Self> {
+                match frame.format {
+                    #(#indices => #rt::Ok(Self::#variants(#packets::from_frame(frame.bytes)?)),)*
+                    _ => #rt::Err(#rt::DecodeError::Frame(#rt::Reject::BadHeader)),
+                }
+            }
+            /// The message, whatever the format.
+            pub fn message(&self) -> &Message {
+                match self {
+                    #(Self::#variants(p) => &p.message,)*
+                }
+            }
+            /// Bytes of the encoded frame, in its format.
+            pub fn encoded_len(&self) -> usize {
+                match self {
+                    #(Self::#variants(p) => p.encoded_len(),)*
+                }
+            }
+            /// Encode the frame, in its format, into the start of `buf`; returns its length.
+            ///
+            /// # Errors
+            /// The errors of the format's packet's `encode`.
+            pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
+                match self {
+                    #(Self::#variants(p) => p.encode(buf),)*
+                }
+            }
+        }
+    }
+}
