@@ -248,6 +248,7 @@ fn serde_json_of_generated_packets_is_the_codecs_on_random_frames() {
                         rng.range(p.addresses[set].first, p.addresses[set].last),
                     ),
                     DirectionRule::Equals { value, equals } => (value, equals),
+                    DirectionRule::Given => unreachable!("the fixture's directions are told"),
                 };
                 word_field(&f.values[vi])
                     .write(&mut frame, value)

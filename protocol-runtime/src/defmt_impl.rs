@@ -1,8 +1,8 @@
 //! `defmt::Format` (the `defmt` feature) for the runtime's value types, so that generated
 //! types deriving it (`protocol!(..., derive(defmt))`) can be logged from firmware: [`Bytes`]
-//! as hex bytes, [`FixedStr`] as its text when it is canonical (else its `N` bytes), [`Group`]
-//! as the list of its elements. The errors and the decoder's events derive `Format` where they
-//! are declared.
+//! as hex bytes, [`FixedStr`] as its text when it is canonical (else its `N` bytes), [`NulStr`]
+//! as its text (its bytes when it is not UTF-8), [`Group`] as the list of its elements. The
+//! errors and the decoder's events derive `Format` where they are declared.
 //!
 //! A value type added to the runtime gets its `Format` impl here, usually one `write!`.
 
@@ -10,7 +10,7 @@ use defmt::{Format, Formatter, write};
 
 use crate::bytes::Bytes;
 use crate::group::Group;
-use crate::text::FixedStr;
+use crate::text::{FixedStr, NulStr};
 
 impl<const N: usize> Format for Bytes<N> {
     fn format(&self, f: Formatter<'_>) {
@@ -23,6 +23,15 @@ impl<const N: usize> Format for FixedStr<N> {
         match self.as_str() {
             Ok(text) if self.is_canonical() => write!(f, "{=str:?}", text),
             _ => write!(f, "{=[u8]:02x}", &self.as_bytes()[..]),
+        }
+    }
+}
+
+impl<const N: usize> Format for NulStr<N> {
+    fn format(&self, f: Formatter<'_>) {
+        match self.as_str() {
+            Ok(text) => write!(f, "{=str:?}", text),
+            Err(_) => write!(f, "{=[u8]:02x}", self.text()),
         }
     }
 }

@@ -8,6 +8,8 @@
 //! - [`Bytes`] is a lowercase hex string in a human-readable format, bytes otherwise;
 //! - [`FixedStr`] is its text as a string when it is canonical (UTF-8 and only NUL bytes after
 //!   it), else the array of its `N` bytes, so that every byte comes back;
+//! - [`NulStr`] is its text as a string when it is UTF-8, else the array of its bytes (the NUL
+//!   not included);
 //! - [`Group`] and arrays of any length ([`mod@array`]) are sequences;
 //! - a spec enum is its variant's name in the spec, or its number when it has none
 //!   ([`serialize_enum`], [`deserialize_enum`]);
@@ -31,7 +33,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::bytes::Bytes;
 use crate::group::Group;
-use crate::text::FixedStr;
+use crate::text::{FixedStr, NulStr};
 
 pub mod float;
 mod packet;
@@ -162,6 +164,50 @@ impl<'de, const N: usize> Visitor<'de> for FixedStrVisitor<N> {
 impl<'de, const N: usize> Deserialize<'de> for FixedStr<N> {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         d.deserialize_any(FixedStrVisitor)
+    }
+}
+
+impl<const N: usize> Serialize for NulStr<N> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self.as_str() {
+            Ok(text) => s.serialize_str(text),
+            Err(_) => self.text().serialize(s),
+        }
+    }
+}
+
+struct NulStrVisitor<const N: usize>;
+
+impl<'de, const N: usize> Visitor<'de> for NulStrVisitor<N> {
+    type Value = NulStr<N>;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "a text of at most {N} bytes without NUL, or an array of such bytes")
+    }
+
+    fn visit_str<E: de::Error>(self, text: &str) -> Result<NulStr<N>, E> {
+        NulStr::from_text(text).ok_or_else(|| E::invalid_value(de::Unexpected::Str(text), &self))
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<NulStr<N>, A::Error> {
+        // Collected on the stack: one byte beyond `N` is already too long.
+        let mut bytes = [0u8; N];
+        let mut len = 0;
+        while let Some(b) = seq.next_element::<u8>()? {
+            let slot = bytes
+                .get_mut(len)
+                .ok_or_else(|| de::Error::invalid_length(len + 1, &self))?;
+            *slot = b;
+            len += 1;
+        }
+        NulStr::from_text_bytes(&bytes[..len])
+            .ok_or_else(|| de::Error::invalid_value(de::Unexpected::Bytes(&bytes[..len]), &self))
+    }
+}
+
+impl<'de, const N: usize> Deserialize<'de> for NulStr<N> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(NulStrVisitor)
     }
 }
 
