@@ -449,6 +449,23 @@ pub struct Frame {
     pub message: Option<usize>,
     /// What a whole decoded frame of this format holds, when it has a packet type.
     pub packet: PacketKind,
+    /// Bytes at the end of the frame, after its checks and trailers, present when a header
+    /// flag is set (the MAVLink 2 signature).
+    pub flag_trailer: Option<FlagTrailer>,
+}
+
+/// Bytes at the end of a frame present when a one-bit header flag is set: carried as they are
+/// (a MAVLink 2 signature is not verified: that needs a key).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlagTrailer {
+    /// Name (snake_case): the `Header` field that holds the bytes.
+    pub name: String,
+    /// Documentation.
+    pub doc: String,
+    /// The flag (index into [`Frame::values`], role [`Role::Flag`]).
+    pub flag: usize,
+    /// How many bytes.
+    pub len: usize,
 }
 
 /// The packet type of a frame format: what a whole decoded frame holds.
@@ -477,9 +494,13 @@ impl Frame {
             None => command,
         }
     }
-    /// Largest total frame length.
+    /// Largest total frame length (with a flag trailer, if the frame has one).
     pub fn max_len(&self) -> usize {
-        self.header_len + self.payload_max + self.trailer_len
+        self.header_len + self.payload_max + self.trailer_len + self.flag_trailer_len()
+    }
+    /// Bytes of the flag trailer when present (0 without one).
+    pub fn flag_trailer_len(&self) -> usize {
+        self.flag_trailer.as_ref().map_or(0, |t| t.len)
     }
 }
 
@@ -551,6 +572,8 @@ pub enum Element {
     Check(usize),
     /// A trailer (index into `Frame::trailers`).
     Trailer(usize),
+    /// The flag trailer ([`Frame::flag_trailer`]), last.
+    FlagTrailer,
 }
 
 /// A value stored in the header: a whole field, or some bits of a header word.
@@ -592,6 +615,9 @@ pub enum Role {
     /// The acknowledgement flag: equals the value when the frame is an acknowledgement; set by
     /// the codec from the message.
     Ack(u64),
+    /// The flag of the frame's flag trailer ([`Frame::flag_trailer`]): set when the trailer is
+    /// present; set by the codec from the header's trailer.
+    Flag,
 }
 
 /// How the total length of a frame is known.

@@ -11,7 +11,9 @@
 //! the `crc` crate takes them ([`intern`]).
 
 use protocol_runtime::checksum::Checksum;
-use protocol_runtime::layout::{Check, Constant, FrameLayout, LengthRule, Marker, WordField};
+use protocol_runtime::layout::{
+    Check, Constant, FlagTrailer, FrameLayout, LengthRule, Marker, WordField,
+};
 
 use std::sync::Mutex;
 
@@ -53,13 +55,23 @@ pub fn lower_layout(f: &ir::Frame) -> LayoutPlan<'_> {
         Length::Field { value, adjust } => {
             let field = word_field(&f.values[*value]);
             let adjust = *adjust;
-            let rule = match f.bare_len {
-                Some(bare) => LengthRule::FieldOrBare {
+            let trailer = f.flag_trailer.as_ref().map(|t| FlagTrailer {
+                flag: word_field(&f.values[t.flag]),
+                len: t.len,
+            });
+            let rule = match (f.bare_len, trailer) {
+                (Some(bare), _) => LengthRule::FieldOrBare {
                     field,
                     adjust,
                     bare,
                 },
-                None => LengthRule::Field { field, adjust },
+                (None, Some(trailer)) => LengthRule::Conditional {
+                    field,
+                    adjust,
+                    extension: None,
+                    trailer: Some(trailer),
+                },
+                (None, None) => LengthRule::Field { field, adjust },
             };
             (rule, Some(*value))
         }

@@ -33,6 +33,12 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         if f.bare_len.is_some() {
             out.push(format!("{at}: bare headers"));
         }
+        if let Some(t) = &f.flag_trailer {
+            out.push(format!(
+                "{at}: optional bytes `{}` present when a header flag is set",
+                t.name
+            ));
+        }
         if f.dispatch.is_empty() {
             out.push(format!("{at}: a frame format without dispatch key"));
         }

@@ -404,6 +404,10 @@ pub fn frame_doc(f: &Frame) -> String {
                             Role::Dispatch => ": command id".into(),
                             Role::Const(c) => format!(": always {c:#x}"),
                             Role::Ack(v) => format!(": {v} in acknowledgements"),
+                            Role::Flag => {
+                                let name = f.flag_trailer.as_ref().map_or("", |t| t.name.as_str());
+                                format!(": set when `{name}` is present")
+                            }
                         };
                         format!("{bits}`{}`{role}", v.name)
                     })
@@ -445,6 +449,15 @@ pub fn frame_doc(f: &Frame) -> String {
                         .collect::<Vec<_>>()
                         .join(" ")
                 ));
+            }
+            crate::ir::Element::FlagTrailer => {
+                if let Some(t) = &f.flag_trailer {
+                    let flag = &f.values[t.flag].name;
+                    out.push_str(&format!(
+                        "| end | {} | `{}` | bytes | present when `{flag}` is set, after everything else; carried, not verified |\n",
+                        t.len, t.name
+                    ));
+                }
             }
         }
     }

@@ -235,7 +235,7 @@ pub struct AckDef {
 }
 
 /// One element of a frame layout. Exactly one of `sync`, `field`, `payload`, `check`,
-/// `trailer` says what it is; validation checks the combination.
+/// `trailer`, `optional` says what it is; validation checks the combination.
 #[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ElementDef {
@@ -291,6 +291,17 @@ pub struct ElementDef {
     /// Name of a check or trailer.
     #[schemars(with = "Option<String>")]
     pub name: Option<SStr>,
+    /// Bytes at the end of the frame, after everything else, present when a one-bit header
+    /// flag (`when`) is set: their name (the MAVLink 2 signature).
+    #[schemars(with = "Option<String>")]
+    pub optional: Option<SStr>,
+    /// Bytes of an `optional` element.
+    #[schemars(with = "Option<i64>")]
+    pub size: Option<SInt>,
+    /// The one-bit header value whose being set makes an `optional` element present.
+    #[schemars(with = "Option<String>")]
+    pub when: Option<SStr>,
+
     /// Documentation.
     #[schemars(with = "Option<String>")]
     pub doc: Option<SStr>,

@@ -35,11 +35,13 @@
 //! [`LengthRule`]: crate::layout::LengthRule
 
 mod buffer;
+mod conditional;
 mod event;
 mod scan;
 mod search;
 mod stream;
 
+pub use conditional::{flag_trailer, write_flag_trailer};
 pub use event::{Event, Frame, Reject, Stats};
 pub use stream::StreamDecoder;
 
@@ -211,6 +213,15 @@ impl FrameLayout<'_> {
                 let value = i64::try_from(field.read(header)?).ok()?;
                 usize::try_from(value.checked_add(adjust)?).ok()
             }
+            // Only the header is looked at: a wider length after it is not known here.
+            LengthRule::Conditional {
+                field,
+                adjust,
+                extension,
+                trailer,
+            } => conditional::measure(field, adjust, extension, trailer, header, header, usize::MAX)
+                .ok()
+                .map(|(total, _)| total),
         }
     }
 
@@ -345,6 +356,23 @@ pub(crate) fn probe_synced<L: LayoutRef>(
     }
     let bare = layout.length.bare_len();
     let shortest = span.max(layout.min_len).max(1);
+    // A frame whose parts depend on its header: its total and the body its checks and markers
+    // resolve against (without a flag trailer).
+    if let LengthRule::Conditional {
+        field,
+        adjust,
+        extension,
+        trailer,
+    } = layout.length
+    {
+        let (total, body) =
+            match conditional::measure(field, adjust, extension, trailer, header, bytes, limit) {
+                Ok((total, body)) if total >= shortest && total <= limit => (total, body),
+                Ok(_) => return Probe::Reject(Reject::BadLength),
+                Err(verdict) => return verdict,
+            };
+        return verify_frame(layout, readable, bytes, total, body);
+    }
     let total = match layout.frame_len(header) {
         // A bare header is complete and verified once its header checks hold.
         Some(t) if Some(t) == bare && t >= span && t > 0 && t <= limit => {
@@ -358,10 +386,24 @@ pub(crate) fn probe_synced<L: LayoutRef>(
         }
         _ => return Probe::Reject(Reject::BadLength),
     };
-    let Some(frame) = bytes.get(..total) else {
+    verify_frame(layout, readable, bytes, total, total)
+}
+
+/// The rest of [`probe_synced`] once the candidate's `total` length is known to be possible:
+/// the frame checks and the markers, which resolve against its first `body` bytes (all of it
+/// but a flag trailer).
+#[inline(always)]
+fn verify_frame(
+    layout: &FrameLayout<'_>,
+    readable: &[u8],
+    bytes: &[u8],
+    total: usize,
+    body: usize,
+) -> Probe {
+    let Some(frame) = bytes.get(..body).filter(|_| total <= bytes.len()) else {
         return Probe::Need(total);
     };
-    if !all_hold!(layout.frame_checks, |c| c.verify_prefix(readable, total)) {
+    if !all_hold!(layout.frame_checks, |c| c.verify_prefix(readable, body)) {
         return Probe::Reject(Reject::BadChecksum);
     }
     if !all_hold!(layout.markers, |m| m.matches(frame)) {

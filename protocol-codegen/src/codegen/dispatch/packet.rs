@@ -5,7 +5,7 @@
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
-use super::frames::header_codec;
+use super::frames::{flag_trailer_len, header_codec};
 use super::key_prims;
 use crate::codegen::frame::wire_const;
 use crate::codegen::ident;
@@ -214,10 +214,12 @@ fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStrea
     } else {
         (quote!(), quote!(self.message.payload_len()))
     };
+    let flagged = flag_trailer_len(f);
     let plain = quote!(
         #header_len
             .saturating_add(#plen)
             .saturating_add(#trailer_len)
+            .saturating_add(#flagged)
     );
     let unstuffed = if ack.len_arms.is_empty() {
         plain
@@ -303,6 +305,18 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
     } = &ack;
     let (unstuff, stuff, stuffing_const) = packet_stuffing(f, rt);
     let trailer_of = packet_trailer(f);
+    // A flag trailer: its bytes after the trailer, when the header has them.
+    let (trailer_in, trailer_out, flagged_total) = match &f.flag_trailer {
+        Some(_) => {
+            let flagged = flag_trailer_len(f);
+            (
+                quote!(#trailer_len.saturating_add(#layout.flag_trailer_len(frame))),
+                quote!(#trailer_len.saturating_add(#flagged)),
+                quote!(.saturating_add(#flagged)),
+            )
+        }
+        None => (quote!(#trailer_len), quote!(#trailer_len), quote!()),
+    };
     let trim = if f.truncate_zeros {
         quote!(let plen = #rt::trimmed_len(room.get(..plen).unwrap_or_default());)
     } else {
@@ -339,7 +353,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
                 #ack_decode
                 #read_key
                 let command = Command::from_id(id).ok_or(#rt::unknown_command(#key_u64))?;
-                let payload = #rt::payload_of(frame, #header_len, #trailer_len)?;
+                let payload = #rt::payload_of(frame, #header_len, #trailer_in)?;
                 #unstuff
                 let message = #message;
                 #rt::Ok(#packet { header, message })
@@ -360,13 +374,13 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
                 #direction_check
                 let start = #start_of;
                 // The payload first, in place: its size on the wire decides the frame's length.
-                let room = #rt::payload_room(buf, self.encoded_len(), start, #trailer_len)?;
+                let room = #rt::payload_room(buf, self.encoded_len(), start, #trailer_out)?;
                 let mut w = #rt::Writer::new(room);
                 self.message.write_payload(&mut w)?;
                 let plen = w.position();
                 #trim
                 #stuff
-                let total = start.saturating_add(plen).saturating_add(#trailer_of);
+                let total = start.saturating_add(plen).saturating_add(#trailer_of)#flagged_total;
                 let frame = #rt::frame_room(buf, total)?;
                 #(#header_writes)*
                 #ack_flag

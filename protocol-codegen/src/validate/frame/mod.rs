@@ -7,6 +7,7 @@
 
 mod ack;
 mod checks;
+mod conditional;
 mod elements;
 mod header;
 mod length;
@@ -52,6 +53,8 @@ enum Kind {
     Payload,
     Check(usize),
     Trailer(usize),
+    /// The flag trailer (`optional`): no bytes at a fixed place.
+    Optional,
 }
 
 /// One layout element, lowered.
@@ -81,6 +84,8 @@ struct Draft<'s> {
     broken: bool,
     /// The values of a field that is the sync (`one_of`), once lowered.
     sync_set: Option<Vec<u8>>,
+    /// The flag trailer (`optional`) as declared, once lowered.
+    optional: Option<conditional::OptionalDecl<'s>>,
 }
 
 /// Lower one frame format (`first`: the spec's first, default one): the element rules, then
@@ -104,6 +109,7 @@ fn lower_frame(
         length_decl: None,
         broken: false,
         sync_set: None,
+        optional: None,
     };
     header::push_can_prefix(&mut draft);
     for (i, el) in def.layout.get_ref().iter().enumerate() {
@@ -131,6 +137,7 @@ fn lower_frame(
         mut trailers,
         length_decl,
         sync_set,
+        optional,
         ..
     } = draft;
     let sync_set = sync_set.unwrap_or_default();
@@ -148,6 +155,19 @@ fn lower_frame(
     let stuffing = options::lower_stuffing(ctx, def);
     let truncate_zeros = options::lower_truncate_zeros(ctx, def, first, transport, &mut ok);
     let message = options::lower_message(ctx, fname, def, &dispatch, structs, &lay, &mut ok);
+    let flag_trailer = conditional::lower_flag_trailer(
+        ctx,
+        &conditional::Context {
+            def,
+            lay: &lay,
+            first,
+            length: &length,
+            header_checks: checks.iter().any(|(c, _)| c.header),
+        },
+        optional,
+        &mut values,
+        &mut ok,
+    );
     if !ok {
         // The commands cannot be checked against a frame whose layout is broken.
         return None;
@@ -187,6 +207,7 @@ fn lower_frame(
         truncate_zeros,
         message,
         packet: PacketKind::None,
+        flag_trailer,
     })
 }
 
@@ -289,6 +310,7 @@ fn lower_elements(els: &[El<'_>], values: &[HeaderValue]) -> Vec<Element> {
             Kind::Payload => Element::Payload,
             Kind::Check(i) => Element::Check(*i),
             Kind::Trailer(i) => Element::Trailer(*i),
+            Kind::Optional => Element::FlagTrailer,
         })
         .collect()
 }
