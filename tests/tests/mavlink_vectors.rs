@@ -361,8 +361,8 @@ fn expressed_stream() -> (Vec<u8>, Vec<(u64, Vec<u8>)>) {
         .collect();
     assert_eq!(
         expressed.len(),
-        2,
-        "sys_status_v2 and command_ack_v2_truncated"
+        3,
+        "sys_status_v2, command_ack_v2_truncated and heartbeat_v2_signed"
     );
     (bytes, expressed)
 }
