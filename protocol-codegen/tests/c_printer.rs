@@ -44,3 +44,15 @@ fn unsupported_features_are_refused_not_printed() {
     );
     assert_eq!(refused, protocol_codegen::c::unsupported(&p));
 }
+
+#[test]
+fn a_flag_trailer_is_refused_not_printed() {
+    let p = compile("specs/mavlink.toml");
+    let refused = protocol_codegen::c::unsupported(&p);
+    assert!(
+        refused
+            .iter()
+            .any(|r| r == "frame `v2`: optional bytes `signature` present when a header flag is set"),
+        "{refused:?}"
+    );
+}

@@ -214,12 +214,18 @@ fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStrea
     } else {
         (quote!(), quote!(self.message.payload_len()))
     };
-    let flagged = flag_trailer_len(f);
+    let flagged = match f.flag_trailer {
+        Some(_) => {
+            let len = flag_trailer_len(f);
+            quote!(.saturating_add(#len))
+        }
+        None => quote!(),
+    };
     let plain = quote!(
         #header_len
             .saturating_add(#plen)
             .saturating_add(#trailer_len)
-            .saturating_add(#flagged)
+            #flagged
     );
     let unstuffed = if ack.len_arms.is_empty() {
         plain
