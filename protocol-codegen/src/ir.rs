@@ -452,6 +452,22 @@ pub struct Frame {
     /// Bytes at the end of the frame, after its checks and trailers, present when a header
     /// flag is set (the MAVLink 2 signature).
     pub flag_trailer: Option<FlagTrailer>,
+    /// A wider length that a marker value of the length field announces (MSP v1 jumbo
+    /// frames): its bytes follow the header, and the payload starts after them.
+    pub length_extension: Option<LengthExtension>,
+}
+
+/// A wider length, right after the header, present when the length field holds a marker
+/// value; it counts what the length field counts. A frame uses it exactly when the count does
+/// not fit below the marker.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LengthExtension {
+    /// The wider length (index into [`Frame::values`], role [`Role::WideLength`]).
+    pub value: usize,
+    /// The length field's value that announces it.
+    pub marker: u64,
+    /// Its bytes.
+    pub len: usize,
 }
 
 /// Bytes at the end of a frame present when a one-bit header flag is set: carried as they are
@@ -496,7 +512,11 @@ impl Frame {
     }
     /// Largest total frame length (with a flag trailer, if the frame has one).
     pub fn max_len(&self) -> usize {
-        self.header_len + self.payload_max + self.trailer_len + self.flag_trailer_len()
+        self.header_len
+            + self.length_extension.as_ref().map_or(0, |e| e.len)
+            + self.payload_max
+            + self.trailer_len
+            + self.flag_trailer_len()
     }
     /// Bytes of the flag trailer when present (0 without one).
     pub fn flag_trailer_len(&self) -> usize {
@@ -618,6 +638,9 @@ pub enum Role {
     /// The flag of the frame's flag trailer ([`Frame::flag_trailer`]): set when the trailer is
     /// present; set by the codec from the header's trailer.
     Flag,
+    /// The wider length of a [`LengthExtension`]: computed on encode, present only when the
+    /// length field holds the marker.
+    WideLength,
 }
 
 /// How the total length of a frame is known.

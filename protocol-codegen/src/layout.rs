@@ -12,7 +12,7 @@
 
 use protocol_runtime::checksum::Checksum;
 use protocol_runtime::layout::{
-    Check, Constant, FlagTrailer, FrameLayout, LengthRule, Marker, WordField,
+    Check, Constant, FlagTrailer, FrameLayout, LengthExtension, LengthRule, Marker, WordField,
 };
 
 use std::sync::Mutex;
@@ -59,19 +59,24 @@ pub fn lower_layout(f: &ir::Frame) -> LayoutPlan<'_> {
                 flag: word_field(&f.values[t.flag]),
                 len: t.len,
             });
-            let rule = match (f.bare_len, trailer) {
-                (Some(bare), _) => LengthRule::FieldOrBare {
+            let extension = f.length_extension.as_ref().map(|e| LengthExtension {
+                marker: e.marker,
+                wide: word_field(&f.values[e.value]),
+                len: e.len,
+            });
+            let rule = match (f.bare_len, trailer, extension) {
+                (Some(bare), ..) => LengthRule::FieldOrBare {
                     field,
                     adjust,
                     bare,
                 },
-                (None, Some(trailer)) => LengthRule::Conditional {
+                (None, None, None) => LengthRule::Field { field, adjust },
+                (None, trailer, extension) => LengthRule::Conditional {
                     field,
                     adjust,
-                    extension: None,
-                    trailer: Some(trailer),
+                    extension,
+                    trailer,
                 },
-                (None, None) => LengthRule::Field { field, adjust },
             };
             (rule, Some(*value))
         }

@@ -194,12 +194,12 @@ fn emit_layout(rt: &TokenStream, f: &Frame, name: &Ident, doc: &str) -> TokenStr
             Some(v),
         ) => {
             let field = field(v);
-            let extension = match extension {
-                Some(e) => {
-                    let (marker, wide, len) = (e.marker, word_field_lit(rt, e.wide), e.len);
-                    quote!(#rt::Some(#rt::LengthExtension { marker: #marker, wide: #wide, len: #len }))
+            let extension = match (extension, &f.length_extension) {
+                (Some(e), Some(fe)) => {
+                    let (marker, wide, len) = (e.marker, wire_const(f, fe.value), e.len);
+                    quote!(#rt::Some(#rt::LengthExtension { marker: #marker, wide: wire::#wide, len: #len }))
                 }
-                None => quote!(#rt::None),
+                _ => quote!(#rt::None),
             };
             let trailer = match (trailer, &f.flag_trailer) {
                 (Some(t), Some(ft)) => {

@@ -301,6 +301,13 @@ pub struct ElementDef {
     /// The one-bit header value whose being set makes an `optional` element present.
     #[schemars(with = "Option<String>")]
     pub when: Option<SStr>,
+    /// The field is a wider length, present when the length field named here holds `marker`
+    /// (MSP v1 jumbo frames).
+    #[schemars(with = "Option<String>")]
+    pub extends: Option<SStr>,
+    /// With `extends`: the value of the length field that announces the wider length.
+    #[schemars(with = "Option<i64>")]
+    pub marker: Option<SInt>,
 
     /// Documentation.
     #[schemars(with = "Option<String>")]

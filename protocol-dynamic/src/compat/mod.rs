@@ -182,6 +182,7 @@ fn role_name(r: &Role) -> String {
         Role::Const(v) => format!("the constant {v:#x}"),
         Role::Ack(v) => format!("the acknowledgement flag (set: {v})"),
         Role::Flag => "the flag of optional bytes".into(),
+        Role::WideLength => "the wider length".into(),
     }
 }
 

@@ -188,6 +188,10 @@ pub fn encode(
     } else {
         f.trailer_len
     };
+    // A wider length: the payload moves behind it when the frame needs one.
+    let start = layout
+        .place_payload(&mut buf, start, plen, trailer)
+        .map_err(EncodeIssue::runtime)?;
     let flagged = flagged_trailer(f, obj)?;
     let total = start + plen + trailer + flagged.as_ref().map_or(0, Vec::len);
     let frame = buf

@@ -11,7 +11,9 @@ mod encode;
 
 pub use encode::encode;
 
-use protocol_codegen::ir::{DirectionRule, Frame, HeaderValue, Prim, Protocol, Role, Transport};
+use protocol_codegen::ir::{
+    DirectionRule, Frame, HeaderValue, Length, Prim, Protocol, Role, Transport,
+};
 use protocol_runtime::DecodeError;
 use protocol_runtime::stuffing::Stuffing;
 use protocol_runtime::zeros::zero_filled;
@@ -131,6 +133,19 @@ fn read_header(p: &Protocol, f: &Frame, frame: &[u8]) -> Result<Fields, DecodeIs
     Ok(out)
 }
 
+/// Bytes of the wider length present after the header of `frame` (0 without one, or when the
+/// length field does not hold its marker), as generated code's `LAYOUT.extension_len`.
+pub fn extension_len(f: &Frame, frame: &[u8]) -> usize {
+    match (&f.length_extension, &f.length) {
+        (Some(e), Length::Field { value, .. })
+            if word_field(&f.values[*value]).read(frame) == Some(e.marker) =>
+        {
+            e.len
+        }
+        _ => 0,
+    }
+}
+
 /// Bytes of the flag trailer present at the end of `frame` (0 without one, or with its flag
 /// clear), as generated code's `LAYOUT.flag_trailer_len`.
 pub fn flag_trailer_len(f: &Frame, frame: &[u8]) -> usize {
@@ -248,8 +263,9 @@ fn is_separator(c: char) -> bool {
 /// The payload bytes of a frame.
 fn payload_of<'b>(f: &Frame, frame: &'b [u8]) -> Result<&'b [u8], DecodeIssue> {
     let trailer = f.trailer_len + flag_trailer_len(f, frame);
+    let header = f.header_len + extension_len(f, frame);
     frame
-        .get(f.header_len..frame.len().saturating_sub(trailer))
+        .get(header..frame.len().saturating_sub(trailer))
         .ok_or(DecodeIssue::Frame(DecodeError::Truncated {
             needed: f.header_len + f.trailer_len,
             available: frame.len(),

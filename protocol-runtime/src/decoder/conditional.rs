@@ -100,8 +100,9 @@ impl FrameLayout<'_> {
     /// };
     /// assert_eq!(msp.extension_len(b"$M>\x03\x01"), 0);
     /// assert_eq!(msp.extension_len(b"$M>\xff\x74\x2c\x01"), 2);
-    /// assert_eq!(msp.extension_for(254), 0);
-    /// assert_eq!(msp.extension_for(300), 2);
+    /// // The short form of a frame: 6 bytes of framing and the payload.
+    /// assert_eq!(msp.extension_for(6 + 254), 0);
+    /// assert_eq!(msp.extension_for(6 + 255), 2);
     /// ```
     #[inline(always)]
     #[must_use]
@@ -127,19 +128,60 @@ impl FrameLayout<'_> {
         }
     }
 
-    /// For an encoder: the bytes a wider length adds before the payload of a frame whose
-    /// length field would count `count` (the extension's bytes when the count does not fit
-    /// below the marker, else 0).
+    /// For an encoder: the bytes a wider length adds before the payload of a frame of `len`
+    /// bytes in its short form (without the wider length and a flag trailer): the extension's
+    /// bytes when the count of the length field does not fit below the marker, else 0.
     #[inline(always)]
     #[must_use]
-    pub fn extension_for(&self, count: usize) -> usize {
+    pub fn extension_for(&self, len: usize) -> usize {
         match self.length {
             LengthRule::Conditional {
+                adjust,
                 extension: Some(e),
                 ..
-            } if count as u64 >= e.marker => e.len,
+            } => {
+                let count = i64::try_from(len).map_or(i64::MAX, |l| l.saturating_sub(adjust));
+                if u64::try_from(count).is_ok_and(|c| c >= e.marker) {
+                    e.len
+                } else {
+                    0
+                }
+            }
             _ => 0,
         }
+    }
+
+    /// For an encoder that wrote a `plen`-byte payload at `start` of `buf`, with `trailer_len`
+    /// bytes of trailer to follow: moves the payload behind the wider length when the frame
+    /// needs one ([`extension_for`](Self::extension_for)). Returns where the payload starts.
+    ///
+    /// # Errors
+    ///
+    /// [`EncodeError::BufferTooSmall`](crate::EncodeError::BufferTooSmall) if `buf` has no
+    /// room for the moved payload and the trailer.
+    #[inline]
+    pub fn place_payload(
+        &self,
+        buf: &mut [u8],
+        start: usize,
+        plen: usize,
+        trailer_len: usize,
+    ) -> Result<usize, crate::EncodeError> {
+        let short = start.saturating_add(plen).saturating_add(trailer_len);
+        let extra = self.extension_for(short);
+        if extra == 0 {
+            return Ok(start);
+        }
+        let needed = short.saturating_add(extra);
+        if buf.len() < needed {
+            return Err(crate::EncodeError::BufferTooSmall {
+                needed,
+                available: buf.len(),
+            });
+        }
+        let end = start.saturating_add(plen);
+        buf.copy_within(start..end, start.saturating_add(extra));
+        Ok(start.saturating_add(extra))
     }
 
     /// The count written into the length field of a frame of `len` bytes under a conditional

@@ -221,12 +221,22 @@ fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStrea
         }
         None => quote!(),
     };
-    let plain = quote!(
+    let short = quote!(
         #header_len
             .saturating_add(#plen)
             .saturating_add(#trailer_len)
-            #flagged
     );
+    // A wider length adds its bytes when the short form's count reaches the marker.
+    let plain = match f.length_extension {
+        Some(_) => {
+            let layout = Items::of(f).layout;
+            quote!({
+                let short = #short;
+                short.saturating_add(#layout.extension_for(short)) #flagged
+            })
+        }
+        None => quote!(#short #flagged),
+    };
     let unstuffed = if ack.len_arms.is_empty() {
         plain
     } else {
@@ -312,6 +322,14 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
     let (unstuff, stuff, stuffing_const) = packet_stuffing(f, rt);
     let trailer_of = packet_trailer(f);
     // A flag trailer: its bytes after the trailer, when the header has them.
+    // A wider length: the payload starts after it when the frame has one.
+    let (header_in, place) = match &f.length_extension {
+        Some(_) => (
+            quote!(#header_len.saturating_add(#layout.extension_len(frame))),
+            quote!(let start = #layout.place_payload(buf, start, plen, #trailer_len)?;),
+        ),
+        None => (quote!(#header_len), quote!()),
+    };
     let (trailer_in, trailer_out, flagged_total) = match &f.flag_trailer {
         Some(_) => {
             let flagged = flag_trailer_len(f);
@@ -359,7 +377,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
                 #ack_decode
                 #read_key
                 let command = Command::from_id(id).ok_or(#rt::unknown_command(#key_u64))?;
-                let payload = #rt::payload_of(frame, #header_len, #trailer_in)?;
+                let payload = #rt::payload_of(frame, #header_in, #trailer_in)?;
                 #unstuff
                 let message = #message;
                 #rt::Ok(#packet { header, message })
@@ -386,6 +404,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
                 let plen = w.position();
                 #trim
                 #stuff
+                #place
                 let total = start.saturating_add(plen).saturating_add(#trailer_of)#flagged_total;
                 let frame = #rt::frame_room(buf, total)?;
                 #(#header_writes)*

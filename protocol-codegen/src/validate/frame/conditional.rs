@@ -1,5 +1,7 @@
 //! Rules for the parts of a frame that header values decide: bytes at the very end of a frame
-//! present when a one-bit header flag is set (`optional`, the MAVLink 2 signature).
+//! present when a one-bit header flag is set (`optional`, the MAVLink 2 signature), and a
+//! wider length present when the length field holds a marker value (`extends`, MSP v1 jumbo
+//! frames).
 
 use std::ops::Range;
 
@@ -10,8 +12,9 @@ use super::super::{Ctx, text};
 use super::length::Layout;
 use super::{Draft, El, Kind};
 use crate::diag::did_you_mean;
-use crate::ir::{FlagTrailer, HeaderValue, Length, Pos, Role};
-use crate::spec::model::{ElementDef, FrameDef, SStr};
+use super::super::types::mask;
+use crate::ir::{FlagTrailer, HeaderValue, Length, LengthExtension, Pos, Role};
+use crate::spec::model::{ElementDef, FrameDef, SInt, SStr};
 
 /// Largest flag trailer, in bytes.
 const MAX_OPTIONAL: i64 = 255;
@@ -203,4 +206,181 @@ fn lower_flag(
     }
     v.role = Role::Flag;
     Some(vi)
+}
+
+/// A field with `extends` as declared: its value, its element, and its keys.
+pub(super) struct ExtensionDecl<'s> {
+    value: usize,
+    index: usize,
+    size: usize,
+    extends: &'s SStr,
+    marker: Option<&'s SInt>,
+    span: Range<usize>,
+}
+
+/// Rule: one field at most is a wider length (`extends`), a whole field without `bits`. Its
+/// bytes do not count in the header's fixed length: the payload starts after them only when
+/// the marker announces them.
+pub(super) fn find_extension<'s>(
+    ctx: &mut Ctx<'_>,
+    draft: &mut Draft<'s>,
+) -> Option<ExtensionDecl<'s>> {
+    let mut found: Option<ExtensionDecl<'s>> = None;
+    for (index, el) in draft.els.iter_mut().enumerate() {
+        let Some(def) = el.def else { continue };
+        let d = def.get_ref();
+        let Some(extends) = d.extends.as_ref() else {
+            continue;
+        };
+        let value = match &el.kind {
+            Kind::Word(_, idx) if d.bits.is_none() && idx.len() == 1 => idx[0],
+            _ => {
+                ctx.error(
+                    extends.span(),
+                    "a wider length is a whole field",
+                    "remove `bits`: the field holds the length",
+                );
+                continue;
+            }
+        };
+        if found.is_some() {
+            ctx.error(
+                extends.span(),
+                "a frame has one wider length",
+                "remove `extends` from all but one field",
+            );
+            continue;
+        }
+        found = Some(ExtensionDecl {
+            value,
+            index,
+            size: el.size,
+            extends,
+            marker: d.marker.as_ref(),
+            span: def.span(),
+        });
+        el.size = 0;
+    }
+    found
+}
+
+/// Rules: the wider length follows the header's other fields, right before the payload; it
+/// extends the frame's length field, whose `marker` value (from 1, within the field) announces
+/// it, and it holds the count of the largest frame; the frame is the first, serial, with
+/// `dispatch`, and without header checks, bare header, acknowledgements, byte stuffing or
+/// trailing-zero truncation (an encoder knows the payload's size before it places it).
+pub(super) fn lower_extension(
+    ctx: &mut Ctx<'_>,
+    cx: &Context<'_, '_, '_>,
+    decl: Option<ExtensionDecl<'_>>,
+    values: &[HeaderValue],
+    ok: &mut bool,
+) -> Option<LengthExtension> {
+    let decl = decl?;
+    let mut refuse = |ctx: &mut Ctx<'_>, span: Range<usize>, message: &str, help: &str| {
+        ctx.error(span, message, help);
+        *ok = false;
+    };
+    if decl.index + 1 != cx.lay.pi {
+        refuse(
+            ctx,
+            decl.span.clone(),
+            "a wider length is the last header field, right before the payload",
+            "move it before the payload: fields after it would move with it",
+        );
+    }
+    let def = cx.def;
+    let flagged = |b: &Option<toml::Spanned<bool>>| b.as_ref().is_some_and(|b| *b.get_ref());
+    if !cx.first
+        || cx.lay.els.iter().any(|e| e.def.is_none())
+        || def.dispatch.is_none()
+        || def.ack.is_some()
+        || def.stuffing.is_some()
+        || flagged(&def.truncate_zeros)
+        || flagged(&def.bare_header)
+        || cx.header_checks
+    {
+        refuse(
+            ctx,
+            decl.span.clone(),
+            "a wider length needs the first frame format, serial, with `dispatch`",
+            "it does not combine with header checks, `bare_header`, `ack`, `stuffing` or \
+             `truncate_zeros`",
+        );
+    }
+    let (base, adjust) = match cx.length {
+        Length::Field { value, adjust } => (*value, *adjust),
+        Length::Fixed(_) => {
+            refuse(
+                ctx,
+                decl.extends.span(),
+                "a wider length extends a length field, and the frame has none",
+                "mark the frame's length field with `length_of`",
+            );
+            return None;
+        }
+    };
+    let name = &values[base].name;
+    if decl.extends.get_ref() != name {
+        refuse(
+            ctx,
+            decl.extends.span(),
+            &format!("`{}` is not the frame's length field", decl.extends.get_ref()),
+            &format!("write `extends = \"{name}\"`"),
+        );
+    }
+    let wide = &values[decl.value];
+    let lay = cx.lay;
+    let needed = (lay.header_len + lay.payload_max + lay.trailer_len) as i64 - adjust;
+    if needed > 0 && needed as u64 > mask(wide.width) {
+        refuse(
+            ctx,
+            decl.span.clone(),
+            &format!(
+                "the wider length has {} bits (at most {}), but the largest frame needs the value {needed}",
+                wide.width,
+                mask(wide.width)
+            ),
+            "use a wider type, or lower the payload's `max`",
+        );
+    }
+    let marker = lower_marker(ctx, decl.marker, &values[base], &decl.span, ok)?;
+    Some(LengthExtension {
+        value: decl.value,
+        marker,
+        len: decl.size,
+    })
+}
+
+/// Rule: a wider length has a `marker`, from 1 to the largest value of the length field.
+fn lower_marker(
+    ctx: &mut Ctx<'_>,
+    marker: Option<&SInt>,
+    base: &HeaderValue,
+    span: &Range<usize>,
+    ok: &mut bool,
+) -> Option<u64> {
+    let Some(marker) = marker else {
+        ctx.error(
+            span.clone(),
+            "a wider length needs the `marker` that announces it",
+            format!(
+                "add `marker = N`, the value of `{}` that announces it (255 for MSP v1)",
+                base.name
+            ),
+        );
+        *ok = false;
+        return None;
+    };
+    let value = *marker.get_ref();
+    if value < 1 || value as u64 > mask(base.width) {
+        ctx.error(
+            marker.span(),
+            format!("marker {value} does not fit `{}`", base.name),
+            format!("a marker is from 1 to {}", mask(base.width)),
+        );
+        *ok = false;
+        return None;
+    }
+    Some(value as u64)
 }

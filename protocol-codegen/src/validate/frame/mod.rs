@@ -117,6 +117,7 @@ fn lower_frame(
     }
     elements::check_unique_names(ctx, fname, &draft.els);
     elements::check_serial_sync(ctx, fname, def, &mut draft);
+    let extension = conditional::find_extension(ctx, &mut draft);
     let Some((pi, payload_min, payload_max)) = draft.payload else {
         if !draft.broken {
             ctx.error(
@@ -145,7 +146,17 @@ fn lower_frame(
     lay.place_values(&mut values);
     length::check_can_length(ctx, def, &lay, transport, length_decl)?;
     let mut ok = true;
-    let length = length::lower_length(ctx, def, &lay, transport, length_decl, &values, &mut ok)?;
+    let extended = extension.is_some();
+    let length = length::lower_length(
+        ctx,
+        def,
+        &lay,
+        transport,
+        length_decl,
+        &values,
+        extended,
+        &mut ok,
+    )?;
     checks::lower_coverage(ctx, &lay, &mut checks, &mut ok);
     checks::place_trailers(&lay, &mut trailers);
     let dispatch = ack::lower_dispatch(ctx, fname, def, &mut values, &mut ok);
@@ -155,19 +166,15 @@ fn lower_frame(
     let stuffing = options::lower_stuffing(ctx, def);
     let truncate_zeros = options::lower_truncate_zeros(ctx, def, first, transport, &mut ok);
     let message = options::lower_message(ctx, fname, def, &dispatch, structs, &lay, &mut ok);
-    let flag_trailer = conditional::lower_flag_trailer(
-        ctx,
-        &conditional::Context {
-            def,
-            lay: &lay,
-            first,
-            length: &length,
-            header_checks: checks.iter().any(|(c, _)| c.header),
-        },
-        optional,
-        &mut values,
-        &mut ok,
-    );
+    let cx = conditional::Context {
+        def,
+        lay: &lay,
+        first,
+        length: &length,
+        header_checks: checks.iter().any(|(c, _)| c.header),
+    };
+    let flag_trailer = conditional::lower_flag_trailer(ctx, &cx, optional, &mut values, &mut ok);
+    let length_extension = conditional::lower_extension(ctx, &cx, extension, &values, &mut ok);
     if !ok {
         // The commands cannot be checked against a frame whose layout is broken.
         return None;
@@ -208,6 +215,7 @@ fn lower_frame(
         message,
         packet: PacketKind::None,
         flag_trailer,
+        length_extension,
     })
 }
 
