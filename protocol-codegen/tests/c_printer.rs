@@ -56,3 +56,14 @@ fn a_flag_trailer_is_refused_not_printed() {
         "{refused:?}"
     );
 }
+
+#[test]
+fn a_wider_length_is_refused_not_printed() {
+    let p = compile("specs/msp.toml");
+    let refused = protocol_codegen::c::unsupported(&p);
+    assert!(
+        refused.iter().any(|r| r
+            == "frame `v1`: a wider length announced by a marker value of the length field"),
+        "{refused:?}"
+    );
+}

@@ -33,6 +33,11 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         if f.bare_len.is_some() {
             out.push(format!("{at}: bare headers"));
         }
+        if f.length_extension.is_some() {
+            out.push(format!(
+                "{at}: a wider length announced by a marker value of the length field"
+            ));
+        }
         if let Some(t) = &f.flag_trailer {
             out.push(format!(
                 "{at}: optional bytes `{}` present when a header flag is set",
