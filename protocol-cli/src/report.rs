@@ -230,7 +230,12 @@ fn spans(p: &Protocol, f: &Frame, bytes: &[u8], decoded: Option<&Decoded>) -> Ve
             }
             Element::FlagTrailer => {
                 if let Some(t) = f.flag_trailer.as_ref().filter(|_| flagged > 0) {
-                    push(len, len + flagged, t.name.clone(), hex_of(len, len + flagged));
+                    push(
+                        len,
+                        len + flagged,
+                        t.name.clone(),
+                        hex_of(len, len + flagged),
+                    );
                 }
             }
         }

@@ -50,9 +50,9 @@ fn a_flag_trailer_is_refused_not_printed() {
     let p = compile("specs/mavlink.toml");
     let refused = protocol_codegen::c::unsupported(&p);
     assert!(
-        refused
-            .iter()
-            .any(|r| r == "frame `v2`: optional bytes `signature` present when a header flag is set"),
+        refused.iter().any(
+            |r| r == "frame `v2`: optional bytes `signature` present when a header flag is set"
+        ),
         "{refused:?}"
     );
 }
@@ -62,8 +62,10 @@ fn a_wider_length_is_refused_not_printed() {
     let p = compile("specs/msp.toml");
     let refused = protocol_codegen::c::unsupported(&p);
     assert!(
-        refused.iter().any(|r| r
-            == "frame `v1`: a wider length announced by a marker value of the length field"),
+        refused
+            .iter()
+            .any(|r| r
+                == "frame `v1`: a wider length announced by a marker value of the length field"),
         "{refused:?}"
     );
 }

@@ -146,8 +146,8 @@ impl FrameLayout<'_> {
         extension: Option<crate::layout::LengthExtension>,
     ) -> Result<&'f mut [u8], EncodeError> {
         let body = self.body_len(frame, frame.len());
-        let (count, wide) = Self::conditional_count(adjust, extension, body)
-            .ok_or(EncodeError::ValueOutOfRange)?;
+        let (count, wide) =
+            Self::conditional_count(adjust, extension, body).ok_or(EncodeError::ValueOutOfRange)?;
         let written = match wide {
             Some(e) => field
                 .write(frame, e.marker)

@@ -355,10 +355,7 @@ fn an_all_zero_payload_keeps_its_first_byte() {
 fn expressed_stream() -> (Vec<u8>, Vec<(u64, Vec<u8>)>) {
     let v = load_vectors("mavlink.json");
     let (bytes, all) = stream_vector(&v["streams"][0]);
-    let expressed: Vec<_> = all
-        .into_iter()
-        .filter(|(_, f)| f[0] == 0xFD)
-        .collect();
+    let expressed: Vec<_> = all.into_iter().filter(|(_, f)| f[0] == 0xFD).collect();
     assert_eq!(
         expressed.len(),
         3,
@@ -447,7 +444,11 @@ fn signed_frames() -> Vec<(String, Vec<u8>)> {
             (name, hex(f["hex"].as_str().expect("hex")))
         })
         .collect();
-    assert_eq!(signed.len(), 2, "heartbeat_v2_signed and sys_status_v2_signed");
+    assert_eq!(
+        signed.len(),
+        2,
+        "heartbeat_v2_signed and sys_status_v2_signed"
+    );
     signed
 }
 

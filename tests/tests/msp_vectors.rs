@@ -251,10 +251,19 @@ fn v2_frames_decode_and_encode_through_the_v2_format() {
     for frame in frames().into_iter().filter(|f| f["version"] == "v2") {
         let name = frame["name"].as_str().expect("name");
         let bytes = hex(frame["hex"].as_str().expect("hex"));
-        let packet = V2_LAYOUT.parse(&bytes).unwrap_or_else(|e| panic!("{name}: {e:?}"));
+        let packet = V2_LAYOUT
+            .parse(&bytes)
+            .unwrap_or_else(|e| panic!("{name}: {e:?}"));
         assert_eq!(packet, &bytes[..], "{name}");
-        assert_eq!(wire::V2_DIRECTION.read(&bytes), Some(u64::from(direction(&frame))));
-        assert_eq!(wire::V2_COMMAND.read(&bytes), Some(u(&frame, "cmd")), "{name}");
+        assert_eq!(
+            wire::V2_DIRECTION.read(&bytes),
+            Some(u64::from(direction(&frame)))
+        );
+        assert_eq!(
+            wire::V2_COMMAND.read(&bytes),
+            Some(u(&frame, "cmd")),
+            "{name}"
+        );
         let payload = &bytes[V2_HEADER_LEN..bytes.len() - V2_TRAILER_LEN];
         assert_eq!(payload, &payload_bytes(&frame)[..], "{name}");
         match u(&frame, "cmd") {
@@ -306,7 +315,11 @@ fn encoding_uses_the_jumbo_form_exactly_when_the_payload_needs_it() {
         } else {
             assert_eq!(n, 8 + len, "{len}");
             assert_eq!(frame[3], 255, "{len}");
-            assert_eq!(u16::from_le_bytes([frame[5], frame[6]]) as usize, len, "{len}");
+            assert_eq!(
+                u16::from_le_bytes([frame[5], frame[6]]) as usize,
+                len,
+                "{len}"
+            );
         }
         assert_eq!(packet.encoded_len(), n, "{len}");
         assert_eq!(Packet::decode(frame), Ok(packet), "{len}");
@@ -327,7 +340,11 @@ fn an_impossible_jumbo_length_is_rejected_as_soon_as_its_bytes_are_in() {
     for wide in [(MAX_PAYLOAD_LEN + 1) as u16, 0xFFFF, 0, 254] {
         let mut bad = jumbo[..7].to_vec();
         bad[5..7].copy_from_slice(&wide.to_le_bytes());
-        assert_eq!(LAYOUT.probe(&bad), Probe::Reject(Reject::BadLength), "{wide}");
+        assert_eq!(
+            LAYOUT.probe(&bad),
+            Probe::Reject(Reject::BadLength),
+            "{wide}"
+        );
     }
     // A decoder whose buffer holds no jumbo frame refuses the size byte 255 at once.
     let mut small = StreamDecoder::<_, 200>::new(Layout);
@@ -357,7 +374,9 @@ fn a_jumbo_frame_cut_short_does_not_hold_back_the_frame_after_it() {
     bytes.extend_from_slice(&analog);
     let mut decoder = decoder();
     let mut got = Vec::new();
-    decoder.feed(&bytes, |frame| got.push((frame.offset, frame.bytes.to_vec())));
+    decoder.feed(&bytes, |frame| {
+        got.push((frame.offset, frame.bytes.to_vec()))
+    });
     assert_eq!(got, [(20, analog)]);
     assert_eq!(decoder.stats().truncated, 1);
     assert_eq!(decoder.pending(), 0);
@@ -374,7 +393,11 @@ fn stream_of(sync: u8) -> (Vec<u8>, Vec<(u64, Vec<u8>)>) {
 #[test]
 fn the_mixed_stream_yields_its_frames_at_every_chunk_size() {
     let (bytes, v1) = stream_of(b'M');
-    assert_eq!(v1.len(), 4, "api_version_request, analog, jumbo boxnames, v2 over v1");
+    assert_eq!(
+        v1.len(),
+        4,
+        "api_version_request, analog, jumbo boxnames, v2 over v1"
+    );
     assert_stream_at_every_chunk_size::<DECODER_BUFFER_LEN>(&LAYOUT, &bytes, &v1, |f| {
         Packet::from_frame(f).expect("decodes");
     });
@@ -392,7 +415,10 @@ fn interpreter() -> Interpreter {
 fn same(recorded: &Value, dynamic: &Value) -> bool {
     match (recorded, dynamic) {
         (Value::Array(want), Value::String(hex_text)) => {
-            let want: Vec<u8> = want.iter().map(|b| b.as_u64().expect("byte") as u8).collect();
+            let want: Vec<u8> = want
+                .iter()
+                .map(|b| b.as_u64().expect("byte") as u8)
+                .collect();
             hex(hex_text) == want
         }
         (Value::Array(want), Value::Array(got)) => {
@@ -418,14 +444,20 @@ fn the_run_time_codec_decodes_and_encodes_every_expressed_v1_frame() {
             .unwrap_or_else(|e| panic!("{name}: {e:?}"));
         let value = codec.frame_value(&decoded, 0, &bytes);
         let json = serde_json::to_value(&value).expect("json");
-        assert_eq!(json["header"]["direction"], u64::from(direction(&frame)), "{name}");
+        assert_eq!(
+            json["header"]["direction"],
+            u64::from(direction(&frame)),
+            "{name}"
+        );
         let payload = &json["payload"];
         let fields = frame["fields"].as_object().expect("fields");
         for (k, want) in fields {
             let got = match (k.as_str(), payload.get(k)) {
                 // The jumbo vector records the size of the names.
                 ("size", None) => Value::from(hex(payload["names"].as_str().expect("names")).len()),
-                (_, got) => got.cloned().unwrap_or_else(|| panic!("{name}.{k}: {payload}")),
+                (_, got) => got
+                    .cloned()
+                    .unwrap_or_else(|| panic!("{name}.{k}: {payload}")),
             };
             assert!(same(want, &got), "{name}.{k}: {want} != {got}");
         }

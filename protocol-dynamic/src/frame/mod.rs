@@ -150,7 +150,13 @@ pub fn extension_len(f: &Frame, frame: &[u8]) -> usize {
 /// clear), as generated code's `LAYOUT.flag_trailer_len`.
 pub fn flag_trailer_len(f: &Frame, frame: &[u8]) -> usize {
     match &f.flag_trailer {
-        Some(t) if word_field(&f.values[t.flag]).read(frame).is_some_and(|v| v != 0) => t.len,
+        Some(t)
+            if word_field(&f.values[t.flag])
+                .read(frame)
+                .is_some_and(|v| v != 0) =>
+        {
+            t.len
+        }
         _ => 0,
     }
 }

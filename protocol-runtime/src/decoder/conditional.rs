@@ -24,9 +24,10 @@ fn trailer_len(trailer: Option<FlagTrailer>, header: &[u8]) -> usize {
 /// One past the last byte of `field` (a [`Pos::Start`](crate::layout::Pos::Start) position).
 #[inline(always)]
 fn end_of(field: WordField) -> usize {
-    field.at.resolve(usize::MAX).map_or(usize::MAX, |at| {
-        at.saturating_add(usize::from(field.size))
-    })
+    field
+        .at
+        .resolve(usize::MAX)
+        .map_or(usize::MAX, |at| at.saturating_add(usize::from(field.size)))
 }
 
 /// The total length and the body length (without the flag trailer) of the candidate `bytes`
@@ -67,9 +68,7 @@ pub(super) fn measure(
         _ => (count, 0),
     };
     let body = total_of(count, adjust, extra).ok_or(BAD)?;
-    let total = body
-        .checked_add(trailer_len(trailer, header))
-        .ok_or(BAD)?;
+    let total = body.checked_add(trailer_len(trailer, header)).ok_or(BAD)?;
     Ok((total, body))
 }
 

@@ -219,9 +219,17 @@ impl FrameLayout<'_> {
                 adjust,
                 extension,
                 trailer,
-            } => conditional::measure(field, adjust, extension, trailer, header, header, usize::MAX)
-                .ok()
-                .map(|(total, _)| total),
+            } => conditional::measure(
+                field,
+                adjust,
+                extension,
+                trailer,
+                header,
+                header,
+                usize::MAX,
+            )
+            .ok()
+            .map(|(total, _)| total),
         }
     }
 
@@ -356,22 +364,10 @@ pub(crate) fn probe_synced<L: LayoutRef>(
     }
     let bare = layout.length.bare_len();
     let shortest = span.max(layout.min_len).max(1);
-    // A frame whose parts depend on its header: its total and the body its checks and markers
-    // resolve against (without a flag trailer).
-    if let LengthRule::Conditional {
-        field,
-        adjust,
-        extension,
-        trailer,
-    } = layout.length
-    {
-        let (total, body) =
-            match conditional::measure(field, adjust, extension, trailer, header, bytes, limit) {
-                Ok((total, body)) if total >= shortest && total <= limit => (total, body),
-                Ok(_) => return Probe::Reject(Reject::BadLength),
-                Err(verdict) => return verdict,
-            };
-        return verify_frame(layout, readable, bytes, total, body);
+    // A frame whose parts depend on its header (decided at compile time for a generated
+    // layout): out of line, so that the other frames' path is the same code as without it.
+    if let LengthRule::Conditional { .. } = layout.length {
+        return probe_conditional(layout, readable, bytes, header, shortest, limit);
     }
     let total = match layout.frame_len(header) {
         // A bare header is complete and verified once its header checks hold.
@@ -386,27 +382,56 @@ pub(crate) fn probe_synced<L: LayoutRef>(
         }
         _ => return Probe::Reject(Reject::BadLength),
     };
-    verify_frame(layout, readable, bytes, total, total)
-}
-
-/// The rest of [`probe_synced`] once the candidate's `total` length is known to be possible:
-/// the frame checks and the markers, which resolve against its first `body` bytes (all of it
-/// but a flag trailer).
-#[inline(always)]
-fn verify_frame(
-    layout: &FrameLayout<'_>,
-    readable: &[u8],
-    bytes: &[u8],
-    total: usize,
-    body: usize,
-) -> Probe {
-    let Some(frame) = bytes.get(..body).filter(|_| total <= bytes.len()) else {
+    let Some(frame) = bytes.get(..total) else {
         return Probe::Need(total);
     };
-    if !all_hold!(layout.frame_checks, |c| c.verify_prefix(readable, body)) {
+    if !all_hold!(layout.frame_checks, |c| c.verify_prefix(readable, total)) {
         return Probe::Reject(Reject::BadChecksum);
     }
     if !all_hold!(layout.markers, |m| m.matches(frame)) {
+        return Probe::Reject(Reject::BadTrailer);
+    }
+    Probe::Frame(total)
+}
+
+/// [`probe_synced`] for [`LengthRule::Conditional`] once the header is verified: the length
+/// from the header (and a wider length after it), then the frame checks and markers, which
+/// resolve against the frame without its flag trailer.
+#[inline(never)]
+fn probe_conditional(
+    layout: &FrameLayout<'_>,
+    readable: &[u8],
+    bytes: &[u8],
+    header: &[u8],
+    shortest: usize,
+    limit: usize,
+) -> Probe {
+    let LengthRule::Conditional {
+        field,
+        adjust,
+        extension,
+        trailer,
+    } = layout.length
+    else {
+        return Probe::Reject(Reject::BadLength);
+    };
+    let (total, body) =
+        match conditional::measure(field, adjust, extension, trailer, header, bytes, limit) {
+            Ok((total, body)) if total >= shortest && total <= limit => (total, body),
+            Ok(_) => return Probe::Reject(Reject::BadLength),
+            Err(verdict) => return verdict,
+        };
+    let Some(frame) = bytes.get(..body).filter(|_| total <= bytes.len()) else {
+        return Probe::Need(total);
+    };
+    if !layout
+        .frame_checks
+        .iter()
+        .all(|c| c.verify_prefix(readable, body))
+    {
+        return Probe::Reject(Reject::BadChecksum);
+    }
+    if !layout.markers.iter().all(|m| m.matches(frame)) {
         return Probe::Reject(Reject::BadTrailer);
     }
     Probe::Frame(total)

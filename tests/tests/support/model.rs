@@ -323,7 +323,11 @@ impl Model {
         // A wider length moves the payload behind it; a flag trailer follows everything.
         let short = f.header_len + len + f.trailer_len;
         let header_len = f.header_len + self.layout.extension_for(short);
-        let flagged = f.flag_trailer.as_ref().filter(|_| src.one_in(2)).map(|t| t.len);
+        let flagged = f
+            .flag_trailer
+            .as_ref()
+            .filter(|_| src.one_in(2))
+            .map(|t| t.len);
         let mut frame = vec![0u8; short + header_len - f.header_len + flagged.unwrap_or(0)];
         // A check that folds in a per-command byte verifies only the frames of known commands.
         let known_key = f.checks.iter().any(|c| c.extra.is_some()) && !self.ir.commands.is_empty();

@@ -8,11 +8,11 @@ use std::ops::Range;
 use toml::Spanned;
 
 use super::super::names::check_snake_name;
+use super::super::types::mask;
 use super::super::{Ctx, text};
 use super::length::Layout;
 use super::{Draft, El, Kind};
 use crate::diag::did_you_mean;
-use super::super::types::mask;
 use crate::ir::{FlagTrailer, HeaderValue, Length, LengthExtension, Pos, Role};
 use crate::spec::model::{ElementDef, FrameDef, SInt, SStr};
 
@@ -325,7 +325,10 @@ pub(super) fn lower_extension(
         refuse(
             ctx,
             decl.extends.span(),
-            &format!("`{}` is not the frame's length field", decl.extends.get_ref()),
+            &format!(
+                "`{}` is not the frame's length field",
+                decl.extends.get_ref()
+            ),
             &format!("write `extends = \"{name}\"`"),
         );
     }

@@ -93,9 +93,7 @@ pub(super) fn check_element_keys(
     let keys = present_keys(el.get_ref());
     let kinds: Vec<_> = keys
         .iter()
-        .filter(|(k, _)| {
-            ["sync", "field", "payload", "check", "trailer", "optional"].contains(k)
-        })
+        .filter(|(k, _)| ["sync", "field", "payload", "check", "trailer", "optional"].contains(k))
         .collect();
     let kind = match kinds.as_slice() {
         [one] => one.0,

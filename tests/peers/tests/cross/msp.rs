@@ -249,9 +249,8 @@ fn messages() -> BoxedStrategy<spec::Packet> {
     let attitude = any::<[i16; 3]>().prop_map(|[roll, pitch, yaw]| {
         M::Response(R::Attitude(spec::Attitude { roll, pitch, yaw }))
     });
-    let altitude = (any::<i32>(), any::<i16>()).prop_map(|(altitude, vario)| {
-        M::Response(R::Altitude(spec::Altitude { altitude, vario }))
-    });
+    let altitude = (any::<i32>(), any::<i16>())
+        .prop_map(|(altitude, vario)| M::Response(R::Altitude(spec::Altitude { altitude, vario })));
     let imu = any::<[i16; 9]>().prop_map(|v| {
         M::Response(R::RawImu(spec::RawImu {
             acc_x: v[0],
@@ -265,17 +264,24 @@ fn messages() -> BoxedStrategy<spec::Packet> {
             mag_z: v[8],
         }))
     });
-    let analog = (any::<u8>(), any::<u16>(), any::<u16>(), any::<i16>(), any::<u16>()).prop_map(
-        |(battery_voltage, mah_drawn, rssi, amperage, battery_voltage_mv)| {
-            M::Response(R::Analog(spec::Analog {
-                battery_voltage,
-                mah_drawn,
-                rssi,
-                amperage,
-                battery_voltage_mv,
-            }))
-        },
-    );
+    let analog = (
+        any::<u8>(),
+        any::<u16>(),
+        any::<u16>(),
+        any::<i16>(),
+        any::<u16>(),
+    )
+        .prop_map(
+            |(battery_voltage, mah_drawn, rssi, amperage, battery_voltage_mv)| {
+                M::Response(R::Analog(spec::Analog {
+                    battery_voltage,
+                    mah_drawn,
+                    rssi,
+                    amperage,
+                    battery_voltage_mv,
+                }))
+            },
+        );
     let names = prop::collection::vec(any::<u8>(), 0..=254).prop_map(|n| {
         M::Response(R::Boxnames(spec::BoxNames {
             names: protocol::Bytes::from_slice(&n).expect("fits"),
@@ -291,18 +297,20 @@ fn messages() -> BoxedStrategy<spec::Packet> {
         Just(Q::Boxnames),
     ]
     .prop_map(M::Request);
-    prop_oneof![api, version, attitude, altitude, imu, analog, names, request]
-        .prop_map(|message| spec::Packet {
-            header: spec::Header {
-                direction: if matches!(message, M::Request(_)) {
-                    b'<'
-                } else {
-                    b'>'
-                },
+    prop_oneof![
+        api, version, attitude, altitude, imu, analog, names, request
+    ]
+    .prop_map(|message| spec::Packet {
+        header: spec::Header {
+            direction: if matches!(message, M::Request(_)) {
+                b'<'
+            } else {
+                b'>'
             },
-            message,
-        })
-        .boxed()
+        },
+        message,
+    })
+    .boxed()
 }
 
 /// The payload of `m`, written field by field as the MSP documentation lays it out
@@ -461,7 +469,11 @@ impl PeerAdapter for CuMsp {
         Ok(Some(frame))
     }
 
-    fn peer_read(&mut self, frame: &[u8], _like: &spec::Packet) -> Result<Option<spec::Packet>, String> {
+    fn peer_read(
+        &mut self,
+        frame: &[u8],
+        _like: &spec::Packet,
+    ) -> Result<Option<spec::Packet>, String> {
         let [p] = parse(frame).try_into().map_err(|v| format!("{v:?}"))?;
         Ok(Some(spec::Packet {
             header: spec::Header {
