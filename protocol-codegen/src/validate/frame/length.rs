@@ -169,9 +169,12 @@ pub(super) fn lower_length(
     transport: Transport,
     length_decl: Option<(usize, &SStr)>,
     values: &[HeaderValue],
-    extended: bool,
     ok: &mut bool,
 ) -> Option<Length> {
+    let extended = lay
+        .els
+        .iter()
+        .any(|e| e.def.is_some_and(|d| d.get_ref().extends.is_some()));
     let (header_len, trailer_len) = (lay.header_len, lay.trailer_len);
     let Some((vi, cov)) = length_decl else {
         return match transport {

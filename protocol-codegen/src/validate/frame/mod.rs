@@ -146,17 +146,7 @@ fn lower_frame(
     lay.place_values(&mut values);
     length::check_can_length(ctx, def, &lay, transport, length_decl)?;
     let mut ok = true;
-    let extended = extension.is_some();
-    let length = length::lower_length(
-        ctx,
-        def,
-        &lay,
-        transport,
-        length_decl,
-        &values,
-        extended,
-        &mut ok,
-    )?;
+    let length = length::lower_length(ctx, def, &lay, transport, length_decl, &values, &mut ok)?;
     checks::lower_coverage(ctx, &lay, &mut checks, &mut ok);
     checks::place_trailers(&lay, &mut trailers);
     let dispatch = ack::lower_dispatch(ctx, fname, def, &mut values, &mut ok);
