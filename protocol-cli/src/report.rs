@@ -128,7 +128,10 @@ fn value_text(v: &Value) -> String {
 
 /// The named byte ranges of a frame: header elements, payload fields, checks, trailers.
 fn spans(p: &Protocol, f: &Frame, bytes: &[u8], decoded: Option<&Decoded>) -> Vec<Span> {
-    let len = bytes.len();
+    // Checks and trailers sit back from the end of the frame without its flag trailer.
+    let flagged = protocol_dynamic::flag_trailer_len(f, bytes);
+    let len = bytes.len() - flagged.min(bytes.len());
+    let header_len = f.header_len + protocol_dynamic::extension_len(f, bytes);
     let hex_of = |from: usize, to: usize| {
         bytes
             .get(from..to)
@@ -160,7 +163,7 @@ fn spans(p: &Protocol, f: &Frame, bytes: &[u8], decoded: Option<&Decoded>) -> Ve
                 push(from, to, name.clone(), value);
             }
             Element::Payload => {
-                let (start, end) = (f.header_len, len.saturating_sub(f.trailer_len));
+                let (start, end) = (header_len, len.saturating_sub(f.trailer_len));
                 let fields = decoded.and_then(|d| {
                     let c = &p.commands[d.command?];
                     let s = (*c.payloads.get(d.direction.unwrap_or(0))?)?;
@@ -224,6 +227,16 @@ fn spans(p: &Protocol, f: &Frame, bytes: &[u8], decoded: Option<&Decoded>) -> Ve
                     t.name.clone(),
                     hex_of(from, from + t.bytes.len()),
                 );
+            }
+            Element::FlagTrailer => {
+                if let Some(t) = f.flag_trailer.as_ref().filter(|_| flagged > 0) {
+                    push(
+                        len,
+                        len + flagged,
+                        t.name.clone(),
+                        hex_of(len, len + flagged),
+                    );
+                }
             }
         }
     }

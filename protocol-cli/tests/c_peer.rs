@@ -320,8 +320,7 @@ fn write_key(f: &Frame, c: &Cmd, frame: &mut [u8]) {
 
 /// Writes `sender` (an address of the direction's set, or the value it equals).
 fn write_direction(f: &Frame, d: &Direction, sender: u64, frame: &mut [u8]) {
-    let (DirectionRule::InSet { value, .. } | DirectionRule::Equals { value, .. }) = &d.rule
-    else {
+    let (DirectionRule::InSet { value, .. } | DirectionRule::Equals { value, .. }) = &d.rule else {
         return;
     };
     word_field(&f.values[*value])

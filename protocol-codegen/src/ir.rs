@@ -521,6 +521,39 @@ pub struct Frame {
     /// for the first format with a dispatch key; for a format with
     /// [`PacketKind::Commands`], those whose id fits its dispatch fields; else none.
     pub commands: Vec<usize>,
+    /// Bytes at the end of the frame, after its checks and trailers, present when a header
+    /// flag is set (the MAVLink 2 signature).
+    pub flag_trailer: Option<FlagTrailer>,
+    /// A wider length that a marker value of the length field announces (MSP v1 jumbo
+    /// frames): its bytes follow the header, and the payload starts after them.
+    pub length_extension: Option<LengthExtension>,
+}
+
+/// A wider length, right after the header, present when the length field holds a marker
+/// value; it counts what the length field counts. A frame uses it exactly when the count does
+/// not fit below the marker.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LengthExtension {
+    /// The wider length (index into [`Frame::values`], role [`Role::WideLength`]).
+    pub value: usize,
+    /// The length field's value that announces it.
+    pub marker: u64,
+    /// Its bytes.
+    pub len: usize,
+}
+
+/// Bytes at the end of a frame present when a one-bit header flag is set: carried as they are
+/// (a MAVLink 2 signature is not verified: that needs a key).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlagTrailer {
+    /// Name (snake_case): the `Header` field that holds the bytes.
+    pub name: String,
+    /// Documentation.
+    pub doc: String,
+    /// The flag (index into [`Frame::values`], role [`Role::Flag`]).
+    pub flag: usize,
+    /// How many bytes.
+    pub len: usize,
 }
 
 /// The packet type of a frame format: what a whole decoded frame holds.
@@ -553,9 +586,17 @@ impl Frame {
             None => command,
         }
     }
-    /// Largest total frame length.
+    /// Largest total frame length (with a flag trailer, if the frame has one).
     pub fn max_len(&self) -> usize {
-        self.header_len + self.payload_max + self.trailer_len
+        self.header_len
+            + self.length_extension.as_ref().map_or(0, |e| e.len)
+            + self.payload_max
+            + self.trailer_len
+            + self.flag_trailer_len()
+    }
+    /// Bytes of the flag trailer when present (0 without one).
+    pub fn flag_trailer_len(&self) -> usize {
+        self.flag_trailer.as_ref().map_or(0, |t| t.len)
     }
 }
 
@@ -627,6 +668,8 @@ pub enum Element {
     Check(usize),
     /// A trailer (index into `Frame::trailers`).
     Trailer(usize),
+    /// The flag trailer ([`Frame::flag_trailer`]), last.
+    FlagTrailer,
 }
 
 /// A value stored in the header: a whole field, or some bits of a header word.
@@ -668,6 +711,12 @@ pub enum Role {
     /// The acknowledgement flag: equals the value when the frame is an acknowledgement; set by
     /// the codec from the message.
     Ack(u64),
+    /// The flag of the frame's flag trailer ([`Frame::flag_trailer`]): set when the trailer is
+    /// present; set by the codec from the header's trailer.
+    Flag,
+    /// The wider length of a [`LengthExtension`]: computed on encode, present only when the
+    /// length field holds the marker.
+    WideLength,
 }
 
 /// How the total length of a frame is known.

@@ -11,7 +11,9 @@
 //! the `crc` crate takes them ([`intern`]).
 
 use protocol_runtime::checksum::Checksum;
-use protocol_runtime::layout::{Check, Constant, FrameLayout, LengthRule, Marker, WordField};
+use protocol_runtime::layout::{
+    Check, Constant, FlagTrailer, FrameLayout, LengthExtension, LengthRule, Marker, WordField,
+};
 
 use std::sync::Mutex;
 
@@ -53,13 +55,28 @@ pub fn lower_layout(f: &ir::Frame) -> LayoutPlan<'_> {
         Length::Field { value, adjust } => {
             let field = word_field(&f.values[*value]);
             let adjust = *adjust;
-            let rule = match f.bare_len {
-                Some(bare) => LengthRule::FieldOrBare {
+            let trailer = f.flag_trailer.as_ref().map(|t| FlagTrailer {
+                flag: word_field(&f.values[t.flag]),
+                len: t.len,
+            });
+            let extension = f.length_extension.as_ref().map(|e| LengthExtension {
+                marker: e.marker,
+                wide: word_field(&f.values[e.value]),
+                len: e.len,
+            });
+            let rule = match (f.bare_len, trailer, extension) {
+                (Some(bare), ..) => LengthRule::FieldOrBare {
                     field,
                     adjust,
                     bare,
                 },
-                None => LengthRule::Field { field, adjust },
+                (None, None, None) => LengthRule::Field { field, adjust },
+                (None, trailer, extension) => LengthRule::Conditional {
+                    field,
+                    adjust,
+                    extension,
+                    trailer,
+                },
             };
             (rule, Some(*value))
         }

@@ -44,3 +44,28 @@ fn unsupported_features_are_refused_not_printed() {
     );
     assert_eq!(refused, protocol_codegen::c::unsupported(&p));
 }
+
+#[test]
+fn a_flag_trailer_is_refused_not_printed() {
+    let p = compile("specs/mavlink.toml");
+    let refused = protocol_codegen::c::unsupported(&p);
+    assert!(
+        refused.iter().any(
+            |r| r == "frame `v2`: optional bytes `signature` present when a header flag is set"
+        ),
+        "{refused:?}"
+    );
+}
+
+#[test]
+fn a_wider_length_is_refused_not_printed() {
+    let p = compile("specs/msp.toml");
+    let refused = protocol_codegen::c::unsupported(&p);
+    assert!(
+        refused
+            .iter()
+            .any(|r| r
+                == "frame `v1`: a wider length announced by a marker value of the length field"),
+        "{refused:?}"
+    );
+}

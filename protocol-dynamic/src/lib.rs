@@ -107,7 +107,8 @@ mod value;
 
 pub use error::{DecodeIssue, EncodeIssue};
 pub use frame::{
-    Decoded, Dispatch, HexError, ack_value, dispatch_of, hex, parse_hex, parse_hex_located,
+    Decoded, Dispatch, HexError, ack_value, dispatch_of, extension_len, flag_trailer_len, hex,
+    parse_hex, parse_hex_located,
 };
 pub use layout::word_field;
 pub use load::LoadError;

@@ -104,6 +104,7 @@ impl FrameLayout<'_> {
                     .write(header, value)
                     .ok_or(EncodeError::ValueOutOfRange)?;
             }
+            LengthRule::Conditional { .. } => {}
         }
         // Each item handled apart (`all_hold`), so that a constant layout folds at any
         // optimisation level.
@@ -115,12 +116,46 @@ impl FrameLayout<'_> {
         if bare {
             return Ok(());
         }
+        let frame = match self.length {
+            LengthRule::Conditional {
+                field,
+                adjust,
+                extension,
+                ..
+            } => self.seal_conditional(frame, field, adjust, extension)?,
+            _ => frame,
+        };
         let written = all_hold!(self.markers, |m| m.write(frame).is_some())
             && all_hold!(self.frame_checks, |c| c.store(frame).is_some());
         if !written {
             return Err(EncodeError::ValueOutOfRange);
         }
         Ok(())
+    }
+
+    /// [`seal`](Self::seal)'s length for [`LengthRule::Conditional`]: the count (in the wider
+    /// field, with the marker in the length field, when it does not fit below the marker),
+    /// from the frame's length without the flag trailer, whose flag the caller set. Returns
+    /// the frame's body, which the checks and markers resolve against.
+    #[inline(always)]
+    fn seal_conditional<'f>(
+        &self,
+        frame: &'f mut [u8],
+        field: WordField,
+        adjust: i64,
+        extension: Option<crate::layout::LengthExtension>,
+    ) -> Result<&'f mut [u8], EncodeError> {
+        let body = self.body_len(frame, frame.len());
+        let (count, wide) =
+            Self::conditional_count(adjust, extension, body).ok_or(EncodeError::ValueOutOfRange)?;
+        let written = match wide {
+            Some(e) => field
+                .write(frame, e.marker)
+                .and_then(|()| e.wide.write(frame, count)),
+            None => field.write(frame, count),
+        };
+        written.ok_or(EncodeError::ValueOutOfRange)?;
+        frame.get_mut(..body).ok_or(EncodeError::ValueOutOfRange)
     }
 
     /// Whether `frame` is exactly one valid frame (a debugging aid for encoders).

@@ -117,6 +117,49 @@ pub enum LengthRule {
         /// Length of a bare header.
         bare: usize,
     },
+    /// As [`LengthRule::Field`], with parts that header values decide: a wider length that a
+    /// marker value of the field announces, and bytes after the checks that a flag announces.
+    /// The field and the flag lie in the header; the wider field right after it.
+    Conditional {
+        /// The length field.
+        field: WordField,
+        /// Added to the count to give the total frame length (without the extension's and the
+        /// flag trailer's bytes).
+        adjust: i64,
+        /// The wider length a marker value announces, if any.
+        extension: Option<LengthExtension>,
+        /// The bytes a flag announces, if any.
+        trailer: Option<FlagTrailer>,
+    },
+}
+
+/// A wider length announced by a marker value of the length field (MSP v1 jumbo frames: a size
+/// byte of 255, then the size as a `u16le` after the command byte).
+///
+/// When the length field holds `marker`, the `wide` field, `len` bytes right after the header,
+/// holds the count instead, and the payload starts `len` bytes later. The marker form is used
+/// exactly when the count does not fit below the marker: a marker frame whose wide count is
+/// below `marker` is not a valid frame ([`Reject::BadLength`](crate::decoder::Reject)), so
+/// every frame has one encoding.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct LengthExtension {
+    /// The value of the length field that announces the wider length.
+    pub marker: u64,
+    /// The wider length field, which counts what the length field counts.
+    pub wide: WordField,
+    /// Bytes the wider field adds before the payload.
+    pub len: usize,
+}
+
+/// Bytes at the very end of a frame, after its checks and trailers, present when a header flag
+/// is set (the 13-byte MAVLink 2 signature when incompatibility flag `0x01` is set). The
+/// checks and markers resolve their [`Pos::End`] positions against the frame without them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct FlagTrailer {
+    /// The flag: the bytes are present when it is not 0.
+    pub flag: WordField,
+    /// How many bytes.
+    pub len: usize,
 }
 
 impl LengthRule {

@@ -182,7 +182,10 @@ impl<'de, const N: usize> Visitor<'de> for NulStrVisitor<N> {
     type Value = NulStr<N>;
 
     fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "a text of at most {N} bytes without NUL, or an array of such bytes")
+        write!(
+            f,
+            "a text of at most {N} bytes without NUL, or an array of such bytes"
+        )
     }
 
     fn visit_str<E: de::Error>(self, text: &str) -> Result<NulStr<N>, E> {

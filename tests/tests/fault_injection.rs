@@ -119,12 +119,26 @@ fn pass_rate(frame: &ir::Frame) -> f64 {
         .product()
 }
 
+/// Bytes of `bytes` before its flag trailer (all of them without one, or with its flag
+/// clear): the checks resolve their end positions against them.
+fn body_len(frame: &ir::Frame, bytes: &[u8]) -> usize {
+    let flagged = frame.flag_trailer.as_ref().filter(|t| {
+        support::model::word_field(&frame.values[t.flag])
+            .read(bytes)
+            .is_some_and(|v| v != 0)
+    });
+    bytes.len() - flagged.map_or(0, |t| t.len).min(bytes.len())
+}
+
 /// Whether `a` and `b` are as long and differ only in bytes that no check covers or stores.
 fn same_but_unchecked(frame: &ir::Frame, a: &[u8], b: &[u8]) -> bool {
     if a.len() != b.len() {
         return false;
     }
-    let len = a.len();
+    let len = body_len(frame, a);
+    if len != body_len(frame, b) {
+        return false;
+    }
     let at = |p: ir::Pos| match p {
         ir::Pos::Start(n) => n,
         ir::Pos::End(n) => len - n,
@@ -142,7 +156,7 @@ fn same_but_unchecked(frame: &ir::Frame, a: &[u8], b: &[u8]) -> bool {
 /// `crc` crate's own implementation, not the runtime's tables, on the parameters the codecs
 /// intern).
 fn checks_hold(frame: &ir::Frame, bytes: &[u8]) -> bool {
-    let len = bytes.len();
+    let len = body_len(frame, bytes);
     let bare = frame.bare_len == Some(len);
     let at = |p: ir::Pos| match p {
         ir::Pos::Start(n) => n,

@@ -1,34 +1,23 @@
 //! MAVLink golden vectors (`tests/vectors/mavlink.json`, written by pymavlink 2.4.50 and by the
-//! `mavlink` crate 0.21) against `specs/mavlink.toml`: every frame the spec expresses (MAVLink 1,
-//! base fields only; MAVLink 2 unsigned: CRC_EXTRA, extension fields, trailing-zero truncation)
-//! decodes to its recorded values and encodes back to the exact bytes, by generated code and by
-//! the run-time codec (`protocol_dynamic`); the mixed v1/v2 stream yields those frames at every
-//! chunk size through the link's one decoder, in both.
-//!
-//! The frames the spec does not express are listed by [`not_expressed`], with the reason, and
-//! checked to be refused rather than misread.
+//! `mavlink` crate 0.21) against `specs/mavlink.toml`: every frame decodes to its recorded
+//! values and encodes back to the exact bytes (MAVLink 1, base fields only; MAVLink 2 signed or
+//! not: CRC_EXTRA, extension fields, trailing-zero truncation, the signature carried), by
+//! generated code and by the run-time codec (`protocol_dynamic`); the mixed v1/v2 stream yields
+//! its frames at every chunk size through the link's one decoder, in both.
 
 mod golden;
 
 use protocol::{DecodeError, Reject};
 use protocol_dynamic::Interpreter;
-use protocol_tests::{F, assert_link_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
+use protocol_tests::{
+    F, assert_link_stream_at_every_chunk_size, assert_stream_at_every_chunk_size, hex,
+    load_vectors, stream_vector,
+};
 use serde_json::Value;
 
 protocol::protocol!("../specs/mavlink.toml");
 
 use mavlink::*;
-
-/// Why the spec does not express a frame, or `None` when it does.
-fn not_expressed(frame: &Value) -> Option<&'static str> {
-    if frame["signed"] == true {
-        return Some(
-            "signed (incompat flag 0x01): a trailer present only when a header flag is set is \
-             not expressible yet; the spec refuses the frame as a bad header",
-        );
-    }
-    None
-}
 
 /// A MAVLink 1 frame carries a message's base fields only: its vector records those, and the
 /// decoded struct holds zero in the extension fields (the fields the spec marks `extension`).
@@ -252,12 +241,24 @@ fn expected(frame: &Value) -> Message {
     }
 }
 
+/// The signature a vector records: link id, 48-bit timestamp (little-endian), then the 6
+/// bytes of the signature proper.
+fn signature(frame: &Value) -> Option<[u8; 13]> {
+    let s = frame.get("signature")?;
+    let mut out = [0u8; 13];
+    out[0] = u(s, "link_id") as u8;
+    out[1..7].copy_from_slice(&u(s, "timestamp").to_le_bytes()[..6]);
+    out[7..].copy_from_slice(&hex(s["signature_hex"].as_str().expect("signature_hex")));
+    Some(out)
+}
+
 fn header(frame: &Value) -> Header {
     Header {
         compat_flags: 0,
         seq: u(frame, "seq") as u8,
         sysid: u(frame, "sysid") as u8,
         compid: u(frame, "compid") as u8,
+        signature: signature(frame),
     }
 }
 
@@ -298,9 +299,6 @@ fn every_expressed_frame_decodes_and_encodes_to_its_bytes() {
     let mut truncated = 0;
     for frame in frames() {
         let name = frame["name"].as_str().expect("name");
-        if not_expressed(&frame).is_some() {
-            continue;
-        }
         let bytes = hex(frame["hex"].as_str().expect("hex"));
         let (message, encoded) = decode_and_encode(&frame, &bytes);
         assert_eq!(message, expected(&frame), "{name}");
@@ -318,8 +316,8 @@ fn every_expressed_frame_decodes_and_encodes_to_its_bytes() {
         }
     }
     assert_eq!(v1, 13, "the MAVLink 1 frames");
-    assert_eq!(v2, 14, "the MAVLink 2 unsigned frames");
-    assert_eq!(truncated, 6, "of which truncated");
+    assert_eq!(v2, 16, "the MAVLink 2 frames, 2 of them signed");
+    assert_eq!(truncated, 7, "of which truncated");
 }
 
 #[test]
@@ -370,26 +368,6 @@ fn a_message_with_extension_fields_goes_out_in_mavlink_1_without_them() {
 }
 
 #[test]
-fn the_frames_not_expressed_are_refused_not_misread() {
-    let mut listed = Vec::new();
-    for frame in frames() {
-        let Some(why) = not_expressed(&frame) else {
-            continue;
-        };
-        let name = frame["name"].as_str().expect("name");
-        let bytes = hex(frame["hex"].as_str().expect("hex"));
-        // A signed frame has incompat flag 0x01.
-        assert_eq!(
-            Packet::decode(&bytes).map(|_| ()),
-            Err(DecodeError::Frame(Reject::BadHeader)),
-            "{name}"
-        );
-        listed.push(format!("{name}: {why}"));
-    }
-    assert_eq!(listed.len(), 2, "{listed:#?}");
-}
-
-#[test]
 fn an_unknown_incompatibility_flag_is_refused() {
     let v = frames();
     let heartbeat = v
@@ -416,6 +394,7 @@ fn an_all_zero_payload_keeps_its_first_byte() {
             seq: 0,
             sysid: 1,
             compid: 1,
+            signature: None,
         },
         message: Message::CommandAck(CommandAck {
             command: 0,
@@ -445,19 +424,15 @@ fn an_all_zero_payload_keeps_its_first_byte() {
     );
 }
 
-/// The vector stream's expected frames that the spec expresses (MAVLink 1, MAVLink 2
-/// unsigned), and the others, which are refused.
+/// The vector stream and its expected frames: MAVLink 1 and 2, signed or not.
 fn expressed_stream() -> (Vec<u8>, Vec<(u64, Vec<u8>)>) {
     let v = load_vectors("mavlink.json");
-    let (bytes, all) = stream_vector(&v["streams"][0]);
-    let expressed: Vec<_> = all
-        .into_iter()
-        .filter(|(_, f)| f[0] == 0xFE || f[2] == 0)
-        .collect();
+    let (bytes, expressed) = stream_vector(&v["streams"][0]);
     assert_eq!(
         expressed.len(),
-        4,
-        "heartbeat_v1, sys_status_v2, command_ack_v2_truncated and statustext_v1"
+        5,
+        "heartbeat_v1, sys_status_v2, command_ack_v2_truncated, statustext_v1 and \
+         heartbeat_v2_signed"
     );
     (bytes, expressed)
 }
@@ -506,7 +481,7 @@ fn the_run_time_codec_decodes_and_encodes_every_expressed_frame() {
     let codec = interp.codec();
     let v1 = codec.format_index("v1").expect("v1");
     let mut n = 0;
-    for frame in frames().iter().filter(|f| not_expressed(f).is_none()) {
+    for frame in &frames() {
         let name = frame["name"].as_str().expect("name");
         let bytes = hex(frame["hex"].as_str().expect("hex"));
         let format = if frame["mavlink_version"] == 1 { v1 } else { 0 };
@@ -543,5 +518,82 @@ fn the_run_time_codec_decodes_and_encodes_every_expressed_frame() {
 #[test]
 fn the_run_time_codec_streams_the_expressed_frames_at_every_chunk_size() {
     let (bytes, expected) = expressed_stream();
+    golden::stream(&interpreter(), &bytes, &expected);
+}
+
+fn signed_frames() -> Vec<(String, Vec<u8>)> {
+    let signed: Vec<_> = frames()
+        .iter()
+        .filter(|f| f["signed"] == true)
+        .map(|f| {
+            let name = f["name"].as_str().expect("name").to_string();
+            (name, hex(f["hex"].as_str().expect("hex")))
+        })
+        .collect();
+    assert_eq!(
+        signed.len(),
+        2,
+        "heartbeat_v2_signed and sys_status_v2_signed"
+    );
+    signed
+}
+
+#[test]
+fn a_signature_is_carried_not_verified_and_counted_in_the_frame() {
+    for (name, bytes) in signed_frames() {
+        let packet = Packet::decode(&bytes).unwrap_or_else(|e| panic!("{name}: {e:?}"));
+        let signature = packet.header.signature.expect("signed");
+        assert_eq!(signature[..], bytes[bytes.len() - 13..], "{name}");
+        // The signature is not verified: other signature bytes decode alike.
+        let mut other = bytes.clone();
+        *other.last_mut().expect("byte") ^= 0xFF;
+        let decoded = Packet::decode(&other).expect("decodes");
+        assert_eq!(decoded.message, packet.message, "{name}");
+        // The flag is covered by the CRC: cleared, the frame no longer checks.
+        let mut cleared = bytes.clone();
+        cleared[2] = 0;
+        assert_eq!(
+            Packet::decode(&cleared).map(|_| ()),
+            Err(DecodeError::Frame(Reject::BadChecksum)),
+            "{name}"
+        );
+        // Cut by one byte of its signature, the frame waits for it.
+        assert_eq!(
+            Packet::decode(&bytes[..bytes.len() - 1]).map(|_| ()),
+            Err(DecodeError::Truncated {
+                needed: bytes.len(),
+                available: bytes.len() - 1
+            }),
+            "{name}"
+        );
+        // Encoding without the signature clears the flag and drops the bytes.
+        let unsigned = Packet {
+            header: Header {
+                signature: None,
+                ..packet.header
+            },
+            message: packet.message,
+        };
+        let mut buf = [0u8; MAX_FRAME_LEN];
+        let n = unsigned.encode(&mut buf).expect("encode");
+        assert_eq!(n, bytes.len() - 13, "{name}");
+        assert_eq!(buf[2], 0, "{name}: incompat_flags");
+        assert_eq!(Packet::decode(&buf[..n]), Ok(unsigned), "{name}");
+    }
+}
+
+#[test]
+fn signed_frames_stream_at_every_chunk_size() {
+    // Garbage that starts a candidate, then the signed frames back to back.
+    let mut bytes = vec![0x00, 0xFD];
+    let mut expected = Vec::new();
+    for (_, frame) in signed_frames() {
+        expected.push((bytes.len() as u64, frame.clone()));
+        bytes.extend_from_slice(&frame);
+    }
+    assert_stream_at_every_chunk_size::<DECODER_BUFFER_LEN>(&LAYOUT, &bytes, &expected, |f| {
+        let packet = Packet::from_frame(f).expect("decodes");
+        assert!(packet.header.signature.is_some());
+    });
     golden::stream(&interpreter(), &bytes, &expected);
 }

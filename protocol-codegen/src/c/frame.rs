@@ -434,7 +434,9 @@ fn encode(p: &Protocol, n: &Names, out: &mut String) {
                 format!("(uint64_t){lo}ids[command][{k}]")
             }
             Role::Const(c) => names::u64_lit(*c),
-            Role::Ack(_) => unreachable!("refused by support::unsupported"),
+            Role::Ack(_) | Role::Flag | Role::WideLength => {
+                unreachable!("refused by support::unsupported")
+            }
         };
         let _ = writeln!(
             out,

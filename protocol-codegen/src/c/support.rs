@@ -37,6 +37,17 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
                 "{at}: a frame format without dispatch key or message"
             ));
         }
+        if f.length_extension.is_some() {
+            out.push(format!(
+                "{at}: a wider length announced by a marker value of the length field"
+            ));
+        }
+        if let Some(t) = &f.flag_trailer {
+            out.push(format!(
+                "{at}: optional bytes `{}` present when a header flag is set",
+                t.name
+            ));
+        }
         if f.values.iter().any(|v| matches!(v.role, Role::Ack(_))) {
             out.push(format!("{at}: an acknowledgement flag"));
         }

@@ -269,6 +269,15 @@ pub fn struct_doc(p: &Protocol, s: &Struct) -> String {
     out
 }
 
+/// The marker and the name of the length field that announce a frame's wider length.
+fn wide_length_text(f: &Frame) -> (u64, &str) {
+    let base = match f.length {
+        crate::ir::Length::Field { value, .. } => f.values[value].name.as_str(),
+        crate::ir::Length::Fixed(_) => "",
+    };
+    (f.length_extension.as_ref().map_or(0, |e| e.marker), base)
+}
+
 fn pos_text(pos: Pos) -> String {
     match pos {
         Pos::Start(n) => n.to_string(),
@@ -457,6 +466,14 @@ pub fn frame_doc(f: &Frame) -> String {
                             Role::Dispatch => ": command id".into(),
                             Role::Const(c) => format!(": always {c:#x}"),
                             Role::Ack(v) => format!(": {v} in acknowledgements"),
+                            Role::Flag => {
+                                let name = f.flag_trailer.as_ref().map_or("", |t| t.name.as_str());
+                                format!(": set when `{name}` is present")
+                            }
+                            Role::WideLength => {
+                                let (marker, base) = wide_length_text(f);
+                                format!(": the length, present when `{base}` is {marker}")
+                            }
                         };
                         format!("{bits}`{}`{role}", v.name)
                     })
@@ -498,6 +515,15 @@ pub fn frame_doc(f: &Frame) -> String {
                         .collect::<Vec<_>>()
                         .join(" ")
                 ));
+            }
+            crate::ir::Element::FlagTrailer => {
+                if let Some(t) = &f.flag_trailer {
+                    let flag = &f.values[t.flag].name;
+                    out.push_str(&format!(
+                        "| end | {} | `{}` | bytes | present when `{flag}` is set, after everything else; carried, not verified |\n",
+                        t.len, t.name
+                    ));
+                }
             }
         }
     }

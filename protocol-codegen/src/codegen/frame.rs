@@ -12,8 +12,7 @@ use super::payload::prim_type;
 use super::{ident, rt};
 use crate::ir::{
     Algorithm, ByteOrder, Check, CheckNaming, CrcTable, Frame, HeaderValue, PacketKind, Pos, Prim,
-    Protocol,
-    Role, Transport,
+    Protocol, Role, Transport,
 };
 use crate::layout::{self, LayoutPlan, lower_layout};
 use protocol_runtime::layout::{LengthRule, WordField};
@@ -197,6 +196,32 @@ fn emit_layout(rt: &TokenStream, f: &Frame, name: &Ident, doc: &str) -> TokenStr
         (LengthRule::FieldOrBare { adjust, bare, .. }, Some(v)) => {
             let field = field(v);
             quote!(#rt::LengthRule::FieldOrBare { field: wire::#field, adjust: #adjust, bare: #bare })
+        }
+        (
+            LengthRule::Conditional {
+                adjust,
+                extension,
+                trailer,
+                ..
+            },
+            Some(v),
+        ) => {
+            let field = field(v);
+            let extension = match (extension, &f.length_extension) {
+                (Some(e), Some(fe)) => {
+                    let (marker, wide, len) = (e.marker, wire_const(f, fe.value), e.len);
+                    quote!(#rt::Some(#rt::LengthExtension { marker: #marker, wide: wire::#wide, len: #len }))
+                }
+                _ => quote!(#rt::None),
+            };
+            let trailer = match (trailer, &f.flag_trailer) {
+                (Some(t), Some(ft)) => {
+                    let (flag, len) = (wire_const(f, ft.flag), t.len);
+                    quote!(#rt::Some(#rt::FlagTrailer { flag: wire::#flag, len: #len }))
+                }
+                _ => quote!(#rt::None),
+            };
+            quote!(#rt::LengthRule::Conditional { field: wire::#field, adjust: #adjust, extension: #extension, trailer: #trailer })
         }
         (LengthRule::Fixed(n), _) => quote!(#rt::LengthRule::Fixed(#n)),
         // Unreachable: the plan names the header value of every length field.
@@ -404,6 +429,7 @@ pub fn user_values(f: &Frame) -> impl Iterator<Item = (usize, &HeaderValue)> {
 }
 
 fn emit_header(f: &Frame, name: &Ident) -> TokenStream {
+    let rt = rt();
     let fields = user_values(f).map(|(_, v)| {
         let id = ident(&v.name);
         let ty = prim_type(v.prim);
@@ -414,12 +440,24 @@ fn emit_header(f: &Frame, name: &Ident) -> TokenStream {
         });
         quote!(#d pub #id: #ty)
     });
+    let trailer = f.flag_trailer.as_ref().map(|t| {
+        let (id, len) = (ident(&t.name), t.len);
+        let flag = &f.values[t.flag].name;
+        let doc = doc_attrs(&format!(
+            "{}{}The {len} bytes at the end of the frame, present when `{flag}` is set (the codec sets \
+             it from this field). Carried as received, not verified.",
+            t.doc,
+            if t.doc.is_empty() { "" } else { "\n\n" }
+        ));
+        quote!(#doc pub #id: #rt::Option<[u8; #len]>,)
+    });
     quote! {
         /// The header values a sender sets (the codec computes the sync, length, command and
         /// checks).
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
         pub struct #name {
             #(#fields,)*
+            #trailer
         }
     }
 }

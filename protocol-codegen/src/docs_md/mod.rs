@@ -253,6 +253,12 @@ pub fn packet_diagram(f: &Frame) -> String {
                     t.bytes.len(),
                 )
             }),
+            Element::FlagTrailer => f.flag_trailer.as_ref().map(|t| {
+                (
+                    format!("{} (when {})", t.name, f.values[t.flag].name),
+                    t.len,
+                )
+            }),
         };
         if let Some(item) = item {
             if after_payload {

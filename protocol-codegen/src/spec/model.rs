@@ -243,7 +243,7 @@ pub struct AckDef {
 }
 
 /// One element of a frame layout. Exactly one of `sync`, `field`, `payload`, `check`,
-/// `trailer` says what it is; validation checks the combination.
+/// `trailer`, `optional` says what it is; validation checks the combination.
 #[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ElementDef {
@@ -299,6 +299,24 @@ pub struct ElementDef {
     /// Name of a check or trailer.
     #[schemars(with = "Option<String>")]
     pub name: Option<SStr>,
+    /// Bytes at the end of the frame, after everything else, present when a one-bit header
+    /// flag (`when`) is set: their name (the MAVLink 2 signature).
+    #[schemars(with = "Option<String>")]
+    pub optional: Option<SStr>,
+    /// Bytes of an `optional` element.
+    #[schemars(with = "Option<i64>")]
+    pub size: Option<SInt>,
+    /// The one-bit header value whose being set makes an `optional` element present.
+    #[schemars(with = "Option<String>")]
+    pub when: Option<SStr>,
+    /// The field is a wider length, present when the length field named here holds `marker`
+    /// (MSP v1 jumbo frames).
+    #[schemars(with = "Option<String>")]
+    pub extends: Option<SStr>,
+    /// With `extends`: the value of the length field that announces the wider length.
+    #[schemars(with = "Option<i64>")]
+    pub marker: Option<SInt>,
+
     /// Documentation.
     #[schemars(with = "Option<String>")]
     pub doc: Option<SStr>,

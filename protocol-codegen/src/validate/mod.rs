@@ -6,8 +6,8 @@
 mod catalog;
 mod checksum;
 mod commands;
-mod directions;
 pub mod derive;
+mod directions;
 mod extra;
 mod frame;
 mod names;

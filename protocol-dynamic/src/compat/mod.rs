@@ -181,6 +181,8 @@ fn role_name(r: &Role) -> String {
         Role::Dispatch => "a dispatch key".into(),
         Role::Const(v) => format!("the constant {v:#x}"),
         Role::Ack(v) => format!("the acknowledgement flag (set: {v})"),
+        Role::Flag => "the flag of optional bytes".into(),
+        Role::WideLength => "the wider length".into(),
     }
 }
 

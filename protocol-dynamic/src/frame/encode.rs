@@ -13,7 +13,7 @@ use super::{
 use crate::error::EncodeIssue;
 use crate::layout::word_field;
 use crate::model::{Fields, Value};
-use crate::payload::write_payload;
+use crate::payload::{value_bytes, write_payload};
 use crate::value::{NumError, truncate, value_bits};
 
 /// The command a frame value names: `command` (spec or Rust name), else its `id` or `can_id`.
@@ -64,6 +64,7 @@ fn header_values(f: &Frame, obj: &Fields) -> Result<Vec<(usize, u64)>, EncodeIss
     if let Some(k) = header
         .keys()
         .find(|k| !f.values.iter().any(|v| v.name == **k && !is_can_id(f, v)))
+        .filter(|k| f.flag_trailer.as_ref().is_none_or(|t| t.name != **k))
     {
         return Err(EncodeIssue::new(
             format!("header.{k}"),
@@ -85,6 +86,29 @@ fn header_values(f: &Frame, obj: &Fields) -> Result<Vec<(usize, u64)>, EncodeIss
         values.push((vi, raw));
     }
     Ok(values)
+}
+
+/// The bytes of the frame's flag trailer the header gives (`header.NAME`: bytes, a hex string
+/// or an array of numbers, of exactly its length), or `None` when it gives none (or `null`).
+fn flagged_trailer(f: &Frame, obj: &Fields) -> Result<Option<Vec<u8>>, EncodeIssue> {
+    let Some(t) = &f.flag_trailer else {
+        return Ok(None);
+    };
+    let given = match obj.get("header") {
+        Some(Value::Struct(h)) => h.get(&t.name),
+        _ => None,
+    };
+    let path = format!("header.{}", t.name);
+    match given {
+        None | Some(Value::Null) => Ok(None),
+        Some(v) => match value_bytes(v) {
+            Some(b) if b.len() == t.len => Ok(Some(b)),
+            _ => Err(EncodeIssue::new(
+                path,
+                format!("expected {} bytes (or null: no {})", t.len, t.name),
+            )),
+        },
+    }
 }
 
 /// What the frame carries: a command (its index and payload struct), acknowledgement data, or
@@ -231,7 +255,12 @@ pub fn encode(
     } else {
         f.trailer_len
     };
-    let total = start + plen + trailer;
+    // A wider length: the payload moves behind it when the frame needs one.
+    let start = layout
+        .place_payload(&mut buf, start, plen, trailer)
+        .map_err(EncodeIssue::runtime)?;
+    let flagged = flagged_trailer(f, obj)?;
+    let total = start + plen + trailer + flagged.as_ref().map_or(0, Vec::len);
     let frame = buf
         .get_mut(..total)
         .ok_or_else(|| EncodeIssue::runtime(EncodeError::ValueOutOfRange))?;
@@ -259,6 +288,17 @@ pub fn encode(
     }
     if let Body::Command(ci, _) = body {
         write_key(p, f, dispatch, ci, obj, frame)?;
+    }
+    if let Some(t) = &f.flag_trailer {
+        let runtime = |_| EncodeIssue::runtime(EncodeError::ValueOutOfRange);
+        word_field(&f.values[t.flag])
+            .write(frame, u64::from(flagged.is_some()))
+            .ok_or(EncodeError::ValueOutOfRange)
+            .map_err(runtime)?;
+        if let Some(bytes) = &flagged {
+            let at = frame.len() - bytes.len();
+            frame[at..].copy_from_slice(bytes);
+        }
     }
     layout.seal(frame).map_err(EncodeIssue::runtime)?;
     Ok(frame.to_vec())

@@ -12,7 +12,7 @@ mod encode;
 pub use encode::encode;
 
 use protocol_codegen::ir::{
-    DirectionRule, Frame, HeaderValue, PacketKind, Prim, Protocol, Role, Transport,
+    DirectionRule, Frame, HeaderValue, Length, PacketKind, Prim, Protocol, Role, Transport,
 };
 use protocol_runtime::DecodeError;
 use protocol_runtime::stuffing::Stuffing;
@@ -121,7 +121,44 @@ fn read_header(p: &Protocol, f: &Frame, frame: &[u8]) -> Result<Fields, DecodeIs
             out.insert(v.name.clone(), header_value(v, raw));
         }
     }
+    if let Some(t) = &f.flag_trailer {
+        let present = flag_trailer_len(f, frame);
+        let bytes = frame.get(frame.len().saturating_sub(present)..);
+        let value = match bytes {
+            Some(b) if present > 0 => Value::Bytes(b.to_vec()),
+            _ => Value::Null,
+        };
+        out.insert(t.name.clone(), value);
+    }
     Ok(out)
+}
+
+/// Bytes of the wider length present after the header of `frame` (0 without one, or when the
+/// length field does not hold its marker), as generated code's `LAYOUT.extension_len`.
+pub fn extension_len(f: &Frame, frame: &[u8]) -> usize {
+    match (&f.length_extension, &f.length) {
+        (Some(e), Length::Field { value, .. })
+            if word_field(&f.values[*value]).read(frame) == Some(e.marker) =>
+        {
+            e.len
+        }
+        _ => 0,
+    }
+}
+
+/// Bytes of the flag trailer present at the end of `frame` (0 without one, or with its flag
+/// clear), as generated code's `LAYOUT.flag_trailer_len`.
+pub fn flag_trailer_len(f: &Frame, frame: &[u8]) -> usize {
+    match &f.flag_trailer {
+        Some(t)
+            if word_field(&f.values[t.flag])
+                .read(frame)
+                .is_some_and(|v| v != 0) =>
+        {
+            t.len
+        }
+        _ => 0,
+    }
 }
 
 /// A decoded frame.
@@ -231,8 +268,10 @@ fn is_separator(c: char) -> bool {
 
 /// The payload bytes of a frame.
 fn payload_of<'b>(f: &Frame, frame: &'b [u8]) -> Result<&'b [u8], DecodeIssue> {
+    let trailer = f.trailer_len + flag_trailer_len(f, frame);
+    let header = f.header_len + extension_len(f, frame);
     frame
-        .get(f.header_len..frame.len().saturating_sub(f.trailer_len))
+        .get(header..frame.len().saturating_sub(trailer))
         .ok_or(DecodeIssue::Frame(DecodeError::Truncated {
             needed: f.header_len + f.trailer_len,
             available: frame.len(),

@@ -15,6 +15,7 @@ mod read;
 mod write;
 
 pub use read::{ReadFail, read_payload};
+pub(crate) use write::value_bytes;
 pub use write::write_payload;
 
 use protocol_codegen::ir::{Enum, Field, FieldKind, Prim};

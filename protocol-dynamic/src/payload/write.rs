@@ -268,7 +268,7 @@ fn write_field(
 }
 
 /// Bytes from a value: bytes, a hex string, or an array of numbers.
-fn value_bytes(v: &Value) -> Option<Vec<u8>> {
+pub(crate) fn value_bytes(v: &Value) -> Option<Vec<u8>> {
     match v {
         Value::Bytes(b) => Some(b.clone()),
         Value::String(s) => parse_hex(s),

@@ -35,11 +35,13 @@
 //! [`LengthRule`]: crate::layout::LengthRule
 
 mod buffer;
+mod conditional;
 mod event;
 mod scan;
 mod search;
 mod stream;
 
+pub use conditional::{flag_trailer, write_flag_trailer};
 pub use event::{Event, Frame, Reject, Stats};
 pub use stream::StreamDecoder;
 
@@ -211,6 +213,23 @@ impl FrameLayout<'_> {
                 let value = i64::try_from(field.read(header)?).ok()?;
                 usize::try_from(value.checked_add(adjust)?).ok()
             }
+            // Only the header is looked at: a wider length after it is not known here.
+            LengthRule::Conditional {
+                field,
+                adjust,
+                extension,
+                trailer,
+            } => conditional::measure(
+                field,
+                adjust,
+                extension,
+                trailer,
+                header,
+                header,
+                usize::MAX,
+            )
+            .ok()
+            .map(|(total, _)| total),
         }
     }
 
@@ -405,6 +424,11 @@ pub(crate) fn probe_synced<L: LayoutRef>(
     }
     let bare = layout.length.bare_len();
     let shortest = span.max(layout.min_len).max(1);
+    // A frame whose parts depend on its header (decided at compile time for a generated
+    // layout): out of line, so that the other frames' path is the same code as without it.
+    if let LengthRule::Conditional { .. } = layout.length {
+        return probe_conditional(layout, readable, bytes, header, shortest, limit);
+    }
     let total = match layout.frame_len(header) {
         // A bare header is complete and verified once its header checks hold.
         Some(t) if Some(t) == bare && t >= span && t > 0 && t <= limit => {
@@ -425,6 +449,49 @@ pub(crate) fn probe_synced<L: LayoutRef>(
         return Probe::Reject(Reject::BadChecksum);
     }
     if !all_hold!(layout.markers, |m| m.matches(frame)) {
+        return Probe::Reject(Reject::BadTrailer);
+    }
+    Probe::Frame(total)
+}
+
+/// [`probe_synced`] for [`LengthRule::Conditional`] once the header is verified: the length
+/// from the header (and a wider length after it), then the frame checks and markers, which
+/// resolve against the frame without its flag trailer.
+#[inline(never)]
+fn probe_conditional(
+    layout: &FrameLayout<'_>,
+    readable: &[u8],
+    bytes: &[u8],
+    header: &[u8],
+    shortest: usize,
+    limit: usize,
+) -> Probe {
+    let LengthRule::Conditional {
+        field,
+        adjust,
+        extension,
+        trailer,
+    } = layout.length
+    else {
+        return Probe::Reject(Reject::BadLength);
+    };
+    let (total, body) =
+        match conditional::measure(field, adjust, extension, trailer, header, bytes, limit) {
+            Ok((total, body)) if total >= shortest && total <= limit => (total, body),
+            Ok(_) => return Probe::Reject(Reject::BadLength),
+            Err(verdict) => return verdict,
+        };
+    let Some(frame) = bytes.get(..body).filter(|_| total <= bytes.len()) else {
+        return Probe::Need(total);
+    };
+    if !layout
+        .frame_checks
+        .iter()
+        .all(|c| c.verify_prefix(readable, body))
+    {
+        return Probe::Reject(Reject::BadChecksum);
+    }
+    if !layout.markers.iter().all(|m| m.matches(frame)) {
         return Probe::Reject(Reject::BadTrailer);
     }
     Probe::Frame(total)

@@ -23,6 +23,7 @@ protocol::protocol!("../../specs/crsf.toml");
 protocol::protocol!("../../specs/ibus.toml");
 protocol::protocol!("../../specs/sbus.toml");
 protocol::protocol!("../../specs/ubx.toml");
+protocol::protocol!("../../specs/msp.toml");
 // The payload types beyond fixed-width primitives: 24-bit integers, kept bitfield bits,
 // bit-packed arrays, text.
 protocol::protocol!("../../protocol-codegen/tests/features/int24.toml");

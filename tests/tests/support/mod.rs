@@ -39,6 +39,7 @@ macro_rules! for_each_spec {
         );
         $callback!(hflink, "../specs/hflink.toml");
         $callback!(mavlink, "../specs/mavlink.toml");
+        $callback!(msp, "../specs/msp.toml");
         $callback!(ibus, "../specs/ibus.toml");
         $callback!(referee, "../specs/referee.toml");
         $callback!(referee2018, "../specs/referee2018.toml");

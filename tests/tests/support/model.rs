@@ -253,11 +253,24 @@ impl Model {
         let payload = self.stuffed(payload);
         let bare = ack && payload.is_empty() && f.bare_len.is_some();
         let trailer = if bare { 0 } else { f.trailer_len };
-        let mut frame = vec![0u8; header_len + payload.len() + trailer];
+        // A wider length moves the payload behind it; a flag trailer follows everything.
+        let short = header_len + payload.len() + trailer;
+        let header_len = header_len + self.layout.extension_for(short);
+        let flagged = f
+            .flag_trailer
+            .as_ref()
+            .filter(|_| src.one_in(2))
+            .map(|t| src.bytes(t.len));
+        let body = header_len + payload.len() + trailer;
+        let mut frame = vec![0u8; body + flagged.as_ref().map_or(0, Vec::len)];
+        if let Some(bytes) = &flagged {
+            frame[body..].copy_from_slice(bytes);
+        }
         for (i, v) in f.values.iter().enumerate() {
             let value = match &v.role {
                 ir::Role::Const(c) => *c,
-                ir::Role::Length => continue,
+                ir::Role::Length | ir::Role::WideLength => continue,
+                ir::Role::Flag => u64::from(flagged.is_some()),
                 ir::Role::Dispatch => match choice.carries {
                     Carries::Command(c) => {
                         let k = f
@@ -312,14 +325,23 @@ impl Model {
     /// [`raw`](Self::raw) with a payload of `len` bytes.
     pub fn raw_with_payload_len(&self, src: &mut impl Source, len: usize) -> Vec<u8> {
         let f = self.frame();
-        let mut frame = vec![0u8; f.header_len + len + f.trailer_len];
+        // A wider length moves the payload behind it; a flag trailer follows everything.
+        let short = f.header_len + len + f.trailer_len;
+        let header_len = f.header_len + self.layout.extension_for(short);
+        let flagged = f
+            .flag_trailer
+            .as_ref()
+            .filter(|_| src.one_in(2))
+            .map(|t| t.len);
+        let mut frame = vec![0u8; short + header_len - f.header_len + flagged.unwrap_or(0)];
         // A check that folds in a per-command byte verifies only the frames of known commands.
         let known_key = f.checks.iter().any(|c| c.extra.is_some()) && !self.ir.commands.is_empty();
         let command = src.below(self.ir.commands.len().max(1) as u64) as usize;
         for (i, v) in f.values.iter().enumerate() {
             let field = word_field(v);
             let value = match v.role {
-                ir::Role::Length => continue,
+                ir::Role::Length | ir::Role::WideLength => continue,
+                ir::Role::Flag => u64::from(flagged.is_some()),
                 ir::Role::Const(c) if !src.one_in(8) => c,
                 ir::Role::Dispatch if known_key => {
                     let k = f
@@ -334,9 +356,9 @@ impl Model {
             };
             field.write(&mut frame, value).expect("header value fits");
         }
-        let end = frame.len() - f.trailer_len;
+        let end = header_len + len;
         let payload = src.bytes(len);
-        frame[f.header_len..end].copy_from_slice(&payload);
+        frame[header_len..end].copy_from_slice(&payload);
         self.layout.seal(&mut frame).expect("seal");
         self.checked(frame)
     }
@@ -409,9 +431,9 @@ pub struct Refused {
 /// The length field of the layout, with the adjustment (`None` for fixed-length frames).
 pub fn length_field(layout: &FrameLayout<'_>) -> Option<(WordField, i64)> {
     match layout.length {
-        LengthRule::Field { field, adjust } | LengthRule::FieldOrBare { field, adjust, .. } => {
-            Some((field, adjust))
-        }
+        LengthRule::Field { field, adjust }
+        | LengthRule::FieldOrBare { field, adjust, .. }
+        | LengthRule::Conditional { field, adjust, .. } => Some((field, adjust)),
         LengthRule::Fixed(_) => None,
     }
 }

@@ -171,5 +171,33 @@ pub(super) fn header_codec(f: &Frame, rt: &TokenStream) -> (Vec<TokenStream>, Ve
             let write = quote!(#rt::write_header(frame, wire::#c, self.header.#id as u64)?;);
             (read, write)
         })
+        .chain(flag_trailer_codec(f, rt))
         .unzip()
+}
+
+/// The flag trailer's `Header` field read from a frame, and its flag and bytes written into
+/// one (the frame's length counts them: [`flag_trailer_len`]).
+fn flag_trailer_codec(f: &Frame, rt: &TokenStream) -> Option<(TokenStream, TokenStream)> {
+    let t = f.flag_trailer.as_ref()?;
+    let (id, len, flag) = (ident(&t.name), t.len, wire_const(f, t.flag));
+    let layout = format_ident!("{}", f.names.layout_static);
+    Some((
+        quote!(#id: #rt::flag_trailer::<#len>(&#layout, frame)),
+        quote! {
+            #rt::write_header(frame, wire::#flag, u64::from(self.header.#id.is_some()))?;
+            #rt::write_flag_trailer(frame, self.header.#id.as_ref())?;
+        },
+    ))
+}
+
+/// Bytes of the flag trailer of the frame being encoded (`self`), as an expression: 0 for a
+/// frame without one.
+pub(super) fn flag_trailer_len(f: &Frame) -> TokenStream {
+    match &f.flag_trailer {
+        Some(t) => {
+            let (id, len) = (ident(&t.name), t.len);
+            quote!(if self.header.#id.is_some() { #len } else { 0usize })
+        }
+        None => quote!(0usize),
+    }
 }

@@ -5,7 +5,7 @@
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
-use super::frames::header_codec;
+use super::frames::{flag_trailer_len, header_codec};
 use super::given;
 use super::key_prims;
 use crate::codegen::frame::wire_const;
@@ -229,11 +229,29 @@ fn packet_encoded_len(f: &Frame, ack: &AckParts, rt: &TokenStream) -> TokenStrea
     } else {
         (quote!(), quote!(self.message.payload_len()))
     };
-    let plain = quote!(
+    let flagged = match f.flag_trailer {
+        Some(_) => {
+            let len = flag_trailer_len(f);
+            quote!(.saturating_add(#len))
+        }
+        None => quote!(),
+    };
+    let short = quote!(
         #header_len
             .saturating_add(#plen)
             .saturating_add(#trailer_len)
     );
+    // A wider length adds its bytes when the short form's count reaches the marker.
+    let plain = match f.length_extension {
+        Some(_) => {
+            let layout = Items::of(f).layout;
+            quote!({
+                let short = #short;
+                short.saturating_add(#layout.extension_for(short)) #flagged
+            })
+        }
+        None => quote!(#short #flagged),
+    };
     let unstuffed = if ack.len_arms.is_empty() {
         plain
     } else {
@@ -318,6 +336,26 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
     } = &ack;
     let (unstuff, stuff, stuffing_const) = packet_stuffing(f, rt);
     let trailer_of = packet_trailer(f);
+    // A flag trailer: its bytes after the trailer, when the header has them.
+    // A wider length: the payload starts after it when the frame has one.
+    let (header_in, place) = match &f.length_extension {
+        Some(_) => (
+            quote!(#header_len.saturating_add(#layout.extension_len(frame))),
+            quote!(let start = #layout.place_payload(buf, start, plen, #trailer_len)?;),
+        ),
+        None => (quote!(#header_len), quote!()),
+    };
+    let (trailer_in, trailer_out, flagged_total) = match &f.flag_trailer {
+        Some(_) => {
+            let flagged = flag_trailer_len(f);
+            (
+                quote!(#trailer_len.saturating_add(#layout.flag_trailer_len(frame))),
+                quote!(#trailer_len.saturating_add(#flagged)),
+                quote!(.saturating_add(#flagged)),
+            )
+        }
+        None => (quote!(#trailer_len), quote!(#trailer_len), quote!()),
+    };
     let trim = if f.truncate_zeros {
         quote!(let plen = #rt::trimmed_len(room.get(..plen).unwrap_or_default());)
     } else {
@@ -353,7 +391,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
                 #ack_decode
                 #read_key
                 let command = Command::from_id(id).ok_or(#rt::unknown_command(#key_u64))?;
-                let payload = #rt::payload_of(frame, #header_len, #trailer_len)?;
+                let payload = #rt::payload_of(frame, #header_in, #trailer_in)?;
                 #unstuff
                 let message = #message;
                 #rt::Ok(#packet { header, message })
@@ -388,13 +426,14 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
                 #direction_check
                 let start = #start_of;
                 // The payload first, in place: its size on the wire decides the frame's length.
-                let room = #rt::payload_room(buf, self.encoded_len(), start, #trailer_len)?;
+                let room = #rt::payload_room(buf, self.encoded_len(), start, #trailer_out)?;
                 let mut w = #rt::Writer::new(room);
                 self.message.write_payload(&mut w)?;
                 let plen = w.position();
                 #trim
                 #stuff
-                let total = start.saturating_add(plen).saturating_add(#trailer_of);
+                #place
+                let total = start.saturating_add(plen).saturating_add(#trailer_of)#flagged_total;
                 let frame = #rt::frame_room(buf, total)?;
                 #(#header_writes)*
                 #ack_flag

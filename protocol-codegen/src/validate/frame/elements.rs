@@ -33,6 +33,10 @@ pub(super) fn lower_element<'s>(
         "field" => header::lower_field_element(ctx, draft, el, enums),
         "payload" => lower_payload(ctx, draft, el),
         "check" => lower_check(ctx, draft, el),
+        "optional" => {
+            super::conditional::lower_optional(ctx, draft, el);
+            Some(())
+        }
         _ => lower_trailer(ctx, draft, el),
     }
 }
@@ -46,6 +50,8 @@ const FIELD_KEYS: &[&str] = &[
     "value",
     "one_of",
     "bits",
+    "extends",
+    "marker",
     "doc",
 ];
 const SYNC_KEYS: &[&str] = &["sync", "doc"];
@@ -60,6 +66,7 @@ const CHECK_KEYS: &[&str] = &[
     "doc",
 ];
 const TRAILER_KEYS: &[&str] = &["trailer", "name", "doc"];
+const OPTIONAL_KEYS: &[&str] = &["optional", "size", "when", "doc"];
 
 fn present_keys(e: &ElementDef) -> Vec<(&'static str, std::ops::Range<usize>)> {
     let mut v = Vec::new();
@@ -71,13 +78,14 @@ fn present_keys(e: &ElementDef) -> Vec<(&'static str, std::ops::Range<usize>)> {
     k!(sync => "sync", field => "field", payload => "payload", check => "check", trailer => "trailer",
        ty => "type", addresses => "addresses", length_of => "length_of", value => "value",
        one_of => "one_of", bits => "bits", over => "over", byte_order => "byte_order", extra => "extra",
-       table => "table", name => "name",
+       table => "table", name => "name", optional => "optional", size => "size", when => "when",
+       extends => "extends", marker => "marker",
        doc => "doc");
     v
 }
 
 /// Rule: each element has exactly one kind key (`sync`, `field`, `payload`, `check`,
-/// `trailer`) and only the keys that apply to that kind.
+/// `trailer`, `optional`) and only the keys that apply to that kind.
 pub(super) fn check_element_keys(
     ctx: &mut Ctx<'_>,
     el: &Spanned<ElementDef>,
@@ -85,12 +93,12 @@ pub(super) fn check_element_keys(
     let keys = present_keys(el.get_ref());
     let kinds: Vec<_> = keys
         .iter()
-        .filter(|(k, _)| ["sync", "field", "payload", "check", "trailer"].contains(k))
+        .filter(|(k, _)| ["sync", "field", "payload", "check", "trailer", "optional"].contains(k))
         .collect();
     let kind = match kinds.as_slice() {
         [one] => one.0,
         [] => {
-            ctx.error(el.span(), "layout element has no kind", "start it with one of `sync = [...]`, `field = \"name\"`, `payload = { max = N }`, `check = \"algorithm\"` or `trailer = [...]`");
+            ctx.error(el.span(), "layout element has no kind", "start it with one of `sync = [...]`, `field = \"name\"`, `payload = { max = N }`, `check = \"algorithm\"`, `trailer = [...]` or `optional = \"name\"`");
             return None;
         }
         [_, second, ..] => {
@@ -110,6 +118,7 @@ pub(super) fn check_element_keys(
         "field" => FIELD_KEYS,
         "payload" => PAYLOAD_KEYS,
         "check" => CHECK_KEYS,
+        "optional" => OPTIONAL_KEYS,
         _ => TRAILER_KEYS,
     };
     for (k, span) in &keys {

@@ -211,6 +211,8 @@ fn lower_whole_value<'s>(
     } else if let Some(cov) = &d.length_of {
         check_one_length_field(ctx, draft, cov);
         Role::Length
+    } else if d.extends.is_some() {
+        Role::WideLength
     } else {
         Role::User {
             addresses: d.addresses.as_ref().is_some_and(|a| *a.get_ref()),

@@ -13,7 +13,7 @@ use crate::spec::model::{FrameDef, SStr};
 
 /// A frame's elements with the payload placed.
 pub(super) struct Layout<'d, 's> {
-    fname: &'d SStr,
+    pub fname: &'d SStr,
     pub els: &'d [El<'s>],
     /// Index of the payload element.
     pub pi: usize,
@@ -171,6 +171,10 @@ pub(super) fn lower_length(
     values: &[HeaderValue],
     ok: &mut bool,
 ) -> Option<Length> {
+    let extended = lay
+        .els
+        .iter()
+        .any(|e| e.def.is_some_and(|d| d.get_ref().extends.is_some()));
     let (header_len, trailer_len) = (lay.header_len, lay.trailer_len);
     let Some((vi, cov)) = length_decl else {
         return match transport {
@@ -204,7 +208,9 @@ pub(super) fn lower_length(
     let v = &values[vi];
     let field_max = mask(v.width);
     let needed = (header_len + lay.payload_max + trailer_len) as i64 - adjust;
-    if needed > 0 && needed as u64 > field_max {
+    // With a wider length, the field holds the counts below its marker (the wider length's
+    // own rule checks the largest frame).
+    if !extended && needed > 0 && needed as u64 > field_max {
         ctx.error(cov.span(), format!("the length field has {} bits (at most {field_max}), but the largest frame needs the value {needed}", v.width), "use a wider length field, or lower the payload's `max`");
         *ok = false;
     }

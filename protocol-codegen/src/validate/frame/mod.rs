@@ -7,6 +7,7 @@
 
 mod ack;
 mod checks;
+mod conditional;
 mod elements;
 mod header;
 mod length;
@@ -55,6 +56,8 @@ enum Kind {
     Payload,
     Check(usize),
     Trailer(usize),
+    /// The flag trailer (`optional`): no bytes at a fixed place.
+    Optional,
 }
 
 /// One layout element, lowered.
@@ -84,6 +87,8 @@ struct Draft<'s> {
     broken: bool,
     /// The values of a field that is the sync (`one_of`), once lowered.
     sync_set: Option<Vec<u8>>,
+    /// The flag trailer (`optional`) as declared, once lowered.
+    optional: Option<conditional::OptionalDecl<'s>>,
 }
 
 /// Lower one frame format (`first`: the spec's first, default one): the element rules, then
@@ -107,6 +112,7 @@ fn lower_frame(
         length_decl: None,
         broken: false,
         sync_set: None,
+        optional: None,
     };
     header::push_can_prefix(&mut draft);
     for (i, el) in def.layout.get_ref().iter().enumerate() {
@@ -114,6 +120,7 @@ fn lower_frame(
     }
     elements::check_unique_names(ctx, fname, &draft.els);
     elements::check_serial_sync(ctx, fname, def, &mut draft);
+    let extension = conditional::find_extension(ctx, &mut draft);
     let Some((pi, payload_min, payload_max)) = draft.payload else {
         if !draft.broken {
             ctx.error(
@@ -134,6 +141,7 @@ fn lower_frame(
         mut trailers,
         length_decl,
         sync_set,
+        optional,
         ..
     } = draft;
     let sync_set = sync_set.unwrap_or_default();
@@ -151,6 +159,15 @@ fn lower_frame(
     let stuffing = options::lower_stuffing(ctx, def);
     let truncate_zeros = options::lower_truncate_zeros(ctx, def, first, transport, &mut ok);
     let message = options::lower_message(ctx, fname, def, &dispatch, structs, &lay, &mut ok);
+    let cx = conditional::Context {
+        def,
+        lay: &lay,
+        first,
+        length: &length,
+        header_checks: checks.iter().any(|(c, _)| c.header),
+    };
+    let flag_trailer = conditional::lower_flag_trailer(ctx, &cx, optional, &mut values, &mut ok);
+    let length_extension = conditional::lower_extension(ctx, &cx, extension, &values, &mut ok);
     if !ok {
         // The commands cannot be checked against a frame whose layout is broken.
         return None;
@@ -192,6 +209,8 @@ fn lower_frame(
         packet: PacketKind::None,
         extensions: def.extensions.as_ref().is_none_or(|e| *e.get_ref()),
         commands: Vec::new(),
+        flag_trailer,
+        length_extension,
     })
 }
 
@@ -295,6 +314,7 @@ fn lower_elements(els: &[El<'_>], values: &[HeaderValue]) -> Vec<Element> {
             Kind::Payload => Element::Payload,
             Kind::Check(i) => Element::Check(*i),
             Kind::Trailer(i) => Element::Trailer(*i),
+            Kind::Optional => Element::FlagTrailer,
         })
         .collect()
 }

@@ -13,6 +13,7 @@ protocol::protocol!("specs/dynamixel1.toml");
 protocol::protocol!("specs/ibus.toml");
 protocol::protocol!("specs/sbus.toml");
 protocol::protocol!("specs/ubx.toml");
+protocol::protocol!("specs/msp.toml");
 protocol::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
 protocol::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
 protocol::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
@@ -34,4 +35,6 @@ fn main() {
     let _ = ibus::decoder();
     let _ = sbus::Packet::decode;
     let _ = ubx::decoder();
+    let _ = msp::decoder();
+    let _ = msp::v2_decoder();
 }
