@@ -33,9 +33,14 @@ impl Widths {
     }
 }
 
-/// The JSON form of a decoded value (what `--format json` prints of it).
+/// The JSON form of a decoded value (what `--format json` prints of it). Through the JSON
+/// text, not `serde_json::to_value`: an `f32` is printed as its shortest decimal (`12.6`),
+/// while `to_value` would widen it to the `f64` of its bits (`12.600000381469727`).
 fn json(v: &protocol_dynamic::Value) -> Value {
-    serde_json::to_value(v).unwrap_or(Value::Null)
+    serde_json::to_string(v)
+        .ok()
+        .and_then(|text| serde_json::from_str(&text).ok())
+        .unwrap_or(Value::Null)
 }
 
 /// A JSON value as a short text: numbers as JSON prints them (shortest round-trip decimals),

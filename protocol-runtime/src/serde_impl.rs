@@ -167,6 +167,41 @@ impl<'de, const N: usize> Deserialize<'de> for FixedStr<N> {
     }
 }
 
+/// `Option<[u8; N]>`, a header's flag trailer (a MAVLink 2 signature): its bytes as [`Bytes`]
+/// are (a hex string in a human-readable format), `null` when the flag announces none.
+pub mod trailer {
+    use super::{Bytes, Deserialize, Deserializer, Serialize, Serializer, de};
+
+    /// Serializes the bytes as [`Bytes`] does, or none.
+    ///
+    /// # Errors
+    /// The serializer's.
+    pub fn serialize<S: Serializer, const N: usize>(
+        x: &Option<[u8; N]>,
+        s: S,
+    ) -> Result<S::Ok, S::Error> {
+        x.as_ref()
+            .and_then(|b| Bytes::<N>::from_slice(b))
+            .serialize(s)
+    }
+
+    /// Reads what [`serialize`] writes: exactly `N` bytes, or none.
+    ///
+    /// # Errors
+    /// Not bytes, or not `N` of them.
+    pub fn deserialize<'de, D: Deserializer<'de>, const N: usize>(
+        d: D,
+    ) -> Result<Option<[u8; N]>, D::Error> {
+        let Some(bytes) = Option::<Bytes<N>>::deserialize(d)? else {
+            return Ok(None);
+        };
+        let exact: [u8; N] = bytes.as_slice().try_into().map_err(|_| {
+            de::Error::invalid_length(bytes.as_slice().len(), &"exactly the trailer's bytes")
+        })?;
+        Ok(Some(exact))
+    }
+}
+
 impl<const N: usize> Serialize for NulStr<N> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         match self.as_str() {

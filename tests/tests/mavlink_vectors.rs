@@ -512,7 +512,7 @@ fn the_run_time_codec_decodes_and_encodes_every_expressed_frame() {
         assert_eq!(F(&encoded.bytes), F(&bytes), "{name}: dynamic encode");
         n += 1;
     }
-    assert_eq!(n, 27, "13 MAVLink 1 and 14 MAVLink 2 frames");
+    assert_eq!(n, 29, "13 MAVLink 1 and 16 MAVLink 2 frames");
 }
 
 #[test]

@@ -113,8 +113,9 @@ fn defmt_attrs(rt: &TokenStream) -> [syn::Attribute; 2] {
 }
 
 /// The runtime's serde helper of a field's type, if its type needs one: floats (non-finite
-/// ones as the codec's strings: `float`, `float::floats`, `float::optional`) and arrays longer
-/// than serde's own impls take (32 elements: `array`).
+/// ones as the codec's strings: `float`, `float::floats`, `float::optional`), arrays longer
+/// than serde's own impls take (32 elements: `array`), and a header's flag trailer, an optional
+/// byte array, as the codec's hex (`trailer`).
 fn serde_with(ty: &syn::Type) -> Option<TokenStream> {
     match ty {
         _ if is_float(ty) => Some(quote!(float)),
@@ -139,6 +140,10 @@ fn serde_with(ty: &syn::Type) -> Option<TokenStream> {
                     if last.ident == "Option" && is_float(inner) =>
                 {
                     Some(quote!(float::optional))
+                }
+                // A header's flag trailer (`Option<[u8; N]>`): bytes, as the codec's hex.
+                Some(syn::GenericArgument::Type(syn::Type::Array(_))) if last.ident == "Option" => {
+                    Some(quote!(trailer))
                 }
                 _ => None,
             }

@@ -265,6 +265,14 @@ pub fn rust_debug(p: &Protocol, d: &Decoded) -> String {
                 int_text(v.prim, &d.header[v.name.as_str()])
             )
         })
+        .chain(f.flag_trailer.iter().map(|t| {
+            // `Option<[u8; N]>`: the bytes when the flag announces them.
+            let text = match d.header[t.name.as_str()].as_bytes() {
+                Some(b) => format!("Some({b:?})"),
+                None => "None".to_string(),
+            };
+            format!("{}: {text}", t.name)
+        }))
         .collect();
     let header = if header_fields.is_empty() {
         header

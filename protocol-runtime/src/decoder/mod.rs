@@ -213,23 +213,9 @@ impl FrameLayout<'_> {
                 let value = i64::try_from(field.read(header)?).ok()?;
                 usize::try_from(value.checked_add(adjust)?).ok()
             }
-            // Only the header is looked at: a wider length after it is not known here.
-            LengthRule::Conditional {
-                field,
-                adjust,
-                extension,
-                trailer,
-            } => conditional::measure(
-                field,
-                adjust,
-                extension,
-                trailer,
-                header,
-                header,
-                usize::MAX,
-            )
-            .ok()
-            .map(|(total, _)| total),
+            // Out of line, so that the other rules' frame length stays as small as it is
+            // without this rule wherever it is inlined (`benches/count.sh` counts it).
+            LengthRule::Conditional { .. } => conditional_frame_len(self, header),
         }
     }
 
@@ -452,6 +438,24 @@ pub(crate) fn probe_synced<L: LayoutRef>(
         return Probe::Reject(Reject::BadTrailer);
     }
     Probe::Frame(total)
+}
+
+/// [`FrameLayout::frame_len`] for [`LengthRule::Conditional`]: only the header is looked at,
+/// so a wider length after it is not known here.
+#[inline(never)]
+fn conditional_frame_len(layout: &FrameLayout<'_>, header: &[u8]) -> Option<usize> {
+    let LengthRule::Conditional {
+        field,
+        adjust,
+        extension,
+        trailer,
+    } = layout.length
+    else {
+        return None;
+    };
+    conditional::measure(field, adjust, extension, trailer, header, header, usize::MAX)
+        .ok()
+        .map(|(total, _)| total)
 }
 
 /// [`probe_synced`] for [`LengthRule::Conditional`] once the header is verified: the length
