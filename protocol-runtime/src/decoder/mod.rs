@@ -453,9 +453,17 @@ fn conditional_frame_len(layout: &FrameLayout<'_>, header: &[u8]) -> Option<usiz
     else {
         return None;
     };
-    conditional::measure(field, adjust, extension, trailer, header, header, usize::MAX)
-        .ok()
-        .map(|(total, _)| total)
+    conditional::measure(
+        field,
+        adjust,
+        extension,
+        trailer,
+        header,
+        header,
+        usize::MAX,
+    )
+    .ok()
+    .map(|(total, _)| total)
 }
 
 /// [`probe_synced`] for [`LengthRule::Conditional`] once the header is verified: the length
