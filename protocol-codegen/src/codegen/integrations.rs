@@ -77,8 +77,24 @@ pub fn apply(items: TokenStream, p: &Protocol, d: Derives) -> TokenStream {
                     ));
                     s.attrs
                         .push(syn::parse_quote!(#[serde(crate = #serde_crate)]));
+                    // A header's flag trailer (`Option<[u8; N]>`): bytes, as the codec's hex.
+                    let trailer = p
+                        .frames
+                        .iter()
+                        .filter(|f| f.names.header == name)
+                        .find_map(|f| f.flag_trailer.as_ref())
+                        .map(|t| t.name.as_str());
                     for field in &mut s.fields {
-                        if let Some(helper) = serde_with(&field.ty) {
+                        let is_trailer = field
+                            .ident
+                            .as_ref()
+                            .is_some_and(|i| Some(i.to_string().as_str()) == trailer);
+                        let helper = if is_trailer {
+                            Some(quote!(trailer))
+                        } else {
+                            serde_with(&field.ty)
+                        };
+                        if let Some(helper) = helper {
                             let with = path_text(quote!(#rt::serde_support::#helper));
                             field.attrs.push(syn::parse_quote!(#[serde(with = #with)]));
                         }
@@ -113,9 +129,8 @@ fn defmt_attrs(rt: &TokenStream) -> [syn::Attribute; 2] {
 }
 
 /// The runtime's serde helper of a field's type, if its type needs one: floats (non-finite
-/// ones as the codec's strings: `float`, `float::floats`, `float::optional`), arrays longer
-/// than serde's own impls take (32 elements: `array`), and a header's flag trailer, an optional
-/// byte array, as the codec's hex (`trailer`).
+/// ones as the codec's strings: `float`, `float::floats`, `float::optional`) and arrays longer
+/// than serde's own impls take (32 elements: `array`).
 fn serde_with(ty: &syn::Type) -> Option<TokenStream> {
     match ty {
         _ if is_float(ty) => Some(quote!(float)),
@@ -140,10 +155,6 @@ fn serde_with(ty: &syn::Type) -> Option<TokenStream> {
                     if last.ident == "Option" && is_float(inner) =>
                 {
                     Some(quote!(float::optional))
-                }
-                // A header's flag trailer (`Option<[u8; N]>`): bytes, as the codec's hex.
-                Some(syn::GenericArgument::Type(syn::Type::Array(_))) if last.ident == "Option" => {
-                    Some(quote!(trailer))
                 }
                 _ => None,
             }
