@@ -480,6 +480,19 @@ fn random_messages_decode_and_encode_alike() {
                     if !f.sync_set.is_empty() {
                         frame[0] = f.sync_set[rng.range(0, f.sync_set.len() as u64 - 1) as usize];
                     }
+                    // A flag trailer (a MAVLink 2 signature): present in some rounds, its flag
+                    // set and its bytes appended; else its flag clear.
+                    if let Some(t) = &f.flag_trailer {
+                        let on = round % 5 == 0;
+                        word_field(&f.values[t.flag])
+                            .write(&mut frame, u64::from(on))
+                            .expect("a one-bit flag");
+                        if on {
+                            let mut extra = vec![0u8; t.len];
+                            rng.fill(&mut extra);
+                            frame.extend_from_slice(&extra);
+                        }
+                    }
                     (g.seal)(0, &mut frame).expect("the generated layout seals");
                     attempts += 1;
                     let label = format!(
