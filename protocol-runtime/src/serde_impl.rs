@@ -234,12 +234,13 @@ impl<'de, const N: usize> Visitor<'de> for NulStrVisitor<N> {
         while let Some(b) = seq.next_element::<u8>()? {
             let slot = bytes
                 .get_mut(len)
-                .ok_or_else(|| de::Error::invalid_length(len + 1, &self))?;
+                .ok_or_else(|| de::Error::invalid_length(len.saturating_add(1), &self))?;
             *slot = b;
-            len += 1;
+            len = len.saturating_add(1);
         }
-        NulStr::from_text_bytes(&bytes[..len])
-            .ok_or_else(|| de::Error::invalid_value(de::Unexpected::Bytes(&bytes[..len]), &self))
+        let text = bytes.get(..len).unwrap_or_default();
+        NulStr::from_text_bytes(text)
+            .ok_or_else(|| de::Error::invalid_value(de::Unexpected::Bytes(text), &self))
     }
 }
 
