@@ -81,9 +81,10 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
                     ..f.clone()
                 },
             );
+            // Brackets escaped: rustdoc would read `[i24]` as a link.
             match size_from {
-                None => format!("[{elem}] to the end (up to {max})"),
-                Some(n) => format!("[{elem}], `{n}` of them (up to {max})"),
+                None => format!("\\[{elem}\\] to the end (up to {max})"),
+                Some(n) => format!("\\[{elem}\\], `{n}` of them (up to {max})"),
             }
         }
         FieldKind::Check(c) => {
