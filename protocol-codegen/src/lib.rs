@@ -2,7 +2,7 @@
 //! into a checked IR ([`validate`], [`ir`]), and expanding the IR into Rust ([`codegen`]).
 //!
 //! The pipeline is `spec::load_spec` → `validate::validate` → `codegen::expand`; [`compile`]
-//! runs the first two and is what the macros, the CLI and the tests call. [`derive`] takes a
+//! runs the first two and is what the macros, the CLI and the tests call. [`derive`](mod@derive) takes a
 //! `#[derive(Payload)]` through the same validation and payload printer.
 
 pub mod c;
