@@ -160,11 +160,12 @@ const SCAN_MASK: [u8; 2 * SCAN] = {
 /// candidate every time the input runs out, whose answer is nearly always no. A `true` may be
 /// wrong (the caller searches exactly then), a `false` never is.
 ///
-/// Whole 64-byte blocks are compared under a mask, without a branch per byte or per word (the
-/// compiler turns this into a few vector compares); a search that stops at the first match
-/// mispredicts its exit once per call, at a length that changes every time. Testing pairs
-/// rather than the first byte alone makes a `true` rare for two-byte syncs (`FF FF`: a random
-/// payload byte is `FF` once in 256, a pair once in 65,536), so the branch on it predicts well.
+/// Whole 64-byte blocks are compared byte by byte under a mask, with no branch per byte: the
+/// compiler turns each block into a few vector compares and one test; a search that stops at
+/// the first match mispredicts its exit once per call, at a length that changes every time.
+/// Testing pairs rather than the first byte alone makes a `true` rare for two-byte syncs
+/// (`FF FF`: a random payload byte is `FF` once in 256, a pair once in 65,536), so the branch
+/// on it predicts well.
 #[inline(always)]
 fn may_start_sync(sync: &[u8], data: &[u8], n: usize) -> bool {
     let (first, second) = match *sync {
@@ -172,14 +173,17 @@ fn may_start_sync(sync: &[u8], data: &[u8], n: usize) -> bool {
         [first] => (first, None),
         [first, second, ..] => (first, Some(second)),
     };
-    let pattern = LOW.wrapping_mul(u64::from(first));
-    let next_pattern = LOW.wrapping_mul(u64::from(second.unwrap_or(0)));
     let mut from = 0usize;
     while from < n {
         let rest = data.get(from..).unwrap_or_default();
         let left = n.wrapping_sub(from);
         // The block and, for the second byte, the block one byte further.
-        let Some(block) = rest.first_chunk::<{ SCAN + 8 }>() else {
+        let (Some(block), Some(next)) = (
+            rest.first_chunk::<{ SCAN + 1 }>()
+                .and_then(|b| b.first_chunk::<SCAN>()),
+            rest.first_chunk::<{ SCAN + 1 }>()
+                .and_then(|b| b.last_chunk::<SCAN>()),
+        ) else {
             // The end of the buffer: fewer bytes left to read than a block.
             return (0..left).any(|i| {
                 rest.get(i) == Some(&first)
@@ -190,24 +194,15 @@ fn may_start_sync(sync: &[u8], data: &[u8], n: usize) -> bool {
             .get(SCAN.saturating_sub(left)..)
             .and_then(<[u8]>::first_chunk::<SCAN>)
             .unwrap_or(&[0; SCAN]);
-        let mut hits = 0u64;
-        for k in 0..SCAN / 8 {
-            let at = k.wrapping_mul(8);
-            let word_at = |bytes: &[u8], at: usize| {
-                bytes
-                    .get(at..)
-                    .and_then(<[u8]>::first_chunk::<8>)
-                    .map_or(0, |w| u64::from_le_bytes(*w))
-            };
-            // A flag below a zero byte of `x` is exact; above one it may be a borrow's, but
-            // then a masked-in zero byte lies below it (the mask keeps a prefix): a false
-            // `true` at worst.
-            let mut flags = zero_byte_flags(word_at(block, at) ^ pattern);
-            if second.is_some() {
-                flags &= zero_byte_flags(word_at(block, at.wrapping_add(1)) ^ next_pattern);
-            }
-            hits |= flags & word_at(keep, at);
-        }
+        // `&` on the comparisons, not `&&`: no branch, so that the loop vectorises.
+        let hits = block
+            .iter()
+            .zip(next)
+            .zip(keep)
+            .fold(0u8, |hits, ((&b, &c), &k)| {
+                let pair = (b == first) & second.is_none_or(|s| c == s);
+                hits | (u8::from(pair) & k)
+            });
         if hits != 0 {
             return true;
         }
