@@ -242,9 +242,27 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// the decoder for every frame, a chain of loads and stores from one frame to the next).
     #[inline]
     pub fn feed(&mut self, mut chunk: &[u8], mut sink: impl FnMut(Frame<'_>)) {
+        // Input cut into small chunks: a candidate waits for the rest of its bytes, the chunk
+        // goes whole behind them and the scan goes on in the buffer; the chunk is used up,
+        // and unless a frame is complete inside the candidate still waiting, so is this call.
+        // The rest is out of line. (Where every chunk is staged, the rest does this too: one
+        // copy of the scan in firmware.)
+        if SCAN_IN_PLACE && self.start < self.end && self.stage(&mut chunk) {
+            self.scan_buffered(&mut sink);
+            if self.start >= self.end || !self.frame_inside(self.limit()) {
+                return;
+            }
+        }
+        self.feed_rest(chunk, &mut sink);
+    }
+
+    /// [`feed`](Self::feed) but for its first step: a chunk scanned in place, a chunk too
+    /// large to stage, a candidate that a frame inside it cuts short.
+    #[inline(never)]
+    fn feed_rest(&mut self, mut chunk: &[u8], sink: &mut impl FnMut(Frame<'_>)) {
         loop {
             if self.start >= self.end && SCAN_IN_PLACE {
-                self.scan_input(&mut chunk, &mut sink);
+                self.scan_input(&mut chunk, sink);
                 if chunk.is_empty() {
                     return;
                 }
@@ -258,7 +276,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                 if !chunk.is_empty() {
                     self.stage(&mut chunk);
                 }
-                self.scan_buffered(&mut sink);
+                self.scan_buffered(sink);
                 if self.start >= self.end {
                     if chunk.is_empty() {
                         return;
