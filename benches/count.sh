@@ -10,30 +10,61 @@
 # generated decoder executes fewer instructions). `hand` is the staged slice scan, `best` the
 # fastest baseline known (2 KiB appending feed, carry-less CRC-16).
 #
-# Usage: bash benches/count.sh [BYTES]   (stream length, default 1 MiB)
+# With --ablation, prints instead the generated decoder's counts with and without the
+# early-truncation rule (the runtime's `ablate-early-truncation` measurement feature: a
+# candidate waits for its claimed length even when a frame is complete inside it): what the
+# rule costs. The frames are checked against the ground truth either way.
+#
+# Usage: bash benches/count.sh [--ablation] [BYTES]   (stream length, default 1 MiB)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+ablation=0
+if [ "${1:-}" = "--ablation" ]; then
+  ablation=1
+  shift
+fi
 bytes="${1:-1048576}"
 command -v valgrind >/dev/null || { echo "count.sh: valgrind is not installed" >&2; exit 1; }
 target="${CARGO_TARGET_DIR:-$PWD/target}"
-cargo build --quiet --release -p protocol-benches --bin count
-tool="$target/release/count"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
+if [ "$ablation" = 1 ]; then
+  cargo build --quiet --release -p protocol-benches --bin count --features ablate-early-truncation
+  cp "$target/release/count" "$tmp/count-ablated"
+fi
+cargo build --quiet --release -p protocol-benches --bin count
+tool="$target/release/count"
 
 # Prints "INSTRUCTIONS FRAMES" for one run.
 count() {
   local out="$tmp/callgrind.out"
   local line
   line="$(valgrind --tool=callgrind --collect-atstart=no --toggle-collect='*timed_decode*' \
-    --callgrind-out-file="$out" "$tool" "$@" "$bytes" 2>/dev/null)"
+    --callgrind-out-file="$out" "${TOOL:-$tool}" "$@" "$bytes" 2>/dev/null)"
   local frames="${line#*frames=}"
   frames="${frames%% *}"
   local instructions
   instructions="$(sed -n 's/^summary: *//p' "$out")"
   echo "$instructions $frames"
 }
+
+if [ "$ablation" = 1 ]; then
+  echo "| workload | feed | frames | generated Ir/frame | without early truncation Ir/frame | the rule's cost Ir/frame | share |"
+  echo "|---|---|---:|---:|---:|---:|---:|"
+  for protocol in hflink referee; do
+    for noise in clean noisy; do
+      for feed in whole 64; do
+        read -r gen frames < <(count "$protocol" "$noise" "$feed" generated)
+        read -r abl abl_frames < <(TOOL="$tmp/count-ablated" count "$protocol" "$noise" "$feed" generated)
+        [ "$frames" = "$abl_frames" ] || { echo "count.sh: frame counts differ" >&2; exit 1; }
+        awk -v w="$protocol-$noise" -v f="$feed" -v n="$frames" -v g="$gen" -v a="$abl" \
+          'BEGIN { printf "| %s | %s | %d | %.1f | %.1f | %.1f | %.1f%% |\n", w, f, n, g / n, a / n, (g - a) / n, 100 * (g - a) / g }'
+      done
+    done
+  done
+  exit 0
+fi
 
 echo "| workload | feed | frames | generated Ir/frame | hand Ir/frame | best Ir/frame | generated / hand | generated / best |"
 echo "|---|---|---:|---:|---:|---:|---:|---:|"
