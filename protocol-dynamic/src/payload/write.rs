@@ -19,21 +19,11 @@ fn issue(path: &str, e: NumError) -> EncodeIssue {
     }
 }
 
-/// Writes struct `si` from a struct value; returns the bytes written.
+/// Writes struct `si` from a struct value (a payload, or a nested struct of one).
 ///
 /// # Errors
 /// [`EncodeIssue`] naming the first missing, ill-typed, out-of-range or unknown value.
 pub fn write_payload(
-    p: &Protocol,
-    si: usize,
-    v: &Value,
-    w: &mut Writer<'_>,
-    path: &str,
-) -> Result<(), EncodeIssue> {
-    write_struct(p, si, v, w, path)
-}
-
-fn write_struct(
     p: &Protocol,
     si: usize,
     v: &Value,
@@ -178,7 +168,14 @@ fn write_field(
                     "expected bytes: a hex string or an array of numbers 0..=255",
                 )
             })?;
-            check_len(bytes.len(), "bytes", *max, size_from.as_deref(), owner, &fpath)?;
+            check_len(
+                bytes.len(),
+                "bytes",
+                *max,
+                size_from.as_deref(),
+                owner,
+                &fpath,
+            )?;
             w.put_bytes(&bytes).map_err(buffer)
         }
         FieldKind::Array { ty, max, size_from } => {
@@ -188,7 +185,14 @@ fn write_field(
             let items = v
                 .as_array()
                 .ok_or_else(|| EncodeIssue::new(&fpath, "expected an array of elements"))?;
-            check_len(items.len(), "elements", *max, size_from.as_deref(), owner, &fpath)?;
+            check_len(
+                items.len(),
+                "elements",
+                *max,
+                size_from.as_deref(),
+                owner,
+                &fpath,
+            )?;
             for (i, item) in items.iter().enumerate() {
                 write_elem(p, ty, item, w, &format!("{fpath}[{i}]"))?;
             }
@@ -200,7 +204,7 @@ fn write_field(
                 .ok_or_else(|| EncodeIssue::missing(&fpath))?;
             super::check::write_nul_text(v, *max, w, &fpath)
         }
-        // Written by `write_struct`, which knows the covered fields.
+        // Written by `write_payload`, which knows the covered fields.
         FieldKind::Check(_) => Ok(()),
         FieldKind::Group { elem, max } => {
             let v = obj
@@ -305,7 +309,7 @@ fn write_elem(
             let bits = scaled_raw(*scalar, sc, v, path)?;
             write_bits(w, *scalar, bits).map_err(buffer)
         }
-        ValueType::Struct(si) => write_struct(p, *si, v, w, path),
+        ValueType::Struct(si) => write_payload(p, *si, v, w, path),
         ValueType::Enum(ei, scalar) => {
             let raw = enum_raw(&p.enums[*ei], v, path)?;
             write_bits(w, *scalar, raw).map_err(buffer)
