@@ -21,7 +21,7 @@
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
-use super::dispatch::direction_tests;
+use super::dispatch::direction_test;
 use super::payload::prim_type;
 use super::{ident, rt};
 use crate::ir::{Frame, PacketKind, Protocol};
@@ -405,7 +405,16 @@ fn packet_message(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     if p.directions.is_empty() {
         return quote!(let _ = header; Message::deserialize_payload(command, d));
     }
-    let (names, tests) = direction_tests(p, f);
+    let names: Vec<_> = p
+        .directions
+        .iter()
+        .map(|d| format_ident!("{}", d.rust_name))
+        .collect();
+    let tests: Vec<_> = p
+        .directions
+        .iter()
+        .map(|d| direction_test(p, f, &d.rule))
+        .collect();
     quote! {
         #(if #tests { #rt::Ok(Message::#names(#names::deserialize_payload(command, d)?)) } else)*
         { #rt::Err(#rt::serde_support::payload_error("the header matches no direction")) }

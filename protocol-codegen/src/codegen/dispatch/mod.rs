@@ -22,7 +22,7 @@ use frames::{emit_can_packet, emit_message_packet};
 pub use given::direction_layouts;
 use link::{emit_base_payload, emit_commands_packet, emit_link};
 use message::{emit_direction_message, emit_message_enum};
-pub(crate) use packet::direction_tests;
+pub(crate) use packet::direction_test;
 use packet::emit_packet;
 
 /// Everything about commands and messages, for the first frame.

@@ -38,19 +38,6 @@ impl Items {
     }
 }
 
-/// Each direction's enum name and the test of a frame's header for it, in spec order.
-pub(crate) fn direction_tests(p: &Protocol, f: &Frame) -> (Vec<Ident>, Vec<TokenStream>) {
-    p.directions
-        .iter()
-        .map(|d| {
-            (
-                format_ident!("{}", d.rust_name),
-                direction_test(p, f, &d.rule),
-            )
-        })
-        .unzip()
-}
-
 /// The condition that a header is of direction `rule`, as an expression over `header`.
 pub(crate) fn direction_test(p: &Protocol, f: &Frame, rule: &DirectionRule) -> TokenStream {
     match rule {
@@ -115,7 +102,16 @@ fn packet_direction(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, 
     if p.directions.is_empty() {
         return (quote!(Message::read_payload(command, payload)?), quote!());
     }
-    let (names, tests) = direction_tests(p, f);
+    let names: Vec<_> = p
+        .directions
+        .iter()
+        .map(|d| format_ident!("{}", d.rust_name))
+        .collect();
+    let tests: Vec<_> = p
+        .directions
+        .iter()
+        .map(|d| direction_test(p, f, &d.rule))
+        .collect();
     let message = quote! {
         #(if #tests { Message::#names(#names::read_payload(command, payload)?) } else)*
         { return #rt::Err(#rt::DecodeError::UnknownDirection); }
