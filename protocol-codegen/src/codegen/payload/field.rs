@@ -153,7 +153,8 @@ pub(super) fn variable_len(
         PKind::Var { ty } => Some(quote!(<#ty as #rt::Payload>::wire_len(&#value))),
         PKind::Array { elem_size, .. } => Some(quote!(#value.len().saturating_mul(#elem_size))),
         PKind::Optional(inner) => {
-            let size = variable_len(inner, quote!(v), rt).unwrap_or_else(|| size_expr(inner, rt));
+            let size =
+                variable_len(inner, quote!(v), rt).unwrap_or_else(|| size_sum([&**inner], rt));
             Some(quote!(match &#value { #rt::Some(v) => #size, #rt::None => 0 }))
         }
         PKind::Group { elem, .. } => {
@@ -166,11 +167,12 @@ pub(super) fn variable_len(
                     .and_then(|id| variable_len(&f.kind, quote!(e.#id), rt))
                 {
                     Some(len) => vars.push(len),
-                    None => fixed.push(size_expr(&f.kind, rt)),
+                    None => fixed.push(&f.kind),
                 }
             }
+            let fixed = size_sum(fixed, rt);
             Some(quote!(#value.iter().fold(0usize, |acc, e| {
-                const FIXED: usize = 0 #(+ #fixed)*;
+                const FIXED: usize = #fixed;
                 acc.saturating_add(FIXED #(.saturating_add(#vars))*)
             })))
         }
@@ -274,28 +276,41 @@ fn count_of(kind: &PKind) -> Option<usize> {
     }
 }
 
-/// The wire size of one field, as a constant expression.
-pub(super) fn size_expr(kind: &PKind, rt: &TokenStream) -> TokenStream {
+/// The wire size of one field: the bytes known at expansion, and a term over a nested type's
+/// `SIZE` (opaque to the derive), if any.
+fn size_parts(kind: &PKind, rt: &TokenStream) -> (usize, Option<TokenStream>) {
     let n = count_of(kind).unwrap_or(1);
     match kind {
-        PKind::Pad(len) => quote!(#len),
-        PKind::Scalar { scalar, .. } | PKind::Enum { scalar, .. } => {
-            let s = scalar.prim.size() * n;
-            quote!(#s)
+        PKind::Nested { ty, count: None } | PKind::Var { ty } => {
+            (0, Some(quote!(<#ty as #rt::Payload>::SIZE)))
         }
-        PKind::Nested { ty, count: None } => quote!(<#ty as #rt::Payload>::SIZE),
-        PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::SIZE * #n),
-        PKind::Bits { word, .. } => {
-            let s = word.prim.size();
-            quote!(#s)
-        }
-        PKind::Bytes { max, .. } => quote!(#max),
-        PKind::Var { ty } => quote!(<#ty as #rt::Payload>::SIZE),
-        PKind::Check { width, .. } => quote!(#width),
-        PKind::Packed { size, .. } => quote!(#size),
-        PKind::Group { .. } | PKind::Array { .. } | PKind::Optional(_) => {
-            let s = fixed_size(kind);
-            quote!(#s)
-        }
+        PKind::Nested { ty, .. } => (0, Some(quote!(<#ty as #rt::Payload>::SIZE * #n))),
+        PKind::Pad(len) => (*len, None),
+        PKind::Scalar { scalar, .. } | PKind::Enum { scalar, .. } => (scalar.prim.size() * n, None),
+        PKind::Bits { word, .. } => (word.prim.size(), None),
+        PKind::Bytes { max, .. } => (*max, None),
+        PKind::Check { width, .. } => (*width, None),
+        PKind::Packed { size, .. } => (*size, None),
+        PKind::Group { .. } | PKind::Array { .. } | PKind::Optional(_) => (fixed_size(kind), None),
+    }
+}
+
+/// The wire size of `kinds` together, as a constant expression: the bytes known at expansion
+/// summed into one literal, then the nested types' sizes.
+pub(super) fn size_sum<'a>(
+    kinds: impl IntoIterator<Item = &'a PKind>,
+    rt: &TokenStream,
+) -> TokenStream {
+    let mut bytes = 0usize;
+    let mut terms = Vec::new();
+    for kind in kinds {
+        let (b, term) = size_parts(kind, rt);
+        bytes += b;
+        terms.extend(term);
+    }
+    if bytes == 0 && !terms.is_empty() {
+        quote!(#(#terms)+*)
+    } else {
+        quote!(#bytes #(+ #terms)*)
     }
 }

@@ -17,7 +17,7 @@ use quote::quote;
 use body::Body;
 pub use def::{BitType, PBit, PField, PKind, PayloadDef};
 pub use field::{elem_type, field_type};
-use field::{size_expr, variable_len};
+use field::{size_sum, variable_len};
 pub use scalar::{prim_type, read_scalar, write_scalar};
 
 /// `const MIN_SIZE` and `fn wire_len` of a struct with fields of variable size (nothing for
@@ -28,21 +28,22 @@ fn emit_variable_size(def: &PayloadDef, rt: &TokenStream) -> Option<TokenStream>
     for f in &def.fields {
         match (variable_len(&f.kind, quote!(x), rt), &f.ident) {
             (Some(_), Some(id)) => lens.extend(variable_len(&f.kind, quote!(self.#id), rt)),
-            _ => fixed.push(size_expr(&f.kind, rt)),
+            _ => fixed.push(&f.kind),
         }
     }
     if lens.is_empty() {
         return None;
     }
+    let fixed = size_sum(fixed, rt);
     let min = match def.min_size {
         Some(n) => quote!(#n),
-        None => quote!(0 #(+ #fixed)*),
+        None => fixed.clone(),
     };
     Some(quote! {
         const MIN_SIZE: usize = #min;
         #[inline]
         fn wire_len(&self) -> usize {
-            const FIXED: usize = 0 #(+ #fixed)*;
+            const FIXED: usize = #fixed;
             FIXED #(.saturating_add(#lens))*
         }
     })
@@ -52,7 +53,6 @@ fn emit_variable_size(def: &PayloadDef, rt: &TokenStream) -> Option<TokenStream>
 /// runtime's `__private` module as the impl sees it.
 pub fn emit_payload_impl(def: &PayloadDef, rt: &TokenStream) -> TokenStream {
     let name = &def.name;
-    let sizes: Vec<TokenStream> = def.fields.iter().map(|f| size_expr(&f.kind, rt)).collect();
     let Body {
         writes,
         reads,
@@ -72,8 +72,7 @@ pub fn emit_payload_impl(def: &PayloadDef, rt: &TokenStream) -> TokenStream {
     };
     let size = match def.size {
         Some(n) => quote!(#n),
-        None if sizes.is_empty() => quote!(0),
-        None => quote!(#(#sizes)+*),
+        None => size_sum(def.fields.iter().map(|f| &f.kind), rt),
     };
     let variable = emit_variable_size(def, rt);
     // A value of fixed size: its room checked once, not per field.
