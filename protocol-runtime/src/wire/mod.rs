@@ -3,11 +3,12 @@
 //!
 //! This module owns every primitive read and write of the runtime: numbers of each width and
 //! byte order, raw byte runs, and bit fields inside a word. Nothing here panics or indexes
-//! without a check: a short input is [`DecodeError::Truncated`], a short buffer
-//! [`EncodeError::BufferTooSmall`], a position outside the frame `None`. The cursors are the hot
-//! path of generated payload code, so every method is `#[inline]` and reads fixed-size chunks
-//! with `split_first_chunk`. What the bytes mean (structs, enums, scaling) is generated code's
-//! business.
+//! without a check: a short input is
+//! [`DecodeError::Truncated`](crate::DecodeError::Truncated), a short buffer
+//! [`EncodeError::BufferTooSmall`](crate::EncodeError::BufferTooSmall), a position outside the
+//! frame `None`. The cursors are the hot path of generated payload code, so every method is
+//! `#[inline]` and reads fixed-size chunks with `split_first_chunk`. What the bytes mean
+//! (structs, enums, scaling) is generated code's business.
 //!
 //! ```
 //! use protocol_runtime::{Reader, Writer};
