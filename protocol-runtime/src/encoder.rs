@@ -296,6 +296,38 @@ pub trait PayloadVisitor<C> {
     fn visit<P: Payload>(self, command: C, payload: &P) -> Self::Output;
 }
 
+/// A generated message enum (`Message`, `Request`, `Response`): the one place that opens it,
+/// [`visit_payload`](Self::visit_payload), and the payload's size and encoding through it.
+///
+/// Generated code implements it; a caller that measures or writes a payload by itself names it
+/// (`use protocol::MessagePayload;`). The message's command is an inherent method, `command()`,
+/// of each generated enum.
+pub trait MessagePayload {
+    /// The command a message names: the spec's `Command`, or `Option<Command>` when some
+    /// messages carry none (acknowledgements, a direction's struct in place of a command).
+    type Command;
+
+    /// Hands the command and the payload to `v` (`&()` when the command carries none).
+    fn visit_payload<V: PayloadVisitor<Self::Command>>(&self, v: V) -> V::Output;
+
+    /// Bytes of the payload on the wire.
+    #[inline(always)]
+    fn payload_len(&self) -> usize {
+        self.visit_payload(WireLen)
+    }
+
+    /// Writes the payload at the writer's position.
+    ///
+    /// # Errors
+    ///
+    /// [`EncodeError::BufferTooSmall`] if `w` has too little room,
+    /// [`EncodeError::ValueOutOfRange`] if a field's value does not fit its wire form.
+    #[inline(always)]
+    fn write_payload(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
+        self.visit_payload(WritePayload(w))
+    }
+}
+
 /// The message's command.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct CommandOf;

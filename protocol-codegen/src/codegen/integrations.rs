@@ -225,7 +225,7 @@ fn command_impls(rt: &TokenStream) -> TokenStream {
         impl Command {
             /// The command of a name in the spec.
             fn from_spec_name(name: &str) -> #rt::Option<Self> {
-                Self::ALL.into_iter().find(|c| c.name() == name)
+                Self::ALL.into_iter().find(|(_, n)| *n == name).map(|(command, _)| command)
             }
         }
         impl #rt::serde::Serialize for Command {

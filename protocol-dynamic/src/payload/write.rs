@@ -19,21 +19,11 @@ fn issue(path: &str, e: NumError) -> EncodeIssue {
     }
 }
 
-/// Writes struct `si` from a struct value; returns the bytes written.
+/// Writes struct `si` from a struct value (a payload, or a nested struct of one).
 ///
 /// # Errors
 /// [`EncodeIssue`] naming the first missing, ill-typed, out-of-range or unknown value.
 pub fn write_payload(
-    p: &Protocol,
-    si: usize,
-    v: &Value,
-    w: &mut Writer<'_>,
-    path: &str,
-) -> Result<(), EncodeIssue> {
-    write_struct(p, si, v, w, path)
-}
-
-fn write_struct(
     p: &Protocol,
     si: usize,
     v: &Value,
@@ -178,25 +168,14 @@ fn write_field(
                     "expected bytes: a hex string or an array of numbers 0..=255",
                 )
             })?;
-            if bytes.len() > *max {
-                return Err(EncodeIssue::new(
-                    &fpath,
-                    format!("{} bytes, at most {max} allowed", bytes.len()),
-                ));
-            }
-            if let Some(n) = size_from {
-                let stated = owner.get(n).and_then(Value::as_u64);
-                if stated.is_none_or(|s| field::check_stated_len(bytes.len(), s).is_err()) {
-                    return Err(EncodeIssue::new(
-                        &fpath,
-                        format!(
-                            "{} bytes, but `{n}` says {}",
-                            bytes.len(),
-                            stated.map_or("nothing".into(), |s| s.to_string())
-                        ),
-                    ));
-                }
-            }
+            check_len(
+                bytes.len(),
+                "bytes",
+                *max,
+                size_from.as_deref(),
+                owner,
+                &fpath,
+            )?;
             w.put_bytes(&bytes).map_err(buffer)
         }
         FieldKind::Array { ty, max, size_from } => {
@@ -206,25 +185,14 @@ fn write_field(
             let items = v
                 .as_array()
                 .ok_or_else(|| EncodeIssue::new(&fpath, "expected an array of elements"))?;
-            if items.len() > *max {
-                return Err(EncodeIssue::new(
-                    &fpath,
-                    format!("{} elements, at most {max} allowed", items.len()),
-                ));
-            }
-            if let Some(n) = size_from {
-                let stated = owner.get(n).and_then(Value::as_u64);
-                if stated.is_none_or(|s| field::check_stated_len(items.len(), s).is_err()) {
-                    return Err(EncodeIssue::new(
-                        &fpath,
-                        format!(
-                            "{} elements, but `{n}` says {}",
-                            items.len(),
-                            stated.map_or("nothing".into(), |s| s.to_string())
-                        ),
-                    ));
-                }
-            }
+            check_len(
+                items.len(),
+                "elements",
+                *max,
+                size_from.as_deref(),
+                owner,
+                &fpath,
+            )?;
             for (i, item) in items.iter().enumerate() {
                 write_elem(p, ty, item, w, &format!("{fpath}[{i}]"))?;
             }
@@ -236,7 +204,7 @@ fn write_field(
                 .ok_or_else(|| EncodeIssue::missing(&fpath))?;
             super::check::write_nul_text(v, *max, w, &fpath)
         }
-        // Written by `write_struct`, which knows the covered fields.
+        // Written by `write_payload`, which knows the covered fields.
         FieldKind::Check(_) => Ok(()),
         FieldKind::Group { elem, max } => {
             let v = obj
@@ -245,12 +213,7 @@ fn write_field(
             let items = v
                 .as_array()
                 .ok_or_else(|| EncodeIssue::new(&fpath, "expected an array of elements"))?;
-            if items.len() > *max {
-                return Err(EncodeIssue::new(
-                    &fpath,
-                    format!("{} elements, at most {max} allowed", items.len()),
-                ));
-            }
+            check_len(items.len(), "elements", *max, None, owner, &fpath)?;
             let es = &p.structs[*elem];
             for (i, item) in items.iter().enumerate() {
                 let ipath = format!("{fpath}[{i}]");
@@ -265,6 +228,35 @@ fn write_field(
             Ok(())
         }
     }
+}
+
+/// Refuses `len` items (`what`: bytes or elements) above the field's `max`, or other than the
+/// count its size field (`size_from`, a field of `owner`) states, as generated code does.
+fn check_len(
+    len: usize,
+    what: &str,
+    max: usize,
+    size_from: Option<&str>,
+    owner: &Fields,
+    path: &str,
+) -> Result<(), EncodeIssue> {
+    if len > max {
+        return Err(EncodeIssue::new(
+            path,
+            format!("{len} {what}, at most {max} allowed"),
+        ));
+    }
+    if let Some(n) = size_from {
+        let stated = owner.get(n).and_then(Value::as_u64);
+        if stated.is_none_or(|s| field::check_stated_len(len, s).is_err()) {
+            let stated = stated.map_or("nothing".into(), |s| s.to_string());
+            return Err(EncodeIssue::new(
+                path,
+                format!("{len} {what}, but `{n}` says {stated}"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Bytes from a value: bytes, a hex string, or an array of numbers.
@@ -317,7 +309,7 @@ fn write_elem(
             let bits = scaled_raw(*scalar, sc, v, path)?;
             write_bits(w, *scalar, bits).map_err(buffer)
         }
-        ValueType::Struct(si) => write_struct(p, *si, v, w, path),
+        ValueType::Struct(si) => write_payload(p, *si, v, w, path),
         ValueType::Enum(ei, scalar) => {
             let raw = enum_raw(&p.enums[*ei], v, path)?;
             write_bits(w, *scalar, raw).map_err(buffer)

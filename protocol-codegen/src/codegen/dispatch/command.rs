@@ -39,7 +39,8 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
     });
     let all = p.commands.iter().map(|c| {
         let v = ident(&c.rust_name);
-        quote!(Self::#v)
+        let name = &c.name;
+        quote!((Self::#v, #name))
     });
     let n = p.commands.len();
     let to_id = if single {
@@ -63,7 +64,6 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
         let id = id_value(f, c);
         quote!(#id => #rt::Some(Self::#v),)
     });
-    let names = p.commands.iter().map(|c| &c.name);
     let id_doc = format!(
         " A command id: the value of the dispatch key ({}).",
         keys.join(", ")
@@ -80,10 +80,8 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
             #(#variants,)*
         }
         impl Command {
-            /// Every command, in spec order.
-            pub const ALL: [Command; #n] = [#(#all),*];
-            /// Every command's name in the spec, in spec order.
-            pub const NAMES: [&'static str; #n] = [#(#names),*];
+            /// Every command with its name in the spec, in spec order.
+            pub const ALL: [(Command, &'static str); #n] = [#(#all),*];
             /// The command's id.
             pub const fn id(self) -> CommandId {
                 #to_id
@@ -99,8 +97,8 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
             pub const fn name(self) -> &'static str {
                 // The variants' discriminants are their places in spec order (with dense ids,
                 // the ids, which are the same), so the name is always found.
-                match Self::NAMES.split_at_checked(self as usize) {
-                    #rt::Some((_, [name, ..])) => name,
+                match Self::ALL.split_at_checked(self as usize) {
+                    #rt::Some((_, [(_, name), ..])) => name,
                     _ => "",
                 }
             }

@@ -1,5 +1,6 @@
 //! The message enums: one variant per command holding its payload (`Message`, or one enum per
-//! direction and a `Message` over them), opened in one place by `visit_payload`.
+//! direction and a `Message` over them), opened in one place by `visit_payload` (their
+//! `MessagePayload` impl).
 
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -74,7 +75,8 @@ pub(super) fn emit_message_enum(
         });
         visit_arms.push(quote!(Self::Ack(data) => v.visit(#rt::None, data),));
     }
-    let payload_fns = emit_payload_fns(
+    let (visit_impl, command_fn) = emit_visit_and_command(
+        name,
         rt,
         none,
         quote!(use Command as C; match self { #(#visit_arms)* }),
@@ -90,8 +92,9 @@ pub(super) fn emit_message_enum(
         pub enum #name {
             #(#variants,)*
         }
+        #visit_impl
         impl #name {
-            #payload_fns
+            #command_fn
             /// Read the payload of `command` from exactly `b`.
             ///
             /// # Errors
@@ -110,9 +113,14 @@ pub(super) fn emit_message_enum(
     }
 }
 
-/// `visit_payload` (whose body, `visit`, opens the message once), and `command`,
-/// `payload_len` and `write_payload` through it.
-fn emit_payload_fns(rt: &TokenStream, none: Option<&str>, visit: TokenStream) -> TokenStream {
+/// `impl MessagePayload` (its `visit_payload`, whose body, `visit`, opens the message once;
+/// the runtime's trait measures and writes the payload through it) and the inherent `command`.
+fn emit_visit_and_command(
+    name: &proc_macro2::Ident,
+    rt: &TokenStream,
+    none: Option<&str>,
+    visit: TokenStream,
+) -> (TokenStream, TokenStream) {
     let (command_ty, command_doc) = if let Some(none) = none {
         (
             quote!(#rt::Option<Command>),
@@ -121,34 +129,23 @@ fn emit_payload_fns(rt: &TokenStream, none: Option<&str>, visit: TokenStream) ->
     } else {
         (quote!(Command), " The command of this message.".to_string())
     };
-    quote! {
-        /// Hands the command and the payload to `v` (`&()` when the command carries none): the
-        /// one place that opens the message, for [`command`](Self::command),
-        /// [`payload_len`](Self::payload_len) and [`write_payload`](Self::write_payload).
-        #[inline(always)]
-        pub fn visit_payload<V: #rt::PayloadVisitor<#command_ty>>(&self, v: V) -> V::Output {
-            #visit
+    let visit_impl = quote! {
+        impl #rt::MessagePayload for #name {
+            type Command = #command_ty;
+            #[inline(always)]
+            fn visit_payload<V: #rt::PayloadVisitor<#command_ty>>(&self, v: V) -> V::Output {
+                #visit
+            }
         }
+    };
+    let command = quote! {
         #[doc = #command_doc]
         #[inline(always)]
         pub fn command(&self) -> #command_ty {
             self.visit_payload(#rt::CommandOf)
         }
-        /// Bytes of the payload on the wire.
-        #[inline(always)]
-        pub fn payload_len(&self) -> usize {
-            self.visit_payload(#rt::WireLen)
-        }
-        /// Write the payload.
-        ///
-        /// # Errors
-        /// `EncodeError::BufferTooSmall` if `w` has too little room, `ValueOutOfRange` if a
-        /// field's value does not fit its wire form.
-        #[inline(always)]
-        pub fn write_payload(&self, w: &mut #rt::Writer<'_>) -> #rt::EncodeResult {
-            self.visit_payload(#rt::WritePayload(w))
-        }
-    }
+    };
+    (visit_impl, command)
 }
 
 /// What a message without a command is, when a spec has such messages.
@@ -187,15 +184,21 @@ pub(super) fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStr
             None => quote!(Self::#v(m) => m.visit_payload(v),),
         }
     });
-    let payload_fns = emit_payload_fns(rt, command_none(p), quote!(match self { #(#arms)* }));
+    let (visit_impl, command_fn) = emit_visit_and_command(
+        &format_ident!("Message"),
+        rt,
+        command_none(p),
+        quote!(match self { #(#arms)* }),
+    );
     quote! {
         /// A decoded message: its direction, then the command and payload.
         #[derive(Debug, Clone, Copy, PartialEq)]
         pub enum Message {
             #(#variants,)*
         }
+        #visit_impl
         impl Message {
-            #payload_fns
+            #command_fn
         }
     }
 }

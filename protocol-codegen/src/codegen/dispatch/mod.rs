@@ -37,7 +37,9 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
             _ => quote!(),
         };
     }
-    let mut out = emit_command_enum(p, f, &rt);
+    // The message enums' `payload_len` and `write_payload` are the runtime trait's.
+    let mut out = quote!(use #rt::MessagePayload as _;);
+    out.extend(emit_command_enum(p, f, &rt));
     if p.directions.is_empty() {
         out.extend(emit_message_enum(
             p,

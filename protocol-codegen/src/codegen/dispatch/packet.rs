@@ -310,12 +310,62 @@ fn packet_trailer(f: &Frame) -> TokenStream {
     }
 }
 
+/// Where a frame's payload starts and its trailer ends, as `Packet` reads and writes them.
+struct Spans {
+    /// Bytes before the payload of a received `frame`.
+    header_in: TokenStream,
+    /// The statement that moves the written payload behind a wider length, if any.
+    place: TokenStream,
+    /// Bytes after the payload of a received `frame`.
+    trailer_in: TokenStream,
+    /// Bytes after the payload of a frame to send, at the most.
+    trailer_out: TokenStream,
+    /// What a flag trailer adds to the total of a frame to send.
+    flagged_total: TokenStream,
+}
+
+impl Spans {
+    fn of(f: &Frame) -> Spans {
+        let Items {
+            header_len,
+            trailer_len,
+            layout,
+            ..
+        } = Items::of(f);
+        // A wider length: the payload starts after it when the frame has one.
+        let (header_in, place) = match &f.length_extension {
+            Some(_) => (
+                quote!(#header_len.saturating_add(#layout.extension_len(frame))),
+                quote!(let start = #layout.place_payload(buf, start, plen, #trailer_len)?;),
+            ),
+            None => (quote!(#header_len), quote!()),
+        };
+        // A flag trailer: its bytes after the trailer, when the header has them.
+        let (trailer_in, trailer_out, flagged_total) = match &f.flag_trailer {
+            Some(_) => {
+                let flagged = flag_trailer_len(f);
+                (
+                    quote!(#trailer_len.saturating_add(#layout.flag_trailer_len(frame))),
+                    quote!(#trailer_len.saturating_add(#flagged)),
+                    quote!(.saturating_add(#flagged)),
+                )
+            }
+            None => (quote!(#trailer_len), quote!(#trailer_len), quote!()),
+        };
+        Spans {
+            header_in,
+            place,
+            trailer_in,
+            trailer_out,
+            flagged_total,
+        }
+    }
+}
+
 /// `Packet`: the header values and the message of the first frame format, decoded from and
 /// encoded to a frame through `LAYOUT`.
 pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let Items {
-        header_len,
-        trailer_len,
         layout,
         packet,
         header,
@@ -336,26 +386,13 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
     } = &ack;
     let (unstuff, stuff, stuffing_const) = packet_stuffing(f, rt);
     let trailer_of = packet_trailer(f);
-    // A flag trailer: its bytes after the trailer, when the header has them.
-    // A wider length: the payload starts after it when the frame has one.
-    let (header_in, place) = match &f.length_extension {
-        Some(_) => (
-            quote!(#header_len.saturating_add(#layout.extension_len(frame))),
-            quote!(let start = #layout.place_payload(buf, start, plen, #trailer_len)?;),
-        ),
-        None => (quote!(#header_len), quote!()),
-    };
-    let (trailer_in, trailer_out, flagged_total) = match &f.flag_trailer {
-        Some(_) => {
-            let flagged = flag_trailer_len(f);
-            (
-                quote!(#trailer_len.saturating_add(#layout.flag_trailer_len(frame))),
-                quote!(#trailer_len.saturating_add(#flagged)),
-                quote!(.saturating_add(#flagged)),
-            )
-        }
-        None => (quote!(#trailer_len), quote!(#trailer_len), quote!()),
-    };
+    let Spans {
+        header_in,
+        place,
+        trailer_in,
+        trailer_out,
+        flagged_total,
+    } = Spans::of(f);
     let trim = if f.truncate_zeros {
         quote!(let plen = #rt::trimmed_len(room.get(..plen).unwrap_or_default());)
     } else {

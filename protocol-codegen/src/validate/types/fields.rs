@@ -5,14 +5,12 @@ use toml::Spanned;
 
 use super::super::names::{check_snake_name, parse_prim, prim_spellings, unknown_type};
 use super::super::{Ctx, text};
-use super::bits::{lower_bits, smallest_uint};
+use super::bits::{lower_bits, lower_packed, lower_reserved_bits};
+use super::variable::{lower_array, lower_bytes, lower_group, lower_nul_text};
 use super::{Enums, Structs};
 use crate::diag::did_you_mean;
-use crate::ir::{
-    BitMember, BitOrder, ByteOrder, Constant, Field, FieldKind, Prim, Rounding, Scalar, Scale,
-    ValueType,
-};
-use crate::spec::model::{CountDef, FieldDef, PackedDef, SStr};
+use crate::ir::{ByteOrder, Constant, Field, FieldKind, Prim, Rounding, Scalar, Scale, ValueType};
+use crate::spec::model::{CountDef, FieldDef, SStr};
 
 /// Rule: a field is either `{ pad = N }` (N > 0, nothing else but `doc`) or a named value with a
 /// type; `count` makes a fixed array (> 0); `bits` splits an unsigned integer into members
@@ -62,25 +60,7 @@ pub(super) fn lower_field(
         );
         return None;
     };
-    for (key, span) in [
-        ("prefix", d.prefix.as_ref().map(Spanned::span)),
-        ("byte_order", d.byte_order.as_ref().map(Spanned::span)),
-    ] {
-        if let Some(span) = span {
-            ctx.error(
-                span,
-                format!("`{key}` applies to check fields"),
-                format!("add `check = \"algorithm\"` and `over`, or remove `{key}`"),
-            );
-        }
-    }
-    if let (Some(r), None) = (&d.reserved, &d.bits) {
-        ctx.error(
-            r.span(),
-            "`reserved` applies to fields with `bits`",
-            "remove `reserved`",
-        );
-    }
+    reject_keys_of_other_kinds(ctx, d);
     let count = lower_count(ctx, d, constants);
     let field = |size, kind, doc: &Option<SStr>| Field {
         name: name.get_ref().clone(),
@@ -133,34 +113,8 @@ pub(super) fn lower_field(
         );
     }
     let scalar = parse_prim(ty.get_ref(), endian);
-    if let Some(bits) = &d.bits {
-        let Some(word) = scalar.filter(|s| s.prim.is_unsigned()) else {
-            ctx.error(
-                ty.span(),
-                format!(
-                    "a field with `bits` must be an unsigned integer, not `{}`",
-                    ty.get_ref()
-                ),
-                "use `u8`, `u16`, `u32` or `u64`",
-            );
-            return None;
-        };
-        if count.is_some() {
-            ctx.error(
-                f.span(),
-                "a bitfield cannot be an array",
-                "remove `count`, or wrap the bitfield in a struct and make an array of it",
-            );
-        }
-        let mut members = lower_bits(ctx, bits.get_ref(), word.prim, enums, &|m| {
-            if m.length_of.is_some() || m.value.is_some() {
-                Some("`length_of` and `value` apply to header bitfields only")
-            } else {
-                None
-            }
-        });
-        members.extend(lower_reserved_bits(ctx, d, name, word.prim, &members));
-        let kind = FieldKind::Bits { word, members };
+    if d.bits.is_some() {
+        let (word, kind) = lower_bitfield(ctx, f, name, ty, scalar, count, enums)?;
         return Some(field(word.prim.size(), kind, &d.doc));
     }
     let (elem, elem_size) = lower_value_type(ctx, f, ty, scalar, endian, structs, enums)?;
@@ -168,132 +122,70 @@ pub(super) fn lower_field(
     Some(field(elem_size * count.unwrap_or(1), kind, &d.doc))
 }
 
-/// Rule: the bits of a payload bitfield word above its members are never silently zeroed:
-/// `reserved = "keep"` (the default) holds them in one more member, `<field>_reserved`, the
-/// smallest unsigned type that fits them, so that decoding then encoding gives the same
-/// bytes; `reserved = "zero"` declares them reserved-zero (written as zero, ignored when
-/// read). `reserved` is `"keep"` or `"zero"`, and the kept member's name is not a member's
-/// already. Gives the member that keeps them, if any.
-fn lower_reserved_bits(
-    ctx: &mut Ctx<'_>,
-    d: &FieldDef,
-    name: &SStr,
-    word: Prim,
-    members: &[BitMember],
-) -> Option<BitMember> {
-    let keep = match d.reserved.as_ref().map(|r| (r, r.get_ref().as_str())) {
-        None | Some((_, "keep")) => true,
-        Some((_, "zero")) => false,
-        Some((r, other)) => {
+/// Rule: `prefix` and `byte_order` apply to check fields, `reserved` to fields with `bits`.
+fn reject_keys_of_other_kinds(ctx: &mut Ctx<'_>, d: &FieldDef) {
+    for (key, span) in [
+        ("prefix", d.prefix.as_ref().map(Spanned::span)),
+        ("byte_order", d.byte_order.as_ref().map(Spanned::span)),
+    ] {
+        if let Some(span) = span {
             ctx.error(
-                r.span(),
-                format!("unknown `reserved` policy `{other}`"),
-                "write `reserved = \"keep\"` (the bits above the members are kept in `<field>_reserved`) or `reserved = \"zero\"` (they are written as zero and ignored when read)",
+                span,
+                format!("`{key}` applies to check fields"),
+                format!("add `check = \"algorithm\"` and `over`, or remove `{key}`"),
             );
-            false
         }
-    };
-    let word_bits = (word.size() * 8) as u32;
-    let shift: u32 = members.iter().map(|m| m.width).sum();
-    if !keep || shift >= word_bits {
-        return None;
     }
-    let member = format!("{}_reserved", name.get_ref());
-    if members.iter().any(|m| m.name == member) {
+    if let (Some(r), None) = (&d.reserved, &d.bits) {
         ctx.error(
-            name.span(),
-            format!(
-                "bit member `{member}` would also hold the bits of `{}` above its members",
-                name.get_ref()
-            ),
-            "rename the member, or write `reserved = \"zero\"` if those bits are always zero",
+            r.span(),
+            "`reserved` applies to fields with `bits`",
+            "remove `reserved`",
         );
-        return None;
     }
-    let width = word_bits - shift;
-    Some(BitMember {
-        doc: format!(
-            "Bits {shift}..{word_bits} of `{}`, which the spec declares no member for: kept so that decoding then encoding gives the same bytes.",
-            name.get_ref()
-        ),
-        name: member,
-        shift,
-        width,
-        prim: smallest_uint(width),
-        enum_index: None,
-    })
 }
 
-/// Rule: a bit-packed array has a `count`, elements of 1 to 32 bits, a stated bit order
-/// (`"lsb-first"` or `"msb-first"`), no `type` (its elements are the smallest unsigned type
-/// that holds them), and may be scaled as an integer field is.
-fn lower_packed(
+/// Rule: a payload bitfield is an unsigned integer word, not an array; its members follow the
+/// bit member rules (without the header-only `length_of` and `value`), and the bits above
+/// them are kept or declared reserved. Gives the word and the field's kind.
+fn lower_bitfield(
     ctx: &mut Ctx<'_>,
     f: &Spanned<FieldDef>,
-    packed: &Spanned<PackedDef>,
-    constants: &[Constant],
-) -> Option<FieldKind> {
+    name: &SStr,
+    ty: &SStr,
+    scalar: Option<Scalar>,
+    count: Option<usize>,
+    enums: &Enums,
+) -> Option<(Scalar, FieldKind)> {
     let d = f.get_ref();
-    let p = packed.get_ref();
-    if let Some(ty) = &d.ty {
+    let bits = d.bits.as_ref()?;
+    let Some(word) = scalar.filter(|s| s.prim.is_unsigned()) else {
         ctx.error(
             ty.span(),
-            "a packed array takes no `type`: its elements are the smallest unsigned type that holds `bits`",
-            "remove `type`",
+            format!(
+                "a field with `bits` must be an unsigned integer, not `{}`",
+                ty.get_ref()
+            ),
+            "use `u8`, `u16`, `u32` or `u64`",
         );
-    }
-    if d.bits.is_some() || d.repeat.is_some() || d.max.is_some() || d.size.is_some() {
+        return None;
+    };
+    if count.is_some() {
         ctx.error(
             f.span(),
-            "a packed array takes `name`, `packed`, `count`, scaling keys, `unit` and `doc`",
-            "remove the other keys",
+            "a bitfield cannot be an array",
+            "remove `count`, or wrap the bitfield in a struct and make an array of it",
         );
     }
-    let bits = *p.bits.get_ref();
-    if !(1..=32).contains(&bits) {
-        ctx.error(
-            p.bits.span(),
-            format!("packed elements of {bits} bits"),
-            "an element has 1 to 32 bits",
-        );
-        return None;
-    }
-    let bits = bits as u32;
-    let order = match p.order.get_ref().as_str() {
-        "lsb-first" => BitOrder::LsbFirst,
-        "msb-first" => BitOrder::MsbFirst,
-        other => {
-            ctx.error(
-                p.order.span(),
-                format!("unknown bit order `{other}`"),
-                "write `order = \"lsb-first\"` (bit 0 of byte 0 first, as CRSF and SBUS) or `order = \"msb-first\"` (bit 7 of byte 0 first)",
-            );
-            return None;
+    let mut members = lower_bits(ctx, bits.get_ref(), word.prim, enums, &|m| {
+        if m.length_of.is_some() || m.value.is_some() {
+            Some("`length_of` and `value` apply to header bitfields only")
+        } else {
+            None
         }
-    };
-    let Some(count) = lower_count(ctx, d, constants) else {
-        if d.count.is_none() {
-            ctx.error(
-                packed.span(),
-                "a packed array needs a `count`",
-                "add `count = N`, the number of elements",
-            );
-        }
-        return None;
-    };
-    let prim = smallest_uint(bits);
-    let raw = Scalar {
-        prim,
-        endian: ByteOrder::Little,
-    };
-    let scale = lower_scale(ctx, f, prim.spec_name(), raw);
-    Some(FieldKind::Packed {
-        count,
-        bits,
-        order,
-        prim,
-        scale,
-    })
+    });
+    members.extend(lower_reserved_bits(ctx, d, name, word.prim, &members));
+    Some((word, FieldKind::Bits { word, members }))
 }
 
 /// Rule: a padding entry takes only `pad` (and `doc`), at least one byte.
@@ -335,7 +227,11 @@ fn lower_padding(
 }
 
 /// Rule: an array count is a number of at least 1, or a constant that is.
-fn lower_count(ctx: &mut Ctx<'_>, d: &FieldDef, constants: &[Constant]) -> Option<usize> {
+pub(super) fn lower_count(
+    ctx: &mut Ctx<'_>,
+    d: &FieldDef,
+    constants: &[Constant],
+) -> Option<usize> {
     let c = d.count.as_ref()?;
     match c.get_ref() {
         CountDef::Literal(n) if *n > 0 => Some(*n as usize),
@@ -367,170 +263,6 @@ fn lower_count(ctx: &mut Ctx<'_>, d: &FieldDef, constants: &[Constant]) -> Optio
             }
         },
     }
-}
-
-/// Rule: variable bytes have a `max` of at least 1 and take only `name`, `type`, `max`,
-/// `size`, `unit` and `doc`. Gives the most bytes and the field that holds their number.
-fn lower_bytes(
-    ctx: &mut Ctx<'_>,
-    f: &Spanned<FieldDef>,
-    name: &SStr,
-    ty: &SStr,
-    count: Option<usize>,
-) -> Option<(usize, Option<String>)> {
-    let d = f.get_ref();
-    let Some(max) = &d.max else {
-        ctx.error(
-            ty.span(),
-            format!("variable bytes `{}` need a `max`", name.get_ref()),
-            "add `max = N`: the most bytes the field can hold (decoders store them inline)",
-        );
-        return None;
-    };
-    if *max.get_ref() <= 0 {
-        ctx.error(
-            max.span(),
-            "`max` must be at least 1",
-            "use the largest number of bytes the field may carry",
-        );
-        return None;
-    }
-    if count.is_some() || d.bits.is_some() || d.scale.is_some() {
-        ctx.error(
-            f.span(),
-            "variable bytes take only `name`, `type`, `max`, `unit` and `doc`",
-            "remove the other keys",
-        );
-    }
-    let size_from = d.size.as_ref().map(|s| s.get_ref().clone());
-    Some((*max.get_ref() as usize, size_from))
-}
-
-/// The most bytes of a NUL-terminated text, as of a `char[N]`.
-const MAX_NUL_TEXT_LEN: usize = 65534;
-
-/// Rule: NUL-terminated text (`type = "cstr"`) has a `max` of 1 to [`MAX_NUL_TEXT_LEN`]
-/// bytes of text (the NUL not counted) and takes only `name`, `type`, `max`, `optional` and
-/// `doc`. Gives `max`.
-fn lower_nul_text(
-    ctx: &mut Ctx<'_>,
-    f: &Spanned<FieldDef>,
-    name: &SStr,
-    ty: &SStr,
-    count: Option<usize>,
-) -> Option<usize> {
-    let d = f.get_ref();
-    if count.is_some()
-        || d.bits.is_some()
-        || d.scale.is_some()
-        || d.size.is_some()
-        || d.repeat.is_some()
-        || d.unit.is_some()
-    {
-        ctx.error(
-            f.span(),
-            format!(
-                "NUL-terminated text `{}` takes only `name`, `type`, `max`, `optional` and `doc`",
-                name.get_ref()
-            ),
-            "remove the other keys (an array of texts is `char[N]` with `count`)",
-        );
-    }
-    let Some(max) = &d.max else {
-        ctx.error(
-            ty.span(),
-            format!("NUL-terminated text `{}` needs a `max`", name.get_ref()),
-            "add `max = N`: the most bytes of text, the NUL not counted (decoders store them inline)",
-        );
-        return None;
-    };
-    match usize::try_from(*max.get_ref()) {
-        Ok(n) if (1..=MAX_NUL_TEXT_LEN).contains(&n) => Some(n),
-        _ => {
-            ctx.error(
-                max.span(),
-                format!("`max` of a NUL-terminated text is 1 to {MAX_NUL_TEXT_LEN}"),
-                "give the most bytes of text, the NUL not counted",
-            );
-            None
-        }
-    }
-}
-
-/// Rule: a variable-length array repeats a primitive (scaled or not) or an enum, at most
-/// `max` (at least 1) times, and has no `count` (a fixed array) or `bits`. Gives `max`.
-fn lower_array(
-    ctx: &mut Ctx<'_>,
-    f: &Spanned<FieldDef>,
-    name: &SStr,
-    elem: &ValueType,
-    count: Option<usize>,
-) -> Option<usize> {
-    let d = f.get_ref();
-    if !matches!(elem, ValueType::Scalar { .. } | ValueType::Enum(..)) {
-        ctx.error(
-            d.ty.as_ref().map_or(f.span(), Spanned::span),
-            format!("`{}` repeats text: a variable-length array repeats a primitive, an enum or a struct", name.get_ref()),
-            "use `count` for a fixed array of texts",
-        );
-        return None;
-    }
-    if count.is_some() || d.bits.is_some() {
-        ctx.error(
-            f.span(),
-            format!(
-                "variable-length array `{}` takes no `count` or `bits`",
-                name.get_ref()
-            ),
-            "remove `count` (`repeat` and `max` make the array variable) or `repeat`",
-        );
-    }
-    let Some(max) = d.max.as_ref().filter(|m| *m.get_ref() > 0) else {
-        ctx.error(
-            f.span(),
-            format!(
-                "variable-length array `{}` needs `max`, the most elements (at least 1)",
-                name.get_ref()
-            ),
-            "add `max = N`: decoders store the elements inline",
-        );
-        return None;
-    };
-    Some(*max.get_ref() as usize)
-}
-
-/// Rule: a repeated group repeats a struct, at most `max` (at least 1) times. Gives the
-/// element struct and `max`.
-fn lower_group(
-    ctx: &mut Ctx<'_>,
-    f: &Spanned<FieldDef>,
-    name: &SStr,
-    ty: &SStr,
-    structs: &Structs,
-) -> Option<(usize, usize)> {
-    let Some(&elem) = structs.by_name.get(ty.get_ref()) else {
-        ctx.error(
-            ty.span(),
-            format!(
-                "a repeated group repeats a struct, and `{}` is not one",
-                ty.get_ref()
-            ),
-            "declare the element as `[structs.NAME]`",
-        );
-        return None;
-    };
-    let Some(max) = f.get_ref().max.as_ref().filter(|m| *m.get_ref() > 0) else {
-        ctx.error(
-            f.span(),
-            format!(
-                "repeated group `{}` needs `max`, the most elements",
-                name.get_ref()
-            ),
-            "add `max = N`: decoders store the elements inline",
-        );
-        return None;
-    };
-    Some((elem, *max.get_ref() as usize))
 }
 
 /// Rule: a value's type is a primitive, a struct of fixed size, or an enum; only a primitive
@@ -604,7 +336,7 @@ fn lower_text(ctx: &mut Ctx<'_>, ty: &SStr) -> Option<Option<usize>> {
 /// Rule: `scale` and `offset` apply to integer fields; the factor is finite and not 0; the
 /// physical value is the Rust type a derive's field declares (`f32` or `f64`), else an `f32`
 /// for wire integers of up to two bytes and an `f64` for wider ones.
-fn lower_scale(
+pub(super) fn lower_scale(
     ctx: &mut Ctx<'_>,
     f: &Spanned<FieldDef>,
     ty: &str,

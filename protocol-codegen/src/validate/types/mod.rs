@@ -6,6 +6,7 @@ mod bits;
 mod checks;
 mod fields;
 mod structs;
+mod variable;
 
 use std::collections::HashMap;
 
