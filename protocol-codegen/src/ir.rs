@@ -517,6 +517,10 @@ pub struct Frame {
     /// False when the format carries payloads without their extension fields (a struct's
     /// [`Struct::base_size`] bytes).
     pub extensions: bool,
+    /// The header value (index into [`Frame::values`]) that tells the direction, in a spec
+    /// whose header tells its directions: set on the first format and on each format after it
+    /// that carries the commands (the field of the same name).
+    pub direction: Option<usize>,
     /// The commands (indices into [`Protocol::commands`]) this format carries: every command
     /// for the first format with a dispatch key; for a format with
     /// [`PacketKind::Commands`], those whose id fits its dispatch fields; else none.
@@ -841,6 +845,21 @@ pub enum DirectionRule {
     /// No header value tells the direction: the decoding side is given it (generated code has
     /// a decoder per direction; the run-time codec takes it as a parameter).
     Given,
+}
+
+impl DirectionRule {
+    /// The rule as frame format `f` applies it: the header value is `f`'s direction field
+    /// ([`Frame::direction`]), the rule's own when `f` has none.
+    pub fn in_frame(&self, f: &Frame) -> DirectionRule {
+        match (self, f.direction) {
+            (DirectionRule::InSet { set, .. }, Some(value)) => DirectionRule::InSet { value, set: *set },
+            (DirectionRule::Equals { equals, .. }, Some(value)) => DirectionRule::Equals {
+                value,
+                equals: *equals,
+            },
+            _ => self.clone(),
+        }
+    }
 }
 
 impl Protocol {

@@ -200,7 +200,7 @@ pub fn encode(
             let ci = command_of(p, dispatch == Dispatch::CanId, obj)?;
             // The direction, from the header, as the decoder will see it.
             let slot = if dispatch == Dispatch::Key && !p.directions.is_empty() {
-                direction_of(p, &raw_of).ok_or_else(|| {
+                direction_of(p, f, &raw_of).ok_or_else(|| {
                     EncodeIssue::new("header", "the header matches no direction of the spec")
                 })?
             } else {

@@ -9,6 +9,7 @@ use quote::{format_ident, quote};
 
 use super::frames::header_codec;
 use super::key_prims;
+use super::packet::packet_direction;
 use crate::codegen::frame::{decoder_buffer_len, wire_const};
 use crate::codegen::ident;
 use crate::codegen::payload::prim_type;
@@ -64,8 +65,10 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
     let aside_len = format_ident!("{}", first.names.sizes.max_payload_len);
     let (reads, writes) = header_codec(f, rt);
     let (read_key, write_key) = key_codec(first, f, rt);
+    // Validation refuses a format without extension fields in a spec with directions.
+    let (by_direction, direction_check) = packet_direction(p, f, rt);
     let (read, base) = if f.extensions {
-        (quote!(Message::read_payload(command, payload)?), quote!())
+        (by_direction, quote!())
     } else {
         (
             quote!(Message::read_base_payload(command, payload)?),
@@ -103,9 +106,9 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
             /// Decode a frame whose framing a decoder already checked.
             ///
             /// # Errors
-            /// `UnknownCommand` for an id the spec does not have, `PayloadLength` when the
-            /// payload's size is not what this format carries of the command's, and errors
-            /// of the payload's fields.
+            /// `UnknownCommand` for an id the spec does not have, `UnknownDirection` when the
+            /// header matches no direction, `PayloadLength` when the payload's size is not
+            /// what this format carries of the command's, and errors of the payload's fields.
             pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
                 let header = #header { #(#reads,)* };
                 #read_key
@@ -133,8 +136,10 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
             /// # Errors
             /// `EncodeError::BufferTooSmall` if `buf` is too short, `ValueOutOfRange` if the
             /// command's id does not fit this format's dispatch key (the format does not carry
-            /// it) or a header value does not fit its field.
+            /// it), a header value does not fit its field or does not match the message's
+            /// direction.
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
+                #direction_check
                 let mut aside = [0u8; #aside_len];
                 let plen = self.write_aside(&mut aside)?;
                 let total = #header_len.saturating_add(plen).saturating_add(#trailer_len);

@@ -92,9 +92,10 @@ fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
     }
 }
 
-/// The message of a decoded frame (by direction when the spec has directions), and the check
-/// that an encoded message's direction matches its header.
-fn packet_direction(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
+/// The message of a decoded frame of format `f` (by direction when the spec has directions,
+/// read from `f`'s own direction field), and the check that an encoded message's direction
+/// matches its header.
+pub(super) fn packet_direction(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
     if p.directions_given() {
         // Each direction has its own decoder (`given`); a message is written as it is.
         return (quote!(), quote!());
@@ -110,7 +111,7 @@ fn packet_direction(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, 
     let tests: Vec<_> = p
         .directions
         .iter()
-        .map(|d| direction_test(p, f, &d.rule))
+        .map(|d| direction_test(p, f, &d.rule.in_frame(f)))
         .collect();
     let message = quote! {
         #(if #tests { Message::#names(#names::read_payload(command, payload)?) } else)*
