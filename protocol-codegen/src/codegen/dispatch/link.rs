@@ -166,14 +166,16 @@ pub(super) fn emit_base_payload(p: &Protocol, rt: &TokenStream) -> TokenStream {
     let arms = p.commands.iter().filter_map(|c| {
         let si = c.payloads.first().copied().flatten()?;
         let s = &p.structs[si];
-        let base = s.base_size?;
+        // A fixed-size struct without extension fields is carried whole: exactly its size,
+        // not zero-filled as a first format that truncates trailing zeros reads it.
+        let base = s.base_size.or((s.min_size == s.size).then_some(s.size))?;
         let (v, size) = (ident(&c.rust_name), s.size);
         Some(quote!(Command::#v => #rt::Some((#base, #size)),))
     });
     quote! {
         impl Message {
             /// The bytes of `command`'s payload without its extension fields, and with them,
-            /// for a command whose struct has extension fields.
+            /// for a command whose struct has extension fields or a fixed size.
             #[allow(clippy::match_same_arms)]
             pub const fn base_len(command: Command) -> #rt::Option<(usize, usize)> {
                 match command {
