@@ -24,15 +24,36 @@ protocol::protocol!("../specs/roborts.toml", derive(serde));
 protocol::protocol!("../specs/ibus.toml", derive(serde));
 protocol::protocol!("../specs/sbus.toml", derive(serde));
 protocol::protocol!("../specs/ubx.toml", derive(serde));
+protocol::protocol!("../specs/msp.toml", derive(serde));
 protocol::protocol!("tests/fixtures/features.toml", derive(serde));
 
-/// A generated packet of a serial frame: its JSON, and the bytes that the packet read back
-/// from `json` encodes to (and what the packet decoded from the frame encodes to).
-type Serial = fn(&[u8], &str) -> (String, Vec<u8>, Vec<u8>);
+/// A generated packet of a serial frame of a format (an index into the spec's frames): its
+/// JSON, and the bytes that the packet read back from `json` encodes to (and what the packet
+/// decoded from the frame encodes to).
+type Serial = fn(usize, &[u8], &str) -> (String, Vec<u8>, Vec<u8>);
 /// The same for a CAN frame.
 type Can = fn(&CanFrame, &str) -> (String, CanFrame, CanFrame);
 
 macro_rules! serial {
+    ($m:ident :: $packet:ident, $max:ident) => {
+        |fi: usize, bytes: &[u8], json: &str| {
+            assert_eq!(fi, 0, "the first frame format");
+            serial_one!($m::$packet, $max)(bytes, json)
+        }
+    };
+}
+
+/// The packets of a link's two command formats.
+macro_rules! serial_link {
+    ($m:ident :: [$first:ident, $other:ident], [$max:ident, $other_max:ident]) => {
+        |fi: usize, bytes: &[u8], json: &str| match fi {
+            0 => serial_one!($m::$first, $max)(bytes, json),
+            _ => serial_one!($m::$other, $other_max)(bytes, json),
+        }
+    };
+}
+
+macro_rules! serial_one {
     ($m:ident :: $packet:ident, $max:ident) => {
         |bytes: &[u8], json: &str| {
             let packet = $m::$packet::decode(bytes).expect("generated code decodes the vector");
@@ -111,7 +132,16 @@ fn specs() -> Vec<(&'static str, &'static str, Serial, Option<Can>)> {
         (
             "mavlink",
             "mavlink.json",
-            serial!(mavlink::Packet, MAX_FRAME_LEN),
+            serial_link!(
+                mavlink::[Packet, V1Packet],
+                [MAX_FRAME_LEN, V1_MAX_FRAME_LEN]
+            ),
+            None,
+        ),
+        (
+            "msp",
+            "msp.json",
+            serial_link!(msp::[Packet, V2Packet], [MAX_FRAME_LEN, V2_MAX_FRAME_LEN]),
             None,
         ),
         (
@@ -154,6 +184,7 @@ fn serde_json_of_generated_packets_is_the_codecs_on_every_golden_vector() {
     for (spec, file, serial, can) in specs() {
         let interp = interpreter(spec);
         let codec = interp.codec();
+        let link = interp.protocol().link.clone();
         let v = vectors(file);
         let mut compared = 0;
         let mut canonical = 0;
@@ -174,12 +205,18 @@ fn serde_json_of_generated_packets_is_the_codecs_on_every_golden_vector() {
             let label = format!("{spec}: {name}");
             if let Some(text) = frame["hex"].as_str().or(frame["uart"]["hex"].as_str()) {
                 let bytes = unhex(text);
-                let Ok(decoded) = codec.parse(0, &bytes) else {
+                // A link's frame goes through the command format whose framing it has.
+                let fi = link
+                    .iter()
+                    .copied()
+                    .find(|&fi| codec.layout(fi).is_some_and(|l| l.parse(&bytes).is_ok()))
+                    .unwrap_or(0);
+                let Ok(decoded) = codec.parse(fi, &bytes) else {
                     // A vector of a frame the spec rejects (another year's referee command).
                     continue;
                 };
                 let (whole, part) = codec_json(&codec.frame_value(&decoded, 0, &bytes));
-                let (shown, read_bytes, again) = serial(&bytes, &whole);
+                let (shown, read_bytes, again) = serial(fi, &bytes, &whole);
                 assert_eq!(shown, part, "{label}: serde's JSON is the codec's");
                 assert_eq!(hex(&read_bytes), hex(&again), "{label}: read back, encoded");
                 canonical += usize::from(again == bytes);

@@ -413,7 +413,7 @@ fn packet_message(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let tests: Vec<_> = p
         .directions
         .iter()
-        .map(|d| direction_test(p, f, &d.rule))
+        .map(|d| direction_test(p, f, &d.rule.in_frame(f)))
         .collect();
     quote! {
         #(if #tests { #rt::Ok(Message::#names(#names::deserialize_payload(command, d)?)) } else)*
