@@ -852,7 +852,9 @@ impl DirectionRule {
     /// ([`Frame::direction`]), the rule's own when `f` has none.
     pub fn in_frame(&self, f: &Frame) -> DirectionRule {
         match (self, f.direction) {
-            (DirectionRule::InSet { set, .. }, Some(value)) => DirectionRule::InSet { value, set: *set },
+            (DirectionRule::InSet { set, .. }, Some(value)) => {
+                DirectionRule::InSet { value, set: *set }
+            }
             (DirectionRule::Equals { equals, .. }, Some(value)) => DirectionRule::Equals {
                 value,
                 equals: *equals,

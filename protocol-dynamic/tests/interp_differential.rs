@@ -478,8 +478,7 @@ fn random_command_frames(
                     .filter(|(a, _)| round % 3 == 0 && len > a.len())
                 {
                     // A stuffed pattern, as a sender writes it.
-                    let at =
-                        f.header_len + rng.range(0, (len - after.len() - 1) as u64) as usize;
+                    let at = f.header_len + rng.range(0, (len - after.len() - 1) as u64) as usize;
                     frame[at..at + after.len()].copy_from_slice(after);
                     frame[at + after.len()] = *insert;
                 }
@@ -856,7 +855,11 @@ fn link_test_streams(file: &str) -> Vec<Vec<u8>> {
 /// format's own field tells): the vector streams, and every vector frame back to back.
 #[test]
 fn link_streams_yield_the_same_events() {
-    let tally = link_streams_agree("mavlink", &link_test_streams("mavlink.json"), link_events!(mavlink));
+    let tally = link_streams_agree(
+        "mavlink",
+        &link_test_streams("mavlink.json"),
+        link_events!(mavlink),
+    );
     println!("mavlink link streams: {tally:?}");
     assert!(tally.same_message >= 4, "{tally:?}");
     let tally = link_streams_agree("msp", &link_test_streams("msp.json"), link_events!(msp));

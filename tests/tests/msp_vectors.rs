@@ -481,7 +481,11 @@ fn the_link_decoder_decodes_every_vector_frame_at_every_chunk_size() {
         },
     );
     let runs = bytes.len();
-    assert_eq!(decoded, 15 * runs, "15 frames expressed, at each of {runs} chunk sizes");
+    assert_eq!(
+        decoded,
+        15 * runs,
+        "15 frames expressed, at each of {runs} chunk sizes"
+    );
 }
 
 fn interpreter() -> Interpreter {
@@ -524,7 +528,11 @@ fn the_run_time_codec_decodes_and_encodes_every_expressed_frame() {
             .unwrap_or_else(|e| panic!("{name}: {e:?}"));
         let value = codec.frame_value(&decoded, 0, &bytes);
         let json = serde_json::to_value(&value).expect("json");
-        assert_eq!(json["format"], if format == 1 { "v2" } else { "v1" }, "{name}");
+        assert_eq!(
+            json["format"],
+            if format == 1 { "v2" } else { "v1" },
+            "{name}"
+        );
         assert_eq!(
             json["header"]["direction"],
             u64::from(direction(&frame)),
@@ -535,7 +543,11 @@ fn the_run_time_codec_decodes_and_encodes_every_expressed_frame() {
         let fields = if frame["version"] == "v2-over-v1" {
             // The inner frame's fields: its command, and its payload as the vector records it.
             assert_eq!(payload["command"], frame["cmd"], "{name}");
-            assert_eq!(hex(payload["payload"].as_str().expect("payload")), payload_bytes(&frame), "{name}");
+            assert_eq!(
+                hex(payload["payload"].as_str().expect("payload")),
+                payload_bytes(&frame),
+                "{name}"
+            );
             &serde_json::Map::new()
         } else {
             fields

@@ -86,7 +86,14 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
         };
     }
     frame::lower_packets(&mut frames, !directions.is_empty(), commands.len());
-    let link = frame::lower_link(&mut ctx, &mut frames, &commands, &directions, &addresses, &structs);
+    let link = frame::lower_link(
+        &mut ctx,
+        &mut frames,
+        &commands,
+        &directions,
+        &addresses,
+        &structs,
+    );
     extra::lower_extra_bytes(&mut frames, &commands);
 
     Some(ir::Protocol {

@@ -95,7 +95,11 @@ fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
 /// The message of a decoded frame of format `f` (by direction when the spec has directions,
 /// read from `f`'s own direction field), and the check that an encoded message's direction
 /// matches its header.
-pub(super) fn packet_direction(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
+pub(super) fn packet_direction(
+    p: &Protocol,
+    f: &Frame,
+    rt: &TokenStream,
+) -> (TokenStream, TokenStream) {
     if p.directions_given() {
         // Each direction has its own decoder (`given`); a message is written as it is.
         return (quote!(), quote!());

@@ -8,7 +8,9 @@ use toml::Spanned;
 
 use super::super::Ctx;
 use super::super::types::Structs;
-use crate::ir::{AddressSet, Command, Direction, DirectionRule, Frame, PacketKind, Role, Transport};
+use crate::ir::{
+    AddressSet, Command, Direction, DirectionRule, Frame, PacketKind, Role, Transport,
+};
 use crate::spec::model::FrameDef;
 
 /// The most command formats of a link: what the run-time codec's stream holds.

@@ -498,9 +498,13 @@ impl PeerAdapter for CuMsp {
         _like: &spec::AnyPacket,
     ) -> Result<Option<spec::AnyPacket>, String> {
         let mut parser = MspParser::new();
-        let mut found = frame
-            .iter()
-            .filter_map(|&b| parser.parse(b).ok().flatten().map(|p| (p, parser.last_packet_info())));
+        let mut found = frame.iter().filter_map(|&b| {
+            parser
+                .parse(b)
+                .ok()
+                .flatten()
+                .map(|p| (p, parser.last_packet_info()))
+        });
         let (Some((p, info)), None) = (found.next(), found.next()) else {
             return Err("not one packet".into());
         };
