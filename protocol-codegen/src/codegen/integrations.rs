@@ -14,7 +14,7 @@
 //! helper); spec enums, `Command`, the message enums and the packets have impls that call the
 //! runtime's helpers (`serde_support`), so that an enum is its variant's name in the spec (a
 //! number when unknown), a message is its payload and a packet is the map of `command`,
-//! `header` and `payload`. This module runs after the other printers, on their items: it adds
+//! `header` and `payload` (after `direction` when the decoder is given it). This module runs after the other printers, on their items: it adds
 //! attributes to the structs and enums it finds and appends the impls, so that the printers
 //! stay as they are when no derive is chosen.
 
