@@ -1,6 +1,5 @@
 //! Packets as the map of `direction` (given directions only), `command`, `header` and `payload`
-//! (see the parent module), and
-//! commands as their names in the spec.
+//! (see the parent module), and commands as their names in the spec.
 
 use core::fmt;
 use core::marker::PhantomData;
