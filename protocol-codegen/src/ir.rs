@@ -865,6 +865,33 @@ impl DirectionRule {
 }
 
 impl Protocol {
+    /// The types of a command id's values, one per dispatch field: the widest of the link's
+    /// command formats' fields (the first format's when it is the link's only one), so that a
+    /// command carried only by a wider format (MSP v2's ids above 255) has its id.
+    pub fn id_prims(&self) -> Vec<Prim> {
+        let Some(first) = self.frames.first() else {
+            return Vec::new();
+        };
+        let mut prims: Vec<Prim> = first
+            .dispatch
+            .iter()
+            .map(|&i| first.values[i].prim)
+            .collect();
+        for f in self
+            .link
+            .iter()
+            .skip(1)
+            .filter_map(|&fi| self.frames.get(fi))
+        {
+            for (p, &vi) in prims.iter_mut().zip(&f.dispatch) {
+                if f.values[vi].prim.size() > p.size() {
+                    *p = f.values[vi].prim;
+                }
+            }
+        }
+        prims
+    }
+
     /// True when the decoder is given the direction instead of reading it from the header.
     pub fn directions_given(&self) -> bool {
         self.directions

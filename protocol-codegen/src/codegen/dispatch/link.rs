@@ -18,10 +18,10 @@ use crate::ir::{Frame, Protocol};
 /// Reading frame `f`'s dispatch key into the first format's `CommandId` (a value that does
 /// not fit it is an unknown command), and writing a command's id into `f`'s fields (an id
 /// that does not fit them is `ValueOutOfRange`: the format does not carry the command).
-fn key_codec(first: &Frame, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
+fn key_codec(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
     let header_len = format_ident!("{}", f.names.sizes.header_len);
     let consts: Vec<_> = f.dispatch.iter().map(|&i| wire_const(f, i)).collect();
-    let types: Vec<_> = key_prims(first).into_iter().map(prim_type).collect();
+    let types: Vec<_> = key_prims(p).into_iter().map(prim_type).collect();
     let vars: Vec<_> = (0..consts.len()).map(|i| format_ident!("k{}", i)).collect();
     let widths: Vec<u32> = f.dispatch.iter().map(|&i| f.values[i].width).collect();
     let mut key = quote!(k0);
@@ -64,7 +64,7 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
     let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
     let aside_len = format_ident!("{}", first.names.sizes.max_payload_len);
     let (reads, writes) = header_codec(f, rt);
-    let (read_key, write_key) = key_codec(first, f, rt);
+    let (read_key, write_key) = key_codec(p, f, rt);
     // Validation refuses a format without extension fields in a spec with directions.
     let (by_direction, direction_check) = packet_direction(p, f, rt);
     let (read, base) = if f.extensions {

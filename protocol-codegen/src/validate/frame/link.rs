@@ -111,6 +111,25 @@ pub(crate) fn lower_link(
         f.direction = direction;
         f.commands = carried;
     }
+    // The first format carries the commands whose id fits its own dispatch fields: on a link,
+    // an id may fit a wider format's only.
+    if let Some(first) = frames
+        .first_mut()
+        .filter(|f| f.packet == PacketKind::Command)
+    {
+        let fits = |c: &Command| {
+            c.id.iter()
+                .zip(&first.dispatch)
+                .all(|(&v, &vi)| v <= mask(first.values[vi].width))
+        };
+        let carried: Vec<usize> = first
+            .commands
+            .iter()
+            .copied()
+            .filter(|&ci| commands.get(ci).is_some_and(fits))
+            .collect();
+        first.commands = carried;
+    }
     link
 }
 
