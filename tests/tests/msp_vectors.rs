@@ -319,11 +319,14 @@ fn a_v2_only_command_is_not_encoded_in_a_v1_frame() {
     assert_eq!(Command::CommonSetting.id(), 0x1003);
     let interp = interpreter();
     let codec = interp.codec();
-    let decoded = codec.parse(1, &buf[..n]).expect("decodes");
-    let value = codec.frame_value(&decoded, 0, &buf[..n]);
-    let mut obj = value.as_struct().expect("an object").clone();
-    obj.insert("format", protocol_dynamic::Value::from("v1"));
-    let refused = codec.encode(&protocol_dynamic::Value::Struct(obj));
+    let object: protocol_dynamic::Value = serde_json::from_value(serde_json::json!({
+        "format": "v1",
+        "command": "COMMON_SETTING",
+        "header": { "direction": 60 },
+        "payload": { "name": "gyro_lpf1_static_hz" },
+    }))
+    .expect("a frame object");
+    let refused = codec.encode(&object);
     let why = refused.expect_err("refused in v1").to_string();
     assert!(why.contains("not carried by frame `v1`"), "{why}");
 }
