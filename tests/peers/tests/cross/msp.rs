@@ -298,11 +298,19 @@ fn messages() -> BoxedStrategy<spec::AnyPacket> {
         Just(Q::Boxnames),
     ]
     .prop_map(M::Request);
+    // MSP2_COMMON_SETTING (INAV): a v2-only command, its request a NUL-terminated name.
+    let setting = "[a-z0-9_]{1,64}".prop_map(|name| {
+        M::Request(Q::CommonSetting(spec::SettingName {
+            name: protocol::NulStr::from_text(&name).expect("at most 64 bytes"),
+        }))
+    });
     let message = prop_oneof![
-        api, version, attitude, altitude, imu, analog, names, request
+        api, version, attitude, altitude, imu, analog, names, request, setting
     ];
     (message, any::<bool>())
         .prop_map(|(message, v2)| {
+            // A command of an id above 255 travels in v2 frames only.
+            let v2 = v2 || message.command().id() > 255;
             let direction = if matches!(message, M::Request(_)) {
                 b'<'
             } else {
@@ -326,9 +334,13 @@ fn messages() -> BoxedStrategy<spec::AnyPacket> {
 /// The payload of `m`, written field by field as the MSP documentation lays it out
 /// (little-endian), for the peer to frame.
 fn payload_of(m: &spec::Message) -> Vec<u8> {
-    use spec::{Message as M, Response as R};
+    use spec::{Message as M, Request as Q, Response as R};
     let mut out = Vec::new();
     match m {
+        M::Request(Q::CommonSetting(s)) => {
+            out.extend_from_slice(s.name.text());
+            out.push(0);
+        }
         M::Request(_) => {}
         M::Response(R::ApiVersion(a)) => {
             out.extend([a.protocol_version, a.api_version_major, a.api_version_minor]);
@@ -370,6 +382,15 @@ fn from_peer(p: &MspPacket) -> Result<spec::Message, String> {
     let cmd = p.cmd;
     let command = spec::Command::from_id(cmd).ok_or(format!("command {cmd}"))?;
     if p.direction == MspPacketDirection::ToFlightController {
+        if command == spec::Command::CommonSetting {
+            let [name @ .., 0] = p.data.as_slice() else {
+                return Err("a setting name without its NUL".into());
+            };
+            let name = std::str::from_utf8(name).map_err(|e| e.to_string())?;
+            return Ok(M::Request(Q::CommonSetting(spec::SettingName {
+                name: protocol::NulStr::from_text(name).ok_or("a name too long")?,
+            })));
+        }
         if !p.data.as_slice().is_empty() {
             return Err("a request with a payload".into());
         }
