@@ -66,7 +66,11 @@ pub trait SerdePacket: Sized {
 pub fn serialize_packet<P: SerdePacket, S: Serializer>(p: &P, s: S) -> Result<S::Ok, S::Error> {
     let (command, header, message) = p.parts();
     let direction = p.direction();
-    let len = 2 + usize::from(command.is_some()) + usize::from(direction.is_some());
+    let len = match (command.is_some(), direction.is_some()) {
+        (true, true) => 4,
+        (true, false) | (false, true) => 3,
+        (false, false) => 2,
+    };
     let mut map = s.serialize_map(Some(len))?;
     if let Some(name) = direction {
         map.serialize_entry("direction", name)?;
