@@ -539,7 +539,7 @@ fn random_command_frames(
                     hex(&frame)
                 );
                 compare(
-                    &codec,
+                    codec,
                     &label,
                     decode(&frame),
                     codec.parse(fi, &frame),
