@@ -517,6 +517,10 @@ pub struct Frame {
     /// False when the format carries payloads without their extension fields (a struct's
     /// [`Struct::base_size`] bytes).
     pub extensions: bool,
+    /// The header value (index into [`Frame::values`]) that tells the direction, in a spec
+    /// whose header tells its directions: set on the first format and on each format after it
+    /// that carries the commands (the field of the same name).
+    pub direction: Option<usize>,
     /// The commands (indices into [`Protocol::commands`]) this format carries: every command
     /// for the first format with a dispatch key; for a format with
     /// [`PacketKind::Commands`], those whose id fits its dispatch fields; else none.
@@ -843,7 +847,51 @@ pub enum DirectionRule {
     Given,
 }
 
+impl DirectionRule {
+    /// The rule as frame format `f` applies it: the header value is `f`'s direction field
+    /// ([`Frame::direction`]), the rule's own when `f` has none.
+    pub fn in_frame(&self, f: &Frame) -> DirectionRule {
+        match (self, f.direction) {
+            (DirectionRule::InSet { set, .. }, Some(value)) => {
+                DirectionRule::InSet { value, set: *set }
+            }
+            (DirectionRule::Equals { equals, .. }, Some(value)) => DirectionRule::Equals {
+                value,
+                equals: *equals,
+            },
+            _ => self.clone(),
+        }
+    }
+}
+
 impl Protocol {
+    /// The types of a command id's values, one per dispatch field: the widest of the link's
+    /// command formats' fields (the first format's when it is the link's only one), so that a
+    /// command carried only by a wider format (MSP v2's ids above 255) has its id.
+    pub fn id_prims(&self) -> Vec<Prim> {
+        let Some(first) = self.frames.first() else {
+            return Vec::new();
+        };
+        let mut prims: Vec<Prim> = first
+            .dispatch
+            .iter()
+            .map(|&i| first.values[i].prim)
+            .collect();
+        for f in self
+            .link
+            .iter()
+            .skip(1)
+            .filter_map(|&fi| self.frames.get(fi))
+        {
+            for (p, &vi) in prims.iter_mut().zip(&f.dispatch) {
+                if f.values[vi].prim.size() > p.size() {
+                    *p = f.values[vi].prim;
+                }
+            }
+        }
+        prims
+    }
+
     /// True when the decoder is given the direction instead of reading it from the header.
     pub fn directions_given(&self) -> bool {
         self.directions

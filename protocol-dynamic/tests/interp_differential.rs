@@ -28,6 +28,7 @@ protocol::protocol!("../specs/roborts.toml");
 protocol::protocol!("../specs/ibus.toml");
 protocol::protocol!("../specs/sbus.toml");
 protocol::protocol!("../specs/ubx.toml");
+protocol::protocol!("../specs/msp.toml");
 protocol::protocol!("tests/fixtures/features.toml");
 
 /// A decoded message as `{:?}` prints it, and its bytes encoded again.
@@ -54,6 +55,9 @@ struct Gen {
     /// For a spec whose directions are given to the decoder: the direction `decode` decodes,
     /// which the interpreter is given too.
     direction: Option<&'static str>,
+    /// A command format of the link after the first, and its `<Frame>Packet::decode`, then
+    /// `encode`.
+    other: Option<(usize, Decode)>,
 }
 
 impl Gen {
@@ -82,6 +86,7 @@ macro_rules! generated {
     ($m:ident, [$($layout:ident),*], $can:expr, $message:expr, $decode:ident, $direction:expr) => {
         Gen {
             direction: $direction,
+            other: None,
             spec: stringify!($m),
             layouts: || vec![$(format!("{:?}", $m::$layout)),*],
             seal: |fi, frame| {
@@ -139,6 +144,24 @@ fn sbus_packet(bytes: &[u8]) -> Generated<Vec<u8>> {
     Ok((format!("{packet:?}"), buf[..n].to_vec()))
 }
 
+fn mavlink_v1(bytes: &[u8]) -> Generated<Vec<u8>> {
+    let packet = mavlink::V1Packet::decode(bytes)?;
+    let mut buf = vec![0u8; mavlink::V1_MAX_FRAME_LEN];
+    let n = packet
+        .encode(&mut buf)
+        .expect("generated code encodes what it decoded");
+    Ok((format!("{packet:?}"), buf[..n].to_vec()))
+}
+
+fn msp_v2(bytes: &[u8]) -> Generated<Vec<u8>> {
+    let packet = msp::V2Packet::decode(bytes)?;
+    let mut buf = vec![0u8; msp::V2_MAX_FRAME_LEN];
+    let n = packet
+        .encode(&mut buf)
+        .expect("generated code encodes what it decoded");
+    Ok((format!("{packet:?}"), buf[..n].to_vec()))
+}
+
 fn specs() -> Vec<Gen> {
     vec![
         generated!(crsf, [LAYOUT], None),
@@ -169,7 +192,14 @@ fn specs() -> Vec<Gen> {
             Some("response")
         ),
         generated!(roborts, [LAYOUT], None),
-        generated!(mavlink, [LAYOUT, V1_LAYOUT], None),
+        Gen {
+            other: Some((1, mavlink_v1)),
+            ..generated!(mavlink, [LAYOUT, V1_LAYOUT], None)
+        },
+        Gen {
+            other: Some((1, msp_v2)),
+            ..generated!(msp, [LAYOUT, V2_LAYOUT], None)
+        },
         generated!(ibus, [LAYOUT], None),
         generated!(sbus, [LAYOUT], None, Some((0, sbus_packet))),
         generated!(ubx, [LAYOUT], None),
@@ -298,6 +328,7 @@ fn golden_vectors_decode_and_encode_alike() {
         ("dynamixel1", "dynamixel_protocol1.json"),
         ("roborts", "roborts_sdk.json"),
         ("mavlink", "mavlink.json"),
+        ("msp", "msp.json"),
         ("ibus", "ibus.json"),
         ("sbus", "sbus.json"),
         ("ubx", "ubx.json"),
@@ -321,7 +352,14 @@ fn golden_vectors_decode_and_encode_alike() {
             if let Some(text) = serial {
                 let bytes = unhex(text);
                 let label = format!("{spec}: {name}");
-                let generated = (g.decode)(&bytes);
+                // A frame of the link's other command format goes through its packet.
+                let (fi, decode) = match g.other {
+                    Some((fi, d)) if codec.layout(fi).is_some_and(|l| l.parse(&bytes).is_ok()) => {
+                        (fi, d)
+                    }
+                    _ => (0, g.decode),
+                };
+                let generated = decode(&bytes);
                 if matches!(&generated, Ok((_, again)) if *again == bytes) {
                     reproduced += 1;
                 }
@@ -329,7 +367,7 @@ fn golden_vectors_decode_and_encode_alike() {
                     &codec,
                     &label,
                     generated,
-                    codec.parse(0, &bytes),
+                    codec.parse(fi, &bytes),
                     &mut tally,
                 );
             }
@@ -403,6 +441,116 @@ fn sizes(
     (lo..=hi).contains(&n).then_some(n)
 }
 
+/// Random frames of every command format `fi` carries in every direction, decoded by
+/// `decode` (the format's generated packet) and by the interpreter; the number of frames.
+fn random_command_frames(
+    g: &Gen,
+    codec: &Codec<'_>,
+    fi: usize,
+    decode: Decode,
+    rng: &mut Rng,
+    tally: &mut Tally,
+) -> usize {
+    const ROUNDS: usize = 60;
+    let p = codec.protocol();
+    let f = &p.frames[fi];
+    let mut attempts = 0;
+    for c in f.commands.iter().map(|&ci| &p.commands[ci]) {
+        for (slot, payload) in c.payloads.iter().enumerate() {
+            let (min, max) =
+                payload.map_or((0, 0), |si| (p.structs[si].min_size, p.structs[si].size));
+            for round in 0..ROUNDS {
+                let Some(len) = sizes(
+                    rng,
+                    min,
+                    max.min(f.payload_max),
+                    f.payload_min,
+                    f.payload_max,
+                    round,
+                ) else {
+                    continue;
+                };
+                let mut frame = vec![0u8; f.header_len + len + f.trailer_len];
+                rng.fill(&mut frame);
+                if let Some((after, insert)) = f
+                    .stuffing
+                    .as_ref()
+                    .filter(|(a, _)| round % 3 == 0 && len > a.len())
+                {
+                    // A stuffed pattern, as a sender writes it.
+                    let at = f.header_len + rng.range(0, (len - after.len() - 1) as u64) as usize;
+                    frame[at..at + after.len()].copy_from_slice(after);
+                    frame[at + after.len()] = *insert;
+                }
+                for (&vi, id) in f.dispatch.iter().zip(&c.id) {
+                    word_field(&f.values[vi])
+                        .write(&mut frame, *id)
+                        .expect("id fits");
+                }
+                if let Some((flag, _)) = f.ack {
+                    // Mostly a command; sometimes an acknowledgement.
+                    let equals = protocol_dynamic::ack_value(f, flag);
+                    let value = if round % 4 == 0 { equals } else { 1 - equals };
+                    word_field(&f.values[flag])
+                        .write(&mut frame, value)
+                        .expect("fits");
+                }
+                // Mostly a header of the slot's direction; sometimes whatever came.
+                if let (Some(d), true) = (p.directions.get(slot), round % 7 != 0) {
+                    let set = match d.rule.in_frame(f) {
+                        DirectionRule::InSet { value, set } => {
+                            let a = &p.addresses[set];
+                            Some((value, rng.range(a.first, a.last)))
+                        }
+                        DirectionRule::Equals { value, equals } => Some((value, equals)),
+                        // The decoder is given it: no header value tells it.
+                        DirectionRule::Given => None,
+                    };
+                    if let Some((vi, value)) = set {
+                        word_field(&f.values[vi])
+                            .write(&mut frame, value)
+                            .expect("fits");
+                    }
+                }
+                // A sync from a set: a value of the set (the layout refuses any other).
+                if !f.sync_set.is_empty() {
+                    frame[0] = f.sync_set[rng.range(0, f.sync_set.len() as u64 - 1) as usize];
+                }
+                // A flag trailer (a MAVLink 2 signature): present in some rounds, its flag
+                // set and its bytes appended; else its flag clear.
+                if let Some(t) = &f.flag_trailer {
+                    let on = round % 5 == 0;
+                    word_field(&f.values[t.flag])
+                        .write(&mut frame, u64::from(on))
+                        .expect("a one-bit flag");
+                    if on {
+                        let mut extra = vec![0u8; t.len];
+                        rng.fill(&mut extra);
+                        frame.extend_from_slice(&extra);
+                    }
+                }
+                (g.seal)(fi, &mut frame).expect("the generated layout seals");
+                attempts += 1;
+                let label = format!(
+                    "{}: {} {} slot {slot} round {round}: {}",
+                    g.spec,
+                    f.name,
+                    c.name,
+                    hex(&frame)
+                );
+                compare(
+                    codec,
+                    &label,
+                    decode(&frame),
+                    codec.parse(fi, &frame),
+                    tally,
+                );
+            }
+        }
+    }
+    attempts
+}
+
 /// Random frames of every command in every direction, of every struct-carrying format, of
 /// acknowledgements and bare headers: random header values and payload bytes (NaNs,
 /// out-of-range enums and bools, non-zero padding, stuffing patterns included), of the sizes
@@ -417,99 +565,9 @@ fn random_messages_decode_and_encode_alike() {
         let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ g.spec.len() as u64);
         let mut tally = Tally::default();
         let f = &p.frames[0];
-        let mut attempts = 0;
-        for c in &p.commands {
-            for (slot, payload) in c.payloads.iter().enumerate() {
-                let (min, max) =
-                    payload.map_or((0, 0), |si| (p.structs[si].min_size, p.structs[si].size));
-                for round in 0..ROUNDS {
-                    let Some(len) = sizes(
-                        &mut rng,
-                        min,
-                        max.min(f.payload_max),
-                        f.payload_min,
-                        f.payload_max,
-                        round,
-                    ) else {
-                        continue;
-                    };
-                    let mut frame = vec![0u8; f.header_len + len + f.trailer_len];
-                    rng.fill(&mut frame);
-                    if let Some((after, insert)) = f
-                        .stuffing
-                        .as_ref()
-                        .filter(|(a, _)| round % 3 == 0 && len > a.len())
-                    {
-                        // A stuffed pattern, as a sender writes it.
-                        let at =
-                            f.header_len + rng.range(0, (len - after.len() - 1) as u64) as usize;
-                        frame[at..at + after.len()].copy_from_slice(after);
-                        frame[at + after.len()] = *insert;
-                    }
-                    for (&vi, id) in f.dispatch.iter().zip(&c.id) {
-                        word_field(&f.values[vi])
-                            .write(&mut frame, *id)
-                            .expect("id fits");
-                    }
-                    if let Some((flag, _)) = f.ack {
-                        // Mostly a command; sometimes an acknowledgement.
-                        let equals = protocol_dynamic::ack_value(f, flag);
-                        let value = if round % 4 == 0 { equals } else { 1 - equals };
-                        word_field(&f.values[flag])
-                            .write(&mut frame, value)
-                            .expect("fits");
-                    }
-                    // Mostly a header of the slot's direction; sometimes whatever came.
-                    if let (Some(d), true) = (p.directions.get(slot), round % 7 != 0) {
-                        let set = match d.rule {
-                            DirectionRule::InSet { value, set } => {
-                                let a = &p.addresses[set];
-                                Some((value, rng.range(a.first, a.last)))
-                            }
-                            DirectionRule::Equals { value, equals } => Some((value, equals)),
-                            // The decoder is given it: no header value tells it.
-                            DirectionRule::Given => None,
-                        };
-                        if let Some((vi, value)) = set {
-                            word_field(&f.values[vi])
-                                .write(&mut frame, value)
-                                .expect("fits");
-                        }
-                    }
-                    // A sync from a set: a value of the set (the layout refuses any other).
-                    if !f.sync_set.is_empty() {
-                        frame[0] = f.sync_set[rng.range(0, f.sync_set.len() as u64 - 1) as usize];
-                    }
-                    // A flag trailer (a MAVLink 2 signature): present in some rounds, its flag
-                    // set and its bytes appended; else its flag clear.
-                    if let Some(t) = &f.flag_trailer {
-                        let on = round % 5 == 0;
-                        word_field(&f.values[t.flag])
-                            .write(&mut frame, u64::from(on))
-                            .expect("a one-bit flag");
-                        if on {
-                            let mut extra = vec![0u8; t.len];
-                            rng.fill(&mut extra);
-                            frame.extend_from_slice(&extra);
-                        }
-                    }
-                    (g.seal)(0, &mut frame).expect("the generated layout seals");
-                    attempts += 1;
-                    let label = format!(
-                        "{}: {} slot {slot} round {round}: {}",
-                        g.spec,
-                        c.name,
-                        hex(&frame)
-                    );
-                    compare(
-                        &codec,
-                        &label,
-                        (g.decode)(&frame),
-                        codec.parse(0, &frame),
-                        &mut tally,
-                    );
-                }
-            }
+        let mut attempts = random_command_frames(&g, &codec, 0, g.decode, &mut rng, &mut tally);
+        if let Some((fi, decode)) = g.other {
+            attempts += random_command_frames(&g, &codec, fi, decode, &mut rng, &mut tally);
         }
         if let Some(bare) = f.bare_len {
             for round in 0..ROUNDS {
@@ -634,6 +692,7 @@ fn vector_streams_yield_the_same_events() {
         ("dynamixel1", "dynamixel_protocol1.json"),
         ("roborts", "roborts_sdk.json"),
         ("mavlink", "mavlink.json"),
+        ("msp", "msp.json"),
         ("ibus", "ibus.json"),
         ("sbus", "sbus.json"),
         ("ubx", "ubx.json"),
@@ -679,54 +738,59 @@ fn vector_streams_yield_the_same_events() {
     }
 }
 
-/// A frame of the MAVLink link (either format) decoded by the generated `AnyPacket`, as `{:?}`
-/// prints the packet of its format, and encoded again in that format.
-fn mavlink_any(frame: &protocol::Frame<'_>) -> Generated<Vec<u8>> {
-    let packet = mavlink::AnyPacket::from_frame(frame)?;
-    let mut buf = vec![0u8; mavlink::ANY_DECODER_BUFFER_LEN];
-    let n = packet
-        .encode(&mut buf)
-        .expect("generated code encodes what it decoded");
-    let debug = match packet {
-        mavlink::AnyPacket::V2(p) => format!("{p:?}"),
-        mavlink::AnyPacket::V1(p) => format!("{p:?}"),
-    };
-    Ok((debug, buf[..n].to_vec()))
-}
+/// The events of a link's generated `any_decoder` over a stream cut in chunks of `n` bytes,
+/// and each frame's format and its `AnyPacket` decoded (as `{:?}` prints the packet of its
+/// format) and encoded again in that format.
+type LinkEvents = fn(&[u8], usize) -> (Vec<String>, Vec<(usize, Generated<Vec<u8>>)>);
 
-/// A link of several command formats (MAVLink 1 and 2): on the vector streams in chunks of
-/// several sizes, the generated `any_decoder` and the codec's link stream yield the same
-/// events, and every frame decodes alike by the format it came in.
-#[test]
-fn link_streams_yield_the_same_events() {
-    let interp = interpreter("mavlink");
-    let codec = interp.codec();
-    let link = interp.protocol().link.clone();
-    assert_eq!(link.len(), 2, "MAVLink 2 and MAVLink 1");
-    let mut tally = Tally::default();
-    for stream in vectors("mavlink.json")["streams"]
-        .as_array()
-        .expect("streams")
-    {
-        let bytes = unhex(stream["hex"].as_str().expect("hex"));
-        for n in [1, 3, 7, 64, bytes.len()] {
-            let mut decoder = mavlink::any_decoder();
+macro_rules! link_events {
+    ($m:ident) => {
+        |bytes: &[u8], n: usize| {
+            let any = |frame: &protocol::Frame<'_>| -> Generated<Vec<u8>> {
+                let packet = $m::AnyPacket::from_frame(frame)?;
+                let mut buf = vec![0u8; $m::ANY_DECODER_BUFFER_LEN];
+                let n = packet
+                    .encode(&mut buf)
+                    .expect("generated code encodes what it decoded");
+                let debug = match packet {
+                    $m::AnyPacket::V1(p) => format!("{p:?}"),
+                    $m::AnyPacket::V2(p) => format!("{p:?}"),
+                };
+                Ok((debug, buf[..n].to_vec()))
+            };
+            let mut decoder = $m::any_decoder();
             let mut events = Vec::new();
             let mut generated = Vec::new();
             for mut chunk in bytes.chunks(n) {
                 while let Some(e) = decoder.next_event(&mut chunk) {
                     if let Event::Frame(f) = &e {
-                        generated.push((f.format, mavlink_any(f)));
+                        generated.push((f.format, any(f)));
                     }
                     events.push(event_text(&e));
                 }
             }
             while let Some(e) = decoder.flush_event() {
                 if let Event::Frame(f) = &e {
-                    generated.push((f.format, mavlink_any(f)));
+                    generated.push((f.format, any(f)));
                 }
                 events.push(event_text(&e));
             }
+            (events, generated)
+        }
+    };
+}
+
+/// On `streams` in chunks of several sizes, the generated `any_decoder` and the codec's link
+/// stream yield the same events, and every frame decodes alike by the format it came in.
+fn link_streams_agree(spec: &str, streams: &[Vec<u8>], generated_events: LinkEvents) -> Tally {
+    let interp = interpreter(spec);
+    let codec = interp.codec();
+    let link = interp.protocol().link.clone();
+    assert_eq!(link.len(), 2, "{spec}: two command formats");
+    let mut tally = Tally::default();
+    for bytes in streams {
+        for n in [1, 3, 7, 64, bytes.len()] {
+            let (events, generated) = generated_events(bytes, n);
             let mut texts = Vec::new();
             let mut interpreted = Vec::new();
             let mut s = codec.link_stream().expect("a link stream");
@@ -754,16 +818,53 @@ fn link_streams_yield_the_same_events() {
             while let Some(item) = s.flush_item() {
                 take(item, &mut texts);
             }
-            assert_eq!(texts, events, "mavlink link: chunks of {n}");
+            assert_eq!(texts, events, "{spec} link: chunks of {n}");
             assert_eq!(generated.len(), interpreted.len());
             for ((format, g), i) in generated.into_iter().zip(interpreted) {
                 if let Ok(d) = &i {
                     assert_eq!(d.format, link[format], "the format it came in");
                 }
-                compare(&codec, "mavlink link frame", g, i, &mut tally);
+                compare(&codec, &format!("{spec} link frame"), g, i, &mut tally);
             }
         }
     }
+    tally
+}
+
+/// The vector streams of a spec's vector file, and one more of all its frames back to back.
+fn link_test_streams(file: &str) -> Vec<Vec<u8>> {
+    let v = vectors(file);
+    let mut streams: Vec<Vec<u8>> = v["streams"]
+        .as_array()
+        .expect("streams")
+        .iter()
+        .filter_map(|s| s["hex"].as_str().map(unhex))
+        .collect();
+    let all = v["frames"]
+        .as_array()
+        .expect("frames")
+        .iter()
+        .filter_map(|f| f["hex"].as_str().map(unhex))
+        .flatten()
+        .collect();
+    streams.push(all);
+    streams
+}
+
+/// A link of several command formats (MAVLink 1 and 2; MSP v1 and v2, whose directions each
+/// format's own field tells): the vector streams, and every vector frame back to back.
+#[test]
+fn link_streams_yield_the_same_events() {
+    let tally = link_streams_agree(
+        "mavlink",
+        &link_test_streams("mavlink.json"),
+        link_events!(mavlink),
+    );
     println!("mavlink link streams: {tally:?}");
     assert!(tally.same_message >= 4, "{tally:?}");
+    let tally = link_streams_agree("msp", &link_test_streams("msp.json"), link_events!(msp));
+    println!("msp link streams: {tally:?}");
+    // The 16 frames the spec expresses, in the stream of all frames at each chunk size, and
+    // the 5 of the mixed stream.
+    assert_eq!(tally.same_message, 5 * (16 + 5), "{tally:?}");
 }

@@ -1,7 +1,8 @@
 //! serde's JSON of a generated packet (`protocol!(..., derive(serde))`) against the run-time
-//! codec's JSON of the same frame, on every golden vector of every bundled spec: the packet's
-//! JSON text is the codec's `command`, `header` and `payload`, in that order, character for
-//! character. The codec's whole frame object (with `offset`, `id`, `hex`, ...) then
+//! codec's JSON of the same frame, on every golden vector of every bundled spec (each command
+//! format of a link; each direction of a spec whose decoder is given it): the packet's JSON
+//! text is the codec's `direction` (given directions only), `command`, `header` and `payload`,
+//! in that order, character for character. The codec's whole frame object (with `offset`, `id`, `hex`, ...) then
 //! deserializes as the generated packet, which encodes to the vector's bytes (to what the
 //! generated packet decoded from them encodes to, for the few vectors whose bytes are not the
 //! canonical encoding of their values).
@@ -24,15 +25,37 @@ protocol::protocol!("../specs/roborts.toml", derive(serde));
 protocol::protocol!("../specs/ibus.toml", derive(serde));
 protocol::protocol!("../specs/sbus.toml", derive(serde));
 protocol::protocol!("../specs/ubx.toml", derive(serde));
+protocol::protocol!("../specs/msp.toml", derive(serde));
+protocol::protocol!("../specs/dynamixel1.toml", derive(serde));
 protocol::protocol!("tests/fixtures/features.toml", derive(serde));
 
-/// A generated packet of a serial frame: its JSON, and the bytes that the packet read back
-/// from `json` encodes to (and what the packet decoded from the frame encodes to).
-type Serial = fn(&[u8], &str) -> (String, Vec<u8>, Vec<u8>);
+/// A generated packet of a serial frame of a format (an index into the spec's frames): its
+/// JSON, and the bytes that the packet read back from `json` encodes to (and what the packet
+/// decoded from the frame encodes to).
+type Serial = fn(usize, &[u8], &str) -> (String, Vec<u8>, Vec<u8>);
 /// The same for a CAN frame.
 type Can = fn(&CanFrame, &str) -> (String, CanFrame, CanFrame);
 
 macro_rules! serial {
+    ($m:ident :: $packet:ident, $max:ident) => {
+        |fi: usize, bytes: &[u8], json: &str| {
+            assert_eq!(fi, 0, "the first frame format");
+            serial_one!($m::$packet, $max)(bytes, json)
+        }
+    };
+}
+
+/// The packets of a link's two command formats.
+macro_rules! serial_link {
+    ($m:ident :: [$first:ident, $other:ident], [$max:ident, $other_max:ident]) => {
+        |fi: usize, bytes: &[u8], json: &str| match fi {
+            0 => serial_one!($m::$first, $max)(bytes, json),
+            _ => serial_one!($m::$other, $other_max)(bytes, json),
+        }
+    };
+}
+
+macro_rules! serial_one {
     ($m:ident :: $packet:ident, $max:ident) => {
         |bytes: &[u8], json: &str| {
             let packet = $m::$packet::decode(bytes).expect("generated code decodes the vector");
@@ -111,7 +134,16 @@ fn specs() -> Vec<(&'static str, &'static str, Serial, Option<Can>)> {
         (
             "mavlink",
             "mavlink.json",
-            serial!(mavlink::Packet, MAX_FRAME_LEN),
+            serial_link!(
+                mavlink::[Packet, V1Packet],
+                [MAX_FRAME_LEN, V1_MAX_FRAME_LEN]
+            ),
+            None,
+        ),
+        (
+            "msp",
+            "msp.json",
+            serial_link!(msp::[Packet, V2Packet], [MAX_FRAME_LEN, V2_MAX_FRAME_LEN]),
             None,
         ),
         (
@@ -130,15 +162,15 @@ fn specs() -> Vec<(&'static str, &'static str, Serial, Option<Can>)> {
     ]
 }
 
-/// The codec's frame object as JSON text, and the part of it a packet holds (`command`,
-/// `header`, `payload`, in the codec's order) as JSON text.
+/// The codec's frame object as JSON text, and the part of it a packet holds (`direction` when
+/// the decoder is given it, `command`, `header`, `payload`, in the codec's order) as JSON text.
 fn codec_json(frame: &Value) -> (String, String) {
     let whole = serde_json::to_string(frame).expect("a value serializes");
     let fields = frame.as_struct().expect("a frame object");
     let part: Value = Value::Struct(
         fields
             .iter()
-            .filter(|(k, _)| matches!(*k, "command" | "header" | "payload"))
+            .filter(|(k, _)| matches!(*k, "direction" | "command" | "header" | "payload"))
             .map(|(k, v)| (k, v.clone()))
             .collect(),
     );
@@ -148,74 +180,136 @@ fn codec_json(frame: &Value) -> (String, String) {
     )
 }
 
+/// Every golden vector of `file` through the codec of `spec` (given `direction`, for a spec
+/// whose decoder is given it) and through the generated packets: serde's JSON is the codec's,
+/// and the codec's JSON reads back as the packet, which encodes alike. The frames compared.
+fn compare_file(
+    spec: &str,
+    file: &str,
+    serial: Serial,
+    can: Option<Can>,
+    direction: Option<&str>,
+) -> usize {
+    let interp = interpreter(spec);
+    let codec = interp.codec();
+    let given = direction.and_then(|d| codec.direction_index(d));
+    let codec = codec.with_direction(given);
+    let link = interp.protocol().link.clone();
+    let v = vectors(file);
+    let mut compared = 0;
+    let mut canonical = 0;
+    let can_captures = [&v["can_frames_captured"], &v["streams"][1]["frames"]];
+    let captured = can_captures
+        .into_iter()
+        .flat_map(|list| list.as_array().into_iter().flatten())
+        .map(|frame| serde_json::json!({ "name": "captured", "can": frame }));
+    let frames: Vec<serde_json::Value> = v["frames"]
+        .as_array()
+        .expect("frames")
+        .iter()
+        .cloned()
+        .chain(captured)
+        .collect();
+    for frame in &frames {
+        let name = frame["name"].as_str().unwrap_or("?");
+        let label = format!("{spec}: {name}");
+        if let Some(text) = frame["hex"].as_str().or(frame["uart"]["hex"].as_str()) {
+            let bytes = unhex(text);
+            // A link's frame goes through the command format whose framing it has.
+            let fi = link
+                .iter()
+                .copied()
+                .find(|&fi| codec.layout(fi).is_some_and(|l| l.parse(&bytes).is_ok()))
+                .unwrap_or(0);
+            let Ok(decoded) = codec.parse(fi, &bytes) else {
+                // A vector of a frame the spec rejects (another year's referee command).
+                continue;
+            };
+            let (whole, part) = codec_json(&codec.frame_value(&decoded, 0, &bytes));
+            let (shown, read_bytes, again) = serial(fi, &bytes, &whole);
+            assert_eq!(shown, part, "{label}: serde's JSON is the codec's");
+            assert_eq!(hex(&read_bytes), hex(&again), "{label}: read back, encoded");
+            canonical += usize::from(again == bytes);
+            compared += 1;
+        }
+        if let (Some(id), Some(data)) = (
+            frame["can"]["can_id"].as_u64(),
+            frame["can"]["data_hex"].as_str(),
+        ) {
+            let can_fn = can.expect("a CAN packet");
+            let frame = CanFrame::new(id as u32, &unhex(data)).expect("a CAN frame");
+            let fi = interp
+                .protocol()
+                .frames
+                .iter()
+                .position(|f| matches!(f.transport, Transport::Can { .. }))
+                .expect("a CAN format");
+            let Ok(decoded) = codec.decode_can(fi, &frame) else {
+                // A captured frame with a bad check: the differential test checks that
+                // generated code refuses it alike.
+                continue;
+            };
+            let virt = codec.frame_value(&decoded, 0, frame.data());
+            let (whole, part) = codec_json(&virt);
+            let (shown, read, again) = can_fn(&frame, &whole);
+            assert_eq!(shown, part, "{label} (CAN): serde's JSON is the codec's");
+            assert_eq!(read, again, "{label} (CAN): read back, encoded");
+            canonical += usize::from(again == frame);
+            compared += 1;
+        }
+    }
+    let given = direction.map_or(String::new(), |d| format!(" ({d})"));
+    println!("{spec}{given} on {file}: {compared} frames, {canonical} encoded to their own bytes");
+    assert!(compared > 0, "{spec}: no vector compared");
+    compared
+}
+
 #[test]
 fn serde_json_of_generated_packets_is_the_codecs_on_every_golden_vector() {
     let mut total = 0;
     for (spec, file, serial, can) in specs() {
-        let interp = interpreter(spec);
-        let codec = interp.codec();
-        let v = vectors(file);
-        let mut compared = 0;
-        let mut canonical = 0;
-        let can_captures = [&v["can_frames_captured"], &v["streams"][1]["frames"]];
-        let captured = can_captures
-            .into_iter()
-            .flat_map(|list| list.as_array().into_iter().flatten())
-            .map(|frame| serde_json::json!({ "name": "captured", "can": frame }));
-        let frames: Vec<serde_json::Value> = v["frames"]
-            .as_array()
-            .expect("frames")
-            .iter()
-            .cloned()
-            .chain(captured)
-            .collect();
-        for frame in &frames {
-            let name = frame["name"].as_str().unwrap_or("?");
-            let label = format!("{spec}: {name}");
-            if let Some(text) = frame["hex"].as_str().or(frame["uart"]["hex"].as_str()) {
-                let bytes = unhex(text);
-                let Ok(decoded) = codec.parse(0, &bytes) else {
-                    // A vector of a frame the spec rejects (another year's referee command).
-                    continue;
-                };
-                let (whole, part) = codec_json(&codec.frame_value(&decoded, 0, &bytes));
-                let (shown, read_bytes, again) = serial(&bytes, &whole);
-                assert_eq!(shown, part, "{label}: serde's JSON is the codec's");
-                assert_eq!(hex(&read_bytes), hex(&again), "{label}: read back, encoded");
-                canonical += usize::from(again == bytes);
-                compared += 1;
-            }
-            if let (Some(id), Some(data)) = (
-                frame["can"]["can_id"].as_u64(),
-                frame["can"]["data_hex"].as_str(),
-            ) {
-                let can_fn = can.expect("a CAN packet");
-                let frame = CanFrame::new(id as u32, &unhex(data)).expect("a CAN frame");
-                let fi = interp
-                    .protocol()
-                    .frames
-                    .iter()
-                    .position(|f| matches!(f.transport, Transport::Can { .. }))
-                    .expect("a CAN format");
-                let Ok(decoded) = codec.decode_can(fi, &frame) else {
-                    // A captured frame with a bad check: the differential test checks that
-                    // generated code refuses it alike.
-                    continue;
-                };
-                let virt = codec.frame_value(&decoded, 0, frame.data());
-                let (whole, part) = codec_json(&virt);
-                let (shown, read, again) = can_fn(&frame, &whole);
-                assert_eq!(shown, part, "{label} (CAN): serde's JSON is the codec's");
-                assert_eq!(read, again, "{label} (CAN): read back, encoded");
-                canonical += usize::from(again == frame);
-                compared += 1;
-            }
-        }
-        println!("{spec} on {file}: {compared} frames, {canonical} encoded to their own bytes");
-        assert!(compared > 0, "{spec}: no vector compared");
-        total += compared;
+        total += compare_file(spec, file, serial, can, None);
+    }
+    // Dynamixel 1.0: the decoder is given the direction; each reads the frames of its own.
+    for (direction, serial) in [
+        ("request", dynamixel1_request as Serial),
+        ("response", dynamixel1_response as Serial),
+    ] {
+        total += compare_file(
+            "dynamixel1",
+            "dynamixel_protocol1.json",
+            serial,
+            None,
+            Some(direction),
+        );
     }
     println!("{total} frames in all");
+}
+
+/// A Dynamixel 1.0 packet decoded in one direction: its JSON (with `direction`), the bytes the
+/// packet read back from `json` encodes to, and what the decoded packet encodes to.
+fn dynamixel1_serial(packet: dynamixel1::Packet, json: &str) -> (String, Vec<u8>, Vec<u8>) {
+    let shown = serde_json::to_string(&packet).expect("a packet serializes");
+    let read: dynamixel1::Packet =
+        serde_json::from_str(json).unwrap_or_else(|e| panic!("{json} reads as a packet: {e}"));
+    assert_eq!(read, packet, "{json}: read back");
+    let mut buf = vec![0u8; dynamixel1::MAX_FRAME_LEN];
+    let n = read.encode(&mut buf).expect("the packet read encodes");
+    let mut again = vec![0u8; dynamixel1::MAX_FRAME_LEN];
+    let m = packet
+        .encode(&mut again)
+        .expect("the packet decoded encodes");
+    (shown, buf[..n].to_vec(), again[..m].to_vec())
+}
+
+fn dynamixel1_request(_: usize, bytes: &[u8], json: &str) -> (String, Vec<u8>, Vec<u8>) {
+    let packet = dynamixel1::Packet::decode_request(bytes).expect("an instruction packet");
+    dynamixel1_serial(packet, json)
+}
+
+fn dynamixel1_response(_: usize, bytes: &[u8], json: &str) -> (String, Vec<u8>, Vec<u8>) {
+    let packet = dynamixel1::Packet::decode_response(bytes).expect("a status packet");
+    dynamixel1_serial(packet, json)
 }
 
 /// Random frames of the features fixture (every feature of the spec language that the bundled

@@ -14,9 +14,10 @@
 //! - a spec enum is its variant's name in the spec, or its number when it has none
 //!   ([`serialize_enum`], [`deserialize_enum`]);
 //! - a packet is a map of `command` (the command's spec name; absent for an acknowledgement),
-//!   `header` and `payload` ([`SerdePacket`]); a command without payload has the empty map.
+//!   `header` and `payload` ([`SerdePacket`]), after `direction` (the direction's name) in a
+//!   spec whose decoder is given the direction; a command without payload has the empty map.
 //!
-//! Reading a packet needs `command` and `header` before `payload` (the order every
+//! Reading a packet needs `direction`, `command` and `header` before `payload` (the order every
 //! serializer here writes), since the payload's type depends on them and nothing is buffered;
 //! other keys (the codec's `offset`, `format`, `hex`, ...) are skipped, so a line of
 //! `protocol decode --format json` reads as a generated packet.

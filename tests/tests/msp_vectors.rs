@@ -1,18 +1,22 @@
 //! MSP golden vectors (`tests/vectors/msp.json`: framing and payloads of Betaflight's
-//! `msp_serial.c` and `msp.c`, and cu-msp-lib 1.3.0's tests) against `specs/msp.toml`: every v1
-//! frame the spec expresses (jumbo frames and v2 over v1 included) decodes to its recorded
-//! values and encodes back to the exact bytes, by generated code and by the run-time codec
-//! (`protocol_dynamic`); v2 frames decode through the `v2` frame format, whose payload the
-//! command's struct reads; the mixed stream yields its frames at every chunk size, in both.
+//! `msp_serial.c` and `msp.c`, and cu-msp-lib 1.3.0's tests) against `specs/msp.toml`: every
+//! frame the spec expresses, v1 (jumbo frames and v2 over v1 included) and v2, decodes to its
+//! recorded values and encodes back to the exact bytes, by generated code and by the run-time
+//! codec (`protocol_dynamic`); the link's one decoder (`any_decoder`, `Codec::link_stream`)
+//! finds the frames of both formats, at every chunk size, in the mixed stream and in the stream
+//! of every vector.
 //!
 //! The frames the spec does not express are listed by [`not_expressed`], with the reason, and
 //! checked to be refused rather than misread.
 
 mod golden;
 
-use protocol::{Bytes, DecodeError, FixedStr, Group, Payload, Reject, StreamDecoder};
+use protocol::{Bytes, DecodeError, FixedStr, Group, NulStr, Payload, Reject, StreamDecoder};
 use protocol_dynamic::Interpreter;
-use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
+use protocol_tests::{
+    F, assert_link_stream_at_every_chunk_size, assert_stream_at_every_chunk_size, hex,
+    load_vectors, stream_vector,
+};
 use serde_json::Value;
 
 protocol::protocol!("../specs/msp.toml");
@@ -50,8 +54,7 @@ fn direction(frame: &Value) -> u8 {
     frame["direction"].as_str().expect("direction").as_bytes()[0]
 }
 
-/// Why the spec does not express a v1 frame, or `None` when it does. v2 frames go through
-/// the `v2` frame format ([`v2_frames_decode_and_encode_through_the_v2_format`]).
+/// Why the spec does not express a frame, or `None` when it does.
 fn not_expressed(frame: &Value) -> Option<&'static str> {
     match frame["name"].as_str().expect("name") {
         "cu_msp_lib_serialize" => Some(
@@ -76,7 +79,7 @@ fn channels(list: &Value) -> RcChannels {
     RcChannels { channels }
 }
 
-/// The message a v1 vector records, built from its field values.
+/// The message a vector records, built from its field values.
 fn expected(frame: &Value) -> Message {
     let v = &frame["fields"];
     let request = direction(frame) == b'<';
@@ -154,6 +157,12 @@ fn expected(frame: &Value) -> Message {
             }))
         }
         (200, true) => Message::Request(Request::SetRawRc(channels(&v["channels"]))),
+        (4099, true) => {
+            let name = v["name"].as_str().expect("name");
+            Message::Request(Request::CommonSetting(SettingName {
+                name: NulStr::from_text(name).expect("at most 64 bytes"),
+            }))
+        }
         (other, request) => panic!("vector not covered: command {other}, request {request}"),
     }
 }
@@ -217,18 +226,27 @@ static CRC8: protocol::__private::crc::Crc<u8, protocol::__private::crc::NoTable
         &protocol::__private::crc::CRC_8_DVB_S2,
     );
 
+fn v2_frames() -> impl Iterator<Item = Value> {
+    frames().into_iter().filter(|f| f["version"] == "v2")
+}
+
 #[test]
 fn the_frames_not_expressed_are_refused_not_misread() {
     let mut listed = Vec::new();
-    for frame in v1_frames() {
+    for frame in frames() {
         let Some(why) = not_expressed(&frame) else {
             continue;
         };
         let name = frame["name"].as_str().expect("name");
         let bytes = hex(frame["hex"].as_str().expect("hex"));
         // The framing holds: the frame is found whole, its payload is refused.
-        assert_eq!(LAYOUT.parse(&bytes), Ok(&bytes[..]), "{name}");
-        let refused = Packet::decode(&bytes).map(|_| ());
+        let refused = if frame["version"] == "v2" {
+            assert_eq!(V2_LAYOUT.parse(&bytes), Ok(&bytes[..]), "{name}");
+            V2Packet::decode(&bytes).map(|_| ())
+        } else {
+            assert_eq!(LAYOUT.parse(&bytes), Ok(&bytes[..]), "{name}");
+            Packet::decode(&bytes).map(|_| ())
+        };
         assert!(
             matches!(
                 refused,
@@ -243,52 +261,95 @@ fn the_frames_not_expressed_are_refused_not_misread() {
     assert_eq!(listed.len(), 2, "{listed:#?}");
 }
 
-/// The v2 vectors' frames: through `V2_LAYOUT`, their header values, and their payload read by
-/// the command's struct (v2 frames carry no commands in this spec).
+/// The v2 vectors' frames: the commands and directions of v1, in v2's header.
 #[test]
-fn v2_frames_decode_and_encode_through_the_v2_format() {
+fn every_expressed_v2_frame_decodes_and_encodes_to_its_bytes() {
     let mut seen = 0;
-    for frame in frames().into_iter().filter(|f| f["version"] == "v2") {
+    for frame in v2_frames().filter(|f| not_expressed(f).is_none()) {
         let name = frame["name"].as_str().expect("name");
         let bytes = hex(frame["hex"].as_str().expect("hex"));
-        let packet = V2_LAYOUT
-            .parse(&bytes)
-            .unwrap_or_else(|e| panic!("{name}: {e:?}"));
-        assert_eq!(packet, &bytes[..], "{name}");
-        assert_eq!(
-            wire::V2_DIRECTION.read(&bytes),
-            Some(u64::from(direction(&frame)))
-        );
-        assert_eq!(
-            wire::V2_COMMAND.read(&bytes),
-            Some(u(&frame, "cmd")),
-            "{name}"
-        );
-        let payload = &bytes[V2_HEADER_LEN..bytes.len() - V2_TRAILER_LEN];
-        assert_eq!(payload, &payload_bytes(&frame)[..], "{name}");
-        match u(&frame, "cmd") {
-            108 => {
-                let read = Attitude::from_bytes(payload).expect("attitude");
-                assert_eq!(read, attitude(&frame["fields"]), "{name}");
-            }
-            1 => assert!(payload.is_empty(), "{name}"),
-            // MSP2_COMMON_SETTING: a NUL-terminated setting name.
-            4099 => {
-                let text = frame["fields"]["name"].as_str().expect("name");
-                assert_eq!(payload, [text.as_bytes(), &[0]].concat(), "{name}");
-            }
-            other => panic!("{name}: command {other} not covered"),
-        }
-        // Sealing the frame's header values and payload gives its bytes.
-        let mut sealed = bytes.clone();
-        sealed[..2].fill(0);
-        sealed[V2_HEADER_LEN - 2..V2_HEADER_LEN].fill(0);
-        *sealed.last_mut().expect("crc") = 0;
-        V2_LAYOUT.seal(&mut sealed).expect("seal");
-        assert_eq!(F(&sealed), F(&bytes), "{name}");
+        let packet = V2Packet::decode(&bytes).unwrap_or_else(|e| panic!("{name}: {e:?}"));
+        let header = V2Header {
+            direction: direction(&frame),
+            flag: 0,
+        };
+        assert_eq!(packet.header, header, "{name}");
+        assert_eq!(packet.message, expected(&frame), "{name}");
+        let mut buf = [0u8; V2_MAX_FRAME_LEN];
+        let n = packet.encode(&mut buf).expect("encode");
+        assert_eq!(F(&buf[..n]), F(&bytes), "{name}: encode");
+        assert_eq!(packet.encoded_len(), n, "{name}: encoded_len");
         seen += 1;
     }
-    assert_eq!(seen, 3);
+    assert_eq!(
+        seen, 3,
+        "v2_api_version_request, v2_common_setting_request, v2_attitude_response"
+    );
+}
+
+/// A v2-only command (id above 255) is carried by v2 frames alone: encoding it in a v1 frame
+/// is refused, by generated code and by the run-time codec.
+#[test]
+fn a_v2_only_command_is_not_encoded_in_a_v1_frame() {
+    let message = Message::Request(Request::CommonSetting(SettingName {
+        name: NulStr::from_text("gyro_lpf1_static_hz").expect("fits"),
+    }));
+    let v1 = Packet {
+        header: Header { direction: b'<' },
+        message,
+    };
+    let mut buf = [0u8; MAX_FRAME_LEN];
+    assert_eq!(
+        v1.encode(&mut buf),
+        Err(protocol::EncodeError::ValueOutOfRange)
+    );
+    let v2 = V2Packet {
+        header: V2Header {
+            direction: b'<',
+            flag: 0,
+        },
+        message,
+    };
+    let n = v2.encode(&mut buf).expect("a v2 frame");
+    let recorded = named("v2_common_setting_request");
+    assert_eq!(
+        F(&buf[..n]),
+        F(&hex(recorded["hex"].as_str().expect("hex")))
+    );
+    assert_eq!(Command::CommonSetting.id(), 0x1003);
+    let interp = interpreter();
+    let codec = interp.codec();
+    let object: protocol_dynamic::Value = serde_json::from_value(serde_json::json!({
+        "format": "v1",
+        "command": "COMMON_SETTING",
+        "header": { "direction": 60 },
+        "payload": { "name": "gyro_lpf1_static_hz" },
+    }))
+    .expect("a frame object");
+    let refused = codec.encode(&object);
+    let why = refused.expect_err("refused in v1").to_string();
+    assert!(why.contains("not carried by frame `v1`"), "{why}");
+}
+
+#[test]
+fn a_message_of_the_other_direction_than_its_header_is_not_encoded() {
+    for direction in [b'>', b'!'] {
+        let packet = V2Packet {
+            header: V2Header { direction, flag: 0 },
+            message: Message::Request(Request::ApiVersion),
+        };
+        let mut buf = [0u8; V2_MAX_FRAME_LEN];
+        assert_eq!(
+            packet.encode(&mut buf),
+            Err(protocol::EncodeError::ValueOutOfRange),
+            "{direction}"
+        );
+    }
+    // An error reply ('!') in v2 decodes as neither direction, as in v1.
+    let mut frame = hex("24583c000100000045");
+    frame[2] = b'!';
+    V2_LAYOUT.seal(&mut frame).expect("seal");
+    assert_eq!(V2Packet::decode(&frame), Err(DecodeError::UnknownDirection));
 }
 
 fn box_names(len: usize) -> Packet {
@@ -403,7 +464,77 @@ fn the_mixed_stream_yields_its_frames_at_every_chunk_size() {
     });
     let (bytes, v2) = stream_of(b'X');
     assert_eq!(v2.len(), 1, "v2_attitude_response");
-    assert_stream_at_every_chunk_size::<V2_DECODER_BUFFER_LEN>(&V2_LAYOUT, &bytes, &v2, |_| {});
+    assert_stream_at_every_chunk_size::<V2_DECODER_BUFFER_LEN>(&V2_LAYOUT, &bytes, &v2, |f| {
+        V2Packet::from_frame(f).expect("decodes");
+    });
+}
+
+/// The link's one decoder on the mixed stream: the frames of both formats, in order, each
+/// decoded by the format it came in.
+#[test]
+fn the_link_decoder_yields_both_formats_of_the_mixed_stream_at_every_chunk_size() {
+    let v = load_vectors("msp.json");
+    let (bytes, all) = stream_vector(&v["streams"][0]);
+    assert_eq!(all.len(), 5);
+    assert_link_stream_at_every_chunk_size::<_, ANY_DECODER_BUFFER_LEN>(
+        AnyLayout,
+        &bytes,
+        &all,
+        |f| {
+            let packet = AnyPacket::from_frame(f).expect("decodes");
+            let v2 = matches!(packet, AnyPacket::V2(_));
+            assert_eq!(v2, f.bytes[1] == b'X', "{:?}", f.bytes);
+        },
+    );
+}
+
+/// Every vector frame, one after the other, through the link's one decoder at every chunk
+/// size: each is found whole; the expressed ones decode to their recorded message in their
+/// format, the others are refused as they are one by one.
+#[test]
+fn the_link_decoder_decodes_every_vector_frame_at_every_chunk_size() {
+    let all = frames();
+    let mut bytes = Vec::new();
+    let mut found = Vec::new();
+    for frame in &all {
+        let b = hex(frame["hex"].as_str().expect("hex"));
+        found.push((bytes.len() as u64, b.clone()));
+        bytes.extend_from_slice(&b);
+    }
+    let mut decoded = 0;
+    assert_link_stream_at_every_chunk_size::<_, ANY_DECODER_BUFFER_LEN>(
+        AnyLayout,
+        &bytes,
+        &found,
+        |f| {
+            let frame = all
+                .iter()
+                .find(|v| hex(v["hex"].as_str().expect("hex")) == f.bytes)
+                .expect("a vector frame");
+            let got = AnyPacket::from_frame(f);
+            match (not_expressed(frame), got) {
+                (None, Ok(packet)) => {
+                    let v2 = frame["version"] == "v2";
+                    assert_eq!(matches!(packet, AnyPacket::V2(_)), v2, "{}", frame["name"]);
+                    if frame["version"] != "v2-over-v1" {
+                        assert_eq!(packet.message(), &expected(frame), "{}", frame["name"]);
+                    }
+                    let mut buf = [0u8; MAX_FRAME_LEN];
+                    let n = packet.encode(&mut buf).expect("encode");
+                    assert_eq!(F(&buf[..n]), F(f.bytes), "{}", frame["name"]);
+                    decoded += 1;
+                }
+                (Some(_), Err(_)) => {}
+                (why, got) => panic!("{}: {why:?} but {got:?}", frame["name"]),
+            }
+        },
+    );
+    let runs = bytes.len();
+    assert_eq!(
+        decoded,
+        16 * runs,
+        "16 frames expressed, at each of {runs} chunk sizes"
+    );
 }
 
 fn interpreter() -> Interpreter {
@@ -433,17 +564,24 @@ fn same(recorded: &Value, dynamic: &Value) -> bool {
 }
 
 #[test]
-fn the_run_time_codec_decodes_and_encodes_every_expressed_v1_frame() {
+fn the_run_time_codec_decodes_and_encodes_every_expressed_frame() {
     let interp = interpreter();
     let codec = interp.codec();
-    for frame in v1_frames().filter(|f| not_expressed(f).is_none()) {
+    let mut seen = 0;
+    for frame in frames().into_iter().filter(|f| not_expressed(f).is_none()) {
         let name = frame["name"].as_str().expect("name");
         let bytes = hex(frame["hex"].as_str().expect("hex"));
+        let format = usize::from(frame["version"] == "v2");
         let decoded = codec
-            .parse(0, &bytes)
+            .parse(format, &bytes)
             .unwrap_or_else(|e| panic!("{name}: {e:?}"));
         let value = codec.frame_value(&decoded, 0, &bytes);
         let json = serde_json::to_value(&value).expect("json");
+        assert_eq!(
+            json["format"],
+            if format == 1 { "v2" } else { "v1" },
+            "{name}"
+        );
         assert_eq!(
             json["header"]["direction"],
             u64::from(direction(&frame)),
@@ -451,6 +589,18 @@ fn the_run_time_codec_decodes_and_encodes_every_expressed_v1_frame() {
         );
         let payload = &json["payload"];
         let fields = frame["fields"].as_object().expect("fields");
+        let fields = if frame["version"] == "v2-over-v1" {
+            // The inner frame's fields: its command, and its payload as the vector records it.
+            assert_eq!(payload["command"], frame["cmd"], "{name}");
+            assert_eq!(
+                hex(payload["payload"].as_str().expect("payload")),
+                payload_bytes(&frame),
+                "{name}"
+            );
+            &serde_json::Map::new()
+        } else {
+            fields
+        };
         for (k, want) in fields {
             let got = match (k.as_str(), payload.get(k)) {
                 // The jumbo vector records the size of the names.
@@ -465,11 +615,26 @@ fn the_run_time_codec_decodes_and_encodes_every_expressed_v1_frame() {
             .encode(&value)
             .unwrap_or_else(|e| panic!("{name}: {e:?}"));
         assert_eq!(F(&encoded.bytes), F(&bytes), "{name}: dynamic encode");
+        seen += 1;
+    }
+    assert_eq!(seen, 16);
+}
+
+#[test]
+fn the_run_time_codec_refuses_the_frames_not_expressed() {
+    let interp = interpreter();
+    let codec = interp.codec();
+    for frame in frames().into_iter().filter(|f| not_expressed(f).is_some()) {
+        let name = frame["name"].as_str().expect("name");
+        let bytes = hex(frame["hex"].as_str().expect("hex"));
+        let format = usize::from(frame["version"] == "v2");
+        assert!(codec.parse(format, &bytes).is_err(), "{name}");
     }
 }
 
 #[test]
-fn the_run_time_codec_streams_the_v1_frames_at_every_chunk_size() {
-    let (bytes, v1) = stream_of(b'M');
-    golden::stream(&interpreter(), &bytes, &v1);
+fn the_run_time_codec_streams_both_formats_at_every_chunk_size() {
+    let v = load_vectors("msp.json");
+    let (bytes, all) = stream_vector(&v["streams"][0]);
+    golden::stream(&interpreter(), &bytes, &all);
 }

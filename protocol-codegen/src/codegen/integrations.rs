@@ -14,7 +14,7 @@
 //! helper); spec enums, `Command`, the message enums and the packets have impls that call the
 //! runtime's helpers (`serde_support`), so that an enum is its variant's name in the spec (a
 //! number when unknown), a message is its payload and a packet is the map of `command`,
-//! `header` and `payload`. This module runs after the other printers, on their items: it adds
+//! `header` and `payload` (after `direction` when the decoder is given it). This module runs after the other printers, on their items: it adds
 //! attributes to the structs and enums it finds and appends the impls, so that the printers
 //! stay as they are when no derive is chosen.
 
@@ -179,7 +179,13 @@ fn serde_impls(p: &Protocol, rt: &TokenStream) -> TokenStream {
         if p.directions.is_empty() {
             out.extend(message_impls(p, 0, &format_ident!("Message"), acks, rt));
         } else {
-            for (di, dir) in p.directions.iter().enumerate() {
+            // A direction that carries a struct in place of a command has no message enum.
+            for (di, dir) in p
+                .directions
+                .iter()
+                .enumerate()
+                .filter(|(_, d)| d.message.is_none())
+            {
                 let name = format_ident!("{}", dir.rust_name);
                 out.extend(message_impls(p, di, &name, acks, rt));
             }
@@ -346,6 +352,7 @@ fn packet_impls(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
                 }
             }
         }
+        PacketKind::Command if p.directions_given() => given_packet_body(p, &header, rt),
         PacketKind::Command | PacketKind::Commands | PacketKind::Can => {
             let (name, command) = if acks {
                 (
@@ -400,6 +407,71 @@ fn packet_impls(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     }
 }
 
+/// The `SerdePacket` items of the packet of a spec whose directions the decoder is given: the
+/// direction is a key of the packet's map (`direction`, as the run-time codec writes it), which
+/// says how to read the payload.
+fn given_packet_body(p: &Protocol, header: &proc_macro2::Ident, rt: &TokenStream) -> TokenStream {
+    let name = if p.directions.iter().any(|d| d.message.is_some()) {
+        quote!(self.message.command().map(Command::name))
+    } else {
+        quote!(#rt::Some(self.message.command().name()))
+    };
+    let names: Vec<&str> = p.directions.iter().map(|d| d.name.as_str()).collect();
+    let variants: Vec<_> = p
+        .directions
+        .iter()
+        .map(|d| format_ident!("{}", d.rust_name))
+        .collect();
+    let indices: Vec<usize> = (0..p.directions.len()).collect();
+    let reads = p.directions.iter().map(|d| {
+        let v = format_ident!("{}", d.rust_name);
+        match d.message {
+            Some(_) => quote!(Message::#v(#rt::serde::Deserialize::deserialize(d)?)),
+            None => quote! {{
+                let command = command.ok_or_else(|| #rt::serde_support::payload_error::<D::Error>("a payload without its command"))?;
+                Message::#v(#v::deserialize_payload(command, d)?)
+            }},
+        }
+    });
+    quote! {
+        type Message = Message;
+        type Command = Command;
+        const GIVEN_DIRECTIONS: &'static [&'static str] = &[#(#names),*];
+        fn parts(&self) -> (#rt::Option<&'static str>, &#header, &Message) {
+            (#name, &self.header, &self.message)
+        }
+        fn direction(&self) -> #rt::Option<&'static str> {
+            #rt::Some(match &self.message {
+                #(Message::#variants(_) => #names,)*
+            })
+        }
+        fn command_named(name: &str) -> #rt::Option<Command> {
+            Command::from_spec_name(name)
+        }
+        fn payload<'de, D: #rt::serde::Deserializer<'de>>(
+            command: #rt::Option<Command>,
+            header: &#header,
+            d: D,
+        ) -> #rt::Result<Message, D::Error> {
+            Self::payload_in(command, header, #rt::None, d)
+        }
+        fn payload_in<'de, D: #rt::serde::Deserializer<'de>>(
+            command: #rt::Option<Command>,
+            _: &#header,
+            direction: #rt::Option<usize>,
+            d: D,
+        ) -> #rt::Result<Message, D::Error> {
+            #rt::Ok(match direction {
+                #(#rt::Some(#indices) => #reads,)*
+                _ => return #rt::Err(#rt::serde_support::payload_error("a payload without its direction: the decoder is given it")),
+            })
+        }
+        fn from_parts(header: #header, message: Message) -> Self {
+            Self { header, message }
+        }
+    }
+}
+
 /// The message of a packet's payload: by the header's direction when the spec has directions.
 fn packet_message(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     if p.directions.is_empty() {
@@ -413,7 +485,7 @@ fn packet_message(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let tests: Vec<_> = p
         .directions
         .iter()
-        .map(|d| direction_test(p, f, &d.rule))
+        .map(|d| direction_test(p, f, &d.rule.in_frame(f)))
         .collect();
     quote! {
         #(if #tests { #rt::Ok(Message::#names(#names::deserialize_payload(command, d)?)) } else)*

@@ -99,7 +99,12 @@ fn directions(p: &Protocol, out: &mut String) {
         given_directions(p, out);
         return;
     }
-    out.push_str("## Directions\n\nA command's payload depends on the direction of the frame, told by its header (rules tested in order):\n\n| direction | when | meaning |\n|---|---|---|\n");
+    out.push_str("## Directions\n\nA command's payload depends on the direction of the frame, told by its header (rules tested in order");
+    if p.link.len() > 1 {
+        // Each command format of the link has the field, under the same name.
+        out.push_str(", in every command format of the link");
+    }
+    out.push_str("):\n\n| direction | when | meaning |\n|---|---|---|\n");
     let value = |i: usize| {
         p.frames
             .first()

@@ -365,7 +365,8 @@ pub struct BitDef {
 #[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DirectionDef {
-    /// Header field that tells the direction.
+    /// Header field that tells the direction (on a link of several command formats: the field
+    /// of this name in each format).
     #[schemars(with = "Option<String>")]
     pub field: Option<SStr>,
     /// No header field tells the direction: the decoding side is given it (a decoder per

@@ -251,6 +251,9 @@ pub(crate) fn lower_commands(
             return out;
         }
     }
+    let key_fields = frame
+        .map(|f| key_fields(ctx, f, frames))
+        .unwrap_or_default();
     let mut ids: HashMap<Vec<u64>, String> = HashMap::new();
     let mut can_ids: HashMap<u64, String> = HashMap::new();
     let can_frame = frames
@@ -278,7 +281,7 @@ pub(crate) fn lower_commands(
         } else {
             rust_names.insert(rust_name.clone(), name.get_ref().clone());
         }
-        let id = frame.and_then(|frame| lower_id(ctx, name, d, frame, &mut ids));
+        let id = frame.and_then(|frame| lower_id(ctx, name, d, frame, &key_fields, &mut ids));
         let payloads = lower_payload_refs(ctx, name, d, frame, directions, structs);
         let can_id = lower_can_id(ctx, name, d.can_id.as_ref(), can_frame, &mut can_ids);
         let check_extra = super::extra::lower_check_extra(ctx, name, d);
@@ -297,13 +300,49 @@ pub(crate) fn lower_commands(
     out
 }
 
-/// Rule: an id has one value per dispatch field of the frame, each fitting its field, and no
-/// other command has the same id.
+/// The dispatch fields an id's values must fit, as (width, name): the first frame's, each
+/// widened to the widest field at its place among the formats that carry the commands too
+/// (`commands = true` with a dispatch key of as many fields): a command may be carried by a
+/// wider format only (MSP v2's ids above 255); which formats carry it is the link's rule.
+fn key_fields(ctx: &Ctx<'_>, first: &Frame, frames: &[Frame]) -> Vec<(u32, String)> {
+    let mut out: Vec<(u32, String)> = first
+        .dispatch
+        .iter()
+        .map(|&vi| (first.values[vi].width, first.values[vi].name.clone()))
+        .collect();
+    for (name, def) in ctx.spec.frames.iter().skip(1) {
+        if !def
+            .get_ref()
+            .commands
+            .as_ref()
+            .is_some_and(|c| *c.get_ref())
+        {
+            continue;
+        }
+        let Some(f) = frames.iter().find(|f| &f.name == name.get_ref()) else {
+            continue;
+        };
+        if f.dispatch.len() != out.len() {
+            continue;
+        }
+        for ((width, field), &vi) in out.iter_mut().zip(&f.dispatch) {
+            if f.values[vi].width > *width {
+                *width = f.values[vi].width;
+                *field = f.values[vi].name.clone();
+            }
+        }
+    }
+    out
+}
+
+/// Rule: an id has one value per dispatch field of the frame, each fitting its field (the
+/// widest of the link's command formats, `key_fields`), and no other command has the same id.
 fn lower_id(
     ctx: &mut Ctx<'_>,
     name: &SStr,
     d: &crate::spec::model::CommandDef,
     frame: &Frame,
+    key_fields: &[(u32, String)],
     ids: &mut HashMap<Vec<u64>, String>,
 ) -> Option<Vec<u64>> {
     let raw: Vec<i64> = match d.id.get_ref() {
@@ -337,20 +376,12 @@ fn lower_id(
     }
     let mut id = Vec::new();
     let mut fits = true;
-    for (v, &vi) in raw.iter().zip(&frame.dispatch) {
-        let field = &frame.values[vi];
-        if *v < 0 || (*v as u64) > mask(field.width) {
+    for (v, (width, field)) in raw.iter().zip(key_fields) {
+        if *v < 0 || (*v as u64) > mask(*width) {
             ctx.error(
                 d.id.span(),
-                format!(
-                    "id {v} does not fit in the {}-bit field `{}`",
-                    field.width, field.name
-                ),
-                format!(
-                    "ids of `{}` range from 0 to {}",
-                    field.name,
-                    mask(field.width)
-                ),
+                format!("id {v} does not fit in the {width}-bit field `{field}`"),
+                format!("ids of `{field}` range from 0 to {}", mask(*width)),
             );
             fits = false;
         }

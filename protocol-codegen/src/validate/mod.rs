@@ -77,8 +77,23 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
     };
     let commands = commands::lower_commands(&mut ctx, &frames, &directions, &structs);
     let mut frames = frames;
+    if let (Some(first), Some(d)) = (frames.first_mut(), directions.first()) {
+        first.direction = match d.rule {
+            ir::DirectionRule::InSet { value, .. } | ir::DirectionRule::Equals { value, .. } => {
+                Some(value)
+            }
+            ir::DirectionRule::Given => None,
+        };
+    }
     frame::lower_packets(&mut frames, !directions.is_empty(), commands.len());
-    let link = frame::lower_link(&mut ctx, &mut frames, &commands, &structs);
+    let link = frame::lower_link(
+        &mut ctx,
+        &mut frames,
+        &commands,
+        &directions,
+        &addresses,
+        &structs,
+    );
     extra::lower_extra_bytes(&mut frames, &commands);
 
     Some(ir::Protocol {

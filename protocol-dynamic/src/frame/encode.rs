@@ -3,7 +3,7 @@
 //! length) and stuffed, then the header values, the acknowledgement flag and the dispatch key
 //! (or CAN id), then the runtime seals the frame.
 
-use protocol_codegen::ir::{Frame, PacketKind, Protocol, Role};
+use protocol_codegen::ir::{Frame, Protocol, Role};
 use protocol_runtime::zeros::trimmed_len;
 use protocol_runtime::{EncodeError, FrameLayout, Writer};
 
@@ -200,15 +200,15 @@ pub fn encode(
             let ci = command_of(p, dispatch == Dispatch::CanId, obj)?;
             // The direction, from the header, as the decoder will see it.
             let slot = if dispatch == Dispatch::Key && !p.directions.is_empty() {
-                direction_of(p, &raw_of).ok_or_else(|| {
+                direction_of(p, f, &raw_of).ok_or_else(|| {
                     EncodeIssue::new("header", "the header matches no direction of the spec")
                 })?
             } else {
                 0
             };
-            // A format after the first carries the commands whose id fits its dispatch key,
-            // as generated code's `write_header` refuses the others.
-            if f.packet == PacketKind::Commands && !f.commands.contains(&ci) {
+            // A format of a link carries the commands whose id fits its dispatch key, as
+            // generated code's `write_header` refuses the others.
+            if dispatch == Dispatch::Key && !f.commands.contains(&ci) {
                 return Err(EncodeIssue::new(
                     "command",
                     format!(

@@ -278,10 +278,10 @@ fn payload_of<'b>(f: &Frame, frame: &'b [u8]) -> Result<&'b [u8], DecodeIssue> {
         }))
 }
 
-/// The direction of a header, testing the rules in order (`request` first).
-fn direction_of(p: &Protocol, raw: &dyn Fn(usize) -> Option<u64>) -> Option<usize> {
-    let f = p.frames.first()?;
-    p.directions.iter().position(|d| match &d.rule {
+/// The direction of a header of frame format `f`, testing the rules in order (`request`
+/// first), each on `f`'s own direction field.
+fn direction_of(p: &Protocol, f: &Frame, raw: &dyn Fn(usize) -> Option<u64>) -> Option<usize> {
+    p.directions.iter().position(|d| match &d.rule.in_frame(f) {
         DirectionRule::InSet { value, set } => {
             let (Some(v), Some(a)) = (f.values.get(*value), p.addresses.get(*set)) else {
                 return false;
@@ -505,7 +505,7 @@ fn decode_command(
     } else if p.directions.is_empty() {
         0
     } else {
-        let d = direction_of(p, read).ok_or_else(|| DecodeIssue::UnknownDirection {
+        let d = direction_of(p, f, read).ok_or_else(|| DecodeIssue::UnknownDirection {
             command: c.name.clone(),
         })?;
         out.direction = Some(d);

@@ -1,5 +1,5 @@
-//! Packets as the map of `command`, `header` and `payload` (see the parent module), and
-//! commands as their names in the spec.
+//! Packets as the map of `direction` (given directions only), `command`, `header` and `payload`
+//! (see the parent module), and commands as their names in the spec.
 
 use core::fmt;
 use core::marker::PhantomData;
@@ -34,15 +34,47 @@ pub trait SerdePacket: Sized {
     ) -> Result<Self::Message, D::Error>;
     /// The packet of a header and a message.
     fn from_parts(header: Self::Header, message: Self::Message) -> Self;
+    /// The names of the directions the decoder is given (`given = true` in the spec), in the
+    /// spec's order; empty when the header tells the direction.
+    const GIVEN_DIRECTIONS: &'static [&'static str] = &[];
+    /// The packet's direction, for a spec whose decoder is given it.
+    fn direction(&self) -> Option<&'static str> {
+        None
+    }
+    /// Reads the payload of `command` sent with `header` in `direction` (an index into
+    /// [`Self::GIVEN_DIRECTIONS`]; `None`: no `direction` key): [`Self::payload`] unless the
+    /// spec's directions are given.
+    ///
+    /// # Errors
+    /// Those of [`Self::payload`], and an error for a missing direction.
+    fn payload_in<'de, D: Deserializer<'de>>(
+        command: Option<Self::Command>,
+        header: &Self::Header,
+        direction: Option<usize>,
+        d: D,
+    ) -> Result<Self::Message, D::Error> {
+        let _ = direction;
+        Self::payload(command, header, d)
+    }
 }
 
-/// Writes a packet as the map `command` (when it has one), `header`, `payload`.
+/// Writes a packet as the map `direction` (when the decoder is given it), `command` (when it
+/// has one), `header`, `payload`.
 ///
 /// # Errors
 /// The serializer's.
 pub fn serialize_packet<P: SerdePacket, S: Serializer>(p: &P, s: S) -> Result<S::Ok, S::Error> {
     let (command, header, message) = p.parts();
-    let mut map = s.serialize_map(Some(if command.is_some() { 3 } else { 2 }))?;
+    let direction = p.direction();
+    let len = match (command.is_some(), direction.is_some()) {
+        (true, true) => 4,
+        (true, false) | (false, true) => 3,
+        (false, false) => 2,
+    };
+    let mut map = s.serialize_map(Some(len))?;
+    if let Some(name) = direction {
+        map.serialize_entry("direction", name)?;
+    }
     if let Some(name) = command {
         map.serialize_entry("command", name)?;
     }
@@ -51,8 +83,8 @@ pub fn serialize_packet<P: SerdePacket, S: Serializer>(p: &P, s: S) -> Result<S:
     map.end()
 }
 
-/// Reads a packet from a map with `command` and `header` before `payload`; other keys are
-/// skipped.
+/// Reads a packet from a map with `direction` (for a spec whose decoder is given it),
+/// `command` and `header` before `payload`; other keys are skipped.
 ///
 /// # Errors
 /// The deserializer's, and errors for an unknown command, a missing key or a payload before
@@ -66,13 +98,14 @@ struct PacketVisitor<P>(PhantomData<P>);
 struct PayloadSeed<'a, P: SerdePacket> {
     command: Option<P::Command>,
     header: &'a P::Header,
+    direction: Option<usize>,
 }
 
 impl<'de, P: SerdePacket> DeserializeSeed<'de> for PayloadSeed<'_, P> {
     type Value = P::Message;
 
     fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<P::Message, D::Error> {
-        P::payload(self.command, self.header, d)
+        P::payload_in(self.command, self.header, self.direction, d)
     }
 }
 
@@ -87,8 +120,19 @@ impl<'de, P: SerdePacket> Visitor<'de> for PacketVisitor<P> {
         let mut command = None;
         let mut header = None;
         let mut message = None;
+        let mut direction = None;
         while let Some(key) = map.next_key::<Key>()? {
             match key {
+                Key::Direction if !P::GIVEN_DIRECTIONS.is_empty() => {
+                    let name = map.next_value::<Name>()?;
+                    let d = P::GIVEN_DIRECTIONS
+                        .iter()
+                        .position(|n| *n == name.as_str())
+                        .ok_or_else(|| {
+                            de::Error::custom(format_args!("no direction `{}`", name.as_str()))
+                        })?;
+                    direction = Some(d);
+                }
                 Key::Command => {
                     let name = map.next_value::<Name>()?;
                     let c = P::command_named(name.as_str()).ok_or_else(|| {
@@ -101,9 +145,13 @@ impl<'de, P: SerdePacket> Visitor<'de> for PacketVisitor<P> {
                     let header = header.as_ref().ok_or_else(|| {
                         de::Error::custom("`payload` before `header`: the header must come first")
                     })?;
-                    message = Some(map.next_value_seed(PayloadSeed::<P> { command, header })?);
+                    message = Some(map.next_value_seed(PayloadSeed::<P> {
+                        command,
+                        header,
+                        direction,
+                    })?);
                 }
-                Key::Other => {
+                Key::Direction | Key::Other => {
                     map.next_value::<IgnoredAny>()?;
                 }
             }
@@ -118,6 +166,7 @@ impl<'de, P: SerdePacket> Visitor<'de> for PacketVisitor<P> {
 
 /// A key of a packet's map.
 enum Key {
+    Direction,
     Command,
     Header,
     Payload,
@@ -134,6 +183,7 @@ impl<'de> Deserialize<'de> for Key {
             }
             fn visit_str<E: de::Error>(self, key: &str) -> Result<Key, E> {
                 Ok(match key {
+                    "direction" => Key::Direction,
                     "command" => Key::Command,
                     "header" => Key::Header,
                     "payload" => Key::Payload,

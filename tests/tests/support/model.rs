@@ -85,11 +85,12 @@ impl Model {
                 payload: Some(s),
             });
         }
+        // The commands this format carries (a link's wider format may carry more).
         for (command, c) in ir
             .commands
             .iter()
             .enumerate()
-            .filter(|_| f.message.is_none())
+            .filter(|(ci, _)| f.message.is_none() && f.commands.contains(ci))
         {
             let carries = Carries::Command(command);
             if ir.directions.is_empty() {

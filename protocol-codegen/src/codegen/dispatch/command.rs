@@ -9,7 +9,7 @@ use crate::codegen::ident;
 use crate::ir::{Frame, Protocol, Transport};
 
 pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
-    let id_ty = id_type(f);
+    let id_ty = id_type(p);
     // Ids 0, 1, 2, ... of one key field are the variants' discriminants: `id` is a cast. (Other
     // ids stay a match: sparse discriminants would make every match on a command sparse too.)
     let single = f.dispatch.len() == 1
@@ -31,7 +31,7 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
                 .join(", ");
         let d = doc_attrs(&format!("`{}` (id {ids}). {}", c.name, c.doc));
         if single {
-            let id = id_value(f, c);
+            let id = id_value(p, c);
             quote!(#d #v = #id)
         } else {
             quote!(#d #v)
@@ -48,7 +48,7 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
     } else {
         let arms = p.commands.iter().map(|c| {
             let v = ident(&c.rust_name);
-            let id = id_value(f, c);
+            let id = id_value(p, c);
             quote!(Self::#v => #id,)
         });
         quote!(match self { #(#arms)* })
@@ -61,7 +61,7 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
     // A match, not a lookup in `ALL`: with dense ids it compiles to a range test and no table.
     let from_id = p.commands.iter().map(|c| {
         let v = ident(&c.rust_name);
-        let id = id_value(f, c);
+        let id = id_value(p, c);
         quote!(#id => #rt::Some(Self::#v),)
     });
     let id_doc = format!(

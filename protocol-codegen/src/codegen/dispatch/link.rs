@@ -9,6 +9,7 @@ use quote::{format_ident, quote};
 
 use super::frames::header_codec;
 use super::key_prims;
+use super::packet::packet_direction;
 use crate::codegen::frame::{decoder_buffer_len, wire_const};
 use crate::codegen::ident;
 use crate::codegen::payload::prim_type;
@@ -17,10 +18,10 @@ use crate::ir::{Frame, Protocol};
 /// Reading frame `f`'s dispatch key into the first format's `CommandId` (a value that does
 /// not fit it is an unknown command), and writing a command's id into `f`'s fields (an id
 /// that does not fit them is `ValueOutOfRange`: the format does not carry the command).
-fn key_codec(first: &Frame, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
+fn key_codec(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
     let header_len = format_ident!("{}", f.names.sizes.header_len);
     let consts: Vec<_> = f.dispatch.iter().map(|&i| wire_const(f, i)).collect();
-    let types: Vec<_> = key_prims(first).into_iter().map(prim_type).collect();
+    let types: Vec<_> = key_prims(p).into_iter().map(prim_type).collect();
     let vars: Vec<_> = (0..consts.len()).map(|i| format_ident!("k{}", i)).collect();
     let widths: Vec<u32> = f.dispatch.iter().map(|&i| f.values[i].width).collect();
     let mut key = quote!(k0);
@@ -63,9 +64,11 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
     let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
     let aside_len = format_ident!("{}", first.names.sizes.max_payload_len);
     let (reads, writes) = header_codec(f, rt);
-    let (read_key, write_key) = key_codec(first, f, rt);
+    let (read_key, write_key) = key_codec(p, f, rt);
+    // Validation refuses a format without extension fields in a spec with directions.
+    let (by_direction, direction_check) = packet_direction(p, f, rt);
     let (read, base) = if f.extensions {
-        (quote!(Message::read_payload(command, payload)?), quote!())
+        (by_direction, quote!())
     } else {
         (
             quote!(Message::read_base_payload(command, payload)?),
@@ -103,9 +106,9 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
             /// Decode a frame whose framing a decoder already checked.
             ///
             /// # Errors
-            /// `UnknownCommand` for an id the spec does not have, `PayloadLength` when the
-            /// payload's size is not what this format carries of the command's, and errors
-            /// of the payload's fields.
+            /// `UnknownCommand` for an id the spec does not have, `UnknownDirection` when the
+            /// header matches no direction, `PayloadLength` when the payload's size is not
+            /// what this format carries of the command's, and errors of the payload's fields.
             pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
                 let header = #header { #(#reads,)* };
                 #read_key
@@ -133,8 +136,10 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
             /// # Errors
             /// `EncodeError::BufferTooSmall` if `buf` is too short, `ValueOutOfRange` if the
             /// command's id does not fit this format's dispatch key (the format does not carry
-            /// it) or a header value does not fit its field.
+            /// it), a header value does not fit its field or does not match the message's
+            /// direction.
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
+                #direction_check
                 let mut aside = [0u8; #aside_len];
                 let plen = self.write_aside(&mut aside)?;
                 let total = #header_len.saturating_add(plen).saturating_add(#trailer_len);
@@ -161,14 +166,16 @@ pub(super) fn emit_base_payload(p: &Protocol, rt: &TokenStream) -> TokenStream {
     let arms = p.commands.iter().filter_map(|c| {
         let si = c.payloads.first().copied().flatten()?;
         let s = &p.structs[si];
-        let base = s.base_size?;
+        // A fixed-size struct without extension fields is carried whole: exactly its size,
+        // not zero-filled as a first format that truncates trailing zeros reads it.
+        let base = s.base_size.or((s.min_size == s.size).then_some(s.size))?;
         let (v, size) = (ident(&c.rust_name), s.size);
         Some(quote!(Command::#v => #rt::Some((#base, #size)),))
     });
     quote! {
         impl Message {
             /// The bytes of `command`'s payload without its extension fields, and with them,
-            /// for a command whose struct has extension fields.
+            /// for a command whose struct has extension fields or a fixed size.
             #[allow(clippy::match_same_arms)]
             pub const fn base_len(command: Command) -> #rt::Option<(usize, usize)> {
                 match command {

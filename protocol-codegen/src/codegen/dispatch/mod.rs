@@ -16,7 +16,7 @@ use quote::{format_ident, quote};
 use super::payload::prim_type;
 use super::rt;
 use super::types::int_lit;
-use crate::ir::{Command, Frame, PacketKind, Prim, Protocol};
+use crate::ir::{Command, PacketKind, Prim, Protocol};
 use command::emit_command_enum;
 use frames::{emit_can_packet, emit_message_packet};
 pub use given::direction_layouts;
@@ -86,12 +86,13 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
     out
 }
 
-pub(super) fn key_prims(f: &Frame) -> Vec<Prim> {
-    f.dispatch.iter().map(|&i| f.values[i].prim).collect()
+/// The types of a command id's values ([`Protocol::id_prims`]).
+pub(super) fn key_prims(p: &Protocol) -> Vec<Prim> {
+    p.id_prims()
 }
 
-pub(super) fn id_type(f: &Frame) -> TokenStream {
-    let prims: Vec<TokenStream> = key_prims(f).into_iter().map(prim_type).collect();
+pub(super) fn id_type(p: &Protocol) -> TokenStream {
+    let prims: Vec<TokenStream> = key_prims(p).into_iter().map(prim_type).collect();
     if prims.len() == 1 {
         prims[0].clone()
     } else {
@@ -99,8 +100,8 @@ pub(super) fn id_type(f: &Frame) -> TokenStream {
     }
 }
 
-pub(super) fn id_value(f: &Frame, c: &Command) -> TokenStream {
-    let lits: Vec<TokenStream> = key_prims(f)
+pub(super) fn id_value(p: &Protocol, c: &Command) -> TokenStream {
+    let lits: Vec<TokenStream> = key_prims(p)
         .into_iter()
         .zip(&c.id)
         .map(|(p, v)| int_lit(p, *v))

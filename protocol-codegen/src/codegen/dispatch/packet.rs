@@ -65,10 +65,10 @@ struct Key {
     write: TokenStream,
 }
 
-fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
+fn packet_key(p: &Protocol, f: &Frame, rt: &TokenStream) -> Key {
     let header_len = Items::of(f).header_len;
     let consts: Vec<_> = f.dispatch.iter().map(|&i| wire_const(f, i)).collect();
-    let prims = key_prims(f);
+    let prims = key_prims(p);
     if let ([c], [prim]) = (&consts[..], &prims[..]) {
         let t = prim_type(*prim);
         return Key {
@@ -92,9 +92,14 @@ fn packet_key(f: &Frame, rt: &TokenStream) -> Key {
     }
 }
 
-/// The message of a decoded frame (by direction when the spec has directions), and the check
-/// that an encoded message's direction matches its header.
-fn packet_direction(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
+/// The message of a decoded frame of format `f` (by direction when the spec has directions,
+/// read from `f`'s own direction field), and the check that an encoded message's direction
+/// matches its header.
+pub(super) fn packet_direction(
+    p: &Protocol,
+    f: &Frame,
+    rt: &TokenStream,
+) -> (TokenStream, TokenStream) {
     if p.directions_given() {
         // Each direction has its own decoder (`given`); a message is written as it is.
         return (quote!(), quote!());
@@ -110,7 +115,7 @@ fn packet_direction(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, 
     let tests: Vec<_> = p
         .directions
         .iter()
-        .map(|d| direction_test(p, f, &d.rule))
+        .map(|d| direction_test(p, f, &d.rule.in_frame(f)))
         .collect();
     let message = quote! {
         #(if #tests { Message::#names(#names::read_payload(command, payload)?) } else)*
@@ -372,7 +377,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
         ..
     } = Items::of(f);
     let (header_fields, header_writes) = header_codec(f, rt);
-    let key = packet_key(f, rt);
+    let key = packet_key(p, f, rt);
     let (message, direction_check) = packet_direction(p, f, rt);
     let ack = packet_ack(p, f, &key, rt);
     let encoded_len = packet_encoded_len(f, &ack, rt);
@@ -386,6 +391,16 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
     } = &ack;
     let (unstuff, stuff, stuffing_const) = packet_stuffing(f, rt);
     let trailer_of = packet_trailer(f);
+    // A command only a wider format of the link carries.
+    let not_carried = if f.commands.len() < p.commands.len() {
+        quote! {
+            ///
+            /// A command whose id does not fit this format's dispatch key is `ValueOutOfRange`
+            /// too: a wider format of the link carries it.
+        }
+    } else {
+        quote!()
+    };
     let Spans {
         header_in,
         place,
@@ -458,6 +473,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
             /// `EncodeError::BufferTooSmall` if `buf` is shorter than [`Self::encoded_len`],
             /// `ValueOutOfRange` if a header value does not fit its field or does not match the
             /// message's direction.
+            #not_carried
             #[inline(always)]
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
                 #direction_check

@@ -208,6 +208,7 @@ fn lower_frame(
         message,
         packet: PacketKind::None,
         extensions: def.extensions.as_ref().is_none_or(|e| *e.get_ref()),
+        direction: None,
         commands: Vec::new(),
         flag_trailer,
         length_extension,

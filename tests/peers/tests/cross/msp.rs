@@ -11,7 +11,7 @@ use cu_msp_lib::structs::{
     MspAltitude, MspAnalog, MspApiVersion, MspAttitude, MspFlightControllerVariant,
     MspFlightControllerVersion, MspRawImu, MspStatus,
 };
-use cu_msp_lib::{MspPacket, MspPacketDirection, MspParser};
+use cu_msp_lib::{MspPacket, MspPacketDirection, MspParsedVersion, MspParser};
 use protocol_peers::{expected_frames, frame_bytes, frames, hex, load_vectors, name, uint};
 use serde_json::Value;
 
@@ -218,7 +218,7 @@ fn the_stream_yields_expected_frames_in_cu_msp_lib() {
     }
 }
 
-// ---- Random messages both ways: cu-msp-lib and the generated MSP v1 codec ----
+// ---- Random messages both ways: cu-msp-lib and the generated MSP v1 and v2 codec ----
 
 mod ours {
     protocol::protocol!("../../specs/msp.toml");
@@ -228,9 +228,10 @@ use ours::msp as spec;
 use proptest::prelude::*;
 use protocol_peers::harness::{PeerAdapter, cross_check};
 
-/// The MSP v1 messages both sides know: replies the peer has a struct for, their empty
-/// requests, and box names (raw bytes, below the jumbo size the peer does not have).
-fn messages() -> BoxedStrategy<spec::Packet> {
+/// The MSP messages both sides know: replies the peer has a struct for, their empty
+/// requests, and box names (raw bytes, below the jumbo size the peer does not have), each in a
+/// v1 or a v2 frame.
+fn messages() -> BoxedStrategy<spec::AnyPacket> {
     use spec::{Message as M, Request as Q, Response as R};
     let api = any::<[u8; 3]>().prop_map(|[a, b, c]| {
         M::Response(R::ApiVersion(spec::ApiVersion {
@@ -297,28 +298,49 @@ fn messages() -> BoxedStrategy<spec::Packet> {
         Just(Q::Boxnames),
     ]
     .prop_map(M::Request);
-    prop_oneof![
-        api, version, attitude, altitude, imu, analog, names, request
-    ]
-    .prop_map(|message| spec::Packet {
-        header: spec::Header {
-            direction: if matches!(message, M::Request(_)) {
+    // MSP2_COMMON_SETTING (INAV): a v2-only command, its request a NUL-terminated name.
+    let setting = "[a-z0-9_]{1,64}".prop_map(|name| {
+        M::Request(Q::CommonSetting(spec::SettingName {
+            name: protocol::NulStr::from_text(&name).expect("at most 64 bytes"),
+        }))
+    });
+    let message = prop_oneof![
+        api, version, attitude, altitude, imu, analog, names, request, setting
+    ];
+    (message, any::<bool>())
+        .prop_map(|(message, v2)| {
+            // A command of an id above 255 travels in v2 frames only.
+            let v2 = v2 || message.command().id() > 255;
+            let direction = if matches!(message, M::Request(_)) {
                 b'<'
             } else {
                 b'>'
-            },
-        },
-        message,
-    })
-    .boxed()
+            };
+            if v2 {
+                spec::AnyPacket::V2(spec::V2Packet {
+                    header: spec::V2Header { direction, flag: 0 },
+                    message,
+                })
+            } else {
+                spec::AnyPacket::V1(spec::Packet {
+                    header: spec::Header { direction },
+                    message,
+                })
+            }
+        })
+        .boxed()
 }
 
 /// The payload of `m`, written field by field as the MSP documentation lays it out
 /// (little-endian), for the peer to frame.
 fn payload_of(m: &spec::Message) -> Vec<u8> {
-    use spec::{Message as M, Response as R};
+    use spec::{Message as M, Request as Q, Response as R};
     let mut out = Vec::new();
     match m {
+        M::Request(Q::CommonSetting(s)) => {
+            out.extend_from_slice(s.name.text());
+            out.push(0);
+        }
         M::Request(_) => {}
         M::Response(R::ApiVersion(a)) => {
             out.extend([a.protocol_version, a.api_version_major, a.api_version_minor]);
@@ -357,9 +379,18 @@ fn payload_of(m: &spec::Message) -> Vec<u8> {
 /// Our message for a packet the peer parsed, its payload read by the peer's structs.
 fn from_peer(p: &MspPacket) -> Result<spec::Message, String> {
     use spec::{Message as M, Request as Q, Response as R};
-    let cmd = u8::try_from(p.cmd).map_err(|e| e.to_string())?;
+    let cmd = p.cmd;
     let command = spec::Command::from_id(cmd).ok_or(format!("command {cmd}"))?;
     if p.direction == MspPacketDirection::ToFlightController {
+        if command == spec::Command::CommonSetting {
+            let [name @ .., 0] = p.data.as_slice() else {
+                return Err("a setting name without its NUL".into());
+            };
+            let name = std::str::from_utf8(name).map_err(|e| e.to_string())?;
+            return Ok(M::Request(Q::CommonSetting(spec::SettingName {
+                name: protocol::NulStr::from_text(name).ok_or("a name too long")?,
+            })));
+        }
         if !p.data.as_slice().is_empty() {
             return Err("a request with a payload".into());
         }
@@ -444,53 +475,86 @@ fn decoded<T, E: std::fmt::Debug>(r: Result<T, E>) -> Result<T, String> {
 
 struct CuMsp;
 
+/// The direction byte of a packet of either format.
+fn direction_byte(m: &spec::AnyPacket) -> u8 {
+    match m {
+        spec::AnyPacket::V1(p) => p.header.direction,
+        spec::AnyPacket::V2(p) => p.header.direction,
+    }
+}
+
 impl PeerAdapter for CuMsp {
-    type Message = spec::Packet;
+    type Message = spec::AnyPacket;
 
     fn peer(&self) -> &'static str {
         "cu-msp-lib 1.3"
     }
 
-    fn messages(&self) -> BoxedStrategy<spec::Packet> {
+    fn messages(&self) -> BoxedStrategy<spec::AnyPacket> {
         messages()
     }
 
-    fn peer_write(&mut self, m: &spec::Packet) -> Result<Option<Vec<u8>>, String> {
+    fn peer_write(&mut self, m: &spec::AnyPacket) -> Result<Option<Vec<u8>>, String> {
         let packet = MspPacket {
-            cmd: u16::from(m.message.command().id()),
-            direction: match m.header.direction {
+            cmd: m.message().command().id(),
+            direction: match direction_byte(m) {
                 b'<' => MspPacketDirection::ToFlightController,
                 _ => MspPacketDirection::FromFlightController,
             },
-            data: payload_of(&m.message).as_slice().into(),
+            data: payload_of(m.message()).as_slice().into(),
         };
-        let mut frame = vec![0u8; packet.packet_size_bytes()];
-        packet.serialize(&mut frame).map_err(|e| format!("{e:?}"))?;
-        Ok(Some(frame))
+        let frame = if let spec::AnyPacket::V2(_) = m {
+            let mut frame = vec![0u8; packet.packet_size_bytes_v2()];
+            packet.serialize_v2(&mut frame).map(|()| frame)
+        } else {
+            let mut frame = vec![0u8; packet.packet_size_bytes()];
+            packet.serialize(&mut frame).map(|()| frame)
+        };
+        frame.map(Some).map_err(|e| format!("{e:?}"))
     }
 
     fn peer_read(
         &mut self,
         frame: &[u8],
-        _like: &spec::Packet,
-    ) -> Result<Option<spec::Packet>, String> {
-        let [p] = parse(frame).try_into().map_err(|v| format!("{v:?}"))?;
-        Ok(Some(spec::Packet {
-            header: spec::Header {
-                direction: p.direction.to_byte(),
-            },
-            message: from_peer(&p)?,
+        _like: &spec::AnyPacket,
+    ) -> Result<Option<spec::AnyPacket>, String> {
+        let mut parser = MspParser::new();
+        let mut found = frame.iter().filter_map(|&b| {
+            parser
+                .parse(b)
+                .ok()
+                .flatten()
+                .map(|p| (p, parser.last_packet_info()))
+        });
+        let (Some((p, info)), None) = (found.next(), found.next()) else {
+            return Err("not one packet".into());
+        };
+        let (direction, message) = (p.direction.to_byte(), from_peer(&p)?);
+        Ok(Some(match info.map(|i| i.version) {
+            Some(MspParsedVersion::V2Native) => spec::AnyPacket::V2(spec::V2Packet {
+                header: spec::V2Header { direction, flag: 0 },
+                message,
+            }),
+            Some(MspParsedVersion::V1) => spec::AnyPacket::V1(spec::Packet {
+                header: spec::Header { direction },
+                message,
+            }),
+            other => return Err(format!("parsed as {other:?}")),
         }))
     }
 
-    fn ours_write(&self, m: &spec::Packet) -> Result<Vec<u8>, String> {
-        let mut buf = [0u8; spec::MAX_FRAME_LEN];
+    fn ours_write(&self, m: &spec::AnyPacket) -> Result<Vec<u8>, String> {
+        let mut buf = [0u8; spec::ANY_DECODER_BUFFER_LEN];
         let n = m.encode(&mut buf).map_err(|e| e.to_string())?;
         Ok(buf[..n].to_vec())
     }
 
-    fn ours_read(&self, frame: &[u8]) -> Result<spec::Packet, String> {
-        spec::Packet::decode(frame).map_err(|e| e.to_string())
+    /// Through the link's one decoder, which finds the frame's format by its sync.
+    fn ours_read(&self, frame: &[u8]) -> Result<spec::AnyPacket, String> {
+        let mut decoder = spec::any_decoder();
+        let mut input = frame;
+        let found = decoder.decode(&mut input).ok_or("no frame found")?;
+        spec::AnyPacket::from_frame(&found).map_err(|e| e.to_string())
     }
 }
 
@@ -510,24 +574,34 @@ fn random_messages_cross_between_cu_msp_lib_and_the_generated_codec() {
 }
 
 #[test]
-fn the_v1_vector_frames_decode_here_the_jumbo_one_included() {
-    // The v1 frames the spec expresses decode here to their command, the jumbo frame the peer
-    // cannot read among them.
+fn the_vector_frames_decode_here_the_jumbo_one_included() {
+    // The v1 and v2 frames the spec expresses decode here, through the link's one decoder, to
+    // their command, the jumbo frame the peer cannot read among them.
     let v = load_vectors("msp.json");
-    let mut here = 0;
-    for frame in frames(&v).iter().filter(|f| f["version"] == "v1") {
+    let (mut v1, mut v2) = (0, 0);
+    for frame in frames(&v) {
         let bytes = frame_bytes(frame);
-        let Ok(packet) = spec::Packet::decode(&bytes) else {
+        let Ok(packet) = CuMsp.ours_read(&bytes) else {
             continue;
         };
+        // A v2 frame inside a v1 frame is MSP_V2_FRAME here; the vector records the inner
+        // command.
+        let cmd = if frame["version"] == "v2-over-v1" {
+            255
+        } else {
+            uint(frame, "cmd")
+        };
         assert_eq!(
-            u64::from(packet.message.command().id()),
-            uint(frame, "cmd"),
+            u64::from(packet.message().command().id()),
+            cmd,
             "{}",
             name(frame)
         );
-        here += 1;
+        match packet {
+            spec::AnyPacket::V1(_) => v1 += 1,
+            spec::AnyPacket::V2(_) => v2 += 1,
+        }
     }
-    println!("msp: {here} v1 vector frames decode here");
-    assert_eq!(here, 12);
+    println!("msp: {v1} v1 and {v2} v2 vector frames decode here");
+    assert_eq!((v1, v2), (13, 3), "v2 over v1 counts as v1");
 }
