@@ -61,6 +61,10 @@ struct Tally {
     examples: Vec<String>,
     /// False frames a complemented sum accepts by construction ([`extended_by_its_check`]).
     extended_by_check: u64,
+    /// Untouched frames delivered, per frame format of the link (by name).
+    delivered_by_format: BTreeMap<String, u64>,
+    /// Delivered frames with a flag trailer (a signed MAVLink 2 frame).
+    delivered_flagged: u64,
 }
 
 /// A complemented 8-bit sum (`xorout = 0xFF`, Dynamixel 1.0's) over bytes that end with their
@@ -266,6 +270,11 @@ fn check_stream<S: Spec>(
                 assert!(last < Some(i), "{}: frame {i} out of order", S::NAME);
                 last = Some(i);
                 delivered[i] = true;
+                let format = m.format_for(bytes).frame();
+                *t.delivered_by_format
+                    .entry(format.name.clone())
+                    .or_default() += 1;
+                t.delivered_flagged += u64::from(body_len(format, bytes) < bytes.len());
             }
             _ => {
                 let end = at + bytes.len();
@@ -433,6 +442,13 @@ fn faults<S: Spec>() {
             t.extended_by_check
         );
     }
+    if !m.others.is_empty() || t.delivered_flagged > 0 {
+        let _ = writeln!(
+            report,
+            "  delivered per frame format {:?}, {} of them with a flag trailer",
+            t.delivered_by_format, t.delivered_flagged
+        );
+    }
     for e in &t.examples {
         let _ = writeln!(report, "    {e}");
     }
@@ -441,6 +457,19 @@ fn faults<S: Spec>() {
         t.delivered + t.lost_to_collision + t.lost_to_reassembled + t.lost_nested,
         t.untouched
     );
+    // A link's decoder delivers frames of every format; a format with a flag trailer, some
+    // with it.
+    for f in m.formats() {
+        assert!(
+            t.delivered_by_format.get(&f.frame().name) > Some(&0),
+            "{report}no frame of format `{}` delivered",
+            f.frame().name
+        );
+        assert!(
+            f.frame().flag_trailer.is_none() || t.delivered_flagged > 0,
+            "{report}no frame with a flag trailer delivered"
+        );
+    }
     // Every untouched frame lost is explained by a false frame over it, and those are as rare
     // as the checks' width says: within four standard deviations of the prediction (the
     // faults are not random bytes, so the prediction is a guide, not an exact law).

@@ -118,6 +118,13 @@ macro_rules! expand_spec {
                     .chain($name::ANY_OTHER_LAYOUTS.iter())
                     .collect()
             }
+            fn format_of(bytes: &[u8]) -> usize {
+                // Without `layouts()`'s vector: decoding must not allocate (`no_alloc.rs`).
+                std::iter::once(&$name::LAYOUT)
+                    .chain($name::ANY_OTHER_LAYOUTS.iter())
+                    .position(|l| $crate::support::starts_as(l, bytes))
+                    .unwrap_or(0)
+            }
             fn decoder() -> Self::Decoder {
                 $name::any_decoder()
             }
@@ -130,7 +137,10 @@ macro_rules! expand_spec {
             }
             fn decode(bytes: &[u8]) -> Result<Self, protocol::DecodeError> {
                 let format = <Self as $crate::support::Spec>::format_of(bytes);
-                let layout = <Self as $crate::support::Spec>::layouts()[format];
+                let layout = match format.checked_sub(1) {
+                    Some(k) => &$name::ANY_OTHER_LAYOUTS[k],
+                    None => &$name::LAYOUT,
+                };
                 $name::AnyPacket::from_frame(&protocol::Frame {
                     bytes: layout.parse(bytes)?,
                     offset: 0,
