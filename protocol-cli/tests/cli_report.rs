@@ -218,18 +218,27 @@ fn the_direction_picks_how_frames_decode() {
         statuses.len(),
         "every status packet decodes as a response"
     );
+    assert_eq!(
+        html.matches("data-command=\"(Status)\"").count(),
+        statuses.len(),
+        "a status packet is labelled by the struct it carries"
+    );
     assert!(html.contains("overload"), "the status fields are named");
 
     // Without a direction, the spec's directions are named and no page is written.
     let (out, html, _) = page("status", &[]);
     assert!(!out.status.success());
-    assert!(text(&out.stderr).contains("--direction"), "{}", text(&out.stderr));
+    assert!(message(&out).contains("--direction"), "{}", message(&out));
     assert!(html.is_none(), "no page without a direction");
 
     // A direction the spec lacks is refused; so is one for a spec whose header tells them.
     let (out, _, _) = page("status", &["--direction", "sideways"]);
     assert!(!out.status.success());
-    assert!(text(&out.stderr).contains("no such direction"));
+    assert!(
+        message(&out).contains("no such direction"),
+        "{}",
+        message(&out)
+    );
     let html = dir.join("hflink.html");
     let out = protocol(
         &[
@@ -244,5 +253,14 @@ fn the_direction_picks_how_frames_decode() {
         b"",
     );
     assert!(!out.status.success());
-    assert!(text(&out.stderr).contains("header field"), "{}", text(&out.stderr));
+    assert!(message(&out).contains("header field"), "{}", message(&out));
+}
+
+/// Stderr with miette's wrapping undone: one line, single spaces.
+fn message(out: &std::process::Output) -> String {
+    text(&out.stderr)
+        .replace('│', " ")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
 }

@@ -222,7 +222,11 @@ fn main() {
     for spec in vectors::SPECS {
         let s = spec.capture();
         write(&dir, &format!("{}.bin", spec.name), &s.bytes);
-        write(&dir, &format!("{}.truth.jsonl", spec.name), s.truth.as_bytes());
+        write(
+            &dir,
+            &format!("{}.truth.jsonl", spec.name),
+            s.truth.as_bytes(),
+        );
         println!("{}.bin: {}", spec.name, s.summary());
     }
     let (uart, can_log, can_truth, can_summary) = scout::captures();

@@ -183,8 +183,8 @@ impl Spec {
         ]
         .iter()
         .collect::<std::path::PathBuf>();
-        let text = std::fs::read_to_string(&path)
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let text =
+            std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let vectors: Value = serde_json::from_str(&text).expect("vectors are JSON");
         let golden: Vec<Vec<u8>> = vectors["frames"]
             .as_array()

@@ -97,7 +97,11 @@ impl Model {
             ir.link.clone()
         };
         let layouts = S::layouts();
-        assert!(layouts.len() <= formats.len(), "{}: more layouts than formats", S::NAME);
+        assert!(
+            layouts.len() <= formats.len(),
+            "{}: more layouts than formats",
+            S::NAME
+        );
         let mut models: Vec<Model> = formats
             .iter()
             .zip(layouts)
