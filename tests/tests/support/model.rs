@@ -489,12 +489,20 @@ impl Model {
         v: &ir::HeaderValue,
     ) -> u64 {
         if let Some(d) = choice.direction {
+            // A rule names a header value of the first format; a link's other formats carry
+            // the field of the same name.
+            let first = &self.ir.frames[0].values;
+            let here = |value: usize| {
+                first
+                    .get(value)
+                    .is_some_and(|x| x.name == self.frame().values[index].name)
+            };
             match self.ir.directions[d].rule {
-                ir::DirectionRule::InSet { value, set } if value == index => {
+                ir::DirectionRule::InSet { value, set } if here(value) => {
                     let set = &self.ir.addresses[set];
                     return src.range(set.first, set.last);
                 }
-                ir::DirectionRule::Equals { value, equals } if value == index => return equals,
+                ir::DirectionRule::Equals { value, equals } if here(value) => return equals,
                 _ => {}
             }
         }
