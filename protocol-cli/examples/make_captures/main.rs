@@ -65,6 +65,9 @@ pub fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
+/// Whether some bytes are a valid frame.
+pub type IsFrame = Box<dyn Fn(&[u8]) -> bool>;
+
 /// A byte stream under construction, with its ground truth.
 pub struct Stream {
     /// The bytes of the capture.
@@ -83,7 +86,7 @@ pub struct Stream {
     avoid: Vec<u8>,
     /// Whether a damaged frame is still a valid frame (a bit no check covers): such a flip is
     /// made elsewhere, so that a frame recorded as damaged is rejected.
-    valid: Option<Box<dyn Fn(&[u8]) -> bool>>,
+    valid: Option<IsFrame>,
     counts: [usize; 5],
 }
 
@@ -120,7 +123,7 @@ impl Stream {
     }
 
     /// Tells which damaged frames are still valid frames.
-    pub fn set_valid(&mut self, valid: Box<dyn Fn(&[u8]) -> bool>) {
+    pub fn set_valid(&mut self, valid: IsFrame) {
         self.valid = Some(valid);
     }
 
