@@ -58,6 +58,10 @@ enum Command {
         /// The frame format to decode (default: the first).
         #[arg(long)]
         frame: Option<String>,
+        /// The direction of the frames, for a spec whose directions no header field tells
+        /// (`given = true`): a direction named in the spec (`request`, `response`).
+        #[arg(long, value_name = "NAME")]
+        direction: Option<String>,
     },
     /// Print the Rust code the `protocol!` macro generates for a spec, formatted.
     Expand {
@@ -117,7 +121,14 @@ fn main() -> ExitCode {
             capture,
             output,
             frame,
-        } => cmd::report::run(&spec, &capture, output.as_deref(), frame.as_deref()),
+            direction,
+        } => cmd::report::run(
+            &spec,
+            &capture,
+            output.as_deref(),
+            frame.as_deref(),
+            direction.as_deref(),
+        ),
         Command::Gen(Gen::C { spec, output }) => cmd::generate::c(&spec, &output),
         Command::Diff { old, new, json } => cmd::diff::run(&old, &new, json),
     };

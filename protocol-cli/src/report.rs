@@ -76,7 +76,12 @@ fn decode(codec: &Codec<'_>, format: usize, data: &[u8]) -> Option<Capture> {
                         *n += 1;
                         *b += bytes.len();
                     }
-                    let name = d.command.map(|i| p.commands[i].name.clone());
+                    // A frame without a command is labelled by the struct it carries (a
+                    // status packet of a direction given to the decoder), as `decode` shows it.
+                    let name = match d.command {
+                        Some(i) => Some(p.commands[i].name.clone()),
+                        None => carried(p, d).map(|si| format!("({})", p.structs[si].name)),
+                    };
                     (name, None, spans(p, frame, bytes, Some(d)))
                 }
                 Err(e) => {
@@ -126,6 +131,19 @@ fn value_text(v: &Value) -> String {
     serde_json::to_string(v).unwrap_or_default()
 }
 
+/// The struct a frame without a command carries: its direction's message (a status packet), or
+/// its format's.
+fn carried(p: &Protocol, d: &Decoded) -> Option<usize> {
+    if d.command.is_some() || d.ack {
+        return None;
+    }
+    d.direction
+        .and_then(|di| p.directions.get(di))
+        .and_then(|x| x.message)
+        .map(|(si, _)| si)
+        .or(p.frames.get(d.format)?.message)
+}
+
 /// The named byte ranges of a frame: header elements, payload fields, checks, trailers.
 fn spans(p: &Protocol, f: &Frame, bytes: &[u8], decoded: Option<&Decoded>) -> Vec<Span> {
     // Checks and trailers sit back from the end of the frame without its flag trailer.
@@ -165,8 +183,10 @@ fn spans(p: &Protocol, f: &Frame, bytes: &[u8], decoded: Option<&Decoded>) -> Ve
             Element::Payload => {
                 let (start, end) = (header_len, len.saturating_sub(f.trailer_len));
                 let fields = decoded.and_then(|d| {
-                    let c = &p.commands[d.command?];
-                    let s = (*c.payloads.get(d.direction.unwrap_or(0))?)?;
+                    let s = match d.command {
+                        Some(ci) => (*p.commands[ci].payloads.get(d.direction.unwrap_or(0))?)?,
+                        None => carried(p, d)?,
+                    };
                     Some((&p.structs[s], &d.payload))
                 });
                 match fields {

@@ -7,24 +7,14 @@ mod support;
 
 use protocol_cli::candump;
 use serde_json::{Value, json};
-use support::{json_lines, protocol, text, truth, unhex};
+use support::{CAPTURES, json_lines, protocol, text, truth, unhex};
 
 #[test]
 fn decode_then_encode_reproduces_every_valid_frame_byte_for_byte() {
-    for (spec, name, format) in [
-        ("specs/hflink.toml", "hflink", "link"),
-        ("specs/referee.toml", "referee", "referee"),
-        ("specs/referee2018.toml", "referee2018", "referee"),
-        ("specs/scout.toml", "scout", "uart"),
-        ("specs/roborts.toml", "roborts", "sdk"),
-        ("specs/dynamixel.toml", "dynamixel", "packet"),
-        ("specs/dynamixel.toml", "dynamixel_feedback", "feedback"),
-    ] {
+    for (spec, name, how) in CAPTURES {
         let capture = format!("examples/captures/{name}.bin");
         let decoded = protocol(
-            &[
-                "decode", spec, &capture, "--format", "json", "--frame", format,
-            ],
+            &[&["decode", spec, &capture, "--format", "json"], *how].concat(),
             b"",
         );
         assert!(decoded.status.success());

@@ -158,3 +158,109 @@ fn the_page_renders_in_a_headless_chromium() {
         png.len()
     );
 }
+
+/// `report --direction NAME`, as `decode --direction` has it, on `specs/dynamixel1.toml` (whose
+/// instruction and status packets share one layout): the direction picks how the frames decode;
+/// it is required for such a spec and refused for a spec whose header tells its directions.
+#[test]
+fn the_direction_picks_how_frames_decode() {
+    let path = support::root().join("tests/vectors/dynamixel_protocol1.json");
+    let vectors: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).expect("vectors")).expect("JSON");
+    let frames = vectors["frames"].as_array().expect("frames");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("direction");
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let page = |kind: &str, args: &[&str]| {
+        let of_kind: Vec<&serde_json::Value> =
+            frames.iter().filter(|f| f["packet"] == kind).collect();
+        let bytes: Vec<u8> = of_kind
+            .iter()
+            .flat_map(|f| support::unhex(f["hex"].as_str().expect("hex")))
+            .collect();
+        let capture = dir.join(format!("{kind}.bin"));
+        std::fs::write(&capture, bytes).expect("capture");
+        let html = dir.join(format!("{kind}.html"));
+        let _ = std::fs::remove_file(&html);
+        let mut all = vec![
+            "report",
+            "specs/dynamixel1.toml",
+            capture.to_str().expect("path"),
+            "-o",
+            html.to_str().expect("path"),
+        ];
+        all.extend_from_slice(args);
+        let out = protocol(&all, b"");
+        let page = std::fs::read_to_string(&html).ok();
+        (out, page, of_kind)
+    };
+
+    let (out, html, requests) = page("instruction", &["--direction", "request"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let html = html.expect("the report");
+    assert_eq!(
+        html.matches("<div class=\"frame\"").count(),
+        requests.len(),
+        "every instruction packet decodes as a request"
+    );
+    assert!(!html.contains("<div class=\"frame bad\""));
+    for command in ["PING", "WRITE", "SYNC_WRITE"] {
+        assert!(
+            html.contains(&format!("data-command=\"{command}\"")),
+            "{command} is named"
+        );
+    }
+
+    let (out, html, statuses) = page("status", &["--direction", "response"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let html = html.expect("the report");
+    assert_eq!(
+        html.matches("<div class=\"frame\"").count(),
+        statuses.len(),
+        "every status packet decodes as a response"
+    );
+    assert_eq!(
+        html.matches("data-command=\"(Status)\"").count(),
+        statuses.len(),
+        "a status packet is labelled by the struct it carries"
+    );
+    assert!(html.contains("overload"), "the status fields are named");
+
+    // Without a direction, the spec's directions are named and no page is written.
+    let (out, html, _) = page("status", &[]);
+    assert!(!out.status.success());
+    assert!(message(&out).contains("--direction"), "{}", message(&out));
+    assert!(html.is_none(), "no page without a direction");
+
+    // A direction the spec lacks is refused; so is one for a spec whose header tells them.
+    let (out, _, _) = page("status", &["--direction", "sideways"]);
+    assert!(!out.status.success());
+    assert!(
+        message(&out).contains("no such direction"),
+        "{}",
+        message(&out)
+    );
+    let html = dir.join("hflink.html");
+    let out = protocol(
+        &[
+            "report",
+            "specs/hflink.toml",
+            "examples/captures/hflink.bin",
+            "-o",
+            html.to_str().expect("path"),
+            "--direction",
+            "request",
+        ],
+        b"",
+    );
+    assert!(!out.status.success());
+    assert!(message(&out).contains("header field"), "{}", message(&out));
+}
+
+/// Stderr with miette's wrapping undone: one line, single spaces.
+fn message(out: &std::process::Output) -> String {
+    text(&out.stderr)
+        .replace('│', " ")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+}

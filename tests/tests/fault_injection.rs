@@ -61,6 +61,10 @@ struct Tally {
     examples: Vec<String>,
     /// False frames a complemented sum accepts by construction ([`extended_by_its_check`]).
     extended_by_check: u64,
+    /// Untouched frames delivered, per frame format of the link (by name).
+    delivered_by_format: BTreeMap<String, u64>,
+    /// Delivered frames with a flag trailer (a signed MAVLink 2 frame).
+    delivered_flagged: u64,
 }
 
 /// A complemented 8-bit sum (`xorout = 0xFF`, Dynamixel 1.0's) over bytes that end with their
@@ -70,6 +74,7 @@ struct Tally {
 /// apart from the collisions the check width predicts. True when `bytes` is one: its last byte
 /// is 0xFF, and without it, its length one less, it is a valid frame.
 fn extended_by_its_check(m: &Model, bytes: &[u8]) -> bool {
+    let m = m.format_for(bytes);
     let complemented = m.frame().checks.iter().any(|c| {
         matches!(
             c.algorithm,
@@ -254,7 +259,7 @@ fn check_stream<S: Spec>(
     let mut false_frames = Vec::new();
     for (offset, bytes) in &r.frames {
         assert!(
-            checks_hold(m.frame(), bytes),
+            checks_hold(m.format_for(bytes).frame(), bytes),
             "{}: accepted {} with a failing check",
             S::NAME,
             hex(bytes)
@@ -265,6 +270,11 @@ fn check_stream<S: Spec>(
                 assert!(last < Some(i), "{}: frame {i} out of order", S::NAME);
                 last = Some(i);
                 delivered[i] = true;
+                let format = m.format_for(bytes).frame();
+                *t.delivered_by_format
+                    .entry(format.name.clone())
+                    .or_default() += 1;
+                t.delivered_flagged += u64::from(body_len(format, bytes) < bytes.len());
             }
             _ => {
                 let end = at + bytes.len();
@@ -285,7 +295,11 @@ fn check_stream<S: Spec>(
                 if overlapping.any(|s| {
                     s.kind.touches()
                         && (s.original == *bytes
-                            || same_but_unchecked(m.frame(), &s.original, bytes))
+                            || same_but_unchecked(
+                                m.format_for(&s.original).frame(),
+                                &s.original,
+                                bytes,
+                            ))
                 }) {
                     t.reassembled += 1;
                     false_frames.push((at, end, false));
@@ -367,7 +381,7 @@ fn faults<S: Spec>() {
         let mut rng = Rng(seed ^ 0x5EED);
         // Streams of long frames get fewer of them: the byte count, not the frame count, sets
         // the run time.
-        let frames = FRAMES * 64 / m.layout.max_len.clamp(64, 512);
+        let frames = FRAMES * 64 / m.max_len().clamp(64, 512);
         let fs = build(m, &mut rng, frames, 3);
         t.sent += fs.sent.len() as u64;
         for s in &fs.sent {
@@ -375,14 +389,18 @@ fn faults<S: Spec>() {
         }
         check_stream::<S>(m, &fs, &[fs.bytes.len()], false, &mut t);
         let sizes: Vec<usize> = (0..32)
-            .map(|_| rng.below(2 * m.layout.max_len as u64) as usize + 1)
+            .map(|_| rng.below(2 * m.max_len() as u64) as usize + 1)
             .collect();
         check_stream::<S>(m, &fs, &sizes, true, &mut t);
         if seed == 1 {
             check_stream::<S>(m, &fs, &[1], true, &mut t);
         }
     }
-    let rate = pass_rate(m.frame());
+    // On a link, the weakest format's checks: the most false frames any format lets through.
+    let rate = m
+        .formats()
+        .map(|f| pass_rate(f.frame()))
+        .fold(0.0, f64::max);
     let expected = t.trials as f64 * rate;
     let observed = t.collisions();
     let mut report = String::new();
@@ -424,6 +442,13 @@ fn faults<S: Spec>() {
             t.extended_by_check
         );
     }
+    if !m.others.is_empty() || t.delivered_flagged > 0 {
+        let _ = writeln!(
+            report,
+            "  delivered per frame format {:?}, {} of them with a flag trailer",
+            t.delivered_by_format, t.delivered_flagged
+        );
+    }
     for e in &t.examples {
         let _ = writeln!(report, "    {e}");
     }
@@ -432,6 +457,19 @@ fn faults<S: Spec>() {
         t.delivered + t.lost_to_collision + t.lost_to_reassembled + t.lost_nested,
         t.untouched
     );
+    // A link's decoder delivers frames of every format; a format with a flag trailer, some
+    // with it.
+    for f in m.formats() {
+        assert!(
+            t.delivered_by_format.get(&f.frame().name) > Some(&0),
+            "{report}no frame of format `{}` delivered",
+            f.frame().name
+        );
+        assert!(
+            f.frame().flag_trailer.is_none() || t.delivered_flagged > 0,
+            "{report}no frame with a flag trailer delivered"
+        );
+    }
     // Every untouched frame lost is explained by a false frame over it, and those are as rare
     // as the checks' width says: within four standard deviations of the prediction (the
     // faults are not random bytes, so the prediction is a guide, not an exact law).
@@ -446,7 +484,7 @@ macro_rules! fault_suite {
     ($name:ident, $path:literal $(, $given:tt)*) => {
         #[test]
         fn $name() {
-            faults::<support::$name::Packet>();
+            faults::<support::packet!($name $(, $given)*)>();
         }
     };
 }

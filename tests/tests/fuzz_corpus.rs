@@ -47,7 +47,7 @@ macro_rules! stream_corpus {
         fn $name() {
             replay(
                 concat!("stream_", stringify!($name)),
-                support::fuzz::stream::<support::$name::Packet>,
+                support::fuzz::stream::<support::packet!($name $(, $given)*)>,
             );
         }
     };

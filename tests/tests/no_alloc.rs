@@ -89,7 +89,7 @@ macro_rules! no_alloc_suite {
     ($name:ident, $path:literal $(, $given:tt)*) => {
         #[test]
         fn $name() {
-            no_alloc::<support::$name::Packet>();
+            no_alloc::<support::packet!($name $(, $given)*)>();
         }
     };
 }

@@ -134,8 +134,9 @@ fn back_to_back<S: Spec>(entropy: &[u8], sizes: &[usize]) {
 }
 
 /// Bytes that reach deep into the decoder: garbage, sync bytes, whole and cut frames, frames
-/// with a flipped bit.
-fn hostile(m: &Model, src: &mut impl Source) -> Vec<u8> {
+/// with a flipped bit (on a link, of its formats).
+fn hostile(link: &Model, src: &mut impl Source) -> Vec<u8> {
+    let m = link.pick(src);
     let sync = sync_word(m.layout, src.below(256) as usize);
     let mut out = Vec::new();
     for _ in 0..src.below(12) {
@@ -145,14 +146,14 @@ fn hostile(m: &Model, src: &mut impl Source) -> Vec<u8> {
                 out.extend(src.bytes(n));
             }
             1 => out.extend_from_slice(&sync),
-            2 => out.extend(m.canonical(src)),
+            2 => out.extend(link.canonical(src)),
             3 => {
-                let frame = m.raw(src);
+                let frame = link.raw(src);
                 let cut = src.below(frame.len() as u64) as usize;
                 out.extend_from_slice(&frame[..cut]);
             }
             4 => {
-                let mut frame = m.raw(src);
+                let mut frame = link.raw(src);
                 let bit = src.below(8 * frame.len() as u64) as usize;
                 frame[bit / 8] ^= 1 << (bit % 8);
                 out.extend(frame);
@@ -189,7 +190,7 @@ macro_rules! properties {
         mod $name {
             use super::*;
 
-            type P = support::$name::Packet;
+            type P = support::packet!($name $(, $given)*);
 
             proptest! {
                 #![proptest_config(config())]

@@ -90,7 +90,7 @@ macro_rules! bounds_suite {
     ($name:ident, $path:literal $(, $given:tt)*) => {
         #[test]
         fn $name() {
-            bounds::<support::$name::Packet>();
+            bounds::<support::packet!($name $(, $given)*)>();
         }
     };
 }

@@ -19,6 +19,7 @@ mod hflink;
 mod referee;
 mod roborts;
 mod scout;
+mod vectors;
 
 /// xorshift64*, seeded: the same noise on every run.
 pub struct Rng(pub u64);
@@ -64,6 +65,9 @@ pub fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
+/// Whether some bytes are a valid frame.
+pub type IsFrame = Box<dyn Fn(&[u8]) -> bool>;
+
 /// A byte stream under construction, with its ground truth.
 pub struct Stream {
     /// The bytes of the capture.
@@ -78,6 +82,11 @@ pub struct Stream {
     noise: u64,
     /// Bytes of the sync word, sprinkled into line noise so that it looks like frame starts.
     sync: Vec<u8>,
+    /// Bytes line noise does not contain (none unless [`Stream::undamaged`] says).
+    avoid: Vec<u8>,
+    /// Whether a damaged frame is still a valid frame (a bit no check covers): such a flip is
+    /// made elsewhere, so that a frame recorded as damaged is rejected.
+    valid: Option<IsFrame>,
     counts: [usize; 5],
 }
 
@@ -98,8 +107,24 @@ impl Stream {
             cut: 2,
             noise: 4,
             sync: sync.to_vec(),
+            avoid: Vec::new(),
+            valid: None,
             counts: [0; 5],
         }
+    }
+
+    /// No damaged frames, and line noise without the bytes of `avoid` (a format without a
+    /// check: a damaged frame, or a frame start in the noise, would be a frame).
+    pub fn undamaged(&mut self, avoid: &[u8]) {
+        self.flip = 0;
+        self.cut = 0;
+        self.sync.clear();
+        self.avoid = avoid.to_vec();
+    }
+
+    /// Tells which damaged frames are still valid frames.
+    pub fn set_valid(&mut self, valid: IsFrame) {
+        self.valid = Some(valid);
     }
 
     fn record(&mut self, kind: &str, offset: usize, frame: &[u8]) {
@@ -115,11 +140,14 @@ impl Stream {
         if self.rng.chance(self.noise) {
             let n = 1 + self.rng.below(12) as usize;
             for _ in 0..n {
-                let b = if self.rng.chance(25) {
+                let mut b = if !self.sync.is_empty() && self.rng.chance(25) {
                     self.sync[self.rng.below(self.sync.len() as u64) as usize]
                 } else {
                     self.rng.bits() as u8
                 };
+                while self.avoid.contains(&b) {
+                    b = self.rng.bits() as u8;
+                }
                 self.bytes.push(b);
             }
             self.counts[NOISE] += n;
@@ -129,6 +157,11 @@ impl Stream {
             let mut damaged = frame.to_vec();
             let at = self.rng.below(damaged.len() as u64) as usize;
             damaged[at] ^= 1 << self.rng.below(8);
+            while self.valid.as_ref().is_some_and(|valid| valid(&damaged)) {
+                damaged = frame.to_vec();
+                let at = self.rng.below(damaged.len() as u64) as usize;
+                damaged[at] ^= 1 << self.rng.below(8);
+            }
             self.bytes.extend_from_slice(&damaged);
             self.record("bit_flip", offset, &damaged);
             self.counts[FLIPPED] += 1;
@@ -188,6 +221,16 @@ fn main() {
         write(&dir, &format!("{name}.bin"), &s.bytes);
         write(&dir, &format!("{name}.truth.jsonl"), s.truth.as_bytes());
         println!("{name}.bin: {}", s.summary());
+    }
+    for spec in vectors::SPECS {
+        let s = spec.capture();
+        write(&dir, &format!("{}.bin", spec.name), &s.bytes);
+        write(
+            &dir,
+            &format!("{}.truth.jsonl", spec.name),
+            s.truth.as_bytes(),
+        );
+        println!("{}.bin: {}", spec.name, s.summary());
     }
     let (uart, can_log, can_truth, can_summary) = scout::captures();
     write(&dir, "scout.bin", &uart.bytes);

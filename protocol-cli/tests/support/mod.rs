@@ -5,6 +5,38 @@
 use protocol_dynamic::Interpreter;
 use serde_json::Value;
 
+/// Spec, name and the options `decode` needs of every serial capture of `examples/captures/`
+/// (`NAME.bin`, with its truth `NAME.truth.jsonl`).
+pub const CAPTURES: &[(&str, &str, &[&str])] = &[
+    ("specs/hflink.toml", "hflink", &["--frame", "link"]),
+    ("specs/referee.toml", "referee", &["--frame", "referee"]),
+    (
+        "specs/referee2018.toml",
+        "referee2018",
+        &["--frame", "referee"],
+    ),
+    ("specs/scout.toml", "scout", &["--frame", "uart"]),
+    ("specs/roborts.toml", "roborts", &["--frame", "sdk"]),
+    ("specs/dynamixel.toml", "dynamixel", &["--frame", "packet"]),
+    (
+        "specs/dynamixel.toml",
+        "dynamixel_feedback",
+        &["--frame", "feedback"],
+    ),
+    ("specs/crsf.toml", "crsf", &[]),
+    ("specs/ubx.toml", "ubx", &[]),
+    ("specs/ibus.toml", "ibus", &[]),
+    ("specs/sbus.toml", "sbus", &[]),
+    // Both formats of the link, each found by its sync: no `--frame`.
+    ("specs/mavlink.toml", "mavlink", &[]),
+    (
+        "specs/dynamixel1.toml",
+        "dynamixel1",
+        &["--direction", "request"],
+    ),
+    ("specs/msp.toml", "msp", &["--frame", "v1"]),
+];
+
 /// The interpreter of `specs/NAME.toml`, its messages naming the path as the command's tests
 /// pass it (from the workspace root).
 pub fn interpreter(name: &str) -> Interpreter {

@@ -145,6 +145,36 @@ pub fn cross_check<A: PeerAdapter>(adapter: &mut A, cases: usize) -> Result<Tall
     Ok(tally)
 }
 
+/// Runs [`cross_check`] on `cases` messages and asserts that every one crossed both ways and
+/// that both sides wrote the same bytes for it; prints the tally under `label`.
+///
+/// # Panics
+///
+/// On the first disagreement, or when a message did not cross one way (the peer could not
+/// write or read it).
+pub fn assert_every_message_crosses<A: PeerAdapter>(
+    adapter: &mut A,
+    cases: usize,
+    label: &str,
+) -> Tally {
+    let tally = cross_check(adapter, cases).unwrap_or_else(|e| panic!("{e}"));
+    println!("{label}: {tally:?}");
+    assert_eq!(tally.messages, cases, "{label}");
+    assert_eq!(
+        tally.peer_to_ours, cases,
+        "{label}: every peer frame decodes here"
+    );
+    assert_eq!(
+        tally.ours_to_peer, cases,
+        "{label}: every frame written here decodes in the peer"
+    );
+    assert_eq!(
+        tally.same_bytes, cases,
+        "{label}: both sides write the same bytes"
+    );
+    tally
+}
+
 fn mismatch<A: PeerAdapter>(
     adapter: &A,
     case: usize,

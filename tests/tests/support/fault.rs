@@ -78,13 +78,16 @@ pub struct FaultStream {
 }
 
 /// Builds a stream of `frames` frames of `model`, touching about one in `touch_one_in`.
-pub fn build(model: &Model, rng: &mut Rng, frames: usize, touch_one_in: u64) -> FaultStream {
-    let layout = model.layout;
+/// On a link of several formats, each frame (and each run between frames) is of a format picked
+/// at random.
+pub fn build(link: &Model, rng: &mut Rng, frames: usize, touch_one_in: u64) -> FaultStream {
     let mut out = FaultStream::default();
     for _ in 0..frames {
         if rng.one_in(8) {
-            between(model, rng, &mut out);
+            between(link.pick(rng), rng, &mut out);
         }
+        let model = link.pick(rng);
+        let layout = model.layout;
         let fake = if rng.one_in(6) {
             fake_header_frame(model, rng)
         } else {
@@ -92,7 +95,7 @@ pub fn build(model: &Model, rng: &mut Rng, frames: usize, touch_one_in: u64) -> 
         };
         let (mut frame, mut kind) = match fake {
             Some(frame) => (frame, Kind::FakeHeaderInside),
-            None => (model.canonical(rng), Kind::Clean),
+            None => (model.canonical_here(rng), Kind::Clean),
         };
         let original = frame.clone();
         if rng.one_in(touch_one_in) {
@@ -116,7 +119,7 @@ pub fn build(model: &Model, rng: &mut Rng, frames: usize, touch_one_in: u64) -> 
     out
 }
 
-/// Garbage, or a sync word with part of a header, between two frames.
+/// Garbage, or a sync word with part of a header, between two frames (of `model`'s format).
 fn between(model: &Model, rng: &mut Rng, out: &mut FaultStream) {
     let sync = sync_word(model.layout, rng.below(256) as usize);
     if rng.one_in(2) {
@@ -131,7 +134,7 @@ fn between(model: &Model, rng: &mut Rng, out: &mut FaultStream) {
         }
         out.garbage_runs += 1;
     } else {
-        let header = model.canonical(rng);
+        let header = model.canonical_here(rng);
         let n = rng.range(sync.len() as u64, model.layout.header_span() as u64) as usize;
         out.bytes.extend_from_slice(&header[..n.min(header.len())]);
         out.sync_runs += 1;
@@ -270,7 +273,7 @@ fn fake_header_frame(model: &Model, rng: &mut Rng) -> Option<Vec<u8>> {
     if payload.len() < span {
         return None;
     }
-    let mut inner = model.canonical(rng);
+    let mut inner = model.canonical_here(rng);
     if length_field(model.layout).is_some() {
         set_length(model.layout, rng, &mut inner, true, true);
     }

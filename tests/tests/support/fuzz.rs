@@ -24,7 +24,7 @@ pub fn stream<S: Spec>(data: &[u8]) {
     let sizes = chunk_sizes(mode, S::MAX_FRAME_LEN);
     assert_chunking_invariant::<S>(bytes, &sizes);
     if let Ok(packet) = S::decode(bytes) {
-        let frame = S::layout()
+        let frame = S::layouts()[S::format_of(bytes)]
             .parse(bytes)
             .expect("decoded bytes hold a frame");
         check_packet::<S>(frame);
@@ -84,7 +84,8 @@ fn interpreter<S: Spec>() -> &'static Interpreter {
     })
 }
 
-/// The run-time codec (`protocol_dynamic`) and the generated code of `S` on the same bytes:
+/// The run-time codec (`protocol_dynamic`) and the generated code of `S` on the same bytes (on a
+/// link, as a frame of the format whose sync they start with):
 /// neither panics, they accept and reject the same inputs, and what they accept they re-encode
 /// to the same bytes (the codec's frame value going through its JSON form, as
 /// `decode | encode` carries it).
@@ -93,8 +94,10 @@ pub fn interp<S: Spec>(data: &[u8]) {
     let codec = interp.codec();
     let direction = S::DIRECTION.and_then(|d| codec.direction_index(d));
     let codec = codec.with_direction(direction);
+    // On a link, the format whose sync the bytes start with (the IR's index of it).
+    let format = super::model::model::<S>().format_for(data).format;
     let generated = S::decode(data);
-    let interpreted = codec.parse(0, data);
+    let interpreted = codec.parse(format, data);
     assert_eq!(
         generated.is_ok(),
         interpreted.is_ok(),
@@ -105,7 +108,9 @@ pub fn interp<S: Spec>(data: &[u8]) {
     let (Ok(packet), Ok(decoded)) = (generated, interpreted) else {
         return;
     };
-    let frame = S::layout().parse(data).expect("a decoded frame");
+    let frame = S::layouts()[S::format_of(data)]
+        .parse(data)
+        .expect("a decoded frame");
     let json = serde_json::to_value(codec.frame_value(&decoded, 0, frame))
         .expect("a frame value has a JSON form");
     let object: Value = serde_json::from_value(json).expect("the JSON form reads back");
@@ -133,7 +138,7 @@ pub fn interp_any(data: &[u8]) {
     let mut targets: Vec<fn(&[u8])> = Vec::new();
     macro_rules! target {
         ($name:ident, $path:literal $(, $given:tt)*) => {
-            targets.push(interp::<super::$name::Packet>);
+            targets.push(interp::<super::packet!($name $(, $given)*)>);
         };
     }
     super::for_each_spec!(target);

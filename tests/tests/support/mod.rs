@@ -25,7 +25,9 @@ use protocol::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stats, Strea
 /// Adding a spec to every robustness suite (properties, faults, bounds, no-alloc, fuzz corpus)
 /// is one line here; `specs_dir_is_covered` (in `properties.rs`) fails when a spec in `specs/`
 /// is missing from this list. A spec whose directions are given to the decoder (no header field
-/// tells them) names the direction the suites decode and its decoders, after the path.
+/// tells them) names the direction the suites decode and its decoders, after the path. A spec
+/// whose link has several frame formats says `link` after the path: the suites then run its
+/// link decoder (`any_decoder()`, `AnyPacket`) on frames of every format.
 macro_rules! for_each_spec {
     ($callback:ident) => {
         $callback!(crsf, "../specs/crsf.toml");
@@ -38,7 +40,7 @@ macro_rules! for_each_spec {
             decode_request
         );
         $callback!(hflink, "../specs/hflink.toml");
-        $callback!(mavlink, "../specs/mavlink.toml");
+        $callback!(mavlink, "../specs/mavlink.toml", link);
         $callback!(msp, "../specs/msp.toml");
         $callback!(ibus, "../specs/ibus.toml");
         $callback!(referee, "../specs/referee.toml");
@@ -51,10 +53,107 @@ macro_rules! for_each_spec {
 }
 pub(crate) use for_each_spec;
 
-/// Expands a spec with `protocol!` and implements [`Spec`] for its `Packet`.
+/// The packet type the suites test for a line of [`for_each_spec!`]: the link's `AnyPacket` for
+/// a spec marked `link`, its `Packet` otherwise.
+macro_rules! packet {
+    ($name:ident, link) => {
+        $crate::support::$name::AnyPacket
+    };
+    ($name:ident $(, $given:tt)*) => {
+        $crate::support::$name::Packet
+    };
+}
+pub(crate) use packet;
+
+/// The largest frame of a link's formats (for [`Spec::MAX_FRAME_LEN`]).
+pub const fn link_max_len(first: &FrameLayout<'_>, others: &[FrameLayout<'_>]) -> usize {
+    let mut max = first.max_len;
+    let mut i = 0;
+    while i < others.len() {
+        if others[i].max_len > max {
+            max = others[i].max_len;
+        }
+        i += 1;
+    }
+    max
+}
+
+/// Whether `bytes` start as a frame of `layout` does (its sync, a value of its sync set): the
+/// format a link's decoder would try them as. Fewer bytes than the sync match when they are a
+/// prefix of it.
+pub fn starts_as(layout: &FrameLayout<'_>, bytes: &[u8]) -> bool {
+    let (lead, rest) = match (layout.sync_set.is_empty(), bytes.split_first()) {
+        (false, Some((b, rest))) => (layout.sync_set.contains(b), rest),
+        (false, None) => (true, bytes),
+        (true, _) => (true, bytes),
+    };
+    lead && rest.iter().zip(layout.sync).all(|(a, b)| a == b)
+}
+
+/// Expands a spec with `protocol!` and implements [`Spec`] for its `Packet` (for its link's
+/// `AnyPacket` when the line says `link`).
 macro_rules! expand_spec {
     ($name:ident, $path:literal) => {
         expand_spec!(@ $name, $path, None, from_frame, decode);
+    };
+    ($name:ident, $path:literal, link) => {
+        protocol::protocol!($path);
+
+        impl $crate::support::Spec for $name::AnyPacket {
+            const NAME: &'static str = stringify!($name);
+            const DIRECTION: Option<&'static str> = None;
+            const PATH: &'static str = $path;
+            const TEXT: &'static str =
+                include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/", $path));
+            const MAX_FRAME_LEN: usize =
+                $crate::support::link_max_len(&$name::LAYOUT, &$name::ANY_OTHER_LAYOUTS);
+            const DECODER_BUFFER_LEN: usize = $name::ANY_DECODER_BUFFER_LEN;
+            type Decoder = $name::AnyDecoder;
+
+            fn layout() -> &'static protocol::FrameLayout<'static> {
+                &$name::LAYOUT
+            }
+            fn layouts() -> Vec<&'static protocol::FrameLayout<'static>> {
+                std::iter::once(&$name::LAYOUT)
+                    .chain($name::ANY_OTHER_LAYOUTS.iter())
+                    .collect()
+            }
+            fn format_of(bytes: &[u8]) -> usize {
+                // Without `layouts()`'s vector: decoding must not allocate (`no_alloc.rs`).
+                std::iter::once(&$name::LAYOUT)
+                    .chain($name::ANY_OTHER_LAYOUTS.iter())
+                    .position(|l| $crate::support::starts_as(l, bytes))
+                    .unwrap_or(0)
+            }
+            fn decoder() -> Self::Decoder {
+                $name::any_decoder()
+            }
+            fn from_frame(frame: &[u8]) -> Result<Self, protocol::DecodeError> {
+                $name::AnyPacket::from_frame(&protocol::Frame {
+                    bytes: frame,
+                    offset: 0,
+                    format: <Self as $crate::support::Spec>::format_of(frame),
+                })
+            }
+            fn decode(bytes: &[u8]) -> Result<Self, protocol::DecodeError> {
+                let format = <Self as $crate::support::Spec>::format_of(bytes);
+                let layout = match format.checked_sub(1) {
+                    Some(k) => &$name::ANY_OTHER_LAYOUTS[k],
+                    None => &$name::LAYOUT,
+                };
+                $name::AnyPacket::from_frame(&protocol::Frame {
+                    bytes: layout.parse(bytes)?,
+                    offset: 0,
+                    format,
+                })
+            }
+            fn encode(&self, buf: &mut [u8]) -> Result<usize, protocol::EncodeError> {
+                $name::AnyPacket::encode(self, buf)
+            }
+            fn encoded_len(&self) -> usize {
+                $name::AnyPacket::encoded_len(self)
+            }
+        }
     };
     ($name:ident, $path:literal, $direction:literal, $from_frame:ident, $decode:ident) => {
         expand_spec!(@ $name, $path, Some($direction), $from_frame, $decode);
@@ -116,6 +215,18 @@ pub trait Spec: Sized + Debug + Clone + PartialEq + 'static {
     type Decoder: Dec;
     /// The generated `LAYOUT`.
     fn layout() -> &'static FrameLayout<'static>;
+    /// The layouts of the frame formats the decoder finds, in the order of `Frame::format`:
+    /// the first format's alone, or a link's formats.
+    fn layouts() -> Vec<&'static FrameLayout<'static>> {
+        vec![Self::layout()]
+    }
+    /// The format (index into [`Self::layouts`]) whose sync `bytes` start with (0 if none).
+    fn format_of(bytes: &[u8]) -> usize {
+        Self::layouts()
+            .iter()
+            .position(|l| starts_as(l, bytes))
+            .unwrap_or(0)
+    }
     /// The generated `decoder()`.
     fn decoder() -> Self::Decoder;
     /// `Packet::from_frame`.

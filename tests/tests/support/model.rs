@@ -45,14 +45,28 @@ pub struct Choice {
     pub payload: Option<usize>,
 }
 
-/// A spec's IR and its generated layout.
+/// A spec's IR and the generated layout of one of its frame formats; on a link of several
+/// formats, the models of the others too.
+///
+/// The methods that build one frame build it in this model's format; [`canonical`],
+/// [`try_canonical`] and [`raw`] first pick a format of the link at random (this one when the
+/// link has one), so that the suites send frames of every format.
+///
+/// [`canonical`]: Self::canonical
+/// [`try_canonical`]: Self::try_canonical
+/// [`raw`]: Self::raw
 pub struct Model {
     /// The checked protocol.
     pub ir: ir::Protocol,
-    /// The generated layout (what the decoder runs on).
+    /// The frame format (index into the IR's frames) this model builds.
+    pub format: usize,
+    /// The generated layout of that format (what the decoder runs on).
     pub layout: &'static FrameLayout<'static>,
     /// Every way a frame can be sent.
     pub choices: Vec<Choice>,
+    /// The link's other formats, in the order of the decoder's `Frame::format` (empty when
+    /// the spec is tested through one format).
+    pub others: Vec<Model>,
 }
 
 /// The model of `S`, compiled once per process.
@@ -76,7 +90,35 @@ impl Model {
         let source = SpecSource::new(S::PATH, S::TEXT);
         let ir = protocol_codegen::compile(&source)
             .unwrap_or_else(|e| panic!("{} does not compile: {e:?}", S::PATH));
-        let f = &ir.frames[0];
+        // The formats the decoder finds: the link's (in its order), or the first alone.
+        let formats = if ir.link.is_empty() {
+            vec![0]
+        } else {
+            ir.link.clone()
+        };
+        let layouts = S::layouts();
+        assert!(
+            layouts.len() <= formats.len(),
+            "{}: more layouts than formats",
+            S::NAME
+        );
+        let mut models: Vec<Model> = formats
+            .iter()
+            .zip(layouts)
+            .map(|(&format, layout)| Model::of_format::<S>(ir.clone(), format, layout))
+            .collect();
+        let mut first = models.remove(0);
+        first.others = models;
+        first
+    }
+
+    /// The model of frame format `format` of `ir`, whose generated layout is `layout`.
+    fn of_format<S: Spec>(
+        ir: ir::Protocol,
+        format: usize,
+        layout: &'static FrameLayout<'static>,
+    ) -> Model {
+        let f = &ir.frames[format];
         let mut choices = Vec::new();
         if let Some(s) = f.message {
             choices.push(Choice {
@@ -125,14 +167,44 @@ impl Model {
         }
         Model {
             ir,
-            layout: S::layout(),
+            format,
+            layout,
             choices,
+            others: Vec::new(),
         }
     }
 
-    /// The frame format under test (the spec's first).
+    /// The frame format this model builds.
     pub fn frame(&self) -> &ir::Frame {
-        &self.ir.frames[0]
+        &self.ir.frames[self.format]
+    }
+
+    /// This format and the link's others, in the decoder's order.
+    pub fn formats(&self) -> impl Iterator<Item = &Model> {
+        std::iter::once(self).chain(&self.others)
+    }
+
+    /// A format of the link at random (this one when the link has one: no choice is drawn).
+    pub fn pick(&self, src: &mut impl Source) -> &Model {
+        if self.others.is_empty() {
+            return self;
+        }
+        match src.below(1 + self.others.len() as u64) as usize {
+            0 => self,
+            k => &self.others[k - 1],
+        }
+    }
+
+    /// The format whose sync `bytes` start with (this one if none).
+    pub fn format_for(&self, bytes: &[u8]) -> &Model {
+        self.formats()
+            .find(|m| super::starts_as(m.layout, bytes))
+            .unwrap_or(self)
+    }
+
+    /// The longest frame of any format.
+    pub fn max_len(&self) -> usize {
+        self.formats().map(|m| m.layout.max_len).max().unwrap_or(0)
     }
 
     /// Bytes before the payload of a frame of `choice`.
@@ -165,9 +237,14 @@ impl Model {
     /// # Panics
     /// If the layout refuses every frame tried.
     pub fn canonical(&self, src: &mut impl Source) -> Vec<u8> {
+        self.pick(src).canonical_here(src)
+    }
+
+    /// [`canonical`](Self::canonical) in this model's format.
+    pub fn canonical_here(&self, src: &mut impl Source) -> Vec<u8> {
         let mut last = None;
         for _ in 0..16 {
-            match self.try_canonical(src) {
+            match self.try_canonical_here(src) {
                 Ok(frame) => return frame,
                 Err(e) => last = Some(e),
             }
@@ -178,6 +255,11 @@ impl Model {
     /// A canonical frame for a random choice, or why the layout refused to seal it (a frame
     /// the spec allows but the layout's bounds exclude).
     pub fn try_canonical(&self, src: &mut impl Source) -> Result<Vec<u8>, Refused> {
+        self.pick(src).try_canonical_here(src)
+    }
+
+    /// [`try_canonical`](Self::try_canonical) in this model's format.
+    pub fn try_canonical_here(&self, src: &mut impl Source) -> Result<Vec<u8>, Refused> {
         let choice = self.choose(src);
         self.canonical_for(src, choice)
     }
@@ -204,6 +286,14 @@ impl Model {
             if self.stuffed(&payload).len() <= room {
                 break;
             }
+        }
+        // A format without extension fields sends a payload's base fields only.
+        if let (false, Carries::Command(_), Some(base)) = (
+            self.frame().extensions,
+            choice.carries,
+            choice.payload.and_then(|s| self.ir.structs[s].base_size),
+        ) {
+            payload.truncate(base);
         }
         // With trailing-zero truncation, the encoder sends the payload without its trailing
         // zeros (keeping its first byte).
@@ -307,6 +397,11 @@ impl Model {
     /// command, an address in no direction's range, the ack flag), any payload length and
     /// bytes (unstuffed: possibly invalid stuffing).
     pub fn raw(&self, src: &mut impl Source) -> Vec<u8> {
+        self.pick(src).raw_here(src)
+    }
+
+    /// [`raw`](Self::raw) in this model's format.
+    pub fn raw_here(&self, src: &mut impl Source) -> Vec<u8> {
         let f = self.frame();
         // Half of them carry a real command with random payload bytes of its size: those reach
         // the payload decoders (an unknown command stops at the dispatch).
@@ -392,12 +487,20 @@ impl Model {
         v: &ir::HeaderValue,
     ) -> u64 {
         if let Some(d) = choice.direction {
+            // A rule names a header value of the first format; a link's other formats carry
+            // the field of the same name.
+            let first = &self.ir.frames[0].values;
+            let here = |value: usize| {
+                first
+                    .get(value)
+                    .is_some_and(|x| x.name == self.frame().values[index].name)
+            };
             match self.ir.directions[d].rule {
-                ir::DirectionRule::InSet { value, set } if value == index => {
+                ir::DirectionRule::InSet { value, set } if here(value) => {
                     let set = &self.ir.addresses[set];
                     return src.range(set.first, set.last);
                 }
-                ir::DirectionRule::Equals { value, equals } if value == index => return equals,
+                ir::DirectionRule::Equals { value, equals } if here(value) => return equals,
                 _ => {}
             }
         }

@@ -186,8 +186,16 @@ fn record<S: Spec>(event: Event<'_>, stream: &[u8], cursor: &mut u64, out: &mut 
                 "{}: frame at {at} is not the stream's bytes",
                 S::NAME
             );
+            let layouts = S::layouts();
             assert_eq!(
-                S::layout().probe(frame.bytes),
+                frame.format,
+                S::format_of(frame.bytes),
+                "{}: a frame of one format said to be of another: {}",
+                S::NAME,
+                hex(frame.bytes)
+            );
+            assert_eq!(
+                layouts[frame.format].probe(frame.bytes),
                 Probe::Frame(len),
                 "{}: yielded an invalid frame {}",
                 S::NAME,
@@ -277,11 +285,17 @@ pub fn assert_same_packet<S: Spec>(a: &S, b: &S, bytes: &[u8]) {
 
 /// Whether a frame of `frames` holds another complete valid frame strictly inside it: the one
 /// case where the frames depend on how the input was cut (see the decoder's module docs).
-pub fn nested_frame(layout: &FrameLayout<'_>, frames: &[(u64, Vec<u8>)]) -> Option<(u64, usize)> {
+/// `layouts` are the formats the decoder finds.
+pub fn nested_frame(
+    layouts: &[&FrameLayout<'_>],
+    frames: &[(u64, Vec<u8>)],
+) -> Option<(u64, usize)> {
     frames.iter().find_map(|(offset, bytes)| {
-        (1..bytes.len()).find_map(|k| match layout.probe(&bytes[k..]) {
-            Probe::Frame(_) => Some((*offset, k)),
-            _ => None,
+        (1..bytes.len()).find_map(|k| {
+            layouts
+                .iter()
+                .any(|l| matches!(l.probe(&bytes[k..]), Probe::Frame(_)))
+                .then_some((*offset, k))
         })
     })
 }
@@ -300,7 +314,7 @@ pub fn assert_chunking_invariant<S: Spec>(stream: &[u8], sizes: &[usize]) -> boo
     if whole.frames == chunked.frames {
         return false;
     }
-    let nested = nested_frame(S::layout(), &whole.frames);
+    let nested = nested_frame(&S::layouts(), &whole.frames);
     assert!(
         nested.is_some(),
         "{}: chunks {sizes:?} change the frames of {}:\nwhole   {:?}\nchunked {:?}",

@@ -364,7 +364,7 @@ use mavlink::dialects::common::{
 };
 use ours::mavlink as spec;
 use proptest::prelude::*;
-use protocol_peers::harness::{PeerAdapter, cross_check};
+use protocol_peers::harness::{PeerAdapter, assert_every_message_crosses};
 
 /// A MAVLink 2 message as the values it carries: the header the sender sets and the message,
 /// held in the generated types (plain values; the peer's side is built from them field by
@@ -626,55 +626,103 @@ fn from_peer(m: &MavMessage) -> Result<spec::Message, String> {
     })
 }
 
-struct RustMavlink;
+/// The `mavlink` crate and the generated codec, in one MAVLink version: the peer writes and
+/// reads frames of that version, and this project reads every frame through the link's one
+/// decoder, which must find it in that version's format.
+struct RustMavlink {
+    /// MAVLink 1 (`FE` frames, base fields only) rather than MAVLink 2.
+    v1: bool,
+}
 
 impl PeerAdapter for RustMavlink {
-    type Message = Mav;
+    type Message = spec::AnyPacket;
 
     fn peer(&self) -> &'static str {
-        "mavlink 0.21"
+        if self.v1 {
+            "mavlink 0.21 (MAVLink 1)"
+        } else {
+            "mavlink 0.21"
+        }
     }
 
-    fn messages(&self) -> BoxedStrategy<Mav> {
-        messages()
+    fn messages(&self) -> BoxedStrategy<spec::AnyPacket> {
+        if self.v1 {
+            v1_messages().prop_map(spec::AnyPacket::V1).boxed()
+        } else {
+            messages().prop_map(spec::AnyPacket::V2).boxed()
+        }
     }
 
-    fn peer_write(&mut self, m: &Mav) -> Result<Option<Vec<u8>>, String> {
-        let header = MavHeader {
-            system_id: m.header.sysid.into(),
-            component_id: m.header.compid,
-            sequence: m.header.seq,
+    fn peer_write(&mut self, m: &spec::AnyPacket) -> Result<Option<Vec<u8>>, String> {
+        let (seq, sysid, compid) = match m {
+            spec::AnyPacket::V2(p) => (p.header.seq, p.header.sysid, p.header.compid),
+            spec::AnyPacket::V1(p) => (p.header.seq, p.header.sysid, p.header.compid),
         };
+        let header = MavHeader {
+            system_id: sysid.into(),
+            component_id: compid,
+            sequence: seq,
+        };
+        let message = to_peer(m.message())?;
         let mut frame = Vec::new();
-        mavlink::write_v2_msg(&mut frame, header, &to_peer(&m.message)?)
-            .map_err(|e| format!("{e:?}"))?;
+        if self.v1 {
+            mavlink::write_v1_msg(&mut frame, header, &message)
+        } else {
+            mavlink::write_v2_msg(&mut frame, header, &message)
+        }
+        .map_err(|e| format!("{e:?}"))?;
         Ok(Some(frame))
     }
 
-    fn peer_read(&mut self, frame: &[u8], _like: &Mav) -> Result<Option<Mav>, String> {
+    fn peer_read(
+        &mut self,
+        frame: &[u8],
+        _like: &spec::AnyPacket,
+    ) -> Result<Option<spec::AnyPacket>, String> {
         let (header, msg) = MavlinkReader::new(frame)
             .read_any_message_signed::<MavMessage>(None)
             .map_err(|e| format!("{e:?}"))?;
-        Ok(Some(spec::Packet {
-            header: spec::Header {
-                compat_flags: 0,
-                seq: header.sequence,
-                sysid: u8::try_from(header.system_id).map_err(|e| e.to_string())?,
-                compid: header.component_id,
-                signature: None,
-            },
-            message: from_peer(&msg)?,
+        let (seq, sysid, compid) = (
+            header.sequence,
+            u8::try_from(header.system_id).map_err(|e| e.to_string())?,
+            header.component_id,
+        );
+        let message = from_peer(&msg)?;
+        Ok(Some(match frame.first() {
+            Some(0xFE) if self.v1 => spec::AnyPacket::V1(spec::V1Packet {
+                header: spec::V1Header { seq, sysid, compid },
+                message,
+            }),
+            Some(0xFD) if !self.v1 => spec::AnyPacket::V2(spec::Packet {
+                header: spec::Header {
+                    compat_flags: 0,
+                    seq,
+                    sysid,
+                    compid,
+                    signature: None,
+                },
+                message,
+            }),
+            _ => return Err("the peer read a frame of the other version".into()),
         }))
     }
 
-    fn ours_write(&self, m: &Mav) -> Result<Vec<u8>, String> {
-        let mut buf = [0u8; spec::MAX_FRAME_LEN];
+    fn ours_write(&self, m: &spec::AnyPacket) -> Result<Vec<u8>, String> {
+        let mut buf = [0u8; spec::ANY_DECODER_BUFFER_LEN];
         let n = m.encode(&mut buf).map_err(|e| e.to_string())?;
         Ok(buf[..n].to_vec())
     }
 
-    fn ours_read(&self, frame: &[u8]) -> Result<Mav, String> {
-        spec::Packet::decode(frame).map_err(|e| e.to_string())
+    /// Through the link's one decoder: the frame must be found in this version's format.
+    fn ours_read(&self, frame: &[u8]) -> Result<spec::AnyPacket, String> {
+        let mut decoder = spec::any_decoder();
+        let mut input = frame;
+        let found = decoder.decode(&mut input).ok_or("no frame found")?;
+        let packet = spec::AnyPacket::from_frame(&found).map_err(|e| e.to_string())?;
+        match (&packet, self.v1) {
+            (spec::AnyPacket::V1(_), true) | (spec::AnyPacket::V2(_), false) => Ok(packet),
+            _ => Err(format!("found as the other version: {packet:?}")),
+        }
     }
 }
 
@@ -682,15 +730,7 @@ const CASES: usize = 2000;
 
 #[test]
 fn random_messages_cross_between_mavlink_and_the_generated_codec() {
-    let tally = cross_check(&mut RustMavlink, CASES).unwrap_or_else(|e| panic!("{e}"));
-    println!("mavlink: {tally:?}");
-    assert_eq!(tally.messages, CASES);
-    assert_eq!(tally.peer_to_ours, CASES, "every peer frame decodes here");
-    assert_eq!(
-        tally.ours_to_peer, CASES,
-        "every frame written here decodes in the peer"
-    );
-    assert_eq!(tally.same_bytes, CASES, "both sides write the same bytes");
+    assert_every_message_crosses(&mut RustMavlink { v1: false }, CASES, "mavlink");
 }
 
 // ---- MAVLink 1: the same messages, base fields only, in the `FE` format ----
@@ -723,81 +763,9 @@ fn v1_messages() -> BoxedStrategy<spec::V1Packet> {
         .boxed()
 }
 
-struct RustMavlinkV1;
-
-impl PeerAdapter for RustMavlinkV1 {
-    type Message = spec::V1Packet;
-
-    fn peer(&self) -> &'static str {
-        "mavlink 0.21 (MAVLink 1)"
-    }
-
-    fn messages(&self) -> BoxedStrategy<spec::V1Packet> {
-        v1_messages()
-    }
-
-    fn peer_write(&mut self, m: &spec::V1Packet) -> Result<Option<Vec<u8>>, String> {
-        let header = MavHeader {
-            system_id: m.header.sysid.into(),
-            component_id: m.header.compid,
-            sequence: m.header.seq,
-        };
-        let mut frame = Vec::new();
-        mavlink::write_v1_msg(&mut frame, header, &to_peer(&m.message)?)
-            .map_err(|e| format!("{e:?}"))?;
-        Ok(Some(frame))
-    }
-
-    fn peer_read(
-        &mut self,
-        frame: &[u8],
-        _like: &spec::V1Packet,
-    ) -> Result<Option<spec::V1Packet>, String> {
-        let (header, msg) = MavlinkReader::new(frame)
-            .read_any_message_signed::<MavMessage>(None)
-            .map_err(|e| format!("{e:?}"))?;
-        if frame.first() != Some(&0xFE) {
-            return Err("the peer did not read a MAVLink 1 frame".into());
-        }
-        Ok(Some(spec::V1Packet {
-            header: spec::V1Header {
-                seq: header.sequence,
-                sysid: u8::try_from(header.system_id).map_err(|e| e.to_string())?,
-                compid: header.component_id,
-            },
-            message: from_peer(&msg)?,
-        }))
-    }
-
-    fn ours_write(&self, m: &spec::V1Packet) -> Result<Vec<u8>, String> {
-        let mut buf = [0u8; spec::V1_MAX_FRAME_LEN];
-        let n = m.encode(&mut buf).map_err(|e| e.to_string())?;
-        Ok(buf[..n].to_vec())
-    }
-
-    fn ours_read(&self, frame: &[u8]) -> Result<spec::V1Packet, String> {
-        // Through the link's one decoder: the frame is found as a MAVLink 1 frame.
-        let mut decoder = spec::any_decoder();
-        let mut input = frame;
-        let found = decoder.decode(&mut input).ok_or("no frame found")?;
-        match spec::AnyPacket::from_frame(&found).map_err(|e| e.to_string())? {
-            spec::AnyPacket::V1(p) => Ok(p),
-            other => Err(format!("found as another format: {other:?}")),
-        }
-    }
-}
-
 #[test]
 fn random_mavlink_1_messages_cross_between_mavlink_and_the_generated_codec() {
-    let tally = cross_check(&mut RustMavlinkV1, CASES).unwrap_or_else(|e| panic!("{e}"));
-    println!("mavlink v1: {tally:?}");
-    assert_eq!(tally.messages, CASES);
-    assert_eq!(tally.peer_to_ours, CASES, "every peer frame decodes here");
-    assert_eq!(
-        tally.ours_to_peer, CASES,
-        "every frame written here decodes in the peer"
-    );
-    assert_eq!(tally.same_bytes, CASES, "both sides write the same bytes");
+    assert_every_message_crosses(&mut RustMavlink { v1: true }, CASES, "mavlink v1");
 }
 
 #[test]

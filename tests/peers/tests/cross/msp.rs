@@ -226,7 +226,7 @@ mod ours {
 
 use ours::msp as spec;
 use proptest::prelude::*;
-use protocol_peers::harness::{PeerAdapter, cross_check};
+use protocol_peers::harness::{PeerAdapter, assert_every_message_crosses};
 
 /// The MSP messages both sides know: replies the peer has a struct for, their empty
 /// requests, and box names (raw bytes, below the jumbo size the peer does not have), each in a
@@ -562,15 +562,7 @@ const CASES: usize = 2000;
 
 #[test]
 fn random_messages_cross_between_cu_msp_lib_and_the_generated_codec() {
-    let tally = cross_check(&mut CuMsp, CASES).unwrap_or_else(|e| panic!("{e}"));
-    println!("cu-msp-lib: {tally:?}");
-    assert_eq!(tally.messages, CASES);
-    assert_eq!(tally.peer_to_ours, CASES, "every peer frame decodes here");
-    assert_eq!(
-        tally.ours_to_peer, CASES,
-        "every frame written here decodes in the peer"
-    );
-    assert_eq!(tally.same_bytes, CASES, "both sides write the same bytes");
+    assert_every_message_crosses(&mut CuMsp, CASES, "cu-msp-lib");
 }
 
 #[test]
