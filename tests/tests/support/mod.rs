@@ -41,7 +41,7 @@ macro_rules! for_each_spec {
         );
         $callback!(hflink, "../specs/hflink.toml");
         $callback!(mavlink, "../specs/mavlink.toml", link);
-        $callback!(msp, "../specs/msp.toml");
+        $callback!(msp, "../specs/msp.toml", link);
         $callback!(ibus, "../specs/ibus.toml");
         $callback!(referee, "../specs/referee.toml");
         $callback!(referee2018, "../specs/referee2018.toml");
