@@ -14,16 +14,20 @@ use std::fmt::Write as _;
 use crate::ir::{Algorithm, Check, CheckExtra, CrcTable, Protocol};
 use protocol_runtime::checksum::CrcSpec;
 
-use super::names::{Names, u64_lit, unsigned_of};
+use super::names::{Fx, Names, u64_lit, unsigned_of};
 use super::payload::mask;
 
-/// The check functions (`pfx_check_<name>`), one per check of the first frame format.
+/// The check functions (`pfx_check_<name>`, the format's prefix), one per check of each
+/// frame format.
 pub fn checks(p: &Protocol, n: &Names) -> String {
     let mut out = String::from("/* ---- Checks ---- */\n\n");
-    for c in &p.frames[0].checks {
-        let _ = writeln!(out, "/* {} */", c.naming.display);
-        out.push_str(&check(n, c));
-        out.push('\n');
+    for (fi, f) in p.frames.iter().enumerate() {
+        let x = Fx::new(p, fi);
+        for c in &f.checks {
+            let _ = writeln!(out, "/* {} */", c.naming.display);
+            out.push_str(&check(n, &x, c));
+            out.push('\n');
+        }
     }
     out
 }
@@ -45,8 +49,8 @@ struct Parts {
     folds: bool,
 }
 
-fn check(n: &Names, c: &Check) -> String {
-    let name = format!("{}check_{}", n.lo, c.name);
+fn check(n: &Names, x: &Fx, c: &Check) -> String {
+    let name = format!("{}check_{}", x.lo, c.name);
     let parts = parts(&name, &c.algorithm);
     let mut body = String::new();
     if let Some(x) = &c.extra {

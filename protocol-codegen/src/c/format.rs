@@ -6,11 +6,12 @@
 
 use std::fmt::Write as _;
 
-use crate::ir::{Field, FieldKind, Prim, Protocol, Role, ValueType};
+use crate::ir::{Field, FieldKind, Prim, Protocol, ValueType};
 
 use super::names::{self, Names};
 use super::payload::any_field;
-use super::types::{keyed, slots};
+use super::names::Fx;
+use super::types::{Carries, carries, keyed_format, slots_of, user_values};
 
 /// The formatter, inside `#ifdef <PREFIX>_WITH_FORMAT`.
 pub fn format(p: &Protocol, n: &Names) -> String {
@@ -44,11 +45,24 @@ pub fn format(p: &Protocol, n: &Names) -> String {
             ty = n.ty(&s.name)
         );
     }
+    for fi in 0..p.frames.len() {
+        packet_format(p, n, &Fx::new(p, fi), &mut out);
+    }
+    let _ = writeln!(out, "#endif /* {up}WITH_FORMAT */");
+    out
+}
+
+/// `pfx_format` of frame format `x`: the command, the direction, the header values (and the
+/// flag trailer's bytes, or `null`), then the payload.
+fn packet_format(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let lo = &n.lo;
+    let xlo = &x.lo;
+    let f = &p.frames[x.fi];
     let _ = writeln!(
         out,
-        "int {lo}format(const {lo}packet *packet, char *out, size_t cap)\n{{\n    struct {lo}txt text;\n    struct {lo}txt *t = &text;\n    text.p = out;\n    text.cap = cap;\n    text.len = 0;\n    if (cap > 0) out[0] = 0;\n"
+        "int {xlo}format(const {xlo}packet *packet, char *out, size_t cap)\n{{\n    struct {lo}txt text;\n    struct {lo}txt *t = &text;\n    text.p = out;\n    text.cap = cap;\n    text.len = 0;\n    if (cap > 0) out[0] = 0;\n"
     );
-    if keyed(p) {
+    if keyed_format(p, x.fi) {
         let _ = writeln!(
             out,
             "    {lo}emit(t, \"cmd=%s\", {lo}command_name(packet->command));"
@@ -56,17 +70,13 @@ pub fn format(p: &Protocol, n: &Names) -> String {
     } else {
         let _ = writeln!(out, "    {lo}emit(t, \"cmd=?\");");
     }
-    if !p.directions.is_empty() {
+    if !p.directions.is_empty() && carries(p, x.fi) == Carries::Commands {
         let _ = writeln!(
             out,
             "    {lo}emit(t, \" dir=%s\", {lo}direction_name(packet->direction));"
         );
     }
-    for v in p.frames[0]
-        .values
-        .iter()
-        .filter(|v| matches!(v.role, Role::User { .. }))
-    {
+    for v in user_values(f) {
         let value = format!("packet->header.{}", names::field(&v.name));
         let label = format!("\"header.{}=\"", v.name);
         let prim = if v.prim == Prim::Bool {
@@ -76,7 +86,17 @@ pub fn format(p: &Protocol, n: &Names) -> String {
         };
         out.push_str(&scalar(lo, prim, &label, &value, ""));
     }
-    for slot in slots(p) {
+    if let Some(tr) = &f.flag_trailer {
+        let name = names::field(&tr.name);
+        let _ = writeln!(
+            out,
+            "    if (packet->header.{name}_present) {{\n        size_t i;\n        {lo}emit(t, \" header.{}=hex:\");\n        for (i = 0; i < {}u; i++) {lo}emit(t, \"%02x\", (unsigned)packet->header.{name}[i]);\n    }} else {{\n        {lo}emit(t, \" header.{}=null\");\n    }}",
+            tr.name,
+            tr.len,
+            tr.name
+        );
+    }
+    for slot in slots_of(p, x.fi) {
         if let Some(si) = slot.si {
             let _ = writeln!(
                 out,
@@ -87,11 +107,7 @@ pub fn format(p: &Protocol, n: &Names) -> String {
             );
         }
     }
-    let _ = writeln!(
-        out,
-        "    return (int)text.len;\n}}\n#endif /* {up}WITH_FORMAT */"
-    );
-    out
+    let _ = writeln!(out, "    return (int)text.len;\n}}\n");
 }
 
 /// The text of one field (`kind`: the field's, or what an optional field holds).

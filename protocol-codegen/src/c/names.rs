@@ -99,3 +99,32 @@ pub fn unsigned_of(bytes: usize) -> &'static str {
 pub fn u64_lit(v: u64) -> String {
     format!("UINT64_C({v:#x})")
 }
+
+/// The prefixes of one frame format's items (its sizes, header and packet types, decoder of one
+/// frame, encoders, stream decoder, check functions): the spec's for the first format (`hflink_`),
+/// the spec's and the format's name for the others (`mavlink_v1_`, `SCOUT_CAN_`), as the Rust
+/// side names a format after the first (`V1Packet`, `SCOUT_CAN_LAYOUT`).
+pub struct Fx {
+    /// The frame format (index into [`Protocol::frames`]).
+    pub fi: usize,
+    /// Lower-case prefix with its underscore.
+    pub lo: String,
+    /// Upper-case prefix with its underscore.
+    pub up: String,
+}
+
+impl Fx {
+    /// The prefixes of frame format `fi` of `p`.
+    pub fn new(p: &Protocol, fi: usize) -> Self {
+        let lo = if fi == 0 {
+            format!("{}_", p.name)
+        } else {
+            format!("{}_{}_", p.name, p.frames[fi].name)
+        };
+        Fx {
+            fi,
+            up: lo.to_uppercase(),
+            lo,
+        }
+    }
+}

@@ -1,22 +1,23 @@
 //! What the C printer supports: [`unsupported`] lists every feature of a spec it refuses, so
 //! that `protocol gen c` fails with a clear message instead of printing wrong code.
 
-use crate::ir::{Algorithm, FieldKind, PacketKind, Prim, Protocol, Role, Transport, ValueType};
+use crate::ir::{Algorithm, FieldKind, PacketKind, Prim, Protocol, Role, ValueType};
 
 /// One line per feature of `p` the C printer does not support yet; empty when it prints the
 /// whole spec.
 pub fn unsupported(p: &Protocol) -> Vec<String> {
     let mut out = Vec::new();
-    if p.frames.len() != 1 {
-        out.push(format!(
-            "{} frame formats: the C printer supports exactly one",
-            p.frames.len()
-        ));
-    }
-    for f in &p.frames {
+    for (fi, f) in p.frames.iter().enumerate() {
         let at = format!("frame `{}`", f.name);
-        if let Transport::Can { .. } = f.transport {
-            out.push(format!("{at}: CAN transport"));
+        if fi > 0 && f.packet == PacketKind::None && (f.message.is_some() || !f.dispatch.is_empty()) {
+            out.push(format!(
+                "{at}: a format after the first whose frames have no packet type (raw payload bytes)"
+            ));
+        }
+        if fi > 0 && f.packet == PacketKind::Commands && !p.directions.is_empty() {
+            out.push(format!(
+                "{at}: a second format carrying the commands in a spec with directions"
+            ));
         }
         if f.stuffing.is_some() {
             out.push(format!("{at}: byte stuffing"));
@@ -27,25 +28,9 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         if f.bare_len.is_some() {
             out.push(format!("{at}: bare headers"));
         }
-        if f.packet == PacketKind::Commands {
-            out.push(format!(
-                "{at}: a second format carrying the commands (several command formats on one link)"
-            ));
-        }
         if f.dispatch.is_empty() && f.message.is_none() {
             out.push(format!(
                 "{at}: a frame format without dispatch key or message"
-            ));
-        }
-        if f.length_extension.is_some() {
-            out.push(format!(
-                "{at}: a wider length announced by a marker value of the length field"
-            ));
-        }
-        if let Some(t) = &f.flag_trailer {
-            out.push(format!(
-                "{at}: optional bytes `{}` present when a header flag is set",
-                t.name
             ));
         }
         if f.values.iter().any(|v| matches!(v.role, Role::Ack(_))) {
