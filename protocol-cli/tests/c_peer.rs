@@ -25,10 +25,12 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use protocol_codegen::ir::{Command as Cmd, Direction, DirectionRule, Frame, Protocol};
+use protocol_codegen::ir::{
+    Command as Cmd, Direction, DirectionRule, Frame, PacketKind, Protocol, Transport,
+};
 use protocol_codegen::layout::word_field;
-use protocol_dynamic::{Codec, DecodeIssue, Interpreter, Item, Value};
-use protocol_runtime::DecodeError;
+use protocol_dynamic::{Codec, DecodeIssue, Interpreter, Item, Value, flag_trailer_len};
+use protocol_runtime::{CanFrame, DecodeError};
 
 const RANDOM_FRAMES: usize = 10_000;
 
@@ -71,8 +73,8 @@ fn vector_files(spec: &str) -> Vec<(String, bool)> {
         ("dynamixel", "dynamixel_protocol2.json", true),
         ("dynamixel1", "dynamixel_protocol1.json", true),
         ("roborts", "roborts_sdk.json", true),
-        // The stream mixes MAVLink 1 frames (and a signed one) into the spec's MAVLink 2.
-        ("mavlink", "mavlink.json", false),
+        // MAVLink 1 and 2 frames (and a signed one) on one link: the link's decoder finds them.
+        ("mavlink", "mavlink.json", true),
         // The stream holds an SBUS2 frame, whose footer the spec refuses.
         ("sbus", "sbus.json", false),
     ];
@@ -180,15 +182,57 @@ fn describe(
     out
 }
 
-fn rust_frame(codec: &Codec<'_>, bytes: &[u8]) -> Vec<String> {
-    let mut out = describe(codec, codec.parse(0, bytes), bytes, true);
+fn rust_frame(codec: &Codec<'_>, format: usize, bytes: &[u8]) -> Vec<String> {
+    let mut out = describe(codec, codec.parse(format, bytes), bytes, true);
     out.push("end".into());
     out
 }
 
-fn rust_stream(codec: &Codec<'_>, chunk: usize, data: &[u8]) -> Vec<String> {
+/// A CAN frame of CAN format `format`, as the driver's `describe_can`: decoded, and the CAN
+/// frame the decoded packet encodes to (`enc ID DATA`).
+fn rust_can(codec: &Codec<'_>, format: usize, can: &CanFrame) -> Vec<String> {
+    let mut out = describe(codec, codec.decode_can(format, can), can.data(), false);
+    if let Ok(d) = codec.decode_can(format, can) {
+        out.push(
+            match codec
+                .encode(&codec.frame_value(&d, 0, can.data()))
+                .map(|e| e.can)
+            {
+                Ok(Some(c)) => format!("enc {} {}", c.id, hex(c.data())),
+                _ => "enc err".into(),
+            },
+        );
+    }
+    out.push("end".into());
+    out
+}
+
+/// The stream decoders the C code has, in its order: one per serial frame format, then the
+/// link's decoder of every command format when the spec has several.
+#[derive(Clone, Copy)]
+enum Decoder {
+    Format(usize),
+    Link,
+}
+
+fn decoders(p: &Protocol) -> Vec<Decoder> {
+    let mut out: Vec<Decoder> = (0..p.frames.len())
+        .filter(|&fi| p.frames[fi].transport == Transport::Serial)
+        .map(Decoder::Format)
+        .collect();
+    if !p.link.is_empty() {
+        out.push(Decoder::Link);
+    }
+    out
+}
+
+fn rust_stream(codec: &Codec<'_>, decoder: Decoder, chunk: usize, data: &[u8]) -> Vec<String> {
     let mut out = Vec::new();
-    let mut stream = codec.stream(0).expect("a stream");
+    let mut stream = match decoder {
+        Decoder::Format(fi) => codec.stream(fi),
+        Decoder::Link => codec.link_stream(),
+    }
+    .expect("a stream");
     let item_text = |item: Item<'_>, out: &mut Vec<String>| match item {
         Item::Frame {
             offset,
@@ -262,59 +306,117 @@ impl Rng {
     }
 }
 
-/// A random frame, sealed by the runtime: a command's payload of random bytes (its size, or
-/// now and then another), the dispatch key of a command (now and then random), a sender in
-/// the direction's address set (now and then random).
-fn random_frame(p: &Protocol, codec: &Codec<'_>, rng: &mut Rng) -> Vec<u8> {
-    let f = &p.frames[0];
-    let layout = codec.layout(0).expect("a layout");
-    // A command and its payload slot; a format without commands carries its message.
-    let (c, slot, si) = match p.commands.len() {
-        0 => (None, 0, f.message),
-        len => {
-            let c = &p.commands[rng.below(len)];
-            let slot = rng.below(c.payloads.len());
-            (Some(c), slot, c.payloads[slot])
-        }
-    };
-    let (min, max) = match si {
-        Some(si) => (p.structs[si].min_size, p.structs[si].size),
-        None => (0, 0),
-    };
-    let mut payload = min + rng.below(max - min + 1);
-    if rng.below(8) == 0 {
-        payload = f.payload_min + rng.below(f.payload_max - f.payload_min + 1);
-    }
-    let total = (f.header_len + payload + f.trailer_len).clamp(f.min_len(), f.max_len());
-    let mut frame: Vec<u8> = (0..total).map(|_| rng.next() as u8).collect();
-    if !f.sync_set.is_empty() {
-        frame[0] = f.sync_set[rng.below(f.sync_set.len())];
-    }
-    if let Some(c) = c.filter(|_| rng.below(16) != 0) {
-        write_key(f, c, &mut frame);
-    }
-    if let Some(d) = p.directions.get(slot).filter(|_| rng.below(8) != 0) {
-        let sender = match &d.rule {
-            DirectionRule::InSet { set, .. } => {
-                let a = &p.addresses[*set];
-                a.first + (rng.next() % (a.last - a.first + 1))
+/// The payloads frames of format `fi` carry: `(command, direction, struct)` per command (and
+/// direction) the format carries, or its message.
+fn format_slots(p: &Protocol, fi: usize) -> Vec<(Option<&Cmd>, usize, Option<usize>)> {
+    let f = &p.frames[fi];
+    let mut out = Vec::new();
+    match f.packet {
+        PacketKind::Can => {
+            for c in p.commands.iter().filter(|c| c.can_id.is_some()) {
+                out.push((Some(c), 0, c.payloads.first().copied().flatten()));
             }
-            DirectionRule::Equals { equals, .. } => *equals,
-            // The C printer refuses directions given to the decoder: no such spec gets here.
-            DirectionRule::Given => unreachable!("refused by the C printer"),
-        };
-        write_direction(f, d, sender, &mut frame);
+        }
+        _ if f.dispatch.is_empty() || matches!(f.packet, PacketKind::Message(_)) => {
+            out.push((None, 0, f.message));
+        }
+        _ => {
+            for (ci, c) in p.commands.iter().enumerate() {
+                if f.commands.contains(&ci) {
+                    out.extend((0..c.payloads.len()).map(|slot| (Some(c), slot, c.payloads[slot])));
+                }
+            }
+        }
     }
-    layout.seal(&mut frame).expect("a sealed frame");
-    frame
+    out
 }
 
-/// Writes the dispatch key of `c`.
+/// The sizes of struct `si` a frame of `f` carries: all of it, or in a format without
+/// extension fields the bytes before them.
+fn struct_sizes(p: &Protocol, f: &Frame, si: Option<usize>) -> (usize, usize) {
+    match si {
+        Some(si) => {
+            let s = &p.structs[si];
+            match s.base_size.filter(|_| !f.extensions) {
+                Some(base) => (base, base),
+                None => (s.min_size, s.size),
+            }
+        }
+        None => (0, 0),
+    }
+}
+
+/// Bytes of a frame of `f` with a payload of `payload` bytes, within the format's bounds.
+fn frame_len(f: &Frame, payload: usize) -> usize {
+    (f.header_len + payload + f.trailer_len).clamp(f.min_len(), f.max_len())
+}
+
+/// A frame of format `fi`, sealed by the runtime after `fill` wrote its bytes: the flag
+/// trailer's bytes added when its flag came out set. `None` when the runtime cannot seal it
+/// (a length no frame has).
+fn sealed(
+    p: &Protocol,
+    codec: &Codec<'_>,
+    fi: usize,
+    mut frame: Vec<u8>,
+    trailer_byte: &mut dyn FnMut() -> u8,
+) -> Option<Vec<u8>> {
+    let f = &p.frames[fi];
+    let present = flag_trailer_len(f, &frame);
+    frame.extend((0..present).map(|_| trailer_byte()));
+    codec.layout(fi)?.seal(&mut frame).ok()?;
+    Some(frame)
+}
+
+/// A random frame of format `fi`, sealed by the runtime: a command's payload of random bytes
+/// (its size, or now and then another), the dispatch key or CAN id of a command (now and then
+/// random), a sender in the direction's address set (now and then random).
+fn random_frame(p: &Protocol, codec: &Codec<'_>, fi: usize, rng: &mut Rng) -> Vec<u8> {
+    let f = &p.frames[fi];
+    let slots = format_slots(p, fi);
+    loop {
+        let (c, slot, si) = slots[rng.below(slots.len())];
+        let (min, max) = struct_sizes(p, f, si);
+        let mut payload = min + rng.below(max - min + 1);
+        if rng.below(8) == 0 {
+            payload = f.payload_min + rng.below(f.payload_max - f.payload_min + 1);
+        }
+        let mut frame: Vec<u8> = (0..frame_len(f, payload)).map(|_| rng.next() as u8).collect();
+        if !f.sync_set.is_empty() {
+            frame[0] = f.sync_set[rng.below(f.sync_set.len())];
+        }
+        if let Some(c) = c.filter(|_| rng.below(16) != 0) {
+            write_key(f, c, &mut frame);
+        }
+        if let Some(d) = p.directions.get(slot).filter(|_| fi == 0 && rng.below(8) != 0) {
+            let sender = match &d.rule {
+                DirectionRule::InSet { set, .. } => {
+                    let a = &p.addresses[*set];
+                    a.first + (rng.next() % (a.last - a.first + 1))
+                }
+                DirectionRule::Equals { equals, .. } => *equals,
+                // The C printer refuses directions given to the decoder: no such spec gets here.
+                DirectionRule::Given => unreachable!("refused by the C printer"),
+            };
+            write_direction(f, d, sender, &mut frame);
+        }
+        if let Some(frame) = sealed(p, codec, fi, frame, &mut || rng.next() as u8) {
+            return frame;
+        }
+    }
+}
+
+/// Writes the dispatch key of `c` (of a CAN format: its CAN id).
 fn write_key(f: &Frame, c: &Cmd, frame: &mut [u8]) {
+    if let (Transport::Can { .. }, Some(id)) = (f.transport, c.can_id) {
+        let v = f.values.iter().find(|v| v.name == "can_id").expect("a CAN id");
+        word_field(v).write(frame, id).expect("CAN id");
+        return;
+    }
     for (&vi, &id) in f.dispatch.iter().zip(&c.id) {
-        word_field(&f.values[vi])
-            .write(frame, id)
-            .expect("dispatch value");
+        let v = &f.values[vi];
+        let id = id & (u64::MAX >> (64 - v.width));
+        word_field(v).write(frame, id).expect("dispatch value");
     }
 }
 
@@ -328,33 +430,24 @@ fn write_direction(f: &Frame, d: &Direction, sender: u64, frame: &mut [u8]) {
         .expect("direction value");
 }
 
-/// Frames at the edges of the field rules, for every command (and direction): the payload's
-/// bytes all zero and all `0xFF` (every field's smallest and largest raw value, or none of an
-/// enum's variants), at the struct's size and at one byte (a payload a sender cut short of
-/// its trailing zeros keeps its first byte).
-fn edge_frames(p: &Protocol, codec: &Codec<'_>) -> Vec<Vec<u8>> {
-    let f = &p.frames[0];
-    let layout = codec.layout(0).expect("a layout");
-    let mut slots: Vec<(Option<&Cmd>, usize, Option<usize>)> = Vec::new();
-    for c in &p.commands {
-        slots.extend((0..c.payloads.len()).map(|slot| (Some(c), slot, c.payloads[slot])));
-    }
-    if p.commands.is_empty() {
-        slots.push((None, 0, f.message));
-    }
+/// Frames of format `fi` at the edges of the field rules, for every command (and direction):
+/// the payload's bytes all zero and all `0xFF` (every field's smallest and largest raw value,
+/// or none of an enum's variants; a flag trailer's flag clear and set), at the struct's size
+/// and at one byte (a payload a sender cut short of its trailing zeros keeps its first byte).
+fn edge_frames(p: &Protocol, codec: &Codec<'_>, fi: usize) -> Vec<Vec<u8>> {
+    let f = &p.frames[fi];
     let mut out = Vec::new();
-    for (c, slot, si) in slots {
-        let size = si.map_or(0, |si| p.structs[si].size);
+    for (c, slot, si) in format_slots(p, fi) {
+        let size = struct_sizes(p, f, si).1;
         for (fill, payload) in [(0x00, size), (0xFF, size), (0x00, size.min(1))] {
-            let total = (f.header_len + payload + f.trailer_len).clamp(f.min_len(), f.max_len());
-            let mut frame = vec![fill; total];
+            let mut frame = vec![fill; frame_len(f, payload)];
             if let Some(&lead) = f.sync_set.first() {
                 frame[0] = lead;
             }
             if let Some(c) = c {
                 write_key(f, c, &mut frame);
             }
-            if let Some(d) = p.directions.get(slot) {
+            if let Some(d) = p.directions.get(slot).filter(|_| fi == 0) {
                 let sender = match &d.rule {
                     DirectionRule::InSet { set, .. } => p.addresses[*set].first,
                     DirectionRule::Equals { equals, .. } => *equals,
@@ -363,19 +456,18 @@ fn edge_frames(p: &Protocol, codec: &Codec<'_>) -> Vec<Vec<u8>> {
                 };
                 write_direction(f, d, sender, &mut frame);
             }
-            layout.seal(&mut frame).expect("a sealed frame");
-            out.push(frame);
+            out.extend(sealed(p, codec, fi, frame, &mut || fill));
         }
     }
     out
 }
 
-/// The frames with faults between and in them: garbage (stray sync bytes among it), flipped
-/// bits, cut frames.
-fn faulty_stream(p: &Protocol, frames: &[Vec<u8>], rng: &mut Rng) -> Vec<u8> {
-    let f = &p.frames[0];
+/// The frames with faults between and in them: garbage (stray sync bytes of the formats
+/// `formats` among it), flipped bits, cut frames.
+fn faulty_stream(p: &Protocol, formats: &[usize], frames: &[Vec<u8>], rng: &mut Rng) -> Vec<u8> {
     let mut out = Vec::new();
     for frame in frames {
+        let f = &p.frames[formats[rng.below(formats.len())]];
         match rng.below(12) {
             0 => out.extend((0..rng.below(9)).map(|_| rng.next() as u8)),
             1 if f.sync_set.is_empty() => {
@@ -400,6 +492,28 @@ fn faulty_stream(p: &Protocol, frames: &[Vec<u8>], rng: &mut Rng) -> Vec<u8> {
         out.extend_from_slice(&frame);
     }
     out
+}
+
+/// The CAN frame a virtual frame (id, length, data) of format `f` stands for.
+fn can_frame(f: &Frame, virt: &[u8]) -> CanFrame {
+    let frame = CanFrame::from_virtual(virt).expect("a CAN frame");
+    match f.transport {
+        Transport::Can { extended: true } => frame.into_extended(),
+        _ => CanFrame {
+            extended: false,
+            ..frame
+        },
+    }
+}
+
+/// The C prefixes of frame format `fi`'s items, as the C printer names them.
+fn prefixes(p: &Protocol, fi: usize) -> (String, String) {
+    let lo = if fi == 0 {
+        format!("{}_", p.name)
+    } else {
+        format!("{}_{}_", p.name, p.frames[fi].name)
+    };
+    (lo.clone(), lo.to_uppercase())
 }
 
 // ---- The C side ----
@@ -443,13 +557,50 @@ fn build(p: &Protocol, files: &protocol_codegen::c::CFiles, dir: &Path) -> PathB
         dir.join("driver.c"),
     )
     .unwrap();
+    let list = |items: Vec<(usize, String, String)>| -> String {
+        items
+            .into_iter()
+            .map(|(i, lo, up)| format!(" X({i}, {lo}, {up})"))
+            .collect()
+    };
+    let formats = (0..p.frames.len())
+        .map(|fi| {
+            let (lo, up) = prefixes(p, fi);
+            (fi, lo, up)
+        })
+        .collect();
+    let can_formats = (0..p.frames.len())
+        .filter(|&fi| p.frames[fi].transport != Transport::Serial)
+        .map(|fi| {
+            let (lo, up) = prefixes(p, fi);
+            (fi, lo, up)
+        })
+        .collect();
+    let decoders = decoders(p)
+        .into_iter()
+        .enumerate()
+        .map(|(di, d)| match d {
+            Decoder::Format(fi) => {
+                let (lo, up) = prefixes(p, fi);
+                (di, lo, up)
+            }
+            Decoder::Link => (
+                di,
+                format!("{}_any_", p.name),
+                format!("{}_ANY_", p.name.to_uppercase()),
+            ),
+        })
+        .collect();
     std::fs::write(
         dir.join("spec.h"),
         format!(
-            "#include \"{}\"\n#define P(x) {}_##x\n#define U(x) {}_##x\n",
+            "#include \"{}\"\n#define P(x) {}_##x\n#define U(x) {}_##x\n#define FORMATS(X){}\n#define CAN_FORMATS(X){}\n#define DECODERS(X){}\n",
             files.header_name,
             p.name,
-            p.name.to_uppercase()
+            p.name.to_uppercase(),
+            list(formats),
+            list(can_formats),
+            list(decoders)
         ),
     )
     .unwrap();
@@ -526,6 +677,7 @@ fn run_driver(exe: &Path, input: &str) -> Vec<String> {
 #[derive(Default)]
 struct Tally {
     vector_frames: usize,
+    can_frames: usize,
     vector_streams: usize,
     chunkings: usize,
     random_frames: usize,
@@ -577,26 +729,52 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
     let mut tally = Tally::default();
     let (mut input, mut expected) = (String::new(), Vec::new());
 
-    // Golden vectors: frames, then streams at every chunk size.
+    let serial: Vec<usize> = (0..p.frames.len())
+        .filter(|&fi| p.frames[fi].transport == Transport::Serial)
+        .collect();
+    let can_formats: Vec<usize> = (0..p.frames.len())
+        .filter(|&fi| p.frames[fi].transport != Transport::Serial)
+        .collect();
+    let decoders = decoders(p);
+    // The vector streams go to the link's decoder, or to the first format's.
+    let main = decoders
+        .iter()
+        .position(|d| matches!(d, Decoder::Link))
+        .unwrap_or(0);
+
+    // Golden vectors: frames (by every serial format; CAN frames by every CAN format), then
+    // streams at every chunk size.
     for (file, primary) in vector_files(&p.name) {
         let text = std::fs::read_to_string(root().join("tests/vectors").join(&file)).unwrap();
         let v: serde_json::Value = serde_json::from_str(&text).unwrap();
         for frame in v["frames"].as_array().into_iter().flatten() {
-            let Some(h) = frame["hex"].as_str().or(frame["uart"]["hex"].as_str()) else {
-                continue;
-            };
-            let bytes = unhex(h);
-            writeln!(input, "P {h}").unwrap();
-            expected.push(rust_frame(&codec, &bytes));
-            tally.vector_frames += 1;
+            if let Some(h) = frame["hex"].as_str().or(frame["uart"]["hex"].as_str()) {
+                let bytes = unhex(h);
+                for &fi in &serial {
+                    writeln!(input, "P {fi} {h}").unwrap();
+                    expected.push(rust_frame(&codec, fi, &bytes));
+                }
+                tally.vector_frames += 1;
+            }
+            let can = &frame["can"];
+            if let (Some(id), Some(h)) = (can["can_id"].as_u64(), can["data_hex"].as_str()) {
+                for &fi in &can_formats {
+                    let extended = matches!(p.frames[fi].transport, Transport::Can { extended: true });
+                    let mut c = CanFrame::new(id as u32, &unhex(h)).expect("a CAN frame");
+                    c.extended = extended;
+                    writeln!(input, "C {fi} {} {id} {h}", u8::from(extended)).unwrap();
+                    expected.push(rust_can(&codec, fi, &c));
+                }
+                tally.can_frames += 1;
+            }
         }
         for s in v["streams"].as_array().into_iter().flatten() {
             let Some(h) = s["hex"].as_str() else { continue };
             let data = unhex(h);
             tally.vector_streams += 1;
             for chunk in 1..=data.len() {
-                writeln!(input, "S {chunk} {h}").unwrap();
-                let lines = rust_stream(&codec, chunk, &data);
+                writeln!(input, "S {main} {chunk} {h}").unwrap();
+                let lines = rust_stream(&codec, decoders[main], chunk, &data);
                 if primary {
                     let frames: Vec<String> = lines
                         .iter()
@@ -617,43 +795,81 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
         }
     }
 
-    // Random frames, then the fault-injection stream of them at several chunk sizes.
+    // Random and edge frames of every format, then the fault-injection stream of each
+    // decoder's formats' random frames at several chunk sizes.
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ p.name.len() as u64);
-    let frames: Vec<Vec<u8>> = (0..random_frames)
-        .map(|_| random_frame(p, &codec, &mut rng))
-        .collect();
-    for frame in &frames {
-        writeln!(input, "P {}", hex(frame)).unwrap();
-        expected.push(rust_frame(&codec, frame));
+    let mut frames: Vec<Vec<Vec<u8>>> = Vec::new();
+    for fi in 0..p.frames.len() {
+        let of_format: Vec<Vec<u8>> = (0..random_frames)
+            .map(|_| random_frame(p, &codec, fi, &mut rng))
+            .collect();
+        let edges = edge_frames(p, &codec, fi);
+        for frame in of_format.iter().chain(&edges) {
+            let f = &p.frames[fi];
+            if f.transport == Transport::Serial {
+                writeln!(input, "P {fi} {}", hex(frame)).unwrap();
+                expected.push(rust_frame(&codec, fi, frame));
+            } else {
+                let c = can_frame(f, frame);
+                writeln!(
+                    input,
+                    "C {fi} {} {} {}",
+                    u8::from(c.extended),
+                    c.id,
+                    hex(c.data())
+                )
+                .unwrap();
+                expected.push(rust_can(&codec, fi, &c));
+            }
+        }
+        tally.random_frames += of_format.len();
+        tally.edge_frames += edges.len();
+        frames.push(of_format);
     }
-    tally.random_frames = frames.len();
-    for frame in edge_frames(p, &codec) {
-        writeln!(input, "P {}", hex(&frame)).unwrap();
-        expected.push(rust_frame(&codec, &frame));
-        tally.edge_frames += 1;
-    }
-    let stream = faulty_stream(p, &frames, &mut rng);
-    tally.stream_bytes = stream.len();
-    for chunk in [1, 17, 1000, stream.len()] {
-        writeln!(input, "S {chunk} {}", hex(&stream)).unwrap();
-        expected.push(rust_stream(&codec, chunk, &stream));
+    for (di, d) in decoders.iter().enumerate() {
+        let formats = match d {
+            Decoder::Format(fi) => vec![*fi],
+            Decoder::Link => p.link.clone(),
+        };
+        // The formats' frames, mixed.
+        let mut mixed: Vec<Vec<u8>> = formats.iter().flat_map(|&fi| frames[fi].clone()).collect();
+        for i in (1..mixed.len()).rev() {
+            mixed.swap(i, rng.below(i + 1));
+        }
+        let stream = faulty_stream(p, &formats, &mixed, &mut rng);
+        tally.stream_bytes += stream.len();
+        for chunk in [1, 17, 1000, stream.len()] {
+            writeln!(input, "S {di} {chunk} {}", hex(&stream)).unwrap();
+            expected.push(rust_stream(&codec, *d, chunk, &stream));
+        }
     }
     compare(&p.name, &exe, &input, expected);
-    support.insert(
-        shown,
-        format!(
-            "C matches Rust: {} vector frames, {} vector streams, {} random frames, {} edge frames, a {}-byte fault-injection stream",
-            tally.vector_frames,
-            tally.vector_streams,
-            tally.random_frames,
-            tally.edge_frames,
-            tally.stream_bytes
-        ),
+    let mut what = format!(
+        "C matches Rust: {} vector frames, {} vector streams, {} random frames, {} edge frames, a {}-byte fault-injection stream",
+        tally.vector_frames,
+        tally.vector_streams,
+        tally.random_frames,
+        tally.edge_frames,
+        tally.stream_bytes
     );
+    if p.frames.len() > 1 {
+        let _ = write!(
+            what,
+            " ({} frame formats, {} stream decoders",
+            p.frames.len(),
+            decoders.len()
+        );
+        if !can_formats.is_empty() {
+            let _ = write!(what, ", {} CAN vector frames", tally.can_frames);
+        }
+        what.push(')');
+    }
+    support.insert(shown, what);
     eprintln!(
-        "{}: {} vector frames, {} vector streams at {} chunkings, {} random frames, {} edge frames, {} stream bytes at 4 chunkings",
+        "{}: {} vector frames, {} CAN vector frames, {} vector streams at {} chunkings, {} random frames, {} edge frames, {} stream bytes at 4 chunkings",
         p.name,
         tally.vector_frames,
+        tally.can_frames,
         tally.vector_streams,
         tally.chunkings,
         tally.random_frames,

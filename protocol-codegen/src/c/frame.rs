@@ -115,8 +115,16 @@ fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, x: &Fx, out: &mut String) 
     let conditional = matches!(plan.length, LengthRule::Conditional { .. });
     let _ = write!(
         out,
-        "/* The engine's rules for a candidate whose first bytes match the sync bytes (as many\n * as there are), in `b[0..avail]`; frames longer than `limit` are too long. Returns\n * {up}PROBE_FRAME with the frame's length in `*n`, {up}PROBE_NEED with the bytes needed\n * in `*n`, or the reason of a rejection. */\nstatic int {xlo}probe_synced(const uint8_t *b, size_t avail, size_t limit, size_t *n)\n{{\n    const size_t span = {span}u;\n    size_t total;\n{body_decl}    uint64_t raw = 0;\n    if (span > limit) {{\n        if (avail < {xup}SYNC_LEN) {{\n            *n = {xup}SYNC_LEN;\n            return {up}PROBE_NEED;\n        }}\n        return {up}REJECT_BAD_LENGTH;\n    }}\n    if (avail < span) {{\n        *n = span;\n        return {up}PROBE_NEED;\n    }}\n",
-        body_decl = if conditional { "    size_t body;\n" } else { "" }
+        "/* The engine's rules for a candidate whose first bytes match the sync bytes (as many\n * as there are), in `b[0..avail]`; frames longer than `limit` are too long. Returns\n * {up}PROBE_FRAME with the frame's length in `*n`, {up}PROBE_NEED with the bytes needed\n * in `*n`, or the reason of a rejection. */\nstatic int {xlo}probe_synced(const uint8_t *b, size_t avail, size_t limit, size_t *n)\n{{\n    const size_t span = {span}u;\n    size_t total;\n{body_decl}    uint64_t raw = 0;\n    if (span > limit) {{\n{need_sync}        return {up}REJECT_BAD_LENGTH;\n    }}\n    if (avail < span) {{\n        *n = span;\n        return {up}PROBE_NEED;\n    }}\n",
+        body_decl = if conditional { "    size_t body;\n" } else { "" },
+        // A sync cut by the end of the bytes may be no candidate at all: decided first.
+        need_sync = if f.sync.is_empty() && f.sync_set.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "        if (avail < {xup}SYNC_LEN) {{\n            *n = {xup}SYNC_LEN;\n            return {up}PROBE_NEED;\n        }}\n"
+            )
+        }
     );
     for (vi, c) in &plan.constants {
         let _ = writeln!(
@@ -668,9 +676,8 @@ fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let is_can = matches!(f.transport, Transport::Can { .. });
     for (vi, v) in f.values.iter().enumerate() {
         let value = match &v.role {
-            Role::User { .. } if is_can && v.name == "can_id" => {
-                format!("(uint64_t){xlo}can_ids[command]")
-            }
+            // A CAN frame's id is the command's.
+            _ if is_can && v.name == "can_id" => format!("(uint64_t){xlo}can_ids[command]"),
             Role::User { .. } => format!("(uint64_t)h->{}", names::field(&v.name)),
             Role::Length => match (&f.length, &f.length_extension) {
                 (Length::Field { .. }, Some(e)) => {
