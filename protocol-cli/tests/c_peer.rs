@@ -326,6 +326,12 @@ fn format_slots(p: &Protocol, fi: usize) -> Vec<(Option<&Cmd>, usize, Option<usi
                     out.extend((0..c.payloads.len()).map(|slot| (Some(c), slot, c.payloads[slot])));
                 }
             }
+            // The message of a direction the decoder is given.
+            for (di, d) in p.directions.iter().enumerate() {
+                if let (0, Some((si, _))) = (fi, d.message) {
+                    out.push((None, di, Some(si)));
+                }
+            }
         }
     }
     out
@@ -349,6 +355,15 @@ fn struct_sizes(p: &Protocol, f: &Frame, si: Option<usize>) -> (usize, usize) {
 /// Bytes of a frame of `f` with a payload of `payload` bytes, within the format's bounds.
 fn frame_len(f: &Frame, payload: usize) -> usize {
     (f.header_len + payload + f.trailer_len).clamp(f.min_len(), f.max_len())
+}
+
+/// The payload bytes after the header of a frame carrying struct bytes `size` of slot
+/// `(command, direction)`: a direction's message takes the dispatch key's bytes too.
+fn after_header(p: &Protocol, f: &Frame, command: Option<&Cmd>, direction: usize, size: usize) -> usize {
+    match (command, p.directions.get(direction).and_then(|d| d.message)) {
+        (None, Some((_, start))) => size.saturating_sub(f.header_len - start),
+        _ => size,
+    }
 }
 
 /// A frame of format `fi`, sealed by the runtime after `fill` wrote its bytes: the flag
@@ -376,11 +391,16 @@ fn random_frame(p: &Protocol, codec: &Codec<'_>, fi: usize, rng: &mut Rng) -> Ve
     let slots = format_slots(p, fi);
     loop {
         let (c, slot, si) = slots[rng.below(slots.len())];
-        let (min, max) = struct_sizes(p, f, si);
+        let (min, max) = match (c, si, f.message) {
+            // A format without dispatch key or message: its payload's bytes as they are.
+            (None, None, None) => (f.payload_min, f.payload_max),
+            _ => struct_sizes(p, f, si),
+        };
         let mut payload = min + rng.below(max - min + 1);
         if rng.below(8) == 0 {
             payload = f.payload_min + rng.below(f.payload_max - f.payload_min + 1);
         }
+        let payload = after_header(p, f, c, slot, payload);
         let mut frame: Vec<u8> = (0..frame_len(f, payload)).map(|_| rng.next() as u8).collect();
         if !f.sync_set.is_empty() {
             frame[0] = f.sync_set[rng.below(f.sync_set.len())];
@@ -392,13 +412,15 @@ fn random_frame(p: &Protocol, codec: &Codec<'_>, fi: usize, rng: &mut Rng) -> Ve
             let sender = match &d.rule {
                 DirectionRule::InSet { set, .. } => {
                     let a = &p.addresses[*set];
-                    a.first + (rng.next() % (a.last - a.first + 1))
+                    Some(a.first + (rng.next() % (a.last - a.first + 1)))
                 }
-                DirectionRule::Equals { equals, .. } => *equals,
-                // The C printer refuses directions given to the decoder: no such spec gets here.
-                DirectionRule::Given => unreachable!("refused by the C printer"),
+                DirectionRule::Equals { equals, .. } => Some(*equals),
+                // Nothing in the frame tells a direction the decoder is given.
+                DirectionRule::Given => None,
             };
-            write_direction(f, d, sender, &mut frame);
+            if let Some(sender) = sender {
+                write_direction(f, d, sender, &mut frame);
+            }
         }
         if let Some(frame) = sealed(p, codec, fi, frame, &mut || rng.next() as u8) {
             return frame;
@@ -438,7 +460,7 @@ fn edge_frames(p: &Protocol, codec: &Codec<'_>, fi: usize) -> Vec<Vec<u8>> {
     let f = &p.frames[fi];
     let mut out = Vec::new();
     for (c, slot, si) in format_slots(p, fi) {
-        let size = struct_sizes(p, f, si).1;
+        let size = after_header(p, f, c, slot, struct_sizes(p, f, si).1);
         for (fill, payload) in [(0x00, size), (0xFF, size), (0x00, size.min(1))] {
             let mut frame = vec![fill; frame_len(f, payload)];
             if let Some(&lead) = f.sync_set.first() {
@@ -449,12 +471,14 @@ fn edge_frames(p: &Protocol, codec: &Codec<'_>, fi: usize) -> Vec<Vec<u8>> {
             }
             if let Some(d) = p.directions.get(slot).filter(|_| fi == 0) {
                 let sender = match &d.rule {
-                    DirectionRule::InSet { set, .. } => p.addresses[*set].first,
-                    DirectionRule::Equals { equals, .. } => *equals,
-                    // Refused by the C printer: no such spec gets here.
-                    DirectionRule::Given => unreachable!("refused by the C printer"),
+                    DirectionRule::InSet { set, .. } => Some(p.addresses[*set].first),
+                    DirectionRule::Equals { equals, .. } => Some(*equals),
+                    // Nothing in the frame tells a direction the decoder is given.
+                    DirectionRule::Given => None,
                 };
-                write_direction(f, d, sender, &mut frame);
+                if let Some(sender) = sender {
+                    write_direction(f, d, sender, &mut frame);
+                }
             }
             out.extend(sealed(p, codec, fi, frame, &mut || fill));
         }
@@ -576,6 +600,12 @@ fn build(p: &Protocol, files: &protocol_codegen::c::CFiles, dir: &Path) -> PathB
             (fi, lo, up)
         })
         .collect();
+    let given = if p.directions_given() {
+        let (lo, up) = prefixes(p, 0);
+        vec![(0, lo, up)]
+    } else {
+        Vec::new()
+    };
     let decoders = decoders(p)
         .into_iter()
         .enumerate()
@@ -594,12 +624,13 @@ fn build(p: &Protocol, files: &protocol_codegen::c::CFiles, dir: &Path) -> PathB
     std::fs::write(
         dir.join("spec.h"),
         format!(
-            "#include \"{}\"\n#define P(x) {}_##x\n#define U(x) {}_##x\n#define FORMATS(X){}\n#define CAN_FORMATS(X){}\n#define DECODERS(X){}\n",
+            "#include \"{}\"\n#define P(x) {}_##x\n#define U(x) {}_##x\n#define FORMATS(X){}\n#define CAN_FORMATS(X){}\n#define GIVEN(X){}\n#define DECODERS(X){}\n",
             files.header_name,
             p.name,
             p.name.to_uppercase(),
             list(formats),
             list(can_formats),
+            list(given),
             list(decoders)
         ),
     )
@@ -708,6 +739,27 @@ fn compare(spec: &str, exe: &Path, input: &str, expected: Vec<Vec<String>>) {
     }
 }
 
+/// A frame of serial format `fi` for the driver: decoded (`P`), and for a spec whose decoder is
+/// given the direction, decoded as sent in each direction (`D`, `given` holding a codec per
+/// direction).
+fn push_frame(
+    input: &mut String,
+    expected: &mut Vec<Vec<String>>,
+    codec: &Codec<'_>,
+    given: &[Codec<'_>],
+    fi: usize,
+    bytes: &[u8],
+) {
+    writeln!(input, "P {fi} {}", hex(bytes)).unwrap();
+    expected.push(rust_frame(codec, fi, bytes));
+    if fi == 0 {
+        for (d, codec) in given.iter().enumerate() {
+            writeln!(input, "D {fi} {d} {}", hex(bytes)).unwrap();
+            expected.push(rust_frame(codec, fi, bytes));
+        }
+    }
+}
+
 fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, String>) {
     let shown = path
         .strip_prefix(root())
@@ -735,6 +787,14 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
     let can_formats: Vec<usize> = (0..p.frames.len())
         .filter(|&fi| p.frames[fi].transport != Transport::Serial)
         .collect();
+    // For a spec whose decoder is given the direction, a codec per direction.
+    let given: Vec<Codec<'_>> = if p.directions_given() {
+        (0..p.directions.len())
+            .map(|d| interp.codec().with_direction(Some(d)))
+            .collect()
+    } else {
+        Vec::new()
+    };
     let decoders = decoders(p);
     // The vector streams go to the link's decoder, or to the first format's.
     let main = decoders
@@ -751,8 +811,7 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
             if let Some(h) = frame["hex"].as_str().or(frame["uart"]["hex"].as_str()) {
                 let bytes = unhex(h);
                 for &fi in &serial {
-                    writeln!(input, "P {fi} {h}").unwrap();
-                    expected.push(rust_frame(&codec, fi, &bytes));
+                    push_frame(&mut input, &mut expected, &codec, &given, fi, &bytes);
                 }
                 tally.vector_frames += 1;
             }
@@ -807,8 +866,7 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
         for frame in of_format.iter().chain(&edges) {
             let f = &p.frames[fi];
             if f.transport == Transport::Serial {
-                writeln!(input, "P {fi} {}", hex(frame)).unwrap();
-                expected.push(rust_frame(&codec, fi, frame));
+                push_frame(&mut input, &mut expected, &codec, &given, fi, frame);
             } else {
                 let c = can_frame(f, frame);
                 writeln!(

@@ -3,14 +3,17 @@
  *
  *   P FI HEX           decode HEX as a frame of format FI; print `ok TEXT` or `err NAME`,
  *                      then the frame the packet encodes to (`enc HEX`, or `enc err`)
+ *   D FI DIR HEX       as `P`, the frame sent in direction DIR (a spec whose decoder is
+ *                      given the direction)
  *   C FI EXT ID HEX    decode the CAN frame of id ID (extended when EXT is 1) and data HEX
  *                      with CAN format FI; print as `P`, the encoded frame as `enc ID HEX`
  *   S DI CHUNK HEX     feed HEX to stream decoder DI in chunks of CHUNK bytes, then flush;
  *                      print every event and the counters
  *
  * `spec.h` names the spec: it includes the generated header and defines P(x) and U(x), the
- * spec's lower- and upper-case prefixes, and the lists FORMATS(X), CAN_FORMATS(X) and
- * DECODERS(X) of the spec's frame formats, CAN formats and stream decoders, each item
+ * spec's lower- and upper-case prefixes, and the lists FORMATS(X), CAN_FORMATS(X), GIVEN(X)
+ * and DECODERS(X) of the spec's frame formats, CAN formats, formats whose decoder is given the
+ * direction and stream decoders, each item
  * X(index, lower-case prefix, upper-case prefix). */
 #include <stdio.h>
 #include <stdlib.h>
@@ -101,6 +104,51 @@ static void describe(int format, const uint8_t *b, size_t n, int encode)
 #undef CASE
     default:
         printf("no format %d\n", format);
+    }
+}
+
+/* Per format FI whose decoder is given the direction (`GIVEN`): as `describe`, the frame
+ * decoded as sent in direction `dir`. */
+#define DESCRIBE_GIVEN(fi, lo, up)                                                              \
+    static void describe_given_##fi(int dir, const uint8_t *b, size_t n)                       \
+    {                                                                                           \
+        lo##packet pk;                                                                          \
+        uint8_t out[up##MAX_FRAME_LEN];                                                         \
+        int e = lo##decode_given(b, n, (P(direction))dir, &pk);                                 \
+        int len;                                                                                \
+        if (e != 0) {                                                                           \
+            printf("err %s\n", err_name(e));                                                    \
+            return;                                                                             \
+        }                                                                                       \
+        lo##format(&pk, text, sizeof text);                                                     \
+        printf("ok %s\n", text);                                                                \
+        len = lo##encode(&pk, out, sizeof out);                                                 \
+        if (len < 0) {                                                                          \
+            printf("enc err\n");                                                                \
+            return;                                                                             \
+        }                                                                                       \
+        printf("enc ");                                                                         \
+        put_hex(out, (size_t)len);                                                              \
+        printf("\n");                                                                           \
+        e = lo##encode(&pk, out, (size_t)len - 1);                                              \
+        if (e != U(ERR_SHORT_BUFFER)) printf("a buffer one byte short gave %d\n", e);           \
+    }
+GIVEN(DESCRIBE_GIVEN)
+
+static void describe_given(int format, int dir, const uint8_t *b, size_t n)
+{
+    (void)dir;
+    (void)b;
+    (void)n;
+    switch (format) {
+#define CASE(fi, lo, up)                                                                        \
+    case fi:                                                                                    \
+        describe_given_##fi(dir, b, n);                                                         \
+        return;
+        GIVEN(CASE)
+#undef CASE
+    default:
+        printf("no format %d with given directions\n", format);
     }
 }
 
@@ -218,6 +266,10 @@ int main(void)
         if (line[0] == 'P' && line[1] == ' ') {
             int format = (int)strtol(rest, &rest, 10);
             describe(format, bytes, unhex(rest + 1, bytes, sizeof bytes), 1);
+        } else if (line[0] == 'D' && line[1] == ' ') {
+            int format = (int)strtol(rest, &rest, 10);
+            int dir = (int)strtol(rest, &rest, 10);
+            describe_given(format, dir, bytes, unhex(rest + 1, bytes, sizeof bytes));
         } else if (line[0] == 'C' && line[1] == ' ') {
             int format = (int)strtol(rest, &rest, 10);
             int extended = (int)strtol(rest, &rest, 10);

@@ -65,7 +65,7 @@ fn packet_format(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     if keyed_format(p, x.fi) {
         let _ = writeln!(
             out,
-            "    {lo}emit(t, \"cmd=%s\", {lo}command_name(packet->command));"
+            "    {lo}emit(t, \"cmd=%s\", {lo}command_name(packet->command) ? {lo}command_name(packet->command) : \"?\");"
         );
     } else {
         let _ = writeln!(out, "    {lo}emit(t, \"cmd=?\");");
@@ -94,6 +94,12 @@ fn packet_format(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             tr.name,
             tr.len,
             tr.name
+        );
+    }
+    if carries(p, x.fi) == Carries::Bytes {
+        let _ = writeln!(
+            out,
+            "    {{\n        size_t i;\n        {lo}emit(t, \" payload=hex:\");\n        for (i = 0; i < packet->payload_len; i++) {lo}emit(t, \"%02x\", (unsigned)packet->payload[i]);\n    }}"
         );
     }
     for slot in slots_of(p, x.fi) {

@@ -305,9 +305,30 @@ fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     } else {
         String::new()
     };
+    let given = x.fi == 0 && p.directions_given();
+    if given {
+        // The direction comes from the caller: one decoder per direction.
+        let _ = writeln!(
+            out,
+            "int {xlo}decode(const uint8_t *bytes, size_t len, {xlo}packet *out)\n{{\n    return {xlo}decode_given(bytes, len, {up}DIRECTION_COUNT, out);\n}}\n"
+        );
+        for d in &p.directions {
+            let _ = writeln!(
+                out,
+                "int {xlo}decode_{}(const uint8_t *bytes, size_t len, {xlo}packet *out)\n{{\n    return {xlo}decode_given(bytes, len, {up}{}, out);\n}}\n",
+                d.name,
+                d.name.to_uppercase()
+            );
+        }
+    }
+    let signature = if given {
+        format!("{xlo}decode_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)")
+    } else {
+        format!("{xlo}decode(const uint8_t *bytes, size_t len, {xlo}packet *out)")
+    };
     let _ = write!(
         out,
-        "int {xlo}decode(const uint8_t *bytes, size_t len, {xlo}packet *out)\n{{\n    size_t n = 0, start = {xup}HEADER_LEN, end;\n    uint64_t raw = 0;\n    struct {lo}rd r;\n    int e = 0;\n{filled}    if ({xlo}probe(bytes, len, {xup}MAX_FRAME_LEN, &n) != {up}PROBE_FRAME || n != len) return {up}ERR_FRAME;\n    memset(out, 0, sizeof *out);\n    (void)raw;\n    end = len - {xup}TRAILER_LEN;\n"
+        "int {signature}\n{{\n    size_t n = 0, start = {xup}HEADER_LEN, end;\n    uint64_t raw = 0;\n    struct {lo}rd r;\n    int e = 0;\n{filled}    if ({xlo}probe(bytes, len, {xup}MAX_FRAME_LEN, &n) != {up}PROBE_FRAME || n != len) return {up}ERR_FRAME;\n    memset(out, 0, sizeof *out);\n    (void)raw;\n    end = len - {xup}TRAILER_LEN;\n"
     );
     for v in user_values(f) {
         let value = if v.prim == Prim::Bool {
@@ -342,17 +363,49 @@ fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         );
     }
     let _ = writeln!(out, "    if (end < start) return {up}ERR_FRAME;");
+    if given {
+        given_direction(p, n, out);
+    }
     match carries(p, x.fi) {
         Carries::Commands => {
             dispatch_key(p, n, x, out);
-            if x.fi == 0 {
+            if x.fi == 0 && !given {
                 directions(p, n, out);
             }
         }
         Carries::Can => can_command(p, n, x, out),
         Carries::Message(_) => {}
+        Carries::Bytes => {
+            let _ = writeln!(
+                out,
+                "    /* The payload's bytes as they are. */\n    if (end - start > sizeof out->payload) return {up}ERR_PAYLOAD_LENGTH;\n    out->payload_len = end - start;\n    if (out->payload_len > 0) memcpy(out->payload, bytes + start, out->payload_len);\n    (void)r;\n    (void)e;\n    return 0;\n}}\n"
+            );
+            return;
+        }
     }
     read_payload(p, n, x, out);
+}
+
+/// The direction the decoder is given: none is an unknown direction; a direction whose frames
+/// carry one struct reads it from where the dispatch key would be.
+fn given_direction(p: &Protocol, n: &Names, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let _ = writeln!(
+        out,
+        "    if ((int)direction < 0 || direction >= {up}DIRECTION_COUNT) return {up}ERR_UNKNOWN_DIRECTION;\n    out->direction = direction;"
+    );
+    for d in &p.directions {
+        let Some((si, start)) = d.message else {
+            continue;
+        };
+        let _ = writeln!(
+            out,
+            "    if (direction == {up}{}) {{\n        out->command = {up}COMMAND_COUNT; /* none */\n        if (end < {start}u) return {up}ERR_FRAME;\n        r.p = bytes + {start}u;\n        r.len = end - {start}u;\n        r.pos = 0;\n        if ((e = {lo}read_{}(&r, &out->payload.{})) != 0) return e;\n        return r.pos != r.len ? {up}ERR_PAYLOAD_LENGTH : 0;\n    }}",
+            d.name.to_uppercase(),
+            names::snake(&p.structs[si].name),
+            d.name
+        );
+    }
 }
 
 /// The bytes of the zero-filled copy a payload is read from when its format fills it (0: the
@@ -502,7 +555,7 @@ fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let _ = writeln!(out, "    r.p = bytes + start;\n    r.len = end - start;\n    r.pos = 0;");
     let slots: Vec<Slot> = slots_of(p, x.fi)
         .into_iter()
-        .filter(|s| s.si.is_some())
+        .filter(|s| s.si.is_some() && s.keyless.is_none())
         .collect();
     if fill_len(p, x.fi) > 0 {
         out.push_str("    {\n        size_t size = 0, base = SIZE_MAX;\n");
@@ -554,7 +607,7 @@ fn truncate(prim: Prim, value: u64) -> u64 {
 
 fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let up = &n.up;
-    let xlo = &x.lo;
+    let (xlo, xup) = (&x.lo, &x.up);
     let f = &p.frames[x.fi];
     let kind = carries(p, x.fi);
     if kind == Carries::Commands {
@@ -606,10 +659,22 @@ fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     for slot in slots_of(p, x.fi) {
         encoder(p, n, x, &slot, out);
     }
+    if kind == Carries::Bytes {
+        let _ = writeln!(
+            out,
+            "int {xlo}encode_bytes(const {xlo}header *header, const uint8_t *payload, size_t len, uint8_t *buf, size_t cap)\n{{\n    if (len > {xup}MAX_PAYLOAD_LEN) return {up}ERR_OUT_OF_RANGE;\n    if (cap < {xup}HEADER_LEN + {xup}TRAILER_LEN || len > cap - {xup}HEADER_LEN - {xup}TRAILER_LEN) return {up}ERR_SHORT_BUFFER;\n    if (len > 0) memcpy(buf + {xup}HEADER_LEN, payload, len);\n    return {xlo}seal(buf, cap, {xup}HEADER_LEN, len, header, 0);\n}}\n"
+        );
+    }
     let _ = writeln!(
         out,
         "int {xlo}encode(const {xlo}packet *packet, uint8_t *buf, size_t cap)\n{{"
     );
+    if kind == Carries::Bytes {
+        let _ = writeln!(
+            out,
+            "    return {xlo}encode_bytes(&packet->header, packet->payload, packet->payload_len, buf, cap);"
+        );
+    }
     for slot in slots_of(p, x.fi) {
         let payload = match slot.si {
             Some(_) => format!("&packet->payload.{}, ", slot.name),
@@ -622,7 +687,7 @@ fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             slot.name
         );
     }
-    if !matches!(kind, Carries::Message(_)) {
+    if matches!(kind, Carries::Commands | Carries::Can) {
         let _ = writeln!(out, "    return {up}ERR_OUT_OF_RANGE;");
     }
     out.push_str("}\n\n");
@@ -636,7 +701,7 @@ fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let f = &p.frames[x.fi];
     let _ = write!(
         out,
-        "/* The frame around a payload of `payload_len` bytes already written after the header, in a\n * buffer of `cap` bytes. */\nstatic int {xlo}seal(uint8_t *buf, size_t cap, size_t payload_len, const {xlo}header *h, size_t command)\n{{\n    size_t ext = 0, flagged = 0, body, total;\n    if (payload_len > {xup}MAX_PAYLOAD_LEN) return {up}ERR_OUT_OF_RANGE;\n    body = {xup}HEADER_LEN + payload_len + {xup}TRAILER_LEN;\n"
+        "/* The frame around a payload of `payload_len` bytes already written at `start` (after the\n * header), in a buffer of `cap` bytes; `command` SIZE_MAX for a frame without dispatch key. */\nstatic int {xlo}seal(uint8_t *buf, size_t cap, size_t start, size_t payload_len, const {xlo}header *h, size_t command)\n{{\n    size_t ext = 0, flagged = 0, body, total;\n    if (start > {xup}HEADER_LEN || payload_len > {xup}MAX_PAYLOAD_LEN + ({xup}HEADER_LEN - start)) return {up}ERR_OUT_OF_RANGE;\n    body = start + payload_len + {xup}TRAILER_LEN;\n"
     );
     let adjust = match &f.length {
         Length::Field { adjust, .. } => *adjust,
@@ -661,7 +726,7 @@ fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     }
     let _ = write!(
         out,
-        "    body += ext;\n    total = body + flagged;\n    if (total > cap) return {up}ERR_SHORT_BUFFER;\n    if (ext > 0) memmove(buf + {xup}HEADER_LEN + ext, buf + {xup}HEADER_LEN, payload_len);\n    memset(buf, 0, {xup}HEADER_LEN + ext);\n    memset(buf + {xup}HEADER_LEN + ext + payload_len, 0, {xup}TRAILER_LEN);\n{sync}    (void)h;\n    (void)command;\n",
+        "    body += ext;\n    total = body + flagged;\n    if (total > cap) return {up}ERR_SHORT_BUFFER;\n    if (ext > 0) memmove(buf + start + ext, buf + start, payload_len);\n    memset(buf, 0, start + ext);\n    memset(buf + start + ext + payload_len, 0, {xup}TRAILER_LEN);\n{sync}    (void)h;\n    (void)command;\n",
         sync = if f.sync.is_empty() {
             String::new()
         } else {
@@ -706,7 +771,13 @@ fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             },
             Role::Dispatch => {
                 let k = f.dispatch.iter().position(|&d| d == vi).unwrap_or(0);
-                format!("(uint64_t){xlo}ids[command][{k}]")
+                let _ = writeln!(
+                    out,
+                    "    /* {} */\n    if (command != SIZE_MAX && !{lo}put_field(buf, body, {}, (uint64_t){xlo}ids[command][{k}])) return {up}ERR_OUT_OF_RANGE;",
+                    v.name,
+                    word(v)
+                );
+                continue;
             }
             Role::Const(c) => names::u64_lit(*c),
             Role::Flag => "(uint64_t)(flagged > 0 ? 1u : 0u)".to_string(),
@@ -774,8 +845,12 @@ fn encoder(p: &Protocol, n: &Names, x: &Fx, slot: &Slot, out: &mut String) {
         None => (String::new(), String::new()),
     };
     let mut decl = String::new();
+    // The message of a direction the decoder is given starts where the dispatch key would.
+    let start = slot
+        .keyless
+        .map_or(format!("{xup}HEADER_LEN"), |start| format!("{start}u"));
     let mut place = format!(
-        "    w.p = buf + {xup}HEADER_LEN;\n    w.cap = cap - {xup}HEADER_LEN - {xup}TRAILER_LEN;\n    w.pos = 0;\n"
+        "    w.p = buf + {start};\n    w.cap = cap - {start} - {xup}TRAILER_LEN;\n    w.pos = 0;\n"
     );
     if let (Some(base), Some(si)) = (base, slot.si) {
         // The whole struct is written aside, then the bytes before its extension fields kept.
@@ -789,13 +864,14 @@ fn encoder(p: &Protocol, n: &Names, x: &Fx, slot: &Slot, out: &mut String) {
     if f.truncate_zeros && slot.command.is_some() {
         let _ = writeln!(write, "    w.pos = {xlo}trimmed(w.p, w.pos);");
     }
-    let command = match slot.command {
-        Some(ci) => format!("{up}{}", p.commands[ci].name),
-        None => "0".into(),
+    let command = match (slot.command, slot.keyless) {
+        (Some(ci), _) => format!("{up}{}", p.commands[ci].name),
+        (None, Some(_)) => "SIZE_MAX".into(),
+        (None, None) => "0".into(),
     };
     let _ = write!(
         out,
-        "int {xlo}encode_{}(const {xlo}header *header, {arg}uint8_t *buf, size_t cap)\n{{\n    struct {lo}wr w;\n    int e = 0;\n{decl}    if (cap < {xup}HEADER_LEN + {xup}TRAILER_LEN) return {up}ERR_SHORT_BUFFER;\n{place}{write}    (void)e;\n    return {xlo}seal(buf, cap, w.pos, header, {command});\n}}\n\n",
+        "int {xlo}encode_{}(const {xlo}header *header, {arg}uint8_t *buf, size_t cap)\n{{\n    struct {lo}wr w;\n    int e = 0;\n{decl}    if (cap < {start} + {xup}TRAILER_LEN) return {up}ERR_SHORT_BUFFER;\n{place}{write}    (void)e;\n    return {xlo}seal(buf, cap, {start}, w.pos, header, {command});\n}}\n\n",
         slot.name
     );
 }

@@ -1,7 +1,7 @@
 //! What the C printer supports: [`unsupported`] lists every feature of a spec it refuses, so
 //! that `protocol gen c` fails with a clear message instead of printing wrong code.
 
-use crate::ir::{Algorithm, FieldKind, PacketKind, Prim, Protocol, Role, ValueType};
+use crate::ir::{Algorithm, FieldKind, PacketKind, Prim, Protocol, Role, Transport, ValueType};
 
 /// One line per feature of `p` the C printer does not support yet; empty when it prints the
 /// whole spec.
@@ -9,9 +9,9 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
     let mut out = Vec::new();
     for (fi, f) in p.frames.iter().enumerate() {
         let at = format!("frame `{}`", f.name);
-        if fi > 0 && f.packet == PacketKind::None && (f.message.is_some() || !f.dispatch.is_empty()) {
+        if matches!(f.transport, Transport::Can { .. }) && f.packet != PacketKind::Can {
             out.push(format!(
-                "{at}: a format after the first whose frames have no packet type (raw payload bytes)"
+                "{at}: CAN transport in a format whose frames' command does not follow from the CAN id"
             ));
         }
         if fi > 0 && f.packet == PacketKind::Commands && !p.directions.is_empty() {
@@ -28,11 +28,6 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         if f.bare_len.is_some() {
             out.push(format!("{at}: bare headers"));
         }
-        if f.dispatch.is_empty() && f.message.is_none() {
-            out.push(format!(
-                "{at}: a frame format without dispatch key or message"
-            ));
-        }
         if f.values.iter().any(|v| matches!(v.role, Role::Ack(_))) {
             out.push(format!("{at}: an acknowledgement flag"));
         }
@@ -41,9 +36,6 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
                 out.push(format!("{at}: check `{}`: {why}", c.name));
             }
         }
-    }
-    if p.directions_given() {
-        out.push("directions given to the decoder (no header field tells them)".to_string());
     }
     for s in &p.structs {
         for field in &s.fields {

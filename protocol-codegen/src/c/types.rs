@@ -163,7 +163,7 @@ fn commands(p: &Protocol, n: &Names, out: &mut String) {
     }
     let _ = writeln!(
         out,
-        "    {up}COMMAND_COUNT\n}} {lo}command;\n\n/** The spec name of a command, NULL for no command. */\nconst char *{lo}command_name({lo}command command);\n"
+        "    {up}COMMAND_COUNT\n}} {lo}command;\n\n/** The spec name of a command, NULL for no command (`COMMAND_COUNT`: a frame without one). */\nconst char *{lo}command_name({lo}command command);\n"
     );
     if !p.directions.is_empty() {
         let _ = writeln!(
@@ -285,6 +285,14 @@ fn packet(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     if !p.directions.is_empty() && carries(p, x.fi) == Carries::Commands {
         let _ = writeln!(out, "    {}direction direction;", n.lo);
     }
+    if carries(p, x.fi) == Carries::Bytes {
+        let _ = writeln!(
+            out,
+            "    size_t payload_len; /**< The payload's bytes. */\n    uint8_t payload[{}];\n}} {lo}packet;\n",
+            f.payload_max.max(1)
+        );
+        return;
+    }
     out.push_str("    /** The payload of the command (and direction): the member named after them. */\n    union {\n        uint8_t none_; /**< Commands without payload. */\n");
     for slot in slots_of(p, x.fi) {
         if let Some(si) = slot.si {
@@ -305,6 +313,8 @@ pub enum Carries {
     Can,
     /// The struct (index into [`Protocol::structs`]) every frame carries.
     Message(Option<usize>),
+    /// The payload's bytes as they are: a format without dispatch key or message.
+    Bytes,
 }
 
 /// What the frames of format `fi` carry (the IR's [`PacketKind`]; the first format's from its
@@ -312,17 +322,17 @@ pub enum Carries {
 pub fn carries(p: &Protocol, fi: usize) -> Carries {
     let f = &p.frames[fi];
     if fi == 0 {
-        return if f.dispatch.is_empty() {
-            Carries::Message(f.message)
-        } else {
-            Carries::Commands
+        return match (f.dispatch.is_empty(), f.message) {
+            (false, _) => Carries::Commands,
+            (true, Some(si)) => Carries::Message(Some(si)),
+            (true, None) => Carries::Bytes,
         };
     }
     match f.packet {
         PacketKind::Commands | PacketKind::Command => Carries::Commands,
         PacketKind::Can => Carries::Can,
         PacketKind::Message(si) => Carries::Message(Some(si)),
-        PacketKind::None => Carries::Message(f.message),
+        PacketKind::None => f.message.map_or(Carries::Bytes, |si| Carries::Message(Some(si))),
     }
 }
 
@@ -336,15 +346,24 @@ pub struct Slot {
     /// The payload struct (`None`: the payload is empty).
     pub si: Option<usize>,
     /// The name of the packet's union member and of the encoder's suffix: `set_robot_speed`,
-    /// `set_robot_speed_request`, `message`.
+    /// `set_robot_speed_request`, `message`, `response` (the message of a direction the decoder
+    /// is given).
     pub name: String,
+    /// For the message of a direction the decoder is given, where its payload starts (the
+    /// header without the dispatch key, whose bytes the message takes).
+    pub keyless: Option<usize>,
 }
 
 impl Slot {
     /// The C condition under which `packet` (a pointer) holds this slot's payload.
     pub fn test(&self, p: &Protocol, n: &Names, packet: &str) -> String {
         let Some(ci) = self.command else {
-            return "1".into();
+            return match (self.keyless, p.directions.get(self.direction)) {
+                (Some(_), Some(d)) => {
+                    format!("{packet}->direction == {}{}", n.up, d.name.to_uppercase())
+                }
+                _ => "1".into(),
+            };
         };
         let mut out = format!("{packet}->command == {}{}", n.up, p.commands[ci].name);
         if let Some(d) = p.directions.get(self.direction) {
@@ -361,9 +380,10 @@ impl Slot {
     /// `if (TEST) ` before a statement for this slot only, or nothing for the one slot of a
     /// format without dispatch key.
     pub fn guard(&self, p: &Protocol, n: &Names, packet: &str) -> String {
-        match self.command {
-            Some(_) => format!("if ({}) ", self.test(p, n, packet)),
-            None => String::new(),
+        if self.command.is_some() || self.keyless.is_some() {
+            format!("if ({}) ", self.test(p, n, packet))
+        } else {
+            String::new()
         }
     }
 }
@@ -384,12 +404,16 @@ pub fn slots_of(p: &Protocol, fi: usize) -> Vec<Slot> {
                 direction: 0,
                 si,
                 name: "message".into(),
+                keyless: None,
             }];
         }
+        Carries::Bytes => return Vec::new(),
         Carries::Can => true,
         Carries::Commands => false,
     };
     let mut out = Vec::new();
+    // A direction the decoder is given may carry one struct instead of commands.
+    let keyless = |di: usize| p.directions.get(di).and_then(|d| d.message);
     for (ci, c) in p.commands.iter().enumerate() {
         let carried = if can {
             c.can_id.is_some()
@@ -402,6 +426,9 @@ pub fn slots_of(p: &Protocol, fi: usize) -> Vec<Slot> {
         // A CAN format's frames carry the first direction's payload (its specs have none).
         let directions = if can { 1 } else { c.payloads.len() };
         for (di, si) in c.payloads.iter().enumerate().take(directions) {
+            if keyless(di).is_some() {
+                continue;
+            }
             let name = c.name.to_lowercase();
             out.push(Slot {
                 command: Some(ci),
@@ -411,7 +438,21 @@ pub fn slots_of(p: &Protocol, fi: usize) -> Vec<Slot> {
                     Some(dir) => format!("{name}_{}", dir.name),
                     None => name,
                 },
+                keyless: None,
             });
+        }
+    }
+    if !can {
+        for (di, d) in p.directions.iter().enumerate() {
+            if let Some((si, start)) = keyless(di) {
+                out.push(Slot {
+                    command: None,
+                    direction: di,
+                    si: Some(si),
+                    name: d.name.clone(),
+                    keyless: Some(start),
+                });
+            }
         }
     }
     out
@@ -425,10 +466,30 @@ fn functions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         "/* ---- Frames of format `{name}` ---- */\n\n/** Decodes `len` bytes that are exactly one `{name}` frame into `out`: 0, or a negative {up}ERR_. */\nint {lo}decode(const uint8_t *bytes, size_t len, {lo}packet *out);\n\n/** Encodes a packet into `buf`: the frame's length, or a negative {up}ERR_. */\nint {lo}encode(const {lo}packet *packet, uint8_t *buf, size_t cap);\n",
         name = f.name
     );
+    if x.fi == 0 && p.directions_given() {
+        let _ = writeln!(
+            out,
+            "/** Decodes `len` bytes that are exactly one frame sent in `direction` (no header value\n *  tells it: the side that reads the frame knows it): 0, or a negative {up}ERR_. Without a\n *  direction ({lo}decode), a frame gives {up}ERR_UNKNOWN_DIRECTION. */\nint {lo}decode_given(const uint8_t *bytes, size_t len, {nlo}direction direction, {lo}packet *out);\n",
+            nlo = n.lo
+        );
+        for d in &p.directions {
+            let _ = writeln!(
+                out,
+                "/** Decodes a frame sent in direction `{}`, as {lo}decode_given. */\nint {lo}decode_{}(const uint8_t *bytes, size_t len, {lo}packet *out);\n",
+                d.name, d.name
+            );
+        }
+    }
     if matches!(f.transport, Transport::Can { .. }) {
         let _ = writeln!(
             out,
             "/** Decodes one received CAN frame (its id, whether the id is extended, its `len` data\n *  bytes, at most 8) into `out`: 0, or a negative {up}ERR_ ({up}ERR_FRAME for an id of the\n *  other kind or more than 8 bytes). */\nint {lo}decode_can(uint32_t id, bool extended, const uint8_t *data, size_t len, {lo}packet *out);\n\n/** Encodes a packet as a CAN frame: its id in `*id`, its data in `data`; the number of data\n *  bytes, or a negative {up}ERR_. */\nint {lo}encode_can(const {lo}packet *packet, uint32_t *id, uint8_t data[8]);\n"
+        );
+    }
+    if carries(p, x.fi) == Carries::Bytes {
+        let _ = writeln!(
+            out,
+            "/** Encodes a frame around `len` payload bytes: the frame's length, or a negative error. */\nint {lo}encode_bytes(const {lo}header *header, const uint8_t *payload, size_t len, uint8_t *buf, size_t cap);"
         );
     }
     out.push_str(
