@@ -31,41 +31,72 @@ fn hflink_c() {
 }
 
 #[test]
-fn unsupported_features_are_refused_not_printed() {
-    let p = compile("specs/scout.toml");
-    let refused = protocol_codegen::c::generate(&p).expect_err("scout has a CAN frame");
-    assert!(
-        refused.iter().any(|r| r.contains("CAN transport")),
-        "{refused:?}"
+fn several_frame_formats_print_with_a_prefix_each() {
+    let p = compile("specs/mavlink.toml");
+    let files = protocol_codegen::c::generate(&p).expect("mavlink prints in C");
+    for item in [
+        // The first format's items carry the spec's prefix, the others the format's too.
+        "typedef struct mavlink_packet {",
+        "typedef struct mavlink_v1_packet {",
+        "int mavlink_v1_decode(const uint8_t *bytes, size_t len, mavlink_v1_packet *out);",
+        // The link's decoder of both command formats.
+        "typedef struct mavlink_any_decoder {",
+        // The MAVLink 2 signature, present when its flag is set.
+        "    bool signature_present;",
+        "    uint8_t signature[13];",
+    ] {
+        assert!(files.header.contains(item), "{item}");
+    }
+    // The shared structs once.
+    assert_eq!(
+        files.header.matches("typedef struct mavlink_heartbeat {").count(),
+        1
     );
-    assert!(
-        refused.iter().any(|r| r.contains("scaled values")),
-        "{refused:?}"
+}
+
+/// A CAN format whose frames' command does not follow from the CAN id (the spec has
+/// directions, which a CAN id does not tell).
+const CAN_WITH_DIRECTIONS: &str = r#"
+[protocol]
+name = "twoway"
+doc = "A serial format whose header tells the direction, and a CAN format."
+
+[frames.serial]
+layout = [
+  { sync = [0xAA] },
+  { field = "direction", type = "u8" },
+  { field = "command", type = "u8" },
+  { payload = { min = 4, max = 4 } },
+  { check = "sum8", over = "frame" },
+]
+dispatch = ["command"]
+
+[frames.can]
+transport = "can"
+can_id = "standard"
+layout = [{ payload = { max = 8 } }]
+dispatch = ["can_id"]
+
+[directions]
+request = { field = "direction", equals = 1 }
+response = { field = "direction", equals = 2 }
+
+[commands]
+PING = { id = 1, can_id = 0x100 }
+"#;
+
+#[test]
+fn unsupported_features_are_refused_not_printed() {
+    let source = SpecSource::new("twoway.toml", CAN_WITH_DIRECTIONS);
+    let p = protocol_codegen::compile(&source)
+        .unwrap_or_else(|d| panic!("{}", render_all(&d, &source)));
+    let refused = protocol_codegen::c::generate(&p).expect_err("a CAN format without packet");
+    assert_eq!(
+        refused,
+        vec![
+            "frame `can`: CAN transport in a format whose frames' command does not follow from the CAN id"
+                .to_string()
+        ]
     );
     assert_eq!(refused, protocol_codegen::c::unsupported(&p));
-}
-
-#[test]
-fn a_flag_trailer_is_refused_not_printed() {
-    let p = compile("specs/mavlink.toml");
-    let refused = protocol_codegen::c::unsupported(&p);
-    assert!(
-        refused.iter().any(
-            |r| r == "frame `v2`: optional bytes `signature` present when a header flag is set"
-        ),
-        "{refused:?}"
-    );
-}
-
-#[test]
-fn a_wider_length_is_refused_not_printed() {
-    let p = compile("specs/msp.toml");
-    let refused = protocol_codegen::c::unsupported(&p);
-    assert!(
-        refused
-            .iter()
-            .any(|r| r
-                == "frame `v1`: a wider length announced by a marker value of the length field"),
-        "{refused:?}"
-    );
 }

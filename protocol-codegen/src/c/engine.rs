@@ -6,9 +6,13 @@
 //! rejected as truncated as soon as a complete valid frame starts inside it), and the
 //! counters, where every byte fed is counted once.
 //!
+//! There is a decoder per serial frame format and, where several formats carry the commands,
+//! the link's decoder of all of them (the runtime's `LayoutRef::others`): a candidate goes to
+//! the first of its formats whose sync it matches, bounded by that format's largest frame.
+//!
 //! The caller's chunks are copied into a fixed buffer of the largest frame's size; a frame
-//! event points into it. Frames longer than the buffer cannot exist: the buffer is the
-//! format's largest frame, so the bound is the format's.
+//! event points into it. Frames longer than the buffer cannot exist: the buffer is the largest
+//! frame of the decoder's formats, so the bound is theirs.
 
 use std::fmt::Write as _;
 

@@ -662,7 +662,8 @@ fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     if kind == Carries::Bytes {
         let _ = writeln!(
             out,
-            "int {xlo}encode_bytes(const {xlo}header *header, const uint8_t *payload, size_t len, uint8_t *buf, size_t cap)\n{{\n    if (len > {xup}MAX_PAYLOAD_LEN) return {up}ERR_OUT_OF_RANGE;\n    if (cap < {xup}HEADER_LEN + {xup}TRAILER_LEN || len > cap - {xup}HEADER_LEN - {xup}TRAILER_LEN) return {up}ERR_SHORT_BUFFER;\n    if (len > 0) memcpy(buf + {xup}HEADER_LEN, payload, len);\n    return {xlo}seal(buf, cap, {xup}HEADER_LEN, len, header, 0);\n}}\n"
+            "int {xlo}encode_bytes(const {xlo}header *header, const uint8_t *payload, size_t len, uint8_t *buf, size_t cap)\n{{\n    if (len > {xup}MAX_PAYLOAD_LEN) return {up}ERR_OUT_OF_RANGE;\n    if (cap < {xup}HEADER_LEN + {xup}TRAILER_LEN || len > cap - {xup}HEADER_LEN - {xup}TRAILER_LEN) return {up}ERR_SHORT_BUFFER;\n    if (len > 0) memcpy(buf + {xup}HEADER_LEN, payload, len);\n    return {xlo}seal({}len, header, 0);\n}}\n",
+            seal_place(p, x, &format!("{xup}HEADER_LEN"))
         );
     }
     let _ = writeln!(
@@ -693,16 +694,44 @@ fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     out.push_str("}\n\n");
 }
 
+/// Whether a format's frames are sealed apart from where their encoder wrote the payload: a
+/// wider length moves the payload, a flag trailer adds bytes, a direction's message starts
+/// before the header's end. The seal then takes the buffer's size and the payload's start.
+fn framed_apart(p: &Protocol, fi: usize) -> bool {
+    let f = &p.frames[fi];
+    f.length_extension.is_some()
+        || f.flag_trailer.is_some()
+        || (fi == 0 && p.directions.iter().any(|d| d.message.is_some()))
+}
+
+/// The arguments of `pfx_seal` before the payload's length: the buffer, and for a format
+/// sealed apart its size and the payload's start.
+fn seal_place(p: &Protocol, x: &Fx, start: &str) -> String {
+    if framed_apart(p, x.fi) {
+        format!("buf, cap, {start}, ")
+    } else {
+        "buf, ".to_string()
+    }
+}
+
 /// `pfx_seal`: the frame around a payload already written after the header (moved behind a
 /// wider length when the frame needs one), with the flag trailer when the header has it.
 fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
     let (xlo, xup) = (&x.lo, &x.up);
     let f = &p.frames[x.fi];
-    let _ = write!(
-        out,
-        "/* The frame around a payload of `payload_len` bytes already written at `start` (after the\n * header), in a buffer of `cap` bytes; `command` SIZE_MAX for a frame without dispatch key. */\nstatic int {xlo}seal(uint8_t *buf, size_t cap, size_t start, size_t payload_len, const {xlo}header *h, size_t command)\n{{\n    size_t ext = 0, flagged = 0, body, total;\n    if (start > {xup}HEADER_LEN || payload_len > {xup}MAX_PAYLOAD_LEN + ({xup}HEADER_LEN - start)) return {up}ERR_OUT_OF_RANGE;\n    body = start + payload_len + {xup}TRAILER_LEN;\n"
-    );
+    if framed_apart(p, x.fi) {
+        let _ = write!(
+            out,
+            "/* The frame around a payload of `payload_len` bytes already written at `start` (after the\n * header), in a buffer of `cap` bytes; `command` SIZE_MAX for a frame without dispatch key. */\nstatic int {xlo}seal(uint8_t *buf, size_t cap, size_t start, size_t payload_len, const {xlo}header *h, size_t command)\n{{\n    size_t ext = 0, flagged = 0, body, total;\n    if (start > {xup}HEADER_LEN || payload_len > {xup}MAX_PAYLOAD_LEN + ({xup}HEADER_LEN - start)) return {up}ERR_OUT_OF_RANGE;\n    body = start + payload_len + {xup}TRAILER_LEN;\n"
+        );
+    } else {
+        // The header and trailer around the payload, in the buffer the encoder checked.
+        let _ = write!(
+            out,
+            "/* The frame around a payload of `payload_len` bytes already written after the header. */\nstatic int {xlo}seal(uint8_t *buf, size_t payload_len, const {xlo}header *h, size_t command)\n{{\n    const size_t start = {xup}HEADER_LEN, ext = 0;\n    size_t body, total;\n    if (payload_len > {xup}MAX_PAYLOAD_LEN) return {up}ERR_OUT_OF_RANGE;\n    body = start + payload_len + {xup}TRAILER_LEN;\n"
+        );
+    }
     let adjust = match &f.length {
         Length::Field { adjust, .. } => *adjust,
         Length::Fixed(_) => 0,
@@ -724,9 +753,14 @@ fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             t.len
         );
     }
+    let sized = if framed_apart(p, x.fi) {
+        format!("    body += ext;\n    total = body + flagged;\n    if (total > cap) return {up}ERR_SHORT_BUFFER;\n    if (ext > 0) memmove(buf + start + ext, buf + start, payload_len);\n")
+    } else {
+        "    total = body;\n".to_string()
+    };
     let _ = write!(
         out,
-        "    body += ext;\n    total = body + flagged;\n    if (total > cap) return {up}ERR_SHORT_BUFFER;\n    if (ext > 0) memmove(buf + start + ext, buf + start, payload_len);\n    memset(buf, 0, start + ext);\n    memset(buf + start + ext + payload_len, 0, {xup}TRAILER_LEN);\n{sync}    (void)h;\n    (void)command;\n",
+        "{sized}    memset(buf, 0, start + ext);\n    memset(buf + start + ext + payload_len, 0, {xup}TRAILER_LEN);\n{sync}    (void)h;\n    (void)command;\n",
         sync = if f.sync.is_empty() {
             String::new()
         } else {
@@ -871,8 +905,9 @@ fn encoder(p: &Protocol, n: &Names, x: &Fx, slot: &Slot, out: &mut String) {
     };
     let _ = write!(
         out,
-        "int {xlo}encode_{}(const {xlo}header *header, {arg}uint8_t *buf, size_t cap)\n{{\n    struct {lo}wr w;\n    int e = 0;\n{decl}    if (cap < {start} + {xup}TRAILER_LEN) return {up}ERR_SHORT_BUFFER;\n{place}{write}    (void)e;\n    return {xlo}seal(buf, cap, {start}, w.pos, header, {command});\n}}\n\n",
-        slot.name
+        "int {xlo}encode_{}(const {xlo}header *header, {arg}uint8_t *buf, size_t cap)\n{{\n    struct {lo}wr w;\n    int e = 0;\n{decl}    if (cap < {start} + {xup}TRAILER_LEN) return {up}ERR_SHORT_BUFFER;\n{place}{write}    (void)e;\n    return {xlo}seal({}w.pos, header, {command});\n}}\n\n",
+        slot.name,
+        seal_place(p, x, &start)
     );
 }
 

@@ -242,7 +242,7 @@ pub fn optional_flag(here: &str, f: &Field) -> String {
 fn read_bits(p: &Protocol, n: &Names, word: Scalar, members: &[BitMember]) -> String {
     let (lo, up) = (&n.lo, &n.up);
     let mut body = format!(
-        "    if ((e = {lo}read(r, {}u, {}, &raw)) != 0) return e;\n",
+        "    if ((e = {lo}take_uint(r, {}u, {}, &raw)) != 0) return e;\n",
         word.prim.size(),
         big(word)
     );
@@ -291,7 +291,7 @@ fn write_bits(p: &Protocol, n: &Names, word: Scalar, members: &[BitMember]) -> S
     }
     let _ = writeln!(
         body,
-        "    if ((e = {lo}write(w, {}u, {}, word)) != 0) return e;",
+        "    if ((e = {lo}put_uint(w, {}u, {}, word)) != 0) return e;",
         word.prim.size(),
         big(word)
     );
@@ -302,7 +302,7 @@ fn read_elem(p: &Protocol, n: &Names, ty: &ValueType, dst: &str) -> String {
     let (lo, up) = (&n.lo, &n.up);
     match ty {
         ValueType::Scalar { scalar, .. } => format!(
-            "    if ((e = {lo}read(r, {}u, {}, &raw)) != 0) return e;\n    {dst} = {};\n",
+            "    if ((e = {lo}take_uint(r, {}u, {}, &raw)) != 0) return e;\n    {dst} = {};\n",
             scalar.prim.size(),
             big(*scalar),
             from_raw(lo, scalar.prim, "raw")
@@ -315,7 +315,7 @@ fn read_elem(p: &Protocol, n: &Names, ty: &ValueType, dst: &str) -> String {
             let e = &p.enums[*ei];
             let ety = n.ty(&e.name);
             let mut s = format!(
-                "    if ((e = {lo}read(r, {}u, {}, &raw)) != 0) return e;\n",
+                "    if ((e = {lo}take_uint(r, {}u, {}, &raw)) != 0) return e;\n",
                 scalar.prim.size(),
                 big(*scalar)
             );
@@ -336,7 +336,7 @@ fn write_elem(p: &Protocol, n: &Names, ty: &ValueType, src: &str) -> String {
     let (lo, up) = (&n.lo, &n.up);
     match ty {
         ValueType::Scalar { scalar, .. } => format!(
-            "{}    if ((e = {lo}write(w, {}u, {}, {})) != 0) return e;\n",
+            "{}    if ((e = {lo}put_uint(w, {}u, {}, {})) != 0) return e;\n",
             range_check(scalar.prim, src, up),
             scalar.prim.size(),
             big(*scalar),
@@ -359,7 +359,7 @@ fn write_elem(p: &Protocol, n: &Names, ty: &ValueType, src: &str) -> String {
             }
             let _ = writeln!(
                 s,
-                "    if ((e = {lo}write(w, {}u, {}, raw)) != 0) return e;",
+                "    if ((e = {lo}put_uint(w, {}u, {}, raw)) != 0) return e;",
                 scalar.prim.size(),
                 big(*scalar)
             );

@@ -531,9 +531,9 @@ pub fn source_prelude(p: &Protocol, n: &Names) -> String {
 {up}UNUSED static double {lo}f64(uint64_t raw)\n{{\n    double f;\n    memcpy(&f, &raw, sizeof f);\n    return f;\n}}\n\n\
 {up}UNUSED static uint64_t {lo}f32_bits(float f)\n{{\n    uint32_t b;\n    memcpy(&b, &f, sizeof b);\n    return b;\n}}\n\n\
 {up}UNUSED static uint64_t {lo}f64_bits(double f)\n{{\n    uint64_t b;\n    memcpy(&b, &f, sizeof b);\n    return b;\n}}\n\n\
-{up}UNUSED static int {lo}read(struct {lo}rd *r, unsigned n, int big, uint64_t *out)\n{{\n    if (r->len - r->pos < n) return {up}ERR_PAYLOAD_LENGTH;\n    *out = {lo}get(r->p + r->pos, n, big);\n    r->pos += n;\n    return 0;\n}}\n\n\
+{up}UNUSED static int {lo}take_uint(struct {lo}rd *r, unsigned n, int big, uint64_t *out)\n{{\n    if (r->len - r->pos < n) return {up}ERR_PAYLOAD_LENGTH;\n    *out = {lo}get(r->p + r->pos, n, big);\n    r->pos += n;\n    return 0;\n}}\n\n\
 {up}UNUSED static int {lo}skip(struct {lo}rd *r, size_t n)\n{{\n    if (r->len - r->pos < n) return {up}ERR_PAYLOAD_LENGTH;\n    r->pos += n;\n    return 0;\n}}\n\n\
-{up}UNUSED static int {lo}write(struct {lo}wr *w, unsigned n, int big, uint64_t v)\n{{\n    if (w->cap - w->pos < n) return {up}ERR_SHORT_BUFFER;\n    {lo}set(w->p + w->pos, n, big, v);\n    w->pos += n;\n    return 0;\n}}\n\n\
+{up}UNUSED static int {lo}put_uint(struct {lo}wr *w, unsigned n, int big, uint64_t v)\n{{\n    if (w->cap - w->pos < n) return {up}ERR_SHORT_BUFFER;\n    {lo}set(w->p + w->pos, n, big, v);\n    w->pos += n;\n    return 0;\n}}\n\n\
 {up}UNUSED static int {lo}zero(struct {lo}wr *w, size_t n)\n{{\n    if (w->cap - w->pos < n) return {up}ERR_SHORT_BUFFER;\n    memset(w->p + w->pos, 0, n);\n    w->pos += n;\n    return 0;\n}}\n\n"
     );
     let _ = write!(
