@@ -359,7 +359,13 @@ fn frame_len(f: &Frame, payload: usize) -> usize {
 
 /// The payload bytes after the header of a frame carrying struct bytes `size` of slot
 /// `(command, direction)`: a direction's message takes the dispatch key's bytes too.
-fn after_header(p: &Protocol, f: &Frame, command: Option<&Cmd>, direction: usize, size: usize) -> usize {
+fn after_header(
+    p: &Protocol,
+    f: &Frame,
+    command: Option<&Cmd>,
+    direction: usize,
+    size: usize,
+) -> usize {
     match (command, p.directions.get(direction).and_then(|d| d.message)) {
         (None, Some((_, start))) => size.saturating_sub(f.header_len - start),
         _ => size,
@@ -401,14 +407,20 @@ fn random_frame(p: &Protocol, codec: &Codec<'_>, fi: usize, rng: &mut Rng) -> Ve
             payload = f.payload_min + rng.below(f.payload_max - f.payload_min + 1);
         }
         let payload = after_header(p, f, c, slot, payload);
-        let mut frame: Vec<u8> = (0..frame_len(f, payload)).map(|_| rng.next() as u8).collect();
+        let mut frame: Vec<u8> = (0..frame_len(f, payload))
+            .map(|_| rng.next() as u8)
+            .collect();
         if !f.sync_set.is_empty() {
             frame[0] = f.sync_set[rng.below(f.sync_set.len())];
         }
         if let Some(c) = c.filter(|_| rng.below(16) != 0) {
             write_key(f, c, &mut frame);
         }
-        if let Some(d) = p.directions.get(slot).filter(|_| fi == 0 && rng.below(8) != 0) {
+        if let Some(d) = p
+            .directions
+            .get(slot)
+            .filter(|_| fi == 0 && rng.below(8) != 0)
+        {
             let sender = match &d.rule {
                 DirectionRule::InSet { set, .. } => {
                     let a = &p.addresses[*set];
@@ -431,7 +443,11 @@ fn random_frame(p: &Protocol, codec: &Codec<'_>, fi: usize, rng: &mut Rng) -> Ve
 /// Writes the dispatch key of `c` (of a CAN format: its CAN id).
 fn write_key(f: &Frame, c: &Cmd, frame: &mut [u8]) {
     if let (Transport::Can { .. }, Some(id)) = (f.transport, c.can_id) {
-        let v = f.values.iter().find(|v| v.name == "can_id").expect("a CAN id");
+        let v = f
+            .values
+            .iter()
+            .find(|v| v.name == "can_id")
+            .expect("a CAN id");
         word_field(v).write(frame, id).expect("CAN id");
         return;
     }
@@ -818,7 +834,8 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
             let can = &frame["can"];
             if let (Some(id), Some(h)) = (can["can_id"].as_u64(), can["data_hex"].as_str()) {
                 for &fi in &can_formats {
-                    let extended = matches!(p.frames[fi].transport, Transport::Can { extended: true });
+                    let extended =
+                        matches!(p.frames[fi].transport, Transport::Can { extended: true });
                     let mut c = CanFrame::new(id as u32, &unhex(h)).expect("a CAN frame");
                     c.extended = extended;
                     writeln!(input, "C {fi} {} {id} {h}", u8::from(extended)).unwrap();

@@ -49,7 +49,10 @@ fn several_frame_formats_print_with_a_prefix_each() {
     }
     // The shared structs once.
     assert_eq!(
-        files.header.matches("typedef struct mavlink_heartbeat {").count(),
+        files
+            .header
+            .matches("typedef struct mavlink_heartbeat {")
+            .count(),
         1
     );
 }

@@ -8,9 +8,9 @@ use std::fmt::Write as _;
 
 use crate::ir::{Field, FieldKind, Prim, Protocol, ValueType};
 
+use super::names::Fx;
 use super::names::{self, Names};
 use super::payload::any_field;
-use super::names::Fx;
 use super::types::{Carries, carries, keyed_format, slots_of, user_values};
 
 /// The formatter, inside `#ifdef <PREFIX>_WITH_FORMAT`.
@@ -91,9 +91,7 @@ fn packet_format(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         let _ = writeln!(
             out,
             "    if (packet->header.{name}_present) {{\n        size_t i;\n        {lo}emit(t, \" header.{}=hex:\");\n        for (i = 0; i < {}u; i++) {lo}emit(t, \"%02x\", (unsigned)packet->header.{name}[i]);\n    }} else {{\n        {lo}emit(t, \" header.{}=null\");\n    }}",
-            tr.name,
-            tr.len,
-            tr.name
+            tr.name, tr.len, tr.name
         );
     }
     if carries(p, x.fi) == Carries::Bytes {

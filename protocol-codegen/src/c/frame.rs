@@ -116,7 +116,11 @@ fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, x: &Fx, out: &mut String) 
     let _ = write!(
         out,
         "/* The engine's rules for a candidate whose first bytes match the sync bytes (as many\n * as there are), in `b[0..avail]`; frames longer than `limit` are too long. Returns\n * {up}PROBE_FRAME with the frame's length in `*n`, {up}PROBE_NEED with the bytes needed\n * in `*n`, or the reason of a rejection. */\nstatic int {xlo}probe_synced(const uint8_t *b, size_t avail, size_t limit, size_t *n)\n{{\n    const size_t span = {span}u;\n    size_t total;\n{body_decl}    uint64_t raw = 0;\n    if (span > limit) {{\n{need_sync}        return {up}REJECT_BAD_LENGTH;\n    }}\n    if (avail < span) {{\n        *n = span;\n        return {up}PROBE_NEED;\n    }}\n",
-        body_decl = if conditional { "    size_t body;\n" } else { "" },
+        body_decl = if conditional {
+            "    size_t body;\n"
+        } else {
+            ""
+        },
         // A sync cut by the end of the bytes may be no candidate at all: decided first.
         need_sync = if f.sync.is_empty() && f.sync_set.is_empty() {
             String::new()
@@ -322,7 +326,9 @@ fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         }
     }
     let signature = if given {
-        format!("{xlo}decode_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)")
+        format!(
+            "{xlo}decode_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)"
+        )
     } else {
         format!("{xlo}decode(const uint8_t *bytes, size_t len, {xlo}packet *out)")
     };
@@ -552,7 +558,10 @@ fn can_command(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
 fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
     let f = &p.frames[x.fi];
-    let _ = writeln!(out, "    r.p = bytes + start;\n    r.len = end - start;\n    r.pos = 0;");
+    let _ = writeln!(
+        out,
+        "    r.p = bytes + start;\n    r.len = end - start;\n    r.pos = 0;"
+    );
     let slots: Vec<Slot> = slots_of(p, x.fi)
         .into_iter()
         .filter(|s| s.si.is_some() && s.keyless.is_none())
@@ -631,7 +640,11 @@ fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
                 .zip(&c.id)
                 .map(|(&vi, &v)| format!("{:#x}u", truncate(f.values[vi].prim, v)))
                 .collect();
-            let ids = if ids.is_empty() { vec!["0u".to_string()] } else { ids };
+            let ids = if ids.is_empty() {
+                vec!["0u".to_string()]
+            } else {
+                ids
+            };
             let _ = writeln!(out, "    {{{}}},", ids.join(", "));
         }
         out.push_str("};\n\n");
@@ -646,7 +659,11 @@ fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             out,
             "/* The CAN id of every command, in command order (0: none). */\nstatic const uint32_t {xlo}can_ids[{}] = {{{}}};\n",
             ids.len().max(1),
-            if ids.is_empty() { "0u".to_string() } else { ids.join(", ") }
+            if ids.is_empty() {
+                "0u".to_string()
+            } else {
+                ids.join(", ")
+            }
         );
     }
     if f.truncate_zeros {
@@ -754,7 +771,9 @@ fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         );
     }
     let sized = if framed_apart(p, x.fi) {
-        format!("    body += ext;\n    total = body + flagged;\n    if (total > cap) return {up}ERR_SHORT_BUFFER;\n    if (ext > 0) memmove(buf + start + ext, buf + start, payload_len);\n")
+        format!(
+            "    body += ext;\n    total = body + flagged;\n    if (total > cap) return {up}ERR_SHORT_BUFFER;\n    if (ext > 0) memmove(buf + start + ext, buf + start, payload_len);\n"
+        )
     } else {
         "    total = body;\n".to_string()
     };

@@ -202,18 +202,17 @@ fn sizes(p: &Protocol, x: &Fx, out: &mut String) {
         let _ = writeln!(out, "#define {up}{name} {v}u");
     }
     if let Some(t) = &f.flag_trailer {
-        let _ = writeln!(
-            out,
-            "#define {up}{}_LEN {}u",
-            t.name.to_uppercase(),
-            t.len
-        );
+        let _ = writeln!(out, "#define {up}{}_LEN {}u", t.name.to_uppercase(), t.len);
     }
     if let Transport::Can { extended } = f.transport {
         let _ = writeln!(
             out,
             "/** The format's CAN ids are {} ones. */\n#define {up}CAN_EXTENDED {}",
-            if extended { "extended (29-bit)" } else { "standard (11-bit)" },
+            if extended {
+                "extended (29-bit)"
+            } else {
+                "standard (11-bit)"
+            },
             u8::from(extended)
         );
     }
@@ -332,7 +331,9 @@ pub fn carries(p: &Protocol, fi: usize) -> Carries {
         PacketKind::Commands | PacketKind::Command => Carries::Commands,
         PacketKind::Can => Carries::Can,
         PacketKind::Message(si) => Carries::Message(Some(si)),
-        PacketKind::None => f.message.map_or(Carries::Bytes, |si| Carries::Message(Some(si))),
+        PacketKind::None => f
+            .message
+            .map_or(Carries::Bytes, |si| Carries::Message(Some(si))),
     }
 }
 
