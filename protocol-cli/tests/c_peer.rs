@@ -5,15 +5,18 @@
 //! (`tests/c_peer/driver.c`), and its output is compared line by line with what the run-time
 //! codec (`protocol-dynamic`) gives for the same input:
 //!
-//! * every golden vector frame (`tests/vectors/*.json`): the decoded values, and the bytes the
-//!   decoded packet encodes to;
-//! * every vector stream at every chunk size, event by event, and its expected frames;
-//! * 10,000 random frames per bundled spec, 2,000 per fixture (valid, and with unknown
-//!   commands, wrong payload sizes, values without variant), decoded and encoded again;
+//! * every golden vector frame (`tests/vectors/*.json`) by every serial frame format (a
+//!   vector's CAN frame by every CAN format; where the decoder is given the direction, also in
+//!   each direction): the decoded values, and the bytes the decoded packet encodes to;
+//! * every vector stream at every chunk size through every stream decoder (each format's, and
+//!   the link's of several command formats), event by event, and its expected frames;
+//! * 10,000 random frames per bundled spec and frame format, 2,000 per fixture (valid, and with
+//!   unknown commands, wrong payload sizes, values without variant), decoded and encoded again;
 //! * edge frames per command: payloads of all-zero and all-`0xFF` bytes, and of one zero byte
 //!   (the field rules' extreme values, trailing-zero truncation's kept first byte);
-//! * a fault-injection stream of those frames (garbage, flipped bits, truncations, stray
-//!   sync bytes) at several chunk sizes, event by event, with the counters.
+//! * for every stream decoder, a fault-injection stream of its formats' frames (garbage,
+//!   flipped bits, truncations, stray sync bytes) at several chunk sizes, event by event, with
+//!   the counters.
 //!
 //! A spec the C printer refuses is listed with its unsupported features in the snapshot
 //! `c_support` (a new spec changes it: the gap is visible in review, never a silent pass).
@@ -812,14 +815,9 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
         Vec::new()
     };
     let decoders = decoders(p);
-    // The vector streams go to the link's decoder, or to the first format's.
-    let main = decoders
-        .iter()
-        .position(|d| matches!(d, Decoder::Link))
-        .unwrap_or(0);
 
     // Golden vectors: frames (by every serial format; CAN frames by every CAN format), then
-    // streams at every chunk size.
+    // streams at every chunk size through every stream decoder.
     for (file, primary) in vector_files(&p.name) {
         let text = std::fs::read_to_string(root().join("tests/vectors").join(&file)).unwrap();
         let v: serde_json::Value = serde_json::from_str(&text).unwrap();
@@ -848,25 +846,39 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
             let Some(h) = s["hex"].as_str() else { continue };
             let data = unhex(h);
             tally.vector_streams += 1;
-            for chunk in 1..=data.len() {
-                writeln!(input, "S {main} {chunk} {h}").unwrap();
-                let lines = rust_stream(&codec, decoders[main], chunk, &data);
-                if primary {
-                    let frames: Vec<String> = lines
-                        .iter()
-                        .filter_map(|l| l.strip_prefix("frame "))
-                        .map(|l| l.split(' ').take(2).collect::<Vec<_>>().join(" "))
-                        .collect();
-                    let want: Vec<String> = s["expected_frames"]
-                        .as_array()
-                        .into_iter()
-                        .flatten()
-                        .map(|f| format!("{} {}", f["offset"], f["hex"].as_str().unwrap_or("")))
-                        .collect();
-                    assert_eq!(frames, want, "{}: {file} stream at chunk {chunk}", p.name);
+            for (di, &d) in decoders.iter().enumerate() {
+                let formats = match d {
+                    Decoder::Format(fi) => vec![fi],
+                    Decoder::Link => p.link.clone(),
+                };
+                // The expected frames a decoder finds: those of its formats.
+                let want: Vec<String> = s["expected_frames"]
+                    .as_array()
+                    .into_iter()
+                    .flatten()
+                    .filter_map(|f| {
+                        let hex = f["hex"].as_str().unwrap_or("");
+                        let bytes = unhex(hex);
+                        formats
+                            .iter()
+                            .any(|&fi| codec.layout(fi).is_some_and(|l| l.sync_matches(&bytes)))
+                            .then(|| format!("{} {hex}", f["offset"]))
+                    })
+                    .collect();
+                for chunk in 1..=data.len() {
+                    writeln!(input, "S {di} {chunk} {h}").unwrap();
+                    let lines = rust_stream(&codec, d, chunk, &data);
+                    if primary {
+                        let frames: Vec<String> = lines
+                            .iter()
+                            .filter_map(|l| l.strip_prefix("frame "))
+                            .map(|l| l.split(' ').take(2).collect::<Vec<_>>().join(" "))
+                            .collect();
+                        assert_eq!(frames, want, "{}: {file} stream at chunk {chunk}", p.name);
+                    }
+                    expected.push(lines);
+                    tally.chunkings += 1;
                 }
-                expected.push(lines);
-                tally.chunkings += 1;
             }
         }
     }
