@@ -384,7 +384,7 @@ fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         Carries::Bytes => {
             let _ = writeln!(
                 out,
-                "    /* The payload's bytes as they are. */\n    if (end - start > sizeof out->payload) return {up}ERR_PAYLOAD_LENGTH;\n    out->payload_len = end - start;\n    if (out->payload_len > 0) memcpy(out->payload, bytes + start, out->payload_len);\n    (void)r;\n    (void)e;\n    return 0;\n}}\n"
+                "    /* The payload's bytes as they are. */\n    if (end - start > sizeof out->payload) return {up}ERR_PAYLOAD_LENGTH;\n    out->payload_len = end - start;\n    if (out->payload_len > 0) memcpy(out->payload, bytes + start, out->payload_len);\n    r.p = NULL;\n    r.len = r.pos = 0;\n    (void)r;\n    (void)e;\n    return 0;\n}}\n"
             );
             return;
         }
