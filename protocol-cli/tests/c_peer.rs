@@ -110,6 +110,10 @@ fn issue_name(e: &DecodeIssue) -> &'static str {
         DecodeIssue::UnknownDirection { .. } | DecodeIssue::DirectionNotGiven { .. } => {
             "unknown_direction"
         }
+        DecodeIssue::Frame(DecodeError::SizeMismatch) => "size_mismatch",
+        DecodeIssue::Frame(DecodeError::Unterminated) => "unterminated",
+        DecodeIssue::Frame(DecodeError::PayloadCheck) => "payload_check",
+        DecodeIssue::Frame(DecodeError::ValueOutOfRange) => "outside_clamp",
         DecodeIssue::Frame(_) => "frame",
     }
 }

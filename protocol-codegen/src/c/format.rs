@@ -25,7 +25,7 @@ pub fn format(p: &Protocol, n: &Names) -> String {
             FieldKind::Value {
                 ty: ValueType::Text(_),
                 ..
-            }
+            } | FieldKind::NulText { .. }
         )
     }) {
         out.push_str(&text_helpers(n));
@@ -104,10 +104,19 @@ fn field(p: &Protocol, n: &Names, f: &Field, kind: &FieldKind) -> String {
     };
     let item = format!("\"%s.{}[%u]=\", path, (unsigned)i", f.name);
     match kind {
-        FieldKind::NulText { .. } | FieldKind::Array { .. } | FieldKind::Check(_) => {
-            unreachable!("refused by support::unsupported")
+        FieldKind::Padding | FieldKind::Check(_) => {}
+        // The text up to its NUL: a string when it is UTF-8, else its bytes.
+        FieldKind::NulText { max } => {
+            let _ = writeln!(
+                body,
+                "    for (i = 0; i <= {max}u && v->{name}[i] != 0; i++) {{\n    }}\n    {lo}path(sub, sizeof sub, \"%s.{}\", path);\n    {lo}fmt_text(t, sub, (const uint8_t *)v->{name}, i);",
+                f.name
+            );
         }
-        FieldKind::Padding => {}
+        FieldKind::Array { ty, .. } => body.push_str(&each(
+            &format!("v->{name}_len"),
+            value(p, n, ty, &item, &format!("v->{name}[i]"), "    "),
+        )),
         FieldKind::Value { ty, count } => match count {
             None => body.push_str(&value(
                 p,
@@ -139,9 +148,17 @@ fn field(p: &Protocol, n: &Names, f: &Field, kind: &FieldKind) -> String {
                 f.name
             );
         }
-        FieldKind::Packed { count, prim, .. } => body.push_str(&each(
+        FieldKind::Packed {
+            count, prim, scale, ..
+        } => body.push_str(&each(
             &format!("{count}u"),
-            scalar(lo, *prim, &item, &format!("v->{name}[i]"), "    "),
+            scalar(
+                lo,
+                scale.map_or(*prim, |sc| sc.physical),
+                &item,
+                &format!("v->{name}[i]"),
+                "    ",
+            ),
         )),
         FieldKind::Group { elem, .. } => body.push_str(&each(
             &format!("v->{name}_len"),
@@ -254,7 +271,13 @@ fn indent(text: &str) -> String {
 /// One value: ` LABEL=VALUE`, `label` being the format and arguments of the label.
 fn value(p: &Protocol, n: &Names, ty: &ValueType, label: &str, v: &str, indent: &str) -> String {
     match ty {
-        ValueType::Scalar { scalar: s, .. } => scalar(&n.lo, s.prim, label, v, indent),
+        ValueType::Scalar { scalar: s, scale } => scalar(
+            &n.lo,
+            scale.map_or(s.prim, |sc| sc.physical),
+            label,
+            v,
+            indent,
+        ),
         ValueType::Enum(ei, _) => {
             enum_value(n, &p.enums[*ei].name, p.enums[*ei].prim, label, v, indent)
         }

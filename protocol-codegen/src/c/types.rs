@@ -45,7 +45,11 @@ pub fn header(p: &Protocol, n: &Names) -> String {
 /** No command has the frame's dispatch key. */\n#define {up}ERR_UNKNOWN_COMMAND (-4)\n\
 /** The header matches no direction. */\n#define {up}ERR_UNKNOWN_DIRECTION (-5)\n\
 /** A field holds a value without variant of an enum that rejects them. */\n#define {up}ERR_INVALID_ENUM (-6)\n\
-/** The bytes are not exactly one valid frame (header, length, checks, trailers). */\n#define {up}ERR_FRAME (-7)\n\n"
+/** The bytes are not exactly one valid frame (header, length, checks, trailers). */\n#define {up}ERR_FRAME (-7)\n\
+/** Sized bytes or an array whose stated length exceeds its maximum. */\n#define {up}ERR_SIZE_MISMATCH (-8)\n\
+/** NUL-terminated text without its NUL within its maximum. */\n#define {up}ERR_UNTERMINATED (-9)\n\
+/** A check inside the payload does not match its covered fields. */\n#define {up}ERR_PAYLOAD_CHECK (-10)\n\
+/** A scaled value outside its clamp range (it would not encode back to its bytes). */\n#define {up}ERR_OUTSIDE_CLAMP (-11)\n\n"
     );
     if !p.constants.is_empty() || !p.addresses.is_empty() {
         out.push_str("/* ---- Constants and addresses of the spec ---- */\n\n");
