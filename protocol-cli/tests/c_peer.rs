@@ -316,6 +316,10 @@ fn random_frame(p: &Protocol, codec: &Codec<'_>, rng: &mut Rng) -> Vec<u8> {
         };
         write_direction(f, d, sender, &mut frame);
     }
+    // Now and then a bare header (the header alone), where the format has one.
+    if let Some(bare) = f.bare_len.filter(|_| rng.below(8) == 0) {
+        frame.truncate(bare);
+    }
     layout.seal(&mut frame).expect("a sealed frame");
     frame
 }
@@ -368,10 +372,26 @@ fn value_frame(
         header.insert(v.name.clone(), sender);
     }
     let mut frame = protocol_dynamic::Fields::new();
+    frame.insert("header", Value::Struct(header));
+    // Now and then an acknowledgement: its data, none at times (a bare header where the
+    // format has one).
+    if let Some((_, ack_header_len)) = f.ack.filter(|_| rng.below(4) == 0) {
+        let most = f.max_len() - ack_header_len - f.trailer_len;
+        let len = if rng.below(2) == 0 {
+            0
+        } else {
+            rng.below(most.min(32) + 1)
+        };
+        frame.insert("ack", Value::Bool(true));
+        frame.insert(
+            "payload",
+            Value::Bytes((0..len).map(|_| rng.next() as u8).collect()),
+        );
+        return codec.encode(&Value::Struct(frame)).ok().map(|e| e.bytes);
+    }
     if let Some(c) = c {
         frame.insert("command", Value::from(c.name.clone()));
     }
-    frame.insert("header", Value::Struct(header));
     if let Some(si) = si {
         let outer = protocol_dynamic::Fields::new();
         frame.insert("payload", Value::Struct(random_struct(p, si, &outer, rng)));
@@ -634,6 +654,17 @@ fn edge_frames(p: &Protocol, codec: &Codec<'_>) -> Vec<Vec<u8>> {
                 write_direction(f, d, sender, &mut frame);
             }
             layout.seal(&mut frame).expect("a sealed frame");
+            out.push(frame);
+        }
+    }
+    // The bare header, all zero and all `0xFF`, where the format has one.
+    if let Some(bare) = f.bare_len {
+        for fill in [0x00, 0xFF] {
+            let mut frame = vec![fill; bare];
+            if let Some(&lead) = f.sync_set.first() {
+                frame[0] = lead;
+            }
+            layout.seal(&mut frame).expect("a sealed bare header");
             out.push(frame);
         }
     }

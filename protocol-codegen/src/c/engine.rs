@@ -76,8 +76,9 @@ int {lo}decoder_flush({lo}decoder *d, {lo}event *event);
 }
 
 /// The stream decoder's functions, for the source.
-pub fn engine(_p: &crate::ir::Protocol, n: &Names) -> String {
+pub fn engine(p: &crate::ir::Protocol, n: &Names) -> String {
     let (lo, up) = (&n.lo, &n.up);
+    let inside = inside_bound(p);
     format!(
         "/* ---- Stream decoder ---- */
 
@@ -115,7 +116,7 @@ static size_t {lo}find_candidate(const uint8_t *b, size_t len)
 static int {lo}frame_inside(const uint8_t *b, size_t pending)
 {{
     size_t k, n = 0;
-    for (k = 1; k < pending; k++) {{
+    for (k = 1; {inside}; k++) {{
         if ({lo}probe(b + k, pending - k, {up}DECODER_BUFFER_LEN, &n) == {up}PROBE_FRAME) return 1;
     }}
     return 0;
@@ -220,4 +221,20 @@ int {lo}decoder_flush({lo}decoder *d, {lo}event *event)
 
 "
     )
+}
+
+/// The condition on a start `k` inside a pending candidate that the truncation rule tries:
+/// the runtime tries only starts with room for its shortest frame after them, which matters
+/// only where a frame can be shorter than that (a bare header).
+fn inside_bound(p: &crate::ir::Protocol) -> String {
+    let f = &p.frames[0];
+    if f.bare_len.is_none() {
+        return "k < pending".into();
+    }
+    let plan = crate::layout::lower_layout(f);
+    let span = plan
+        .header_len
+        .max(plan.sync.len() + usize::from(!f.sync_set.is_empty()));
+    let shortest = span.max(plan.min_len).max(1);
+    format!("k < pending && pending - k >= {shortest}u")
 }

@@ -48,7 +48,12 @@ pub fn format(p: &Protocol, n: &Names) -> String {
         out,
         "int {lo}format(const {lo}packet *packet, char *out, size_t cap)\n{{\n    struct {lo}txt text;\n    struct {lo}txt *t = &text;\n    text.p = out;\n    text.cap = cap;\n    text.len = 0;\n    if (cap > 0) out[0] = 0;\n"
     );
-    if keyed(p) {
+    if p.frames[0].ack.is_some() {
+        let _ = writeln!(
+            out,
+            "    {lo}emit(t, \"cmd=%s\", packet->ack ? \"?\" : {lo}command_name(packet->command));"
+        );
+    } else if keyed(p) {
         let _ = writeln!(
             out,
             "    {lo}emit(t, \"cmd=%s\", {lo}command_name(packet->command));"
@@ -86,6 +91,12 @@ pub fn format(p: &Protocol, n: &Names) -> String {
                 slot.name
             );
         }
+    }
+    if p.frames[0].ack.is_some() {
+        let _ = writeln!(
+            out,
+            "    if (packet->ack) {{\n        size_t i;\n        {lo}emit(t, \" payload=hex:\");\n        for (i = 0; i < packet->payload.ack_data.len; i++) {lo}emit(t, \"%02x\", (unsigned)packet->payload.ack_data.bytes[i]);\n    }}"
+        );
     }
     let _ = writeln!(
         out,

@@ -100,7 +100,7 @@ fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, out: &mut String) {
         );
     }
     match (plan.length, plan.length_value) {
-        (LengthRule::Field { adjust, .. }, Some(vi)) => {
+        (LengthRule::Field { adjust, .. } | LengthRule::FieldOrBare { adjust, .. }, Some(vi)) => {
             let _ = writeln!(
                 out,
                 "    if (!{lo}field(b, span, {}, &raw) || raw > (uint64_t)INT64_MAX) return {up}REJECT_BAD_LENGTH;",
@@ -127,6 +127,9 @@ fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, out: &mut String) {
             let _ = writeln!(out, "    total = {len}u;");
         }
         _ => unreachable!("refused by support::unsupported"),
+    }
+    if let Some(bare) = plan.length.bare_len() {
+        bare_probe(bare, n, out);
     }
     let _ = write!(
         out,
@@ -229,6 +232,9 @@ fn decode(p: &Protocol, n: &Names, out: &mut String) {
             word(v),
             names::field(&v.name)
         );
+    }
+    if f.ack.is_some() {
+        ack_decode(f, n, out);
     }
     if keyed(p) {
         dispatch_key(p, n, out);
@@ -434,7 +440,9 @@ fn encode(p: &Protocol, n: &Names, out: &mut String) {
                 format!("(uint64_t){lo}ids[command][{k}]")
             }
             Role::Const(c) => names::u64_lit(*c),
-            Role::Ack(_) | Role::Flag | Role::WideLength => {
+            // A command frame's acknowledgement flag: not the acknowledgement's value.
+            Role::Ack(equals) => names::u64_lit(1 - (*equals).min(1)),
+            Role::Flag | Role::WideLength => {
                 unreachable!("refused by support::unsupported")
             }
         };
@@ -472,10 +480,19 @@ fn encode(p: &Protocol, n: &Names, out: &mut String) {
     for slot in slots(p) {
         encoder(p, n, &slot, out);
     }
+    if f.ack.is_some() {
+        ack_encoder(f, n, out);
+    }
     let _ = writeln!(
         out,
         "int {lo}encode(const {lo}packet *packet, uint8_t *buf, size_t cap)\n{{"
     );
+    if f.ack.is_some() {
+        let _ = writeln!(
+            out,
+            "    if (packet->ack) return {lo}encode_ack(&packet->header, packet->payload.ack_data.bytes, packet->payload.ack_data.len, buf, cap);"
+        );
+    }
     for slot in slots(p) {
         let payload = match slot.si {
             Some(_) => format!("&packet->payload.{}, ", slot.name),
@@ -520,4 +537,121 @@ fn encoder(p: &Protocol, n: &Names, slot: &Slot, out: &mut String) {
         "int {lo}encode_{}(const {lo}header *header, {arg}uint8_t *buf, size_t cap)\n{{\n    struct {lo}wr w;\n    int e = 0;\n    if (cap < {up}HEADER_LEN + {up}TRAILER_LEN) return {up}ERR_SHORT_BUFFER;\n    w.p = buf + {up}HEADER_LEN;\n    w.cap = cap - {up}HEADER_LEN - {up}TRAILER_LEN;\n    w.pos = 0;\n{write}    (void)e;\n    return {lo}seal(buf, w.pos, header, {command});\n}}\n\n",
         slot.name
     );
+}
+
+/// The bare header in the probe (the runtime's `LengthRule::FieldOrBare`): a frame of exactly
+/// the bare length is complete and verified once its header checks hold.
+fn bare_probe(bare: usize, n: &Names, out: &mut String) {
+    let up = &n.up;
+    let _ = write!(
+        out,
+        "    if (total == {bare}u && {bare}u >= span && {bare}u > 0 && total <= limit) {{\n        *n = total;\n        return {up}PROBE_FRAME;\n    }}\n"
+    );
+}
+
+/// An acknowledgement in the decoder: when the flag holds its value, the frame carries no
+/// command and its data follows the acknowledgement's header (to the frame's end for a bare
+/// header, else to the trailer), at most its largest.
+fn ack_decode(f: &Frame, n: &Names, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let Some((flag, _)) = f.ack else { return };
+    let v = &f.values[flag];
+    let equals = match v.role {
+        Role::Ack(equals) => equals,
+        _ => 1,
+    };
+    let end = if f.bare_len.is_some() {
+        format!("len == {up}ACK_HEADER_LEN ? len : len - {up}TRAILER_LEN")
+    } else {
+        format!("len - {up}TRAILER_LEN")
+    };
+    let _ = write!(
+        out,
+        "    if (!{lo}field(bytes, len, {}, &raw)) return {up}ERR_FRAME;\n    if (raw == {}) {{\n        size_t end;\n        if (len < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        end = {end};\n        if (end < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        if (end - {up}ACK_HEADER_LEN > {up}ACK_MAX_LEN) return {up}ERR_PAYLOAD_LENGTH;\n        out->ack = true;\n        out->command = {up}COMMAND_COUNT;\n        out->payload.ack_data.len = end - {up}ACK_HEADER_LEN;\n        memcpy(out->payload.ack_data.bytes, bytes + {up}ACK_HEADER_LEN, out->payload.ack_data.len);\n        return 0;\n    }}\n",
+        word(v),
+        names::u64_lit(equals)
+    );
+}
+
+/// The encoder of an acknowledgement: its data after the acknowledgement's header, the header
+/// values, the flag at its value and no dispatch key; with no data and a bare header, the
+/// header alone (no frame checks, no trailers), as the runtime's `seal` does.
+fn ack_encoder(f: &Frame, n: &Names, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let plan = lower_layout(f);
+    let bare = if f.bare_len.is_some() {
+        "len == 0"
+    } else {
+        "0"
+    };
+    let _ = write!(
+        out,
+        "int {lo}encode_ack(const {lo}header *h, const uint8_t *data, size_t len, uint8_t *buf, size_t cap)\n{{\n    int bare = {bare};\n    size_t total;\n    if (len > {up}ACK_MAX_LEN) return {up}ERR_OUT_OF_RANGE;\n    total = {up}ACK_HEADER_LEN + len + (bare ? 0u : {up}TRAILER_LEN);\n    if (!bare && total < {up}MIN_FRAME_LEN) return {up}ERR_OUT_OF_RANGE;\n    if (cap < total) return {up}ERR_SHORT_BUFFER;\n    memset(buf, 0, {up}ACK_HEADER_LEN);\n    memcpy(buf + {up}ACK_HEADER_LEN, data, len);\n    if (!bare) memset(buf + {up}ACK_HEADER_LEN + len, 0, {up}TRAILER_LEN);\n"
+    );
+    if !f.sync.is_empty() {
+        let _ = write!(
+            out,
+            "    {{\n        static const uint8_t rest[{len}] = {{{}}};\n        memcpy(buf + {lead}, rest, {len}u);\n    }}\n",
+            sync_rest(f),
+            len = f.sync.len(),
+            lead = usize::from(!f.sync_set.is_empty())
+        );
+    }
+    for v in &f.values {
+        let value = match &v.role {
+            Role::User { .. } => format!("(uint64_t)h->{}", names::field(&v.name)),
+            Role::Length => match &f.length {
+                Length::Field { adjust, .. } => {
+                    let _ = writeln!(
+                        out,
+                        "    if ((int64_t)total - ({adjust}) < 0) return {up}ERR_OUT_OF_RANGE;"
+                    );
+                    format!("(uint64_t)((int64_t)total - ({adjust}))")
+                }
+                Length::Fixed(_) => continue,
+            },
+            Role::Const(c) => names::u64_lit(*c),
+            Role::Ack(equals) => names::u64_lit(*equals),
+            // An acknowledgement has no dispatch key: its data takes those bytes.
+            Role::Dispatch | Role::Flag | Role::WideLength => continue,
+        };
+        let _ = writeln!(
+            out,
+            "    /* {} */\n    if (!{lo}put_field(buf, total, {}, {value})) return {up}ERR_OUT_OF_RANGE;",
+            v.name,
+            word(v)
+        );
+    }
+    if !f.sync_set.is_empty() {
+        let _ = writeln!(
+            out,
+            "    if (!{lo}sync_matches(buf, 1)) return {up}ERR_OUT_OF_RANGE;"
+        );
+    }
+    for &ci in &plan.header_checks {
+        let _ = writeln!(
+            out,
+            "    if (!{lo}store(buf, {})) return {up}ERR_OUT_OF_RANGE;",
+            check_args(lo, &f.checks[ci], "total")
+        );
+    }
+    out.push_str("    if (bare) return (int)total;\n");
+    for t in &f.trailers {
+        let bytes: Vec<String> = t.bytes.iter().map(|b| format!("{b:#04x}")).collect();
+        let _ = write!(
+            out,
+            "    {{\n        static const uint8_t trailer[{len}] = {{{}}};\n        size_t at = {lo}pos(total, {});\n        if (at == SIZE_MAX || total - at < {len}u) return {up}ERR_OUT_OF_RANGE;\n        memcpy(buf + at, trailer, {len}u);\n    }}\n",
+            bytes.join(", "),
+            pos(t.at),
+            len = t.bytes.len()
+        );
+    }
+    for &ci in &plan.frame_checks {
+        let _ = writeln!(
+            out,
+            "    if (!{lo}store(buf, {})) return {up}ERR_OUT_OF_RANGE;",
+            check_args(lo, &f.checks[ci], "total")
+        );
+    }
+    out.push_str("    return (int)total;\n}\n\n");
 }

@@ -1,7 +1,7 @@
 //! What the C printer supports: [`unsupported`] lists every feature of a spec it refuses, so
 //! that `protocol gen c` fails with a clear message instead of printing wrong code.
 
-use crate::ir::{Algorithm, FieldKind, PacketKind, Protocol, Role, Transport, ValueType};
+use crate::ir::{Algorithm, FieldKind, PacketKind, Protocol, Transport, ValueType};
 
 /// One line per feature of `p` the C printer does not support yet; empty when it prints the
 /// whole spec.
@@ -20,12 +20,6 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         }
         if f.stuffing.is_some() {
             out.push(format!("{at}: byte stuffing"));
-        }
-        if f.ack.is_some() {
-            out.push(format!("{at}: acknowledgement frames"));
-        }
-        if f.bare_len.is_some() {
-            out.push(format!("{at}: bare headers"));
         }
         if f.packet == PacketKind::Commands {
             out.push(format!(
@@ -47,9 +41,6 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
                 "{at}: optional bytes `{}` present when a header flag is set",
                 t.name
             ));
-        }
-        if f.values.iter().any(|v| matches!(v.role, Role::Ack(_))) {
-            out.push(format!("{at}: an acknowledgement flag"));
         }
         for c in &f.checks {
             if let Some(why) = algorithm_refused(&c.algorithm) {

@@ -36,11 +36,18 @@ pub fn header(p: &Protocol, n: &Names) -> String {
     ] {
         let _ = writeln!(out, "#define {up}{name} {v}u");
     }
+    if let Some((_, ack_header_len)) = f.ack {
+        let _ = writeln!(
+            out,
+            "/** An acknowledgement's header, before its data. */\n#define {up}ACK_HEADER_LEN {ack_header_len}u\n/** The most data of an acknowledgement. */\n#define {up}ACK_MAX_LEN {}u",
+            f.max_len() - ack_header_len - f.trailer_len
+        );
+    }
     let _ = write!(
         out,
         "\n/* ---- Results: a negative int is one of these ---- */\n\n\
 /** The caller's buffer is too short for the frame. */\n#define {up}ERR_SHORT_BUFFER (-1)\n\
-/** A value does not fit its field (a bit member, a 24-bit integer, bytes beyond their\n *  maximum, an enum value without variant when the enum rejects them). */\n#define {up}ERR_OUT_OF_RANGE (-2)\n\
+/** A value does not fit its field (a bit member, a 24-bit integer, a scaled value whose raw\n *  integer does not fit its type, bytes or elements beyond their maximum or other than the\n *  length their size field states, text longer than its maximum or holding a NUL, an enum\n *  value without variant when the enum rejects them). */\n#define {up}ERR_OUT_OF_RANGE (-2)\n\
 /** The payload's size is not its command's. */\n#define {up}ERR_PAYLOAD_LENGTH (-3)\n\
 /** No command has the frame's dispatch key. */\n#define {up}ERR_UNKNOWN_COMMAND (-4)\n\
 /** The header matches no direction. */\n#define {up}ERR_UNKNOWN_DIRECTION (-5)\n\
@@ -224,6 +231,12 @@ fn commands(p: &Protocol, n: &Names, out: &mut String) {
     if keyed(p) {
         let _ = writeln!(out, "    {lo}command command;");
     }
+    if p.frames[0].ack.is_some() {
+        let _ = writeln!(
+            out,
+            "    /** An acknowledgement: no command (`{up}COMMAND_COUNT`), its data in `payload.ack_data`. */\n    bool ack;"
+        );
+    }
     if !p.directions.is_empty() {
         let _ = writeln!(out, "    {lo}direction direction;");
     }
@@ -232,6 +245,12 @@ fn commands(p: &Protocol, n: &Names, out: &mut String) {
         if let Some(si) = slot.si {
             let _ = writeln!(out, "        {} {};", n.ty(&p.structs[si].name), slot.name);
         }
+    }
+    if p.frames[0].ack.is_some() {
+        let _ = writeln!(
+            out,
+            "        /** The data of an acknowledgement. */\n        struct {{\n            size_t len;\n            uint8_t bytes[{up}ACK_MAX_LEN > 0 ? {up}ACK_MAX_LEN : 1];\n        }} ack_data;"
+        );
     }
     let _ = writeln!(out, "    }} payload;\n}} {lo}packet;\n");
 }
@@ -331,6 +350,12 @@ fn functions(p: &Protocol, n: &Names, out: &mut String) {
             out,
             "int {lo}encode_{}(const {lo}header *header, {payload}uint8_t *buf, size_t cap);",
             slot.name
+        );
+    }
+    if p.frames[0].ack.is_some() {
+        let _ = writeln!(
+            out,
+            "/** An acknowledgement of `len` bytes of data (with none, the bare header where the format has one). */\nint {lo}encode_ack(const {lo}header *header, const uint8_t *data, size_t len, uint8_t *buf, size_t cap);"
         );
     }
     let _ = writeln!(
