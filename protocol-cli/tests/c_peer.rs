@@ -114,6 +114,7 @@ fn issue_name(e: &DecodeIssue) -> &'static str {
         DecodeIssue::Frame(DecodeError::Unterminated) => "unterminated",
         DecodeIssue::Frame(DecodeError::PayloadCheck) => "payload_check",
         DecodeIssue::Frame(DecodeError::ValueOutOfRange) => "outside_clamp",
+        DecodeIssue::Frame(DecodeError::InvalidStuffing) => "invalid_stuffing",
         DecodeIssue::Frame(_) => "frame",
     }
 }
@@ -252,14 +253,23 @@ fn normalize(lines: Vec<String>) -> Vec<String> {
 
 // ---- Inputs ----
 
-/// xorshift64*: the same inputs every run.
-struct Rng(u64);
+/// xorshift64*: the same inputs every run. Its random bytes are, one in two, a byte of `bias`
+/// when that is not empty (a spec's stuffing pattern and inserted byte: random bytes then
+/// hold the pattern, stuffed or not).
+struct Rng(u64, Vec<u8>);
 impl Rng {
     fn next(&mut self) -> u64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
         self.0 ^= self.0 >> 27;
         self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    fn byte(&mut self) -> u8 {
+        if self.1.is_empty() || self.below(2) == 0 {
+            return self.next() as u8;
+        }
+        let i = self.below(self.1.len());
+        self.1[i]
     }
     fn below(&mut self, n: usize) -> usize {
         (self.next() % n.max(1) as u64) as usize
@@ -297,7 +307,7 @@ fn random_frame(p: &Protocol, codec: &Codec<'_>, rng: &mut Rng) -> Vec<u8> {
         payload = f.payload_min + rng.below(f.payload_max - f.payload_min + 1);
     }
     let total = (f.header_len + payload + f.trailer_len).clamp(f.min_len(), f.max_len());
-    let mut frame: Vec<u8> = (0..total).map(|_| rng.next() as u8).collect();
+    let mut frame: Vec<u8> = (0..total).map(|_| rng.byte()).collect();
     if !f.sync_set.is_empty() {
         frame[0] = f.sync_set[rng.below(f.sync_set.len())];
     }
@@ -480,7 +490,7 @@ fn random_field(
         }
         FieldKind::Bytes { max, size_from } => {
             let len = stated_len(size_from, *max, outer, out, rng);
-            let bytes = (0..len).map(|_| rng.next() as u8).collect();
+            let bytes = (0..len).map(|_| rng.byte()).collect();
             out.insert(name.to_string(), Value::Bytes(bytes));
         }
         FieldKind::Array { ty, max, size_from } => {
@@ -921,7 +931,12 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
     }
 
     // Random frames, then the fault-injection stream of them at several chunk sizes.
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ p.name.len() as u64);
+    let bias = p.frames[0]
+        .stuffing
+        .as_ref()
+        .map(|(after, insert)| [after.as_slice(), &[*insert]].concat())
+        .unwrap_or_default();
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ p.name.len() as u64, bias);
     let frames: Vec<Vec<u8>> = (0..random_frames)
         .map(|_| random_frame(p, &codec, &mut rng))
         .collect();

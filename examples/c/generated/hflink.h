@@ -48,6 +48,8 @@ extern "C" {
 #define HFLINK_ERR_PAYLOAD_CHECK (-10)
 /** A scaled value outside its clamp range (it would not encode back to its bytes). */
 #define HFLINK_ERR_OUTSIDE_CLAMP (-11)
+/** A stuffed payload without the inserted byte after a run of the pattern. */
+#define HFLINK_ERR_INVALID_STUFFING (-12)
 
 /* ---- Constants and addresses of the spec ---- */
 

@@ -32,6 +32,7 @@ static const char *err_name(int e)
     case U(ERR_UNTERMINATED): return "unterminated";
     case U(ERR_PAYLOAD_CHECK): return "payload_check";
     case U(ERR_OUTSIDE_CLAMP): return "outside_clamp";
+    case U(ERR_INVALID_STUFFING): return "invalid_stuffing";
     default: return "?";
     }
 }

@@ -239,6 +239,9 @@ fn decode(p: &Protocol, n: &Names, out: &mut String) {
     if keyed(p) {
         dispatch_key(p, n, out);
     }
+    if let Some((after, insert)) = &f.stuffing {
+        unstuff(after, *insert, n, out);
+    }
     if !p.directions.is_empty() {
         out.push_str("    ");
         for d in &p.directions {
@@ -318,10 +321,14 @@ fn dispatch_key(p: &Protocol, n: &Names, out: &mut String) {
 /// (zero-filled to its struct's size first when the format truncates trailing zeros).
 fn read_payload(p: &Protocol, n: &Names, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
-    let _ = writeln!(
-        out,
-        "    r.p = bytes + {up}HEADER_LEN;\n    r.len = len - {up}HEADER_LEN - {up}TRAILER_LEN;\n    r.pos = 0;"
-    );
+    // A stuffed payload is read where `unstuff` left it.
+    if p.frames[0].stuffing.is_none() {
+        let _ = writeln!(
+            out,
+            "    r.p = bytes + {up}HEADER_LEN;\n    r.len = len - {up}HEADER_LEN - {up}TRAILER_LEN;"
+        );
+    }
+    let _ = writeln!(out, "    r.pos = 0;");
     let slots: Vec<Slot> = slots(p).into_iter().filter(|s| s.si.is_some()).collect();
     if p.frames[0].truncate_zeros {
         out.push_str(
@@ -407,6 +414,9 @@ fn encode(p: &Protocol, n: &Names, out: &mut String) {
             out,
             "/* The bytes of a payload its sender keeps: all but its trailing zeros, and at least the\n * first byte of a non-empty payload (the runtime's `zeros::trimmed_len`). */\nstatic size_t {lo}trimmed(const uint8_t *p, size_t len)\n{{\n    size_t kept = len;\n    while (kept > 0 && p[kept - 1] == 0) kept--;\n    return kept == 0 && len > 0 ? 1 : kept;\n}}\n\n"
         );
+    }
+    if let Some((after, insert)) = &f.stuffing {
+        stuff(after, *insert, n, out);
     }
     let _ = write!(
         out,
@@ -527,6 +537,9 @@ fn encoder(p: &Protocol, n: &Names, slot: &Slot, out: &mut String) {
     };
     if p.frames[0].truncate_zeros && slot.command.is_some() {
         write.push_str(&format!("    w.pos = {lo}trimmed(w.p, w.pos);\n"));
+    }
+    if p.frames[0].stuffing.is_some() && slot.command.is_some() {
+        write.push_str(&format!("    if ((e = {lo}stuff(&w)) != 0) return e;\n"));
     }
     let command = match slot.command {
         Some(ci) => format!("{up}{}", p.commands[ci].name),
@@ -654,4 +667,35 @@ fn ack_encoder(f: &Frame, n: &Names, out: &mut String) {
         );
     }
     out.push_str("    return (int)total;\n}\n\n");
+}
+
+/// The C bytes of a stuffing pattern.
+fn pattern(after: &[u8]) -> String {
+    let bytes: Vec<String> = after.iter().map(|b| format!("{b:#04x}")).collect();
+    bytes.join(", ")
+}
+
+/// The payload unstuffed (the runtime's `Stuffing::unstuff`) into a buffer of the largest
+/// payload, which the payload is then read from: after every run of the pattern in the
+/// output, the next byte must be the inserted one, and is dropped.
+fn unstuff(after: &[u8], insert: u8, n: &Names, out: &mut String) {
+    let up = &n.up;
+    let _ = write!(
+        out,
+        "    {{\n        static const uint8_t pattern[{k}] = {{{}}};\n        static uint8_t plain[{up}MAX_PAYLOAD_LEN > 0 ? {up}MAX_PAYLOAD_LEN : 1];\n        const uint8_t *s = bytes + {up}HEADER_LEN;\n        size_t sn = len - {up}HEADER_LEN - {up}TRAILER_LEN, i = 0, o = 0;\n        while (i < sn) {{\n            if (o >= {up}MAX_PAYLOAD_LEN) return {up}ERR_PAYLOAD_LENGTH;\n            plain[o++] = s[i++];\n            if (o >= {k}u && memcmp(plain + o - {k}u, pattern, {k}u) == 0) {{\n                if (i < sn && s[i] == {insert:#04x}) i++;\n                else return {up}ERR_INVALID_STUFFING;\n            }}\n        }}\n        r.p = plain;\n        r.len = o;\n    }}\n",
+        pattern(after),
+        k = after.len()
+    );
+}
+
+/// `pfx_stuff`: a written payload stuffed in place (the runtime's `Stuffing::stuff_in_place`):
+/// the inserted byte after every run of the pattern, the search going on after it.
+fn stuff(after: &[u8], insert: u8, n: &Names, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let _ = write!(
+        out,
+        "/* Stuffs the payload written in `w`: {insert:#04x} after every run of the pattern. */\nstatic int {lo}stuff(struct {lo}wr *w)\n{{\n    static const uint8_t pattern[{k}] = {{{}}};\n    size_t i = 0, extra = 0, cur = w->pos;\n    while (i + {k}u <= w->pos) {{\n        if (memcmp(w->p + i, pattern, {k}u) == 0) {{\n            extra++;\n            i += {k}u;\n        }} else {{\n            i++;\n        }}\n    }}\n    if (w->cap - w->pos < extra) return {up}ERR_SHORT_BUFFER;\n    i = 0;\n    while (i + {k}u <= cur) {{\n        if (memcmp(w->p + i, pattern, {k}u) == 0) {{\n            size_t end = i + {k}u;\n            memmove(w->p + end + 1, w->p + end, cur - end);\n            w->p[end] = {insert:#04x};\n            cur++;\n            i = end + 1;\n        }} else {{\n            i++;\n        }}\n    }}\n    w->pos = cur;\n    return 0;\n}}\n\n",
+        pattern(after),
+        k = after.len()
+    );
 }

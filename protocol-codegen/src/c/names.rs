@@ -21,9 +21,16 @@ impl Names {
         }
     }
 
-    /// The type of a struct or enum named in PascalCase (`ChassisCoord` -> `hflink_chassis_coord`).
+    /// The type of a struct or enum named in PascalCase (`ChassisCoord` -> `hflink_chassis_coord`);
+    /// a name the generated code takes for itself (`Write`, `Step`, `ReadAll`) gets `_t`
+    /// (`dynamixel_write_t`), so that a spec's names never clash with the code's.
     pub fn ty(&self, pascal: &str) -> String {
-        format!("{}{}", self.lo, snake(pascal))
+        let name = snake(pascal);
+        if RESERVED.contains(&name.as_str()) || FAMILIES.iter().any(|f| name.starts_with(f)) {
+            format!("{}{name}_t", self.lo)
+        } else {
+            format!("{}{name}", self.lo)
+        }
     }
 
     /// The prefix of an enum's constants (`HFLINK_CHASSIS_TYPE_`).
@@ -31,6 +38,80 @@ impl Names {
         format!("{}{}_", self.up, snake(pascal).to_uppercase())
     }
 }
+
+/// The names after the prefix that the generated code gives its own functions and types.
+const RESERVED: &[&str] = &[
+    "command",
+    "decode",
+    "decoder",
+    "direction",
+    "emit",
+    "encode",
+    "event",
+    "f32",
+    "f64",
+    "field",
+    "find_candidate",
+    "format",
+    "frame_inside",
+    "get",
+    "header",
+    "ids",
+    "packet",
+    "path",
+    "pos",
+    "probe",
+    "put_field",
+    "rd",
+    "read",
+    "reject",
+    "seal",
+    "set",
+    "sext",
+    "skip",
+    "stage",
+    "stats",
+    "step",
+    "store",
+    "stuff",
+    "trimmed",
+    "txt",
+    "utf8",
+    "verify",
+    "wr",
+    "write",
+    "zero",
+];
+
+/// The prefixes after the spec's prefix of families of the generated code's names
+/// (`read_<struct>`, `check_<check>`, `quantize_f32`).
+const FAMILIES: &[&str] = &[
+    "check_",
+    "clamp_",
+    "command_",
+    "count_",
+    "cut_",
+    "decoder_",
+    "direction_",
+    "encode_",
+    "event_",
+    "f32_",
+    "f64_",
+    "fmt_",
+    "get_",
+    "mag_",
+    "packed_",
+    "pcheck_",
+    "probe_",
+    "quantize_",
+    "read_",
+    "reject_",
+    "set_",
+    "sync_",
+    "to_physical_",
+    "within_",
+    "write_",
+];
 
 /// snake_case of a PascalCase name.
 pub fn snake(pascal: &str) -> String {

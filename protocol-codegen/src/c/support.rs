@@ -18,9 +18,6 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         if let Transport::Can { .. } = f.transport {
             out.push(format!("{at}: CAN transport"));
         }
-        if f.stuffing.is_some() {
-            out.push(format!("{at}: byte stuffing"));
-        }
         if f.packet == PacketKind::Commands {
             out.push(format!(
                 "{at}: a second format carrying the commands (several command formats on one link)"

@@ -56,7 +56,8 @@ pub fn header(p: &Protocol, n: &Names) -> String {
 /** Sized bytes or an array whose stated length exceeds its maximum. */\n#define {up}ERR_SIZE_MISMATCH (-8)\n\
 /** NUL-terminated text without its NUL within its maximum. */\n#define {up}ERR_UNTERMINATED (-9)\n\
 /** A check inside the payload does not match its covered fields. */\n#define {up}ERR_PAYLOAD_CHECK (-10)\n\
-/** A scaled value outside its clamp range (it would not encode back to its bytes). */\n#define {up}ERR_OUTSIDE_CLAMP (-11)\n\n"
+/** A scaled value outside its clamp range (it would not encode back to its bytes). */\n#define {up}ERR_OUTSIDE_CLAMP (-11)\n\
+/** A stuffed payload without the inserted byte after a run of the pattern. */\n#define {up}ERR_INVALID_STUFFING (-12)\n\n"
     );
     if !p.constants.is_empty() || !p.addresses.is_empty() {
         out.push_str("/* ---- Constants and addresses of the spec ---- */\n\n");
