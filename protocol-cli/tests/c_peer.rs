@@ -12,8 +12,13 @@
 //!   the link's of several command formats), event by event, and its expected frames;
 //! * 10,000 random frames per bundled spec and frame format, 2,000 per fixture (valid, and with
 //!   unknown commands, wrong payload sizes, values without variant), decoded and encoded again;
+//!   one in four of the first format's is encoded by the Rust codec from random payload values
+//!   (text, stated lengths, checks inside a payload, acknowledgements that random bytes seldom
+//!   make valid), and a format with bare headers gets some; a stuffed format's random bytes
+//!   often hold its pattern;
 //! * edge frames per command: payloads of all-zero and all-`0xFF` bytes, and of one zero byte
-//!   (the field rules' extreme values, trailing-zero truncation's kept first byte);
+//!   (the field rules' extreme values, trailing-zero truncation's kept first byte), and the
+//!   bare header where the format has one;
 //! * for every stream decoder, a fault-injection stream of its formats' frames (garbage,
 //!   flipped bits, truncations, stray sync bytes) at several chunk sizes, event by event, with
 //!   the counters.
@@ -115,6 +120,11 @@ fn issue_name(e: &DecodeIssue) -> &'static str {
         DecodeIssue::UnknownDirection { .. } | DecodeIssue::DirectionNotGiven { .. } => {
             "unknown_direction"
         }
+        DecodeIssue::Frame(DecodeError::SizeMismatch) => "size_mismatch",
+        DecodeIssue::Frame(DecodeError::Unterminated) => "unterminated",
+        DecodeIssue::Frame(DecodeError::PayloadCheck) => "payload_check",
+        DecodeIssue::Frame(DecodeError::ValueOutOfRange) => "outside_clamp",
+        DecodeIssue::Frame(DecodeError::InvalidStuffing) => "invalid_stuffing",
         DecodeIssue::Frame(_) => "frame",
     }
 }
@@ -295,14 +305,23 @@ fn normalize(lines: Vec<String>) -> Vec<String> {
 
 // ---- Inputs ----
 
-/// xorshift64*: the same inputs every run.
-struct Rng(u64);
+/// xorshift64*: the same inputs every run. Its random bytes are, one in two, a byte of `bias`
+/// when that is not empty (a spec's stuffing pattern and inserted byte: random bytes then
+/// hold the pattern, stuffed or not).
+struct Rng(u64, Vec<u8>);
 impl Rng {
     fn next(&mut self) -> u64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
         self.0 ^= self.0 >> 27;
         self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    fn byte(&mut self) -> u8 {
+        if self.1.is_empty() || self.below(2) == 0 {
+            return self.next() as u8;
+        }
+        let i = self.below(self.1.len());
+        self.1[i]
     }
     fn below(&mut self, n: usize) -> usize {
         (self.next() % n.max(1) as u64) as usize
@@ -400,6 +419,11 @@ fn random_frame(p: &Protocol, codec: &Codec<'_>, fi: usize, rng: &mut Rng) -> Ve
     let slots = format_slots(p, fi);
     loop {
         let (c, slot, si) = slots[rng.below(slots.len())];
+        if fi == 0 && rng.below(4) == 0 {
+            if let Some(frame) = value_frame(p, codec, c, slot, si, rng) {
+                return frame;
+            }
+        }
         let (min, max) = match (c, si, f.message) {
             // A format without dispatch key or message: its payload's bytes as they are.
             (None, None, None) => (f.payload_min, f.payload_max),
@@ -410,9 +434,7 @@ fn random_frame(p: &Protocol, codec: &Codec<'_>, fi: usize, rng: &mut Rng) -> Ve
             payload = f.payload_min + rng.below(f.payload_max - f.payload_min + 1);
         }
         let payload = after_header(p, f, c, slot, payload);
-        let mut frame: Vec<u8> = (0..frame_len(f, payload))
-            .map(|_| rng.next() as u8)
-            .collect();
+        let mut frame: Vec<u8> = (0..frame_len(f, payload)).map(|_| rng.byte()).collect();
         if !f.sync_set.is_empty() {
             frame[0] = f.sync_set[rng.below(f.sync_set.len())];
         }
@@ -437,10 +459,289 @@ fn random_frame(p: &Protocol, codec: &Codec<'_>, fi: usize, rng: &mut Rng) -> Ve
                 write_direction(f, d, sender, &mut frame);
             }
         }
+        // Now and then a bare header (the header alone), where the format has one.
+        if let Some(bare) = f.bare_len.filter(|_| rng.below(8) == 0) {
+            frame.truncate(bare);
+        }
         if let Some(frame) = sealed(p, codec, fi, frame, &mut || rng.next() as u8) {
             return frame;
         }
     }
+}
+
+/// A frame the Rust codec encodes from random values: the command's payload struct (`si`)
+/// from [`random_struct`], the header values random, the sender in the direction's set.
+/// `None` when the codec refuses the value (a payload too long for the frame, say).
+fn value_frame(
+    p: &Protocol,
+    codec: &Codec<'_>,
+    c: Option<&Cmd>,
+    slot: usize,
+    si: Option<usize>,
+    rng: &mut Rng,
+) -> Option<Vec<u8>> {
+    let f = &p.frames[0];
+    let mut header = protocol_dynamic::Fields::new();
+    for v in f
+        .values
+        .iter()
+        .filter(|v| matches!(v.role, protocol_codegen::ir::Role::User { .. }))
+    {
+        let bits = rng.next() & mask(v.width);
+        let value = if v.prim == protocol_codegen::ir::Prim::Bool {
+            Value::Bool(bits & 1 != 0)
+        } else {
+            Value::UInt(bits)
+        };
+        header.insert(v.name.clone(), value);
+    }
+    if let Some(d) = p.directions.get(slot) {
+        let (DirectionRule::InSet { value, .. } | DirectionRule::Equals { value, .. }) = &d.rule
+        else {
+            return None;
+        };
+        let sender = match &d.rule {
+            DirectionRule::InSet { set, .. } => {
+                let a = &p.addresses[*set];
+                a.first + (rng.next() % (a.last - a.first + 1))
+            }
+            DirectionRule::Equals { equals, .. } => *equals,
+            DirectionRule::Given => return None,
+        };
+        let v = &f.values[*value];
+        let sender = if v.prim == protocol_codegen::ir::Prim::Bool {
+            Value::Bool(sender != 0)
+        } else {
+            Value::UInt(sender)
+        };
+        header.insert(v.name.clone(), sender);
+    }
+    let mut frame = protocol_dynamic::Fields::new();
+    frame.insert("header", Value::Struct(header));
+    // Now and then an acknowledgement: its data, none at times (a bare header where the
+    // format has one).
+    if let Some((_, ack_header_len)) = f.ack.filter(|_| rng.below(4) == 0) {
+        let most = f.max_len() - ack_header_len - f.trailer_len;
+        let len = if rng.below(2) == 0 {
+            0
+        } else {
+            rng.below(most.min(32) + 1)
+        };
+        frame.insert("ack", Value::Bool(true));
+        frame.insert(
+            "payload",
+            Value::Bytes((0..len).map(|_| rng.next() as u8).collect()),
+        );
+        return codec.encode(&Value::Struct(frame)).ok().map(|e| e.bytes);
+    }
+    if let Some(c) = c {
+        frame.insert("command", Value::from(c.name.clone()));
+    }
+    if let Some(si) = si {
+        let outer = protocol_dynamic::Fields::new();
+        frame.insert("payload", Value::Struct(random_struct(p, si, &outer, rng)));
+    }
+    codec.encode(&Value::Struct(frame)).ok().map(|e| e.bytes)
+}
+
+/// The low `width` bits set.
+fn mask(width: u32) -> u64 {
+    if width >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << width) - 1
+    }
+}
+
+/// A random value of struct `si`, field by field: lengths that agree with the fields that
+/// state them (`outer`: the fields of the struct that repeats this one), text without NUL,
+/// enums mostly variants, scaled values from a random raw integer, optional fields present
+/// or not.
+fn random_struct(
+    p: &Protocol,
+    si: usize,
+    outer: &protocol_dynamic::Fields,
+    rng: &mut Rng,
+) -> protocol_dynamic::Fields {
+    let mut out = protocol_dynamic::Fields::new();
+    for f in &p.structs[si].fields {
+        random_field(p, &f.name, &f.kind, outer, &mut out, rng);
+    }
+    out
+}
+
+/// The length a field states for sized bytes or an array of at most `max`: the value of
+/// field `size` (of this struct, else of the struct that repeats it), set to a random length
+/// when this struct holds it.
+fn stated_len(
+    size: &Option<String>,
+    max: usize,
+    outer: &protocol_dynamic::Fields,
+    out: &mut protocol_dynamic::Fields,
+    rng: &mut Rng,
+) -> usize {
+    let len = rng.below(max + 1);
+    match size {
+        Some(n) if out.get(n).is_some() => {
+            out.insert(n.clone(), Value::from(len));
+            len
+        }
+        Some(n) => outer
+            .get(n)
+            .and_then(Value::as_u64)
+            .map_or(len, |v| v as usize),
+        None => len,
+    }
+}
+
+fn random_field(
+    p: &Protocol,
+    name: &str,
+    kind: &protocol_codegen::ir::FieldKind,
+    outer: &protocol_dynamic::Fields,
+    out: &mut protocol_dynamic::Fields,
+    rng: &mut Rng,
+) {
+    use protocol_codegen::ir::{FieldKind, Prim};
+    match kind {
+        FieldKind::Padding | FieldKind::Check(_) => {}
+        FieldKind::Value { ty, count } => {
+            let v = match count {
+                None => random_elem(p, ty, rng),
+                Some(n) => Value::Array((0..*n).map(|_| random_elem(p, ty, rng)).collect()),
+            };
+            out.insert(name.to_string(), v);
+        }
+        FieldKind::Bits { members, .. } => {
+            for m in members {
+                let bits = rng.next() & mask(m.width);
+                let v = match m.enum_index {
+                    Some(ei) => random_enum(p, ei, bits, rng),
+                    None if m.prim == Prim::Bool => Value::Bool(bits != 0),
+                    None => Value::UInt(bits),
+                };
+                out.insert(m.name.clone(), v);
+            }
+        }
+        FieldKind::Bytes { max, size_from } => {
+            let len = stated_len(size_from, *max, outer, out, rng);
+            let bytes = (0..len).map(|_| rng.byte()).collect();
+            out.insert(name.to_string(), Value::Bytes(bytes));
+        }
+        FieldKind::Array { ty, max, size_from } => {
+            let len = stated_len(size_from, *max, outer, out, rng);
+            let items = (0..len).map(|_| random_elem(p, ty, rng)).collect();
+            out.insert(name.to_string(), Value::Array(items));
+        }
+        FieldKind::NulText { max } => {
+            let len = rng.below(max + 1);
+            // Printable ASCII, now and then a control character, a backslash or a byte that
+            // is not UTF-8 (given as byte values).
+            let bytes: Vec<u8> = (0..len)
+                .map(|_| match rng.below(16) {
+                    0 => 1 + rng.below(255) as u8,
+                    1 => b'\\',
+                    _ => 0x20 + rng.below(0x5F) as u8,
+                })
+                .collect();
+            let v = match String::from_utf8(bytes.clone()) {
+                Ok(s) => Value::from(s),
+                Err(_) => Value::Array(bytes.iter().map(|&b| Value::UInt(u64::from(b))).collect()),
+            };
+            out.insert(name.to_string(), v);
+        }
+        FieldKind::Group { elem, max } => {
+            let count = rng.below(max.min(&8) + 1);
+            let items = (0..count)
+                .map(|_| Value::Struct(random_struct(p, *elem, out, rng)))
+                .collect();
+            out.insert(name.to_string(), Value::Array(items));
+        }
+        FieldKind::Packed {
+            count, bits, scale, ..
+        } => {
+            let items = (0..*count)
+                .map(|_| {
+                    let raw = rng.next() & mask(*bits);
+                    match scale {
+                        Some(sc) => Value::F64(raw as f64 * sc.factor + sc.offset),
+                        None => Value::UInt(raw),
+                    }
+                })
+                .collect();
+            out.insert(name.to_string(), Value::Array(items));
+        }
+        FieldKind::Optional(inner) => {
+            if rng.below(2) == 0 {
+                random_field(p, name, inner, outer, out, rng);
+            } else {
+                match &**inner {
+                    FieldKind::Bits { members, .. } => {
+                        for m in members {
+                            out.insert(m.name.clone(), Value::Null);
+                        }
+                    }
+                    _ => out.insert(name.to_string(), Value::Null),
+                }
+            }
+        }
+    }
+}
+
+/// A random element of a value field.
+fn random_elem(p: &Protocol, ty: &protocol_codegen::ir::ValueType, rng: &mut Rng) -> Value {
+    use protocol_codegen::ir::{Prim, ValueType};
+    match ty {
+        ValueType::Scalar { scalar, scale } => {
+            let width = 8 * scalar.prim.size() as u32;
+            let bits = rng.next() & mask(width);
+            let signed = |bits: u64| {
+                let shift = 64 - width;
+                ((bits << shift) as i64) >> shift
+            };
+            match (scale, scalar.prim) {
+                (Some(sc), prim) => {
+                    let raw = if prim.is_signed() {
+                        signed(bits) as f64
+                    } else {
+                        bits as f64
+                    };
+                    Value::F64(raw * sc.factor + sc.offset)
+                }
+                (None, Prim::Bool) => Value::Bool(bits & 1 != 0),
+                (None, Prim::F32) => Value::F32(f32::from_bits(bits as u32)),
+                (None, Prim::F64) => Value::F64(f64::from_bits(bits)),
+                (None, prim) if prim.is_signed() => Value::Int(signed(bits)),
+                (None, _) => Value::UInt(bits),
+            }
+        }
+        ValueType::Struct(si) => {
+            let outer = protocol_dynamic::Fields::new();
+            Value::Struct(random_struct(p, *si, &outer, rng))
+        }
+        ValueType::Enum(ei, scalar) => {
+            let bits = rng.next() & mask(8 * scalar.prim.size() as u32);
+            random_enum(p, *ei, bits, rng)
+        }
+        ValueType::Text(n) => {
+            let len = rng.below(*n + 1);
+            Value::from(
+                (0..len)
+                    .map(|_| char::from(0x20 + rng.below(0x5F) as u8))
+                    .collect::<String>(),
+            )
+        }
+    }
+}
+
+/// A variant's name (three times in four), else the raw bits `bits`.
+fn random_enum(p: &Protocol, ei: usize, bits: u64, rng: &mut Rng) -> Value {
+    let e = &p.enums[ei];
+    if rng.below(4) != 0 && !e.variants.is_empty() {
+        let v = &e.variants[rng.below(e.variants.len())];
+        return Value::from(v.name.clone());
+    }
+    Value::UInt(bits)
 }
 
 /// Writes the dispatch key of `c` (of a CAN format: its CAN id).
@@ -498,6 +799,16 @@ fn edge_frames(p: &Protocol, codec: &Codec<'_>, fi: usize) -> Vec<Vec<u8>> {
                 if let Some(sender) = sender {
                     write_direction(f, d, sender, &mut frame);
                 }
+            }
+            out.extend(sealed(p, codec, fi, frame, &mut || fill));
+        }
+    }
+    // The bare header, all zero and all `0xFF`, where the format has one.
+    if let Some(bare) = f.bare_len {
+        for fill in [0x00, 0xFF] {
+            let mut frame = vec![fill; bare];
+            if let Some(&lead) = f.sync_set.first() {
+                frame[0] = lead;
             }
             out.extend(sealed(p, codec, fi, frame, &mut || fill));
         }
@@ -731,6 +1042,8 @@ struct Tally {
     vector_streams: usize,
     chunkings: usize,
     random_frames: usize,
+    /// Random frames the Rust codec decodes (the others are errors, compared too).
+    random_decoded: usize,
     edge_frames: usize,
     stream_bytes: usize,
 }
@@ -885,15 +1198,21 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
 
     // Random and edge frames of every format, then the fault-injection stream of each
     // decoder's formats' random frames at several chunk sizes.
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ p.name.len() as u64);
+    let bias = p.frames[0]
+        .stuffing
+        .as_ref()
+        .map(|(after, insert)| [after.as_slice(), &[*insert]].concat())
+        .unwrap_or_default();
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ p.name.len() as u64, bias);
     let mut frames: Vec<Vec<Vec<u8>>> = Vec::new();
     for fi in 0..p.frames.len() {
         let of_format: Vec<Vec<u8>> = (0..random_frames)
             .map(|_| random_frame(p, &codec, fi, &mut rng))
             .collect();
         let edges = edge_frames(p, &codec, fi);
-        for frame in of_format.iter().chain(&edges) {
+        for (i, frame) in of_format.iter().chain(&edges).enumerate() {
             let f = &p.frames[fi];
+            let at = expected.len();
             if f.transport == Transport::Serial {
                 push_frame(&mut input, &mut expected, &codec, &given, fi, frame);
             } else {
@@ -907,6 +1226,11 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
                 )
                 .unwrap();
                 expected.push(rust_can(&codec, fi, &c));
+            }
+            // Decoded by one of its decoders (where the decoder is given the direction, the
+            // frame's own).
+            if i < of_format.len() && expected[at..].iter().any(|l| l[0].starts_with("ok ")) {
+                tally.random_decoded += 1;
             }
         }
         tally.random_frames += of_format.len();
@@ -932,10 +1256,11 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
     }
     compare(&p.name, &exe, &input, expected);
     let mut what = format!(
-        "C matches Rust: {} vector frames, {} vector streams, {} random frames, {} edge frames, a {}-byte fault-injection stream",
+        "C matches Rust: {} vector frames, {} vector streams, {} random frames ({} decoded), {} edge frames, a {}-byte fault-injection stream",
         tally.vector_frames,
         tally.vector_streams,
         tally.random_frames,
+        tally.random_decoded,
         tally.edge_frames,
         tally.stream_bytes
     );

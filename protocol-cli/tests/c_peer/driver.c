@@ -35,6 +35,11 @@ static const char *err_name(int e)
     case U(ERR_UNKNOWN_DIRECTION): return "unknown_direction";
     case U(ERR_INVALID_ENUM): return "invalid_enum";
     case U(ERR_FRAME): return "frame";
+    case U(ERR_SIZE_MISMATCH): return "size_mismatch";
+    case U(ERR_UNTERMINATED): return "unterminated";
+    case U(ERR_PAYLOAD_CHECK): return "payload_check";
+    case U(ERR_OUTSIDE_CLAMP): return "outside_clamp";
+    case U(ERR_INVALID_STUFFING): return "invalid_stuffing";
     default: return "?";
     }
 }

@@ -180,6 +180,7 @@ const char *{lo}reject_name({lo}reject reason)
 fn decoder(p: &Protocol, n: &Names, d: &Decoder, out: &mut String) {
     let (lo, up, dlo, dup) = (&n.lo, &n.up, &d.lo, &d.up);
     let formats: Vec<Fx> = d.formats.iter().map(|&fi| Fx::new(p, fi)).collect();
+    let inside = inside_bound(p, d);
     let any_sync: Vec<String> = formats
         .iter()
         .map(|x| format!("{}sync_matches(b + i, len - i)", x.lo))
@@ -236,7 +237,7 @@ static size_t {dlo}find_candidate(const uint8_t *b, size_t len)
 static int {dlo}frame_inside(const uint8_t *b, size_t pending)
 {{
     size_t k, n = 0;
-    for (k = 1; k < pending; k++) {{
+    for (k = 1; {inside}; k++) {{
         if ({dlo}probe_link(b + k, pending - k, {dup}DECODER_BUFFER_LEN, &n) == {up}PROBE_FRAME) return 1;
     }}
     return 0;
@@ -341,4 +342,25 @@ int {dlo}decoder_flush({dlo}decoder *d, {lo}event *event)
             .collect::<Vec<_>>()
             .join(" || ")
     );
+}
+
+/// The condition on a start `k` inside a pending candidate that the truncation rule tries:
+/// the runtime tries only starts with room for its shortest frame after them, which matters
+/// only where a frame can be shorter than that (a bare header).
+fn inside_bound(p: &Protocol, d: &Decoder) -> String {
+    let frames = || d.formats.iter().map(|&fi| &p.frames[fi]);
+    if frames().all(|f| f.bare_len.is_none()) {
+        return "k < pending".into();
+    }
+    let shortest = frames()
+        .map(|f| {
+            let plan = crate::layout::lower_layout(f);
+            let span = plan
+                .header_len
+                .max(plan.sync.len() + usize::from(!f.sync_set.is_empty()));
+            span.max(plan.min_len).max(1)
+        })
+        .min()
+        .unwrap_or(1);
+    format!("k < pending && pending - k >= {shortest}u")
 }

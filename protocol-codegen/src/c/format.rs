@@ -26,7 +26,7 @@ pub fn format(p: &Protocol, n: &Names) -> String {
             FieldKind::Value {
                 ty: ValueType::Text(_),
                 ..
-            }
+            } | FieldKind::NulText { .. }
         )
     }) {
         out.push_str(&text_helpers(n));
@@ -62,7 +62,12 @@ fn packet_format(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         out,
         "int {xlo}format(const {xlo}packet *packet, char *out, size_t cap)\n{{\n    struct {lo}txt text;\n    struct {lo}txt *t = &text;\n    text.p = out;\n    text.cap = cap;\n    text.len = 0;\n    if (cap > 0) out[0] = 0;\n"
     );
-    if keyed_format(p, x.fi) {
+    if f.ack.is_some() {
+        let _ = writeln!(
+            out,
+            "    {lo}emit(t, \"cmd=%s\", packet->ack ? \"?\" : {lo}command_name(packet->command));"
+        );
+    } else if keyed_format(p, x.fi) {
         let _ = writeln!(
             out,
             "    {lo}emit(t, \"cmd=%s\", {lo}command_name(packet->command) ? {lo}command_name(packet->command) : \"?\");"
@@ -111,6 +116,12 @@ fn packet_format(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             );
         }
     }
+    if f.ack.is_some() {
+        let _ = writeln!(
+            out,
+            "    if (packet->ack) {{\n        size_t i;\n        {lo}emit(t, \" payload=hex:\");\n        for (i = 0; i < packet->payload.ack_data.len; i++) {lo}emit(t, \"%02x\", (unsigned)packet->payload.ack_data.bytes[i]);\n    }}"
+        );
+    }
     let _ = writeln!(out, "    return (int)text.len;\n}}\n");
 }
 
@@ -124,10 +135,19 @@ fn field(p: &Protocol, n: &Names, f: &Field, kind: &FieldKind) -> String {
     };
     let item = format!("\"%s.{}[%u]=\", path, (unsigned)i", f.name);
     match kind {
-        FieldKind::NulText { .. } | FieldKind::Array { .. } | FieldKind::Check(_) => {
-            unreachable!("refused by support::unsupported")
+        FieldKind::Padding | FieldKind::Check(_) => {}
+        // The text up to its NUL: a string when it is UTF-8, else its bytes.
+        FieldKind::NulText { max } => {
+            let _ = writeln!(
+                body,
+                "    for (i = 0; i <= {max}u && v->{name}[i] != 0; i++) {{\n    }}\n    {lo}path(sub, sizeof sub, \"%s.{}\", path);\n    {lo}fmt_text(t, sub, (const uint8_t *)v->{name}, i);",
+                f.name
+            );
         }
-        FieldKind::Padding => {}
+        FieldKind::Array { ty, .. } => body.push_str(&each(
+            &format!("v->{name}_len"),
+            value(p, n, ty, &item, &format!("v->{name}[i]"), "    "),
+        )),
         FieldKind::Value { ty, count } => match count {
             None => body.push_str(&value(
                 p,
@@ -159,9 +179,17 @@ fn field(p: &Protocol, n: &Names, f: &Field, kind: &FieldKind) -> String {
                 f.name
             );
         }
-        FieldKind::Packed { count, prim, .. } => body.push_str(&each(
+        FieldKind::Packed {
+            count, prim, scale, ..
+        } => body.push_str(&each(
             &format!("{count}u"),
-            scalar(lo, *prim, &item, &format!("v->{name}[i]"), "    "),
+            scalar(
+                lo,
+                scale.map_or(*prim, |sc| sc.physical),
+                &item,
+                &format!("v->{name}[i]"),
+                "    ",
+            ),
         )),
         FieldKind::Group { elem, .. } => body.push_str(&each(
             &format!("v->{name}_len"),
@@ -274,7 +302,13 @@ fn indent(text: &str) -> String {
 /// One value: ` LABEL=VALUE`, `label` being the format and arguments of the label.
 fn value(p: &Protocol, n: &Names, ty: &ValueType, label: &str, v: &str, indent: &str) -> String {
     match ty {
-        ValueType::Scalar { scalar: s, .. } => scalar(&n.lo, s.prim, label, v, indent),
+        ValueType::Scalar { scalar: s, scale } => scalar(
+            &n.lo,
+            scale.map_or(s.prim, |sc| sc.physical),
+            label,
+            v,
+            indent,
+        ),
         ValueType::Enum(ei, _) => {
             enum_value(n, &p.enums[*ei].name, p.enums[*ei].prim, label, v, indent)
         }

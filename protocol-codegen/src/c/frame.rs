@@ -146,7 +146,7 @@ fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, x: &Fx, out: &mut String) 
         );
     }
     let frame_len = match (plan.length, plan.length_value) {
-        (LengthRule::Field { adjust, .. }, Some(vi)) => {
+        (LengthRule::Field { adjust, .. } | LengthRule::FieldOrBare { adjust, .. }, Some(vi)) => {
             let _ = writeln!(
                 out,
                 "    if (!{lo}field(b, span, {}, &raw)) return {up}REJECT_BAD_LENGTH;",
@@ -169,6 +169,9 @@ fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, x: &Fx, out: &mut String) 
         }
         _ => unreachable!("refused by support::unsupported"),
     };
+    if let Some(bare) = plan.length.bare_len() {
+        bare_probe(bare, n, out);
+    }
     let _ = write!(
         out,
         "    if (limit < {shortest}u || total < {shortest}u || total > limit) return {up}REJECT_BAD_LENGTH;\n    if (avail < total) {{\n        *n = total;\n        return {up}PROBE_NEED;\n    }}\n"
@@ -358,6 +361,9 @@ fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             e.len
         );
     }
+    if f.ack.is_some() {
+        ack_decode(f, n, out);
+    }
     if let Some(t) = &f.flag_trailer {
         let name = names::field(&t.name);
         let _ = writeln!(
@@ -388,6 +394,9 @@ fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             );
             return;
         }
+    }
+    if let Some((after, insert)) = &f.stuffing {
+        unstuff(after, *insert, n, x, out);
     }
     read_payload(p, n, x, out);
 }
@@ -558,10 +567,11 @@ fn can_command(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
 fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
     let f = &p.frames[x.fi];
-    let _ = writeln!(
-        out,
-        "    r.p = bytes + start;\n    r.len = end - start;\n    r.pos = 0;"
-    );
+    // A stuffed payload is read where `unstuff` left it.
+    if f.stuffing.is_none() {
+        let _ = writeln!(out, "    r.p = bytes + start;\n    r.len = end - start;");
+    }
+    let _ = writeln!(out, "    r.pos = 0;");
     let slots: Vec<Slot> = slots_of(p, x.fi)
         .into_iter()
         .filter(|s| s.si.is_some() && s.keyless.is_none())
@@ -672,6 +682,9 @@ fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             "/* The bytes of a payload its sender keeps: all but its trailing zeros, and at least the\n * first byte of a non-empty payload (the runtime's `zeros::trimmed_len`). */\nstatic size_t {xlo}trimmed(const uint8_t *p, size_t len)\n{{\n    size_t kept = len;\n    while (kept > 0 && p[kept - 1] == 0) kept--;\n    return kept == 0 && len > 0 ? 1 : kept;\n}}\n\n"
         );
     }
+    if let Some((after, insert)) = &f.stuffing {
+        stuff(after, *insert, n, out);
+    }
     seal(p, n, x, out);
     for slot in slots_of(p, x.fi) {
         encoder(p, n, x, &slot, out);
@@ -683,10 +696,19 @@ fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             seal_place(p, x, &format!("{xup}HEADER_LEN"))
         );
     }
+    if f.ack.is_some() {
+        ack_encoder(f, n, x, out);
+    }
     let _ = writeln!(
         out,
         "int {xlo}encode(const {xlo}packet *packet, uint8_t *buf, size_t cap)\n{{"
     );
+    if f.ack.is_some() {
+        let _ = writeln!(
+            out,
+            "    if (packet->ack) return {xlo}encode_ack(&packet->header, packet->payload.ack_data.bytes, packet->payload.ack_data.len, buf, cap);"
+        );
+    }
     if kind == Carries::Bytes {
         let _ = writeln!(
             out,
@@ -835,7 +857,8 @@ fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             Role::Const(c) => names::u64_lit(*c),
             Role::Flag => "(uint64_t)(flagged > 0 ? 1u : 0u)".to_string(),
             Role::WideLength => continue,
-            Role::Ack(_) => unreachable!("refused by support::unsupported"),
+            // A command frame's acknowledgement flag: not the acknowledgement's value.
+            Role::Ack(equals) => names::u64_lit(1 - (*equals).min(1)),
         };
         let _ = writeln!(
             out,
@@ -917,6 +940,9 @@ fn encoder(p: &Protocol, n: &Names, x: &Fx, slot: &Slot, out: &mut String) {
     if f.truncate_zeros && slot.command.is_some() {
         let _ = writeln!(write, "    w.pos = {xlo}trimmed(w.p, w.pos);");
     }
+    if f.stuffing.is_some() && slot.command.is_some() {
+        write.push_str(&format!("    if ((e = {lo}stuff(&w)) != 0) return e;\n"));
+    }
     let command = match (slot.command, slot.keyless) {
         (Some(ci), _) => format!("{up}{}", p.commands[ci].name),
         (None, Some(_)) => "SIZE_MAX".into(),
@@ -940,5 +966,154 @@ fn can(n: &Names, x: &Fx, out: &mut String) {
         out,
         "int {xlo}decode_can(uint32_t id, bool extended, const uint8_t *data, size_t len, {xlo}packet *out)\n{{\n    uint8_t virt[13];\n    if (extended != ({xup}CAN_EXTENDED != 0) || len > 8u) return {up}ERR_FRAME;\n    {lo}set(virt, 4u, 1, id);\n    virt[4] = (uint8_t)len;\n    if (len > 0) memcpy(virt + 5, data, len);\n    return {xlo}decode(virt, 5u + len, out);\n}}\n\n\
 int {xlo}encode_can(const {xlo}packet *packet, uint32_t *id, uint8_t data[8])\n{{\n    uint8_t virt[{xup}MAX_FRAME_LEN];\n    int len = {xlo}encode(packet, virt, sizeof virt);\n    if (len < 0) return len;\n    if (len < 5 || len > 13) return {up}ERR_OUT_OF_RANGE;\n    *id = (uint32_t){lo}get(virt, 4u, 1);\n    memcpy(data, virt + 5, (size_t)len - 5u);\n    return len - 5;\n}}\n\n"
+    );
+}
+
+/// The bare header in the probe (the runtime's `LengthRule::FieldOrBare`): a frame of exactly
+/// the bare length is complete and verified once its header checks hold.
+fn bare_probe(bare: usize, n: &Names, out: &mut String) {
+    let up = &n.up;
+    let _ = write!(
+        out,
+        "    if (total == {bare}u && {bare}u >= span && {bare}u > 0 && total <= limit) {{\n        *n = total;\n        return {up}PROBE_FRAME;\n    }}\n"
+    );
+}
+
+/// An acknowledgement in the decoder: when the flag holds its value, the frame carries no
+/// command and its data follows the acknowledgement's header (to the frame's end for a bare
+/// header, else to the trailer), at most its largest.
+fn ack_decode(f: &Frame, n: &Names, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let Some((flag, _)) = f.ack else { return };
+    let v = &f.values[flag];
+    let equals = match v.role {
+        Role::Ack(equals) => equals,
+        _ => 1,
+    };
+    let end = if f.bare_len.is_some() {
+        format!("len == {up}ACK_HEADER_LEN ? len : len - {up}TRAILER_LEN")
+    } else {
+        format!("len - {up}TRAILER_LEN")
+    };
+    let _ = write!(
+        out,
+        "    if (!{lo}field(bytes, len, {}, &raw)) return {up}ERR_FRAME;\n    if (raw == {}) {{\n        size_t end;\n        if (len < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        end = {end};\n        if (end < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        if (end - {up}ACK_HEADER_LEN > {up}ACK_MAX_LEN) return {up}ERR_PAYLOAD_LENGTH;\n        out->ack = true;\n        out->command = {up}COMMAND_COUNT;\n        out->payload.ack_data.len = end - {up}ACK_HEADER_LEN;\n        memcpy(out->payload.ack_data.bytes, bytes + {up}ACK_HEADER_LEN, out->payload.ack_data.len);\n        return 0;\n    }}\n",
+        word(v),
+        names::u64_lit(equals)
+    );
+}
+
+/// The encoder of an acknowledgement: its data after the acknowledgement's header, the header
+/// values, the flag at its value and no dispatch key; with no data and a bare header, the
+/// header alone (no frame checks, no trailers), as the runtime's `seal` does.
+fn ack_encoder(f: &Frame, n: &Names, x: &Fx, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let (xlo, xup) = (&x.lo, &x.up);
+    let plan = lower_layout(f);
+    let bare = if f.bare_len.is_some() {
+        "len == 0"
+    } else {
+        "0"
+    };
+    let _ = write!(
+        out,
+        "int {xlo}encode_ack(const {xlo}header *h, const uint8_t *data, size_t len, uint8_t *buf, size_t cap)\n{{\n    int bare = {bare};\n    size_t total;\n    if (len > {xup}ACK_MAX_LEN) return {up}ERR_OUT_OF_RANGE;\n    total = {xup}ACK_HEADER_LEN + len + (bare ? 0u : {xup}TRAILER_LEN);\n    if (!bare && total < {xup}MIN_FRAME_LEN) return {up}ERR_OUT_OF_RANGE;\n    if (cap < total) return {up}ERR_SHORT_BUFFER;\n    memset(buf, 0, {xup}ACK_HEADER_LEN);\n    memcpy(buf + {xup}ACK_HEADER_LEN, data, len);\n    if (!bare) memset(buf + {xup}ACK_HEADER_LEN + len, 0, {xup}TRAILER_LEN);\n"
+    );
+    if !f.sync.is_empty() {
+        let _ = write!(
+            out,
+            "    {{\n        static const uint8_t rest[{len}] = {{{}}};\n        memcpy(buf + {lead}, rest, {len}u);\n    }}\n",
+            sync_rest(f),
+            len = f.sync.len(),
+            lead = usize::from(!f.sync_set.is_empty())
+        );
+    }
+    for v in &f.values {
+        let value = match &v.role {
+            Role::User { .. } => format!("(uint64_t)h->{}", names::field(&v.name)),
+            Role::Length => match &f.length {
+                Length::Field { adjust, .. } => {
+                    let _ = writeln!(
+                        out,
+                        "    if ((int64_t)total - ({adjust}) < 0) return {up}ERR_OUT_OF_RANGE;"
+                    );
+                    format!("(uint64_t)((int64_t)total - ({adjust}))")
+                }
+                Length::Fixed(_) => continue,
+            },
+            Role::Const(c) => names::u64_lit(*c),
+            Role::Ack(equals) => names::u64_lit(*equals),
+            // An acknowledgement has no dispatch key: its data takes those bytes.
+            Role::Dispatch | Role::Flag | Role::WideLength => continue,
+        };
+        let _ = writeln!(
+            out,
+            "    /* {} */\n    if (!{lo}put_field(buf, total, {}, {value})) return {up}ERR_OUT_OF_RANGE;",
+            v.name,
+            word(v)
+        );
+    }
+    if !f.sync_set.is_empty() {
+        let _ = writeln!(
+            out,
+            "    if (!{xlo}sync_matches(buf, 1)) return {up}ERR_OUT_OF_RANGE;"
+        );
+    }
+    for &ci in &plan.header_checks {
+        let _ = writeln!(
+            out,
+            "    if (!{lo}store(buf, {})) return {up}ERR_OUT_OF_RANGE;",
+            check_args(n, x, &f.checks[ci], "total")
+        );
+    }
+    out.push_str("    if (bare) return (int)total;\n");
+    for t in &f.trailers {
+        let bytes: Vec<String> = t.bytes.iter().map(|b| format!("{b:#04x}")).collect();
+        let _ = write!(
+            out,
+            "    {{\n        static const uint8_t trailer[{len}] = {{{}}};\n        size_t at = {lo}pos(total, {});\n        if (at == SIZE_MAX || total - at < {len}u) return {up}ERR_OUT_OF_RANGE;\n        memcpy(buf + at, trailer, {len}u);\n    }}\n",
+            bytes.join(", "),
+            pos(t.at),
+            len = t.bytes.len()
+        );
+    }
+    for &ci in &plan.frame_checks {
+        let _ = writeln!(
+            out,
+            "    if (!{lo}store(buf, {})) return {up}ERR_OUT_OF_RANGE;",
+            check_args(n, x, &f.checks[ci], "total")
+        );
+    }
+    out.push_str("    return (int)total;\n}\n\n");
+}
+
+/// The C bytes of a stuffing pattern.
+fn pattern(after: &[u8]) -> String {
+    let bytes: Vec<String> = after.iter().map(|b| format!("{b:#04x}")).collect();
+    bytes.join(", ")
+}
+
+/// The payload unstuffed (the runtime's `Stuffing::unstuff`) into a buffer of the largest
+/// payload, which the payload is then read from: after every run of the pattern in the
+/// output, the next byte must be the inserted one, and is dropped.
+fn unstuff(after: &[u8], insert: u8, n: &Names, x: &Fx, out: &mut String) {
+    let (up, xup) = (&n.up, &x.up);
+    let _ = write!(
+        out,
+        "    {{\n        static const uint8_t pattern[{k}] = {{{}}};\n        static uint8_t plain[{xup}MAX_PAYLOAD_LEN > 0 ? {xup}MAX_PAYLOAD_LEN : 1];\n        const uint8_t *s = bytes + start;\n        size_t sn = end - start, i = 0, o = 0;\n        while (i < sn) {{\n            if (o >= {xup}MAX_PAYLOAD_LEN) return {up}ERR_PAYLOAD_LENGTH;\n            plain[o++] = s[i++];\n            if (o >= {k}u && memcmp(plain + o - {k}u, pattern, {k}u) == 0) {{\n                if (i < sn && s[i] == {insert:#04x}) i++;\n                else return {up}ERR_INVALID_STUFFING;\n            }}\n        }}\n        r.p = plain;\n        r.len = o;\n    }}\n",
+        pattern(after),
+        k = after.len()
+    );
+}
+
+/// `pfx_stuff`: a written payload stuffed in place (the runtime's `Stuffing::stuff_in_place`):
+/// the inserted byte after every run of the pattern, the search going on after it.
+fn stuff(after: &[u8], insert: u8, n: &Names, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let _ = write!(
+        out,
+        "/* Stuffs the payload written in `w`: {insert:#04x} after every run of the pattern. */\nstatic int {lo}stuff(struct {lo}wr *w)\n{{\n    static const uint8_t pattern[{k}] = {{{}}};\n    size_t i = 0, extra = 0, cur = w->pos;\n    while (i + {k}u <= w->pos) {{\n        if (memcmp(w->p + i, pattern, {k}u) == 0) {{\n            extra++;\n            i += {k}u;\n        }} else {{\n            i++;\n        }}\n    }}\n    if (w->cap - w->pos < extra) return {up}ERR_SHORT_BUFFER;\n    i = 0;\n    while (i + {k}u <= cur) {{\n        if (memcmp(w->p + i, pattern, {k}u) == 0) {{\n            size_t end = i + {k}u;\n            memmove(w->p + end + 1, w->p + end, cur - end);\n            w->p[end] = {insert:#04x};\n            cur++;\n            i = end + 1;\n        }} else {{\n            i++;\n        }}\n    }}\n    w->pos = cur;\n    return 0;\n}}\n\n",
+        pattern(after),
+        k = after.len()
     );
 }

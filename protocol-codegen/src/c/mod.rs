@@ -34,6 +34,7 @@ mod format;
 mod frame;
 mod names;
 mod payload;
+mod scale;
 mod support;
 mod types;
 
@@ -69,6 +70,7 @@ pub fn generate(p: &Protocol) -> Result<CFiles, Vec<String>> {
     let mut source = String::new();
     source.push_str(&types::source_prelude(p, &n));
     source.push_str(&checks::checks(p, &n));
+    source.push_str(&checks::payload_checks(p, &n));
     source.push_str(&payload::payloads(p, &n));
     source.push_str(&frame::frame(p, &n));
     source.push_str(&engine::engine(p, &n));

@@ -1,7 +1,9 @@
 //! What the C printer supports: [`unsupported`] lists every feature of a spec it refuses, so
 //! that `protocol gen c` fails with a clear message instead of printing wrong code.
 
-use crate::ir::{Algorithm, FieldKind, PacketKind, Prim, Protocol, Role, Transport, ValueType};
+use crate::ir::{Algorithm, FieldKind, PacketKind, Protocol, Role, Transport, ValueType};
+
+use super::types::keyed_format;
 
 /// One line per feature of `p` the C printer does not support yet; empty when it prints the
 /// whole spec.
@@ -19,17 +21,34 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
                 "{at}: a second format carrying the commands in a spec with directions"
             ));
         }
-        if f.stuffing.is_some() {
-            out.push(format!("{at}: byte stuffing"));
+        let keyed = keyed_format(p, fi);
+        if f.stuffing.is_some() && (!keyed || p.directions.iter().any(|d| d.message.is_some())) {
+            out.push(format!(
+                "{at}: byte stuffing in a format without dispatch key or with a direction's message"
+            ));
         }
-        if f.ack.is_some() {
-            out.push(format!("{at}: acknowledgement frames"));
+        if f.ack.is_some() && !keyed {
+            out.push(format!(
+                "{at}: acknowledgement frames in a format without dispatch key"
+            ));
         }
-        if f.bare_len.is_some() {
-            out.push(format!("{at}: bare headers"));
-        }
-        if f.values.iter().any(|v| matches!(v.role, Role::Ack(_))) {
-            out.push(format!("{at}: an acknowledgement flag"));
+        if fi > 0 {
+            if f.stuffing.is_some() {
+                out.push(format!("{at}: byte stuffing in a format after the first"));
+            }
+            if f.ack.is_some() {
+                out.push(format!(
+                    "{at}: acknowledgement frames in a format after the first"
+                ));
+            }
+            if f.bare_len.is_some() {
+                out.push(format!("{at}: bare headers in a format after the first"));
+            }
+            if f.values.iter().any(|v| matches!(v.role, Role::Ack(_))) {
+                out.push(format!(
+                    "{at}: an acknowledgement flag in a format after the first"
+                ));
+            }
         }
         for c in &f.checks {
             if let Some(why) = algorithm_refused(&c.algorithm) {
@@ -62,29 +81,15 @@ fn algorithm_refused(a: &Algorithm) -> Option<&'static str> {
 /// Why the C printer refuses a field kind, if it does.
 fn kind_refused(p: &Protocol, kind: &FieldKind) -> Option<&'static str> {
     match kind {
-        FieldKind::Padding | FieldKind::Group { .. } => None,
-        FieldKind::Value { ty, .. } => match ty {
-            ValueType::Scalar { scale: Some(_), .. } => Some("scaled values"),
-            ValueType::Scalar { .. } | ValueType::Struct(_) | ValueType::Text(_) => None,
-            ValueType::Enum(ei, scalar) => {
-                (p.enums[*ei].prim != scalar.prim).then_some("an enum read as another integer type")
-            }
-        },
-        FieldKind::Bytes { size_from, .. } => size_from
-            .is_some()
-            .then_some("bytes sized by another field"),
-        FieldKind::Packed { scale, .. } => scale.is_some().then_some("scaled values"),
+        FieldKind::Value {
+            ty: ValueType::Enum(ei, scalar),
+            ..
+        }
+        | FieldKind::Array {
+            ty: ValueType::Enum(ei, scalar),
+            ..
+        } => (p.enums[*ei].prim != scalar.prim).then_some("an enum read as another integer type"),
         FieldKind::Optional(inner) => kind_refused(p, inner),
-        FieldKind::NulText { .. } => Some("NUL-terminated text (`cstr`)"),
-        FieldKind::Array { .. } => Some("variable-length arrays of primitives"),
-        FieldKind::Check(_) => Some("a check inside the payload"),
-        FieldKind::Bits { members, .. } => members
-            .iter()
-            .any(|m| {
-                m.enum_index.is_some_and(|ei| {
-                    !p.enums[ei].prim.is_unsigned() && p.enums[ei].prim != Prim::Bool
-                })
-            })
-            .then_some("a signed enum in a bit member"),
+        _ => None,
     }
 }

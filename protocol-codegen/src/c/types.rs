@@ -31,12 +31,17 @@ pub fn header(p: &Protocol, n: &Names) -> String {
         out,
         "\n/* ---- Results: a negative int is one of these ---- */\n\n\
 /** The caller's buffer is too short for the frame. */\n#define {up}ERR_SHORT_BUFFER (-1)\n\
-/** A value does not fit its field (a bit member, a 24-bit integer, bytes beyond their\n *  maximum, an enum value without variant when the enum rejects them). */\n#define {up}ERR_OUT_OF_RANGE (-2)\n\
+/** A value does not fit its field (a bit member, a 24-bit integer, a scaled value whose raw\n *  integer does not fit its type, bytes or elements beyond their maximum or other than the\n *  length their size field states, text longer than its maximum or holding a NUL, an enum\n *  value without variant when the enum rejects them). */\n#define {up}ERR_OUT_OF_RANGE (-2)\n\
 /** The payload's size is not its command's. */\n#define {up}ERR_PAYLOAD_LENGTH (-3)\n\
 /** No command has the frame's dispatch key. */\n#define {up}ERR_UNKNOWN_COMMAND (-4)\n\
 /** The header matches no direction. */\n#define {up}ERR_UNKNOWN_DIRECTION (-5)\n\
 /** A field holds a value without variant of an enum that rejects them. */\n#define {up}ERR_INVALID_ENUM (-6)\n\
-/** The bytes are not exactly one valid frame (header, length, checks, trailers). */\n#define {up}ERR_FRAME (-7)\n\n"
+/** The bytes are not exactly one valid frame (header, length, checks, trailers). */\n#define {up}ERR_FRAME (-7)\n\
+/** Sized bytes or an array whose stated length exceeds its maximum. */\n#define {up}ERR_SIZE_MISMATCH (-8)\n\
+/** NUL-terminated text without its NUL within its maximum. */\n#define {up}ERR_UNTERMINATED (-9)\n\
+/** A check inside the payload does not match its covered fields. */\n#define {up}ERR_PAYLOAD_CHECK (-10)\n\
+/** A scaled value outside its clamp range (it would not encode back to its bytes). */\n#define {up}ERR_OUTSIDE_CLAMP (-11)\n\
+/** A stuffed payload without the inserted byte after a run of the pattern. */\n#define {up}ERR_INVALID_STUFFING (-12)\n\n"
     );
     if !p.constants.is_empty() || !p.addresses.is_empty() {
         out.push_str("/* ---- Constants and addresses of the spec ---- */\n\n");
@@ -204,6 +209,13 @@ fn sizes(p: &Protocol, x: &Fx, out: &mut String) {
     if let Some(t) = &f.flag_trailer {
         let _ = writeln!(out, "#define {up}{}_LEN {}u", t.name.to_uppercase(), t.len);
     }
+    if let Some((_, ack_header_len)) = f.ack {
+        let _ = writeln!(
+            out,
+            "/** An acknowledgement's header, before its data. */\n#define {up}ACK_HEADER_LEN {ack_header_len}u\n/** The most data of an acknowledgement. */\n#define {up}ACK_MAX_LEN {}u",
+            f.max_len() - ack_header_len - f.trailer_len
+        );
+    }
     if let Transport::Can { extended } = f.transport {
         let _ = writeln!(
             out,
@@ -281,6 +293,13 @@ fn packet(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     if keyed_format(p, x.fi) {
         let _ = writeln!(out, "    {}command command;", n.lo);
     }
+    if f.ack.is_some() {
+        let _ = writeln!(
+            out,
+            "    /** An acknowledgement: no command (`{}COMMAND_COUNT`), its data in `payload.ack_data`. */\n    bool ack;",
+            n.up
+        );
+    }
     if !p.directions.is_empty() && carries(p, x.fi) == Carries::Commands {
         let _ = writeln!(out, "    {}direction direction;", n.lo);
     }
@@ -297,6 +316,13 @@ fn packet(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         if let Some(si) = slot.si {
             let _ = writeln!(out, "        {} {};", n.ty(&p.structs[si].name), slot.name);
         }
+    }
+    if f.ack.is_some() {
+        let up = &x.up;
+        let _ = writeln!(
+            out,
+            "        /** The data of an acknowledgement. */\n        struct {{\n            size_t len;\n            uint8_t bytes[{up}ACK_MAX_LEN > 0 ? {up}ACK_MAX_LEN : 1];\n        }} ack_data;"
+        );
     }
     let _ = writeln!(out, "    }} payload;\n}} {lo}packet;\n");
 }
@@ -505,6 +531,12 @@ fn functions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             out,
             "int {lo}encode_{}(const {lo}header *header, {payload}uint8_t *buf, size_t cap);",
             slot.name
+        );
+    }
+    if f.ack.is_some() {
+        let _ = writeln!(
+            out,
+            "/** An acknowledgement of `len` bytes of data (with none, the bare header where the format has one). */\nint {lo}encode_ack(const {lo}header *header, const uint8_t *data, size_t len, uint8_t *buf, size_t cap);"
         );
     }
     let _ = writeln!(
