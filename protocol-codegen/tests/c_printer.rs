@@ -103,3 +103,111 @@ fn unsupported_features_are_refused_not_printed() {
     );
     assert_eq!(refused, protocol_codegen::c::unsupported(&p));
 }
+
+/// Byte stuffing in a format after the first, which carries one struct: the C printer prints
+/// stuffing in the first format only, and only around a command's payload.
+const STUFFED_SECOND: &str = r#"
+[protocol]
+name = "twostuff"
+doc = "A plain command format, and a stuffed format of one message."
+
+[frames.plain]
+layout = [
+  { sync = [0xAA] },
+  { field = "command", type = "u8" },
+  { payload = { min = 1, max = 1 } },
+  { check = "sum8", over = "frame" },
+]
+dispatch = ["command"]
+
+[frames.stuffed]
+layout = [
+  { sync = [0xFF, 0xFD] },
+  { field = "length", type = "u8", length_of = "payload" },
+  { payload = { max = 16 } },
+  { check = "sum8", over = "frame" },
+]
+message = "Reading"
+stuffing = { after = [0xFF], insert = 0x00 }
+
+[structs.Reading]
+fields = [{ name = "value", type = "u8" }]
+
+[structs.Level]
+fields = [{ name = "value", type = "u8" }]
+
+[commands]
+SET = { id = 1, payload = "Level" }
+"#;
+
+#[test]
+fn stuffing_outside_the_first_format_is_refused_not_printed() {
+    let source = SpecSource::new("twostuff.toml", STUFFED_SECOND);
+    let p = protocol_codegen::compile(&source)
+        .unwrap_or_else(|d| panic!("{}", render_all(&d, &source)));
+    let refused = protocol_codegen::c::generate(&p).expect_err("stuffing in a second format");
+    assert_eq!(
+        refused,
+        vec![
+            "frame `stuffed`: byte stuffing in a format without dispatch key or with a direction's message"
+                .to_string(),
+            "frame `stuffed`: byte stuffing in a format after the first".to_string(),
+        ]
+    );
+}
+
+/// Struct names that are names of the generated code: `Step` (a helper of the stream
+/// decoder), `ReadAll` (the family of struct readers) and `AuxPacket` (the packet type of
+/// format `aux`).
+const CLASHING_NAMES: &str = r#"
+[protocol]
+name = "clash"
+doc = "Struct names the generated code takes for itself."
+
+[frames.main]
+layout = [
+  { sync = [0xAA] },
+  { field = "command", type = "u8" },
+  { payload = { min = 1, max = 1 } },
+  { check = "sum8", over = "frame" },
+]
+dispatch = ["command"]
+
+[frames.aux]
+layout = [
+  { sync = [0x55] },
+  { payload = { min = 1, max = 1 } },
+  { check = "sum8", over = "frame" },
+]
+message = "AuxPacket"
+
+[structs.AuxPacket]
+fields = [{ name = "value", type = "u8" }]
+
+[structs.Step]
+fields = [{ name = "value", type = "u8" }]
+
+[structs.ReadAll]
+fields = [{ name = "first", type = "u8" }]
+
+[commands]
+STEP = { id = 1, payload = "Step" }
+READ_ALL = { id = 2, payload = "ReadAll" }
+"#;
+
+#[test]
+fn a_struct_named_like_the_generated_code_gets_t() {
+    let source = SpecSource::new("clash.toml", CLASHING_NAMES);
+    let p = protocol_codegen::compile(&source)
+        .unwrap_or_else(|d| panic!("{}", render_all(&d, &source)));
+    let files = protocol_codegen::c::generate(&p).expect("clash prints in C");
+    for item in [
+        "} clash_step_t;",
+        "} clash_read_all_t;",
+        "} clash_aux_packet_t;",
+        // The format's own packet keeps its name.
+        "} clash_aux_packet;",
+    ] {
+        assert!(files.header.contains(item), "{item} in\n{}", files.header);
+    }
+}
