@@ -78,7 +78,7 @@ HFLINK_UNUSED static uint64_t hflink_f64_bits(double f)
     return b;
 }
 
-HFLINK_UNUSED static int hflink_read(struct hflink_rd *r, unsigned n, int big, uint64_t *out)
+HFLINK_UNUSED static int hflink_take_uint(struct hflink_rd *r, unsigned n, int big, uint64_t *out)
 {
     if (r->len - r->pos < n) return HFLINK_ERR_PAYLOAD_LENGTH;
     *out = hflink_get(r->p + r->pos, n, big);
@@ -93,7 +93,7 @@ HFLINK_UNUSED static int hflink_skip(struct hflink_rd *r, size_t n)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_write(struct hflink_wr *w, unsigned n, int big, uint64_t v)
+HFLINK_UNUSED static int hflink_put_uint(struct hflink_wr *w, unsigned n, int big, uint64_t v)
 {
     if (w->cap - w->pos < n) return HFLINK_ERR_SHORT_BUFFER;
     hflink_set(w->p + w->pos, n, big, v);
@@ -202,11 +202,11 @@ static int hflink_read_chassis_coord(struct hflink_rd *r, hflink_chassis_coord *
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->x = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->y = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->z = hflink_f32(raw);
     (void)raw;
     (void)word;
@@ -218,9 +218,9 @@ static int hflink_write_chassis_coord(struct hflink_wr *w, const hflink_chassis_
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->x))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->y))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->z))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->x))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->y))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->z))) != 0) return e;
     (void)raw;
     (void)word;
     return e;
@@ -231,13 +231,13 @@ static int hflink_read_chassis_dof_vector(struct hflink_rd *r, hflink_chassis_do
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->servo1 = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->servo2 = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->servo3 = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->servo4 = hflink_f32(raw);
     (void)raw;
     (void)word;
@@ -249,10 +249,10 @@ static int hflink_write_chassis_dof_vector(struct hflink_wr *w, const hflink_cha
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->servo1))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->servo2))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->servo3))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->servo4))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->servo1))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->servo2))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->servo3))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->servo4))) != 0) return e;
     (void)raw;
     (void)word;
     return e;
@@ -263,11 +263,11 @@ static int hflink_read_head_pose(struct hflink_rd *r, hflink_head_pose *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->pitch = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->roll = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->yaw = hflink_f32(raw);
     (void)raw;
     (void)word;
@@ -279,9 +279,9 @@ static int hflink_write_head_pose(struct hflink_wr *w, const hflink_head_pose *v
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->pitch))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->roll))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->yaw))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->pitch))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->roll))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->yaw))) != 0) return e;
     (void)raw;
     (void)word;
     return e;
@@ -294,7 +294,7 @@ static int hflink_read_arm_dof_vector(struct hflink_rd *r, hflink_arm_dof_vector
     uint64_t raw = 0, word = 0;
     size_t i;
     for (i = 0; i < 8u; i++) {
-        if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+        if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
         out->servo[i] = hflink_f32(raw);
     }
     (void)raw;
@@ -309,7 +309,7 @@ static int hflink_write_arm_dof_vector(struct hflink_wr *w, const hflink_arm_dof
     uint64_t raw = 0, word = 0;
     size_t i;
     for (i = 0; i < 8u; i++) {
-        if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->servo[i]))) != 0) return e;
+        if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->servo[i]))) != 0) return e;
     }
     (void)raw;
     (void)word;
@@ -321,15 +321,15 @@ static int hflink_read_system_info(struct hflink_rd *r, hflink_system_info *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->system_time = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->cpu_temperature = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->cpu_usage = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->battery_voltage = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->power_remain = hflink_f32(raw);
     (void)raw;
     (void)word;
@@ -341,11 +341,11 @@ static int hflink_write_system_info(struct hflink_wr *w, const hflink_system_inf
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->system_time))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->cpu_temperature))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->cpu_usage))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->battery_voltage))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->power_remain))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->system_time))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->cpu_temperature))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->cpu_usage))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->battery_voltage))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->power_remain))) != 0) return e;
     (void)raw;
     (void)word;
     return e;
@@ -356,15 +356,15 @@ static int hflink_read_imu_sensor_data(struct hflink_rd *r, hflink_imu_sensor_da
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->pitch = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->roll = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->yaw = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->bar_altitude = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->magnetic_angle = hflink_f32(raw);
     (void)raw;
     (void)word;
@@ -376,11 +376,11 @@ static int hflink_write_imu_sensor_data(struct hflink_wr *w, const hflink_imu_se
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->pitch))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->roll))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->yaw))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->bar_altitude))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->magnetic_angle))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->pitch))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->roll))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->yaw))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->bar_altitude))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->magnetic_angle))) != 0) return e;
     (void)raw;
     (void)word;
     return e;
@@ -391,17 +391,17 @@ static int hflink_read_utc_time(struct hflink_rd *r, hflink_utc_time *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_read(r, 2u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 2u, 0, &raw)) != 0) return e;
     out->year = (uint16_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->month = (uint8_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->date = (uint8_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->hour = (uint8_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->min = (uint8_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->sec = (uint8_t)raw;
     if ((e = hflink_skip(r, 1u)) != 0) return e;
     (void)raw;
@@ -414,12 +414,12 @@ static int hflink_write_utc_time(struct hflink_wr *w, const hflink_utc_time *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_write(w, 2u, 0, (uint64_t)v->year)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->month)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->date)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->hour)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->min)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->sec)) != 0) return e;
+    if ((e = hflink_put_uint(w, 2u, 0, (uint64_t)v->year)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->month)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->date)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->hour)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->min)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->sec)) != 0) return e;
     if ((e = hflink_zero(w, 1u)) != 0) return e;
     (void)raw;
     (void)word;
@@ -432,21 +432,21 @@ static int hflink_read_gps_data(struct hflink_rd *r, hflink_gps_data *out)
     int e = 0;
     uint64_t raw = 0, word = 0;
     if ((e = hflink_read_utc_time(r, &out->utc_time)) != 0) return e;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->satellite_num = (uint8_t)raw;
     if ((e = hflink_skip(r, 3u)) != 0) return e;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->altitude = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->ground_speed = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->latitude = (uint32_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->nshemi = (uint8_t)raw;
     if ((e = hflink_skip(r, 3u)) != 0) return e;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->longitude = (uint32_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->ewhemi = (uint8_t)raw;
     if ((e = hflink_skip(r, 3u)) != 0) return e;
     (void)raw;
@@ -460,15 +460,15 @@ static int hflink_write_gps_data(struct hflink_wr *w, const hflink_gps_data *v)
     int e = 0;
     uint64_t raw = 0, word = 0;
     if ((e = hflink_write_utc_time(w, &v->utc_time)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->satellite_num)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->satellite_num)) != 0) return e;
     if ((e = hflink_zero(w, 3u)) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->altitude))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->ground_speed))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, (uint64_t)v->latitude)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->nshemi)) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->altitude))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->ground_speed))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, (uint64_t)v->latitude)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->nshemi)) != 0) return e;
     if ((e = hflink_zero(w, 3u)) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, (uint64_t)v->longitude)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->ewhemi)) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, (uint64_t)v->longitude)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->ewhemi)) != 0) return e;
     if ((e = hflink_zero(w, 3u)) != 0) return e;
     (void)raw;
     (void)word;
@@ -480,23 +480,23 @@ static int hflink_read_chassis_parameters(struct hflink_rd *r, hflink_chassis_pa
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->type = (uint32_t)raw;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->wheel_radius = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->body_radius = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->speed_low_filter = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->motor_pid_t = hflink_f32(raw);
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->dof = (uint8_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->simulation_model = (uint8_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->imu_fusion_enalbe = (uint8_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->control_enable = (uint8_t)raw;
     (void)raw;
     (void)word;
@@ -508,15 +508,15 @@ static int hflink_write_chassis_parameters(struct hflink_wr *w, const hflink_cha
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_write(w, 4u, 0, (uint64_t)v->type)) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->wheel_radius))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->body_radius))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->speed_low_filter))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->motor_pid_t))) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->dof)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->simulation_model)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->imu_fusion_enalbe)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->control_enable)) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, (uint64_t)v->type)) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->wheel_radius))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->body_radius))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->speed_low_filter))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->motor_pid_t))) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->dof)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->simulation_model)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->imu_fusion_enalbe)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->control_enable)) != 0) return e;
     (void)raw;
     (void)word;
     return e;
@@ -527,16 +527,16 @@ static int hflink_read_head_parameters(struct hflink_rd *r, hflink_head_paramete
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->type = (uint32_t)raw;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->speed_low_filter = hflink_f32(raw);
     if ((e = hflink_read_head_pose(r, &out->range)) != 0) return e;
     if ((e = hflink_read_head_pose(r, &out->offset)) != 0) return e;
     if ((e = hflink_read_head_pose(r, &out->id)) != 0) return e;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->imu_fusion_enalbe = (uint8_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->control_enable = (uint8_t)raw;
     if ((e = hflink_skip(r, 2u)) != 0) return e;
     (void)raw;
@@ -549,13 +549,13 @@ static int hflink_write_head_parameters(struct hflink_wr *w, const hflink_head_p
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_write(w, 4u, 0, (uint64_t)v->type)) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->speed_low_filter))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, (uint64_t)v->type)) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->speed_low_filter))) != 0) return e;
     if ((e = hflink_write_head_pose(w, &v->range)) != 0) return e;
     if ((e = hflink_write_head_pose(w, &v->offset)) != 0) return e;
     if ((e = hflink_write_head_pose(w, &v->id)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->imu_fusion_enalbe)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->control_enable)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->imu_fusion_enalbe)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->control_enable)) != 0) return e;
     if ((e = hflink_zero(w, 2u)) != 0) return e;
     (void)raw;
     (void)word;
@@ -567,15 +567,15 @@ static int hflink_read_arm_parameters(struct hflink_rd *r, hflink_arm_parameters
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->type = (uint32_t)raw;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->speed_low_filter = hflink_f32(raw);
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->dof = (uint8_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->imu_fusion_enalbe = (uint8_t)raw;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->control_enable = (uint8_t)raw;
     if ((e = hflink_skip(r, 1u)) != 0) return e;
     (void)raw;
@@ -588,11 +588,11 @@ static int hflink_write_arm_parameters(struct hflink_wr *w, const hflink_arm_par
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_write(w, 4u, 0, (uint64_t)v->type)) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->speed_low_filter))) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->dof)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->imu_fusion_enalbe)) != 0) return e;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->control_enable)) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, (uint64_t)v->type)) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->speed_low_filter))) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->dof)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->imu_fusion_enalbe)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->control_enable)) != 0) return e;
     if ((e = hflink_zero(w, 1u)) != 0) return e;
     (void)raw;
     (void)word;
@@ -604,17 +604,17 @@ static int hflink_read_pid_parameters(struct hflink_rd *r, hflink_pid_parameters
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->p1 = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->i1 = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->d1 = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->p2 = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->i2 = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->d2 = hflink_f32(raw);
     (void)raw;
     (void)word;
@@ -626,12 +626,12 @@ static int hflink_write_pid_parameters(struct hflink_wr *w, const hflink_pid_par
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->p1))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->i1))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->d1))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->p2))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->i2))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->d2))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->p1))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->i1))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->d1))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->p2))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->i2))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->d2))) != 0) return e;
     (void)raw;
     (void)word;
     return e;
@@ -642,18 +642,18 @@ static int hflink_read_motor_parameters(struct hflink_rd *r, hflink_motor_parame
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_read(r, 1u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 1u, 0, &raw)) != 0) return e;
     out->motor_id = (uint8_t)raw;
     if ((e = hflink_skip(r, 3u)) != 0) return e;
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->encoder_num = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->pwm_max = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->pwm_dead_zone = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->speed_low_filter = hflink_f32(raw);
-    if ((e = hflink_read(r, 4u, 0, &raw)) != 0) return e;
+    if ((e = hflink_take_uint(r, 4u, 0, &raw)) != 0) return e;
     out->protect_current = hflink_f32(raw);
     if ((e = hflink_read_pid_parameters(r, &out->pid)) != 0) return e;
     (void)raw;
@@ -666,13 +666,13 @@ static int hflink_write_motor_parameters(struct hflink_wr *w, const hflink_motor
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
-    if ((e = hflink_write(w, 1u, 0, (uint64_t)v->motor_id)) != 0) return e;
+    if ((e = hflink_put_uint(w, 1u, 0, (uint64_t)v->motor_id)) != 0) return e;
     if ((e = hflink_zero(w, 3u)) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->encoder_num))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->pwm_max))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->pwm_dead_zone))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->speed_low_filter))) != 0) return e;
-    if ((e = hflink_write(w, 4u, 0, hflink_f32_bits(v->protect_current))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->encoder_num))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->pwm_max))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->pwm_dead_zone))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->speed_low_filter))) != 0) return e;
+    if ((e = hflink_put_uint(w, 4u, 0, hflink_f32_bits(v->protect_current))) != 0) return e;
     if ((e = hflink_write_pid_parameters(w, &v->pid)) != 0) return e;
     (void)raw;
     (void)word;
@@ -684,23 +684,6 @@ static int hflink_write_motor_parameters(struct hflink_wr *w, const hflink_motor
 /* What a probe found: a frame, or the need of more bytes (else a rejection's reason). */
 #define HFLINK_PROBE_FRAME 0
 #define HFLINK_PROBE_NEED (-1)
-
-#define HFLINK_SYNC_LEN 2u
-
-/* Whether `b[0..avail]` matches the sync as far as it goes. */
-static int hflink_sync_matches(const uint8_t *b, size_t avail)
-{
-    {
-        static const uint8_t rest[2] = {0xff, 0xff};
-        size_t i;
-        for (i = 0; i < 2u && 0 + i < avail; i++) {
-            if (b[0 + i] != rest[i]) return 0;
-        }
-    }
-    (void)b;
-    (void)avail;
-    return 1;
-}
 
 /* Whether the check stored at `at` is the check of the bytes `from..to` (a check without
  * value, such as one whose per-command byte names no command, matches nothing). */
@@ -718,6 +701,25 @@ HFLINK_UNUSED static int hflink_store(uint8_t *f, size_t len, size_t from, size_
     if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;
     if (!check(f + from, to - from, &value)) return 0;
     hflink_set(f + at, width, big, value);
+    return 1;
+}
+
+/* -- Frame format `link` -- */
+
+#define HFLINK_SYNC_LEN 2u
+
+/* Whether `b[0..avail]` matches the sync as far as it goes. */
+HFLINK_UNUSED static int hflink_sync_matches(const uint8_t *b, size_t avail)
+{
+    {
+        static const uint8_t rest[2] = {0xff, 0xff};
+        size_t i;
+        for (i = 0; i < 2u && 0 + i < avail; i++) {
+            if (b[0 + i] != rest[i]) return 0;
+        }
+    }
+    (void)b;
+    (void)avail;
     return 1;
 }
 
@@ -741,7 +743,8 @@ static int hflink_probe_synced(const uint8_t *b, size_t avail, size_t limit, siz
         *n = span;
         return HFLINK_PROBE_NEED;
     }
-    if (!hflink_field(b, span, 0, 4u, 2u, 1, 0u, 16u, &raw) || raw > (uint64_t)INT64_MAX) return HFLINK_REJECT_BAD_LENGTH;
+    if (!hflink_field(b, span, 0, 4u, 2u, 1, 0u, 16u, &raw)) return HFLINK_REJECT_BAD_LENGTH;
+    if (raw > (uint64_t)INT64_MAX) return HFLINK_REJECT_BAD_LENGTH;
     if (raw > (uint64_t)INT64_MAX - 7u) return HFLINK_REJECT_BAD_LENGTH;
     raw += 7u;
     if (raw > (uint64_t)SIZE_MAX) return HFLINK_REJECT_BAD_LENGTH;
@@ -766,17 +769,19 @@ static int hflink_probe(const uint8_t *b, size_t avail, size_t limit, size_t *n)
 
 int hflink_decode(const uint8_t *bytes, size_t len, hflink_packet *out)
 {
-    size_t n = 0;
+    size_t n = 0, start = HFLINK_HEADER_LEN, end;
     uint64_t raw = 0;
     struct hflink_rd r;
     int e = 0;
     if (hflink_probe(bytes, len, HFLINK_MAX_FRAME_LEN, &n) != HFLINK_PROBE_FRAME || n != len) return HFLINK_ERR_FRAME;
     memset(out, 0, sizeof *out);
     (void)raw;
+    end = len - HFLINK_TRAILER_LEN;
     if (!hflink_field(bytes, len, 0, 2u, 1u, 0, 0u, 8u, &raw)) return HFLINK_ERR_FRAME;
     out->header.sender = (uint8_t)raw;
     if (!hflink_field(bytes, len, 0, 3u, 1u, 0, 0u, 8u, &raw)) return HFLINK_ERR_FRAME;
     out->header.receiver = (uint8_t)raw;
+    if (end < start) return HFLINK_ERR_FRAME;
     {
         uint64_t key[1];
         if (!hflink_field(bytes, len, 0, 6u, 1u, 0, 0u, 8u, &raw)) return HFLINK_ERR_FRAME;
@@ -813,8 +818,8 @@ int hflink_decode(const uint8_t *bytes, size_t len, hflink_packet *out)
     if (hflink_field(bytes, len, 0, 2u, 1u, 0, 0u, 8u, &raw) && (raw & UINT64_C(0xff)) >= UINT64_C(0x1) && (raw & UINT64_C(0xff)) <= UINT64_C(0x10)) out->direction = HFLINK_REQUEST;
     else if (hflink_field(bytes, len, 0, 2u, 1u, 0, 0u, 8u, &raw) && (raw & UINT64_C(0xff)) >= UINT64_C(0x11) && (raw & UINT64_C(0xff)) <= UINT64_C(0x40)) out->direction = HFLINK_RESPONSE;
     else return HFLINK_ERR_UNKNOWN_DIRECTION;
-    r.p = bytes + HFLINK_HEADER_LEN;
-    r.len = len - HFLINK_HEADER_LEN - HFLINK_TRAILER_LEN;
+    r.p = bytes + start;
+    r.len = end - start;
     r.pos = 0;
     if (out->command == HFLINK_SHAKING_HANDS && out->direction == HFLINK_REQUEST) e = hflink_read_chassis_coord(&r, &out->payload.shaking_hands_request);
     if (out->command == HFLINK_READ_SYSTEM_INFO && out->direction == HFLINK_RESPONSE) e = hflink_read_system_info(&r, &out->payload.read_system_info_response);
@@ -844,7 +849,7 @@ int hflink_decode(const uint8_t *bytes, size_t len, hflink_packet *out)
     return 0;
 }
 
-/* The dispatch key of every command, in command order. */
+/* The dispatch key of every command, in command order (as the format's fields hold it). */
 static const uint8_t hflink_ids[27][1] = {
     {0x0u},
     {0x1u},
@@ -878,10 +883,13 @@ static const uint8_t hflink_ids[27][1] = {
 /* The frame around a payload of `payload_len` bytes already written after the header. */
 static int hflink_seal(uint8_t *buf, size_t payload_len, const hflink_header *h, size_t command)
 {
-    size_t total = HFLINK_HEADER_LEN + payload_len + HFLINK_TRAILER_LEN;
+    const size_t start = HFLINK_HEADER_LEN, ext = 0;
+    size_t body, total;
     if (payload_len > HFLINK_MAX_PAYLOAD_LEN) return HFLINK_ERR_OUT_OF_RANGE;
-    memset(buf, 0, HFLINK_HEADER_LEN);
-    memset(buf + HFLINK_HEADER_LEN + payload_len, 0, HFLINK_TRAILER_LEN);
+    body = start + payload_len + HFLINK_TRAILER_LEN;
+    total = body;
+    memset(buf, 0, start + ext);
+    memset(buf + start + ext + payload_len, 0, HFLINK_TRAILER_LEN);
     {
         static const uint8_t rest[2] = {0xff, 0xff};
         memcpy(buf + 0, rest, 2u);
@@ -889,15 +897,15 @@ static int hflink_seal(uint8_t *buf, size_t payload_len, const hflink_header *h,
     (void)h;
     (void)command;
     /* sender */
-    if (!hflink_put_field(buf, total, 0, 2u, 1u, 0, 0u, 8u, (uint64_t)h->sender)) return HFLINK_ERR_OUT_OF_RANGE;
+    if (!hflink_put_field(buf, body, 0, 2u, 1u, 0, 0u, 8u, (uint64_t)h->sender)) return HFLINK_ERR_OUT_OF_RANGE;
     /* receiver */
-    if (!hflink_put_field(buf, total, 0, 3u, 1u, 0, 0u, 8u, (uint64_t)h->receiver)) return HFLINK_ERR_OUT_OF_RANGE;
-    if ((int64_t)total - (7) < 0) return HFLINK_ERR_OUT_OF_RANGE;
+    if (!hflink_put_field(buf, body, 0, 3u, 1u, 0, 0u, 8u, (uint64_t)h->receiver)) return HFLINK_ERR_OUT_OF_RANGE;
+    if ((int64_t)body - (7) < 0) return HFLINK_ERR_OUT_OF_RANGE;
     /* length */
-    if (!hflink_put_field(buf, total, 0, 4u, 2u, 1, 0u, 16u, (uint64_t)((int64_t)total - (7)))) return HFLINK_ERR_OUT_OF_RANGE;
+    if (!hflink_put_field(buf, body, 0, 4u, 2u, 1, 0u, 16u, (uint64_t)((int64_t)body - (7)))) return HFLINK_ERR_OUT_OF_RANGE;
     /* command */
-    if (!hflink_put_field(buf, total, 0, 6u, 1u, 0, 0u, 8u, (uint64_t)hflink_ids[command][0])) return HFLINK_ERR_OUT_OF_RANGE;
-    if (!hflink_store(buf, total, hflink_pos(total, 0, 0u), hflink_pos(total, 1, 1u), hflink_pos(total, 1, 1u), 1u, 0, hflink_check_checksum)) return HFLINK_ERR_OUT_OF_RANGE;
+    if (command != SIZE_MAX && !hflink_put_field(buf, body, 0, 6u, 1u, 0, 0u, 8u, (uint64_t)hflink_ids[command][0])) return HFLINK_ERR_OUT_OF_RANGE;
+    if (!hflink_store(buf, body, hflink_pos(body, 0, 0u), hflink_pos(body, 1, 1u), hflink_pos(body, 1, 1u), 1u, 0, hflink_check_checksum)) return HFLINK_ERR_OUT_OF_RANGE;
     return (int)total;
 }
 
@@ -1646,13 +1654,48 @@ const char *hflink_reject_name(hflink_reject reason)
     }
 }
 
+HFLINK_UNUSED static void hflink_count_reject(hflink_stats *s, int reason)
+{
+    s->skipped_bytes++;
+    switch (reason) {
+    case HFLINK_REJECT_BAD_HEADER: s->bad_header++; break;
+    case HFLINK_REJECT_BAD_HEADER_CHECK: s->bad_header_check++; break;
+    case HFLINK_REJECT_BAD_LENGTH: s->bad_length++; break;
+    case HFLINK_REJECT_BAD_CHECKSUM: s->bad_checksum++; break;
+    case HFLINK_REJECT_BAD_TRAILER: s->bad_trailer++; break;
+    default: s->truncated++; break;
+    }
+}
+
+/* -- A stream decoder of `link` frames -- */
+
+/* The probe of a candidate whose first bytes match a format's sync: the first format whose
+ * sync they match says which (`*format`). */
+static int hflink_probe_link_synced(const uint8_t *b, size_t avail, size_t limit, size_t *n, int *format)
+{
+    if (hflink_sync_matches(b, avail)) {
+        *format = 0;
+        return hflink_probe_synced(b, avail, limit < HFLINK_MAX_FRAME_LEN ? limit : HFLINK_MAX_FRAME_LEN, n);
+    }
+    *format = 0;
+    return hflink_probe_synced(b, avail, limit < HFLINK_MAX_FRAME_LEN ? limit : HFLINK_MAX_FRAME_LEN, n);
+}
+
+/* The probe of a candidate: a format's sync bytes, then its rules. */
+static int hflink_probe_link(const uint8_t *b, size_t avail, size_t limit, size_t *n)
+{
+    int format = 0;
+    if (!(hflink_sync_matches(b, avail))) return HFLINK_REJECT_BAD_HEADER;
+    return hflink_probe_link_synced(b, avail, limit, n, &format);
+}
+
 void hflink_decoder_init(hflink_decoder *d)
 {
     memset(d, 0, sizeof *d);
 }
 
-/* Where the first candidate of `b[0..len]` starts: the sync bytes, or a prefix of them that
- * runs to the end; `len` when there is none. */
+/* Where the first candidate of `b[0..len]` starts: a format's sync bytes, or a prefix of them
+ * that runs to the end; `len` when there is none. */
 static size_t hflink_find_candidate(const uint8_t *b, size_t len)
 {
     size_t i;
@@ -1668,7 +1711,7 @@ static int hflink_frame_inside(const uint8_t *b, size_t pending)
 {
     size_t k, n = 0;
     for (k = 1; k < pending; k++) {
-        if (hflink_probe(b + k, pending - k, HFLINK_DECODER_BUFFER_LEN, &n) == HFLINK_PROBE_FRAME) return 1;
+        if (hflink_probe_link(b + k, pending - k, HFLINK_DECODER_BUFFER_LEN, &n) == HFLINK_PROBE_FRAME) return 1;
     }
     return 0;
 }
@@ -1693,26 +1736,13 @@ static void hflink_stage(hflink_decoder *d, const uint8_t **input, size_t *len)
     *len -= n;
 }
 
-static void hflink_count_reject(hflink_stats *s, int reason)
-{
-    s->skipped_bytes++;
-    switch (reason) {
-    case HFLINK_REJECT_BAD_HEADER: s->bad_header++; break;
-    case HFLINK_REJECT_BAD_HEADER_CHECK: s->bad_header_check++; break;
-    case HFLINK_REJECT_BAD_LENGTH: s->bad_length++; break;
-    case HFLINK_REJECT_BAD_CHECKSUM: s->bad_checksum++; break;
-    case HFLINK_REJECT_BAD_TRAILER: s->bad_trailer++; break;
-    default: s->truncated++; break;
-    }
-}
-
 /* One event's worth of work. */
 static int hflink_step(hflink_decoder *d, const uint8_t **input, size_t *len, int at_end, hflink_event *ev)
 {
     for (;;) {
         size_t pending, skip, n = 0;
         uint64_t offset;
-        int r;
+        int r, format = 0;
         if (d->start >= d->end) {
             d->start = 0;
             d->end = 0;
@@ -1726,14 +1756,16 @@ static int hflink_step(hflink_decoder *d, const uint8_t **input, size_t *len, in
             d->start += skip;
             d->stats.skipped_bytes += skip;
             ev->kind = HFLINK_EVENT_SKIPPED;
+            ev->format = 0;
             ev->offset = offset;
             ev->len = skip;
             ev->bytes = NULL;
             return 1;
         }
-        r = hflink_probe_synced(d->buf + d->start, pending, HFLINK_DECODER_BUFFER_LEN, &n);
+        r = hflink_probe_link_synced(d->buf + d->start, pending, HFLINK_DECODER_BUFFER_LEN, &n, &format);
         if (r == HFLINK_PROBE_FRAME) {
             ev->kind = HFLINK_EVENT_FRAME;
+            ev->format = format;
             ev->offset = offset;
             ev->len = n;
             ev->bytes = d->buf + d->start;
@@ -1750,6 +1782,7 @@ static int hflink_step(hflink_decoder *d, const uint8_t **input, size_t *len, in
         d->start += 1;
         hflink_count_reject(&d->stats, r);
         ev->kind = HFLINK_EVENT_REJECTED;
+        ev->format = 0;
         ev->offset = offset;
         ev->len = 1;
         ev->bytes = NULL;
@@ -1987,7 +2020,7 @@ int hflink_format(const hflink_packet *packet, char *out, size_t cap)
     text.len = 0;
     if (cap > 0) out[0] = 0;
 
-    hflink_emit(t, "cmd=%s", hflink_command_name(packet->command));
+    hflink_emit(t, "cmd=%s", hflink_command_name(packet->command) ? hflink_command_name(packet->command) : "?");
     hflink_emit(t, " dir=%s", hflink_direction_name(packet->direction));
     hflink_emit(t, " header.sender=%llu", (unsigned long long)packet->header.sender);
     hflink_emit(t, " header.receiver=%llu", (unsigned long long)packet->header.receiver);
@@ -2016,4 +2049,5 @@ int hflink_format(const hflink_packet *packet, char *out, size_t cap)
     if (packet->command == HFLINK_READ_GPS_DATA && packet->direction == HFLINK_RESPONSE) hflink_fmt_gps_data(t, "payload", &packet->payload.read_gps_data_response);
     return (int)text.len;
 }
+
 #endif /* HFLINK_WITH_FORMAT */

@@ -13,6 +13,7 @@ extern "C" {
 
 /* ---- Sizes ---- */
 
+/* Frame format `link`. */
 #define HFLINK_MAX_FRAME_LEN 127u
 #define HFLINK_MIN_FRAME_LEN 8u
 #define HFLINK_HEADER_LEN 7u
@@ -25,8 +26,10 @@ extern "C" {
 
 /** The caller's buffer is too short for the frame. */
 #define HFLINK_ERR_SHORT_BUFFER (-1)
-/** A value does not fit its field (a bit member, a 24-bit integer, bytes beyond their
- *  maximum, an enum value without variant when the enum rejects them). */
+/** A value does not fit its field (a bit member, a 24-bit integer, a scaled value whose raw
+ *  integer does not fit its type, bytes or elements beyond their maximum or other than the
+ *  length their size field states, text longer than its maximum or holding a NUL, an enum
+ *  value without variant when the enum rejects them). */
 #define HFLINK_ERR_OUT_OF_RANGE (-2)
 /** The payload's size is not its command's. */
 #define HFLINK_ERR_PAYLOAD_LENGTH (-3)
@@ -38,6 +41,16 @@ extern "C" {
 #define HFLINK_ERR_INVALID_ENUM (-6)
 /** The bytes are not exactly one valid frame (header, length, checks, trailers). */
 #define HFLINK_ERR_FRAME (-7)
+/** Sized bytes or an array whose stated length exceeds its maximum. */
+#define HFLINK_ERR_SIZE_MISMATCH (-8)
+/** NUL-terminated text without its NUL within its maximum. */
+#define HFLINK_ERR_UNTERMINATED (-9)
+/** A check inside the payload does not match its covered fields. */
+#define HFLINK_ERR_PAYLOAD_CHECK (-10)
+/** A scaled value outside its clamp range (it would not encode back to its bytes). */
+#define HFLINK_ERR_OUTSIDE_CLAMP (-11)
+/** A stuffed payload without the inserted byte after a run of the pattern. */
+#define HFLINK_ERR_INVALID_STUFFING (-12)
 
 /* ---- Constants and addresses of the spec ---- */
 
@@ -205,7 +218,7 @@ typedef enum hflink_command {
     HFLINK_COMMAND_COUNT
 } hflink_command;
 
-/** The spec name of a command, NULL for no command. */
+/** The spec name of a command, NULL for no command (`COMMAND_COUNT`: a frame without one). */
 const char *hflink_command_name(hflink_command command);
 
 /** The directions, which select a command's payload. */
@@ -218,13 +231,13 @@ typedef enum hflink_direction {
 /** The spec name of a direction. */
 const char *hflink_direction_name(hflink_direction direction);
 
-/** The header values a sender sets. */
+/** The header values a sender sets in a `link` frame. */
 typedef struct hflink_header {
     uint8_t sender; /**< Address of the node that sends the frame. */
     uint8_t receiver; /**< Address of the node the frame is for. */
 } hflink_header;
 
-/** A whole frame: header, command and the command's payload. */
+/** A whole `link` frame: header, command and the command's payload. */
 typedef struct hflink_packet {
     hflink_header header;
     hflink_command command;
@@ -288,13 +301,14 @@ typedef enum hflink_event_kind {
 
 typedef struct hflink_event {
     hflink_event_kind kind;
+    int format;          /**< A frame's format (its index in the spec's frame formats). */
     uint64_t offset;     /**< Stream offset of the first byte. */
     size_t len;
     const uint8_t *bytes;
     hflink_reject reason;
 } hflink_event;
 
-/** A stream decoder: a fixed buffer of the largest frame, no heap. */
+/** A stream decoder of `link` frames: a fixed buffer of the largest frame, no heap. */
 typedef struct hflink_decoder {
     size_t start, end;   /**< The pending bytes are buf[start..end]. */
     uint64_t position;   /**< Bytes taken from all inputs. */
@@ -313,9 +327,9 @@ int hflink_decoder_next(hflink_decoder *d, const uint8_t **input, size_t *len, h
  *  candidate is rejected as truncated). Call until it returns 0. */
 int hflink_decoder_flush(hflink_decoder *d, hflink_event *event);
 
-/* ---- Frames ---- */
+/* ---- Frames of format `link` ---- */
 
-/** Decodes `len` bytes that are exactly one frame into `out`: 0, or a negative HFLINK_ERR_. */
+/** Decodes `len` bytes that are exactly one `link` frame into `out`: 0, or a negative HFLINK_ERR_. */
 int hflink_decode(const uint8_t *bytes, size_t len, hflink_packet *out);
 
 /** Encodes a packet into `buf`: the frame's length, or a negative HFLINK_ERR_. */

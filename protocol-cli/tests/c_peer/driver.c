@@ -1,13 +1,20 @@
 /* The C side of the conformance test (`tests/c_peer.rs`): reads commands on stdin, one per
  * line, and prints one line per result, in the text the Rust side prints for the same input.
  *
- *   P HEX          decode the frame HEX; print `ok TEXT` or `err NAME`, then the frame the
- *                  packet encodes to (`enc HEX`, or `enc err`)
- *   S CHUNK HEX    feed HEX to a stream decoder in chunks of CHUNK bytes, then flush; print
- *                  every event and the counters
+ *   P FI HEX           decode HEX as a frame of format FI; print `ok TEXT` or `err NAME`,
+ *                      then the frame the packet encodes to (`enc HEX`, or `enc err`)
+ *   D FI DIR HEX       as `P`, the frame sent in direction DIR (a spec whose decoder is
+ *                      given the direction)
+ *   C FI EXT ID HEX    decode the CAN frame of id ID (extended when EXT is 1) and data HEX
+ *                      with CAN format FI; print as `P`, the encoded frame as `enc ID HEX`
+ *   S DI CHUNK HEX     feed HEX to stream decoder DI in chunks of CHUNK bytes, then flush;
+ *                      print every event and the counters
  *
  * `spec.h` names the spec: it includes the generated header and defines P(x) and U(x), the
- * spec's lower- and upper-case prefixes. */
+ * spec's lower- and upper-case prefixes, and the lists FORMATS(X), CAN_FORMATS(X), GIVEN(X)
+ * and DECODERS(X) of the spec's frame formats, CAN formats, formats whose decoder is given the
+ * direction and stream decoders, each item
+ * X(index, lower-case prefix, upper-case prefix). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,6 +35,11 @@ static const char *err_name(int e)
     case U(ERR_UNKNOWN_DIRECTION): return "unknown_direction";
     case U(ERR_INVALID_ENUM): return "invalid_enum";
     case U(ERR_FRAME): return "frame";
+    case U(ERR_SIZE_MISMATCH): return "size_mismatch";
+    case U(ERR_UNTERMINATED): return "unterminated";
+    case U(ERR_PAYLOAD_CHECK): return "payload_check";
+    case U(ERR_OUTSIDE_CLAMP): return "outside_clamp";
+    case U(ERR_INVALID_STUFFING): return "invalid_stuffing";
     default: return "?";
     }
 }
@@ -56,31 +68,138 @@ static void put_hex(const uint8_t *b, size_t n)
     for (i = 0; i < n; i++) printf("%02x", b[i]);
 }
 
-/* `ok TEXT` or `err NAME`; with `encode`, the frame the packet encodes to. */
-static void describe(const uint8_t *b, size_t n, int encode)
+/* Per frame format FI (`FORMATS` of `spec.h`): `ok TEXT` or `err NAME`; with `encode`, the
+ * frame the packet encodes to. */
+#define DESCRIBE(fi, lo, up)                                                                    \
+    static void describe_##fi(const uint8_t *b, size_t n, int encode)                          \
+    {                                                                                           \
+        lo##packet pk;                                                                          \
+        uint8_t out[up##MAX_FRAME_LEN];                                                         \
+        int e = lo##decode(b, n, &pk);                                                          \
+        int len;                                                                                \
+        if (e != 0) {                                                                           \
+            printf("err %s\n", err_name(e));                                                    \
+            return;                                                                             \
+        }                                                                                       \
+        lo##format(&pk, text, sizeof text);                                                     \
+        printf("ok %s\n", text);                                                                \
+        if (!encode) return;                                                                    \
+        len = lo##encode(&pk, out, sizeof out);                                                 \
+        if (len < 0) {                                                                          \
+            printf("enc err\n");                                                                \
+            return;                                                                             \
+        }                                                                                       \
+        printf("enc ");                                                                         \
+        put_hex(out, (size_t)len);                                                              \
+        printf("\n");                                                                           \
+        /* A buffer one byte short is refused, whatever the frame. */                           \
+        e = lo##encode(&pk, out, (size_t)len - 1);                                              \
+        if (e != U(ERR_SHORT_BUFFER)) printf("a buffer one byte short gave %d\n", e);           \
+    }
+FORMATS(DESCRIBE)
+
+static void describe(int format, const uint8_t *b, size_t n, int encode)
 {
-    P(packet) pk;
-    uint8_t out[U(MAX_FRAME_LEN)];
-    int e = P(decode)(b, n, &pk);
-    int len;
-    if (e != 0) {
-        printf("err %s\n", err_name(e));
+    switch (format) {
+#define CASE(fi, lo, up)                                                                        \
+    case fi:                                                                                    \
+        describe_##fi(b, n, encode);                                                            \
         return;
+        FORMATS(CASE)
+#undef CASE
+    default:
+        printf("no format %d\n", format);
     }
-    P(format)(&pk, text, sizeof text);
-    printf("ok %s\n", text);
-    if (!encode) return;
-    len = P(encode)(&pk, out, sizeof out);
-    if (len < 0) {
-        printf("enc err\n");
+}
+
+/* Per format FI whose decoder is given the direction (`GIVEN`): as `describe`, the frame
+ * decoded as sent in direction `dir`. */
+#define DESCRIBE_GIVEN(fi, lo, up)                                                              \
+    static void describe_given_##fi(int dir, const uint8_t *b, size_t n)                       \
+    {                                                                                           \
+        lo##packet pk;                                                                          \
+        uint8_t out[up##MAX_FRAME_LEN];                                                         \
+        int e = lo##decode_given(b, n, (P(direction))dir, &pk);                                 \
+        int len;                                                                                \
+        if (e != 0) {                                                                           \
+            printf("err %s\n", err_name(e));                                                    \
+            return;                                                                             \
+        }                                                                                       \
+        lo##format(&pk, text, sizeof text);                                                     \
+        printf("ok %s\n", text);                                                                \
+        len = lo##encode(&pk, out, sizeof out);                                                 \
+        if (len < 0) {                                                                          \
+            printf("enc err\n");                                                                \
+            return;                                                                             \
+        }                                                                                       \
+        printf("enc ");                                                                         \
+        put_hex(out, (size_t)len);                                                              \
+        printf("\n");                                                                           \
+        e = lo##encode(&pk, out, (size_t)len - 1);                                              \
+        if (e != U(ERR_SHORT_BUFFER)) printf("a buffer one byte short gave %d\n", e);           \
+    }
+GIVEN(DESCRIBE_GIVEN)
+
+static void describe_given(int format, int dir, const uint8_t *b, size_t n)
+{
+    (void)dir;
+    (void)b;
+    (void)n;
+    switch (format) {
+#define CASE(fi, lo, up)                                                                        \
+    case fi:                                                                                    \
+        describe_given_##fi(dir, b, n);                                                         \
         return;
+        GIVEN(CASE)
+#undef CASE
+    default:
+        printf("no format %d with given directions\n", format);
     }
-    printf("enc ");
-    put_hex(out, (size_t)len);
-    printf("\n");
-    /* A buffer one byte short is refused, whatever the frame. */
-    e = P(encode)(&pk, out, (size_t)len - 1);
-    if (e != U(ERR_SHORT_BUFFER)) printf("a buffer one byte short gave %d\n", e);
+}
+
+/* Per CAN format FI (`CAN_FORMATS`): a CAN frame decoded, and the CAN frame the packet
+ * encodes to (`enc ID DATA`). */
+#define DESCRIBE_CAN(fi, lo, up)                                                                \
+    static void describe_can_##fi(uint32_t id, int extended, const uint8_t *b, size_t n)       \
+    {                                                                                           \
+        lo##packet pk;                                                                          \
+        uint8_t data[8];                                                                        \
+        uint32_t out_id = 0;                                                                    \
+        int e = lo##decode_can(id, extended != 0, b, n, &pk);                                   \
+        int len;                                                                                \
+        if (e != 0) {                                                                           \
+            printf("err %s\n", err_name(e));                                                    \
+            return;                                                                             \
+        }                                                                                       \
+        lo##format(&pk, text, sizeof text);                                                     \
+        printf("ok %s\n", text);                                                                \
+        len = lo##encode_can(&pk, &out_id, data);                                               \
+        if (len < 0) {                                                                          \
+            printf("enc err\n");                                                                \
+            return;                                                                             \
+        }                                                                                       \
+        printf("enc %lu ", (unsigned long)out_id);                                              \
+        put_hex(data, (size_t)len);                                                             \
+        printf("\n");                                                                           \
+    }
+CAN_FORMATS(DESCRIBE_CAN)
+
+static void describe_can(int format, uint32_t id, int extended, const uint8_t *b, size_t n)
+{
+    (void)id;
+    (void)extended;
+    (void)b;
+    (void)n;
+    switch (format) {
+#define CASE(fi, lo, up)                                                                        \
+    case fi:                                                                                    \
+        describe_can_##fi(id, extended, b, n);                                                  \
+        return;
+        CAN_FORMATS(CASE)
+#undef CASE
+    default:
+        printf("no CAN format %d\n", format);
+    }
 }
 
 static void event(const P(event) *ev)
@@ -90,7 +209,7 @@ static void event(const P(event) *ev)
         printf("frame %llu ", (unsigned long long)ev->offset);
         put_hex(ev->bytes, ev->len);
         printf(" ");
-        describe(ev->bytes, ev->len, 0);
+        describe(ev->format, ev->bytes, ev->len, 0);
         break;
     case U(EVENT_REJECTED):
         printf("rejected %llu %s\n", (unsigned long long)ev->offset, P(reject_name)(ev->reason));
@@ -101,21 +220,8 @@ static void event(const P(event) *ev)
     }
 }
 
-static void stream(size_t chunk, const uint8_t *b, size_t n)
+static void print_stats(const P(stats) *s)
 {
-    static P(decoder) d;
-    P(event) ev;
-    size_t at = 0;
-    const P(stats) *s = &d.stats;
-    P(decoder_init)(&d);
-    while (at < n) {
-        size_t len = n - at < chunk ? n - at : chunk;
-        const uint8_t *in = b + at;
-        at += len;
-        while (P(decoder_next)(&d, &in, &len, &ev)) event(&ev);
-        if (len != 0) printf("input left over: %llu\n", (unsigned long long)len);
-    }
-    while (P(decoder_flush)(&d, &ev)) event(&ev);
     printf("stats %llu %llu %llu %llu %llu %llu %llu %llu %llu\n", (unsigned long long)s->frames,
            (unsigned long long)s->frame_bytes, (unsigned long long)s->skipped_bytes,
            (unsigned long long)s->bad_header, (unsigned long long)s->bad_header_check,
@@ -123,15 +229,61 @@ static void stream(size_t chunk, const uint8_t *b, size_t n)
            (unsigned long long)s->bad_trailer, (unsigned long long)s->truncated);
 }
 
+/* Per stream decoder DI (`DECODERS`): the input fed in chunks of `chunk` bytes, then flushed;
+ * every event and the counters. */
+#define STREAM(di, lo, up)                                                                      \
+    static void stream_##di(size_t chunk, const uint8_t *b, size_t n)                          \
+    {                                                                                           \
+        static lo##decoder d;                                                                   \
+        P(event) ev;                                                                            \
+        size_t at = 0;                                                                          \
+        lo##decoder_init(&d);                                                                   \
+        while (at < n) {                                                                        \
+            size_t len = n - at < chunk ? n - at : chunk;                                       \
+            const uint8_t *in = b + at;                                                         \
+            at += len;                                                                          \
+            while (lo##decoder_next(&d, &in, &len, &ev)) event(&ev);                            \
+            if (len != 0) printf("input left over: %llu\n", (unsigned long long)len);          \
+        }                                                                                       \
+        while (lo##decoder_flush(&d, &ev)) event(&ev);                                          \
+        print_stats(&d.stats);                                                                  \
+    }
+DECODERS(STREAM)
+
+static void stream(int decoder, size_t chunk, const uint8_t *b, size_t n)
+{
+    switch (decoder) {
+#define CASE(di, lo, up)                                                                        \
+    case di:                                                                                    \
+        stream_##di(chunk, b, n);                                                               \
+        return;
+        DECODERS(CASE)
+#undef CASE
+    default:
+        printf("no decoder %d\n", decoder);
+    }
+}
+
 int main(void)
 {
     while (fgets(line, sizeof line, stdin)) {
+        char *rest = line + 2;
         if (line[0] == 'P' && line[1] == ' ') {
-            describe(bytes, unhex(line + 2, bytes, sizeof bytes), 1);
+            int format = (int)strtol(rest, &rest, 10);
+            describe(format, bytes, unhex(rest + 1, bytes, sizeof bytes), 1);
+        } else if (line[0] == 'D' && line[1] == ' ') {
+            int format = (int)strtol(rest, &rest, 10);
+            int dir = (int)strtol(rest, &rest, 10);
+            describe_given(format, dir, bytes, unhex(rest + 1, bytes, sizeof bytes));
+        } else if (line[0] == 'C' && line[1] == ' ') {
+            int format = (int)strtol(rest, &rest, 10);
+            int extended = (int)strtol(rest, &rest, 10);
+            uint32_t id = (uint32_t)strtoul(rest, &rest, 10);
+            describe_can(format, id, extended, bytes, unhex(rest + 1, bytes, sizeof bytes));
         } else if (line[0] == 'S' && line[1] == ' ') {
-            char *rest;
-            size_t chunk = (size_t)strtoul(line + 2, &rest, 10);
-            stream(chunk, bytes, unhex(rest + 1, bytes, sizeof bytes));
+            int decoder = (int)strtol(rest, &rest, 10);
+            size_t chunk = (size_t)strtoul(rest, &rest, 10);
+            stream(decoder, chunk, bytes, unhex(rest + 1, bytes, sizeof bytes));
         } else {
             printf("unknown command\n");
         }

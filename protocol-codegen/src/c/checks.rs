@@ -11,19 +11,23 @@
 
 use std::fmt::Write as _;
 
-use crate::ir::{Algorithm, Check, CheckExtra, CrcTable, Protocol};
+use crate::ir::{Algorithm, Check, CheckExtra, CrcTable, Field, FieldKind, Protocol, Struct};
 use protocol_runtime::checksum::CrcSpec;
 
-use super::names::{Names, u64_lit, unsigned_of};
+use super::names::{Fx, Names, snake, u64_lit, unsigned_of};
 use super::payload::mask;
 
-/// The check functions (`pfx_check_<name>`), one per check of the first frame format.
+/// The check functions (`pfx_check_<name>`, the format's prefix), one per check of each
+/// frame format.
 pub fn checks(p: &Protocol, n: &Names) -> String {
     let mut out = String::from("/* ---- Checks ---- */\n\n");
-    for c in &p.frames[0].checks {
-        let _ = writeln!(out, "/* {} */", c.naming.display);
-        out.push_str(&check(n, c));
-        out.push('\n');
+    for (fi, f) in p.frames.iter().enumerate() {
+        let x = Fx::new(p, fi);
+        for c in &f.checks {
+            let _ = writeln!(out, "/* {} */", c.naming.display);
+            out.push_str(&check(n, &x, c));
+            out.push('\n');
+        }
     }
     out
 }
@@ -45,11 +49,51 @@ struct Parts {
     folds: bool,
 }
 
-fn check(n: &Names, c: &Check) -> String {
-    let name = format!("{}check_{}", n.lo, c.name);
-    let parts = parts(&name, &c.algorithm);
+fn check(n: &Names, x: &Fx, c: &Check) -> String {
+    check_fn(
+        n,
+        &format!("{}check_{}", x.lo, c.name),
+        &c.algorithm,
+        c.extra.as_ref(),
+    )
+}
+
+/// The check functions of the checks inside payload structs (`pfx_pcheck_<struct>_<field>`),
+/// the runtime's `field::verify_check` and `field::put_check` compute them over the covered
+/// fields' bytes (a constant prefix is folded into a CRC's initial value by the IR).
+pub fn payload_checks(p: &Protocol, n: &Names) -> String {
+    let mut out = String::new();
+    for s in &p.structs {
+        for f in &s.fields {
+            if let FieldKind::Check(c) = &f.kind {
+                let _ = writeln!(
+                    out,
+                    "/* {}: `{}` of struct `{}` over {} */",
+                    c.naming.display, f.name, s.name, c.covered
+                );
+                out.push_str(&check_fn(
+                    n,
+                    &payload_check_name(n, s, f),
+                    &c.algorithm,
+                    None,
+                ));
+                out.push('\n');
+            }
+        }
+    }
+    out
+}
+
+/// The C function of a check inside a payload struct.
+pub fn payload_check_name(n: &Names, s: &Struct, f: &Field) -> String {
+    format!("{}pcheck_{}_{}", n.lo, snake(&s.name), f.name)
+}
+
+fn check_fn(n: &Names, name: &str, algorithm: &Algorithm, extra: Option<&CheckExtra>) -> String {
+    let name = name.to_string();
+    let parts = parts(&name, algorithm);
     let mut body = String::new();
-    if let Some(x) = &c.extra {
+    if let Some(x) = extra {
         body.push_str(&extra_lookup(n, x));
     }
     let _ = write!(
@@ -57,7 +101,7 @@ fn check(n: &Names, c: &Check) -> String {
         "    for (i = 0; i < n; i++) {{\n{}    }}\n",
         (parts.step)("p[i]")
     );
-    if c.extra.is_some() && parts.folds {
+    if extra.is_some() && parts.folds {
         // The loop body's statements, one level out.
         for line in (parts.step)("extra").lines() {
             let _ = writeln!(body, "{}", line.strip_prefix("    ").unwrap_or(line));

@@ -6,11 +6,12 @@
 
 use std::fmt::Write as _;
 
-use crate::ir::{Field, FieldKind, Prim, Protocol, Role, ValueType};
+use crate::ir::{Field, FieldKind, Prim, Protocol, ValueType};
 
+use super::names::Fx;
 use super::names::{self, Names};
 use super::payload::any_field;
-use super::types::{keyed, slots};
+use super::types::{Carries, carries, keyed_format, slots_of, user_values};
 
 /// The formatter, inside `#ifdef <PREFIX>_WITH_FORMAT`.
 pub fn format(p: &Protocol, n: &Names) -> String {
@@ -25,7 +26,7 @@ pub fn format(p: &Protocol, n: &Names) -> String {
             FieldKind::Value {
                 ty: ValueType::Text(_),
                 ..
-            }
+            } | FieldKind::NulText { .. }
         )
     }) {
         out.push_str(&text_helpers(n));
@@ -44,29 +45,43 @@ pub fn format(p: &Protocol, n: &Names) -> String {
             ty = n.ty(&s.name)
         );
     }
+    for fi in 0..p.frames.len() {
+        packet_format(p, n, &Fx::new(p, fi), &mut out);
+    }
+    let _ = writeln!(out, "#endif /* {up}WITH_FORMAT */");
+    out
+}
+
+/// `pfx_format` of frame format `x`: the command, the direction, the header values (and the
+/// flag trailer's bytes, or `null`), then the payload.
+fn packet_format(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let lo = &n.lo;
+    let xlo = &x.lo;
+    let f = &p.frames[x.fi];
     let _ = writeln!(
         out,
-        "int {lo}format(const {lo}packet *packet, char *out, size_t cap)\n{{\n    struct {lo}txt text;\n    struct {lo}txt *t = &text;\n    text.p = out;\n    text.cap = cap;\n    text.len = 0;\n    if (cap > 0) out[0] = 0;\n"
+        "int {xlo}format(const {xlo}packet *packet, char *out, size_t cap)\n{{\n    struct {lo}txt text;\n    struct {lo}txt *t = &text;\n    text.p = out;\n    text.cap = cap;\n    text.len = 0;\n    if (cap > 0) out[0] = 0;\n"
     );
-    if keyed(p) {
+    if f.ack.is_some() {
         let _ = writeln!(
             out,
-            "    {lo}emit(t, \"cmd=%s\", {lo}command_name(packet->command));"
+            "    {lo}emit(t, \"cmd=%s\", packet->ack ? \"?\" : {lo}command_name(packet->command));"
+        );
+    } else if keyed_format(p, x.fi) {
+        let _ = writeln!(
+            out,
+            "    {lo}emit(t, \"cmd=%s\", {lo}command_name(packet->command) ? {lo}command_name(packet->command) : \"?\");"
         );
     } else {
         let _ = writeln!(out, "    {lo}emit(t, \"cmd=?\");");
     }
-    if !p.directions.is_empty() {
+    if !p.directions.is_empty() && carries(p, x.fi) == Carries::Commands {
         let _ = writeln!(
             out,
             "    {lo}emit(t, \" dir=%s\", {lo}direction_name(packet->direction));"
         );
     }
-    for v in p.frames[0]
-        .values
-        .iter()
-        .filter(|v| matches!(v.role, Role::User { .. }))
-    {
+    for v in user_values(f) {
         let value = format!("packet->header.{}", names::field(&v.name));
         let label = format!("\"header.{}=\"", v.name);
         let prim = if v.prim == Prim::Bool {
@@ -76,7 +91,21 @@ pub fn format(p: &Protocol, n: &Names) -> String {
         };
         out.push_str(&scalar(lo, prim, &label, &value, ""));
     }
-    for slot in slots(p) {
+    if let Some(tr) = &f.flag_trailer {
+        let name = names::field(&tr.name);
+        let _ = writeln!(
+            out,
+            "    if (packet->header.{name}_present) {{\n        size_t i;\n        {lo}emit(t, \" header.{}=hex:\");\n        for (i = 0; i < {}u; i++) {lo}emit(t, \"%02x\", (unsigned)packet->header.{name}[i]);\n    }} else {{\n        {lo}emit(t, \" header.{}=null\");\n    }}",
+            tr.name, tr.len, tr.name
+        );
+    }
+    if carries(p, x.fi) == Carries::Bytes {
+        let _ = writeln!(
+            out,
+            "    {{\n        size_t i;\n        {lo}emit(t, \" payload=hex:\");\n        for (i = 0; i < packet->payload_len; i++) {lo}emit(t, \"%02x\", (unsigned)packet->payload[i]);\n    }}"
+        );
+    }
+    for slot in slots_of(p, x.fi) {
         if let Some(si) = slot.si {
             let _ = writeln!(
                 out,
@@ -87,11 +116,13 @@ pub fn format(p: &Protocol, n: &Names) -> String {
             );
         }
     }
-    let _ = writeln!(
-        out,
-        "    return (int)text.len;\n}}\n#endif /* {up}WITH_FORMAT */"
-    );
-    out
+    if f.ack.is_some() {
+        let _ = writeln!(
+            out,
+            "    if (packet->ack) {{\n        size_t i;\n        {lo}emit(t, \" payload=hex:\");\n        for (i = 0; i < packet->payload.ack_data.len; i++) {lo}emit(t, \"%02x\", (unsigned)packet->payload.ack_data.bytes[i]);\n    }}"
+        );
+    }
+    let _ = writeln!(out, "    return (int)text.len;\n}}\n");
 }
 
 /// The text of one field (`kind`: the field's, or what an optional field holds).
@@ -104,10 +135,19 @@ fn field(p: &Protocol, n: &Names, f: &Field, kind: &FieldKind) -> String {
     };
     let item = format!("\"%s.{}[%u]=\", path, (unsigned)i", f.name);
     match kind {
-        FieldKind::NulText { .. } | FieldKind::Array { .. } | FieldKind::Check(_) => {
-            unreachable!("refused by support::unsupported")
+        FieldKind::Padding | FieldKind::Check(_) => {}
+        // The text up to its NUL: a string when it is UTF-8, else its bytes.
+        FieldKind::NulText { max } => {
+            let _ = writeln!(
+                body,
+                "    for (i = 0; i <= {max}u && v->{name}[i] != 0; i++) {{\n    }}\n    {lo}path(sub, sizeof sub, \"%s.{}\", path);\n    {lo}fmt_text(t, sub, (const uint8_t *)v->{name}, i);",
+                f.name
+            );
         }
-        FieldKind::Padding => {}
+        FieldKind::Array { ty, .. } => body.push_str(&each(
+            &format!("v->{name}_len"),
+            value(p, n, ty, &item, &format!("v->{name}[i]"), "    "),
+        )),
         FieldKind::Value { ty, count } => match count {
             None => body.push_str(&value(
                 p,
@@ -139,9 +179,17 @@ fn field(p: &Protocol, n: &Names, f: &Field, kind: &FieldKind) -> String {
                 f.name
             );
         }
-        FieldKind::Packed { count, prim, .. } => body.push_str(&each(
+        FieldKind::Packed {
+            count, prim, scale, ..
+        } => body.push_str(&each(
             &format!("{count}u"),
-            scalar(lo, *prim, &item, &format!("v->{name}[i]"), "    "),
+            scalar(
+                lo,
+                scale.map_or(*prim, |sc| sc.physical),
+                &item,
+                &format!("v->{name}[i]"),
+                "    ",
+            ),
         )),
         FieldKind::Group { elem, .. } => body.push_str(&each(
             &format!("v->{name}_len"),
@@ -254,7 +302,13 @@ fn indent(text: &str) -> String {
 /// One value: ` LABEL=VALUE`, `label` being the format and arguments of the label.
 fn value(p: &Protocol, n: &Names, ty: &ValueType, label: &str, v: &str, indent: &str) -> String {
     match ty {
-        ValueType::Scalar { scalar: s, .. } => scalar(&n.lo, s.prim, label, v, indent),
+        ValueType::Scalar { scalar: s, scale } => scalar(
+            &n.lo,
+            scale.map_or(s.prim, |sc| sc.physical),
+            label,
+            v,
+            indent,
+        ),
         ValueType::Enum(ei, _) => {
             enum_value(n, &p.enums[*ei].name, p.enums[*ei].prim, label, v, indent)
         }

@@ -15,8 +15,13 @@
 //! * the frame rules: each check's algorithm (sums, bitwise or table CRCs from the IR's
 //!   parameters), the probe of a candidate, a decoder of one frame's bytes and an encoder per
 //!   command into the caller's buffer (`frame`, `checks`);
-//! * the stream decoder, with the runtime engine's rules over a fixed buffer (`engine`);
+//! * the stream decoders, with the runtime engine's rules over a fixed buffer (`engine`);
 //! * optionally (`<PREFIX>_WITH_FORMAT`), a text form of a packet, with `snprintf` (`format`).
+//!
+//! A spec with several frame formats gets the items of a format (sizes, header and packet
+//! types, decoder, encoders, stream decoder, text form) once per format, those of a format
+//! after the first with the format's name in their prefix (`mavlink_v1_decode`), as the Rust
+//! side has a packet per format; the structs, enums and commands are shared.
 //!
 //! The code every spec needs (byte readers, the stream engine) is printed into each source
 //! file as `static` functions, not shipped as a shared `protocol_rt.h`: the two files of a
@@ -29,6 +34,7 @@ mod format;
 mod frame;
 mod names;
 mod payload;
+mod scale;
 mod support;
 mod types;
 
@@ -64,6 +70,7 @@ pub fn generate(p: &Protocol) -> Result<CFiles, Vec<String>> {
     let mut source = String::new();
     source.push_str(&types::source_prelude(p, &n));
     source.push_str(&checks::checks(p, &n));
+    source.push_str(&checks::payload_checks(p, &n));
     source.push_str(&payload::payloads(p, &n));
     source.push_str(&frame::frame(p, &n));
     source.push_str(&engine::engine(p, &n));

@@ -10,6 +10,9 @@ pub struct Names {
     pub lo: String,
     /// Upper-case prefix with its underscore (`HFLINK_`).
     pub up: String,
+    /// The prefixes after the spec's of the items of the formats after the first and of the
+    /// link's decoder (`v1_`, `any_`): families of names too.
+    formats: Vec<String>,
 }
 
 impl Names {
@@ -18,12 +21,33 @@ impl Names {
         Names {
             lo: format!("{}_", p.name),
             up: format!("{}_", p.name.to_uppercase()),
+            formats: p
+                .frames
+                .iter()
+                .skip(1)
+                .map(|f| format!("{}_", f.name))
+                .chain(std::iter::once("any_".to_string()))
+                .collect(),
         }
     }
 
-    /// The type of a struct or enum named in PascalCase (`ChassisCoord` -> `hflink_chassis_coord`).
+    /// The type of a struct or enum named in PascalCase (`ChassisCoord` -> `hflink_chassis_coord`);
+    /// a name the generated code takes for itself (`Step`, `ReadAll`, `V1Packet` where a format
+    /// is named `v1`) gets `_t` (`dynamixel_step_t`), so that a spec's names never clash with
+    /// the code's.
     pub fn ty(&self, pascal: &str) -> String {
-        format!("{}{}", self.lo, snake(pascal))
+        let name = snake(pascal);
+        if RESERVED.contains(&name.as_str())
+            || FAMILIES
+                .iter()
+                .copied()
+                .chain(self.formats.iter().map(String::as_str))
+                .any(|f| name.starts_with(f))
+        {
+            format!("{}{name}_t", self.lo)
+        } else {
+            format!("{}{name}", self.lo)
+        }
     }
 
     /// The prefix of an enum's constants (`HFLINK_CHASSIS_TYPE_`).
@@ -31,6 +55,79 @@ impl Names {
         format!("{}{}_", self.up, snake(pascal).to_uppercase())
     }
 }
+
+/// The names after the prefix that the generated code gives its own functions and types.
+const RESERVED: &[&str] = &[
+    "clamp_f32",
+    "clamp_f64",
+    "command",
+    "command_name",
+    "count_reject",
+    "cut_f32",
+    "cut_f64",
+    "decode",
+    "decoder",
+    "direction",
+    "direction_name",
+    "emit",
+    "encode",
+    "event",
+    "event_kind",
+    "f32",
+    "f32_bits",
+    "f64",
+    "f64_bits",
+    "field",
+    "find_candidate",
+    "format",
+    "frame_inside",
+    "get",
+    "get_packed",
+    "header",
+    "ids",
+    "mag_f32",
+    "mag_f64",
+    "packed_span",
+    "packet",
+    "path",
+    "pos",
+    "probe",
+    "put_field",
+    "put_uint",
+    "quantize_f32",
+    "quantize_f64",
+    "rd",
+    "reject",
+    "reject_name",
+    "seal",
+    "set",
+    "set_packed",
+    "sext",
+    "skip",
+    "stage",
+    "stats",
+    "step",
+    "store",
+    "stuff",
+    "sync_matches",
+    "take_uint",
+    "to_physical_f32",
+    "to_physical_f64",
+    "trimmed",
+    "txt",
+    "utf8",
+    "verify",
+    "within_f32",
+    "within_f64",
+    "wr",
+    "zero",
+];
+
+/// The prefixes after the spec's prefix of the generated code's families of names
+/// (`read_<struct>`, `check_<check>`, `encode_<command>`).
+const FAMILIES: &[&str] = &[
+    "check_", "decode_", "decoder_", "encode_", "fmt_", "pcheck_", "probe_", "read_", "write_",
+];
 
 /// snake_case of a PascalCase name.
 pub fn snake(pascal: &str) -> String {
@@ -98,4 +195,33 @@ pub fn unsigned_of(bytes: usize) -> &'static str {
 /// A C integer literal of type `uint64_t`.
 pub fn u64_lit(v: u64) -> String {
     format!("UINT64_C({v:#x})")
+}
+
+/// The prefixes of one frame format's items (its sizes, header and packet types, decoder of one
+/// frame, encoders, stream decoder, check functions): the spec's for the first format (`hflink_`),
+/// the spec's and the format's name for the others (`mavlink_v1_`, `SCOUT_CAN_`), as the Rust
+/// side names a format after the first (`V1Packet`, `SCOUT_CAN_LAYOUT`).
+pub struct Fx {
+    /// The frame format (index into [`Protocol::frames`]).
+    pub fi: usize,
+    /// Lower-case prefix with its underscore.
+    pub lo: String,
+    /// Upper-case prefix with its underscore.
+    pub up: String,
+}
+
+impl Fx {
+    /// The prefixes of frame format `fi` of `p`.
+    pub fn new(p: &Protocol, fi: usize) -> Self {
+        let lo = if fi == 0 {
+            format!("{}_", p.name)
+        } else {
+            format!("{}_{}_", p.name, p.frames[fi].name)
+        };
+        Fx {
+            fi,
+            up: lo.to_uppercase(),
+            lo,
+        }
+    }
 }

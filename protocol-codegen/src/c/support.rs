@@ -1,64 +1,60 @@
 //! What the C printer supports: [`unsupported`] lists every feature of a spec it refuses, so
 //! that `protocol gen c` fails with a clear message instead of printing wrong code.
 
-use crate::ir::{Algorithm, FieldKind, PacketKind, Prim, Protocol, Role, Transport, ValueType};
+use crate::ir::{Algorithm, FieldKind, PacketKind, Protocol, Role, Transport, ValueType};
+
+use super::types::keyed_format;
 
 /// One line per feature of `p` the C printer does not support yet; empty when it prints the
 /// whole spec.
 pub fn unsupported(p: &Protocol) -> Vec<String> {
     let mut out = Vec::new();
-    if p.frames.len() != 1 {
-        out.push(format!(
-            "{} frame formats: the C printer supports exactly one",
-            p.frames.len()
-        ));
-    }
-    for f in &p.frames {
+    for (fi, f) in p.frames.iter().enumerate() {
         let at = format!("frame `{}`", f.name);
-        if let Transport::Can { .. } = f.transport {
-            out.push(format!("{at}: CAN transport"));
-        }
-        if f.stuffing.is_some() {
-            out.push(format!("{at}: byte stuffing"));
-        }
-        if f.ack.is_some() {
-            out.push(format!("{at}: acknowledgement frames"));
-        }
-        if f.bare_len.is_some() {
-            out.push(format!("{at}: bare headers"));
-        }
-        if f.packet == PacketKind::Commands {
+        if matches!(f.transport, Transport::Can { .. }) && f.packet != PacketKind::Can {
             out.push(format!(
-                "{at}: a second format carrying the commands (several command formats on one link)"
+                "{at}: CAN transport in a format whose frames' command does not follow from the CAN id"
             ));
         }
-        if f.dispatch.is_empty() && f.message.is_none() {
+        if fi > 0 && f.packet == PacketKind::Commands && !p.directions.is_empty() {
             out.push(format!(
-                "{at}: a frame format without dispatch key or message"
+                "{at}: a second format carrying the commands in a spec with directions"
             ));
         }
-        if f.length_extension.is_some() {
+        let keyed = keyed_format(p, fi);
+        if f.stuffing.is_some() && (!keyed || p.directions.iter().any(|d| d.message.is_some())) {
             out.push(format!(
-                "{at}: a wider length announced by a marker value of the length field"
+                "{at}: byte stuffing in a format without dispatch key or with a direction's message"
             ));
         }
-        if let Some(t) = &f.flag_trailer {
+        if f.ack.is_some() && !keyed {
             out.push(format!(
-                "{at}: optional bytes `{}` present when a header flag is set",
-                t.name
+                "{at}: acknowledgement frames in a format without dispatch key"
             ));
         }
-        if f.values.iter().any(|v| matches!(v.role, Role::Ack(_))) {
-            out.push(format!("{at}: an acknowledgement flag"));
+        if fi > 0 {
+            if f.stuffing.is_some() {
+                out.push(format!("{at}: byte stuffing in a format after the first"));
+            }
+            if f.ack.is_some() {
+                out.push(format!(
+                    "{at}: acknowledgement frames in a format after the first"
+                ));
+            }
+            if f.bare_len.is_some() {
+                out.push(format!("{at}: bare headers in a format after the first"));
+            }
+            if f.values.iter().any(|v| matches!(v.role, Role::Ack(_))) {
+                out.push(format!(
+                    "{at}: an acknowledgement flag in a format after the first"
+                ));
+            }
         }
         for c in &f.checks {
             if let Some(why) = algorithm_refused(&c.algorithm) {
                 out.push(format!("{at}: check `{}`: {why}", c.name));
             }
         }
-    }
-    if p.directions_given() {
-        out.push("directions given to the decoder (no header field tells them)".to_string());
     }
     for s in &p.structs {
         for field in &s.fields {
@@ -85,29 +81,15 @@ fn algorithm_refused(a: &Algorithm) -> Option<&'static str> {
 /// Why the C printer refuses a field kind, if it does.
 fn kind_refused(p: &Protocol, kind: &FieldKind) -> Option<&'static str> {
     match kind {
-        FieldKind::Padding | FieldKind::Group { .. } => None,
-        FieldKind::Value { ty, .. } => match ty {
-            ValueType::Scalar { scale: Some(_), .. } => Some("scaled values"),
-            ValueType::Scalar { .. } | ValueType::Struct(_) | ValueType::Text(_) => None,
-            ValueType::Enum(ei, scalar) => {
-                (p.enums[*ei].prim != scalar.prim).then_some("an enum read as another integer type")
-            }
-        },
-        FieldKind::Bytes { size_from, .. } => size_from
-            .is_some()
-            .then_some("bytes sized by another field"),
-        FieldKind::Packed { scale, .. } => scale.is_some().then_some("scaled values"),
+        FieldKind::Value {
+            ty: ValueType::Enum(ei, scalar),
+            ..
+        }
+        | FieldKind::Array {
+            ty: ValueType::Enum(ei, scalar),
+            ..
+        } => (p.enums[*ei].prim != scalar.prim).then_some("an enum read as another integer type"),
         FieldKind::Optional(inner) => kind_refused(p, inner),
-        FieldKind::NulText { .. } => Some("NUL-terminated text (`cstr`)"),
-        FieldKind::Array { .. } => Some("variable-length arrays of primitives"),
-        FieldKind::Check(_) => Some("a check inside the payload"),
-        FieldKind::Bits { members, .. } => members
-            .iter()
-            .any(|m| {
-                m.enum_index.is_some_and(|ei| {
-                    !p.enums[ei].prim.is_unsigned() && p.enums[ei].prim != Prim::Bool
-                })
-            })
-            .then_some("a signed enum in a bit member"),
+        _ => None,
     }
 }

@@ -1,0 +1,237 @@
+//! Scaled values in C: the runtime's field rules (`protocol_runtime::field`) printed as C
+//! helpers, computed in the precision of the field's Rust type (`float` for an `f32` field,
+//! `double` for an `f64` one), so that a C struct holds the same physical value the Rust codec
+//! decodes, bit for bit, and encodes it to the same raw integer.
+//!
+//! * decoding: `physical = raw * factor + offset`, or `raw / n + offset` when `factor` is the
+//!   reciprocal of an integer `n` (`to_physical`), the raw integer first converted to `f64`
+//!   and then to the field's type as the runtime does; a value outside the clamp range (with
+//!   the runtime's slack) is an error (`check_clamp`);
+//! * encoding: clamped (`clamp`), divided back and rounded (`quantize`, to nearest or by
+//!   truncation within float noise), then its integer part must fit the raw type (`fit`: the
+//!   runtime's exclusive bounds of each type), never saturated.
+//!
+//! The rules' constants (the relative noise and clamp slack, the raw types' bounds) are the
+//! runtime's own, printed from its [`Float`] and [`RawInt`] constants.
+//!
+//! The C arithmetic agrees with Rust's when the compiler does not fuse a multiply and an add
+//! (`-ffp-contract=off`, the default of gcc in a strict `-std=c99` mode): every product and
+//! sum is its own statement, so clang's default (fusing within one expression) fuses nothing.
+
+use std::fmt::Write as _;
+
+use protocol_runtime::field::{Float, RawInt};
+
+use crate::ir::{Prim, Rounding, Scale};
+
+use super::names::Names;
+
+/// The C float type of a scaled value's physical type, and the suffix of its helpers.
+pub fn float_of(physical: Prim) -> (&'static str, &'static str) {
+    match physical {
+        Prim::F32 => ("float", "f32"),
+        _ => ("double", "f64"),
+    }
+}
+
+/// A C literal of `x` in the physical type (the shortest decimal that reads back as the same
+/// `f32` or `f64`).
+pub fn lit(x: f64, physical: Prim) -> String {
+    match physical {
+        Prim::F32 => format!("{:?}f", x as f32),
+        _ => format!("{x:?}"),
+    }
+}
+
+/// The helpers of the field rules, in both float types.
+pub fn helpers(n: &Names) -> String {
+    let (lo, up) = (&n.lo, &n.up);
+    let mut out = String::from(
+        "/* ---- Scaled values: the runtime's field rules, in the field's float type ---- */\n\n",
+    );
+    for (ty, sfx, noise, slack, cut) in [
+        (
+            "float",
+            "f32",
+            format!("{:?}f", <f32 as Float>::NOISE),
+            format!("{:?}f", <f32 as Float>::CLAMP_SLACK),
+            // Every float of magnitude 2^23 or more is an integer already.
+            "    if (x >= 8388608.0f || x <= -8388608.0f) return x;\n    return (float)(int32_t)x;\n",
+        ),
+        (
+            "double",
+            "f64",
+            format!("{:?}", <f64 as Float>::NOISE),
+            format!("{:?}", <f64 as Float>::CLAMP_SLACK),
+            // As Rust's saturating `as i64`.
+            "    if (x >= 9223372036854775808.0) return 9223372036854775808.0;\n    if (x <= -9223372036854775808.0) return -9223372036854775808.0;\n    return (double)(int64_t)x;\n",
+        ),
+    ] {
+        let one = if sfx == "f32" { "1.0f" } else { "1.0" };
+        let zero = if sfx == "f32" { "0.0f" } else { "0.0" };
+        let half = if sfx == "f32" { "0.5f" } else { "0.5" };
+        let _ = write!(
+            out,
+            "/* `x` cut toward zero (NaN: 0). */
+{up}UNUSED static {ty} {lo}cut_{sfx}({ty} x)
+{{
+    if (x != x) return {zero};
+{cut}}}
+
+{up}UNUSED static {ty} {lo}mag_{sfx}({ty} x)
+{{
+    return x >= {zero} ? x : -x;
+}}
+
+/* `raw * factor + offset`; `raw / n + offset` when `factor` is the reciprocal of an integer
+ * `n` within float noise. */
+{up}UNUSED static {ty} {lo}to_physical_{sfx}({ty} raw, {ty} factor, {ty} offset)
+{{
+    {ty} inv = {one} / factor;
+    {ty} n = {lo}cut_{sfx}(inv >= {zero} ? inv + {half} : inv - {half});
+    {ty} off = {lo}mag_{sfx}(inv - n);
+    {ty} t;
+    if (n != {zero} && off <= {noise} * {lo}mag_{sfx}(n)) {{
+        t = raw / n;
+    }} else {{
+        t = raw * factor;
+    }}
+    return t + offset;
+}}
+
+/* Whether a decoded value lies in the clamp range, with the slack of its rounding. */
+{up}UNUSED static int {lo}within_{sfx}({ty} x, {ty} lo, {ty} hi)
+{{
+    {ty} range = hi - lo;
+    {ty} slack = {slack} * (range > {one} ? range : {one});
+    return x >= lo - slack && x <= hi + slack;
+}}
+
+{up}UNUSED static {ty} {lo}clamp_{sfx}({ty} x, {ty} lo, {ty} hi)
+{{
+    if (x < lo) return lo;
+    if (x > hi) return hi;
+    return x;
+}}
+
+/* `(physical - offset) / factor`, rounded to nearest (halves away from zero; the cast cuts
+ * it) or truncated (a quotient within float noise of an integer is that integer). */
+{up}UNUSED static {ty} {lo}quantize_{sfx}({ty} physical, {ty} factor, {ty} offset, int truncate)
+{{
+    {ty} q = (physical - offset) / factor;
+    {ty} nearest = q >= {zero} ? q + {half} : q - {half};
+    {ty} cut, off, m;
+    if (!truncate) return nearest;
+    cut = {lo}cut_{sfx}(nearest);
+    off = {lo}mag_{sfx}(q - cut);
+    m = {lo}mag_{sfx}(q) + {lo}mag_{sfx}(offset / factor);
+    if (off <= {noise} * (m > {one} ? m : {one})) return cut;
+    return q;
+}}
+
+"
+        );
+    }
+    out
+}
+
+/// The runtime's exclusive bounds of a raw type (`fit`), in the physical type; a 24-bit type
+/// is fitted to its 32-bit type first.
+fn bounds(raw: Prim, physical: Prim) -> (String, String) {
+    fn of<T: RawInt>(physical: Prim) -> (String, String) {
+        match physical {
+            Prim::F32 => (
+                format!("{:?}f", T::BELOW_F32),
+                format!("{:?}f", T::ABOVE_F32),
+            ),
+            _ => (format!("{:?}", T::BELOW), format!("{:?}", T::ABOVE)),
+        }
+    }
+    match raw {
+        Prim::U8 => of::<u8>(physical),
+        Prim::U16 => of::<u16>(physical),
+        Prim::U24 | Prim::U32 => of::<u32>(physical),
+        Prim::U64 => of::<u64>(physical),
+        Prim::I8 => of::<i8>(physical),
+        Prim::I16 => of::<i16>(physical),
+        Prim::I24 | Prim::I32 => of::<i32>(physical),
+        // Validation gives scaled fields an integer raw type.
+        _ => of::<i64>(physical),
+    }
+}
+
+/// Statements that set `dst` to the physical value of the raw integer `raw` (a `uint64_t`
+/// C expression of the raw bits) of type `prim`; a value outside the clamp range returns
+/// `<PREFIX>ERR_OUTSIDE_CLAMP`.
+pub fn read(n: &Names, prim: Prim, sc: &Scale, raw: &str, dst: &str) -> String {
+    let (lo, up) = (&n.lo, &n.up);
+    let (ty, sfx) = float_of(sc.physical);
+    let int = if prim.is_signed() {
+        format!("(double){lo}sext({raw}, {}u)", 8 * prim.size())
+    } else {
+        format!("(double){raw}")
+    };
+    let mut out = format!(
+        "    {dst} = {lo}to_physical_{sfx}(({ty}){int}, {}, {});\n",
+        lit(sc.factor, sc.physical),
+        lit(sc.offset, sc.physical)
+    );
+    if let Some((a, b)) = sc.clamp {
+        let _ = writeln!(
+            out,
+            "    if (!{lo}within_{sfx}({dst}, {}, {})) return {up}ERR_OUTSIDE_CLAMP;",
+            lit(a, sc.physical),
+            lit(b, sc.physical)
+        );
+    }
+    out
+}
+
+/// Statements that set `uint64_t raw` to the raw bits of the physical value `src` of a field
+/// of raw type `prim`; a value the type cannot hold returns `<PREFIX>ERR_OUT_OF_RANGE`.
+pub fn write(n: &Names, prim: Prim, sc: &Scale, src: &str) -> String {
+    let up = &n.up;
+    let lo = &n.lo;
+    let (ty, sfx) = float_of(sc.physical);
+    let mut out = format!("    {{\n        {ty} x = {src};\n");
+    if let Some((a, b)) = sc.clamp {
+        let _ = writeln!(
+            out,
+            "        x = {lo}clamp_{sfx}(x, {}, {});",
+            lit(a, sc.physical),
+            lit(b, sc.physical)
+        );
+    }
+    let (below, above) = bounds(prim, sc.physical);
+    let _ = writeln!(
+        out,
+        "        x = {lo}quantize_{sfx}(x, {}, {}, {});\n        if (!(x > {below} && x < {above})) return {up}ERR_OUT_OF_RANGE;",
+        lit(sc.factor, sc.physical),
+        lit(sc.offset, sc.physical),
+        u8::from(sc.rounding == Rounding::Truncate)
+    );
+    let ct = super::names::prim(prim);
+    let _ = writeln!(out, "        {{\n            {ct} k = ({ct})x;");
+    match prim {
+        Prim::U24 => {
+            let _ = writeln!(
+                out,
+                "            if (k > 0xFFFFFFu) return {up}ERR_OUT_OF_RANGE;"
+            );
+        }
+        Prim::I24 => {
+            let _ = writeln!(
+                out,
+                "            if (k < -8388608L || k > 8388607L) return {up}ERR_OUT_OF_RANGE;"
+            );
+        }
+        _ => {}
+    }
+    if prim.is_signed() {
+        let _ = writeln!(out, "            raw = (uint64_t)(int64_t)k;");
+    } else {
+        let _ = writeln!(out, "            raw = (uint64_t)k;");
+    }
+    out.push_str("        }\n    }\n");
+    out
+}
