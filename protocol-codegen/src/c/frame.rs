@@ -381,8 +381,8 @@ fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     match carries(p, x.fi) {
         Carries::Commands => {
             dispatch_key(p, n, x, out);
-            if x.fi == 0 && !given {
-                directions(p, n, out);
+            if !given {
+                directions(p, n, x.fi, out);
             }
         }
         Carries::Can => can_command(p, n, x, out),
@@ -449,16 +449,17 @@ fn base_sizes(p: &Protocol, fi: usize) -> bool {
         .any(|s| s.si.is_some_and(|si| p.structs[si].base_size.is_some()))
 }
 
-/// The direction from the header, its rules tested in order.
-fn directions(p: &Protocol, n: &Names, out: &mut String) {
+/// The direction from the header of format `fi`, its rules tested in order (on a link, each
+/// command format names its own direction field).
+fn directions(p: &Protocol, n: &Names, fi: usize, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
-    let f = &p.frames[0];
+    let f = &p.frames[fi];
     if p.directions.is_empty() {
         return;
     }
     out.push_str("    ");
     for d in &p.directions {
-        let cond = match &d.rule {
+        let cond = match &d.rule.in_frame(f) {
             DirectionRule::InSet { value, set } => {
                 let v = &f.values[*value];
                 let a = &p.addresses[*set];

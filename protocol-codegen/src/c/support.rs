@@ -16,11 +16,6 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
                 "{at}: CAN transport in a format whose frames' command does not follow from the CAN id"
             ));
         }
-        if fi > 0 && f.packet == PacketKind::Commands && !p.directions.is_empty() {
-            out.push(format!(
-                "{at}: a second format carrying the commands in a spec with directions"
-            ));
-        }
         let keyed = keyed_format(p, fi);
         if f.stuffing.is_some() && (!keyed || p.directions.iter().any(|d| d.message.is_some())) {
             out.push(format!(
