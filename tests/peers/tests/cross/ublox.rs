@@ -567,8 +567,16 @@ impl PeerAdapter for Ublox {
                 cls_id: p.class(),
                 msg_id: p.msg_id(),
             }),
-            // A packet the peer only writes (CFG-MSG, CFG-RATE) comes back unknown.
-            PacketRef::Unknown(_) => return Ok(None),
+            // A packet the peer only writes (CFG-MSG, CFG-RATE) comes back unknown, with the
+            // frame's class, id and payload: its framing and checksum pass, its values are not
+            // read.
+            PacketRef::Unknown(u) => {
+                let framed = (u.class, u.msg_id, u.payload);
+                if framed != (frame[2], frame[3], &frame[6..frame.len() - 2]) {
+                    return Err(format!("unknown packet {framed:02x?}"));
+                }
+                return Ok(None);
+            }
             other => return Err(format!("{other:?}")),
         };
         Ok(Some(spec::Packet {
