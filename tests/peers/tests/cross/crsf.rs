@@ -112,6 +112,7 @@ mod ours {
     protocol::protocol!("../../specs/crsf.toml");
 }
 
+use crate::encoded;
 use crsf::{LinkStatistics, PacketAddress, RcChannels};
 use ours::crsf as spec;
 use proptest::prelude::*;
@@ -222,9 +223,7 @@ impl PeerAdapter for Crsf {
     }
 
     fn ours_write(&self, m: &spec::Packet) -> Result<Vec<u8>, String> {
-        let mut buf = [0u8; spec::MAX_FRAME_LEN];
-        let n = m.encode(&mut buf).map_err(|e| e.to_string())?;
-        Ok(buf[..n].to_vec())
+        encoded(m)
     }
 
     fn ours_read(&self, frame: &[u8]) -> Result<spec::Packet, String> {

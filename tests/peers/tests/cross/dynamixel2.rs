@@ -6,6 +6,7 @@
 //! status packets written by that code decode in `dynamixel2`; the instructions both sides write
 //! must be the same bytes (byte stuffing included).
 
+use crate::encoded;
 use dynamixel2::Bus;
 use proptest::prelude::*;
 use protocol::{Bytes, Group};
@@ -15,9 +16,7 @@ use std::time::{Duration, Instant};
 
 protocol::protocol!("../../specs/dynamixel.toml");
 
-use dynamixel::{
-    Header, MAX_FRAME_LEN, Message, Packet, Read, Status, SyncWrite, SyncWriteServo, Write,
-};
+use dynamixel::{Header, Message, Packet, Read, Status, SyncWrite, SyncWriteServo, Write};
 
 /// A Dynamixel 2.0 packet, as the e-Manual describes it.
 #[derive(Clone, Debug, PartialEq)]
@@ -354,9 +353,7 @@ impl PeerAdapter for Dynamixel2 {
 
     fn ours_write(&self, m: &Dxl) -> Result<Vec<u8>, String> {
         let packet = to_packet(m)?;
-        let mut buf = [0u8; MAX_FRAME_LEN];
-        let n = packet.encode(&mut buf).map_err(|e| e.to_string())?;
-        Ok(buf[..n].to_vec())
+        encoded(&packet)
     }
 
     fn ours_read(&self, frame: &[u8]) -> Result<Dxl, String> {

@@ -12,3 +12,12 @@ mod msp;
 mod rc;
 mod ublox;
 mod values;
+
+/// This project's frame of `packet` (any generated packet type), as an adapter's
+/// `PeerAdapter::ours_write` returns it.
+fn encoded<P: protocol::EncodePacket>(packet: &P) -> Result<Vec<u8>, String> {
+    let mut buf = vec![0; packet.encoded_len()];
+    let n = packet.encode_into(&mut buf).map_err(|e| e.to_string())?;
+    buf.truncate(n);
+    Ok(buf)
+}

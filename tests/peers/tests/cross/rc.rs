@@ -127,6 +127,7 @@ mod ours {
     protocol::protocol!("../../specs/ibus.toml");
 }
 
+use crate::encoded;
 use ours::{ibus, sbus};
 use proptest::prelude::*;
 use protocol_peers::harness::{PeerAdapter, Tally, assert_every_message_crosses, cross_check};
@@ -198,9 +199,7 @@ impl PeerAdapter for SbusRs {
             header: sbus::Header {},
             payload: *m,
         };
-        let mut buf = [0u8; sbus::MAX_FRAME_LEN];
-        let n = packet.encode(&mut buf).map_err(|e| e.to_string())?;
-        Ok(buf[..n].to_vec())
+        encoded(&packet)
     }
 
     fn ours_read(&self, frame: &[u8]) -> Result<sbus::Channels, String> {
@@ -254,9 +253,7 @@ impl PeerAdapter for ParseRcIbus {
             header: ibus::Header {},
             message: ibus::Message::Channels(*m),
         };
-        let mut buf = [0u8; ibus::MAX_FRAME_LEN];
-        let n = packet.encode(&mut buf).map_err(|e| e.to_string())?;
-        Ok(buf[..n].to_vec())
+        encoded(&packet)
     }
 
     fn ours_read(&self, frame: &[u8]) -> Result<ibus::Channels, String> {

@@ -240,6 +240,7 @@ mod ours {
     protocol::protocol!("../../specs/ubx.toml");
 }
 
+use crate::encoded;
 use ours::ubx as spec;
 use proptest::prelude::*;
 use protocol_peers::harness::{PeerAdapter, cross_check};
@@ -586,9 +587,7 @@ impl PeerAdapter for Ublox {
     }
 
     fn ours_write(&self, m: &spec::Packet) -> Result<Vec<u8>, String> {
-        let mut buf = [0u8; spec::MAX_FRAME_LEN];
-        let n = m.encode(&mut buf).map_err(|e| e.to_string())?;
-        Ok(buf[..n].to_vec())
+        encoded(m)
     }
 
     fn ours_read(&self, frame: &[u8]) -> Result<spec::Packet, String> {
