@@ -301,6 +301,15 @@ fn main() -> ! {
 
     let mut buf = [0u8; 4096];
     let rf = workload(vectors::REFEREE_FRAMES, vectors::REFEREE_STREAMS, &mut buf);
+    let t = ticks(|| {
+        for _ in 0..PASSES {
+            for chunk in rf.chunks(CHUNK) {
+                black_box(black_box(chunk).len());
+            }
+        }
+    });
+    measure("referee", "loop", 0, rf.len() * PASSES, t);
+
     let mut n = 0u32;
     let mut decoder = referee::decoder();
     let t = ticks(|| {
