@@ -2,7 +2,8 @@
 //! referee golden vector and the vectors' noisy streams with the generated codecs, prints what
 //! it decoded over semihosting, then counts the instructions per decoded frame of the
 //! generated HFLink decoder and of the hand-written one (`benches/firmware/hand/src/codec.rs`) on the same
-//! noisy stream, and exits. `run.sh` runs it and checks its output against the
+//! noisy stream, and of the generated referee decoder (each generated one also with its framing
+//! alone: frames found, not decoded into packets), and exits. `run.sh` runs it and checks its output against the
 //! vectors (`protocol-benches`' `qemu-check`).
 //!
 //! Counting: QEMU has no DWT cycle counter, but with `-icount shift=0` its virtual clock runs
@@ -283,6 +284,21 @@ fn main() -> ! {
     });
     measure("hflink", "generated", n, hf.len() * PASSES, t);
 
+    // The framing alone: the frames the stream decoder yields, not decoded into packets.
+    let mut n = 0u32;
+    let mut decoder = hflink::decoder();
+    let t = ticks(|| {
+        for _ in 0..PASSES {
+            for chunk in hf.chunks(CHUNK) {
+                decoder.feed(black_box(chunk), |f| {
+                    black_box(f.bytes);
+                    n += 1;
+                });
+            }
+        }
+    });
+    measure("hflink", "generated-framing", n, hf.len() * PASSES, t);
+
     let mut n = 0u32;
     let mut receiver = hand::Receiver::default();
     let t = ticks(|| {
@@ -325,6 +341,21 @@ fn main() -> ! {
         }
     });
     measure("referee", "generated", n, rf.len() * PASSES, t);
+
+    // The framing alone: the frames the stream decoder yields, not decoded into packets.
+    let mut n = 0u32;
+    let mut decoder = referee::decoder();
+    let t = ticks(|| {
+        for _ in 0..PASSES {
+            for chunk in rf.chunks(CHUNK) {
+                decoder.feed(black_box(chunk), |f| {
+                    black_box(f.bytes);
+                    n += 1;
+                });
+            }
+        }
+    });
+    measure("referee", "generated-framing", n, rf.len() * PASSES, t);
 
     hprintln!("done");
     debug::exit(debug::EXIT_SUCCESS);
