@@ -173,7 +173,7 @@ static void measure_loop(const char *spec, const uint8_t *buf, size_t len)
 
 /* The golden-frame, stream and measuring functions of one codec (prefix `p`, upper-case `P`). */
 #define CODEC(p, P)                                                                                    \
-    static const char *p##_error_name(int e)                                                          \
+    static const char *p##_error_name(int e)                                                           \
     {                                                                                                  \
         switch (e) {                                                                                   \
         case P##_ERR_SHORT_BUFFER: return "short_buffer";                                              \
@@ -192,19 +192,19 @@ static void measure_loop(const char *spec, const uint8_t *buf, size_t len)
         }                                                                                              \
     }                                                                                                  \
                                                                                                        \
-    static void p##_golden(const vector *v)                                                           \
+    static void p##_golden(const vector *v)                                                            \
     {                                                                                                  \
         static p##_packet packet;                                                                      \
         uint8_t out[512];                                                                              \
         int e = p##_decode(v->bytes, v->len, &packet), n;                                              \
-        put("frame " #p " ");                                                                         \
+        put("frame " #p " ");                                                                          \
         put(v->name);                                                                                  \
         if (e != 0) {                                                                                  \
             put(" error ");                                                                            \
-            put(p##_error_name(e));                                                                        \
-        } else if ((n = p##_encode(&packet, out, sizeof out)) < 0) {                                  \
+            put(p##_error_name(e));                                                                    \
+        } else if ((n = p##_encode(&packet, out, sizeof out)) < 0) {                                   \
             put(" encode-error ");                                                                     \
-            put(p##_error_name(n));                                                                        \
+            put(p##_error_name(n));                                                                    \
         } else {                                                                                       \
             put(" ok ");                                                                               \
             put(p##_command_name(packet.command));                                                     \
@@ -214,11 +214,11 @@ static void measure_loop(const char *spec, const uint8_t *buf, size_t len)
         end_line();                                                                                    \
     }                                                                                                  \
                                                                                                        \
-    static void p##_stream_event(const vector *v, const p##_event *event)                             \
+    static void p##_stream_event(const vector *v, const p##_event *event)                              \
     {                                                                                                  \
         static p##_packet packet;                                                                      \
         if (event->kind != P##_EVENT_FRAME) return;                                                    \
-        put("stream " #p " ");                                                                        \
+        put("stream " #p " ");                                                                         \
         put(v->name);                                                                                  \
         put(" frame ");                                                                                \
         put_u64(event->offset);                                                                        \
@@ -228,8 +228,8 @@ static void measure_loop(const char *spec, const uint8_t *buf, size_t len)
         end_line();                                                                                    \
     }                                                                                                  \
                                                                                                        \
-    /* A stream vector, fed in chunks of 7 bytes, then flushed. */                                    \
-    static void p##_stream(const vector *v)                                                           \
+    /* A stream vector, fed in chunks of 7 bytes, then flushed. */                                     \
+    static void p##_stream(const vector *v)                                                            \
     {                                                                                                  \
         static p##_decoder decoder;                                                                    \
         p##_event event;                                                                               \
@@ -242,7 +242,7 @@ static void measure_loop(const char *spec, const uint8_t *buf, size_t len)
             while (p##_decoder_next(&decoder, &chunk, &n, &event)) p##_stream_event(v, &event);        \
         }                                                                                              \
         while (p##_decoder_flush(&decoder, &event)) p##_stream_event(v, &event);                       \
-        put("stream " #p " ");                                                                        \
+        put("stream " #p " ");                                                                         \
         put(v->name);                                                                                  \
         put(" stats ");                                                                                \
         put_u64(s->frames);                                                                            \
@@ -254,9 +254,9 @@ static void measure_loop(const char *spec, const uint8_t *buf, size_t len)
         end_line();                                                                                    \
     }                                                                                                  \
                                                                                                        \
-    /* The measured job: 64-byte chunks to the stream decoder, every frame decoded into its          \
-       packet and counted when it decodes; then the stream decoder alone. */                          \
-    static void p##_measure(const uint8_t *buf, size_t len)                                           \
+    /* The measured job: 64-byte chunks to the stream decoder, every frame decoded into its            \
+       packet and counted when it decodes; then the stream decoder alone. */                           \
+    static void p##_measure(const uint8_t *buf, size_t len)                                            \
     {                                                                                                  \
         static p##_decoder decoder;                                                                    \
         uint32_t pass, frames = 0, start, end;                                                         \
@@ -271,7 +271,8 @@ static void measure_loop(const char *spec, const uint8_t *buf, size_t len)
                 BLACK_BOX(chunk);                                                                      \
                 while (p##_decoder_next(&decoder, &chunk, &n, &event)) {                               \
                     p##_packet packet;                                                                 \
-                    if (event.kind == P##_EVENT_FRAME && p##_decode(event.bytes, event.len, &packet) == 0) { \
+                    if (event.kind == P##_EVENT_FRAME &&                                               \
+                        p##_decode(event.bytes, event.len, &packet) == 0) {                            \
                         BLACK_BOX(&packet);                                                            \
                         frames++;                                                                      \
                     }                                                                                  \
@@ -281,7 +282,7 @@ static void measure_loop(const char *spec, const uint8_t *buf, size_t len)
         end = SYST_CVR;                                                                                \
         measure(#p, "C", frames, len * PASSES, start, end);                                            \
                                                                                                        \
-        /* The framing alone: the frames the stream decoder yields, not decoded into packets. */      \
+        /* The framing alone: the frames the stream decoder yields, not decoded into packets. */       \
         p##_decoder_init(&decoder);                                                                    \
         frames = 0;                                                                                    \
         start = SYST_CVR;                                                                              \
