@@ -322,7 +322,11 @@ fn run(args: &[String]) -> Result<Vec<String>, Vec<String>> {
                 .map(|e| format!("{label} firmware: {e}"))
                 .collect::<Vec<_>>()
         })?;
-        lines.extend(checked.into_iter().map(|l| format!("{label} firmware: {l}")));
+        lines.extend(
+            checked
+                .into_iter()
+                .map(|l| format!("{label} firmware: {l}")),
+        );
     }
     let texts: Vec<(&str, &str)> = outputs.iter().map(|(_, l, o)| (*l, o.as_str())).collect();
     lines.extend(counts(&texts).map_err(one)?);

@@ -216,7 +216,9 @@ fn main() -> ! {
     let Some(mut peripherals) = cortex_m::Peripherals::take() else {
         hprintln!("error: no peripherals");
         debug::exit(debug::EXIT_FAILURE);
-        loop {}
+        loop {
+            core::hint::spin_loop();
+        }
     };
     hprintln!("firmware-qemu: Cortex-M4, generated HFLink and referee codecs");
 
