@@ -2,7 +2,8 @@
 //! referee golden vector and the vectors' noisy streams with the generated codecs, prints what
 //! it decoded over semihosting, then counts the instructions per decoded frame of the
 //! generated HFLink decoder and of the hand-written one (`benches/firmware/hand/src/codec.rs`) on the same
-//! noisy stream, and exits. `run.sh` runs it and checks its output against the
+//! noisy stream, and of the generated referee decoder (each generated one also with its framing
+//! alone: frames found, not decoded into packets), and exits. `run.sh` runs it and checks its output against the
 //! vectors (`protocol-benches`' `qemu-check`).
 //!
 //! Counting: QEMU has no DWT cycle counter, but with `-icount shift=0` its virtual clock runs
@@ -215,7 +216,9 @@ fn main() -> ! {
     let Some(mut peripherals) = cortex_m::Peripherals::take() else {
         hprintln!("error: no peripherals");
         debug::exit(debug::EXIT_FAILURE);
-        loop {}
+        loop {
+            core::hint::spin_loop();
+        }
     };
     hprintln!("firmware-qemu: Cortex-M4, generated HFLink and referee codecs");
 
@@ -283,6 +286,21 @@ fn main() -> ! {
     });
     measure("hflink", "generated", n, hf.len() * PASSES, t);
 
+    // The framing alone: the frames the stream decoder yields, not decoded into packets.
+    let mut n = 0u32;
+    let mut decoder = hflink::decoder();
+    let t = ticks(|| {
+        for _ in 0..PASSES {
+            for chunk in hf.chunks(CHUNK) {
+                decoder.feed(black_box(chunk), |f| {
+                    black_box(f.bytes);
+                    n += 1;
+                });
+            }
+        }
+    });
+    measure("hflink", "generated-framing", n, hf.len() * PASSES, t);
+
     let mut n = 0u32;
     let mut receiver = hand::Receiver::default();
     let t = ticks(|| {
@@ -301,6 +319,15 @@ fn main() -> ! {
 
     let mut buf = [0u8; 4096];
     let rf = workload(vectors::REFEREE_FRAMES, vectors::REFEREE_STREAMS, &mut buf);
+    let t = ticks(|| {
+        for _ in 0..PASSES {
+            for chunk in rf.chunks(CHUNK) {
+                black_box(black_box(chunk).len());
+            }
+        }
+    });
+    measure("referee", "loop", 0, rf.len() * PASSES, t);
+
     let mut n = 0u32;
     let mut decoder = referee::decoder();
     let t = ticks(|| {
@@ -316,6 +343,21 @@ fn main() -> ! {
         }
     });
     measure("referee", "generated", n, rf.len() * PASSES, t);
+
+    // The framing alone: the frames the stream decoder yields, not decoded into packets.
+    let mut n = 0u32;
+    let mut decoder = referee::decoder();
+    let t = ticks(|| {
+        for _ in 0..PASSES {
+            for chunk in rf.chunks(CHUNK) {
+                decoder.feed(black_box(chunk), |f| {
+                    black_box(f.bytes);
+                    n += 1;
+                });
+            }
+        }
+    });
+    measure("referee", "generated-framing", n, rf.len() * PASSES, t);
 
     hprintln!("done");
     debug::exit(debug::EXIT_SUCCESS);
