@@ -408,10 +408,28 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
         trailer_out,
         flagged_total,
     } = Spans::of(f);
-    let trim = if f.truncate_zeros {
-        quote!(let plen = #rt::trimmed_len(room.get(..plen).unwrap_or_default());)
+    // The payload first: its size on the wire decides the frame's length. In place, or, when
+    // trailing zeros are dropped, aside (the whole payload need not fit the frame's buffer).
+    let write = if f.truncate_zeros {
+        let max_payload_len = Items::of(f).max_payload_len;
+        let room = if stuff.is_empty() {
+            quote!(_)
+        } else {
+            quote!(room)
+        };
+        quote! {
+            let mut aside = [0u8; #max_payload_len];
+            let mut w = #rt::Writer::new(&mut aside);
+            self.message.write_payload(&mut w)?;
+            let (#room, plen) = #rt::place_trimmed(buf, start, #trailer_out, w.written())?;
+        }
     } else {
-        quote!()
+        quote! {
+            let room = #rt::payload_room(buf, self.encoded_len(), start, #trailer_out)?;
+            let mut w = #rt::Writer::new(room);
+            self.message.write_payload(&mut w)?;
+            let plen = w.position();
+        }
     };
     let decoders = if p.directions_given() {
         let reads = given::Reads {
@@ -478,12 +496,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
                 #direction_check
                 let start = #start_of;
-                // The payload first, in place: its size on the wire decides the frame's length.
-                let room = #rt::payload_room(buf, self.encoded_len(), start, #trailer_out)?;
-                let mut w = #rt::Writer::new(room);
-                self.message.write_payload(&mut w)?;
-                let plen = w.position();
-                #trim
+                #write
                 #stuff
                 #place
                 let total = start.saturating_add(plen).saturating_add(#trailer_of)#flagged_total;
