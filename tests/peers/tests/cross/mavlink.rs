@@ -357,12 +357,12 @@ mod ours {
     protocol::protocol!("../../specs/mavlink.toml");
 }
 
+use crate::{encoded, packet_of};
 use mavlink::MavHeader;
 use mavlink::dialects::common::{
     ATTITUDE_DATA, COMMAND_ACK_DATA, GLOBAL_POSITION_INT_DATA, MavCmd, MavResult, RC_CHANNELS_DATA,
     SYSTEM_TIME_DATA,
 };
-use crate::{encoded, packet_of};
 use ours::mavlink as spec;
 use proptest::prelude::*;
 use protocol_peers::harness::{PeerAdapter, assert_every_message_crosses};
