@@ -426,8 +426,13 @@ fn a_links_packet_reads_its_format_before_the_packets_keys() {
     let bytes = unhex(frame["hex"].as_str().expect("hex"));
     let packet = mavlink::AnyPacket::V2(mavlink::Packet::decode(&bytes).expect("decodes"));
     let text = serde_json::to_string(&packet).expect("serializes");
-    assert!(text.starts_with(r#"{"format":"v2","command":"HEARTBEAT","header":"#), "{text}");
-    let rest = text.strip_prefix(r#"{"format":"v2","#).expect("format first");
+    assert!(
+        text.starts_with(r#"{"format":"v2","command":"HEARTBEAT","header":"#),
+        "{text}"
+    );
+    let rest = text
+        .strip_prefix(r#"{"format":"v2","#)
+        .expect("format first");
     let reads = |json: &str| serde_json::from_str::<mavlink::AnyPacket>(json);
     assert_eq!(reads(&text).expect("reads"), packet);
     let skipped = format!(r#"{{"offset":3,"format":"v2",{rest}"#);
