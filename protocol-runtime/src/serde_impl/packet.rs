@@ -81,10 +81,11 @@ pub fn serialize_packet_in<P: SerdePacket, S: Serializer>(
 ) -> Result<S::Ok, S::Error> {
     let (command, header, message) = p.parts();
     let direction = p.direction();
-    let len = 2
-        + usize::from(format.is_some())
-        + usize::from(command.is_some())
-        + usize::from(direction.is_some());
+    let len = [format.is_some(), command.is_some(), direction.is_some()]
+        .into_iter()
+        .filter(|&present| present)
+        .count()
+        .saturating_add(2);
     let mut map = s.serialize_map(Some(len))?;
     if let Some(name) = format {
         map.serialize_entry("format", name)?;
@@ -159,13 +160,9 @@ impl<'de, P: SerdeAnyPacket> Visitor<'de> for AnyPacketVisitor<P> {
         while let Some(key) = map.next_key::<Key>()? {
             match key {
                 Key::Format => {
-                    let name = map.next_value::<Name>()?;
-                    let format = P::FORMATS
-                        .iter()
-                        .position(|n| *n == name.as_str())
-                        .ok_or_else(|| {
-                            de::Error::custom(format_args!("no frame format `{}`", name.as_str()))
-                        })?;
+                    let format = map
+                        .next_value::<Name>()?
+                        .index_in(P::FORMATS, "frame format")?;
                     return P::visit_format(format, map);
                 }
                 Key::Other => {
@@ -214,13 +211,7 @@ impl<'de, P: SerdePacket> Visitor<'de> for PacketVisitor<P> {
             match key {
                 Key::Direction if !P::GIVEN_DIRECTIONS.is_empty() => {
                     let name = map.next_value::<Name>()?;
-                    let d = P::GIVEN_DIRECTIONS
-                        .iter()
-                        .position(|n| *n == name.as_str())
-                        .ok_or_else(|| {
-                            de::Error::custom(format_args!("no direction `{}`", name.as_str()))
-                        })?;
-                    direction = Some(d);
+                    direction = Some(name.index_in(P::GIVEN_DIRECTIONS, "direction")?);
                 }
                 Key::Command => {
                     let name = map.next_value::<Name>()?;
@@ -293,6 +284,15 @@ struct Name(crate::bytes::Bytes<64>);
 impl Name {
     fn as_str(&self) -> &str {
         core::str::from_utf8(self.0.as_slice()).unwrap_or_default()
+    }
+
+    /// The name's place in `names`, or an error that there is no `what` of the name.
+    fn index_in<E: de::Error>(&self, names: &[&str], what: &str) -> Result<usize, E> {
+        let name = self.as_str();
+        names
+            .iter()
+            .position(|n| *n == name)
+            .ok_or_else(|| E::custom(format_args!("no {what} `{name}`")))
     }
 }
 
