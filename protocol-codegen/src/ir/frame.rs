@@ -72,20 +72,20 @@ pub struct Frame {
     /// Trailing-zero truncation of command payloads: the sender drops the zeros at the end of
     /// a payload (keeping its first byte), the receiver zero-fills it to its struct's size.
     pub truncate_zeros: bool,
-    /// For a frame format without dispatch key: the struct (index into [`Protocol::structs`])
-    /// every frame carries.
+    /// For a frame format without dispatch key: the struct (index into
+    /// [`Protocol::structs`](super::Protocol::structs)) every frame carries.
     pub message: Option<usize>,
     /// What a whole decoded frame of this format holds, when it has a packet type.
     pub packet: PacketKind,
     /// False when the format carries payloads without their extension fields (a struct's
-    /// [`Struct::base_size`] bytes).
+    /// [`Struct::base_size`](super::Struct::base_size) bytes).
     pub extensions: bool,
     /// The header value (index into [`Frame::values`]) that tells the direction, in a spec
     /// whose header tells its directions: set on the first format and on each format after it
     /// that carries the commands (the field of the same name).
     pub direction: Option<usize>,
-    /// The commands (indices into [`Protocol::commands`]) this format carries: every command
-    /// for the first format with a dispatch key; for a format with
+    /// The commands (indices into [`Protocol::commands`](super::Protocol::commands)) this
+    /// format carries: every command for the first format with a dispatch key; for a format with
     /// [`PacketKind::Commands`], those whose id fits its dispatch fields; else none.
     pub commands: Vec<usize>,
     /// Bytes at the end of the frame, after its checks and trailers, present when a header
@@ -131,7 +131,8 @@ pub enum PacketKind {
     /// The first frame format, with a dispatch key: a header and a command's message.
     Command,
     /// A serial frame format without dispatch key, in a spec whose first frame format has one:
-    /// a header and the struct (index into [`Protocol::structs`]) every frame carries.
+    /// a header and the struct (index into [`Protocol::structs`](super::Protocol::structs))
+    /// every frame carries.
     Message(usize),
     /// A CAN frame format other than the first, in a spec without directions whose first frame
     /// format has a dispatch key: a header and a command's message, the command found from the

@@ -202,8 +202,8 @@ pub enum FieldKind {
         /// this one, or of the struct that repeats this one.
         size_from: Option<String>,
     },
-    /// Elements of a struct (index into [`Protocol::structs`]) repeated to the end of the
-    /// payload (only as the last field of a struct).
+    /// Elements of a struct (index into [`Protocol::structs`](super::Protocol::structs))
+    /// repeated to the end of the payload (only as the last field of a struct).
     Group {
         /// The element struct.
         elem: usize,
@@ -297,9 +297,9 @@ pub enum ValueType {
         /// Scaling from raw to physical value.
         scale: Option<Scale>,
     },
-    /// A nested struct (index into [`Protocol::structs`]).
+    /// A nested struct (index into [`Protocol::structs`](super::Protocol::structs)).
     Struct(usize),
-    /// An enum (index into [`Protocol::enums`]) with its wire integer.
+    /// An enum (index into [`Protocol::enums`](super::Protocol::enums)) with its wire integer.
     Enum(usize, Scalar),
     /// This many bytes of NUL-padded text (a C `char[N]`): the runtime's `FixedStr<N>`, which
     /// keeps every byte as received.
@@ -335,7 +335,7 @@ pub struct BitMember {
     /// Rust type of the member: `Bool` for a one-bit flag unless written otherwise, else the
     /// smallest unsigned type that holds `width` bits.
     pub prim: Prim,
-    /// The enum (index into [`Protocol::enums`]) the member holds, if any.
+    /// The enum (index into [`Protocol::enums`](super::Protocol::enums)) the member holds, if any.
     pub enum_index: Option<usize>,
 }
 
