@@ -6,7 +6,7 @@
 //! refused for want of room. Finding and verifying frames is the engine's business.
 
 use protocol_runtime::layout::LayoutRef;
-use protocol_runtime::{Event, FrameLayout, PacketLayout, Reject, Stats, StreamDecoder};
+use protocol_runtime::{Event, Frame, FrameLayout, PacketLayout, Reject, Stats, StreamDecoder};
 
 use crate::{Codec, DecodeIssue, Decoded};
 
@@ -76,8 +76,8 @@ impl PacketLayout for Format<'_> {
     type Packet = Decoded;
     type Error = DecodeIssue;
 
-    fn decode_packet(&self, frame: &[u8]) -> Result<Decoded, DecodeIssue> {
-        self.codec.decode_frame(self.format, frame)
+    fn decode_packet(&self, frame: &Frame<'_>) -> Result<Decoded, DecodeIssue> {
+        self.codec.decode_frame(self.format, frame.bytes)
     }
 }
 

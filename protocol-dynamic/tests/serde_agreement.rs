@@ -45,12 +45,38 @@ macro_rules! serial {
     };
 }
 
-/// The packets of a link's two command formats.
+/// The packets of a link's two command formats; and the link's `AnyPacket` of each, whose
+/// JSON is the packet's after the codec's `format`, and which reads back from the codec's
+/// whole frame object as the same packet.
 macro_rules! serial_link {
-    ($m:ident :: [$first:ident, $other:ident], [$max:ident, $other_max:ident]) => {
-        |fi: usize, bytes: &[u8], json: &str| match fi {
-            0 => serial_one!($m::$first, $max)(bytes, json),
-            _ => serial_one!($m::$other, $other_max)(bytes, json),
+    (
+        $m:ident :: [$first:ident as $first_v:ident, $other:ident as $other_v:ident],
+        [$max:ident, $other_max:ident]
+    ) => {
+        |fi: usize, bytes: &[u8], json: &str| {
+            let (any, out) = match fi {
+                0 => (
+                    $m::AnyPacket::$first_v($m::$first::decode(bytes).expect("decodes")),
+                    serial_one!($m::$first, $max)(bytes, json),
+                ),
+                _ => (
+                    $m::AnyPacket::$other_v($m::$other::decode(bytes).expect("decodes")),
+                    serial_one!($m::$other, $other_max)(bytes, json),
+                ),
+            };
+            let shown = serde_json::to_string(&any).expect("a link's packet serializes");
+            let whole: serde_json::Value = serde_json::from_str(json).expect("JSON");
+            let format = serde_json::to_string(&whole["format"]).expect("a format name");
+            assert_eq!(shown, format!("{{\"format\":{format},{}", &out.0[1..]));
+            let read: $m::AnyPacket = serde_json::from_str(json)
+                .unwrap_or_else(|e| panic!("{json} reads as a link's packet: {e}"));
+            let encoded = |p: &$m::AnyPacket| {
+                let mut buf = vec![0u8; protocol::EncodePacket::encoded_len(p)];
+                let n = protocol::EncodePacket::encode_into(p, &mut buf).expect("encodes");
+                buf[..n].to_vec()
+            };
+            assert_eq!(encoded(&read), encoded(&any), "{json}: read back, encoded");
+            out
         }
     };
 }
@@ -135,7 +161,7 @@ fn specs() -> Vec<(&'static str, &'static str, Serial, Option<Can>)> {
             "mavlink",
             "mavlink.json",
             serial_link!(
-                mavlink::[Packet, V1Packet],
+                mavlink::[Packet as V2, V1Packet as V1],
                 [MAX_FRAME_LEN, V1_MAX_FRAME_LEN]
             ),
             None,
@@ -143,7 +169,10 @@ fn specs() -> Vec<(&'static str, &'static str, Serial, Option<Can>)> {
         (
             "msp",
             "msp.json",
-            serial_link!(msp::[Packet, V2Packet], [MAX_FRAME_LEN, V2_MAX_FRAME_LEN]),
+            serial_link!(
+                msp::[Packet as V1, V2Packet as V2],
+                [MAX_FRAME_LEN, V2_MAX_FRAME_LEN]
+            ),
             None,
         ),
         (
@@ -381,4 +410,41 @@ fn serde_json_of_generated_packets_is_the_codecs_on_random_frames() {
         compared > 500 && non_finite > 0,
         "{compared} frames, {non_finite} non-finite"
     );
+}
+
+/// A link's packet reads its `format` first (keys before it that are no packet's are skipped),
+/// and refuses a packet key before it, a format the link lacks, and a map without one.
+#[test]
+fn a_links_packet_reads_its_format_before_the_packets_keys() {
+    let v = vectors("mavlink.json");
+    let frame = v["frames"]
+        .as_array()
+        .expect("frames")
+        .iter()
+        .find(|f| f["name"] == "heartbeat_v2")
+        .expect("a MAVLink 2 heartbeat");
+    let bytes = unhex(frame["hex"].as_str().expect("hex"));
+    let packet = mavlink::AnyPacket::V2(mavlink::Packet::decode(&bytes).expect("decodes"));
+    let text = serde_json::to_string(&packet).expect("serializes");
+    assert!(
+        text.starts_with(r#"{"format":"v2","command":"HEARTBEAT","header":"#),
+        "{text}"
+    );
+    let rest = text
+        .strip_prefix(r#"{"format":"v2","#)
+        .expect("format first");
+    let reads = |json: &str| serde_json::from_str::<mavlink::AnyPacket>(json);
+    assert_eq!(reads(&text).expect("reads"), packet);
+    let skipped = format!(r#"{{"offset":3,"format":"v2",{rest}"#);
+    assert_eq!(reads(&skipped).expect("reads"), packet);
+    // The MAVLink 1 format reads the same keys as its own packet.
+    let v1 = reads(&format!(r#"{{"format":"v1",{rest}"#)).expect("reads as MAVLink 1");
+    assert!(matches!(v1, mavlink::AnyPacket::V1(_)), "{v1:?}");
+    for bad in [
+        format!(r#"{{{rest}"#),
+        format!(r#"{{"format":"v3",{rest}"#),
+        format!(r#"{{"command":"HEARTBEAT","format":"v2",{rest}"#),
+    ] {
+        assert!(reads(&bad).is_err(), "{bad} is refused");
+    }
 }

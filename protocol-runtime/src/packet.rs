@@ -8,7 +8,7 @@
 //! and [`EncodePacket`] (a packet that encodes into a frame: generated `Packet` types). It does
 //! not find frames (the engine does) nor decode payloads (the codec does).
 
-use crate::decoder::{Event, Reject, Stats, StreamDecoder};
+use crate::decoder::{Event, Frame, Reject, Stats, StreamDecoder};
 use crate::error::{DecodeError, EncodeError};
 use crate::layout::LayoutRef;
 
@@ -24,13 +24,14 @@ pub trait PacketLayout: LayoutRef {
     /// Why a candidate or a frame holds no packet.
     type Error: From<Reject>;
 
-    /// Decodes a frame whose framing the engine checked (`Packet::from_frame` in generated
-    /// code).
+    /// Decodes a frame whose framing the engine checked (`Packet::from_frame` of its bytes in
+    /// generated code; on a link of several formats, `AnyPacket::from_frame`, which reads the
+    /// frame's [`format`](Frame::format)).
     ///
     /// # Errors
     /// Why the frame holds no packet of the spec (an unknown command, a payload of the wrong
     /// size, a field out of its type).
-    fn decode_packet(&self, frame: &[u8]) -> Result<Self::Packet, Self::Error>;
+    fn decode_packet(&self, frame: &Frame<'_>) -> Result<Self::Packet, Self::Error>;
 }
 
 /// A packet that encodes into a frame of its format (generated `Packet` types implement it).
@@ -100,7 +101,7 @@ impl<P, E> PacketEvent<P, E> {
 /// The [`PacketEvent`] of an engine [`Event`].
 fn packet_event<L: PacketLayout>(layout: &L, event: Event<'_>) -> PacketEvent<L::Packet, L::Error> {
     match event {
-        Event::Frame(f) => match layout.decode_packet(f.bytes) {
+        Event::Frame(f) => match layout.decode_packet(&f) {
             Ok(packet) => PacketEvent::Packet {
                 offset: f.offset,
                 len: f.bytes.len(),
@@ -124,7 +125,7 @@ fn packet_event<L: PacketLayout>(layout: &L, event: Event<'_>) -> PacketEvent<L:
 ///
 /// ```
 /// # use protocol_runtime::layout::{ByteOrder, Check, LengthRule, Pos, WordField};
-/// # use protocol_runtime::{Checksum, DecodeError, FrameLayout, LayoutRef, PacketLayout};
+/// # use protocol_runtime::{Checksum, DecodeError, Frame, FrameLayout, LayoutRef, PacketLayout};
 /// # static LAMP: FrameLayout<'static> = FrameLayout {
 /// #     sync: &[0xAA],
 /// #     sync_set: &[],
@@ -160,11 +161,11 @@ fn packet_event<L: PacketLayout>(layout: &L, event: Event<'_>) -> PacketEvent<L:
 /// impl PacketLayout for LampLayout {
 ///     type Packet = Ping;
 ///     type Error = DecodeError;
-///     fn decode_packet(&self, frame: &[u8]) -> Result<Ping, DecodeError> {
-///         match frame.get(2) {
+///     fn decode_packet(&self, frame: &Frame<'_>) -> Result<Ping, DecodeError> {
+///         match frame.bytes.get(2) {
 ///             Some(2) => Ok(Ping),
 ///             Some(&id) => Err(DecodeError::UnknownCommand { key: id.into() }),
-///             None => Err(DecodeError::Truncated { needed: 3, available: frame.len() }),
+///             None => Err(DecodeError::Truncated { needed: 3, available: frame.bytes.len() }),
 ///         }
 ///     }
 /// }

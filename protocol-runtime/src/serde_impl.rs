@@ -40,8 +40,8 @@ pub mod float;
 mod packet;
 
 pub use packet::{
-    SerdePacket, deserialize_name, deserialize_packet, payload_error, serialize_name,
-    serialize_packet,
+    SerdeAnyPacket, SerdePacket, deserialize_any_packet, deserialize_name, deserialize_packet,
+    packet_from_map, payload_error, serialize_name, serialize_packet, serialize_packet_in,
 };
 
 /// Bytes as lowercase hex, written straight into the serializer (no buffer).

@@ -9,8 +9,8 @@
 //! implementations of MAVLink (pymavlink, the `mavlink` crate) do: an all-zero payload goes out
 //! as one zero byte, never as an empty payload.
 
-use crate::encoder::Payload;
-use crate::error::DecodeError;
+use crate::encoder::{Payload, payload_room};
+use crate::error::{DecodeError, EncodeError};
 
 /// The bytes of `payload` a sender keeps: all but its trailing zeros, and at least the first
 /// byte of a non-empty payload.
@@ -30,6 +30,38 @@ pub fn trimmed_len(payload: &[u8]) -> usize {
         .rposition(|&b| b != 0)
         .map_or(0, |last| last.saturating_add(1));
     kept.max(payload.len().min(1))
+}
+
+/// Places `payload`, written aside, at `start` of `buf` without its trailing zeros
+/// ([`trimmed_len`]): a frame of `start`, the kept bytes and `trailer_len` bytes after them
+/// needs no more room than that, even when the whole payload would not fit. Returns the room
+/// after `start` (up to `trailer_len` bytes before the end of `buf`) and the bytes kept.
+///
+/// # Errors
+///
+/// [`EncodeError::BufferTooSmall`] if `buf` is shorter than the frame.
+///
+/// ```
+/// use protocol_runtime::zeros::place_trimmed;
+/// let mut buf = [0xAA; 6];
+/// let (_, kept) = place_trimmed(&mut buf, 2, 2, &[7, 8, 0, 0, 0])?;
+/// assert_eq!((kept, buf), (2, [0xAA, 0xAA, 7, 8, 0xAA, 0xAA]));
+/// # Ok::<(), protocol_runtime::EncodeError>(())
+/// ```
+#[inline]
+pub fn place_trimmed<'b>(
+    buf: &'b mut [u8],
+    start: usize,
+    trailer_len: usize,
+    payload: &[u8],
+) -> Result<(&'b mut [u8], usize), EncodeError> {
+    let kept = trimmed_len(payload);
+    let needed = start.saturating_add(kept).saturating_add(trailer_len);
+    let room = payload_room(buf, needed, start, trailer_len)?;
+    for (to, from) in room.iter_mut().zip(payload.iter().take(kept)) {
+        *to = *from;
+    }
+    Ok((room, kept))
 }
 
 /// `bytes` zero-filled to `size` bytes in `scratch`, or `bytes` itself when it is not shorter

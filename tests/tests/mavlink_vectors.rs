@@ -7,7 +7,7 @@
 
 mod golden;
 
-use protocol::{DecodeError, Reject};
+use protocol::{DecodeError, PacketDecoder, PacketEvent, Reject};
 use protocol_dynamic::Interpreter;
 use protocol_tests::{
     F, assert_link_stream_at_every_chunk_size, assert_stream_at_every_chunk_size, hex,
@@ -271,6 +271,17 @@ fn v1_header(frame: &Value) -> V1Header {
 }
 
 /// A vector's frame decoded by the packet of its format, and encoded back.
+/// `packet`'s frame encoded through the runtime's `EncodePacket` into a buffer of exactly its
+/// `encoded_len` bytes (a truncated payload's zeros need no room in it).
+fn exactly<P: protocol::EncodePacket>(packet: &P, name: &str) -> Vec<u8> {
+    let mut buf = vec![0u8; packet.encoded_len()];
+    let n = packet
+        .encode_into(&mut buf)
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert_eq!(n, buf.len(), "{name}: encoded_len");
+    buf
+}
+
 fn decode_and_encode(frame: &Value, bytes: &[u8]) -> (Message, Vec<u8>) {
     let name = frame["name"].as_str().expect("name");
     let mut buf = [0u8; ANY_DECODER_BUFFER_LEN];
@@ -279,6 +290,7 @@ fn decode_and_encode(frame: &Value, bytes: &[u8]) -> (Message, Vec<u8>) {
         assert_eq!(packet.header, v1_header(frame), "{name}");
         let n = packet.encode(&mut buf).expect("encode");
         assert_eq!(packet.encoded_len(), n, "{name}: encoded_len");
+        assert_eq!(exactly(&AnyPacket::V1(packet), name), buf[..n], "{name}");
         // MAVLink 2 does not decode it.
         assert!(Packet::decode(bytes).is_err(), "{name}");
         (packet.message, n)
@@ -287,6 +299,7 @@ fn decode_and_encode(frame: &Value, bytes: &[u8]) -> (Message, Vec<u8>) {
         assert_eq!(packet.header, header(frame), "{name}");
         let n = packet.encode(&mut buf).expect("encode");
         assert_eq!(packet.encoded_len(), n, "{name}: encoded_len");
+        assert_eq!(exactly(&AnyPacket::V2(packet), name), buf[..n], "{name}");
         assert!(V1Packet::decode(bytes).is_err(), "{name}");
         (packet.message, n)
     };
@@ -450,6 +463,39 @@ fn the_mixed_stream_yields_the_expressed_frames_at_every_chunk_size() {
             assert_eq!(v1, f.bytes[0] == 0xFE, "the format it came in");
         },
     );
+}
+
+/// The link's `PacketDecoder` (`AnyLayout`, as the integrations drive it) yields each expected
+/// frame as the packet of the format whose sync starts it, at every chunk size.
+#[test]
+fn the_link_packet_decoder_yields_each_frame_in_its_format() {
+    let (bytes, expected) = expressed_stream();
+    let want: Vec<(u64, AnyPacket)> = expected
+        .iter()
+        .map(|(offset, f)| {
+            let packet = match f[0] {
+                0xFE => AnyPacket::V1(V1Packet::decode(f).expect("a MAVLink 1 frame")),
+                _ => AnyPacket::V2(Packet::decode(f).expect("a MAVLink 2 frame")),
+            };
+            (*offset, packet)
+        })
+        .collect();
+    for chunk in 1..=bytes.len() {
+        let mut decoder = PacketDecoder::<_, ANY_DECODER_BUFFER_LEN>::new(AnyLayout);
+        let mut events = Vec::new();
+        for part in bytes.chunks(chunk) {
+            events.extend(decoder.packets(part));
+        }
+        events.extend(std::iter::from_fn(|| decoder.flush_packet()));
+        let got: Vec<(u64, AnyPacket)> = events
+            .into_iter()
+            .filter_map(|e| match e {
+                PacketEvent::Packet { offset, packet, .. } => Some((offset, packet)),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(got, want, "chunk size {chunk}");
+    }
 }
 
 fn interpreter() -> Interpreter {

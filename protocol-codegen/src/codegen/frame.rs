@@ -286,7 +286,7 @@ pub fn emit_frames(p: &Protocol) -> TokenStream {
         // The module's page shows the first frame's table; the others' layouts carry their own.
         let doc = if i == 0 {
             format!(
-                " The `{}` frame format (its table is on the module's page).",
+                "The `{}` frame format (its table is on the module's page).",
                 f.name
             )
         } else {

@@ -14,7 +14,9 @@
 //! helper); spec enums, `Command`, the message enums and the packets have impls that call the
 //! runtime's helpers (`serde_support`), so that an enum is its variant's name in the spec (a
 //! number when unknown), a message is its payload and a packet is the map of `command`,
-//! `header` and `payload` (after `direction` when the decoder is given it). This module runs after the other printers, on their items: it adds
+//! `header` and `payload` (after `direction` when the decoder is given it; a link's
+//! `AnyPacket` is its format's packet after `format`). This module runs after the other
+//! printers, on their items: it adds
 //! attributes to the structs and enums it finds and appends the impls, so that the printers
 //! stay as they are when no derive is chosen.
 
@@ -195,7 +197,54 @@ fn serde_impls(p: &Protocol, rt: &TokenStream) -> TokenStream {
     for f in &p.frames {
         out.extend(packet_impls(p, f, rt));
     }
+    out.extend(any_packet_impls(p, rt));
     out
+}
+
+/// A link's `AnyPacket`: its format's packet, with the format's name first (`format`, as the
+/// run-time codec's frame objects have it).
+fn any_packet_impls(p: &Protocol, rt: &TokenStream) -> TokenStream {
+    let formats: Vec<&Frame> = p.link.iter().map(|&i| &p.frames[i]).collect();
+    if formats.is_empty() {
+        return quote!();
+    }
+    let names: Vec<&str> = formats.iter().map(|f| f.name.as_str()).collect();
+    let variants: Vec<_> = formats
+        .iter()
+        .map(|f| format_ident!("{}", f.names.pascal))
+        .collect();
+    // The last format takes every other index: `FORMATS` gives none beyond it.
+    let reads = formats.iter().enumerate().map(|(i, f)| {
+        let v = format_ident!("{}", f.names.pascal);
+        let read = quote!(#rt::Ok(Self::#v(#rt::serde_support::packet_from_map(map)?)));
+        if i + 1 == formats.len() {
+            quote!(_ => #read,)
+        } else {
+            quote!(#i => #read,)
+        }
+    });
+    quote! {
+        impl #rt::serde_support::SerdeAnyPacket for AnyPacket {
+            const FORMATS: &'static [&'static str] = &[#(#names),*];
+            fn visit_format<'de, A: #rt::serde::de::MapAccess<'de>>(format: usize, map: A) -> #rt::Result<Self, A::Error> {
+                match format {
+                    #(#reads)*
+                }
+            }
+        }
+        impl #rt::serde::Serialize for AnyPacket {
+            fn serialize<S: #rt::serde::Serializer>(&self, s: S) -> #rt::Result<S::Ok, S::Error> {
+                match self {
+                    #(Self::#variants(p) => #rt::serde_support::serialize_packet_in(p, #rt::Some(#names), s),)*
+                }
+            }
+        }
+        impl<'de> #rt::serde::Deserialize<'de> for AnyPacket {
+            fn deserialize<D: #rt::serde::Deserializer<'de>>(d: D) -> #rt::Result<Self, D::Error> {
+                #rt::serde_support::deserialize_any_packet(d)
+            }
+        }
+    }
 }
 
 /// A spec enum: its variant's name in the spec, or its number when it has none.

@@ -3,6 +3,9 @@
 //! `EncodePacket` on its `Packet`, so that the runtime's `PacketDecoder` and the integrations
 //! (the `tokio` codec, the `embedded-io-async` reader and writer) drive generated codecs.
 //!
+//! On a link of several command formats, also `PacketLayout` on `AnyLayout` (each frame decoded
+//! into an `AnyPacket` by the format it came in) and `EncodePacket` on `AnyPacket`.
+//!
 //! This module owns only those impls; each delegates to the packet's own `from_frame`,
 //! `encoded_len` and `encode` (`dispatch`), which the optimiser inlines (the impls are
 //! generic code's callees in the same crate). A CAN format has no stream, so no impl.
@@ -38,12 +41,25 @@ pub fn emit_packet_traits(p: &Protocol) -> TokenStream {
             impl #rt::PacketLayout for #layout {
                 type Packet = #packet;
                 type Error = #rt::DecodeError;
-                fn decode_packet(&self, frame: &[u8]) -> #rt::DecodeResult<#packet> {
-                    #packet::from_frame(frame)
+                fn decode_packet(&self, frame: &#rt::Frame<'_>) -> #rt::DecodeResult<#packet> {
+                    #packet::from_frame(frame.bytes)
                 }
             }
         });
         out.extend(encode_packet(&packet, &rt));
+    }
+    if !p.link.is_empty() {
+        // The link's one decoder: each frame decoded by the format it came in.
+        out.extend(quote! {
+            impl #rt::PacketLayout for AnyLayout {
+                type Packet = AnyPacket;
+                type Error = #rt::DecodeError;
+                fn decode_packet(&self, frame: &#rt::Frame<'_>) -> #rt::DecodeResult<AnyPacket> {
+                    AnyPacket::from_frame(frame)
+                }
+            }
+        });
+        out.extend(encode_packet(&format_ident!("AnyPacket"), &rt));
     }
     out
 }

@@ -336,6 +336,7 @@ pub fn emit_structs(p: &Protocol) -> TokenStream {
         let mut fields = Vec::new();
         let mut all_small = true;
         let mut eq = true;
+        let mut undocumented = false;
         for (pf, f) in def.fields.iter().zip(&s.fields) {
             let unit = if f.unit.is_empty() {
                 String::new()
@@ -395,16 +396,11 @@ pub fn emit_structs(p: &Protocol) -> TokenStream {
                         .clone()
                         .unwrap_or_else(|| format_ident!("_unnamed"));
                     let ty = field_type(kind);
-                    let text = format!(
-                        "{}{}",
-                        if f.doc.is_empty() {
-                            format!("`{}`.", f.name)
-                        } else {
-                            f.doc.clone()
-                        },
-                        unit
-                    );
-                    let d = doc_attrs(&text);
+                    // A field the spec says nothing of has no doc line: the struct's wire
+                    // table names it (and gives its unit, which the doc repeats at the field).
+                    let text = format!("{}{}", f.doc, unit);
+                    undocumented |= text.is_empty();
+                    let d = doc_attrs(text.trim_start());
                     fields.push(quote!(#d pub #id: #ty));
                 }
             }
@@ -422,8 +418,14 @@ pub fn emit_structs(p: &Protocol) -> TokenStream {
         } else {
             quote!()
         };
+        let allow = if undocumented {
+            quote!(#[allow(missing_docs)])
+        } else {
+            quote!()
+        };
         quote! {
             #doc
+            #allow
             #[derive(Debug, Clone, Copy, PartialEq, #eq #default)]
             pub struct #name {
                 #(#fields,)*

@@ -1,5 +1,7 @@
 //! Packets as the map of `direction` (given directions only), `command`, `header` and `payload`
-//! (see the parent module), and commands as their names in the spec.
+//! (see the parent module), and commands as their names in the spec. A packet of a link of
+//! several command formats (generated `AnyPacket`) is its format's packet with the format's
+//! name first, as `format`.
 
 use core::fmt;
 use core::marker::PhantomData;
@@ -64,14 +66,30 @@ pub trait SerdePacket: Sized {
 /// # Errors
 /// The serializer's.
 pub fn serialize_packet<P: SerdePacket, S: Serializer>(p: &P, s: S) -> Result<S::Ok, S::Error> {
+    serialize_packet_in(p, None, s)
+}
+
+/// [`serialize_packet`] with the name of the packet's frame `format` first, when given (a
+/// link's `AnyPacket`).
+///
+/// # Errors
+/// The serializer's.
+pub fn serialize_packet_in<P: SerdePacket, S: Serializer>(
+    p: &P,
+    format: Option<&str>,
+    s: S,
+) -> Result<S::Ok, S::Error> {
     let (command, header, message) = p.parts();
     let direction = p.direction();
-    let len = match (command.is_some(), direction.is_some()) {
-        (true, true) => 4,
-        (true, false) | (false, true) => 3,
-        (false, false) => 2,
-    };
+    let len = [format.is_some(), command.is_some(), direction.is_some()]
+        .into_iter()
+        .filter(|&present| present)
+        .count()
+        .saturating_add(2);
     let mut map = s.serialize_map(Some(len))?;
+    if let Some(name) = format {
+        map.serialize_entry("format", name)?;
+    }
     if let Some(name) = direction {
         map.serialize_entry("direction", name)?;
     }
@@ -91,6 +109,74 @@ pub fn serialize_packet<P: SerdePacket, S: Serializer>(p: &P, s: S) -> Result<S:
 /// its command or header.
 pub fn deserialize_packet<'de, P: SerdePacket, D: Deserializer<'de>>(d: D) -> Result<P, D::Error> {
     d.deserialize_map(PacketVisitor::<P>(PhantomData))
+}
+
+/// Reads the rest of a packet's map, as [`deserialize_packet`] reads a whole one (for
+/// [`SerdeAnyPacket::visit_format`], once the `format` key is read).
+///
+/// # Errors
+/// As [`deserialize_packet`].
+pub fn packet_from_map<'de, P: SerdePacket, A: MapAccess<'de>>(map: A) -> Result<P, A::Error> {
+    PacketVisitor::<P>(PhantomData).visit_map(map)
+}
+
+/// What a link's generated `AnyPacket` (a packet of any of the link's command formats) gives
+/// and takes for its `Serialize` and `Deserialize` impls (which call [`serialize_packet_in`]
+/// and [`deserialize_any_packet`]): the map of its format's packet with `format`, the format's
+/// name in the spec, first.
+pub trait SerdeAnyPacket: Sized {
+    /// The names of the link's command formats, in the order of the link's decoder.
+    const FORMATS: &'static [&'static str];
+    /// Reads the rest of the map as the packet of format `format` (an index into
+    /// [`Self::FORMATS`]), with [`packet_from_map`].
+    ///
+    /// # Errors
+    /// Those of [`packet_from_map`].
+    fn visit_format<'de, A: MapAccess<'de>>(format: usize, map: A) -> Result<Self, A::Error>;
+}
+
+/// Reads a link's packet from a map with `format` before the packet's own keys (keys before it
+/// that are not a packet's, such as `offset`, are skipped), then the format's packet.
+///
+/// # Errors
+/// The deserializer's, and errors for a missing or unknown format, a packet key before it,
+/// and those of [`deserialize_packet`].
+pub fn deserialize_any_packet<'de, P: SerdeAnyPacket, D: Deserializer<'de>>(
+    d: D,
+) -> Result<P, D::Error> {
+    d.deserialize_map(AnyPacketVisitor::<P>(PhantomData))
+}
+
+struct AnyPacketVisitor<P>(PhantomData<P>);
+
+impl<'de, P: SerdeAnyPacket> Visitor<'de> for AnyPacketVisitor<P> {
+    type Value = P;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a packet: a map of `format`, `command`, `header` and `payload`")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<P, A::Error> {
+        while let Some(key) = map.next_key::<Key>()? {
+            match key {
+                Key::Format => {
+                    let format = map
+                        .next_value::<Name>()?
+                        .index_in(P::FORMATS, "frame format")?;
+                    return P::visit_format(format, map);
+                }
+                Key::Other => {
+                    map.next_value::<IgnoredAny>()?;
+                }
+                Key::Direction | Key::Command | Key::Header | Key::Payload => {
+                    return Err(de::Error::custom(
+                        "a packet's key before `format`: the format must come first",
+                    ));
+                }
+            }
+        }
+        Err(de::Error::missing_field("format"))
+    }
 }
 
 struct PacketVisitor<P>(PhantomData<P>);
@@ -125,13 +211,7 @@ impl<'de, P: SerdePacket> Visitor<'de> for PacketVisitor<P> {
             match key {
                 Key::Direction if !P::GIVEN_DIRECTIONS.is_empty() => {
                     let name = map.next_value::<Name>()?;
-                    let d = P::GIVEN_DIRECTIONS
-                        .iter()
-                        .position(|n| *n == name.as_str())
-                        .ok_or_else(|| {
-                            de::Error::custom(format_args!("no direction `{}`", name.as_str()))
-                        })?;
-                    direction = Some(d);
+                    direction = Some(name.index_in(P::GIVEN_DIRECTIONS, "direction")?);
                 }
                 Key::Command => {
                     let name = map.next_value::<Name>()?;
@@ -151,7 +231,7 @@ impl<'de, P: SerdePacket> Visitor<'de> for PacketVisitor<P> {
                         direction,
                     })?);
                 }
-                Key::Direction | Key::Other => {
+                Key::Format | Key::Direction | Key::Other => {
                     map.next_value::<IgnoredAny>()?;
                 }
             }
@@ -166,6 +246,7 @@ impl<'de, P: SerdePacket> Visitor<'de> for PacketVisitor<P> {
 
 /// A key of a packet's map.
 enum Key {
+    Format,
     Direction,
     Command,
     Header,
@@ -183,6 +264,7 @@ impl<'de> Deserialize<'de> for Key {
             }
             fn visit_str<E: de::Error>(self, key: &str) -> Result<Key, E> {
                 Ok(match key {
+                    "format" => Key::Format,
                     "direction" => Key::Direction,
                     "command" => Key::Command,
                     "header" => Key::Header,
@@ -202,6 +284,15 @@ struct Name(crate::bytes::Bytes<64>);
 impl Name {
     fn as_str(&self) -> &str {
         core::str::from_utf8(self.0.as_slice()).unwrap_or_default()
+    }
+
+    /// The name's place in `names`, or an error that there is no `what` of the name.
+    fn index_in<E: de::Error>(&self, names: &[&str], what: &str) -> Result<usize, E> {
+        let name = self.as_str();
+        names
+            .iter()
+            .position(|n| *n == name)
+            .ok_or_else(|| E::custom(format_args!("no {what} `{name}`")))
     }
 }
 

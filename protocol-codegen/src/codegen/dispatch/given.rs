@@ -169,8 +169,8 @@ pub fn direction_layouts(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStre
             impl #rt::PacketLayout for #ty {
                 type Packet = #packet;
                 type Error = #rt::DecodeError;
-                fn decode_packet(&self, frame: &[u8]) -> #rt::DecodeResult<#packet> {
-                    #packet::#from_frame(frame)
+                fn decode_packet(&self, frame: &#rt::Frame<'_>) -> #rt::DecodeResult<#packet> {
+                    #packet::#from_frame(frame.bytes)
                 }
             }
         });

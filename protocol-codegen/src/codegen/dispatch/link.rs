@@ -163,15 +163,25 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
 pub(super) fn emit_base_payload(p: &Protocol, rt: &TokenStream) -> TokenStream {
     let first = &p.frames[0];
     let filled_len = format_ident!("{}", first.names.sizes.max_payload_len);
-    let arms = p.commands.iter().filter_map(|c| {
-        let si = c.payloads.first().copied().flatten()?;
-        let s = &p.structs[si];
-        // A fixed-size struct without extension fields is carried whole: exactly its size,
-        // not zero-filled as a first format that truncates trailing zeros reads it.
-        let base = s.base_size.or((s.min_size == s.size).then_some(s.size))?;
-        let (v, size) = (ident(&c.rust_name), s.size);
-        Some(quote!(Command::#v => #rt::Some((#base, #size)),))
-    });
+    let arms: Vec<TokenStream> = p
+        .commands
+        .iter()
+        .filter_map(|c| {
+            let si = c.payloads.first().copied().flatten()?;
+            let s = &p.structs[si];
+            // A fixed-size struct without extension fields is carried whole: exactly its size,
+            // not zero-filled as a first format that truncates trailing zeros reads it.
+            let base = s.base_size.or((s.min_size == s.size).then_some(s.size))?;
+            let (v, size) = (ident(&c.rust_name), s.size);
+            Some(quote!(Command::#v => #rt::Some((#base, #size)),))
+        })
+        .collect();
+    // The commands without an arm, when some have none.
+    let rest = if arms.len() < p.commands.len() {
+        quote!(_ => #rt::None,)
+    } else {
+        quote!()
+    };
     quote! {
         impl Message {
             /// The bytes of `command`'s payload without its extension fields, and with them,
@@ -180,8 +190,7 @@ pub(super) fn emit_base_payload(p: &Protocol, rt: &TokenStream) -> TokenStream {
             pub const fn base_len(command: Command) -> #rt::Option<(usize, usize)> {
                 match command {
                     #(#arms)*
-                    #[allow(unreachable_patterns)]
-                    _ => #rt::None,
+                    #rest
                 }
             }
             /// Read the payload of `command` as a format without extension fields carries it:

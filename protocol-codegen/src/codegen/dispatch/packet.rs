@@ -367,6 +367,97 @@ impl Spans {
     }
 }
 
+/// The start of `Packet::encode`: the payload written first, as its size on the wire decides
+/// the frame's length. In place, or, when trailing zeros are dropped, aside and then placed
+/// trimmed (the whole payload need not fit the frame's buffer). Defines `plen`, and `room`
+/// (the bytes after the payload's start) when `stuffing` needs it.
+fn payload_write(
+    f: &Frame,
+    stuffing: bool,
+    trailer_out: &TokenStream,
+    rt: &TokenStream,
+) -> TokenStream {
+    if f.truncate_zeros {
+        let max_payload_len = Items::of(f).max_payload_len;
+        // Stuffing works in the room after the placed payload.
+        let room = if stuffing { quote!(room) } else { quote!(_) };
+        quote! {
+            let mut aside = [0u8; #max_payload_len];
+            let mut w = #rt::Writer::new(&mut aside);
+            self.message.write_payload(&mut w)?;
+            let (#room, plen) = #rt::place_trimmed(buf, start, #trailer_out, w.written())?;
+        }
+    } else {
+        quote! {
+            let room = #rt::payload_room(buf, self.encoded_len(), start, #trailer_out)?;
+            let mut w = #rt::Writer::new(room);
+            self.message.write_payload(&mut w)?;
+            let plen = w.position();
+        }
+    }
+}
+
+/// `Packet::decode` and `Packet::from_frame` (with directions the decoder is given, the
+/// decoders of each direction).
+fn packet_decoders(
+    p: &Protocol,
+    f: &Frame,
+    reads: &given::Reads<'_>,
+    ack_decode: &TokenStream,
+    message: &TokenStream,
+    rt: &TokenStream,
+) -> TokenStream {
+    if p.directions_given() {
+        return given::decoders(p, f, reads, rt);
+    }
+    let Items {
+        layout,
+        packet,
+        header,
+        ..
+    } = Items::of(f);
+    let Spans {
+        header_in,
+        trailer_in,
+        ..
+    } = Spans::of(f);
+    let given::Reads {
+        header_fields,
+        read_key,
+        key_u64,
+        unstuff,
+    } = reads;
+    {
+        quote! {
+            /// Decode the frame at the start of `bytes`, checking its framing (sync, length,
+            /// checks) first.
+            ///
+            /// # Errors
+            /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they
+            /// end early, and the errors of [`Self::from_frame`].
+            pub fn decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
+                Self::from_frame(#layout.parse(bytes)?)
+            }
+            /// Decode a frame whose framing a decoder already checked.
+            ///
+            /// # Errors
+            /// `UnknownCommand` for an id the spec does not have, `UnknownDirection` when the
+            /// header matches no direction, `PayloadLength` when the payload's size is not the
+            /// command's, and errors of the payload's fields.
+            pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
+                let header = #header { #(#header_fields,)* };
+                #ack_decode
+                #read_key
+                let command = Command::from_id(id).ok_or(#rt::unknown_command(#key_u64))?;
+                let payload = #rt::payload_of(frame, #header_in, #trailer_in)?;
+                #unstuff
+                let message = #message;
+                #rt::Ok(#packet { header, message })
+            }
+        }
+    }
+}
+
 /// `Packet`: the header values and the message of the first frame format, decoded from and
 /// encoded to a frame through `LAYOUT`.
 pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
@@ -402,54 +493,19 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
         quote!()
     };
     let Spans {
-        header_in,
         place,
-        trailer_in,
         trailer_out,
         flagged_total,
+        ..
     } = Spans::of(f);
-    let trim = if f.truncate_zeros {
-        quote!(let plen = #rt::trimmed_len(room.get(..plen).unwrap_or_default());)
-    } else {
-        quote!()
+    let write = payload_write(f, !stuff.is_empty(), &trailer_out, rt);
+    let reads = given::Reads {
+        header_fields: &header_fields,
+        read_key,
+        key_u64,
+        unstuff: &unstuff,
     };
-    let decoders = if p.directions_given() {
-        let reads = given::Reads {
-            header_fields: &header_fields,
-            read_key,
-            key_u64,
-            unstuff: &unstuff,
-        };
-        given::decoders(p, f, &reads, rt)
-    } else {
-        quote! {
-            /// Decode the frame at the start of `bytes`, checking its framing (sync, length,
-            /// checks) first.
-            ///
-            /// # Errors
-            /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they
-            /// end early, and the errors of [`Self::from_frame`].
-            pub fn decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
-                Self::from_frame(#layout.parse(bytes)?)
-            }
-            /// Decode a frame whose framing a decoder already checked.
-            ///
-            /// # Errors
-            /// `UnknownCommand` for an id the spec does not have, `UnknownDirection` when the
-            /// header matches no direction, `PayloadLength` when the payload's size is not the
-            /// command's, and errors of the payload's fields.
-            pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
-                let header = #header { #(#header_fields,)* };
-                #ack_decode
-                #read_key
-                let command = Command::from_id(id).ok_or(#rt::unknown_command(#key_u64))?;
-                let payload = #rt::payload_of(frame, #header_in, #trailer_in)?;
-                #unstuff
-                let message = #message;
-                #rt::Ok(#packet { header, message })
-            }
-        }
-    };
+    let decoders = packet_decoders(p, f, &reads, ack_decode, &message, rt);
     quote! {
         #stuffing_const
         /// A whole frame, decoded: the header values and the message.
@@ -478,12 +534,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
                 #direction_check
                 let start = #start_of;
-                // The payload first, in place: its size on the wire decides the frame's length.
-                let room = #rt::payload_room(buf, self.encoded_len(), start, #trailer_out)?;
-                let mut w = #rt::Writer::new(room);
-                self.message.write_payload(&mut w)?;
-                let plen = w.position();
-                #trim
+                #write
                 #stuff
                 #place
                 let total = start.saturating_add(plen).saturating_add(#trailer_of)#flagged_total;

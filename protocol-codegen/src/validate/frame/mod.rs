@@ -91,6 +91,24 @@ struct Draft<'s> {
     optional: Option<conditional::OptionalDecl<'s>>,
 }
 
+impl Draft<'_> {
+    /// A frame of `transport` before its first element.
+    fn new(transport: Transport) -> Self {
+        Draft {
+            transport,
+            els: Vec::new(),
+            values: Vec::new(),
+            checks: Vec::new(),
+            trailers: Vec::new(),
+            payload: None,
+            length_decl: None,
+            broken: false,
+            sync_set: None,
+            optional: None,
+        }
+    }
+}
+
 /// Lower one frame format (`first`: the spec's first, default one): the element rules, then
 /// the rules over the whole layout. `None` when any rule failed (its error is recorded).
 fn lower_frame(
@@ -102,18 +120,7 @@ fn lower_frame(
     enums: &Enums,
 ) -> Option<Frame> {
     let transport = options::lower_transport(ctx, def);
-    let mut draft = Draft {
-        transport,
-        els: Vec::new(),
-        values: Vec::new(),
-        checks: Vec::new(),
-        trailers: Vec::new(),
-        payload: None,
-        length_decl: None,
-        broken: false,
-        sync_set: None,
-        optional: None,
-    };
+    let mut draft = Draft::new(transport);
     header::push_can_prefix(&mut draft);
     for (i, el) in def.layout.get_ref().iter().enumerate() {
         elements::lower_element(ctx, &mut draft, i, el, enums)?;

@@ -21,3 +21,26 @@ fn encoded<P: protocol::EncodePacket>(packet: &P) -> Result<Vec<u8>, String> {
     buf.truncate(n);
     Ok(buf)
 }
+
+/// The packet of the first frame in `bytes`, as the integrations decode a stream: through the
+/// runtime's `PacketDecoder` over `layout` (a link's `AnyLayout` finds every format's frames).
+/// Bytes before a frame are skipped; a rejected candidate or a frame that holds no packet is
+/// the error.
+fn packet_of<L, const N: usize>(layout: L, bytes: &[u8]) -> Result<L::Packet, String>
+where
+    L: protocol::PacketLayout<Error = protocol::DecodeError>,
+{
+    let mut decoder = protocol::PacketDecoder::<L, N>::new(layout);
+    let mut input = bytes;
+    let events = core::iter::from_fn(|| decoder.next_packet(&mut input));
+    let mut events: Vec<_> = events.collect();
+    events.extend(core::iter::from_fn(|| decoder.flush_packet()));
+    for event in events {
+        match event {
+            protocol::PacketEvent::Packet { packet, .. } => return Ok(packet),
+            protocol::PacketEvent::Invalid { error, .. } => return Err(error.to_string()),
+            _ => {}
+        }
+    }
+    Err("no frame found".into())
+}

@@ -357,6 +357,7 @@ mod ours {
     protocol::protocol!("../../specs/mavlink.toml");
 }
 
+use crate::{encoded, packet_of};
 use mavlink::MavHeader;
 use mavlink::dialects::common::{
     ATTITUDE_DATA, COMMAND_ACK_DATA, GLOBAL_POSITION_INT_DATA, MavCmd, MavResult, RC_CHANNELS_DATA,
@@ -708,17 +709,12 @@ impl PeerAdapter for RustMavlink {
     }
 
     fn ours_write(&self, m: &spec::AnyPacket) -> Result<Vec<u8>, String> {
-        let mut buf = [0u8; spec::ANY_DECODER_BUFFER_LEN];
-        let n = m.encode(&mut buf).map_err(|e| e.to_string())?;
-        Ok(buf[..n].to_vec())
+        encoded(m)
     }
 
     /// Through the link's one decoder: the frame must be found in this version's format.
     fn ours_read(&self, frame: &[u8]) -> Result<spec::AnyPacket, String> {
-        let mut decoder = spec::any_decoder();
-        let mut input = frame;
-        let found = decoder.decode(&mut input).ok_or("no frame found")?;
-        let packet = spec::AnyPacket::from_frame(&found).map_err(|e| e.to_string())?;
+        let packet = packet_of::<_, { spec::ANY_DECODER_BUFFER_LEN }>(spec::AnyLayout, frame)?;
         match (&packet, self.v1) {
             (spec::AnyPacket::V1(_), true) | (spec::AnyPacket::V2(_), false) => Ok(packet),
             _ => Err(format!("found as the other version: {packet:?}")),

@@ -224,6 +224,7 @@ mod ours {
     protocol::protocol!("../../specs/msp.toml");
 }
 
+use crate::{encoded, packet_of};
 use ours::msp as spec;
 use proptest::prelude::*;
 use protocol_peers::harness::{PeerAdapter, assert_every_message_crosses};
@@ -544,17 +545,12 @@ impl PeerAdapter for CuMsp {
     }
 
     fn ours_write(&self, m: &spec::AnyPacket) -> Result<Vec<u8>, String> {
-        let mut buf = [0u8; spec::ANY_DECODER_BUFFER_LEN];
-        let n = m.encode(&mut buf).map_err(|e| e.to_string())?;
-        Ok(buf[..n].to_vec())
+        encoded(m)
     }
 
     /// Through the link's one decoder, which finds the frame's format by its sync.
     fn ours_read(&self, frame: &[u8]) -> Result<spec::AnyPacket, String> {
-        let mut decoder = spec::any_decoder();
-        let mut input = frame;
-        let found = decoder.decode(&mut input).ok_or("no frame found")?;
-        spec::AnyPacket::from_frame(&found).map_err(|e| e.to_string())
+        packet_of::<_, { spec::ANY_DECODER_BUFFER_LEN }>(spec::AnyLayout, frame)
     }
 }
 
