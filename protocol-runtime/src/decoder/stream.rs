@@ -589,7 +589,9 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             self.inner_owner = owner;
             self.inner_dead = 1;
         }
-        let readable = self.buf.get(self.start..).unwrap_or_default();
+        let Some(readable) = self.buf.get(self.start..) else {
+            return false;
+        };
         frame_inside(&self.layout, readable, pending, &mut self.inner_dead, limit)
     }
 }
