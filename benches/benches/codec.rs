@@ -19,7 +19,8 @@
 //! protocol-benches` (about 4 minutes; 5 with the ablation), or with `PROTOCOL_BENCH_QUICK=1`
 //! (10 samples of 1 s, under 2 minutes). Criterion's own arguments work too, e.g. `cargo bench
 //! -p protocol-benches -- hflink-clean`. `bench-report` turns the saved medians into the tables
-//! of `BENCHMARKS.md`.
+//! of `BENCHMARKS.md`. With `--features runtime-crc-fast`, the generated code is timed with the
+//! facade's `crc-fast` host feature, as `generated-crcfast`.
 
 // `criterion_group!` generates an undocumented public function.
 #![allow(missing_docs)]
@@ -41,6 +42,22 @@ use protocol_benches::{ChunkDecoder, generated};
 
 /// Bytes per chunk of the chunked feed.
 const CHUNK: usize = 64;
+
+/// The generated decoders' and encoders' benchmark id: `generated-crcfast` when built with the
+/// `runtime-crc-fast` feature (the facade's `crc-fast` host feature: CRCs by the `crc-fast`
+/// crate), so that criterion keeps the results of both builds side by side for `bench-report`.
+const GENERATED: &str = if cfg!(feature = "runtime-crc-fast") {
+    "generated-crcfast"
+} else {
+    "generated"
+};
+
+/// [`GENERATED`] for the layout read through a reference.
+const GENERATED_BY_REF: &str = if cfg!(feature = "runtime-crc-fast") {
+    "generated-crcfast-by-ref"
+} else {
+    "generated-by-ref"
+};
 
 /// Whether to also time the generated decoders with the layout read through a reference (as
 /// the run-time codec does), to show what a compile-time layout buys.
@@ -160,7 +177,7 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                 match protocol {
                     Protocol::HfLink => {
                         let generated = generated::hflink_decoder;
-                        bench_decoder(g, "generated", &w, chunk, Kind::Exact, generated);
+                        bench_decoder(g, GENERATED, &w, chunk, Kind::Exact, generated);
                         let hand = Staged::<hand::hflink::HfLink>::default;
                         bench_decoder(g, "hand", &w, chunk, Kind::Exact, hand);
                         let best = Appending::<hand::hflink::HfLink>::default;
@@ -176,12 +193,12 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                         }
                         if ablation() {
                             let by_ref = generated::hflink_decoder_by_ref;
-                            bench_decoder(g, "generated-by-ref", &w, chunk, Kind::Exact, by_ref);
+                            bench_decoder(g, GENERATED_BY_REF, &w, chunk, Kind::Exact, by_ref);
                         }
                     }
                     Protocol::Referee => {
                         let generated = generated::referee_decoder;
-                        bench_decoder(g, "generated", &w, chunk, Kind::Exact, generated);
+                        bench_decoder(g, GENERATED, &w, chunk, Kind::Exact, generated);
                         let hand = Staged::<hand::referee::Referee>::default;
                         bench_decoder(g, "hand", &w, chunk, Kind::Exact, hand);
                         let best = Appending::<hand::referee::RefereeClmul>::default;
@@ -197,7 +214,7 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                         }
                         if ablation() {
                             let by_ref = generated::referee_decoder_by_ref;
-                            bench_decoder(g, "generated-by-ref", &w, chunk, Kind::Exact, by_ref);
+                            bench_decoder(g, GENERATED_BY_REF, &w, chunk, Kind::Exact, by_ref);
                         }
                     }
                 }
@@ -233,7 +250,7 @@ fn bench_encoders(
     let mut g = c.benchmark_group(group);
     g.throughput(Throughput::Bytes((frame_len * FRAMES as usize) as u64));
     g.sampling_mode(SamplingMode::Flat);
-    g.bench_function("generated", |bench| {
+    g.bench_function(GENERATED, |bench| {
         bench.iter(|| encode::encode_wrapping(black_box(&mut buf), FRAMES, generated));
     });
     g.bench_function("hand", |bench| {

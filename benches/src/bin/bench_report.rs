@@ -86,20 +86,25 @@ fn main() -> ExitCode {
     }
     println!();
     // Against the best baseline known: the 2 KiB appending feed and the carry-less CRC-16.
+    // `generated-crcfast`: the generated decoder built with the `crc-fast` host feature
+    // (`cargo bench -p protocol-benches --features runtime-crc-fast`), "not run" otherwise.
     println!(
-        "| stream | feed | generated | best baseline | staged hand-written | generated vs best | hand vs best |"
+        "| stream | feed | generated | generated, crc-fast | best baseline | staged hand-written | generated vs best | crc-fast vs best | hand vs best |"
     );
-    println!("|---|---|---|---|---|---:|---:|");
+    println!("|---|---|---|---|---|---|---:|---:|---:|");
     for (w, group, feed_name) in rows() {
         let (bytes, frames) = (w.stream.len(), w.frames.len());
-        let [g, b, h] = ["generated", "best", "hand"].map(|id| median(&dir, &group, id));
+        let [g, c, b, h] =
+            ["generated", "generated-crcfast", "best", "hand"].map(|id| median(&dir, &group, id));
         println!(
-            "| {} | {feed_name} | {} | {} | {} | {} | {} |",
+            "| {} | {feed_name} | {} | {} | {} | {} | {} | {} | {} |",
             w.name(),
             cell(g, bytes, frames),
+            cell(c, bytes, frames),
             cell(b, bytes, frames),
             cell(h, bytes, frames),
             ratio(b, g),
+            ratio(b, c),
             ratio(b, h),
         );
     }
@@ -143,17 +148,20 @@ fn main() -> ExitCode {
     }
     println!();
     println!(
-        "| encoder (1M frames) | frame bytes | generated | hand-written | generated vs hand |"
+        "| encoder (1M frames) | frame bytes | generated | hand-written | generated, crc-fast | generated vs hand | crc-fast vs hand |"
     );
-    println!("|---|---:|---|---|---:|");
+    println!("|---|---:|---|---|---|---:|---:|");
     for (group, frame) in [("hflink-encode", 28usize), ("referee-encode", 25)] {
-        let [g, h] = ["generated", "hand"].map(|id| median(&dir, group, id));
+        let [g, h, c] =
+            ["generated", "hand", "generated-crcfast"].map(|id| median(&dir, group, id));
         let bytes = frame * FRAMES as usize;
         println!(
-            "| {group} | {frame} | {} | {} | {} |",
+            "| {group} | {frame} | {} | {} | {} | {} | {} |",
             cell(g, bytes, FRAMES as usize),
             cell(h, bytes, FRAMES as usize),
+            cell(c, bytes, FRAMES as usize),
             ratio(h, g),
+            ratio(h, c),
         );
     }
     ExitCode::SUCCESS

@@ -63,10 +63,12 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     pub(super) fn stage(&mut self, input: &mut &[u8]) -> bool {
         let data: &[u8] = input;
         let room = N.saturating_sub(STAGE_SLACK);
-        if self.pending().saturating_add(data.len()) > room {
-            return false;
-        }
-        if self.end.saturating_add(data.len()) > room {
+        // Behind the pending bytes where they are (two comparisons, the common case), else
+        // behind them moved to the front, if they leave room.
+        if self.end > room || data.len() > room.wrapping_sub(self.end) {
+            if self.pending().saturating_add(data.len()) > room {
+                return false;
+            }
             self.buf.copy_within(self.start..self.end, 0);
             self.end = self.end.wrapping_sub(self.start);
             self.start = 0;

@@ -36,12 +36,22 @@ pub(super) fn scan<L: LayoutRef>(
 ) -> usize {
     let skipped_before = stats.skipped_bytes;
     let (mut at, mut frames) = (0usize, 0u64);
+    // `len <= readable.len()` (the callers' bounds): said here, so that the compiler drops the
+    // fallbacks of `readable.get(at..)` from the loop.
+    let len = len.min(readable.len());
     // One comparison per step (`at` never passes `len`: every step advances it by at most what
     // is left).
     while at < len {
-        let from = readable.get(at..).unwrap_or_default();
         let avail = len.wrapping_sub(at);
-        let skip = find_link(layout, from.get(..avail).unwrap_or(from));
+        // (Never `None`: `at < len <= readable.len()`; a branch the compiler drops, where a
+        // fallback value costs a conditional move per candidate.)
+        let Some(from) = readable.get(at..) else {
+            break;
+        };
+        let Some(span) = from.get(..avail) else {
+            break;
+        };
+        let skip = find_link(layout, span);
         if skip > 0 {
             stats.skipped_bytes = stats.skipped_bytes.wrapping_add(skip as u64);
             at = at.wrapping_add(skip);

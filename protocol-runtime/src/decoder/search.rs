@@ -168,47 +168,64 @@ const SCAN_MASK: [u8; 2 * SCAN] = {
 /// on it predicts well.
 #[inline(always)]
 fn may_start_sync(sync: &[u8], data: &[u8], n: usize) -> bool {
-    let (first, second) = match *sync {
-        [] => return n > 0,
-        [first] => (first, None),
-        [first, second, ..] => (first, Some(second)),
-    };
     let mut from = 0usize;
     while from < n {
         let rest = data.get(from..).unwrap_or_default();
         let left = n.wrapping_sub(from);
-        // The block and, for the second byte, the block one byte further.
-        let (Some(block), Some(next)) = (
-            rest.first_chunk::<{ SCAN + 1 }>()
-                .and_then(|b| b.first_chunk::<SCAN>()),
-            rest.first_chunk::<{ SCAN + 1 }>()
-                .and_then(|b| b.last_chunk::<SCAN>()),
-        ) else {
+        // The block and, for the second byte, the byte after it.
+        let Some(block) = rest.first_chunk::<{ SCAN + 1 }>() else {
             // The end of the buffer: fewer bytes left to read than a block.
-            return (0..left).any(|i| {
-                rest.get(i) == Some(&first)
-                    && second.is_none_or(|s| rest.get(i.wrapping_add(1)).is_none_or(|&b| b == s))
-            });
+            return may_start_sync_exact(sync, rest, left);
         };
-        let keep = SCAN_MASK
-            .get(SCAN.saturating_sub(left)..)
-            .and_then(<[u8]>::first_chunk::<SCAN>)
-            .unwrap_or(&[0; SCAN]);
-        // `&` on the comparisons, not `&&`: no branch, so that the loop vectorises.
-        let hits = block
-            .iter()
-            .zip(next)
-            .zip(keep)
-            .fold(0u8, |hits, ((&b, &c), &k)| {
-                let pair = (b == first) & second.is_none_or(|s| c == s);
-                hits | (u8::from(pair) & k)
-            });
-        if hits != 0 {
+        if block_may_start_sync(sync, block, left) {
             return true;
         }
         from = from.wrapping_add(SCAN);
     }
     false
+}
+
+/// [`may_start_sync`] byte by byte, where fewer than a block's bytes can be read.
+#[inline(never)]
+fn may_start_sync_exact(sync: &[u8], rest: &[u8], left: usize) -> bool {
+    let (first, second) = match *sync {
+        [] => return left > 0,
+        [first] => (first, None),
+        [first, second, ..] => (first, Some(second)),
+    };
+    (0..left).any(|i| {
+        rest.get(i) == Some(&first)
+            && second.is_none_or(|s| rest.get(i.wrapping_add(1)).is_none_or(|&b| b == s))
+    })
+}
+
+/// [`may_start_sync`] on one block: whether one of its first `min(left, SCAN)` offsets holds
+/// the sync's first byte followed by its second (the block's last byte is only read as the
+/// byte after its 64th offset).
+#[inline(always)]
+fn block_may_start_sync(sync: &[u8], block: &[u8; SCAN + 1], left: usize) -> bool {
+    let (first, second) = match *sync {
+        [] => return left > 0,
+        [first] => (first, None),
+        [first, second, ..] => (first, Some(second)),
+    };
+    let (Some(here), Some(next)) = (block.first_chunk::<SCAN>(), block.last_chunk::<SCAN>()) else {
+        return true;
+    };
+    let keep = SCAN_MASK
+        .get(SCAN.saturating_sub(left)..)
+        .and_then(<[u8]>::first_chunk::<SCAN>)
+        .unwrap_or(&[0; SCAN]);
+    // `&` on the comparisons, not `&&`: no branch, so that the loop vectorises.
+    let hits = here
+        .iter()
+        .zip(next)
+        .zip(keep)
+        .fold(0u8, |hits, ((&b, &c), &k)| {
+            let pair = (b == first) & second.is_none_or(|s| c == s);
+            hits | (u8::from(pair) & k)
+        });
+    hits != 0
 }
 
 /// The first offset of `data` holding `sync`'s first byte, or `data.len()`: the search inside
@@ -252,6 +269,17 @@ fn may_start<L: LayoutRef>(link: &L, data: &[u8], n: usize) -> bool {
     let layout = link.layout();
     if layout.sync_set.is_empty() && link.others().is_empty() {
         may_start_sync(layout.sync, data, n)
+    } else {
+        n > 0
+    }
+}
+
+/// [`may_start`] on one block of `data`, `n <= SCAN`.
+#[inline(always)]
+fn may_start_block<L: LayoutRef>(link: &L, block: &[u8; SCAN + 1], n: usize) -> bool {
+    let layout = link.layout();
+    if layout.sync_set.is_empty() && link.others().is_empty() {
+        block_may_start_sync(layout.sync, block, n)
     } else {
         n > 0
     }
@@ -312,8 +340,16 @@ pub(super) fn frame_inside<L: LayoutRef>(
         return false;
     }
     let window = last_start.wrapping_sub(known).wrapping_add(1);
-    let from = readable.get(known..).unwrap_or_default();
-    if cfg!(target_pointer_width = "64") && !may_start(layout, from, window) {
+    if cfg!(target_pointer_width = "64")
+        && !match readable
+            .get(known..known.wrapping_add(SCAN + 1))
+            .and_then(<[u8]>::first_chunk::<{ SCAN + 1 }>)
+        {
+            // Nearly always: the bytes to test fit one block.
+            Some(block) if window <= SCAN => may_start_block(layout, block, window),
+            _ => may_start(layout, readable.get(known..).unwrap_or_default(), window),
+        }
+    {
         // None of these bytes starts a frame, now or later; the ones too close to the end may
         // once more bytes arrive.
         *dead = last_start.wrapping_add(1);

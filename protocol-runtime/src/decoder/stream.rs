@@ -578,18 +578,39 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// Whether a complete valid frame starts after the first byte of the pending candidate
     /// ([`search::frame_inside`](super::search::frame_inside)), with what earlier calls learnt
     /// about this candidate: how many of its first bytes start no frame.
+    ///
+    /// Inlined on hosts, where the block test usually answers; out of line on targets without
+    /// 64-bit pointers, where it has no block test and is called from two places.
     #[inline(always)]
     fn frame_inside(&mut self, limit: usize) -> bool {
         if cfg!(feature = "ablate-early-truncation") {
             return false;
         }
+        if cfg!(target_pointer_width = "64") {
+            self.frame_inside_here(limit)
+        } else {
+            self.frame_inside_apart(limit)
+        }
+    }
+
+    /// [`frame_inside`](Self::frame_inside), out of line.
+    #[inline(never)]
+    fn frame_inside_apart(&mut self, limit: usize) -> bool {
+        self.frame_inside_here(limit)
+    }
+
+    /// [`frame_inside`](Self::frame_inside)'s body.
+    #[inline(always)]
+    fn frame_inside_here(&mut self, limit: usize) -> bool {
         let pending = self.pending();
         let owner = self.position.wrapping_sub(pending as u64);
         if self.inner_owner != owner {
             self.inner_owner = owner;
             self.inner_dead = 1;
         }
-        let readable = self.buf.get(self.start..).unwrap_or_default();
+        let Some(readable) = self.buf.get(self.start..) else {
+            return false;
+        };
         frame_inside(&self.layout, readable, pending, &mut self.inner_dead, limit)
     }
 }
