@@ -47,6 +47,11 @@ struct Parts {
     /// Whether a folded-in byte goes through `step` (a CRC; a sum folds nothing, as the
     /// runtime's `Extra::fold` does).
     folds: bool,
+    /// For a sum reduced modulo 255: the bytes `step` may add to the state without reducing
+    /// it (the state then stays below 2^32), and the statements that reduce it. The bytes are
+    /// summed in blocks of that many, reduced once per block instead of once per byte: the
+    /// same value, since a reduction modulo 255 may come at any point of the sum.
+    block: Option<(usize, &'static str)>,
 }
 
 fn check(n: &Names, x: &Fx, c: &Check) -> String {
@@ -96,11 +101,25 @@ fn check_fn(n: &Names, name: &str, algorithm: &Algorithm, extra: Option<&CheckEx
     if let Some(x) = extra {
         body.push_str(&extra_lookup(n, x));
     }
-    let _ = write!(
-        body,
-        "    for (i = 0; i < n; i++) {{\n{}    }}\n",
-        (parts.step)("p[i]")
-    );
+    match parts.block {
+        Some((block, reduce)) => {
+            let _ = write!(
+                body,
+                "    for (i = 0; i < n;) {{\n        size_t stop = n - i > {block}u ? i + {block}u : n;\n        for (; i < stop; i++) {{\n{}        }}\n{reduce}    }}\n",
+                (parts.step)("p[i]")
+                    .lines()
+                    .map(|line| format!("    {line}\n"))
+                    .collect::<String>()
+            );
+        }
+        None => {
+            let _ = write!(
+                body,
+                "    for (i = 0; i < n; i++) {{\n{}    }}\n",
+                (parts.step)("p[i]")
+            );
+        }
+    }
     if extra.is_some() && parts.folds {
         // The loop body's statements, one level out.
         for line in (parts.step)("extra").lines() {
@@ -146,21 +165,33 @@ fn parts(name: &str, a: &Algorithm) -> Parts {
         finish: String::new(),
         value,
         folds: false,
+        block: None,
     };
     match a {
         Algorithm::Sum8 => sum("uint8_t", "s = (uint8_t)(s + BYTE);", "s".into()),
-        Algorithm::SumMod255 => sum("uint32_t", "s = (s + BYTE) % 255u;", "s".into()),
+        // Below 255 at a block's start, plus at most 255 per byte: 65,536 bytes keep the sum
+        // below 2^24.
+        Algorithm::SumMod255 => Parts {
+            block: Some((65_536, "        s %= 255u;\n")),
+            ..sum("uint32_t", "s += BYTE;", "s".into())
+        },
         Algorithm::Xor8 => sum("uint8_t", "s = (uint8_t)(s ^ BYTE);", "s".into()),
+        // The value keeps the low 8 or 16 bits, which a 32-bit sum holds as a 64-bit one does.
         Algorithm::Sum { width, xorout } => {
             let mask = if *width == 1 { 0xFF } else { 0xFFFF };
             sum(
-                "uint64_t",
+                "uint32_t",
                 "s += BYTE;",
                 format!("(s ^ {xorout:#x}u) & {mask:#x}u"),
             )
         }
-        Algorithm::Fletcher16 => fletcher("% 255u"),
-        Algorithm::Fletcher16Mod256 => fletcher("& 0xFFu"),
+        Algorithm::Fletcher16 => Parts {
+            // Below 255 at a block's start, `a` grows by at most 255 and `b` by `a` per byte:
+            // after 4,096 bytes `b` is below 255 * 4,096 * 4,097 / 2 + 2^21 < 2^31.
+            block: Some((4_096, "        a %= 255u;\n        b %= 255u;\n")),
+            ..fletcher("")
+        },
+        Algorithm::Fletcher16Mod256 => fletcher(" & 0xFFu"),
         Algorithm::Crc8(c) => crc(name, &Crc::of(c)),
         Algorithm::Crc16(c) => crc(name, &Crc::of(c)),
         Algorithm::Crc32(c) => crc(name, &Crc::of(c)),
@@ -168,18 +199,19 @@ fn parts(name: &str, a: &Algorithm) -> Parts {
     }
 }
 
-/// A Fletcher-16 sum, its two running sums reduced by `reduce` after every byte (the same
-/// value as the runtime's reduction per block).
+/// A Fletcher-16 sum, its two running sums reduced by `reduce` after every byte (none: per
+/// block, the same value as the runtime's reduction per block).
 fn fletcher(reduce: &'static str) -> Parts {
     Parts {
         state: "    uint32_t a = 0, b = 0;\n".into(),
         table: String::new(),
         step: Box::new(move |byte| {
-            format!("        a = (a + {byte}) {reduce};\n        b = (b + a) {reduce};\n")
+            format!("        a = (a + {byte}){reduce};\n        b = (b + a){reduce};\n")
         }),
         finish: String::new(),
         value: "((uint64_t)b << 8) | a".into(),
         folds: false,
+        block: None,
     }
 }
 
@@ -291,6 +323,7 @@ fn crc(name: &str, c: &Crc) -> Parts {
             u64_lit(mask(w))
         ),
         folds: true,
+        block: None,
     }
 }
 

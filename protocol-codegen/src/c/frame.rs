@@ -275,12 +275,12 @@ fn sync_matches(f: &Frame, n: &Names, x: &Fx) -> String {
             "    if (avail == 0) return 1;\n    switch (b[0]) {{\n{cases}        break;\n    default:\n        return 0;\n    }}\n"
         );
     }
-    if !f.sync.is_empty() {
-        let _ = write!(
+    // One comparison per sync byte, unrolled: the stream decoder asks at every byte it scans.
+    for (i, byte) in f.sync.iter().enumerate() {
+        let _ = writeln!(
             body,
-            "    {{\n        static const uint8_t rest[{len}] = {{{}}};\n        size_t i;\n        for (i = 0; i < {len}u && {lead} + i < avail; i++) {{\n            if (b[{lead} + i] != rest[i]) return 0;\n        }}\n    }}\n",
-            sync_rest(f),
-            len = f.sync.len()
+            "    if (avail <= {at}u) return 1;\n    if (b[{at}] != {byte:#04x}) return 0;",
+            at = lead + i
         );
     }
     format!(
@@ -328,16 +328,43 @@ fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             );
         }
     }
-    let signature = if given {
-        format!(
-            "{xlo}decode_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)"
+    // The checking entry point: the probe of the stream decoder's rules on the whole bytes,
+    // then the reading of a checked frame.
+    let (checking, trusting, direction, pass) = if given {
+        (
+            format!("{xlo}decode_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)"),
+            format!("{xlo}decode_frame_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)"),
+            "direction, ",
+            "_given",
         )
     } else {
-        format!("{xlo}decode(const uint8_t *bytes, size_t len, {xlo}packet *out)")
+        (
+            format!("{xlo}decode(const uint8_t *bytes, size_t len, {xlo}packet *out)"),
+            format!("{xlo}decode_frame(const uint8_t *bytes, size_t len, {xlo}packet *out)"),
+            "",
+            "",
+        )
+    };
+    if given {
+        let _ = writeln!(
+            out,
+            "int {xlo}decode_frame(const uint8_t *bytes, size_t len, {xlo}packet *out)\n{{\n    return {xlo}decode_frame_given(bytes, len, {up}DIRECTION_COUNT, out);\n}}\n"
+        );
+    }
+    let _ = writeln!(
+        out,
+        "int {checking}\n{{\n    size_t n = 0;\n    if ({xlo}probe(bytes, len, {xup}MAX_FRAME_LEN, &n) != {up}PROBE_FRAME || n != len) return {up}ERR_FRAME;\n    return {xlo}decode_frame{pass}(bytes, len, {direction}out);\n}}\n"
+    );
+    // The framing is trusted, but any bytes are read within `len`: the payload's end is
+    // computed only when the trailer fits.
+    let short = if f.trailer_len > 0 {
+        format!(" || len < {xup}TRAILER_LEN")
+    } else {
+        String::new()
     };
     let _ = write!(
         out,
-        "int {signature}\n{{\n    size_t n = 0, start = {xup}HEADER_LEN, end;\n    uint64_t raw = 0;\n    struct {lo}rd r;\n    int e = 0;\n{filled}    if ({xlo}probe(bytes, len, {xup}MAX_FRAME_LEN, &n) != {up}PROBE_FRAME || n != len) return {up}ERR_FRAME;\n    memset(out, 0, sizeof *out);\n    (void)raw;\n    end = len - {xup}TRAILER_LEN;\n"
+        "int {trusting}\n{{\n    size_t start = {xup}HEADER_LEN, end;\n    uint64_t raw = 0;\n    struct {lo}rd r;\n    int e = 0;\n{filled}    if (len > {xup}MAX_FRAME_LEN{short}) return {up}ERR_FRAME;\n    memset(out, 0, sizeof *out);\n    (void)raw;\n    end = len - {xup}TRAILER_LEN;\n"
     );
     for v in user_values(f) {
         let value = if v.prim == Prim::Bool {
@@ -508,6 +535,36 @@ fn dispatch_key(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             truncated(v, "raw")
         );
     }
+    if let [vi] = f.dispatch[..] {
+        // One key field: a switch (a jump table where the ids are dense).
+        let narrow = f.values[vi].prim.size() <= 4;
+        let _ = writeln!(
+            out,
+            "        switch ({}key[0]) {{",
+            if narrow { "(uint32_t)" } else { "" }
+        );
+        for (ci, c) in p.commands.iter().enumerate() {
+            if !f.commands.contains(&ci) || c.id.len() != 1 {
+                continue;
+            }
+            let id = truncate(f.values[vi].prim, c.id[0]);
+            let label = if narrow {
+                format!("{id:#x}u")
+            } else {
+                names::u64_lit(id)
+            };
+            let _ = writeln!(
+                out,
+                "        case {label}: out->command = {up}{}; break;",
+                c.name
+            );
+        }
+        let _ = writeln!(
+            out,
+            "        default: return {up}ERR_UNKNOWN_COMMAND;\n        }}\n    }}"
+        );
+        return;
+    }
     out.push_str("        ");
     for (ci, c) in p.commands.iter().enumerate() {
         if !f.commands.contains(&ci) || c.id.len() != f.dispatch.len() {
@@ -600,15 +657,41 @@ fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             "        /* A format without extension fields carries the bytes before them. */\n        if (base != SIZE_MAX && r.len != base) return {up}ERR_PAYLOAD_LENGTH;\n        /* A payload short of its struct's size is zero-filled. */\n        if (r.len < size) {{\n            memcpy(filled, r.p, r.len);\n            memset(filled + r.len, 0, size - r.len);\n            r.p = filled;\n            r.len = size;\n        }}\n    }}\n"
         );
     }
-    for slot in &slots {
-        let si = slot.si.unwrap_or_default();
-        let _ = writeln!(
-            out,
-            "    {}e = {lo}read_{}(&r, &out->payload.{});",
-            slot.guard(p, n, "out"),
-            names::snake(&p.structs[si].name),
+    let read = |slot: &Slot| {
+        format!(
+            "e = {lo}read_{}(&r, &out->payload.{});",
+            names::snake(&p.structs[slot.si.unwrap_or_default()].name),
             slot.name
-        );
+        )
+    };
+    if slots.len() > 1 && slots.iter().all(|s| s.command.is_some()) {
+        // One case per command, then its directions: a jump rather than a test per slot.
+        out.push_str("    switch (out->command) {\n");
+        let mut commands: Vec<usize> = slots.iter().filter_map(|s| s.command).collect();
+        commands.dedup();
+        for ci in commands {
+            let _ = writeln!(out, "    case {up}{}:", p.commands[ci].name);
+            let mut first = true;
+            for slot in slots.iter().filter(|s| s.command == Some(ci)) {
+                let test = p.directions.get(slot.direction).map(|d| {
+                    format!("if (out->direction == {up}{}) ", d.name.to_uppercase())
+                });
+                let _ = writeln!(
+                    out,
+                    "        {}{}{}",
+                    if first { "" } else { "else " },
+                    test.unwrap_or_default(),
+                    read(slot)
+                );
+                first = false;
+            }
+            out.push_str("        break;\n");
+        }
+        out.push_str("    default:\n        break;\n    }\n");
+    } else {
+        for slot in &slots {
+            let _ = writeln!(out, "    {}{}", slot.guard(p, n, "out"), read(slot));
+        }
     }
     let _ = writeln!(
         out,
