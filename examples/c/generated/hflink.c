@@ -13,6 +13,15 @@
 #define HFLINK_UNUSED
 #endif
 
+/* The small helpers of byte order, positions and sync bytes are inlined where the compiler
+ * knows how: their sizes, positions and byte orders are constants at every call, which then
+ * fold away (fewer instructions per frame, and less code). */
+#if defined(__GNUC__) || defined(__clang__)
+#define HFLINK_INLINE inline __attribute__((always_inline))
+#else
+#define HFLINK_INLINE inline
+#endif
+
 /* ---- Byte order ---- */
 
 /* A payload being read, and a frame being written. */
@@ -20,7 +29,7 @@ struct hflink_rd { const uint8_t *p; size_t len; size_t pos; };
 struct hflink_wr { uint8_t *p; size_t cap; size_t pos; };
 
 /* An unsigned integer of `n` bytes: the common sizes without a loop over 64-bit shifts. */
-HFLINK_UNUSED static uint64_t hflink_get(const uint8_t *p, unsigned n, int big)
+HFLINK_UNUSED static HFLINK_INLINE uint64_t hflink_get(const uint8_t *p, unsigned n, int big)
 {
     uint64_t v = 0;
     unsigned i;
@@ -36,7 +45,7 @@ HFLINK_UNUSED static uint64_t hflink_get(const uint8_t *p, unsigned n, int big)
     return v;
 }
 
-HFLINK_UNUSED static void hflink_set(uint8_t *p, unsigned n, int big, uint64_t v)
+HFLINK_UNUSED static HFLINK_INLINE void hflink_set(uint8_t *p, unsigned n, int big, uint64_t v)
 {
     unsigned i;
     for (i = 0; i < n; i++) {
@@ -116,7 +125,7 @@ HFLINK_UNUSED static int hflink_zero(struct hflink_wr *w, size_t n)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_take_u8(struct hflink_rd *r, uint64_t *out)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_take_u8(struct hflink_rd *r, uint64_t *out)
 {
     const uint8_t *p;
     if (r->len - r->pos < 1u) return HFLINK_ERR_PAYLOAD_LENGTH;
@@ -126,7 +135,7 @@ HFLINK_UNUSED static int hflink_take_u8(struct hflink_rd *r, uint64_t *out)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_put_u8(struct hflink_wr *w, uint64_t v)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_put_u8(struct hflink_wr *w, uint64_t v)
 {
     uint8_t *p;
     if (w->cap - w->pos < 1u) return HFLINK_ERR_SHORT_BUFFER;
@@ -136,7 +145,7 @@ HFLINK_UNUSED static int hflink_put_u8(struct hflink_wr *w, uint64_t v)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_take_u16le(struct hflink_rd *r, uint64_t *out)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_take_u16le(struct hflink_rd *r, uint64_t *out)
 {
     const uint8_t *p;
     if (r->len - r->pos < 2u) return HFLINK_ERR_PAYLOAD_LENGTH;
@@ -146,7 +155,7 @@ HFLINK_UNUSED static int hflink_take_u16le(struct hflink_rd *r, uint64_t *out)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_put_u16le(struct hflink_wr *w, uint64_t v)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_put_u16le(struct hflink_wr *w, uint64_t v)
 {
     uint8_t *p;
     if (w->cap - w->pos < 2u) return HFLINK_ERR_SHORT_BUFFER;
@@ -157,7 +166,7 @@ HFLINK_UNUSED static int hflink_put_u16le(struct hflink_wr *w, uint64_t v)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_take_u16be(struct hflink_rd *r, uint64_t *out)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_take_u16be(struct hflink_rd *r, uint64_t *out)
 {
     const uint8_t *p;
     if (r->len - r->pos < 2u) return HFLINK_ERR_PAYLOAD_LENGTH;
@@ -167,7 +176,7 @@ HFLINK_UNUSED static int hflink_take_u16be(struct hflink_rd *r, uint64_t *out)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_put_u16be(struct hflink_wr *w, uint64_t v)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_put_u16be(struct hflink_wr *w, uint64_t v)
 {
     uint8_t *p;
     if (w->cap - w->pos < 2u) return HFLINK_ERR_SHORT_BUFFER;
@@ -178,7 +187,7 @@ HFLINK_UNUSED static int hflink_put_u16be(struct hflink_wr *w, uint64_t v)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_take_u32le(struct hflink_rd *r, uint64_t *out)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_take_u32le(struct hflink_rd *r, uint64_t *out)
 {
     const uint8_t *p;
     if (r->len - r->pos < 4u) return HFLINK_ERR_PAYLOAD_LENGTH;
@@ -188,7 +197,7 @@ HFLINK_UNUSED static int hflink_take_u32le(struct hflink_rd *r, uint64_t *out)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_put_u32le(struct hflink_wr *w, uint64_t v)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_put_u32le(struct hflink_wr *w, uint64_t v)
 {
     uint8_t *p;
     if (w->cap - w->pos < 4u) return HFLINK_ERR_SHORT_BUFFER;
@@ -201,7 +210,7 @@ HFLINK_UNUSED static int hflink_put_u32le(struct hflink_wr *w, uint64_t v)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_take_u32be(struct hflink_rd *r, uint64_t *out)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_take_u32be(struct hflink_rd *r, uint64_t *out)
 {
     const uint8_t *p;
     if (r->len - r->pos < 4u) return HFLINK_ERR_PAYLOAD_LENGTH;
@@ -211,7 +220,7 @@ HFLINK_UNUSED static int hflink_take_u32be(struct hflink_rd *r, uint64_t *out)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_put_u32be(struct hflink_wr *w, uint64_t v)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_put_u32be(struct hflink_wr *w, uint64_t v)
 {
     uint8_t *p;
     if (w->cap - w->pos < 4u) return HFLINK_ERR_SHORT_BUFFER;
@@ -224,7 +233,7 @@ HFLINK_UNUSED static int hflink_put_u32be(struct hflink_wr *w, uint64_t v)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_take_u64le(struct hflink_rd *r, uint64_t *out)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_take_u64le(struct hflink_rd *r, uint64_t *out)
 {
     const uint8_t *p;
     if (r->len - r->pos < 8u) return HFLINK_ERR_PAYLOAD_LENGTH;
@@ -234,7 +243,7 @@ HFLINK_UNUSED static int hflink_take_u64le(struct hflink_rd *r, uint64_t *out)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_put_u64le(struct hflink_wr *w, uint64_t v)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_put_u64le(struct hflink_wr *w, uint64_t v)
 {
     uint8_t *p;
     uint32_t l = (uint32_t)v, h = (uint32_t)(v >> 32);
@@ -252,7 +261,7 @@ HFLINK_UNUSED static int hflink_put_u64le(struct hflink_wr *w, uint64_t v)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_take_u64be(struct hflink_rd *r, uint64_t *out)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_take_u64be(struct hflink_rd *r, uint64_t *out)
 {
     const uint8_t *p;
     if (r->len - r->pos < 8u) return HFLINK_ERR_PAYLOAD_LENGTH;
@@ -262,7 +271,7 @@ HFLINK_UNUSED static int hflink_take_u64be(struct hflink_rd *r, uint64_t *out)
     return 0;
 }
 
-HFLINK_UNUSED static int hflink_put_u64be(struct hflink_wr *w, uint64_t v)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_put_u64be(struct hflink_wr *w, uint64_t v)
 {
     uint8_t *p;
     uint32_t l = (uint32_t)v, h = (uint32_t)(v >> 32);
@@ -282,14 +291,14 @@ HFLINK_UNUSED static int hflink_put_u64be(struct hflink_wr *w, uint64_t v)
 
 /* A position from the frame's start or back from its end, in a frame of `len` bytes;
  * SIZE_MAX when it falls outside. */
-HFLINK_UNUSED static size_t hflink_pos(size_t len, int from_end, size_t n)
+HFLINK_UNUSED static HFLINK_INLINE size_t hflink_pos(size_t len, int from_end, size_t n)
 {
     if (from_end) return len >= n ? len - n : SIZE_MAX;
     return n <= len ? n : SIZE_MAX;
 }
 
 /* A value of `width` bits at bit `shift` of the word of `size` bytes at a position. */
-HFLINK_UNUSED static int hflink_field(const uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t *out)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_field(const uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t *out)
 {
     size_t o = hflink_pos(len, from_end, at);
     uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);
@@ -298,7 +307,7 @@ HFLINK_UNUSED static int hflink_field(const uint8_t *f, size_t len, int from_end
     return 1;
 }
 
-HFLINK_UNUSED static int hflink_put_field(uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t value)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_put_field(uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t value)
 {
     size_t o = hflink_pos(len, from_end, at);
     uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);
@@ -361,6 +370,9 @@ static int hflink_check_checksum(const uint8_t *p, size_t n, uint64_t *out)
     size_t i;
     for (i = 0; i < n;) {
         size_t stop = n - i > 65536u ? i + 65536u : n;
+        for (; stop - i >= 4u; i += 4u) {
+            s += (uint32_t)p[i] + p[i + 1] + p[i + 2] + p[i + 3];
+        }
         for (; i < stop; i++) {
             s += p[i];
         }
@@ -862,7 +874,7 @@ static int hflink_write_motor_parameters(struct hflink_wr *w, const hflink_motor
 
 /* Whether the check stored at `at` is the check of the bytes `from..to` (a check without
  * value, such as one whose per-command byte names no command, matches nothing). */
-HFLINK_UNUSED static int hflink_verify(const uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))
+HFLINK_UNUSED static HFLINK_INLINE int hflink_verify(const uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))
 {
     uint64_t value = 0;
     if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;
@@ -870,7 +882,7 @@ HFLINK_UNUSED static int hflink_verify(const uint8_t *f, size_t len, size_t from
 }
 
 /* Computes the check of `from..to` and stores it at `at`. */
-HFLINK_UNUSED static int hflink_store(uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))
+HFLINK_UNUSED static HFLINK_INLINE int hflink_store(uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))
 {
     uint64_t value = 0;
     if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;
@@ -884,7 +896,7 @@ HFLINK_UNUSED static int hflink_store(uint8_t *f, size_t len, size_t from, size_
 #define HFLINK_SYNC_LEN 2u
 
 /* Whether `b[0..avail]` matches the sync as far as it goes. */
-HFLINK_UNUSED static int hflink_sync_matches(const uint8_t *b, size_t avail)
+HFLINK_UNUSED static HFLINK_INLINE int hflink_sync_matches(const uint8_t *b, size_t avail)
 {
     if (avail <= 0u) return 1;
     if (b[0] != 0xff) return 0;

@@ -52,6 +52,9 @@ struct Parts {
     /// summed in blocks of that many, reduced once per block instead of once per byte: the
     /// same value, since a reduction modulo 255 may come at any point of the sum.
     block: Option<(usize, &'static str)>,
+    /// For a plain sum in blocks: the statement that adds four bytes from `p[i]` at once
+    /// (fewer loop turns per byte).
+    four: Option<&'static str>,
 }
 
 fn check(n: &Names, x: &Fx, c: &Check) -> String {
@@ -105,7 +108,10 @@ fn check_fn(n: &Names, name: &str, algorithm: &Algorithm, extra: Option<&CheckEx
         Some((block, reduce)) => {
             let _ = write!(
                 body,
-                "    for (i = 0; i < n;) {{\n        size_t stop = n - i > {block}u ? i + {block}u : n;\n        for (; i < stop; i++) {{\n{}        }}\n{reduce}    }}\n",
+                "    for (i = 0; i < n;) {{\n        size_t stop = n - i > {block}u ? i + {block}u : n;\n{}        for (; i < stop; i++) {{\n{}        }}\n{reduce}    }}\n",
+                parts.four.map_or(String::new(), |four| format!(
+                    "        for (; stop - i >= 4u; i += 4u) {{\n            {four}\n        }}\n"
+                )),
                 (parts.step)("p[i]")
                     .lines()
                     .map(|line| format!("    {line}\n"))
@@ -166,6 +172,7 @@ fn parts(name: &str, a: &Algorithm) -> Parts {
         value,
         folds: false,
         block: None,
+        four: None,
     };
     match a {
         Algorithm::Sum8 => sum("uint8_t", "s = (uint8_t)(s + BYTE);", "s".into()),
@@ -173,6 +180,7 @@ fn parts(name: &str, a: &Algorithm) -> Parts {
         // below 2^24.
         Algorithm::SumMod255 => Parts {
             block: Some((65_536, "        s %= 255u;\n")),
+            four: Some("s += (uint32_t)p[i] + p[i + 1] + p[i + 2] + p[i + 3];"),
             ..sum("uint32_t", "s += BYTE;", "s".into())
         },
         Algorithm::Xor8 => sum("uint8_t", "s = (uint8_t)(s ^ BYTE);", "s".into()),
@@ -212,6 +220,7 @@ fn fletcher(reduce: &'static str) -> Parts {
         value: "((uint64_t)b << 8) | a".into(),
         folds: false,
         block: None,
+        four: None,
     }
 }
 
@@ -324,6 +333,7 @@ fn crc(name: &str, c: &Crc) -> Parts {
         ),
         folds: true,
         block: None,
+        four: None,
     }
 }
 

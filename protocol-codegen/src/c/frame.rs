@@ -67,8 +67,8 @@ fn helpers(n: &Names, out: &mut String) {
         out,
         "/* What a probe found: a frame, or the need of more bytes (else a rejection's reason). */\n#define {up}PROBE_FRAME 0\n#define {up}PROBE_NEED (-1)\n\n\
 /* Whether the check stored at `at` is the check of the bytes `from..to` (a check without
- * value, such as one whose per-command byte names no command, matches nothing). */\n{up}UNUSED static int {lo}verify(const uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))\n{{\n    uint64_t value = 0;\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    return check(f + from, to - from, &value) && {lo}get(f + at, width, big) == value;\n}}\n\n\
-/* Computes the check of `from..to` and stores it at `at`. */\n{up}UNUSED static int {lo}store(uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))\n{{\n    uint64_t value = 0;\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    if (!check(f + from, to - from, &value)) return 0;\n    {lo}set(f + at, width, big, value);\n    return 1;\n}}\n\n"
+ * value, such as one whose per-command byte names no command, matches nothing). */\n{up}UNUSED static {up}INLINE int {lo}verify(const uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))\n{{\n    uint64_t value = 0;\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    return check(f + from, to - from, &value) && {lo}get(f + at, width, big) == value;\n}}\n\n\
+/* Computes the check of `from..to` and stores it at `at`. */\n{up}UNUSED static {up}INLINE int {lo}store(uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))\n{{\n    uint64_t value = 0;\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    if (!check(f + from, to - from, &value)) return 0;\n    {lo}set(f + at, width, big, value);\n    return 1;\n}}\n\n"
     );
 }
 
@@ -284,8 +284,9 @@ fn sync_matches(f: &Frame, n: &Names, x: &Fx) -> String {
         );
     }
     format!(
-        "#define {xup}SYNC_LEN {}u\n\n/* Whether `b[0..avail]` matches the sync as far as it goes. */\n{}UNUSED static int {xlo}sync_matches(const uint8_t *b, size_t avail)\n{{\n{body}    (void)b;\n    (void)avail;\n    return 1;\n}}\n\n",
+        "#define {xup}SYNC_LEN {}u\n\n/* Whether `b[0..avail]` matches the sync as far as it goes. */\n{}UNUSED static {}INLINE int {xlo}sync_matches(const uint8_t *b, size_t avail)\n{{\n{body}    (void)b;\n    (void)avail;\n    return 1;\n}}\n\n",
         lead + f.sync.len(),
+        n.up,
         n.up
     )
 }
