@@ -965,7 +965,7 @@ int hflink_decode_frame(const uint8_t *bytes, size_t len, hflink_packet *out)
     struct hflink_rd r;
     int e = 0;
     if (len > HFLINK_MAX_FRAME_LEN || len < HFLINK_TRAILER_LEN) return HFLINK_ERR_FRAME;
-    memset(out, 0, sizeof *out);
+    memset(out, 0, offsetof(hflink_packet, payload));
     (void)raw;
     end = len - HFLINK_TRAILER_LEN;
     if (!hflink_field(bytes, len, 0, 2u, 1u, 0, 0u, 8u, &raw)) return HFLINK_ERR_FRAME;
@@ -1016,71 +1016,71 @@ int hflink_decode_frame(const uint8_t *bytes, size_t len, hflink_packet *out)
     r.pos = 0;
     switch (out->command) {
     case HFLINK_SHAKING_HANDS:
-        if (out->direction == HFLINK_REQUEST) e = hflink_read_chassis_coord(&r, &out->payload.shaking_hands_request);
+        if (out->direction == HFLINK_REQUEST) e = (memset(&out->payload.shaking_hands_request, 0, sizeof out->payload.shaking_hands_request), hflink_read_chassis_coord(&r, &out->payload.shaking_hands_request));
         break;
     case HFLINK_READ_SYSTEM_INFO:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_system_info(&r, &out->payload.read_system_info_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_system_info_response, 0, sizeof out->payload.read_system_info_response), hflink_read_system_info(&r, &out->payload.read_system_info_response));
         break;
     case HFLINK_SET_MOTOR_PARAMETERS:
-        if (out->direction == HFLINK_REQUEST) e = hflink_read_motor_parameters(&r, &out->payload.set_motor_parameters_request);
+        if (out->direction == HFLINK_REQUEST) e = (memset(&out->payload.set_motor_parameters_request, 0, sizeof out->payload.set_motor_parameters_request), hflink_read_motor_parameters(&r, &out->payload.set_motor_parameters_request));
         break;
     case HFLINK_SET_CHASSIS_PARAMETERS:
-        if (out->direction == HFLINK_REQUEST) e = hflink_read_chassis_parameters(&r, &out->payload.set_chassis_parameters_request);
-        else if (out->direction == HFLINK_RESPONSE) e = hflink_read_chassis_parameters(&r, &out->payload.set_chassis_parameters_response);
+        if (out->direction == HFLINK_REQUEST) e = (memset(&out->payload.set_chassis_parameters_request, 0, sizeof out->payload.set_chassis_parameters_request), hflink_read_chassis_parameters(&r, &out->payload.set_chassis_parameters_request));
+        else if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.set_chassis_parameters_response, 0, sizeof out->payload.set_chassis_parameters_response), hflink_read_chassis_parameters(&r, &out->payload.set_chassis_parameters_response));
         break;
     case HFLINK_SET_HEAD_PARAMETERS:
-        if (out->direction == HFLINK_REQUEST) e = hflink_read_head_parameters(&r, &out->payload.set_head_parameters_request);
+        if (out->direction == HFLINK_REQUEST) e = (memset(&out->payload.set_head_parameters_request, 0, sizeof out->payload.set_head_parameters_request), hflink_read_head_parameters(&r, &out->payload.set_head_parameters_request));
         break;
     case HFLINK_SET_ARM_PARAMETERS:
-        if (out->direction == HFLINK_REQUEST) e = hflink_read_arm_parameters(&r, &out->payload.set_arm_parameters_request);
+        if (out->direction == HFLINK_REQUEST) e = (memset(&out->payload.set_arm_parameters_request, 0, sizeof out->payload.set_arm_parameters_request), hflink_read_arm_parameters(&r, &out->payload.set_arm_parameters_request));
         break;
     case HFLINK_SET_GLOBAL_SPEED:
-        if (out->direction == HFLINK_REQUEST) e = hflink_read_chassis_coord(&r, &out->payload.set_global_speed_request);
+        if (out->direction == HFLINK_REQUEST) e = (memset(&out->payload.set_global_speed_request, 0, sizeof out->payload.set_global_speed_request), hflink_read_chassis_coord(&r, &out->payload.set_global_speed_request));
         break;
     case HFLINK_READ_GLOBAL_SPEED:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_chassis_coord(&r, &out->payload.read_global_speed_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_global_speed_response, 0, sizeof out->payload.read_global_speed_response), hflink_read_chassis_coord(&r, &out->payload.read_global_speed_response));
         break;
     case HFLINK_SET_ROBOT_SPEED:
-        if (out->direction == HFLINK_REQUEST) e = hflink_read_chassis_coord(&r, &out->payload.set_robot_speed_request);
+        if (out->direction == HFLINK_REQUEST) e = (memset(&out->payload.set_robot_speed_request, 0, sizeof out->payload.set_robot_speed_request), hflink_read_chassis_coord(&r, &out->payload.set_robot_speed_request));
         break;
     case HFLINK_READ_ROBOT_SPEED:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_chassis_coord(&r, &out->payload.read_robot_speed_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_robot_speed_response, 0, sizeof out->payload.read_robot_speed_response), hflink_read_chassis_coord(&r, &out->payload.read_robot_speed_response));
         break;
     case HFLINK_SET_MOTOR_SPEED:
-        if (out->direction == HFLINK_REQUEST) e = hflink_read_chassis_dof_vector(&r, &out->payload.set_motor_speed_request);
+        if (out->direction == HFLINK_REQUEST) e = (memset(&out->payload.set_motor_speed_request, 0, sizeof out->payload.set_motor_speed_request), hflink_read_chassis_dof_vector(&r, &out->payload.set_motor_speed_request));
         break;
     case HFLINK_READ_MOTOR_SPEED:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_chassis_dof_vector(&r, &out->payload.read_motor_speed_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_motor_speed_response, 0, sizeof out->payload.read_motor_speed_response), hflink_read_chassis_dof_vector(&r, &out->payload.read_motor_speed_response));
         break;
     case HFLINK_READ_MOTOR_MILEAGE:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_chassis_dof_vector(&r, &out->payload.read_motor_mileage_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_motor_mileage_response, 0, sizeof out->payload.read_motor_mileage_response), hflink_read_chassis_dof_vector(&r, &out->payload.read_motor_mileage_response));
         break;
     case HFLINK_READ_GLOBAL_COORDINATE:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_chassis_coord(&r, &out->payload.read_global_coordinate_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_global_coordinate_response, 0, sizeof out->payload.read_global_coordinate_response), hflink_read_chassis_coord(&r, &out->payload.read_global_coordinate_response));
         break;
     case HFLINK_READ_ROBOT_COORDINATE:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_chassis_coord(&r, &out->payload.read_robot_coordinate_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_robot_coordinate_response, 0, sizeof out->payload.read_robot_coordinate_response), hflink_read_chassis_coord(&r, &out->payload.read_robot_coordinate_response));
         break;
     case HFLINK_SET_HEAD_STATE:
-        if (out->direction == HFLINK_REQUEST) e = hflink_read_head_pose(&r, &out->payload.set_head_state_request);
+        if (out->direction == HFLINK_REQUEST) e = (memset(&out->payload.set_head_state_request, 0, sizeof out->payload.set_head_state_request), hflink_read_head_pose(&r, &out->payload.set_head_state_request));
         break;
     case HFLINK_READ_HEAD_STATE:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_head_pose(&r, &out->payload.read_head_state_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_head_state_response, 0, sizeof out->payload.read_head_state_response), hflink_read_head_pose(&r, &out->payload.read_head_state_response));
         break;
     case HFLINK_SET_ARM_STATE:
-        if (out->direction == HFLINK_REQUEST) e = hflink_read_arm_dof_vector(&r, &out->payload.set_arm_state_request);
+        if (out->direction == HFLINK_REQUEST) e = (memset(&out->payload.set_arm_state_request, 0, sizeof out->payload.set_arm_state_request), hflink_read_arm_dof_vector(&r, &out->payload.set_arm_state_request));
         break;
     case HFLINK_READ_ARM_STATE:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_arm_dof_vector(&r, &out->payload.read_arm_state_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_arm_state_response, 0, sizeof out->payload.read_arm_state_response), hflink_read_arm_dof_vector(&r, &out->payload.read_arm_state_response));
         break;
     case HFLINK_READ_IMU_BASE_DATA:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_imu_sensor_data(&r, &out->payload.read_imu_base_data_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_imu_base_data_response, 0, sizeof out->payload.read_imu_base_data_response), hflink_read_imu_sensor_data(&r, &out->payload.read_imu_base_data_response));
         break;
     case HFLINK_READ_IMU_FUSION_DATA:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_imu_sensor_data(&r, &out->payload.read_imu_fusion_data_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_imu_fusion_data_response, 0, sizeof out->payload.read_imu_fusion_data_response), hflink_read_imu_sensor_data(&r, &out->payload.read_imu_fusion_data_response));
         break;
     case HFLINK_READ_GPS_DATA:
-        if (out->direction == HFLINK_RESPONSE) e = hflink_read_gps_data(&r, &out->payload.read_gps_data_response);
+        if (out->direction == HFLINK_RESPONSE) e = (memset(&out->payload.read_gps_data_response, 0, sizeof out->payload.read_gps_data_response), hflink_read_gps_data(&r, &out->payload.read_gps_data_response));
         break;
     default:
         break;

@@ -363,9 +363,16 @@ fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     } else {
         String::new()
     };
+    // Everything before the payload is zeroed, and a payload struct just before it is read:
+    // not the whole union, whose largest member may be many times the frame's.
+    let zero = if carries(p, x.fi) == Carries::Bytes {
+        "    memset(out, 0, sizeof *out);\n".to_string()
+    } else {
+        format!("    memset(out, 0, offsetof({xlo}packet, payload));\n")
+    };
     let _ = write!(
         out,
-        "int {trusting}\n{{\n    size_t start = {xup}HEADER_LEN, end;\n    uint64_t raw = 0;\n    struct {lo}rd r;\n    int e = 0;\n{filled}    if (len > {xup}MAX_FRAME_LEN{short}) return {up}ERR_FRAME;\n    memset(out, 0, sizeof *out);\n    (void)raw;\n    end = len - {xup}TRAILER_LEN;\n"
+        "int {trusting}\n{{\n    size_t start = {xup}HEADER_LEN, end;\n    uint64_t raw = 0;\n    struct {lo}rd r;\n    int e = 0;\n{filled}    if (len > {xup}MAX_FRAME_LEN{short}) return {up}ERR_FRAME;\n{zero}    (void)raw;\n    end = len - {xup}TRAILER_LEN;\n"
     );
     for v in user_values(f) {
         let value = if v.prim == Prim::Bool {
@@ -443,10 +450,10 @@ fn given_direction(p: &Protocol, n: &Names, out: &mut String) {
         };
         let _ = writeln!(
             out,
-            "    if (direction == {up}{}) {{\n        out->command = {up}COMMAND_COUNT; /* none */\n        if (end < {start}u) return {up}ERR_FRAME;\n        r.p = bytes + {start}u;\n        r.len = end - {start}u;\n        r.pos = 0;\n        if ((e = {lo}read_{}(&r, &out->payload.{})) != 0) return e;\n        return r.pos != r.len ? {up}ERR_PAYLOAD_LENGTH : 0;\n    }}",
+            "    if (direction == {up}{}) {{\n        out->command = {up}COMMAND_COUNT; /* none */\n        if (end < {start}u) return {up}ERR_FRAME;\n        r.p = bytes + {start}u;\n        r.len = end - {start}u;\n        r.pos = 0;\n        memset(&out->payload.{name}, 0, sizeof out->payload.{name});\n        if ((e = {lo}read_{}(&r, &out->payload.{name})) != 0) return e;\n        return r.pos != r.len ? {up}ERR_PAYLOAD_LENGTH : 0;\n    }}",
             d.name.to_uppercase(),
             names::snake(&p.structs[si].name),
-            d.name
+            name = d.name
         );
     }
 }
@@ -660,9 +667,9 @@ fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     }
     let read = |slot: &Slot| {
         format!(
-            "e = {lo}read_{}(&r, &out->payload.{});",
+            "e = (memset(&out->payload.{name}, 0, sizeof out->payload.{name}), {lo}read_{}(&r, &out->payload.{name}));",
             names::snake(&p.structs[slot.si.unwrap_or_default()].name),
-            slot.name
+            name = slot.name
         )
     };
     if slots.len() > 1 && slots.iter().all(|s| s.command.is_some()) {
@@ -1082,7 +1089,7 @@ fn ack_decode(f: &Frame, n: &Names, out: &mut String) {
     };
     let _ = write!(
         out,
-        "    if (!{lo}field(bytes, len, {}, &raw)) return {up}ERR_FRAME;\n    if (raw == {}) {{\n        size_t end;\n        if (len < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        end = {end};\n        if (end < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        if (end - {up}ACK_HEADER_LEN > {up}ACK_MAX_LEN) return {up}ERR_PAYLOAD_LENGTH;\n        out->ack = true;\n        out->command = {up}COMMAND_COUNT;\n        out->payload.ack_data.len = end - {up}ACK_HEADER_LEN;\n        memcpy(out->payload.ack_data.bytes, bytes + {up}ACK_HEADER_LEN, out->payload.ack_data.len);\n        return 0;\n    }}\n",
+        "    if (!{lo}field(bytes, len, {}, &raw)) return {up}ERR_FRAME;\n    if (raw == {}) {{\n        size_t end;\n        if (len < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        end = {end};\n        if (end < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        if (end - {up}ACK_HEADER_LEN > {up}ACK_MAX_LEN) return {up}ERR_PAYLOAD_LENGTH;\n        out->ack = true;\n        out->command = {up}COMMAND_COUNT;\n        memset(&out->payload.ack_data, 0, sizeof out->payload.ack_data);\n        out->payload.ack_data.len = end - {up}ACK_HEADER_LEN;\n        memcpy(out->payload.ack_data.bytes, bytes + {up}ACK_HEADER_LEN, out->payload.ack_data.len);\n        return 0;\n    }}\n",
         word(v),
         names::u64_lit(equals)
     );
