@@ -192,7 +192,10 @@ fn decoder(p: &Protocol, n: &Names, d: &Decoder, out: &mut String) {
         .iter()
         .filter_map(|&fi| {
             let f = &p.frames[fi];
-            f.sync_set.is_empty().then(|| f.sync.first().copied()).flatten()
+            f.sync_set
+                .is_empty()
+                .then(|| f.sync.first().copied())
+                .flatten()
         })
         .collect();
     leads.sort_unstable();

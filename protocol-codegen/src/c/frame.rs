@@ -333,8 +333,12 @@ fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     // then the reading of a checked frame.
     let (checking, trusting, direction, pass) = if given {
         (
-            format!("{xlo}decode_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)"),
-            format!("{xlo}decode_frame_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)"),
+            format!(
+                "{xlo}decode_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)"
+            ),
+            format!(
+                "{xlo}decode_frame_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)"
+            ),
             "direction, ",
             "_given",
         )
@@ -681,9 +685,10 @@ fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             let _ = writeln!(out, "    case {up}{}:", p.commands[ci].name);
             let mut first = true;
             for slot in slots.iter().filter(|s| s.command == Some(ci)) {
-                let test = p.directions.get(slot.direction).map(|d| {
-                    format!("if (out->direction == {up}{}) ", d.name.to_uppercase())
-                });
+                let test = p
+                    .directions
+                    .get(slot.direction)
+                    .map(|d| format!("if (out->direction == {up}{}) ", d.name.to_uppercase()));
                 let _ = writeln!(
                     out,
                     "        {}{}{}",

@@ -580,7 +580,12 @@ fn write_elem(p: &Protocol, n: &Names, ty: &ValueType, src: &str) -> String {
         ValueType::Scalar { scalar, .. } => format!(
             "{}    if ((e = {}) != 0) return e;\n",
             range_check(scalar.prim, src, up),
-            put_call(n, scalar.prim.size(), big(*scalar), &to_raw(lo, scalar.prim, src))
+            put_call(
+                n,
+                scalar.prim.size(),
+                big(*scalar),
+                &to_raw(lo, scalar.prim, src)
+            )
         ),
         ValueType::Struct(si) => format!(
             "    if ((e = {lo}write_{}(w, &{src})) != 0) return e;\n",

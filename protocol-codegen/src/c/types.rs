@@ -585,7 +585,11 @@ fn sized_helpers(n: &Names, out: &mut String) {
                 .map(|i| {
                     let at = if big { size - 1 - i } else { i };
                     if size == 8 {
-                        let (word, shift) = if i < 4 { ("l", 8 * i) } else { ("h", 8 * (i - 4)) };
+                        let (word, shift) = if i < 4 {
+                            ("l", 8 * i)
+                        } else {
+                            ("h", 8 * (i - 4))
+                        };
                         format!("    p[{at}] = (uint8_t)({word} >> {shift});\n")
                     } else {
                         format!("    p[{at}] = (uint8_t)(v >> {});\n", 8 * i)
