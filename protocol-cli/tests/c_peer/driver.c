@@ -69,9 +69,10 @@ static void put_hex(const uint8_t *b, size_t n)
 }
 
 /* `decode_frame` (the framing trusted) of bytes `decode` accepted, against `decode`'s packet
- * in `text`: a line the Rust side never prints when they differ. `decode_frame` also runs on
- * the bytes `decode` refuses (random and fault-injected frames, under the sanitizers): it
- * must read them within their length, whatever it makes of them. */
+ * in `text`: a line the Rust side never prints when they differ (`decode` is the probe, then
+ * `decode_frame`, so this holds while that stays so). `decode_frame` also runs on the bytes
+ * `decode` refuses (random frames, under the sanitizers): it must read them within their
+ * length, whatever it makes of them. */
 #define same_as_decode(trusted, packet, format_fn)                                              \
     do {                                                                                        \
         static char again[sizeof text];                                                         \
