@@ -184,22 +184,16 @@ fn parts(name: &str, a: &Algorithm) -> Parts {
             ..sum("uint32_t", "s += BYTE;", "s".into())
         },
         Algorithm::Xor8 => sum("uint8_t", "s = (uint8_t)(s ^ BYTE);", "s".into()),
-        // The value keeps the low 8 or 16 bits, which a 32-bit sum holds as a 64-bit one does.
         Algorithm::Sum { width, xorout } => {
             let mask = if *width == 1 { 0xFF } else { 0xFFFF };
             sum(
-                "uint32_t",
+                "uint64_t",
                 "s += BYTE;",
                 format!("(s ^ {xorout:#x}u) & {mask:#x}u"),
             )
         }
-        Algorithm::Fletcher16 => Parts {
-            // Below 255 at a block's start, `a` grows by at most 255 and `b` by `a` per byte:
-            // after 4,096 bytes `b` is below 255 * 4,096 * 4,097 / 2 + 2^21 < 2^31.
-            block: Some((4_096, "        a %= 255u;\n        b %= 255u;\n")),
-            ..fletcher("")
-        },
-        Algorithm::Fletcher16Mod256 => fletcher(" & 0xFFu"),
+        Algorithm::Fletcher16 => fletcher("% 255u"),
+        Algorithm::Fletcher16Mod256 => fletcher("& 0xFFu"),
         Algorithm::Crc8(c) => crc(name, &Crc::of(c)),
         Algorithm::Crc16(c) => crc(name, &Crc::of(c)),
         Algorithm::Crc32(c) => crc(name, &Crc::of(c)),
@@ -207,14 +201,14 @@ fn parts(name: &str, a: &Algorithm) -> Parts {
     }
 }
 
-/// A Fletcher-16 sum, its two running sums reduced by `reduce` after every byte (none: per
-/// block, the same value as the runtime's reduction per block).
+/// A Fletcher-16 sum, its two running sums reduced by `reduce` after every byte (the same
+/// value as the runtime's reduction per block).
 fn fletcher(reduce: &'static str) -> Parts {
     Parts {
         state: "    uint32_t a = 0, b = 0;\n".into(),
         table: String::new(),
         step: Box::new(move |byte| {
-            format!("        a = (a + {byte}){reduce};\n        b = (b + a){reduce};\n")
+            format!("        a = (a + {byte}) {reduce};\n        b = (b + a) {reduce};\n")
         }),
         finish: String::new(),
         value: "((uint64_t)b << 8) | a".into(),
