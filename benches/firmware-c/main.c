@@ -27,7 +27,7 @@ void reset_handler(void)
         while (hflink_decoder_next(&decoder, &input, &len, &event)) {
             hflink_packet packet;
             int n;
-            if (event.kind != HFLINK_EVENT_FRAME || hflink_decode(event.bytes, event.len, &packet) != 0) continue;
+            if (event.kind != HFLINK_EVENT_FRAME || hflink_decode_frame(event.bytes, event.len, &packet) != 0) continue;
             n = hflink_encode(&packet, out, sizeof out);
             if (n > 0) tx_sink = out[n - 1];
         }

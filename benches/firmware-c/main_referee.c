@@ -26,7 +26,7 @@ void reset_handler(void)
         while (referee_decoder_next(&decoder, &input, &len, &event)) {
             referee_packet packet;
             int n;
-            if (event.kind != REFEREE_EVENT_FRAME || referee_decode(event.bytes, event.len, &packet) != 0) continue;
+            if (event.kind != REFEREE_EVENT_FRAME || referee_decode_frame(event.bytes, event.len, &packet) != 0) continue;
             n = referee_encode(&packet, out, sizeof out);
             if (n > 0) tx_sink = out[n - 1];
         }

@@ -40,7 +40,7 @@ int main(void)
             hflink_packet packet;
             switch (event.kind) {
             case HFLINK_EVENT_FRAME:
-                if (hflink_decode(event.bytes, event.len, &packet) == 0 &&
+                if (hflink_decode_frame(event.bytes, event.len, &packet) == 0 &&
                     packet.command == HFLINK_SET_ROBOT_SPEED && packet.direction == HFLINK_REQUEST) {
                     printf("@%llu %s from 0x%02x: x=%g y=%g z=%g\n", (unsigned long long)event.offset,
                            hflink_command_name(packet.command), packet.header.sender,

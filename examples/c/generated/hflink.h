@@ -329,8 +329,15 @@ int hflink_decoder_flush(hflink_decoder *d, hflink_event *event);
 
 /* ---- Frames of format `link` ---- */
 
-/** Decodes `len` bytes that are exactly one `link` frame into `out`: 0, or a negative HFLINK_ERR_. */
+/** Decodes `len` bytes that are exactly one `link` frame into `out`: 0, or a negative HFLINK_ERR_.
+ *  Takes any bytes: checks the framing (sync, length, checks, trailers) first. */
 int hflink_decode(const uint8_t *bytes, size_t len, hflink_packet *out);
+
+/** Decodes a frame whose framing a stream decoder has checked (the bytes and length of a
+ *  frame event of this format) into `out`, as hflink_decode without checking the framing again:
+ *  0, or a negative HFLINK_ERR_. Other bytes are read within `len`, never beyond, but may
+ *  decode to values no sender sent. */
+int hflink_decode_frame(const uint8_t *bytes, size_t len, hflink_packet *out);
 
 /** Encodes a packet into `buf`: the frame's length, or a negative HFLINK_ERR_. */
 int hflink_encode(const hflink_packet *packet, uint8_t *buf, size_t cap);

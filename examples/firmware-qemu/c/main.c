@@ -224,7 +224,7 @@ static void measure_loop(const char *spec, const uint8_t *buf, size_t len)
         put_u64(event->offset);                                                                        \
         put(" ");                                                                                      \
         put_hex(event->bytes, event->len);                                                             \
-        if (p##_decode(event->bytes, event->len, &packet) != 0) put(" undecodable");                   \
+        if (p##_decode_frame(event->bytes, event->len, &packet) != 0) put(" undecodable");             \
         end_line();                                                                                    \
     }                                                                                                  \
                                                                                                        \
@@ -272,7 +272,7 @@ static void measure_loop(const char *spec, const uint8_t *buf, size_t len)
                 while (p##_decoder_next(&decoder, &chunk, &n, &event)) {                               \
                     p##_packet packet;                                                                 \
                     if (event.kind == P##_EVENT_FRAME &&                                               \
-                        p##_decode(event.bytes, event.len, &packet) == 0) {                            \
+                        p##_decode_frame(event.bytes, event.len, &packet) == 0) {                         \
                         BLACK_BOX(&packet);                                                            \
                         frames++;                                                                      \
                     }                                                                                  \

@@ -68,14 +68,31 @@ static void put_hex(const uint8_t *b, size_t n)
     for (i = 0; i < n; i++) printf("%02x", b[i]);
 }
 
+/* `decode_frame` (the framing trusted) of bytes `decode` accepted, against `decode`'s packet
+ * in `text`: a line the Rust side never prints when they differ (`decode` is the probe, then
+ * `decode_frame`, so this holds while that stays so). `decode_frame` also runs on the bytes
+ * `decode` refuses (random frames, under the sanitizers): it must read them within their
+ * length, whatever it makes of them. */
+#define same_as_decode(trusted, packet, format_fn)                                              \
+    do {                                                                                        \
+        static char again[sizeof text];                                                         \
+        if ((trusted) != 0) {                                                                   \
+            printf("decode_frame refused a frame decode took: %s\n", err_name(trusted));        \
+        } else {                                                                                \
+            format_fn((packet), again, sizeof again);                                           \
+            if (strcmp(again, text) != 0) printf("decode_frame decoded %s\n", again);           \
+        }                                                                                       \
+    } while (0)
+
 /* Per frame format FI (`FORMATS` of `spec.h`): `ok TEXT` or `err NAME`; with `encode`, the
  * frame the packet encodes to. */
 #define DESCRIBE(fi, lo, up)                                                                    \
     static void describe_##fi(const uint8_t *b, size_t n, int encode)                          \
     {                                                                                           \
-        lo##packet pk;                                                                          \
+        lo##packet pk, pk_frame;                                                                \
         uint8_t out[up##MAX_FRAME_LEN];                                                         \
         int e = lo##decode(b, n, &pk);                                                          \
+        int trusted = lo##decode_frame(b, n, &pk_frame);                                        \
         int len;                                                                                \
         if (e != 0) {                                                                           \
             printf("err %s\n", err_name(e));                                                    \
@@ -83,6 +100,7 @@ static void put_hex(const uint8_t *b, size_t n)
         }                                                                                       \
         lo##format(&pk, text, sizeof text);                                                     \
         printf("ok %s\n", text);                                                                \
+        same_as_decode(trusted, &pk_frame, lo##format);                                         \
         if (!encode) return;                                                                    \
         len = lo##encode(&pk, out, sizeof out);                                                 \
         if (len < 0) {                                                                          \
@@ -117,9 +135,10 @@ static void describe(int format, const uint8_t *b, size_t n, int encode)
 #define DESCRIBE_GIVEN(fi, lo, up)                                                              \
     static void describe_given_##fi(int dir, const uint8_t *b, size_t n)                       \
     {                                                                                           \
-        lo##packet pk;                                                                          \
+        lo##packet pk, pk_frame;                                                                \
         uint8_t out[up##MAX_FRAME_LEN];                                                         \
         int e = lo##decode_given(b, n, (P(direction))dir, &pk);                                 \
+        int trusted = lo##decode_frame_given(b, n, (P(direction))dir, &pk_frame);               \
         int len;                                                                                \
         if (e != 0) {                                                                           \
             printf("err %s\n", err_name(e));                                                    \
@@ -127,6 +146,7 @@ static void describe(int format, const uint8_t *b, size_t n, int encode)
         }                                                                                       \
         lo##format(&pk, text, sizeof text);                                                     \
         printf("ok %s\n", text);                                                                \
+        same_as_decode(trusted, &pk_frame, lo##format);                                         \
         len = lo##encode(&pk, out, sizeof out);                                                 \
         if (len < 0) {                                                                          \
             printf("enc err\n");                                                                \

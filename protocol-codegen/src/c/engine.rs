@@ -185,6 +185,36 @@ fn decoder(p: &Protocol, n: &Names, d: &Decoder, out: &mut String) {
         .iter()
         .map(|x| format!("{}sync_matches(b + i, len - i)", x.lo))
         .collect();
+    // The first byte of every format's sync, where each has one: a start whose byte is none
+    // of them is no candidate, decided without a call per byte.
+    let mut leads: Vec<u8> = d
+        .formats
+        .iter()
+        .filter_map(|&fi| {
+            let f = &p.frames[fi];
+            f.sync_set
+                .is_empty()
+                .then(|| f.sync.first().copied())
+                .flatten()
+        })
+        .collect();
+    leads.sort_unstable();
+    leads.dedup();
+    let all_led = d.formats.iter().all(|&fi| {
+        let f = &p.frames[fi];
+        f.sync_set.is_empty() && !f.sync.is_empty()
+    });
+    let lead = |at: &str| -> String {
+        if !all_led {
+            return String::new();
+        }
+        let tests: Vec<String> = leads
+            .iter()
+            .map(|b| format!("b[{at}] == {b:#04x}"))
+            .collect();
+        format!("({}) && ", tests.join(" || "))
+    };
+    let (lead_i, lead_k) = (lead("i"), lead("k"));
     let mut select = String::new();
     for x in &formats {
         let _ = write!(
@@ -227,7 +257,7 @@ static size_t {dlo}find_candidate(const uint8_t *b, size_t len)
 {{
     size_t i;
     for (i = 0; i < len; i++) {{
-        if ({sync_any}) return i;
+        if ({lead_i}({sync_any})) return i;
     }}
     return len;
 }}
@@ -238,7 +268,7 @@ static int {dlo}frame_inside(const uint8_t *b, size_t pending)
 {{
     size_t k, n = 0;
     for (k = 1; {inside}; k++) {{
-        if ({dlo}probe_link(b + k, pending - k, {dup}DECODER_BUFFER_LEN, &n) == {up}PROBE_FRAME) return 1;
+        if ({lead_k}{dlo}probe_link(b + k, pending - k, {dup}DECODER_BUFFER_LEN, &n) == {up}PROBE_FRAME) return 1;
     }}
     return 0;
 }}

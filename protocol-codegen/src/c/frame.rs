@@ -67,8 +67,8 @@ fn helpers(n: &Names, out: &mut String) {
         out,
         "/* What a probe found: a frame, or the need of more bytes (else a rejection's reason). */\n#define {up}PROBE_FRAME 0\n#define {up}PROBE_NEED (-1)\n\n\
 /* Whether the check stored at `at` is the check of the bytes `from..to` (a check without
- * value, such as one whose per-command byte names no command, matches nothing). */\n{up}UNUSED static int {lo}verify(const uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))\n{{\n    uint64_t value = 0;\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    return check(f + from, to - from, &value) && {lo}get(f + at, width, big) == value;\n}}\n\n\
-/* Computes the check of `from..to` and stores it at `at`. */\n{up}UNUSED static int {lo}store(uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))\n{{\n    uint64_t value = 0;\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    if (!check(f + from, to - from, &value)) return 0;\n    {lo}set(f + at, width, big, value);\n    return 1;\n}}\n\n"
+ * value, such as one whose per-command byte names no command, matches nothing). */\n{up}UNUSED static {up}INLINE int {lo}verify(const uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))\n{{\n    uint64_t value = 0;\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    return check(f + from, to - from, &value) && {lo}get(f + at, width, big) == value;\n}}\n\n\
+/* Computes the check of `from..to` and stores it at `at`. */\n{up}UNUSED static {up}INLINE int {lo}store(uint8_t *f, size_t len, size_t from, size_t to, size_t at, unsigned width, int big, int (*check)(const uint8_t *, size_t, uint64_t *))\n{{\n    uint64_t value = 0;\n    if (from == SIZE_MAX || to == SIZE_MAX || at == SIZE_MAX || from > to || len - at < width) return 0;\n    if (!check(f + from, to - from, &value)) return 0;\n    {lo}set(f + at, width, big, value);\n    return 1;\n}}\n\n"
     );
 }
 
@@ -275,17 +275,18 @@ fn sync_matches(f: &Frame, n: &Names, x: &Fx) -> String {
             "    if (avail == 0) return 1;\n    switch (b[0]) {{\n{cases}        break;\n    default:\n        return 0;\n    }}\n"
         );
     }
-    if !f.sync.is_empty() {
-        let _ = write!(
+    // One comparison per sync byte, unrolled: the stream decoder asks at every byte it scans.
+    for (i, byte) in f.sync.iter().enumerate() {
+        let _ = writeln!(
             body,
-            "    {{\n        static const uint8_t rest[{len}] = {{{}}};\n        size_t i;\n        for (i = 0; i < {len}u && {lead} + i < avail; i++) {{\n            if (b[{lead} + i] != rest[i]) return 0;\n        }}\n    }}\n",
-            sync_rest(f),
-            len = f.sync.len()
+            "    if (avail <= {at}u) return 1;\n    if (b[{at}] != {byte:#04x}) return 0;",
+            at = lead + i
         );
     }
     format!(
-        "#define {xup}SYNC_LEN {}u\n\n/* Whether `b[0..avail]` matches the sync as far as it goes. */\n{}UNUSED static int {xlo}sync_matches(const uint8_t *b, size_t avail)\n{{\n{body}    (void)b;\n    (void)avail;\n    return 1;\n}}\n\n",
+        "#define {xup}SYNC_LEN {}u\n\n/* Whether `b[0..avail]` matches the sync as far as it goes. */\n{}UNUSED static {}INLINE int {xlo}sync_matches(const uint8_t *b, size_t avail)\n{{\n{body}    (void)b;\n    (void)avail;\n    return 1;\n}}\n\n",
         lead + f.sync.len(),
+        n.up,
         n.up
     )
 }
@@ -328,16 +329,54 @@ fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             );
         }
     }
-    let signature = if given {
-        format!(
-            "{xlo}decode_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)"
+    // The checking entry point: the probe of the stream decoder's rules on the whole bytes,
+    // then the reading of a checked frame.
+    let (checking, trusting, direction, pass) = if given {
+        (
+            format!(
+                "{xlo}decode_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)"
+            ),
+            format!(
+                "{xlo}decode_frame_given(const uint8_t *bytes, size_t len, {lo}direction direction, {xlo}packet *out)"
+            ),
+            "direction, ",
+            "_given",
         )
     } else {
-        format!("{xlo}decode(const uint8_t *bytes, size_t len, {xlo}packet *out)")
+        (
+            format!("{xlo}decode(const uint8_t *bytes, size_t len, {xlo}packet *out)"),
+            format!("{xlo}decode_frame(const uint8_t *bytes, size_t len, {xlo}packet *out)"),
+            "",
+            "",
+        )
+    };
+    if given {
+        let _ = writeln!(
+            out,
+            "int {xlo}decode_frame(const uint8_t *bytes, size_t len, {xlo}packet *out)\n{{\n    return {xlo}decode_frame_given(bytes, len, {up}DIRECTION_COUNT, out);\n}}\n"
+        );
+    }
+    let _ = writeln!(
+        out,
+        "int {checking}\n{{\n    size_t n = 0;\n    if ({xlo}probe(bytes, len, {xup}MAX_FRAME_LEN, &n) != {up}PROBE_FRAME || n != len) return {up}ERR_FRAME;\n    return {xlo}decode_frame{pass}(bytes, len, {direction}out);\n}}\n"
+    );
+    // The framing is trusted, but any bytes are read within `len`: the payload's end is
+    // computed only when the trailer fits.
+    let short = if f.trailer_len > 0 {
+        format!(" || len < {xup}TRAILER_LEN")
+    } else {
+        String::new()
+    };
+    // Everything before the payload is zeroed, and a payload struct just before it is read:
+    // not the whole union, whose largest member may be many times the frame's.
+    let zero = if carries(p, x.fi) == Carries::Bytes {
+        "    memset(out, 0, sizeof *out);\n".to_string()
+    } else {
+        format!("    memset(out, 0, offsetof({xlo}packet, payload));\n")
     };
     let _ = write!(
         out,
-        "int {signature}\n{{\n    size_t n = 0, start = {xup}HEADER_LEN, end;\n    uint64_t raw = 0;\n    struct {lo}rd r;\n    int e = 0;\n{filled}    if ({xlo}probe(bytes, len, {xup}MAX_FRAME_LEN, &n) != {up}PROBE_FRAME || n != len) return {up}ERR_FRAME;\n    memset(out, 0, sizeof *out);\n    (void)raw;\n    end = len - {xup}TRAILER_LEN;\n"
+        "int {trusting}\n{{\n    size_t start = {xup}HEADER_LEN, end;\n    uint64_t raw = 0;\n    struct {lo}rd r;\n    int e = 0;\n{filled}    if (len > {xup}MAX_FRAME_LEN{short}) return {up}ERR_FRAME;\n{zero}    (void)raw;\n    end = len - {xup}TRAILER_LEN;\n"
     );
     for v in user_values(f) {
         let value = if v.prim == Prim::Bool {
@@ -415,10 +454,10 @@ fn given_direction(p: &Protocol, n: &Names, out: &mut String) {
         };
         let _ = writeln!(
             out,
-            "    if (direction == {up}{}) {{\n        out->command = {up}COMMAND_COUNT; /* none */\n        if (end < {start}u) return {up}ERR_FRAME;\n        r.p = bytes + {start}u;\n        r.len = end - {start}u;\n        r.pos = 0;\n        if ((e = {lo}read_{}(&r, &out->payload.{})) != 0) return e;\n        return r.pos != r.len ? {up}ERR_PAYLOAD_LENGTH : 0;\n    }}",
+            "    if (direction == {up}{}) {{\n        out->command = {up}COMMAND_COUNT; /* none */\n        if (end < {start}u) return {up}ERR_FRAME;\n        r.p = bytes + {start}u;\n        r.len = end - {start}u;\n        r.pos = 0;\n        memset(&out->payload.{name}, 0, sizeof out->payload.{name});\n        if ((e = {lo}read_{}(&r, &out->payload.{name})) != 0) return e;\n        return r.pos != r.len ? {up}ERR_PAYLOAD_LENGTH : 0;\n    }}",
             d.name.to_uppercase(),
             names::snake(&p.structs[si].name),
-            d.name
+            name = d.name
         );
     }
 }
@@ -507,6 +546,36 @@ fn dispatch_key(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             word(v),
             truncated(v, "raw")
         );
+    }
+    if let [vi] = f.dispatch[..] {
+        // One key field: a switch (a jump table where the ids are dense).
+        let narrow = f.values[vi].prim.size() <= 4;
+        let _ = writeln!(
+            out,
+            "        switch ({}key[0]) {{",
+            if narrow { "(uint32_t)" } else { "" }
+        );
+        for (ci, c) in p.commands.iter().enumerate() {
+            if !f.commands.contains(&ci) || c.id.len() != 1 {
+                continue;
+            }
+            let id = truncate(f.values[vi].prim, c.id[0]);
+            let label = if narrow {
+                format!("{id:#x}u")
+            } else {
+                names::u64_lit(id)
+            };
+            let _ = writeln!(
+                out,
+                "        case {label}: out->command = {up}{}; break;",
+                c.name
+            );
+        }
+        let _ = writeln!(
+            out,
+            "        default: return {up}ERR_UNKNOWN_COMMAND;\n        }}\n    }}"
+        );
+        return;
     }
     out.push_str("        ");
     for (ci, c) in p.commands.iter().enumerate() {
@@ -600,15 +669,42 @@ fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             "        /* A format without extension fields carries the bytes before them. */\n        if (base != SIZE_MAX && r.len != base) return {up}ERR_PAYLOAD_LENGTH;\n        /* A payload short of its struct's size is zero-filled. */\n        if (r.len < size) {{\n            memcpy(filled, r.p, r.len);\n            memset(filled + r.len, 0, size - r.len);\n            r.p = filled;\n            r.len = size;\n        }}\n    }}\n"
         );
     }
-    for slot in &slots {
-        let si = slot.si.unwrap_or_default();
-        let _ = writeln!(
-            out,
-            "    {}e = {lo}read_{}(&r, &out->payload.{});",
-            slot.guard(p, n, "out"),
-            names::snake(&p.structs[si].name),
-            slot.name
-        );
+    let read = |slot: &Slot| {
+        format!(
+            "e = (memset(&out->payload.{name}, 0, sizeof out->payload.{name}), {lo}read_{}(&r, &out->payload.{name}));",
+            names::snake(&p.structs[slot.si.unwrap_or_default()].name),
+            name = slot.name
+        )
+    };
+    if slots.len() > 1 && slots.iter().all(|s| s.command.is_some()) {
+        // One case per command, then its directions: a jump rather than a test per slot.
+        out.push_str("    switch (out->command) {\n");
+        let mut commands: Vec<usize> = slots.iter().filter_map(|s| s.command).collect();
+        commands.dedup();
+        for ci in commands {
+            let _ = writeln!(out, "    case {up}{}:", p.commands[ci].name);
+            let mut first = true;
+            for slot in slots.iter().filter(|s| s.command == Some(ci)) {
+                let test = p
+                    .directions
+                    .get(slot.direction)
+                    .map(|d| format!("if (out->direction == {up}{}) ", d.name.to_uppercase()));
+                let _ = writeln!(
+                    out,
+                    "        {}{}{}",
+                    if first { "" } else { "else " },
+                    test.unwrap_or_default(),
+                    read(slot)
+                );
+                first = false;
+            }
+            out.push_str("        break;\n");
+        }
+        out.push_str("    default:\n        break;\n    }\n");
+    } else {
+        for slot in &slots {
+            let _ = writeln!(out, "    {}{}", slot.guard(p, n, "out"), read(slot));
+        }
     }
     let _ = writeln!(
         out,
@@ -998,7 +1094,7 @@ fn ack_decode(f: &Frame, n: &Names, out: &mut String) {
     };
     let _ = write!(
         out,
-        "    if (!{lo}field(bytes, len, {}, &raw)) return {up}ERR_FRAME;\n    if (raw == {}) {{\n        size_t end;\n        if (len < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        end = {end};\n        if (end < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        if (end - {up}ACK_HEADER_LEN > {up}ACK_MAX_LEN) return {up}ERR_PAYLOAD_LENGTH;\n        out->ack = true;\n        out->command = {up}COMMAND_COUNT;\n        out->payload.ack_data.len = end - {up}ACK_HEADER_LEN;\n        memcpy(out->payload.ack_data.bytes, bytes + {up}ACK_HEADER_LEN, out->payload.ack_data.len);\n        return 0;\n    }}\n",
+        "    if (!{lo}field(bytes, len, {}, &raw)) return {up}ERR_FRAME;\n    if (raw == {}) {{\n        size_t end;\n        if (len < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        end = {end};\n        if (end < {up}ACK_HEADER_LEN) return {up}ERR_FRAME;\n        if (end - {up}ACK_HEADER_LEN > {up}ACK_MAX_LEN) return {up}ERR_PAYLOAD_LENGTH;\n        out->ack = true;\n        out->command = {up}COMMAND_COUNT;\n        memset(&out->payload.ack_data, 0, sizeof out->payload.ack_data);\n        out->payload.ack_data.len = end - {up}ACK_HEADER_LEN;\n        memcpy(out->payload.ack_data.bytes, bytes + {up}ACK_HEADER_LEN, out->payload.ack_data.len);\n        return 0;\n    }}\n",
         word(v),
         names::u64_lit(equals)
     );

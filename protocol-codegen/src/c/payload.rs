@@ -12,6 +12,7 @@ use crate::ir::{
 };
 
 use super::names::{self, Names, prim as c_prim};
+use super::types::{put_call, take_call};
 
 /// The reader and writer of every struct, dependencies first (the IR's order).
 pub fn payloads(p: &Protocol, n: &Names) -> String {
@@ -144,12 +145,14 @@ fn walk(p: &Protocol, n: &Names, s: &Struct, dir: Dir) -> String {
                     // The runtime's `field::verify_check`: the stored value, then the check.
                     let _ = writeln!(
                         body,
-                        "    if ((e = {lo}take_uint(r, {width}u, {big}, &raw)) != 0) return e;\n    if (!{name}(r->p + {from}, {to} - {from}, &word) || word != raw) return {up}ERR_PAYLOAD_CHECK;"
+                        "    if ((e = {}) != 0) return e;\n    if (!{name}(r->p + {from}, {to} - {from}, &word) || word != raw) return {up}ERR_PAYLOAD_CHECK;",
+                        take_call(n, width, big, "raw")
                     );
                 } else {
                     let _ = writeln!(
                         body,
-                        "    (void){name}(w->p + {from}, {to} - {from}, &word);\n    if ((e = {lo}put_uint(w, {width}u, {big}, word)) != 0) return e;"
+                        "    (void){name}(w->p + {from}, {to} - {from}, &word);\n    if ((e = {}) != 0) return e;",
+                        put_call(n, width, big, "word")
                     );
                 }
             }
@@ -463,9 +466,8 @@ pub fn optional_flag(here: &str, f: &Field) -> String {
 fn read_bits(p: &Protocol, n: &Names, word: Scalar, members: &[BitMember]) -> String {
     let (lo, up) = (&n.lo, &n.up);
     let mut body = format!(
-        "    if ((e = {lo}take_uint(r, {}u, {}, &raw)) != 0) return e;\n",
-        word.prim.size(),
-        big(word)
+        "    if ((e = {}) != 0) return e;\n",
+        take_call(n, word.prim.size(), big(word), "raw")
     );
     for m in members {
         let bits = format!("((raw >> {}) & {})", m.shift, names::u64_lit(mask(m.width)));
@@ -518,9 +520,8 @@ fn write_bits(p: &Protocol, n: &Names, word: Scalar, members: &[BitMember]) -> S
     }
     let _ = writeln!(
         body,
-        "    if ((e = {lo}put_uint(w, {}u, {}, word)) != 0) return e;",
-        word.prim.size(),
-        big(word)
+        "    if ((e = {}) != 0) return e;",
+        put_call(n, word.prim.size(), big(word), "word")
     );
     body
 }
@@ -532,15 +533,13 @@ fn read_elem(p: &Protocol, n: &Names, ty: &ValueType, dst: &str) -> String {
             scalar,
             scale: Some(sc),
         } => format!(
-            "    if ((e = {lo}take_uint(r, {}u, {}, &raw)) != 0) return e;\n{}",
-            scalar.prim.size(),
-            big(*scalar),
+            "    if ((e = {}) != 0) return e;\n{}",
+            take_call(n, scalar.prim.size(), big(*scalar), "raw"),
             super::scale::read(n, scalar.prim, sc, "raw", dst)
         ),
         ValueType::Scalar { scalar, .. } => format!(
-            "    if ((e = {lo}take_uint(r, {}u, {}, &raw)) != 0) return e;\n    {dst} = {};\n",
-            scalar.prim.size(),
-            big(*scalar),
+            "    if ((e = {}) != 0) return e;\n    {dst} = {};\n",
+            take_call(n, scalar.prim.size(), big(*scalar), "raw"),
             from_raw(lo, scalar.prim, "raw")
         ),
         ValueType::Struct(si) => format!(
@@ -551,9 +550,8 @@ fn read_elem(p: &Protocol, n: &Names, ty: &ValueType, dst: &str) -> String {
             let e = &p.enums[*ei];
             let ety = n.ty(&e.name);
             let mut s = format!(
-                "    if ((e = {lo}take_uint(r, {}u, {}, &raw)) != 0) return e;\n",
-                scalar.prim.size(),
-                big(*scalar)
+                "    if ((e = {}) != 0) return e;\n",
+                take_call(n, scalar.prim.size(), big(*scalar), "raw")
             );
             if rejects(e) {
                 let _ = writeln!(s, "    if (!{ety}_known(raw)) return {up}ERR_INVALID_ENUM;");
@@ -575,17 +573,19 @@ fn write_elem(p: &Protocol, n: &Names, ty: &ValueType, src: &str) -> String {
             scalar,
             scale: Some(sc),
         } => format!(
-            "{}    if ((e = {lo}put_uint(w, {}u, {}, raw)) != 0) return e;\n",
+            "{}    if ((e = {}) != 0) return e;\n",
             super::scale::write(n, scalar.prim, sc, src),
-            scalar.prim.size(),
-            big(*scalar)
+            put_call(n, scalar.prim.size(), big(*scalar), "raw")
         ),
         ValueType::Scalar { scalar, .. } => format!(
-            "{}    if ((e = {lo}put_uint(w, {}u, {}, {})) != 0) return e;\n",
+            "{}    if ((e = {}) != 0) return e;\n",
             range_check(scalar.prim, src, up),
-            scalar.prim.size(),
-            big(*scalar),
-            to_raw(lo, scalar.prim, src)
+            put_call(
+                n,
+                scalar.prim.size(),
+                big(*scalar),
+                &to_raw(lo, scalar.prim, src)
+            )
         ),
         ValueType::Struct(si) => format!(
             "    if ((e = {lo}write_{}(w, &{src})) != 0) return e;\n",
@@ -604,9 +604,8 @@ fn write_elem(p: &Protocol, n: &Names, ty: &ValueType, src: &str) -> String {
             }
             let _ = writeln!(
                 s,
-                "    if ((e = {lo}put_uint(w, {}u, {}, raw)) != 0) return e;",
-                scalar.prim.size(),
-                big(*scalar)
+                "    if ((e = {}) != 0) return e;",
+                put_call(n, scalar.prim.size(), big(*scalar), "raw")
             );
             s
         }

@@ -490,13 +490,13 @@ fn functions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let f = &p.frames[x.fi];
     let _ = writeln!(
         out,
-        "/* ---- Frames of format `{name}` ---- */\n\n/** Decodes `len` bytes that are exactly one `{name}` frame into `out`: 0, or a negative {up}ERR_. */\nint {lo}decode(const uint8_t *bytes, size_t len, {lo}packet *out);\n\n/** Encodes a packet into `buf`: the frame's length, or a negative {up}ERR_. */\nint {lo}encode(const {lo}packet *packet, uint8_t *buf, size_t cap);\n",
+        "/* ---- Frames of format `{name}` ---- */\n\n/** Decodes `len` bytes that are exactly one `{name}` frame into `out`: 0, or a negative {up}ERR_.\n *  Takes any bytes: checks the framing (sync, length, checks, trailers) first. */\nint {lo}decode(const uint8_t *bytes, size_t len, {lo}packet *out);\n\n/** Decodes a frame whose framing a stream decoder has checked (the bytes and length of a\n *  frame event of this format) into `out`, as {lo}decode without checking the framing again:\n *  0, or a negative {up}ERR_. Other bytes are read within `len`, never beyond, but may\n *  decode to values no sender sent. */\nint {lo}decode_frame(const uint8_t *bytes, size_t len, {lo}packet *out);\n\n/** Encodes a packet into `buf`: the frame's length, or a negative {up}ERR_. */\nint {lo}encode(const {lo}packet *packet, uint8_t *buf, size_t cap);\n",
         name = f.name
     );
     if x.fi == 0 && p.directions_given() {
         let _ = writeln!(
             out,
-            "/** Decodes `len` bytes that are exactly one frame sent in `direction` (no header value\n *  tells it: the side that reads the frame knows it): 0, or a negative {up}ERR_. Without a\n *  direction ({lo}decode), a frame gives {up}ERR_UNKNOWN_DIRECTION. */\nint {lo}decode_given(const uint8_t *bytes, size_t len, {nlo}direction direction, {lo}packet *out);\n",
+            "/** Decodes `len` bytes that are exactly one frame sent in `direction` (no header value\n *  tells it: the side that reads the frame knows it): 0, or a negative {up}ERR_. Without a\n *  direction ({lo}decode), a frame gives {up}ERR_UNKNOWN_DIRECTION. */\nint {lo}decode_given(const uint8_t *bytes, size_t len, {nlo}direction direction, {lo}packet *out);\n\n/** {lo}decode_given of a frame a stream decoder has checked, as {lo}decode_frame. */\nint {lo}decode_frame_given(const uint8_t *bytes, size_t len, {nlo}direction direction, {lo}packet *out);\n",
             nlo = n.lo
         );
         for d in &p.directions {
@@ -545,11 +545,108 @@ fn functions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     );
 }
 
+/// The bytes of an unsigned integer of `size` bytes at `p`, in C: the byte order's shifts in
+/// 32-bit arithmetic (a 64-bit value as two 32-bit halves).
+fn sized_get(size: usize, big: bool) -> String {
+    let byte = |i: usize| if big { size - 1 - i } else { i };
+    let half = |from: usize, count: usize| -> String {
+        (from..from + count)
+            .map(|i| match i - from {
+                0 => format!("(uint32_t)p[{}]", byte(i)),
+                k => format!("(uint32_t)p[{}] << {}", byte(i), 8 * k),
+            })
+            .collect::<Vec<_>>()
+            .join(" | ")
+    };
+    if size == 8 {
+        format!(
+            "(uint64_t)({}) | (uint64_t)({}) << 32",
+            half(0, 4),
+            half(4, 4)
+        )
+    } else {
+        half(0, size)
+    }
+}
+
+/// `pfx_take_u<bits><order>` and `pfx_put_u<bits><order>`: `take_uint` and `put_uint` of one
+/// size and byte order (1, 2, 4 and 8 bytes), so that a field's read is a few loads and shifts
+/// rather than a loop over a run-time size and order.
+fn sized_helpers(n: &Names, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    for size in [1usize, 2, 4, 8] {
+        for big in [false, true] {
+            if size == 1 && big {
+                continue;
+            }
+            let name = sized_name(size, big);
+            let get = sized_get(size, big);
+            let set: String = (0..size)
+                .map(|i| {
+                    let at = if big { size - 1 - i } else { i };
+                    if size == 8 {
+                        let (word, shift) = if i < 4 {
+                            ("l", 8 * i)
+                        } else {
+                            ("h", 8 * (i - 4))
+                        };
+                        format!("    p[{at}] = (uint8_t)({word} >> {shift});\n")
+                    } else {
+                        format!("    p[{at}] = (uint8_t)(v >> {});\n", 8 * i)
+                    }
+                })
+                .collect();
+            let halves = if size == 8 {
+                "    uint32_t l = (uint32_t)v, h = (uint32_t)(v >> 32);\n"
+            } else {
+                ""
+            };
+            let _ = write!(
+                out,
+                "{up}UNUSED static {up}INLINE int {lo}take_{name}(struct {lo}rd *r, uint64_t *out)\n{{\n    const uint8_t *p;\n    if (r->len - r->pos < {size}u) return {up}ERR_PAYLOAD_LENGTH;\n    p = r->p + r->pos;\n    *out = {get};\n    r->pos += {size}u;\n    return 0;\n}}\n\n\
+{up}UNUSED static {up}INLINE int {lo}put_{name}(struct {lo}wr *w, uint64_t v)\n{{\n    uint8_t *p;\n{halves}    if (w->cap - w->pos < {size}u) return {up}ERR_SHORT_BUFFER;\n    p = w->p + w->pos;\n{set}    w->pos += {size}u;\n    return 0;\n}}\n\n"
+            );
+        }
+    }
+}
+
+/// The suffix of a sized reader or writer: `u8`, `u16le`, `u32be`.
+fn sized_name(size: usize, big: bool) -> String {
+    let order = match (size, big) {
+        (1, _) => "",
+        (_, true) => "be",
+        (_, false) => "le",
+    };
+    format!("u{}{order}", 8 * size)
+}
+
+/// The C call that reads an unsigned integer of `size` bytes (`big`: big-endian) from the
+/// payload reader `r` into `raw`: a sized reader where there is one, else `take_uint`.
+pub fn take_call(n: &Names, size: usize, big: u8, raw: &str) -> String {
+    let lo = &n.lo;
+    if matches!(size, 1 | 2 | 4 | 8) {
+        format!("{lo}take_{}(r, &{raw})", sized_name(size, big != 0))
+    } else {
+        format!("{lo}take_uint(r, {size}u, {big}, &{raw})")
+    }
+}
+
+/// The C call that writes `value` as an unsigned integer of `size` bytes to the frame writer
+/// `w`, as [`take_call`] reads it.
+pub fn put_call(n: &Names, size: usize, big: u8, value: &str) -> String {
+    let lo = &n.lo;
+    if matches!(size, 1 | 2 | 4 | 8) {
+        format!("{lo}put_{}(w, {value})", sized_name(size, big != 0))
+    } else {
+        format!("{lo}put_uint(w, {size}u, {big}, {value})")
+    }
+}
+
 /// The start of the source file: includes and the byte-order helpers.
 pub fn source_prelude(p: &Protocol, n: &Names) -> String {
     let (lo, up) = (&n.lo, &n.up);
     let mut out = format!(
-        "/* {name}: C99 codec generated by `protocol gen c` from the spec. Do not edit: regenerate.\n *\n * Every value goes through explicit byte order (shifts): nothing relies on the host's byte\n * order, struct layout or packing. Floats are IEEE 754 (their bits copied with memcpy). */\n#include \"{name}.h\"\n\n#include <string.h>\n\n/* Helpers a spec may not need are marked so, where the compiler knows how. */\n#if defined(__GNUC__) || defined(__clang__)\n#define {up}UNUSED __attribute__((unused))\n#else\n#define {up}UNUSED\n#endif\n\n",
+        "/* {name}: C99 codec generated by `protocol gen c` from the spec. Do not edit: regenerate.\n *\n * Every value goes through explicit byte order (shifts): nothing relies on the host's byte\n * order, struct layout or packing. Floats are IEEE 754 (their bits copied with memcpy). */\n#include \"{name}.h\"\n\n#include <string.h>\n\n/* Helpers a spec may not need are marked so, where the compiler knows how. */\n#if defined(__GNUC__) || defined(__clang__)\n#define {up}UNUSED __attribute__((unused))\n#else\n#define {up}UNUSED\n#endif\n\n/* The small helpers of byte order, positions and sync bytes are inlined where the compiler\n * knows how: their sizes, positions and byte orders are constants at every call, which then\n * fold away (fewer instructions per frame, and less code). */\n#if defined(__GNUC__) || defined(__clang__)\n#define {up}INLINE inline __attribute__((always_inline))\n#else\n#define {up}INLINE inline\n#endif\n\n",
         up = n.up,
         name = p.name
     );
@@ -557,8 +654,8 @@ pub fn source_prelude(p: &Protocol, n: &Names) -> String {
         out,
         "/* ---- Byte order ---- */\n\n\
 /* A payload being read, and a frame being written. */\nstruct {lo}rd {{ const uint8_t *p; size_t len; size_t pos; }};\nstruct {lo}wr {{ uint8_t *p; size_t cap; size_t pos; }};\n\n\
-{up}UNUSED static uint64_t {lo}get(const uint8_t *p, unsigned n, int big)\n{{\n    uint64_t v = 0;\n    unsigned i;\n    for (i = 0; i < n; i++) {{\n        v |= (uint64_t)p[big ? n - 1 - i : i] << (8 * i);\n    }}\n    return v;\n}}\n\n\
-{up}UNUSED static void {lo}set(uint8_t *p, unsigned n, int big, uint64_t v)\n{{\n    unsigned i;\n    for (i = 0; i < n; i++) {{\n        p[big ? n - 1 - i : i] = (uint8_t)(v >> (8 * i));\n    }}\n}}\n\n\
+/* An unsigned integer of `n` bytes: the common sizes without a loop over 64-bit shifts. */\n{up}UNUSED static {up}INLINE uint64_t {lo}get(const uint8_t *p, unsigned n, int big)\n{{\n    uint64_t v = 0;\n    unsigned i;\n    switch (n) {{\n    case 1: return p[0];\n    case 2: return big ? {be16} : {le16};\n    case 4: return big ? {be32} : {le32};\n    default: break;\n    }}\n    for (i = 0; i < n; i++) {{\n        v |= (uint64_t)p[big ? n - 1 - i : i] << (8 * i);\n    }}\n    return v;\n}}\n\n\
+{up}UNUSED static {up}INLINE void {lo}set(uint8_t *p, unsigned n, int big, uint64_t v)\n{{\n    unsigned i;\n    for (i = 0; i < n; i++) {{\n        p[big ? n - 1 - i : i] = (uint8_t)(v >> (8 * i));\n    }}\n}}\n\n\
 /* The low `bits` bits of `v` as a two's complement integer. */\n{up}UNUSED static int64_t {lo}sext(uint64_t v, unsigned bits)\n{{\n    uint64_t sign;\n    if (bits >= 64) {{\n        return (v >> 63) ? -(int64_t)(~v) - 1 : (int64_t)v;\n    }}\n    sign = (uint64_t)1 << (bits - 1);\n    v &= (sign << 1) - 1;\n    return (v & sign) ? (int64_t)(v - sign) - (int64_t)(sign - 1) - 1 : (int64_t)v;\n}}\n\n\
 {up}UNUSED static float {lo}f32(uint64_t raw)\n{{\n    uint32_t b = (uint32_t)raw;\n    float f;\n    memcpy(&f, &b, sizeof f);\n    return f;\n}}\n\n\
 {up}UNUSED static double {lo}f64(uint64_t raw)\n{{\n    double f;\n    memcpy(&f, &raw, sizeof f);\n    return f;\n}}\n\n\
@@ -567,13 +664,18 @@ pub fn source_prelude(p: &Protocol, n: &Names) -> String {
 {up}UNUSED static int {lo}take_uint(struct {lo}rd *r, unsigned n, int big, uint64_t *out)\n{{\n    if (r->len - r->pos < n) return {up}ERR_PAYLOAD_LENGTH;\n    *out = {lo}get(r->p + r->pos, n, big);\n    r->pos += n;\n    return 0;\n}}\n\n\
 {up}UNUSED static int {lo}skip(struct {lo}rd *r, size_t n)\n{{\n    if (r->len - r->pos < n) return {up}ERR_PAYLOAD_LENGTH;\n    r->pos += n;\n    return 0;\n}}\n\n\
 {up}UNUSED static int {lo}put_uint(struct {lo}wr *w, unsigned n, int big, uint64_t v)\n{{\n    if (w->cap - w->pos < n) return {up}ERR_SHORT_BUFFER;\n    {lo}set(w->p + w->pos, n, big, v);\n    w->pos += n;\n    return 0;\n}}\n\n\
-{up}UNUSED static int {lo}zero(struct {lo}wr *w, size_t n)\n{{\n    if (w->cap - w->pos < n) return {up}ERR_SHORT_BUFFER;\n    memset(w->p + w->pos, 0, n);\n    w->pos += n;\n    return 0;\n}}\n\n"
+{up}UNUSED static int {lo}zero(struct {lo}wr *w, size_t n)\n{{\n    if (w->cap - w->pos < n) return {up}ERR_SHORT_BUFFER;\n    memset(w->p + w->pos, 0, n);\n    w->pos += n;\n    return 0;\n}}\n\n",
+        be16 = sized_get(2, true),
+        le16 = sized_get(2, false),
+        be32 = sized_get(4, true),
+        le32 = sized_get(4, false),
     );
+    sized_helpers(n, &mut out);
     let _ = write!(
         out,
-        "/* A position from the frame's start or back from its end, in a frame of `len` bytes;\n * SIZE_MAX when it falls outside. */\n{up}UNUSED static size_t {lo}pos(size_t len, int from_end, size_t n)\n{{\n    if (from_end) return len >= n ? len - n : SIZE_MAX;\n    return n <= len ? n : SIZE_MAX;\n}}\n\n\
-/* A value of `width` bits at bit `shift` of the word of `size` bytes at a position. */\n{up}UNUSED static int {lo}field(const uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t *out)\n{{\n    size_t o = {lo}pos(len, from_end, at);\n    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);\n    if (o == SIZE_MAX || len - o < size) return 0;\n    *out = ({lo}get(f + o, size, big) >> shift) & m;\n    return 1;\n}}\n\n\
-{up}UNUSED static int {lo}put_field(uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t value)\n{{\n    size_t o = {lo}pos(len, from_end, at);\n    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);\n    if (o == SIZE_MAX || len - o < size || value > m) return 0;\n    {lo}set(f + o, size, big, {lo}get(f + o, size, big) | (value << shift));\n    return 1;\n}}\n\n"
+        "/* A position from the frame's start or back from its end, in a frame of `len` bytes;\n * SIZE_MAX when it falls outside. */\n{up}UNUSED static {up}INLINE size_t {lo}pos(size_t len, int from_end, size_t n)\n{{\n    if (from_end) return len >= n ? len - n : SIZE_MAX;\n    return n <= len ? n : SIZE_MAX;\n}}\n\n\
+/* A value of `width` bits at bit `shift` of the word of `size` bytes at a position. */\n{up}UNUSED static {up}INLINE int {lo}field(const uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t *out)\n{{\n    size_t o = {lo}pos(len, from_end, at);\n    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);\n    if (o == SIZE_MAX || len - o < size) return 0;\n    *out = ({lo}get(f + o, size, big) >> shift) & m;\n    return 1;\n}}\n\n\
+{up}UNUSED static {up}INLINE int {lo}put_field(uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t value)\n{{\n    size_t o = {lo}pos(len, from_end, at);\n    uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);\n    if (o == SIZE_MAX || len - o < size || value > m) return 0;\n    {lo}set(f + o, size, big, {lo}get(f + o, size, big) | (value << shift));\n    return 1;\n}}\n\n"
     );
     if any_field(p, |k| matches!(k, FieldKind::Packed { .. })) {
         let _ = write!(
