@@ -470,54 +470,18 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// A step on the caller's input, with nothing pending.
     #[inline(always)]
     fn step_input(&mut self, input: &mut &[u8], at_end: bool) -> Step {
-        let data: &[u8] = input;
-        if data.is_empty() {
-            return Step::Idle;
-        }
         // (A buffer of no bytes stages nothing: scanned in place, where every candidate is
         // too long.)
-        if !SCAN_IN_PLACE && N > 0 {
+        if !SCAN_IN_PLACE && N > 0 && !input.is_empty() {
             self.stage_prefix(input);
             return self.step_buffered(input, at_end);
         }
-        let offset = self.position;
-        let skip = find_link(&self.layout, data);
-        if skip > 0 {
-            let len = self.consume(input, skip).len();
-            self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(len as u64);
-            return Step::Skipped { offset, len };
-        }
-        // `find_candidate` has compared the sync bytes.
-        let reason = match probe_link_synced(&self.layout, data, data.len(), self.limit()) {
-            (format, Probe::Frame(len)) => {
-                // `len <= data.len()`: the caller takes the bytes from the input.
-                self.position = self.position.wrapping_add(len as u64);
-                self.stats.count_frame(len);
-                return Step::Input {
-                    len,
-                    offset,
-                    format,
-                };
-            }
-            (_, Probe::Need(_)) => {
-                // The candidate runs to the end of the input, which is then shorter than what
-                // it needs, itself at most `limit() <= N`: keep it all.
-                if self.hold(input) {
-                    return self.step_buffered(input, at_end);
-                }
-                Reject::BadLength
-            }
-            (_, Probe::Reject(reason)) => reason,
-        };
-        self.consume(input, 1);
-        self.stats.count_reject(reason);
-        Step::Rejected { offset, reason }
+        self.step_in::<InInput>(input, at_end)
     }
 
     /// A step on the pending bytes, completing them from the caller's input as needed.
     #[inline(never)]
     fn step_buffered(&mut self, input: &mut &[u8], at_end: bool) -> Step {
-        let limit = self.limit();
         // A small chunk goes in whole, before anything is probed, and the scan goes on in the
         // buffer: cheaper than probing the pending candidate, completing it with just the
         // bytes it needs and returning to the chunk for a few bytes, which costs a second
@@ -526,50 +490,40 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         if !input.is_empty() {
             self.stage(input);
         }
+        self.step_in::<InBuffer>(input, at_end)
+    }
+
+    /// One step on the bytes at `P`: a skipped run, a frame, a rejected candidate (which
+    /// costs one byte), or what `P` does with a candidate that needs more bytes.
+    #[inline(always)]
+    fn step_in<P: Place>(&mut self, input: &mut &[u8], at_end: bool) -> Step {
+        let limit = self.limit();
         loop {
-            let Some(region) = self.buf.get(self.start..self.end) else {
-                self.start = 0;
-                self.end = 0;
-                return Step::Idle;
+            let Some((region, offset)) = P::bytes(self, input) else {
+                return P::idle(self);
             };
-            let pending = region.len();
-            let offset = self.position.wrapping_sub(pending as u64);
             let skip = find_link(&self.layout, region);
             if skip > 0 {
-                self.start = self.start.wrapping_add(skip);
+                P::advance(self, input, skip);
                 self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(skip as u64);
                 return Step::Skipped { offset, len: skip };
             }
-            let readable = self.buf.get(self.start..).unwrap_or_default();
+            let pending = region.len();
+            let readable = P::readable(self, input);
             // `find_candidate` has compared the sync bytes.
             let reason = match probe_link_synced(&self.layout, readable, pending, limit) {
                 (format, Probe::Frame(len)) => {
-                    let start = self.start;
-                    self.start = start.wrapping_add(len);
                     self.stats.count_frame(len);
-                    return Step::Buffered {
-                        start,
-                        end: self.start,
-                        offset,
-                        format,
-                    };
+                    return P::frame(self, len, offset, format);
                 }
                 (_, Probe::Reject(reason)) => reason,
-                (_, Probe::Need(_)) if input.is_empty() => {
-                    if at_end || self.frame_inside(limit) {
-                        Reject::Truncated
-                    } else {
-                        return Step::Idle;
-                    }
-                }
-                (_, Probe::Need(needed)) => {
-                    if self.fill(input, needed) {
-                        continue;
-                    }
-                    Reject::BadLength
-                }
+                (_, Probe::Need(needed)) => match P::need(self, input, needed, limit, at_end) {
+                    Need::Again => continue,
+                    Need::Step(step) => return step,
+                    Need::Reject(reason) => reason,
+                },
             };
-            self.start = self.start.wrapping_add(1);
+            P::advance(self, input, 1);
             self.stats.count_reject(reason);
             return Step::Rejected { offset, reason };
         }
@@ -612,5 +566,209 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             return false;
         };
         frame_inside(&self.layout, readable, pending, &mut self.inner_dead, limit)
+    }
+}
+
+/// What a [`Place`] does with a candidate that needs more bytes than it holds.
+enum Need {
+    /// More bytes are there: probe the candidate again.
+    Again,
+    /// The step is this.
+    Step(Step),
+    /// The candidate is rejected.
+    Reject(Reject),
+}
+
+/// Where the bytes of a step live ([`StreamDecoder::step_in`]): the caller's input
+/// ([`InInput`]) or the decoder's buffer ([`InBuffer`]). Each is a type of its own, so that
+/// the step is compiled once for each, with these functions inlined.
+trait Place {
+    /// The bytes to search and the stream offset of the first; `None` if there are none.
+    fn bytes<'a, L: LayoutRef, const N: usize>(
+        decoder: &'a StreamDecoder<L, N>,
+        input: &'a [u8],
+    ) -> Option<(&'a [u8], u64)>;
+
+    /// The bytes readable from the same start: a window checksum may read past the searched
+    /// ones. (Apart from [`bytes`](Self::bytes), taken after the search: the firmware's
+    /// buffered step is smaller so; `benches/footprint.sh` measures it.)
+    fn readable<'a, L: LayoutRef, const N: usize>(
+        decoder: &'a StreamDecoder<L, N>,
+        input: &'a [u8],
+    ) -> &'a [u8];
+
+    /// The step when [`bytes`](Self::bytes) finds none.
+    fn idle<L: LayoutRef, const N: usize>(decoder: &mut StreamDecoder<L, N>) -> Step;
+
+    /// Moves past the first `n` bytes searched.
+    fn advance<L: LayoutRef, const N: usize>(
+        decoder: &mut StreamDecoder<L, N>,
+        input: &mut &[u8],
+        n: usize,
+    );
+
+    /// The step for a frame of the first `len` bytes, moving past it.
+    fn frame<L: LayoutRef, const N: usize>(
+        decoder: &mut StreamDecoder<L, N>,
+        len: usize,
+        offset: u64,
+        format: usize,
+    ) -> Step;
+
+    /// A candidate at the start needs `needed` bytes, more than there are.
+    fn need<L: LayoutRef, const N: usize>(
+        decoder: &mut StreamDecoder<L, N>,
+        input: &mut &[u8],
+        needed: usize,
+        limit: usize,
+        at_end: bool,
+    ) -> Need;
+}
+
+/// The caller's input, with nothing pending: frames are taken from it by the caller.
+struct InInput;
+
+impl Place for InInput {
+    #[inline(always)]
+    fn bytes<'a, L: LayoutRef, const N: usize>(
+        decoder: &'a StreamDecoder<L, N>,
+        input: &'a [u8],
+    ) -> Option<(&'a [u8], u64)> {
+        if input.is_empty() {
+            return None;
+        }
+        Some((input, decoder.position))
+    }
+
+    #[inline(always)]
+    fn readable<'a, L: LayoutRef, const N: usize>(
+        _decoder: &'a StreamDecoder<L, N>,
+        input: &'a [u8],
+    ) -> &'a [u8] {
+        input
+    }
+
+    #[inline(always)]
+    fn idle<L: LayoutRef, const N: usize>(_decoder: &mut StreamDecoder<L, N>) -> Step {
+        Step::Idle
+    }
+
+    #[inline(always)]
+    fn advance<L: LayoutRef, const N: usize>(
+        decoder: &mut StreamDecoder<L, N>,
+        input: &mut &[u8],
+        n: usize,
+    ) {
+        decoder.consume(input, n);
+    }
+
+    #[inline(always)]
+    fn frame<L: LayoutRef, const N: usize>(
+        decoder: &mut StreamDecoder<L, N>,
+        len: usize,
+        offset: u64,
+        format: usize,
+    ) -> Step {
+        // `len <= input.len()`: the caller takes the bytes from the input.
+        decoder.position = decoder.position.wrapping_add(len as u64);
+        Step::Input {
+            len,
+            offset,
+            format,
+        }
+    }
+
+    #[inline(always)]
+    fn need<L: LayoutRef, const N: usize>(
+        decoder: &mut StreamDecoder<L, N>,
+        input: &mut &[u8],
+        _needed: usize,
+        _limit: usize,
+        at_end: bool,
+    ) -> Need {
+        // The candidate runs to the end of the input, which is then shorter than what it
+        // needs, itself at most `limit() <= N`: keep it all.
+        if decoder.hold(input) {
+            Need::Step(decoder.step_buffered(input, at_end))
+        } else {
+            Need::Reject(Reject::BadLength)
+        }
+    }
+}
+
+/// The pending bytes, completed from the caller's input as needed.
+struct InBuffer;
+
+impl Place for InBuffer {
+    #[inline(always)]
+    fn bytes<'a, L: LayoutRef, const N: usize>(
+        decoder: &'a StreamDecoder<L, N>,
+        _input: &'a [u8],
+    ) -> Option<(&'a [u8], u64)> {
+        let region = decoder.buf.get(decoder.start..decoder.end)?;
+        let offset = decoder.position.wrapping_sub(region.len() as u64);
+        Some((region, offset))
+    }
+
+    #[inline(always)]
+    fn readable<'a, L: LayoutRef, const N: usize>(
+        decoder: &'a StreamDecoder<L, N>,
+        _input: &'a [u8],
+    ) -> &'a [u8] {
+        decoder.buf.get(decoder.start..).unwrap_or_default()
+    }
+
+    #[inline(always)]
+    fn idle<L: LayoutRef, const N: usize>(decoder: &mut StreamDecoder<L, N>) -> Step {
+        decoder.start = 0;
+        decoder.end = 0;
+        Step::Idle
+    }
+
+    #[inline(always)]
+    fn advance<L: LayoutRef, const N: usize>(
+        decoder: &mut StreamDecoder<L, N>,
+        _input: &mut &[u8],
+        n: usize,
+    ) {
+        decoder.start = decoder.start.wrapping_add(n);
+    }
+
+    #[inline(always)]
+    fn frame<L: LayoutRef, const N: usize>(
+        decoder: &mut StreamDecoder<L, N>,
+        len: usize,
+        offset: u64,
+        format: usize,
+    ) -> Step {
+        let start = decoder.start;
+        decoder.start = start.wrapping_add(len);
+        Step::Buffered {
+            start,
+            end: decoder.start,
+            offset,
+            format,
+        }
+    }
+
+    #[inline(always)]
+    fn need<L: LayoutRef, const N: usize>(
+        decoder: &mut StreamDecoder<L, N>,
+        input: &mut &[u8],
+        needed: usize,
+        limit: usize,
+        at_end: bool,
+    ) -> Need {
+        if !input.is_empty() {
+            if decoder.fill(input, needed) {
+                Need::Again
+            } else {
+                Need::Reject(Reject::BadLength)
+            }
+        } else if at_end || decoder.frame_inside(limit) {
+            Need::Reject(Reject::Truncated)
+        } else {
+            Need::Step(Step::Idle)
+        }
     }
 }
