@@ -5,7 +5,8 @@
 //! search and one decision per candidate, the counters kept in registers and added to the
 //! [`Stats`] once. It does not own where the bytes come from nor what happens to a candidate
 //! that needs more bytes than there are (the scan stops there, and the decoder's steps buffer
-//! it or reject it), and it decides no candidate itself: [`probe_synced`] does.
+//! it or reject it), and it decides no candidate itself:
+//! [`probe_synced`](super::probe_synced) does.
 
 use super::event::{Frame, Stats};
 use super::search::find_link;
