@@ -38,7 +38,7 @@ use protocol_codegen::ir::{
 };
 use protocol_codegen::layout::word_field;
 use protocol_dynamic::{Codec, DecodeIssue, Interpreter, Item, Value, flag_trailer_len};
-use protocol_runtime::{CanFrame, DecodeError};
+use protocol_runtime::CanFrame;
 
 const RANDOM_FRAMES: usize = 10_000;
 
@@ -109,26 +109,6 @@ fn unhex(text: &str) -> Vec<u8> {
 
 // ---- The Rust side: the text the driver prints, from protocol-dynamic ----
 
-fn issue_name(e: &DecodeIssue) -> &'static str {
-    match e {
-        DecodeIssue::Frame(DecodeError::PayloadLength { .. })
-        | DecodeIssue::PayloadLength { .. } => "payload_length",
-        DecodeIssue::Frame(DecodeError::InvalidEnum { .. }) | DecodeIssue::InvalidEnum { .. } => {
-            "invalid_enum"
-        }
-        DecodeIssue::UnknownCommand { .. } => "unknown_command",
-        DecodeIssue::UnknownDirection { .. } | DecodeIssue::DirectionNotGiven { .. } => {
-            "unknown_direction"
-        }
-        DecodeIssue::Frame(DecodeError::SizeMismatch) => "size_mismatch",
-        DecodeIssue::Frame(DecodeError::Unterminated) => "unterminated",
-        DecodeIssue::Frame(DecodeError::PayloadCheck) => "payload_check",
-        DecodeIssue::Frame(DecodeError::ValueOutOfRange) => "outside_clamp",
-        DecodeIssue::Frame(DecodeError::InvalidStuffing) => "invalid_stuffing",
-        DecodeIssue::Frame(_) => "frame",
-    }
-}
-
 fn value_text(out: &mut String, path: &str, v: &Value) {
     match v {
         Value::Struct(fields) => {
@@ -172,7 +152,12 @@ fn describe(
     let p = codec.protocol();
     let d = match decoded {
         Ok(d) => d,
-        Err(e) => return vec![format!("err {}", issue_name(&e))],
+        Err(e) => {
+            return vec![format!(
+                "err {}",
+                protocol_codegen::c::error_name(&e.to_runtime())
+            )];
+        }
     };
     let mut text = format!(
         "ok cmd={}",

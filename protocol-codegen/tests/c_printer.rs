@@ -211,3 +211,43 @@ fn a_struct_named_like_the_generated_code_gets_t() {
         assert!(files.header.contains(item), "{item} in\n{}", files.header);
     }
 }
+
+/// Every runtime error names an `ERR_` code the printed header defines: the C conformance
+/// test and the QEMU check compare the C's refusals with the Rust codec's by these names.
+#[test]
+fn every_runtime_error_names_a_printed_error_code() {
+    use protocol_runtime::{DecodeError, Reject};
+    let p = compile("specs/hflink.toml");
+    let header = protocol_codegen::c::generate(&p)
+        .expect("hflink prints in C")
+        .header;
+    let errors = [
+        DecodeError::Truncated {
+            needed: 8,
+            available: 2,
+        },
+        DecodeError::PayloadLength {
+            expected: 12,
+            actual: 11,
+        },
+        DecodeError::UnknownCommand { key: 0xff },
+        DecodeError::UnknownDirection,
+        DecodeError::InvalidEnum { value: 9 },
+        DecodeError::Frame(Reject::BadChecksum),
+        DecodeError::InvalidStuffing,
+        DecodeError::ValueOutOfRange,
+        DecodeError::SizeMismatch,
+        DecodeError::Unterminated,
+        DecodeError::PayloadCheck,
+    ];
+    let mut names: Vec<&str> = errors.iter().map(protocol_codegen::c::error_name).collect();
+    for name in &names {
+        let define = format!("#define HFLINK_ERR_{} (", name.to_uppercase());
+        assert!(header.contains(&define), "{define} missing from the header");
+    }
+    names.sort_unstable();
+    names.dedup();
+    // Two errors share `frame` (truncated bytes and a rejected frame are both "not exactly one
+    // valid frame"); every other error has its own code.
+    assert_eq!(names.len(), errors.len() - 1, "{names:?}");
+}

@@ -17,8 +17,7 @@
 use std::collections::BTreeMap;
 use std::process::ExitCode;
 
-use protocol_dynamic::{DecodeIssue, Interpreter, hex};
-use protocol_runtime::DecodeError;
+use protocol_dynamic::{Interpreter, hex};
 use serde_json::Value;
 
 /// The spec and vector file of each stream the firmwares decode.
@@ -32,28 +31,6 @@ const SPECS: [(&str, &str); 2] = [
 enum Firmware {
     Rust,
     C,
-}
-
-/// The name of the C codec's `ERR_` code for an error of the run-time codec (the mapping of the
-/// C conformance test, `protocol-cli/tests/c_peer.rs`).
-fn c_error_name(e: &DecodeIssue) -> &'static str {
-    match e {
-        DecodeIssue::Frame(DecodeError::PayloadLength { .. })
-        | DecodeIssue::PayloadLength { .. } => "payload_length",
-        DecodeIssue::Frame(DecodeError::InvalidEnum { .. }) | DecodeIssue::InvalidEnum { .. } => {
-            "invalid_enum"
-        }
-        DecodeIssue::UnknownCommand { .. } => "unknown_command",
-        DecodeIssue::UnknownDirection { .. } | DecodeIssue::DirectionNotGiven { .. } => {
-            "unknown_direction"
-        }
-        DecodeIssue::Frame(DecodeError::SizeMismatch) => "size_mismatch",
-        DecodeIssue::Frame(DecodeError::Unterminated) => "unterminated",
-        DecodeIssue::Frame(DecodeError::PayloadCheck) => "payload_check",
-        DecodeIssue::Frame(DecodeError::ValueOutOfRange) => "outside_clamp",
-        DecodeIssue::Frame(DecodeError::InvalidStuffing) => "invalid_stuffing",
-        DecodeIssue::Frame(_) => "frame",
-    }
 }
 
 fn vectors(file: &str) -> Value {
@@ -85,7 +62,10 @@ fn expected_frame_line(
             format!("frame {spec} {name} ok {command} {}", hex(frame))
         }
         Err(issue) if fw == Firmware::C => {
-            format!("frame {spec} {name} error {}", c_error_name(&issue))
+            format!(
+                "frame {spec} {name} error {}",
+                protocol_codegen::c::error_name(&issue.to_runtime())
+            )
         }
         Err(issue) => format!("frame {spec} {name} error {}", issue.to_runtime()),
     }

@@ -40,7 +40,28 @@ mod types;
 
 pub use support::unsupported;
 
+use protocol_runtime::DecodeError;
+
 use crate::ir::Protocol;
+
+/// The name, lower case, of the `ERR_` code the printed C returns for a frame on which the
+/// runtime (generated Rust, the run-time codec) returns `e`: the correspondence that tests
+/// comparing the C with the Rust codec hold it to (`HFLINK_ERR_PAYLOAD_LENGTH` for
+/// `PayloadLength`). Every framing verdict is the C's one `ERR_FRAME`.
+pub fn error_name(e: &DecodeError) -> &'static str {
+    match e {
+        DecodeError::PayloadLength { .. } => "payload_length",
+        DecodeError::InvalidEnum { .. } => "invalid_enum",
+        DecodeError::UnknownCommand { .. } => "unknown_command",
+        DecodeError::UnknownDirection => "unknown_direction",
+        DecodeError::SizeMismatch => "size_mismatch",
+        DecodeError::Unterminated => "unterminated",
+        DecodeError::PayloadCheck => "payload_check",
+        DecodeError::ValueOutOfRange => "outside_clamp",
+        DecodeError::InvalidStuffing => "invalid_stuffing",
+        _ => "frame",
+    }
+}
 
 /// The two files of a spec's C code.
 #[derive(Debug, Clone, PartialEq, Eq)]
