@@ -5,7 +5,9 @@
 //!   port is also driven with one call per byte, and on clean streams the two length-walk floors
 //!   are timed (framing only, and framing with the runtime's checks); with
 //!   `PROTOCOL_BENCH_ABLATION=1`, also the generated decoder reading its layout through a
-//!   reference, as the run-time codec does;
+//!   reference, as the run-time codec does; in the referee groups, the best baseline's feed and
+//!   scan also with the two CRC-16s open to code without `unsafe` (`best-slicing`: slicing-by-16;
+//!   `best-crcfast`: the `crc-fast` crate), the ceilings of a safe decoder;
 //! - encoders (generated, hand-written): a million frames into a reused buffer, for each
 //!   protocol.
 //!
@@ -203,6 +205,12 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                         bench_decoder(g, "hand", &w, chunk, Kind::Exact, hand);
                         let best = Appending::<hand::referee::RefereeClmul>::default;
                         bench_decoder(g, "best", &w, chunk, Kind::Exact, best);
+                        // The best baseline's feed and scan with the CRC-16s that code without
+                        // `unsafe` has: what such a decoder can reach at best.
+                        let slicing = Appending::<hand::referee::Referee>::default;
+                        bench_decoder(g, "best-slicing", &w, chunk, Kind::Exact, slicing);
+                        let crc_fast = Appending::<hand::referee::RefereeCrcFast>::default;
+                        bench_decoder(g, "best-crcfast", &w, chunk, Kind::Exact, crc_fast);
                         bench_decoder(g, "port", &w, chunk, Kind::Port, RefereePort::default);
                         let per_byte = OneCallPerByte::<RefereePort>::default;
                         bench_decoder(g, "port-per-byte", &w, chunk, Kind::Port, per_byte);

@@ -109,6 +109,38 @@ fn main() -> ExitCode {
         );
     }
     println!();
+    // What a decoder without `unsafe` can reach on the referee: the best baseline's feed and
+    // scan with the CRC-16s safe code has (slicing-by-16; the `crc-fast` crate), against the
+    // best baseline, and the generated decoder in each build against the ceiling of its CRC.
+    println!(
+        "| stream | feed | best baseline | best, slicing-by-16 CRC | best, crc-fast CRC | generated | generated, crc-fast | best-slicing vs best | best-crcfast vs best | generated vs best-slicing | crc-fast vs best-crcfast |"
+    );
+    println!("|---|---|---|---|---|---|---|---:|---:|---:|---:|");
+    for (w, group, feed_name) in rows().filter(|(w, ..)| w.protocol == Protocol::Referee) {
+        let (bytes, frames) = (w.stream.len(), w.frames.len());
+        let ids = [
+            "best",
+            "best-slicing",
+            "best-crcfast",
+            "generated",
+            "generated-crcfast",
+        ];
+        let [b, s, f, g, c] = ids.map(|id| median(&dir, &group, id));
+        println!(
+            "| {} | {feed_name} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            w.name(),
+            cell(b, bytes, frames),
+            cell(s, bytes, frames),
+            cell(f, bytes, frames),
+            cell(g, bytes, frames),
+            cell(c, bytes, frames),
+            ratio(b, s),
+            ratio(b, f),
+            ratio(s, g),
+            ratio(f, c),
+        );
+    }
+    println!();
     // What the rows can reach: the floors (framing only, and framing with the runtime's checks;
     // clean streams only) against the port, and the port driven with one call per byte, the
     // originals' interface.

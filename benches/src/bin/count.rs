@@ -4,9 +4,10 @@
 //! Usage: `count PROTOCOL NOISE FEED DECODER [BYTES]`, with `PROTOCOL` `hflink` or `referee`,
 //! `NOISE` `clean` or `noisy`, `FEED` `whole` or a chunk size in bytes (`64`), `DECODER` one of
 //! `generated`, `generated-2k` (the same with a 2 KiB buffer), `hand` (the staged slice scan),
-//! `best` (the 2 KiB appending feed, the carry-less CRC-16) or `crcfast` (`best` with the
-//! `crc-fast` crate's CRC-16), and `BYTES` the stream's length (default 1 MiB: the workloads of
-//! [`workload`](protocol_benches::workload) with another length, drawn from the same seeds).
+//! `best` (the 2 KiB appending feed, the carry-less CRC-16), `crcfast` (`best` with the `crc-fast`
+//! crate's CRC-16) or `best-slicing` (`best` with a slicing-by-16 CRC-16), and `BYTES` the stream's
+//! length (default 1 MiB: the workloads of [`workload`](protocol_benches::workload) with another
+//! length, drawn from the same seeds).
 //!
 //! The stream is drawn and the decoder's frames are checked against the ground truth first;
 //! then the stream is decoded once more inside `timed_decode`, the one function to count:
@@ -56,12 +57,14 @@ enum Decoder {
     Best,
     /// `best` with the `crc-fast` crate's CRC-16 (the referee only).
     CrcFast,
+    /// `best` with a slicing-by-16 CRC-16 (the referee only).
+    BestSlicing,
     /// The generated decoder with a 2 KiB buffer.
     Generated2k,
 }
 
 fn parse(args: &[String]) -> Result<(Workload, usize, Decoder), String> {
-    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|generated-2k|hand|best|crcfast [BYTES]";
+    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|generated-2k|hand|best|crcfast|best-slicing [BYTES]";
     let [protocol, noise, feed, decoder, rest @ ..] = args else {
         return Err(usage.into());
     };
@@ -80,6 +83,7 @@ fn parse(args: &[String]) -> Result<(Workload, usize, Decoder), String> {
         "hand" => Decoder::Hand,
         "best" => Decoder::Best,
         "crcfast" => Decoder::CrcFast,
+        "best-slicing" => Decoder::BestSlicing,
         "generated-2k" => Decoder::Generated2k,
         _ => return Err(usage.into()),
     };
@@ -107,7 +111,7 @@ fn main() -> ExitCode {
         (Protocol::HfLink, Decoder::Hand) => {
             run(&w, chunk, Staged::<hand::hflink::HfLink>::default)
         }
-        (Protocol::HfLink, Decoder::Best | Decoder::CrcFast) => {
+        (Protocol::HfLink, Decoder::Best | Decoder::CrcFast | Decoder::BestSlicing) => {
             run(&w, chunk, Appending::<hand::hflink::HfLink>::default)
         }
         (Protocol::Referee, Decoder::Generated) => run(&w, chunk, generated::referee_decoder),
@@ -122,6 +126,9 @@ fn main() -> ExitCode {
             chunk,
             Appending::<hand::referee::RefereeCrcFast>::default,
         ),
+        (Protocol::Referee, Decoder::BestSlicing) => {
+            run(&w, chunk, Appending::<hand::referee::Referee>::default)
+        }
     });
     match result {
         Ok(()) => ExitCode::SUCCESS,
