@@ -41,6 +41,7 @@ use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::Refere
 use protocol_benches::verify::{self, Output};
 use protocol_benches::workload::{Noise, Protocol, Workload};
 use protocol_benches::{ChunkDecoder, generated};
+use protocol_runtime::checksum::Slicing16;
 
 /// Bytes per chunk of the chunked feed.
 const CHUNK: usize = 64;
@@ -297,9 +298,51 @@ fn encoders(c: &mut Criterion<ThreadCpuTime>) {
     );
 }
 
+/// The runtime's CRC-16/MCRF4XX (the referee's): slicing-by-16, or the `crc-fast` crate in the
+/// build with `runtime-crc-fast`. Its id names which.
+static CRC16: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_MCRF4XX);
+
+/// [`CRC16`]'s benchmark id in this build.
+const CRC_ID: &str = if cfg!(feature = "runtime-crc-fast") {
+    "crc-fast"
+} else {
+    "slicing-16"
+};
+
+/// The CRC of `data` with the tables read through a reference the compiler cannot see
+/// through, as a decoder does where its layout is not a constant: the `crc-fast` call then
+/// dispatches on an algorithm read at run time.
+#[inline(never)]
+fn crc16_of(table: &Slicing16<u16>, data: &[u8]) -> u16 {
+    table.checksum(data)
+}
+
+/// The CRC-16 alone at lengths from a short frame to a long one: where the `crc-fast` crate's
+/// carry-less folding starts to beat slicing-by-16 (compare the two builds' ids).
+fn crcs(c: &mut Criterion<ThreadCpuTime>) {
+    let data: Vec<u8> = (0..4096u32)
+        .map(|i| (i.wrapping_mul(2_654_435_761) >> 24) as u8)
+        .collect();
+    let reference = crc::Crc::<u16>::new(&crc::CRC_16_MCRF4XX);
+    let mut g = c.benchmark_group("crc16-mcrf4xx");
+    for len in [16usize, 32, 48, 64, 80, 96, 112, 128, 256, 1024, 4096] {
+        let bytes = &data[..len];
+        assert_eq!(
+            crc16_of(&CRC16, bytes),
+            reference.checksum(bytes),
+            "{CRC_ID} {len}"
+        );
+        g.throughput(Throughput::Bytes(len as u64));
+        g.bench_function(format!("{CRC_ID}/{len}"), |b| {
+            b.iter(|| crc16_of(black_box(&CRC16), black_box(bytes)));
+        });
+    }
+    g.finish();
+}
+
 criterion_group! {
     name = benches;
     config = config();
-    targets = decode, encoders
+    targets = decode, encoders, crcs
 }
 criterion_main!(benches);
