@@ -196,5 +196,17 @@ fn main() -> ExitCode {
             ratio(h, c),
         );
     }
+    println!();
+    // The CRC-16 alone: slicing-by-16 (the default build) against the `crc-fast` crate (the
+    // build with `runtime-crc-fast`), from a short frame to a long one. Criterion files a
+    // benchmark named `a/b` under `a_b`.
+    println!("| bytes | slicing-by-16 | crc-fast | crc-fast vs slicing-by-16 |");
+    println!("|---:|---:|---:|---:|");
+    for len in [16, 32, 48, 64, 80, 96, 112, 128, 256, 1024, 4096] {
+        let [s, f] = ["slicing-16", "crc-fast"]
+            .map(|id| median(&dir, "crc16-mcrf4xx", &format!("{id}_{len}")));
+        let ns = |v: Option<f64>| v.map_or_else(|| "not run".into(), |v| format!("{v:.1} ns"));
+        println!("| {len} | {} | {} | {} |", ns(s), ns(f), ratio(s, f));
+    }
     ExitCode::SUCCESS
 }

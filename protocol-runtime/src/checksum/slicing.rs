@@ -86,10 +86,10 @@ impl<W: crc::Width + fmt::Debug> fmt::Debug for Slicing16<W> {
 const SHORT: usize = 8;
 
 /// With the `crc-fast` feature, CRCs of at least this many bytes are that crate's; shorter ones
-/// stay with the tables, which are faster there: the crate's path for input under 128 bytes
-/// is slower than the tables at every length timed (112 bytes: 72 ns against 66 ns), its
-/// folding faster from 128 bytes on (46 ns against 54 ns; 122 ns against 2.0 µs at 4 KiB). The
-/// `crc16-mcrf4xx` group of `cargo bench -p protocol-benches`, in both builds; `BENCHMARKS.md`.
+/// stay with the tables: under 128 bytes the crate's path is no faster than them (0.67x -
+/// 1.11x their speed at 16 to 112 bytes in two runs), from 128 bytes on its folding is (1.2x -
+/// 1.9x at 128 bytes, 16x - 20x at 4 KiB). The `crc16-mcrf4xx` group of `cargo bench -p
+/// protocol-benches`, in both builds; `BENCHMARKS.md`.
 #[cfg(feature = "crc-fast")]
 const FAST_FROM: usize = 128;
 
