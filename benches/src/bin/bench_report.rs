@@ -38,6 +38,57 @@ fn ratio(num: Option<f64>, den: Option<f64>) -> String {
     }
 }
 
+/// Benchmark ids timed on clean streams only (the floors).
+const CLEAN_ONLY: [&str; 2] = ["floor", "floor-checked"];
+
+/// Prints one decoder table under `head` (its header line; the separator follows from it and
+/// from `ratios`): a row per stream and feed of `rows`, its frame count when `frames` is set, a
+/// cell for each of the first ids of `ids` that `head` has columns for, then for each `(a, b)`
+/// of `ratios` the ratio of `ids[a]`'s median to `ids[b]`'s (`ids[b]`'s throughput against
+/// `ids[a]`'s). Ids past the shown ones are timed for the ratios only.
+fn decoder_table(
+    dir: &Path,
+    rows: &[(&Workload, String, &str)],
+    head: &str,
+    frames: bool,
+    ids: &[&str],
+    ratios: &[(usize, usize)],
+) {
+    println!("{head}");
+    let columns = head.matches(" | ").count().saturating_add(1);
+    let left = 2 + usize::from(frames);
+    let shown = columns.saturating_sub(left + ratios.len());
+    let mut sep = String::from("|---|---|");
+    if frames {
+        sep.push_str("---:|");
+    }
+    sep.push_str(&"---|".repeat(shown));
+    sep.push_str(&"---:|".repeat(ratios.len()));
+    println!("{sep}");
+    for (w, group, feed_name) in rows {
+        let (bytes, count) = (w.stream.len(), w.frames.len());
+        let medians: Vec<Option<f64>> = ids.iter().map(|id| median(dir, group, id)).collect();
+        let mut line = format!("| {} | {feed_name} |", w.name());
+        if frames {
+            line.push_str(&format!(" {count} |"));
+        }
+        for (id, &m) in ids.iter().zip(&medians).take(shown) {
+            let text = if CLEAN_ONLY.contains(id) && w.noise != Noise::Clean {
+                "(clean streams only)".into()
+            } else {
+                cell(m, bytes, count)
+            };
+            line.push_str(&format!(" {text} |"));
+        }
+        for &(a, b) in ratios {
+            let at = |i: usize| medians.get(i).copied().flatten();
+            line.push_str(&format!(" {} |", ratio(at(a), at(b))));
+        }
+        println!("{line}");
+    }
+    println!();
+}
+
 fn main() -> ExitCode {
     let dir = std::env::args()
         .nth(1)
@@ -63,122 +114,63 @@ fn main() -> ExitCode {
                 .map(|(feed, feed_name)| (w, format!("{}-{feed}", w.name()), feed_name))
         })
     };
-    println!(
-        "| stream | feed | frames | generated | hand-written | byte-at-a-time port | generated, layout by reference | generated vs hand | generated vs port | hand vs port | by reference vs hand |"
+    let all: Vec<_> = rows().collect();
+    let referee: Vec<_> = rows()
+        .filter(|(w, ..)| w.protocol == Protocol::Referee)
+        .collect();
+    decoder_table(
+        &dir,
+        &all,
+        "| stream | feed | frames | generated | hand-written | byte-at-a-time port | generated, layout by reference | generated vs hand | generated vs port | hand vs port | by reference vs hand |",
+        true,
+        &["generated", "hand", "port", "generated-by-ref"],
+        &[(1, 0), (2, 0), (2, 1), (1, 3)],
     );
-    println!("|---|---|---:|---|---|---|---|---:|---:|---:|---:|");
-    for (w, group, feed_name) in rows() {
-        let (bytes, frames) = (w.stream.len(), w.frames.len());
-        let [g, h, p, r] =
-            ["generated", "hand", "port", "generated-by-ref"].map(|id| median(&dir, &group, id));
-        println!(
-            "| {} | {feed_name} | {frames} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            w.name(),
-            cell(g, bytes, frames),
-            cell(h, bytes, frames),
-            cell(p, bytes, frames),
-            cell(r, bytes, frames),
-            ratio(h, g),
-            ratio(p, g),
-            ratio(p, h),
-            ratio(h, r),
-        );
-    }
-    println!();
     // Against the best baseline known: the 2 KiB appending feed and the carry-less CRC-16.
     // `generated-crcfast`: the generated decoder built with the `crc-fast` host feature
     // (`cargo bench -p protocol-benches --features runtime-crc-fast`), "not run" otherwise.
-    println!(
-        "| stream | feed | generated | generated, crc-fast | best baseline | staged hand-written | generated vs best | crc-fast vs best | hand vs best |"
+    decoder_table(
+        &dir,
+        &all,
+        "| stream | feed | generated | generated, crc-fast | best baseline | staged hand-written | generated vs best | crc-fast vs best | hand vs best |",
+        false,
+        &["generated", "generated-crcfast", "best", "hand"],
+        &[(2, 0), (2, 1), (2, 3)],
     );
-    println!("|---|---|---|---|---|---|---:|---:|---:|");
-    for (w, group, feed_name) in rows() {
-        let (bytes, frames) = (w.stream.len(), w.frames.len());
-        let [g, c, b, h] =
-            ["generated", "generated-crcfast", "best", "hand"].map(|id| median(&dir, &group, id));
-        println!(
-            "| {} | {feed_name} | {} | {} | {} | {} | {} | {} | {} |",
-            w.name(),
-            cell(g, bytes, frames),
-            cell(c, bytes, frames),
-            cell(b, bytes, frames),
-            cell(h, bytes, frames),
-            ratio(b, g),
-            ratio(b, c),
-            ratio(b, h),
-        );
-    }
-    println!();
     // What a decoder without `unsafe` can reach on the referee: the best baseline's feed and
     // scan with the CRC-16s safe code has (slicing-by-16; the `crc-fast` crate), against the
     // best baseline, and the generated decoder in each build against the ceiling of its CRC.
-    println!(
-        "| stream | feed | best baseline | best, slicing-by-16 CRC | best, crc-fast CRC | generated | generated, crc-fast | best-slicing vs best | best-crcfast vs best | generated vs best-slicing | crc-fast vs best-crcfast |"
-    );
-    println!("|---|---|---|---|---|---|---|---:|---:|---:|---:|");
-    for (w, group, feed_name) in rows().filter(|(w, ..)| w.protocol == Protocol::Referee) {
-        let (bytes, frames) = (w.stream.len(), w.frames.len());
-        let ids = [
+    decoder_table(
+        &dir,
+        &referee,
+        "| stream | feed | best baseline | best, slicing-by-16 CRC | best, crc-fast CRC | generated | generated, crc-fast | best-slicing vs best | best-crcfast vs best | generated vs best-slicing | crc-fast vs best-crcfast |",
+        false,
+        &[
             "best",
             "best-slicing",
             "best-crcfast",
             "generated",
             "generated-crcfast",
-        ];
-        let [b, s, f, g, c] = ids.map(|id| median(&dir, &group, id));
-        println!(
-            "| {} | {feed_name} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            w.name(),
-            cell(b, bytes, frames),
-            cell(s, bytes, frames),
-            cell(f, bytes, frames),
-            cell(g, bytes, frames),
-            cell(c, bytes, frames),
-            ratio(b, s),
-            ratio(b, f),
-            ratio(s, g),
-            ratio(f, c),
-        );
-    }
-    println!();
+        ],
+        &[(0, 1), (0, 2), (1, 3), (2, 4)],
+    );
     // What the rows can reach: the floors (framing only, and framing with the runtime's checks;
     // clean streams only) against the port, and the port driven with one call per byte, the
     // originals' interface.
-    println!(
-        "| stream | feed | generated | floor: length walk | floor: length walk and checks | port, one call per byte | floor vs port | checked floor vs port | generated vs checked floor | generated vs port per byte |"
-    );
-    println!("|---|---|---|---|---|---|---:|---:|---:|---:|");
-    for (w, group, feed_name) in rows() {
-        let (bytes, frames) = (w.stream.len(), w.frames.len());
-        let ids = [
+    decoder_table(
+        &dir,
+        &all,
+        "| stream | feed | generated | floor: length walk | floor: length walk and checks | port, one call per byte | floor vs port | checked floor vs port | generated vs checked floor | generated vs port per byte |",
+        false,
+        &[
             "generated",
             "floor",
             "floor-checked",
-            "port",
             "port-per-byte",
-        ];
-        let [g, f, c, p, b] = ids.map(|id| median(&dir, &group, id));
-        let floor_cell = |ns| {
-            if w.noise == Noise::Clean {
-                cell(ns, bytes, frames)
-            } else {
-                "(clean streams only)".into()
-            }
-        };
-        println!(
-            "| {} | {feed_name} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            w.name(),
-            cell(g, bytes, frames),
-            floor_cell(f),
-            floor_cell(c),
-            cell(b, bytes, frames),
-            ratio(p, f),
-            ratio(p, c),
-            ratio(c, g),
-            ratio(b, g),
-        );
-    }
-    println!();
+            "port",
+        ],
+        &[(4, 1), (4, 2), (2, 0), (3, 0)],
+    );
     println!(
         "| encoder (1M frames) | frame bytes | generated | hand-written | generated, crc-fast | generated vs hand | crc-fast vs hand |"
     );
