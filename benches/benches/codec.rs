@@ -40,7 +40,7 @@ use protocol_benches::hand::{self, Staged, appending::Appending};
 use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
 use protocol_benches::verify::{self, Output};
 use protocol_benches::workload::{Noise, Protocol, Workload};
-use protocol_benches::{ChunkDecoder, generated};
+use protocol_benches::{CRC_LENGTHS, ChunkDecoder, generated};
 use protocol_runtime::checksum::Slicing16;
 
 /// Bytes per chunk of the chunked feed.
@@ -325,7 +325,7 @@ fn crcs(c: &mut Criterion<ThreadCpuTime>) {
         .collect();
     let reference = crc::Crc::<u16>::new(&crc::CRC_16_MCRF4XX);
     let mut g = c.benchmark_group("crc16-mcrf4xx");
-    for len in [16usize, 32, 48, 64, 80, 96, 112, 128, 256, 1024, 4096] {
+    for len in CRC_LENGTHS {
         let bytes = &data[..len];
         assert_eq!(
             crc16_of(&CRC16, bytes),

@@ -33,6 +33,10 @@ pub mod synth;
 pub mod verify;
 pub mod workload;
 
+/// The lengths the `crc16-mcrf4xx` benchmark group times the CRC-16 alone at, from a short
+/// frame to a long one (`bench-report` tables the same lengths).
+pub const CRC_LENGTHS: [usize; 11] = [16, 32, 48, 64, 80, 96, 112, 128, 256, 1024, 4096];
+
 /// A frame decoder fed a stream in chunks: the one interface the benchmark and the checks drive
 /// every decoder through. The sink is generic, not `dyn`: every decoder is monomorphised with
 /// the benchmark's sink, as a user's code would be.

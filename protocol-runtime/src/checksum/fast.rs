@@ -1,14 +1,23 @@
 //! The `crc-fast` host feature: the CRCs that the `crc-fast` crate catalogues are computed by
-//! it (carry-less folding with SIMD, behind its own run-time CPU dispatch), the others by
+//! it (carry-less folding with SIMD, behind its own run-time CPU dispatch) from [`FAST_FROM`]
+//! bytes on; shorter ones, and the CRCs it does not catalogue, by
 //! [`Slicing16`](super::Slicing16)'s tables.
 //!
-//! This module owns the match between a `crc` crate [`Algorithm`](crc::Algorithm) and the
-//! `crc-fast` catalogue, made once when a [`Slicing16`](super::Slicing16) is built. The
+//! This module owns when the crate is used: the match between a `crc` crate
+//! [`Algorithm`](crc::Algorithm) and the `crc-fast` catalogue, made once when a
+//! [`Slicing16`](super::Slicing16) is built, and the length from which a CRC goes to it. The
 //! carry-less multiply intrinsics are `#[target_feature]` functions, which safe code cannot
 //! call from a function without that attribute: the `crc-fast` crate owns those calls, and this
 //! crate stays `#![forbid(unsafe_code)]`.
 
 pub use crc_fast::CrcAlgorithm;
+
+/// CRCs of at least this many bytes are the crate's; shorter ones stay with the tables: under
+/// 128 bytes the crate's path is no faster than them (0.67x - 1.11x their speed at 16 to 112
+/// bytes in two runs), from 128 bytes on its folding is (1.2x - 1.9x at 128 bytes, 16x - 20x at
+/// 4 KiB). The `crc16-mcrf4xx` group of `cargo bench -p protocol-benches`, in both builds;
+/// `BENCHMARKS.md`.
+pub(super) const FAST_FROM: usize = 128;
 
 /// `$name(alg)`: the `crc-fast` algorithm computing the same CRC as `alg`, if one does.
 macro_rules! catalogue {

@@ -85,14 +85,6 @@ impl<W: crc::Width + fmt::Debug> fmt::Debug for Slicing16<W> {
 /// ([`Slicing16::checksum_prefix`]).
 const SHORT: usize = 8;
 
-/// With the `crc-fast` feature, CRCs of at least this many bytes are that crate's; shorter ones
-/// stay with the tables: under 128 bytes the crate's path is no faster than them (0.67x -
-/// 1.11x their speed at 16 to 112 bytes in two runs), from 128 bytes on its folding is (1.2x -
-/// 1.9x at 128 bytes, 16x - 20x at 4 KiB). The `crc16-mcrf4xx` group of `cargo bench -p
-/// protocol-benches`, in both builds; `BENCHMARKS.md`.
-#[cfg(feature = "crc-fast")]
-const FAST_FROM: usize = 128;
-
 macro_rules! slicing16_width {
     ($($w:ty => $fast:ident),*) => {$(
         impl Slicing16<$w> {
@@ -156,7 +148,7 @@ macro_rules! slicing16_width {
             pub fn checksum_prefix(&self, data: &[u8], n: usize) -> $w {
                 let n = n.min(data.len());
                 #[cfg(feature = "crc-fast")]
-                if let (Some(fast), true) = (self.fast, n >= FAST_FROM) {
+                if let (Some(fast), true) = (self.fast, n >= super::fast::FAST_FROM) {
                     // The catalogued CRC, as wide as `$w`.
                     return crc_fast::checksum(fast, data.get(..n).unwrap_or(data)) as $w;
                 }
