@@ -256,19 +256,29 @@ macro_rules! slicing16_width {
                 } else {
                     register.to_be_bytes()
                 };
-                let lookup = |table: &[$w; 256], index: u8| {
-                    table.get(usize::from(index)).copied().unwrap_or(0)
+                // The byte at offset `k` of the block goes through table `BLOCK - 1 - k` (the
+                // number of bytes after it).
+                let lookup = |k: usize, index: u8| {
+                    self.tables
+                        .get(BLOCK.wrapping_sub(1).wrapping_sub(k))
+                        .and_then(|table| table.get(usize::from(index)))
+                        .copied()
+                        .unwrap_or(0)
                 };
-                let (head_tables, tail_tables) = self.tables.split_at(BLOCK.saturating_sub(folded.len()));
-                let (head, tail) = block.split_at(folded.len());
+                let byte = |k: usize| block.get(k).copied().unwrap_or(0);
+                // Loops over indices, not zipped iterators: in a large caller the compiler may
+                // leave `Zip::next` out of line, a call per byte through memory (the benchmark
+                // binary did, on the referee's frames).
+                //
                 // The bytes the register is not folded into first: their lookups do not wait
                 // for the register, so only the last few xors below do.
                 let mut acc: $w = 0;
-                for (&byte, table) in tail.iter().zip(head_tables.iter().rev()) {
-                    acc ^= lookup(table, byte);
+                for k in folded.len()..BLOCK {
+                    acc ^= lookup(k, byte(k));
                 }
-                for ((&byte, r), table) in head.iter().zip(folded).zip(tail_tables.iter().rev()) {
-                    acc ^= lookup(table, byte ^ r);
+                for k in 0..folded.len() {
+                    let r = folded.get(k).copied().unwrap_or(0);
+                    acc ^= lookup(k, byte(k) ^ r);
                 }
                 acc
             }

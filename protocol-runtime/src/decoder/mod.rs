@@ -49,6 +49,25 @@ use crate::error::DecodeError;
 use crate::layout::{Check, Constant, FrameLayout, LayoutRef, LengthRule, Marker, all_hold};
 use crate::wire::{read_uint, write_uint};
 
+/// Whether every byte that `data` and `expected` both have (the shorter's length) agrees: a
+/// prefix of a sync cut by the end of the input matches.
+///
+/// A loop over indices, not `==` on slices nor an iterator adapter: sync words are a few
+/// bytes, and a call (to `memcmp`, or to `Zip::next`, which the compiler may leave out of line
+/// in a large caller) would cost more than the comparison, and hide that a constant sync of
+/// one byte leaves nothing to compare.
+#[inline(always)]
+fn bytes_agree(data: &[u8], expected: &[u8]) -> bool {
+    let mut i = 0;
+    while let (Some(a), Some(b)) = (data.get(i), expected.get(i)) {
+        if a != b {
+            return false;
+        }
+        i = i.wrapping_add(1);
+    }
+    true
+}
+
 /// What [`FrameLayout::probe`] found at the start of some bytes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Probe {
@@ -178,9 +197,7 @@ impl FrameLayout<'_> {
                 rest
             }
         };
-        // A byte loop, not `==` on slices: sync words are a few bytes, a call to memcmp costs
-        // more.
-        rest.iter().zip(self.sync).all(|(a, b)| a == b)
+        bytes_agree(rest, self.sync)
     }
 
     /// The total length of a frame from its header, by the length rule.
