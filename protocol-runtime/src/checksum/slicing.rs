@@ -266,9 +266,9 @@ macro_rules! slicing16_width {
                         .unwrap_or(0)
                 };
                 let byte = |k: usize| block.get(k).copied().unwrap_or(0);
-                // Loops over indices, not zipped iterators: in a large caller the compiler may
-                // leave `Zip::next` out of line, a call per byte through memory (the benchmark
-                // binary did, on the referee's frames).
+                // Loops over indices, not zipped iterators: in a large caller (the benchmark
+                // binary) the compiler leaves `Zip::next` out of line, a call per byte through
+                // memory.
                 //
                 // The bytes the register is not folded into first: their lookups do not wait
                 // for the register, so only the last few xors below do.
