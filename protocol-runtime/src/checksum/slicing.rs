@@ -219,13 +219,10 @@ macro_rules! slicing16_width {
                     self.init.to_be_bytes()
                 };
                 let mut acc: $w = 0;
-                for (i, &byte) in data.iter().take(n).enumerate() {
+                for i in 0..n.min(data.len()) {
+                    let byte = data.get(i).copied().unwrap_or(0);
                     let index = byte ^ init.get(i).copied().unwrap_or(0);
-                    let table = self.tables.get(n.wrapping_sub(1).wrapping_sub(i));
-                    acc ^= table
-                        .and_then(|t| t.get(usize::from(index)))
-                        .copied()
-                        .unwrap_or(0);
+                    acc ^= self.entry(n.wrapping_sub(1).wrapping_sub(i), index);
                 }
                 let kept_bits = (n as u32).wrapping_mul(8);
                 let kept = if REFLECT {
@@ -234,6 +231,18 @@ macro_rules! slicing16_width {
                     self.init.checked_shl(kept_bits)
                 };
                 acc ^ kept.unwrap_or(0)
+            }
+
+            /// What a byte of value `index` with `after` more bytes behind it adds to the
+            /// register: table `after`'s entry (slicing-by-16 looks up every byte of a block at
+            /// once, each in the table of its distance to the block's end).
+            #[inline(always)]
+            fn entry(&self, after: usize, index: u8) -> $w {
+                self.tables
+                    .get(after)
+                    .and_then(|table| table.get(usize::from(index)))
+                    .copied()
+                    .unwrap_or(0)
             }
 
             /// The register's bytes in input order, at the start of a big-endian block.
@@ -256,19 +265,11 @@ macro_rules! slicing16_width {
                 } else {
                     register.to_be_bytes()
                 };
-                // The byte at offset `k` of the block goes through table `BLOCK - 1 - k` (the
-                // number of bytes after it).
-                let lookup = |k: usize, index: u8| {
-                    self.tables
-                        .get(BLOCK.wrapping_sub(1).wrapping_sub(k))
-                        .and_then(|table| table.get(usize::from(index)))
-                        .copied()
-                        .unwrap_or(0)
-                };
+                let lookup = |k: usize, index: u8| self.entry(BLOCK.wrapping_sub(1).wrapping_sub(k), index);
                 let byte = |k: usize| block.get(k).copied().unwrap_or(0);
-                // Loops over indices, not zipped iterators: in a large caller (the benchmark
-                // binary) the compiler leaves `Zip::next` out of line, a call per byte through
-                // memory.
+                // Loops over indices, not zipped iterators (here and in `short_register`): in a
+                // large caller (the benchmark binary) the compiler leaves `Zip::next` out of
+                // line, a call per byte through memory.
                 //
                 // The bytes the register is not folded into first: their lookups do not wait
                 // for the register, so only the last few xors below do.
