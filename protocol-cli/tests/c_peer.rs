@@ -32,6 +32,7 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use protocol_codegen::ir::{
     Command as Cmd, Direction, DirectionRule, Frame, PacketKind, Protocol, Transport,
@@ -1077,7 +1078,9 @@ fn push_frame(
     }
 }
 
-fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, String>) {
+/// Compares the C peer with the Rust codec on one spec; returns the spec's path as shown and
+/// what was compared (or why the C generator refused it).
+fn check_spec(path: &Path, random_frames: usize) -> (String, String) {
     let shown = path
         .strip_prefix(root())
         .unwrap_or(path)
@@ -1088,10 +1091,7 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
     let codec = interp.codec();
     let files = match protocol_codegen::c::generate(p) {
         Ok(files) => files,
-        Err(refused) => {
-            support.insert(shown, format!("refused: {}", refused.join("; ")));
-            return;
-        }
+        Err(refused) => return (shown, format!("refused: {}", refused.join("; "))),
     };
     let dir = tempfile::tempdir().expect("a temporary directory");
     let exe = build(p, &files, dir.path());
@@ -1261,7 +1261,6 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
         }
         what.push(')');
     }
-    support.insert(shown, what);
     eprintln!(
         "{}: {} vector frames, {} CAN vector frames, {} vector streams at {} chunkings, {} random frames, {} edge frames, {} stream bytes at 4 chunkings",
         p.name,
@@ -1273,14 +1272,39 @@ fn check_spec(path: &Path, random_frames: usize, support: &mut BTreeMap<String, 
         tally.edge_frames,
         tally.stream_bytes
     );
+    (shown, what)
 }
 
 #[test]
 fn c_peer_matches_the_rust_codec() {
-    let mut support = BTreeMap::new();
-    for (path, random_frames) in specs() {
-        check_spec(&path, random_frames, &mut support);
-    }
+    // The specs are independent (each in its own temporary directory): one worker per core
+    // takes the next spec until none is left, since each spends most of its time in the C
+    // compilers, its sanitized driver and the unoptimised Rust codec, one core each.
+    let specs = specs();
+    let next = AtomicUsize::new(0);
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let support: BTreeMap<String, String> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers.min(specs.len()))
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut done = Vec::new();
+                    while let Some((path, random_frames)) =
+                        specs.get(next.fetch_add(1, Ordering::Relaxed))
+                    {
+                        done.push(check_spec(path, *random_frames));
+                    }
+                    done
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| {
+                h.join()
+                    .expect("a spec's comparison failed (its message is above)")
+            })
+            .collect()
+    });
     let table: String = support
         .iter()
         .map(|(spec, what)| format!("{spec}: {what}\n"))

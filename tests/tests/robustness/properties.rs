@@ -12,15 +12,13 @@
 //! Case counts follow `PROPTEST_CASES` (256 by default). The specs come from
 //! `support::for_each_spec!`: adding a spec there adds it here.
 
-mod support;
-
 use proptest::prelude::*;
 use proptest::test_runner::Config;
 use protocol::{DecodeError, EncodeError, Event, Reject};
 
-use support::model::{Model, model, sync_word};
-use support::stream::{assert_chunking_invariant, assert_same_packet, check_packet, run};
-use support::{Entropy, Source, Spec, hex};
+use crate::support::model::{Model, model, sync_word};
+use crate::support::stream::{assert_chunking_invariant, assert_same_packet, check_packet, run};
+use crate::support::{Entropy, Source, Spec, hex};
 
 /// CI-sized: proptest's default case count (or `PROPTEST_CASES`), no regression files written
 /// into the source tree (regressions become named tests instead).
@@ -180,9 +178,9 @@ fn interpreter_agrees<S: Spec>(entropy: &[u8]) {
     } else {
         m.raw(&mut src)
     };
-    support::fuzz::interp::<S>(&frame);
+    crate::support::fuzz::interp::<S>(&frame);
     let cut = src.below(frame.len() as u64) as usize;
-    support::fuzz::interp::<S>(&frame[..cut]);
+    crate::support::fuzz::interp::<S>(&frame[..cut]);
 }
 
 macro_rules! properties {
@@ -190,7 +188,7 @@ macro_rules! properties {
         mod $name {
             use super::*;
 
-            type P = support::packet!($name $(, $given)*);
+            type P = crate::support::packet!($name $(, $given)*);
 
             proptest! {
                 #![proptest_config(config())]
@@ -237,7 +235,7 @@ macro_rules! properties {
     };
 }
 
-support::for_each_spec!(properties);
+crate::support::for_each_spec!(properties);
 
 /// The decoder's documented rule (module docs of `protocol::decoder`): a valid frame
 /// whose payload holds another complete valid frame is yielded whole when it arrives whole; cut
@@ -250,7 +248,7 @@ fn nested_frame_rule<S: Spec>() {
     let inner_len = f.header_len + f.payload_min + f.trailer_len;
     // A payload long enough to hold a frame after its first byte. With byte stuffing no frame
     // can appear inside a payload (its sync bytes would be stuffed): nothing to check.
-    let room = |c: &support::model::Choice| {
+    let room = |c: &crate::support::model::Choice| {
         let st = &m.ir.structs[c.payload?];
         let len = (inner_len + 1).max(st.min_size);
         (len <= st.size).then_some((*c, len))
@@ -263,7 +261,7 @@ fn nested_frame_rule<S: Spec>() {
     else {
         return;
     };
-    let mut rng = support::Rng(7);
+    let mut rng = crate::support::Rng(7);
     let inner = m.raw_with_payload_len(&mut rng, f.payload_min);
     assert_eq!(inner.len(), inner_len);
     let mut payload = vec![0u8; len];
@@ -298,7 +296,7 @@ fn nested_frame_rule<S: Spec>() {
     let mut decoder = S::decoder();
     let mut input = &outer[..cut];
     let mut events = Vec::new();
-    while let Some(e) = support::Dec::next_event(&mut decoder, &mut input) {
+    while let Some(e) = crate::support::Dec::next_event(&mut decoder, &mut input) {
         events.push(matches!(e, Event::Frame(_)));
     }
     assert_eq!(
@@ -318,7 +316,7 @@ fn specs_dir_is_covered() {
             listed.push($path.trim_start_matches("../").to_string());
         };
     }
-    support::for_each_spec!(list);
+    crate::support::for_each_spec!(list);
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../specs");
     let mut found: Vec<String> = std::fs::read_dir(dir)
         .expect("specs dir")
@@ -341,7 +339,7 @@ mod regressions {
 
     use protocol::EncodeError;
 
-    use super::support::{dynamixel, referee, roborts, scout};
+    use crate::support::{dynamixel, referee, roborts, scout};
 
     /// A message encodes to bytes that decode back to it, or encoding refuses it: never a
     /// silent change.

@@ -2,20 +2,18 @@
 //! every spec, and nothing else grows with the buffer. (That it never holds more than the buffer,
 //! whatever the input, is checked after every call by the property and fault suites.)
 
-mod support;
-
 use std::mem::{align_of, size_of};
 
+use crate::support::{Dec, Spec};
 use protocol::layout::LayoutRef;
 use protocol::{FrameLayout, StreamDecoder};
-use support::{Dec, Spec};
 
 /// A layout known at compile time, as generated code names it: a zero-sized type.
 #[derive(Clone, Copy)]
 struct Static;
 impl LayoutRef for Static {
     fn layout(&self) -> &FrameLayout<'_> {
-        &support::hflink::LAYOUT
+        &crate::support::hflink::LAYOUT
     }
 }
 
@@ -90,9 +88,9 @@ macro_rules! bounds_suite {
     ($name:ident, $path:literal $(, $given:tt)*) => {
         #[test]
         fn $name() {
-            bounds::<support::packet!($name $(, $given)*)>();
+            bounds::<crate::support::packet!($name $(, $given)*)>();
         }
     };
 }
 
-support::for_each_spec!(bounds_suite);
+crate::support::for_each_spec!(bounds_suite);

@@ -2,8 +2,6 @@
 //! through the entry point its `cargo fuzz` target calls (`support::fuzz`), so a finding that
 //! was fixed stays fixed, and CI covers what the fuzzers reached without nightly.
 
-mod support;
-
 use std::path::{Path, PathBuf};
 
 /// The corpus directory of a target.
@@ -47,7 +45,7 @@ macro_rules! stream_corpus {
         fn $name() {
             replay(
                 concat!("stream_", stringify!($name)),
-                support::fuzz::stream::<support::packet!($name $(, $given)*)>,
+                crate::support::fuzz::stream::<crate::support::packet!($name $(, $given)*)>,
             );
         }
     };
@@ -56,17 +54,17 @@ macro_rules! stream_corpus {
 mod stream {
     use super::*;
 
-    support::for_each_spec!(stream_corpus);
+    crate::support::for_each_spec!(stream_corpus);
 }
 
 #[test]
 fn spec() {
-    replay("spec", support::fuzz::spec);
+    replay("spec", crate::support::fuzz::spec);
 }
 
 #[test]
 fn interp() {
-    replay("interp", support::fuzz::interp_any);
+    replay("interp", crate::support::fuzz::interp_any);
 }
 
 /// Every corpus directory belongs to a target this test replays.
@@ -78,7 +76,7 @@ fn every_corpus_is_replayed() {
             known.push(concat!("stream_", stringify!($name)).to_string());
         };
     }
-    support::for_each_spec!(name);
+    crate::support::for_each_spec!(name);
     let root = corpus("");
     for entry in std::fs::read_dir(&root).expect("fuzz/corpus") {
         let name = entry

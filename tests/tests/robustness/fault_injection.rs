@@ -12,18 +12,16 @@
 //! Run with `--nocapture` to see the numbers per spec. Adding a spec to
 //! `support::for_each_spec!` adds it here.
 
-mod support;
-
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
+use crate::support::fault::{FaultStream, Kind, build};
+use crate::support::model::{Model, length_field, model};
+use crate::support::stream::run;
+use crate::support::{Rng, Source, Spec, hex};
 use protocol::decoder::Probe;
 use protocol_codegen::ir;
 use protocol_codegen::layout::intern;
-use support::fault::{FaultStream, Kind, build};
-use support::model::{Model, length_field, model};
-use support::stream::run;
-use support::{Rng, Source, Spec, hex};
 
 /// Frames per stream (of short frames; fewer of long ones).
 const FRAMES: usize = 1200;
@@ -128,7 +126,7 @@ fn pass_rate(frame: &ir::Frame) -> f64 {
 /// clear): the checks resolve their end positions against them.
 fn body_len(frame: &ir::Frame, bytes: &[u8]) -> usize {
     let flagged = frame.flag_trailer.as_ref().filter(|t| {
-        support::model::word_field(&frame.values[t.flag])
+        crate::support::model::word_field(&frame.values[t.flag])
             .read(bytes)
             .is_some_and(|v| v != 0)
     });
@@ -484,9 +482,9 @@ macro_rules! fault_suite {
     ($name:ident, $path:literal $(, $given:tt)*) => {
         #[test]
         fn $name() {
-            faults::<support::packet!($name $(, $given)*)>();
+            faults::<crate::support::packet!($name $(, $given)*)>();
         }
     };
 }
 
-support::for_each_spec!(fault_suite);
+crate::support::for_each_spec!(fault_suite);
