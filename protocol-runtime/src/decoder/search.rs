@@ -10,7 +10,7 @@
 //! of a candidate's bytes are already known to start no frame is remembered there.
 
 use super::{Probe, bytes_agree, probe_link};
-use crate::layout::{FrameLayout, LayoutRef};
+use crate::layout::{ByteOrder, FrameLayout, LayoutRef, LengthRule, Pos};
 
 /// [`find_candidate`] for a link of one or several formats: the first offset where `data`
 /// holds any format's sync, or a prefix of it that runs to the end of `data`.
@@ -137,7 +137,7 @@ const fn zero_byte_flags(x: u64) -> u64 {
     x.wrapping_sub(LOW) & !x & HIGH
 }
 
-/// Bytes [`may_start_sync`] compares at once.
+/// Bytes [`block_may_start`] compares at once.
 const SCAN: usize = 64;
 
 /// `SCAN_MASK[SCAN - k..][..SCAN]` keeps the first `k` bytes of a block.
@@ -155,80 +155,165 @@ const SCAN_MASK: [u8; 2 * SCAN] = {
     mask
 };
 
-/// Whether some offset of `data[..n]` may start `sync`: holds its first byte followed by its
-/// second (its first byte alone, for a one-byte sync). The question asked of a pending
-/// candidate every time the input runs out, whose answer is nearly always no. A `true` may be
-/// wrong (the caller searches exactly then), a `false` never is.
+/// What the block test asks of an offset: that it holds the sync's first byte, and that the
+/// byte `reach` bytes on has the bits `mask` equal to `value`: the sync's second byte (`reach`
+/// 1, every bit), or else bits of the length field that no frame short enough to be accepted
+/// sets (the referee's `A5` is followed by a 16-bit length of at most 118: its high byte, two
+/// bytes on, is 0). Both hold at the start of every frame the probe can accept, so a `false`
+/// is never wrong; the second makes a `true` rare (a random byte is `A5` once in 256, a pair
+/// once in 65,536), so the branch on it predicts well and the exact search is seldom run.
+///
+/// Derived from the layout where it is used: for a layout known at compile time a constant,
+/// which the compiler folds into the compares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Lead {
+    first: u8,
+    reach: usize,
+    mask: u8,
+    value: u8,
+}
+
+impl Lead {
+    /// The test for `layout`'s frames of at most `limit` bytes; `None` if its sync is empty
+    /// (every offset may start a frame).
+    #[inline(always)]
+    fn of(layout: &FrameLayout<'_>, limit: usize) -> Option<Self> {
+        let (&first, more) = layout.sync.split_first()?;
+        let (reach, mask, value) = match *more {
+            [second, ..] => (1, 0xFF, second),
+            [] => length_zero_bits(layout, limit).map_or((0, 0, 0), |(at, mask)| (at, mask, 0)),
+        };
+        Some(Self {
+            first,
+            reach,
+            mask,
+            value,
+        })
+    }
+
+    /// Whether offset `i` of `data` passes: a byte `reach` on that `data` does not hold passes.
+    #[inline(always)]
+    fn passes(self, data: &[u8], i: usize) -> bool {
+        data.get(i) == Some(&self.first)
+            && data
+                .get(i.wrapping_add(self.reach))
+                .is_none_or(|&b| b & self.mask == self.value)
+    }
+}
+
+/// The header byte holding the most bits of the length field that are 0 in every frame of at
+/// most `limit` bytes, as its offset and those bits; `None` if there is none (no length field
+/// at a fixed offset, or every value of it fits). A length rule with parts that header values
+/// decide (a marker value announcing a wider length) is left alone.
+#[inline(always)]
+fn length_zero_bits(layout: &FrameLayout<'_>, limit: usize) -> Option<(usize, u8)> {
+    let (LengthRule::Field { field, adjust } | LengthRule::FieldOrBare { field, adjust, .. }) =
+        layout.length
+    else {
+        return None;
+    };
+    let Pos::Start(at) = field.at else {
+        return None;
+    };
+    // The field is read from the header: a byte of it is at most `shortest_frame - 1` bytes on
+    // from the start, so the test never reads past the pending bytes (nor changes its answer
+    // when more arrive).
+    if !field.is_valid() || at.saturating_add(usize::from(field.size)) > layout.header_span() {
+        return None;
+    }
+    // The largest value of the field whose frame fits: total = value + adjust <= limit.
+    let largest = i64::try_from(limit).ok()?.checked_sub(adjust)?;
+    let largest = u64::try_from(largest).ok()?;
+    // The value's bits above the highest one `largest` sets, then as bits of the word.
+    let fits = u64::MAX.checked_shr(largest.leading_zeros()).unwrap_or(0);
+    let zero = (field.max_value() & !fits).checked_shl(u32::from(field.shift))?;
+    let size = usize::from(field.size);
+    let mut best: Option<(usize, u8)> = None;
+    for k in 0..size {
+        // Byte `k` of the word on the wire.
+        let shift = match field.order {
+            ByteOrder::Little => k,
+            ByteOrder::Big => size.wrapping_sub(1).wrapping_sub(k),
+        };
+        let bits = zero
+            .checked_shr(u32::try_from(shift.wrapping_mul(8)).unwrap_or(u32::MAX))
+            .unwrap_or(0);
+        let bits = u8::try_from(bits & 0xFF).unwrap_or(0);
+        if bits.count_ones() > best.map_or(0, |(_, b)| b.count_ones()) {
+            best = Some((at.wrapping_add(k), bits));
+        }
+    }
+    best
+}
+
+/// Whether some offset of `data[..n]` may start a frame: passes `lead` (any offset, without
+/// one). The question asked of a pending candidate every time the input runs out, whose answer
+/// is nearly always no. A `true` may be wrong (the caller searches exactly then), a `false`
+/// never is.
 ///
 /// Whole 64-byte blocks are compared byte by byte under a mask, with no branch per byte: the
 /// compiler turns each block into a few vector compares and one test; a search that stops at
 /// the first match mispredicts its exit once per call, at a length that changes every time.
-/// Testing pairs rather than the first byte alone makes a `true` rare for two-byte syncs
-/// (`FF FF`: a random payload byte is `FF` once in 256, a pair once in 65,536), so the branch
-/// on it predicts well.
 #[inline(always)]
-fn may_start_sync(sync: &[u8], data: &[u8], n: usize) -> bool {
+fn may_start_lead(lead: Option<Lead>, data: &[u8], n: usize) -> bool {
+    let Some(lead) = lead else {
+        return n > 0;
+    };
     let mut from = 0usize;
     while from < n {
         let rest = data.get(from..).unwrap_or_default();
         let left = n.wrapping_sub(from);
-        // The block and, for the second byte, the byte after it.
-        let Some(block) = rest.first_chunk::<{ SCAN + 1 }>() else {
-            // The end of the buffer: fewer bytes left to read than a block.
-            return may_start_sync_exact(sync, rest, left);
-        };
-        if block_may_start_sync(sync, block, left) {
-            return true;
+        if let Some(hit) = block_may_start(lead, rest, left) {
+            if hit {
+                return true;
+            }
+        } else {
+            // The end of the buffer: fewer bytes left to read than a block and its reach.
+            return may_start_exact(lead.first, lead.reach, lead.mask, lead.value, rest, left);
         }
         from = from.wrapping_add(SCAN);
     }
     false
 }
 
-/// [`may_start_sync`] byte by byte, where fewer than a block's bytes can be read.
+/// [`may_start_lead`] byte by byte, where fewer than a block's bytes can be read. (The lead's
+/// parts as arguments: in registers, where a struct would be stored for the call every time.)
 #[inline(never)]
-fn may_start_sync_exact(sync: &[u8], rest: &[u8], left: usize) -> bool {
-    let (first, second) = match *sync {
-        [] => return left > 0,
-        [first] => (first, None),
-        [first, second, ..] => (first, Some(second)),
+fn may_start_exact(first: u8, reach: usize, mask: u8, value: u8, rest: &[u8], left: usize) -> bool {
+    let lead = Lead {
+        first,
+        reach,
+        mask,
+        value,
     };
-    (0..left).any(|i| {
-        rest.get(i) == Some(&first)
-            && second.is_none_or(|s| rest.get(i.wrapping_add(1)).is_none_or(|&b| b == s))
-    })
+    (0..left).any(|i| lead.passes(rest, i))
 }
 
-/// [`may_start_sync`] on one block: whether one of its first `min(left, SCAN)` offsets holds
-/// the sync's first byte followed by its second (the block's last byte is only read as the
-/// byte after its 64th offset).
+/// [`may_start_lead`] on one block: whether one of the first `min(left, SCAN)` offsets of
+/// `data` passes `lead`; `None` if `data` holds fewer than a block and its reach.
 #[inline(always)]
-fn block_may_start_sync(sync: &[u8], block: &[u8; SCAN + 1], left: usize) -> bool {
-    let (first, second) = match *sync {
-        [] => return left > 0,
-        [first] => (first, None),
-        [first, second, ..] => (first, Some(second)),
-    };
-    let (Some(here), Some(next)) = (block.first_chunk::<SCAN>(), block.last_chunk::<SCAN>()) else {
-        return true;
-    };
+fn block_may_start(lead: Lead, data: &[u8], left: usize) -> Option<bool> {
+    // One bounds check: with the lead's reach a constant, the two chunks of the block are known
+    // to fit.
+    let block = data.get(..SCAN.wrapping_add(lead.reach))?;
+    let (here, next) = (block.first_chunk::<SCAN>()?, block.last_chunk::<SCAN>()?);
     let keep = SCAN_MASK
         .get(SCAN.saturating_sub(left)..)
         .and_then(<[u8]>::first_chunk::<SCAN>)
         .unwrap_or(&[0; SCAN]);
     // `&` on the comparisons, not `&&`: no branch, so that the loop vectorises. A loop over
     // indices, not an iterator adapter's `fold`: in a large caller (the benchmark binary) the
-    // compiler calls `fold` out of line, where the sync bytes are no longer constants, and the
-    // call, once per chunk, costs more than the test itself.
+    // compiler calls `fold` out of line, where the lead's bytes are no longer constants, and
+    // the call, once per chunk, costs more than the test itself.
     let mut hits = 0u8;
     for i in 0..SCAN {
         let (Some(&b), Some(&c), Some(&k)) = (here.get(i), next.get(i), keep.get(i)) else {
             break;
         };
-        let pair = (b == first) & second.is_none_or(|s| c == s);
+        let pair = (b == lead.first) & (c & lead.mask == lead.value);
         hits |= u8::from(pair) & k;
     }
-    hits != 0
+    Some(hits != 0)
 }
 
 /// The first offset of `data` holding `sync`'s first byte, or `data.len()`: the search inside
@@ -265,26 +350,30 @@ fn find_first_byte(sync: &[u8], data: &[u8]) -> usize {
         .map_or(data.len(), |at| base.wrapping_add(at))
 }
 
-/// [`may_start_sync`] for `link`: with a sync set or several formats, always `true` (the exact
-/// search then decides).
+/// [`may_start_lead`] for `link`'s frames of at most `limit` bytes: with a sync set or several
+/// formats, always `true` (the exact search then decides).
 #[inline(always)]
-fn may_start<L: LayoutRef>(link: &L, data: &[u8], n: usize) -> bool {
+fn may_start<L: LayoutRef>(link: &L, data: &[u8], n: usize, limit: usize) -> bool {
     let layout = link.layout();
     if layout.sync_set.is_empty() && link.others().is_empty() {
-        may_start_sync(layout.sync, data, n)
+        may_start_lead(Lead::of(layout, limit), data, n)
     } else {
         n > 0
     }
 }
 
-/// [`may_start`] on one block of `data`, `n <= SCAN`.
+/// [`may_start`] on the first block of `data`, `n <= SCAN`; `None` if `data` holds fewer than a
+/// block and its reach.
 #[inline(always)]
-fn may_start_block<L: LayoutRef>(link: &L, block: &[u8; SCAN + 1], n: usize) -> bool {
+fn may_start_block<L: LayoutRef>(link: &L, data: &[u8], n: usize, limit: usize) -> Option<bool> {
     let layout = link.layout();
     if layout.sync_set.is_empty() && link.others().is_empty() {
-        block_may_start_sync(layout.sync, block, n)
+        match Lead::of(layout, limit) {
+            Some(lead) => block_may_start(lead, data, n),
+            None => Some(n > 0),
+        }
     } else {
-        n > 0
+        Some(n > 0)
     }
 }
 
@@ -319,9 +408,9 @@ fn shortest_frame<L: LayoutRef>(link: &L) -> usize {
 /// the candidate's claimed length runs over it, and the candidate is taken for a truncated
 /// frame rather than holding the valid one back until more bytes arrive.
 ///
-/// `dead` is how many of the candidate's first bytes are known to start no frame (at least its
-/// own first byte); the search starts after them and leaves there how many it now knows (a
-/// rejection is final: more bytes do not change it), since it is asked again each time the
+/// `dead` is how many of the candidate's first bytes are known to start no frame (its own first
+/// byte counts as known); the search starts after them and leaves there how many it now knows
+/// (a rejection is final: more bytes do not change it), since it is asked again each time the
 /// input runs out while the candidate waits.
 ///
 /// Inlined where the input runs out: most calls end with the block test that finds no start of
@@ -343,14 +432,12 @@ pub(super) fn frame_inside<L: LayoutRef>(
         return false;
     }
     let window = last_start.wrapping_sub(known).wrapping_add(1);
+    let rest = readable.get(known..).unwrap_or_default();
     if cfg!(target_pointer_width = "64")
-        && !match readable
-            .get(known..known.wrapping_add(SCAN + 1))
-            .and_then(<[u8]>::first_chunk::<{ SCAN + 1 }>)
-        {
+        && !match may_start_block(layout, rest, window, limit) {
             // Nearly always: the bytes to test fit one block.
-            Some(block) if window <= SCAN => may_start_block(layout, block, window),
-            _ => may_start(layout, readable.get(known..).unwrap_or_default(), window),
+            Some(hit) if window <= SCAN => hit,
+            _ => may_start(layout, rest, window, limit),
         }
     {
         // None of these bytes starts a frame, now or later; the ones too close to the end may
@@ -385,12 +472,13 @@ fn search_inside<L: LayoutRef>(
         let readable_rest = readable.get(at..).unwrap_or_default();
         // (The masked block test only where words are 64 bits: on a microcontroller the plain
         // search is smaller and as fast.)
-        let skip =
-            if cfg!(not(target_pointer_width = "64")) || may_start(layout, readable_rest, window) {
-                find_lead(layout, rest.get(..window).unwrap_or(rest))
-            } else {
-                window
-            };
+        let skip = if cfg!(not(target_pointer_width = "64"))
+            || may_start(layout, readable_rest, window, limit)
+        {
+            find_lead(layout, rest.get(..window).unwrap_or(rest))
+        } else {
+            window
+        };
         if skip >= window {
             // No start left with room for a frame: none of these bytes starts one, now or
             // later, but the ones too close to the end may once more bytes arrive.
@@ -418,59 +506,214 @@ mod tests {
     #![allow(
         clippy::indexing_slicing,
         clippy::arithmetic_side_effects,
-        clippy::unwrap_used
+        clippy::unwrap_used,
+        clippy::cast_possible_truncation
     )]
 
     extern crate std;
 
-    use super::{SCAN, may_start_sync};
+    use std::vec::Vec;
 
-    /// The definition [`may_start_sync`] filters for: an offset below `n` holding the sync's
-    /// first byte, followed by its second (or by the end of `data`).
-    fn starts_sync(sync: &[u8], data: &[u8], n: usize) -> bool {
-        (0..n.min(data.len())).any(|i| {
-            sync.first().is_none_or(|&s| data[i] == s)
-                && sync
-                    .get(1)
-                    .is_none_or(|&s| data.get(i + 1).is_none_or(|&b| b == s))
-        })
-    }
+    use super::{Lead, SCAN, may_start_lead};
+    use crate::layout::{ByteOrder, FrameLayout, LengthRule, Pos, WordField};
 
-    #[test]
-    fn the_sync_filter_never_misses_a_start() {
+    /// A small xorshift generator: the tests are reproducible.
+    fn rng() -> impl FnMut() -> u64 {
         let mut state = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = move || {
+        move || {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
             state
+        }
+    }
+
+    /// The definition [`may_start_lead`] filters for: an offset below `n` holding the lead's
+    /// first byte, with the bits under its mask of the byte `reach` on equal to its value (or
+    /// that byte past the end of `data`).
+    fn starts(lead: Option<Lead>, data: &[u8], n: usize) -> bool {
+        let Some(lead) = lead else {
+            return n.min(data.len()) > 0;
         };
-        let mut false_true = 0;
-        for sync in [
-            &[][..],
-            &[0xA5],
-            &[0xFF, 0xFF],
-            &[0xFF, 0xFF, 0xFD],
-            &[0x55, 0xAA],
-        ] {
+        (0..n.min(data.len())).any(|i| {
+            data[i] == lead.first
+                && data
+                    .get(i + lead.reach)
+                    .is_none_or(|&b| b & lead.mask == lead.value)
+        })
+    }
+
+    #[test]
+    fn the_block_test_never_misses_a_start() {
+        let mut next = rng();
+        let leads = [
+            None,
+            Some(Lead {
+                first: 0xA5,
+                reach: 0,
+                mask: 0,
+                value: 0,
+            }),
+            Some(Lead {
+                first: 0xFF,
+                reach: 1,
+                mask: 0xFF,
+                value: 0xFF,
+            }),
+            Some(Lead {
+                first: 0x55,
+                reach: 1,
+                mask: 0xFF,
+                value: 0xAA,
+            }),
+            Some(Lead {
+                first: 0xA5,
+                reach: 2,
+                mask: 0xFF,
+                value: 0,
+            }),
+            Some(Lead {
+                first: 0xFE,
+                reach: 5,
+                mask: 0x0C,
+                value: 0,
+            }),
+        ];
+        for lead in leads {
+            let own = lead.map_or([0; 2], |l| [l.first, l.value]);
             for _ in 0..20_000 {
                 let len = (next() % (2 * SCAN as u64 + 20)) as usize;
-                // Bytes drawn mostly from the sync's own, so that starts and near misses are
+                // Bytes drawn mostly from the lead's own, so that starts and near misses are
                 // common.
-                let data: std::vec::Vec<u8> = (0..len)
+                let data: Vec<u8> = (0..len)
                     .map(|_| match next() % 4 {
-                        0 | 1 => sync.get((next() % 3) as usize).copied().unwrap_or(0),
+                        0 | 1 => own[(next() % 2) as usize] ^ (next() % 3 == 0) as u8,
                         _ => next() as u8,
                     })
                     .collect();
                 let n = (next() % (len as u64 + 1)) as usize;
-                let exact = starts_sync(sync, &data, n);
-                let filtered = may_start_sync(sync, &data, n);
-                assert!(filtered || !exact, "{sync:02x?} n={n} {data:02x?}");
-                false_true += usize::from(filtered && !exact);
+                let exact = starts(lead, &data, n);
+                let filtered = may_start_lead(lead, &data, n);
+                assert_eq!(filtered, exact, "{lead:?} n={n} {data:02x?}");
             }
         }
-        // A filter that answers `true` to everything would pass the assertion above.
-        assert!(false_true < 5 * 20_000 / 10, "{false_true} false starts");
+    }
+
+    fn layout(field: WordField, adjust: i64, header_len: usize) -> FrameLayout<'static> {
+        FrameLayout {
+            sync: &[0xA5],
+            sync_set: &[],
+            header_len,
+            min_len: header_len,
+            max_len: 4096,
+            length: LengthRule::Field { field, adjust },
+            constants: &[],
+            header_checks: &[],
+            frame_checks: &[],
+            markers: &[],
+        }
+    }
+
+    #[test]
+    fn the_lead_is_the_second_sync_byte_or_the_length_bits_no_frame_sets() {
+        let hflink = FrameLayout {
+            sync: &[0xFF, 0xFF],
+            ..layout(WordField::be(4, 2), 7, 6)
+        };
+        assert_eq!(
+            Lead::of(&hflink, 127),
+            Some(Lead {
+                first: 0xFF,
+                reach: 1,
+                mask: 0xFF,
+                value: 0xFF
+            })
+        );
+        // The referee: `A5`, a u16le count of data bytes (frames of 9 + count bytes).
+        let referee = layout(WordField::le(1, 2), 9, 5);
+        assert_eq!(
+            Lead::of(&referee, 127),
+            Some(Lead {
+                first: 0xA5,
+                reach: 2,
+                mask: 0xFF,
+                value: 0
+            })
+        );
+        // Frames of up to 300 bytes: counts up to 291, nine bits; the high byte's upper seven.
+        assert_eq!(
+            Lead::of(&referee, 300),
+            Some(Lead {
+                first: 0xA5,
+                reach: 2,
+                mask: 0xFE,
+                value: 0
+            })
+        );
+        // Every count fits: no second test.
+        assert_eq!(
+            Lead::of(&referee, 70_000),
+            Some(Lead {
+                first: 0xA5,
+                reach: 0,
+                mask: 0,
+                value: 0
+            })
+        );
+        // A 10-bit length under a 6-bit version in a big-endian u16 (the length is the low
+        // bits, in the second byte and the first's low two): frames of up to 64 + 4 bytes.
+        let packed = layout(WordField::be(1, 2).bits(0, 10), 4, 3);
+        assert_eq!(
+            Lead::of(&packed, 68),
+            Some(Lead {
+                first: 0xA5,
+                reach: 1,
+                mask: 0x03,
+                value: 0
+            })
+        );
+    }
+
+    /// Whatever the field's size, order, bits and the limit, the start of every frame the
+    /// probe can accept passes its layout's lead.
+    #[test]
+    fn every_acceptable_header_passes_its_lead() {
+        let mut next = rng();
+        for _ in 0..20_000 {
+            let size = [1u8, 2, 4, 8][(next() % 4) as usize];
+            let width = 1 + (next() % u64::from(size * 8)) as u8;
+            let shift = (next() % u64::from(size * 8 - width + 1)) as u8;
+            let order = if next() % 2 == 0 {
+                ByteOrder::Little
+            } else {
+                ByteOrder::Big
+            };
+            let at = 1 + (next() % 3) as usize;
+            let field = WordField {
+                at: Pos::Start(at),
+                size,
+                order,
+                shift,
+                width,
+            };
+            let header_len = at + usize::from(size);
+            let adjust = (next() % 20) as i64 - 5;
+            let layout = layout(field, adjust, header_len);
+            let limit = (next() % 5000) as usize;
+            let lead = Lead::of(&layout, limit).unwrap();
+            let Some(largest) = (limit as i64).checked_sub(adjust).filter(|&v| v >= 0) else {
+                continue;
+            };
+            for _ in 0..8 {
+                let value = (next() % (largest as u64 + 1)).min(field.max_value());
+                let mut header: Vec<u8> = (0..header_len).map(|_| next() as u8).collect();
+                header[0] = 0xA5;
+                field.write(&mut header, value).unwrap();
+                assert!(
+                    lead.passes(&header, 0),
+                    "{field:?} {adjust} {limit} {header:02x?}"
+                );
+            }
+        }
     }
 }
