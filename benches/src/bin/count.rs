@@ -3,7 +3,8 @@
 //!
 //! Usage: `count PROTOCOL NOISE FEED DECODER [BYTES]`, with `PROTOCOL` `hflink` or `referee`,
 //! `NOISE` `clean` or `noisy`, `FEED` `whole` or a chunk size in bytes (`64`), `DECODER` one of
-//! `generated`, `generated-2k` (the same with a 2 KiB buffer), `hand` (the staged slice scan),
+//! `generated`, `generated-2k` (the same with a 2 KiB buffer), `generated-ref` (the layout read
+//! through a reference, as the run-time codec reads its own), `hand` (the staged slice scan),
 //! `best` (the 2 KiB appending feed, the carry-less CRC-16), `crcfast` (`best` with the `crc-fast`
 //! crate's CRC-16) or `best-slicing` (`best` with a slicing-by-16 CRC-16), and `BYTES` the stream's
 //! length (default 1 MiB: the workloads of [`workload`](protocol_benches::workload) with another
@@ -61,10 +62,13 @@ enum Decoder {
     BestSlicing,
     /// The generated decoder with a 2 KiB buffer.
     Generated2k,
+    /// The generated decoder with its layout read through a reference, as the run-time codec
+    /// reads its own.
+    GeneratedByRef,
 }
 
 fn parse(args: &[String]) -> Result<(Workload, usize, Decoder), String> {
-    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|generated-2k|hand|best|crcfast|best-slicing [BYTES]";
+    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|generated-2k|generated-ref|hand|best|crcfast|best-slicing [BYTES]";
     let [protocol, noise, feed, decoder, rest @ ..] = args else {
         return Err(usage.into());
     };
@@ -85,6 +89,7 @@ fn parse(args: &[String]) -> Result<(Workload, usize, Decoder), String> {
         "crcfast" => Decoder::CrcFast,
         "best-slicing" => Decoder::BestSlicing,
         "generated-2k" => Decoder::Generated2k,
+        "generated-ref" => Decoder::GeneratedByRef,
         _ => return Err(usage.into()),
     };
     let len = match rest {
@@ -108,6 +113,12 @@ fn main() -> ExitCode {
         (Protocol::HfLink, Decoder::Generated) => run(&w, chunk, generated::hflink_decoder),
         (Protocol::HfLink, Decoder::Generated2k) => run(&w, chunk, generated::hflink_decoder_2k),
         (Protocol::Referee, Decoder::Generated2k) => run(&w, chunk, generated::referee_decoder_2k),
+        (Protocol::HfLink, Decoder::GeneratedByRef) => {
+            run(&w, chunk, generated::hflink_decoder_by_ref)
+        }
+        (Protocol::Referee, Decoder::GeneratedByRef) => {
+            run(&w, chunk, generated::referee_decoder_by_ref)
+        }
         (Protocol::HfLink, Decoder::Hand) => {
             run(&w, chunk, Staged::<hand::hflink::HfLink>::default)
         }

@@ -227,23 +227,28 @@ fn length_zero_bits(layout: &FrameLayout<'_>, limit: usize) -> Option<(usize, u8
     // The value's bits above the highest one `largest` sets, then as bits of the word.
     let fits = u64::MAX.checked_shr(largest.leading_zeros()).unwrap_or(0);
     let zero = (field.max_value() & !fits).checked_shl(u32::from(field.shift))?;
-    let size = usize::from(field.size);
-    let mut best: Option<(usize, u8)> = None;
-    for k in 0..size {
-        // Byte `k` of the word on the wire.
-        let shift = match field.order {
-            ByteOrder::Little => k,
-            ByteOrder::Big => size.wrapping_sub(1).wrapping_sub(k),
-        };
-        let bits = zero
-            .checked_shr(u32::try_from(shift.wrapping_mul(8)).unwrap_or(u32::MAX))
-            .unwrap_or(0);
-        let bits = u8::try_from(bits & 0xFF).unwrap_or(0);
-        if bits.count_ones() > best.map_or(0, |(_, b)| b.count_ones()) {
-            best = Some((at.wrapping_add(k), bits));
-        }
-    }
-    best
+    // The bits form one run, up to the word's highest forced bit: the byte holding that bit
+    // or the one below it (whole, when the run spans it) holds the most of them. No loop: the
+    // run-time codec's layout, read through a reference, computes this once per chunk.
+    let top = 63u32.checked_sub(zero.leading_zeros())?;
+    let byte = |significance: u32| {
+        let bits = zero.checked_shr(significance.wrapping_mul(8)).unwrap_or(0) & 0xFF;
+        u8::try_from(bits).unwrap_or(0)
+    };
+    let high = top / 8;
+    let below = high.saturating_sub(1);
+    let significance = if byte(below).count_ones() > byte(high).count_ones() {
+        below
+    } else {
+        high
+    };
+    // Where that byte is on the wire.
+    let last = u32::from(field.size).wrapping_sub(1);
+    let k = match field.order {
+        ByteOrder::Little => significance,
+        ByteOrder::Big => last.wrapping_sub(significance),
+    };
+    Some((at.wrapping_add(k as usize), byte(significance)))
 }
 
 /// Whether some offset of `data[..n]` may start a frame: passes `lead` (any offset, without
