@@ -549,7 +549,7 @@ mod tests {
     }
 
     #[test]
-    fn the_block_test_never_misses_a_start() {
+    fn the_block_test_answers_as_its_definition() {
         let mut next = rng();
         let leads = [
             None,
