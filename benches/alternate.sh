@@ -11,7 +11,8 @@
 # after the other, in quick mode, for several rounds, and prints per row:
 #
 # - the generated decoder against the best baseline (`best`'s median time over `generated`'s,
-#   throughput ratio) in each round, for each binary;
+#   throughput ratio; `hand` where a row has no `best`: the encoders) in each round, for each
+#   binary;
 # - on the referee, the same against `best-slicing` (the best baseline with the runtime's CRC,
 #   the ceiling of a decoder without `unsafe`), for the after binary;
 # - the early-truncation rule's cost: the after binary's `generated` time over the ablated
@@ -26,7 +27,7 @@
 #   --rounds N    rounds of all binaries (default 3)
 #   --before REV  also time the benchmark built from commit REV (a git worktree)
 #   --filter RE   criterion filter (default: the eight decoder rows, generated, best and
-#                 best-slicing)
+#                 best-slicing; '^(hflink|referee)-encode/' for the encoders)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -99,6 +100,8 @@ done
 awk -v rounds="$rounds" -v labels="${labels[*]}" '
   { t[$1, $2, $3] = $4; split($3, p, "/"); if (!(p[1] in seen)) { seen[p[1]] = 1; rows[++n] = p[1] } }
   function ratio(num, den) { return (num > 0 && den > 0) ? sprintf("%.2fx", num / den) : "-" }
+  # The baseline of a row: `best`, or `hand` where there is no `best` (the encoders).
+  function base(label, k, row) { return (t[label, k, row "/best"] > 0) ? t[label, k, row "/best"] : t[label, k, row "/hand"] }
   END {
     nl = split(labels, l, " ")
     head = "| row |"; rule = "|---|"
@@ -111,11 +114,11 @@ awk -v rounds="$rounds" -v labels="${labels[*]}" '
       for (i = 1; i <= nl; i++) {
         if (l[i] == "ablated") continue
         cells = ""
-        for (k = 1; k <= rounds; k++) cells = cells (k > 1 ? " / " : "") ratio(t[l[i], k, row "/best"], t[l[i], k, row "/generated"])
+        for (k = 1; k <= rounds; k++) cells = cells (k > 1 ? " / " : "") ratio(base(l[i], k, row), t[l[i], k, row "/generated"])
         line = line " " cells " |"
       }
       cells = ""
-      for (k = 1; k <= rounds; k++) cells = cells (k > 1 ? " / " : "") ratio(t["ablated", k, row "/best"], t["ablated", k, row "/generated"])
+      for (k = 1; k <= rounds; k++) cells = cells (k > 1 ? " / " : "") ratio(base("ablated", k, row), t["ablated", k, row "/generated"])
       line = line " " cells " |"
       cells = ""
       for (k = 1; k <= rounds; k++) cells = cells (k > 1 ? " / " : "") ratio(t["after", k, row "/best-slicing"], t["after", k, row "/generated"])
@@ -126,7 +129,7 @@ awk -v rounds="$rounds" -v labels="${labels[*]}" '
       cells = ""; sum = 0; m = 0; rawsum = 0
       for (k = 1; k <= rounds; k++) {
         a = t["after", k, row "/generated"]; b = t["ablated", k, row "/generated"]
-        ab = t["after", k, row "/best"]; bb = t["ablated", k, row "/best"]
+        ab = base("after", k, row); bb = base("ablated", k, row)
         if (a > 0 && b > 0 && ab > 0 && bb > 0) {
           c = (a / ab) / (b / bb) - 1; sum += c; rawsum += a / b - 1; m++
           cells = cells (k > 1 ? " / " : "") sprintf("%+.0f%%", 100 * c)
