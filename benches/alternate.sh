@@ -51,26 +51,21 @@ cleanup() {
 }
 trap cleanup EXIT
 
-# Builds the criterion binary in the current directory with `cargo bench` options "$@" and
-# prints its path.
-build() {
-  cargo bench --no-run -p protocol-benches --bench codec --message-format=json "$@" \
-    | grep -F '"kind":["bench"],"crate_types":["bin"],"name":"codec"' \
-    | sed -n 's/.*"executable":"\([^"]*\)".*/\1/p' | tail -n 1
-}
+# shellcheck source=benches/codec-exe.sh
+. benches/codec-exe.sh
 
 labels=()
 echo "building: after" >&2
-cp "$(build)" "$tmp/after"
+cp "$(codec_exe)" "$tmp/after"
 labels+=(after)
 echo "building: ablated" >&2
-cp "$(build --features ablate-early-truncation)" "$tmp/ablated"
+cp "$(codec_exe --features ablate-early-truncation)" "$tmp/ablated"
 labels+=(ablated)
 if [ -n "$before" ]; then
   echo "building: before ($before)" >&2
   worktree="$tmp/worktree"
   git worktree add --detach "$worktree" "$before" >/dev/null
-  (cd "$worktree" && cp "$(CARGO_TARGET_DIR="$tmp/target-before" build)" "$tmp/before")
+  (cd "$worktree" && cp "$(CARGO_TARGET_DIR="$tmp/target-before" codec_exe)" "$tmp/before")
   labels=(before "${labels[@]}")
 fi
 

@@ -21,9 +21,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 command -v objdump >/dev/null || { echo "hot-calls.sh: objdump (binutils) is not installed" >&2; exit 1; }
-exe="$(cargo bench --no-run -p protocol-benches --bench codec --message-format=json "$@" \
-  | grep -F '"kind":["bench"],"crate_types":["bin"],"name":"codec"' \
-  | sed -n 's/.*"executable":"\([^"]*\)".*/\1/p' | tail -n 1)"
+# shellcheck source=benches/codec-exe.sh
+. benches/codec-exe.sh
+exe="$(codec_exe "$@")"
 [ -x "$exe" ] || { echo "hot-calls.sh: no benchmark executable found" >&2; exit 1; }
 
 listing="$(mktemp)"
