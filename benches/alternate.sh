@@ -23,15 +23,22 @@
 # Each binary keeps its criterion data apart (CRITERION_HOME under a temporary directory), so
 # `target/criterion`, which `bench-report` reads, is left as the last full run wrote it.
 #
-# Usage: bash benches/alternate.sh [--rounds N] [--before REV] [--filter REGEX]
+# With --clmul, every binary is built for a CPU with carry-less multiplication
+# (`RUSTFLAGS="-C target-feature=+pclmulqdq"`, in its own target directory) and the after and
+# ablated ones with the facade's `clmul` host feature: the generated decoders (and
+# `best-slicing`, whose CRC is the runtime's) fold the referee's CRC-16 as `best` does.
+#
+# Usage: bash benches/alternate.sh [--rounds N] [--before REV] [--filter REGEX] [--clmul]
 #   --rounds N    rounds of all binaries (default 3)
 #   --before REV  also time the benchmark built from commit REV (a git worktree)
+#   --clmul       the host configuration with carry-less multiplication (above)
 #   --filter RE   criterion filter (default: the eight decoder rows, generated, best and
 #                 best-slicing; '^(hflink|referee)-encode/' for the encoders)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 rounds=3
+clmul=0
 before=""
 filter='^(hflink|referee)-(clean|noisy)-(whole|64)/(generated|best|best-slicing)$'
 while [ $# -gt 0 ]; do
@@ -39,9 +46,24 @@ while [ $# -gt 0 ]; do
     --rounds) rounds="$2"; shift 2 ;;
     --before) before="$2"; shift 2 ;;
     --filter) filter="$2"; shift 2 ;;
-    *) echo "usage: bash benches/alternate.sh [--rounds N] [--before REV] [--filter REGEX]" >&2; exit 2 ;;
+    --clmul) clmul=1; shift ;;
+    *) echo "usage: bash benches/alternate.sh [--rounds N] [--before REV] [--filter REGEX] [--clmul]" >&2; exit 2 ;;
   esac
 done
+
+features=()
+if [ "$clmul" = 1 ]; then
+  export RUSTFLAGS="-C target-feature=+pclmulqdq"
+  # Other flags, other artifacts: kept apart from the default build's.
+  export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target/clmul}"
+  features=(runtime-clmul)
+fi
+# `--features` with the named features and EXTRA (comma-separated lists).
+with_features() {
+  local all
+  all="$(IFS=,; echo "${features[*]}${1:+${features[*]:+,}$1}")"
+  if [ -n "$all" ]; then echo "--features=$all"; fi
+}
 
 tmp="$(mktemp -d)"
 worktree=""
@@ -56,10 +78,11 @@ trap cleanup EXIT
 
 labels=()
 echo "building: after" >&2
-cp "$(codec_exe)" "$tmp/after"
+# shellcheck disable=SC2046 # no features: no argument
+cp "$(codec_exe $(with_features))" "$tmp/after"
 labels+=(after)
 echo "building: ablated" >&2
-cp "$(codec_exe --features ablate-early-truncation)" "$tmp/ablated"
+cp "$(codec_exe "$(with_features ablate-early-truncation)")" "$tmp/ablated"
 labels+=(ablated)
 if [ -n "$before" ]; then
   echo "building: before ($before)" >&2

@@ -37,6 +37,7 @@
 use core::fmt;
 
 mod algorithm;
+mod clmul;
 mod extra;
 #[cfg(feature = "crc-fast")]
 mod fast;

@@ -63,6 +63,9 @@ pub struct Slicing16<W: crc::Width> {
     /// The `crc-fast` algorithm that computes this CRC, if that crate catalogues it.
     #[cfg(feature = "crc-fast")]
     fast: Option<super::fast::CrcAlgorithm>,
+    /// The carry-less folding of a reflected CRC (the `clmul` feature, in a build for a CPU
+    /// with `pclmulqdq`); always `None`, and no bytes, otherwise.
+    folding: Option<super::clmul::Folding>,
 }
 
 impl<W: crc::Width> Slicing16<W> {
@@ -114,6 +117,11 @@ macro_rules! slicing16_width {
                     xorout: alg.xorout,
                     #[cfg(feature = "crc-fast")]
                     fast: super::fast::$fast(alg),
+                    folding: if alg.refin {
+                        super::clmul::Folding::new(poly as u64, alg.width)
+                    } else {
+                        None
+                    },
                 }
             }
 
@@ -129,6 +137,14 @@ macro_rules! slicing16_width {
                 {
                     false
                 }
+            }
+
+            /// Whether the CRCs of more than 8 bytes are folded with carry-less multiplication
+            /// (the `clmul` feature in a build for a CPU with `pclmulqdq`, and a reflected CRC
+            /// of up to 32 bits).
+            #[inline]
+            pub const fn uses_clmul(&self) -> bool {
+                self.folding.is_some()
             }
 
             /// The CRC of `data`.
@@ -166,6 +182,10 @@ macro_rules! slicing16_width {
             fn register<const REFLECT: bool>(&self, data: &[u8], n: usize) -> $w {
                 if n <= SHORT {
                     return self.short_register::<REFLECT>(data, n);
+                }
+                if let (true, Some(folding)) = (REFLECT, &self.folding) {
+                    // The register in the low `width` bits, as the tables keep it.
+                    return folding.register(data, n, self.init as u64) as $w;
                 }
                 // The leading bytes: 1..=16 of them (0 when `n` is 0), so that whole blocks
                 // follow.

@@ -277,6 +277,31 @@ fn catalogue_crc64_slicing_matches_the_crc_crate() {
     assert_eq!(count, 8);
 }
 
+/// In a build with the `clmul` feature for a CPU with `pclmulqdq`, the catalogue tests above
+/// run every reflected CRC of up to 32 bits through the carry-less folding (lengths 9 to 300);
+/// this checks that they do, and that in any other build none does.
+#[test]
+fn reflected_crcs_fold_where_the_build_has_clmul() {
+    let folds = cfg!(all(
+        feature = "clmul",
+        target_arch = "x86_64",
+        target_feature = "pclmulqdq"
+    ));
+    static MCRF4XX: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_MCRF4XX);
+    static ISO_HDLC: Slicing16<u32> = Slicing16::<u32>::new(&crc::CRC_32_ISO_HDLC);
+    static USB5: Slicing16<u8> = Slicing16::<u8>::new(&crc::CRC_5_USB);
+    static CAN_FD: Slicing16<u32> = Slicing16::<u32>::new(&crc::CRC_21_CAN_FD);
+    static UMTS: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_UMTS);
+    static XZ: Slicing16<u64> = Slicing16::<u64>::new(&crc::CRC_64_XZ);
+    assert_eq!(MCRF4XX.uses_clmul(), folds);
+    assert_eq!(ISO_HDLC.uses_clmul(), folds);
+    assert_eq!(USB5.uses_clmul(), folds);
+    // Not reflected, or wider than 32 bits: the tables.
+    assert!(!CAN_FD.uses_clmul() && !crc::CRC_21_CAN_FD.refin);
+    assert!(!UMTS.uses_clmul());
+    assert!(!XZ.uses_clmul());
+}
+
 /// The crossed-endian catalogue entries (`refin != refout`) are covered above; this makes
 /// sure there is at least one, so the reversal at the end is exercised.
 #[test]
@@ -415,10 +440,13 @@ fn slicing_built_at_compile_time_equals_run_time() {
 fn table_sizes() {
     use core::mem::size_of;
     assert_eq!(size_of::<[[u8; 256]; 16]>(), 4096);
-    assert!(size_of::<Slicing16<u8>>() <= 4096 + 32);
-    assert!(size_of::<Slicing16<u16>>() <= 8192 + 32);
-    assert!(size_of::<Slicing16<u32>>() <= 16384 + 32);
-    assert!(size_of::<Slicing16<u64>>() <= 32768 + 32);
+    // The carry-less folding's constants, where the build has them (no bytes otherwise).
+    let folding = size_of::<Option<clmul::Folding>>();
+    assert!(size_of::<Slicing16<u8>>() <= 4096 + 32 + folding);
+    assert!(size_of::<Slicing16<u16>>() <= 8192 + 32 + folding);
+    assert!(size_of::<Slicing16<u32>>() <= 16384 + 32 + folding);
+    assert!(size_of::<Slicing16<u64>>() <= 32768 + 32 + folding);
+    assert!(folding <= 64);
 }
 
 #[test]
