@@ -22,7 +22,10 @@
 //! (10 samples of 1 s, under 2 minutes). Criterion's own arguments work too, e.g. `cargo bench
 //! -p protocol-benches -- hflink-clean`. `bench-report` turns the saved medians into the tables
 //! of `BENCHMARKS.md`. With `--features runtime-crc-fast`, the generated code is timed with the
-//! facade's `crc-fast` host feature, as `generated-crcfast`.
+//! facade's `crc-fast` host feature, as `generated-crcfast`. With `--features runtime-clmul`
+//! and `RUSTFLAGS="-C target-feature=+pclmulqdq"` (best in a target directory of its own), the
+//! runtime folds reflected CRCs with carry-less multiplication: the generated decoders and
+//! `best-slicing`, whose CRC is the runtime's, fold the referee's CRC-16 as `best` does.
 
 // `criterion_group!` generates an undocumented public function.
 #![allow(missing_docs)]
@@ -298,13 +301,17 @@ fn encoders(c: &mut Criterion<ThreadCpuTime>) {
     );
 }
 
-/// The runtime's CRC-16/MCRF4XX (the referee's): slicing-by-16, or the `crc-fast` crate in the
-/// build with `runtime-crc-fast`. Its id names which.
+/// The runtime's CRC-16/MCRF4XX (the referee's): slicing-by-16, the `crc-fast` crate in the
+/// build with `runtime-crc-fast` (from 128 bytes on), or the runtime's carry-less folding in
+/// the build with `runtime-clmul` for a CPU with `pclmulqdq` (from 9 bytes on). Its id names
+/// which.
 static CRC16: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_MCRF4XX);
 
 /// [`CRC16`]'s benchmark id in this build.
 const CRC_ID: &str = if cfg!(feature = "runtime-crc-fast") {
     "crc-fast"
+} else if cfg!(all(feature = "runtime-clmul", target_feature = "pclmulqdq")) {
+    "clmul"
 } else {
     "slicing-16"
 };

@@ -104,6 +104,7 @@
 //! | `defmt` | `defmt::Format` for the runtime's value types, errors and events, and for the generated types of a `protocol!(..., derive(defmt))` call; re-exports `defmt` |
 //! | `stage-input` | every input chunk staged in the decoder's buffer before it is scanned, as on targets without 64-bit pointers (where it is the default: less code); on hosts, to test that path |
 //! | `crc-fast` | a host feature (needs `std`): the CRCs of more than 8 bytes that the `crc-fast` crate catalogues (CRC-16/MCRF4XX, CRC-32/ISO-HDLC, CRC-64/XZ, ...) computed by it, with carry-less multiplication behind its run-time CPU dispatch; the others, and every CRC without the feature, by slicing-by-16 tables. The frames are the same. Fewer instructions per CRC, but not faster on frames of a few dozen bytes on the hosts measured (`BENCHMARKS.md`) |
+//! | `clmul` | a host feature (`no_std` too; Rust 1.89 or newer): in a build for an x86-64 CPU with carry-less multiplication (`RUSTFLAGS="-C target-cpu=native"` or `-C target-feature=+pclmulqdq`), reflected CRCs of up to 32 bits (CRC-16/MCRF4XX, CRC-32/ISO-HDLC, CRC-32C, ...) over more than 8 bytes folded 16 bytes at a time with `pclmulqdq`, without run-time CPU detection; without that target feature it changes nothing. The frames are the same. The referee's decoder at the best hand-written baseline's speed on whole streams (`BENCHMARKS.md`) |
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
