@@ -13,8 +13,9 @@
 # - the generated decoder against the best baseline (`best`'s median time over `generated`'s,
 #   throughput ratio; `hand` where a row has no `best`: the encoders) in each round, for each
 #   binary;
-# - on the referee, the same against `best-slicing` (the best baseline with the runtime's CRC,
-#   the ceiling of a decoder without `unsafe`), for the after binary;
+# - on the referee, the same against `best-slicing` (the best baseline with a slicing-by-16
+#   CRC-16, the ceiling of a decoder without `unsafe` in a build without `pclmulqdq`), for the
+#   after binary;
 # - the early-truncation rule's cost: the after binary's `generated` time over the ablated
 #   one's, minus one, each first divided by its own binary's `best` time of the same round (the
 #   two are timed seconds apart, the two binaries minutes apart: a drift of the host between
@@ -25,8 +26,8 @@
 #
 # With --clmul, every binary is built for a CPU with carry-less multiplication
 # (`RUSTFLAGS="-C target-feature=+pclmulqdq"`, in its own target directory) and the after and
-# ablated ones with the facade's `clmul` host feature: the generated decoders (and
-# `best-slicing`, whose CRC is the runtime's) fold the referee's CRC-16 as `best` does.
+# ablated ones with the facade's `clmul` host feature: the generated decoders fold the
+# referee's CRC-16 as `best` does (`best-slicing` keeps its tables).
 #
 # Usage: bash benches/alternate.sh [--rounds N] [--before REV] [--filter REGEX] [--clmul]
 #   --rounds N    rounds of all binaries (default 3)

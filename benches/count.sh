@@ -14,6 +14,9 @@
 # decoder built with the facade's `crc-fast` host feature (its CRCs by the `crc-fast` crate, with
 # carry-less multiplication, as `best`'s CRC-16): the host configuration, compared with `best`
 # like with like.
+# `clmul` is the generated decoder built with the facade's `clmul` host feature for a CPU with
+# carry-less multiplication (`RUSTFLAGS="-C target-feature=+pclmulqdq"`, in its own target
+# directory): its reflected CRCs folded by the runtime, as `best` folds its CRC-16.
 #
 # With --ablation, prints instead the generated decoder's counts with and without the
 # early-truncation rule (the runtime's `ablate-early-truncation` measurement feature: a
@@ -41,6 +44,9 @@ fi
 if [ "$ablation" = 0 ]; then
   cargo build --quiet --release -p protocol-benches --bin count --features runtime-crc-fast
   cp "$target/release/count" "$tmp/count-crcfast"
+  RUSTFLAGS="-C target-feature=+pclmulqdq" CARGO_TARGET_DIR="$target/clmul" \
+    cargo build --quiet --release -p protocol-benches --bin count --features runtime-clmul
+  cp "$target/clmul/release/count" "$tmp/count-clmul"
 fi
 cargo build --quiet --release -p protocol-benches --bin count
 tool="$target/release/count"
@@ -75,20 +81,21 @@ if [ "$ablation" = 1 ]; then
   exit 0
 fi
 
-echo "| workload | feed | frames | generated Ir/frame | crc-fast Ir/frame | hand Ir/frame | best Ir/frame | best, slicing Ir/frame | generated / hand | generated / best | crc-fast / best | generated / best, slicing |"
-echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| workload | feed | frames | generated Ir/frame | crc-fast Ir/frame | clmul Ir/frame | hand Ir/frame | best Ir/frame | best, slicing Ir/frame | generated / hand | generated / best | crc-fast / best | clmul / best | generated / best, slicing |"
+echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for protocol in hflink referee; do
   for noise in clean noisy; do
     for feed in whole 64; do
       read -r gen frames < <(count "$protocol" "$noise" "$feed" generated)
       read -r fast fast_frames < <(TOOL="$tmp/count-crcfast" count "$protocol" "$noise" "$feed" generated)
+      read -r clmul clmul_frames < <(TOOL="$tmp/count-clmul" count "$protocol" "$noise" "$feed" generated)
       read -r hand hand_frames < <(count "$protocol" "$noise" "$feed" hand)
       read -r best best_frames < <(count "$protocol" "$noise" "$feed" best)
       read -r slicing slicing_frames < <(count "$protocol" "$noise" "$feed" best-slicing)
-      [ "$frames" = "$fast_frames" ] && [ "$frames" = "$hand_frames" ] && [ "$frames" = "$best_frames" ] &&
+      [ "$frames" = "$fast_frames" ] && [ "$frames" = "$clmul_frames" ] && [ "$frames" = "$hand_frames" ] && [ "$frames" = "$best_frames" ] &&
         [ "$frames" = "$slicing_frames" ] || { echo "count.sh: frame counts differ" >&2; exit 1; }
-      awk -v w="$protocol-$noise" -v f="$feed" -v n="$frames" -v g="$gen" -v c="$fast" -v h="$hand" -v b="$best" -v s="$slicing" \
-        'BEGIN { printf "| %s | %s | %d | %.1f | %.1f | %.1f | %.1f | %.1f | %.3f | %.3f | %.3f | %.3f |\n", w, f, n, g / n, c / n, h / n, b / n, s / n, g / h, g / b, c / b, g / s }'
+      awk -v w="$protocol-$noise" -v f="$feed" -v n="$frames" -v g="$gen" -v c="$fast" -v m="$clmul" -v h="$hand" -v b="$best" -v s="$slicing" \
+        'BEGIN { printf "| %s | %s | %d | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f |\n", w, f, n, g / n, c / n, m / n, h / n, b / n, s / n, g / h, g / b, c / b, m / b, g / s }'
     done
   done
 done

@@ -194,15 +194,25 @@ fn main() -> ExitCode {
     }
     println!();
     // The CRC-16 alone: slicing-by-16 (the default build) against the `crc-fast` crate (the
-    // build with `runtime-crc-fast`), from a short frame to a long one. Criterion files a
-    // benchmark named `a/b` under `a_b`.
-    println!("| bytes | slicing-by-16 | crc-fast | crc-fast vs slicing-by-16 |");
-    println!("|---:|---:|---:|---:|");
+    // build with `runtime-crc-fast`) and the runtime's carry-less folding (the build with
+    // `runtime-clmul` for a CPU with `pclmulqdq`), from a short frame to a long one. Criterion
+    // files a benchmark named `a/b` under `a_b`.
+    println!(
+        "| bytes | slicing-by-16 | crc-fast | clmul | crc-fast vs slicing-by-16 | clmul vs slicing-by-16 |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|");
     for len in CRC_LENGTHS {
-        let [s, f] = ["slicing-16", "crc-fast"]
+        let [s, f, c] = ["slicing-16", "crc-fast", "clmul"]
             .map(|id| median(&dir, "crc16-mcrf4xx", &format!("{id}_{len}")));
         let ns = |v: Option<f64>| v.map_or_else(|| "not run".into(), |v| format!("{v:.1} ns"));
-        println!("| {len} | {} | {} | {} |", ns(s), ns(f), ratio(s, f));
+        println!(
+            "| {len} | {} | {} | {} | {} | {} |",
+            ns(s),
+            ns(f),
+            ns(c),
+            ratio(s, f),
+            ratio(s, c)
+        );
     }
     ExitCode::SUCCESS
 }
