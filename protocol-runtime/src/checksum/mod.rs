@@ -119,6 +119,18 @@ macro_rules! crc_impl_width {
                 }
             }
 
+            #[doc = concat!("The CRC of `data` as a `", stringify!($w), "`, bytes just written:")]
+            /// as [`checksum`](Self::checksum), but never with the carry-less folding
+            /// ([`Slicing16::checksum_written`]).
+            #[inline(always)]
+            pub fn checksum_written(&self, data: &[u8]) -> $w {
+                match self {
+                    CrcImpl::NoTable(c) => c.checksum(data),
+                    CrcImpl::Table1(c) => c.checksum(data),
+                    CrcImpl::Table16(c) => c.checksum_written(data),
+                }
+            }
+
             #[doc = concat!("The CRC of `data[..n]` as a `", stringify!($w), "`; `data` may")]
             /// run past `n` (bytes past `n` never change the result). If `data` is shorter
             /// than `n`, the CRC of all of `data`.
@@ -251,6 +263,20 @@ impl Checksum<'_> {
                 Some(byte) => e.fold(data, byte),
                 None => e.crc.compute_plain(data),
             },
+        }
+    }
+
+    /// [`compute`](Self::compute) of bytes the caller has just written (an encoder's frame):
+    /// the same value, with a CRC's tables even in a build with the carry-less folding
+    /// ([`Slicing16::checksum_written`] says why).
+    #[inline(always)]
+    pub fn compute_written(&self, data: &[u8]) -> u64 {
+        match self {
+            Checksum::Crc8(c) => u64::from(c.checksum_written(data)),
+            Checksum::Crc16(c) => u64::from(c.checksum_written(data)),
+            Checksum::Crc32(c) => u64::from(c.checksum_written(data)),
+            Checksum::Crc64(c) => c.checksum_written(data),
+            other => other.compute(data),
         }
     }
 

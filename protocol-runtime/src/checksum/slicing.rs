@@ -162,6 +162,24 @@ macro_rules! slicing16_width {
             /// costs four lookups, not sixteen).
             #[inline(always)]
             pub fn checksum_prefix(&self, data: &[u8], n: usize) -> $w {
+                self.checksum_with::<true>(data, n)
+            }
+
+            /// The CRC of `data`, bytes the caller has just written (an encoder's frame), with
+            /// the tables even where the carry-less folding is built in
+            /// ([`uses_clmul`](Self::uses_clmul)): the tables read the bytes one at a time,
+            /// loads that the processor serves from the pending stores, while the folding's
+            /// 16-byte loads of bytes stored a few at a time wait for the stores to reach the
+            /// cache (a store-forwarding stall per block).
+            #[inline(always)]
+            pub fn checksum_written(&self, data: &[u8]) -> $w {
+                self.checksum_with::<false>(data, data.len())
+            }
+
+            /// [`checksum_prefix`](Self::checksum_prefix), folded with carry-less
+            /// multiplication where the build has it and `FOLD` asks for it.
+            #[inline(always)]
+            fn checksum_with<const FOLD: bool>(&self, data: &[u8], n: usize) -> $w {
                 let n = n.min(data.len());
                 #[cfg(feature = "crc-fast")]
                 if let (Some(fast), true) = (self.fast, n >= super::fast::FAST_FROM) {
@@ -169,9 +187,9 @@ macro_rules! slicing16_width {
                     return crc_fast::checksum(fast, data.get(..n).unwrap_or(data)) as $w;
                 }
                 let register = if self.reflect {
-                    self.register::<true>(data, n)
+                    self.register::<true, FOLD>(data, n)
                 } else {
-                    self.register::<false>(data, n)
+                    self.register::<false, FOLD>(data, n)
                 };
                 let register = if self.reverse { register.reverse_bits() } else { register };
                 register.checked_shr(self.shift).unwrap_or(0) ^ self.xorout
@@ -179,11 +197,11 @@ macro_rules! slicing16_width {
 
             /// The register after `data[..n]` (`n <= data.len()`), before finalisation.
             #[inline(always)]
-            fn register<const REFLECT: bool>(&self, data: &[u8], n: usize) -> $w {
+            fn register<const REFLECT: bool, const FOLD: bool>(&self, data: &[u8], n: usize) -> $w {
                 if n <= SHORT {
                     return self.short_register::<REFLECT>(data, n);
                 }
-                if let (true, Some(folding)) = (REFLECT, &self.folding) {
+                if let (true, true, Some(folding)) = (REFLECT, FOLD, &self.folding) {
                     // The register in the low `width` bits, as the tables keep it.
                     return folding.register(data, n, self.init as u64) as $w;
                 }

@@ -207,6 +207,9 @@ macro_rules! check_catalogue {
             for n in 0..=300 {
                 let want = reference.checksum(&buf[..n]);
                 assert_eq!(fast.checksum(&buf[..n]), want, "{} n {n}", stringify!($alg));
+                // The encoders' call, which never folds: the same value.
+                assert_eq!(fast.checksum_written(&buf[..n]), want, "{} w {n}", stringify!($alg));
+                assert_eq!(check.compute_written(&buf[..n]), u64::from(want));
                 for extra in OVERRUNS {
                     assert_eq!(
                         fast.checksum_prefix(&buf[..n + extra], n),

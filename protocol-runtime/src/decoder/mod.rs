@@ -126,7 +126,7 @@ impl Check<'_> {
     #[inline(always)]
     pub fn store(&self, frame: &mut [u8]) -> Option<()> {
         let (covered, at) = self.resolve(frame.len())?;
-        let value = self.checksum.compute(frame.get(covered)?);
+        let value = self.checksum.compute_written(frame.get(covered)?);
         write_uint(frame, at, self.checksum.width() as u8, self.order, value)
     }
 }

@@ -340,7 +340,7 @@ pub fn put_check(
     order: ByteOrder,
 ) -> Result<(), EncodeError> {
     let covered = w.written().get(start..end).unwrap_or_default();
-    let value = check.compute(covered);
+    let value = check.compute_written(covered);
     let width = check.width();
     let mut bytes = [0u8; 8];
     write_uint(&mut bytes, 0, width as u8, order, value).ok_or(EncodeError::ValueOutOfRange)?;
