@@ -1,7 +1,9 @@
 //! Slicing-by-16 CRCs without a byte-wise loop: [`Slicing16`].
 //!
-//! This module owns the fast table-driven CRC and nothing else: which CRC a check uses and the
-//! smaller table choices (`crc::NoTable`, `crc::Table<1>`) are the parent module's business.
+//! This module owns the fast table-driven CRC and which of its inputs go to a faster path built
+//! beside it (the `crc-fast` crate from 128 bytes on, the carry-less folding of `clmul.rs` from
+//! 9 bytes on, each where its feature is on); which CRC a check uses and the smaller table
+//! choices (`crc::NoTable`, `crc::Table<1>`) are the parent module's business.
 //!
 //! We do not use the `crc` crate's `Table<16>`: it runs a byte-wise loop over the last
 //! `n % 16` bytes, and a loop whose trip count follows the frame length mispredicts its exit
@@ -36,6 +38,10 @@ const BLOCK: usize = 16;
 ///
 /// Its size is 16 × 256 × `size_of::<W>()` bytes plus a few words: 4 KiB (`u8`), 8 KiB
 /// (`u16`), 16 KiB (`u32`), 32 KiB (`u64`).
+///
+/// With the `clmul` feature, in a build for an x86-64 CPU with `pclmulqdq`, a reflected CRC of
+/// up to 32 bits over more than 8 bytes is folded with carry-less multiplication instead
+/// ([`uses_clmul`](Self::uses_clmul)); the value is the same.
 ///
 /// ```
 /// use protocol_runtime::checksum::Slicing16;
@@ -165,8 +171,8 @@ macro_rules! slicing16_width {
                 self.checksum_with::<true>(data, n)
             }
 
-            /// The CRC of `data`, bytes the caller has just written (an encoder's frame), with
-            /// the tables even where the carry-less folding is built in
+            /// The CRC of `data`, bytes the caller has just written (an encoder's frame),
+            /// without the carry-less folding even where it is built in
             /// ([`uses_clmul`](Self::uses_clmul)): the tables read the bytes one at a time,
             /// loads that the processor serves from the pending stores, while the folding's
             /// 16-byte loads of bytes stored a few at a time wait for the stores to reach the
