@@ -201,6 +201,8 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                         if ablation() {
                             let by_ref = generated::hflink_decoder_by_ref;
                             bench_decoder(g, GENERATED_BY_REF, &w, chunk, Kind::Exact, by_ref);
+                            let big = generated::hflink_decoder_2k;
+                            bench_decoder(g, "generated-2k", &w, chunk, Kind::Exact, big);
                         }
                     }
                     Protocol::Referee => {
@@ -228,6 +230,8 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                         if ablation() {
                             let by_ref = generated::referee_decoder_by_ref;
                             bench_decoder(g, GENERATED_BY_REF, &w, chunk, Kind::Exact, by_ref);
+                            let big = generated::referee_decoder_2k;
+                            bench_decoder(g, "generated-2k", &w, chunk, Kind::Exact, big);
                         }
                     }
                 }

@@ -3,8 +3,9 @@
 //!
 //! This module owns the engine's buffer size: a const generic, chosen at run time as the
 //! smallest of a few sizes that holds the format's largest frame, so that no valid frame is
-//! refused for want of room. Finding and verifying frames is the engine's business.
+//! refused for want of room, and at least the generated decoders' host default (2 KiB). Finding and verifying frames is the engine's business.
 
+use protocol_runtime::decoder::HOST_BUFFER_LEN;
 use protocol_runtime::layout::LayoutRef;
 use protocol_runtime::{Event, Frame, FrameLayout, PacketLayout, Reject, Stats, StreamDecoder};
 
@@ -84,7 +85,9 @@ impl PacketLayout for Format<'_> {
 /// The engine with a buffer of one of the sizes a frame format may need. Boxed: the largest
 /// buffer is a megabyte.
 enum Engine<'c> {
-    B256(Box<StreamDecoder<Held<'c>, 256>>),
+    /// The host default of generated decoders ([`HOST_BUFFER_LEN`]): small chunks appended
+    /// behind a pending frame for a few dozen chunks before the pending bytes move.
+    B2048(Box<StreamDecoder<Held<'c>, HOST_BUFFER_LEN>>),
     B4096(Box<StreamDecoder<Held<'c>, 4096>>),
     B65600(Box<StreamDecoder<Held<'c>, 65_600>>),
     B1M(Box<StreamDecoder<Held<'c>, { 1 << 20 }>>),
@@ -141,8 +144,8 @@ impl<'c> Stream<'c> {
         let held = Held::new(*first, more);
         let max_len = layouts.iter().map(|l| l.max_len).max().unwrap_or(0);
         let engine = match max_len {
-            0..=256 => Engine::B256(Box::new(StreamDecoder::new(held))),
-            257..=4096 => Engine::B4096(Box::new(StreamDecoder::new(held))),
+            0..=HOST_BUFFER_LEN => Engine::B2048(Box::new(StreamDecoder::new(held))),
+            2049..=4096 => Engine::B4096(Box::new(StreamDecoder::new(held))),
             4097..=65_600 => Engine::B65600(Box::new(StreamDecoder::new(held))),
             _ => Engine::B1M(Box::new(StreamDecoder::new(held))),
         };
@@ -157,7 +160,7 @@ impl<'c> Stream<'c> {
     /// than a megabyte) has its longer frames rejected as bad lengths.
     pub fn capacity(&self) -> usize {
         match self.engine {
-            Engine::B256(_) => 256,
+            Engine::B2048(_) => HOST_BUFFER_LEN,
             Engine::B4096(_) => 4096,
             Engine::B65600(_) => 65_600,
             Engine::B1M(_) => 1 << 20,
@@ -169,7 +172,7 @@ impl<'c> Stream<'c> {
     pub fn next_item<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Item<'s>> {
         let (codec, formats) = (self.codec, &self.formats);
         let event = match &mut self.engine {
-            Engine::B256(d) => d.next_event(input),
+            Engine::B2048(d) => d.next_event(input),
             Engine::B4096(d) => d.next_event(input),
             Engine::B65600(d) => d.next_event(input),
             Engine::B1M(d) => d.next_event(input),
@@ -182,7 +185,7 @@ impl<'c> Stream<'c> {
     pub fn flush_item(&mut self) -> Option<Item<'_>> {
         let (codec, formats) = (self.codec, &self.formats);
         let event = match &mut self.engine {
-            Engine::B256(d) => d.flush_event(),
+            Engine::B2048(d) => d.flush_event(),
             Engine::B4096(d) => d.flush_event(),
             Engine::B65600(d) => d.flush_event(),
             Engine::B1M(d) => d.flush_event(),
@@ -193,7 +196,7 @@ impl<'c> Stream<'c> {
     /// The engine's counts so far.
     pub fn stats(&self) -> &Stats {
         match &self.engine {
-            Engine::B256(d) => d.stats(),
+            Engine::B2048(d) => d.stats(),
             Engine::B4096(d) => d.stats(),
             Engine::B65600(d) => d.stats(),
             Engine::B1M(d) => d.stats(),

@@ -197,7 +197,7 @@ pub mod zeros;
 pub use bytes::Bytes;
 pub use can::CanFrame;
 pub use checksum::Checksum;
-pub use decoder::{Event, Frame, Reject, Stats, StreamDecoder};
+pub use decoder::{Event, Frame, Reject, Stats, StreamDecoder, decoder_buffer_len};
 pub use encoder::{MessagePayload, Payload, PayloadVisitor};
 pub use error::{DecodeError, DecodeResult, EncodeError, EncodeResult};
 pub use group::Group;

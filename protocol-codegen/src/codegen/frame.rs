@@ -65,18 +65,6 @@ pub fn wire_const(f: &Frame, value: usize) -> Ident {
     format_ident!("{}", f.names.wire[value])
 }
 
-/// The buffer of a generated decoder for frames of at most `max_frame` bytes: the frame, as
-/// much again for a chunk of input staged behind a pending frame (the engine stages a chunk
-/// only if it fits, and otherwise completes the frame from the input directly), and 128 bytes
-/// for a checksum window, rounded up to a multiple of 64.
-pub fn decoder_buffer_len(max_frame: usize) -> usize {
-    max_frame
-        .saturating_mul(2)
-        .max(max_frame.saturating_add(64))
-        .saturating_add(128)
-        .next_multiple_of(64)
-}
-
 /// The `Checksum` constant of a check, as the IR's algorithm says; a CRC's table goes into
 /// `statics`, under the name the IR gives it.
 fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>) -> TokenStream {
@@ -361,14 +349,15 @@ fn emit_frame_consts(f: &Frame) -> TokenStream {
 fn emit_decoder(f: &Frame, layout: &Ident) -> TokenStream {
     let rt = rt();
     let fname = &f.name;
-    let buffer = decoder_buffer_len(f.max_len());
+    let max_len = f.max_len();
     let buffer_name = format_ident!("{}", f.names.sizes.decoder_buffer_len);
     let layout_type = format_ident!("{}", f.names.layout);
     let decoder = format_ident!("{}", f.names.decoder);
     let decoder_fn = format_ident!("{}", f.names.decoder_fn);
     let buffer_doc = format!(
-        " Bytes of the buffer of a [`{decoder}`]: a pending frame, a chunk of input staged \
-         behind it, and room for a checksum window."
+        " Bytes of the buffer of a [`{decoder}`]: a pending frame, the chunks of input staged \
+         behind it, and room for a checksum window; at least 2 KiB on hosts \
+         (`decoder_buffer_len` of the runtime)."
     );
     let layout_type_doc = format!(
         " [`{layout}`] as a type: the engine reads the layout as a compile-time constant and \
@@ -389,7 +378,7 @@ fn emit_decoder(f: &Frame, layout: &Ident) -> TokenStream {
             }
         }
         #[doc = #buffer_doc]
-        pub const #buffer_name: usize = #buffer;
+        pub const #buffer_name: usize = #rt::decoder_buffer_len(#max_len);
         #[doc = #decoder_doc]
         pub type #decoder = #rt::StreamDecoder<#layout_type, #buffer_name>;
         #[doc = #new_doc]

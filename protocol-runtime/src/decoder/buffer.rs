@@ -29,6 +29,36 @@ const STAGE_SLACK: usize = if cfg!(target_pointer_width = "64") {
     0
 };
 
+/// Bytes of the buffer of a host's decoder at least: chunks are appended behind the pending
+/// bytes until it is full, and only then do those move to its front.
+pub const HOST_BUFFER_LEN: usize = 2048;
+
+/// Bytes of the buffer of a decoder of frames of at most `max_frame` bytes, as generated code
+/// sizes it (`DECODER_BUFFER_LEN`): the decoder's RAM but for its state (112 bytes on x86-64,
+/// 104 on thumbv7em, with a generated layout type, which takes none).
+///
+/// On targets without 64-bit pointers (microcontrollers), what the engine needs and no more:
+/// the frame, as much again (at least 64 bytes) for a chunk staged behind a pending frame (the
+/// engine stages a chunk only if it fits, and otherwise completes the frame from the input),
+/// and 128 bytes for a checksum window, rounded up to a multiple of 64: 384 bytes for frames of
+/// up to 127 bytes. On hosts at least [`HOST_BUFFER_LEN`]: in a small buffer, small chunks
+/// fill the room behind a pending frame within a few chunks, and moving the pending bytes to
+/// the front (a copy of varying length, at irregular intervals) costs mispredicted branches
+/// that a larger buffer pays once every few dozen chunks (`BENCHMARKS.md` measures both).
+pub const fn decoder_buffer_len(max_frame: usize) -> usize {
+    let frame_and_chunk = if max_frame > 64 {
+        max_frame.saturating_mul(2)
+    } else {
+        max_frame.saturating_add(64)
+    };
+    let small = frame_and_chunk.saturating_add(128).next_multiple_of(64);
+    if cfg!(target_pointer_width = "64") && small < HOST_BUFFER_LEN {
+        HOST_BUFFER_LEN
+    } else {
+        small
+    }
+}
+
 impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// Keeps the whole input, with nothing pending, as the pending bytes (the start of a
     /// candidate that needs more). Returns `false`, copying nothing, if it does not fit.

@@ -41,6 +41,7 @@ mod scan;
 mod search;
 mod stream;
 
+pub use buffer::{HOST_BUFFER_LEN, decoder_buffer_len};
 pub use conditional::{flag_trailer, write_flag_trailer};
 pub use event::{Event, Frame, Reject, Stats};
 pub use stream::StreamDecoder;

@@ -10,7 +10,7 @@ use quote::{format_ident, quote};
 use super::frames::header_codec;
 use super::key_prims;
 use super::packet::packet_direction;
-use crate::codegen::frame::{decoder_buffer_len, wire_const};
+use crate::codegen::frame::wire_const;
 use crate::codegen::ident;
 use crate::codegen::payload::prim_type;
 use crate::ir::{Frame, Protocol};
@@ -228,7 +228,7 @@ pub(super) fn emit_link(p: &Protocol, rt: &TokenStream) -> TokenStream {
         .map(|f| format_ident!("{}", f.names.layout_static))
         .collect();
     let n_others = others.len();
-    let buffer = decoder_buffer_len(formats.iter().map(|f| f.max_len()).max().unwrap_or(0));
+    let max_len = formats.iter().map(|f| f.max_len()).max().unwrap_or(0);
     let variants: Vec<_> = formats
         .iter()
         .map(|f| format_ident!("{}", f.names.pascal))
@@ -261,9 +261,10 @@ pub(super) fn emit_link(p: &Protocol, rt: &TokenStream) -> TokenStream {
                 &ANY_OTHER_LAYOUTS
             }
         }
-        /// Bytes of the buffer of an [`AnyDecoder`]: the largest frame of any format, a chunk
-        /// staged behind it, and room for a checksum window.
-        pub const ANY_DECODER_BUFFER_LEN: usize = #buffer;
+        /// Bytes of the buffer of an [`AnyDecoder`]: the largest frame of any format, the chunks
+        /// staged behind it, and room for a checksum window; at least 2 KiB on hosts
+        /// (`decoder_buffer_len` of the runtime).
+        pub const ANY_DECODER_BUFFER_LEN: usize = #rt::decoder_buffer_len(#max_len);
         /// A streaming decoder of the frames of every command format of the link.
         pub type AnyDecoder = #rt::StreamDecoder<AnyLayout, ANY_DECODER_BUFFER_LEN>;
         /// A new decoder of the frames of every command format of the link.
