@@ -23,16 +23,19 @@ pub fn referee_decoder() -> Generated<referee::Layout, { referee::DECODER_BUFFER
     Generated(referee::decoder())
 }
 
-/// Bytes of the decoder buffer of the `*_decoder_2k` variants.
-pub const BUFFER_2K: usize = 2048;
+/// Bytes of the decoder buffer of the `*_decoder_small` variants: what generated decoders get
+/// on microcontrollers for frames of up to 127 bytes (both specs' longest), where hosts get
+/// 2 KiB.
+pub const BUFFER_SMALL: usize = 384;
 
-/// The generated HFLink decoder with a 2 KiB buffer (`StreamDecoder`'s size is the user's choice).
-pub fn hflink_decoder_2k() -> Generated<hflink::Layout, BUFFER_2K> {
+/// The generated HFLink decoder with the microcontrollers' buffer (`StreamDecoder`'s size is
+/// the user's choice).
+pub fn hflink_decoder_small() -> Generated<hflink::Layout, BUFFER_SMALL> {
     Generated(StreamDecoder::new(hflink::Layout))
 }
 
-/// The generated referee decoder with a 2 KiB buffer.
-pub fn referee_decoder_2k() -> Generated<referee::Layout, BUFFER_2K> {
+/// The generated referee decoder with the microcontrollers' buffer.
+pub fn referee_decoder_small() -> Generated<referee::Layout, BUFFER_SMALL> {
     Generated(StreamDecoder::new(referee::Layout))
 }
 

@@ -3,8 +3,9 @@
 //!
 //! Usage: `count PROTOCOL NOISE FEED DECODER [BYTES]`, with `PROTOCOL` `hflink` or `referee`,
 //! `NOISE` `clean` or `noisy`, `FEED` `whole` or a chunk size in bytes (`64`), `DECODER` one of
-//! `generated`, `generated-2k` (the same with a 2 KiB buffer), `generated-ref` (the layout read
-//! through a reference, as the run-time codec reads its own), `hand` (the staged slice scan),
+//! `generated`, `generated-small` (the same with the 384-byte buffer microcontrollers get),
+//! `generated-ref` (the layout read through a reference, as the run-time codec reads its own),
+//! `hand` (the staged slice scan),
 //! `best` (the 2 KiB appending feed, the carry-less CRC-16), `crcfast` (`best` with the `crc-fast`
 //! crate's CRC-16) or `best-slicing` (`best` with a slicing-by-16 CRC-16), and `BYTES` the stream's
 //! length (default 1 MiB: the workloads of [`workload`](protocol_benches::workload) with another
@@ -61,14 +62,14 @@ enum Decoder {
     /// `best` with a slicing-by-16 CRC-16 (the referee only).
     BestSlicing,
     /// The generated decoder with a 2 KiB buffer.
-    Generated2k,
+    GeneratedSmall,
     /// The generated decoder with its layout read through a reference, as the run-time codec
     /// reads its own.
     GeneratedByRef,
 }
 
 fn parse(args: &[String]) -> Result<(Workload, usize, Decoder), String> {
-    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|generated-2k|generated-ref|hand|best|crcfast|best-slicing [BYTES]";
+    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|generated-small|generated-ref|hand|best|crcfast|best-slicing [BYTES]";
     let [protocol, noise, feed, decoder, rest @ ..] = args else {
         return Err(usage.into());
     };
@@ -88,7 +89,7 @@ fn parse(args: &[String]) -> Result<(Workload, usize, Decoder), String> {
         "best" => Decoder::Best,
         "crcfast" => Decoder::CrcFast,
         "best-slicing" => Decoder::BestSlicing,
-        "generated-2k" => Decoder::Generated2k,
+        "generated-small" => Decoder::GeneratedSmall,
         "generated-ref" => Decoder::GeneratedByRef,
         _ => return Err(usage.into()),
     };
@@ -111,8 +112,12 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = parse(&args).and_then(|(w, chunk, decoder)| match (w.protocol, decoder) {
         (Protocol::HfLink, Decoder::Generated) => run(&w, chunk, generated::hflink_decoder),
-        (Protocol::HfLink, Decoder::Generated2k) => run(&w, chunk, generated::hflink_decoder_2k),
-        (Protocol::Referee, Decoder::Generated2k) => run(&w, chunk, generated::referee_decoder_2k),
+        (Protocol::HfLink, Decoder::GeneratedSmall) => {
+            run(&w, chunk, generated::hflink_decoder_small)
+        }
+        (Protocol::Referee, Decoder::GeneratedSmall) => {
+            run(&w, chunk, generated::referee_decoder_small)
+        }
         (Protocol::HfLink, Decoder::GeneratedByRef) => {
             run(&w, chunk, generated::hflink_decoder_by_ref)
         }
