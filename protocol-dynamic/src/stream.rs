@@ -3,7 +3,8 @@
 //!
 //! This module owns the engine's buffer size: a const generic, chosen at run time as the
 //! smallest of a few sizes that holds the format's largest frame, so that no valid frame is
-//! refused for want of room, and at least the generated decoders' host default (2 KiB). Finding and verifying frames is the engine's business.
+//! refused for want of room, and at least the generated decoders' host default (2 KiB).
+//! Finding and verifying frames is the engine's business.
 
 use protocol_runtime::decoder::HOST_BUFFER_LEN;
 use protocol_runtime::layout::LayoutRef;
@@ -145,7 +146,8 @@ impl<'c> Stream<'c> {
         let max_len = layouts.iter().map(|l| l.max_len).max().unwrap_or(0);
         let engine = match max_len {
             0..=HOST_BUFFER_LEN => Engine::B2048(Box::new(StreamDecoder::new(held))),
-            2049..=4096 => Engine::B4096(Box::new(StreamDecoder::new(held))),
+            // Frames of more than 2 KiB: the arm above takes the shorter ones.
+            0..=4096 => Engine::B4096(Box::new(StreamDecoder::new(held))),
             4097..=65_600 => Engine::B65600(Box::new(StreamDecoder::new(held))),
             _ => Engine::B1M(Box::new(StreamDecoder::new(held))),
         };

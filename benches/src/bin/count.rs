@@ -5,11 +5,10 @@
 //! `NOISE` `clean` or `noisy`, `FEED` `whole` or a chunk size in bytes (`64`), `DECODER` one of
 //! `generated`, `generated-small` (the same with the 384-byte buffer microcontrollers get),
 //! `generated-ref` (the layout read through a reference, as the run-time codec reads its own),
-//! `hand` (the staged slice scan),
-//! `best` (the 2 KiB appending feed, the carry-less CRC-16), `crcfast` (`best` with the `crc-fast`
-//! crate's CRC-16) or `best-slicing` (`best` with a slicing-by-16 CRC-16), and `BYTES` the stream's
-//! length (default 1 MiB: the workloads of [`workload`](protocol_benches::workload) with another
-//! length, drawn from the same seeds).
+//! `hand` (the staged slice scan), `best` (the 2 KiB appending feed, the carry-less CRC-16),
+//! `crcfast` (`best` with the `crc-fast` crate's CRC-16) or `best-slicing` (`best` with a
+//! slicing-by-16 CRC-16), and `BYTES` the stream's length (default 1 MiB: the workloads of
+//! [`workload`](protocol_benches::workload) with another length, drawn from the same seeds).
 //!
 //! The stream is drawn and the decoder's frames are checked against the ground truth first;
 //! then the stream is decoded once more inside `timed_decode`, the one function to count:
@@ -61,7 +60,7 @@ enum Decoder {
     CrcFast,
     /// `best` with a slicing-by-16 CRC-16 (the referee only).
     BestSlicing,
-    /// The generated decoder with a 2 KiB buffer.
+    /// The generated decoder with the 384-byte buffer microcontrollers get (hosts get 2 KiB).
     GeneratedSmall,
     /// The generated decoder with its layout read through a reference, as the run-time codec
     /// reads its own.
