@@ -144,12 +144,14 @@ impl<'c> Stream<'c> {
         }
         let held = Held::new(*first, more);
         let max_len = layouts.iter().map(|l| l.max_len).max().unwrap_or(0);
-        let engine = match max_len {
-            0..=HOST_BUFFER_LEN => Engine::B2048(Box::new(StreamDecoder::new(held))),
-            // Frames of more than 2 KiB: the arm above takes the shorter ones.
-            0..=4096 => Engine::B4096(Box::new(StreamDecoder::new(held))),
-            4097..=65_600 => Engine::B65600(Box::new(StreamDecoder::new(held))),
-            _ => Engine::B1M(Box::new(StreamDecoder::new(held))),
+        let engine = if max_len <= HOST_BUFFER_LEN {
+            Engine::B2048(Box::new(StreamDecoder::new(held)))
+        } else if max_len <= 4096 {
+            Engine::B4096(Box::new(StreamDecoder::new(held)))
+        } else if max_len <= 65_600 {
+            Engine::B65600(Box::new(StreamDecoder::new(held)))
+        } else {
+            Engine::B1M(Box::new(StreamDecoder::new(held)))
         };
         Some(Stream {
             codec,
