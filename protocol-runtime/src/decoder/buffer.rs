@@ -29,8 +29,9 @@ const STAGE_SLACK: usize = if cfg!(target_pointer_width = "64") {
     0
 };
 
-/// Bytes of the buffer of a host's decoder at least: chunks are appended behind the pending
-/// bytes until it is full, and only then do those move to its front.
+/// The smallest buffer of a generated decoder on a host (a target with 64-bit pointers), in
+/// bytes: chunks are appended behind the pending bytes until it is full, and only then do those
+/// move to its front.
 pub const HOST_BUFFER_LEN: usize = 2048;
 
 /// Bytes of the buffer of a decoder of frames of at most `max_frame` bytes, as generated code
