@@ -16,6 +16,10 @@
 # - on the referee, the same against `best-slicing` (the best baseline with a slicing-by-16
 #   CRC-16, the ceiling of a decoder without `unsafe` in a build without `pclmulqdq`), for the
 #   after binary;
+# - the generated decoder against `best-early` (the best baseline with the early-truncation
+#   rule in its cheapest form: the same frames at the same moments as the generated decoder),
+#   and `best-early` against `best` (what the rule costs the best baseline), for the after
+#   binary;
 # - the early-truncation rule's cost: the after binary's `generated` time over the ablated
 #   one's, minus one, each first divided by its own binary's `best` time of the same round (the
 #   two are timed seconds apart, the two binaries minutes apart: a drift of the host between
@@ -34,14 +38,14 @@
 #   --before REV  also time the benchmark built from commit REV (a git worktree)
 #   --clmul       the host configuration with carry-less multiplication (above)
 #   --filter RE   criterion filter (default: the eight decoder rows, generated, best and
-#                 best-slicing; '^(hflink|referee)-encode/' for the encoders)
+#                 best-slicing and best-early; '^(hflink|referee)-encode/' for the encoders)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 rounds=3
 clmul=0
 before=""
-filter='^(hflink|referee)-(clean|noisy)-(whole|64)/(generated|best|best-slicing)$'
+filter='^(hflink|referee)-(clean|noisy)-(whole|64)/(generated|best|best-slicing|best-early)$'
 while [ $# -gt 0 ]; do
   case "$1" in
     --rounds) rounds="$2"; shift 2 ;;
@@ -97,7 +101,8 @@ fi
 # median (the middle of its `time: [low median high]`).
 run() {
   local label="$1" round="$2"
-  CRITERION_HOME="$tmp/criterion-$label" PROTOCOL_BENCH_QUICK=1 "$tmp/$label" --bench "$filter" 2>/dev/null \
+  # (`best-early` is among the ablation rows.)
+  CRITERION_HOME="$tmp/criterion-$label" PROTOCOL_BENCH_QUICK=1 PROTOCOL_BENCH_ABLATION=1 "$tmp/$label" --bench "$filter" 2>/dev/null \
     | awk -v label="$label" -v round="$round" '
         $1 ~ /\// && $1 !~ /^time:/ { name = $1 }
         /time:/ {
@@ -125,8 +130,8 @@ awk -v rounds="$rounds" -v labels="${labels[*]}" '
     nl = split(labels, l, " ")
     head = "| row |"; rule = "|---|"
     for (i = 1; i <= nl; i++) if (l[i] != "ablated") { head = head " " l[i] ": generated vs best |"; rule = rule "---|" }
-    head = head " ablated: generated vs best | after: generated vs best-slicing | the rule, against best | mean | the rule, raw mean |"
-    rule = rule "---|---|---|---:|---:|"
+    head = head " ablated: generated vs best | after: generated vs best-slicing | after: generated vs best-early | after: best-early vs best | the rule, against best | mean | the rule, raw mean |"
+    rule = rule "---|---|---|---|---|---:|---:|"
     print head; print rule
     for (r = 1; r <= n; r++) {
       row = rows[r]; line = "| " row " |"
@@ -141,6 +146,12 @@ awk -v rounds="$rounds" -v labels="${labels[*]}" '
       line = line " " cells " |"
       cells = ""
       for (k = 1; k <= rounds; k++) cells = cells (k > 1 ? " / " : "") ratio(t["after", k, row "/best-slicing"], t["after", k, row "/generated"])
+      line = line " " cells " |"
+      cells = ""
+      for (k = 1; k <= rounds; k++) cells = cells (k > 1 ? " / " : "") ratio(t["after", k, row "/best-early"], t["after", k, row "/generated"])
+      line = line " " cells " |"
+      cells = ""
+      for (k = 1; k <= rounds; k++) cells = cells (k > 1 ? " / " : "") ratio(t["after", k, row "/best"], t["after", k, row "/best-early"])
       line = line " " cells " |"
       # The rule: generated in the after binary over generated in the ablated, each first divided
       # by the `best` of its own binary and round (timed seconds apart, so a drift of the

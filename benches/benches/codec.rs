@@ -6,7 +6,8 @@
 //!   are timed (framing only, and framing with the runtime's checks); with
 //!   `PROTOCOL_BENCH_ABLATION=1`, also the generated decoder reading its layout through a
 //!   reference, as the run-time codec does, and with the 384-byte buffer microcontrollers get
-//!   (`generated-small`; hosts get 2 KiB); in the referee groups, the best baseline's feed and
+//!   (`generated-small`; hosts get 2 KiB), and the best baseline with the early-truncation rule
+//!   in its cheapest form (`best-early`: the generated decoder's semantics); in the referee groups, the best baseline's feed and
 //!   scan also with the two CRC-16s open to code without `unsafe` (`best-slicing`: slicing-by-16;
 //!   `best-crcfast`: the `crc-fast` crate), the ceilings of a safe decoder;
 //! - encoders (generated, hand-written): a million frames into a reused buffer, for each
@@ -41,7 +42,10 @@ use criterion::{
 };
 use protocol_benches::encode::{self, FRAMES};
 use protocol_benches::floor::{CheckedWalk, HfLinkFormat, LengthWalk, RefereeFormat};
-use protocol_benches::hand::{self, Staged, appending::Appending};
+use protocol_benches::hand::{
+    self, Staged,
+    appending::{Appending, Early},
+};
 use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
 use protocol_benches::verify::{self, Output};
 use protocol_benches::workload::{Noise, Protocol, Workload};
@@ -204,6 +208,8 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                             bench_decoder(g, GENERATED_BY_REF, &w, chunk, Kind::Exact, by_ref);
                             let small = generated::hflink_decoder_small;
                             bench_decoder(g, "generated-small", &w, chunk, Kind::Exact, small);
+                            let early = Early::<hand::hflink::HfLink>::default;
+                            bench_decoder(g, "best-early", &w, chunk, Kind::Exact, early);
                         }
                     }
                     Protocol::Referee => {
@@ -233,6 +239,8 @@ fn decode(c: &mut Criterion<ThreadCpuTime>) {
                             bench_decoder(g, GENERATED_BY_REF, &w, chunk, Kind::Exact, by_ref);
                             let small = generated::referee_decoder_small;
                             bench_decoder(g, "generated-small", &w, chunk, Kind::Exact, small);
+                            let early = Early::<hand::referee::RefereeClmul>::default;
+                            bench_decoder(g, "best-early", &w, chunk, Kind::Exact, early);
                         }
                     }
                 }

@@ -4,7 +4,8 @@
 
 use protocol_benches::encode;
 use protocol_benches::floor::{CheckedWalk, Format, HfLinkFormat, LengthWalk, RefereeFormat};
-use protocol_benches::hand::{self, Staged, appending::Appending};
+use protocol_benches::hand::appending::{Appending, Early};
+use protocol_benches::hand::{self, Staged};
 use protocol_benches::port::{OneCallPerByte, hflink::HfLinkPort, referee::RefereePort};
 use protocol_benches::verify::{Output, collect, compare, count, exact};
 use protocol_benches::workload::{Noise, Protocol, Workload, reference_frames};
@@ -111,6 +112,75 @@ fn best_baseline_decoders_return_exactly_the_untouched_frames() {
             }
         }
     }
+}
+
+#[test]
+fn best_baseline_with_the_rule_returns_exactly_the_untouched_frames() {
+    let chunks = [1, 7, 64, 65, 255, 256, 1000, usize::MAX];
+    for w in workloads() {
+        match w.protocol {
+            Protocol::HfLink => check_chunks(
+                "best-early",
+                &w,
+                &chunks,
+                Early::<hand::hflink::HfLink>::default,
+            ),
+            Protocol::Referee => {
+                let early = Early::<hand::referee::RefereeClmul>::default;
+                check_chunks("best-early", &w, &chunks, early);
+            }
+        }
+    }
+}
+
+/// How many frames `decoder` has returned after each chunk of `chunk` bytes of `stream`.
+fn frames_by_chunk<D: ChunkDecoder>(mut decoder: D, stream: &[u8], chunk: usize) -> Vec<usize> {
+    let mut frames = 0;
+    let mut after = Vec::new();
+    for piece in stream.chunks(chunk) {
+        decoder.feed(piece, &mut |_: &[u8]| frames += 1);
+        after.push(frames);
+    }
+    after
+}
+
+#[test]
+fn best_baseline_with_the_rule_returns_frames_when_the_generated_decoder_does() {
+    // `best-early` times the rule against the generated decoder: the same frames at the same
+    // moments. Without the rule (`best`), a frame inside a waiting candidate comes a chunk or
+    // more later on the noisy streams, which the comparison must see.
+    let mut later = 0;
+    for w in workloads() {
+        for chunk in [1, 7, 64, 65] {
+            let (generated, early, best) = match w.protocol {
+                Protocol::HfLink => (
+                    frames_by_chunk(generated::hflink_decoder(), &w.stream, chunk),
+                    frames_by_chunk(Early::<hand::hflink::HfLink>::default(), &w.stream, chunk),
+                    frames_by_chunk(
+                        Appending::<hand::hflink::HfLink>::default(),
+                        &w.stream,
+                        chunk,
+                    ),
+                ),
+                Protocol::Referee => (
+                    frames_by_chunk(generated::referee_decoder(), &w.stream, chunk),
+                    frames_by_chunk(
+                        Early::<hand::referee::RefereeClmul>::default(),
+                        &w.stream,
+                        chunk,
+                    ),
+                    frames_by_chunk(
+                        Appending::<hand::referee::RefereeClmul>::default(),
+                        &w.stream,
+                        chunk,
+                    ),
+                ),
+            };
+            assert_eq!(generated, early, "{}, chunks of {chunk}", w.name());
+            later += generated.iter().zip(&best).filter(|(g, b)| g != b).count();
+        }
+    }
+    assert!(later > 0, "no frame came earlier with the rule");
 }
 
 /// Feeds `stream` to `decoder` in chunks of the sizes of `sizes`, in turn, and keeps every frame.

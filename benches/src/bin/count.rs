@@ -6,8 +6,10 @@
 //! `generated`, `generated-small` (the same with the 384-byte buffer microcontrollers get),
 //! `generated-ref` (the layout read through a reference, as the run-time codec reads its own),
 //! `hand` (the staged slice scan), `best` (the 2 KiB appending feed, the carry-less CRC-16),
-//! `crcfast` (`best` with the `crc-fast` crate's CRC-16) or `best-slicing` (`best` with a
-//! slicing-by-16 CRC-16), and `BYTES` the stream's length (default 1 MiB: the workloads of
+//! `crcfast` (`best` with the `crc-fast` crate's CRC-16), `best-slicing` (`best` with a
+//! slicing-by-16 CRC-16) or `best-early` (`best` with the early-truncation rule in its cheapest
+//! form, [`Early`](protocol_benches::hand::appending::Early)), and `BYTES` the stream's length
+//! (default 1 MiB: the workloads of
 //! [`workload`](protocol_benches::workload) with another length, drawn from the same seeds).
 //!
 //! The stream is drawn and the decoder's frames are checked against the ground truth first;
@@ -26,7 +28,10 @@
 use std::hint::black_box;
 use std::process::ExitCode;
 
-use protocol_benches::hand::{self, Staged, appending::Appending};
+use protocol_benches::hand::{
+    self, Staged,
+    appending::{Appending, Early},
+};
 use protocol_benches::workload::{Noise, Protocol, Workload};
 use protocol_benches::{ChunkDecoder, generated, verify};
 
@@ -60,6 +65,8 @@ enum Decoder {
     CrcFast,
     /// `best` with a slicing-by-16 CRC-16 (the referee only).
     BestSlicing,
+    /// `best` with the early-truncation rule.
+    BestEarly,
     /// The generated decoder with the 384-byte buffer microcontrollers get (hosts get 2 KiB).
     GeneratedSmall,
     /// The generated decoder with its layout read through a reference, as the run-time codec
@@ -68,7 +75,7 @@ enum Decoder {
 }
 
 fn parse(args: &[String]) -> Result<(Workload, usize, Decoder), String> {
-    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|generated-small|generated-ref|hand|best|crcfast|best-slicing [BYTES]";
+    let usage = "usage: count hflink|referee clean|noisy whole|CHUNK generated|generated-small|generated-ref|hand|best|crcfast|best-slicing|best-early [BYTES]";
     let [protocol, noise, feed, decoder, rest @ ..] = args else {
         return Err(usage.into());
     };
@@ -88,6 +95,7 @@ fn parse(args: &[String]) -> Result<(Workload, usize, Decoder), String> {
         "best" => Decoder::Best,
         "crcfast" => Decoder::CrcFast,
         "best-slicing" => Decoder::BestSlicing,
+        "best-early" => Decoder::BestEarly,
         "generated-small" => Decoder::GeneratedSmall,
         "generated-ref" => Decoder::GeneratedByRef,
         _ => return Err(usage.into()),
@@ -128,6 +136,12 @@ fn main() -> ExitCode {
         }
         (Protocol::HfLink, Decoder::Best | Decoder::CrcFast | Decoder::BestSlicing) => {
             run(&w, chunk, Appending::<hand::hflink::HfLink>::default)
+        }
+        (Protocol::HfLink, Decoder::BestEarly) => {
+            run(&w, chunk, Early::<hand::hflink::HfLink>::default)
+        }
+        (Protocol::Referee, Decoder::BestEarly) => {
+            run(&w, chunk, Early::<hand::referee::RefereeClmul>::default)
         }
         (Protocol::Referee, Decoder::Generated) => run(&w, chunk, generated::referee_decoder),
         (Protocol::Referee, Decoder::Hand) => {

@@ -4,8 +4,12 @@
 //! when it is full, so a frame cut by a chunk boundary costs one append, never a move per
 //! chunk. A large chunk is scanned in place, after staging just enough of it to decide the
 //! pending bytes. No early-truncation search: a candidate waits for its declared length.
+//!
+//! [`Early`] is the same feed with the framework's early-truncation rule added in its cheapest
+//! form (one masked block test per chunk that ends inside a candidate): what the rule costs a
+//! decoder that does nothing else the best baseline does not.
 
-use super::Scan;
+use super::{Lead, Scan};
 
 /// Bytes of the staging buffer.
 pub const STAGE: usize = 2048;
@@ -15,8 +19,9 @@ const SMALL: usize = 256;
 /// stays inside the buffer.
 const SLACK: usize = 128;
 
-/// A [`Scan`] fed in chunks through a 2 KiB buffer compacted only when full.
-pub struct Appending<S: Scan> {
+/// A [`Scan`] fed in chunks through a 2 KiB buffer compacted only when full; with `EARLY`, the
+/// early-truncation rule after every chunk ([`Early`]).
+pub struct Appending<S: Scan, const EARLY: bool = false> {
     buf: [u8; STAGE],
     /// The undecided bytes are `buf[start..end]`.
     start: usize,
@@ -24,7 +29,15 @@ pub struct Appending<S: Scan> {
     scan: core::marker::PhantomData<S>,
 }
 
-impl<S: Scan> Default for Appending<S> {
+/// [`Appending`] with the framework's early-truncation rule: when a chunk ends inside a candidate
+/// and a complete valid frame starts after the candidate's first byte, the candidate is
+/// rejected at once (the search resumes one byte on) instead of waiting for its declared
+/// length. The test is a 64-byte block of the staged bytes compared under a mask of the
+/// offsets that may hold such a frame, no state kept between chunks; the exact search runs only
+/// where the block holds a possible start.
+pub type Early<S> = Appending<S, true>;
+
+impl<S: Scan, const EARLY: bool> Default for Appending<S, EARLY> {
     fn default() -> Self {
         Appending {
             buf: [0; STAGE],
@@ -35,7 +48,7 @@ impl<S: Scan> Default for Appending<S> {
     }
 }
 
-impl<S: Scan> Appending<S> {
+impl<S: Scan, const EARLY: bool> Appending<S, EARLY> {
     /// Appends `bytes` behind the undecided ones, moving those to the front first if the buffer
     /// is full.
     #[inline(always)]
@@ -59,14 +72,84 @@ impl<S: Scan> Appending<S> {
             self.end = 0;
         }
     }
+
+    /// The early-truncation rule on the undecided bytes, once the chunk is scanned: while a
+    /// complete valid frame starts after the first byte of the waiting candidate, the candidate
+    /// is rejected and the scan goes on one byte on.
+    #[inline(always)]
+    fn cut_short<F: FnMut(&[u8])>(&mut self, sink: &mut F) {
+        while self.end - self.start > S::SHORTEST && self.frame_inside() {
+            self.start += 1;
+            self.scan_staged(false, sink);
+        }
+    }
+
+    /// Whether a complete valid frame starts after the first byte of the undecided bytes (more
+    /// than `S::SHORTEST` of them).
+    #[inline(always)]
+    fn frame_inside(&self) -> bool {
+        let pending = self.end - self.start;
+        // Offsets 1..=last may start a frame complete now.
+        let last = pending - S::SHORTEST;
+        let mut from = 1;
+        while from <= last {
+            // In bounds: `SLACK` bytes lie behind the undecided ones.
+            let block = self.buf[self.start + from..].first_chunk::<{ BLOCK + MAX_REACH }>();
+            let hit = match block {
+                Some(block) => may_start(S::LEAD, block, last + 1 - from),
+                None => true,
+            };
+            if hit {
+                let mut found = false;
+                let rest = &self.buf[self.start + 1..];
+                S::scan(rest, pending - 1, true, &mut |_: &[u8]| found = true);
+                return found;
+            }
+            from += BLOCK;
+        }
+        false
+    }
 }
 
-impl<S: Scan> crate::ChunkDecoder for Appending<S> {
+/// Offsets one block test covers.
+const BLOCK: usize = 64;
+/// The largest [`Lead::reach`] of the protocols here.
+const MAX_REACH: usize = 2;
+
+/// `KEEP[BLOCK - n..][..BLOCK]` keeps the first `n` offsets of a block.
+static KEEP: [u8; 2 * BLOCK] = {
+    let mut m = [0u8; 2 * BLOCK];
+    let mut i = 0;
+    while i < BLOCK {
+        m[i] = 0xFF;
+        i += 1;
+    }
+    m
+};
+
+/// Whether one of the first `min(n, BLOCK)` offsets of `block` holds `lead`: compared byte by
+/// byte under a mask of the offsets kept, with no branch per byte (the compiler makes it a few
+/// vector compares and one test).
+#[inline(always)]
+fn may_start(lead: Lead, block: &[u8; BLOCK + MAX_REACH], n: usize) -> bool {
+    let keep = &KEEP[BLOCK - n.min(BLOCK)..][..BLOCK];
+    let mut hits = 0u8;
+    for i in 0..BLOCK {
+        let pair = (block[i] == lead.first) & (block[i + lead.reach] & lead.mask == lead.value);
+        hits |= u8::from(pair) & keep[i];
+    }
+    hits != 0
+}
+
+impl<S: Scan, const EARLY: bool> crate::ChunkDecoder for Appending<S, EARLY> {
     #[inline]
     fn feed<F: FnMut(&[u8])>(&mut self, mut chunk: &[u8], sink: &mut F) {
         if chunk.len() < SMALL {
             self.append(chunk);
             self.scan_staged(false, sink);
+            if EARLY {
+                self.cut_short(sink);
+            }
             return;
         }
         if self.end > self.start {
@@ -88,6 +171,9 @@ impl<S: Scan> crate::ChunkDecoder for Appending<S> {
         self.buf[..tail.len()].copy_from_slice(tail);
         self.start = 0;
         self.end = tail.len();
+        if EARLY {
+            self.cut_short(sink);
+        }
     }
 
     fn finish<F: FnMut(&[u8])>(&mut self, sink: &mut F) {

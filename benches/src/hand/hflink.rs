@@ -3,7 +3,7 @@
 //! `FF FF sender receiver length(u16 BE) command payload sum`, `length` in `1..=120` (command and
 //! payload), `sum` the sum of every byte before it modulo 255.
 
-use super::Scan;
+use super::{Lead, Scan};
 
 /// HFLink frames.
 pub struct HfLink;
@@ -81,6 +81,14 @@ fn sum_ok(rest: &[u8], total: usize) -> bool {
 
 impl Scan for HfLink {
     const MAX_FRAME: usize = MAX_FRAME;
+    const SHORTEST: usize = 8;
+    // `FF FF`.
+    const LEAD: Lead = Lead {
+        first: 0xFF,
+        reach: 1,
+        mask: 0xFF,
+        value: 0xFF,
+    };
 
     #[inline(always)]
     fn scan<F: FnMut(&[u8])>(buf: &[u8], len: usize, at_end: bool, sink: &mut F) -> usize {

@@ -24,6 +24,13 @@ pub trait Scan {
     /// The longest frame: a candidate with this many bytes after its start is always decided.
     const MAX_FRAME: usize;
 
+    /// The shortest frame: a complete frame inside a waiting candidate starts at least this
+    /// many bytes before the candidate's last byte ([`appending::Early`]).
+    const SHORTEST: usize;
+
+    /// What the first bytes of every frame hold ([`appending::Early`]'s test).
+    const LEAD: Lead;
+
     /// Calls `sink` with every frame of `data[..len]` and returns how many bytes are done with:
     /// all of them, or up to the start of a candidate that needs more bytes to be decided. With
     /// `at_end`, no more bytes will come: such a candidate is rejected instead.
@@ -32,6 +39,20 @@ pub trait Scan {
     /// there instead of falling back to byte loops near the end of the input; what lies past
     /// `len` never decides anything.
     fn scan<F: FnMut(&[u8])>(data: &[u8], len: usize, at_end: bool, sink: &mut F) -> usize;
+}
+
+/// What the first bytes of every frame of a protocol hold: `first`, and `reach` bytes on a byte
+/// whose bits under `mask` are `value`. A cheap filter for where a frame may start.
+#[derive(Clone, Copy)]
+pub struct Lead {
+    /// The first byte.
+    pub first: u8,
+    /// How many bytes on the second byte tested lies.
+    pub reach: usize,
+    /// The bits of that byte that are known.
+    pub mask: u8,
+    /// Their value.
+    pub value: u8,
 }
 
 /// Bytes the staging buffer holds: pending bytes (less than a frame) and one chunk appended

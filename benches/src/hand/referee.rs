@@ -4,14 +4,23 @@
 //! four bytes and is checked before the length is trusted; `data_length` is at most 118; the
 //! CRC-16/MCRF4XX covers everything before it.
 
-use super::Scan;
 use super::crc::{crc8_header, crc16};
+use super::{Lead, Scan};
 
 /// Referee frames.
 pub struct Referee;
 
 /// Largest frame a receiver accepts.
 const MAX_FRAME: usize = 127;
+/// Shortest frame: the header, the command id and the CRC-16.
+const SHORTEST: usize = 9;
+/// `A5`, and two bytes on the high byte of `data_length` (at most 118): zero.
+const LEAD: Lead = Lead {
+    first: 0xA5,
+    reach: 2,
+    mask: 0xFF,
+    value: 0x00,
+};
 /// Largest `data_length`.
 const MAX_DATA: usize = 118;
 
@@ -27,6 +36,8 @@ fn find_sof(data: &[u8], at: usize) -> Option<usize> {
 
 impl Scan for Referee {
     const MAX_FRAME: usize = MAX_FRAME;
+    const SHORTEST: usize = SHORTEST;
+    const LEAD: Lead = LEAD;
 
     #[inline(always)]
     fn scan<F: FnMut(&[u8])>(buf: &[u8], len: usize, at_end: bool, sink: &mut F) -> usize {
@@ -49,6 +60,8 @@ fn scan_clmul<F: FnMut(&[u8])>(buf: &[u8], len: usize, at_end: bool, sink: &mut 
 
 impl Scan for RefereeClmul {
     const MAX_FRAME: usize = MAX_FRAME;
+    const SHORTEST: usize = SHORTEST;
+    const LEAD: Lead = LEAD;
 
     #[inline(always)]
     #[allow(unsafe_code)]
@@ -68,6 +81,8 @@ pub struct RefereeCrcFast;
 
 impl Scan for RefereeCrcFast {
     const MAX_FRAME: usize = MAX_FRAME;
+    const SHORTEST: usize = SHORTEST;
+    const LEAD: Lead = LEAD;
 
     #[inline(always)]
     fn scan<F: FnMut(&[u8])>(buf: &[u8], len: usize, at_end: bool, sink: &mut F) -> usize {
