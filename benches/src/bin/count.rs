@@ -8,8 +8,7 @@
 //! `hand` (the staged slice scan), `best` (the 2 KiB appending feed, the carry-less CRC-16),
 //! `crcfast` (`best` with the `crc-fast` crate's CRC-16), `best-slicing` (`best` with a
 //! slicing-by-16 CRC-16) or `best-early` (`best` with the early-truncation rule in its cheapest
-//! form, [`Early`](protocol_benches::hand::appending::Early)), and `BYTES` the stream's length
-//! (default 1 MiB: the workloads of
+//! form, [`Early`]), and `BYTES` the stream's length (default 1 MiB: the workloads of
 //! [`workload`](protocol_benches::workload) with another length, drawn from the same seeds).
 //!
 //! The stream is drawn and the decoder's frames are checked against the ground truth first;

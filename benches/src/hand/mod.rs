@@ -6,7 +6,8 @@
 //! it, resume one byte after a rejected start. Chunked input goes through [`Staged`], which
 //! copies small chunks behind the pending bytes and scans contiguously (cheaper than completing
 //! a partial frame aside: see [`crate::floor`]); [`appending`] is the faster feed of the best
-//! baseline known (a 2 KiB buffer compacted only when full). [`hflink`] and [`referee`] hold
+//! baseline known (a 2 KiB buffer compacted only when full), also with the framework's
+//! early-truncation rule ([`appending::Early`]). [`hflink`] and [`referee`] hold
 //! the protocol-specific parts and the encoders; [`crc`] the table-driven CRCs, [`clmul`] the
 //! CRC-16 folded with carry-less multiplication.
 
@@ -47,7 +48,7 @@ pub trait Scan {
 pub struct Lead {
     /// The first byte.
     pub first: u8,
-    /// How many bytes on the second byte tested lies.
+    /// How far after the first byte the second byte tested lies.
     pub reach: usize,
     /// The bits of that byte that are known.
     pub mask: u8,
