@@ -18,8 +18,8 @@
 #   after binary;
 # - the generated decoder against `best-early` (the best baseline with the early-truncation
 #   rule in its cheapest form: the same frames at the same moments as the generated decoder),
-#   and `best-early` against `best` (what the rule costs the best baseline), for the after
-#   binary;
+#   for the after binary, and `best-early` against `best` (what the rule costs the best
+#   baseline) for the after and ablated binaries (the same code in both: two more samples);
 # - the early-truncation rule's cost: the after binary's `generated` time over the ablated
 #   one's, minus one, each first divided by its own binary's `best` time of the same round (the
 #   two are timed seconds apart, the two binaries minutes apart: a drift of the host between
@@ -130,8 +130,8 @@ awk -v rounds="$rounds" -v labels="${labels[*]}" '
     nl = split(labels, l, " ")
     head = "| row |"; rule = "|---|"
     for (i = 1; i <= nl; i++) if (l[i] != "ablated") { head = head " " l[i] ": generated vs best |"; rule = rule "---|" }
-    head = head " ablated: generated vs best | after: generated vs best-slicing | after: generated vs best-early | after: best-early vs best | the rule, against best | mean | the rule, raw mean |"
-    rule = rule "---|---|---|---|---|---:|---:|"
+    head = head " ablated: generated vs best | after: generated vs best-slicing | after: generated vs best-early | after: best-early vs best | ablated: best-early vs best | the rule, against best | mean | the rule, raw mean |"
+    rule = rule "---|---|---|---|---|---|---:|---:|"
     print head; print rule
     for (r = 1; r <= n; r++) {
       row = rows[r]; line = "| " row " |"
@@ -152,6 +152,9 @@ awk -v rounds="$rounds" -v labels="${labels[*]}" '
       line = line " " cells " |"
       cells = ""
       for (k = 1; k <= rounds; k++) cells = cells (k > 1 ? " / " : "") ratio(t["after", k, row "/best"], t["after", k, row "/best-early"])
+      line = line " " cells " |"
+      cells = ""
+      for (k = 1; k <= rounds; k++) cells = cells (k > 1 ? " / " : "") ratio(t["ablated", k, row "/best"], t["ablated", k, row "/best-early"])
       line = line " " cells " |"
       # The rule: generated in the after binary over generated in the ablated, each first divided
       # by the `best` of its own binary and round (timed seconds apart, so a drift of the
