@@ -29,7 +29,8 @@
 //! `A' = (A ^ B) * y^-128`, i.e. `lo(A ^ B) * (y^-128 mod Q) ^ hi(A ^ B) * (y^-64 mod Q)`: two
 //! products of 64 x `w` bits. At the end, `A` (at most `63 + w` bits) is folded to 64 bits
 //! (`hi(A) * (y^64 mod Q) ^ lo(A)`, at most `2w - 2` bits from the product: hence `w <= 32`)
-//! and reduced by Barrett's method (two more products). The leading `n % 16` bytes are one
+//! and reduced by Barrett's method (two more products, the first set up so that the quotient
+//! is its high half: no shift across the vector's halves). The leading `n % 16` bytes are one
 //! block with zeros in front, as in the slicing CRC: no byte loop.
 
 #[cfg(all(
@@ -89,8 +90,8 @@ mod folding {
         reduce: [u64; 2],
         /// `Q`, the reciprocal polynomial, `w + 1` bits.
         q: u64,
-        /// `w`, the CRC's width in bits (1 to 32).
-        width: u32,
+        /// The bits of a 64-bit word from bit `w` (the CRC's width, 1 to 32) up.
+        above_width: u64,
     }
 
     impl Folding {
@@ -110,7 +111,7 @@ mod folding {
                 fold: [fold_lo, fold_hi],
                 reduce: [y_pow(q, w, 64), barrett_mu(q, w)],
                 q,
-                width: w,
+                above_width: u64::MAX << w,
             })
         }
 
@@ -118,8 +119,14 @@ mod folding {
         /// shorter checks are the tables'), in its low `w` bits.
         #[inline(always)]
         pub(in crate::checksum) fn register(&self, data: &[u8], n: usize, init: u64) -> u64 {
-            // The leading bytes: 1..=16 of them, so that whole blocks follow.
-            let lead = n.wrapping_sub(n.saturating_sub(1) & !(BLOCK - 1));
+            // (`n <= data.len()`, the caller's bound: said once, so that the compiler drops the
+            // fallback of every slice below.)
+            let Some(covered) = data.get(..n) else {
+                return 0;
+            };
+            // The leading bytes: 1..=16 of them, so that whole blocks follow. (Written so that
+            // the compiler sees both bounds: the shifts below need no test of their range.)
+            let lead = (n.wrapping_sub(1) & (BLOCK - 1)).wrapping_add(1);
             let first = match data.first_chunk::<BLOCK>() {
                 Some(block) => u128::from_le_bytes(*block),
                 None => {
@@ -133,14 +140,14 @@ mod folding {
             };
             // The initial register meets the first bytes; both move to the end of the block
             // (zeros in front), and what `first` held past the leading bytes drops out.
-            let pad = (BLOCK.wrapping_sub(lead) as u32).wrapping_mul(8);
+            let pad = ((!n.wrapping_sub(1) & (BLOCK - 1)) as u32).wrapping_mul(8);
             let aligned = (first ^ u128::from(init)).checked_shl(pad).unwrap_or(0);
             let k = m128i::from(self.fold);
             let mut acc = times_y_inverse_128(m128i::from(aligned), k);
             // A register wider than the leading bytes still holds its other bits after them.
             let kept = init.checked_shr((lead as u32).wrapping_mul(8)).unwrap_or(0);
             acc = xor(acc, m128i::from(u128::from(kept)));
-            let rest = data.get(lead..n).unwrap_or_default();
+            let rest = covered.get(lead..).unwrap_or_default();
             for block in rest.chunks_exact(BLOCK) {
                 if let Some(block) = block.first_chunk::<BLOCK>() {
                     let block = m128i::from(u128::from_le_bytes(*block));
@@ -157,10 +164,13 @@ mod folding {
             // At most `63 + w` bits to 64: hi(A) * (y^64 mod Q) ^ lo(A).
             let v = u128::from(xor(acc, clmul::<0x01>(acc, r))) as u64;
             // Barrett: the quotient q = floor(floor(V / y^w) * mu / y^(64 - w)), and
-            // V mod Q = V ^ q * Q (of degree below w: the bits above cancel).
-            let high = m128i::from(u128::from(v >> self.width));
-            let quotient = u128::from(clmul::<0x10>(high, r)) >> 64u32.wrapping_sub(self.width);
-            let product = clmul::<0x00>(m128i::from(quotient), m128i::from(u128::from(self.q)));
+            // V mod Q = V ^ q * Q (of degree below w: the bits above cancel). With V's low `w`
+            // bits cleared instead of shifted out, the product is the same one times y^w, at
+            // most 128 - w bits, and q is its high half: the next product takes it from there
+            // (a shift of the whole vector by 64 - w bits costs eight instructions).
+            let high = m128i::from(u128::from(v & self.above_width));
+            let times_mu = clmul::<0x10>(high, r);
+            let product = clmul::<0x01>(times_mu, m128i::from(u128::from(self.q)));
             v ^ u128::from(product) as u64
         }
     }
