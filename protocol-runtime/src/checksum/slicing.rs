@@ -211,9 +211,15 @@ macro_rules! slicing16_width {
                     // The register in the low `width` bits, as the tables keep it.
                     return folding.register(data, n, self.init as u64) as $w;
                 }
-                // The leading bytes: 1..=16 of them (0 when `n` is 0), so that whole blocks
-                // follow.
-                let lead = n.wrapping_sub(n.saturating_sub(1) & !(BLOCK - 1));
+                // (`n <= data.len()`, the caller's bound: said once, so that the compiler drops
+                // the fallback of every slice below.)
+                let Some(covered) = data.get(..n) else {
+                    return 0;
+                };
+                // The leading bytes: 1..=16 of them, so that whole blocks follow. (Written so
+                // that the compiler sees both bounds: the shift below needs no test of its
+                // range.)
+                let lead = (n.wrapping_sub(1) & (BLOCK - 1)).wrapping_add(1);
                 let first = match data.first_chunk::<BLOCK>() {
                     Some(block) => *block,
                     None => {
@@ -228,7 +234,7 @@ macro_rules! slicing16_width {
                 // Big-endian, input byte `i` sits at bits `8 * (15 - i)`: shifting right by
                 // `16 - lead` bytes moves the leading bytes to the end of the block, zeros in
                 // front, and drops what `first` held past them.
-                let pad = ((BLOCK.wrapping_sub(lead)) as u32).wrapping_mul(8);
+                let pad = ((!n.wrapping_sub(1) & (BLOCK - 1)) as u32).wrapping_mul(8);
                 let aligned = (u128::from_be_bytes(first) ^ Self::spread::<REFLECT>(self.init))
                     .checked_shr(pad)
                     .unwrap_or(0);
@@ -240,7 +246,7 @@ macro_rules! slicing16_width {
                 };
                 let mut register = self.block::<REFLECT>(&aligned.to_be_bytes(), 0)
                     ^ kept.unwrap_or(0);
-                let rest = data.get(lead..n).unwrap_or_default();
+                let rest = covered.get(lead..).unwrap_or_default();
                 for block in rest.chunks_exact(BLOCK) {
                     if let Some(block) = block.first_chunk::<BLOCK>() {
                         register = self.block::<REFLECT>(block, register);
