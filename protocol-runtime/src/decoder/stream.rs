@@ -307,9 +307,14 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     #[inline(always)]
     fn scan_buffered(&mut self, sink: &mut impl FnMut(Frame<'_>)) {
         let limit = self.limit();
-        let pending = self.end.saturating_sub(self.start);
+        // (Never `None`: `start <= end <= N`. Branches the processor predicts, where fallback
+        // values cost conditional moves on every chunk.)
+        let (Some(pending), Some(readable)) =
+            (self.end.checked_sub(self.start), self.buf.get(self.start..))
+        else {
+            return;
+        };
         let base = self.position.wrapping_sub(pending as u64);
-        let readable = self.buf.get(self.start..).unwrap_or_default();
         let done = scan::scan(
             &self.layout,
             readable,
