@@ -91,7 +91,22 @@ pub(super) fn mod255(x: u64) -> u8 {
     let halves = |x: u64| (x >> 32).wrapping_add(x & 0xFFFF_FFFF);
     // At most 2^33 - 2, then at most 2^32 - 1.
     let folded = halves(halves(x)) as u32;
-    folded.checked_rem(255).unwrap_or(0) as u8
+    rem255_u32(folded)
+}
+
+/// `x % 255` as a quotient and an add, without the remainder's multiply-back: with
+/// `x = 255q + r` (`r < 255`), `x + q = 256q + r`, whose low byte is `r`. (The add may wrap:
+/// `2^32` is a multiple of 256.) A division by a constant is a multiplication; the remainder
+/// costs a shift and two more instructions on top of it, on every frame a decoder checks.
+#[inline(always)]
+pub(super) fn rem255_u32(x: u32) -> u8 {
+    x.wrapping_add(x.wrapping_div(255)) as u8
+}
+
+/// [`rem255_u32`] of a [`ShortSum`] (`2^64` is a multiple of 256 too).
+#[inline(always)]
+fn rem255_short(x: ShortSum) -> u8 {
+    x.wrapping_add(x.wrapping_div(255)) as u8
 }
 
 /// Whether the window shapes are used: where words are 64 bits and vector registers back the
@@ -121,7 +136,7 @@ pub(super) fn sum8(data: &[u8]) -> u8 {
 #[inline(always)]
 pub(super) fn sum_mod255(data: &[u8]) -> u8 {
     if WINDOWS && data.len() <= SHORT {
-        return unrolled_sum(data).checked_rem(255).unwrap_or(0) as u8;
+        return rem255_short(unrolled_sum(data));
     }
     exact_sum_mod255(data)
 }
@@ -132,7 +147,7 @@ fn exact_sum_mod255(data: &[u8]) -> u8 {
     if fits_u32_sum(data) {
         // One remainder in the target's word, without folding a `u64` first (sealing a frame
         // waits for it).
-        return short_sum(data).checked_rem(255).unwrap_or(0) as u8;
+        return rem255_short(short_sum(data));
     }
     mod255(byte_sum(data))
 }
@@ -148,9 +163,7 @@ pub(super) fn sum8_prefix(data: &[u8], n: usize) -> u8 {
 pub(super) fn sum_mod255_prefix(data: &[u8], n: usize) -> u8 {
     match data.first_chunk::<WINDOW>() {
         // At most 32640: a `u32` remainder.
-        Some(window) if WINDOWS && n <= WINDOW => {
-            window_sum(window, n).checked_rem(255).unwrap_or(0) as u8
-        }
+        Some(window) if WINDOWS && n <= WINDOW => rem255_u32(window_sum(window, n)),
         _ => exact_sum_mod255(data.get(..n).unwrap_or(data)),
     }
 }

@@ -154,6 +154,26 @@ fn mod255_without_division_is_the_remainder() {
 }
 
 #[test]
+fn rem255_is_the_remainder_for_every_u32_class() {
+    // Every value a window or short sum takes in a decoder (up to 128 x 255), then the
+    // neighbourhoods of every multiple of 255 near the top, where the add wraps.
+    for x in 0..=(128 * 255 + 300) {
+        assert_eq!(u32::from(sum::rem255_u32(x)), x % 255, "{x}");
+    }
+    for q in (u32::MAX / 255 - 70_000)..=(u32::MAX / 255) {
+        for x in [0, 1, 254]
+            .into_iter()
+            .filter_map(|r| (q * 255).checked_add(r))
+        {
+            assert_eq!(u32::from(sum::rem255_u32(x)), x % 255, "{x}");
+        }
+    }
+    for x in (u32::MAX - 1000)..=u32::MAX {
+        assert_eq!(u32::from(sum::rem255_u32(x)), x % 255, "{x}");
+    }
+}
+
+#[test]
 fn sum_check_values() {
     assert_eq!(Checksum::SumMod255.compute(CHECK), 0xDE);
     assert_eq!(Checksum::Sum8.compute(CHECK), 0xDD);
