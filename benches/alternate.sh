@@ -93,7 +93,9 @@ if [ -n "$before" ]; then
   echo "building: before ($before)" >&2
   worktree="$tmp/worktree"
   git worktree add --detach "$worktree" "$before" >/dev/null
-  (cd "$worktree" && cp "$(CARGO_TARGET_DIR="$tmp/target-before" codec_exe)" "$tmp/before")
+  # (The same features: with --clmul, the commit's own host configuration.)
+  # shellcheck disable=SC2046 # no features: no argument
+  (cd "$worktree" && cp "$(CARGO_TARGET_DIR="$tmp/target-before" codec_exe $(with_features))" "$tmp/before")
   labels=(before "${labels[@]}")
 fi
 
