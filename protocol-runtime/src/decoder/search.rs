@@ -436,23 +436,26 @@ pub(super) fn frame_inside<L: LayoutRef>(
     if known > last_start {
         return false;
     }
-    let window = last_start.wrapping_sub(known).wrapping_add(1);
-    // (Never `None`: `known <= last_start < pending <= readable.len()`; a branch, where a
-    // fallback value costs conditional moves on every chunk.)
-    let Some(rest) = readable.get(known..) else {
-        return false;
-    };
-    if cfg!(target_pointer_width = "64")
-        && !match may_start_block(layout, rest, window, limit) {
+    // (The block test only where words are 64 bits: on a microcontroller the exact search is
+    // smaller and as fast.)
+    if cfg!(target_pointer_width = "64") {
+        let window = last_start.wrapping_sub(known).wrapping_add(1);
+        // (Never `None`: `known <= last_start < pending <= readable.len()`; a branch, where a
+        // fallback value costs conditional moves on every chunk.)
+        let Some(rest) = readable.get(known..) else {
+            return false;
+        };
+        let hit = match may_start_block(layout, rest, window, limit) {
             // Nearly always: the bytes to test fit one block.
             Some(hit) if window <= SCAN => hit,
             _ => may_start(layout, rest, window, limit),
+        };
+        if !hit {
+            // None of these bytes starts a frame, now or later; the ones too close to the end
+            // may once more bytes arrive.
+            *dead = last_start.wrapping_add(1);
+            return false;
         }
-    {
-        // None of these bytes starts a frame, now or later; the ones too close to the end may
-        // once more bytes arrive.
-        *dead = last_start.wrapping_add(1);
-        return false;
     }
     search_inside(layout, readable, pending, dead, limit)
 }
