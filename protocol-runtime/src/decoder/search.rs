@@ -408,6 +408,41 @@ fn shortest_frame<L: LayoutRef>(link: &L) -> usize {
     link.others().iter().fold(first, |m, f| m.min(shortest(f)))
 }
 
+/// Whether a frame may start at one of the offsets of the pending candidate
+/// `readable[..pending]` that could hold a complete one now: after its first byte, with room
+/// for the shortest frame. The block test of hosts, asked every time the input runs out while a
+/// candidate waits: nearly always `false`, and a `false` is never wrong ([`frame_inside`] then
+/// finds nothing); a `true` may be (the exact search decides).
+///
+/// From the candidate's second byte every time, with nothing remembered between calls: one or
+/// two blocks, where keeping what earlier calls learnt costs a branch on whether the candidate
+/// is the one of the last call, which follows the frame lengths and is mispredicted often.
+#[inline(always)]
+pub(super) fn frame_may_be_inside<L: LayoutRef>(
+    layout: &L,
+    readable: &[u8],
+    pending: usize,
+    limit: usize,
+) -> bool {
+    // Offsets `1..=last_start`.
+    let Some(last_start) = pending.checked_sub(shortest_frame(layout)) else {
+        return false;
+    };
+    if last_start == 0 {
+        return false;
+    }
+    // (Never `None`: `1 <= last_start < pending <= readable.len()`; a branch, where a fallback
+    // value costs conditional moves on every chunk.)
+    let Some(rest) = readable.get(1..) else {
+        return false;
+    };
+    match may_start_block(layout, rest, last_start, limit) {
+        // Nearly always: the bytes to test fit one block.
+        Some(hit) if last_start <= SCAN => hit,
+        _ => may_start(layout, rest, last_start, limit),
+    }
+}
+
 /// Whether a complete valid frame starts after the first byte of the pending candidate
 /// `readable[..pending]` (`readable` may run past it: whole blocks are read from there): then
 /// the candidate's claimed length runs over it, and the candidate is taken for a truncated
@@ -416,10 +451,8 @@ fn shortest_frame<L: LayoutRef>(link: &L) -> usize {
 /// `dead` is how many of the candidate's first bytes are known to start no frame (its own first
 /// byte counts as known); the search starts after them and leaves there how many it now knows
 /// (a rejection is final: more bytes do not change it), since it is asked again each time the
-/// input runs out while the candidate waits.
-///
-/// Inlined where the input runs out: most calls end with the block test that finds no start of
-/// the sync bytes among the candidate's bytes, without a call.
+/// input runs out while the candidate waits. On hosts, asked only where
+/// [`frame_may_be_inside`] says yes.
 #[inline(always)]
 pub(super) fn frame_inside<L: LayoutRef>(
     layout: &L,
@@ -435,27 +468,6 @@ pub(super) fn frame_inside<L: LayoutRef>(
     };
     if known > last_start {
         return false;
-    }
-    // (The block test only where words are 64 bits: on a microcontroller the exact search is
-    // smaller and as fast.)
-    if cfg!(target_pointer_width = "64") {
-        let window = last_start.wrapping_sub(known).wrapping_add(1);
-        // (Never `None`: `known <= last_start < pending <= readable.len()`; a branch, where a
-        // fallback value costs conditional moves on every chunk.)
-        let Some(rest) = readable.get(known..) else {
-            return false;
-        };
-        let hit = match may_start_block(layout, rest, window, limit) {
-            // Nearly always: the bytes to test fit one block.
-            Some(hit) if window <= SCAN => hit,
-            _ => may_start(layout, rest, window, limit),
-        };
-        if !hit {
-            // None of these bytes starts a frame, now or later; the ones too close to the end
-            // may once more bytes arrive.
-            *dead = last_start.wrapping_add(1);
-            return false;
-        }
     }
     search_inside(layout, readable, pending, dead, limit)
 }

@@ -12,7 +12,7 @@ use core::fmt;
 
 use super::buffer::take;
 use super::event::{Event, Frame, Reject, Stats};
-use super::search::{find_link, frame_inside};
+use super::search::{find_link, frame_inside, frame_may_be_inside};
 use super::{Probe, link_max_len, probe_link_synced, scan};
 use crate::layout::{FrameLayout, LayoutRef};
 
@@ -562,6 +562,16 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     #[inline(always)]
     fn frame_inside_here(&mut self, limit: usize) -> bool {
         let pending = self.pending();
+        // (The block test only where words are 64 bits: on a microcontroller the exact search
+        // is smaller and as fast.)
+        if cfg!(target_pointer_width = "64") {
+            let Some(readable) = self.buf.get(self.start..) else {
+                return false;
+            };
+            if !frame_may_be_inside(&self.layout, readable, pending, limit) {
+                return false;
+            }
+        }
         let owner = self.position.wrapping_sub(pending as u64);
         if self.inner_owner != owner {
             self.inner_owner = owner;
