@@ -167,7 +167,12 @@ fn run(passes: usize, only: &str) -> Result<(), String> {
     } else {
         "default build"
     };
-    println!("{passes} passes per row, {config}\n");
+    let rule = if cfg!(feature = "ablate-early-truncation") {
+        ", the early-truncation rule ablated"
+    } else {
+        ""
+    };
+    println!("{passes} passes per row, {config}{rule}\n");
     println!("| row | decoders | median | 10% - 90% | passes >= 0.9 |");
     println!("|---|---|---:|---:|---:|");
     let mut medians = Vec::new();

@@ -1,7 +1,7 @@
 //! The searches of the engine: where the next candidate starts ([`find_candidate`]), and
 //! whether a complete valid frame starts inside a pending candidate ([`frame_inside`]: the
-//! search that rejects a candidate as truncated early), with the byte filters they are built
-//! from.
+//! search that rejects a candidate as truncated early, behind the block test of hosts,
+//! [`frame_may_be_inside`]), with the byte filters they are built from.
 //!
 //! This module owns how bytes are searched (memchr on hosts, byte loops on microcontrollers,
 //! masked word compares in between) and nothing else: whether a candidate is a frame is
@@ -414,9 +414,10 @@ fn shortest_frame<L: LayoutRef>(link: &L) -> usize {
 /// candidate waits: nearly always `false`, and a `false` is never wrong ([`frame_inside`] then
 /// finds nothing); a `true` may be (the exact search decides).
 ///
-/// From the candidate's second byte every time, with nothing remembered between calls: one or
-/// two blocks, where keeping what earlier calls learnt costs a branch on whether the candidate
-/// is the one of the last call, which follows the frame lengths and is mispredicted often.
+/// From the candidate's second byte every time, with nothing remembered between calls: one
+/// block for up to 64 offsets (a candidate cut by a small chunk), a block per 64 more; keeping
+/// what earlier calls learnt costs a branch on whether the candidate is the one of the last
+/// call, which follows the frame lengths and is mispredicted often.
 #[inline(always)]
 pub(super) fn frame_may_be_inside<L: LayoutRef>(
     layout: &L,
