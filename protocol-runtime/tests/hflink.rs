@@ -280,3 +280,73 @@ fn an_inner_frame_complete_first_wins_over_its_pending_outer_frame() {
         ]
     );
 }
+
+/// Feeds `stream` in chunks of `sizes` (in order, the last one repeated) with `feed`; returns
+/// the frames, and how many were out once `at` bytes had been fed.
+fn feed_frames<const N: usize>(
+    stream: &[u8],
+    sizes: &[usize],
+    at: usize,
+) -> (Vec<(u64, Vec<u8>)>, usize) {
+    let mut decoder = StreamDecoder::<_, N>::new(&HFLINK);
+    let (mut frames, mut out_at, mut fed) = (Vec::new(), None, 0);
+    let mut rest = stream;
+    let mut i = 0;
+    while !rest.is_empty() {
+        let size = sizes[i.min(sizes.len() - 1)].clamp(1, rest.len());
+        i += 1;
+        let (chunk, tail) = rest.split_at(size);
+        rest = tail;
+        decoder.feed(chunk, |f: Frame<'_>| {
+            frames.push((f.offset, f.bytes.to_vec()))
+        });
+        fed += size;
+        if fed == at {
+            out_at = Some(frames.len());
+        }
+    }
+    (frames, out_at.unwrap())
+}
+
+/// The early-truncation rule wherever the inner frame lies in the longest outer frame (127
+/// bytes: up to 118 offsets to search, two 64-byte blocks on hosts), with the outer frame
+/// waiting over many chunks first: the inner frame comes out with the chunk that completes it,
+/// through `feed` (the staged path, with the hosts' 2 KiB buffer and a small one) as through
+/// `next_event` and the reference model.
+#[test]
+fn an_inner_frame_at_any_offset_of_a_long_waiting_frame_comes_out_when_complete() {
+    let inner = hex(HFLINK_GOLDEN[1]);
+    for k in 7..=127 - 1 - inner.len() {
+        let mut outer = vec![0u8; 127];
+        outer[2..4].copy_from_slice(&[0x11, 0x01]);
+        outer[k..k + inner.len()].copy_from_slice(&inner);
+        common::HFLINK.seal(&mut outer).unwrap();
+        let end = k + inner.len();
+        for c in [1, 3, 16, 64] {
+            // Chunks of `c` bytes up to the inner frame's end, then the rest.
+            let mut sizes = vec![c; end / c];
+            if end % c > 0 {
+                sizes.push(end % c);
+            }
+            sizes.push(outer.len());
+            let expected = vec![(k as u64, inner.clone())];
+            for (frames, out) in [
+                feed_frames::<2048>(&outer, &sizes, end),
+                feed_frames::<256>(&outer, &sizes, end),
+            ] {
+                assert_eq!(frames, expected, "inner at {k}, chunks of {c}");
+                assert_eq!(out, 1, "inner at {k}, chunks of {c}: not out when complete");
+            }
+            let seen = check::<2048>(&HFLINK, &outer, &sizes, true);
+            assert_eq!(
+                frames_of(&seen),
+                [(k as u64, inner.len())],
+                "inner at {k}, chunks of {c}"
+            );
+            assert!(seen.contains(&Seen::Rejected {
+                offset: 0,
+                reason: Reject::Truncated
+            }));
+        }
+    }
+}
