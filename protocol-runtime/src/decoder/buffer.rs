@@ -2,12 +2,14 @@
 //! behind them, and the bytes taken off the caller's input.
 //!
 //! This module owns how bytes enter and leave `buf[start..end]` of a [`StreamDecoder`]: copying
-//! (whole chunks, a candidate's missing bytes), compaction (the pending bytes move to the front
+//! (whole chunks, with the block test's filler behind them on hosts; a candidate's missing
+//! bytes), compaction (the pending bytes move to the front
 //! when what comes would not fit behind them), and the count of bytes taken from the input
 //! ([`StreamDecoder::position`]). It does not decide what is pending: the scan and the steps
 //! do, by moving `start`.
 
-use super::StreamDecoder;
+use super::search::{FILL, filler};
+use super::{StreamDecoder, link_max_len};
 use crate::layout::LayoutRef;
 
 /// Takes the first `len` bytes off `input` (all of it if shorter).
@@ -21,13 +23,15 @@ pub(super) fn take<'i>(input: &mut &'i [u8], len: usize) -> &'i [u8] {
 
 /// Bytes kept free behind staged input: a window checksum reads a fixed-size block from a
 /// candidate's start (up to 128 bytes), which then stays inside the buffer instead of falling
-/// back to an exact loop.
+/// back to an exact loop; the first [`FILL`] of them take the filler of the block test.
 const STAGE_SLACK: usize = if cfg!(target_pointer_width = "64") {
     128
 } else {
-    // No window checksums there.
+    // No window checksums there, nor a block test.
     0
 };
+
+const _: () = assert!(!cfg!(target_pointer_width = "64") || STAGE_SLACK >= FILL);
 
 /// The smallest buffer of a generated decoder on a host (a target with 64-bit pointers), in
 /// bytes: chunks are appended behind the pending bytes until it is full, and only then do those
@@ -125,7 +129,9 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
 
     /// Appends the whole input behind the pending bytes if it fits the buffer with room for
     /// a checksum window after it (moving the pending bytes to the front first if needed).
-    /// Returns `false`, copying nothing, otherwise.
+    /// Returns `false`, copying nothing, otherwise. On hosts, writes [`FILL`] bytes of
+    /// [`filler`] behind it, inside that room: the block test that follows reads whole blocks
+    /// there, unmasked.
     #[inline(always)]
     pub(super) fn stage(&mut self, input: &mut &[u8]) -> bool {
         let data: &[u8] = input;
@@ -145,6 +151,16 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             return false;
         };
         copy_chunk(dst, data);
+        if cfg!(target_pointer_width = "64") {
+            // Inside the room kept free: `STAGE_SLACK >= FILL`.
+            if let Some(behind) = self
+                .buf
+                .get_mut(end..)
+                .and_then(<[u8]>::first_chunk_mut::<FILL>)
+            {
+                *behind = [filler(&self.layout, link_max_len(&self.layout).min(N)); FILL];
+            }
+        }
         self.end = end;
         self.position = self.position.wrapping_add(data.len() as u64);
         *input = &[];

@@ -191,6 +191,22 @@ impl Lead {
         })
     }
 
+    /// A byte that is not `first` and, unless every byte does, fails the second byte's test:
+    /// behind the staged input, the offsets of [`frame_may_be_inside`]'s unmasked blocks past
+    /// the pending bytes fail on it, and so do those whose second byte is in it.
+    #[inline(always)]
+    fn filler(self) -> u8 {
+        // `!first` is not `first`; if it passes the second byte's test, flipping the lowest
+        // bit that test reads fails it, and leaves a byte that is still not `first` (which
+        // differs from `!first` in all eight bits, not one).
+        let byte = !self.first;
+        if byte & self.mask == self.value {
+            byte ^ (self.mask & self.mask.wrapping_neg())
+        } else {
+            byte
+        }
+    }
+
     /// Whether offset `i` of `data` passes: a byte `reach` on that `data` does not hold passes.
     #[inline(always)]
     fn passes(self, data: &[u8], i: usize) -> bool {
@@ -418,12 +434,19 @@ fn shortest_frame<L: LayoutRef>(link: &L) -> usize {
 /// block for up to 64 offsets (a candidate cut by a small chunk), a block per 64 more; keeping
 /// what earlier calls learnt costs a branch on whether the candidate is the one of the last
 /// call, which follows the frame lengths and is mispredicted often.
+///
+/// `filled`: the [`FILL`] bytes behind the pending ones hold [`filler`] (the input was just
+/// staged). Then up to two whole blocks are compared with no mask of the offsets that may start
+/// a complete frame: the offsets past those are tested too, which can only add a `true` (an
+/// offset among the last pending bytes that passes; those past the pending bytes hold the
+/// filler, which fails), and the mask's loads and ands, a quarter of the test, are saved.
 #[inline(always)]
 pub(super) fn frame_may_be_inside<L: LayoutRef>(
     layout: &L,
     readable: &[u8],
     pending: usize,
     limit: usize,
+    filled: bool,
 ) -> bool {
     // Offsets `1..=last_start`.
     let Some(last_start) = pending.checked_sub(shortest_frame(layout)) else {
@@ -437,11 +460,45 @@ pub(super) fn frame_may_be_inside<L: LayoutRef>(
     let Some(rest) = readable.get(1..) else {
         return false;
     };
-    match may_start_block(layout, rest, last_start, limit) {
+    if filled {
+        // Whole blocks: read up to `2 * SCAN + reach + 1` bytes from the candidate's start,
+        // at most `FILL` past the pending bytes, of which there are more than `last_start`.
+        let first = may_start_block(layout, rest, SCAN, limit);
+        if last_start <= SCAN {
+            // Nearly always: a candidate cut by a small chunk.
+            if let Some(hit) = first {
+                return hit;
+            }
+        } else if last_start <= 2 * SCAN {
+            let second = rest
+                .get(SCAN..)
+                .and_then(|rest| may_start_block(layout, rest, SCAN, limit));
+            if let (Some(first), Some(second)) = (first, second) {
+                return first | second;
+            }
+        }
+    } else if let Some(hit) = may_start_block(layout, rest, last_start, limit) {
         // Nearly always: the bytes to test fit one block.
-        Some(hit) if last_start <= SCAN => hit,
-        _ => may_start(layout, rest, last_start, limit),
+        if last_start <= SCAN {
+            return hit;
+        }
     }
+    may_start(layout, rest, last_start, limit)
+}
+
+/// Bytes of [`filler`] written behind staged input on hosts, so that the block test of
+/// [`frame_may_be_inside`] reads whole blocks unmasked. Enough: its `k`-th block, read when
+/// more than `(k - 1) * SCAN` offsets are to be tested, ends `k * SCAN + reach + 1` bytes from
+/// the candidate's start, where more than `(k - 1) * SCAN + shortest` bytes are pending; the
+/// lead's reach lies inside the shortest frame, so the block ends less than `SCAN` bytes past
+/// them.
+pub(super) const FILL: usize = SCAN;
+
+/// A byte that starts no frame of `link`'s single format: its lead's [`Lead::filler`]. (With a
+/// sync set or several formats there is no block test, and the byte is never read.)
+#[inline(always)]
+pub(super) fn filler<L: LayoutRef>(link: &L, limit: usize) -> u8 {
+    Lead::of(link.layout(), limit).map_or(0, Lead::filler)
 }
 
 /// Whether a complete valid frame starts after the first byte of the pending candidate
@@ -539,7 +596,7 @@ mod tests {
 
     use std::vec::Vec;
 
-    use super::{Lead, SCAN, may_start_lead};
+    use super::{FILL, Lead, SCAN, frame_may_be_inside, may_start_lead, shortest_frame};
     use crate::layout::{ByteOrder, FrameLayout, LengthRule, Pos, WordField};
 
     /// A small xorshift generator: the tests are reproducible.
@@ -622,6 +679,76 @@ mod tests {
                 assert_eq!(filtered, exact, "{lead:?} n={n} {data:02x?}");
             }
         }
+    }
+
+    #[test]
+    fn the_filler_fails_every_lead() {
+        for first in 0..=255u8 {
+            for mask in 0..=255u8 {
+                for value in [0, mask, mask & first, mask & !first, mask & 0x5A] {
+                    let lead = Lead {
+                        first,
+                        reach: 1,
+                        mask,
+                        value,
+                    };
+                    let filler = lead.filler();
+                    assert_ne!(filler, first, "{lead:?}");
+                    if mask != 0 {
+                        assert_ne!(filler & mask, value, "{lead:?}");
+                    }
+                    assert!(!lead.passes(&[filler, filler], 0), "{lead:?}");
+                }
+            }
+        }
+    }
+
+    /// With the filler behind the pending bytes, the unmasked block test says yes wherever the
+    /// masked one does, and besides only where an offset of its blocks among the last pending
+    /// bytes, too near their end to start a complete frame, passes the lead: never on the
+    /// filler.
+    #[test]
+    fn the_filled_block_test_adds_only_the_last_pending_offsets() {
+        let mut next = rng();
+        let hflink = FrameLayout {
+            sync: &[0xFF, 0xFF],
+            ..layout(WordField::be(4, 2), 7, 6)
+        };
+        let referee = layout(WordField::le(1, 2), 9, 5);
+        let mut extra = 0;
+        for layout in [&hflink, &referee] {
+            let limit = 127;
+            let lead = Lead::of(layout, limit).unwrap();
+            let shortest = shortest_frame(&layout);
+            let own = [lead.first, lead.value];
+            for _ in 0..50_000 {
+                let pending = (next() % 140) as usize;
+                let mut buf: Vec<u8> = (0..pending + FILL + 8)
+                    .map(|_| match next() % 4 {
+                        0 | 1 => own[(next() % 2) as usize],
+                        _ => next() as u8,
+                    })
+                    .collect();
+                buf[pending..pending + FILL].fill(super::filler(&layout, limit));
+                let masked = frame_may_be_inside(&layout, &buf, pending, limit, false);
+                let filled = frame_may_be_inside(&layout, &buf, pending, limit, true);
+                let last_start = pending.saturating_sub(shortest);
+                // The offsets of the whole blocks read (one or two; more are masked); none
+                // when no offset has room for a frame.
+                let covered = if last_start <= 2 * SCAN {
+                    last_start.div_ceil(SCAN) * SCAN
+                } else {
+                    last_start
+                };
+                let near_end =
+                    (last_start + 1..pending.min(covered + 1)).any(|i| lead.passes(&buf, i));
+                assert!(!masked || filled, "{pending} {buf:02x?}");
+                assert_eq!(filled, masked || near_end, "{pending} {buf:02x?}");
+                extra += usize::from(filled && !masked);
+            }
+        }
+        // The draw reaches the case it is about.
+        assert!(extra > 100, "{extra}");
     }
 
     fn layout(field: WordField, adjust: i64, header_len: usize) -> FrameLayout<'static> {

@@ -249,7 +249,8 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         // copy of the scan in firmware.)
         if SCAN_IN_PLACE && self.start < self.end && self.stage(&mut chunk) {
             self.scan_buffered(&mut sink);
-            if self.start >= self.end || !self.frame_inside(self.limit()) {
+            // (`stage` has written its filler behind the chunk.)
+            if self.start >= self.end || !self.frame_inside(self.limit(), true) {
                 return;
             }
         }
@@ -269,7 +270,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                 // A candidate runs to the end of the chunk and needs more: keep it and, unless
                 // a frame is complete inside it, wait (what `step_input` and `step_buffered`
                 // would decide, without probing the candidate twice more).
-                if self.hold(&mut chunk) && !self.frame_inside(self.limit()) {
+                if self.hold(&mut chunk) && !self.frame_inside(self.limit(), false) {
                     return;
                 }
             } else {
@@ -287,7 +288,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
                     if SCAN_IN_PLACE {
                         continue;
                     }
-                } else if chunk.is_empty() && !self.frame_inside(self.limit()) {
+                } else if chunk.is_empty() && !self.frame_inside(self.limit(), false) {
                     // The pending candidate needs more bytes than the chunk brought: as above.
                     return;
                 }
@@ -539,14 +540,17 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// about this candidate: how many of its first bytes start no frame.
     ///
     /// Inlined on hosts, where the block test usually answers; out of line on targets without
-    /// 64-bit pointers, where it has no block test and is called from two places.
+    /// 64-bit pointers, where it has no block test and is called from two places. `filled`:
+    /// [`stage`](Self::stage) has just written its filler behind the pending bytes, and the
+    /// block test reads whole blocks unmasked
+    /// ([`search::frame_may_be_inside`](super::search::frame_may_be_inside)).
     #[inline(always)]
-    fn frame_inside(&mut self, limit: usize) -> bool {
+    fn frame_inside(&mut self, limit: usize, filled: bool) -> bool {
         if cfg!(feature = "ablate-early-truncation") {
             return false;
         }
         if cfg!(target_pointer_width = "64") {
-            self.frame_inside_here(limit)
+            self.frame_inside_here(limit, filled)
         } else {
             self.frame_inside_apart(limit)
         }
@@ -555,12 +559,12 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// [`frame_inside`](Self::frame_inside), out of line.
     #[inline(never)]
     fn frame_inside_apart(&mut self, limit: usize) -> bool {
-        self.frame_inside_here(limit)
+        self.frame_inside_here(limit, false)
     }
 
     /// [`frame_inside`](Self::frame_inside)'s body.
     #[inline(always)]
-    fn frame_inside_here(&mut self, limit: usize) -> bool {
+    fn frame_inside_here(&mut self, limit: usize, filled: bool) -> bool {
         let pending = self.pending();
         // (The block test only where words are 64 bits: on a microcontroller the exact search
         // is smaller and as fast.)
@@ -568,7 +572,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             let Some(readable) = self.buf.get(self.start..) else {
                 return false;
             };
-            if !frame_may_be_inside(&self.layout, readable, pending, limit) {
+            if !frame_may_be_inside(&self.layout, readable, pending, limit, filled) {
                 return false;
             }
         }
@@ -780,7 +784,7 @@ impl Place for InBuffer {
             } else {
                 Need::Reject(Reject::BadLength)
             }
-        } else if at_end || decoder.frame_inside(limit) {
+        } else if at_end || decoder.frame_inside(limit, false) {
             Need::Reject(Reject::Truncated)
         } else {
             Need::Step(Step::Idle)
