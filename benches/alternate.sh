@@ -17,7 +17,8 @@
 #   CRC-16, the ceiling of a decoder without `unsafe` in a build without `pclmulqdq`), for the
 #   after binary;
 # - the generated decoder against `best-early` (the best baseline with the early-truncation
-#   rule in its cheapest form: the same frames at the same moments as the generated decoder),
+#   rule as one masked block test per chunk: the same frames at the same moments as the
+#   generated decoder),
 #   for the after binary, and `best-early` against `best` (what the rule costs the best
 #   baseline) for the after and ablated binaries (the same code in both: two more samples);
 # - the early-truncation rule's cost: the after binary's `generated` time over the ablated

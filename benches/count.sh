@@ -22,8 +22,8 @@
 # early-truncation rule (the runtime's `ablate-early-truncation` measurement feature: a
 # candidate waits for its claimed length even when a frame is complete inside it): what the
 # rule costs. The frames are checked against the ground truth either way. Beside them, the best
-# baseline without and with the rule in its cheapest form (`best-early`: one masked block test
-# per chunk that ends inside a candidate): what the rule costs a decoder that does nothing else.
+# baseline without and with the rule as one masked block test per chunk that ends inside a
+# candidate (`best-early`): what the rule costs a decoder that does nothing else.
 #
 # Usage: bash benches/count.sh [--ablation] [BYTES]   (stream length, default 1 MiB)
 set -euo pipefail

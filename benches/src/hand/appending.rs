@@ -5,9 +5,10 @@
 //! chunk. A large chunk is scanned in place, after staging just enough of it to decide the
 //! pending bytes. No early-truncation search: a candidate waits for its declared length.
 //!
-//! [`Early`] is the same feed with the framework's early-truncation rule added in its cheapest
-//! form (one masked block test per chunk that ends inside a candidate): what the rule costs a
-//! decoder that does nothing else the best baseline does not.
+//! [`Early`] is the same feed with the framework's early-truncation rule added as one masked
+//! block test per chunk that ends inside a candidate: what the rule costs a decoder that does
+//! nothing else the best baseline does not. (The runtime's test reads whole blocks unmasked
+//! behind a filler it writes when it stages a chunk, which costs less.)
 
 use super::{Lead, Scan};
 
