@@ -3,10 +3,9 @@
 //!
 //! This module owns how bytes enter and leave `buf[start..end]` of a [`StreamDecoder`]: copying
 //! (whole chunks, with the block test's filler behind them on hosts; a candidate's missing
-//! bytes), compaction (the pending bytes move to the front
-//! when what comes would not fit behind them), and the count of bytes taken from the input
-//! ([`StreamDecoder::position`]). It does not decide what is pending: the scan and the steps
-//! do, by moving `start`.
+//! bytes), compaction (the pending bytes move to the front when what comes would not fit behind
+//! them), and the count of bytes taken from the input ([`StreamDecoder::position`]). It does
+//! not decide what is pending: the scan and the steps do, by moving `start`.
 
 use super::search::{FILL, filler};
 use super::{StreamDecoder, link_max_len};
@@ -31,6 +30,7 @@ const STAGE_SLACK: usize = if cfg!(target_pointer_width = "64") {
     0
 };
 
+// The filler behind staged input fits in the room kept free there.
 const _: () = assert!(!cfg!(target_pointer_width = "64") || STAGE_SLACK >= FILL);
 
 /// The smallest buffer of a generated decoder on a host (a target with 64-bit pointers), in
