@@ -7,8 +7,8 @@
 //!   `PROTOCOL_BENCH_ABLATION=1`, also the generated decoder reading its layout through a
 //!   reference, as the run-time codec does, and with the 384-byte buffer microcontrollers get
 //!   (`generated-small`; hosts get 2 KiB), and the best baseline with the early-truncation rule
-//!   as one masked block test per chunk (`best-early`: the generated decoder's semantics); in the referee groups, the best baseline's feed and
-//!   scan also with the two CRC-16s open to code without `unsafe` (`best-slicing`: slicing-by-16;
+//!   as one masked block test per chunk (`best-early`: the generated decoder's semantics); in
+//!   the referee groups, the best baseline's feed and scan also with the two CRC-16s open to code without `unsafe` (`best-slicing`: slicing-by-16;
 //!   `best-crcfast`: the `crc-fast` crate), the ceilings of a safe decoder;
 //! - encoders (generated, hand-written): a million frames into a reused buffer, for each
 //!   protocol.

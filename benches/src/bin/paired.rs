@@ -23,8 +23,8 @@
 //! Rows: the eight decoder rows of the benchmark (HFLink and referee, clean and noisy, whole
 //! streams and 64-byte chunks). Decoders: `generated`, `best` (the 2 KiB appending feed, the
 //! referee's CRC-16 folded with carry-less multiplication), `best-early` (`best` with the
-//! early-truncation rule as one masked block test per chunk: the generated decoder's semantics) and, on the
-//! referee, `best-slicing` (`best` with a slicing-by-16 CRC-16: the ceiling of a decoder
+//! early-truncation rule as one masked block test per chunk: the generated decoder's
+//! semantics) and, on the referee, `best-slicing` (`best` with a slicing-by-16 CRC-16: the ceiling of a decoder
 //! without `unsafe` in a build without `pclmulqdq`). Every decoder's frames are checked against
 //! the ground truth before it is timed.
 //!

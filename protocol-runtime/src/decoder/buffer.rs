@@ -7,8 +7,8 @@
 //! them), and the count of bytes taken from the input ([`StreamDecoder::position`]). It does
 //! not decide what is pending: the scan and the steps do, by moving `start`.
 
+use super::StreamDecoder;
 use super::search::{FILL, filler};
-use super::{StreamDecoder, link_max_len};
 use crate::layout::LayoutRef;
 
 /// Takes the first `len` bytes off `input` (all of it if shorter).
@@ -156,13 +156,14 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             target_pointer_width = "64",
             not(feature = "ablate-early-truncation")
         )) {
+            let byte = filler(&self.layout, self.limit());
             // Inside the room kept free: `STAGE_SLACK >= FILL`.
             if let Some(behind) = self
                 .buf
                 .get_mut(end..)
                 .and_then(<[u8]>::first_chunk_mut::<FILL>)
             {
-                *behind = [filler(&self.layout, link_max_len(&self.layout).min(N)); FILL];
+                *behind = [byte; FILL];
             }
         }
         self.end = end;

@@ -457,7 +457,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
 
     /// Frames longer than this are rejected (and longer than their own format's `max_len`).
     #[inline(always)]
-    fn limit(&self) -> usize {
+    pub(super) fn limit(&self) -> usize {
         link_max_len(&self.layout).min(N)
     }
 
