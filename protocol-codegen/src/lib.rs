@@ -14,6 +14,7 @@ pub mod input;
 pub mod ir;
 pub mod layout;
 pub mod lint;
+pub mod rules;
 pub mod source;
 pub mod spec;
 pub mod validate;

@@ -187,6 +187,7 @@ pub mod io_async;
 pub mod layout;
 pub mod packed;
 pub mod packet;
+pub mod rules;
 #[cfg(feature = "serde")]
 pub mod serde_impl;
 pub mod stuffing;
@@ -203,6 +204,7 @@ pub use error::{DecodeError, DecodeResult, EncodeError, EncodeResult};
 pub use group::Group;
 pub use layout::{FrameLayout, LayoutRef};
 pub use packet::{EncodePacket, PacketDecoder, PacketEvent, PacketLayout, Packets};
+pub use rules::PacketRules;
 pub use text::{FixedStr, NulStr};
 pub use wire::{Reader, Writer};
 
