@@ -285,6 +285,7 @@ pub mod __private {
         layout::*,
         packed::*,
         packet::*,
+        rules::*,
         stuffing::*,
         text::{FixedStr, NulStr},
         wire::*,

@@ -394,9 +394,10 @@ impl PacketRules<'_> {
     /// place, or into `aside` and then placed, as [`writes_aside`](Self::writes_aside) says),
     /// cut, trimmed, stuffed and moved behind a wider length; then the header values `header`
     /// writes (it also writes a flag trailer's flag and bytes), the acknowledgement flag and
-    /// the key; then the frame is sealed. `len` is the frame's length as the caller computed
-    /// it ([`frame_len`](Self::frame_len)), `flag_trailer` the bytes of flag trailer it
-    /// carries. Returns the frame's length.
+    /// the key; then the frame is sealed. `len` gives the frame's length as the caller computes
+    /// it ([`frame_len`](Self::frame_len)), asked only when the payload is written in place
+    /// (the buffer is checked against it first); `flag_trailer` is the bytes of flag trailer
+    /// the frame carries. Returns the frame's length.
     ///
     /// # Errors
     ///
@@ -411,7 +412,7 @@ impl PacketRules<'_> {
         buf: &mut [u8],
         aside: &mut [u8],
         body: &Body<'_>,
-        len: usize,
+        len: impl FnOnce() -> usize,
         flag_trailer: usize,
         write: impl FnOnce(&mut Writer<'_>) -> Result<(), EncodeError>,
         header: impl FnOnce(&mut [u8]) -> Result<(), EncodeError>,
@@ -421,7 +422,7 @@ impl PacketRules<'_> {
         let plen = if self.writes_aside(body) {
             self.place_aside(buf, aside, body, start, trailer_out, write)?
         } else {
-            let room = payload_room(buf, len, start, trailer_out)?;
+            let room = payload_room(buf, len(), start, trailer_out)?;
             let mut w = Writer::new(room);
             write(&mut w)?;
             w.position()

@@ -80,7 +80,7 @@ fn encode(rules: &PacketRules<'_>, body: &Body<'_>, payload: &[u8], dir: u64) ->
             &mut buf,
             &mut aside,
             body,
-            len,
+            || len,
             0,
             |w| w.put_bytes(payload),
             |frame| write_field(frame, WordField::le(2, 1).bits(1, 1), dir),
@@ -126,7 +126,7 @@ fn a_header_that_does_not_tell_the_message_direction_is_refused() {
     let mut buf = [0u8; 32];
     let header = |frame: &mut [u8]| write_field(frame, WordField::le(2, 1).bits(1, 1), 1);
     let len = ACKED_RULES.frame_len(&body, 0, 0);
-    let got = ACKED_RULES.assemble(&mut buf, &mut [], &body, len, 0, |_| Ok(()), header);
+    let got = ACKED_RULES.assemble(&mut buf, &mut [], &body, || len, 0, |_| Ok(()), header);
     assert_eq!(got, Err(EncodeError::ValueOutOfRange));
 }
 
@@ -159,7 +159,7 @@ fn a_key_value_that_does_not_fit_its_field_is_out_of_range() {
     };
     let mut buf = [0u8; 32];
     let len = ACKED_RULES.frame_len(&body, 0, 0);
-    let got = ACKED_RULES.assemble(&mut buf, &mut [], &body, len, 0, |_| Ok(()), |_| Ok(()));
+    let got = ACKED_RULES.assemble(&mut buf, &mut [], &body, || len, 0, |_| Ok(()), |_| Ok(()));
     assert_eq!(got, Err(EncodeError::ValueOutOfRange));
 }
 
@@ -309,7 +309,7 @@ fn a_buffer_too_small_for_the_frame_is_an_error() {
             &mut buf,
             &mut aside,
             &body,
-            len,
+            || len,
             0,
             |w| w.put_bytes(&payload),
             |_| Ok(()),
