@@ -264,7 +264,7 @@ impl PacketRules<'_> {
         let sent = frame
             .get(start..frame.len().saturating_sub(trailer))
             .ok_or(DecodeError::Truncated {
-                needed: start.saturating_add(self.trailer_len),
+                needed: start.saturating_add(trailer),
                 available: frame.len(),
             })?;
         match self.stuffing {

@@ -37,7 +37,7 @@ pub fn word_field(rt: &TokenStream, v: &HeaderValue) -> TokenStream {
 }
 
 /// A `WordField` literal.
-fn word_field_lit(rt: &TokenStream, f: WordField) -> TokenStream {
+pub(crate) fn word_field_lit(rt: &TokenStream, f: WordField) -> TokenStream {
     let WordField {
         at,
         size,

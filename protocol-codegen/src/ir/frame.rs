@@ -189,6 +189,8 @@ pub struct FrameNames {
     pub decoder_fn: String,
     /// The `FrameLayout` static (`LAYOUT`, `SCOUT_CAN_LAYOUT`).
     pub layout_static: String,
+    /// The `PacketRules` static (`RULES`, `SCOUT_CAN_RULES`).
+    pub rules_static: String,
     /// The size consts (`MAX_FRAME_LEN`, `SCOUT_CAN_HEADER_LEN`, ...).
     pub sizes: FrameSizeNames,
     /// The `wire` const of each header value, in the order of [`Frame::values`].

@@ -4,21 +4,23 @@
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
+use super::packet::{Items, unstuff_scratch};
 use crate::codegen::frame::{user_values, wire_const};
 use crate::codegen::ident;
 use crate::codegen::payload::prim_type;
 use crate::ir::{Frame, Prim, Protocol, Transport};
 
 /// `<Name>Packet` for a CAN frame format: decode from and encode to a `CanFrame`, through the
-/// frame's virtual layout (id, length, data) so the runtime verifies and seals its checks.
+/// frame's virtual layout (id, length, data) so the runtime verifies and seals its checks, and
+/// its rules, whose key is the CAN id.
 pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
-    let header = format_ident!("{}", f.names.header);
-    let packet = format_ident!("{}", f.names.packet);
-    let layout = format_ident!("{}", f.names.layout_static);
-    let header_len = format_ident!("{}", f.names.sizes.header_len);
-    let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
-    // A CAN frame's first value is its virtual `can_id` (the IR's `Transport::Can` contract).
-    let can_id = wire_const(f, 0);
+    let Items {
+        layout,
+        rules,
+        packet,
+        header,
+        ..
+    } = Items::of(f);
     let (reads, writes) = header_codec(f, rt);
     // The virtual frame holds the identifier's number; its kind is the spec's.
     let is_extended = matches!(f.transport, Transport::Can { extended: true });
@@ -53,8 +55,12 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
                 let can = can.of_kind(#is_extended)?;
                 let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
                 let frame = #layout.parse(can.to_virtual(&mut virt))?;
-                let command = Command::from_can_id(can.id).ok_or(#rt::DecodeError::UnknownCommand { key: can.id as u64 })?;
-                let payload = #rt::payload_of(frame, #header_len, #trailer_len)?;
+                let key = #rules.key(frame)?;
+                let command = u32::try_from(key)
+                    .ok()
+                    .and_then(Command::from_can_id)
+                    .ok_or(#rt::unknown_command(key))?;
+                let payload = #rules.payload(frame, &mut [])?;
                 #rt::Ok(#packet {
                     header: #header { #(#reads,)* },
                     message: Message::read_payload(command, payload)?,
@@ -67,15 +73,26 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
             /// does not fit its field.
             pub fn encode(&self) -> #rt::Result<#rt::CanFrame, #rt::EncodeError> {
                 let id = self.message.command().can_id().ok_or(#rt::EncodeError::ValueOutOfRange)?;
-                let total = #header_len.saturating_add(self.message.payload_len()).saturating_add(#trailer_len);
+                let key = [u64::from(id)];
+                let body = #rt::Body::Command { key: &key, carried: #rt::None, direction: #rt::None };
+                let total = #rules.frame_len(&body, self.message.payload_len(), 0);
+                if total > #rt::CAN_VIRTUAL_LEN {
+                    return #rt::Err(#rt::EncodeError::PayloadTooLarge { len: total, max: #rt::CAN_VIRTUAL_LEN });
+                }
                 let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
-                let frame = virt.get_mut(..total).ok_or(#rt::EncodeError::PayloadTooLarge { len: total, max: #rt::CAN_VIRTUAL_LEN })?;
-                #rt::write_header(frame, wire::#can_id, u64::from(id))?;
-                #(#writes)*
-                let payload = #rt::payload_room(frame, total, #header_len, #trailer_len)?;
-                self.message.write_payload(&mut #rt::Writer::new(payload))?;
-                #layout.seal(frame)?;
-                #rt::CanFrame::from_virtual(frame)#extended
+                let len = #rules.assemble(
+                    &mut virt,
+                    &mut [],
+                    &body,
+                    || total,
+                    0,
+                    |w| self.message.write_payload(w),
+                    |frame| {
+                        #(#writes)*
+                        #rt::Ok(())
+                    },
+                )?;
+                #rt::CanFrame::from_virtual(virt.get(..len).unwrap_or_default())#extended
             }
         }
     }
@@ -88,13 +105,18 @@ pub(super) fn emit_message_packet(
     si: usize,
     rt: &TokenStream,
 ) -> TokenStream {
-    let header = format_ident!("{}", f.names.header);
-    let packet = format_ident!("{}", f.names.packet);
+    let Items {
+        layout,
+        rules,
+        packet,
+        header,
+        ..
+    } = Items::of(f);
     let st = ident(&p.structs[si].name);
-    let layout = format_ident!("{}", f.names.layout_static);
     let header_len = format_ident!("{}", f.names.sizes.header_len);
-    let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
     let (reads, writes) = header_codec(f, rt);
+    let (scratch, scratch_ref) = unstuff_scratch(f);
+    let flagged = flag_trailer_len(f);
     let doc = format!(
         " A whole `{}` frame, decoded: the header values and its `{}`.",
         f.name, p.structs[si].name
@@ -123,7 +145,8 @@ pub(super) fn emit_message_packet(
             /// `PayloadLength` if the payload's size does not fit the struct, and errors of its
             /// fields.
             pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
-                let payload = #rt::payload_of(frame, #header_len, #trailer_len)?;
+                #scratch
+                let payload = #rules.payload(frame, #scratch_ref)?;
                 #rt::Ok(#packet {
                     header: #header { #(#reads,)* },
                     payload: #rt::Payload::from_bytes(payload)?,
@@ -132,7 +155,8 @@ pub(super) fn emit_message_packet(
             /// Bytes of the encoded frame.
             #[inline(always)]
             pub fn encoded_len(&self) -> usize {
-                #header_len.saturating_add(#rt::Payload::wire_len(&self.payload)).saturating_add(#trailer_len)
+                let body = #rt::Body::Struct { start: #header_len };
+                #rules.frame_len(&body, #rt::Payload::wire_len(&self.payload), #flagged)
             }
             /// Encode the frame into the start of `buf`; returns its length.
             ///
@@ -141,13 +165,18 @@ pub(super) fn emit_message_packet(
             /// header value does not fit its field.
             #[inline(always)]
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
-                let total = self.encoded_len();
-                let frame = #rt::frame_room(buf, total)?;
-                #(#writes)*
-                let payload = #rt::payload_room(frame, total, #header_len, #trailer_len)?;
-                #rt::Payload::write(&self.payload, &mut #rt::Writer::new(payload))?;
-                #layout.seal(frame)?;
-                #rt::Ok(total)
+                #rules.assemble(
+                    buf,
+                    &mut [],
+                    &#rt::Body::Struct { start: #header_len },
+                    || self.encoded_len(),
+                    #flagged,
+                    |w| #rt::Payload::write(&self.payload, w),
+                    |frame| {
+                        #(#writes)*
+                        #rt::Ok(())
+                    },
+                )
             }
         }
     }

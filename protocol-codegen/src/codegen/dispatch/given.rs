@@ -2,7 +2,7 @@
 //! `Packet` has a decoder per direction (`decode_request`, `from_response_frame`, ...) instead
 //! of `decode` and `from_frame`, and each direction has a layout type (`RequestLayout`) that
 //! runtime stream decoders and integrations run. A direction that carries one struct in place of
-//! the dispatch key starts its payload where the key would be.
+//! the dispatch key starts its payload where the key would be (`Body::Struct` to the rules).
 //!
 //! Named decoders rather than a direction argument: a program is one side of a link, so the
 //! direction it decodes is a fact of its source, and `Packet::decode_response` says in rustdoc,
@@ -11,62 +11,23 @@
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
+use super::packet::{read_id, unstuff_scratch};
+use super::rules::rules_static;
 use crate::codegen::docs::doc_attrs;
 use crate::ir::{Direction, Frame, Protocol};
 
-/// What a direction carrying a struct changes in encoding: where the payload starts, the
-/// frame's length, and the dispatch key written only for a command.
-pub(super) struct Keyless {
-    pub start: TokenStream,
-    pub len_arms: TokenStream,
-    pub write_key: TokenStream,
-}
-
-/// `None` when no direction carries a struct in place of the command.
-pub(super) fn keyless(
+/// `decode_<direction>` and `from_<direction>_frame` for every direction.
+pub(super) fn decoders(
     p: &Protocol,
     f: &Frame,
-    write: &TokenStream,
+    header_fields: &[TokenStream],
     rt: &TokenStream,
-) -> Option<Keyless> {
-    let header_len = format_ident!("{}", f.names.sizes.header_len);
-    let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
-    let (names, starts): (Vec<_>, Vec<_>) = p
-        .directions
-        .iter()
-        .filter_map(|d| Some((format_ident!("{}", d.rust_name), d.message?.1)))
-        .unzip();
-    if names.is_empty() {
-        return None;
-    }
-    Some(Keyless {
-        start: quote!(match &self.message { #(Message::#names(_) => #starts,)* _ => #header_len }),
-        len_arms: quote! {
-            #(Message::#names(m) => #starts
-                .saturating_add(#rt::Payload::wire_len(m))
-                .saturating_add(#trailer_len),)*
-        },
-        write_key: quote!(if let #rt::Some(command) = self.message.command() { #write }),
-    })
-}
-
-/// What a frame's decoding reads before the payload: the header values, the dispatch key, the
-/// command and the (unstuffed) payload.
-pub(super) struct Reads<'a> {
-    pub header_fields: &'a [TokenStream],
-    pub read_key: &'a TokenStream,
-    pub key_u64: &'a TokenStream,
-    pub unstuff: &'a TokenStream,
-}
-
-/// `decode_<direction>` and `from_<direction>_frame` for every direction.
-pub(super) fn decoders(p: &Protocol, f: &Frame, r: &Reads<'_>, rt: &TokenStream) -> TokenStream {
+) -> TokenStream {
     let layout = format_ident!("{}", f.names.layout_static);
+    let rules = rules_static(f);
     let packet = format_ident!("{}", f.names.packet);
     let header = format_ident!("{}", f.names.header);
-    let header_len = format_ident!("{}", f.names.sizes.header_len);
-    let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
-    let header_fields = r.header_fields;
+    let (scratch, scratch_ref) = unstuff_scratch(f);
     let mut out = TokenStream::new();
     for d in &p.directions {
         let v = format_ident!("{}", d.rust_name);
@@ -74,16 +35,16 @@ pub(super) fn decoders(p: &Protocol, f: &Frame, r: &Reads<'_>, rt: &TokenStream)
         let from_frame = format_ident!("from_{}_frame", d.name);
         let body = match d.message {
             Some((_, start)) => quote! {
-                let payload = #rt::payload_of(frame, #start, #trailer_len)?;
+                #scratch
+                let payload = #rules.payload_from(frame, #start, #scratch_ref)?;
                 let message = Message::#v(#rt::read_payload(payload)?);
             },
             None => {
-                let (read_key, key_u64, unstuff) = (r.read_key, r.key_u64, r.unstuff);
+                let id = read_id(p, f, rt);
                 quote! {
-                    #read_key
-                    let command = Command::from_id(id).ok_or(#rt::unknown_command(#key_u64))?;
-                    let payload = #rt::payload_of(frame, #header_len, #trailer_len)?;
-                    #unstuff
+                    #id
+                    #scratch
+                    let payload = #rules.payload(frame, #scratch_ref)?;
                     let message = Message::#v(#v::read_payload(command, payload)?);
                 }
             }

@@ -7,78 +7,57 @@
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
-use super::frames::header_codec;
-use super::key_prims;
-use super::packet::packet_direction;
-use crate::codegen::frame::wire_const;
+use super::frames::{flag_trailer_len, header_codec};
+use super::packet::{Items, read_id, read_message, unstuff_scratch};
 use crate::codegen::ident;
-use crate::codegen::payload::prim_type;
 use crate::ir::{Frame, Protocol};
 
-/// Reading frame `f`'s dispatch key into the first format's `CommandId` (a value that does
-/// not fit it is an unknown command), and writing a command's id into `f`'s fields (an id
-/// that does not fit them is `ValueOutOfRange`: the format does not carry the command).
-fn key_codec(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
-    let header_len = format_ident!("{}", f.names.sizes.header_len);
-    let consts: Vec<_> = f.dispatch.iter().map(|&i| wire_const(f, i)).collect();
-    let types: Vec<_> = key_prims(p).into_iter().map(prim_type).collect();
-    let vars: Vec<_> = (0..consts.len()).map(|i| format_ident!("k{}", i)).collect();
-    let widths: Vec<u32> = f.dispatch.iter().map(|&i| f.values[i].width).collect();
-    let mut key = quote!(k0);
-    for (v, w) in vars.iter().zip(&widths).skip(1) {
-        key = quote!((#key << #w) | #v);
-    }
-    let fits: Vec<_> = vars
-        .iter()
-        .zip(&types)
-        .map(|(v, t)| quote!(#t::try_from(#v).map_err(|_| #rt::unknown_command(key))?))
-        .collect();
-    let id = if fits.len() == 1 {
-        fits[0].clone()
-    } else {
-        quote!((#(#fits),*))
-    };
-    let read = quote! {
-        #(let #vars = #rt::header_value(frame, wire::#consts, #header_len)?;)*
-        let key = #key;
-        let id: CommandId = #id;
-    };
-    let write = if consts.len() == 1 {
-        let c = &consts[0];
-        quote!(#rt::write_header(frame, wire::#c, u64::from(id))?;)
-    } else {
-        let idx: Vec<syn::Index> = (0..consts.len()).map(syn::Index::from).collect();
-        quote!(#(#rt::write_header(frame, wire::#consts, u64::from(id.#idx))?;)*)
-    };
-    (read, write)
-}
-
 /// `<Name>Packet` for a frame format with [`PacketKind::Commands`](crate::ir::PacketKind):
-/// its header and the link's `Message`, decoded through its own layout and dispatch key.
+/// its header and the link's `Message`, decoded through its own layout and rules (its own
+/// dispatch key: a key that does not fit the link's ids is an unknown command, an id that does
+/// not fit the format's key fields is `ValueOutOfRange`).
 pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let first = &p.frames[0];
-    let header = format_ident!("{}", f.names.header);
-    let packet = format_ident!("{}", f.names.packet);
-    let layout = format_ident!("{}", f.names.layout_static);
-    let header_len = format_ident!("{}", f.names.sizes.header_len);
-    let trailer_len = format_ident!("{}", f.names.sizes.trailer_len);
-    let aside_len = format_ident!("{}", first.names.sizes.max_payload_len);
+    let Items {
+        layout,
+        rules,
+        packet,
+        header,
+        ..
+    } = Items::of(f);
+    // The whole payload is written aside before the format's part of it is placed.
+    let aside_len = [first, f]
+        .into_iter()
+        .max_by_key(|g| g.payload_max)
+        .map(|g| format_ident!("{}", g.names.sizes.max_payload_len));
     let (reads, writes) = header_codec(f, rt);
-    let (read_key, write_key) = key_codec(p, f, rt);
-    // Validation refuses a format without extension fields in a spec with directions.
-    let (by_direction, direction_check) = packet_direction(p, f, rt);
-    let (read, base) = if f.extensions {
-        (by_direction, quote!())
+    let id = read_id(p, f, rt);
+    let (scratch, scratch_ref) = unstuff_scratch(f);
+    let flagged = flag_trailer_len(f);
+    let n = f.dispatch.len();
+    // A format without extension fields carries the fields before them (`carried`).
+    let (read, carried) = if f.extensions {
+        (read_message(p, f), quote!(#rt::None))
     } else {
         (
             quote!(Message::read_base_payload(command, payload)?),
-            quote! {
-                let len = match Message::base_len(self.message.command()) {
-                    #rt::Some((base, _)) => base.min(len),
-                    #rt::None => len,
-                };
-            },
+            quote!(Message::base_len(command).map(|(base, _)| base)),
         )
+    };
+    let direction = if p.directions.is_empty() {
+        quote!(#rt::None)
+    } else {
+        let arms = p.directions.iter().enumerate().map(|(i, d)| {
+            let v = format_ident!("{}", d.rust_name);
+            quote!(Message::#v(_) => #rt::Some(#i),)
+        });
+        quote!(match &self.message { #(#arms)* })
+    };
+    let key = if n == 1 {
+        quote!([u64::from(id)])
+    } else {
+        let idx = (0..n).map(syn::Index::from);
+        quote!([#(u64::from(id.#idx)),*])
     };
     let doc = format!(
         " A whole `{}` frame, decoded: the header values and the message (a command whose id \
@@ -111,48 +90,56 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
             /// what this format carries of the command's, and errors of the payload's fields.
             pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
                 let header = #header { #(#reads,)* };
-                #read_key
-                let command = Command::from_id(id).ok_or(#rt::unknown_command(key))?;
-                let payload = #rt::payload_of(frame, #header_len, #trailer_len)?;
+                #id
+                #scratch
+                let payload = #rules.payload(frame, #scratch_ref)?;
                 let message = #read;
                 #rt::Ok(#packet { header, message })
             }
-            /// The payload as this format carries it, written into `aside`; its length.
-            fn write_aside(&self, aside: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
-                let mut w = #rt::Writer::new(aside);
-                self.message.write_payload(&mut w)?;
-                let len = w.position();
-                #base
-                #rt::Ok(len)
+            /// What the frame carries, as the packet rules take it; the key's values go into
+            /// `key`.
+            #[inline(always)]
+            fn body<'k>(&self, key: &'k mut [u64; #n]) -> #rt::Body<'k> {
+                let command = self.message.command();
+                let id = command.id();
+                *key = #key;
+                #rt::Body::Command { key, carried: #carried, direction: #direction }
             }
             /// Bytes of the encoded frame.
             pub fn encoded_len(&self) -> usize {
+                let mut key = [0u64; #n];
+                let body = self.body(&mut key);
                 let mut aside = [0u8; #aside_len];
-                let plen = self.write_aside(&mut aside).unwrap_or_else(|_| self.message.payload_len());
-                #header_len.saturating_add(plen).saturating_add(#trailer_len)
+                let mut w = #rt::Writer::new(&mut aside);
+                let plen = match self.message.write_payload(&mut w) {
+                    #rt::Ok(()) => #rules.wire_len(&body, w.written()),
+                    #rt::Err(_) => self.message.payload_len(),
+                };
+                #rules.frame_len(&body, plen, #flagged)
             }
             /// Encode the frame into the start of `buf`; returns its length.
             ///
             /// # Errors
             /// `EncodeError::BufferTooSmall` if `buf` is too short, `ValueOutOfRange` if the
             /// command's id does not fit this format's dispatch key (the format does not carry
-            /// it), a header value does not fit its field or does not match the message's
+            /// it), a header value does not fit its field or does not tell the message's
             /// direction.
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
-                #direction_check
+                let mut key = [0u64; #n];
+                let body = self.body(&mut key);
                 let mut aside = [0u8; #aside_len];
-                let plen = self.write_aside(&mut aside)?;
-                let total = #header_len.saturating_add(plen).saturating_add(#trailer_len);
-                let frame = #rt::frame_room(buf, total)?;
-                let room = #rt::payload_room(frame, total, #header_len, #trailer_len)?;
-                for (to, from) in room.iter_mut().zip(aside.iter()) {
-                    *to = *from;
-                }
-                #(#writes)*
-                let id = self.message.command().id();
-                #write_key
-                #layout.seal(frame)?;
-                #rt::Ok(total)
+                #rules.assemble(
+                    buf,
+                    &mut aside,
+                    &body,
+                    || self.encoded_len(),
+                    #flagged,
+                    |w| self.message.write_payload(w),
+                    |frame| {
+                        #(#writes)*
+                        #rt::Ok(())
+                    },
+                )
             }
         }
     }

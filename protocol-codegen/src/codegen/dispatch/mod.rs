@@ -9,6 +9,7 @@ mod given;
 mod link;
 mod message;
 mod packet;
+mod rules;
 
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -24,6 +25,7 @@ use link::{emit_base_payload, emit_commands_packet, emit_link};
 use message::{emit_direction_message, emit_message_enum};
 pub(crate) use packet::direction_test;
 use packet::emit_packet;
+use rules::emit_rules;
 
 /// Everything about commands and messages, for the first frame.
 pub fn emit_dispatch(p: &Protocol) -> TokenStream {
@@ -31,14 +33,24 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
         return quote!();
     };
     let rt = rt();
+    // Every format with a packet type decodes and encodes through its rules.
+    let rules: TokenStream = p
+        .frames
+        .iter()
+        .filter(|f| f.packet != PacketKind::None)
+        .map(|f| emit_rules(p, f, &rt))
+        .collect();
     if f.dispatch.is_empty() {
         return match f.packet {
-            PacketKind::Message(si) => emit_message_packet(p, f, si, &rt),
+            PacketKind::Message(si) => {
+                let packet = emit_message_packet(p, f, si, &rt);
+                quote!(#rules #packet)
+            }
             _ => quote!(),
         };
     }
     // The message enums' `payload_len` and `write_payload` are the runtime trait's.
-    let mut out = quote!(use #rt::MessagePayload as _;);
+    let mut out = quote!(use #rt::MessagePayload as _; #rules);
     out.extend(emit_command_enum(p, f, &rt));
     if p.directions.is_empty() {
         out.extend(emit_message_enum(

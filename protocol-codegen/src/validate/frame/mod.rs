@@ -293,6 +293,7 @@ fn lower_names(name: &str, first: bool, values: &[HeaderValue]) -> FrameNames {
             format!("{name}_decoder")
         },
         layout_static: constant("LAYOUT"),
+        rules_static: constant("RULES"),
         sizes: FrameSizeNames {
             max_frame_len: constant("MAX_FRAME_LEN"),
             min_frame_len: constant("MIN_FRAME_LEN"),
