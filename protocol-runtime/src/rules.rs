@@ -15,7 +15,7 @@
 //! It does not verify frames (the engine does, through [`FrameLayout`]) nor read or write
 //! payload fields (the payload code does).
 
-use crate::encoder::{frame_room, payload_room};
+use crate::encoder::{MessagePayload, frame_room, payload_room};
 use crate::error::{DecodeError, EncodeError};
 use crate::layout::{FrameLayout, WordField};
 use crate::stuffing::Stuffing;
@@ -59,6 +59,18 @@ pub enum DirectionTest {
 }
 
 impl DirectionTest {
+    /// The test that `field` lies in `first ..= last`.
+    #[must_use]
+    pub const fn in_range(field: WordField, first: u64, last: u64) -> Self {
+        DirectionTest::InRange { field, first, last }
+    }
+
+    /// The test that `field` equals `value`.
+    #[must_use]
+    pub const fn equals(field: WordField, value: u64) -> Self {
+        DirectionTest::Equals { field, value }
+    }
+
     /// Whether the header of `frame` passes the test (`None` if the frame is too short for
     /// the field).
     #[inline(always)]
@@ -438,6 +450,60 @@ impl PacketRules<'_> {
         self.write_body(frame, body)?;
         self.layout.seal(frame)?;
         Ok(total)
+    }
+
+    /// The length of the frame that carries `message` as `body`, with `flag_trailer` bytes of
+    /// flag trailer: [`frame_len`](Self::frame_len) of the message's payload as it goes on the
+    /// wire (written into `aside` and measured where the rules write aside; `aside` is unused
+    /// otherwise and may be empty).
+    #[inline(always)]
+    pub fn message_len<M: MessagePayload>(
+        &self,
+        body: &Body<'_>,
+        message: &M,
+        aside: &mut [u8],
+        flag_trailer: usize,
+    ) -> usize {
+        let plen = if self.writes_aside(body) {
+            let mut w = Writer::new(aside);
+            match message.write_payload(&mut w) {
+                Ok(()) => self.wire_len(body, w.written()),
+                // The encoder reports the error; the length is the message's own.
+                Err(_) => message.payload_len(),
+            }
+        } else {
+            message.payload_len()
+        };
+        self.frame_len(body, plen, flag_trailer)
+    }
+
+    /// Encodes `message` as `body` into the start of `buf`: [`assemble`](Self::assemble) with
+    /// the message's payload and `header` writing the header values. Returns the frame's
+    /// length.
+    ///
+    /// # Errors
+    ///
+    /// The errors of [`assemble`](Self::assemble).
+    #[inline(always)]
+    pub fn encode_message<M: MessagePayload>(
+        &self,
+        buf: &mut [u8],
+        aside: &mut [u8],
+        body: &Body<'_>,
+        message: &M,
+        flag_trailer: usize,
+        header: impl FnOnce(&mut [u8]) -> Result<(), EncodeError>,
+    ) -> Result<usize, EncodeError> {
+        self.assemble(
+            buf,
+            aside,
+            body,
+            // Asked only where the payload is written in place, which needs no aside.
+            || self.message_len(body, message, &mut [], flag_trailer),
+            flag_trailer,
+            |w| message.write_payload(w),
+            header,
+        )
     }
 
     /// Writes the payload into `aside`, then places what is sent of it at `start` of `buf`,

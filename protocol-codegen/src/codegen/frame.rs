@@ -8,8 +8,8 @@ use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
 use super::docs::{doc_attrs, frame_doc};
-use super::payload::prim_type;
-use super::{ident, rt};
+use super::header::emit_header;
+use super::rt;
 use crate::ir::{
     Algorithm, ByteOrder, Check, CheckNaming, CrcTable, Frame, HeaderValue, PacketKind, Pos, Prim,
     Protocol, Role, Transport,
@@ -294,7 +294,7 @@ pub fn emit_frames(p: &Protocol) -> TokenStream {
             || f.message.is_some()
             || f.packet == PacketKind::Commands
         {
-            out.extend(emit_header(f, &format_ident!("{}", f.names.header)));
+            out.extend(emit_header(f));
         }
     }
     out
@@ -415,38 +415,4 @@ pub fn user_values(f: &Frame) -> impl Iterator<Item = (usize, &HeaderValue)> {
         .iter()
         .enumerate()
         .filter(|(_, v)| matches!(v.role, Role::User { .. }))
-}
-
-fn emit_header(f: &Frame, name: &Ident) -> TokenStream {
-    let rt = rt();
-    let fields = user_values(f).map(|(_, v)| {
-        let id = ident(&v.name);
-        let ty = prim_type(v.prim);
-        let d = doc_attrs(if v.doc.is_empty() {
-            "Header value."
-        } else {
-            &v.doc
-        });
-        quote!(#d pub #id: #ty)
-    });
-    let trailer = f.flag_trailer.as_ref().map(|t| {
-        let (id, len) = (ident(&t.name), t.len);
-        let flag = &f.values[t.flag].name;
-        let doc = doc_attrs(&format!(
-            "{}{}The {len} bytes at the end of the frame, present when `{flag}` is set (the codec sets \
-             it from this field). Carried as received, not verified.",
-            t.doc,
-            if t.doc.is_empty() { "" } else { "\n\n" }
-        ));
-        quote!(#doc pub #id: #rt::Option<[u8; #len]>,)
-    });
-    quote! {
-        /// The header values a sender sets (the codec computes the sync, length, command and
-        /// checks).
-        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-        pub struct #name {
-            #(#fields,)*
-            #trailer
-        }
-    }
 }

@@ -8,6 +8,7 @@
 pub mod dispatch;
 pub mod docs;
 pub mod frame;
+mod header;
 pub mod integrations;
 pub mod packets;
 pub mod paths;

@@ -5,10 +5,8 @@ use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
 use super::packet::{Items, unstuff_scratch};
-use crate::codegen::frame::{user_values, wire_const};
 use crate::codegen::ident;
-use crate::codegen::payload::prim_type;
-use crate::ir::{Frame, Prim, Protocol, Transport};
+use crate::ir::{Frame, Protocol, Transport};
 
 /// `<Name>Packet` for a CAN frame format: decode from and encode to a `CanFrame`, through the
 /// frame's virtual layout (id, length, data) so the runtime verifies and seals its checks, and
@@ -21,7 +19,6 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
         header,
         ..
     } = Items::of(f);
-    let (reads, writes) = header_codec(f, rt);
     // The virtual frame holds the identifier's number; its kind is the spec's.
     let is_extended = matches!(f.transport, Transport::Can { extended: true });
     let extended = if is_extended {
@@ -62,7 +59,7 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
                     .ok_or(#rt::unknown_command(key))?;
                 let payload = #rules.payload(frame, &mut [])?;
                 #rt::Ok(#packet {
-                    header: #header { #(#reads,)* },
+                    header: #header::read(frame)?,
                     message: Message::read_payload(command, payload)?,
                 })
             }
@@ -87,10 +84,7 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
                     || total,
                     0,
                     |w| self.message.write_payload(w),
-                    |frame| {
-                        #(#writes)*
-                        #rt::Ok(())
-                    },
+                    |frame| self.header.write(frame),
                 )?;
                 #rt::CanFrame::from_virtual(virt.get(..len).unwrap_or_default())#extended
             }
@@ -114,7 +108,6 @@ pub(super) fn emit_message_packet(
     } = Items::of(f);
     let st = ident(&p.structs[si].name);
     let header_len = format_ident!("{}", f.names.sizes.header_len);
-    let (reads, writes) = header_codec(f, rt);
     let (scratch, scratch_ref) = unstuff_scratch(f);
     let flagged = flag_trailer_len(f);
     let doc = format!(
@@ -148,7 +141,7 @@ pub(super) fn emit_message_packet(
                 #scratch
                 let payload = #rules.payload(frame, #scratch_ref)?;
                 #rt::Ok(#packet {
-                    header: #header { #(#reads,)* },
+                    header: #header::read(frame)?,
                     payload: #rt::Payload::from_bytes(payload)?,
                 })
             }
@@ -172,51 +165,11 @@ pub(super) fn emit_message_packet(
                     || self.encoded_len(),
                     #flagged,
                     |w| #rt::Payload::write(&self.payload, w),
-                    |frame| {
-                        #(#writes)*
-                        #rt::Ok(())
-                    },
+                    |frame| self.header.write(frame),
                 )
             }
         }
     }
-}
-
-/// Reading the user-set header values of frame `f` into a header struct's fields, and writing
-/// them back from `self.header`, through the frame's `wire` consts.
-pub(super) fn header_codec(f: &Frame, rt: &TokenStream) -> (Vec<TokenStream>, Vec<TokenStream>) {
-    let header_len = format_ident!("{}", f.names.sizes.header_len);
-    user_values(f)
-        .map(|(i, v)| {
-            let id = ident(&v.name);
-            let c = wire_const(f, i);
-            let value = quote!(#rt::header_value(frame, wire::#c, #header_len)?);
-            let read = if v.prim == Prim::Bool {
-                quote!(#id: #value != 0)
-            } else {
-                let t = prim_type(v.prim);
-                quote!(#id: #value as #t)
-            };
-            let write = quote!(#rt::write_header(frame, wire::#c, self.header.#id as u64)?;);
-            (read, write)
-        })
-        .chain(flag_trailer_codec(f, rt))
-        .unzip()
-}
-
-/// The flag trailer's `Header` field read from a frame, and its flag and bytes written into
-/// one (the frame's length counts them: [`flag_trailer_len`]).
-fn flag_trailer_codec(f: &Frame, rt: &TokenStream) -> Option<(TokenStream, TokenStream)> {
-    let t = f.flag_trailer.as_ref()?;
-    let (id, len, flag) = (ident(&t.name), t.len, wire_const(f, t.flag));
-    let layout = format_ident!("{}", f.names.layout_static);
-    Some((
-        quote!(#id: #rt::flag_trailer::<#len>(&#layout, frame)),
-        quote! {
-            #rt::write_header(frame, wire::#flag, u64::from(self.header.#id.is_some()))?;
-            #rt::write_flag_trailer(frame, self.header.#id.as_ref())?;
-        },
-    ))
 }
 
 /// Bytes of the flag trailer of the frame being encoded (`self`), as an expression: 0 for a

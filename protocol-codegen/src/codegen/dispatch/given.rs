@@ -17,12 +17,7 @@ use crate::codegen::docs::doc_attrs;
 use crate::ir::{Direction, Frame, Protocol};
 
 /// `decode_<direction>` and `from_<direction>_frame` for every direction.
-pub(super) fn decoders(
-    p: &Protocol,
-    f: &Frame,
-    header_fields: &[TokenStream],
-    rt: &TokenStream,
-) -> TokenStream {
+pub(super) fn decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let layout = format_ident!("{}", f.names.layout_static);
     let rules = rules_static(f);
     let packet = format_ident!("{}", f.names.packet);
@@ -82,7 +77,7 @@ pub(super) fn decoders(
             /// # Errors
             #errors
             pub fn #from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
-                let header = #header { #(#header_fields,)* };
+                let header = #header::read(frame)?;
                 #body
                 #rt::Ok(#packet { header, message })
             }

@@ -7,8 +7,8 @@
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
-use super::frames::{flag_trailer_len, header_codec};
-use super::packet::{Items, read_id, read_message, unstuff_scratch};
+use super::frames::flag_trailer_len;
+use super::packet::{Items, aside, read_id, read_message, unstuff_scratch};
 use crate::codegen::ident;
 use crate::ir::{Frame, Protocol};
 
@@ -29,8 +29,11 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
     let aside_len = [first, f]
         .into_iter()
         .max_by_key(|g| g.payload_max)
-        .map(|g| format_ident!("{}", g.names.sizes.max_payload_len));
-    let (reads, writes) = header_codec(f, rt);
+        .map_or_else(
+            || format_ident!("MAX_PAYLOAD_LEN"),
+            |g| format_ident!("{}", g.names.sizes.max_payload_len),
+        );
+    let aside = aside(f, &aside_len);
     let id = read_id(p, f, rt);
     let (scratch, scratch_ref) = unstuff_scratch(f);
     let flagged = flag_trailer_len(f);
@@ -89,7 +92,7 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
             /// header matches no direction, `PayloadLength` when the payload's size is not
             /// what this format carries of the command's, and errors of the payload's fields.
             pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
-                let header = #header { #(#reads,)* };
+                let header = #header::read(frame)?;
                 #id
                 #scratch
                 let payload = #rules.payload(frame, #scratch_ref)?;
@@ -108,14 +111,7 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
             /// Bytes of the encoded frame.
             pub fn encoded_len(&self) -> usize {
                 let mut key = [0u64; #n];
-                let body = self.body(&mut key);
-                let mut aside = [0u8; #aside_len];
-                let mut w = #rt::Writer::new(&mut aside);
-                let plen = match self.message.write_payload(&mut w) {
-                    #rt::Ok(()) => #rules.wire_len(&body, w.written()),
-                    #rt::Err(_) => self.message.payload_len(),
-                };
-                #rules.frame_len(&body, plen, #flagged)
+                #rules.message_len(&self.body(&mut key), &self.message, #aside, #flagged)
             }
             /// Encode the frame into the start of `buf`; returns its length.
             ///
@@ -127,19 +123,7 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
                 let mut key = [0u64; #n];
                 let body = self.body(&mut key);
-                let mut aside = [0u8; #aside_len];
-                #rules.assemble(
-                    buf,
-                    &mut aside,
-                    &body,
-                    || self.encoded_len(),
-                    #flagged,
-                    |w| self.message.write_payload(w),
-                    |frame| {
-                        #(#writes)*
-                        #rt::Ok(())
-                    },
-                )
+                #rules.encode_message(buf, #aside, &body, &self.message, #flagged, |frame| self.header.write(frame))
             }
         }
     }

@@ -6,7 +6,7 @@
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
-use super::frames::{flag_trailer_len, header_codec};
+use super::frames::flag_trailer_len;
 use super::given;
 use super::key_prims;
 use super::rules::rules_static;
@@ -178,46 +178,20 @@ fn emit_body_fn(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
 }
 
 /// The aside buffer a payload is written into before it is placed, when the format may write
-/// aside (trailing zeros, stuffing), sized `len`; else none.
-pub(super) fn aside(f: &Frame, len: &Ident) -> (TokenStream, TokenStream) {
+/// aside (trailing zeros, stuffing, the carried fields), sized `len`; else none.
+pub(super) fn aside(f: &Frame, len: &Ident) -> TokenStream {
     if f.truncate_zeros || f.stuffing.is_some() || !f.extensions {
-        (quote!(let mut aside = [0u8; #len];), quote!(&mut aside))
+        quote!(&mut [0u8; #len])
     } else {
-        (quote!(), quote!(&mut []))
-    }
-}
-
-/// `encoded_len`'s payload bytes on the wire: written aside and measured where the rules write
-/// aside, else the message's size.
-pub(super) fn wire_payload_len(f: &Frame, len: &Ident, rt: &TokenStream) -> TokenStream {
-    let rules = rules_static(f);
-    if aside(f, len).0.is_empty() {
-        return quote!(let plen = self.message.payload_len(););
-    }
-    quote! {
-        let plen = if #rules.writes_aside(&body) {
-            let mut aside = [0u8; #len];
-            let mut w = #rt::Writer::new(&mut aside);
-            match self.message.write_payload(&mut w) {
-                #rt::Ok(()) => #rules.wire_len(&body, w.written()),
-                #rt::Err(_) => self.message.payload_len(),
-            }
-        } else {
-            self.message.payload_len()
-        };
+        quote!(&mut [])
     }
 }
 
 /// `Packet::decode` and `Packet::from_frame` (with directions the decoder is given, the
 /// decoders of each direction).
-fn packet_decoders(
-    p: &Protocol,
-    f: &Frame,
-    header_fields: &[TokenStream],
-    rt: &TokenStream,
-) -> TokenStream {
+fn packet_decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     if p.directions_given() {
-        return given::decoders(p, f, header_fields, rt);
+        return given::decoders(p, f, rt);
     }
     let Items {
         layout,
@@ -256,7 +230,7 @@ fn packet_decoders(
         /// header matches no direction, `PayloadLength` when the payload's size is not the
         /// command's, and errors of the payload's fields.
         pub fn from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
-            let header = #header { #(#header_fields,)* };
+            let header = #header::read(frame)?;
             #ack
             #id
             #scratch
@@ -277,13 +251,11 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
         header,
         ..
     } = Items::of(f);
-    let (header_fields, header_writes) = header_codec(f, rt);
-    let decoders = packet_decoders(p, f, &header_fields, rt);
+    let decoders = packet_decoders(p, f, rt);
     let body_fn = emit_body_fn(p, f, rt);
     let n = f.dispatch.len();
     let flagged = flag_trailer_len(f);
-    let plen = wire_payload_len(f, &max_payload_len, rt);
-    let (aside, aside_ref) = aside(f, &max_payload_len);
+    let aside = aside(f, &max_payload_len);
     // A command only a wider format of the link carries.
     let not_carried = if f.commands.len() < p.commands.len() {
         quote! {
@@ -310,9 +282,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
             #[inline(always)]
             pub fn encoded_len(&self) -> usize {
                 let mut key = [0u64; #n];
-                let body = self.body(&mut key);
-                #plen
-                #rules.frame_len(&body, plen, #flagged)
+                #rules.message_len(&self.body(&mut key), &self.message, #aside, #flagged)
             }
             /// Encode the frame into the start of `buf`; returns its length.
             ///
@@ -325,19 +295,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
                 let mut key = [0u64; #n];
                 let body = self.body(&mut key);
-                #aside
-                #rules.assemble(
-                    buf,
-                    #aside_ref,
-                    &body,
-                    || self.encoded_len(),
-                    #flagged,
-                    |w| self.message.write_payload(w),
-                    |frame| {
-                        #(#header_writes)*
-                        #rt::Ok(())
-                    },
-                )
+                #rules.encode_message(buf, #aside, &body, &self.message, #flagged, |frame| self.header.write(frame))
             }
         }
     }

@@ -63,7 +63,7 @@ pub(super) fn emit_rules(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStre
                 },
                 rt,
             );
-            quote!(#rt::DirectionTest::InRange { field: #w, first: #first, last: #last })
+            quote!(#rt::DirectionTest::in_range(#w, #first, #last))
         }
         DirectionTest::Equals { field: w, value: v } => {
             let w = field(
@@ -74,7 +74,7 @@ pub(super) fn emit_rules(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStre
                 },
                 rt,
             );
-            quote!(#rt::DirectionTest::Equals { field: #w, value: #v })
+            quote!(#rt::DirectionTest::equals(#w, #v))
         }
     });
     let stuffing = match plan.stuffing {
