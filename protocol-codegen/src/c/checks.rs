@@ -14,8 +14,7 @@ use std::fmt::Write as _;
 use crate::ir::{Algorithm, Check, CheckExtra, CrcTable, Field, FieldKind, Protocol, Struct};
 use protocol_runtime::checksum::CrcSpec;
 
-use super::names::{Fx, Names, snake, u64_lit, unsigned_of};
-use super::payload::mask;
+use super::names::{Fx, Names, mask, snake, u64_lit, unsigned_of};
 
 /// The check functions (`pfx_check_<name>`, the format's prefix), one per check of each
 /// frame format.

@@ -10,8 +10,7 @@ use crate::ir::{Field, FieldKind, Prim, Protocol, ValueType};
 
 use super::names::Fx;
 use super::names::{self, Names};
-use super::payload::any_field;
-use super::types::{Carries, carries, keyed_format, slots_of, user_values};
+use super::shape::{Carries, any_field, carries, keyed_format, slots_of, user_values};
 
 /// The formatter, inside `#ifdef <PREFIX>_WITH_FORMAT`.
 pub fn format(p: &Protocol, n: &Names) -> String {

@@ -12,9 +12,8 @@ use crate::ir::{
 use crate::layout::{LayoutPlan, lower_layout};
 use protocol_runtime::layout::LengthRule;
 
-use super::names::{self, Fx, Names};
-use super::payload::mask;
-use super::types::{Carries, Slot, carries, slots_of, user_values};
+use super::names::{self, Fx, Names, mask};
+use super::shape::{Carries, Slot, carries, slots_of, user_values};
 
 /// `(from_end, n)` of a position, as the C helpers take it.
 fn pos(p: Pos) -> String {

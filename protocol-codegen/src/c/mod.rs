@@ -32,11 +32,15 @@ mod checks;
 mod engine;
 mod format;
 mod frame;
+mod header;
+mod lookups;
 mod names;
 mod payload;
+mod prelude;
 mod scale;
+mod shape;
 mod support;
-mod types;
+mod template;
 
 pub use support::unsupported;
 
@@ -87,9 +91,10 @@ pub fn generate(p: &Protocol) -> Result<CFiles, Vec<String>> {
         return Err(refused);
     }
     let n = names::Names::new(p);
-    let header = types::header(p, &n);
+    let header = header::header(p, &n);
     let mut source = String::new();
-    source.push_str(&types::source_prelude(p, &n));
+    source.push_str(&prelude::source_prelude(p, &n));
+    source.push_str(&lookups::lookups(p, &n));
     source.push_str(&checks::checks(p, &n));
     source.push_str(&checks::payload_checks(p, &n));
     source.push_str(&payload::payloads(p, &n));

@@ -11,8 +11,9 @@ use crate::ir::{
     UnknownPolicy, ValueType,
 };
 
-use super::names::{self, Names, prim as c_prim};
-use super::types::{put_call, take_call};
+use super::names::{self, Names, mask, prim as c_prim, value_type};
+use super::prelude::{put_call, take_call};
+use super::shape::any_field;
 
 /// The reader and writer of every struct, dependencies first (the IR's order).
 pub fn payloads(p: &Protocol, n: &Names) -> String {
@@ -35,35 +36,6 @@ pub fn payloads(p: &Protocol, n: &Names) -> String {
 enum Dir {
     Read,
     Write,
-}
-
-/// The C type of a value field's element.
-pub fn value_type(p: &Protocol, n: &Names, ty: &ValueType) -> String {
-    match ty {
-        ValueType::Scalar {
-            scale: Some(sc), ..
-        } => super::scale::float_of(sc.physical).0.to_string(),
-        ValueType::Scalar { scalar, .. } => c_prim(scalar.prim).to_string(),
-        ValueType::Struct(si) => n.ty(&p.structs[*si].name),
-        ValueType::Enum(ei, _) => n.ty(&p.enums[*ei].name),
-        ValueType::Text(_) => "char".into(),
-    }
-}
-
-/// What follows a value field's name in its declaration: a text's bytes (`[30]`).
-fn value_suffix(ty: &ValueType) -> String {
-    match ty {
-        ValueType::Text(len) => format!("[{len}]"),
-        _ => String::new(),
-    }
-}
-
-/// The C type of a bit member.
-pub fn member_type(p: &Protocol, n: &Names, m: &BitMember) -> String {
-    match m.enum_index {
-        Some(ei) => n.ty(&p.enums[ei].name),
-        None => c_prim(m.prim).to_string(),
-    }
 }
 
 fn big(s: Scalar) -> u8 {
@@ -612,129 +584,5 @@ fn write_elem(p: &Protocol, n: &Names, ty: &ValueType, src: &str) -> String {
         ValueType::Text(len) => format!(
             "    if (w->cap - w->pos < {len}u) return {up}ERR_SHORT_BUFFER;\n    memcpy(w->p + w->pos, {src}, {len}u);\n    w->pos += {len}u;\n"
         ),
-    }
-}
-
-/// Whether a field of a struct of `p` is a `kind` (or an optional field holds one): the
-/// helpers only some fields need are printed for the specs that have them.
-pub fn any_field(p: &Protocol, kind: fn(&FieldKind) -> bool) -> bool {
-    fn holds(k: &FieldKind, kind: fn(&FieldKind) -> bool) -> bool {
-        match k {
-            FieldKind::Optional(inner) => holds(inner, kind),
-            k => kind(k),
-        }
-    }
-    p.structs
-        .iter()
-        .any(|s| s.fields.iter().any(|f| holds(&f.kind, kind)))
-}
-
-/// The low `width` bits set.
-pub fn mask(width: u32) -> u64 {
-    if width >= 64 {
-        u64::MAX
-    } else {
-        (1u64 << width) - 1
-    }
-}
-
-/// The declarations of a struct's fields in its C struct.
-pub fn members(p: &Protocol, n: &Names, f: &Field, out: &mut String) {
-    let name = names::field(&f.name);
-    let doc = doc_comment(&f.doc, &f.unit);
-    match &f.kind {
-        FieldKind::Padding | FieldKind::Check(_) => {}
-        FieldKind::NulText { max } => {
-            let _ = writeln!(
-                out,
-                "    char {name}[{}];{doc} /* At most {max} bytes, then a NUL. */",
-                max + 1
-            );
-        }
-        FieldKind::Array { ty, max, .. } => {
-            let _ = writeln!(
-                out,
-                "    {} {name}[{}];{doc}",
-                value_type(p, n, ty),
-                (*max).max(1)
-            );
-            let _ = writeln!(
-                out,
-                "    size_t {name}_len; /**< Elements of `{name}` used (at most {max}). */"
-            );
-        }
-        FieldKind::Value { ty, count } => {
-            let count = count.map(|c| format!("[{c}]")).unwrap_or_default();
-            let _ = writeln!(
-                out,
-                "    {} {name}{count}{};{doc}",
-                value_type(p, n, ty),
-                value_suffix(ty)
-            );
-        }
-        FieldKind::Bits { members, .. } => {
-            for m in members {
-                let _ = writeln!(
-                    out,
-                    "    {} {};{}",
-                    member_type(p, n, m),
-                    names::field(&m.name),
-                    doc_comment(&m.doc, "")
-                );
-            }
-        }
-        FieldKind::Bytes { max, .. } => {
-            let _ = writeln!(out, "    uint8_t {name}[{}];{doc}", (*max).max(1));
-            let _ = writeln!(
-                out,
-                "    size_t {name}_len; /**< Bytes of `{name}` used (at most {max}). */"
-            );
-        }
-        FieldKind::Packed {
-            count, prim, scale, ..
-        } => {
-            let ty = match scale {
-                Some(sc) => super::scale::float_of(sc.physical).0,
-                None => c_prim(*prim),
-            };
-            let _ = writeln!(out, "    {ty} {name}[{count}];{doc}");
-        }
-        FieldKind::Group { elem, max } => {
-            let _ = writeln!(
-                out,
-                "    {} {name}[{max}];{doc}",
-                n.ty(&p.structs[*elem].name)
-            );
-            let _ = writeln!(
-                out,
-                "    size_t {name}_len; /**< Elements of `{name}` used (at most {max}). */"
-            );
-        }
-        FieldKind::Optional(inner) => {
-            let _ = writeln!(
-                out,
-                "    bool {name}_present; /**< Whether the payload holds `{name}`. */"
-            );
-            let inner = Field {
-                kind: (**inner).clone(),
-                ..f.clone()
-            };
-            members(p, n, &inner, out);
-        }
-    }
-}
-
-/// A trailing ` /**< doc (unit) */` comment, or nothing.
-pub fn doc_comment(doc: &str, unit: &str) -> String {
-    let doc = doc
-        .split_whitespace()
-        .collect::<Vec<_>>()
-        .join(" ")
-        .replace("*/", "* /");
-    match (doc.is_empty(), unit.is_empty()) {
-        (true, true) => String::new(),
-        (false, true) => format!(" /**< {doc} */"),
-        (true, false) => format!(" /**< Unit: {unit}. */"),
-        (false, false) => format!(" /**< {doc} Unit: {unit}. */"),
     }
 }

@@ -24,15 +24,7 @@ use protocol_runtime::field::{Float, RawInt};
 
 use crate::ir::{Prim, Rounding, Scale};
 
-use super::names::Names;
-
-/// The C float type of a scaled value's physical type, and the suffix of its helpers.
-pub fn float_of(physical: Prim) -> (&'static str, &'static str) {
-    match physical {
-        Prim::F32 => ("float", "f32"),
-        _ => ("double", "f64"),
-    }
-}
+use super::names::{Names, float_of};
 
 /// A C literal of `x` in the physical type (the shortest decimal that reads back as the same
 /// `f32` or `f64`).
