@@ -30,6 +30,7 @@
 
 mod checks;
 mod engine;
+mod fields;
 mod format;
 mod frame;
 mod header;
@@ -41,6 +42,7 @@ mod scale;
 mod shape;
 mod support;
 mod template;
+mod values;
 
 pub use support::unsupported;
 
