@@ -36,6 +36,7 @@ mod frame;
 mod header;
 mod lookups;
 mod names;
+mod packet;
 mod payload;
 mod prelude;
 mod scale;

@@ -21,7 +21,7 @@ macro_rules! fill {
             $template,
             &[$((
                 stringify!($name),
-                &fill!(@value $name $($value)?) as &dyn ::std::fmt::Display,
+                &$crate::c::template::fill!(@value $name $($value)?) as &dyn ::std::fmt::Display,
             )),*],
         )
     };
@@ -61,8 +61,6 @@ pub fn fill_holes(template: &str, values: &[(&str, &dyn Display)]) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-
     #[test]
     fn holes_are_filled_and_braces_kept() {
         let lo = "hflink_";
