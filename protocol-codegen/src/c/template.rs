@@ -8,7 +8,9 @@ use std::fmt::{Display, Write as _};
 /// variable of that name), as `format!` does, without doubling C's braces.
 ///
 /// A template that starts with a line break drops it, so that a template in a raw string
-/// begins on the line after its opening quote, at the C's own indentation.
+/// begins on the line after its opening quote, at the C's own indentation. A line that ends
+/// with a backslash goes on at the next line's first non-blank character, as C splices such
+/// lines: a long C line is written on several, and printed on one.
 macro_rules! fill {
     (@value $name:ident) => {
         $name
@@ -32,9 +34,10 @@ pub(crate) use fill;
 /// a mistake of the printer (every template is printed by the tests), not of the spec.
 pub fn fill_holes(template: &str, values: &[(&str, &dyn Display)]) -> String {
     let template = template.strip_prefix('\n').unwrap_or(template);
+    let template = splice(template);
     let mut out = String::with_capacity(template.len() + 64);
     let mut used = vec![false; values.len()];
-    let mut rest = template;
+    let mut rest = template.as_str();
     while let Some(at) = rest.find("${") {
         out.push_str(&rest[..at]);
         let hole = &rest[at + 2..];
@@ -59,6 +62,18 @@ pub fn fill_holes(template: &str, values: &[(&str, &dyn Display)]) -> String {
     out
 }
 
+/// The template's lines that end with a backslash joined to the next, its indentation dropped.
+fn splice(template: &str) -> String {
+    let mut out = String::with_capacity(template.len());
+    let mut rest = template;
+    while let Some(at) = rest.find("\\\n") {
+        out.push_str(&rest[..at]);
+        rest = rest[at + 2..].trim_start_matches(' ');
+    }
+    out.push_str(rest);
+    out
+}
+
 #[cfg(test)]
 mod tests {
     #[test]
@@ -75,6 +90,18 @@ int ${lo}decode(void)
             n = 3
         );
         assert_eq!(text, "int hflink_decode(void)\n{\n    return 3;\n}\n");
+    }
+
+    #[test]
+    fn a_line_ending_in_a_backslash_goes_on_at_the_next() {
+        let text = fill!(
+            r"
+    if (a || \
+        b) return ${e};
+",
+            e = 1
+        );
+        assert_eq!(text, "    if (a || b) return 1;\n");
     }
 
     #[test]

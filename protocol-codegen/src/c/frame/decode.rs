@@ -7,7 +7,8 @@ use crate::ir::{DirectionRule, Length, Prim, Protocol};
 use super::super::names::{self, Fx, Names};
 use super::super::shape::{Carries, Slot, carries, slots_of, user_values};
 use super::super::template::fill;
-use super::{pos, rules, truncate, truncated, word};
+use super::rules;
+use super::wire::{big, pos, truncate, truncated, word};
 
 /// The decoders of format `x`: by direction where the caller gives it, the checking entry
 /// point, and the reading of a checked frame.
@@ -440,7 +441,7 @@ fn can_command(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (at, size, big, bits) = (
         pos(v.at),
         v.word.prim.size(),
-        super::big(v.word.endian),
+        big(v.word.endian),
         8 * v.word.prim.size(),
     );
     out.push_str(&fill!(
@@ -483,11 +484,14 @@ fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     if rules::fill_len(p, x.fi) > 0 {
         rules::zero_fill(p, n, x, &slots, out);
     }
+    // The member is zeroed, then read: `e` holds the reader's result.
     let read = |slot: &Slot| {
         let snake = names::snake(&p.structs[slot.si.unwrap_or_default()].name);
         let name = &slot.name;
         fill!(
-            "e = (memset(&out->payload.${name}, 0, sizeof out->payload.${name}), ${lo}read_${snake}(&r, &out->payload.${name}));",
+            r"
+e = (memset(&out->payload.${name}, 0, sizeof out->payload.${name}), \
+${lo}read_${snake}(&r, &out->payload.${name}));",
             name,
             lo,
             snake

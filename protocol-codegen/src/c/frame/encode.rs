@@ -7,7 +7,8 @@ use crate::ir::{Frame, HeaderValue, Length, Protocol, Role, Transport};
 use super::super::names::{self, Fx, Names};
 use super::super::shape::{Carries, Slot, carries, slots_of};
 use super::super::template::fill;
-use super::{check_args, rules, truncate, word, write_sync, write_trailers};
+use super::rules;
+use super::wire::{self, check_args, truncate, word, write_sync, write_trailers};
 
 /// The encoders of format `x`: the tables of the commands' keys, the rules' helpers, the seal,
 /// one encoder per slot, and `pfx_encode` of a packet.
@@ -146,7 +147,10 @@ fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         // The runtime's `extension_for`: the count of the short form reaches the marker.
         let (marker, len) = (names::u64_lit(e.marker), e.len);
         out.push_str(&fill!(
-            "    if ((int64_t)body - (${adjust}) >= 0 && (uint64_t)((int64_t)body - (${adjust})) >= ${marker}) ext = ${len}u;\n",
+            r"
+    if ((int64_t)body - (${adjust}) >= 0 \
+        && (uint64_t)((int64_t)body - (${adjust})) >= ${marker}) ext = ${len}u;
+",
             adjust,
             marker,
             len
@@ -227,7 +231,8 @@ fn seal_head(n: &Names, x: &Fx, apart: bool) -> String {
 static int ${xlo}seal(uint8_t *buf, size_t cap, size_t start, size_t payload_len, const ${xlo}header *h, size_t command)
 {
     size_t ext = 0, flagged = 0, body, total;
-    if (start > ${xup}HEADER_LEN || payload_len > ${xup}MAX_PAYLOAD_LEN + (${xup}HEADER_LEN - start)) return ${up}ERR_OUT_OF_RANGE;
+    if (start > ${xup}HEADER_LEN \
+        || payload_len > ${xup}MAX_PAYLOAD_LEN + (${xup}HEADER_LEN - start)) return ${up}ERR_OUT_OF_RANGE;
     body = start + payload_len + ${xup}TRAILER_LEN;
 ",
             xlo,
@@ -269,7 +274,7 @@ fn header_value(f: &Frame, n: &Names, x: &Fx, vi: usize, v: &HeaderValue) -> Str
                 // The runtime's `conditional_count`: the count in the wider field, the
                 // marker in this one, when it does not fit below the marker.
                 let (wide, marker, len) = (
-                    super::word(&f.values[e.value]),
+                    wire::word(&f.values[e.value]),
                     names::u64_lit(e.marker),
                     e.len,
                 );
@@ -313,7 +318,8 @@ fn header_value(f: &Frame, n: &Names, x: &Fx, vi: usize, v: &HeaderValue) -> Str
             return fill!(
                 r"
     /* ${name} */
-    if (command != SIZE_MAX && !${lo}put_field(buf, body, ${word}, (uint64_t)${xlo}ids[command][${k}])) return ${up}ERR_OUT_OF_RANGE;
+    if (command != SIZE_MAX \
+        && !${lo}put_field(buf, body, ${word}, (uint64_t)${xlo}ids[command][${k}])) return ${up}ERR_OUT_OF_RANGE;
 ",
                 name,
                 lo,
@@ -440,7 +446,8 @@ fn encode_bytes(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
 int ${xlo}encode_bytes(const ${xlo}header *header, const uint8_t *payload, size_t len, uint8_t *buf, size_t cap)
 {
     if (len > ${xup}MAX_PAYLOAD_LEN) return ${up}ERR_OUT_OF_RANGE;
-    if (cap < ${xup}HEADER_LEN + ${xup}TRAILER_LEN || len > cap - ${xup}HEADER_LEN - ${xup}TRAILER_LEN) return ${up}ERR_SHORT_BUFFER;
+    if (cap < ${xup}HEADER_LEN + ${xup}TRAILER_LEN \
+        || len > cap - ${xup}HEADER_LEN - ${xup}TRAILER_LEN) return ${up}ERR_SHORT_BUFFER;
     if (len > 0) memcpy(buf + ${xup}HEADER_LEN, payload, len);
     return ${xlo}seal(${place}len, header, 0);
 }
@@ -466,7 +473,8 @@ fn encode_packet(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     if f.ack.is_some() {
         out.push_str(&fill!(
             r"
-    if (packet->ack) return ${xlo}encode_ack(&packet->header, packet->payload.ack_data.bytes, packet->payload.ack_data.len, buf, cap);
+    if (packet->ack) return ${xlo}encode_ack(&packet->header, packet->payload.ack_data.bytes, \
+        packet->payload.ack_data.len, buf, cap);
 ",
             xlo
         ));

@@ -8,7 +8,7 @@ use protocol_runtime::layout::LengthRule;
 
 use super::super::names::{self, Fx, Names};
 use super::super::template::fill;
-use super::{byte_list, check_args, pos, word};
+use super::wire::{byte_list, check_args, pos, word};
 
 /// `pfx_probe_synced` and `pfx_probe` of format `x`.
 pub(super) fn probe(f: &Frame, plan: &LayoutPlan<'_>, n: &Names, x: &Fx, out: &mut String) {
@@ -315,7 +315,8 @@ fn markers(plan: &LayoutPlan<'_>, n: &Names, frame_len: &str, out: &mut String) 
     {
         static const uint8_t marker${i}[${len}] = {${bytes}};
         size_t at = ${lo}pos(${frame_len}, ${at});
-        if (at == SIZE_MAX || ${frame_len} - at < ${len}u || memcmp(b + at, marker${i}, ${len}u) != 0) return ${up}REJECT_BAD_TRAILER;
+        if (at == SIZE_MAX || ${frame_len} - at < ${len}u \
+            || memcmp(b + at, marker${i}, ${len}u) != 0) return ${up}REJECT_BAD_TRAILER;
     }
 ",
             i,

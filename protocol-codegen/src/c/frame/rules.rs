@@ -10,7 +10,7 @@ use crate::layout::lower_layout;
 use super::super::names::{self, Fx, Names};
 use super::super::shape::{Slot, slots_of};
 use super::super::template::fill;
-use super::{byte_list, check_args, word, write_sync, write_trailers};
+use super::wire::{byte_list, check_args, word, write_sync, write_trailers};
 
 /// An acknowledgement in the decoder: when the flag holds its value, the frame carries no
 /// command and its data follows the acknowledgement's header (to the frame's end for a bare

@@ -12,7 +12,8 @@ ${up}UNUSED static ${up}INLINE uint64_t ${lo}get(const uint8_t *p, unsigned n, i
     switch (n) {
     case 1: return p[0];
     case 2: return big ? (uint32_t)p[1] | (uint32_t)p[0] << 8 : (uint32_t)p[0] | (uint32_t)p[1] << 8;
-    case 4: return big ? (uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 | (uint32_t)p[0] << 24 : (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+    case 4: return big ? (uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 | (uint32_t)p[0] << 24 \
+        : (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
     default: break;
     }
     for (i = 0; i < n; i++) {
@@ -214,7 +215,8 @@ ${up}UNUSED static ${up}INLINE int ${lo}take_u64le(struct ${lo}rd *r, uint64_t *
     const uint8_t *p;
     if (r->len - r->pos < 8u) return ${up}ERR_PAYLOAD_LENGTH;
     p = r->p + r->pos;
-    *out = (uint64_t)((uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24) | (uint64_t)((uint32_t)p[4] | (uint32_t)p[5] << 8 | (uint32_t)p[6] << 16 | (uint32_t)p[7] << 24) << 32;
+    *out = (uint64_t)((uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24) \
+        | (uint64_t)((uint32_t)p[4] | (uint32_t)p[5] << 8 | (uint32_t)p[6] << 16 | (uint32_t)p[7] << 24) << 32;
     r->pos += 8u;
     return 0;
 }
@@ -242,7 +244,8 @@ ${up}UNUSED static ${up}INLINE int ${lo}take_u64be(struct ${lo}rd *r, uint64_t *
     const uint8_t *p;
     if (r->len - r->pos < 8u) return ${up}ERR_PAYLOAD_LENGTH;
     p = r->p + r->pos;
-    *out = (uint64_t)((uint32_t)p[7] | (uint32_t)p[6] << 8 | (uint32_t)p[5] << 16 | (uint32_t)p[4] << 24) | (uint64_t)((uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 | (uint32_t)p[0] << 24) << 32;
+    *out = (uint64_t)((uint32_t)p[7] | (uint32_t)p[6] << 8 | (uint32_t)p[5] << 16 | (uint32_t)p[4] << 24) \
+        | (uint64_t)((uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 | (uint32_t)p[0] << 24) << 32;
     r->pos += 8u;
     return 0;
 }
@@ -274,7 +277,8 @@ ${up}UNUSED static ${up}INLINE size_t ${lo}pos(size_t len, int from_end, size_t 
 }
 
 /* A value of `width` bits at bit `shift` of the word of `size` bytes at a position. */
-${up}UNUSED static ${up}INLINE int ${lo}field(const uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t *out)
+${up}UNUSED static ${up}INLINE int ${lo}field(const uint8_t *f, size_t len, int from_end, size_t at, \
+    unsigned size, int big, unsigned shift, unsigned width, uint64_t *out)
 {
     size_t o = ${lo}pos(len, from_end, at);
     uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);
@@ -283,7 +287,8 @@ ${up}UNUSED static ${up}INLINE int ${lo}field(const uint8_t *f, size_t len, int 
     return 1;
 }
 
-${up}UNUSED static ${up}INLINE int ${lo}put_field(uint8_t *f, size_t len, int from_end, size_t at, unsigned size, int big, unsigned shift, unsigned width, uint64_t value)
+${up}UNUSED static ${up}INLINE int ${lo}put_field(uint8_t *f, size_t len, int from_end, size_t at, \
+    unsigned size, int big, unsigned shift, unsigned width, uint64_t value)
 {
     size_t o = ${lo}pos(len, from_end, at);
     uint64_t m = width >= 64 ? ~(uint64_t)0 : (((uint64_t)1 << width) - 1);

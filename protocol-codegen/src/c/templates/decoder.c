@@ -38,7 +38,8 @@ static int ${dlo}frame_inside(const uint8_t *b, size_t pending)
 {
     size_t k, n = 0;
     for (k = 1; ${inside}; k++) {
-        if (${lead_at_k}${dlo}probe_link(b + k, pending - k, ${dup}DECODER_BUFFER_LEN, &n) == ${up}PROBE_FRAME) return 1;
+        if (${lead_at_k}${dlo}probe_link(b + k, pending - k, ${dup}DECODER_BUFFER_LEN, &n) \
+            == ${up}PROBE_FRAME) return 1;
     }
     return 0;
 }

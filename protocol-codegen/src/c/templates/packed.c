@@ -2,7 +2,8 @@
  * `b[0..len]`, bits filling each byte from its lowest bit (`msb` 0) or its highest (`msb`
  * 1). The element's bytes make one word, little-endian for lowest-bit-first, big-endian for
  * highest-bit-first; `*first`, `*count` and `*at` say where it lies in that word. */
-${up}UNUSED static int ${lo}packed_span(size_t len, size_t index, unsigned bits, int msb, size_t *first, unsigned *count, unsigned *at)
+${up}UNUSED static int ${lo}packed_span(size_t len, size_t index, unsigned bits, int msb, \
+    size_t *first, unsigned *count, unsigned *at)
 {
     size_t start = index * bits, last = (start + bits + 7) / 8;
     if (bits == 0 || bits > 32 || last > len) return 0;
