@@ -203,7 +203,12 @@ fn extra_lookup(n: &Names, x: &CheckExtra) -> String {
             byte
         ));
     }
-    out.push_str("    default: return 0;\n    }\n");
+    out.push_str(&fill!(
+        r"
+    default: return 0;
+    }
+"
+    ));
     out
 }
 

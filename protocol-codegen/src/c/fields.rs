@@ -73,7 +73,14 @@ ${inner}    }
                     present,
                     inner
                 ),
-                Dir::Write => fill!("    if (${present}) {\n${inner}    }\n", present, inner),
+                Dir::Write => fill!(
+                    r"
+    if (${present}) {
+${inner}    }
+",
+                    present,
+                    inner
+                ),
             }
         }
     }
@@ -191,7 +198,10 @@ fn value(
     };
     let elem = indent(&elem, 1);
     fill!(
-        "    for (i = 0; i < ${count}u; i++) {\n${elem}    }\n",
+        r"
+    for (i = 0; i < ${count}u; i++) {
+${elem}    }
+",
         count,
         elem
     )
@@ -332,7 +342,10 @@ fn write_array(
     let elem = indent(&write_elem(p, n, ty, &format!("{here}[i]")), 1);
     count_fits(n, max, stated, here)
         + &fill!(
-            "    for (i = 0; i < ${here}_len; i++) {\n${elem}    }\n",
+            r"
+    for (i = 0; i < ${here}_len; i++) {
+${elem}    }
+",
             here,
             elem
         )

@@ -153,7 +153,13 @@ int ${xlo}format(const ${xlo}packet *packet, char *out, size_t cap)
         );
         out.push_str(&hex_payload(lo, "if (packet->ack) ", len, bytes));
     }
-    out.push_str("    return (int)text.len;\n}\n\n");
+    out.push_str(&fill!(
+        r"
+    return (int)text.len;
+}
+
+"
+    ));
 }
 
 /// A payload as `hex:` and its bytes' digits (`guard`: the statement's condition, if any).
@@ -205,7 +211,10 @@ fn field(p: &Protocol, n: &Names, f: &Field, kind: &FieldKind) -> String {
     let each = |count: &str, what: String| {
         let what = indent(&what);
         fill!(
-            "    for (i = 0; i < ${count}; i++) {\n${what}    }\n",
+            r"
+    for (i = 0; i < ${count}; i++) {
+${what}    }
+",
             count,
             what
         )

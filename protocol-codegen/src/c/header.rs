@@ -134,7 +134,10 @@ fn enum_decl(n: &Names, e: &Enum, out: &mut String) {
     };
     let doc = one_line(&e.doc);
     out.push_str(&fill!(
-        "/** ${doc} */\ntypedef ${base} ${ty};\n",
+        r"
+/** ${doc} */
+typedef ${base} ${ty};
+",
         doc,
         base,
         ty

@@ -87,12 +87,13 @@ typedef struct ${lo}packet {
         ));
         return;
     }
-    out.push_str(
-        r"    /** The payload of the command (and direction): the member named after them. */
+    out.push_str(&fill!(
+        r"
+    /** The payload of the command (and direction): the member named after them. */
     union {
         uint8_t none_; /**< Commands without payload. */
-",
-    );
+"
+    ));
     for slot in slots_of(p, x.fi) {
         if let Some(si) = slot.si {
             let (ty, name) = (n.ty(&p.structs[si].name), &slot.name);
@@ -111,7 +112,14 @@ typedef struct ${lo}packet {
             up
         ));
     }
-    out.push_str(&fill!("    } payload;\n} ${lo}packet;\n\n", lo));
+    out.push_str(&fill!(
+        r"
+    } payload;
+} ${lo}packet;
+
+",
+        lo
+    ));
 }
 
 /// The prototypes of frame format `x`'s decoders, encoders and text form.

@@ -62,7 +62,12 @@ fn walk(p: &Protocol, n: &Names, s: &Struct, dir: Dir) -> String {
             marks.push(format!("to{i}"));
         }
     }
-    let mut decls = String::from("    int e = 0;\n    uint64_t raw = 0, word = 0;\n");
+    let mut decls = fill!(
+        r"
+    int e = 0;
+    uint64_t raw = 0, word = 0;
+"
+    );
     if body.contains("[i]") {
         decls.push_str("    size_t i;\n");
     }

@@ -354,7 +354,13 @@ fn dispatch_key(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
     let f = &p.frames[x.fi];
     let fields = f.dispatch.len();
-    out.push_str(&fill!("    {\n        uint64_t key[${fields}];\n", fields));
+    out.push_str(&fill!(
+        r"
+    {
+        uint64_t key[${fields}];
+",
+        fields
+    ));
     for (k, &vi) in f.dispatch.iter().enumerate() {
         let v = &f.values[vi];
         let (word, bits) = (word(v), truncated(v, "raw"));
@@ -427,7 +433,13 @@ fn dispatch_key(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             name
         ));
     }
-    out.push_str(&fill!("return ${up}ERR_UNKNOWN_COMMAND;\n    }\n", up));
+    out.push_str(&fill!(
+        r"
+return ${up}ERR_UNKNOWN_COMMAND;
+    }
+",
+        up
+    ));
 }
 
 /// The command of a CAN frame: the one whose CAN id is the frame's whole identifier word (bits
@@ -474,7 +486,12 @@ fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let f = &p.frames[x.fi];
     // A stuffed payload is read where `unstuff` left it.
     if f.stuffing.is_none() {
-        out.push_str("    r.p = bytes + start;\n    r.len = end - start;\n");
+        out.push_str(&fill!(
+            r"
+    r.p = bytes + start;
+    r.len = end - start;
+"
+        ));
     }
     out.push_str("    r.pos = 0;\n");
     let slots: Vec<Slot> = slots_of(p, x.fi)
@@ -520,7 +537,13 @@ ${lo}read_${snake}(&r, &out->payload.${name}));",
             }
             out.push_str("        break;\n");
         }
-        out.push_str("    default:\n        break;\n    }\n");
+        out.push_str(&fill!(
+            r"
+    default:
+        break;
+    }
+"
+        ));
     } else {
         for slot in &slots {
             let (guard, read) = (slot.guard(p, n, "out"), read(slot));

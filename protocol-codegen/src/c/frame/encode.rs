@@ -21,7 +21,8 @@ pub(super) fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     if kind == Carries::Can {
         can_ids(p, x, out);
     }
-    rules::encoder_helpers(f, n, x, out);
+    rules::trimmed_fn(f, x, out);
+    rules::stuff_fn(f, n, out);
     seal(p, n, x, out);
     for slot in slots_of(p, x.fi) {
         encoder(p, n, x, &slot, out);
@@ -185,7 +186,12 @@ fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         xup
     ));
     out.push_str(&write_sync(f));
-    out.push_str("    (void)h;\n    (void)command;\n");
+    out.push_str(&fill!(
+        r"
+    (void)h;
+    (void)command;
+"
+    ));
     for (vi, v) in f.values.iter().enumerate() {
         out.push_str(&header_value(f, n, x, vi, v));
     }
@@ -216,7 +222,13 @@ fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             name
         ));
     }
-    out.push_str("    return (int)total;\n}\n\n");
+    out.push_str(&fill!(
+        r"
+    return (int)total;
+}
+
+"
+    ));
 }
 
 /// The start of `pfx_seal`: a format sealed apart takes the buffer's size and the payload's
@@ -389,7 +401,13 @@ fn encoder(p: &Protocol, n: &Names, x: &Fx, slot: &Slot, out: &mut String) {
     if let (Some(base), Some(si)) = (base, slot.si) {
         // The whole struct is written aside, then the bytes before its extension fields kept.
         decl = format!("    uint8_t whole[{}];\n", p.structs[si].size.max(1));
-        place = "    w.p = whole;\n    w.cap = sizeof whole;\n    w.pos = 0;\n".to_string();
+        place = fill!(
+            r"
+    w.p = whole;
+    w.cap = sizeof whole;
+    w.pos = 0;
+"
+        );
         write.push_str(&fill!(
             r"
     if (w.pos > ${base}u) w.pos = ${base}u;
@@ -402,7 +420,8 @@ fn encoder(p: &Protocol, n: &Names, x: &Fx, slot: &Slot, out: &mut String) {
             up
         ));
     }
-    write.push_str(&rules::after_payload(f, n, x, slot));
+    write.push_str(&rules::trim_written(f, x, slot));
+    write.push_str(&rules::stuff_written(f, n, slot));
     let command = match (slot.command, slot.keyless) {
         (Some(ci), _) => format!("{up}{}", p.commands[ci].name),
         (None, Some(_)) => "SIZE_MAX".into(),
@@ -467,7 +486,10 @@ fn encode_packet(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let f = &p.frames[x.fi];
     let kind = carries(p, x.fi);
     out.push_str(&fill!(
-        "int ${xlo}encode(const ${xlo}packet *packet, uint8_t *buf, size_t cap)\n{\n",
+        r"
+int ${xlo}encode(const ${xlo}packet *packet, uint8_t *buf, size_t cap)
+{
+",
         xlo
     ));
     if f.ack.is_some() {

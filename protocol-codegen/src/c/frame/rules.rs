@@ -141,7 +141,13 @@ int ${xlo}encode_ack(const ${xlo}header *h, const uint8_t *data, size_t len, uin
     for &ci in &plan.frame_checks {
         out.push_str(&store(ci));
     }
-    out.push_str("    return (int)total;\n}\n\n");
+    out.push_str(&fill!(
+        r"
+    return (int)total;
+}
+
+"
+    ));
 }
 
 /// The payload unstuffed (the runtime's `Stuffing::unstuff`) into a buffer of the largest
@@ -177,41 +183,55 @@ pub(super) fn unstuff(after: &[u8], insert: u8, n: &Names, x: &Fx, out: &mut Str
     ));
 }
 
-/// The functions the encoders of format `x` call for its rules: `pfx_trimmed` (a payload cut
-/// short of its trailing zeros, `templates/trimmed.c`) and `pfx_stuff` (a written payload
-/// stuffed in place, the runtime's `Stuffing::stuff_in_place`, `templates/stuff.c`).
-pub(super) fn encoder_helpers(f: &Frame, n: &Names, x: &Fx, out: &mut String) {
-    let (lo, up, xlo) = (&n.lo, &n.up, &x.lo);
+/// `pfx_stuff`, which an encoder calls on its written payload: stuffed in place (the
+/// runtime's `Stuffing::stuff_in_place`, `templates/stuff.c`), where the format stuffs.
+pub(super) fn stuff_fn(f: &Frame, n: &Names, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let Some((after, insert)) = &f.stuffing else {
+        return;
+    };
+    let (pattern, k, insert) = (byte_list(after), after.len(), format!("{insert:#04x}"));
+    out.push_str(&fill!(
+        include_str!("../templates/stuff.c"),
+        lo,
+        up,
+        pattern,
+        k,
+        insert
+    ));
+    out.push('\n');
+}
+
+/// The statement of an encoder that stuffs a command's written payload, where the format
+/// stuffs.
+pub(super) fn stuff_written(f: &Frame, n: &Names, slot: &Slot) -> String {
+    let lo = &n.lo;
+    if f.stuffing.is_some() && slot.command.is_some() {
+        fill!("    if ((e = ${lo}stuff(&w)) != 0) return e;\n", lo)
+    } else {
+        String::new()
+    }
+}
+
+/// `pfx_trimmed`, which an encoder calls on its written payload: the bytes kept of it, all
+/// but its trailing zeros (`templates/trimmed.c`), where the format truncates.
+pub(super) fn trimmed_fn(f: &Frame, x: &Fx, out: &mut String) {
+    let xlo = &x.lo;
     if f.truncate_zeros {
         out.push_str(&fill!(include_str!("../templates/trimmed.c"), xlo));
         out.push('\n');
     }
-    if let Some((after, insert)) = &f.stuffing {
-        let (pattern, k, insert) = (byte_list(after), after.len(), format!("{insert:#04x}"));
-        out.push_str(&fill!(
-            include_str!("../templates/stuff.c"),
-            lo,
-            up,
-            pattern,
-            k,
-            insert
-        ));
-        out.push('\n');
-    }
 }
 
-/// The statements of an encoder after a command's payload is written: cut short of its
-/// trailing zeros, then stuffed, where the format says so.
-pub(super) fn after_payload(f: &Frame, n: &Names, x: &Fx, slot: &Slot) -> String {
-    let (lo, xlo) = (&n.lo, &x.lo);
-    let mut out = String::new();
+/// The statement of an encoder that cuts a command's written payload short of its trailing
+/// zeros, where the format truncates.
+pub(super) fn trim_written(f: &Frame, x: &Fx, slot: &Slot) -> String {
+    let xlo = &x.lo;
     if f.truncate_zeros && slot.command.is_some() {
-        out.push_str(&fill!("    w.pos = ${xlo}trimmed(w.p, w.pos);\n", xlo));
+        fill!("    w.pos = ${xlo}trimmed(w.p, w.pos);\n", xlo)
+    } else {
+        String::new()
     }
-    if f.stuffing.is_some() && slot.command.is_some() {
-        out.push_str(&fill!("    if ((e = ${lo}stuff(&w)) != 0) return e;\n", lo));
-    }
-    out
 }
 
 /// The bytes of the zero-filled copy a payload is read from when its format fills it (0: the
@@ -246,7 +266,12 @@ fn base_sizes(p: &Protocol, fi: usize) -> bool {
 pub(super) fn zero_fill(p: &Protocol, n: &Names, x: &Fx, slots: &[Slot], out: &mut String) {
     let up = &n.up;
     let f = &p.frames[x.fi];
-    out.push_str("    {\n        size_t size = 0, base = SIZE_MAX;\n");
+    out.push_str(&fill!(
+        r"
+    {
+        size_t size = 0, base = SIZE_MAX;
+"
+    ));
     for slot in slots {
         let s = &p.structs[slot.si.unwrap_or_default()];
         let base = s.base_size.filter(|_| !f.extensions);
