@@ -9,13 +9,11 @@
 //! covered bytes, may name no command (the runtime's `Extra::compute` gives `None` then, and
 //! a decoder rejects the candidate as a bad check).
 
-use std::fmt::Write as _;
-
-use crate::ir::{Algorithm, Check, CheckExtra, CrcTable, Field, FieldKind, Protocol, Struct};
+use crate::ir::{Algorithm, CheckExtra, CrcTable, Field, FieldKind, Protocol, Struct};
 use protocol_runtime::checksum::CrcSpec;
 
-use super::names::{Fx, Names, snake, u64_lit, unsigned_of};
-use super::payload::mask;
+use super::names::{Fx, Names, mask, snake, u64_lit, unsigned_of};
+use super::template::fill;
 
 /// The check functions (`pfx_check_<name>`, the format's prefix), one per check of each
 /// frame format.
@@ -24,8 +22,9 @@ pub fn checks(p: &Protocol, n: &Names) -> String {
     for (fi, f) in p.frames.iter().enumerate() {
         let x = Fx::new(p, fi);
         for c in &f.checks {
-            let _ = writeln!(out, "/* {} */", c.naming.display);
-            out.push_str(&check(n, &x, c));
+            let name = format!("{}check_{}", x.lo, c.name);
+            out.push_str(&format!("/* {} */\n", c.naming.display));
+            out.push_str(&check_fn(n, &name, &c.algorithm, c.extra.as_ref()));
             out.push('\n');
         }
     }
@@ -38,7 +37,7 @@ struct Parts {
     state: String,
     /// A table the steps use, printed before the function.
     table: String,
-    /// The statements one byte `b` (a C expression) runs.
+    /// The statements one byte `b` (a C expression) runs, inside the loop over the bytes.
     step: Box<dyn Fn(&str) -> String>,
     /// Statements after the last byte, before `value`.
     finish: String,
@@ -48,22 +47,13 @@ struct Parts {
     /// runtime's `Extra::fold` does).
     folds: bool,
     /// For a sum reduced modulo 255: the bytes `step` may add to the state without reducing
-    /// it (the state then stays below 2^32), and the statements that reduce it. The bytes are
+    /// it (the state then stays below 2^32), and the statement that reduces it. The bytes are
     /// summed in blocks of that many, reduced once per block instead of once per byte: the
     /// same value, since a reduction modulo 255 may come at any point of the sum.
     block: Option<(usize, &'static str)>,
     /// For a plain sum in blocks: the statement that adds four bytes from `p[i]` at once
     /// (fewer loop turns per byte).
     four: Option<&'static str>,
-}
-
-fn check(n: &Names, x: &Fx, c: &Check) -> String {
-    check_fn(
-        n,
-        &format!("{}check_{}", x.lo, c.name),
-        &c.algorithm,
-        c.extra.as_ref(),
-    )
 }
 
 /// The check functions of the checks inside payload structs (`pfx_pcheck_<struct>_<field>`),
@@ -74,11 +64,15 @@ pub fn payload_checks(p: &Protocol, n: &Names) -> String {
     for s in &p.structs {
         for f in &s.fields {
             if let FieldKind::Check(c) = &f.kind {
-                let _ = writeln!(
-                    out,
-                    "/* {}: `{}` of struct `{}` over {} */",
-                    c.naming.display, f.name, s.name, c.covered
-                );
+                let (what, field, covered) = (&c.naming.display, &f.name, &c.covered);
+                let name = &s.name;
+                out.push_str(&fill!(
+                    "/* ${what}: `${field}` of struct `${name}` over ${covered} */\n",
+                    what,
+                    field,
+                    name,
+                    covered
+                ));
                 out.push_str(&check_fn(
                     n,
                     &payload_check_name(n, s, f),
@@ -97,47 +91,84 @@ pub fn payload_check_name(n: &Names, s: &Struct, f: &Field) -> String {
     format!("{}pcheck_{}_{}", n.lo, snake(&s.name), f.name)
 }
 
+/// One check function: the per-command byte looked up (a check that folds one in), the
+/// bytes stepped through the algorithm, the byte folded in, the value.
 fn check_fn(n: &Names, name: &str, algorithm: &Algorithm, extra: Option<&CheckExtra>) -> String {
-    let name = name.to_string();
-    let parts = parts(&name, algorithm);
-    let mut body = String::new();
-    if let Some(x) = extra {
-        body.push_str(&extra_lookup(n, x));
-    }
-    match parts.block {
-        Some((block, reduce)) => {
-            let _ = write!(
-                body,
-                "    for (i = 0; i < n;) {{\n        size_t stop = n - i > {block}u ? i + {block}u : n;\n{}        for (; i < stop; i++) {{\n{}        }}\n{reduce}    }}\n",
-                parts.four.map_or(String::new(), |four| format!(
-                    "        for (; stop - i >= 4u; i += 4u) {{\n            {four}\n        }}\n"
-                )),
-                (parts.step)("p[i]")
-                    .lines()
-                    .map(|line| format!("    {line}\n"))
-                    .collect::<String>()
-            );
-        }
-        None => {
-            let _ = write!(
-                body,
-                "    for (i = 0; i < n; i++) {{\n{}    }}\n",
-                (parts.step)("p[i]")
-            );
-        }
-    }
+    let parts = parts(name, algorithm);
+    let mut body = extra.map_or(String::new(), |x| extra_lookup(n, x));
+    body.push_str(&bytes_loop(&parts));
     if extra.is_some() && parts.folds {
         // The loop body's statements, one level out.
         for line in (parts.step)("extra").lines() {
-            let _ = writeln!(body, "{}", line.strip_prefix("    ").unwrap_or(line));
+            body.push_str(line.strip_prefix("    ").unwrap_or(line));
+            body.push('\n');
         }
     }
-    format!(
-        "{table}static int {name}(const uint8_t *p, size_t n, uint64_t *out)\n{{\n{state}    size_t i;\n{body}{finish}    *out = {value};\n    return 1;\n}}\n",
-        table = parts.table,
-        state = parts.state,
-        finish = parts.finish,
-        value = parts.value,
+    let Parts {
+        table,
+        state,
+        finish,
+        value,
+        ..
+    } = parts;
+    fill!(
+        r"
+${table}static int ${name}(const uint8_t *p, size_t n, uint64_t *out)
+{
+${state}    size_t i;
+${body}${finish}    *out = ${value};
+    return 1;
+}
+",
+        table,
+        name,
+        state,
+        body,
+        finish,
+        value
+    )
+}
+
+/// The loop over the bytes `p[0..n]`: one step per byte, or for a sum in blocks, a block's
+/// steps (four bytes at a time where the sum has a statement for it) then its reduction.
+fn bytes_loop(parts: &Parts) -> String {
+    let Some((block, reduce)) = parts.block else {
+        let step = (parts.step)("p[i]");
+        return fill!(
+            r"
+    for (i = 0; i < n; i++) {
+${step}    }
+",
+            step
+        );
+    };
+    let four = parts.four.map_or(String::new(), |four| {
+        fill!(
+            r"
+        for (; stop - i >= 4u; i += 4u) {
+            ${four}
+        }
+",
+            four
+        )
+    });
+    let step: String = (parts.step)("p[i]")
+        .lines()
+        .map(|line| format!("    {line}\n"))
+        .collect();
+    fill!(
+        r"
+    for (i = 0; i < n;) {
+        size_t stop = n - i > ${block}u ? i + ${block}u : n;
+${four}        for (; i < stop; i++) {
+${step}        }
+        ${reduce}
+    }
+",
+        block,
+        four,
+        step,
+        reduce
     )
 }
 
@@ -148,24 +179,42 @@ fn extra_lookup(n: &Names, x: &CheckExtra) -> String {
         crate::ir::Pos::Start(a) => (0, a),
         crate::ir::Pos::End(a) => (1, a),
     };
-    let mut out = format!(
-        "    uint64_t key = 0;\n    uint8_t extra;\n    if (!{lo}field(p, n, {from_end}, {at}u, {}u, {}, {}u, {}u, &key)) return 0;\n    switch (key) {{\n",
-        x.key.size,
-        u8::from(x.key.order == crate::ir::ByteOrder::Big),
-        x.key.shift,
-        x.key.width,
-        lo = n.lo
+    let (lo, size, shift, width) = (&n.lo, x.key.size, x.key.shift, x.key.width);
+    let big = u8::from(x.key.order == crate::ir::ByteOrder::Big);
+    let mut out = fill!(
+        r"
+    uint64_t key = 0;
+    uint8_t extra;
+    if (!${lo}field(p, n, ${from_end}, ${at}u, ${size}u, ${big}, ${shift}u, ${width}u, &key)) return 0;
+    switch (key) {
+",
+        lo,
+        from_end,
+        at,
+        size,
+        big,
+        shift,
+        width
     );
     for (key, byte) in &x.bytes {
-        let _ = writeln!(out, "    case {key}u: extra = {byte}u; break;");
+        out.push_str(&fill!(
+            "    case ${key}u: extra = ${byte}u; break;\n",
+            key,
+            byte
+        ));
     }
-    out.push_str("    default: return 0;\n    }\n");
+    out.push_str(&fill!(
+        r"
+    default: return 0;
+    }
+"
+    ));
     out
 }
 
 fn parts(name: &str, a: &Algorithm) -> Parts {
     let sum = |ty: &str, step: &'static str, value: String| Parts {
-        state: format!("    {ty} s = 0;\n"),
+        state: fill!("    ${ty} s = 0;\n", ty),
         table: String::new(),
         step: Box::new(move |b| format!("        {}\n", step.replace("BYTE", b))),
         finish: String::new(),
@@ -179,7 +228,7 @@ fn parts(name: &str, a: &Algorithm) -> Parts {
         // Below 255 at a block's start, plus at most 255 per byte: 65,536 bytes keep the sum
         // below 2^24.
         Algorithm::SumMod255 => Parts {
-            block: Some((65_536, "        s %= 255u;\n")),
+            block: Some((65_536, "s %= 255u;")),
             four: Some("s += (uint32_t)p[i] + p[i + 1] + p[i + 2] + p[i + 3];"),
             ..sum("uint32_t", "s += BYTE;", "s".into())
         },
@@ -208,7 +257,14 @@ fn fletcher(reduce: &'static str) -> Parts {
         state: "    uint32_t a = 0, b = 0;\n".into(),
         table: String::new(),
         step: Box::new(move |byte| {
-            format!("        a = (a + {byte}) {reduce};\n        b = (b + a) {reduce};\n")
+            fill!(
+                r"
+        a = (a + ${byte}) ${reduce};
+        b = (b + a) ${reduce};
+",
+                byte,
+                reduce
+            )
         }),
         finish: String::new(),
         value: "((uint64_t)b << 8) | a".into(),
@@ -271,59 +327,47 @@ fn crc(name: &str, c: &Crc) -> Parts {
     let ty = unsigned_of((c.width / 8) as usize);
     let w = c.width;
     let init = if c.refin { reflect(c.init, w) } else { c.init };
-    let poly = if c.refin { reflect(c.poly, w) } else { c.poly };
-    let mut table = String::new();
     let mut state = format!("    {ty} r = ({ty}){init:#x}u;\n");
-    let step: Box<dyn Fn(&str) -> String> = match (c.table, c.refin) {
-        (CrcTable::NoTable, true) => {
+    let mut table = String::new();
+    let step = match c.table {
+        CrcTable::NoTable => {
             state.push_str("    int k;\n");
-            Box::new(move |b| {
-                format!(
-                    "        r ^= {b};\n        for (k = 0; k < 8; k++) {{\n            r = (r & 1u) ? (({ty})(r >> 1) ^ ({ty}){poly:#x}u) : ({ty})(r >> 1);\n        }}\n"
-                )
-            })
+            bitwise_step(c)
         }
-        (CrcTable::NoTable, false) => {
-            state.push_str("    int k;\n");
-            Box::new(move |b| {
-                format!(
-                    "        r ^= ({ty})((uint64_t){b} << {});\n        for (k = 0; k < 8; k++) {{\n            r = (r >> {}) & 1u ? ({ty})(((uint64_t)r << 1) ^ {poly:#x}u) : ({ty})((uint64_t)r << 1);\n        }}\n",
-                    w - 8,
-                    w - 1
-                )
-            })
-        }
-        (_, refin) => {
-            print_table(&mut table, name, ty, c);
-            let name = name.to_string();
-            Box::new(move |b| match (refin, w > 8) {
-                (true, true) => {
-                    format!("        r = ({ty})({name}_table[(r ^ {b}) & 0xFFu] ^ (r >> 8));\n")
-                }
-                (false, true) => format!(
-                    "        r = ({ty})({name}_table[((r >> {}) ^ {b}) & 0xFFu] ^ ((uint64_t)r << 8));\n",
-                    w - 8
-                ),
-                (_, false) => format!("        r = {name}_table[(r ^ {b}) & 0xFFu];\n"),
-            })
+        _ => {
+            table = crc_table(name, ty, c);
+            table_step(name, c)
         }
     };
-    let finish = if c.refin != c.refout {
-        format!(
-            "    {{\n        {ty} o = 0;\n        int j;\n        for (j = 0; j < {w}; j++) {{\n            o = ({ty})(o | (((r >> j) & 1u) << ({w} - 1 - j)));\n        }}\n        r = o;\n    }}\n"
-        )
-    } else {
+    let finish = if c.refin == c.refout {
         String::new()
+    } else {
+        fill!(
+            r"
+    {
+        ${ty} o = 0;
+        int j;
+        for (j = 0; j < ${w}; j++) {
+            o = (${ty})(o | (((r >> j) & 1u) << (${w} - 1 - j)));
+        }
+        r = o;
+    }
+",
+            ty,
+            w
+        )
     };
+    let (xorout, mask) = (format!("{:#x}", c.xorout), u64_lit(mask(w)));
     Parts {
         state,
         table,
         step,
         finish,
-        value: format!(
-            "(uint64_t)(r ^ ({ty}){:#x}u) & {}",
-            c.xorout,
-            u64_lit(mask(w))
+        value: fill!(
+            "(uint64_t)(r ^ (${ty})${xorout}u) & ${mask}",
+            ty,
+            xorout,
+            mask
         ),
         folds: true,
         block: None,
@@ -331,14 +375,82 @@ fn crc(name: &str, c: &Crc) -> Parts {
     }
 }
 
-fn print_table(out: &mut String, name: &str, ty: &str, c: &Crc) {
+/// The step of a CRC without table: the byte into the register, then eight shifts.
+fn bitwise_step(c: &Crc) -> Box<dyn Fn(&str) -> String> {
+    let ty = unsigned_of((c.width / 8) as usize);
+    if c.refin {
+        let poly = format!("{:#x}", reflect(c.poly, c.width));
+        return Box::new(move |b| {
+            fill!(
+                r"
+        r ^= ${b};
+        for (k = 0; k < 8; k++) {
+            r = (r & 1u) ? ((${ty})(r >> 1) ^ (${ty})${poly}u) : (${ty})(r >> 1);
+        }
+",
+                b,
+                ty,
+                poly
+            )
+        });
+    }
+    let (poly, low, top) = (format!("{:#x}", c.poly), c.width - 8, c.width - 1);
+    Box::new(move |b| {
+        fill!(
+            r"
+        r ^= (${ty})((uint64_t)${b} << ${low});
+        for (k = 0; k < 8; k++) {
+            r = (r >> ${top}) & 1u ? (${ty})(((uint64_t)r << 1) ^ ${poly}u) : (${ty})((uint64_t)r << 1);
+        }
+",
+            ty,
+            b,
+            low,
+            top,
+            poly
+        )
+    })
+}
+
+/// The step of a CRC with a table: one lookup per byte.
+fn table_step(name: &str, c: &Crc) -> Box<dyn Fn(&str) -> String> {
+    let ty = unsigned_of((c.width / 8) as usize);
+    let (name, refin, low) = (name.to_string(), c.refin, c.width - 8);
+    Box::new(move |b| match (refin, low > 0) {
+        (true, true) => fill!(
+            "        r = (${ty})(${name}_table[(r ^ ${b}) & 0xFFu] ^ (r >> 8));\n",
+            ty,
+            name,
+            b
+        ),
+        (false, true) => fill!(
+            "        r = (${ty})(${name}_table[((r >> ${low}) ^ ${b}) & 0xFFu] ^ ((uint64_t)r << 8));\n",
+            ty,
+            name,
+            low,
+            b
+        ),
+        (_, false) => fill!("        r = ${name}_table[(r ^ ${b}) & 0xFFu];\n", name, b),
+    })
+}
+
+/// The 256-entry table of a CRC, eight entries a line.
+fn crc_table(name: &str, ty: &str, c: &Crc) -> String {
     let digits = (c.width / 4) as usize;
-    let _ = writeln!(out, "static const {ty} {name}_table[256] = {{");
+    let mut rows = String::new();
     for row in 0..32u64 {
         let cells: Vec<String> = (0..8)
             .map(|k| format!("{:#0w$x}u", entry(c, row * 8 + k), w = digits + 2))
             .collect();
-        let _ = writeln!(out, "    {},", cells.join(", "));
+        rows.push_str(&format!("    {},\n", cells.join(", ")));
     }
-    out.push_str("};\n");
+    fill!(
+        r"
+static const ${ty} ${name}_table[256] = {
+${rows}};
+",
+        ty,
+        name,
+        rows
+    )
 }

@@ -4,23 +4,20 @@
 //! eight hex digits), enums as their variant's spec name (the number when it has none), bytes
 //! as `hex:` and their digits: a form that compares exactly, for logs and conformance tests.
 
-use std::fmt::Write as _;
-
 use crate::ir::{Field, FieldKind, Prim, Protocol, ValueType};
 
-use super::names::Fx;
-use super::names::{self, Names};
-use super::payload::any_field;
-use super::types::{Carries, carries, keyed_format, slots_of, user_values};
+use super::names::{self, Fx, Names};
+use super::shape::{Carries, any_field, carries, keyed_format, slots_of, user_values};
+use super::template::fill;
 
-/// The formatter, inside `#ifdef <PREFIX>_WITH_FORMAT`.
+/// The formatter, inside `#ifdef <PREFIX>_WITH_FORMAT`: the shared helpers
+/// (`templates/text_open.c`, and `templates/text_utf8.c` for a spec with text), a function
+/// per struct, a function per frame format.
 pub fn format(p: &Protocol, n: &Names) -> String {
     let (lo, up) = (&n.lo, &n.up);
-    let mut out = format!(
-        "/* ---- Text form ---- */\n\n#ifdef {up}WITH_FORMAT\n#include <stdarg.h>\n#include <stdio.h>\n\nstruct {lo}txt {{ char *p; size_t cap; size_t len; }};\n\nstatic void {lo}emit(struct {lo}txt *t, const char *fmt, ...)\n{{\n    va_list ap;\n    int n;\n    va_start(ap, fmt);\n    n = vsnprintf(t->len < t->cap ? t->p + t->len : NULL, t->len < t->cap ? t->cap - t->len : 0, fmt, ap);\n    va_end(ap);\n    if (n > 0) t->len += (size_t)n;\n}}\n\n"
-    );
-    out.push_str(&path_helper(n));
-    if any_field(p, |k| {
+    let mut out = fill!(include_str!("templates/text_open.c"), lo, up);
+    out.push('\n');
+    let text = |k: &FieldKind| {
         matches!(
             k,
             FieldKind::Value {
@@ -28,270 +25,275 @@ pub fn format(p: &Protocol, n: &Names) -> String {
                 ..
             } | FieldKind::NulText { .. }
         )
-    }) {
-        out.push_str(&text_helpers(n));
+    };
+    if any_field(p, text) {
+        out.push_str(&fill!(include_str!("templates/text_utf8.c"), lo, up));
+        out.push('\n');
     }
     for s in &p.structs {
-        let mut body = String::new();
-        for f in &s.fields {
-            body.push_str(&field(p, n, f, &f.kind));
-        }
-        let loops = body.contains("(i = 0;");
-        let decls = if loops { "    size_t i;\n" } else { "" };
-        let _ = write!(
-            out,
-            "static void {lo}fmt_{snake}(struct {lo}txt *t, const char *path, const {ty} *v)\n{{\n    char sub[192];\n{decls}{body}    (void)sub;\n    (void)v;\n    (void)path;\n}}\n\n",
-            snake = names::snake(&s.name),
-            ty = n.ty(&s.name)
-        );
+        let body: String = s.fields.iter().map(|f| field(p, n, f, &f.kind)).collect();
+        let decls = if body.contains("(i = 0;") {
+            "    size_t i;\n"
+        } else {
+            ""
+        };
+        let (snake, ty) = (names::snake(&s.name), n.ty(&s.name));
+        out.push_str(&fill!(
+            r"
+static void ${lo}fmt_${snake}(struct ${lo}txt *t, const char *path, const ${ty} *v)
+{
+    char sub[192];
+${decls}${body}    (void)sub;
+    (void)v;
+    (void)path;
+}
+
+",
+            lo,
+            snake,
+            ty,
+            decls,
+            body
+        ));
     }
     for fi in 0..p.frames.len() {
         packet_format(p, n, &Fx::new(p, fi), &mut out);
     }
-    let _ = writeln!(out, "#endif /* {up}WITH_FORMAT */");
+    out.push_str(&fill!("#endif /* ${up}WITH_FORMAT */\n", up));
     out
 }
 
 /// `pfx_format` of frame format `x`: the command, the direction, the header values (and the
 /// flag trailer's bytes, or `null`), then the payload.
 fn packet_format(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
-    let lo = &n.lo;
-    let xlo = &x.lo;
+    let (lo, xlo) = (&n.lo, &x.lo);
     let f = &p.frames[x.fi];
-    let _ = writeln!(
-        out,
-        "int {xlo}format(const {xlo}packet *packet, char *out, size_t cap)\n{{\n    struct {lo}txt text;\n    struct {lo}txt *t = &text;\n    text.p = out;\n    text.cap = cap;\n    text.len = 0;\n    if (cap > 0) out[0] = 0;\n"
-    );
-    if f.ack.is_some() {
-        let _ = writeln!(
-            out,
-            "    {lo}emit(t, \"cmd=%s\", packet->ack ? \"?\" : {lo}command_name(packet->command));"
-        );
+    out.push_str(&fill!(
+        r"
+int ${xlo}format(const ${xlo}packet *packet, char *out, size_t cap)
+{
+    struct ${lo}txt text;
+    struct ${lo}txt *t = &text;
+    text.p = out;
+    text.cap = cap;
+    text.len = 0;
+    if (cap > 0) out[0] = 0;
+
+",
+        xlo,
+        lo
+    ));
+    let command = if f.ack.is_some() {
+        r#"    ${lo}emit(t, "cmd=%s", packet->ack ? "?" : ${lo}command_name(packet->command));"#
     } else if keyed_format(p, x.fi) {
-        let _ = writeln!(
-            out,
-            "    {lo}emit(t, \"cmd=%s\", {lo}command_name(packet->command) ? {lo}command_name(packet->command) : \"?\");"
-        );
+        r#"    ${lo}emit(t, "cmd=%s", ${lo}command_name(packet->command) ? ${lo}command_name(packet->command) : "?");"#
     } else {
-        let _ = writeln!(out, "    {lo}emit(t, \"cmd=?\");");
-    }
+        r#"    ${lo}emit(t, "cmd=?");"#
+    };
+    out.push_str(&fill!(command, lo));
+    out.push('\n');
     if !p.directions.is_empty() && carries(p, x.fi) == Carries::Commands {
-        let _ = writeln!(
-            out,
-            "    {lo}emit(t, \" dir=%s\", {lo}direction_name(packet->direction));"
-        );
+        out.push_str(&fill!(
+            "    ${lo}emit(t, \" dir=%s\", ${lo}direction_name(packet->direction));\n",
+            lo
+        ));
     }
     for v in user_values(f) {
         let value = format!("packet->header.{}", names::field(&v.name));
-        let label = format!("\"header.{}=\"", v.name);
+        let label = Label {
+            fmt: format!("header.{}=", v.name),
+            args: String::new(),
+        };
         let prim = if v.prim == Prim::Bool {
             Prim::Bool
         } else {
             Prim::U64
         };
-        out.push_str(&scalar(lo, prim, &label, &value, ""));
+        out.push_str(&scalar(lo, prim, &label, &value));
     }
     if let Some(tr) = &f.flag_trailer {
-        let name = names::field(&tr.name);
-        let _ = writeln!(
-            out,
-            "    if (packet->header.{name}_present) {{\n        size_t i;\n        {lo}emit(t, \" header.{}=hex:\");\n        for (i = 0; i < {}u; i++) {lo}emit(t, \"%02x\", (unsigned)packet->header.{name}[i]);\n    }} else {{\n        {lo}emit(t, \" header.{}=null\");\n    }}",
-            tr.name, tr.len, tr.name
-        );
+        let (name, field, len) = (&tr.name, names::field(&tr.name), tr.len);
+        out.push_str(&fill!(
+            r#"
+    if (packet->header.${field}_present) {
+        size_t i;
+        ${lo}emit(t, " header.${name}=hex:");
+        for (i = 0; i < ${len}u; i++) ${lo}emit(t, "%02x", (unsigned)packet->header.${field}[i]);
+    } else {
+        ${lo}emit(t, " header.${name}=null");
+    }
+"#,
+            field,
+            lo,
+            name,
+            len
+        ));
     }
     if carries(p, x.fi) == Carries::Bytes {
-        let _ = writeln!(
-            out,
-            "    {{\n        size_t i;\n        {lo}emit(t, \" payload=hex:\");\n        for (i = 0; i < packet->payload_len; i++) {lo}emit(t, \"%02x\", (unsigned)packet->payload[i]);\n    }}"
-        );
+        let (guard, len, bytes) = ("", "packet->payload_len", "packet->payload");
+        out.push_str(&hex_payload(lo, guard, len, bytes));
     }
     for slot in slots_of(p, x.fi) {
         if let Some(si) = slot.si {
-            let _ = writeln!(
-                out,
-                "    {}{lo}fmt_{}(t, \"payload\", &packet->payload.{});",
-                slot.guard(p, n, "packet"),
-                names::snake(&p.structs[si].name),
-                slot.name
-            );
+            let guard = slot.guard(p, n, "packet");
+            let (snake, name) = (names::snake(&p.structs[si].name), &slot.name);
+            out.push_str(&fill!(
+                "    ${guard}${lo}fmt_${snake}(t, \"payload\", &packet->payload.${name});\n",
+                guard,
+                lo,
+                snake,
+                name
+            ));
         }
     }
     if f.ack.is_some() {
-        let _ = writeln!(
-            out,
-            "    if (packet->ack) {{\n        size_t i;\n        {lo}emit(t, \" payload=hex:\");\n        for (i = 0; i < packet->payload.ack_data.len; i++) {lo}emit(t, \"%02x\", (unsigned)packet->payload.ack_data.bytes[i]);\n    }}"
+        let (len, bytes) = (
+            "packet->payload.ack_data.len",
+            "packet->payload.ack_data.bytes",
         );
+        out.push_str(&hex_payload(lo, "if (packet->ack) ", len, bytes));
     }
-    let _ = writeln!(out, "    return (int)text.len;\n}}\n");
+    out.push_str(&fill!(
+        r"
+    return (int)text.len;
+}
+
+"
+    ));
+}
+
+/// A payload as `hex:` and its bytes' digits (`guard`: the statement's condition, if any).
+fn hex_payload(lo: &str, guard: &str, len: &str, bytes: &str) -> String {
+    fill!(
+        r#"
+    ${guard}{
+        size_t i;
+        ${lo}emit(t, " payload=hex:");
+        for (i = 0; i < ${len}; i++) ${lo}emit(t, "%02x", (unsigned)${bytes}[i]);
+    }
+"#,
+        guard,
+        lo,
+        len,
+        bytes
+    )
+}
+
+/// A value's label in the text form: the C format of its path (`%s.speed=`) and the
+/// arguments the format takes (`, path`).
+struct Label {
+    fmt: String,
+    args: String,
+}
+
+impl Label {
+    /// The label of a field's value.
+    fn of(name: &str) -> Label {
+        Label {
+            fmt: format!("%s.{name}="),
+            args: ", path".into(),
+        }
+    }
+
+    /// The label of element `i` of a field.
+    fn item(name: &str) -> Label {
+        Label {
+            fmt: format!("%s.{name}[%u]="),
+            args: ", path, (unsigned)i".into(),
+        }
+    }
 }
 
 /// The text of one field (`kind`: the field's, or what an optional field holds).
 fn field(p: &Protocol, n: &Names, f: &Field, kind: &FieldKind) -> String {
     let lo = &n.lo;
-    let name = names::field(&f.name);
-    let mut body = String::new();
-    let each = |count: &dyn std::fmt::Display, what: String| {
-        format!("    for (i = 0; i < {count}; i++) {{\n{what}    }}\n")
+    let (key, name) = (&f.name, names::field(&f.name));
+    let each = |count: &str, what: String| {
+        let what = indent(&what);
+        fill!(
+            r"
+    for (i = 0; i < ${count}; i++) {
+${what}    }
+",
+            count,
+            what
+        )
     };
-    let item = format!("\"%s.{}[%u]=\", path, (unsigned)i", f.name);
+    let (item, at_i) = (Label::item(key), format!("v->{name}[i]"));
     match kind {
-        FieldKind::Padding | FieldKind::Check(_) => {}
+        FieldKind::Padding | FieldKind::Check(_) => String::new(),
         // The text up to its NUL: a string when it is UTF-8, else its bytes.
-        FieldKind::NulText { max } => {
-            let _ = writeln!(
-                body,
-                "    for (i = 0; i <= {max}u && v->{name}[i] != 0; i++) {{\n    }}\n    {lo}path(sub, sizeof sub, \"%s.{}\", path);\n    {lo}fmt_text(t, sub, (const uint8_t *)v->{name}, i);",
-                f.name
-            );
+        FieldKind::NulText { max } => fill!(
+            r#"
+    for (i = 0; i <= ${max}u && v->${name}[i] != 0; i++) {
+    }
+    ${lo}path(sub, sizeof sub, "%s.${key}", path);
+    ${lo}fmt_text(t, sub, (const uint8_t *)v->${name}, i);
+"#,
+            max,
+            name,
+            lo,
+            key
+        ),
+        FieldKind::Array { ty, .. } => {
+            each(&format!("v->{name}_len"), value(p, n, ty, &item, &at_i))
         }
-        FieldKind::Array { ty, .. } => body.push_str(&each(
-            &format!("v->{name}_len"),
-            value(p, n, ty, &item, &format!("v->{name}[i]"), "    "),
-        )),
-        FieldKind::Value { ty, count } => match count {
-            None => body.push_str(&value(
-                p,
-                n,
-                ty,
-                &format!("\"%s.{}=\", path", f.name),
-                &format!("v->{name}"),
-                "",
-            )),
-            Some(c) => body.push_str(&each(
-                &format!("{c}u"),
-                value(p, n, ty, &item, &format!("v->{name}[i]"), "    "),
-            )),
-        },
+        FieldKind::Value { ty, count: None } => {
+            value(p, n, ty, &Label::of(key), &format!("v->{name}"))
+        }
+        FieldKind::Value { ty, count: Some(c) } => {
+            each(&format!("{c}u"), value(p, n, ty, &item, &at_i))
+        }
         FieldKind::Bits { members, .. } => {
+            let mut out = String::new();
             for m in members {
                 let v = format!("v->{}", names::field(&m.name));
-                let label = format!("\"%s.{}=\", path", m.name);
-                body.push_str(&match m.enum_index {
-                    Some(ei) => enum_value(n, &p.enums[ei].name, p.enums[ei].prim, &label, &v, ""),
-                    None => scalar(lo, m.prim, &label, &v, ""),
+                let label = Label::of(&m.name);
+                out.push_str(&match m.enum_index {
+                    Some(ei) => enum_value(n, &p.enums[ei].name, p.enums[ei].prim, &label, &v),
+                    None => scalar(lo, m.prim, &label, &v),
                 });
             }
+            out
         }
-        FieldKind::Bytes { .. } => {
-            let _ = writeln!(
-                body,
-                "    {lo}emit(t, \" %s.{}=hex:\", path);\n    for (i = 0; i < v->{name}_len; i++) {lo}emit(t, \"%02x\", (unsigned)v->{name}[i]);",
-                f.name
-            );
-        }
+        FieldKind::Bytes { .. } => fill!(
+            r#"
+    ${lo}emit(t, " %s.${key}=hex:", path);
+    for (i = 0; i < v->${name}_len; i++) ${lo}emit(t, "%02x", (unsigned)v->${name}[i]);
+"#,
+            lo,
+            key,
+            name
+        ),
         FieldKind::Packed {
             count, prim, scale, ..
-        } => body.push_str(&each(
-            &format!("{count}u"),
-            scalar(
-                lo,
-                scale.map_or(*prim, |sc| sc.physical),
-                &item,
-                &format!("v->{name}[i]"),
-                "    ",
-            ),
-        )),
-        FieldKind::Group { elem, .. } => body.push_str(&each(
-            &format!("v->{name}_len"),
-            value(
-                p,
-                n,
-                &ValueType::Struct(*elem),
-                &item,
-                &format!("v->{name}[i]"),
-                "    ",
-            ),
-        )),
+        } => {
+            let prim = scale.map_or(*prim, |sc| sc.physical);
+            each(&format!("{count}u"), scalar(lo, prim, &item, &at_i))
+        }
+        FieldKind::Group { elem, .. } => {
+            let ty = ValueType::Struct(*elem);
+            each(&format!("v->{name}_len"), value(p, n, &ty, &item, &at_i))
+        }
         FieldKind::Optional(inner) => {
-            let keys: String = match &**inner {
-                FieldKind::Bits { members, .. } => members
-                    .iter()
-                    .map(|m| format!("    {lo}emit(t, \" %s.{}=null\", path);\n", m.name))
-                    .collect(),
-                _ => format!("    {lo}emit(t, \" %s.{}=null\", path);\n", f.name),
+            let null = |key: &str| fill!("    ${lo}emit(t, \" %s.${key}=null\", path);\n", lo, key);
+            let nulls: String = match &**inner {
+                FieldKind::Bits { members, .. } => members.iter().map(|m| null(&m.name)).collect(),
+                _ => null(key),
             };
-            let _ = write!(
-                body,
-                "    if (v->{name}_present) {{\n{}    }} else {{\n{}    }}\n",
-                indent(&field(p, n, f, inner)),
-                indent(&keys)
-            );
+            let (present, nulls) = (indent(&field(p, n, f, inner)), indent(&nulls));
+            fill!(
+                r"
+    if (v->${name}_present) {
+${present}    } else {
+${nulls}    }
+",
+                name,
+                present,
+                nulls
+            )
         }
     }
-    body
-}
-
-/// The text of a `char[N]` field, as the run-time codec shows it: ` PATH=TEXT` when the bytes
-/// are canonical (UTF-8 text, then only NUL bytes: the runtime's `text::is_canonical`), else
-/// every byte, ` PATH[i]=BYTE`. A control character or backslash in the text is written
-/// `\xNN`, so that the text form stays one line.
-fn text_helpers(n: &Names) -> String {
-    let (lo, up) = (&n.lo, &n.up);
-    format!(
-        "/* Whether `s[0..n]` is UTF-8 (no overlong form, no surrogate, nothing above U+10FFFF). */
-{up}UNUSED static int {lo}utf8(const uint8_t *s, size_t n)
-{{
-    size_t i = 0, k, more;
-    while (i < n) {{
-        uint8_t c = s[i], lo = 0x80, hi = 0xBF;
-        if (c < 0x80) {{
-            i++;
-            continue;
-        }}
-        if (c >= 0xC2 && c <= 0xDF) more = 1;
-        else if (c >= 0xE0 && c <= 0xEF) more = 2;
-        else if (c >= 0xF0 && c <= 0xF4) more = 3;
-        else return 0;
-        if (c == 0xE0) lo = 0xA0;
-        if (c == 0xED) hi = 0x9F;
-        if (c == 0xF0) lo = 0x90;
-        if (c == 0xF4) hi = 0x8F;
-        if (n - i - 1 < more) return 0;
-        for (k = 1; k <= more; k++) {{
-            if (s[i + k] < (k == 1 ? lo : 0x80) || s[i + k] > (k == 1 ? hi : 0xBF)) return 0;
-        }}
-        i += more + 1;
-    }}
-    return 1;
-}}
-
-{up}UNUSED static void {lo}fmt_text(struct {lo}txt *t, const char *path, const uint8_t *b, size_t n)
-{{
-    size_t len = 0, i;
-    int canonical;
-    while (len < n && b[len] != 0) len++;
-    canonical = {lo}utf8(b, len);
-    for (i = len; i < n; i++) canonical = canonical && b[i] == 0;
-    if (canonical) {{
-        {lo}emit(t, \" %s=\", path);
-        for (i = 0; i < len; i++) {{
-            if (b[i] < 0x20 || b[i] == 0x7F || b[i] == '\\\\') {lo}emit(t, \"\\\\x%02x\", (unsigned)b[i]);
-            else {lo}emit(t, \"%c\", b[i]);
-        }}
-        return;
-    }}
-    for (i = 0; i < n; i++) {lo}emit(t, \" %s[%u]=%u\", path, (unsigned)i, (unsigned)b[i]);
-}}
-
-"
-    )
-}
-
-/// The path of a nested value, for the text of its fields.
-fn path_helper(n: &Names) -> String {
-    let (lo, up) = (&n.lo, &n.up);
-    format!(
-        "/* The path of a nested value into `sub` (cut short when it does not fit). */
-{up}UNUSED static void {lo}path(char *sub, size_t cap, const char *fmt, ...)
-{{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(sub, cap, fmt, ap);
-    va_end(ap);
-}}
-
-"
-    )
 }
 
 /// Lines indented one level more.
@@ -299,48 +301,46 @@ fn indent(text: &str) -> String {
     text.lines().map(|l| format!("    {l}\n")).collect()
 }
 
-/// One value: ` LABEL=VALUE`, `label` being the format and arguments of the label.
-fn value(p: &Protocol, n: &Names, ty: &ValueType, label: &str, v: &str, indent: &str) -> String {
+/// One value: ` LABEL=VALUE`.
+fn value(p: &Protocol, n: &Names, ty: &ValueType, label: &Label, v: &str) -> String {
+    let lo = &n.lo;
+    // A nested value's path, for the text of its own fields.
+    let (path, args) = (label.fmt.trim_end_matches('='), &label.args);
     match ty {
-        ValueType::Scalar { scalar: s, scale } => scalar(
-            &n.lo,
-            scale.map_or(s.prim, |sc| sc.physical),
-            label,
-            v,
-            indent,
-        ),
-        ValueType::Enum(ei, _) => {
-            enum_value(n, &p.enums[*ei].name, p.enums[*ei].prim, label, v, indent)
+        ValueType::Scalar { scalar: s, scale } => {
+            scalar(lo, scale.map_or(s.prim, |sc| sc.physical), label, v)
         }
+        ValueType::Enum(ei, _) => enum_value(n, &p.enums[*ei].name, p.enums[*ei].prim, label, v),
         ValueType::Struct(si) => {
-            let (fmt, args) = split(label);
-            format!(
-                "{indent}    {lo}path(sub, sizeof sub, {}{args});\n{indent}    {lo}fmt_{}(t, sub, &{v});\n",
-                fmt.replace("=\"", "\""),
-                names::snake(&p.structs[*si].name),
-                lo = n.lo
+            let snake = names::snake(&p.structs[*si].name);
+            fill!(
+                r#"
+    ${lo}path(sub, sizeof sub, "${path}"${args});
+    ${lo}fmt_${snake}(t, sub, &${v});
+"#,
+                lo,
+                path,
+                args,
+                snake,
+                v
             )
         }
-        ValueType::Text(len) => {
-            let (fmt, args) = split(label);
-            format!(
-                "{indent}    {lo}path(sub, sizeof sub, {}{args});\n{indent}    {lo}fmt_text(t, sub, (const uint8_t *){v}, {len}u);\n",
-                fmt.replace("=\"", "\""),
-                lo = n.lo
-            )
-        }
+        ValueType::Text(len) => fill!(
+            r#"
+    ${lo}path(sub, sizeof sub, "${path}"${args});
+    ${lo}fmt_text(t, sub, (const uint8_t *)${v}, ${len}u);
+"#,
+            lo,
+            path,
+            args,
+            v,
+            len
+        ),
     }
 }
 
-/// The format string of a label (with its leading space) and its arguments.
-fn split(label: &str) -> (String, String) {
-    let end = label[1..].find('"').map_or(label.len(), |i| i + 2);
-    (label[..end].to_string(), label[end..].to_string())
-}
-
-fn scalar(lo: &str, prim: Prim, label: &str, v: &str, indent: &str) -> String {
-    let (fmt, args) = split(label);
-    let fmt = format!("\" {}", &fmt[1..]);
+/// A number (a float as its bits) or a bool.
+fn scalar(lo: &str, prim: Prim, label: &Label, v: &str) -> String {
     let (spec, value) = match prim {
         Prim::Bool => ("%s", format!("{v} ? \"true\" : \"false\"")),
         Prim::F32 => (
@@ -354,22 +354,37 @@ fn scalar(lo: &str, prim: Prim, label: &str, v: &str, indent: &str) -> String {
         p if p.is_signed() => ("%lld", format!("(long long){v}")),
         _ => ("%llu", format!("(unsigned long long){v}")),
     };
-    let fmt = fmt.trim_end_matches('"').to_string() + spec + "\"";
-    format!("{indent}    {lo}emit(t, {fmt}{args}, {value});\n")
+    let (fmt, args) = (&label.fmt, &label.args);
+    fill!(
+        "    ${lo}emit(t, \" ${fmt}${spec}\"${args}, ${value});\n",
+        lo,
+        fmt,
+        spec,
+        args,
+        value
+    )
 }
 
-fn enum_value(n: &Names, name: &str, prim: Prim, label: &str, v: &str, indent: &str) -> String {
-    let ty = n.ty(name);
-    let (fmt, args) = split(label);
-    let fmt = format!("\" {}", &fmt[1..]);
-    let fmt = fmt.trim_end_matches('"');
+/// An enum value: its variant's spec name, or its number when it has none.
+fn enum_value(n: &Names, name: &str, prim: Prim, label: &Label, v: &str) -> String {
+    let (lo, ty) = (&n.lo, n.ty(name));
     let (spec, cast) = if prim.is_signed() {
         ("%lld", "long long")
     } else {
         ("%llu", "unsigned long long")
     };
-    format!(
-        "{indent}    if ({ty}_name({v})) {lo}emit(t, {fmt}%s\"{args}, {ty}_name({v}));\n{indent}    else {lo}emit(t, {fmt}{spec}\"{args}, ({cast}){v});\n",
-        lo = n.lo
+    let (fmt, args) = (&label.fmt, &label.args);
+    fill!(
+        r#"
+    if (${ty}_name(${v})) ${lo}emit(t, " ${fmt}%s"${args}, ${ty}_name(${v}));
+    else ${lo}emit(t, " ${fmt}${spec}"${args}, (${cast})${v});
+"#,
+        ty,
+        v,
+        lo,
+        fmt,
+        args,
+        spec,
+        cast
     )
 }

@@ -9,9 +9,9 @@
 //! The generated code needs nothing beyond the C standard headers and never allocates:
 //!
 //! * a struct (fixed-width types) per payload struct, an integer type and constants per enum,
-//!   a header struct, a command enum and a packet struct (`types`);
+//!   a header struct, a command enum and a packet struct (`header`, `packet`);
 //! * a reader and a writer per payload struct, with explicit byte order (shifts), never
-//!   relying on struct layout or packing (`payload`);
+//!   relying on struct layout or packing (`payload`, `fields`, `values`, `prelude`);
 //! * the frame rules: each check's algorithm (sums, bitwise or table CRCs from the IR's
 //!   parameters), the probe of a candidate, a decoder of one frame's bytes and an encoder per
 //!   command into the caller's buffer (`frame`, `checks`);
@@ -27,16 +27,35 @@
 //! file as `static` functions, not shipped as a shared `protocol_rt.h`: the two files of a
 //! spec are all a firmware vendors, two specs linked into one firmware cannot clash, and the
 //! engine's constants (sync bytes, buffer size) are compile-time constants of that file.
+//!
+//! The C is written as the C it prints, with `${name}` holes for a spec's values, filled by
+//! `template`'s `fill!`: the code every spec gets in template files (`templates/*.c`, `.h`),
+//! the parts a spec shapes in raw strings beside the Rust that loops over its items. A filler
+//! of a few lines rather than a template engine keeps those loops in Rust, where the other
+//! printers have theirs, and puts no template language between the reader and the C.
+//!
+//! Each module uses only modules after it in this order, so no two import each other:
+//! `header`, `packet`, `engine`, `lookups`, `format`, `frame` (its `probe`, `decode`,
+//! `encode`, then `rules`, then `wire`), `payload`, `fields`, `values`, `checks`, `scale`,
+//! `prelude`, `support`, `shape`, `names`, `template`. The main lines: `header` → `packet`;
+//! `payload` → `fields` → `values` → `prelude`, `scale`; the printers → `shape` → `names`.
 
 mod checks;
 mod engine;
+mod fields;
 mod format;
 mod frame;
+mod header;
+mod lookups;
 mod names;
+mod packet;
 mod payload;
+mod prelude;
 mod scale;
+mod shape;
 mod support;
-mod types;
+mod template;
+mod values;
 
 pub use support::unsupported;
 
@@ -87,9 +106,10 @@ pub fn generate(p: &Protocol) -> Result<CFiles, Vec<String>> {
         return Err(refused);
     }
     let n = names::Names::new(p);
-    let header = types::header(p, &n);
+    let header = header::header(p, &n);
     let mut source = String::new();
-    source.push_str(&types::source_prelude(p, &n));
+    source.push_str(&prelude::source_prelude(p, &n));
+    source.push_str(&lookups::lookups(p, &n));
     source.push_str(&checks::checks(p, &n));
     source.push_str(&checks::payload_checks(p, &n));
     source.push_str(&payload::payloads(p, &n));

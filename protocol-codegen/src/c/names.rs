@@ -1,8 +1,8 @@
-//! The C names of a spec's items: everything carries the spec's name as a prefix
-//! (`hflink_chassis_coord`, `HFLINK_SET_ROBOT_SPEED`), so that the code of several specs links
-//! into one program.
+//! The C names, types and literals of a spec's items: everything carries the spec's name as a
+//! prefix (`hflink_chassis_coord`, `HFLINK_SET_ROBOT_SPEED`), so that the code of several specs
+//! links into one program. Every other module of the printer names things through this one.
 
-use crate::ir::{Prim, Protocol};
+use crate::ir::{BitMember, Prim, Protocol, ValueType};
 
 /// The prefixes of a spec's C names.
 pub struct Names {
@@ -237,5 +237,72 @@ impl Fx {
             up: lo.to_uppercase(),
             lo,
         }
+    }
+}
+
+/// The low `width` bits set.
+pub fn mask(width: u32) -> u64 {
+    if width >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << width) - 1
+    }
+}
+
+/// The C float type of a scaled value's physical type, and the suffix of its helpers.
+pub fn float_of(physical: Prim) -> (&'static str, &'static str) {
+    match physical {
+        Prim::F32 => ("float", "f32"),
+        _ => ("double", "f64"),
+    }
+}
+
+/// The C type of a value field's element.
+pub fn value_type(p: &Protocol, n: &Names, ty: &ValueType) -> String {
+    match ty {
+        ValueType::Scalar {
+            scale: Some(sc), ..
+        } => float_of(sc.physical).0.to_string(),
+        ValueType::Scalar { scalar, .. } => prim(scalar.prim).to_string(),
+        ValueType::Struct(si) => n.ty(&p.structs[*si].name),
+        ValueType::Enum(ei, _) => n.ty(&p.enums[*ei].name),
+        ValueType::Text(_) => "char".into(),
+    }
+}
+
+/// The C type of a bit member.
+pub fn member_type(p: &Protocol, n: &Names, m: &BitMember) -> String {
+    match m.enum_index {
+        Some(ei) => n.ty(&p.enums[ei].name),
+        None => prim(m.prim).to_string(),
+    }
+}
+
+/// A spec's documentation on one line, fit for a C comment.
+fn doc_line(doc: &str) -> String {
+    doc.split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .replace("*/", "* /")
+}
+
+/// A trailing ` /**< doc (unit) */` comment, or nothing.
+pub fn doc_comment(doc: &str, unit: &str) -> String {
+    let doc = doc_line(doc);
+    match (doc.is_empty(), unit.is_empty()) {
+        (true, true) => String::new(),
+        (false, true) => format!(" /**< {doc} */"),
+        (true, false) => format!(" /**< Unit: {unit}. */"),
+        (false, false) => format!(" /**< {doc} Unit: {unit}. */"),
+    }
+}
+
+/// The text of a `/** ... */` comment above an item: its documentation on one line.
+pub fn one_line(doc: &str) -> String {
+    let line = doc_line(doc);
+    if line.is_empty() {
+        "(No documentation.)".into()
+    } else {
+        line
     }
 }

@@ -18,21 +18,12 @@
 //! (`-ffp-contract=off`, the default of gcc in a strict `-std=c99` mode): every product and
 //! sum is its own statement, so clang's default (fusing within one expression) fuses nothing.
 
-use std::fmt::Write as _;
-
 use protocol_runtime::field::{Float, RawInt};
 
 use crate::ir::{Prim, Rounding, Scale};
 
-use super::names::Names;
-
-/// The C float type of a scaled value's physical type, and the suffix of its helpers.
-pub fn float_of(physical: Prim) -> (&'static str, &'static str) {
-    match physical {
-        Prim::F32 => ("float", "f32"),
-        _ => ("double", "f64"),
-    }
-}
+use super::names::{Names, float_of};
+use super::template::fill;
 
 /// A C literal of `x` in the physical type (the shortest decimal that reads back as the same
 /// `f32` or `f64`).
@@ -43,7 +34,7 @@ pub fn lit(x: f64, physical: Prim) -> String {
     }
 }
 
-/// The helpers of the field rules, in both float types.
+/// The helpers of the field rules, in both float types (`templates/scale.c`).
 pub fn helpers(n: &Names) -> String {
     let (lo, up) = (&n.lo, &n.up);
     let mut out = String::from(
@@ -56,7 +47,10 @@ pub fn helpers(n: &Names) -> String {
             format!("{:?}f", <f32 as Float>::NOISE),
             format!("{:?}f", <f32 as Float>::CLAMP_SLACK),
             // Every float of magnitude 2^23 or more is an integer already.
-            "    if (x >= 8388608.0f || x <= -8388608.0f) return x;\n    return (float)(int32_t)x;\n",
+            r"
+    if (x >= 8388608.0f || x <= -8388608.0f) return x;
+    return (float)(int32_t)x;
+",
         ),
         (
             "double",
@@ -64,73 +58,33 @@ pub fn helpers(n: &Names) -> String {
             format!("{:?}", <f64 as Float>::NOISE),
             format!("{:?}", <f64 as Float>::CLAMP_SLACK),
             // As Rust's saturating `as i64`.
-            "    if (x >= 9223372036854775808.0) return 9223372036854775808.0;\n    if (x <= -9223372036854775808.0) return -9223372036854775808.0;\n    return (double)(int64_t)x;\n",
+            r"
+    if (x >= 9223372036854775808.0) return 9223372036854775808.0;
+    if (x <= -9223372036854775808.0) return -9223372036854775808.0;
+    return (double)(int64_t)x;
+",
         ),
     ] {
-        let one = if sfx == "f32" { "1.0f" } else { "1.0" };
-        let zero = if sfx == "f32" { "0.0f" } else { "0.0" };
-        let half = if sfx == "f32" { "0.5f" } else { "0.5" };
-        let _ = write!(
-            out,
-            "/* `x` cut toward zero (NaN: 0). */
-{up}UNUSED static {ty} {lo}cut_{sfx}({ty} x)
-{{
-    if (x != x) return {zero};
-{cut}}}
-
-{up}UNUSED static {ty} {lo}mag_{sfx}({ty} x)
-{{
-    return x >= {zero} ? x : -x;
-}}
-
-/* `raw * factor + offset`; `raw / n + offset` when `factor` is the reciprocal of an integer
- * `n` within float noise. */
-{up}UNUSED static {ty} {lo}to_physical_{sfx}({ty} raw, {ty} factor, {ty} offset)
-{{
-    {ty} inv = {one} / factor;
-    {ty} n = {lo}cut_{sfx}(inv >= {zero} ? inv + {half} : inv - {half});
-    {ty} off = {lo}mag_{sfx}(inv - n);
-    {ty} t;
-    if (n != {zero} && off <= {noise} * {lo}mag_{sfx}(n)) {{
-        t = raw / n;
-    }} else {{
-        t = raw * factor;
-    }}
-    return t + offset;
-}}
-
-/* Whether a decoded value lies in the clamp range, with the slack of its rounding. */
-{up}UNUSED static int {lo}within_{sfx}({ty} x, {ty} lo, {ty} hi)
-{{
-    {ty} range = hi - lo;
-    {ty} slack = {slack} * (range > {one} ? range : {one});
-    return x >= lo - slack && x <= hi + slack;
-}}
-
-{up}UNUSED static {ty} {lo}clamp_{sfx}({ty} x, {ty} lo, {ty} hi)
-{{
-    if (x < lo) return lo;
-    if (x > hi) return hi;
-    return x;
-}}
-
-/* `(physical - offset) / factor`, rounded to nearest (halves away from zero; the cast cuts
- * it) or truncated (a quotient within float noise of an integer is that integer). */
-{up}UNUSED static {ty} {lo}quantize_{sfx}({ty} physical, {ty} factor, {ty} offset, int truncate)
-{{
-    {ty} q = (physical - offset) / factor;
-    {ty} nearest = q >= {zero} ? q + {half} : q - {half};
-    {ty} cut, off, m;
-    if (!truncate) return nearest;
-    cut = {lo}cut_{sfx}(nearest);
-    off = {lo}mag_{sfx}(q - cut);
-    m = {lo}mag_{sfx}(q) + {lo}mag_{sfx}(offset / factor);
-    if (off <= {noise} * (m > {one} ? m : {one})) return cut;
-    return q;
-}}
-
-"
-        );
+        let cut = cut.strip_prefix('\n').unwrap_or(cut);
+        let (one, zero, half) = if sfx == "f32" {
+            ("1.0f", "0.0f", "0.5f")
+        } else {
+            ("1.0", "0.0", "0.5")
+        };
+        out.push_str(&fill!(
+            include_str!("templates/scale.c"),
+            lo,
+            up,
+            ty,
+            sfx,
+            noise,
+            slack,
+            cut,
+            one,
+            zero,
+            half
+        ));
+        out.push('\n');
     }
     out
 }
@@ -171,18 +125,28 @@ pub fn read(n: &Names, prim: Prim, sc: &Scale, raw: &str, dst: &str) -> String {
     } else {
         format!("(double){raw}")
     };
-    let mut out = format!(
-        "    {dst} = {lo}to_physical_{sfx}(({ty}){int}, {}, {});\n",
-        lit(sc.factor, sc.physical),
-        lit(sc.offset, sc.physical)
+    let (factor, offset) = (lit(sc.factor, sc.physical), lit(sc.offset, sc.physical));
+    let mut out = fill!(
+        "    ${dst} = ${lo}to_physical_${sfx}((${ty})${int}, ${factor}, ${offset});\n",
+        dst,
+        lo,
+        sfx,
+        ty,
+        int,
+        factor,
+        offset
     );
     if let Some((a, b)) = sc.clamp {
-        let _ = writeln!(
-            out,
-            "    if (!{lo}within_{sfx}({dst}, {}, {})) return {up}ERR_OUTSIDE_CLAMP;",
-            lit(a, sc.physical),
-            lit(b, sc.physical)
-        );
+        let (a, b) = (lit(a, sc.physical), lit(b, sc.physical));
+        out.push_str(&fill!(
+            "    if (!${lo}within_${sfx}(${dst}, ${a}, ${b})) return ${up}ERR_OUTSIDE_CLAMP;\n",
+            lo,
+            sfx,
+            dst,
+            a,
+            b,
+            up
+        ));
     }
     out
 }
@@ -190,48 +154,66 @@ pub fn read(n: &Names, prim: Prim, sc: &Scale, raw: &str, dst: &str) -> String {
 /// Statements that set `uint64_t raw` to the raw bits of the physical value `src` of a field
 /// of raw type `prim`; a value the type cannot hold returns `<PREFIX>ERR_OUT_OF_RANGE`.
 pub fn write(n: &Names, prim: Prim, sc: &Scale, src: &str) -> String {
-    let up = &n.up;
-    let lo = &n.lo;
+    let (lo, up) = (&n.lo, &n.up);
     let (ty, sfx) = float_of(sc.physical);
-    let mut out = format!("    {{\n        {ty} x = {src};\n");
-    if let Some((a, b)) = sc.clamp {
-        let _ = writeln!(
-            out,
-            "        x = {lo}clamp_{sfx}(x, {}, {});",
-            lit(a, sc.physical),
-            lit(b, sc.physical)
-        );
-    }
+    let clamp = match sc.clamp {
+        Some((a, b)) => {
+            let (a, b) = (lit(a, sc.physical), lit(b, sc.physical));
+            fill!(
+                "        x = ${lo}clamp_${sfx}(x, ${a}, ${b});\n",
+                lo,
+                sfx,
+                a,
+                b
+            )
+        }
+        None => String::new(),
+    };
     let (below, above) = bounds(prim, sc.physical);
-    let _ = writeln!(
-        out,
-        "        x = {lo}quantize_{sfx}(x, {}, {}, {});\n        if (!(x > {below} && x < {above})) return {up}ERR_OUT_OF_RANGE;",
-        lit(sc.factor, sc.physical),
-        lit(sc.offset, sc.physical),
-        u8::from(sc.rounding == Rounding::Truncate)
-    );
+    let (factor, offset) = (lit(sc.factor, sc.physical), lit(sc.offset, sc.physical));
+    let truncate = u8::from(sc.rounding == Rounding::Truncate);
     let ct = super::names::prim(prim);
-    let _ = writeln!(out, "        {{\n            {ct} k = ({ct})x;");
-    match prim {
-        Prim::U24 => {
-            let _ = writeln!(
-                out,
-                "            if (k > 0xFFFFFFu) return {up}ERR_OUT_OF_RANGE;"
-            );
-        }
-        Prim::I24 => {
-            let _ = writeln!(
-                out,
-                "            if (k < -8388608L || k > 8388607L) return {up}ERR_OUT_OF_RANGE;"
-            );
-        }
-        _ => {}
-    }
-    if prim.is_signed() {
-        let _ = writeln!(out, "            raw = (uint64_t)(int64_t)k;");
+    let fits = match prim {
+        Prim::U24 => fill!(
+            "            if (k > 0xFFFFFFu) return ${up}ERR_OUT_OF_RANGE;\n",
+            up
+        ),
+        Prim::I24 => fill!(
+            "            if (k < -8388608L || k > 8388607L) return ${up}ERR_OUT_OF_RANGE;\n",
+            up
+        ),
+        _ => String::new(),
+    };
+    let bits = if prim.is_signed() {
+        "(uint64_t)(int64_t)k"
     } else {
-        let _ = writeln!(out, "            raw = (uint64_t)k;");
+        "(uint64_t)k"
+    };
+    fill!(
+        r"
+    {
+        ${ty} x = ${src};
+${clamp}        x = ${lo}quantize_${sfx}(x, ${factor}, ${offset}, ${truncate});
+        if (!(x > ${below} && x < ${above})) return ${up}ERR_OUT_OF_RANGE;
+        {
+            ${ct} k = (${ct})x;
+${fits}            raw = ${bits};
+        }
     }
-    out.push_str("        }\n    }\n");
-    out
+",
+        ty,
+        src,
+        clamp,
+        lo,
+        sfx,
+        factor,
+        offset,
+        truncate,
+        below,
+        above,
+        up,
+        ct,
+        fits,
+        bits
+    )
 }

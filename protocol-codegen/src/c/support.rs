@@ -3,7 +3,7 @@
 
 use crate::ir::{Algorithm, FieldKind, PacketKind, Protocol, Role, Transport, ValueType};
 
-use super::types::keyed_format;
+use super::shape::keyed_format;
 
 /// One line per feature of `p` the C printer does not support yet; empty when it prints the
 /// whole spec.

@@ -1,0 +1,563 @@
+//! The decoder of one frame's bytes: the checking entry point (the probe on the whole bytes),
+//! then the reading of a checked frame, one function per rule: the header values, the
+//! direction, the dispatch key (or a CAN id), the payload read into the packet's member.
+
+use crate::ir::{DirectionRule, Length, Prim, Protocol};
+
+use super::super::names::{self, Fx, Names};
+use super::super::shape::{Carries, Slot, carries, slots_of, user_values};
+use super::super::template::fill;
+use super::rules;
+use super::wire::{big, pos, truncate, truncated, word};
+
+/// The decoders of format `x`: by direction where the caller gives it, the checking entry
+/// point, and the reading of a checked frame.
+pub(super) fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let given = x.fi == 0 && p.directions_given();
+    if given {
+        by_direction(p, n, x, out);
+    }
+    checking(n, x, given, out);
+    decode_frame(p, n, x, given, out);
+}
+
+/// The decoder's parameters after the bytes: the direction, where the caller gives it.
+fn params(n: &Names, given: bool) -> String {
+    if given {
+        format!("{}direction direction, ", n.lo)
+    } else {
+        String::new()
+    }
+}
+
+/// The decoders of a format whose direction comes from the caller: one per direction, and
+/// those without one (which decode no frame whose payload depends on it).
+fn by_direction(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let (up, xlo) = (&n.up, &x.lo);
+    let wrapper = |name: &str, to: &str, direction: &str| {
+        fill!(
+            r"
+int ${xlo}${name}(const uint8_t *bytes, size_t len, ${xlo}packet *out)
+{
+    return ${xlo}${to}(bytes, len, ${up}${direction}, out);
+}
+
+",
+            xlo,
+            name,
+            to,
+            up,
+            direction
+        )
+    };
+    out.push_str(&wrapper("decode", "decode_given", "DIRECTION_COUNT"));
+    for d in &p.directions {
+        let name = format!("decode_{}", d.name);
+        out.push_str(&wrapper(&name, "decode_given", &d.name.to_uppercase()));
+    }
+    out.push_str(&wrapper(
+        "decode_frame",
+        "decode_frame_given",
+        "DIRECTION_COUNT",
+    ));
+}
+
+/// The checking entry point: the probe of the stream decoder's rules on the whole bytes,
+/// then the reading of a checked frame.
+fn checking(n: &Names, x: &Fx, given: bool, out: &mut String) {
+    let (up, xlo, xup) = (&n.up, &x.lo, &x.up);
+    let (params, sfx, direction) = if given {
+        (params(n, given), "_given", "direction, ")
+    } else {
+        (String::new(), "", "")
+    };
+    out.push_str(&fill!(
+        r"
+int ${xlo}decode${sfx}(const uint8_t *bytes, size_t len, ${params}${xlo}packet *out)
+{
+    size_t n = 0;
+    if (${xlo}probe(bytes, len, ${xup}MAX_FRAME_LEN, &n) != ${up}PROBE_FRAME || n != len) return ${up}ERR_FRAME;
+    return ${xlo}decode_frame${sfx}(bytes, len, ${direction}out);
+}
+
+",
+        xlo,
+        sfx,
+        params,
+        xup,
+        up,
+        direction
+    ));
+}
+
+/// The reading of a checked frame: the framing is trusted, but any bytes are read within
+/// `len` (the payload's end is computed only when the trailer fits).
+fn decode_frame(p: &Protocol, n: &Names, x: &Fx, given: bool, out: &mut String) {
+    let (lo, up, xlo, xup) = (&n.lo, &n.up, &x.lo, &x.up);
+    let f = &p.frames[x.fi];
+    let (sfx, params) = (if given { "_given" } else { "" }, params(n, given));
+    let fill = rules::fill_len(p, x.fi);
+    let filled = if fill > 0 {
+        format!("    uint8_t filled[{fill}];\n")
+    } else {
+        String::new()
+    };
+    let short = if f.trailer_len > 0 {
+        format!(" || len < {xup}TRAILER_LEN")
+    } else {
+        String::new()
+    };
+    // Everything before the payload is zeroed, and a payload struct just before it is read:
+    // not the whole union, whose largest member may be many times the frame's.
+    let zero = if carries(p, x.fi) == Carries::Bytes {
+        "sizeof *out".to_string()
+    } else {
+        format!("offsetof({xlo}packet, payload)")
+    };
+    out.push_str(&fill!(
+        r"
+int ${xlo}decode_frame${sfx}(const uint8_t *bytes, size_t len, ${params}${xlo}packet *out)
+{
+    size_t start = ${xup}HEADER_LEN, end;
+    uint64_t raw = 0;
+    struct ${lo}rd r;
+    int e = 0;
+${filled}    if (len > ${xup}MAX_FRAME_LEN${short}) return ${up}ERR_FRAME;
+    memset(out, 0, ${zero});
+    (void)raw;
+    end = len - ${xup}TRAILER_LEN;
+",
+        xlo,
+        sfx,
+        params,
+        xup,
+        lo,
+        filled,
+        short,
+        up,
+        zero
+    ));
+    header_values(p, n, x, out);
+    if f.ack.is_some() {
+        rules::ack_decode(f, n, out);
+    }
+    flag_trailer(p, n, x, out);
+    out.push_str(&fill!("    if (end < start) return ${up}ERR_FRAME;\n", up));
+    if given {
+        given_direction(p, n, out);
+    }
+    match carries(p, x.fi) {
+        Carries::Commands => {
+            dispatch_key(p, n, x, out);
+            if !given {
+                directions(p, n, x.fi, out);
+            }
+        }
+        Carries::Can => can_command(p, n, x, out),
+        Carries::Message(_) => {}
+        Carries::Bytes => {
+            payload_bytes(n, out);
+            return;
+        }
+    }
+    if let Some((after, insert)) = &f.stuffing {
+        rules::unstuff(after, *insert, n, x, out);
+    }
+    read_payload(p, n, x, out);
+}
+
+/// The header values a sender sets, into `out->header`; the payload's start behind a wider
+/// length when the length field holds its marker.
+fn header_values(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let f = &p.frames[x.fi];
+    for v in user_values(f) {
+        let value = if v.prim == Prim::Bool {
+            "(raw != 0)".to_string()
+        } else {
+            format!("({})raw", names::unsigned_of(v.prim.size()))
+        };
+        let (word, name) = (word(v), names::field(&v.name));
+        out.push_str(&fill!(
+            r"
+    if (!${lo}field(bytes, len, ${word}, &raw)) return ${up}ERR_FRAME;
+    out->header.${name} = ${value};
+",
+            lo,
+            word,
+            up,
+            name,
+            value
+        ));
+    }
+    if let (Some(e), Length::Field { value, .. }) = (&f.length_extension, &f.length) {
+        let (word, marker, len) = (word(&f.values[*value]), names::u64_lit(e.marker), e.len);
+        out.push_str(&fill!(
+            r"
+    /* The wider length, when the length field holds its marker. */
+    if (${lo}field(bytes, len, ${word}, &raw) && raw == ${marker}) start += ${len}u;
+",
+            lo,
+            word,
+            marker,
+            len
+        ));
+    }
+}
+
+/// The flag trailer: the last bytes, before the trailer, when its header flag is set.
+fn flag_trailer(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let (lo, up, xup) = (&n.lo, &n.up, &x.up);
+    let f = &p.frames[x.fi];
+    let Some(t) = &f.flag_trailer else { return };
+    let (key, name, flag, len) = (
+        &t.name,
+        names::field(&t.name),
+        word(&f.values[t.flag]),
+        t.len,
+    );
+    out.push_str(&fill!(
+        r"
+    /* `${key}`: the last bytes, when its flag is set. */
+    if (${lo}field(bytes, len, ${flag}, &raw) && raw != 0) {
+        if (end < ${len}u) return ${up}ERR_FRAME;
+        end -= ${len}u;
+        out->header.${name}_present = 1;
+        memcpy(out->header.${name}, bytes + end + ${xup}TRAILER_LEN, ${len}u);
+    }
+",
+        key,
+        lo,
+        flag,
+        len,
+        up,
+        name,
+        xup
+    ));
+}
+
+/// The payload of a format without dispatch key or message: its bytes as they are.
+fn payload_bytes(n: &Names, out: &mut String) {
+    let up = &n.up;
+    out.push_str(&fill!(
+        r"
+    /* The payload's bytes as they are. */
+    if (end - start > sizeof out->payload) return ${up}ERR_PAYLOAD_LENGTH;
+    out->payload_len = end - start;
+    if (out->payload_len > 0) memcpy(out->payload, bytes + start, out->payload_len);
+    r.p = NULL;
+    r.len = r.pos = 0;
+    (void)r;
+    (void)e;
+    return 0;
+}
+
+",
+        up
+    ));
+}
+
+/// The direction the decoder is given: none is an unknown direction; a direction whose frames
+/// carry one struct reads it from where the dispatch key would be.
+fn given_direction(p: &Protocol, n: &Names, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    out.push_str(&fill!(
+        r"
+    if ((int)direction < 0 || direction >= ${up}DIRECTION_COUNT) return ${up}ERR_UNKNOWN_DIRECTION;
+    out->direction = direction;
+",
+        up
+    ));
+    for d in &p.directions {
+        let Some((si, start)) = d.message else {
+            continue;
+        };
+        let (direction, name) = (d.name.to_uppercase(), &d.name);
+        let snake = names::snake(&p.structs[si].name);
+        out.push_str(&fill!(
+            r"
+    if (direction == ${up}${direction}) {
+        out->command = ${up}COMMAND_COUNT; /* none */
+        if (end < ${start}u) return ${up}ERR_FRAME;
+        r.p = bytes + ${start}u;
+        r.len = end - ${start}u;
+        r.pos = 0;
+        memset(&out->payload.${name}, 0, sizeof out->payload.${name});
+        if ((e = ${lo}read_${snake}(&r, &out->payload.${name})) != 0) return e;
+        return r.pos != r.len ? ${up}ERR_PAYLOAD_LENGTH : 0;
+    }
+",
+            up,
+            direction,
+            start,
+            name,
+            lo,
+            snake
+        ));
+    }
+}
+
+/// The direction from the header of format `fi`, its rules tested in order (on a link, each
+/// command format names its own direction field).
+fn directions(p: &Protocol, n: &Names, fi: usize, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let f = &p.frames[fi];
+    if p.directions.is_empty() {
+        return;
+    }
+    out.push_str("    ");
+    for d in &p.directions {
+        let cond = match &d.rule.in_frame(f) {
+            DirectionRule::InSet { value, set } => {
+                let v = &f.values[*value];
+                let a = &p.addresses[*set];
+                let (word, bits) = (word(v), truncated(v, "raw"));
+                let first = names::u64_lit(truncate(v.prim, a.first));
+                let last = names::u64_lit(truncate(v.prim, a.last));
+                fill!(
+                    "${lo}field(bytes, len, ${word}, &raw) && ${bits} >= ${first} && ${bits} <= ${last}",
+                    lo,
+                    word,
+                    bits,
+                    first,
+                    last
+                )
+            }
+            DirectionRule::Equals { value, equals } => {
+                let v = &f.values[*value];
+                let (word, bits, equals) = (word(v), truncated(v, "raw"), names::u64_lit(*equals));
+                fill!(
+                    "${lo}field(bytes, len, ${word}, &raw) && ${bits} == ${equals}",
+                    lo,
+                    word,
+                    bits,
+                    equals
+                )
+            }
+            // Refused by `support::unsupported`: nothing in the header tells it.
+            DirectionRule::Given => "0".to_string(),
+        };
+        let direction = d.name.to_uppercase();
+        out.push_str(&fill!(
+            "if (${cond}) out->direction = ${up}${direction};\n    else ",
+            cond,
+            up,
+            direction
+        ));
+    }
+    out.push_str(&fill!("return ${up}ERR_UNKNOWN_DIRECTION;\n", up));
+}
+
+/// The dispatch key, one variable per field, then the command it names among those the
+/// format carries.
+fn dispatch_key(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let f = &p.frames[x.fi];
+    let fields = f.dispatch.len();
+    out.push_str(&fill!(
+        r"
+    {
+        uint64_t key[${fields}];
+",
+        fields
+    ));
+    for (k, &vi) in f.dispatch.iter().enumerate() {
+        let v = &f.values[vi];
+        let (word, bits) = (word(v), truncated(v, "raw"));
+        out.push_str(&fill!(
+            r"
+        if (!${lo}field(bytes, len, ${word}, &raw)) return ${up}ERR_FRAME;
+        key[${k}] = ${bits};
+",
+            lo,
+            word,
+            up,
+            k,
+            bits
+        ));
+    }
+    let carried = |ci: usize| f.commands.contains(&ci);
+    if let [vi] = f.dispatch[..] {
+        // One key field: a switch (a jump table where the ids are dense).
+        let narrow = f.values[vi].prim.size() <= 4;
+        let cast = if narrow { "(uint32_t)" } else { "" };
+        out.push_str(&fill!("        switch (${cast}key[0]) {\n", cast));
+        for (ci, c) in p.commands.iter().enumerate() {
+            if !carried(ci) || c.id.len() != 1 {
+                continue;
+            }
+            let id = truncate(f.values[vi].prim, c.id[0]);
+            let label = if narrow {
+                format!("{id:#x}u")
+            } else {
+                names::u64_lit(id)
+            };
+            let name = &c.name;
+            out.push_str(&fill!(
+                "        case ${label}: out->command = ${up}${name}; break;\n",
+                label,
+                up,
+                name
+            ));
+        }
+        out.push_str(&fill!(
+            r"
+        default: return ${up}ERR_UNKNOWN_COMMAND;
+        }
+    }
+",
+            up
+        ));
+        return;
+    }
+    out.push_str("        ");
+    for (ci, c) in p.commands.iter().enumerate() {
+        if !carried(ci) || c.id.len() != fields {
+            continue;
+        }
+        let conds: Vec<String> = f
+            .dispatch
+            .iter()
+            .zip(&c.id)
+            .enumerate()
+            .map(|(k, (&vi, id))| {
+                let v = &f.values[vi];
+                format!("key[{k}] == {}", names::u64_lit(truncate(v.prim, *id)))
+            })
+            .collect();
+        let (conds, name) = (conds.join(" && "), &c.name);
+        out.push_str(&fill!(
+            "if (${conds}) out->command = ${up}${name};\n        else ",
+            conds,
+            up,
+            name
+        ));
+    }
+    out.push_str(&fill!(
+        r"
+return ${up}ERR_UNKNOWN_COMMAND;
+    }
+",
+        up
+    ));
+}
+
+/// The command of a CAN frame: the one whose CAN id is the frame's whole identifier word (bits
+/// above the id's width, which no bus delivers, name no command).
+fn can_command(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let f = &p.frames[x.fi];
+    let Some(v) = f.values.iter().find(|v| v.name == "can_id") else {
+        return;
+    };
+    let (at, size, big, bits) = (
+        pos(v.at),
+        v.word.prim.size(),
+        big(v.word.endian),
+        8 * v.word.prim.size(),
+    );
+    out.push_str(&fill!(
+        "    if (!${lo}field(bytes, len, ${at}, ${size}u, ${big}, 0u, ${bits}u, &raw)) return ${up}ERR_FRAME;\n    ",
+        lo,
+        at,
+        size,
+        big,
+        bits,
+        up
+    ));
+    for c in &p.commands {
+        if let Some(id) = c.can_id {
+            let (id, name) = (names::u64_lit(id), &c.name);
+            out.push_str(&fill!(
+                "if (raw == ${id}) out->command = ${up}${name};\n    else ",
+                id,
+                up,
+                name
+            ));
+        }
+    }
+    out.push_str(&fill!("return ${up}ERR_UNKNOWN_COMMAND;\n", up));
+}
+
+/// The payload `bytes[start..end]` read into the packet's member of its slot (zero-filled
+/// first where the format's truncation rule says so).
+fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let (lo, up) = (&n.lo, &n.up);
+    let f = &p.frames[x.fi];
+    // A stuffed payload is read where `unstuff` left it.
+    if f.stuffing.is_none() {
+        out.push_str(&fill!(
+            r"
+    r.p = bytes + start;
+    r.len = end - start;
+"
+        ));
+    }
+    out.push_str("    r.pos = 0;\n");
+    let slots: Vec<Slot> = slots_of(p, x.fi)
+        .into_iter()
+        .filter(|s| s.si.is_some() && s.keyless.is_none())
+        .collect();
+    if rules::fill_len(p, x.fi) > 0 {
+        rules::zero_fill(p, n, x, &slots, out);
+    }
+    // The member is zeroed, then read: `e` holds the reader's result.
+    let read = |slot: &Slot| {
+        let snake = names::snake(&p.structs[slot.si.unwrap_or_default()].name);
+        let name = &slot.name;
+        fill!(
+            r"
+e = (memset(&out->payload.${name}, 0, sizeof out->payload.${name}), \
+${lo}read_${snake}(&r, &out->payload.${name}));",
+            name,
+            lo,
+            snake
+        )
+    };
+    if slots.len() > 1 && slots.iter().all(|s| s.command.is_some()) {
+        // One case per command, then its directions: a jump rather than a test per slot.
+        out.push_str("    switch (out->command) {\n");
+        let mut commands: Vec<usize> = slots.iter().filter_map(|s| s.command).collect();
+        commands.dedup();
+        for ci in commands {
+            let name = &p.commands[ci].name;
+            out.push_str(&fill!("    case ${up}${name}:\n", up, name));
+            for (k, slot) in slots.iter().filter(|s| s.command == Some(ci)).enumerate() {
+                let otherwise = if k == 0 { "" } else { "else " };
+                let test = p.directions.get(slot.direction).map_or(String::new(), |d| {
+                    format!("if (out->direction == {up}{}) ", d.name.to_uppercase())
+                });
+                let read = read(slot);
+                out.push_str(&fill!(
+                    "        ${otherwise}${test}${read}\n",
+                    otherwise,
+                    test,
+                    read
+                ));
+            }
+            out.push_str("        break;\n");
+        }
+        out.push_str(&fill!(
+            r"
+    default:
+        break;
+    }
+"
+        ));
+    } else {
+        for slot in &slots {
+            let (guard, read) = (slot.guard(p, n, "out"), read(slot));
+            out.push_str(&fill!("    ${guard}${read}\n", guard, read));
+        }
+    }
+    out.push_str(&fill!(
+        r"
+    if (e != 0) return e;
+    if (r.pos != r.len) return ${up}ERR_PAYLOAD_LENGTH;
+    return 0;
+}
+
+",
+        up
+    ));
+}

@@ -1,0 +1,530 @@
+//! The encoders: a command's payload written after the header, then the frame sealed around
+//! it (`pfx_seal`: the header values, the dispatch key, the sync, the trailers, the checks),
+//! and the encoder of a whole packet that picks the command's.
+
+use crate::ir::{Frame, HeaderValue, Length, Protocol, Role, Transport};
+
+use super::super::names::{self, Fx, Names};
+use super::super::shape::{Carries, Slot, carries, slots_of};
+use super::super::template::fill;
+use super::rules;
+use super::wire::{self, check_args, truncate, word, write_sync, write_trailers};
+
+/// The encoders of format `x`: the tables of the commands' keys, the rules' helpers, the seal,
+/// one encoder per slot, and `pfx_encode` of a packet.
+pub(super) fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let f = &p.frames[x.fi];
+    let kind = carries(p, x.fi);
+    if kind == Carries::Commands {
+        dispatch_ids(p, x, out);
+    }
+    if kind == Carries::Can {
+        can_ids(p, x, out);
+    }
+    rules::trimmed_fn(f, x, out);
+    rules::stuff_fn(f, n, out);
+    seal(p, n, x, out);
+    for slot in slots_of(p, x.fi) {
+        encoder(p, n, x, &slot, out);
+    }
+    if kind == Carries::Bytes {
+        encode_bytes(p, n, x, out);
+    }
+    if f.ack.is_some() {
+        rules::ack_encoder(f, n, x, out);
+    }
+    encode_packet(p, n, x, out);
+}
+
+/// The dispatch key of every command, as the format's fields hold it (the seal writes the
+/// command's).
+fn dispatch_ids(p: &Protocol, x: &Fx, out: &mut String) {
+    let f = &p.frames[x.fi];
+    let xlo = &x.lo;
+    let widest = f
+        .dispatch
+        .iter()
+        .map(|&vi| f.values[vi].prim.size())
+        .max()
+        .unwrap_or(1);
+    let (ty, commands, fields) = (
+        names::unsigned_of(widest),
+        p.commands.len().max(1),
+        f.dispatch.len(),
+    );
+    let mut rows = String::new();
+    for c in &p.commands {
+        let ids: Vec<String> = f
+            .dispatch
+            .iter()
+            .zip(&c.id)
+            .map(|(&vi, &v)| format!("{:#x}u", truncate(f.values[vi].prim, v)))
+            .collect();
+        let ids = if ids.is_empty() {
+            "0u".to_string()
+        } else {
+            ids.join(", ")
+        };
+        rows.push_str(&fill!("    {${ids}},\n", ids));
+    }
+    out.push_str(&fill!(
+        r"
+/* The dispatch key of every command, in command order (as the format's fields hold it). */
+static const ${ty} ${xlo}ids[${commands}][${fields}] = {
+${rows}};
+
+",
+        ty,
+        xlo,
+        commands,
+        fields,
+        rows
+    ));
+}
+
+/// The CAN id of every command (the seal writes the command's as the frame's id).
+fn can_ids(p: &Protocol, x: &Fx, out: &mut String) {
+    let xlo = &x.lo;
+    let ids: Vec<String> = p
+        .commands
+        .iter()
+        .map(|c| format!("{:#x}u", c.can_id.unwrap_or(0)))
+        .collect();
+    let count = ids.len().max(1);
+    let ids = if ids.is_empty() {
+        "0u".to_string()
+    } else {
+        ids.join(", ")
+    };
+    out.push_str(&fill!(
+        r"
+/* The CAN id of every command, in command order (0: none). */
+static const uint32_t ${xlo}can_ids[${count}] = {${ids}};
+
+",
+        xlo,
+        count,
+        ids
+    ));
+}
+
+/// Whether a format's frames are sealed apart from where their encoder wrote the payload: a
+/// wider length moves the payload, a flag trailer adds bytes, a direction's message starts
+/// before the header's end. The seal then takes the buffer's size and the payload's start.
+fn framed_apart(p: &Protocol, fi: usize) -> bool {
+    let f = &p.frames[fi];
+    f.length_extension.is_some()
+        || f.flag_trailer.is_some()
+        || (fi == 0 && p.directions.iter().any(|d| d.message.is_some()))
+}
+
+/// The arguments of `pfx_seal` before the payload's length: the buffer, and for a format
+/// sealed apart its size and the payload's start.
+fn seal_place(p: &Protocol, x: &Fx, start: &str) -> String {
+    if framed_apart(p, x.fi) {
+        format!("buf, cap, {start}, ")
+    } else {
+        "buf, ".to_string()
+    }
+}
+
+/// The length field's count of a frame of `body` bytes (the format's adjustment taken off).
+fn adjust(f: &Frame) -> i64 {
+    match &f.length {
+        Length::Field { adjust, .. } => *adjust,
+        Length::Fixed(_) => 0,
+    }
+}
+
+/// `pfx_seal`: the frame around a payload already written after the header (moved behind a
+/// wider length when the frame needs one), with the flag trailer when the header has it.
+fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let (lo, up, xlo, xup) = (&n.lo, &n.up, &x.lo, &x.up);
+    let f = &p.frames[x.fi];
+    let apart = framed_apart(p, x.fi);
+    out.push_str(&seal_head(n, x, apart));
+    let adjust = adjust(f);
+    if let Some(e) = &f.length_extension {
+        // The runtime's `extension_for`: the count of the short form reaches the marker.
+        let (marker, len) = (names::u64_lit(e.marker), e.len);
+        out.push_str(&fill!(
+            r"
+    if ((int64_t)body - (${adjust}) >= 0 \
+        && (uint64_t)((int64_t)body - (${adjust})) >= ${marker}) ext = ${len}u;
+",
+            adjust,
+            marker,
+            len
+        ));
+    }
+    if let Some(t) = &f.flag_trailer {
+        let (name, len) = (names::field(&t.name), t.len);
+        out.push_str(&fill!(
+            "    if (h->${name}_present) flagged = ${len}u;\n",
+            name,
+            len
+        ));
+    }
+    if apart {
+        out.push_str(&fill!(
+            r"
+    body += ext;
+    total = body + flagged;
+    if (total > cap) return ${up}ERR_SHORT_BUFFER;
+    if (ext > 0) memmove(buf + start + ext, buf + start, payload_len);
+",
+            up
+        ));
+    } else {
+        out.push_str("    total = body;\n");
+    }
+    out.push_str(&fill!(
+        r"
+    memset(buf, 0, start + ext);
+    memset(buf + start + ext + payload_len, 0, ${xup}TRAILER_LEN);
+",
+        xup
+    ));
+    out.push_str(&write_sync(f));
+    out.push_str(&fill!(
+        r"
+    (void)h;
+    (void)command;
+"
+    ));
+    for (vi, v) in f.values.iter().enumerate() {
+        out.push_str(&header_value(f, n, x, vi, v));
+    }
+    if !f.sync_set.is_empty() {
+        out.push_str(&fill!(
+            r"
+    /* The first header value is the sync: one of its set. */
+    if (!${xlo}sync_matches(buf, 1)) return ${up}ERR_OUT_OF_RANGE;
+",
+            xlo,
+            up
+        ));
+    }
+    out.push_str(&write_trailers(f, n, "body"));
+    for c in &f.checks {
+        let args = check_args(n, x, c, "body");
+        out.push_str(&fill!(
+            "    if (!${lo}store(buf, ${args})) return ${up}ERR_OUT_OF_RANGE;\n",
+            lo,
+            args,
+            up
+        ));
+    }
+    if let Some(t) = &f.flag_trailer {
+        let name = names::field(&t.name);
+        out.push_str(&fill!(
+            "    if (flagged > 0) memcpy(buf + body, h->${name}, flagged);\n",
+            name
+        ));
+    }
+    out.push_str(&fill!(
+        r"
+    return (int)total;
+}
+
+"
+    ));
+}
+
+/// The start of `pfx_seal`: a format sealed apart takes the buffer's size and the payload's
+/// start; the others have their payload after the header, in the buffer the encoder checked.
+fn seal_head(n: &Names, x: &Fx, apart: bool) -> String {
+    let (up, xlo, xup) = (&n.up, &x.lo, &x.up);
+    if apart {
+        return fill!(
+            r"
+/* The frame around a payload of `payload_len` bytes already written at `start` (after the
+ * header), in a buffer of `cap` bytes; `command` SIZE_MAX for a frame without dispatch key. */
+static int ${xlo}seal(uint8_t *buf, size_t cap, size_t start, size_t payload_len, const ${xlo}header *h, size_t command)
+{
+    size_t ext = 0, flagged = 0, body, total;
+    if (start > ${xup}HEADER_LEN \
+        || payload_len > ${xup}MAX_PAYLOAD_LEN + (${xup}HEADER_LEN - start)) return ${up}ERR_OUT_OF_RANGE;
+    body = start + payload_len + ${xup}TRAILER_LEN;
+",
+            xlo,
+            xup,
+            up
+        );
+    }
+    fill!(
+        r"
+/* The frame around a payload of `payload_len` bytes already written after the header. */
+static int ${xlo}seal(uint8_t *buf, size_t payload_len, const ${xlo}header *h, size_t command)
+{
+    const size_t start = ${xup}HEADER_LEN, ext = 0;
+    size_t body, total;
+    if (payload_len > ${xup}MAX_PAYLOAD_LEN) return ${up}ERR_OUT_OF_RANGE;
+    body = start + payload_len + ${xup}TRAILER_LEN;
+",
+        xlo,
+        xup,
+        up
+    )
+}
+
+/// The statements of the seal that write header value `v` (index `vi`) of the frame of
+/// `body` bytes: the sender's, the length (and the wider length), the dispatch key, a constant,
+/// the flag trailer's flag, a command frame's acknowledgement flag.
+fn header_value(f: &Frame, n: &Names, x: &Fx, vi: usize, v: &HeaderValue) -> String {
+    let (lo, up, xlo) = (&n.lo, &n.up, &x.lo);
+    let (name, word) = (&v.name, word(v));
+    let adjust = adjust(f);
+    let is_can = matches!(f.transport, Transport::Can { .. });
+    let mut out = String::new();
+    let value = match &v.role {
+        // A CAN frame's id is the command's.
+        _ if is_can && v.name == "can_id" => format!("(uint64_t){xlo}can_ids[command]"),
+        Role::User { .. } => format!("(uint64_t)h->{}", names::field(&v.name)),
+        Role::Length => match (&f.length, &f.length_extension) {
+            (Length::Field { .. }, Some(e)) => {
+                // The runtime's `conditional_count`: the count in the wider field, the
+                // marker in this one, when it does not fit below the marker.
+                let (wide, marker, len) = (
+                    wire::word(&f.values[e.value]),
+                    names::u64_lit(e.marker),
+                    e.len,
+                );
+                return fill!(
+                    r"
+    {
+        uint64_t count;
+        if ((int64_t)body - (${adjust}) < 0) return ${up}ERR_OUT_OF_RANGE;
+        count = (uint64_t)((int64_t)body - (${adjust}));
+        if (count >= ${marker}) {
+            if (count - ${len}u < ${marker}) return ${up}ERR_OUT_OF_RANGE;
+            if (!${lo}put_field(buf, body, ${wide}, count - ${len}u)) return ${up}ERR_OUT_OF_RANGE;
+            count = ${marker};
+        }
+        /* ${name} */
+        if (!${lo}put_field(buf, body, ${word}, count)) return ${up}ERR_OUT_OF_RANGE;
+    }
+",
+                    adjust,
+                    up,
+                    marker,
+                    len,
+                    lo,
+                    wide,
+                    name,
+                    word
+                );
+            }
+            (Length::Field { .. }, None) => {
+                out.push_str(&fill!(
+                    "    if ((int64_t)body - (${adjust}) < 0) return ${up}ERR_OUT_OF_RANGE;\n",
+                    adjust,
+                    up
+                ));
+                format!("(uint64_t)((int64_t)body - ({adjust}))")
+            }
+            (Length::Fixed(_), _) => return out,
+        },
+        Role::Dispatch => {
+            let k = f.dispatch.iter().position(|&d| d == vi).unwrap_or(0);
+            return fill!(
+                r"
+    /* ${name} */
+    if (command != SIZE_MAX \
+        && !${lo}put_field(buf, body, ${word}, (uint64_t)${xlo}ids[command][${k}])) return ${up}ERR_OUT_OF_RANGE;
+",
+                name,
+                lo,
+                word,
+                xlo,
+                k,
+                up
+            );
+        }
+        Role::Const(c) => names::u64_lit(*c),
+        Role::Flag => "(uint64_t)(flagged > 0 ? 1u : 0u)".to_string(),
+        Role::WideLength => return out,
+        // A command frame's acknowledgement flag: not the acknowledgement's value.
+        Role::Ack(equals) => names::u64_lit(1 - (*equals).min(1)),
+    };
+    out.push_str(&fill!(
+        r"
+    /* ${name} */
+    if (!${lo}put_field(buf, body, ${word}, ${value})) return ${up}ERR_OUT_OF_RANGE;
+",
+        name,
+        lo,
+        word,
+        value,
+        up
+    ));
+    out
+}
+
+/// The encoder of one slot: its payload written after the header (in a format without
+/// extension fields, the bytes before them; then the format's rules), then the frame sealed
+/// around it.
+fn encoder(p: &Protocol, n: &Names, x: &Fx, slot: &Slot, out: &mut String) {
+    let (lo, up, xlo, xup) = (&n.lo, &n.up, &x.lo, &x.up);
+    let f = &p.frames[x.fi];
+    let (arg, mut write) = match slot.si {
+        Some(si) => {
+            let (ty, snake) = (n.ty(&p.structs[si].name), names::snake(&p.structs[si].name));
+            (
+                format!("const {ty} *payload, "),
+                fill!(
+                    "    if ((e = ${lo}write_${snake}(&w, payload)) != 0) return e;\n",
+                    lo,
+                    snake
+                ),
+            )
+        }
+        None => (String::new(), String::new()),
+    };
+    // The message of a direction the decoder is given starts where the dispatch key would.
+    let start = slot
+        .keyless
+        .map_or(format!("{xup}HEADER_LEN"), |start| format!("{start}u"));
+    let mut decl = String::new();
+    let mut place = fill!(
+        r"
+    w.p = buf + ${start};
+    w.cap = cap - ${start} - ${xup}TRAILER_LEN;
+    w.pos = 0;
+",
+        start,
+        xup
+    );
+    let base = slot
+        .si
+        .and_then(|si| p.structs[si].base_size.filter(|_| !f.extensions));
+    if let (Some(base), Some(si)) = (base, slot.si) {
+        // The whole struct is written aside, then the bytes before its extension fields kept.
+        decl = format!("    uint8_t whole[{}];\n", p.structs[si].size.max(1));
+        place = fill!(
+            r"
+    w.p = whole;
+    w.cap = sizeof whole;
+    w.pos = 0;
+"
+        );
+        write.push_str(&fill!(
+            r"
+    if (w.pos > ${base}u) w.pos = ${base}u;
+    if (w.pos > cap - ${xup}HEADER_LEN - ${xup}TRAILER_LEN) return ${up}ERR_SHORT_BUFFER;
+    memcpy(buf + ${xup}HEADER_LEN, whole, w.pos);
+    w.p = buf + ${xup}HEADER_LEN;
+",
+            base,
+            xup,
+            up
+        ));
+    }
+    write.push_str(&rules::trim_written(f, x, slot));
+    write.push_str(&rules::stuff_written(f, n, slot));
+    let command = match (slot.command, slot.keyless) {
+        (Some(ci), _) => format!("{up}{}", p.commands[ci].name),
+        (None, Some(_)) => "SIZE_MAX".into(),
+        (None, None) => "0".into(),
+    };
+    let (name, place_args) = (&slot.name, seal_place(p, x, &start));
+    out.push_str(&fill!(
+        r"
+int ${xlo}encode_${name}(const ${xlo}header *header, ${arg}uint8_t *buf, size_t cap)
+{
+    struct ${lo}wr w;
+    int e = 0;
+${decl}    if (cap < ${start} + ${xup}TRAILER_LEN) return ${up}ERR_SHORT_BUFFER;
+${place}${write}    (void)e;
+    return ${xlo}seal(${place_args}w.pos, header, ${command});
+}
+
+",
+        xlo,
+        name,
+        arg,
+        lo,
+        decl,
+        start,
+        xup,
+        up,
+        place,
+        write,
+        place_args,
+        command
+    ));
+}
+
+/// The encoder of a format without dispatch key or message: a frame around the payload's
+/// bytes.
+fn encode_bytes(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let (up, xlo, xup) = (&n.up, &x.lo, &x.up);
+    let place = seal_place(p, x, &format!("{xup}HEADER_LEN"));
+    out.push_str(&fill!(
+        r"
+int ${xlo}encode_bytes(const ${xlo}header *header, const uint8_t *payload, size_t len, uint8_t *buf, size_t cap)
+{
+    if (len > ${xup}MAX_PAYLOAD_LEN) return ${up}ERR_OUT_OF_RANGE;
+    if (cap < ${xup}HEADER_LEN + ${xup}TRAILER_LEN \
+        || len > cap - ${xup}HEADER_LEN - ${xup}TRAILER_LEN) return ${up}ERR_SHORT_BUFFER;
+    if (len > 0) memcpy(buf + ${xup}HEADER_LEN, payload, len);
+    return ${xlo}seal(${place}len, header, 0);
+}
+
+",
+        xlo,
+        xup,
+        up,
+        place
+    ));
+}
+
+/// `pfx_encode`: a packet by the encoder of its slot (an acknowledgement's, the bytes', or the
+/// command's in its direction).
+fn encode_packet(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
+    let (up, xlo) = (&n.up, &x.lo);
+    let f = &p.frames[x.fi];
+    let kind = carries(p, x.fi);
+    out.push_str(&fill!(
+        r"
+int ${xlo}encode(const ${xlo}packet *packet, uint8_t *buf, size_t cap)
+{
+",
+        xlo
+    ));
+    if f.ack.is_some() {
+        out.push_str(&fill!(
+            r"
+    if (packet->ack) return ${xlo}encode_ack(&packet->header, packet->payload.ack_data.bytes, \
+        packet->payload.ack_data.len, buf, cap);
+",
+            xlo
+        ));
+    }
+    if kind == Carries::Bytes {
+        out.push_str(&fill!(
+            r"
+    return ${xlo}encode_bytes(&packet->header, packet->payload, packet->payload_len, buf, cap);
+",
+            xlo
+        ));
+    }
+    for slot in slots_of(p, x.fi) {
+        let payload = match slot.si {
+            Some(_) => format!("&packet->payload.{}, ", slot.name),
+            None => String::new(),
+        };
+        let (guard, name) = (slot.guard(p, n, "packet"), &slot.name);
+        out.push_str(&fill!(
+            "    ${guard}return ${xlo}encode_${name}(&packet->header, ${payload}buf, cap);\n",
+            guard,
+            xlo,
+            name,
+            payload
+        ));
+    }
+    if matches!(kind, Carries::Commands | Carries::Can) {
+        out.push_str(&fill!("    return ${up}ERR_OUT_OF_RANGE;\n", up));
+    }
+    out.push_str("}\n\n");
+}
