@@ -5,8 +5,9 @@
 # with; on a host whose speed drifts (a shared or virtual machine) a ratio between two builds,
 # or between two benchmarks far apart in one run, then moves by more than the change being
 # measured. This script builds the benchmark binary as `cargo bench` does, once with the
-# default features ("after"), once with the runtime's `ablate-early-truncation` measurement
-# feature ("ablated": a candidate waits for its claimed length even when a frame is complete
+# default features ("after"), once with the runtime's measurement `cfg`
+# (`RUSTFLAGS="--cfg protocol_ablate_early_truncation"`, in a target directory of its own:
+# "ablated", where a candidate waits for its claimed length even when a frame is complete
 # inside it), and with `--before REV` once more from that commit ("before"), then runs them one
 # after the other, in quick mode, for several rounds, and prints per row:
 #
@@ -88,7 +89,11 @@ echo "building: after" >&2
 cp "$(codec_exe $(with_features))" "$tmp/after"
 labels+=(after)
 echo "building: ablated" >&2
-cp "$(codec_exe "$(with_features ablate-early-truncation)")" "$tmp/ablated"
+# Other flags, other artifacts: kept apart from the after build's (with --clmul, its flags too).
+# shellcheck disable=SC2046 # no features: no argument
+cp "$(RUSTFLAGS="${RUSTFLAGS:+$RUSTFLAGS }--cfg protocol_ablate_early_truncation" \
+  CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}/ablated" codec_exe $(with_features))" \
+  "$tmp/ablated"
 labels+=(ablated)
 if [ -n "$before" ]; then
   echo "building: before ($before)" >&2

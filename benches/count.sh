@@ -19,7 +19,8 @@
 # directory): its reflected CRCs folded by the runtime, as `best` folds its CRC-16.
 #
 # With --ablation, prints instead the generated decoder's counts with and without the
-# early-truncation rule (the runtime's `ablate-early-truncation` measurement feature: a
+# early-truncation rule (the runtime built with its measurement `cfg`,
+# `RUSTFLAGS="--cfg protocol_ablate_early_truncation"`, in its own target directory: a
 # candidate waits for its claimed length even when a frame is complete inside it): what the
 # rule costs. The frames are checked against the ground truth either way. Beside them, the best
 # baseline without and with the rule as one masked block test per chunk that ends inside a
@@ -40,8 +41,10 @@ target="${CARGO_TARGET_DIR:-$PWD/target}"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 if [ "$ablation" = 1 ]; then
-  cargo build --quiet --release -p protocol-benches --bin count --features ablate-early-truncation
-  cp "$target/release/count" "$tmp/count-ablated"
+  # Other flags, other artifacts: kept apart from the default build's.
+  RUSTFLAGS="${RUSTFLAGS:+$RUSTFLAGS }--cfg protocol_ablate_early_truncation" \
+    CARGO_TARGET_DIR="$target/ablated" cargo build --quiet --release -p protocol-benches --bin count
+  cp "$target/ablated/release/count" "$tmp/count-ablated"
 fi
 if [ "$ablation" = 0 ]; then
   cargo build --quiet --release -p protocol-benches --bin count --features runtime-crc-fast

@@ -20,6 +20,14 @@
 //!     cargo run --release -p protocol-benches --features runtime-clmul --bin paired
 //! ```
 //!
+//! With the runtime's early-truncation rule ablated (the measurement `cfg` of the runtime's
+//! decoder docs; other flags, so a target directory of its own):
+//!
+//! ```text
+//! RUSTFLAGS="--cfg protocol_ablate_early_truncation" CARGO_TARGET_DIR=target/ablated \
+//!     cargo run --release -p protocol-benches --bin paired
+//! ```
+//!
 //! Rows: the eight decoder rows of the benchmark (HFLink and referee, clean and noisy, whole
 //! streams and 64-byte chunks). Decoders: `generated`, `best` (the 2 KiB appending feed, the
 //! referee's CRC-16 folded with carry-less multiplication), `best-early` (`best` with the
@@ -167,7 +175,7 @@ fn run(passes: usize, only: &str) -> Result<(), String> {
     } else {
         "default build"
     };
-    let rule = if cfg!(feature = "ablate-early-truncation") {
+    let rule = if cfg!(protocol_ablate_early_truncation) {
         ", the early-truncation rule ablated"
     } else {
         ""

@@ -13,7 +13,8 @@
 //! one only in an `unsafe` block, even when the whole build enables the feature. The
 //! `safe_arch` crate (made for exactly this: `core::arch` exposed through `#[cfg]`) wraps the
 //! intrinsic in a plain function that exists only in builds that enable the feature, and owns
-//! that `unsafe`; this crate stays `#![forbid(unsafe_code)]`.
+//! that `unsafe`; this crate stays `#![forbid(unsafe_code)]`. (The crate's switches are
+//! listed in one place: [`decoder`](crate::decoder#target-and-build-switches).)
 //!
 //! # How
 //!

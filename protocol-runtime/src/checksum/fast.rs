@@ -8,7 +8,8 @@
 //! [`Slicing16`](super::Slicing16) is built, and the length from which a CRC goes to it. The
 //! carry-less multiply intrinsics are `#[target_feature]` functions, which safe code cannot
 //! call from a function without that attribute: the `crc-fast` crate owns those calls, and this
-//! crate stays `#![forbid(unsafe_code)]`.
+//! crate stays `#![forbid(unsafe_code)]`. (The crate's switches are listed in one place:
+//! [`decoder`](crate::decoder#target-and-build-switches).)
 
 pub use crc_fast::CrcAlgorithm;
 

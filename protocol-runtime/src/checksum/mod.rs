@@ -28,7 +28,9 @@
 //! ([`Slicing16::uses_clmul`]): the referee's decoder then executes 150 instructions per frame
 //! instead of 268.5 (`benches/count.sh`).
 //! The tables stay for the CRCs that are not reflected or are wider, and for checks of at most
-//! 8 bytes. The `unsafe` of the intrinsic is the `safe_arch` crate's.
+//! 8 bytes. The `unsafe` of the intrinsic is the `safe_arch` crate's. The decoder's module docs
+//! list this and the crate's other
+//! [target and build switches](crate::decoder#target-and-build-switches).
 //!
 //! ```
 //! use protocol_runtime::checksum::{Checksum, CrcImpl, Slicing16};

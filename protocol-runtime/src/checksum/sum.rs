@@ -110,9 +110,10 @@ fn rem255_short(x: ShortSum) -> u8 {
     x.wrapping_add(x.wrapping_div(255)) as u8
 }
 
-/// Whether the window shapes are used: where words are 64 bits and vector registers back the
-/// compiler's vectoriser. On a 32-bit microcontroller a plain loop is about as fast and much
-/// smaller (the unrolled window and its mask cost flash).
+/// Whether the window shapes are used: on hosts, where words are 64 bits and vector registers
+/// back the compiler's vectoriser. On a 32-bit microcontroller a plain loop is about as fast and
+/// much smaller (the unrolled window and its mask cost flash). The decoder's host switch
+/// ([`decoder`](crate::decoder#target-and-build-switches) lists what else it changes).
 const WINDOWS: bool = cfg!(target_pointer_width = "64");
 
 /// The sum of `data[..n]` (`n <= data.len()`): the window when it applies, else exact.
@@ -301,7 +302,7 @@ fn unrolled_sum(data: &[u8]) -> ShortSum {
     terms!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31)
 }
 
-/// [`short_sum`]'s accumulator: the target's word.
+/// [`short_sum`]'s accumulator: the target's word (the host switch, as [`WINDOWS`]).
 #[cfg(target_pointer_width = "64")]
 type ShortSum = u64;
 #[cfg(not(target_pointer_width = "64"))]

@@ -9,6 +9,7 @@
 
 use super::StreamDecoder;
 use super::search::{FILL, filler};
+use super::target::{EARLY_TRUNCATION, HOST};
 use crate::layout::LayoutRef;
 
 /// Takes the first `len` bytes off `input` (all of it if shorter).
@@ -20,18 +21,14 @@ pub(super) fn take<'i>(input: &mut &'i [u8], len: usize) -> &'i [u8] {
     head
 }
 
-/// Bytes kept free behind staged input: a window checksum reads a fixed-size block from a
-/// candidate's start (up to 128 bytes), which then stays inside the buffer instead of falling
-/// back to an exact loop; the first [`FILL`] of them take the filler of the block test.
-const STAGE_SLACK: usize = if cfg!(target_pointer_width = "64") {
-    128
-} else {
-    // No window checksums there, nor a block test.
-    0
-};
+/// Bytes kept free behind staged input on hosts: a window checksum reads a fixed-size block
+/// from a candidate's start (up to 128 bytes), which then stays inside the buffer instead of
+/// falling back to an exact loop; the first [`FILL`] of them take the filler of the block test.
+/// None elsewhere: no window checksums there, nor a block test.
+const STAGE_SLACK: usize = if HOST { 128 } else { 0 };
 
 // The filler behind staged input fits in the room kept free there.
-const _: () = assert!(!cfg!(target_pointer_width = "64") || STAGE_SLACK >= FILL);
+const _: () = assert!(!HOST || STAGE_SLACK >= FILL);
 
 /// The smallest buffer of a generated decoder on a host (a target with 64-bit pointers), in
 /// bytes: chunks are appended behind the pending bytes until it is full, and only then do those
@@ -57,7 +54,7 @@ pub const fn decoder_buffer_len(max_frame: usize) -> usize {
         max_frame.saturating_add(64)
     };
     let small = frame_and_chunk.saturating_add(128).next_multiple_of(64);
-    if cfg!(target_pointer_width = "64") && small < HOST_BUFFER_LEN {
+    if HOST && small < HOST_BUFFER_LEN {
         HOST_BUFFER_LEN
     } else {
         small
@@ -71,7 +68,7 @@ pub const fn decoder_buffer_len(max_frame: usize) -> usize {
 /// on targets without 64-bit pointers (where the moves cost flash), as `copy_from_slice`.
 #[inline(always)]
 fn copy_chunk(dst: &mut [u8], src: &[u8]) {
-    if cfg!(target_pointer_width = "64") && dst.len() == src.len() {
+    if HOST && dst.len() == src.len() {
         if (32..=64).contains(&src.len()) && overlapping::<32>(dst, src) {
             return;
         }
@@ -152,10 +149,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         };
         copy_chunk(dst, data);
         // (Part of the early-truncation rule: not written where the rule is ablated.)
-        if cfg!(all(
-            target_pointer_width = "64",
-            not(feature = "ablate-early-truncation")
-        )) {
+        if HOST && EARLY_TRUNCATION {
             let byte = filler(&self.layout, self.limit());
             // Inside the room kept free: `STAGE_SLACK >= FILL`.
             if let Some(behind) = self

@@ -32,7 +32,50 @@
 //! against the header alone, so they use [`Pos::Start`](crate::layout::Pos::Start); frame checks
 //! and markers resolve against the whole frame.
 //!
+//! # Target and build switches
+//!
+//! The frames and the stats are the same in every build but the ablated one; what
+//! the target and the build choose is how the engine finds them: code size against speed. Each
+//! switch is decided at compile time, so a build carries one side of it and tests nothing at
+//! run time. The decoder's modules read theirs from one place (`decoder/target.rs`: `HOST`,
+//! `SCAN_IN_PLACE`, `EARLY_TRUNCATION`); the checksums, which own theirs, test their `cfg`
+//! where they use it. `BENCHMARKS.md` and `docs/performance.md` measure each.
+//!
+//! | switch | set by | what it changes | where |
+//! | --- | --- | --- | --- |
+//! | `target_pointer_width = "64"` (`HOST`) | the target | a host's choices, below | `decoder/`, `checksum/sum.rs` |
+//! | `stage-input` feature | the user; CI on hosts | every chunk staged in the buffer first, as without `HOST`, to test that path on a host | `SCAN_IN_PLACE` |
+//! | `crc-fast` feature | the user, on hosts (it needs `std`) | CRCs the `crc-fast` crate catalogues, over 128 bytes or more, computed by it ([`Slicing16::uses_crc_fast`]) | `checksum/fast.rs`, `checksum/slicing.rs` |
+//! | `clmul` feature, with `target_arch = "x86_64"` and `target_feature = "pclmulqdq"` | the user, and `-C target-feature=+pclmulqdq` or `-C target-cpu=native` (no run-time detection: `safe_arch` offers the intrinsic only to such builds) | reflected CRCs of up to 32 bits over more than 8 bytes folded with carry-less multiplication ([`Slicing16::uses_clmul`]) | `checksum/clmul.rs`, `checksum/slicing.rs` |
+//! | `protocol_ablate_early_truncation` cfg | the benchmark scripts only (`RUSTFLAGS="--cfg protocol_ablate_early_truncation"`) | the early-truncation rule left out, to measure what it costs: a candidate waits for its claimed length even when a frame is complete inside it. Never for use: it changes when frames are delivered and, on a link that goes quiet, whether (the rule's tests fail) | `EARLY_TRUNCATION` |
+//!
+//! A host is a target with 64-bit pointers: time counts for more than code size, and 64-bit
+//! words and vector registers make wide compares cheap. Elsewhere (microcontrollers, and 32-bit
+//! hosts with them) the smaller code wins: flash is scarce, a UART brings a few bytes at a
+//! time, and a 64-bit word is a pair of registers. On a host:
+//!
+//! - the caller's chunk is scanned in place while nothing is pending, and frames found whole
+//!   there borrow it; elsewhere every chunk is staged first, which saves a second copy of the
+//!   scan (`SCAN_IN_PLACE`, `stream.rs`);
+//! - the buffer holds at least [`HOST_BUFFER_LEN`] bytes, so the pending bytes seldom move to
+//!   its front ([`decoder_buffer_len`]);
+//! - 128 bytes stay free behind staged input, so that a window checksum reads a fixed-size
+//!   block there (`STAGE_SLACK`, `buffer.rs`); chunks of 16 to 64 bytes are copied as two
+//!   overlapping fixed-size moves instead of a call to `memcpy` (`copy_chunk`);
+//! - the early-truncation search asks a block test first, 64 offsets at a time, reading whole
+//!   blocks unmasked behind a staged chunk, where a filler is written for it (`stage`,
+//!   `frame_may_be_inside`, `FILL`, `filler`); inlined, as the test usually answers. Elsewhere
+//!   the exact search alone, out of line: it is called from two places (`frame_inside`);
+//! - the search for a candidate tests the first offset before searching (on a clean stream the
+//!   next frame starts there) and then calls `memchr`; elsewhere a byte loop, smaller than
+//!   `memchr`'s word-at-a-time code (`find_sync`, `find_byte`, `search.rs`); inside a waiting
+//!   candidate the sync's first byte is looked for eight bytes a step (`find_first_byte`);
+//! - sums and xor over at most 128 bytes read a whole window under a mask, in 64-bit
+//!   accumulators (`WINDOWS`, `ShortSum`, `checksum/sum.rs`).
+//!
 //! [`LengthRule`]: crate::layout::LengthRule
+//! [`Slicing16::uses_crc_fast`]: crate::checksum::Slicing16::uses_crc_fast
+//! [`Slicing16::uses_clmul`]: crate::checksum::Slicing16::uses_clmul
 
 mod buffer;
 mod conditional;
@@ -40,6 +83,7 @@ mod event;
 mod scan;
 mod search;
 mod stream;
+mod target;
 
 pub use buffer::{HOST_BUFFER_LEN, decoder_buffer_len};
 pub use conditional::{flag_trailer, write_flag_trailer};

@@ -9,6 +9,7 @@
 //! rejection) by the scan and the steps of [`StreamDecoder`](super::StreamDecoder), and which
 //! of a candidate's bytes are already known to start no frame is remembered there.
 
+use super::target::HOST;
 use super::{Probe, bytes_agree, probe_link};
 use crate::layout::{ByteOrder, FrameLayout, LayoutRef, LengthRule, Pos};
 
@@ -87,7 +88,7 @@ fn find_sync(sync: &[u8], data: &[u8]) -> usize {
     let mut from = 0;
     // On a clean stream the next frame starts right here. (A shortcut for hosts: the loop
     // below finds it too, and on microcontrollers a second copy of the test costs flash.)
-    if cfg!(target_pointer_width = "64") {
+    if HOST {
         // Whether a candidate starts here, and whether a `false` is final (a two-byte sync
         // compared whole needs two bytes; its prefix at the very end is left to the loop).
         let (here, settled) = match *sync {
@@ -114,12 +115,12 @@ fn find_sync(sync: &[u8], data: &[u8]) -> usize {
     data.len()
 }
 
-/// The first offset of `byte` in `data`: `memchr` (vector compares) on 64-bit targets; a plain
-/// loop on 32-bit ones (microcontrollers), where `memchr`'s word-at-a-time code costs more
-/// flash than it saves time on a UART's chunks.
+/// The first offset of `byte` in `data`: `memchr` (vector compares) on hosts; elsewhere
+/// (microcontrollers) a plain loop, where `memchr`'s word-at-a-time code costs more flash than
+/// it saves time on a UART's chunks.
 #[inline(always)]
 fn find_byte(byte: u8, data: &[u8]) -> Option<usize> {
-    if cfg!(target_pointer_width = "64") {
+    if HOST {
         memchr::memchr(byte, data)
     } else {
         data.iter().position(|&b| b == byte)
@@ -345,7 +346,7 @@ fn find_first_byte(sync: &[u8], data: &[u8]) -> usize {
     let Some(&first) = sync.first() else {
         return 0;
     };
-    if cfg!(not(target_pointer_width = "64")) {
+    if !HOST {
         // Words of 64 bits are pairs of registers there: a byte loop is smaller.
         return data.iter().position(|&b| b == first).unwrap_or(data.len());
     }
@@ -552,11 +553,9 @@ fn search_inside<L: LayoutRef>(
         let window = rest.len().saturating_sub(shortest).saturating_add(1);
         // Read from the buffer, past the pending bytes: whole blocks, masked.
         let readable_rest = readable.get(at..).unwrap_or_default();
-        // (The masked block test only where words are 64 bits: on a microcontroller the plain
-        // search is smaller and as fast.)
-        let skip = if cfg!(not(target_pointer_width = "64"))
-            || may_start(layout, readable_rest, window, limit)
-        {
+        // (The masked block test on hosts only: on a microcontroller the plain search is
+        // smaller and as fast.)
+        let skip = if !HOST || may_start(layout, readable_rest, window, limit) {
             find_lead(layout, rest.get(..window).unwrap_or(rest))
         } else {
             window

@@ -13,20 +13,9 @@ use core::fmt;
 use super::buffer::take;
 use super::event::{Event, Frame, Reject, Stats};
 use super::search::{find_link, frame_inside, frame_may_be_inside};
+use super::target::{EARLY_TRUNCATION, HOST, SCAN_IN_PLACE};
 use super::{Probe, link_max_len, probe_link_synced, scan};
 use crate::layout::{FrameLayout, LayoutRef};
-
-/// Whether the engine scans the caller's input in place when nothing is pending (frames found
-/// whole there borrow it: zero copy), or stages every chunk in its buffer first. In place is
-/// faster on hosts; staging is the default on targets without 64-bit pointers
-/// (microcontrollers), where a second instance of the scan costs more flash than the copy of
-/// a UART chunk costs time (`benches/footprint.sh` measures the firmware).
-/// The `stage-input` feature selects it anywhere, so that hosts test that path too. The frames
-/// and stats do not depend on it.
-const SCAN_IN_PLACE: bool = cfg!(all(
-    target_pointer_width = "64",
-    not(feature = "stage-input")
-));
 
 /// One step of the engine: the data of an [`Event`], with frames as numbers: a buffered frame
 /// as a range, so that the engine's buffer is borrowed only once the step is over, and a frame
@@ -64,8 +53,9 @@ enum Step {
 /// by the end of a chunk is copied into the buffer, and the following chunks are appended
 /// behind it whole when they fit (leaving room for a checksum window), else only the bytes it
 /// needs. On targets without 64-bit pointers (and with the `stage-input` feature) every chunk
-/// is staged in the buffer first, which takes less code. Frames longer than `min(max_len, N)`
-/// are rejected as [`Reject::BadLength`].
+/// is staged in the buffer first, which takes less code (the module docs list the
+/// [target and build switches](crate::decoder#target-and-build-switches)). Frames longer than
+/// `min(max_len, N)` are rejected as [`Reject::BadLength`].
 /// A rejected candidate costs one byte: the search resumes right after its start, so a corrupt
 /// or truncated frame never costs the valid frame that follows it; and a valid frame is yielded
 /// as soon as it is complete, even inside the claimed length of an earlier candidate still
@@ -539,17 +529,18 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// ([`search::frame_inside`](super::search::frame_inside)), with what earlier calls learnt
     /// about this candidate: how many of its first bytes start no frame.
     ///
-    /// Inlined on hosts, where the block test usually answers; out of line on targets without
-    /// 64-bit pointers, where it has no block test and is called from two places. `filled`:
+    /// Inlined on hosts, where the block test usually answers; out of line elsewhere, where it
+    /// has no block test and is called from two places (the
+    /// [host switch](crate::decoder#target-and-build-switches)). `filled`:
     /// [`stage`](Self::stage) has just written its filler behind the pending bytes, and the
     /// block test reads whole blocks unmasked
     /// ([`search::frame_may_be_inside`](super::search::frame_may_be_inside)).
     #[inline(always)]
     fn frame_inside(&mut self, limit: usize, filled: bool) -> bool {
-        if cfg!(feature = "ablate-early-truncation") {
+        if !EARLY_TRUNCATION {
             return false;
         }
-        if cfg!(target_pointer_width = "64") {
+        if HOST {
             self.frame_inside_here(limit, filled)
         } else {
             self.frame_inside_apart(limit)
@@ -566,9 +557,9 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     #[inline(always)]
     fn frame_inside_here(&mut self, limit: usize, filled: bool) -> bool {
         let pending = self.pending();
-        // (The block test only where words are 64 bits: on a microcontroller the exact search
-        // is smaller and as fast.)
-        if cfg!(target_pointer_width = "64") {
+        // (The block test on hosts only: on a microcontroller the exact search is smaller and
+        // as fast.)
+        if HOST {
             let Some(readable) = self.buf.get(self.start..) else {
                 return false;
             };
