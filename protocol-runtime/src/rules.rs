@@ -22,6 +22,39 @@ use crate::stuffing::Stuffing;
 use crate::wire::Writer;
 use crate::zeros::{trimmed_len, zero_filled};
 
+/// Runs `$body` with `$item` bound to each item of `$items`, in order. One or two items (a key
+/// of one or two fields, two directions: the usual cases) are matched apart: with rules known
+/// at compile time each item is then a constant the compiler folds, which a loop only gives
+/// where the compiler unrolls it (not at `opt-level = "s"`, where a loop over the key kept a
+/// word field reader for any position, size and byte order in firmware). The same reasoning
+/// as the layout's `all_hold!`.
+macro_rules! each {
+    ($items:expr, |$item:ident| $body:block) => {
+        match $items {
+            [] => {}
+            [one] => {
+                let $item = one;
+                $body
+            }
+            [one, two] => {
+                {
+                    let $item = one;
+                    $body
+                }
+                {
+                    let $item = two;
+                    $body
+                }
+            }
+            more => {
+                for $item in more {
+                    $body
+                }
+            }
+        }
+    };
+}
+
 /// Acknowledgements: frames whose one-bit header flag holds `equals` carry no command, and
 /// their payload is data from `header_len` on (the dispatch fields are absent).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -214,10 +247,10 @@ impl PacketRules<'_> {
     #[inline(always)]
     pub fn key(&self, frame: &[u8]) -> Result<u64, DecodeError> {
         let mut key = 0u64;
-        for f in self.key {
+        each!(self.key, |f| {
             let v = f.read(frame).ok_or(self.truncated(frame))?;
             key = key.checked_shl(u32::from(f.width)).unwrap_or(0) | v;
-        }
+        });
         Ok(key)
     }
 
@@ -225,16 +258,43 @@ impl PacketRules<'_> {
     ///
     /// # Errors
     ///
-    /// [`DecodeError::UnknownDirection`] if none holds, [`DecodeError::Truncated`] if the frame
-    /// ends before a tested field.
+    /// [`DecodeError::UnknownDirection`] if none holds (a frame too short for a tested field
+    /// holds none; its header read says `Truncated` first).
     #[inline(always)]
     pub fn direction(&self, frame: &[u8]) -> Result<usize, DecodeError> {
-        for (i, t) in self.directions.iter().enumerate() {
-            if t.holds(frame).ok_or(self.truncated(frame))? {
-                return Ok(i);
+        // Matched apart as `each!` does, for the same reason.
+        let found = match self.directions {
+            [] => None,
+            [one] => (one.holds(frame) == Some(true)).then_some(0),
+            [one, two] => {
+                if one.holds(frame) == Some(true) {
+                    Some(0)
+                } else {
+                    (two.holds(frame) == Some(true)).then_some(1)
+                }
             }
+            more => more.iter().position(|t| t.holds(frame) == Some(true)),
+        };
+        found.ok_or(DecodeError::UnknownDirection)
+    }
+
+    /// Whether the header of `frame` tells direction `d` ([`direction`](Self::direction) would
+    /// say `d`): always, when the header tells no direction. For an encoder's check, without
+    /// the decoder's errors.
+    #[inline(always)]
+    #[must_use]
+    pub fn tells(&self, frame: &[u8], d: usize) -> bool {
+        // Matched apart as `each!` does, for the same reason.
+        match self.directions {
+            [] => true,
+            [one] => d == 0 && one.holds(frame) == Some(true),
+            [one, two] => match d {
+                0 => one.holds(frame) == Some(true),
+                1 => one.holds(frame) == Some(false) && two.holds(frame) == Some(true),
+                _ => false,
+            },
+            more => more.iter().position(|t| t.holds(frame) == Some(true)) == Some(d),
         }
-        Err(DecodeError::UnknownDirection)
     }
 
     /// The payload of a command frame: the bytes after the header (and a wider length) and
@@ -440,7 +500,13 @@ impl PacketRules<'_> {
             w.position()
         };
         let trailer = self.trailer_for(body, plen);
-        let start = self.layout.place_payload(buf, start, plen, trailer)?;
+        // A wider length moves the payload behind it; most formats have none (this folds away).
+        let short = start.saturating_add(plen).saturating_add(trailer);
+        let start = if self.layout.extension_for(short) == 0 {
+            start
+        } else {
+            self.layout.place_payload(buf, start, plen, trailer)?
+        };
         let total = start
             .saturating_add(plen)
             .saturating_add(trailer)
@@ -550,11 +616,13 @@ impl PacketRules<'_> {
             write_field(frame, ack.flag, value)?;
         }
         if let Body::Command { key, direction, .. } = *body {
-            for (field, &value) in self.key.iter().zip(key) {
-                write_field(frame, *field, value)?;
-            }
-            if let Some(d) = direction.filter(|_| !self.directions.is_empty()) {
-                if self.direction(frame).ok() != Some(d) {
+            let mut values = key.iter();
+            each!(self.key, |field| {
+                let value = values.next().ok_or(EncodeError::ValueOutOfRange)?;
+                write_field(frame, *field, *value)?;
+            });
+            if let Some(d) = direction {
+                if !self.tells(frame, d) {
                     return Err(EncodeError::ValueOutOfRange);
                 }
             }

@@ -59,20 +59,27 @@ pub(crate) fn direction_test(p: &Protocol, f: &Frame, rule: &DirectionRule) -> T
 
 /// The key of a frame of format `f` as the `CommandId` of the link: `id`, from the rules'
 /// `key` (one field) or `key_value`s (several). A value that does not fit the id's type is an
-/// unknown command (a wider format of a link may carry keys the first cannot).
+/// unknown command (a wider format of a link may carry keys the first cannot); a field no wider
+/// than the id's type is cast.
 pub(super) fn read_id(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let rules = rules_static(f);
-    let types: Vec<_> = key_prims(p).into_iter().map(prim_type).collect();
-    let fits: Vec<TokenStream> = types
+    let prims = key_prims(p);
+    let fits: Vec<TokenStream> = prims
         .iter()
+        .zip(&f.dispatch)
         .enumerate()
-        .map(|(i, t)| {
-            let value = if types.len() == 1 {
+        .map(|(i, (prim, &vi))| {
+            let t = prim_type(*prim);
+            let value = if prims.len() == 1 {
                 quote!(key)
             } else {
                 quote!(#rules.key_value(frame, #i)?)
             };
-            quote!(#t::try_from(#value).map_err(|_| #rt::unknown_command(key))?)
+            if f.values[vi].width as usize <= prim.size() * 8 {
+                quote!(#value as #t)
+            } else {
+                quote!(#t::try_from(#value).map_err(|_| #rt::unknown_command(key))?)
+            }
         })
         .collect();
     let id = match &fits[..] {
