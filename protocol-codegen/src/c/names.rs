@@ -1,6 +1,7 @@
 //! The C names, types and literals of a spec's items: everything carries the spec's name as a
 //! prefix (`hflink_chassis_coord`, `HFLINK_SET_ROBOT_SPEED`), so that the code of several specs
-//! links into one program. Every other module of the printer names things through this one.
+//! links into one program. Every other module of the printer names things through this one;
+//! a frame format's prefixes ([`Fx`]) come with its packet rules, lowered once.
 
 use crate::ir::{BitMember, Prim, Protocol, ValueType};
 use crate::rules::{RulesPlan, lower_rules};

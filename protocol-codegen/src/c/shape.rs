@@ -20,9 +20,9 @@ pub fn user_values(f: &Frame) -> impl Iterator<Item = &HeaderValue> {
 }
 
 /// What the frames of format `x` carry: its packet rules' ([`RulesPlan::carries`]), except
-/// that a format whose rules give raw bytes carries the struct it names as its `message`: the
-/// C gives every format a packet type, where the Rust side has none for the formats of a spec
-/// whose first format has no dispatch key but the first of a lone serial one.
+/// that a format with a `message` whose rules give raw bytes (one without a packet type of its
+/// own: a format of a spec of several whose first has no dispatch key) carries that struct, as
+/// the C gives every such format a packet of its message.
 ///
 /// [`RulesPlan::carries`]: crate::rules::RulesPlan::carries
 pub fn carries(p: &Protocol, x: &Fx) -> Carries {

@@ -1,8 +1,9 @@
-//! The packet rules between a checked frame and a packet, one function per rule and side:
+//! The packet rules between a checked frame and a packet, one function per rule and side, each
+//! printed from the format's rules plan (`Fx::rules`, the runtime's `PacketRules` values):
 //! acknowledgements (a flag in the header: no command, the data after the acknowledgement's
 //! header), byte stuffing (the runtime's `Stuffing`), and truncation (a payload cut short of
 //! its trailing zeros, or of the extension fields a format does not carry, zero-filled back
-//! to its struct's size).
+//! to its struct's size; which fields those are is the IR's, the plan has no word for it).
 
 use protocol_runtime::stuffing::Stuffing;
 
