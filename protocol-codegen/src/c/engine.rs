@@ -15,6 +15,7 @@
 //! frame of the decoder's formats, so the bound is theirs.
 
 use crate::ir::{Protocol, Transport};
+use crate::layout::lower_layout;
 
 use super::names::{Fx, Names};
 use super::template::fill;
@@ -183,12 +184,12 @@ fn leads(p: &Protocol, d: &Decoder) -> impl Fn(&str) -> String {
 /// only where a frame can be shorter than that (a bare header).
 fn inside_bound(p: &Protocol, d: &Decoder) -> String {
     let frames = || d.formats.iter().map(|&fi| &p.frames[fi]);
-    if frames().all(|f| f.bare_len.is_none()) {
+    if frames().all(|f| lower_layout(f).length.bare_len().is_none()) {
         return "k < pending".into();
     }
     let shortest = frames()
         .map(|f| {
-            let plan = crate::layout::lower_layout(f);
+            let plan = lower_layout(f);
             let span = plan
                 .header_len
                 .max(plan.sync.len() + usize::from(!f.sync_set.is_empty()));

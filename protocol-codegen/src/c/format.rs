@@ -5,9 +5,10 @@
 //! as `hex:` and their digits: a form that compares exactly, for logs and conformance tests.
 
 use crate::ir::{Field, FieldKind, Prim, Protocol, ValueType};
+use crate::rules::Carries;
 
 use super::names::{self, Fx, Names};
-use super::shape::{Carries, any_field, carries, keyed_format, slots_of, user_values};
+use super::shape::{any_field, carries, keyed_format, slots_of, user_values};
 use super::template::fill;
 
 /// The formatter, inside `#ifdef <PREFIX>_WITH_FORMAT`: the shared helpers
@@ -83,16 +84,16 @@ int ${xlo}format(const ${xlo}packet *packet, char *out, size_t cap)
         xlo,
         lo
     ));
-    let command = if f.ack.is_some() {
+    let command = if x.rules.ack.is_some() {
         r#"    ${lo}emit(t, "cmd=%s", packet->ack ? "?" : ${lo}command_name(packet->command));"#
-    } else if keyed_format(p, x.fi) {
+    } else if keyed_format(p, x) {
         r#"    ${lo}emit(t, "cmd=%s", ${lo}command_name(packet->command) ? ${lo}command_name(packet->command) : "?");"#
     } else {
         r#"    ${lo}emit(t, "cmd=?");"#
     };
     out.push_str(&fill!(command, lo));
     out.push('\n');
-    if !p.directions.is_empty() && carries(p, x.fi) == Carries::Commands {
+    if !p.directions.is_empty() && carries(p, x) == Carries::Command {
         out.push_str(&fill!(
             "    ${lo}emit(t, \" dir=%s\", ${lo}direction_name(packet->direction));\n",
             lo
@@ -129,11 +130,11 @@ int ${xlo}format(const ${xlo}packet *packet, char *out, size_t cap)
             len
         ));
     }
-    if carries(p, x.fi) == Carries::Bytes {
+    if carries(p, x) == Carries::Bytes {
         let (guard, len, bytes) = ("", "packet->payload_len", "packet->payload");
         out.push_str(&hex_payload(lo, guard, len, bytes));
     }
-    for slot in slots_of(p, x.fi) {
+    for slot in slots_of(p, x) {
         if let Some(si) = slot.si {
             let guard = slot.guard(p, n, "packet");
             let (snake, name) = (names::snake(&p.structs[si].name), &slot.name);
@@ -146,7 +147,7 @@ int ${xlo}format(const ${xlo}packet *packet, char *out, size_t cap)
             ));
         }
     }
-    if f.ack.is_some() {
+    if x.rules.ack.is_some() {
         let (len, bytes) = (
             "packet->payload.ack_data.len",
             "packet->payload.ack_data.bytes",

@@ -222,17 +222,18 @@ const char *${lo}direction_name(${lo}direction direction);
     ));
 }
 
-/// The sizes of frame format `x` (the runtime layout's bounds).
+/// The sizes of frame format `x` (the runtime layout's bounds, and its packet rules' header,
+/// trailer, payload and acknowledgement header).
 fn sizes(p: &Protocol, x: &Fx, out: &mut String) {
-    let f = &p.frames[x.fi];
+    let (f, rules) = (&p.frames[x.fi], &x.rules);
     let up = &x.up;
     out.push_str(&format!("\n/* Frame format `{}`. */\n", f.name));
     for (name, v) in [
         ("MAX_FRAME_LEN", f.max_len()),
         ("MIN_FRAME_LEN", f.min_len()),
-        ("HEADER_LEN", f.header_len),
-        ("TRAILER_LEN", f.trailer_len),
-        ("MAX_PAYLOAD_LEN", f.payload_max),
+        ("HEADER_LEN", rules.header_len),
+        ("TRAILER_LEN", rules.trailer_len),
+        ("MAX_PAYLOAD_LEN", rules.max_payload),
         ("MIN_PAYLOAD_LEN", f.payload_min),
         ("DECODER_BUFFER_LEN", f.max_len()),
     ] {
@@ -242,8 +243,9 @@ fn sizes(p: &Protocol, x: &Fx, out: &mut String) {
         let (name, len) = (t.name.to_uppercase(), t.len);
         out.push_str(&fill!("#define ${up}${name}_LEN ${len}u\n", up, name, len));
     }
-    if let Some((_, header_len)) = f.ack {
-        let max = f.max_len() - header_len - f.trailer_len;
+    if let Some((_, ack)) = rules.ack {
+        let header_len = ack.header_len;
+        let max = f.max_len() - header_len - rules.trailer_len;
         out.push_str(&fill!(
             r"
 /** An acknowledgement's header, before its data. */

@@ -1,10 +1,12 @@
 //! The C peer (`protocol gen c`): a C99 header and source file per spec, printed from the IR.
 //!
 //! Like the Rust expansion, this backend decides nothing: every size, offset, byte order,
-//! length rule and check comes from the IR (the frame engine's values from
-//! [`crate::layout::lower_layout`], the lowering the Rust backends share). What the C printer
-//! does not support yet is refused by [`unsupported`] with one line per feature,
-//! before anything is printed: a spec gets correct C or a clear error, never wrong code.
+//! length rule and check comes from the IR through the plans the Rust backends print and the
+//! run-time codec builds: the frame rules from [`crate::layout::lower_layout`], the packet rules
+//! (what a format carries, its key, acknowledgements, directions, stuffing, truncation) from
+//! [`crate::rules::lower_rules`]. What the C printer does not support yet is refused by
+//! [`unsupported`] with one line per feature, before anything is printed: a spec gets correct
+//! C or a clear error, never wrong code.
 //!
 //! The generated code needs nothing beyond the C standard headers and never allocates:
 //!

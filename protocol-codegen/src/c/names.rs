@@ -1,8 +1,10 @@
 //! The C names, types and literals of a spec's items: everything carries the spec's name as a
 //! prefix (`hflink_chassis_coord`, `HFLINK_SET_ROBOT_SPEED`), so that the code of several specs
-//! links into one program. Every other module of the printer names things through this one.
+//! links into one program. Every other module of the printer names things through this one;
+//! a frame format's prefixes ([`Fx`]) come with its packet rules, lowered once.
 
 use crate::ir::{BitMember, Prim, Protocol, ValueType};
+use crate::rules::{RulesPlan, lower_rules};
 
 /// The prefixes of a spec's C names.
 pub struct Names {
@@ -214,19 +216,23 @@ pub fn u64_lit(v: u64) -> String {
 /// The prefixes of one frame format's items (its sizes, header and packet types, decoder of one
 /// frame, encoders, stream decoder, check functions): the spec's for the first format (`hflink_`),
 /// the spec's and the format's name for the others (`mavlink_v1_`, `SCOUT_CAN_`), as the Rust
-/// side names a format after the first (`V1Packet`, `SCOUT_CAN_LAYOUT`).
-pub struct Fx {
+/// side names a format after the first (`V1Packet`, `SCOUT_CAN_LAYOUT`); with the format's
+/// packet rules, lowered once ([`lower_rules`], the plan the Rust side prints as `RULES`) for
+/// every printer of the format's items.
+pub struct Fx<'p> {
     /// The frame format (index into [`Protocol::frames`]).
     pub fi: usize,
     /// Lower-case prefix with its underscore.
     pub lo: String,
     /// Upper-case prefix with its underscore.
     pub up: String,
+    /// The format's packet rules.
+    pub rules: RulesPlan<'p>,
 }
 
-impl Fx {
-    /// The prefixes of frame format `fi` of `p`.
-    pub fn new(p: &Protocol, fi: usize) -> Self {
+impl<'p> Fx<'p> {
+    /// The prefixes and packet rules of frame format `fi` of `p`.
+    pub fn new(p: &'p Protocol, fi: usize) -> Self {
         let lo = if fi == 0 {
             format!("{}_", p.name)
         } else {
@@ -236,6 +242,7 @@ impl Fx {
             fi,
             up: lo.to_uppercase(),
             lo,
+            rules: lower_rules(p, &p.frames[fi]),
         }
     }
 }

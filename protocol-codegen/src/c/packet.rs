@@ -3,9 +3,10 @@
 //! and the prototypes of its decoders, encoders and text form.
 
 use crate::ir::{Prim, Protocol, Transport};
+use crate::rules::Carries;
 
 use super::names::{self, Fx, Names, doc_comment, unsigned_of};
-use super::shape::{Carries, carries, keyed_format, slots_of, user_values};
+use super::shape::{carries, keyed_format, slots_of, user_values};
 use super::template::fill;
 
 /// The header and packet types of frame format `x`.
@@ -58,10 +59,10 @@ typedef struct ${lo}packet {
         format
     ));
     let (nlo, nup) = (&n.lo, &n.up);
-    if keyed_format(p, x.fi) {
+    if keyed_format(p, x) {
         out.push_str(&fill!("    ${nlo}command command;\n", nlo));
     }
-    if f.ack.is_some() {
+    if x.rules.ack.is_some() {
         out.push_str(&fill!(
             r"
     /** An acknowledgement: no command (`${nup}COMMAND_COUNT`), its data in `payload.ack_data`. */
@@ -70,11 +71,11 @@ typedef struct ${lo}packet {
             nup
         ));
     }
-    if !p.directions.is_empty() && carries(p, x.fi) == Carries::Commands {
+    if !p.directions.is_empty() && carries(p, x) == Carries::Command {
         out.push_str(&fill!("    ${nlo}direction direction;\n", nlo));
     }
-    if carries(p, x.fi) == Carries::Bytes {
-        let max = f.payload_max.max(1);
+    if carries(p, x) == Carries::Bytes {
+        let max = x.rules.max_payload.max(1);
         out.push_str(&fill!(
             r"
     size_t payload_len; /**< The payload's bytes. */
@@ -94,13 +95,13 @@ typedef struct ${lo}packet {
         uint8_t none_; /**< Commands without payload. */
 "
     ));
-    for slot in slots_of(p, x.fi) {
+    for slot in slots_of(p, x) {
         if let Some(si) = slot.si {
             let (ty, name) = (n.ty(&p.structs[si].name), &slot.name);
             out.push_str(&fill!("        ${ty} ${name};\n", ty, name));
         }
     }
-    if f.ack.is_some() {
+    if x.rules.ack.is_some() {
         out.push_str(&fill!(
             r"
         /** The data of an acknowledgement. */
@@ -219,8 +220,8 @@ int ${lo}encode_can(const ${lo}packet *packet, uint32_t *id, uint8_t data[8]);
 /// The prototypes of the encoders of frame format `x`: of the payload's bytes, of each
 /// command (and direction), of an acknowledgement.
 fn encoders(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
-    let (lo, f) = (&x.lo, &p.frames[x.fi]);
-    if carries(p, x.fi) == Carries::Bytes {
+    let lo = &x.lo;
+    if carries(p, x) == Carries::Bytes {
         out.push_str(&fill!(
             r"
 /** Encodes a frame around `len` payload bytes: the frame's length, or a negative error. */
@@ -232,7 +233,7 @@ int ${lo}encode_bytes(const ${lo}header *header, const uint8_t *payload, size_t 
     out.push_str(
         "/* One encoder per command (and direction): the frame's length, or a negative error. */\n",
     );
-    for slot in slots_of(p, x.fi) {
+    for slot in slots_of(p, x) {
         let payload = match slot.si {
             Some(si) => format!("const {} *payload, ", n.ty(&p.structs[si].name)),
             None => String::new(),
@@ -245,7 +246,7 @@ int ${lo}encode_bytes(const ${lo}header *header, const uint8_t *payload, size_t 
             payload
         ));
     }
-    if f.ack.is_some() {
+    if x.rules.ack.is_some() {
         out.push_str(&fill!(
             r"
 /** An acknowledgement of `len` bytes of data (with none, the bare header where the format has one). */

@@ -1,13 +1,14 @@
 //! What a spec's packets hold, as the C code lays them out: what the frames of a format carry
-//! ([`Carries`]), the payloads a packet can carry ([`Slot`]), the header values a sender sets.
-//! The header's types, the decoders, the encoders and the text form all walk these, so that
-//! they agree on every member of a packet.
+//! (the packet rules' [`Carries`]), the payloads a packet can carry ([`Slot`]), the header
+//! values a sender sets. The header's types, the decoders, the encoders and the text form all
+//! walk these, so that they agree on every member of a packet.
 
 use std::fmt::Write as _;
 
-use crate::ir::{FieldKind, Frame, HeaderValue, PacketKind, Protocol, Role, Transport};
+use crate::ir::{FieldKind, Frame, HeaderValue, Protocol, Role, Transport};
+use crate::rules::Carries;
 
-use super::names::Names;
+use super::names::{Fx, Names};
 
 /// The header values of frame format `x` a packet holds: those the sender sets (a CAN frame's
 /// id is the command's, not a header value).
@@ -18,39 +19,16 @@ pub fn user_values(f: &Frame) -> impl Iterator<Item = &HeaderValue> {
     })
 }
 
-/// What the frames of a format carry: a command's payload found from the dispatch key (the
-/// first format with a key, and the formats that carry the commands too), a command's payload
-/// found from the CAN id, or the one struct of a format without dispatch key.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Carries {
-    /// A command, from the format's dispatch key.
-    Commands,
-    /// A command, from the CAN id.
-    Can,
-    /// The struct (index into [`Protocol::structs`]) every frame carries.
-    Message(Option<usize>),
-    /// The payload's bytes as they are: a format without dispatch key or message.
-    Bytes,
-}
-
-/// What the frames of format `fi` carry (the IR's [`PacketKind`]; the first format's from its
-/// dispatch key).
-pub fn carries(p: &Protocol, fi: usize) -> Carries {
-    let f = &p.frames[fi];
-    if fi == 0 {
-        return match (f.dispatch.is_empty(), f.message) {
-            (false, _) => Carries::Commands,
-            (true, Some(si)) => Carries::Message(Some(si)),
-            (true, None) => Carries::Bytes,
-        };
-    }
-    match f.packet {
-        PacketKind::Commands | PacketKind::Command => Carries::Commands,
-        PacketKind::Can => Carries::Can,
-        PacketKind::Message(si) => Carries::Message(Some(si)),
-        PacketKind::None => f
-            .message
-            .map_or(Carries::Bytes, |si| Carries::Message(Some(si))),
+/// What the frames of format `x` carry: its packet rules' ([`RulesPlan::carries`]), except
+/// that a format with a `message` whose rules give raw bytes (one without a packet type of its
+/// own: a format of a spec of several whose first has no dispatch key) carries that struct, as
+/// the C gives every such format a packet of its message.
+///
+/// [`RulesPlan::carries`]: crate::rules::RulesPlan::carries
+pub fn carries(p: &Protocol, x: &Fx) -> Carries {
+    match (x.rules.carries, p.frames[x.fi].message) {
+        (Carries::Bytes, Some(si)) => Carries::Struct(si),
+        (carries, _) => carries,
     }
 }
 
@@ -106,28 +84,28 @@ impl Slot {
     }
 }
 
-/// Whether the frames of format `fi` carry commands.
-pub fn keyed_format(p: &Protocol, fi: usize) -> bool {
-    matches!(carries(p, fi), Carries::Commands | Carries::Can)
+/// Whether the frames of format `x` carry commands.
+pub fn keyed_format(p: &Protocol, x: &Fx) -> bool {
+    matches!(carries(p, x), Carries::Command | Carries::CanCommand)
 }
 
-/// Every payload a packet of format `fi` can carry, commands in spec order, then directions:
+/// Every payload a packet of format `x` can carry, commands in spec order, then directions:
 /// the commands the format carries (a CAN format: those with a CAN id), or its message.
-pub fn slots_of(p: &Protocol, fi: usize) -> Vec<Slot> {
-    let f = &p.frames[fi];
-    let can = match carries(p, fi) {
-        Carries::Message(si) => {
+pub fn slots_of(p: &Protocol, x: &Fx) -> Vec<Slot> {
+    let f = &p.frames[x.fi];
+    let can = match carries(p, x) {
+        Carries::Struct(si) => {
             return vec![Slot {
                 command: None,
                 direction: 0,
-                si,
+                si: Some(si),
                 name: "message".into(),
                 keyless: None,
             }];
         }
         Carries::Bytes => return Vec::new(),
-        Carries::Can => true,
-        Carries::Commands => false,
+        Carries::CanCommand => true,
+        Carries::Command => false,
     };
     let mut out = Vec::new();
     // A direction the decoder is given may carry one struct instead of commands.

@@ -1,8 +1,11 @@
 //! What the C printer supports: [`unsupported`] lists every feature of a spec it refuses, so
 //! that `protocol gen c` fails with a clear message instead of printing wrong code.
 
-use crate::ir::{Algorithm, FieldKind, PacketKind, Protocol, Role, Transport, ValueType};
+use crate::ir::{Algorithm, FieldKind, Protocol, Role, Transport, ValueType};
+use crate::layout::lower_layout;
+use crate::rules::Carries;
 
+use super::names::Fx;
 use super::shape::keyed_format;
 
 /// One line per feature of `p` the C printer does not support yet; empty when it prints the
@@ -11,32 +14,35 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
     let mut out = Vec::new();
     for (fi, f) in p.frames.iter().enumerate() {
         let at = format!("frame `{}`", f.name);
-        if matches!(f.transport, Transport::Can { .. }) && f.packet != PacketKind::Can {
+        let x = Fx::new(p, fi);
+        let rules = &x.rules;
+        if matches!(f.transport, Transport::Can { .. }) && rules.carries != Carries::CanCommand {
             out.push(format!(
                 "{at}: CAN transport in a format whose frames' command does not follow from the CAN id"
             ));
         }
-        let keyed = keyed_format(p, fi);
-        if f.stuffing.is_some() && (!keyed || p.directions.iter().any(|d| d.message.is_some())) {
+        let keyed = keyed_format(p, &x);
+        let stuffing = rules.stuffing.is_some();
+        if stuffing && (!keyed || p.directions.iter().any(|d| d.message.is_some())) {
             out.push(format!(
                 "{at}: byte stuffing in a format without dispatch key or with a direction's message"
             ));
         }
-        if f.ack.is_some() && !keyed {
+        if rules.ack.is_some() && !keyed {
             out.push(format!(
                 "{at}: acknowledgement frames in a format without dispatch key"
             ));
         }
         if fi > 0 {
-            if f.stuffing.is_some() {
+            if stuffing {
                 out.push(format!("{at}: byte stuffing in a format after the first"));
             }
-            if f.ack.is_some() {
+            if rules.ack.is_some() {
                 out.push(format!(
                     "{at}: acknowledgement frames in a format after the first"
                 ));
             }
-            if f.bare_len.is_some() {
+            if lower_layout(f).length.bare_len().is_some() {
                 out.push(format!("{at}: bare headers in a format after the first"));
             }
             if f.values.iter().any(|v| matches!(v.role, Role::Ack(_))) {

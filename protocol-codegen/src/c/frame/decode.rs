@@ -2,13 +2,16 @@
 //! then the reading of a checked frame, one function per rule: the header values, the
 //! direction, the dispatch key (or a CAN id), the payload read into the packet's member.
 
-use crate::ir::{DirectionRule, Length, Prim, Protocol};
+use protocol_runtime::rules::DirectionTest;
+
+use crate::ir::{Length, Prim, Protocol};
+use crate::rules::Carries;
 
 use super::super::names::{self, Fx, Names};
-use super::super::shape::{Carries, Slot, carries, slots_of, user_values};
+use super::super::shape::{Slot, carries, slots_of, user_values};
 use super::super::template::fill;
 use super::rules;
-use super::wire::{big, pos, truncate, truncated, word};
+use super::wire::{field_word, truncate, truncated, word};
 
 /// The decoders of format `x`: by direction where the caller gives it, the checking entry
 /// point, and the reading of a checked frame.
@@ -94,22 +97,21 @@ int ${xlo}decode${sfx}(const uint8_t *bytes, size_t len, ${params}${xlo}packet *
 /// `len` (the payload's end is computed only when the trailer fits).
 fn decode_frame(p: &Protocol, n: &Names, x: &Fx, given: bool, out: &mut String) {
     let (lo, up, xlo, xup) = (&n.lo, &n.up, &x.lo, &x.up);
-    let f = &p.frames[x.fi];
     let (sfx, params) = (if given { "_given" } else { "" }, params(n, given));
-    let fill = rules::fill_len(p, x.fi);
+    let fill = rules::fill_len(p, x);
     let filled = if fill > 0 {
         format!("    uint8_t filled[{fill}];\n")
     } else {
         String::new()
     };
-    let short = if f.trailer_len > 0 {
+    let short = if x.rules.trailer_len > 0 {
         format!(" || len < {xup}TRAILER_LEN")
     } else {
         String::new()
     };
     // Everything before the payload is zeroed, and a payload struct just before it is read:
     // not the whole union, whose largest member may be many times the frame's.
-    let zero = if carries(p, x.fi) == Carries::Bytes {
+    let zero = if carries(p, x) == Carries::Bytes {
         "sizeof *out".to_string()
     } else {
         format!("offsetof({xlo}packet, payload)")
@@ -138,31 +140,27 @@ ${filled}    if (len > ${xup}MAX_FRAME_LEN${short}) return ${up}ERR_FRAME;
         zero
     ));
     header_values(p, n, x, out);
-    if f.ack.is_some() {
-        rules::ack_decode(f, n, out);
-    }
+    rules::ack_decode(n, x, out);
     flag_trailer(p, n, x, out);
     out.push_str(&fill!("    if (end < start) return ${up}ERR_FRAME;\n", up));
     if given {
         given_direction(p, n, out);
     }
-    match carries(p, x.fi) {
-        Carries::Commands => {
+    match carries(p, x) {
+        Carries::Command => {
             dispatch_key(p, n, x, out);
             if !given {
-                directions(p, n, x.fi, out);
+                directions(p, n, x, out);
             }
         }
-        Carries::Can => can_command(p, n, x, out),
-        Carries::Message(_) => {}
+        Carries::CanCommand => can_command(p, n, x, out),
+        Carries::Struct(_) => {}
         Carries::Bytes => {
             payload_bytes(n, out);
             return;
         }
     }
-    if let Some((after, insert)) = &f.stuffing {
-        rules::unstuff(after, *insert, n, x, out);
-    }
+    rules::unstuff(n, x, out);
     read_payload(p, n, x, out);
 }
 
@@ -297,23 +295,25 @@ fn given_direction(p: &Protocol, n: &Names, out: &mut String) {
     }
 }
 
-/// The direction from the header of format `fi`, its rules tested in order (on a link, each
-/// command format names its own direction field).
-fn directions(p: &Protocol, n: &Names, fi: usize, out: &mut String) {
+/// The direction from the header of format `x`, its rules' tests in order (on a link, each
+/// command format names its own direction field). The bounds are in the header value's type;
+/// the value read is truncated to it.
+fn directions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
-    let f = &p.frames[fi];
-    if p.directions.is_empty() {
+    let f = &p.frames[x.fi];
+    if x.rules.directions.is_empty() {
         return;
     }
     out.push_str("    ");
-    for d in &p.directions {
-        let cond = match &d.rule.in_frame(f) {
-            DirectionRule::InSet { value, set } => {
-                let v = &f.values[*value];
-                let a = &p.addresses[*set];
-                let (word, bits) = (word(v), truncated(v, "raw"));
-                let first = names::u64_lit(truncate(v.prim, a.first));
-                let last = names::u64_lit(truncate(v.prim, a.last));
+    for (d, &(value, test)) in p.directions.iter().zip(&x.rules.directions) {
+        let bits = truncated(&f.values[value], "raw");
+        let cond = match test {
+            DirectionTest::InRange { field, first, last } => {
+                let (word, first, last) = (
+                    field_word(field),
+                    names::u64_lit(first),
+                    names::u64_lit(last),
+                );
                 fill!(
                     "${lo}field(bytes, len, ${word}, &raw) && ${bits} >= ${first} && ${bits} <= ${last}",
                     lo,
@@ -323,9 +323,8 @@ fn directions(p: &Protocol, n: &Names, fi: usize, out: &mut String) {
                     last
                 )
             }
-            DirectionRule::Equals { value, equals } => {
-                let v = &f.values[*value];
-                let (word, bits, equals) = (word(v), truncated(v, "raw"), names::u64_lit(*equals));
+            DirectionTest::Equals { field, value } => {
+                let (word, equals) = (field_word(field), names::u64_lit(value));
                 fill!(
                     "${lo}field(bytes, len, ${word}, &raw) && ${bits} == ${equals}",
                     lo,
@@ -334,8 +333,6 @@ fn directions(p: &Protocol, n: &Names, fi: usize, out: &mut String) {
                     equals
                 )
             }
-            // Refused by `support::unsupported`: nothing in the header tells it.
-            DirectionRule::Given => "0".to_string(),
         };
         let direction = d.name.to_uppercase();
         out.push_str(&fill!(
@@ -348,12 +345,13 @@ fn directions(p: &Protocol, n: &Names, fi: usize, out: &mut String) {
     out.push_str(&fill!("return ${up}ERR_UNKNOWN_DIRECTION;\n", up));
 }
 
-/// The dispatch key, one variable per field, then the command it names among those the
-/// format carries.
+/// The dispatch key, one variable per field of the rules' key (each truncated to its header
+/// value's type), then the command it names among those the format carries.
 fn dispatch_key(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
     let f = &p.frames[x.fi];
-    let fields = f.dispatch.len();
+    let key = &x.rules.key;
+    let fields = key.len();
     out.push_str(&fill!(
         r"
     {
@@ -361,9 +359,11 @@ fn dispatch_key(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
 ",
         fields
     ));
-    for (k, &vi) in f.dispatch.iter().enumerate() {
-        let v = &f.values[vi];
-        let (word, bits) = (word(v), truncated(v, "raw"));
+    for (k, field) in key.iter().enumerate() {
+        let (word, bits) = (
+            field_word(field.field),
+            truncated(&f.values[field.value], "raw"),
+        );
         out.push_str(&fill!(
             r"
         if (!${lo}field(bytes, len, ${word}, &raw)) return ${up}ERR_FRAME;
@@ -377,8 +377,9 @@ fn dispatch_key(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         ));
     }
     let carried = |ci: usize| f.commands.contains(&ci);
-    if let [vi] = f.dispatch[..] {
+    if let [field] = key[..] {
         // One key field: a switch (a jump table where the ids are dense).
+        let vi = field.value;
         let narrow = f.values[vi].prim.size() <= 4;
         let cast = if narrow { "(uint32_t)" } else { "" };
         out.push_str(&fill!("        switch (${cast}key[0]) {\n", cast));
@@ -415,13 +416,12 @@ fn dispatch_key(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         if !carried(ci) || c.id.len() != fields {
             continue;
         }
-        let conds: Vec<String> = f
-            .dispatch
+        let conds: Vec<String> = key
             .iter()
             .zip(&c.id)
             .enumerate()
-            .map(|(k, (&vi, id))| {
-                let v = &f.values[vi];
+            .map(|(k, (field, id))| {
+                let v = &f.values[field.value];
                 format!("key[{k}] == {}", names::u64_lit(truncate(v.prim, *id)))
             })
             .collect();
@@ -442,27 +442,18 @@ return ${up}ERR_UNKNOWN_COMMAND;
     ));
 }
 
-/// The command of a CAN frame: the one whose CAN id is the frame's whole identifier word (bits
-/// above the id's width, which no bus delivers, name no command).
+/// The command of a CAN frame: the one whose CAN id is the rules' key, the frame's whole
+/// identifier word (bits above the id's width, which no bus delivers, name no command).
 fn can_command(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
-    let f = &p.frames[x.fi];
-    let Some(v) = f.values.iter().find(|v| v.name == "can_id") else {
+    let [id] = x.rules.key[..] else {
         return;
     };
-    let (at, size, big, bits) = (
-        pos(v.at),
-        v.word.prim.size(),
-        big(v.word.endian),
-        8 * v.word.prim.size(),
-    );
+    let word = field_word(id.field);
     out.push_str(&fill!(
-        "    if (!${lo}field(bytes, len, ${at}, ${size}u, ${big}, 0u, ${bits}u, &raw)) return ${up}ERR_FRAME;\n    ",
+        "    if (!${lo}field(bytes, len, ${word}, &raw)) return ${up}ERR_FRAME;\n    ",
         lo,
-        at,
-        size,
-        big,
-        bits,
+        word,
         up
     ));
     for c in &p.commands {
@@ -483,9 +474,8 @@ fn can_command(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
 /// first where the format's truncation rule says so).
 fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
-    let f = &p.frames[x.fi];
     // A stuffed payload is read where `unstuff` left it.
-    if f.stuffing.is_none() {
+    if x.rules.stuffing.is_none() {
         out.push_str(&fill!(
             r"
     r.p = bytes + start;
@@ -494,11 +484,11 @@ fn read_payload(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
         ));
     }
     out.push_str("    r.pos = 0;\n");
-    let slots: Vec<Slot> = slots_of(p, x.fi)
+    let slots: Vec<Slot> = slots_of(p, x)
         .into_iter()
         .filter(|s| s.si.is_some() && s.keyless.is_none())
         .collect();
-    if rules::fill_len(p, x.fi) > 0 {
+    if rules::fill_len(p, x) > 0 {
         rules::zero_fill(p, n, x, &slots, out);
     }
     // The member is zeroed, then read: `e` holds the reader's result.

@@ -3,9 +3,10 @@
 //! and the encoder of a whole packet that picks the command's.
 
 use crate::ir::{Frame, HeaderValue, Length, Protocol, Role, Transport};
+use crate::rules::Carries;
 
 use super::super::names::{self, Fx, Names};
-use super::super::shape::{Carries, Slot, carries, slots_of};
+use super::super::shape::{Slot, carries, slots_of};
 use super::super::template::fill;
 use super::rules;
 use super::wire::{self, check_args, truncate, word, write_sync, write_trailers};
@@ -14,51 +15,45 @@ use super::wire::{self, check_args, truncate, word, write_sync, write_trailers};
 /// one encoder per slot, and `pfx_encode` of a packet.
 pub(super) fn encode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let f = &p.frames[x.fi];
-    let kind = carries(p, x.fi);
-    if kind == Carries::Commands {
+    let kind = carries(p, x);
+    if kind == Carries::Command {
         dispatch_ids(p, x, out);
     }
-    if kind == Carries::Can {
+    if kind == Carries::CanCommand {
         can_ids(p, x, out);
     }
-    rules::trimmed_fn(f, x, out);
-    rules::stuff_fn(f, n, out);
+    rules::trimmed_fn(x, out);
+    rules::stuff_fn(n, x, out);
     seal(p, n, x, out);
-    for slot in slots_of(p, x.fi) {
+    for slot in slots_of(p, x) {
         encoder(p, n, x, &slot, out);
     }
     if kind == Carries::Bytes {
         encode_bytes(p, n, x, out);
     }
-    if f.ack.is_some() {
-        rules::ack_encoder(f, n, x, out);
-    }
+    rules::ack_encoder(f, n, x, out);
     encode_packet(p, n, x, out);
 }
 
-/// The dispatch key of every command, as the format's fields hold it (the seal writes the
-/// command's).
+/// The dispatch key of every command, as the header values of the rules' key fields hold it
+/// (the seal writes the command's).
 fn dispatch_ids(p: &Protocol, x: &Fx, out: &mut String) {
     let f = &p.frames[x.fi];
     let xlo = &x.lo;
-    let widest = f
-        .dispatch
-        .iter()
-        .map(|&vi| f.values[vi].prim.size())
-        .max()
-        .unwrap_or(1);
+    let key = &x.rules.key;
+    let prims: Vec<_> = key.iter().map(|k| f.values[k.value].prim).collect();
+    let widest = prims.iter().map(|prim| prim.size()).max().unwrap_or(1);
     let (ty, commands, fields) = (
         names::unsigned_of(widest),
         p.commands.len().max(1),
-        f.dispatch.len(),
+        key.len(),
     );
     let mut rows = String::new();
     for c in &p.commands {
-        let ids: Vec<String> = f
-            .dispatch
+        let ids: Vec<String> = prims
             .iter()
             .zip(&c.id)
-            .map(|(&vi, &v)| format!("{:#x}u", truncate(f.values[vi].prim, v)))
+            .map(|(&prim, &v)| format!("{:#x}u", truncate(prim, v)))
             .collect();
         let ids = if ids.is_empty() {
             "0u".to_string()
@@ -326,7 +321,7 @@ fn header_value(f: &Frame, n: &Names, x: &Fx, vi: usize, v: &HeaderValue) -> Str
             (Length::Fixed(_), _) => return out,
         },
         Role::Dispatch => {
-            let k = f.dispatch.iter().position(|&d| d == vi).unwrap_or(0);
+            let k = x.rules.key.iter().position(|k| k.value == vi).unwrap_or(0);
             return fill!(
                 r"
     /* ${name} */
@@ -345,7 +340,10 @@ fn header_value(f: &Frame, n: &Names, x: &Fx, vi: usize, v: &HeaderValue) -> Str
         Role::Flag => "(uint64_t)(flagged > 0 ? 1u : 0u)".to_string(),
         Role::WideLength => return out,
         // A command frame's acknowledgement flag: not the acknowledgement's value.
-        Role::Ack(equals) => names::u64_lit(1 - (*equals).min(1)),
+        Role::Ack(_) => {
+            let equals = x.rules.ack.map_or(1, |(_, ack)| ack.equals);
+            names::u64_lit(1 - equals.min(1))
+        }
     };
     out.push_str(&fill!(
         r"
@@ -420,8 +418,8 @@ fn encoder(p: &Protocol, n: &Names, x: &Fx, slot: &Slot, out: &mut String) {
             up
         ));
     }
-    write.push_str(&rules::trim_written(f, x, slot));
-    write.push_str(&rules::stuff_written(f, n, slot));
+    write.push_str(&rules::trim_written(x, slot));
+    write.push_str(&rules::stuff_written(n, x, slot));
     let command = match (slot.command, slot.keyless) {
         (Some(ci), _) => format!("{up}{}", p.commands[ci].name),
         (None, Some(_)) => "SIZE_MAX".into(),
@@ -483,8 +481,7 @@ int ${xlo}encode_bytes(const ${xlo}header *header, const uint8_t *payload, size_
 /// command's in its direction).
 fn encode_packet(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (up, xlo) = (&n.up, &x.lo);
-    let f = &p.frames[x.fi];
-    let kind = carries(p, x.fi);
+    let kind = carries(p, x);
     out.push_str(&fill!(
         r"
 int ${xlo}encode(const ${xlo}packet *packet, uint8_t *buf, size_t cap)
@@ -492,7 +489,7 @@ int ${xlo}encode(const ${xlo}packet *packet, uint8_t *buf, size_t cap)
 ",
         xlo
     ));
-    if f.ack.is_some() {
+    if x.rules.ack.is_some() {
         out.push_str(&fill!(
             r"
     if (packet->ack) return ${xlo}encode_ack(&packet->header, packet->payload.ack_data.bytes, \
@@ -509,7 +506,7 @@ int ${xlo}encode(const ${xlo}packet *packet, uint8_t *buf, size_t cap)
             xlo
         ));
     }
-    for slot in slots_of(p, x.fi) {
+    for slot in slots_of(p, x) {
         let payload = match slot.si {
             Some(_) => format!("&packet->payload.{}, ", slot.name),
             None => String::new(),
@@ -523,7 +520,7 @@ int ${xlo}encode(const ${xlo}packet *packet, uint8_t *buf, size_t cap)
             payload
         ));
     }
-    if matches!(kind, Carries::Commands | Carries::Can) {
+    if matches!(kind, Carries::Command | Carries::CanCommand) {
         out.push_str(&fill!("    return ${up}ERR_OUT_OF_RANGE;\n", up));
     }
     out.push_str("}\n\n");

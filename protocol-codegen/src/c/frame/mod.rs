@@ -2,9 +2,9 @@
 //! (`decode`), the encoders (`encode`), and the packet rules between a checked frame and a
 //! packet, each with its decoding and encoding side by side (`rules`: acknowledgements, byte
 //! stuffing, trailing-zero truncation). Every position, size and bound is the IR's, through
-//! the same lowering as the Rust engine's `FrameLayout` ([`lower_layout`]). This module prints
-//! them in order, with a format's sync; where things lie in a frame is `wire`'s, which the
-//! others share.
+//! the same lowerings as the Rust engine's `FrameLayout` ([`lower_layout`]) and `PacketRules`
+//! (`crate::rules::lower_rules`, the format's `Fx::rules`). This module prints them in order,
+//! with a format's sync; where things lie in a frame is `wire`'s, which the others share.
 
 mod decode;
 mod encode;

@@ -1,8 +1,11 @@
-//! The packet rules between a checked frame and a packet, one function per rule and side:
+//! The packet rules between a checked frame and a packet, one function per rule and side, each
+//! printed from the format's rules plan (`Fx::rules`, the runtime's `PacketRules` values):
 //! acknowledgements (a flag in the header: no command, the data after the acknowledgement's
 //! header), byte stuffing (the runtime's `Stuffing`), and truncation (a payload cut short of
 //! its trailing zeros, or of the extension fields a format does not carry, zero-filled back
-//! to its struct's size).
+//! to its struct's size; which fields those are is the IR's, the plan has no word for it).
+
+use protocol_runtime::stuffing::Stuffing;
 
 use crate::ir::{Frame, Length, Protocol, Role};
 use crate::layout::lower_layout;
@@ -10,25 +13,20 @@ use crate::layout::lower_layout;
 use super::super::names::{self, Fx, Names};
 use super::super::shape::{Slot, slots_of};
 use super::super::template::fill;
-use super::wire::{byte_list, check_args, word, write_sync, write_trailers};
+use super::wire::{byte_list, check_args, field_word, word, write_sync, write_trailers};
 
 /// An acknowledgement in the decoder: when the flag holds its value, the frame carries no
 /// command and its data follows the acknowledgement's header (to the frame's end for a bare
 /// header, else to the trailer), at most its largest.
-pub(super) fn ack_decode(f: &Frame, n: &Names, out: &mut String) {
+pub(super) fn ack_decode(n: &Names, x: &Fx, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
-    let Some((flag, _)) = f.ack else { return };
-    let v = &f.values[flag];
-    let equals = match v.role {
-        Role::Ack(equals) => equals,
-        _ => 1,
-    };
-    let end = if f.bare_len.is_some() {
+    let Some((_, ack)) = x.rules.ack else { return };
+    let end = if ack.bare {
         format!("len == {up}ACK_HEADER_LEN ? len : len - {up}TRAILER_LEN")
     } else {
         format!("len - {up}TRAILER_LEN")
     };
-    let (word, equals) = (word(v), names::u64_lit(equals));
+    let (word, equals) = (field_word(ack.flag), names::u64_lit(ack.equals));
     out.push_str(&fill!(
         r"
     if (!${lo}field(bytes, len, ${word}, &raw)) return ${up}ERR_FRAME;
@@ -59,12 +57,9 @@ pub(super) fn ack_decode(f: &Frame, n: &Names, out: &mut String) {
 /// header alone (no frame checks, no trailers), as the runtime's `seal` does.
 pub(super) fn ack_encoder(f: &Frame, n: &Names, x: &Fx, out: &mut String) {
     let (lo, up, xlo, xup) = (&n.lo, &n.up, &x.lo, &x.up);
+    let Some((_, ack)) = x.rules.ack else { return };
     let plan = lower_layout(f);
-    let bare = if f.bare_len.is_some() {
-        "len == 0"
-    } else {
-        "0"
-    };
+    let bare = if ack.bare { "len == 0" } else { "0" };
     out.push_str(&fill!(
         r"
 int ${xlo}encode_ack(const ${xlo}header *h, const uint8_t *data, size_t len, uint8_t *buf, size_t cap)
@@ -100,7 +95,7 @@ int ${xlo}encode_ack(const ${xlo}header *h, const uint8_t *data, size_t len, uin
                 Length::Fixed(_) => continue,
             },
             Role::Const(c) => names::u64_lit(*c),
-            Role::Ack(equals) => names::u64_lit(*equals),
+            Role::Ack(_) => names::u64_lit(ack.equals),
             // An acknowledgement has no dispatch key: its data takes those bytes.
             Role::Dispatch | Role::Flag | Role::WideLength => continue,
         };
@@ -153,8 +148,11 @@ int ${xlo}encode_ack(const ${xlo}header *h, const uint8_t *data, size_t len, uin
 /// The payload unstuffed (the runtime's `Stuffing::unstuff`) into a buffer of the largest
 /// payload, which the payload is then read from: after every run of the pattern in the
 /// output, the next byte must be the inserted one, and is dropped.
-pub(super) fn unstuff(after: &[u8], insert: u8, n: &Names, x: &Fx, out: &mut String) {
+pub(super) fn unstuff(n: &Names, x: &Fx, out: &mut String) {
     let (up, xup) = (&n.up, &x.up);
+    let Some(Stuffing { after, insert }) = x.rules.stuffing else {
+        return;
+    };
     let (pattern, k, insert) = (byte_list(after), after.len(), format!("{insert:#04x}"));
     out.push_str(&fill!(
         r"
@@ -185,9 +183,9 @@ pub(super) fn unstuff(after: &[u8], insert: u8, n: &Names, x: &Fx, out: &mut Str
 
 /// `pfx_stuff`, which an encoder calls on its written payload: stuffed in place (the
 /// runtime's `Stuffing::stuff_in_place`, `templates/stuff.c`), where the format stuffs.
-pub(super) fn stuff_fn(f: &Frame, n: &Names, out: &mut String) {
+pub(super) fn stuff_fn(n: &Names, x: &Fx, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
-    let Some((after, insert)) = &f.stuffing else {
+    let Some(Stuffing { after, insert }) = x.rules.stuffing else {
         return;
     };
     let (pattern, k, insert) = (byte_list(after), after.len(), format!("{insert:#04x}"));
@@ -204,9 +202,9 @@ pub(super) fn stuff_fn(f: &Frame, n: &Names, out: &mut String) {
 
 /// The statement of an encoder that stuffs a command's written payload, where the format
 /// stuffs.
-pub(super) fn stuff_written(f: &Frame, n: &Names, slot: &Slot) -> String {
+pub(super) fn stuff_written(n: &Names, x: &Fx, slot: &Slot) -> String {
     let lo = &n.lo;
-    if f.stuffing.is_some() && slot.command.is_some() {
+    if x.rules.stuffing.is_some() && slot.command.is_some() {
         fill!("    if ((e = ${lo}stuff(&w)) != 0) return e;\n", lo)
     } else {
         String::new()
@@ -215,9 +213,9 @@ pub(super) fn stuff_written(f: &Frame, n: &Names, slot: &Slot) -> String {
 
 /// `pfx_trimmed`, which an encoder calls on its written payload: the bytes kept of it, all
 /// but its trailing zeros (`templates/trimmed.c`), where the format truncates.
-pub(super) fn trimmed_fn(f: &Frame, x: &Fx, out: &mut String) {
+pub(super) fn trimmed_fn(x: &Fx, out: &mut String) {
     let xlo = &x.lo;
-    if f.truncate_zeros {
+    if x.rules.truncate_zeros {
         out.push_str(&fill!(include_str!("../templates/trimmed.c"), xlo));
         out.push('\n');
     }
@@ -225,9 +223,9 @@ pub(super) fn trimmed_fn(f: &Frame, x: &Fx, out: &mut String) {
 
 /// The statement of an encoder that cuts a command's written payload short of its trailing
 /// zeros, where the format truncates.
-pub(super) fn trim_written(f: &Frame, x: &Fx, slot: &Slot) -> String {
+pub(super) fn trim_written(x: &Fx, slot: &Slot) -> String {
     let xlo = &x.lo;
-    if f.truncate_zeros && slot.command.is_some() {
+    if x.rules.truncate_zeros && slot.command.is_some() {
         fill!("    w.pos = ${xlo}trimmed(w.p, w.pos);\n", xlo)
     } else {
         String::new()
@@ -236,26 +234,26 @@ pub(super) fn trim_written(f: &Frame, x: &Fx, slot: &Slot) -> String {
 
 /// The bytes of the zero-filled copy a payload is read from when its format fills it (0: the
 /// format reads every payload as sent): the largest of its structs and of its payloads.
-pub(super) fn fill_len(p: &Protocol, fi: usize) -> usize {
-    let f = &p.frames[fi];
-    let fills = f.truncate_zeros || (!f.extensions && base_sizes(p, fi));
+pub(super) fn fill_len(p: &Protocol, x: &Fx) -> usize {
+    let f = &p.frames[x.fi];
+    let fills = x.rules.truncate_zeros || (!f.extensions && base_sizes(p, x));
     if !fills {
         return 0;
     }
-    slots_of(p, fi)
+    slots_of(p, x)
         .iter()
         .filter_map(|s| s.si)
         .map(|si| p.structs[si].size)
         .max()
         .unwrap_or(0)
-        .max(f.payload_max)
+        .max(x.rules.max_payload)
         .max(1)
 }
 
-/// Whether a payload of format `fi` has extension fields (the format then carries the fields
+/// Whether a payload of format `x` has extension fields (the format then carries the fields
 /// before them, when it carries no extensions).
-fn base_sizes(p: &Protocol, fi: usize) -> bool {
-    slots_of(p, fi)
+fn base_sizes(p: &Protocol, x: &Fx) -> bool {
+    slots_of(p, x)
         .iter()
         .any(|s| s.si.is_some_and(|si| p.structs[si].base_size.is_some()))
 }
@@ -275,7 +273,7 @@ pub(super) fn zero_fill(p: &Protocol, n: &Names, x: &Fx, slots: &[Slot], out: &m
     for slot in slots {
         let s = &p.structs[slot.si.unwrap_or_default()];
         let base = s.base_size.filter(|_| !f.extensions);
-        let size = if f.truncate_zeros || base.is_some() {
+        let size = if x.rules.truncate_zeros || base.is_some() {
             s.size
         } else {
             0

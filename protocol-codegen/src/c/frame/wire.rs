@@ -2,7 +2,10 @@
 //! a check's range; the truncation of a header value to its type; and the statements that
 //! write a format's fixed bytes (its sync and trailers) into a frame being encoded.
 
+use protocol_runtime::layout::WordField;
+
 use crate::ir::{ByteOrder, Check, Frame, HeaderValue, Pos, Prim};
+use crate::layout::word_field;
 
 use super::super::names::{self, Fx, Names, mask};
 use super::super::template::fill;
@@ -20,16 +23,22 @@ pub(super) fn big(order: ByteOrder) -> u8 {
     u8::from(order == ByteOrder::Big)
 }
 
-/// The arguments of a header value's word for `pfx_field`/`pfx_put_field`.
-pub(super) fn word(v: &HeaderValue) -> String {
+/// The arguments of a word field (the frame and packet rules' `WordField`) for
+/// `pfx_field`/`pfx_put_field`.
+pub(super) fn field_word(w: WordField) -> String {
     format!(
         "{}, {}u, {}, {}u, {}u",
-        pos(v.at),
-        v.word.prim.size(),
-        big(v.word.endian),
-        v.shift,
-        v.width
+        pos(w.at),
+        w.size,
+        big(w.order),
+        w.shift,
+        w.width
     )
+}
+
+/// The arguments of a header value's word for `pfx_field`/`pfx_put_field`.
+pub(super) fn word(v: &HeaderValue) -> String {
+    field_word(word_field(v))
 }
 
 /// The arguments of `pfx_verify`/`pfx_store` for check `c` of format `x`, in a frame of
