@@ -138,7 +138,8 @@ pub struct PacketRules<'a> {
     /// The directions the header tells, in the order of the spec's directions; empty when the
     /// spec has none or the decoding side is given the direction.
     pub directions: &'a [DirectionTest],
-    /// Byte stuffing of the payload, if any.
+    /// Byte stuffing of command and struct payloads (acknowledgement data is sent as it is), if
+    /// any.
     pub stuffing: Option<Stuffing<'a>>,
     /// The sender drops a command payload's trailing zeros; the receiver refills them.
     pub truncate_zeros: bool,
@@ -391,6 +392,14 @@ impl PacketRules<'_> {
         }
     }
 
+    /// The stuffing of `body`'s payload: the format's, for a command's or a struct's payload;
+    /// none for acknowledgement data, which [`ack_data`](Self::ack_data) gives as it is on the
+    /// wire.
+    #[inline(always)]
+    fn stuffing_of(&self, body: &Body<'_>) -> Option<Stuffing<'_>> {
+        self.stuffing.filter(|_| !matches!(body, Body::Ack))
+    }
+
     /// True when a command's payload is written aside before it is placed in the frame (its
     /// size on the wire is known only once it is written: trailing zeros trimmed, bytes
     /// stuffed, or fields after the carried ones cut).
@@ -405,7 +414,7 @@ impl PacketRules<'_> {
             }
         );
         let trimmed = self.truncate_zeros && matches!(body, Body::Command { .. });
-        cut || trimmed || self.stuffing.is_some()
+        cut || trimmed || self.stuffing_of(body).is_some()
     }
 
     /// The bytes a written payload takes on the wire: cut to what the format carries, its
@@ -414,7 +423,7 @@ impl PacketRules<'_> {
     #[must_use]
     pub fn wire_len(&self, body: &Body<'_>, written: &[u8]) -> usize {
         let sent = self.sent(body, written);
-        let stuffed = match self.stuffing {
+        let stuffed = match self.stuffing_of(body) {
             Some(s) => s.count(sent),
             None => 0,
         };
@@ -494,7 +503,17 @@ impl PacketRules<'_> {
         let plen = if self.writes_aside(body) {
             self.place_aside(buf, aside, body, start, trailer_out, write)?
         } else {
-            let room = payload_room(buf, len(), start, trailer_out)?;
+            let needed = len();
+            let available = buf.len();
+            if available < needed {
+                return Err(EncodeError::BufferTooSmall { needed, available });
+            }
+            // A bare header has no trailer: its (empty) room may end before the trailer would
+            // start.
+            let end = available.saturating_sub(trailer_out).max(start);
+            let room = buf
+                .get_mut(start..end)
+                .ok_or(EncodeError::BufferTooSmall { needed, available })?;
             let mut w = Writer::new(room);
             write(&mut w)?;
             w.position()
@@ -597,7 +616,7 @@ impl PacketRules<'_> {
             .get_mut(..sent.len())
             .ok_or(EncodeError::BufferTooSmall { needed, available })?;
         kept.copy_from_slice(sent);
-        match self.stuffing {
+        match self.stuffing_of(body) {
             Some(s) => s.stuff_in_place(room, sent.len()),
             None => Ok(sent.len()),
         }

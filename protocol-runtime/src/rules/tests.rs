@@ -137,6 +137,19 @@ fn an_acknowledgement_carries_data_and_an_empty_one_is_a_bare_header() {
     assert_eq!(ACKED_RULES.ack_data(&frame), Ok(Some(&[5, 6][..])));
     let bare = encode(&ACKED_RULES, &Body::Ack, &[], 0);
     assert_eq!(bare, [0xAA, 3, 1]);
+    // Into a buffer of exactly its length, though a trailer would not fit after the header.
+    let mut exact = [0u8; 3];
+    let len = ACKED_RULES.frame_len(&Body::Ack, 0, 0);
+    let got = ACKED_RULES.assemble(
+        &mut exact,
+        &mut [],
+        &Body::Ack,
+        || len,
+        0,
+        |_| Ok(()),
+        |_| Ok(()),
+    );
+    assert_eq!((got, exact), (Ok(3), [0xAA, 3, 1]));
     assert_eq!(ACKED_RULES.ack_data(&bare), Ok(Some(&[][..])));
     // Ack data longer than the largest frame holds.
     let mut long = [0u8; 24];
@@ -319,4 +332,24 @@ fn a_buffer_too_small_for_the_frame_is_an_error() {
             "{size}: {got:?}"
         );
     }
+}
+
+#[test]
+fn acknowledgement_data_is_not_stuffed() {
+    let rules = PacketRules {
+        stuffing: Some(Stuffing {
+            after: &[5],
+            insert: 0,
+        }),
+        ..ACKED_RULES
+    };
+    let frame = encode(&rules, &Body::Ack, &[5, 6], 0);
+    assert_eq!(rules.ack_data(&frame), Ok(Some(&[5, 6][..])));
+    let body = Body::Command {
+        key: &[1, 2],
+        carried: None,
+        direction: Some(0),
+    };
+    let frame = encode(&rules, &body, &[5, 6], 0);
+    assert_eq!(&frame[5..8], &[5, 0, 6], "a command's payload is");
 }
