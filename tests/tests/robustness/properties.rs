@@ -45,7 +45,7 @@ fn message_round_trip<S: Spec>(entropy: &[u8]) {
     let m = model::<S>();
     let frame = m.try_canonical(&mut Entropy(entropy)).unwrap_or_else(|r| {
         panic!(
-            "{}: the layout refuses a {}-byte frame the spec allows ({:?}): {}",
+            "{}: the packet rules refuse a {}-byte frame the spec allows ({:?}): {}",
             S::NAME,
             r.len,
             r.choice,

@@ -2,6 +2,13 @@
 //! payload each direction carries, where the header values are and how a payload struct is laid
 //! out, so it builds frames for any spec without naming its types (payload values: [`super::payload`]).
 //!
+//! The model assembles its frames through the runtime's packet rules ([`PacketRules`], lowered
+//! from the IR as for generated code and the run-time codec), so the suites test the codecs on
+//! the spec's frames rather than against a second copy of those rules; the rules themselves are
+//! checked independently by the golden vectors the protocols' reference implementations wrote
+//! and by the C peer, which executes the same plan in separately written C. What stays the
+//! model's own is what to send: commands, directions, payload values and header values.
+//!
 //! *Canonical* frames are the ones the encoder itself produces (padding zero, booleans 0 or 1,
 //! unused bits zero, enum values that exist): those must survive decode → encode byte for byte.
 //! *Raw* frames only pass the frame checks (any header values, any payload length and bytes):
@@ -12,11 +19,12 @@ use std::sync::{Mutex, OnceLock};
 
 use protocol::FrameLayout;
 use protocol::decoder::Probe;
-use protocol::layout::LengthRule;
-use protocol::layout::WordField;
-use protocol::stuffing::Stuffing;
+use protocol::encoder::write_header;
+use protocol::layout::{LengthRule, WordField};
+use protocol::rules::{Body, DirectionTest, PacketRules};
 use protocol_codegen::ir;
 pub use protocol_codegen::layout::word_field;
+use protocol_codegen::rules::{self as lowered, RulesPlan, lower_rules};
 use protocol_codegen::source::SpecSource;
 
 use super::payload::Ctx;
@@ -45,8 +53,8 @@ pub struct Choice {
     pub payload: Option<usize>,
 }
 
-/// A spec's IR and the generated layout of one of its frame formats; on a link of several
-/// formats, the models of the others too.
+/// A spec's IR, the generated layout of one of its frame formats and that format's packet
+/// rules; on a link of several formats, the models of the others too.
 ///
 /// The methods that build one frame build it in this model's format; [`canonical`],
 /// [`try_canonical`] and [`raw`] first pick a format of the link at random (this one when the
@@ -57,11 +65,17 @@ pub struct Choice {
 /// [`raw`]: Self::raw
 pub struct Model {
     /// The checked protocol.
-    pub ir: ir::Protocol,
+    pub ir: &'static ir::Protocol,
     /// The frame format (index into the IR's frames) this model builds.
     pub format: usize,
     /// The generated layout of that format (what the decoder runs on).
     pub layout: &'static FrameLayout<'static>,
+    /// The format's packet rules, lowered from the IR ([`rules`](Self::rules)).
+    plan: RulesPlan<'static>,
+    /// The key fields the rules borrow.
+    key: Vec<WordField>,
+    /// The direction tests the rules borrow.
+    directions: Vec<DirectionTest>,
     /// Every way a frame can be sent.
     pub choices: Vec<Choice>,
     /// The link's other formats, in the order of the decoder's `Frame::format` (empty when
@@ -82,14 +96,17 @@ pub fn model<S: Spec>() -> &'static Model {
 }
 
 impl Model {
-    /// Compiles the spec of `S`.
+    /// Compiles the spec of `S`. The IR lives for the process (the rules borrow it), as the
+    /// model does in [`model`].
     ///
     /// # Panics
     /// If the spec does not compile (it compiled for `protocol!` already).
     pub fn of<S: Spec>() -> Model {
         let source = SpecSource::new(S::PATH, S::TEXT);
-        let ir = protocol_codegen::compile(&source)
-            .unwrap_or_else(|e| panic!("{} does not compile: {e:?}", S::PATH));
+        let ir: &'static ir::Protocol = Box::leak(Box::new(
+            protocol_codegen::compile(&source)
+                .unwrap_or_else(|e| panic!("{} does not compile: {e:?}", S::PATH)),
+        ));
         // The formats the decoder finds: the link's (in its order), or the first alone.
         let formats = if ir.link.is_empty() {
             vec![0]
@@ -105,7 +122,7 @@ impl Model {
         let mut models: Vec<Model> = formats
             .iter()
             .zip(layouts)
-            .map(|(&format, layout)| Model::of_format::<S>(ir.clone(), format, layout))
+            .map(|(&format, layout)| Model::of_format::<S>(ir, format, layout))
             .collect();
         let mut first = models.remove(0);
         first.others = models;
@@ -114,11 +131,12 @@ impl Model {
 
     /// The model of frame format `format` of `ir`, whose generated layout is `layout`.
     fn of_format<S: Spec>(
-        ir: ir::Protocol,
+        ir: &'static ir::Protocol,
         format: usize,
         layout: &'static FrameLayout<'static>,
     ) -> Model {
         let f = &ir.frames[format];
+        let plan = lower_rules(ir, f);
         let mut choices = Vec::new();
         if let Some(s) = f.message {
             choices.push(Choice {
@@ -169,6 +187,9 @@ impl Model {
             ir,
             format,
             layout,
+            key: plan.key_fields(),
+            directions: plan.direction_tests(),
+            plan,
             choices,
             others: Vec::new(),
         }
@@ -177,6 +198,11 @@ impl Model {
     /// The frame format this model builds.
     pub fn frame(&self) -> &ir::Frame {
         &self.ir.frames[self.format]
+    }
+
+    /// The packet rules of this model's format, on its generated layout.
+    pub fn rules(&self) -> PacketRules<'_> {
+        self.plan.rules(self.layout, &self.key, &self.directions)
     }
 
     /// This format and the link's others, in the decoder's order.
@@ -207,20 +233,6 @@ impl Model {
         self.formats().map(|m| m.layout.max_len).max().unwrap_or(0)
     }
 
-    /// Bytes before the payload of a frame of `choice`.
-    fn header_len(&self, choice: Choice) -> usize {
-        match (choice.carries, self.frame().ack) {
-            (Carries::Ack, Some((_, len))) => len,
-            _ => self.frame().header_len,
-        }
-    }
-
-    /// The most (unstuffed) payload bytes a frame of `choice` can carry.
-    fn payload_room(&self, choice: Choice) -> usize {
-        let f = self.frame();
-        f.max_len() - self.header_len(choice) - f.trailer_len
-    }
-
     /// Fixed payload bytes of a choice (the largest size for a variable struct).
     pub fn payload_len(&self, choice: Choice) -> usize {
         choice.payload.map_or(0, |s| self.ir.structs[s].size)
@@ -231,11 +243,11 @@ impl Model {
         self.choices[src.below(self.choices.len() as u64) as usize]
     }
 
-    /// A canonical frame for a random choice. A choice whose frame the layout refuses (see
+    /// A canonical frame for a random choice. A choice whose frame the rules refuse (see
     /// [`try_canonical`](Self::try_canonical)) is replaced by another.
     ///
     /// # Panics
-    /// If the layout refuses every frame tried.
+    /// If the rules refuse every frame tried.
     pub fn canonical(&self, src: &mut impl Source) -> Vec<u8> {
         self.pick(src).canonical_here(src)
     }
@@ -249,10 +261,10 @@ impl Model {
                 Err(e) => last = Some(e),
             }
         }
-        panic!("the layout refuses every frame tried: {last:?}")
+        panic!("the rules refuse every frame tried: {last:?}")
     }
 
-    /// A canonical frame for a random choice, or why the layout refused to seal it (a frame
+    /// A canonical frame for a random choice, or why the rules refused to assemble it (a frame
     /// the spec allows but the layout's bounds exclude).
     pub fn try_canonical(&self, src: &mut impl Source) -> Result<Vec<u8>, Refused> {
         self.pick(src).try_canonical_here(src)
@@ -264,9 +276,21 @@ impl Model {
         self.canonical_for(src, choice)
     }
 
-    /// A canonical frame for `choice`: its payload is what the encoder writes for some value.
+    /// A canonical frame for `choice`: its payload is what the encoder writes for some value,
+    /// sent as the rules send it (for a format without extension fields, the fields before
+    /// them).
     pub fn canonical_for(&self, src: &mut impl Source, choice: Choice) -> Result<Vec<u8>, Refused> {
-        let room = self.payload_room(choice);
+        let rules = self.rules();
+        let key = self.key_values(choice);
+        let carried = choice
+            .payload
+            .and_then(|s| self.ir.structs[s].base_size)
+            .filter(|_| !self.frame().extensions);
+        let body = self.body(choice, &key, carried);
+        let room = match choice.carries {
+            Carries::Ack => rules.ack_max(),
+            _ => rules.max_payload,
+        };
         // Stuffing may lengthen the payload: retry with smaller variable parts if it no longer
         // fits (rare: the pattern must occur in random bytes).
         let mut payload = Vec::new();
@@ -283,114 +307,153 @@ impl Model {
                 }
                 (_, None) => {}
             }
-            if self.stuffed(&payload).len() <= room {
+            if rules.wire_len(&body, &payload) <= room {
                 break;
             }
         }
-        // A format without extension fields sends a payload's base fields only.
-        if let (false, Carries::Command(_), Some(base)) = (
-            self.frame().extensions,
-            choice.carries,
-            choice.payload.and_then(|s| self.ir.structs[s].base_size),
-        ) {
-            payload.truncate(base);
-        }
-        // With trailing-zero truncation, the encoder sends the payload without its trailing
-        // zeros (keeping its first byte).
-        if self.frame().truncate_zeros && matches!(choice.carries, Carries::Command(_)) {
-            payload.truncate(protocol::zeros::trimmed_len(&payload));
-        }
-        self.try_build(src, choice, &payload)
+        self.assemble(src, choice, &rules, &body, &payload)
     }
 
-    /// The payload as sent: stuffed, if the frame format stuffs.
-    pub fn stuffed(&self, payload: &[u8]) -> Vec<u8> {
-        let Some((after, insert)) = &self.frame().stuffing else {
-            return payload.to_vec();
-        };
-        let rule = Stuffing {
-            after,
-            insert: *insert,
-        };
-        let mut buf = payload.to_vec();
-        buf.resize(2 * payload.len() + 1, 0);
-        let n = rule
-            .stuff_in_place(&mut buf, payload.len())
-            .expect("room to stuff");
-        buf.truncate(n);
-        buf
-    }
-
-    /// A frame of `choice` whose (unstuffed) payload is `payload`, any bytes: header values
-    /// set, payload stuffed, sealed.
+    /// A frame of `choice` whose payload is `payload` as it is, any bytes (not cut to the
+    /// carried fields, trailing zeros kept): header values set, payload stuffed, sealed.
     ///
     /// # Panics
-    /// If the layout refuses to seal it (a payload outside the format's bounds).
+    /// If the rules refuse to assemble it (a payload outside the format's bounds).
     pub fn build(&self, src: &mut impl Source, choice: Choice, payload: &[u8]) -> Vec<u8> {
         self.try_build(src, choice, payload)
             .unwrap_or_else(|e| panic!("{e:?}"))
     }
 
-    /// [`build`](Self::build), or why the layout refused to seal the frame.
+    /// [`build`](Self::build), or why the rules refused to assemble the frame.
     pub fn try_build(
         &self,
         src: &mut impl Source,
         choice: Choice,
         payload: &[u8],
     ) -> Result<Vec<u8>, Refused> {
-        let f = self.frame();
-        let ack = choice.carries == Carries::Ack;
-        let header_len = self.header_len(choice);
-        let payload = self.stuffed(payload);
-        let bare = ack && payload.is_empty() && f.bare_len.is_some();
-        let trailer = if bare { 0 } else { f.trailer_len };
-        // A wider length moves the payload behind it; a flag trailer follows everything.
-        let short = header_len + payload.len() + trailer;
-        let header_len = header_len + self.layout.extension_for(short);
-        let flagged = f
+        // The format's rules, except that the payload is sent whole: a payload the encoder
+        // would trim is one the decoder must read too.
+        let rules = PacketRules {
+            truncate_zeros: false,
+            ..self.rules()
+        };
+        let key = self.key_values(choice);
+        let body = self.body(choice, &key, None);
+        self.assemble(src, choice, &rules, &body, payload)
+    }
+
+    /// What a frame of `choice` carries, as the rules take it: `key` its key's values,
+    /// `carried` the payload bytes a format without extension fields sends.
+    fn body<'k>(&self, choice: Choice, key: &'k [u64], carried: Option<usize>) -> Body<'k> {
+        match choice.carries {
+            Carries::Command(_) => Body::Command {
+                key,
+                carried,
+                direction: choice.direction,
+            },
+            Carries::Ack => Body::Ack,
+            Carries::Message => Body::Struct {
+                start: self.plan.header_len,
+            },
+        }
+    }
+
+    /// The key's values of a frame of `choice`: the command's id, or its CAN id in a format
+    /// keyed by the CAN identifier (none for a frame without command).
+    fn key_values(&self, choice: Choice) -> Vec<u64> {
+        let Carries::Command(c) = choice.carries else {
+            return Vec::new();
+        };
+        let command = &self.ir.commands[c];
+        match self.plan.carries {
+            lowered::Carries::CanCommand => command.can_id.into_iter().collect(),
+            _ => command.id.clone(),
+        }
+    }
+
+    /// The frame `rules` assemble for `body` with `payload`, header values chosen for `choice`
+    /// and, half the time, a flag trailer; checked by the layout.
+    fn assemble(
+        &self,
+        src: &mut impl Source,
+        choice: Choice,
+        rules: &PacketRules<'_>,
+        body: &Body<'_>,
+        payload: &[u8],
+    ) -> Result<Vec<u8>, Refused> {
+        let flagged = self
+            .frame()
             .flag_trailer
             .as_ref()
             .filter(|_| src.one_in(2))
             .map(|t| src.bytes(t.len));
-        let body = header_len + payload.len() + trailer;
-        let mut frame = vec![0u8; body + flagged.as_ref().map_or(0, Vec::len)];
-        if let Some(bytes) = &flagged {
-            frame[body..].copy_from_slice(bytes);
-        }
-        for (i, v) in f.values.iter().enumerate() {
-            let value = match &v.role {
-                ir::Role::Const(c) => *c,
-                ir::Role::Length | ir::Role::WideLength => continue,
-                ir::Role::Flag => u64::from(flagged.is_some()),
-                ir::Role::Dispatch => match choice.carries {
-                    Carries::Command(c) => {
-                        let k = f
-                            .dispatch
-                            .iter()
-                            .position(|&d| d == i)
-                            .expect("dispatch value");
-                        self.ir.commands[c].id[k]
-                    }
-                    _ => continue,
-                },
-                ir::Role::Ack(flag) if ack => *flag,
-                ir::Role::Ack(flag) => !flag & word_field(v).max_value(),
-                ir::Role::User { .. } => self.user_value(src, choice, i, v),
-            };
-            if bare && matches!(v.at, ir::Pos::End(_)) {
-                continue;
+        let flag_len = flagged.as_ref().map_or(0, Vec::len);
+        let len = rules.frame_len(body, rules.wire_len(body, payload), flag_len);
+        // Room for a trailer past the frame: `assemble` asks for it before it knows that an
+        // acknowledgement without data is a bare header.
+        let mut frame = vec![0u8; len + rules.trailer_len];
+        let mut aside = vec![0u8; payload.len()];
+        let assembled = rules.assemble(
+            &mut frame,
+            &mut aside,
+            body,
+            || len,
+            flag_len,
+            |w| w.put_bytes(payload),
+            |frame| self.header_values(src, choice, flagged.as_deref(), frame),
+        );
+        match assembled {
+            Ok(n) => {
+                frame.truncate(n);
+                Ok(self.checked(frame))
             }
-            word_field(v)
-                .write(&mut frame, value)
-                .expect("header value fits");
+            Err(error) => Err(Refused { choice, len, error }),
         }
-        frame[header_len..header_len + payload.len()].copy_from_slice(&payload);
-        self.layout.seal(&mut frame).map_err(|error| Refused {
-            choice,
-            len: frame.len(),
-            error,
-        })?;
-        Ok(self.checked(frame))
+    }
+
+    /// Writes the header values a sender sets into `frame`: a value of the direction's test
+    /// for the field that tells the direction of `choice`, a value of the sync set for a sync
+    /// from a set, any value that fits for the others; the flag of a flag trailer and its
+    /// bytes.
+    fn header_values(
+        &self,
+        src: &mut impl Source,
+        choice: Choice,
+        flagged: Option<&[u8]>,
+        frame: &mut [u8],
+    ) -> Result<(), protocol::EncodeError> {
+        let test = choice.direction.and_then(|d| self.directions.get(d));
+        for (i, v) in self.frame().values.iter().enumerate() {
+            let field = word_field(v);
+            let value = match (&v.role, test) {
+                (
+                    ir::Role::User { .. },
+                    Some(&DirectionTest::InRange {
+                        field: f,
+                        first,
+                        last,
+                    }),
+                ) if f == field => src.range(first, last),
+                (ir::Role::User { .. }, Some(&DirectionTest::Equals { field: f, value }))
+                    if f == field =>
+                {
+                    value
+                }
+                (ir::Role::User { .. }, _) if i == 0 && !self.frame().sync_set.is_empty() => {
+                    self.sync_value(src)
+                }
+                (ir::Role::User { .. }, _) => src.next_u64() & field.max_value(),
+                (ir::Role::Flag, _) => u64::from(flagged.is_some()),
+                // The layout and the rules write the others.
+                _ => continue,
+            };
+            write_header(frame, field, value)?;
+        }
+        if let Some(bytes) = flagged {
+            let at = frame.len() - bytes.len();
+            frame[at..].copy_from_slice(bytes);
+        }
+        Ok(())
     }
 
     /// A frame that passes every check but is otherwise random: any header values (an unknown
@@ -421,15 +484,19 @@ impl Model {
     /// [`raw`](Self::raw) with a payload of `len` bytes.
     pub fn raw_with_payload_len(&self, src: &mut impl Source, len: usize) -> Vec<u8> {
         let f = self.frame();
-        // A wider length moves the payload behind it; a flag trailer follows everything.
-        let short = f.header_len + len + f.trailer_len;
-        let header_len = f.header_len + self.layout.extension_for(short);
         let flagged = f
             .flag_trailer
             .as_ref()
             .filter(|_| src.one_in(2))
-            .map(|t| t.len);
-        let mut frame = vec![0u8; short + header_len - f.header_len + flagged.unwrap_or(0)];
+            .map_or(0, |t| t.len);
+        // The length of a frame with that payload after the header; every byte after the
+        // header is random, and sealing writes a wider length, the checks and the markers.
+        let payload = Body::Struct {
+            start: f.header_len,
+        };
+        let mut frame = vec![0u8; self.rules().frame_len(&payload, len, flagged)];
+        let after = src.bytes(frame.len() - f.header_len);
+        frame[f.header_len..].copy_from_slice(&after);
         // A check that folds in a per-command byte verifies only the frames of known commands.
         let known_key = f.checks.iter().any(|c| c.extra.is_some()) && !self.ir.commands.is_empty();
         let command = src.below(self.ir.commands.len().max(1) as u64) as usize;
@@ -437,7 +504,7 @@ impl Model {
             let field = word_field(v);
             let value = match v.role {
                 ir::Role::Length | ir::Role::WideLength => continue,
-                ir::Role::Flag => u64::from(flagged.is_some()),
+                ir::Role::Flag => u64::from(flagged > 0),
                 ir::Role::Const(c) if !src.one_in(8) => c,
                 ir::Role::Dispatch if known_key => {
                     let k = f
@@ -452,9 +519,6 @@ impl Model {
             };
             field.write(&mut frame, value).expect("header value fits");
         }
-        let end = header_len + len;
-        let payload = src.bytes(len);
-        frame[header_len..end].copy_from_slice(&payload);
         self.layout.seal(&mut frame).expect("seal");
         self.checked(frame)
     }
@@ -475,40 +539,6 @@ impl Model {
         let k = src.range(0, set.len() as u64 - 1) as usize;
         u64::from(set[k])
     }
-
-    /// A header value set by the user: the direction's range or value for the field that
-    /// tells the direction, a value of the sync set for a sync from a set, anything that fits
-    /// otherwise.
-    fn user_value(
-        &self,
-        src: &mut impl Source,
-        choice: Choice,
-        index: usize,
-        v: &ir::HeaderValue,
-    ) -> u64 {
-        if let Some(d) = choice.direction {
-            // A rule names a header value of the first format; a link's other formats carry
-            // the field of the same name.
-            let first = &self.ir.frames[0].values;
-            let here = |value: usize| {
-                first
-                    .get(value)
-                    .is_some_and(|x| x.name == self.frame().values[index].name)
-            };
-            match self.ir.directions[d].rule {
-                ir::DirectionRule::InSet { value, set } if here(value) => {
-                    let set = &self.ir.addresses[set];
-                    return src.range(set.first, set.last);
-                }
-                ir::DirectionRule::Equals { value, equals } if here(value) => return equals,
-                _ => {}
-            }
-        }
-        if index == 0 && !self.frame().sync_set.is_empty() {
-            return self.sync_value(src);
-        }
-        src.next_u64() & word_field(v).max_value()
-    }
 }
 
 /// A sync as it stands on the wire: the `pick`-th value (modulo their number) of a sync set, if
@@ -521,14 +551,15 @@ pub fn sync_word(layout: &FrameLayout<'_>, pick: usize) -> Vec<u8> {
         .collect()
 }
 
-/// A frame the spec allows but the generated layout refuses to seal.
+/// A frame the spec allows but the packet rules refuse to assemble (the layout's bounds exclude
+/// it).
 #[derive(Debug, Clone)]
 pub struct Refused {
     /// What the frame carried.
     pub choice: Choice,
     /// Its length.
     pub len: usize,
-    /// What `seal` said.
+    /// What `assemble` said.
     pub error: protocol::EncodeError,
 }
 
