@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 
 use protocol_codegen::ir::{Element, FieldKind, Frame, Pos, Protocol};
 use protocol_dynamic::{Codec, DecodeIssue, Decoded, Item, Value};
-use protocol_runtime::{Reject, Stats};
+use protocol_runtime::{FrameLayout, Reject, Stats};
 
 use crate::session::reject_name;
 
@@ -56,6 +56,7 @@ struct Capture {
 fn decode(codec: &Codec<'_>, format: usize, data: &[u8]) -> Option<Capture> {
     let p = codec.protocol();
     let frame = p.frames.get(format)?;
+    let layout = codec.layout(format)?;
     let mut stream = codec.stream(format)?;
     let mut capture = Capture {
         entries: Vec::new(),
@@ -82,11 +83,15 @@ fn decode(codec: &Codec<'_>, format: usize, data: &[u8]) -> Option<Capture> {
                         Some(i) => Some(p.commands[i].name.clone()),
                         None => carried(p, d).map(|si| format!("({})", p.structs[si].name)),
                     };
-                    (name, None, spans(p, frame, bytes, Some(d)))
+                    (name, None, spans(p, frame, &layout, bytes, Some(d)))
                 }
                 Err(e) => {
                     c.undecoded += 1;
-                    (None, Some(issue_text(e)), spans(p, frame, bytes, None))
+                    (
+                        None,
+                        Some(issue_text(e)),
+                        spans(p, frame, &layout, bytes, None),
+                    )
                 }
             };
             c.entries.push(Entry::Frame {
@@ -145,11 +150,17 @@ fn carried(p: &Protocol, d: &Decoded) -> Option<usize> {
 }
 
 /// The named byte ranges of a frame: header elements, payload fields, checks, trailers.
-fn spans(p: &Protocol, f: &Frame, bytes: &[u8], decoded: Option<&Decoded>) -> Vec<Span> {
+fn spans(
+    p: &Protocol,
+    f: &Frame,
+    layout: &FrameLayout<'_>,
+    bytes: &[u8],
+    decoded: Option<&Decoded>,
+) -> Vec<Span> {
     // Checks and trailers sit back from the end of the frame without its flag trailer.
-    let flagged = protocol_dynamic::flag_trailer_len(f, bytes);
+    let flagged = layout.flag_trailer_len(bytes);
     let len = bytes.len() - flagged.min(bytes.len());
-    let header_len = f.header_len + protocol_dynamic::extension_len(f, bytes);
+    let header_len = f.header_len + layout.extension_len(bytes);
     let hex_of = |from: usize, to: usize| {
         bytes
             .get(from..to)

@@ -38,7 +38,7 @@ use protocol_codegen::ir::{
     Command as Cmd, Direction, DirectionRule, Frame, PacketKind, Protocol, Transport,
 };
 use protocol_codegen::layout::word_field;
-use protocol_dynamic::{Codec, DecodeIssue, Interpreter, Item, Value, flag_trailer_len};
+use protocol_dynamic::{Codec, DecodeIssue, Interpreter, Item, Value};
 use protocol_runtime::CanFrame;
 
 const RANDOM_FRAMES: usize = 10_000;
@@ -384,16 +384,15 @@ fn after_header(
 /// trailer's bytes added when its flag came out set. `None` when the runtime cannot seal it
 /// (a length no frame has).
 fn sealed(
-    p: &Protocol,
     codec: &Codec<'_>,
     fi: usize,
     mut frame: Vec<u8>,
     trailer_byte: &mut dyn FnMut() -> u8,
 ) -> Option<Vec<u8>> {
-    let f = &p.frames[fi];
-    let present = flag_trailer_len(f, &frame);
+    let layout = codec.layout(fi)?;
+    let present = layout.flag_trailer_len(&frame);
     frame.extend((0..present).map(|_| trailer_byte()));
-    codec.layout(fi)?.seal(&mut frame).ok()?;
+    layout.seal(&mut frame).ok()?;
     Some(frame)
 }
 
@@ -449,7 +448,7 @@ fn random_frame(p: &Protocol, codec: &Codec<'_>, fi: usize, rng: &mut Rng) -> Ve
         if let Some(bare) = f.bare_len.filter(|_| rng.below(8) == 0) {
             frame.truncate(bare);
         }
-        if let Some(frame) = sealed(p, codec, fi, frame, &mut || rng.next() as u8) {
+        if let Some(frame) = sealed(codec, fi, frame, &mut || rng.next() as u8) {
             return frame;
         }
     }
@@ -786,7 +785,7 @@ fn edge_frames(p: &Protocol, codec: &Codec<'_>, fi: usize) -> Vec<Vec<u8>> {
                     write_direction(f, d, sender, &mut frame);
                 }
             }
-            out.extend(sealed(p, codec, fi, frame, &mut || fill));
+            out.extend(sealed(codec, fi, frame, &mut || fill));
         }
     }
     // The bare header, all zero and all `0xFF`, where the format has one.
@@ -796,7 +795,7 @@ fn edge_frames(p: &Protocol, codec: &Codec<'_>, fi: usize) -> Vec<Vec<u8>> {
             if let Some(&lead) = f.sync_set.first() {
                 frame[0] = lead;
             }
-            out.extend(sealed(p, codec, fi, frame, &mut || fill));
+            out.extend(sealed(codec, fi, frame, &mut || fill));
         }
     }
     out

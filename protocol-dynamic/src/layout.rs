@@ -1,19 +1,23 @@
-//! A spec's frame formats as runtime [`FrameLayout`] values, built from the same lowering the
-//! generated `LAYOUT` statics are printed from ([`lower_layout`]), so the interpreter and
-//! generated code run the same engine on the same description.
+//! A spec's frame formats as runtime [`FrameLayout`] and [`PacketRules`] values, built from the
+//! same lowerings the generated `LAYOUT` and `RULES` statics are printed from ([`lower_layout`],
+//! [`lower_rules`]), so the interpreter and generated code run the same engine and the same
+//! packet rules on the same description.
 //!
 //! This module owns the CRC objects a layout's checks borrow ([`CrcStore`]: the codec owns it,
 //! its layouts borrow it; only a CRC's parameters are interned for `'static`, see
-//! [`protocol_codegen::layout::intern`]) and the per-frame slices of constants and checks
-//! ([`FrameParts`]); a check with a per-command byte is an interned runtime [`Extra`]. A
-//! check's algorithm is the IR's runtime [`Algorithm`], executed as it is;
-//! which bytes a check covers and how a frame is verified or sealed is the runtime's business.
+//! [`protocol_codegen::layout::intern`]) and the per-frame slices of constants and checks, and
+//! of the packet rules' key fields and direction tests ([`FrameParts`]); a check with a
+//! per-command byte is an interned runtime [`Extra`]. A check's algorithm is the IR's runtime
+//! [`Algorithm`], executed as it is; which bytes a check covers and how a frame is verified or
+//! sealed is the runtime's business, and so is every packet rule.
 
 use protocol_codegen::ir::{self, Algorithm, CrcSpec, CrcTable};
 pub use protocol_codegen::layout::word_field;
 use protocol_codegen::layout::{self, LayoutPlan, intern, lower_layout};
+use protocol_codegen::rules::{RulesPlan, lower_rules};
 use protocol_runtime::checksum::{Checksum, CrcImpl, Extra, Slicing16};
-use protocol_runtime::layout::{Check, Constant, FrameLayout};
+use protocol_runtime::layout::{Check, Constant, FrameLayout, WordField};
+use protocol_runtime::rules::{DirectionTest, PacketRules};
 use std::sync::Mutex;
 
 /// A CRC object of one width, with the table size the spec chose (as generated code builds):
@@ -164,18 +168,27 @@ impl CrcStore {
     }
 }
 
-/// The slices a [`FrameLayout`] borrows, for one frame format.
+/// The slices a [`FrameLayout`] and its [`PacketRules`] borrow, for one frame format.
 pub struct FrameParts<'a> {
     plan: LayoutPlan<'a>,
     constants: Vec<Constant>,
     header_checks: Vec<Check<'a>>,
     frame_checks: Vec<Check<'a>>,
+    rules: RulesPlan<'a>,
+    key: Vec<WordField>,
+    directions: Vec<DirectionTest>,
 }
 
 impl<'a> FrameParts<'a> {
-    /// The parts of frame format `index` of a protocol, its CRCs borrowed from `store`.
-    pub fn new(frame: &'a ir::Frame, index: usize, store: &'a CrcStore) -> Self {
+    /// The parts of frame format `index` of protocol `p`, its CRCs borrowed from `store`.
+    pub fn new(
+        p: &'a ir::Protocol,
+        index: usize,
+        frame: &'a ir::Frame,
+        store: &'a CrcStore,
+    ) -> Self {
         let plan = lower_layout(frame);
+        let rules = lower_rules(p, frame);
         let checks = |indices: &[usize]| -> Vec<Check<'a>> {
             indices
                 .iter()
@@ -190,6 +203,9 @@ impl<'a> FrameParts<'a> {
             header_checks: checks(&plan.header_checks),
             frame_checks: checks(&plan.frame_checks),
             plan,
+            key: rules.key_fields(),
+            directions: rules.direction_tests(),
+            rules,
         }
     }
 
@@ -197,5 +213,13 @@ impl<'a> FrameParts<'a> {
     pub fn layout(&self) -> FrameLayout<'_> {
         self.plan
             .layout(&self.constants, &self.header_checks, &self.frame_checks)
+    }
+
+    /// `f` run on the packet rules, as generated code's `RULES` static holds them, their frame
+    /// rules this format's [`layout`](Self::layout). A closure, since the rules borrow the
+    /// layout, which borrows these parts.
+    pub fn with_rules<R>(&self, f: impl FnOnce(&PacketRules<'_>) -> R) -> R {
+        let layout = self.layout();
+        f(&self.rules.rules(&layout, &self.key, &self.directions))
     }
 }

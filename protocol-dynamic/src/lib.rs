@@ -8,10 +8,14 @@
 //! runs the runtime's own engine on it: every frame format becomes a runtime
 //! [`FrameLayout`] value (what generated code holds as its `LAYOUT` static), so finding frames
 //! in a stream ([`Codec::stream`], on [`protocol_runtime::StreamDecoder`]), verifying them
-//! and sealing them use the very code generated codecs use, and the wire rules exist once.
-//! What this crate adds is the dynamic half of generated code: header values, dispatch,
-//! directions and payload structs, to and from [`Value`] (see [`model`] for how each IR type
-//! maps to a value). The wire compatibility of two versions of a spec is [`compat`].
+//! and sealing them use the very code generated codecs use, and the wire rules exist once; and
+//! a runtime [`PacketRules`] value (its `RULES` static, [`Codec::with_rules`]), so the packet
+//! rules between a checked frame and a message (the payload, acknowledgements, the dispatch
+//! key, the direction the header tells, stuffing, zero-fill) exist once too. What this crate
+//! adds is the dynamic half of generated code: header values, which command a key names,
+//! which struct it carries in a direction, and payload values, to and from [`Value`] (see
+//! [`model`] for how each IR type maps to a value). The wire compatibility of two versions of
+//! a spec is [`compat`].
 //!
 //! ```
 //! use protocol_dynamic::{Fields, Interpreter, Value};
@@ -90,7 +94,7 @@
 //!
 //! Layouts borrow CRC objects, so they cannot live in the same struct as them: an
 //! [`Interpreter`] owns the protocol and its CRC objects, and a [`Codec`] borrowed from it holds
-//! the layouts' slices.
+//! the slices the layouts and packet rules borrow, and builds those values from them on use.
 #![forbid(unsafe_code)]
 
 pub mod compat;
@@ -106,10 +110,7 @@ mod stream;
 mod value;
 
 pub use error::{DecodeIssue, EncodeIssue};
-pub use frame::{
-    Decoded, Dispatch, HexError, ack_value, dispatch_of, extension_len, flag_trailer_len, hex,
-    parse_hex, parse_hex_located,
-};
+pub use frame::{Decoded, HexError, hex, parse_hex, parse_hex_located};
 pub use layout::word_field;
 pub use load::LoadError;
 pub use model::{Fields, Value};
@@ -117,6 +118,7 @@ pub use stream::{Format, Item, Stream};
 pub use value::{NumError, value_f32, value_f64};
 
 use protocol_codegen::ir::{Protocol, Transport};
+use protocol_runtime::rules::PacketRules;
 use protocol_runtime::{CanFrame, DecodeError, FrameLayout};
 
 use layout::{CrcStore, FrameParts};
@@ -146,7 +148,7 @@ impl Interpreter {
             .frames
             .iter()
             .enumerate()
-            .map(|(i, f)| FrameParts::new(f, i, &self.crcs))
+            .map(|(i, f)| FrameParts::new(&self.protocol, i, f, &self.crcs))
             .collect();
         Codec {
             protocol: &self.protocol,
@@ -208,6 +210,17 @@ impl Codec<'_> {
         self.frames.get(format).map(FrameParts::layout)
     }
 
+    /// `f` run on the packet rules of frame format `format` (an index into the protocol's
+    /// frames), as generated code's `RULES` holds them: what lies between a frame the engine
+    /// checked and a message (the payload, acknowledgements, the dispatch key, the direction
+    /// the header tells) and how a frame is assembled. `None` for an index out of range.
+    ///
+    /// A closure rather than a value: the rules borrow the format's layout, which the codec
+    /// builds from its parts on each call.
+    pub fn with_rules<R>(&self, format: usize, f: impl FnOnce(&PacketRules<'_>) -> R) -> Option<R> {
+        self.frames.get(format).map(|parts| parts.with_rules(f))
+    }
+
     /// A stream decoder of frame format `format`: the runtime's engine on its layout, each
     /// frame it finds decoded ([`decode_frame`](Self::decode_frame)). `None` for an index out
     /// of range.
@@ -252,12 +265,12 @@ impl Codec<'_> {
     /// # Errors
     /// [`DecodeIssue`], mirroring the runtime's [`DecodeError`] of generated code.
     pub fn decode_frame(&self, format: usize, frame: &[u8]) -> Result<Decoded, DecodeIssue> {
-        if format >= self.protocol.frames.len() {
-            return Err(DecodeIssue::Frame(DecodeError::Frame(
-                protocol_runtime::Reject::BadHeader,
-            )));
-        }
-        frame::decode(self.protocol, format, frame, self.direction)
+        self.with_rules(format, |rules| {
+            frame::decode(self.protocol, format, rules, frame, self.direction)
+        })
+        .unwrap_or(Err(DecodeIssue::Frame(DecodeError::Frame(
+            protocol_runtime::Reject::BadHeader,
+        ))))
     }
 
     /// Verifies the framing of the frame at the start of `bytes`, then decodes it, as
@@ -349,10 +362,11 @@ impl Codec<'_> {
             })?,
             Some(_) => return Err(EncodeIssue::new("format", "expected a frame format name")),
         };
-        let layout = self
-            .layout(format)
-            .ok_or_else(|| EncodeIssue::new("format", "no such frame format"))?;
-        let bytes = frame::encode(self.protocol, format, &layout, obj, self.direction)?;
+        let bytes = self
+            .with_rules(format, |rules| {
+                frame::encode(self.protocol, format, rules, obj, self.direction)
+            })
+            .ok_or_else(|| EncodeIssue::new("format", "no such frame format"))??;
         let can = match self.protocol.frames[format].transport {
             Transport::Can { .. } => {
                 Some(CanFrame::from_virtual(&bytes).map_err(EncodeIssue::runtime)?)

@@ -489,7 +489,10 @@ fn random_command_frames(
                 }
                 if let Some((flag, _)) = f.ack {
                     // Mostly a command; sometimes an acknowledgement.
-                    let equals = protocol_dynamic::ack_value(f, flag);
+                    let equals = codec
+                        .with_rules(fi, |r| r.ack.map(|a| a.equals))
+                        .flatten()
+                        .expect("the format has acknowledgements");
                     let value = if round % 4 == 0 { equals } else { 1 - equals };
                     word_field(&f.values[flag])
                         .write(&mut frame, value)

@@ -1,15 +1,19 @@
-//! Frame values (the shape [`Codec::frame_value`](crate::Codec::frame_value) gives) to frames, as the generated packets'
-//! `encode` builds them: the payload written first (its size on the wire decides the frame's
-//! length) and stuffed, then the header values, the acknowledgement flag and the dispatch key
-//! (or CAN id), then the runtime seals the frame.
+//! Frame values (the shape [`Codec::frame_value`](crate::Codec::frame_value) gives) to frames,
+//! as the generated packets' `encode` builds them: the payload written first (its size on the
+//! wire decides the frame's length), then the runtime's [`PacketRules::assemble`] places it
+//! (trimmed, stuffed, behind a wider length), writes the header values this module gives it,
+//! the acknowledgement flag and the dispatch key (or CAN id), and seals the frame.
+//!
+//! This module owns reading the frame value: which command and payload struct it names, the
+//! header values and the payload's bytes, and the errors that name a value's path.
 
 use protocol_codegen::ir::{Frame, Protocol, Role};
-use protocol_runtime::zeros::trimmed_len;
-use protocol_runtime::{EncodeError, FrameLayout, Writer};
+use protocol_codegen::rules::{Carries, carries};
+use protocol_runtime::EncodeError;
+use protocol_runtime::Writer;
+use protocol_runtime::rules::{Body, PacketRules};
 
-use super::{
-    Dispatch, ack_max, ack_value, direction_of, dispatch_of, is_can_id, parse_hex, stuffing,
-};
+use super::{carried, is_can_id, parse_hex};
 use crate::error::EncodeIssue;
 use crate::layout::word_field;
 use crate::model::{Fields, Value};
@@ -111,10 +115,14 @@ fn flagged_trailer(f: &Frame, obj: &Fields) -> Result<Option<Vec<u8>>, EncodeIss
     }
 }
 
-/// What the frame carries: a command (its index and payload struct), acknowledgement data, or
-/// raw bytes.
-enum Body {
-    Command(usize, Option<usize>),
+/// What a frame value carries: a command (its index, payload struct and the direction its
+/// header tells), acknowledgement data, a struct, or raw bytes.
+enum Carried {
+    Command {
+        ci: usize,
+        si: Option<usize>,
+        direction: Option<usize>,
+    },
     Ack,
     Message(usize),
     /// A struct a direction carries in place of the dispatch key, from this header length.
@@ -158,8 +166,8 @@ fn given_direction(
     }
 }
 
-/// Encodes a frame value of format `fi` with its layout. Returns the frame's bytes (for a CAN
-/// format, its virtual frame).
+/// Encodes a frame value of format `fi` under the format's packet `rules`. Returns the frame's
+/// bytes (for a CAN format, its virtual frame).
 ///
 /// # Errors
 /// [`EncodeIssue`] naming the first missing, ill-typed or out-of-range value, or the runtime's
@@ -167,48 +175,124 @@ fn given_direction(
 pub fn encode(
     p: &Protocol,
     fi: usize,
-    layout: &FrameLayout<'_>,
+    rules: &PacketRules<'_>,
     obj: &Fields,
     given: Option<usize>,
 ) -> Result<Vec<u8>, EncodeIssue> {
     let f = &p.frames[fi];
-    let dispatch = dispatch_of(p, fi);
     let values = header_values(f, obj)?;
-    let raw_of = |i: usize| values.iter().find(|(vi, _)| *vi == i).map(|(_, r)| *r);
+    let what = carried_by(p, f, rules, &values, obj, given)?;
+    let key = match what {
+        Carried::Command { ci, .. } => key_of(p, f, ci, obj),
+        _ => Ok(Vec::new()),
+    };
+    let body = match what {
+        Carried::Command { si, direction, .. } => Body::Command {
+            key: key.as_deref().unwrap_or_default(),
+            carried: carried(p, f, si),
+            direction,
+        },
+        Carried::Ack => Body::Ack,
+        Carried::Keyless(_, start) => Body::Struct { start },
+        Carried::Message(_) | Carried::Raw => Body::Struct {
+            start: rules.header_len,
+        },
+    };
+    // The payload first, into the room a buffer of the largest frame leaves it (as generated
+    // code's callers size theirs).
+    let start = rules.start(&body);
+    let room = rules
+        .layout
+        .max_len
+        .saturating_sub(rules.trailer_len)
+        .saturating_sub(start);
+    let written = write_body(p, f, rules, &what, obj, room)?;
+    let flagged = flagged_trailer(f, obj);
+    let flag_trailer = match &flagged {
+        Ok(Some(bytes)) => bytes.len(),
+        _ => 0,
+    };
+    let len = rules.frame_len(&body, rules.wire_len(&body, &written), flag_trailer);
+    let mut buf = vec![0u8; rules.layout.max_len];
+    let mut aside = vec![0u8; written.len()];
+    // What the header writer refuses, named by the value's path: a flag trailer, a header
+    // value, then the key, as the frame is written in that order.
+    let mut refused = None;
+    let header = |frame: &mut [u8]| {
+        let flagged = flagged.clone()?;
+        write_header(f, &values, flagged.as_deref(), frame)?;
+        key.as_ref().map(|_| ()).map_err(Clone::clone)
+    };
+    let n = rules
+        .assemble(
+            &mut buf,
+            &mut aside,
+            &body,
+            len,
+            flag_trailer,
+            |w| w.put_bytes(&written),
+            |frame| {
+                header(frame).map_err(|issue| {
+                    refused = Some(issue);
+                    EncodeError::ValueOutOfRange
+                })
+            },
+        )
+        .map_err(|e| refused.take().unwrap_or_else(|| EncodeIssue::runtime(e)))?;
+    buf.truncate(n);
+    Ok(buf)
+}
+
+/// What frame value `obj` of format `f` carries, refused when the format does not carry it.
+fn carried_by(
+    p: &Protocol,
+    f: &Frame,
+    rules: &PacketRules<'_>,
+    values: &[(usize, u64)],
+    obj: &Fields,
+    given: Option<usize>,
+) -> Result<Carried, EncodeIssue> {
+    let carries = carries(f);
     let is_ack = obj.get("ack").and_then(Value::as_bool) == Some(true);
-    let body = match dispatch {
-        Dispatch::Key if is_ack => {
-            if f.ack.is_none() {
+    match carries {
+        Carries::Command if is_ack => {
+            if rules.ack.is_none() {
                 return Err(EncodeIssue::new(
                     "ack",
                     format!("frame `{}` has no acknowledgements", f.name),
                 ));
             }
-            Body::Ack
+            Ok(Carried::Ack)
         }
-        Dispatch::Key if p.directions_given() => {
+        Carries::Command if p.directions_given() => {
             let d = given_direction(p, obj, given)?;
-            match p.directions[d].message {
-                Some((si, start)) => Body::Keyless(si, start),
+            Ok(match p.directions[d].message {
+                Some((si, start)) => Carried::Keyless(si, start),
                 None => {
                     let ci = command_of(p, false, obj)?;
-                    Body::Command(ci, p.commands[ci].payloads.get(d).copied().flatten())
+                    let si = p.commands[ci].payloads.get(d).copied().flatten();
+                    Carried::Command {
+                        ci,
+                        si,
+                        direction: None,
+                    }
                 }
-            }
+            })
         }
-        Dispatch::Key | Dispatch::CanId => {
-            let ci = command_of(p, dispatch == Dispatch::CanId, obj)?;
+        Carries::Command | Carries::CanCommand => {
+            let ci = command_of(p, carries == Carries::CanCommand, obj)?;
             // The direction, from the header, as the decoder will see it.
-            let slot = if dispatch == Dispatch::Key && !p.directions.is_empty() {
-                direction_of(p, f, &raw_of).ok_or_else(|| {
-                    EncodeIssue::new("header", "the header matches no direction of the spec")
-                })?
+            let direction = if rules.directions.is_empty() {
+                None
             } else {
-                0
+                let d = header_direction(f, rules, values).ok_or_else(|| {
+                    EncodeIssue::new("header", "the header matches no direction of the spec")
+                })?;
+                Some(d)
             };
             // A format of a link carries the commands whose id fits its dispatch key, as
             // generated code's `write_header` refuses the others.
-            if dispatch == Dispatch::Key && !f.commands.contains(&ci) {
+            if carries == Carries::Command && !f.commands.contains(&ci) {
                 return Err(EncodeIssue::new(
                     "command",
                     format!(
@@ -217,107 +301,80 @@ pub fn encode(
                     ),
                 ));
             }
-            Body::Command(ci, p.commands[ci].payloads.get(slot).copied().flatten())
+            let si = p.commands[ci]
+                .payloads
+                .get(direction.unwrap_or(0))
+                .copied()
+                .flatten();
+            Ok(Carried::Command { ci, si, direction })
         }
-        Dispatch::Message(si) => Body::Message(si),
-        Dispatch::None => Body::Raw,
-    };
-    let start = match (&body, f.ack) {
-        (Body::Ack, Some((_, ack_header_len))) => ack_header_len,
-        (Body::Keyless(_, start), _) => *start,
-        _ => f.header_len,
-    };
-    // The payload first, in place, in a buffer of the largest frame (as generated code's
-    // callers size theirs): its size on the wire decides the frame's length.
-    let mut buf = vec![0u8; f.max_len()];
-    let region_end = f.max_len().saturating_sub(f.trailer_len).max(start);
-    let region = buf
-        .get_mut(start..region_end)
-        .ok_or_else(|| EncodeIssue::runtime(EncodeError::ValueOutOfRange))?;
-    let mut plen = write_body(p, f, &body, obj, region)?;
-    // A format without extension fields sends the fields before them.
-    if let (false, Body::Command(_, Some(si))) = (f.extensions, &body) {
-        if let Some(base) = p.structs[*si].base_size {
-            plen = plen.min(base);
-        }
+        Carries::Struct(si) => Ok(Carried::Message(si)),
+        Carries::Bytes => Ok(Carried::Raw),
     }
-    if let (true, Body::Command(..)) = (f.truncate_zeros, &body) {
-        plen = trimmed_len(region.get(..plen).unwrap_or_default());
+}
+
+/// The direction a header of `values` tells, by the rules' own test on a header written with
+/// them; `None` when it tells none.
+fn header_direction(f: &Frame, rules: &PacketRules<'_>, values: &[(usize, u64)]) -> Option<usize> {
+    let mut header = vec![0u8; rules.layout.max_len];
+    for &(vi, raw) in values {
+        // A value that does not fit its field stays out of this header: writing the frame
+        // refuses it, once the payload is written.
+        let _ = word_field(&f.values[vi]).write(&mut header, raw);
     }
-    if let (Some(s), Body::Command(..)) = (stuffing(f), &body) {
-        plen = s
-            .stuff_in_place(region, plen)
-            .map_err(EncodeIssue::runtime)?;
-    }
-    // A bare header (the header alone) has no trailer either.
-    let trailer = if f.bare_len.is_some() && start != f.header_len && plen == 0 {
-        0
-    } else {
-        f.trailer_len
-    };
-    // A wider length: the payload moves behind it when the frame needs one.
-    let start = layout
-        .place_payload(&mut buf, start, plen, trailer)
-        .map_err(EncodeIssue::runtime)?;
-    let flagged = flagged_trailer(f, obj)?;
-    let total = start + plen + trailer + flagged.as_ref().map_or(0, Vec::len);
-    let frame = buf
-        .get_mut(..total)
-        .ok_or_else(|| EncodeIssue::runtime(EncodeError::ValueOutOfRange))?;
-    for (vi, raw) in &values {
-        let v = &f.values[*vi];
-        word_field(v).write(frame, *raw).ok_or_else(|| {
+    rules.direction(&header).ok()
+}
+
+/// Writes the header values and the flag trailer (its flag, and its bytes at the end) into
+/// `frame`.
+fn write_header(
+    f: &Frame,
+    values: &[(usize, u64)],
+    flagged: Option<&[u8]>,
+    frame: &mut [u8],
+) -> Result<(), EncodeIssue> {
+    for &(vi, raw) in values {
+        let v = &f.values[vi];
+        word_field(v).write(frame, raw).ok_or_else(|| {
             EncodeIssue::new(
                 format!("header.{}", v.name),
                 format!("{raw} does not fit the field"),
             )
         })?;
     }
-    if let Some((flag, _)) = f.ack {
-        if dispatch == Dispatch::Key {
-            let equals = ack_value(f, flag);
-            let value = if matches!(body, Body::Ack) {
-                equals
-            } else {
-                1 - equals.min(1)
-            };
-            word_field(&f.values[flag])
-                .write(frame, value)
-                .ok_or_else(|| EncodeIssue::runtime(EncodeError::ValueOutOfRange))?;
-        }
+    let Some(t) = &f.flag_trailer else {
+        return Ok(());
+    };
+    let runtime = || EncodeIssue::runtime(EncodeError::ValueOutOfRange);
+    word_field(&f.values[t.flag])
+        .write(frame, u64::from(flagged.is_some()))
+        .ok_or_else(runtime)?;
+    if let Some(bytes) = flagged {
+        let at = frame.len().saturating_sub(bytes.len());
+        frame
+            .get_mut(at..)
+            .filter(|end| end.len() == bytes.len())
+            .ok_or_else(runtime)?
+            .copy_from_slice(bytes);
     }
-    if let Body::Command(ci, _) = body {
-        write_key(p, f, dispatch, ci, obj, frame)?;
-    }
-    if let Some(t) = &f.flag_trailer {
-        let runtime = |_| EncodeIssue::runtime(EncodeError::ValueOutOfRange);
-        word_field(&f.values[t.flag])
-            .write(frame, u64::from(flagged.is_some()))
-            .ok_or(EncodeError::ValueOutOfRange)
-            .map_err(runtime)?;
-        if let Some(bytes) = &flagged {
-            let at = frame.len() - bytes.len();
-            frame[at..].copy_from_slice(bytes);
-        }
-    }
-    layout.seal(frame).map_err(EncodeIssue::runtime)?;
-    Ok(frame.to_vec())
+    Ok(())
 }
 
-/// Writes what the frame carries at the start of `region`; returns its size.
+/// The payload's bytes as the frame value gives them, before the rules trim or stuff them:
+/// written into `room` bytes at most, the room a frame of the format leaves it.
 fn write_body(
     p: &Protocol,
     f: &Frame,
-    body: &Body,
+    rules: &PacketRules<'_>,
+    what: &Carried,
     obj: &Fields,
-    region: &mut [u8],
-) -> Result<usize, EncodeIssue> {
+    room: usize,
+) -> Result<Vec<u8>, EncodeIssue> {
     let payload = obj.get("payload");
-    let len = region.len();
     let too_large = |e: EncodeError| match e {
         EncodeError::BufferTooSmall { .. } => EncodeIssue::new(
             "payload",
-            format!("too large for a `{}` frame ({len} bytes at most)", f.name),
+            format!("too large for a `{}` frame ({room} bytes at most)", f.name),
         ),
         other => EncodeIssue::runtime(other),
     };
@@ -330,39 +387,40 @@ fn write_body(
             .ok_or_else(|| EncodeIssue::new("payload", format!("expected {what} as hex")))?;
         parse_hex(text).ok_or_else(|| EncodeIssue::new("payload", "invalid hex"))
     };
-    let mut w = Writer::new(region);
-    match body {
-        Body::Command(ci, None) => {
+    let mut region = vec![0u8; room];
+    let mut w = Writer::new(&mut region);
+    match *what {
+        Carried::Command { ci, si: None, .. } => {
             let empty = match payload {
                 None | Some(Value::Null) => true,
                 Some(Value::Struct(m)) => m.is_empty(),
                 Some(_) => false,
             };
             if !empty {
-                let name = &p.commands[*ci].name;
+                let name = &p.commands[ci].name;
                 return Err(EncodeIssue::new(
                     "payload",
                     format!("{name} carries no payload in this direction"),
                 ));
             }
         }
-        Body::Command(_, Some(si)) | Body::Message(si) | Body::Keyless(si, _) => {
+        Carried::Command { si: Some(si), .. } | Carried::Message(si) | Carried::Keyless(si, _) => {
             let v = payload.ok_or_else(|| EncodeIssue::missing("payload"))?;
             // The only error without a path is the writer's: the payload does not fit.
-            write_payload(p, *si, v, &mut w, "payload").map_err(|e| {
+            write_payload(p, si, v, &mut w, "payload").map_err(|e| {
                 if e.path.is_empty() {
                     too_large(EncodeError::BufferTooSmall {
-                        needed: len + 1,
-                        available: len,
+                        needed: room + 1,
+                        available: room,
                     })
                 } else {
                     e
                 }
             })?;
         }
-        Body::Ack => {
+        Carried::Ack => {
             let data = bytes_of("the acknowledgement data")?;
-            let max = f.ack.map_or(0, |(_, hl)| ack_max(f, hl));
+            let max = rules.ack_max();
             if data.len() > max {
                 return Err(EncodeIssue::new(
                     "payload",
@@ -374,48 +432,36 @@ fn write_body(
             }
             w.put_bytes(&data).map_err(too_large)?;
         }
-        Body::Raw => {
+        Carried::Raw => {
             let data = bytes_of("the payload")?;
             w.put_bytes(&data).map_err(too_large)?;
         }
     }
-    Ok(w.position())
+    let len = w.position();
+    region.truncate(len);
+    Ok(region)
 }
 
-/// Writes the dispatch key (or the CAN id) of command `ci`.
-fn write_key(
-    p: &Protocol,
-    f: &Frame,
-    dispatch: Dispatch,
-    ci: usize,
-    obj: &Fields,
-    frame: &mut [u8],
-) -> Result<(), EncodeIssue> {
+/// The key values of command `ci` in format `f`: its id in the dispatch fields, or its CAN id
+/// (which a frame value's `can_id`, if it gives one, must be).
+fn key_of(p: &Protocol, f: &Frame, ci: usize, obj: &Fields) -> Result<Vec<u64>, EncodeIssue> {
     let c = &p.commands[ci];
-    let fail = || EncodeIssue::runtime(EncodeError::ValueOutOfRange);
-    match dispatch {
-        Dispatch::Key => {
-            for (&vi, id) in f.dispatch.iter().zip(&c.id) {
-                word_field(&f.values[vi])
-                    .write(frame, truncate(f.values[vi].prim, *id))
-                    .ok_or_else(fail)?;
-            }
-        }
-        Dispatch::CanId => {
-            let id = c
-                .can_id
-                .ok_or_else(|| EncodeIssue::new("command", format!("{} has no CAN id", c.name)))?;
-            if let Some(given) = obj.get("can_id").filter(|g| g.as_u64() != Some(id)) {
-                return Err(EncodeIssue::new(
-                    "can_id",
-                    format!("{given} is not the CAN id of {} ({id:#x})", c.name),
-                ));
-            }
-            for v in f.values.iter().filter(|v| is_can_id(f, v)) {
-                word_field(v).write(frame, id).ok_or_else(fail)?;
-            }
-        }
-        Dispatch::Message(_) | Dispatch::None => {}
+    if carries(f) != Carries::CanCommand {
+        return Ok(f
+            .dispatch
+            .iter()
+            .zip(&c.id)
+            .map(|(&vi, &id)| truncate(f.values[vi].prim, id))
+            .collect());
     }
-    Ok(())
+    let id = c
+        .can_id
+        .ok_or_else(|| EncodeIssue::new("command", format!("{} has no CAN id", c.name)))?;
+    if let Some(given) = obj.get("can_id").filter(|g| g.as_u64() != Some(id)) {
+        return Err(EncodeIssue::new(
+            "can_id",
+            format!("{given} is not the CAN id of {} ({id:#x})", c.name),
+        ));
+    }
+    Ok(vec![id])
 }
