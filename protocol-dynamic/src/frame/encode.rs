@@ -228,7 +228,7 @@ pub fn encode(
             &mut buf,
             &mut aside,
             &body,
-            len,
+            || len,
             flag_trailer,
             |w| w.put_bytes(&written),
             |frame| {
