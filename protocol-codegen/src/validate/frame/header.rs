@@ -10,7 +10,7 @@ use super::super::{Ctx, text};
 use super::elements::byte_list;
 use super::{Draft, El, Kind};
 use crate::ir::{ByteOrder, HeaderValue, Pos, Prim, Role, Scalar, Transport};
-use crate::spec::model::{ElementDef, SStr};
+use crate::spec::model::{BitDef, ElementDef, SStr};
 
 /// The virtual prefix every CAN frame starts with: the id and the data length, so that checks
 /// can cover them (the Scout CAN checksum does) and dispatch can name the id.
@@ -90,7 +90,8 @@ pub(super) fn lower_field_element<'s>(
     if let Some(set) = &d.one_of {
         lower_sync_set(ctx, draft, el, set, word);
     }
-    let idx = if d.bits.is_some() {
+    let idx = if let Some(bits) = &d.bits {
+        check_member_constants_in_header(ctx, draft, name, bits.get_ref());
         lower_member_values(ctx, draft, el, word, enums)
     } else {
         vec![lower_whole_value(ctx, draft, name, d, word)]
@@ -102,6 +103,34 @@ pub(super) fn lower_field_element<'s>(
         kind: Kind::Word(word, idx),
     });
     Some(())
+}
+
+/// Rule: a bit member of a field after the payload holds no constant. The decoder verifies
+/// constants in the header, before it knows where the payload ends; a `value` on a member of a
+/// field that follows the payload would be resolved against the wrong bytes, so it is refused
+/// rather than accepted and left unchecked.
+fn check_member_constants_in_header(
+    ctx: &mut Ctx<'_>,
+    draft: &Draft<'_>,
+    field: &SStr,
+    members: &[Spanned<BitDef>],
+) {
+    if draft.payload.is_none() {
+        return;
+    }
+    for value in members.iter().filter_map(|m| m.get_ref().value.as_ref()) {
+        ctx.error(
+            value.span(),
+            format!(
+                "`value` on a member of `{}`, which follows the payload: a constant is checked only in the header",
+                field.get_ref()
+            ),
+            format!(
+                "move `{}` before the payload, or drop `value` and check the bits in the application",
+                field.get_ref()
+            ),
+        );
+    }
 }
 
 /// Rule: a field with `one_of` is the frame's sync taken from a set of values: the first element
