@@ -92,6 +92,7 @@ pub(super) fn lower_field_element<'s>(
     }
     let idx = if let Some(bits) = &d.bits {
         check_member_constants_in_header(ctx, draft, name, bits.get_ref());
+        check_member_length_in_header(ctx, draft, name, bits.get_ref());
         lower_member_values(ctx, draft, el, word, enums)
     } else {
         vec![lower_whole_value(ctx, draft, name, d, word)]
@@ -127,6 +128,36 @@ fn check_member_constants_in_header(
             ),
             format!(
                 "move `{}` before the payload, or drop `value` and check the bits in the application",
+                field.get_ref()
+            ),
+        );
+    }
+}
+
+/// Rule: a bit member of a field after the payload is not the length. The decoder reads the
+/// length in the header to find where the frame ends, so a length member after the payload
+/// could never be read; the whole field's `length_of` there is refused by the field's rule.
+fn check_member_length_in_header(
+    ctx: &mut Ctx<'_>,
+    draft: &Draft<'_>,
+    field: &SStr,
+    members: &[Spanned<BitDef>],
+) {
+    if draft.payload.is_none() {
+        return;
+    }
+    for cov in members
+        .iter()
+        .filter_map(|m| m.get_ref().length_of.as_ref())
+    {
+        ctx.error(
+            cov.span(),
+            format!(
+                "`length_of` on a member of `{}`, which follows the payload: the length is read only in the header",
+                field.get_ref()
+            ),
+            format!(
+                "move `{}` before the payload: the decoder needs the length to find the end of the frame",
                 field.get_ref()
             ),
         );
