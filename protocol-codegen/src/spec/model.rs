@@ -272,7 +272,7 @@ pub struct ElementDef {
     /// The field is the frame's length and counts these elements (`"a..b"`, `"a"`, `"frame"`).
     #[schemars(with = "Option<String>")]
     pub length_of: Option<SStr>,
-    /// The field must hold this value.
+    /// The field must hold this value (a header field before the payload).
     #[schemars(with = "Option<i64>")]
     pub value: Option<SInt>,
     /// The field, a `u8` and the layout's first element, is the sync: it holds one of these
@@ -349,10 +349,10 @@ pub struct BitDef {
     #[serde(rename = "type")]
     #[schemars(with = "Option<String>")]
     pub ty: Option<SStr>,
-    /// In a header: this member is the frame's length.
+    /// In a header field before the payload: this member is the frame's length.
     #[schemars(with = "Option<String>")]
     pub length_of: Option<SStr>,
-    /// In a header: this member must hold this value.
+    /// In a header field before the payload: this member must hold this value.
     #[schemars(with = "Option<i64>")]
     pub value: Option<SInt>,
     /// Documentation.
