@@ -3,9 +3,9 @@
 //! length) and stuffed, then the header values, the acknowledgement flag and the dispatch key
 //! (or CAN id), then the runtime seals the frame.
 
-use protocol_codegen::ir::{Frame, Protocol, Role};
 use protocol_runtime::zeros::trimmed_len;
 use protocol_runtime::{EncodeError, FrameLayout, Writer};
+use protocol_spec::ir::{Frame, Protocol, Role};
 
 use super::{
     Dispatch, ack_max, ack_value, direction_of, dispatch_of, is_can_id, parse_hex, stuffing,

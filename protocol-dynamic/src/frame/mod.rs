@@ -11,12 +11,12 @@ mod encode;
 
 pub use encode::encode;
 
-use protocol_codegen::ir::{
-    DirectionRule, Frame, HeaderValue, Length, PacketKind, Prim, Protocol, Role, Transport,
-};
 use protocol_runtime::DecodeError;
 use protocol_runtime::stuffing::Stuffing;
 use protocol_runtime::zeros::zero_filled;
+use protocol_spec::ir::{
+    DirectionRule, Frame, HeaderValue, Length, PacketKind, Prim, Protocol, Role, Transport,
+};
 
 use crate::error::DecodeIssue;
 use crate::layout::word_field;

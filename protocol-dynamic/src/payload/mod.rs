@@ -18,7 +18,7 @@ pub use read::{ReadFail, read_payload};
 pub(crate) use write::value_bytes;
 pub use write::write_payload;
 
-use protocol_codegen::ir::{Enum, Field, FieldKind, Prim};
+use protocol_spec::ir::{Enum, Field, FieldKind, Prim};
 
 use crate::value::truncate;
 
@@ -43,7 +43,7 @@ fn signed_value(prim: Prim, raw: u64) -> Option<i64> {
 }
 
 /// The variant of an enum with raw value `raw` (bits truncated to the enum's type).
-fn variant(e: &Enum, raw: u64) -> Option<&protocol_codegen::ir::EnumVariant> {
+fn variant(e: &Enum, raw: u64) -> Option<&protocol_spec::ir::EnumVariant> {
     e.variants.iter().find(|v| truncate(e.prim, v.value) == raw)
 }
 
