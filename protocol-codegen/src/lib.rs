@@ -7,11 +7,27 @@
 //! `protocol-spec` crate; its modules are re-exported here, so `protocol_codegen::ir` and
 //! `protocol_spec::ir` are one module. The pipeline is [`compile`] (the front end) →
 //! `codegen::expand` (or `c::generate`, `docs_md::render`).
+//!
+//! Each printer is a cargo feature, all three on by default: `rust` (`codegen`, `derive`,
+//! `input`; the one that builds `syn`, `quote` and `prettyplease`), `c` and `markdown`. The
+//! `protocol!` macro takes `rust` alone; the `protocol` command takes `c` and `markdown`.
 
 pub use protocol_spec::{compile, diag, ir, layout, lint, source, spec, validate};
 
+#[cfg(feature = "c")]
 pub mod c;
+#[cfg(feature = "rust")]
 pub mod codegen;
+#[cfg(feature = "rust")]
 pub mod derive;
+#[cfg(feature = "markdown")]
 pub mod docs_md;
+#[cfg(feature = "rust")]
 pub mod input;
+
+/// The doc text of the Rust printer's rustdoc ([`docs`](codegen::docs)), which the Markdown
+/// printer writes too: built without the `rust` feature, `codegen` holds that module alone.
+#[cfg(all(feature = "markdown", not(feature = "rust")))]
+pub mod codegen {
+    pub mod docs;
+}

@@ -9,6 +9,8 @@
 //! [`FrameLayout`] value (what generated code holds as its `LAYOUT` static), so finding frames
 //! in a stream ([`Codec::stream`], on [`protocol_runtime::StreamDecoder`]), verifying them
 //! and sealing them use the very code generated codecs use, and the wire rules exist once.
+//! It depends on the front end (`protocol-spec`) and the runtime, and on no printer, so it
+//! builds without `syn`, `quote` or `prettyplease`.
 //! What this crate adds is the dynamic half of generated code: header values, dispatch,
 //! directions and payload structs, to and from [`Value`] (see [`model`] for how each IR type
 //! maps to a value). The wire compatibility of two versions of a spec is [`compat`].

@@ -1,7 +1,7 @@
 //! Whole frames between the wire and [`Value`](crate::Value)s: header values, acknowledgements, the dispatch key,
 //! byte stuffing, the direction and the payload, in the order the generated packets take them
 //! (`Packet::from_frame`, and the `<Name>Packet` of a CAN or message-only frame format, in
-//! `protocol-codegen/src/codegen/dispatch.rs`), so that both report the same error for the same
+//! `protocol-codegen/src/codegen/dispatch/`), so that both report the same error for the same
 //! bytes. Encoding lives in [`encode`].
 //!
 //! This module owns which frame formats carry what ([`Dispatch`]); verifying and sealing frames

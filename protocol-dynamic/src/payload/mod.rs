@@ -1,5 +1,5 @@
 //! Payload structs between the wire and [`Value`](crate::Value)s: the dynamic counterpart of the `impl Payload`
-//! that `emit_payload_impl` (`protocol-codegen/src/codegen/payload.rs`) generates, field for
+//! that `emit_payload_impl` (`protocol-codegen/src/codegen/payload/`) generates, field for
 //! field and in the same order, with the same errors; the field rules themselves (scaling,
 //! rounding, clamping, bit members, enum policy, sized bytes, groups) are the runtime's
 //! (`protocol_runtime::field`), which generated code calls too.
