@@ -63,7 +63,8 @@ enum Command {
         #[arg(long, value_name = "NAME")]
         direction: Option<String>,
     },
-    /// Print the Rust code the `protocol!` macro generates for a spec, formatted.
+    /// Print the Rust code the `protocol!` macro generates for a spec, formatted (in a build
+    /// with the `expand` feature: `cargo install protocol-cli --features expand`).
     Expand {
         /// The spec file.
         spec: PathBuf,

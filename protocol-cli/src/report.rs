@@ -7,9 +7,9 @@
 
 use std::fmt::Write as _;
 
-use protocol_codegen::ir::{Element, FieldKind, Frame, Pos, Protocol};
 use protocol_dynamic::{Codec, DecodeIssue, Decoded, Item, Value};
 use protocol_runtime::{FrameLayout, Reject, Stats};
+use protocol_spec::ir::{Element, FieldKind, Frame, Pos, Protocol};
 
 use crate::session::reject_name;
 

@@ -3,15 +3,15 @@
 //! This module owns the path shown in messages (as the user wrote it), which of the pipeline's
 //! renderings a command prints, their JSON form for editors and CI, and "cannot read FILE",
 //! the one error every command gives for a file it cannot read. The diagnostics and their
-//! text come from [`protocol_codegen::compile`] and [`protocol_codegen::diag`], the pipeline
+//! text come from [`protocol_spec::compile`] and [`protocol_spec::diag`], the pipeline
 //! and renderer the macro uses, so a spec's error reads the same in both.
 
 use std::fmt;
 use std::path::Path;
 
-use protocol_codegen::diag::{self, Color, Diagnostic};
-use protocol_codegen::ir::Protocol;
-use protocol_codegen::source::SpecSource;
+use protocol_spec::diag::{self, Color, Diagnostic};
+use protocol_spec::ir::Protocol;
+use protocol_spec::source::SpecSource;
 use serde_json::{Value, json};
 
 /// A spec read from a file: its text, and the checked protocol or its errors.
@@ -95,12 +95,12 @@ pub fn load(path: &Path) -> Result<Loaded, ReadError> {
     let shown = path.display().to_string();
     let text = read_text("spec", path)?;
     let source = SpecSource::new(shown, text);
-    let result = protocol_codegen::compile(&source);
+    let result = protocol_spec::compile(&source);
     Ok(Loaded { source, result })
 }
 
 /// Renders a spec's errors: the report the `protocol!` macro's compile error carries, byte for
-/// byte ([`protocol_codegen::diag::render_report`]), coloured when `color` is true.
+/// byte ([`protocol_spec::diag::render_report`]), coloured when `color` is true.
 pub fn render_errors(diagnostics: &[Diagnostic], source: &SpecSource, color: bool) -> String {
     diag::render_report(diagnostics, source, paint(color))
 }

@@ -5,7 +5,7 @@
 //! This module owns the text of a line; which frames and events there are is the decoding
 //! session's business.
 
-use protocol_codegen::ir::{Field, FieldKind, Protocol, Struct, ValueType};
+use protocol_spec::ir::{Field, FieldKind, Protocol, Struct, ValueType};
 use serde_json::Value;
 
 use protocol_dynamic::Decoded;

@@ -34,12 +34,12 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use protocol_codegen::ir::{
-    Command as Cmd, Direction, DirectionRule, Frame, PacketKind, Protocol, Transport,
-};
-use protocol_codegen::layout::word_field;
 use protocol_dynamic::{Codec, DecodeIssue, Interpreter, Item, Value};
 use protocol_runtime::CanFrame;
+use protocol_spec::ir::{
+    Command as Cmd, Direction, DirectionRule, Frame, PacketKind, Protocol, Transport,
+};
+use protocol_spec::layout::word_field;
 
 const RANDOM_FRAMES: usize = 10_000;
 
@@ -470,10 +470,10 @@ fn value_frame(
     for v in f
         .values
         .iter()
-        .filter(|v| matches!(v.role, protocol_codegen::ir::Role::User { .. }))
+        .filter(|v| matches!(v.role, protocol_spec::ir::Role::User { .. }))
     {
         let bits = rng.next() & mask(v.width);
-        let value = if v.prim == protocol_codegen::ir::Prim::Bool {
+        let value = if v.prim == protocol_spec::ir::Prim::Bool {
             Value::Bool(bits & 1 != 0)
         } else {
             Value::UInt(bits)
@@ -494,7 +494,7 @@ fn value_frame(
             DirectionRule::Given => return None,
         };
         let v = &f.values[*value];
-        let sender = if v.prim == protocol_codegen::ir::Prim::Bool {
+        let sender = if v.prim == protocol_spec::ir::Prim::Bool {
             Value::Bool(sender != 0)
         } else {
             Value::UInt(sender)
@@ -582,12 +582,12 @@ fn stated_len(
 fn random_field(
     p: &Protocol,
     name: &str,
-    kind: &protocol_codegen::ir::FieldKind,
+    kind: &protocol_spec::ir::FieldKind,
     outer: &protocol_dynamic::Fields,
     out: &mut protocol_dynamic::Fields,
     rng: &mut Rng,
 ) {
-    use protocol_codegen::ir::{FieldKind, Prim};
+    use protocol_spec::ir::{FieldKind, Prim};
     match kind {
         FieldKind::Padding | FieldKind::Check(_) => {}
         FieldKind::Value { ty, count } => {
@@ -674,8 +674,8 @@ fn random_field(
 }
 
 /// A random element of a value field.
-fn random_elem(p: &Protocol, ty: &protocol_codegen::ir::ValueType, rng: &mut Rng) -> Value {
-    use protocol_codegen::ir::{Prim, ValueType};
+fn random_elem(p: &Protocol, ty: &protocol_spec::ir::ValueType, rng: &mut Rng) -> Value {
+    use protocol_spec::ir::{Prim, ValueType};
     match ty {
         ValueType::Scalar { scalar, scale } => {
             let width = 8 * scalar.prim.size() as u32;

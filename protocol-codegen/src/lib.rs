@@ -1,51 +1,33 @@
-//! Everything between a protocol spec and its users: loading the TOML ([`spec`]), validating it
-//! into a checked IR ([`validate`], [`ir`]), and expanding the IR into Rust ([`codegen`]).
+//! The printers of a checked protocol: Rust tokens ([`codegen`], the `protocol!` expansion),
+//! C ([`c`], `protocol gen c`) and Markdown reference docs ([`docs_md`]). [`derive`](mod@derive)
+//! takes a `#[derive(Payload)]` through the front end's validation and the same payload
+//! printer; [`input`] is the `protocol!` macro's argument to its expansion.
 //!
-//! The pipeline is `spec::load_spec` → `validate::validate` → `codegen::expand`; [`compile`]
-//! runs the first two and is what the macros, the CLI and the tests call. [`derive`](mod@derive) takes a
-//! `#[derive(Payload)]` through the same validation and payload printer.
+//! The front end (loading, validation, the IR, the layout lowering, diagnostics) is the
+//! `protocol-spec` crate; its modules are re-exported here, so `protocol_codegen::ir` and
+//! `protocol_spec::ir` are one module. The pipeline is [`compile`] (the front end) →
+//! `codegen::expand` (or `c::generate`, `docs_md::render`).
+//!
+//! Each printer is a cargo feature, all three on by default: `rust` (`codegen`, `derive`,
+//! `input`; the one that builds `syn`, `quote` and `prettyplease`), `c` and `markdown`. The
+//! `protocol!` macro takes `rust` alone; the `protocol` command takes `c` and `markdown`.
 
+pub use protocol_spec::{compile, diag, ir, layout, lint, rules, source, spec, validate};
+
+#[cfg(feature = "c")]
 pub mod c;
+#[cfg(feature = "rust")]
 pub mod codegen;
+#[cfg(feature = "rust")]
 pub mod derive;
-pub mod diag;
+#[cfg(feature = "markdown")]
 pub mod docs_md;
+#[cfg(feature = "rust")]
 pub mod input;
-pub mod ir;
-pub mod layout;
-pub mod lint;
-pub mod rules;
-pub mod source;
-pub mod spec;
-pub mod validate;
 
-use diag::{Diagnostic, Diagnostics};
-use source::SpecSource;
-
-/// Load and validate a spec: the checked IR, or every error found, sorted.
-pub fn compile(source: &SpecSource) -> Result<ir::Protocol, Vec<Diagnostic>> {
-    let mut diags = Diagnostics::new();
-    let (spec, repaired_tables) = spec::load_spec_repaired(source, &mut diags);
-    let Some(spec) = spec else {
-        return Err(diags.into_sorted());
-    };
-    let shape_errors = diags.spans();
-    let mut semantic = Diagnostics::new();
-    let protocol = validate::validate(&spec, &mut semantic);
-    // A semantic error about an element whose ill-typed or unknown entry was dropped is a
-    // consequence of that shape error, not a second mistake: report the shape error alone. So
-    // is an error about the whole table the entry was dropped from.
-    for d in semantic.into_sorted() {
-        let follows = shape_errors
-            .iter()
-            .any(|s| d.span.start <= s.start && s.end <= d.span.end)
-            || repaired_tables.contains(&d.span);
-        if !follows {
-            diags.push(d);
-        }
-    }
-    match protocol {
-        Some(protocol) if diags.is_empty() => Ok(protocol),
-        _ => Err(diags.into_sorted()),
-    }
+/// The doc text of the Rust printer's rustdoc ([`docs`](codegen::docs)), which the Markdown
+/// printer writes too: built without the `rust` feature, `codegen` holds that module alone.
+#[cfg(all(feature = "markdown", not(feature = "rust")))]
+pub mod codegen {
+    pub mod docs;
 }

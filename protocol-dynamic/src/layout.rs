@@ -5,19 +5,19 @@
 //!
 //! This module owns the CRC objects a layout's checks borrow ([`CrcStore`]: the codec owns it,
 //! its layouts borrow it; only a CRC's parameters are interned for `'static`, see
-//! [`protocol_codegen::layout::intern`]) and the per-frame slices of constants and checks, and
+//! [`protocol_spec::layout::intern`]) and the per-frame slices of constants and checks, and
 //! of the packet rules' key fields and direction tests ([`FrameParts`]); a check with a
 //! per-command byte is an interned runtime [`Extra`]. A check's algorithm is the IR's runtime
 //! [`Algorithm`], executed as it is; which bytes a check covers and how a frame is verified or
 //! sealed is the runtime's business, and so is every packet rule.
 
-use protocol_codegen::ir::{self, Algorithm, CrcSpec, CrcTable};
-pub use protocol_codegen::layout::word_field;
-use protocol_codegen::layout::{self, LayoutPlan, intern, lower_layout};
-use protocol_codegen::rules::{RulesPlan, lower_rules};
 use protocol_runtime::checksum::{Checksum, CrcImpl, Extra, Slicing16};
 use protocol_runtime::layout::{Check, Constant, FrameLayout, WordField};
 use protocol_runtime::rules::{DirectionTest, PacketRules};
+use protocol_spec::ir::{self, Algorithm, CrcSpec, CrcTable};
+pub use protocol_spec::layout::word_field;
+use protocol_spec::layout::{self, LayoutPlan, intern, lower_layout};
+use protocol_spec::rules::{RulesPlan, lower_rules};
 use std::sync::Mutex;
 
 /// A CRC object of one width, with the table size the spec chose (as generated code builds):

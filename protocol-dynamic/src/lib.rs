@@ -3,8 +3,8 @@
 //! code. The `protocol` command's `decode` and `encode` run on it; so can any tool or host
 //! program that learns its spec at run time.
 //!
-//! It reads the same checked IR as the `protocol!` macro ([`protocol_codegen::ir`], loaded and
-//! checked by [`protocol_codegen::compile`], so a bad spec gives the macro's diagnostics) and
+//! It reads the same checked IR as the `protocol!` macro ([`protocol_spec::ir`], loaded and
+//! checked by [`protocol_spec::compile`], so a bad spec gives the macro's diagnostics) and
 //! runs the runtime's own engine on it: every frame format becomes a runtime
 //! [`FrameLayout`] value (what generated code holds as its `LAYOUT` static), so finding frames
 //! in a stream ([`Codec::stream`], on [`protocol_runtime::StreamDecoder`]), verifying them
@@ -15,7 +15,8 @@
 //! adds is the dynamic half of generated code: header values, which command a key names,
 //! which struct it carries in a direction, and payload values, to and from [`Value`] (see
 //! [`model`] for how each IR type maps to a value). The wire compatibility of two versions of
-//! a spec is [`compat`].
+//! a spec is [`compat`]. It depends on the front end (`protocol-spec`) and the runtime, and on
+//! no printer, so it builds without `syn`, `quote` or `prettyplease`.
 //!
 //! ```
 //! use protocol_dynamic::{Fields, Interpreter, Value};
@@ -117,9 +118,9 @@ pub use model::{Fields, Value};
 pub use stream::{Format, Item, Stream};
 pub use value::{NumError, value_f32, value_f64};
 
-use protocol_codegen::ir::{Protocol, Transport};
 use protocol_runtime::rules::PacketRules;
 use protocol_runtime::{CanFrame, DecodeError, FrameLayout};
+use protocol_spec::ir::{Protocol, Transport};
 
 use layout::{CrcStore, FrameParts};
 

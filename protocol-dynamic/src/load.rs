@@ -1,11 +1,11 @@
-//! Loading a spec at run time: its text through [`protocol_codegen::compile`], the pipeline the
+//! Loading a spec at run time: its text through [`protocol_spec::compile`], the pipeline the
 //! `protocol!` macro runs, so a bad spec gives the macro's diagnostics.
 
 use std::fmt;
 use std::path::Path;
 
-use protocol_codegen::diag::{Color, Diagnostic, read_error_message, render_report};
-use protocol_codegen::source::SpecSource;
+use protocol_spec::diag::{Color, Diagnostic, read_error_message, render_report};
+use protocol_spec::source::SpecSource;
 
 use crate::Interpreter;
 
@@ -60,7 +60,7 @@ impl Interpreter {
     /// [`LoadError::Spec`] with every error of the spec.
     pub fn from_text(path: impl Into<String>, text: impl Into<String>) -> Result<Self, LoadError> {
         let source = SpecSource::new(path, text);
-        match protocol_codegen::compile(&source) {
+        match protocol_spec::compile(&source) {
             Ok(protocol) => Ok(Interpreter::new(protocol)),
             Err(diagnostics) => Err(LoadError::Spec {
                 source,

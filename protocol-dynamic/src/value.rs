@@ -9,8 +9,8 @@
 //! cannot hold, are the strings `"inf"`, `"-inf"` and `"NaN"` (or `"NaN(0x7fc00001)"`, with its
 //! bits, for a NaN other than the default one).
 
-use protocol_codegen::ir::{ByteOrder, Prim, Scalar};
 use protocol_runtime::{DecodeError, EncodeError, Reader, Writer};
+use protocol_spec::ir::{ByteOrder, Prim, Scalar};
 
 use crate::model::Value;
 

@@ -1,12 +1,12 @@
 //! The compatibility report (`protocol diff`), in process: one edit of a spec per kind of
 //! change, and the class and reason each gets.
 
-use protocol_codegen::ir::Protocol;
-use protocol_codegen::source::SpecSource;
 use protocol_dynamic::compat::{Change, Class, diff};
+use protocol_spec::ir::Protocol;
+use protocol_spec::source::SpecSource;
 
 fn compile(name: &str, text: &str) -> Protocol {
-    protocol_codegen::compile(&SpecSource::new(name, text))
+    protocol_spec::compile(&SpecSource::new(name, text))
         .unwrap_or_else(|d| panic!("{name} does not compile: {d:?}"))
 }
 

@@ -12,8 +12,8 @@
 mod support;
 
 use protocol::{CanFrame, DecodeError, EncodeError, Event, FrameLayout, Reject, StreamDecoder};
-use protocol_codegen::ir::{DirectionRule, Protocol, Transport};
 use protocol_dynamic::{Codec, DecodeIssue, Decoded, Interpreter, Item, Value, hex, word_field};
+use protocol_spec::ir::{DirectionRule, Protocol, Transport};
 use support::{Rng, interpreter, rust_debug, unhex, vectors};
 
 protocol::protocol!("../specs/hflink.toml");

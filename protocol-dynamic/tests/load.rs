@@ -21,8 +21,8 @@ fn a_bad_spec_gives_every_diagnostic_of_the_pipeline() {
     let text = std::fs::read_to_string(spec_path("hflink"))
         .expect("the spec reads")
         .replacen("\"sum-mod-255\"", "\"sum-mod-25\"", 1);
-    let source = protocol_codegen::source::SpecSource::new("specs/bad.toml", text.clone());
-    let expected = protocol_codegen::compile(&source).expect_err("the edit breaks the spec");
+    let source = protocol_spec::source::SpecSource::new("specs/bad.toml", text.clone());
+    let expected = protocol_spec::compile(&source).expect_err("the edit breaks the spec");
     match Interpreter::from_text("specs/bad.toml", text) {
         Err(e @ LoadError::Spec { .. }) => {
             let rendered = e.to_string();

@@ -10,8 +10,8 @@
 mod support;
 
 use protocol::CanFrame;
-use protocol_codegen::ir::{DirectionRule, Transport};
 use protocol_dynamic::{Value, hex, word_field};
+use protocol_spec::ir::{DirectionRule, Transport};
 use support::{Rng, interpreter, unhex, vectors};
 
 protocol::protocol!("../specs/hflink.toml", derive(serde));

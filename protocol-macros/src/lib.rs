@@ -1,6 +1,7 @@
-//! The `protocol!` and `#[derive(Payload)]` macros. A thin shim: all logic is in
-//! `protocol-codegen`. Use them through the `protocol` crate, which re-exports them with the
-//! runtime the generated code names (`::protocol`).
+//! The `protocol!` and `#[derive(Payload)]` macros. A thin shim: all logic is in the front end
+//! (`protocol-spec`) and the Rust printer (`protocol-codegen` with its `rust` feature alone; the
+//! C and Markdown printers are not built). Use them through the `protocol` crate, which
+//! re-exports them with the runtime the generated code names (`::protocol`).
 
 use proc_macro::TokenStream;
 

@@ -1,5 +1,5 @@
 //! `protocol check SPEC... [--json]`: validate specs, print every diagnostic, exit 1 on error.
-//! A valid spec's lint warnings ([`protocol_codegen::lint`]) are printed too; they do not
+//! A valid spec's lint warnings ([`protocol_spec::lint`]) are printed too; they do not
 //! change the exit status.
 
 use std::path::PathBuf;
@@ -34,7 +34,7 @@ pub fn run(specs: &[PathBuf], as_json: bool) -> Result<ExitCode> {
         };
         match &loaded.result {
             Ok(p) => {
-                let warnings = protocol_codegen::lint::lint(&loaded.source);
+                let warnings = protocol_spec::lint::lint(&loaded.source);
                 if as_json {
                     all.extend(warnings.iter().map(|d| spec::to_json(d, &loaded.source)));
                 } else if !warnings.is_empty() {

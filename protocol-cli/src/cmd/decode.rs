@@ -16,8 +16,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use miette::{IntoDiagnostic, Result, WrapErr, miette};
 use protocol_cli::session::{Output, Session};
 use protocol_cli::{candump, spec};
-use protocol_codegen::ir::Transport;
 use protocol_dynamic::{Codec, Interpreter, Stream, parse_hex_located};
+use protocol_spec::ir::Transport;
 
 use super::{load_checked, pick_direction};
 use crate::Format;

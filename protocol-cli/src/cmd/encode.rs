@@ -13,8 +13,8 @@ use std::process::ExitCode;
 use miette::{IntoDiagnostic, Result, WrapErr};
 use protocol_cli::candump::format_log;
 use protocol_cli::spec;
-use protocol_codegen::ir::Transport;
 use protocol_dynamic::{Encoded, Interpreter, Value, hex};
+use protocol_spec::ir::Transport;
 
 use super::{INVALID, load_checked, pick_direction};
 

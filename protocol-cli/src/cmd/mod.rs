@@ -16,7 +16,7 @@ use std::process::ExitCode;
 
 use miette::{Result, miette};
 use protocol_cli::spec;
-use protocol_codegen::ir::Protocol;
+use protocol_spec::ir::Protocol;
 
 /// Exit status when an input (spec, frame object) is wrong.
 pub const INVALID: u8 = 1;

@@ -1,7 +1,9 @@
 //! Rustdoc text for generated items: the spec's own documentation plus layout tables (offset,
 //! size, field, type, byte order, unit). Text only; no tokens besides `#[doc]` attributes.
 
+#[cfg(feature = "rust")]
 use proc_macro2::TokenStream;
+#[cfg(feature = "rust")]
 use quote::quote;
 
 use crate::ir::{
@@ -10,6 +12,7 @@ use crate::ir::{
 };
 
 /// `#[doc = "..."]` attributes, one per line (so rustdoc and prettyplease keep the layout).
+#[cfg(feature = "rust")]
 pub fn doc_attrs(text: &str) -> TokenStream {
     let lines: Vec<String> = if text.trim().is_empty() {
         Vec::new()

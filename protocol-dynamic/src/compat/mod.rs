@@ -13,7 +13,7 @@ mod payload;
 
 use std::fmt;
 
-use protocol_codegen::ir::{
+use protocol_spec::ir::{
     Algorithm, Check, Command, CrcTable, DirectionRule, Frame, Protocol, Role,
 };
 
@@ -247,7 +247,7 @@ fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
         ));
     }
     for (ov, nv) in o.values.iter().zip(&n.values) {
-        let shape = |v: &protocol_codegen::ir::HeaderValue| (v.at, v.word, v.shift, v.width);
+        let shape = |v: &protocol_spec::ir::HeaderValue| (v.at, v.word, v.shift, v.width);
         if shape(ov) != shape(nv) {
             r.breaking(format!(
                 "header value `{}` moved or changed type ({:?} {:?} bits {}..{} → {:?} {:?} bits {}..{})",
@@ -359,7 +359,7 @@ fn rule_text(p: &Protocol, rule: &DirectionRule) -> String {
 }
 
 /// A direction's rule and what its frames carry in place of a command, for comparison.
-fn direction_text(p: &Protocol, d: &protocol_codegen::ir::Direction) -> String {
+fn direction_text(p: &Protocol, d: &protocol_spec::ir::Direction) -> String {
     let rule = rule_text(p, &d.rule);
     match d.message.and_then(|(si, _)| p.structs.get(si)) {
         Some(s) => format!("{rule}, carrying `{}`", s.name),

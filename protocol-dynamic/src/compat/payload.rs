@@ -1,7 +1,7 @@
 //! Comparing payload structs field by field: types, sizes, byte orders, scales, enums,
 //! variable-size fields; names, units and docs are compatible changes.
 
-use protocol_codegen::ir::{
+use protocol_spec::ir::{
     BitMember, Enum, Field, FieldKind, Protocol, Scale, Struct, UnknownPolicy, ValueType,
 };
 

@@ -7,11 +7,11 @@
 //! This module owns reading the frame value: which command and payload struct it names, the
 //! header values and the payload's bytes, and the errors that name a value's path.
 
-use protocol_codegen::ir::{Frame, Protocol, Role};
-use protocol_codegen::rules::{Carries, carries};
 use protocol_runtime::EncodeError;
 use protocol_runtime::Writer;
 use protocol_runtime::rules::{Body, PacketRules};
+use protocol_spec::ir::{Frame, Protocol, Role};
+use protocol_spec::rules::{Carries, carries};
 
 use super::{carried, is_can_id, parse_hex};
 use crate::error::EncodeIssue;

@@ -15,10 +15,10 @@ mod encode;
 
 pub use encode::encode;
 
-use protocol_codegen::ir::{Frame, HeaderValue, Prim, Protocol, Role, Transport};
-use protocol_codegen::rules::{Carries, carries};
 use protocol_runtime::DecodeError;
 use protocol_runtime::rules::PacketRules;
+use protocol_spec::ir::{Frame, HeaderValue, Prim, Protocol, Role, Transport};
+use protocol_spec::rules::{Carries, carries};
 
 use crate::error::DecodeIssue;
 use crate::layout::word_field;

@@ -2,10 +2,10 @@
 //! the runtime's `field::verify_check` and `field::put_check` over the covered fields'
 //! bytes, and `text::read_nul_text` / `text::nul_text_fits`.
 
-use protocol_codegen::ir::{Algorithm, PayloadCheck, Prim};
-use protocol_codegen::layout::intern;
 use protocol_runtime::checksum::{Checksum, CrcImpl};
 use protocol_runtime::{DecodeError, EncodeError, Reader, Writer, field, text};
+use protocol_spec::ir::{Algorithm, PayloadCheck, Prim};
+use protocol_spec::layout::intern;
 
 use crate::error::EncodeIssue;
 use crate::model::Value;

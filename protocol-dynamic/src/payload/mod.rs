@@ -1,5 +1,5 @@
 //! Payload structs between the wire and [`Value`](crate::Value)s: the dynamic counterpart of the `impl Payload`
-//! that `emit_payload_impl` (`protocol-codegen/src/codegen/payload.rs`) generates, field for
+//! that `emit_payload_impl` (`protocol-codegen/src/codegen/payload/`) generates, field for
 //! field and in the same order, with the same errors; the field rules themselves (scaling,
 //! rounding, clamping, bit members, enum policy, sized bytes, groups) are the runtime's
 //! (`protocol_runtime::field`), which generated code calls too.
@@ -18,7 +18,7 @@ pub use read::{ReadFail, read_payload};
 pub(crate) use write::value_bytes;
 pub use write::write_payload;
 
-use protocol_codegen::ir::{Enum, Field, FieldKind, Prim};
+use protocol_spec::ir::{Enum, Field, FieldKind, Prim};
 
 use crate::value::truncate;
 
@@ -43,7 +43,7 @@ fn signed_value(prim: Prim, raw: u64) -> Option<i64> {
 }
 
 /// The variant of an enum with raw value `raw` (bits truncated to the enum's type).
-fn variant(e: &Enum, raw: u64) -> Option<&protocol_codegen::ir::EnumVariant> {
+fn variant(e: &Enum, raw: u64) -> Option<&protocol_spec::ir::EnumVariant> {
     e.variants.iter().find(|v| truncate(e.prim, v.value) == raw)
 }
 

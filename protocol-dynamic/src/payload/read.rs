@@ -1,9 +1,9 @@
 //! Reading a payload struct into a [`Value`], as the generated `Payload::read` and `from_bytes` do.
 
-use protocol_codegen::ir::{
+use protocol_runtime::{DecodeError, Reader, field, packed, text};
+use protocol_spec::ir::{
     BitMember, BitOrder, Enum, Field, FieldKind, Prim, Protocol, Scale, ValueType,
 };
-use protocol_runtime::{DecodeError, Reader, field, packed, text};
 
 use super::{join, signed_value, variant};
 use crate::model::{Fields, Value};

@@ -2,10 +2,10 @@
 //! generated code cannot even hold (a number too large for its type, bytes beyond a field's
 //! `max`, an unknown variant of a rejecting enum) are refused with the path of the value.
 
-use protocol_codegen::ir::{
+use protocol_runtime::{EncodeError, Writer, field, packed, text};
+use protocol_spec::ir::{
     BitMember, ByteOrder, Enum, Field, FieldKind, Prim, Protocol, Scalar, Scale, Struct, ValueType,
 };
-use protocol_runtime::{EncodeError, Writer, field, packed, text};
 
 use super::{join, signed_value, variant};
 use crate::error::EncodeIssue;

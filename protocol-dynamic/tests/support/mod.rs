@@ -3,10 +3,10 @@
 //! generated `Packet` of the same frame, so the two codecs are compared field for field.
 #![allow(dead_code)]
 
-use protocol_codegen::ir::{
+use protocol_dynamic::{Decoded, Interpreter, Value, hex, value_f32, value_f64};
+use protocol_spec::ir::{
     ByteOrder, FieldKind, Prim, Protocol, Role, Scalar, UnknownPolicy, ValueType,
 };
-use protocol_dynamic::{Decoded, Interpreter, Value, hex, value_f32, value_f64};
 
 /// The interpreter of `specs/NAME.toml`, or of `tests/fixtures/NAME.toml` when there is no
 /// such spec.
@@ -68,7 +68,7 @@ impl Rng {
 
 /// `snake_case` to `PascalCase`, as generated type names are formed.
 pub fn pascal(name: &str) -> String {
-    protocol_codegen::validate::pascal_case(name)
+    protocol_spec::validate::pascal_case(name)
 }
 
 fn int_text(prim: Prim, v: &Value) -> String {

@@ -4,15 +4,15 @@
 //! when the loader finds a shape error in it (an unknown key, a wrong value type, a missing key).
 //!
 //! Regenerate the committed schema with
-//! `UPDATE_SCHEMA=1 cargo test -p protocol-codegen --test schema`.
+//! `UPDATE_SCHEMA=1 cargo test -p protocol-spec --test schema`.
 
 use std::path::{Path, PathBuf};
 
-use protocol_codegen::diag::{Diagnostics, render_all};
-use protocol_codegen::source::SpecSource;
-use protocol_codegen::spec::{load_spec, schema::json_schema};
+use protocol_spec::diag::{Diagnostics, render_all};
+use protocol_spec::source::SpecSource;
+use protocol_spec::spec::{load_spec, schema::json_schema};
 
-const REGENERATE: &str = "UPDATE_SCHEMA=1 cargo test -p protocol-codegen --test schema";
+const REGENERATE: &str = "UPDATE_SCHEMA=1 cargo test -p protocol-spec --test schema";
 
 fn repo() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -70,7 +70,7 @@ fn committed_schema_is_the_generated_one() {
     assert!(
         committed == generated,
         "docs/spec.schema.json is stale or missing: it differs from the schema generated from \
-         protocol-codegen/src/spec/model.rs. Regenerate it with `{REGENERATE}` and commit it."
+         protocol-spec/src/spec/model.rs. Regenerate it with `{REGENERATE}` and commit it."
     );
 }
 

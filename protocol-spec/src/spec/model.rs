@@ -3,10 +3,16 @@
 //! Every value a diagnostic may point at is `Spanned`. Nothing is interpreted here: defaults,
 //! names, sizes and references are resolved by `validate`, the only place that reports user
 //! errors besides the TOML shape errors that deserialization itself finds.
+//!
+//! The `schemars` derives and attributes describe the model for the JSON Schema (`schema`,
+//! the `schema` feature); without that feature they are not compiled.
 
 use indexmap::IndexMap;
+#[cfg(feature = "schema")]
 use schemars::JsonSchema;
 use serde::Deserialize;
+#[cfg(feature = "schema")]
+use std::collections::BTreeMap;
 use toml::Spanned;
 
 /// A spanned string.
@@ -17,61 +23,63 @@ pub type SInt = Spanned<i64>;
 pub type Named<T> = IndexMap<SStr, Spanned<T>>;
 
 /// The whole spec file.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct SpecFile {
     /// `[protocol]`: name, version, documentation, default byte order.
-    #[schemars(with = "ProtocolTable")]
+    #[cfg_attr(feature = "schema", schemars(with = "ProtocolTable"))]
     pub protocol: Spanned<ProtocolTable>,
     /// `[constants]`: named integers usable where a count or value is expected.
     #[serde(default)]
-    #[schemars(with = "std::collections::BTreeMap<String, ConstantDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "BTreeMap<String, ConstantDef>"))]
     pub constants: Named<ConstantDef>,
     /// `[addresses]`: named addresses and address ranges.
     #[serde(default)]
-    #[schemars(with = "std::collections::BTreeMap<String, AddressDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "BTreeMap<String, AddressDef>"))]
     pub addresses: Named<AddressDef>,
     /// `[checksums.NAME]`: custom checksum algorithms.
     #[serde(default)]
-    #[schemars(with = "std::collections::BTreeMap<String, ChecksumDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "BTreeMap<String, ChecksumDef>"))]
     pub checksums: Named<ChecksumDef>,
     /// `[frames.NAME]`: frame formats.
     #[serde(default)]
-    #[schemars(with = "std::collections::BTreeMap<String, FrameDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "BTreeMap<String, FrameDef>"))]
     pub frames: Named<FrameDef>,
     /// `[directions]`: how a decoder tells a request from a response.
     #[serde(default)]
-    #[schemars(with = "std::collections::BTreeMap<String, DirectionDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "BTreeMap<String, DirectionDef>"))]
     pub directions: Named<DirectionDef>,
     /// `[commands]`: one line per command.
     #[serde(default)]
-    #[schemars(with = "std::collections::BTreeMap<String, CommandDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "BTreeMap<String, CommandDef>"))]
     pub commands: Named<CommandDef>,
     /// `[structs.NAME]`: payload structs.
     #[serde(default)]
-    #[schemars(with = "std::collections::BTreeMap<String, StructDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "BTreeMap<String, StructDef>"))]
     pub structs: Named<StructDef>,
     /// `[enums.NAME]`: enums.
     #[serde(default)]
-    #[schemars(with = "std::collections::BTreeMap<String, EnumDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "BTreeMap<String, EnumDef>"))]
     pub enums: Named<EnumDef>,
 }
 
 /// `[protocol]`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct ProtocolTable {
     /// Module name of the generated code (snake_case).
-    #[schemars(with = "String")]
+    #[cfg_attr(feature = "schema", schemars(with = "String"))]
     pub name: SStr,
     /// Free version string.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub version: Option<SStr>,
     /// Documentation (Markdown).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
     /// Default byte order of multi-byte fields: `"little"` (default) or `"big"`.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub byte_order: Option<SStr>,
 }
 
@@ -79,9 +87,13 @@ pub struct ProtocolTable {
 ///
 /// Untagged enums buffer their input, so nothing inside them can be `Spanned`: the span of the
 /// whole value is kept by the map entry.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(untagged)]
-#[schemars(description = "A constant: `NAME = 12` or `NAME = { value = 12, doc = \"...\" }`.")]
+#[cfg_attr(
+    feature = "schema",
+    schemars(description = "A constant: `NAME = 12` or `NAME = { value = 12, doc = \"...\" }`.")
+)]
 pub enum ConstantDef {
     /// `NAME = 12`
     Bare(i64),
@@ -90,7 +102,8 @@ pub enum ConstantDef {
 }
 
 /// The table form of a constant.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct ConstantFull {
     /// Value.
@@ -100,324 +113,337 @@ pub struct ConstantFull {
 }
 
 /// An address set: `{ range = [lo, hi] }` or `{ value = v }`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct AddressDef {
     /// Inclusive range.
-    #[schemars(with = "Option<Vec<i64>>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<i64>>"))]
     pub range: Option<Spanned<Vec<SInt>>>,
     /// Single address.
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub value: Option<SInt>,
     /// Documentation.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
 }
 
 /// A custom checksum algorithm.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct ChecksumDef {
     /// CRC parameters (Rocksoft model).
-    #[schemars(with = "Option<CrcDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<CrcDef>"))]
     pub crc: Option<Spanned<CrcDef>>,
     /// Sum parameters: a sum of the bytes of a width, with a final xor.
-    #[schemars(with = "Option<SumDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<SumDef>"))]
     pub sum: Option<Spanned<SumDef>>,
     /// Lookup table slices of a CRC: 0, 1 or 16 (default 16).
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub table: Option<SInt>,
     /// Documentation.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
 }
 
 /// A sum of the bytes: modulo 2^`width`, then xored with `xorout` (all ones: the one's
 /// complement of the sum, as Dynamixel Protocol 1.0 `~sum & 0xFF` and iBUS `0xFFFF - sum`).
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct SumDef {
     /// 8 or 16.
-    #[schemars(with = "i64")]
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub width: SInt,
     /// Final XOR (default 0).
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub xorout: Option<SInt>,
 }
 
 /// CRC parameters in the Rocksoft model (as in the `crc` crate's `Algorithm`).
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct CrcDef {
     /// 8, 16, 32 or 64.
-    #[schemars(with = "i64")]
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub width: SInt,
     /// Polynomial, normal (MSB-first) form.
-    #[schemars(with = "i64")]
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub poly: SInt,
     /// Initial register value, un-reflected.
-    #[schemars(with = "i64")]
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub init: SInt,
     /// Reflect input bytes.
-    #[schemars(with = "bool")]
+    #[cfg_attr(feature = "schema", schemars(with = "bool"))]
     pub refin: Spanned<bool>,
     /// Reflect the output.
-    #[schemars(with = "bool")]
+    #[cfg_attr(feature = "schema", schemars(with = "bool"))]
     pub refout: Spanned<bool>,
     /// Final XOR.
-    #[schemars(with = "i64")]
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub xorout: SInt,
     /// CRC of the ASCII bytes "123456789"; verified at expansion.
-    #[schemars(with = "i64")]
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub check: SInt,
 }
 
 /// `[frames.NAME]`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct FrameDef {
     /// Documentation.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
     /// The wire elements in order.
-    #[schemars(with = "Vec<ElementDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<ElementDef>"))]
     pub layout: Spanned<Vec<Spanned<ElementDef>>>,
     /// Names of the fields that form the dispatch key, in key order.
-    #[schemars(with = "Option<Vec<String>>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<String>>"))]
     pub dispatch: Option<Spanned<Vec<SStr>>>,
     /// `"serial"` (default) or `"can"`.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub transport: Option<SStr>,
     /// For CAN: `"standard"` (11-bit ids, default) or `"extended"` (29-bit).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub can_id: Option<SStr>,
     /// Frames whose header matches this rule are acknowledgements: they carry no dispatch
     /// fields, and their payload is raw acknowledgement data.
-    #[schemars(with = "Option<AckDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<AckDef>"))]
     pub ack: Option<Spanned<AckDef>>,
     /// A frame may be the header alone (up to its header checks): no payload, no frame checks.
-    #[schemars(with = "Option<bool>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
     pub bare_header: Option<Spanned<bool>>,
     /// Byte stuffing of the payload.
-    #[schemars(with = "Option<StuffingDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<StuffingDef>"))]
     pub stuffing: Option<Spanned<StuffingDef>>,
     /// The sender drops the trailing zero bytes of a command's payload (keeping at least one);
     /// the receiver zero-fills it to its struct's size.
-    #[schemars(with = "Option<bool>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
     pub truncate_zeros: Option<Spanned<bool>>,
     /// For a frame format without dispatch key: the struct every frame carries.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub message: Option<SStr>,
     /// A serial frame format after the first that carries the commands too, each whose id fits
     /// its dispatch fields: another format of the same link (MAVLink 1 beside MAVLink 2).
-    #[schemars(with = "Option<bool>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
     pub commands: Option<Spanned<bool>>,
     /// Whether the format carries the struct fields marked `extension` (default true); with
     /// `false`, a payload is its struct's fields before the first extension field.
-    #[schemars(with = "Option<bool>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
     pub extensions: Option<Spanned<bool>>,
 }
 
 /// `stuffing = { after = [0xFF, 0xFF, 0xFD], insert = 0xFD }`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct StuffingDef {
     /// The pattern after which the sender inserts a byte.
-    #[schemars(with = "Vec<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<i64>"))]
     pub after: Spanned<Vec<SInt>>,
     /// The inserted byte.
-    #[schemars(with = "i64")]
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub insert: SInt,
 }
 
 /// `ack = { field = "is_ack", equals = 1 }`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct AckDef {
     /// A one-bit header value.
-    #[schemars(with = "String")]
+    #[cfg_attr(feature = "schema", schemars(with = "String"))]
     pub field: SStr,
     /// Its value in acknowledgements.
-    #[schemars(with = "i64")]
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub equals: SInt,
 }
 
 /// One element of a frame layout. Exactly one of `sync`, `field`, `payload`, `check`,
 /// `trailer`, `optional` says what it is; validation checks the combination.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct ElementDef {
     /// Sync bytes (first element only).
-    #[schemars(with = "Option<Vec<i64>>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<i64>>"))]
     pub sync: Option<Spanned<Vec<SInt>>>,
     /// A header field with this name.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub field: Option<SStr>,
     /// The payload, with its size bounds.
-    #[schemars(with = "Option<PayloadDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<PayloadDef>"))]
     pub payload: Option<Spanned<PayloadDef>>,
     /// A check with this algorithm (catalogue name, built-in, or `[checksums]` name).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub check: Option<SStr>,
     /// A constant byte run after the payload.
-    #[schemars(with = "Option<Vec<i64>>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<i64>>"))]
     pub trailer: Option<Spanned<Vec<SInt>>>,
     /// Type of a field (`u8`, `u16be`, `u16le`, `u16`, ...).
     #[serde(rename = "type")]
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub ty: Option<SStr>,
     /// The field holds addresses of `[addresses]`.
-    #[schemars(with = "Option<bool>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
     pub addresses: Option<Spanned<bool>>,
     /// The field is the frame's length and counts these elements (`"a..b"`, `"a"`, `"frame"`).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub length_of: Option<SStr>,
     /// The field must hold this value (a header field before the payload).
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub value: Option<SInt>,
     /// The field, a `u8` and the layout's first element, is the sync: it holds one of these
     /// values, and a decoder searches for any of them (a CRSF device address).
-    #[schemars(with = "Option<Vec<i64>>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<i64>>"))]
     pub one_of: Option<Spanned<Vec<SInt>>>,
     /// The field is split into bit members.
-    #[schemars(with = "Option<Vec<BitDef>>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<BitDef>>"))]
     pub bits: Option<Spanned<Vec<Spanned<BitDef>>>>,
     /// Bytes a check covers (`"a..b"`, `"a"`, `"frame"`: everything before the check).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub over: Option<SStr>,
     /// Byte order of a check value (default: the protocol's).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub byte_order: Option<SStr>,
     /// A byte a check folds in after the bytes it covers: `"command"`, the `check_extra` each
     /// command declares (MAVLink's CRC_EXTRA).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub extra: Option<SStr>,
     /// Lookup table slices of a CRC check: 0, 1 or 16 (default: the CRC's, 16 for a
     /// catalogue CRC).
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub table: Option<SInt>,
     /// Name of a check or trailer.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub name: Option<SStr>,
     /// Bytes at the end of the frame, after everything else, present when a one-bit header
     /// flag (`when`) is set: their name (the MAVLink 2 signature).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub optional: Option<SStr>,
     /// Bytes of an `optional` element.
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub size: Option<SInt>,
     /// The one-bit header value whose being set makes an `optional` element present.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub when: Option<SStr>,
     /// The field is a wider length, present when the length field named here holds `marker`
     /// (MSP v1 jumbo frames).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub extends: Option<SStr>,
     /// With `extends`: the value of the length field that announces the wider length.
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub marker: Option<SInt>,
 
     /// Documentation.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
 }
 
 /// `{ payload = { min = 0, max = 119 } }`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct PayloadDef {
     /// Smallest payload (default 0).
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub min: Option<SInt>,
     /// Largest payload (required: a decoder's buffer is sized from it).
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub max: Option<SInt>,
 }
 
 /// A bit member of a header field or struct field.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct BitDef {
     /// Name.
-    #[schemars(with = "String")]
+    #[cfg_attr(feature = "schema", schemars(with = "String"))]
     pub name: SStr,
     /// Number of bits.
-    #[schemars(with = "i64")]
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub bits: SInt,
     /// Rust type (`bool`, `u8`, ..., or an enum name); default `bool` for one bit, else the
     /// smallest unsigned integer.
     #[serde(rename = "type")]
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub ty: Option<SStr>,
     /// In a header field before the payload: this member is the frame's length.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub length_of: Option<SStr>,
     /// In a header field before the payload: this member must hold this value.
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub value: Option<SInt>,
     /// Documentation.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
 }
 
 /// `request = { field = "sender", in = "master" }` or `{ field = "is_ack", equals = 0 }`: a
 /// header field tells the direction; or `request = { given = true }`: the decoder is given it.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct DirectionDef {
     /// Header field that tells the direction (on a link of several command formats: the field
     /// of this name in each format).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub field: Option<SStr>,
     /// No header field tells the direction: the decoding side is given it (a decoder per
     /// direction).
-    #[schemars(with = "Option<bool>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
     pub given: Option<Spanned<bool>>,
     /// With `given`: every frame of this direction carries this struct in place of the
     /// dispatch key and the command's payload (a status packet that has no command).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub message: Option<SStr>,
     /// The field lies in this address set.
     #[serde(rename = "in")]
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub in_set: Option<SStr>,
     /// The field equals this value.
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub equals: Option<SInt>,
     /// Documentation.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
 }
 
 /// A command line: `NAME = { id = 1, request = "S", response = "T", doc = "..." }`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct CommandDef {
     /// Key: an integer, or one integer per dispatch field.
-    #[schemars(with = "IdDef")]
+    #[cfg_attr(feature = "schema", schemars(with = "IdDef"))]
     pub id: Spanned<IdDef>,
     /// Payload struct (specs without directions).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub payload: Option<SStr>,
     /// Payload struct of the request direction.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub request: Option<SStr>,
     /// Payload struct of the response direction.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub response: Option<SStr>,
     /// The command's CAN id, for specs with a CAN frame.
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub can_id: Option<SInt>,
     /// The byte a check with `extra = "command"` folds in for this command (0 to 255).
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub check_extra: Option<SInt>,
     /// Documentation.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
 }
 
 /// A command id: `1` or `[0x03, 0x01]`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(untagged)]
 pub enum IdDef {
     /// One dispatch field.
@@ -427,124 +453,128 @@ pub enum IdDef {
 }
 
 /// `[structs.NAME]`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct StructDef {
     /// Documentation.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
     /// Byte order of this struct's fields (default: the protocol's).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub byte_order: Option<SStr>,
     /// Fields in wire order.
-    #[schemars(with = "Vec<FieldDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<FieldDef>"))]
     pub fields: Spanned<Vec<Spanned<FieldDef>>>,
 }
 
 /// A struct field, or `{ pad = N }`.
-#[derive(Debug, Default, Deserialize, JsonSchema)]
+#[derive(Debug, Default, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct FieldDef {
     /// Field name.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub name: Option<SStr>,
     /// Type: primitive (`u16`, `i32be`, `u24le`, `f32`, `bool`), `char[N]` (N bytes of
     /// NUL-padded text), `cstr` (NUL-terminated text of at most `max` bytes), struct or enum
     /// name.
     #[serde(rename = "type")]
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub ty: Option<SStr>,
     /// Fixed array length: an integer or a constant's name.
-    #[schemars(with = "Option<CountDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<CountDef>"))]
     pub count: Option<Spanned<CountDef>>,
     /// For `type = "bytes"`: the most bytes the field holds; with `repeat`: the most elements;
     /// for `type = "cstr"`: the most bytes of text, the NUL not counted.
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub max: Option<SInt>,
     /// For `type = "bytes"` and `repeat` of a primitive: the name of an earlier integer field
     /// (of this struct, or of the struct that repeats this one) that holds the number of bytes
     /// or elements.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub size: Option<SStr>,
     /// The field is a group of elements of its type (a struct, or a primitive), repeated to
     /// the end of the payload, or as many times as `size` says.
-    #[schemars(with = "Option<bool>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
     pub repeat: Option<Spanned<bool>>,
     /// The field may be absent: it is present when bytes remain in the payload.
-    #[schemars(with = "Option<bool>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
     pub optional: Option<Spanned<bool>>,
     /// Padding bytes (written as zero, ignored when read).
-    #[schemars(with = "Option<i64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub pad: Option<SInt>,
     /// Bit members of an integer field.
-    #[schemars(with = "Option<Vec<BitDef>>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<BitDef>>"))]
     pub bits: Option<Spanned<Vec<Spanned<BitDef>>>>,
     /// A bit-packed array: `count` unsigned elements of `bits` bits each, back to back, in
     /// the bit order `order`.
-    #[schemars(with = "Option<PackedDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<PackedDef>"))]
     pub packed: Option<Spanned<PackedDef>>,
     /// With `bits`, the bits above the members: `"keep"` (default: held in a member named
     /// `<field>_reserved`, so that decoding then encoding gives the same bytes) or `"zero"`
     /// (reserved-zero: written as zero, ignored when read).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub reserved: Option<SStr>,
     /// Physical value = raw * scale (+ offset).
-    #[schemars(with = "Option<f64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<f64>"))]
     pub scale: Option<Spanned<f64>>,
     /// Added after scaling.
-    #[schemars(with = "Option<f64>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<f64>"))]
     pub offset: Option<Spanned<f64>>,
     /// `"nearest"` (default) or `"truncate"`: how encoding turns a physical value into raw.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub rounding: Option<SStr>,
     /// `[min, max]`: physical values are clamped into this range before encoding.
-    #[schemars(with = "Option<Vec<f64>>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<f64>>"))]
     pub clamp: Option<Spanned<Vec<Spanned<f64>>>>,
     /// Unit of the (physical) value, for docs.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub unit: Option<SStr>,
     /// The field is a check value over earlier fields of this struct: a built-in checksum, a
     /// CRC of the catalogue, or a `[checksums]` entry (a CRC inside the payload).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub check: Option<SStr>,
     /// With `check`: the fields it covers, `"a..b"` (a run, both ends included) or `"a"`.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub over: Option<SStr>,
     /// With a CRC `check`: constant bytes it covers before the fields (the frame type a CRSF
     /// command's inner CRC starts with).
-    #[schemars(with = "Option<Vec<i64>>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<i64>>"))]
     pub prefix: Option<Spanned<Vec<SInt>>>,
     /// With `check`: byte order of the check value (default: the struct's).
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub byte_order: Option<SStr>,
     /// The field was appended by a later revision of the struct: it and the fields after it
     /// are not carried by a frame format with `extensions = false`.
-    #[schemars(with = "Option<bool>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
     pub extension: Option<Spanned<bool>>,
     /// Documentation.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
     /// The Rust type a `#[derive(Payload)]` field declares (its element type, for an array);
     /// never in a spec file.
     #[serde(skip)]
-    #[schemars(skip)]
+    #[cfg_attr(feature = "schema", schemars(skip))]
     pub rust: Option<SStr>,
 }
 
 /// `packed = { bits = 11, order = "lsb-first" }`: the elements of a bit-packed array.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct PackedDef {
     /// Bits of each element, 1 to 32.
-    #[schemars(with = "i64")]
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub bits: SInt,
     /// `"lsb-first"` (bit 0 of byte 0 first, as CRSF and SBUS) or `"msb-first"`.
-    #[schemars(with = "String")]
+    #[cfg_attr(feature = "schema", schemars(with = "String"))]
     pub order: SStr,
 }
 
 /// An array count: `8` or `"SERVO_COUNT"`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(untagged)]
 pub enum CountDef {
     /// Literal.
@@ -554,20 +584,21 @@ pub enum CountDef {
 }
 
 /// `[enums.NAME]`.
-#[derive(Debug, Deserialize, JsonSchema)]
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct EnumDef {
     /// Wire type (`u8`, `u16be`, ...).
     #[serde(rename = "type")]
-    #[schemars(with = "String")]
+    #[cfg_attr(feature = "schema", schemars(with = "String"))]
     pub ty: SStr,
     /// `"reject"` (default) or `"keep"`.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub unknown: Option<SStr>,
     /// Documentation.
-    #[schemars(with = "Option<String>")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
     /// Variants: `NAME = 1` or `NAME = { value = 1, doc = "..." }`.
-    #[schemars(with = "std::collections::BTreeMap<String, ConstantDef>")]
+    #[cfg_attr(feature = "schema", schemars(with = "BTreeMap<String, ConstantDef>"))]
     pub values: Named<ConstantDef>,
 }

@@ -4,11 +4,11 @@
 //! needs before it knows a frame's length, the length bounds and rule, the constants, which
 //! checks are header checks and which frame checks, the markers) into the runtime's own
 //! values: the length rule, word fields, constants and markers. Two backends take its
-//! result as it is: the expansion prints it as the `LAYOUT` static (`codegen::frame`), and the
-//! run-time codec builds a [`FrameLayout`] value from it. What stays to each is the one thing
-//! that differs: how a check's algorithm becomes a [`Checksum`] (a `static` table in generated
-//! code, an object the codec owns), for which this module interns the parameters of a CRC as
-//! the `crc` crate takes them ([`intern`]).
+//! result as it is: the expansion prints it as the `LAYOUT` static (`codegen::frame` in
+//! `protocol-codegen`), and the run-time codec builds a [`FrameLayout`] value from it. What
+//! stays to each is the one thing that differs: how a check's algorithm becomes a
+//! [`Checksum`] (a `static` table in generated code, an object the codec owns), for which this
+//! module interns the parameters of a CRC as the `crc` crate takes them ([`intern`]).
 
 use protocol_runtime::checksum::Checksum;
 use protocol_runtime::layout::{
