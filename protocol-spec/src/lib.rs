@@ -1,7 +1,7 @@
 //! The spec front end: loading the TOML ([`spec`]), validating it into the checked IR
-//! ([`validate`], [`ir`]), lowering a frame format to the runtime's frame layout ([`layout`]),
-//! the diagnostics every stage reports into and their one renderer ([`diag`], [`source`]), and
-//! the lints ([`lint`]).
+//! ([`validate`], [`ir`]), lowering a frame format to the runtime's frame layout ([`layout`])
+//! and to its packet rules ([`rules`]), the diagnostics every stage reports into and their one
+//! renderer ([`diag`], [`source`]), and the lints ([`lint`]).
 //!
 //! The pipeline is `spec::load_spec` → `validate::validate`; [`compile`] runs both and is what
 //! the macros, the run-time codec, the CLI and the tests call. What reads the IR lives
