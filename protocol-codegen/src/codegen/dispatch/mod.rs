@@ -1,7 +1,9 @@
 //! Commands and messages: the `Command` id enum (module `command`), the dispatch enums
-//! (`Message`, or `Request` and `Response` when the spec has directions; `message`), `Packet`,
-//! which decodes a frame into a header and a message and encodes one back through the runtime's
-//! `FrameLayout::seal` (`packet`), and the packets of the other frame formats (`frames`).
+//! (`Message`, or `Request` and `Response` when the spec has directions; `message`), the
+//! `RULES` static of each format with a packet type (`rules`: the runtime's packet rules, as
+//! `protocol_spec::rules` lowers them), `Packet`, which decodes a frame into a header and a
+//! message and encodes one back through its `RULES` (`packet`), and the packets of the other
+//! frame formats (`frames`, `link`, `given`).
 
 mod command;
 mod frames;
