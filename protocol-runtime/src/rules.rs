@@ -503,21 +503,70 @@ impl PacketRules<'_> {
         let plen = if self.writes_aside(body) {
             self.place_aside(buf, aside, body, start, trailer_out, write)?
         } else {
-            let needed = len();
-            let available = buf.len();
-            if available < needed {
-                return Err(EncodeError::BufferTooSmall { needed, available });
-            }
-            // A bare header has no trailer: its (empty) room may end before the trailer would
-            // start.
-            let end = available.saturating_sub(trailer_out).max(start);
-            let room = buf
-                .get_mut(start..end)
-                .ok_or(EncodeError::BufferTooSmall { needed, available })?;
-            let mut w = Writer::new(room);
+            let mut w = Writer::new(self.room(buf, body, len(), flag_trailer)?);
             write(&mut w)?;
             w.position()
         };
+        let (frame, total) = self.frame(buf, body, plen, flag_trailer)?;
+        header(frame)?;
+        self.seal(frame, body)?;
+        Ok(total)
+    }
+
+    /// For an encoder that writes the payload of `body` in place (where
+    /// [`writes_aside`](Self::writes_aside) is false): the room for it in `buf`, from where it
+    /// starts to where the trailer and `flag_trailer` bytes of flag trailer must stay free,
+    /// once `buf` is known to hold the frame's `len` bytes ([`frame_len`](Self::frame_len)).
+    /// The three steps [`room`](Self::room), [`frame`](Self::frame) and [`seal`](Self::seal)
+    /// are [`assemble`](Self::assemble) with the payload and the header written between them,
+    /// in straight-line code.
+    ///
+    /// # Errors
+    ///
+    /// [`EncodeError::BufferTooSmall`] if `buf` is shorter than `len`.
+    #[inline(always)]
+    pub fn room<'b>(
+        &self,
+        buf: &'b mut [u8],
+        body: &Body<'_>,
+        len: usize,
+        flag_trailer: usize,
+    ) -> Result<&'b mut [u8], EncodeError> {
+        let start = self.start(body);
+        let available = buf.len();
+        if available < len {
+            return Err(EncodeError::BufferTooSmall {
+                needed: len,
+                available,
+            });
+        }
+        // A bare header has no trailer: its (empty) room may end before the trailer would
+        // start.
+        let trailer_out = self.trailer_len.saturating_add(flag_trailer);
+        let end = available.saturating_sub(trailer_out).max(start);
+        buf.get_mut(start..end).ok_or(EncodeError::BufferTooSmall {
+            needed: len,
+            available,
+        })
+    }
+
+    /// The frame of `body` whose payload, `plen` bytes on the wire, was placed at its start
+    /// ([`start`](Self::start)): the payload moved behind a wider length where the frame needs
+    /// one, and the frame's bytes in `buf` with its length, for the header values to be
+    /// written into before [`seal`](Self::seal).
+    ///
+    /// # Errors
+    ///
+    /// [`EncodeError::BufferTooSmall`] if `buf` is shorter than the frame.
+    #[inline(always)]
+    pub fn frame<'b>(
+        &self,
+        buf: &'b mut [u8],
+        body: &Body<'_>,
+        plen: usize,
+        flag_trailer: usize,
+    ) -> Result<(&'b mut [u8], usize), EncodeError> {
+        let start = self.start(body);
         let trailer = self.trailer_for(body, plen);
         // A wider length moves the payload behind it; most formats have none (this folds away).
         let short = start.saturating_add(plen).saturating_add(trailer);
@@ -530,11 +579,21 @@ impl PacketRules<'_> {
             .saturating_add(plen)
             .saturating_add(trailer)
             .saturating_add(flag_trailer);
-        let frame = frame_room(buf, total)?;
-        header(frame)?;
+        Ok((frame_room(buf, total)?, total))
+    }
+
+    /// Completes a frame of `body` whose header values are written: the acknowledgement flag
+    /// and the key, the check that the header tells the message's direction, then the frame
+    /// rules' seal (length, constants, checks).
+    ///
+    /// # Errors
+    ///
+    /// [`EncodeError::ValueOutOfRange`] if a key value does not fit its field or the header
+    /// does not tell the message's direction; the errors of [`FrameLayout::seal`].
+    #[inline(always)]
+    pub fn seal(&self, frame: &mut [u8], body: &Body<'_>) -> Result<(), EncodeError> {
         self.write_body(frame, body)?;
-        self.layout.seal(frame)?;
-        Ok(total)
+        self.layout.seal(frame)
     }
 
     /// The length of the frame that carries `message` as `body`, with `flag_trailer` bytes of

@@ -184,13 +184,47 @@ fn emit_body_fn(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     }
 }
 
+/// True when the format's rules may write a payload aside before placing it (trailing zeros,
+/// stuffing, the carried fields of a format without extension fields).
+fn may_write_aside(f: &Frame) -> bool {
+    f.truncate_zeros || f.stuffing.is_some() || !f.extensions
+}
+
 /// The aside buffer a payload is written into before it is placed, when the format may write
-/// aside (trailing zeros, stuffing, the carried fields), sized `len`; else none.
+/// aside, sized `len`; else none.
 pub(super) fn aside(f: &Frame, len: &Ident) -> TokenStream {
-    if f.truncate_zeros || f.stuffing.is_some() || !f.extensions {
+    if may_write_aside(f) {
         quote!(&mut [0u8; #len])
     } else {
         quote!(&mut [])
+    }
+}
+
+/// The statements that encode `self` as `body` into `buf`: where the rules write the payload
+/// in place, the payload and the header written between the rules' `room`, `frame` and `seal`
+/// (straight-line code, which the compiler folds as it would hand-written code); where they may
+/// write it aside (trailing zeros, stuffing, the carried fields), `encode_message`.
+pub(super) fn encode_body(
+    f: &Frame,
+    aside: &TokenStream,
+    flagged: &TokenStream,
+    rt: &TokenStream,
+) -> TokenStream {
+    let rules = rules_static(f);
+    if may_write_aside(f) {
+        return quote! {
+            #rules.encode_message(buf, #aside, &body, &self.message, #flagged, |frame| self.header.write(frame))
+        };
+    }
+    quote! {
+        let len = #rules.message_len(&body, &self.message, &mut [], #flagged);
+        let mut w = #rt::Writer::new(#rules.room(buf, &body, len, #flagged)?);
+        self.message.write_payload(&mut w)?;
+        let plen = w.position();
+        let (frame, total) = #rules.frame(buf, &body, plen, #flagged)?;
+        self.header.write(frame)?;
+        #rules.seal(frame, &body)?;
+        #rt::Ok(total)
     }
 }
 
@@ -263,6 +297,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
     let n = f.dispatch.len();
     let flagged = flag_trailer_len(f);
     let aside = aside(f, &max_payload_len);
+    let encode = encode_body(f, &aside, &flagged, rt);
     // A command only a wider format of the link carries.
     let not_carried = if f.commands.len() < p.commands.len() {
         quote! {
@@ -302,7 +337,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
             pub fn encode(&self, buf: &mut [u8]) -> #rt::Result<usize, #rt::EncodeError> {
                 let mut key = [0u64; #n];
                 let body = self.body(&mut key);
-                #rules.encode_message(buf, #aside, &body, &self.message, #flagged, |frame| self.header.write(frame))
+                #encode
             }
         }
     }
