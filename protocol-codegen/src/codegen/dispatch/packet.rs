@@ -200,31 +200,12 @@ pub(super) fn aside(f: &Frame, len: &Ident) -> TokenStream {
     }
 }
 
-/// The statements that encode `self` as `body` into `buf`: where the rules write the payload
-/// in place, the payload and the header written between the rules' `room`, `frame` and `seal`
-/// (straight-line code, which the compiler folds as it would hand-written code); where they may
-/// write it aside (trailing zeros, stuffing, the carried fields), `encode_message`.
-pub(super) fn encode_body(
-    f: &Frame,
-    aside: &TokenStream,
-    flagged: &TokenStream,
-    rt: &TokenStream,
-) -> TokenStream {
+/// The statement that encodes `self` as `body` into `buf`, through the rules'
+/// `encode_message` (the aside buffer is empty where the format writes its payload in place).
+pub(super) fn encode_body(f: &Frame, aside: &TokenStream, flagged: &TokenStream) -> TokenStream {
     let rules = rules_static(f);
-    if may_write_aside(f) {
-        return quote! {
-            #rules.encode_message(buf, #aside, &body, &self.message, #flagged, |frame| self.header.write(frame))
-        };
-    }
     quote! {
-        let len = #rules.message_len(&body, &self.message, &mut [], #flagged);
-        let mut w = #rt::Writer::new(#rules.room(buf, &body, len, #flagged)?);
-        self.message.write_payload(&mut w)?;
-        let plen = w.position();
-        let (frame, total) = #rules.frame(buf, &body, plen, #flagged)?;
-        self.header.write(frame)?;
-        #rules.seal(frame, &body)?;
-        #rt::Ok(total)
+        #rules.encode_message(buf, #aside, &body, &self.message, #flagged, |frame| self.header.write(frame))
     }
 }
 
@@ -297,7 +278,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
     let n = f.dispatch.len();
     let flagged = flag_trailer_len(f);
     let aside = aside(f, &max_payload_len);
-    let encode = encode_body(f, &aside, &flagged, rt);
+    let encode = encode_body(f, &aside, &flagged);
     // A command only a wider format of the link carries.
     let not_carried = if f.commands.len() < p.commands.len() {
         quote! {
