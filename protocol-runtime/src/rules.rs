@@ -704,11 +704,22 @@ impl PacketRules<'_> {
             write_field(frame, ack.flag, value)?;
         }
         if let Body::Command { key, direction, .. } = *body {
-            let mut values = key.iter();
-            each!(self.key, |field| {
-                let value = values.next().ok_or(EncodeError::ValueOutOfRange)?;
-                write_field(frame, *field, *value)?;
-            });
+            // Matched apart as `each!` does, for the same reason.
+            match (self.key, key) {
+                ([f0], [v0, ..]) => write_field(frame, *f0, *v0)?,
+                ([f0, f1], [v0, v1, ..]) => {
+                    write_field(frame, *f0, *v0)?;
+                    write_field(frame, *f1, *v1)?;
+                }
+                (fields, values) => {
+                    if values.len() < fields.len() {
+                        return Err(EncodeError::ValueOutOfRange);
+                    }
+                    for (field, value) in fields.iter().zip(values) {
+                        write_field(frame, *field, *value)?;
+                    }
+                }
+            }
             if let Some(d) = direction {
                 if !self.tells(frame, d) {
                     return Err(EncodeError::ValueOutOfRange);
