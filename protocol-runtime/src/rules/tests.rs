@@ -16,6 +16,8 @@ use std::vec::Vec;
 
 use super::*;
 use crate::checksum::Checksum;
+use crate::encoder::write_header;
+use crate::error::{DecodeError, EncodeError};
 use crate::layout::{Check, LengthExtension, LengthRule, Pos};
 
 /// `AA len flags key0 key1 payload.. sum`: `len` counts the whole frame; bit 0 of `flags` marks
@@ -83,7 +85,7 @@ fn encode(rules: &PacketRules<'_>, body: &Body<'_>, payload: &[u8], dir: u64) ->
             || len,
             0,
             |w| w.put_bytes(payload),
-            |frame| write_field(frame, WordField::le(2, 1).bits(1, 1), dir),
+            |frame| write_header(frame, WordField::le(2, 1).bits(1, 1), dir),
         )
         .expect("assembles");
     assert_eq!(n, len, "frame_len agrees with what assemble writes");
@@ -124,7 +126,7 @@ fn a_header_that_does_not_tell_the_message_direction_is_refused() {
         direction: Some(0),
     };
     let mut buf = [0u8; 32];
-    let header = |frame: &mut [u8]| write_field(frame, WordField::le(2, 1).bits(1, 1), 1);
+    let header = |frame: &mut [u8]| write_header(frame, WordField::le(2, 1).bits(1, 1), 1);
     let len = ACKED_RULES.frame_len(&body, 0, 0);
     let got = ACKED_RULES.assemble(&mut buf, &mut [], &body, || len, 0, |_| Ok(()), header);
     assert_eq!(got, Err(EncodeError::ValueOutOfRange));
