@@ -225,7 +225,11 @@ fn packet_decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let ack = if f.ack.is_some() {
         quote! {
             if let #rt::Some(data) = #rules.ack_data(frame)? {
-                let data = #rt::Bytes::from_slice(data).ok_or(#rt::DecodeError::PayloadLength { expected: #rules.ack_max(), actual: data.len() })?;
+                let too_long = #rt::DecodeError::PayloadLength {
+                    expected: #rules.ack_max(),
+                    actual: data.len(),
+                };
+                let data = #rt::Bytes::from_slice(data).ok_or(too_long)?;
                 return #rt::Ok(#packet { header, message: Message::Ack(data) });
             }
         }
