@@ -68,10 +68,13 @@ impl PacketRules<'_> {
     /// field `i`).
     #[inline(always)]
     pub fn key_value(&self, frame: &[u8], i: usize) -> Result<u64, DecodeError> {
-        self.key
-            .get(i)
-            .and_then(|f| f.read(frame))
-            .ok_or(self.truncated(frame))
+        // A match, not `Option::and_then`: a closure is a function of its own that the
+        // optimiser may keep apart (at opt-level "s", once per firmware), and the field's
+        // read only folds to a load where the static field is seen.
+        match self.key.get(i) {
+            Some(f) => f.read(frame).ok_or(self.truncated(frame)),
+            None => Err(self.truncated(frame)),
+        }
     }
 
     /// The key of `frame` as one number, its fields' values side by side (the first field in

@@ -101,7 +101,7 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
             }
             /// What the frame carries, as the packet rules take it; the key's values go into
             /// `key`.
-            #[inline(always)]
+            #[inline]
             fn body<'k>(&self, key: &'k mut [u64; #n]) -> #rt::Body<'k> {
                 let command = self.message.command();
                 let id = command.id();

@@ -173,8 +173,11 @@ fn emit_body_fn(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     };
     let values = key_values(p);
     quote! {
+        // A hint, not `inline(always)`: forced in, the key worked out here is threaded through
+        // the payload writer's match at opt-level "s", a second jump table per command (HFLink
+        // firmware 72 bytes larger, `bash benches/footprint.sh`).
         /// What the frame carries, as the packet rules take it; the key's values go into `key`.
-        #[inline(always)]
+        #[inline]
         fn body<'k>(&self, key: &'k mut [u64; #n]) -> #rt::Body<'k> {
             #command
             let id = command.id();
