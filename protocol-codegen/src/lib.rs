@@ -24,6 +24,8 @@ pub mod derive;
 pub mod docs_md;
 #[cfg(feature = "rust")]
 pub mod input;
+#[cfg(feature = "wireshark")]
+pub mod wireshark;
 
 /// The doc text of the Rust printer's rustdoc ([`docs`](codegen::docs)), which the Markdown
 /// printer writes too: built without the `rust` feature, `codegen` holds that module alone.
