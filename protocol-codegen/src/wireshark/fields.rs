@@ -19,9 +19,11 @@ impl Fields {
     /// Declares a field; returns the Lua expression that names it.
     pub fn declare(&mut self, ctor: &str, abbrev: &str, label: &str, rest: &str) -> String {
         let n = self.lines.len() + 1;
+        // The protocol's own name is the dissector's `NAME`, which a clash may change.
+        let own = abbrev.split_once('.').map_or(abbrev, |(_, own)| own);
         self.lines.push(format!(
-            "F[{n}] = ProtoField.{ctor}({}, {}{rest})",
-            lua::string(abbrev),
+            "F[{n}] = ProtoField.{ctor}(NAME .. {}, {}{rest})",
+            lua::string(&format!(".{own}")),
             lua::string(label)
         ));
         format!("F[{n}]")

@@ -188,6 +188,16 @@ function dissect_frame(fi, buf, tvb, s, total, body, pinfo, tree)
   end
 end
 
+-- Whether a whole frame starts after `s` in the bytes a candidate at `s` waits for.
+local function frame_inside(buf, s, n)
+  for j = s + 1, n - 1 do
+    if probe(SPEC.formats[select_format(buf, j, n - j)], buf, j, n - j) == "frame" then
+      return true
+    end
+  end
+  return false
+end
+
 -- Cuts buf[0 .. n - 1] into frames. Returns the offset of a frame cut by the end of the bytes
 -- and the bytes it needs, or n when every byte is decided.
 function dissect_stream(buf, n, tvb, pinfo, tree)
@@ -206,9 +216,17 @@ function dissect_stream(buf, n, tvb, pinfo, tree)
       flush(off)
       dissect_frame(fi, buf, tvb, off, a, b, pinfo, tree)
       off = off + a
-    elseif verdict == "need" then
+    elseif verdict == "need" and not frame_inside(buf, off, n) then
       flush(off)
       return off, a
+    elseif verdict == "need" then
+      -- A frame complete inside the bytes a candidate waits for cuts it short, as the
+      -- runtime's engine rejects such a candidate as truncated.
+      flush(off)
+      local item = tree:add(F_rejected, tvb(off, 1), "truncated")
+      item:add_proto_expert_info(EXPERT.skipped, "a frame cut short by the next one")
+      skipped = off
+      off = off + 1
     else
       if a == "bad checksum" or a == "bad header check" then
         flush(off)
