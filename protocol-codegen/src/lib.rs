@@ -8,7 +8,9 @@
 //! `protocol_spec::ir` are one module. The pipeline is [`compile`] (the front end) →
 //! `codegen::expand` (or `c::generate`, `docs_md::render`).
 //!
-//! Each printer is a cargo feature, all three on by default: `rust` (`codegen`, `derive`,
+//! [`wireshark`] prints a Wireshark Lua dissector (`protocol gen wireshark`).
+//!
+//! Each printer is a cargo feature, all on by default: `rust` (`codegen`, `derive`,
 //! `input`; the one that builds `syn`, `quote` and `prettyplease`), `c` and `markdown`. The
 //! `protocol!` macro takes `rust` alone; the `protocol` command takes `c` and `markdown`.
 
