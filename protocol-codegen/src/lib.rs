@@ -11,8 +11,9 @@
 //! [`wireshark`] prints a Wireshark Lua dissector (`protocol gen wireshark`).
 //!
 //! Each printer is a cargo feature, all on by default: `rust` (`codegen`, `derive`,
-//! `input`; the one that builds `syn`, `quote` and `prettyplease`), `c` and `markdown`. The
-//! `protocol!` macro takes `rust` alone; the `protocol` command takes `c` and `markdown`.
+//! `input`; the one that builds `syn`, `quote` and `prettyplease`), `c`, `markdown` and
+//! `wireshark`. The `protocol!` macro takes `rust` alone; the `protocol` command takes the
+//! other three.
 
 pub use protocol_spec::{compile, diag, ir, layout, lint, rules, source, spec, validate};
 
