@@ -72,6 +72,9 @@ enum Command {
     /// Generate a peer codec in another language from a spec.
     #[command(subcommand)]
     Gen(Gen),
+    /// Write a capture for other tools (pcap for Wireshark).
+    #[command(subcommand)]
+    Export(Export),
     /// Report every change between two versions of a spec, once, as breaking the wire, breaking
     /// the generated Rust source, or compatible; exit 1 if anything breaks, 2 if a spec cannot
     /// be read or is invalid.
@@ -98,6 +101,22 @@ enum Gen {
         #[arg(short, long)]
         output: PathBuf,
     },
+    /// A Wireshark Lua dissector (`NAME.lua`): every field filterable, checks verified, frames
+    /// found in raw serial captures (DLT_USER0), UDP and TCP ports, and SocketCAN captures.
+    Wireshark {
+        /// The spec file.
+        spec: PathBuf,
+        /// The directory to write the file into (created if missing).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+}
+
+/// The formats of `export`.
+#[derive(Debug, Subcommand)]
+enum Export {
+    /// Raw serial bytes (or a candump log) as a pcap file the dissector of `gen wireshark` reads.
+    Pcap(cmd::export::PcapArgs),
 }
 
 /// How `decode` prints.
@@ -131,6 +150,8 @@ fn main() -> ExitCode {
             direction.as_deref(),
         ),
         Command::Gen(Gen::C { spec, output }) => cmd::generate::c(&spec, &output),
+        Command::Gen(Gen::Wireshark { spec, output }) => cmd::wireshark::run(&spec, &output),
+        Command::Export(Export::Pcap(args)) => cmd::export::pcap_run(&args),
         Command::Diff { old, new, json } => cmd::diff::run(&old, &new, json),
     };
     match result {

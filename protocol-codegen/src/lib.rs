@@ -8,9 +8,12 @@
 //! `protocol_spec::ir` are one module. The pipeline is [`compile`] (the front end) →
 //! `codegen::expand` (or `c::generate`, `docs_md::render`).
 //!
-//! Each printer is a cargo feature, all three on by default: `rust` (`codegen`, `derive`,
-//! `input`; the one that builds `syn`, `quote` and `prettyplease`), `c` and `markdown`. The
-//! `protocol!` macro takes `rust` alone; the `protocol` command takes `c` and `markdown`.
+//! [`wireshark`] prints a Wireshark Lua dissector (`protocol gen wireshark`).
+//!
+//! Each printer is a cargo feature, all on by default: `rust` (`codegen`, `derive`,
+//! `input`; the one that builds `syn`, `quote` and `prettyplease`), `c`, `markdown` and
+//! `wireshark`. The `protocol!` macro takes `rust` alone; the `protocol` command takes the
+//! other three.
 
 pub use protocol_spec::{compile, diag, ir, layout, lint, rules, source, spec, validate};
 
@@ -24,6 +27,8 @@ pub mod derive;
 pub mod docs_md;
 #[cfg(feature = "rust")]
 pub mod input;
+#[cfg(feature = "wireshark")]
+pub mod wireshark;
 
 /// The doc text of the Rust printer's rustdoc ([`docs`](codegen::docs)), which the Markdown
 /// printer writes too: built without the `rust` feature, `codegen` holds that module alone.

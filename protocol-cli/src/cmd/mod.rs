@@ -7,8 +7,10 @@ pub mod diff;
 pub mod doc;
 pub mod encode;
 pub mod expand;
+pub mod export;
 pub mod generate;
 pub mod report;
+pub mod wireshark;
 
 use std::io::IsTerminal;
 use std::path::Path;

@@ -1,0 +1,226 @@
+-- Payloads: the structs of the spec read field by field from a payload buffer, each value
+-- added to the tree under its own filterable field. A read that runs out of bytes stops with
+-- an expert note, as the run-time codec stops with a payload-length error.
+
+local function signed(raw, size)
+  local half = 2 ^ (8 * size - 1)
+  if raw >= half then return raw - 2 * half end
+  return raw
+end
+
+-- Adds one element of a scalar, enum or text type at ctx.off; returns its raw integer.
+local function read_elem(e, ctx, tree)
+  local size = e.size
+  if ctx.off + size > ctx.limit then error("short", 0) end
+  local range = ctx.tvb(ctx.off, size)
+  local raw
+  if e.text then
+    local chars = {}
+    for i = 0, size - 1 do
+      local b = ctx.buf[ctx.off + i]
+      if b == 0 then break end
+      chars[#chars + 1] = string.char(b)
+    end
+    tree:add(e.pf, range, table.concat(chars))
+  elseif e.scale then
+    raw = read_uint(ctx.buf, ctx.off, size, e.order)
+    if e.signed then raw = signed(raw, size) end
+    local item = tree:add(e.pf, range, raw * e.scale.factor + e.scale.offset)
+    item:append_text(string.format(" (raw %d)", raw))
+  elseif e.order == "le" then
+    tree:add_le(e.pf, range)
+  else
+    tree:add(e.pf, range)
+  end
+  if size <= 6 and not e.float and not e.text then
+    raw = raw or read_uint(ctx.buf, ctx.off, size, e.order)
+  end
+  ctx.off = ctx.off + size
+  return raw
+end
+
+local read_struct, payload_field
+
+local function read_value(e, ctx, tree)
+  if e.struct then
+    local sub = tree:add(proto, ctx.tvb(ctx.off, 0), e.name .. ": " .. SPEC.structs[e.struct].name)
+    local start = ctx.off
+    read_struct(e.struct, ctx, sub)
+    sub:set_len(ctx.off - start)
+    return nil
+  end
+  return read_elem(e, ctx, tree)
+end
+
+-- One element of a bit-packed array (the runtime's get_packed).
+local function packed_elem(buf, base, index, bits, msb)
+  local start = index * bits
+  local first, last, skip = math.floor(start / 8), math.ceil((start + bits) / 8), start % 8
+  local word = 0
+  if msb then
+    for i = first, last - 1 do word = word * 256 + buf[base + i] end
+    return math.floor(word / 2 ^ ((last - first) * 8 - skip - bits)) % 2 ^ bits
+  end
+  for i = last - 1, first, -1 do word = word * 256 + buf[base + i] end
+  return math.floor(word / 2 ^ skip) % 2 ^ bits
+end
+
+local function read_bits(f, ctx, tree)
+  if ctx.off + f.size > ctx.limit then error("short", 0) end
+  local range = ctx.tvb(ctx.off, f.size)
+  local word = read_uint(ctx.buf, ctx.off, f.size, f.order)
+  local sub = tree:add(proto, range, f.name)
+  for _, m in ipairs(f.members) do
+    local v = math.floor(word / 2 ^ m.shift) % 2 ^ m.width
+    if m.bool then v = v ~= 0 end
+    sub:add(m.pf, range, v)
+  end
+  ctx.off = ctx.off + f.size
+end
+
+local function read_packed(f, ctx, tree)
+  if ctx.off + f.size > ctx.limit then error("short", 0) end
+  local range = ctx.tvb(ctx.off, f.size)
+  local sub = tree:add(proto, range, f.name)
+  for i = 0, f.count - 1 do
+    local raw = packed_elem(ctx.buf, ctx.off, i, f.bits, f.msb)
+    if f.scale then
+      sub:add(f.pf, range, raw * f.scale.factor + f.scale.offset)
+    else
+      sub:add(f.pf, range, raw)
+    end
+  end
+  ctx.off = ctx.off + f.size
+end
+
+-- The number of elements or bytes a sized field takes: the field it names, of its own
+-- struct or of the struct that repeats it.
+local function stated(f, values, owner)
+  return (owner or values)[f.size_from] or 0
+end
+
+local function read_many(f, ctx, tree, values, owner)
+  local sub = tree:add(proto, ctx.tvb(ctx.off, 0), f.name)
+  local start = ctx.off
+  if f.size_from then
+    local n = stated(f, values, owner)
+    if n > f.max then error("too many", 0) end
+    for _ = 1, n do read_value(f.elem, ctx, sub) end
+  else
+    local n = 0
+    while ctx.off < ctx.limit do
+      if n == f.max then error("too many", 0) end
+      read_value(f.elem, ctx, sub)
+      n = n + 1
+    end
+  end
+  sub:set_len(ctx.off - start)
+end
+
+local function read_bytes(f, ctx, tree, values, owner)
+  local n
+  if f.size_from then
+    n = stated(f, values, owner)
+  else
+    n = ctx.limit - ctx.off - (f.keep or 0)
+  end
+  if n < 0 or n > f.max or ctx.off + n > ctx.limit then error("short", 0) end
+  tree:add(f.pf, ctx.tvb(ctx.off, n))
+  ctx.off = ctx.off + n
+end
+
+local function read_nul_text(f, ctx, tree)
+  local chars = {}
+  for i = 0, f.max do
+    if ctx.off + i >= ctx.limit then error("short", 0) end
+    local b = ctx.buf[ctx.off + i]
+    if b == 0 then
+      tree:add(f.pf, ctx.tvb(ctx.off, i + 1), table.concat(chars))
+      ctx.off = ctx.off + i + 1
+      return
+    end
+    chars[#chars + 1] = string.char(b)
+  end
+  error("text without its NUL", 0)
+end
+
+local function read_group(f, ctx, tree, values)
+  local sub = tree:add(proto, ctx.tvb(ctx.off, 0), f.name)
+  local start, n = ctx.off, 0
+  while ctx.off < ctx.limit do
+    if n == f.max then error("too many", 0) end
+    local item = sub:add(proto, ctx.tvb(ctx.off, 0), string.format("[%d]", n))
+    local at = ctx.off
+    for _, ef in ipairs(SPEC.structs[f.elem].fields) do
+      payload_field(ef, ctx, item, {}, values)
+    end
+    item:set_len(ctx.off - at)
+    n = n + 1
+  end
+  sub:set_len(ctx.off - start)
+end
+
+local function read_payload_check(f, ctx, tree, starts, ends)
+  if ctx.off + f.size > ctx.limit then error("short", 0) end
+  local from, to = starts[f.first], ends[f.last]
+  local stored = read_uint(ctx.buf, ctx.off, f.size, f.order)
+  local computed = compute(f.algorithm, ctx.buf, from, to)
+  local item = tree:add(f.pf, ctx.tvb(ctx.off, f.size), stored)
+  if stored == computed then
+    item:append_text(" [correct]")
+  else
+    item:append_text(string.format(" [incorrect, should be 0x%x]", computed))
+    item:add_proto_expert_info(EXPERT.bad_check, "bad payload check " .. f.name)
+  end
+  ctx.off = ctx.off + f.size
+end
+
+-- Reads one field of a struct; `values` collects the integers later fields may take their
+-- size from; `owner` is the struct that repeats this one (a group's elements).
+payload_field = function(f, ctx, tree, values, owner, starts, ends)
+  local k = f.kind
+  if k == "padding" then
+    if ctx.off + f.size > ctx.limit then error("short", 0) end
+    ctx.off = ctx.off + f.size
+  elseif k == "value" then
+    if f.count then
+      local sub = tree:add(proto, ctx.tvb(ctx.off, 0), f.name)
+      local start = ctx.off
+      for _ = 1, f.count do read_value(f.elem, ctx, sub) end
+      sub:set_len(ctx.off - start)
+    else
+      values[f.name] = read_value(f.elem, ctx, tree)
+    end
+  elseif k == "optional" then
+    if ctx.off < ctx.limit then payload_field(f.inner, ctx, tree, values, owner, starts, ends) end
+  elseif k == "bits" then read_bits(f, ctx, tree)
+  elseif k == "packed" then read_packed(f, ctx, tree)
+  elseif k == "array" then read_many(f, ctx, tree, values, owner)
+  elseif k == "bytes" then read_bytes(f, ctx, tree, values, owner)
+  elseif k == "nul_text" then read_nul_text(f, ctx, tree)
+  elseif k == "group" then read_group(f, ctx, tree, values)
+  elseif k == "check" then read_payload_check(f, ctx, tree, starts, ends)
+  end
+end
+
+read_struct = function(si, ctx, tree)
+  local values, starts, ends = {}, {}, {}
+  for i, f in ipairs(SPEC.structs[si].fields) do
+    starts[i] = ctx.off
+    payload_field(f, ctx, tree, values, nil, starts, ends)
+    ends[i] = ctx.off
+  end
+end
+
+-- Reads struct `si` from the whole of `tvb` (whose bytes are `buf`); a payload too short, or
+-- with bytes left over, gets an expert note.
+function read_payload(si, tvb, buf, len, tree)
+  local ctx = { tvb = tvb, buf = buf, off = 0, limit = len }
+  local ok, why = pcall(read_struct, si, ctx, tree)
+  if not ok then
+    tree:add_proto_expert_info(EXPERT.payload, "payload of " .. SPEC.structs[si].name .. ": " .. tostring(why))
+  elseif ctx.off < len then
+    tree:add_proto_expert_info(EXPERT.payload, string.format("%d payload bytes left over", len - ctx.off))
+  end
+  return ok
+end
