@@ -24,14 +24,18 @@ pub enum Shape {
     Dict,
 }
 
-/// An `f32` as the shortest decimal that reads back as the same bits, as an `f64` (what
-/// `protocol decode` prints; `0.1f32` is `0.1`, not `0.10000000149011612`). Non-finite values
-/// stay what they are.
+/// An `f32` as the `f64` of the decimal `protocol decode` prints for it: `serde_json`'s
+/// shortest text that reads back as the same `f32` (`0.1f32` is `0.1`, not
+/// `0.10000000149011612`; of two shortest texts, the one JSON prints). Non-finite values stay
+/// what they are.
 fn f32_as_f64(x: f32) -> f64 {
     if !x.is_finite() {
         return f64::from(x);
     }
-    x.to_string().parse().unwrap_or(f64::from(x))
+    serde_json::to_string(&x)
+        .ok()
+        .and_then(|t| t.parse().ok())
+        .unwrap_or(f64::from(x))
 }
 
 /// The Python object of a value.
