@@ -8,7 +8,7 @@
 
 use std::sync::Arc;
 
-use protocol_dynamic::{Decoded, Fields, Value, hex};
+use protocol_dynamic::{Decoded, Fields, Value};
 use pyo3::exceptions::{PyAttributeError, PyKeyError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList, PyString, PyTuple};
@@ -291,7 +291,8 @@ impl Message {
         let value = self.frame_value();
         let fields = value.as_struct().cloned().unwrap_or_default();
         let dict = fields_to_dict(py, &fields)?;
-        dict.set_item("hex", hex(&self.raw))?;
+        // The frame's bytes are `bytes` in the value; the JSON line writes them as hex text.
+        dict.set_item("hex", PyBytes::new(py, &self.raw).call_method0("hex")?)?;
         Ok(dict)
     }
 
@@ -368,7 +369,7 @@ impl Event {
             d.set_item("error", e)?;
         }
         if let Some(raw) = &self.raw {
-            d.set_item("hex", hex(raw.as_bytes(py)))?;
+            d.set_item("hex", raw.bind(py).call_method0("hex")?)?;
         }
         Ok(d)
     }
