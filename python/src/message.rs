@@ -10,6 +10,7 @@ use std::sync::Arc;
 
 use protocol_dynamic::{Decoded, Fields, Value};
 use pyo3::exceptions::{PyAttributeError, PyKeyError};
+use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList, PyString, PyTuple};
 
@@ -287,13 +288,43 @@ impl Message {
     /// `offset`, `length`, `format`, `command`, `id`, `header`, `payload`, `hex` (and
     /// `direction`, `ack`, `can_id` where they apply). Bytes stay `bytes` and non-finite
     /// floats stay `float`; `hex` is the frame's bytes as hex text.
+    ///
+    /// Built here rather than from the codec's frame value (as `to_json` is), which would copy
+    /// every field first; the package's tests hold the two to the same lines.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let value = self.frame_value();
-        let fields = value.as_struct().cloned().unwrap_or_default();
-        let dict = fields_to_dict(py, &fields)?;
-        // The frame's bytes are `bytes` in the value; the JSON line writes them as hex text.
-        dict.set_item("hex", PyBytes::new(py, &self.raw).call_method0("hex")?)?;
-        Ok(dict)
+        let p = self.spec.borrow_owner().protocol();
+        let d = PyDict::new(py);
+        d.set_item(intern!(py, "offset"), self.offset)?;
+        d.set_item(intern!(py, "length"), self.raw.len())?;
+        d.set_item(intern!(py, "format"), self.format())?;
+        // A direction no header field tells is part of the frame's value (encode reads it).
+        if p.directions_given() {
+            if let Some(dir) = self.direction() {
+                d.set_item(intern!(py, "direction"), dir)?;
+            }
+        }
+        if let Some(name) = self.name() {
+            d.set_item(intern!(py, "command"), name)?;
+            let id = match self.decoded.id.as_slice() {
+                [one] => one.into_pyobject(py)?.into_any(),
+                many => PyList::new(py, many)?.into_any(),
+            };
+            d.set_item(intern!(py, "id"), id)?;
+        }
+        if self.decoded.ack {
+            d.set_item(intern!(py, "ack"), true)?;
+        }
+        if let Some(can_id) = self.decoded.can_id {
+            d.set_item(intern!(py, "can_id"), can_id)?;
+        }
+        d.set_item(
+            intern!(py, "header"),
+            fields_to_dict(py, &self.decoded.header)?,
+        )?;
+        let payload = to_py(py, &self.decoded.payload, Shape::Dict)?;
+        d.set_item(intern!(py, "payload"), payload)?;
+        d.set_item(intern!(py, "hex"), hex_text(&self.raw))?;
+        Ok(d)
     }
 
     /// The line `protocol decode --format json` prints for this frame.
@@ -301,6 +332,17 @@ impl Message {
         serde_json::to_string(&self.frame_value())
             .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))
     }
+}
+
+/// Lowercase hex of some bytes.
+fn hex_text(bytes: &[u8]) -> String {
+    const DIGITS: &[u8; 16] = b"0123456789abcdef";
+    let mut s = String::with_capacity(2 * bytes.len());
+    for b in bytes {
+        s.push(char::from(DIGITS[usize::from(b >> 4)]));
+        s.push(char::from(DIGITS[usize::from(b & 0xF)]));
+    }
+    s
 }
 
 impl Message {
@@ -369,7 +411,7 @@ impl Event {
             d.set_item("error", e)?;
         }
         if let Some(raw) = &self.raw {
-            d.set_item("hex", raw.bind(py).call_method0("hex")?)?;
+            d.set_item("hex", hex_text(raw.as_bytes(py)))?;
         }
         Ok(d)
     }
