@@ -90,8 +90,8 @@ def main() -> None:
         f"Python {platform.python_version()}, {platform.machine()}; each capture x{args.repeat}, "
         f"best of {args.runs}, thread CPU time\n"
     )
-    print("| capture | frames | what | protocol_link | reference | reference time | speed-up |")
-    print("| --- | ---: | --- | ---: | --- | ---: | ---: |")
+    print("| capture | frames | what | protocol_link | reference | reference time | speed-up (capture) | speed-up (per frame) |")
+    print("| --- | ---: | --- | ---: | --- | ---: | ---: | ---: |")
     for label, spec_name, capture, ref_name, ref in cases:
         spec = protocol_link.Spec.load(ROOT / "specs" / f"{spec_name}.toml")
         data = (ROOT / "examples" / "captures" / capture).read_bytes() * args.repeat
@@ -103,7 +103,8 @@ def main() -> None:
             print(
                 f"| {label} `{capture}` x{args.repeat} | {n_ours}{note} | {what} | {t_ours * 1e3:.1f} ms "
                 f"({t_ours / n_ours * 1e6:.2f} µs/frame) | {ref_name} | {t_ref * 1e3:.1f} ms "
-                f"({t_ref / max(n_ref, 1) * 1e6:.2f} µs/frame) | {t_ref / t_ours:.0f}x |"
+                f"({t_ref / max(n_ref, 1) * 1e6:.2f} µs/frame) | {t_ref / t_ours:.1f}x | "
+                f"{(t_ref / max(n_ref, 1)) / (t_ours / n_ours):.1f}x |"
             )
 
 
