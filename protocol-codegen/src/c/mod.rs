@@ -48,6 +48,7 @@ mod fields;
 mod format;
 mod frame;
 mod header;
+mod kinds;
 mod lookups;
 mod names;
 mod packet;
