@@ -1,5 +1,5 @@
 //! The one payload code generator: `impl Payload` (wire read and write) for a struct described
-//! as a [`PayloadDef`], which [`payload_def`] makes of an IR struct. A spec's structs and a
+//! as a `PayloadDef`, which `payload_def` makes of an IR struct. A spec's structs and a
 //! `#[derive(Payload)]` struct reach it through the same validation and the same IR, so both
 //! produce the same code for the same layout.
 //!
