@@ -135,11 +135,7 @@ fn kind_doc(p: &Protocol, f: &Field, kind: &FieldKind) -> KindDoc {
             KindDoc::varying(format!("NUL-terminated text (up to {max} bytes)"))
         }
         FieldKind::Array { ty, max, size_from } => {
-            let elem = FieldKind::Value {
-                ty: ty.clone(),
-                count: None,
-            };
-            let elem = kind_doc(p, f, &elem);
+            let elem = value_doc(p, ty, None);
             // Brackets escaped: rustdoc would read `[i24]` as a link.
             let ty = match size_from {
                 None => format!("\\[{}\\] to the end (up to {max})", elem.ty),
@@ -162,41 +158,44 @@ fn kind_doc(p: &Protocol, f: &Field, kind: &FieldKind) -> KindDoc {
                 order_name(c.endian, f.size),
             )
         }
-        FieldKind::Value { ty, count } => {
-            let (base, order) = match ty {
-                ValueType::Scalar {
-                    scalar,
-                    scale: None,
-                } => (
-                    scalar.prim.spec_name().to_string(),
-                    order_name(scalar.endian, scalar.prim.size()),
-                ),
-                ValueType::Scalar {
-                    scalar,
-                    scale: Some(s),
-                } => {
-                    let off = if s.offset != 0.0 {
-                        format!(" + {}", s.offset)
-                    } else {
-                        String::new()
-                    };
-                    (
-                        format!("{} × {}{off}", scalar.prim.spec_name(), s.factor),
-                        order_name(scalar.endian, scalar.prim.size()),
-                    )
-                }
-                ValueType::Struct(i) => (format!("`{}`", p.structs[*i].name), "-"),
-                ValueType::Enum(i, s) => (
-                    format!("`{}` ({})", p.enums[*i].name, s.prim.spec_name()),
-                    order_name(s.endian, s.prim.size()),
-                ),
-                ValueType::Text(n) => (format!("`char[{n}]` (NUL-padded text)"), "-"),
+        FieldKind::Value { ty, count } => value_doc(p, ty, *count),
+    }
+}
+
+/// The docs of a value field ([`FieldKind::Value`]), or of an array's element.
+fn value_doc(p: &Protocol, ty: &ValueType, count: Option<usize>) -> KindDoc {
+    let (base, order) = match ty {
+        ValueType::Scalar {
+            scalar,
+            scale: None,
+        } => (
+            scalar.prim.spec_name().to_string(),
+            order_name(scalar.endian, scalar.prim.size()),
+        ),
+        ValueType::Scalar {
+            scalar,
+            scale: Some(s),
+        } => {
+            let off = if s.offset != 0.0 {
+                format!(" + {}", s.offset)
+            } else {
+                String::new()
             };
-            match count {
-                Some(n) => KindDoc::of(format!("[{base}; {n}]"), order),
-                None => KindDoc::of(base, order),
-            }
+            (
+                format!("{} × {}{off}", scalar.prim.spec_name(), s.factor),
+                order_name(scalar.endian, scalar.prim.size()),
+            )
         }
+        ValueType::Struct(i) => (format!("`{}`", p.structs[*i].name), "-"),
+        ValueType::Enum(i, s) => (
+            format!("`{}` ({})", p.enums[*i].name, s.prim.spec_name()),
+            order_name(s.endian, s.prim.size()),
+        ),
+        ValueType::Text(n) => (format!("`char[{n}]` (NUL-padded text)"), "-"),
+    };
+    match count {
+        Some(n) => KindDoc::of(format!("[{base}; {n}]"), order),
+        None => KindDoc::of(base, order),
     }
 }
 
