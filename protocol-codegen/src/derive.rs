@@ -28,8 +28,7 @@ use syn::{Data, DeriveInput, Expr, Fields, Lit, Type};
 use toml::Spanned;
 
 use crate::codegen::RuntimePath;
-use crate::codegen::payload::{PayloadDef, emit_payload_impl};
-use crate::codegen::types::payload_def;
+use crate::codegen::payload::{PayloadDef, emit_payload_impl, payload_def};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::ir::{ByteOrder, Prim};
 use crate::spec::model::{CountDef, FieldDef, ProtocolTable, SpecFile, StructDef};

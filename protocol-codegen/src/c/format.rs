@@ -4,9 +4,10 @@
 //! eight hex digits), enums as their variant's spec name (the number when it has none), bytes
 //! as `hex:` and their digits: a form that compares exactly, for logs and conformance tests.
 
-use crate::ir::{Field, FieldKind, Prim, Protocol, ValueType};
+use crate::ir::{FieldKind, Prim, Protocol, ValueType};
 use crate::rules::Carries;
 
+use super::kinds;
 use super::names::{self, Fx, Names};
 use super::shape::{any_field, carries, keyed_format, slots_of, user_values};
 use super::template::fill;
@@ -32,7 +33,11 @@ pub fn format(p: &Protocol, n: &Names) -> String {
         out.push('\n');
     }
     for s in &p.structs {
-        let body: String = s.fields.iter().map(|f| field(p, n, f, &f.kind)).collect();
+        let body: String = s
+            .fields
+            .iter()
+            .map(|f| kinds::of(p, &f.kind).text(n, f))
+            .collect();
         let decls = if body.contains("(i = 0;") {
             "    size_t i;\n"
         } else {
@@ -182,14 +187,14 @@ fn hex_payload(lo: &str, guard: &str, len: &str, bytes: &str) -> String {
 
 /// A value's label in the text form: the C format of its path (`%s.speed=`) and the
 /// arguments the format takes (`, path`).
-struct Label {
+pub(super) struct Label {
     fmt: String,
     args: String,
 }
 
 impl Label {
     /// The label of a field's value.
-    fn of(name: &str) -> Label {
+    pub(super) fn of(name: &str) -> Label {
         Label {
             fmt: format!("%s.{name}="),
             args: ", path".into(),
@@ -197,7 +202,7 @@ impl Label {
     }
 
     /// The label of element `i` of a field.
-    fn item(name: &str) -> Label {
+    pub(super) fn item(name: &str) -> Label {
         Label {
             fmt: format!("%s.{name}[%u]="),
             args: ", path, (unsigned)i".into(),
@@ -205,105 +210,26 @@ impl Label {
     }
 }
 
-/// The text of one field (`kind`: the field's, or what an optional field holds).
-fn field(p: &Protocol, n: &Names, f: &Field, kind: &FieldKind) -> String {
-    let lo = &n.lo;
-    let (key, name) = (&f.name, names::field(&f.name));
-    let each = |count: &str, what: String| {
-        let what = indent(&what);
-        fill!(
-            r"
+/// The statements of a field's text, one element `what` per `i` below `count`.
+pub(super) fn each(count: &str, what: String) -> String {
+    let what = indent(&what);
+    fill!(
+        r"
     for (i = 0; i < ${count}; i++) {
 ${what}    }
 ",
-            count,
-            what
-        )
-    };
-    let (item, at_i) = (Label::item(key), format!("v->{name}[i]"));
-    match kind {
-        FieldKind::Padding | FieldKind::Check(_) => String::new(),
-        // The text up to its NUL: a string when it is UTF-8, else its bytes.
-        FieldKind::NulText { max } => fill!(
-            r#"
-    for (i = 0; i <= ${max}u && v->${name}[i] != 0; i++) {
-    }
-    ${lo}path(sub, sizeof sub, "%s.${key}", path);
-    ${lo}fmt_text(t, sub, (const uint8_t *)v->${name}, i);
-"#,
-            max,
-            name,
-            lo,
-            key
-        ),
-        FieldKind::Array { ty, .. } => {
-            each(&format!("v->{name}_len"), value(p, n, ty, &item, &at_i))
-        }
-        FieldKind::Value { ty, count: None } => {
-            value(p, n, ty, &Label::of(key), &format!("v->{name}"))
-        }
-        FieldKind::Value { ty, count: Some(c) } => {
-            each(&format!("{c}u"), value(p, n, ty, &item, &at_i))
-        }
-        FieldKind::Bits { members, .. } => {
-            let mut out = String::new();
-            for m in members {
-                let v = format!("v->{}", names::field(&m.name));
-                let label = Label::of(&m.name);
-                out.push_str(&match m.enum_index {
-                    Some(ei) => enum_value(n, &p.enums[ei].name, p.enums[ei].prim, &label, &v),
-                    None => scalar(lo, m.prim, &label, &v),
-                });
-            }
-            out
-        }
-        FieldKind::Bytes { .. } => fill!(
-            r#"
-    ${lo}emit(t, " %s.${key}=hex:", path);
-    for (i = 0; i < v->${name}_len; i++) ${lo}emit(t, "%02x", (unsigned)v->${name}[i]);
-"#,
-            lo,
-            key,
-            name
-        ),
-        FieldKind::Packed {
-            count, prim, scale, ..
-        } => {
-            let prim = scale.map_or(*prim, |sc| sc.physical);
-            each(&format!("{count}u"), scalar(lo, prim, &item, &at_i))
-        }
-        FieldKind::Group { elem, .. } => {
-            let ty = ValueType::Struct(*elem);
-            each(&format!("v->{name}_len"), value(p, n, &ty, &item, &at_i))
-        }
-        FieldKind::Optional(inner) => {
-            let null = |key: &str| fill!("    ${lo}emit(t, \" %s.${key}=null\", path);\n", lo, key);
-            let nulls: String = match &**inner {
-                FieldKind::Bits { members, .. } => members.iter().map(|m| null(&m.name)).collect(),
-                _ => null(key),
-            };
-            let (present, nulls) = (indent(&field(p, n, f, inner)), indent(&nulls));
-            fill!(
-                r"
-    if (v->${name}_present) {
-${present}    } else {
-${nulls}    }
-",
-                name,
-                present,
-                nulls
-            )
-        }
-    }
+        count,
+        what
+    )
 }
 
 /// Lines indented one level more.
-fn indent(text: &str) -> String {
+pub(super) fn indent(text: &str) -> String {
     text.lines().map(|l| format!("    {l}\n")).collect()
 }
 
 /// One value: ` LABEL=VALUE`.
-fn value(p: &Protocol, n: &Names, ty: &ValueType, label: &Label, v: &str) -> String {
+pub(super) fn value(p: &Protocol, n: &Names, ty: &ValueType, label: &Label, v: &str) -> String {
     let lo = &n.lo;
     // A nested value's path, for the text of its own fields.
     let (path, args) = (label.fmt.trim_end_matches('='), &label.args);
@@ -341,7 +267,7 @@ fn value(p: &Protocol, n: &Names, ty: &ValueType, label: &Label, v: &str) -> Str
 }
 
 /// A number (a float as its bits) or a bool.
-fn scalar(lo: &str, prim: Prim, label: &Label, v: &str) -> String {
+pub(super) fn scalar(lo: &str, prim: Prim, label: &Label, v: &str) -> String {
     let (spec, value) = match prim {
         Prim::Bool => ("%s", format!("{v} ? \"true\" : \"false\"")),
         Prim::F32 => (
@@ -367,7 +293,7 @@ fn scalar(lo: &str, prim: Prim, label: &Label, v: &str) -> String {
 }
 
 /// An enum value: its variant's spec name, or its number when it has none.
-fn enum_value(n: &Names, name: &str, prim: Prim, label: &Label, v: &str) -> String {
+pub(super) fn enum_value(n: &Names, name: &str, prim: Prim, label: &Label, v: &str) -> String {
     let (lo, ty) = (&n.lo, n.ty(name));
     let (spec, cast) = if prim.is_signed() {
         ("%lld", "long long")

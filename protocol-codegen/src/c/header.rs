@@ -2,9 +2,10 @@
 //! commands and directions, then each frame format's types and prototypes (`packet`) and the
 //! stream decoder's types (`engine`).
 
-use crate::ir::{Enum, Field, FieldKind, Prim, Protocol, Transport, ValueType};
+use crate::ir::{Enum, Prim, Protocol, Transport};
 
-use super::names::{self, Fx, Names, doc_comment, float_of, mask, one_line, value_type};
+use super::kinds;
+use super::names::{self, Fx, Names, doc_comment, mask, one_line};
 use super::template::fill;
 
 /// The whole header file.
@@ -34,7 +35,7 @@ pub fn header(p: &Protocol, n: &Names) -> String {
     for s in &p.structs {
         let mut fields = String::new();
         for field in &s.fields {
-            members(p, n, field, &mut fields);
+            kinds::of(p, &field.kind).members(n, field, &mut fields);
         }
         if fields.is_empty() {
             fields.push_str("    uint8_t unused_; /**< C has no empty struct. */\n");
@@ -290,113 +291,5 @@ fn sizes(p: &Protocol, x: &Fx, out: &mut String) {
             up,
             max
         ));
-    }
-}
-
-/// The declarations of a struct's fields in its C struct.
-fn members(p: &Protocol, n: &Names, f: &Field, out: &mut String) {
-    let name = names::field(&f.name);
-    let doc = doc_comment(&f.doc, &f.unit);
-    let used = |what: &str, max: usize| {
-        fill!(
-            "    size_t ${name}_len; /**< ${what} of `${name}` used (at most ${max}). */\n",
-            name,
-            what,
-            max
-        )
-    };
-    match &f.kind {
-        FieldKind::Padding | FieldKind::Check(_) => {}
-        FieldKind::NulText { max } => {
-            let len = max + 1;
-            out.push_str(&fill!(
-                "    char ${name}[${len}];${doc} /* At most ${max} bytes, then a NUL. */\n",
-                name,
-                len,
-                doc,
-                max
-            ));
-        }
-        FieldKind::Array { ty, max, .. } => {
-            let (ty, len) = (value_type(p, n, ty), (*max).max(1));
-            out.push_str(&fill!(
-                "    ${ty} ${name}[${len}];${doc}\n",
-                ty,
-                name,
-                len,
-                doc
-            ));
-            out.push_str(&used("Elements", *max));
-        }
-        FieldKind::Value { ty, count } => {
-            let count = count.map(|c| format!("[{c}]")).unwrap_or_default();
-            let text = match ty {
-                ValueType::Text(len) => format!("[{len}]"),
-                _ => String::new(),
-            };
-            let ty = value_type(p, n, ty);
-            out.push_str(&fill!(
-                "    ${ty} ${name}${count}${text};${doc}\n",
-                ty,
-                name,
-                count,
-                text,
-                doc
-            ));
-        }
-        FieldKind::Bits { members, .. } => {
-            for m in members {
-                let ty = names::member_type(p, n, m);
-                let (name, doc) = (names::field(&m.name), doc_comment(&m.doc, ""));
-                out.push_str(&fill!("    ${ty} ${name};${doc}\n", ty, name, doc));
-            }
-        }
-        FieldKind::Bytes { max, .. } => {
-            let len = (*max).max(1);
-            out.push_str(&fill!(
-                "    uint8_t ${name}[${len}];${doc}\n",
-                name,
-                len,
-                doc
-            ));
-            out.push_str(&used("Bytes", *max));
-        }
-        FieldKind::Packed {
-            count, prim, scale, ..
-        } => {
-            let ty = match scale {
-                Some(sc) => float_of(sc.physical).0,
-                None => names::prim(*prim),
-            };
-            out.push_str(&fill!(
-                "    ${ty} ${name}[${count}];${doc}\n",
-                ty,
-                name,
-                count,
-                doc
-            ));
-        }
-        FieldKind::Group { elem, max } => {
-            let ty = n.ty(&p.structs[*elem].name);
-            out.push_str(&fill!(
-                "    ${ty} ${name}[${max}];${doc}\n",
-                ty,
-                name,
-                max,
-                doc
-            ));
-            out.push_str(&used("Elements", *max));
-        }
-        FieldKind::Optional(inner) => {
-            out.push_str(&fill!(
-                "    bool ${name}_present; /**< Whether the payload holds `${name}`. */\n",
-                name
-            ));
-            let inner = Field {
-                kind: (**inner).clone(),
-                ..f.clone()
-            };
-            members(p, n, &inner, out);
-        }
     }
 }

@@ -13,7 +13,8 @@
 //! * a struct (fixed-width types) per payload struct, an integer type and constants per enum,
 //!   a header struct, a command enum and a packet struct (`header`, `packet`);
 //! * a reader and a writer per payload struct, with explicit byte order (shifts), never
-//!   relying on struct layout or packing (`payload`, `fields`, `values`, `prelude`);
+//!   relying on struct layout or packing (`payload`; each field kind in its module of `kinds`,
+//!   with `fields`, `values`, `prelude`);
 //! * the frame rules: each check's algorithm (sums, bitwise or table CRCs from the IR's
 //!   parameters), the probe of a candidate, a decoder of one frame's bytes and an encoder per
 //!   command into the caller's buffer (`frame`, `checks`);
@@ -48,6 +49,7 @@ mod fields;
 mod format;
 mod frame;
 mod header;
+mod kinds;
 mod lookups;
 mod names;
 mod packet;

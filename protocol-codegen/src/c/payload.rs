@@ -4,7 +4,8 @@
 
 use crate::ir::{FieldKind, PayloadCheck, Protocol, Struct, ValueType};
 
-use super::fields::{Dir, field, payload_check, read_bytes_but};
+use super::fields::Dir;
+use super::kinds;
 use super::names::{self, Names};
 use super::shape::any_field;
 use super::template::fill;
@@ -47,16 +48,7 @@ fn walk(p: &Protocol, n: &Names, s: &Struct, dir: Dir) -> String {
             body.push_str(&fill!("    from${i} = ${pos};\n", i, pos));
             marks.push(format!("from{i}"));
         }
-        match &f.kind {
-            FieldKind::Check(c) => body.push_str(&payload_check(n, s, f, c, dir)),
-            FieldKind::Bytes {
-                max,
-                size_from: None,
-            } if read && s.bytes_after(i) > 0 => {
-                body.push_str(&read_bytes_but(n, *max, s.bytes_after(i), &here));
-            }
-            _ => body.push_str(&field(p, n, s, f, &f.kind, dir, &here)),
-        }
+        body.push_str(&kinds::of(p, &f.kind).walk(n, s, i, dir, &here));
         if checks.iter().any(|c| c.last == i) {
             body.push_str(&fill!("    to${i} = ${pos};\n", i, pos));
             marks.push(format!("to{i}"));

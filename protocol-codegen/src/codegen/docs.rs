@@ -35,59 +35,115 @@ fn order_name(e: ByteOrder, size: usize) -> &'static str {
     }
 }
 
-/// The type of a struct field as the docs show it.
-pub fn field_type_name(p: &Protocol, f: &Field) -> String {
-    match &f.kind {
-        FieldKind::Padding => "padding".into(),
+/// What the docs say of one field kind: its type, its byte order (or bit order), the name
+/// cell of the wire table when the kind names more than the field, and whether the offsets
+/// of the fields after it count from its end (its size varies).
+struct KindDoc {
+    ty: String,
+    order: &'static str,
+    name: Option<String>,
+    moves_offsets: bool,
+}
+
+impl KindDoc {
+    fn of(ty: String, order: &'static str) -> KindDoc {
+        KindDoc {
+            ty,
+            order,
+            name: None,
+            moves_offsets: false,
+        }
+    }
+
+    /// Of a kind whose size varies.
+    fn varying(ty: String) -> KindDoc {
+        KindDoc {
+            moves_offsets: true,
+            ..KindDoc::of(ty, "-")
+        }
+    }
+}
+
+/// The docs of field `f` of kind `kind` (the field's, or what an optional field holds): the
+/// one place the docs match on a field's kind.
+fn kind_doc(p: &Protocol, f: &Field, kind: &FieldKind) -> KindDoc {
+    match kind {
+        FieldKind::Padding => KindDoc {
+            name: Some("*(padding)*".to_string()),
+            ..KindDoc::of("padding".into(), "-")
+        },
         FieldKind::Bytes {
             max,
             size_from: None,
-        } => format!("bytes, the rest (up to {max})"),
+        } => KindDoc::varying(format!("bytes, the rest (up to {max})")),
         FieldKind::Bytes {
             max,
             size_from: Some(n),
-        } => format!("bytes, `{n}` of them (up to {max})"),
-        FieldKind::Group { elem, max } => format!(
+        } => KindDoc::varying(format!("bytes, `{n}` of them (up to {max})")),
+        FieldKind::Group { elem, max } => KindDoc::varying(format!(
             "`{}` repeated to the end (up to {max})",
             p.structs[*elem].name
-        ),
+        )),
         FieldKind::Optional(inner) => {
-            let inner = Field {
-                kind: (**inner).clone(),
-                ..f.clone()
-            };
-            format!("optional {}", field_type_name(p, &inner))
+            let inner = kind_doc(p, f, inner);
+            KindDoc::of(format!("optional {}", inner.ty), inner.order)
         }
         FieldKind::Packed {
-            count, bits, scale, ..
-        } => match scale {
-            None => format!("[u{bits}; {count}] packed"),
-            Some(s) => {
-                let off = if s.offset != 0.0 {
-                    format!(" + {}", s.offset)
-                } else {
-                    String::new()
-                };
-                format!("[u{bits} × {}{off}; {count}] packed", s.factor)
+            count,
+            bits,
+            scale,
+            order,
+            ..
+        } => {
+            let ty = match scale {
+                None => format!("[u{bits}; {count}] packed"),
+                Some(s) => {
+                    let off = if s.offset != 0.0 {
+                        format!(" + {}", s.offset)
+                    } else {
+                        String::new()
+                    };
+                    format!("[u{bits} × {}{off}; {count}] packed", s.factor)
+                }
+            };
+            let order = match order {
+                BitOrder::LsbFirst => "LSB first",
+                BitOrder::MsbFirst => "MSB first",
+            };
+            KindDoc::of(ty, order)
+        }
+        FieldKind::Bits { word, members } => {
+            let mut names: Vec<String> = members
+                .iter()
+                .map(|m| format!("`{}` (bits {}..{})", m.name, m.shift, m.shift + m.width))
+                .collect();
+            // Bits above the members that no member keeps are reserved-zero.
+            let used: u32 = members.iter().map(|m| m.width).sum();
+            let bits = 8 * word.prim.size() as u32;
+            if used < bits {
+                names.push(format!("bits {used}..{bits} reserved, zero"));
             }
-        },
-        FieldKind::Bits { word, .. } => format!("{} bits", word.prim.spec_name()),
-        FieldKind::NulText { max } => format!("NUL-terminated text (up to {max} bytes)"),
+            KindDoc {
+                name: Some(names.join(", ")),
+                ..KindDoc::of(
+                    format!("{} bits", word.prim.spec_name()),
+                    order_name(word.endian, word.prim.size()),
+                )
+            }
+        }
+        FieldKind::NulText { max } => {
+            KindDoc::varying(format!("NUL-terminated text (up to {max} bytes)"))
+        }
         FieldKind::Array { ty, max, size_from } => {
-            let elem = field_type_name(
-                p,
-                &Field {
-                    kind: FieldKind::Value {
-                        ty: ty.clone(),
-                        count: None,
-                    },
-                    ..f.clone()
-                },
-            );
+            let elem = value_doc(p, ty, None);
             // Brackets escaped: rustdoc would read `[i24]` as a link.
-            match size_from {
-                None => format!("\\[{elem}\\] to the end (up to {max})"),
-                Some(n) => format!("\\[{elem}\\], `{n}` of them (up to {max})"),
+            let ty = match size_from {
+                None => format!("\\[{}\\] to the end (up to {max})", elem.ty),
+                Some(n) => format!("\\[{}\\], `{n}` of them (up to {max})", elem.ty),
+            };
+            KindDoc {
+                order: elem.order,
+                ..KindDoc::varying(ty)
             }
         }
         FieldKind::Check(c) => {
@@ -97,66 +153,49 @@ pub fn field_type_name(p: &Protocol, f: &Field) -> String {
                 let bytes: Vec<String> = c.prefix.iter().map(|b| format!("{b:#04x}")).collect();
                 format!(", after {}", bytes.join(" "))
             };
-            format!("check `{}` over {}{prefix}", c.naming.display, c.covered)
+            KindDoc::of(
+                format!("check `{}` over {}{prefix}", c.naming.display, c.covered),
+                order_name(c.endian, f.size),
+            )
         }
-        FieldKind::Value { ty, count } => {
-            let base = match ty {
-                ValueType::Scalar {
-                    scalar,
-                    scale: None,
-                } => scalar.prim.spec_name().to_string(),
-                ValueType::Scalar {
-                    scalar,
-                    scale: Some(s),
-                } => {
-                    let off = if s.offset != 0.0 {
-                        format!(" + {}", s.offset)
-                    } else {
-                        String::new()
-                    };
-                    format!("{} × {}{off}", scalar.prim.spec_name(), s.factor)
-                }
-                ValueType::Struct(i) => format!("`{}`", p.structs[*i].name),
-                ValueType::Enum(i, s) => format!("`{}` ({})", p.enums[*i].name, s.prim.spec_name()),
-                ValueType::Text(n) => format!("`char[{n}]` (NUL-padded text)"),
-            };
-            match count {
-                Some(n) => format!("[{base}; {n}]"),
-                None => base,
-            }
-        }
+        FieldKind::Value { ty, count } => value_doc(p, ty, *count),
     }
 }
 
-fn field_order(f: &Field) -> &'static str {
-    match &f.kind {
-        FieldKind::Padding
-        | FieldKind::Bytes { .. }
-        | FieldKind::Group { .. }
-        | FieldKind::NulText { .. } => "-",
-        FieldKind::Array { ty, .. } => field_order(&Field {
-            kind: FieldKind::Value {
-                ty: ty.clone(),
-                count: None,
-            },
-            ..f.clone()
-        }),
-        FieldKind::Check(c) => order_name(c.endian, f.size),
-        FieldKind::Optional(inner) => field_order(&Field {
-            kind: (**inner).clone(),
-            ..f.clone()
-        }),
-        FieldKind::Bits { word, .. } => order_name(word.endian, word.prim.size()),
-        FieldKind::Packed { order, .. } => match order {
-            BitOrder::LsbFirst => "LSB first",
-            BitOrder::MsbFirst => "MSB first",
-        },
-        FieldKind::Value { ty, .. } => match ty {
-            ValueType::Scalar { scalar, .. } | ValueType::Enum(_, scalar) => {
-                order_name(scalar.endian, scalar.prim.size())
-            }
-            ValueType::Struct(_) | ValueType::Text(_) => "-",
-        },
+/// The docs of a value field ([`FieldKind::Value`]), or of an array's element.
+fn value_doc(p: &Protocol, ty: &ValueType, count: Option<usize>) -> KindDoc {
+    let (base, order) = match ty {
+        ValueType::Scalar {
+            scalar,
+            scale: None,
+        } => (
+            scalar.prim.spec_name().to_string(),
+            order_name(scalar.endian, scalar.prim.size()),
+        ),
+        ValueType::Scalar {
+            scalar,
+            scale: Some(s),
+        } => {
+            let off = if s.offset != 0.0 {
+                format!(" + {}", s.offset)
+            } else {
+                String::new()
+            };
+            (
+                format!("{} × {}{off}", scalar.prim.spec_name(), s.factor),
+                order_name(scalar.endian, scalar.prim.size()),
+            )
+        }
+        ValueType::Struct(i) => (format!("`{}`", p.structs[*i].name), "-"),
+        ValueType::Enum(i, s) => (
+            format!("`{}` ({})", p.enums[*i].name, s.prim.spec_name()),
+            order_name(s.endian, s.prim.size()),
+        ),
+        ValueType::Text(n) => (format!("`char[{n}]` (NUL-padded text)"), "-"),
+    };
+    match count {
+        Some(n) => KindDoc::of(format!("[{base}; {n}]"), order),
+        None => KindDoc::of(base, order),
     }
 }
 
@@ -229,32 +268,11 @@ pub fn struct_doc(p: &Protocol, s: &Struct) -> String {
             None => f.offset.to_string(),
             Some((name, end)) => format!("`{name}` end + {}", f.offset - end),
         };
-        if matches!(
-            f.kind,
-            FieldKind::NulText { .. }
-                | FieldKind::Array { .. }
-                | FieldKind::Bytes { .. }
-                | FieldKind::Group { .. }
-        ) {
+        let doc = kind_doc(p, f, &f.kind);
+        if doc.moves_offsets {
             after = Some((&f.name, f.offset + f.size));
         }
-        let name = match &f.kind {
-            FieldKind::Padding => "*(padding)*".to_string(),
-            FieldKind::Bits { word, members } => {
-                let mut names: Vec<String> = members
-                    .iter()
-                    .map(|m| format!("`{}` (bits {}..{})", m.name, m.shift, m.shift + m.width))
-                    .collect();
-                // Bits above the members that no member keeps are reserved-zero.
-                let used: u32 = members.iter().map(|m| m.width).sum();
-                let bits = 8 * word.prim.size() as u32;
-                if used < bits {
-                    names.push(format!("bits {used}..{bits} reserved, zero"));
-                }
-                names.join(", ")
-            }
-            _ => format!("`{}`", f.name),
-        };
+        let name = doc.name.unwrap_or_else(|| format!("`{}`", f.name));
         let unit = if f.unit.is_empty() {
             "-".to_string()
         } else {
@@ -262,12 +280,7 @@ pub fn struct_doc(p: &Protocol, s: &Struct) -> String {
         };
         out.push_str(&format!(
             "| {} | {} | {} | {} | {} | {} |\n",
-            offset,
-            f.size,
-            name,
-            field_type_name(p, f),
-            field_order(f),
-            unit
+            offset, f.size, name, doc.ty, doc.order, unit
         ));
     }
     out

@@ -2,15 +2,14 @@
 //! code comes from the shared payload generator ([`super::payload`]).
 
 use proc_macro2::{Literal, TokenStream};
-use quote::{format_ident, quote};
+use quote::quote;
 
 use super::docs::{doc_attrs, struct_doc};
 use super::frame::algorithm_expr;
-use super::payload::{
-    BitType, PBit, PField, PKind, PayloadDef, emit_payload_impl, field_type, prim_type,
-};
+use super::payload::kinds::Decl;
+use super::payload::{emit_payload_impl, payload_def, prim_type};
 use super::{const_ident, ident};
-use crate::ir::{Enum, FieldKind, Prim, Protocol, Struct, UnknownPolicy, ValueType};
+use crate::ir::{Enum, FieldKind, Prim, Protocol, UnknownPolicy};
 
 /// A literal of the given integer type holding `value` (two's complement bits for signed).
 pub fn int_lit(prim: Prim, value: u64) -> TokenStream {
@@ -175,133 +174,6 @@ fn emit_enum(e: &Enum) -> TokenStream {
     }
 }
 
-/// Lower an IR struct into the payload generator's model.
-pub fn payload_def(p: &Protocol, s: &Struct) -> PayloadDef {
-    PayloadDef {
-        name: ident(&s.name),
-        fields: payload_fields(p, s),
-        size: Some(s.size),
-        min_size: Some(s.min_size),
-    }
-}
-
-fn payload_fields(p: &Protocol, s: &Struct) -> Vec<PField> {
-    s.fields
-        .iter()
-        .map(|f| PField {
-            ident: (!f.name.is_empty() && !matches!(f.kind, FieldKind::Check(_)))
-                .then(|| ident(&f.name)),
-            kind: payload_kind(p, &f.kind, f.size),
-        })
-        .collect()
-}
-
-fn payload_kind(p: &Protocol, kind: &FieldKind, size: usize) -> PKind {
-    let rt = super::rt();
-    match kind {
-        FieldKind::Padding => PKind::Pad(size),
-        FieldKind::Bytes { max, size_from } => PKind::Bytes {
-            ty: quote!(#rt::Bytes<#max>),
-            max: *max,
-            size_from: size_from.as_deref().map(ident),
-        },
-        FieldKind::Group { elem, max } => {
-            let e = &p.structs[*elem];
-            let elem_ty = ident(&e.name);
-            PKind::Group {
-                ty: quote!(#rt::Group<#elem_ty, #max>),
-                elem_ty: quote!(#elem_ty),
-                elem: payload_fields(p, e),
-                max: *max,
-                elem_size: e.size,
-            }
-        }
-        FieldKind::Optional(inner) => PKind::Optional(Box::new(payload_kind(p, inner, size))),
-        FieldKind::Array { ty, max, size_from } => {
-            let elem = payload_kind(
-                p,
-                &FieldKind::Value {
-                    ty: ty.clone(),
-                    count: None,
-                },
-                size / max,
-            );
-            let t = field_type(&elem);
-            PKind::Array {
-                ty: quote!(#rt::Group<#t, #max>),
-                elem: Box::new(elem),
-                max: *max,
-                size_from: size_from.as_deref().map(ident),
-                elem_size: size / max,
-            }
-        }
-        FieldKind::NulText { max } => PKind::Var {
-            ty: quote!(#rt::NulStr<#max>),
-        },
-        FieldKind::Check(c) => PKind::Check {
-            // Its table's `static` is printed once, by `check_statics`.
-            checksum: algorithm_expr(&rt, "", &c.algorithm, &c.naming, &mut Vec::new()),
-            first: c.first,
-            last: c.last,
-            endian: c.endian,
-            width: size,
-        },
-        FieldKind::Packed {
-            count,
-            bits,
-            order,
-            prim,
-            scale,
-        } => PKind::Packed {
-            count: *count,
-            bits: *bits,
-            order: *order,
-            prim: *prim,
-            scale: *scale,
-            size,
-        },
-        FieldKind::Bits { word, members } => PKind::Bits {
-            word: *word,
-            members: members
-                .iter()
-                .map(|m| PBit {
-                    ident: ident(&m.name),
-                    shift: m.shift,
-                    width: m.width,
-                    ty: match m.enum_index {
-                        Some(i) => BitType::Enum(
-                            named_type(&p.enums[i].name, p.enums[i].foreign),
-                            p.enums[i].prim,
-                        ),
-                        None if m.prim == Prim::Bool => BitType::Bool,
-                        None => BitType::Uint(m.prim),
-                    },
-                })
-                .collect(),
-        },
-        FieldKind::Value { ty, count } => match ty {
-            ValueType::Scalar { scalar, scale } => PKind::Scalar {
-                scalar: *scalar,
-                scale: *scale,
-                count: *count,
-            },
-            ValueType::Struct(i) => PKind::Nested {
-                ty: named_type(&p.structs[*i].name, p.structs[*i].foreign),
-                count: *count,
-            },
-            ValueType::Enum(i, scalar) => PKind::Enum {
-                ty: named_type(&p.enums[*i].name, p.enums[*i].foreign),
-                scalar: *scalar,
-                count: *count,
-            },
-            ValueType::Text(n) => PKind::Nested {
-                ty: quote!(#rt::FixedStr<#n>),
-                count: *count,
-            },
-        },
-    }
-}
-
 /// The tables of the CRCs of the checks inside payloads, one `static` each.
 fn check_statics(p: &Protocol) -> TokenStream {
     let rt = super::rt();
@@ -314,18 +186,6 @@ fn check_statics(p: &Protocol) -> TokenStream {
     quote!(#(#statics)*)
 }
 
-/// The Rust type of a struct or enum a field names: a generated type's identifier, or a type
-/// of the user's crate (a derive's) as written.
-fn named_type(name: &str, foreign: bool) -> TokenStream {
-    if foreign {
-        // The derive printed it from tokens, so it parses back.
-        name.parse().unwrap_or_default()
-    } else {
-        let n = ident(name);
-        quote!(#n)
-    }
-}
-
 /// Every struct: declaration (with layout docs) and its `Payload` impl.
 pub fn emit_structs(p: &Protocol) -> TokenStream {
     let statics = check_statics(p);
@@ -333,78 +193,16 @@ pub fn emit_structs(p: &Protocol) -> TokenStream {
         let def = payload_def(p, s);
         let name = &def.name;
         let doc = doc_attrs(&struct_doc(p, s));
-        let mut fields = Vec::new();
-        let mut all_small = true;
-        let mut eq = true;
-        let mut undocumented = false;
-        for (pf, f) in def.fields.iter().zip(&s.fields) {
-            let unit = if f.unit.is_empty() {
-                String::new()
-            } else {
-                format!(" Unit: {}.", f.unit)
-            };
-            match &pf.kind {
-                PKind::Pad(_) | PKind::Check { .. } => {}
-                PKind::Bits { members, .. } => {
-                    let FieldKind::Bits {
-                        members: ir_members,
-                        ..
-                    } = &f.kind
-                    else {
-                        continue;
-                    };
-                    for (m, im) in members.iter().zip(ir_members) {
-                        let ty = match &m.ty {
-                            BitType::Bool => quote!(bool),
-                            BitType::Uint(p) => prim_type(*p),
-                            BitType::Enum(t, _) => t.clone(),
-                        };
-                        let text = format!(
-                            "{}{}(bits {}..{} of byte {}.)",
-                            im.doc,
-                            if im.doc.is_empty() { "" } else { " " },
-                            im.shift,
-                            im.shift + im.width,
-                            f.offset
-                        );
-                        let d = doc_attrs(&text);
-                        let id = &m.ident;
-                        fields.push(quote!(#d pub #id: #ty));
-                    }
-                }
-                kind => {
-                    if let Some(n) = match kind {
-                        PKind::Scalar { count, .. }
-                        | PKind::Nested { count, .. }
-                        | PKind::Enum { count, .. } => *count,
-                        PKind::Packed { count, .. } => Some(*count),
-                        _ => None,
-                    } {
-                        all_small &= n <= 32;
-                    }
-                    // Text is a nested payload of the runtime's, and `Eq`.
-                    let text = matches!(
-                        &f.kind,
-                        FieldKind::Value {
-                            ty: ValueType::Text(_),
-                            ..
-                        }
-                    );
-                    eq &= text || kind_is_eq(kind);
-                    let id = pf
-                        .ident
-                        .clone()
-                        .unwrap_or_else(|| format_ident!("_unnamed"));
-                    let ty = field_type(kind);
-                    // A field the spec says nothing of has no doc line: the struct's wire
-                    // table names it (and gives its unit, which the doc repeats at the field).
-                    let text = format!("{}{}", f.doc, unit);
-                    undocumented |= text.is_empty();
-                    let d = doc_attrs(text.trim_start());
-                    fields.push(quote!(#d pub #id: #ty));
-                }
-            }
+        let mut decl = Decl::default();
+        for (slot, f) in def.fields.iter().zip(&s.fields) {
+            slot.kind.declare(f, slot.ident.as_ref(), &mut decl);
         }
+        let Decl {
+            fields,
+            all_small,
+            eq,
+            undocumented,
+        } = decl;
         let default = if all_small {
             quote!(Default,)
         } else {
@@ -434,21 +232,4 @@ pub fn emit_structs(p: &Protocol) -> TokenStream {
         }
     });
     quote!(#statics #(#items)*)
-}
-
-/// Whether a field's Rust type is `Eq` and `Hash` (no floats, no nested payloads or groups).
-fn kind_is_eq(kind: &PKind) -> bool {
-    match kind {
-        PKind::Scalar { scalar, scale, .. } => !scalar.prim.is_float() && scale.is_none(),
-        PKind::Packed { scale, .. } => scale.is_none(),
-        PKind::Nested { .. } | PKind::Group { .. } => false,
-        PKind::Array { elem, .. } => kind_is_eq(elem),
-        PKind::Optional(inner) => kind_is_eq(inner),
-        PKind::Pad(_)
-        | PKind::Enum { .. }
-        | PKind::Bytes { .. }
-        | PKind::Bits { .. }
-        | PKind::Var { .. }
-        | PKind::Check { .. } => true,
-    }
 }

@@ -8,9 +8,11 @@
 //! nested structs are structs, arrays and repeated groups are arrays, bytes are bytes, an
 //! optional field that is absent is `Null`, enums are their spec name (the number when unknown
 //! and kept), scaled fields their physical value, bitfield members their own fields; padding
-//! does not appear. Reading lives in [`read`], writing in [`write`].
+//! does not appear. Each field kind is read and written by its module in `kinds`; a struct's
+//! walk is in [`read`] and [`write`].
 
 mod check;
+mod kinds;
 mod read;
 mod write;
 
@@ -18,7 +20,7 @@ pub use read::{ReadFail, read_payload};
 pub(crate) use write::value_bytes;
 pub use write::write_payload;
 
-use protocol_spec::ir::{Enum, Field, FieldKind, Prim};
+use protocol_spec::ir::{Enum, Prim};
 
 use crate::value::truncate;
 
@@ -47,22 +49,4 @@ fn variant(e: &Enum, raw: u64) -> Option<&protocol_spec::ir::EnumVariant> {
     e.variants.iter().find(|v| truncate(e.prim, v.value) == raw)
 }
 
-/// The names a field takes in its struct's object: its name, or its bit members' names.
-fn keys(f: &Field) -> Vec<&str> {
-    fn of<'a>(name: &'a str, kind: &'a FieldKind) -> Vec<&'a str> {
-        match kind {
-            FieldKind::Padding | FieldKind::Check(_) => Vec::new(),
-            FieldKind::Bits { members, .. } => members.iter().map(|m| m.name.as_str()).collect(),
-            FieldKind::Optional(inner) => of(name, inner),
-            FieldKind::Value { .. }
-            | FieldKind::Bytes { .. }
-            | FieldKind::Group { .. }
-            | FieldKind::Packed { .. }
-            | FieldKind::NulText { .. }
-            | FieldKind::Array { .. } => {
-                vec![name]
-            }
-        }
-    }
-    of(&f.name, &f.kind)
-}
+use kinds::keys;

@@ -1,11 +1,9 @@
 //! Reading a payload struct into a [`Value`], as the generated `Payload::read` and `from_bytes` do.
 
 use protocol_runtime::{DecodeError, Reader, field, packed, text};
-use protocol_spec::ir::{
-    BitMember, BitOrder, Enum, Field, FieldKind, Prim, Protocol, Scale, ValueType,
-};
+use protocol_spec::ir::{BitMember, BitOrder, Enum, Prim, Protocol, Scale, ValueType};
 
-use super::{join, signed_value, variant};
+use super::{kinds, signed_value, variant};
 use crate::model::{Fields, Value};
 use crate::value::{read_scalar, truncate};
 
@@ -65,28 +63,18 @@ fn read_struct(
     let mut spans: Vec<(Reader<'_>, usize)> = Vec::with_capacity(s.fields.len());
     for (i, f) in s.fields.iter().enumerate() {
         let start = r.clone();
-        match &f.kind {
-            FieldKind::Check(c) => {
-                let (from, end) = (&spans[c.first].0, spans[c.last].1);
-                super::check::verify(c, r, from, end)?;
-            }
-            // Every byte left but the checks after it (`Bytes::read_rest_but`).
-            FieldKind::Bytes {
-                max,
-                size_from: None,
-            } if s.bytes_after(i) > 0 => {
-                let v = read_rest_bytes(r, *max, s.bytes_after(i))?;
-                out.insert(f.name.clone(), Value::Bytes(v));
-            }
-            _ => read_field(p, f, &f.kind, s.size, r, path, &mut out, None)?,
-        }
+        kinds::of(&f.kind).read_in(p, s, i, &spans, r, path, &mut out)?;
         spans.push((start, r.position()));
     }
     Ok(out)
 }
 
 /// Every byte left but the last `keep`, at most `max` (`Bytes::<max>::read_rest_but`).
-fn read_rest_bytes(r: &mut Reader<'_>, max: usize, keep: usize) -> Result<Vec<u8>, ReadFail> {
+pub(super) fn read_rest_bytes(
+    r: &mut Reader<'_>,
+    max: usize,
+    keep: usize,
+) -> Result<Vec<u8>, ReadFail> {
     let start = r.position();
     let rest = field::rest_but(r, keep);
     if rest.len() > max {
@@ -99,133 +87,12 @@ fn read_rest_bytes(r: &mut Reader<'_>, max: usize, keep: usize) -> Result<Vec<u8
     Ok(rest.to_vec())
 }
 
-/// Reads one field into `out`. `size` is the wire size of the struct whose read code runs (a
-/// repeated group reports it when full); `owner` holds the fields sized bytes take their size
-/// from: the struct being read (`None`: `out` itself), or for a group's elements, which
-/// generated code reads inline, the struct that repeats them.
-#[allow(clippy::too_many_arguments)]
-fn read_field(
+pub(super) fn read_member(
     p: &Protocol,
-    f: &Field,
-    kind: &FieldKind,
-    size: usize,
-    r: &mut Reader<'_>,
+    m: &BitMember,
+    word: u64,
     path: &str,
-    out: &mut Fields,
-    owner: Option<&Fields>,
-) -> Result<(), ReadFail> {
-    match kind {
-        FieldKind::Padding => r.skip(f.size)?,
-        FieldKind::Bits { word, members } => {
-            let raw = read_scalar(r, *word)?.as_u64();
-            for m in members {
-                let v = read_member(p, m, raw, &join(path, &m.name))?;
-                out.insert(m.name.clone(), v);
-            }
-        }
-        FieldKind::Packed {
-            count,
-            bits,
-            order,
-            scale,
-            ..
-        } => {
-            let v = read_packed(r, f.size, *count, *bits, *order, scale.as_ref())?;
-            out.insert(f.name.clone(), v);
-        }
-        FieldKind::Optional(inner) => {
-            if field::more(r) {
-                read_field(p, f, inner, size, r, path, out, owner)?;
-            } else {
-                for key in super::keys(f) {
-                    out.insert(key.to_string(), Value::Null);
-                }
-            }
-        }
-        FieldKind::Value { ty, count } => {
-            let fpath = join(path, &f.name);
-            let v = match count {
-                None => read_elem(p, ty, r, &fpath)?,
-                Some(n) => {
-                    let mut items = Vec::with_capacity(*n);
-                    for i in 0..*n {
-                        items.push(read_elem(p, ty, r, &format!("{fpath}[{i}]"))?);
-                    }
-                    Value::Array(items)
-                }
-            };
-            out.insert(f.name.clone(), v);
-        }
-        FieldKind::Bytes { max, size_from } => {
-            let v = match size_from {
-                // `Bytes::<max>::read_rest`.
-                None => read_rest_bytes(r, *max, 0)?,
-                Some(n) => {
-                    let count = owner
-                        .unwrap_or(out)
-                        .get(n)
-                        .and_then(Value::as_u64)
-                        .unwrap_or(0);
-                    field::take_sized(r, count, *max)?.to_vec()
-                }
-            };
-            out.insert(f.name.clone(), Value::Bytes(v));
-        }
-        FieldKind::Array { ty, max, size_from } => {
-            let fpath = join(path, &f.name);
-            let mut items = Vec::new();
-            match size_from {
-                None => {
-                    while field::more(r) {
-                        let v = read_elem(p, ty, r, &format!("{fpath}[{}]", items.len()))?;
-                        if items.len() == *max {
-                            return Err(ReadFail::Runtime(field::group_full(r, size)));
-                        }
-                        items.push(v);
-                    }
-                }
-                Some(n) => {
-                    let stated = owner
-                        .unwrap_or(out)
-                        .get(n)
-                        .and_then(Value::as_u64)
-                        .unwrap_or(0);
-                    for i in 0..field::array_len(stated, *max)? {
-                        items.push(read_elem(p, ty, r, &format!("{fpath}[{i}]"))?);
-                    }
-                }
-            }
-            out.insert(f.name.clone(), Value::Array(items));
-        }
-        FieldKind::NulText { max } => {
-            let v = super::check::read_nul_text(r, *max)?;
-            out.insert(f.name.clone(), v);
-        }
-        // Read by `read_struct`, which knows the covered fields; validation keeps checks
-        // out of repeated elements.
-        FieldKind::Check(_) => {}
-        FieldKind::Group { elem, max } => {
-            let sizes = owner.unwrap_or(out);
-            let mut items = Vec::new();
-            let fpath = join(path, &f.name);
-            while field::more(r) {
-                let mut item = Fields::new();
-                let epath = format!("{fpath}[{}]", items.len());
-                for ef in &p.structs[*elem].fields {
-                    read_field(p, ef, &ef.kind, size, r, &epath, &mut item, Some(sizes))?;
-                }
-                if items.len() == *max {
-                    return Err(ReadFail::Runtime(field::group_full(r, size)));
-                }
-                items.push(Value::Struct(item));
-            }
-            out.insert(f.name.clone(), Value::Array(items));
-        }
-    }
-    Ok(())
-}
-
-fn read_member(p: &Protocol, m: &BitMember, word: u64, path: &str) -> Result<Value, ReadFail> {
+) -> Result<Value, ReadFail> {
     let bits = field::get_bits(word, m.shift, m.width);
     Ok(match m.enum_index {
         Some(ei) => {
@@ -237,7 +104,7 @@ fn read_member(p: &Protocol, m: &BitMember, word: u64, path: &str) -> Result<Val
     })
 }
 
-fn read_elem(
+pub(super) fn read_elem(
     p: &Protocol,
     ty: &ValueType,
     r: &mut Reader<'_>,
@@ -298,7 +165,7 @@ fn physical_value(raw: f64, sc: &Scale) -> Result<Value, ReadFail> {
 
 /// A bit-packed array's elements, each read by the runtime's `get_packed` from the array's
 /// bytes.
-fn read_packed(
+pub(super) fn read_packed(
     r: &mut Reader<'_>,
     size: usize,
     count: usize,

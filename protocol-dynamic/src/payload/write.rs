@@ -2,18 +2,16 @@
 //! generated code cannot even hold (a number too large for its type, bytes beyond a field's
 //! `max`, an unknown variant of a rejecting enum) are refused with the path of the value.
 
-use protocol_runtime::{EncodeError, Writer, field, packed, text};
-use protocol_spec::ir::{
-    BitMember, ByteOrder, Enum, Field, FieldKind, Prim, Protocol, Scalar, Scale, Struct, ValueType,
-};
+use protocol_runtime::{EncodeError, Writer, field, text};
+use protocol_spec::ir::{BitMember, Enum, Prim, Protocol, Scalar, Scale, Struct, ValueType};
 
-use super::{join, signed_value, variant};
+use super::{join, kinds, signed_value, variant};
 use crate::error::EncodeIssue;
 use crate::frame::parse_hex;
 use crate::model::{Fields, Value};
 use crate::value::{NumError, bits_as_f64, truncate, value_bits, value_f32, value_f64, write_bits};
 
-fn issue(path: &str, e: NumError) -> EncodeIssue {
+pub(super) fn issue(path: &str, e: NumError) -> EncodeIssue {
     match e {
         NumError::Type(m) | NumError::Range(m) => EncodeIssue::new(path, m),
     }
@@ -37,22 +35,16 @@ pub fn write_payload(
     check_keys(s, obj, path)?;
     // Per field written: where it starts and ends.
     let mut spans: Vec<(usize, usize)> = Vec::with_capacity(s.fields.len());
-    for f in &s.fields {
+    for (i, f) in s.fields.iter().enumerate() {
         let start = w.position();
-        match &f.kind {
-            FieldKind::Check(c) => {
-                super::check::put(c, w, spans[c.first].0, spans[c.last].1)
-                    .map_err(EncodeIssue::runtime)?;
-            }
-            _ => write_field(p, f, &f.kind, obj, w, path, obj)?,
-        }
+        kinds::of(&f.kind).write_in(p, s, i, &spans, obj, w, path)?;
         spans.push((start, w.position()));
     }
     Ok(())
 }
 
 /// Every key of `obj` must name a field or bit member of `s`.
-fn check_keys(s: &Struct, obj: &Fields, path: &str) -> Result<(), EncodeIssue> {
+pub(super) fn check_keys(s: &Struct, obj: &Fields, path: &str) -> Result<(), EncodeIssue> {
     let known = |k: &str| s.fields.iter().any(|f| super::keys(f).contains(&k));
     match obj.keys().find(|k| !known(k)) {
         Some(k) => Err(EncodeIssue::new(
@@ -63,176 +55,9 @@ fn check_keys(s: &Struct, obj: &Fields, path: &str) -> Result<(), EncodeIssue> {
     }
 }
 
-/// Writes one field from `obj`; `owner` holds the fields sized bytes take their size from (the
-/// struct, or for a group's elements the struct that repeats them).
-fn write_field(
-    p: &Protocol,
-    f: &Field,
-    kind: &FieldKind,
-    obj: &Fields,
-    w: &mut Writer<'_>,
-    path: &str,
-    owner: &Fields,
-) -> Result<(), EncodeIssue> {
-    let buffer = |e| EncodeIssue::runtime(e);
-    let fpath = join(path, &f.name);
-    match kind {
-        FieldKind::Padding => w.zeros(f.size).map_err(buffer),
-        FieldKind::Bits { word, members } => {
-            let mut bits = 0u64;
-            for m in members {
-                let mpath = join(path, &m.name);
-                let v = obj
-                    .get(&m.name)
-                    .ok_or_else(|| EncodeIssue::missing(&mpath))?;
-                let raw = member_raw(p, m, v, &mpath)?;
-                bits = field::set_bits(bits, raw, m.shift, m.width).map_err(|_| {
-                    EncodeIssue::new(&mpath, format!("{raw} does not fit {} bits", m.width))
-                })?;
-            }
-            write_bits(w, *word, truncate(word.prim, bits)).map_err(buffer)
-        }
-        FieldKind::Packed {
-            count,
-            bits,
-            order,
-            prim,
-            scale,
-        } => {
-            let v = obj
-                .get(&f.name)
-                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
-            let items = v
-                .as_array()
-                .filter(|items| items.len() == *count)
-                .ok_or_else(|| {
-                    EncodeIssue::new(&fpath, format!("expected an array of {count} elements"))
-                })?;
-            let mut bytes = vec![0u8; f.size];
-            let raw_type = Scalar {
-                prim: *prim,
-                endian: ByteOrder::Little,
-            };
-            for (i, item) in items.iter().enumerate() {
-                let ipath = format!("{fpath}[{i}]");
-                let raw = match scale {
-                    None => value_bits(item, *prim).map_err(|e| issue(&ipath, e))?,
-                    Some(sc) => scaled_raw(raw_type, sc, item, &ipath)?,
-                };
-                packed::set_packed(&mut bytes, i, *bits, *order, raw).map_err(|_| {
-                    EncodeIssue::new(&ipath, format!("{raw} does not fit {bits} bits"))
-                })?;
-            }
-            w.put_bytes(&bytes).map_err(buffer)
-        }
-        FieldKind::Optional(inner) => {
-            let present = super::keys(f)
-                .iter()
-                .any(|k| obj.get(k).is_some_and(|v| !v.is_null()));
-            if present {
-                write_field(p, f, inner, obj, w, path, owner)
-            } else {
-                Ok(())
-            }
-        }
-        FieldKind::Value { ty, count } => {
-            let v = obj
-                .get(&f.name)
-                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
-            match count {
-                None => write_elem(p, ty, v, w, &fpath),
-                Some(n) => {
-                    let items = v.as_array().ok_or_else(|| {
-                        EncodeIssue::new(&fpath, format!("expected an array of {n} elements"))
-                    })?;
-                    if items.len() != *n {
-                        return Err(EncodeIssue::new(
-                            &fpath,
-                            format!("expected {n} elements, got {}", items.len()),
-                        ));
-                    }
-                    for (i, item) in items.iter().enumerate() {
-                        write_elem(p, ty, item, w, &format!("{fpath}[{i}]"))?;
-                    }
-                    Ok(())
-                }
-            }
-        }
-        FieldKind::Bytes { max, size_from } => {
-            let v = obj
-                .get(&f.name)
-                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
-            let bytes = value_bytes(v).ok_or_else(|| {
-                EncodeIssue::new(
-                    &fpath,
-                    "expected bytes: a hex string or an array of numbers 0..=255",
-                )
-            })?;
-            check_len(
-                bytes.len(),
-                "bytes",
-                *max,
-                size_from.as_deref(),
-                owner,
-                &fpath,
-            )?;
-            w.put_bytes(&bytes).map_err(buffer)
-        }
-        FieldKind::Array { ty, max, size_from } => {
-            let v = obj
-                .get(&f.name)
-                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
-            let items = v
-                .as_array()
-                .ok_or_else(|| EncodeIssue::new(&fpath, "expected an array of elements"))?;
-            check_len(
-                items.len(),
-                "elements",
-                *max,
-                size_from.as_deref(),
-                owner,
-                &fpath,
-            )?;
-            for (i, item) in items.iter().enumerate() {
-                write_elem(p, ty, item, w, &format!("{fpath}[{i}]"))?;
-            }
-            Ok(())
-        }
-        FieldKind::NulText { max } => {
-            let v = obj
-                .get(&f.name)
-                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
-            super::check::write_nul_text(v, *max, w, &fpath)
-        }
-        // Written by `write_payload`, which knows the covered fields.
-        FieldKind::Check(_) => Ok(()),
-        FieldKind::Group { elem, max } => {
-            let v = obj
-                .get(&f.name)
-                .ok_or_else(|| EncodeIssue::missing(&fpath))?;
-            let items = v
-                .as_array()
-                .ok_or_else(|| EncodeIssue::new(&fpath, "expected an array of elements"))?;
-            check_len(items.len(), "elements", *max, None, owner, &fpath)?;
-            let es = &p.structs[*elem];
-            for (i, item) in items.iter().enumerate() {
-                let ipath = format!("{fpath}[{i}]");
-                let iobj = item.as_struct().ok_or_else(|| {
-                    EncodeIssue::new(&ipath, format!("expected an object (struct `{}`)", es.name))
-                })?;
-                check_keys(es, iobj, &ipath)?;
-                for ef in &es.fields {
-                    write_field(p, ef, &ef.kind, iobj, w, &ipath, owner)?;
-                }
-            }
-            Ok(())
-        }
-    }
-}
-
 /// Refuses `len` items (`what`: bytes or elements) above the field's `max`, or other than the
 /// count its size field (`size_from`, a field of `owner`) states, as generated code does.
-fn check_len(
+pub(super) fn check_len(
     len: usize,
     what: &str,
     max: usize,
@@ -274,7 +99,12 @@ pub(crate) fn value_bytes(v: &Value) -> Option<Vec<u8>> {
 
 /// The raw bits of a bit member; [`field::set_bits`] refuses those that do not fit the
 /// member's width, as generated code does.
-fn member_raw(p: &Protocol, m: &BitMember, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
+pub(super) fn member_raw(
+    p: &Protocol,
+    m: &BitMember,
+    v: &Value,
+    path: &str,
+) -> Result<u64, EncodeIssue> {
     match m.enum_index {
         // `to_raw() as word`: a negative value of a signed enum is sign-extended.
         Some(ei) => {
@@ -286,7 +116,7 @@ fn member_raw(p: &Protocol, m: &BitMember, v: &Value, path: &str) -> Result<u64,
     }
 }
 
-fn write_elem(
+pub(super) fn write_elem(
     p: &Protocol,
     ty: &ValueType,
     v: &Value,
@@ -350,7 +180,12 @@ fn text_bytes(v: &Value, n: usize, path: &str) -> Result<Vec<u8>, EncodeIssue> {
 /// The raw integer of a scaled field's physical value, by the runtime's field rules (as
 /// generated code computes it): the value in its Rust type, clamped, quantized, fitted to the
 /// raw type; a value the raw type cannot hold is refused.
-fn scaled_raw(scalar: Scalar, sc: &Scale, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
+pub(super) fn scaled_raw(
+    scalar: Scalar,
+    sc: &Scale,
+    v: &Value,
+    path: &str,
+) -> Result<u64, EncodeIssue> {
     let shown;
     // In the field's Rust type, as generated code computes it.
     let q = match sc.physical {

@@ -1,99 +1,60 @@
-//! The statements of one struct's `write` and `read`, field by field in wire order.
+//! The statements of one struct's `write` and `read`, field by field in wire order; each field
+//! kind adds its own ([`Kind::body`]).
 
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
-use super::def::{BitType, PBit, PField, PKind};
-use super::field::{fixed_size, read_value, write_value};
-use super::scalar::{local, prim_type, read_elem, read_scalar, write_scalar};
-use crate::ir::{ByteOrder, Scalar};
+use super::kinds::{Kind, Slot};
+use super::scalar::local;
 
 /// The code of one struct's `write` and `read`, field by field in wire order.
 #[derive(Default)]
-pub(super) struct Body {
+pub(crate) struct Body {
     /// Statements of `write`.
-    pub(super) writes: Vec<TokenStream>,
+    pub(crate) writes: Vec<TokenStream>,
     /// Statements of `read` before the value is built.
-    pub(super) reads: Vec<TokenStream>,
+    pub(crate) reads: Vec<TokenStream>,
     /// `field: expression` of the value `read` builds.
-    pub(super) inits: Vec<TokenStream>,
+    pub(crate) inits: Vec<TokenStream>,
     /// Statements of `read` after the value is built (trailing padding).
-    pub(super) after: Vec<TokenStream>,
+    pub(crate) after: Vec<TokenStream>,
     /// Whether a read expression needs an earlier field (sized bytes, groups), a statement
     /// comes between fields (a bit word) or padding comes before a field that is read in more
     /// than one step (an array): then every field is read into a local first.
-    sequenced: bool,
+    pub(crate) sequenced: bool,
 }
 
 impl Body {
-    pub(super) fn of(fields: &[PField], rt: &TokenStream) -> Body {
+    pub(super) fn of(slots: &[Slot<'_>], rt: &TokenStream) -> Body {
         let mut b = Body::default();
-        for (i, f) in fields.iter().enumerate() {
-            b.check_starts(fields, i);
-            match &f.kind {
-                PKind::Pad(n) => {
-                    b.writes.push(quote!(w.zeros(#n)?;));
-                    b.reads.push(quote!(r.skip(#n)?;));
-                }
-                PKind::Bits { word, members } => {
-                    b.bits(&format_ident!("word{}", i), *word, members, rt);
-                    b.sequenced = true;
-                }
-                PKind::Check {
-                    checksum, endian, ..
-                } => {
-                    let (start, end) = (
-                        format_ident!("check{i}_start"),
-                        format_ident!("check{i}_end"),
-                    );
-                    let order = match endian {
-                        ByteOrder::Little => quote!(#rt::ByteOrder::Little),
-                        ByteOrder::Big => quote!(#rt::ByteOrder::Big),
-                    };
-                    b.reads
-                        .push(quote!(#rt::verify_check(r, &#start, #end, &#checksum, #order)?;));
-                    b.writes
-                        .push(quote!(#rt::put_check(w, #start, #end, &#checksum, #order)?;));
-                }
-                PKind::Bytes {
-                    ty,
-                    size_from: None,
-                    ..
-                } if i + 1 < fields.len() => {
-                    // Every byte left but the checks after it.
-                    let Some(id) = &f.ident else { continue };
-                    let keep: usize = fields[i + 1..].iter().map(|f| fixed_size(&f.kind)).sum();
-                    b.writes.push(quote!(self.#id.write(w)?;));
-                    let var = local(id);
-                    b.reads
-                        .push(quote!(let #var = <#ty>::read_rest_but(r, #keep)?;));
-                    b.inits.push(quote!(#id: #var));
-                }
-                kind => {
-                    let Some(id) = &f.ident else { continue };
-                    b.sequenced |= needs_locals(kind);
-                    b.writes
-                        .push(write_value(kind, quote!(self.#id), &quote!(self), rt));
-                    let var = local(id);
-                    let read = read_value(kind, rt);
-                    b.reads.push(quote!(let #var = #read;));
-                    b.inits.push(quote!(#id: #var));
-                }
-            }
-            b.check_ends(fields, i);
+        for (i, f) in slots.iter().enumerate() {
+            b.check_starts(slots, i);
+            f.kind.body(&mut b, i, slots, rt);
+            b.check_ends(slots, i);
         }
-        b.sequenced |= !pads_fold(fields);
+        b.sequenced |= !pads_fold(slots);
         if !b.sequenced {
-            b.inline_reads(fields, rt);
+            b.inline_reads(slots, rt);
         }
         b
     }
 
+    /// A field read into a local and written from `self`: what most kinds add.
+    pub(crate) fn value<K: Kind + ?Sized>(&mut self, kind: &K, id: &Ident, rt: &TokenStream) {
+        self.sequenced |= kind.needs_locals();
+        self.writes
+            .push(kind.write(quote!(self.#id), &quote!(self), rt));
+        let var = local(id);
+        let read = kind.read(&quote!(r), rt);
+        self.reads.push(quote!(let #var = #read;));
+        self.inits.push(quote!(#id: #var));
+    }
+
     /// Where the checks whose covered fields start at field `i` begin: a copy of the reader,
     /// the writer's position.
-    fn check_starts(&mut self, fields: &[PField], i: usize) {
-        for (k, f) in fields.iter().enumerate() {
-            if let PKind::Check { first, .. } = f.kind {
+    fn check_starts(&mut self, slots: &[Slot<'_>], i: usize) {
+        for (k, f) in slots.iter().enumerate() {
+            if let Some((first, _)) = f.kind.covers() {
                 if first == i {
                     let start = format_ident!("check{k}_start");
                     self.reads.push(quote!(let #start = r.clone();));
@@ -105,9 +66,9 @@ impl Body {
     }
 
     /// Where the checks whose covered fields end at field `i` end: the position after it.
-    fn check_ends(&mut self, fields: &[PField], i: usize) {
-        for (k, f) in fields.iter().enumerate() {
-            if let PKind::Check { last, .. } = f.kind {
+    fn check_ends(&mut self, slots: &[Slot<'_>], i: usize) {
+        for (k, f) in slots.iter().enumerate() {
+            if let Some((_, last)) = f.kind.covers() {
                 if last == i {
                     let end = format_ident!("check{k}_end");
                     self.reads.push(quote!(let #end = r.position();));
@@ -120,17 +81,17 @@ impl Body {
     /// Nothing but padding between the fields: each field read straight into the value, in
     /// order, the padding before it skipped by the read itself (`r.pad(3)?.f32_le()?`), and
     /// the padding after the last field once the value is built.
-    fn inline_reads(&mut self, fields: &[PField], rt: &TokenStream) {
+    fn inline_reads(&mut self, slots: &[Slot<'_>], rt: &TokenStream) {
         self.reads.clear();
         self.inits.clear();
         let mut pad = 0usize;
-        for f in fields {
-            match (&f.kind, &f.ident) {
-                (PKind::Pad(n), _) => pad += n,
-                (kind, Some(id)) => {
+        for f in slots {
+            match (f.kind.padding(), &f.ident) {
+                (Some(n), _) => pad += n,
+                (None, Some(id)) => {
                     let read = match pad {
-                        0 => read_value(kind, rt),
-                        n => read_elem(kind, &quote!(r.pad(#n)?), rt),
+                        0 => f.kind.read(&quote!(r), rt),
+                        n => f.kind.read(&quote!(r.pad(#n)?), rt),
                     };
                     pad = 0;
                     self.inits.push(quote!(#id: #read));
@@ -142,69 +103,14 @@ impl Body {
             self.after.push(quote!(r.skip(#pad)?;));
         }
     }
-
-    /// A bitfield word: each member set into (and got from) its bits by the runtime.
-    fn bits(&mut self, var: &Ident, word: Scalar, members: &[PBit], rt: &TokenStream) {
-        let wt = prim_type(word.prim);
-        let mut sets = Vec::new();
-        for m in members {
-            let (id, shift, width) = (&m.ident, m.shift, m.width);
-            let raw = match &m.ty {
-                BitType::Bool => quote!(u64::from(self.#id)),
-                BitType::Uint(_) => quote!(self.#id as u64),
-                // Through the word type, as the word holds it (a signed raw value's bits).
-                BitType::Enum(ty, _) => {
-                    quote!(#rt::enum_raw(self.#id, #ty::to_raw, #ty::from_raw)? as #wt as u64)
-                }
-            };
-            sets.push(quote!(#var = #rt::set_bits(#var, #raw, #shift, #width)?;));
-            let field = quote!(#rt::get_bits(#var, #shift, #width));
-            let value = match &m.ty {
-                BitType::Bool => quote!(#field != 0),
-                BitType::Uint(p) => {
-                    let t = prim_type(*p);
-                    quote!(#field as #t)
-                }
-                BitType::Enum(ty, p) => {
-                    let t = prim_type(*p);
-                    quote!(#ty::from_raw(#field as #t)?)
-                }
-            };
-            self.inits.push(quote!(#id: #value));
-        }
-        self.writes.push(quote!(let mut #var = 0u64; #(#sets)*));
-        self.writes.push(write_scalar(word, quote!(#var as #wt)));
-        let read = read_scalar(word);
-        self.reads.push(quote!(let #var = u64::from(#read);));
-    }
 }
 
-/// Whether the padding of `fields` can be skipped by the read of the field after it: that
+/// Whether the padding of `slots` can be skipped by the read of the field after it: that
 /// field is read in one step (a single value, not an array, group or optional field).
-fn pads_fold(fields: &[PField]) -> bool {
-    fields
-        .windows(2)
-        .all(|pair| match (&pair[0].kind, &pair[1].kind) {
-            (PKind::Pad(_), PKind::Pad(_)) => true,
-            (PKind::Pad(_), next) => {
-                matches!(
-                    next,
-                    PKind::Scalar { count: None, .. }
-                        | PKind::Nested { count: None, .. }
-                        | PKind::Enum { count: None, .. }
-                )
-            }
-            _ => true,
-        })
-}
-
-/// Whether reading a field names an earlier field (sized bytes; a group, whose elements' sized
-/// bytes may name the repeating struct's fields).
-fn needs_locals(kind: &PKind) -> bool {
-    match kind {
-        PKind::Group { .. } => true,
-        PKind::Bytes { size_from, .. } | PKind::Array { size_from, .. } => size_from.is_some(),
-        PKind::Optional(inner) => needs_locals(inner),
-        _ => false,
-    }
+fn pads_fold(slots: &[Slot<'_>]) -> bool {
+    slots.windows(2).all(|pair| {
+        pair[0].kind.padding().is_none()
+            || pair[1].kind.padding().is_some()
+            || pair[1].kind.folds_pad()
+    })
 }

@@ -1,11 +1,10 @@
-//! One value on the wire: scalar reads and writes, float scaling and rounding, bit-packed
-//! arrays.
+//! One value on the wire: scalar reads and writes, float scaling and rounding, which the
+//! field kinds (`kinds`) print their reads and writes with.
 
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use super::def::PKind;
-use crate::ir::{BitOrder, ByteOrder, Prim, Rounding, Scalar, Scale};
+use crate::ir::{ByteOrder, Prim, Rounding, Scalar, Scale};
 
 /// The Rust type of a primitive.
 pub fn prim_type(prim: Prim) -> TokenStream {
@@ -31,7 +30,7 @@ pub fn read_scalar(s: Scalar) -> TokenStream {
 }
 
 /// `reader.u16_le()?`, `reader` an expression of type `&mut Reader`.
-fn read_scalar_from(reader: &TokenStream, s: Scalar) -> TokenStream {
+pub(super) fn read_scalar_from(reader: &TokenStream, s: Scalar) -> TokenStream {
     let m = format_ident!("{}", suffix(s));
     quote!(#reader.#m()?)
 }
@@ -67,54 +66,8 @@ fn rounding(rt: &TokenStream, r: Rounding) -> TokenStream {
     }
 }
 
-/// Reading one element of a field from `reader` (`r`, or `r.pad(n)?` after padding). The
-/// field rules are the runtime's (`field`), called with the field's constants.
-///
-/// Whatever can fail here other than for want of bytes (clamped scales, enums) must also make
-/// [`needs_only_bytes`] answer `None`; a kind it does not know it answers `None` for.
-pub(super) fn read_elem(kind: &PKind, reader: &TokenStream, rt: &TokenStream) -> TokenStream {
-    match kind {
-        PKind::Scalar {
-            scalar,
-            scale: None,
-            ..
-        } => read_scalar_from(reader, *scalar),
-        PKind::Scalar {
-            scalar,
-            scale: Some(sc),
-            ..
-        } => to_physical(read_scalar_from(reader, *scalar), sc, rt),
-        PKind::Nested { ty, .. } => quote!(<#ty as #rt::Payload>::read(#reader)?),
-        PKind::Enum { ty, scalar, .. } => {
-            let raw = read_scalar_from(reader, *scalar);
-            quote!(#ty::from_raw(#raw)?)
-        }
-        PKind::Bytes {
-            ty,
-            size_from: None,
-            ..
-        } => quote!(<#ty>::read_rest(r)?),
-        PKind::Var { ty } => quote!(<#ty as #rt::Payload>::read(r)?),
-        PKind::Bytes {
-            ty,
-            size_from: Some(n),
-            ..
-        } => {
-            let var = local(n);
-            quote!(<#ty>::read_sized(r, #var as u64)?)
-        }
-        PKind::Pad(_)
-        | PKind::Bits { .. }
-        | PKind::Group { .. }
-        | PKind::Array { .. }
-        | PKind::Optional(_)
-        | PKind::Packed { .. }
-        | PKind::Check { .. } => quote!(()),
-    }
-}
-
 /// The physical value of the raw integer expression `raw`.
-fn to_physical(raw: TokenStream, sc: &Scale, rt: &TokenStream) -> TokenStream {
+pub(super) fn to_physical(raw: TokenStream, sc: &Scale, rt: &TokenStream) -> TokenStream {
     let (f, o) = (scale_lit(sc.factor, sc), scale_lit(sc.offset, sc));
     let phys = prim_type(sc.physical);
     let value = quote!(#rt::to_physical(#raw as #phys, #f, #o));
@@ -153,75 +106,6 @@ pub(super) fn to_raw(
         None => quote!(#rt::fit),
     };
     quote!(#fit(#rt::quantize(#physical, #f, #o, #mode))?)
-}
-
-/// The runtime's name of a bit order.
-fn bit_order(rt: &TokenStream, order: BitOrder) -> TokenStream {
-    match order {
-        BitOrder::LsbFirst => quote!(#rt::BitOrder::LsbFirst),
-        BitOrder::MsbFirst => quote!(#rt::BitOrder::MsbFirst),
-    }
-}
-
-/// Reading a bit-packed array: its bytes at once, then each element from them.
-pub(super) fn read_packed(kind: &PKind, rt: &TokenStream) -> TokenStream {
-    let PKind::Packed {
-        count,
-        bits,
-        order,
-        prim,
-        scale,
-        size,
-    } = kind
-    else {
-        return quote!(());
-    };
-    let order = bit_order(rt, *order);
-    let raw = quote!(#rt::get_packed(bytes, i, #bits, #order));
-    let (t, elem) = match scale {
-        None => {
-            let t = prim_type(*prim);
-            (t.clone(), quote!(#raw as #t))
-        }
-        Some(sc) => (prim_type(sc.physical), to_physical(raw, sc, rt)),
-    };
-    quote! {{
-        let bytes = r.take(#size)?;
-        let mut a: [#t; #count] = [<#t as ::core::default::Default>::default(); #count];
-        for (i, e) in a.iter_mut().enumerate() { *e = #elem; }
-        a
-    }}
-}
-
-/// Writing a bit-packed array `value`: each element into its bits of a zeroed run of bytes,
-/// then the run.
-pub(super) fn write_packed(kind: &PKind, value: TokenStream, rt: &TokenStream) -> TokenStream {
-    let PKind::Packed {
-        bits,
-        order,
-        prim,
-        scale,
-        size,
-        ..
-    } = kind
-    else {
-        return quote!();
-    };
-    let order = bit_order(rt, *order);
-    let raw = match scale {
-        None => quote!(*e as u64),
-        Some(sc) => {
-            let raw = to_raw(quote!(*e), sc, Some(*prim), rt);
-            quote!(#raw as u64)
-        }
-    };
-    quote! {{
-        let mut bytes = [0u8; #size];
-        for (i, e) in #value.iter().enumerate() {
-            #rt::set_packed(&mut bytes, i, #bits, #order, #raw)?;
-        }
-        w.put_bytes(&bytes)?;
-    }}
 }
 
 /// The local variable a struct's read code holds field `id` in.

@@ -1,0 +1,96 @@
+//! Bytes ([`FieldKind::Bytes`](protocol_spec::ir::FieldKind::Bytes)): every byte left (but
+//! the checks after them) or as many as an earlier field states, at most `max`.
+
+use protocol_runtime::{Reader, Writer, field};
+use protocol_spec::ir::{Field, Protocol, Struct};
+
+use super::{Kind, ReadAt, WriteAt, value_of};
+use crate::error::EncodeIssue;
+use crate::model::{Fields, Value};
+use crate::payload::join;
+use crate::payload::read::{ReadFail, read_rest_bytes};
+use crate::payload::write::{check_len, value_bytes};
+
+/// Bytes of at most `max`, sized by the field `size_from` or by the end of the payload.
+pub(super) struct Bytes<'a> {
+    pub(super) max: usize,
+    pub(super) size_from: &'a Option<String>,
+}
+
+impl Kind<'_> for Bytes<'_> {
+    fn read(
+        &self,
+        _p: &Protocol,
+        f: &Field,
+        at: &ReadAt<'_>,
+        r: &mut Reader<'_>,
+        out: &mut Fields,
+    ) -> Result<(), ReadFail> {
+        let v = match self.size_from {
+            // `Bytes::<max>::read_rest`.
+            None => read_rest_bytes(r, self.max, 0)?,
+            Some(n) => {
+                let count = at
+                    .owner
+                    .unwrap_or(out)
+                    .get(n)
+                    .and_then(Value::as_u64)
+                    .unwrap_or(0);
+                field::take_sized(r, count, self.max)?.to_vec()
+            }
+        };
+        out.insert(f.name.clone(), Value::Bytes(v));
+        Ok(())
+    }
+
+    fn write(
+        &self,
+        _p: &Protocol,
+        f: &Field,
+        at: &WriteAt<'_>,
+        w: &mut Writer<'_>,
+    ) -> Result<(), EncodeIssue> {
+        let fpath = join(at.path, &f.name);
+        let v = value_of(f, at, &fpath)?;
+        let bytes = value_bytes(v).ok_or_else(|| {
+            EncodeIssue::new(
+                &fpath,
+                "expected bytes: a hex string or an array of numbers 0..=255",
+            )
+        })?;
+        check_len(
+            bytes.len(),
+            "bytes",
+            self.max,
+            self.size_from.as_deref(),
+            at.owner,
+            &fpath,
+        )?;
+        w.put_bytes(&bytes).map_err(EncodeIssue::runtime)
+    }
+
+    // Every byte left but the checks after it (`Bytes::read_rest_but`).
+    fn read_in<'b>(
+        &self,
+        p: &Protocol,
+        s: &Struct,
+        i: usize,
+        _spans: &[(Reader<'b>, usize)],
+        r: &mut Reader<'b>,
+        path: &str,
+        out: &mut Fields,
+    ) -> Result<(), ReadFail> {
+        let f = &s.fields[i];
+        if self.size_from.is_some() || s.bytes_after(i) == 0 {
+            let at = ReadAt {
+                size: s.size,
+                path,
+                owner: None,
+            };
+            return self.read(p, f, &at, r, out);
+        }
+        let v = read_rest_bytes(r, self.max, s.bytes_after(i))?;
+        out.insert(f.name.clone(), Value::Bytes(v));
+        Ok(())
+    }
+}
