@@ -150,6 +150,7 @@ impl Draft {
             commands: IndexMap::new(),
             structs,
             enums: IndexMap::new(),
+            session: None,
         }
     }
 
