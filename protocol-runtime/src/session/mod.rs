@@ -96,7 +96,10 @@ pub struct Modes {
 pub struct SessionRules<'a> {
     /// The packet rules the frames are read through (key, acknowledgement flag) and sealed by.
     pub packet: &'a PacketRules<'a>,
-    /// What each command's request expects, in spec order; a key not listed expects nothing.
+    /// What a request of a command that [`exchanges`](Self::exchanges) does not list expects
+    /// (its `key` is not read).
+    pub default: Exchange,
+    /// The commands whose requests expect otherwise than the default, in spec order.
     pub exchanges: &'a [Exchange],
     /// The header value the requester numbers and an answer repeats; the responder suppresses
     /// duplicates by it.
@@ -151,7 +154,7 @@ impl SessionRules<'_> {
         Ok(Heard::Command(self.packet.key(frame)?))
     }
 
-    /// What a request of command `key` expects (nothing, for a key no exchange lists).
+    /// What a request of command `key` expects: its exchange, or the default.
     #[must_use]
     pub fn exchange(&self, key: u64) -> Exchange {
         self.exchanges
@@ -160,10 +163,7 @@ impl SessionRules<'_> {
             .copied()
             .unwrap_or(Exchange {
                 key,
-                answer: Answer::None,
-                timeout: 0,
-                retries: 0,
-                backoff: 1,
+                ..self.default
             })
     }
 
@@ -190,8 +190,7 @@ impl SessionRules<'_> {
         self.exchanges
             .iter()
             .map(Exchange::lifetime)
-            .max()
-            .unwrap_or(0)
+            .fold(self.default.lifetime(), u64::max)
     }
 
     /// The values that identify the request `frame` of command `key` (those of its fields the

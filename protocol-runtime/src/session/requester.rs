@@ -111,7 +111,8 @@ struct Slot<const FRAME: usize> {
 /// };
 /// static SESSION: SessionRules<'static> = SessionRules {
 ///     packet: &RULES,
-///     exchanges: &[Exchange { key: 7, answer: Answer::Reply, timeout: 50, retries: 1, backoff: 2 }],
+///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 1, backoff: 2 },
+///     exchanges: &[],
 ///     sequence: Some(WordField::le(1, 1)), echo: &[], swap: None, nack: None,
 ///     handshake: None, watchdog: None, modes: None,
 /// };

@@ -48,11 +48,8 @@ const fn exchange(key: u64, answer: Answer, retries: u8) -> Exchange {
 }
 const BASE: SessionRules<'static> = SessionRules {
     packet: &RULES,
-    exchanges: &[
-        exchange(1, Answer::Reply, 0),
-        exchange(2, Answer::Reply, 1),
-        exchange(3, Answer::None, 0),
-    ],
+    default: exchange(0, Answer::None, 0),
+    exchanges: &[exchange(1, Answer::Reply, 0), exchange(2, Answer::Reply, 1)],
     sequence: Some(WordField::le(1, 1)),
     echo: &[],
     swap: None,
