@@ -37,6 +37,10 @@ pub enum SendError {
     Handshake,
     /// Every slot holds an open request.
     Full,
+    /// An open request is numbered `SLOTS` or more before this one: sending it would move
+    /// the responder's window of remembered numbers past that request (it waits until the old
+    /// one resolves).
+    Window,
     /// A request of the same command to the same peer is open, and without a sequence number
     /// their answers could not be told apart.
     Ambiguous,
@@ -63,8 +67,13 @@ pub enum Received {
 /// What the passing of time asks for.
 #[derive(Debug, PartialEq, Eq)]
 pub enum Due<'a> {
-    /// Send these bytes again: a request's retry.
-    Resend(&'a [u8]),
+    /// Send a request's frame again: a retry.
+    Resend {
+        /// The request.
+        ticket: Ticket,
+        /// Its frame, as first sent.
+        frame: &'a [u8],
+    },
     /// A request timed out after its retries.
     Outcome(Outcome),
 }
@@ -123,7 +132,7 @@ struct Slot<const FRAME: usize> {
 /// assert_eq!(frame, [0xAA, 0, 7, 0xB1]); // numbered 0 and sealed
 ///
 /// // No answer within 50 ms: the request is sent again, then waits 100 ms.
-/// assert!(matches!(requester.poll(50), Some(protocol_runtime::session::Due::Resend(_))));
+/// assert!(matches!(requester.poll(50), Some(protocol_runtime::session::Due::Resend { .. })));
 /// let answer = [0xAA, 0, 7, 0xB1];
 /// let Received::Outcome(outcome) = requester.on_frame(60, &answer) else { panic!() };
 /// assert_eq!((outcome.ticket, outcome.resolution), (ticket, Resolution::Answered));
@@ -196,6 +205,7 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
         }
         let e = self.rules.expects(key, frame);
         if e.answer == Answer::None {
+            self.check_window()?;
             self.number(frame)?;
             return Ok(None);
         }
@@ -203,6 +213,7 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
             return Err(SendError::TooLong);
         }
         let index = self.free_slot(key, frame)?;
+        self.check_window()?;
         self.number(frame)?;
         let ticket = Ticket(self.next_ticket);
         self.next_ticket = self.next_ticket.wrapping_add(1);
@@ -243,6 +254,20 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
             .iter()
             .position(|s| s.open.is_none())
             .ok_or(SendError::Full)
+    }
+
+    /// Rule: no open request is `SLOTS` or more numbers before the next one.
+    fn check_window(&self) -> Result<(), SendError> {
+        let Some(f) = self.rules.sequence else {
+            return Ok(());
+        };
+        let next = self.next_seq & f.max_value();
+        let wide = self
+            .slots
+            .iter()
+            .filter_map(|s| s.open)
+            .any(|o| (next.wrapping_sub(o.ids.seq) & f.max_value()) >= SLOTS as u64);
+        if wide { Err(SendError::Window) } else { Ok(()) }
     }
 
     /// Writes the next sequence number into `frame` and seals it.
@@ -329,6 +354,10 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
         o.wait = o.wait.saturating_mul(u64::from(o.backoff));
         o.deadline = now.saturating_add(o.wait);
         slot.open = Some(o);
-        slot.frame.get(..slot.len).map(Due::Resend)
+        let frame = slot.frame.get(..slot.len)?;
+        Some(Due::Resend {
+            ticket: o.ticket,
+            frame,
+        })
     }
 }

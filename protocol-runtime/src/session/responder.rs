@@ -1,8 +1,17 @@
-//! The responder: the side that receives requests, delivers each once and answers it. It
-//! remembers the requests of the last while (a fixed table) with their answers, so that a
-//! request received again (a retry whose answer was lost, a duplicate of the link) is answered
-//! again without being delivered twice; it gates requests on the handshake and watches the
-//! command that must keep arriving.
+//! The responder: the side that receives requests, delivers each once and answers it. With a
+//! sequence number it remembers a window of the last `SLOTS` numbers (a fixed table) with
+//! their answers, so that a request received again (a retry whose answer was lost, a duplicate
+//! of the link) is answered again without being delivered twice, and a request older than the
+//! window is neither delivered nor answered; it gates requests on the handshake and watches
+//! the command that must keep arriving.
+//!
+//! The window is what makes the guarantee exact with fixed memory: the requester never has a
+//! request open that is `SLOTS` numbers behind the one it sends ([`Requester::send`] refuses
+//! with [`SendError::Window`]), so a responder with at least the requester's slots remembers
+//! every request that can still be retried.
+//!
+//! [`Requester::send`]: super::Requester::send
+//! [`SendError::Window`]: super::SendError::Window
 
 use super::{Answer, Heard, Ids, SessionRules};
 use crate::error::{DecodeError, EncodeError};
@@ -22,9 +31,9 @@ pub enum Incoming<'a> {
     /// A request before the handshake: not delivered (the application may answer it with the
     /// spec's NACK).
     BeforeHandshake,
-    /// A request the table has no room to remember: not delivered (as if lost; the requester
-    /// retries it).
-    Busy,
+    /// A request numbered before the window: its requester has resolved it already, so it is
+    /// neither delivered nor answered (a duplicate the link delayed).
+    Stale,
     /// Not a request: an acknowledgement.
     Ack,
     /// It cannot be read as a frame of the format.
@@ -52,18 +61,20 @@ pub enum AnswerError {
 #[derive(Debug, Clone, Copy)]
 struct Seen<const FRAME: usize> {
     ids: Ids,
-    at: u64,
     /// The answer's bytes, `None` until it is sent (or when it does not fit `FRAME`).
     answer: Option<usize>,
     frame: [u8; FRAME],
 }
 
-/// The responder's state machine: it remembers up to `SLOTS` requests with answers of at most
-/// `FRAME` bytes each, for twice the longest a request lives ([`SessionRules::lifetime`]).
+/// The responder's state machine: it remembers the last `SLOTS` sequence numbers with answers
+/// of at most `FRAME` bytes each. Give it at least as many slots as its requester has.
 #[derive(Debug, Clone)]
 pub struct Responder<'r, const SLOTS: usize, const FRAME: usize> {
     rules: &'r SessionRules<'r>,
+    /// Slot `seq % SLOTS` holds the request numbered `seq`, while it is in the window.
     seen: [Option<Seen<FRAME>>; SLOTS],
+    /// The highest sequence number received.
+    newest: Option<u64>,
     handshaken: bool,
     /// When the watchdog's command last arrived, and whether its lapse is reported.
     fed: Option<(u64, bool)>,
@@ -76,6 +87,7 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Responder<'r, SLOTS, FRAME> {
         Self {
             rules,
             seen: [None; SLOTS],
+            newest: None,
             handshaken: rules.handshake.is_none(),
             fed: None,
         }
@@ -87,10 +99,12 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Responder<'r, SLOTS, FRAME> {
         self.handshaken
     }
 
-    /// How long a request is remembered: twice the longest it lives, so that a retry or a
-    /// duplicate the link delays by less than a request's lifetime is recognised.
-    fn hold(&self) -> u64 {
-        self.rules.lifetime().saturating_mul(2)
+    /// Forgets every request and the handshake: the peer restarted (its numbering starts
+    /// again). A handshake that arrives does the same.
+    pub fn reset(&mut self) {
+        self.seen = [None; SLOTS];
+        self.newest = None;
+        self.handshaken = self.rules.handshake.is_none();
     }
 
     /// A checked frame arrived at `now`.
@@ -103,45 +117,61 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Responder<'r, SLOTS, FRAME> {
         if self.rules.watchdog.is_some_and(|w| w.key == key) {
             self.fed = Some((now, false));
         }
-        if !self.handshaken {
-            if Some(key) != self.rules.handshake {
-                return Incoming::BeforeHandshake;
-            }
+        let ids = self.rules.ids(key, frame);
+        if Some(key) == self.rules.handshake && !self.is_duplicate(&ids) {
+            // A new handshake starts a new conversation: the peer's numbering starts again.
+            self.reset();
             self.handshaken = true;
         }
+        if !self.handshaken {
+            return Incoming::BeforeHandshake;
+        }
         let answer = self.rules.expects(key, frame).answer != Answer::None;
-        if self.rules.sequence.is_none() {
+        let Some(seq) = self.rules.sequence else {
             return Incoming::Deliver { answer };
-        }
-        let ids = self.rules.ids(key, frame);
-        let hold = self.hold();
-        let mut free = None;
-        let mut found = None;
-        for (i, s) in self.seen.iter_mut().enumerate() {
-            if s.is_some_and(|s| now.saturating_sub(s.at) > hold) {
-                *s = None;
-            }
-            match s {
-                Some(s) if s.ids == ids => found = Some(i),
-                None => free = free.or(Some(i)),
-                Some(_) => {}
-            }
-        }
-        if let Some(i) = found {
-            let sent = self.seen.get(i).copied().flatten().and_then(|s| s.answer);
-            let bytes = self.seen.get(i).and_then(|s| s.as_ref());
-            return Incoming::Duplicate(sent.and_then(|n| bytes.and_then(|s| s.frame.get(..n))));
-        }
-        let Some(slot) = free.and_then(|i| self.seen.get_mut(i)) else {
-            return Incoming::Busy;
         };
-        *slot = Some(Seen {
-            ids,
-            at: now,
-            answer: None,
-            frame: [0; FRAME],
-        });
+        let behind = self.behind(seq.max_value(), ids.seq);
+        if behind >= SLOTS as u64 {
+            return Incoming::Stale;
+        }
+        let index = self.index(ids.seq);
+        let held = self.seen.get(index).copied().flatten();
+        if let Some(s) = held.filter(|s| s.ids == ids) {
+            let slot = self.seen.get(index).and_then(|s| s.as_ref());
+            let sent = s.answer.and_then(|n| slot.and_then(|s| s.frame.get(..n)));
+            return Incoming::Duplicate(sent);
+        }
+        if behind == 0 {
+            self.newest = Some(ids.seq);
+        }
+        if let Some(slot) = self.seen.get_mut(index) {
+            *slot = Some(Seen {
+                ids,
+                answer: None,
+                frame: [0; FRAME],
+            });
+        }
         Incoming::Deliver { answer }
+    }
+
+    /// How far `seq` is behind the newest number (0: it is the newest or newer), in a numbering
+    /// modulo `max + 1` where a number up to half the range ahead is newer.
+    fn behind(&self, max: u64, seq: u64) -> u64 {
+        let Some(newest) = self.newest else {
+            return 0;
+        };
+        let back = newest.wrapping_sub(seq) & max;
+        if back > max / 2 { 0 } else { back }
+    }
+
+    /// The slot of sequence number `seq`.
+    fn index(&self, seq: u64) -> usize {
+        usize::try_from(seq % (SLOTS.max(1) as u64)).unwrap_or(0)
+    }
+
+    /// True when a request of these values is remembered.
+    fn is_duplicate(&self, ids: &Ids) -> bool {
+        self.rules.sequence.is_some() && self.seen.iter().flatten().any(|s| s.ids == *ids)
     }
 
     /// The application answers `request` with `answer` (assembled by its encoder, as the

@@ -107,10 +107,14 @@ fn a_retry_is_answered_again_and_delivered_once() {
     let mut reply = frame(2);
     res.answer(&ask, &mut reply).unwrap();
     // The reply is lost: after 10 ms the request goes again, and the responder resends.
-    let Some(Due::Resend(again)) = req.poll(10) else {
+    let Some(Due::Resend {
+        ticket,
+        frame: again,
+    }) = req.poll(10)
+    else {
         panic!("a retry")
     };
-    assert_eq!(again, ask);
+    assert_eq!((ticket, again), (t, &ask[..]));
     assert_eq!(
         res.on_frame(11, &ask),
         Incoming::Duplicate(Some(&reply[..]))
@@ -127,7 +131,7 @@ fn a_request_times_out_after_its_retries_with_backoff() {
     let mut req = Requester::<'_, 2, 4>::new(&OPEN);
     let t = req.send(0, &mut frame(2)).unwrap().unwrap();
     assert_eq!(req.poll(9), None);
-    assert!(matches!(req.poll(10), Some(Due::Resend(_))));
+    assert!(matches!(req.poll(10), Some(Due::Resend { .. })));
     assert_eq!(req.next_deadline(), Some(30));
     assert_eq!(req.poll(29), None);
     assert_eq!(
