@@ -39,7 +39,7 @@ fn the_codec_builds_the_generated_session_rules() {
     for (name, generated) in cases {
         let i = interpreter(name);
         let codec = i.codec();
-        let built = codec.with_session(|r| shown(r)).expect("a session");
+        let built = codec.with_session(shown).expect("a session");
         assert_eq!(built, shown(generated), "{name}");
         let packet = codec
             .with_session(|r| format!("{:?}", r.packet))

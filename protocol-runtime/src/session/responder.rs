@@ -166,7 +166,9 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Responder<'r, SLOTS, FRAME> {
 
     /// The slot of sequence number `seq`.
     fn index(&self, seq: u64) -> usize {
-        usize::try_from(seq % (SLOTS.max(1) as u64)).unwrap_or(0)
+        seq.checked_rem(SLOTS as u64)
+            .and_then(|i| usize::try_from(i).ok())
+            .unwrap_or(0)
     }
 
     /// True when a request of these values is remembered.
