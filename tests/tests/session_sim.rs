@@ -311,9 +311,16 @@ impl Mix {
 }
 
 /// The fault matrix: 100 schedules per loss rate and spec, the invariants checked on each and
-/// the totals printed.
+/// the totals printed, with the machines' fixed sizes.
 #[test]
 fn fault_matrix() {
+    use protocol::session::{Requester, Responder};
+    println!(
+        "machines ({SLOTS} slots of {} bytes): requester {} bytes, responder {} bytes",
+        sim::FRAME,
+        std::mem::size_of::<Requester<'_, SLOTS, { sim::FRAME }>>(),
+        std::mem::size_of::<Responder<'_, SLOTS, { sim::FRAME }>>()
+    );
     println!(
         "{:<8} {:>5} {:>7} {:>6} {:>6} {:>9} {:>6} {:>8} {:>6} {:>7} {:>6} {:>7} {:>7} {:>6}",
         "spec",
