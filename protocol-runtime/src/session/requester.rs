@@ -288,6 +288,8 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
     /// A checked frame arrived at `now`: the outcome of the open request it answers or refuses
     /// (the oldest, should several match), or an unsolicited message.
     pub fn on_frame(&mut self, now: u64, frame: &[u8]) -> Received {
+        // An answer resolves its request whenever it arrives before the timeout `poll` reports:
+        // the instant is not read, and is taken so that every event's call has the same shape.
         let _ = now;
         let heard = match self.rules.heard(frame) {
             Ok(h) => h,
