@@ -149,6 +149,7 @@ impl Draft {
             commands: IndexMap::new(),
             structs,
             enums: IndexMap::new(),
+            session: None,
         }
     }
 

@@ -107,6 +107,7 @@ pub mod model;
 mod payload;
 #[cfg(feature = "serde")]
 mod serde_impl;
+mod session;
 mod stream;
 mod value;
 

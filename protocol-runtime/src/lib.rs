@@ -17,6 +17,9 @@
 //! - [`packet`]: typed packets from the stream ([`PacketDecoder`], [`PacketEvent`]) and the
 //!   traits generated code and the run-time codec implement for it ([`PacketLayout`],
 //!   [`EncodePacket`]);
+//! - [`session`]: the conversation as data ([`SessionRules`]) and the sans-IO state machines
+//!   that hold it (a requester and a responder: answers, retries, handshake, watchdog,
+//!   duplicates);
 //! - [`wire`]: the cursors payload code reads and writes with ([`Reader`], [`Writer`]);
 //! - [`checksum`]: sums (plain, complemented, 16-bit), xor, Fletcher sums and CRCs ([`Checksum`]),
 //!   a CRC with a per-command byte folded in ([`checksum::Extra`]), and the table-free
@@ -194,6 +197,7 @@ pub mod packet;
 pub mod rules;
 #[cfg(feature = "serde")]
 pub mod serde_impl;
+pub mod session;
 pub mod stuffing;
 pub mod text;
 pub mod wire;
@@ -209,6 +213,7 @@ pub use group::Group;
 pub use layout::{FrameLayout, LayoutRef};
 pub use packet::{EncodePacket, PacketDecoder, PacketEvent, PacketLayout, Packets};
 pub use rules::PacketRules;
+pub use session::SessionRules;
 pub use text::{FixedStr, NulStr};
 pub use wire::{Reader, Writer};
 
@@ -290,6 +295,7 @@ pub mod __private {
         packed::*,
         packet::*,
         rules::*,
+        session,
         stuffing::*,
         text::{FixedStr, NulStr},
         wire::*,

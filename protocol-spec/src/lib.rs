@@ -1,6 +1,7 @@
 //! The spec front end: loading the TOML ([`spec`]), validating it into the checked IR
 //! ([`validate`], [`ir`]), lowering a frame format to the runtime's frame layout ([`layout`])
-//! and to its packet rules ([`rules`]), the diagnostics every stage reports into and their one
+//! and to its packet rules ([`rules`]), the conversation to its session rules ([`session`]),
+//! the diagnostics every stage reports into and their one
 //! renderer ([`diag`], [`source`]), and the lints ([`lint`]).
 //!
 //! The pipeline is `spec::load_spec` → `validate::validate`; [`compile`] runs both and is what
@@ -13,6 +14,7 @@ pub mod ir;
 pub mod layout;
 pub mod lint;
 pub mod rules;
+pub mod session;
 pub mod source;
 pub mod spec;
 pub mod validate;

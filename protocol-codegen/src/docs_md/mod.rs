@@ -1,5 +1,6 @@
 //! The Markdown reference of a spec (`protocol doc`): overview, addresses and directions, each
-//! frame format's layout and what it carries, the command table, every struct and every enum.
+//! frame format's layout and what it carries, the command table, the conversation (`session`),
+//! every struct and every enum.
 //!
 //! One function per section, called in document order by [`render`], so that a section can be
 //! added (packet diagrams of the frame formats, say) without touching the others. The layout
@@ -15,6 +16,8 @@
 //! assert!(md.contains("| 0x0c | `SET_ROBOT_SPEED` |"));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+
+mod session;
 
 use std::fmt::Write as _;
 
@@ -32,6 +35,7 @@ pub fn render(p: &Protocol) -> String {
     constants(p, &mut out);
     frames(p, &mut out);
     commands(p, &mut out);
+    session::session(p, &mut out);
     structs(p, &mut out);
     enums(p, &mut out);
     // One trailing newline, whatever the last section left.

@@ -23,9 +23,11 @@ pub use protocol_runtime::packed::BitOrder;
 
 mod frame;
 mod payload;
+mod session;
 
 pub use frame::*;
 pub use payload::*;
+pub use session::*;
 
 /// A whole protocol spec, checked.
 #[derive(Debug, Clone, PartialEq)]
@@ -55,6 +57,8 @@ pub struct Protocol {
     /// the runtime's `Frame::format`: the first format, then those with
     /// [`PacketKind::Commands`]. Empty when the link has one command format.
     pub link: Vec<usize>,
+    /// The conversation (`[session]`), when the spec declares one.
+    pub session: Option<Session>,
 }
 
 /// A named integer constant of the spec.

@@ -8,6 +8,7 @@
 pub mod model;
 #[cfg(feature = "schema")]
 pub mod schema;
+pub mod session;
 mod words;
 
 use std::ops::Range;

@@ -15,6 +15,8 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 use toml::Spanned;
 
+pub use super::session::{ModesDef, SessionDef, WatchdogDef};
+
 /// A spanned string.
 pub type SStr = Spanned<String>;
 /// A spanned integer (TOML integers are i64).
@@ -62,6 +64,10 @@ pub struct SpecFile {
     #[serde(default)]
     #[cfg_attr(feature = "schema", schemars(with = "BTreeMap<String, EnumDef>"))]
     pub enums: Named<EnumDef>,
+    /// `[session]`: who answers whom (answers, matching, timeouts, retries, handshake,
+    /// watchdog).
+    #[cfg_attr(feature = "schema", schemars(with = "Option<SessionDef>"))]
+    pub session: Option<Spanned<SessionDef>>,
 }
 
 /// `[protocol]`.
@@ -436,6 +442,15 @@ pub struct CommandDef {
     /// The byte a check with `extra = "command"` folds in for this command (0 to 255).
     #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub check_extra: Option<SInt>,
+    /// The answer this command's request expects (as `[session] answer`).
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
+    pub answer: Option<SStr>,
+    /// This command's timeout in milliseconds (as `[session] timeout_ms`).
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
+    pub timeout_ms: Option<SInt>,
+    /// This command's retries (as `[session] retries`).
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
+    pub retries: Option<SInt>,
     /// Documentation.
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,

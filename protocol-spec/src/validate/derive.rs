@@ -56,6 +56,7 @@ pub fn validate_derive(
         directions: Vec::new(),
         commands: Vec::new(),
         link: Vec::new(),
+        session: None,
     })
 }
 

@@ -11,6 +11,7 @@ mod directions;
 mod extra;
 mod frame;
 mod names;
+mod session;
 mod types;
 
 use std::ops::Range;
@@ -95,6 +96,7 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
         &structs,
     );
     extra::lower_extra_bytes(&mut frames, &commands);
+    let session = session::lower_session(&mut ctx, &frames, &commands);
 
     Some(ir::Protocol {
         name: p.name.get_ref().clone(),
@@ -108,6 +110,7 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
         directions,
         commands,
         link,
+        session,
     })
 }
 

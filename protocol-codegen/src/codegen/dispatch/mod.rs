@@ -2,8 +2,9 @@
 //! (`Message`, or `Request` and `Response` when the spec has directions; `message`), the
 //! `RULES` static of each format with a packet type (`rules`: the runtime's packet rules, as
 //! `protocol_spec::rules` lowers them), `Packet`, which decodes a frame into a header and a
-//! message and encodes one back through its `RULES` (`packet`), and the packets of the other
-//! frame formats (`frames`, `link`, `given`).
+//! message and encodes one back through its `RULES` (`packet`), the packets of the other
+//! frame formats (`frames`, `link`, `given`), and the `SESSION` static of a spec with a
+//! conversation (`session`).
 
 mod command;
 mod frames;
@@ -12,6 +13,7 @@ mod link;
 mod message;
 mod packet;
 mod rules;
+mod session;
 
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -28,6 +30,7 @@ use message::{emit_direction_message, emit_message_enum};
 pub(crate) use packet::direction_test;
 use packet::emit_packet;
 use rules::emit_rules;
+use session::emit_session;
 
 /// Everything about commands and messages, for the first frame.
 pub fn emit_dispatch(p: &Protocol) -> TokenStream {
@@ -97,6 +100,7 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
             out.extend(emit_can_packet(cf, &rt));
         }
     }
+    out.extend(emit_session(p, &rt));
     out
 }
 

@@ -16,7 +16,7 @@ pub(super) fn rules_static(f: &Frame) -> Ident {
 }
 
 /// A field of the rules: its `wire` const, narrowed or widened where the rules read other bits.
-fn field(f: &Frame, k: &Field, rt: &TokenStream) -> TokenStream {
+pub(super) fn field(f: &Frame, k: &Field, rt: &TokenStream) -> TokenStream {
     if k.is_value_field(f) {
         let c = wire_const(f, k.value);
         quote!(wire::#c)

@@ -1,0 +1,120 @@
+//! The `SESSION` static of a spec with `[session]`: its conversation, as
+//! [`lower_session`] plans it, printed as the runtime's `SessionRules` value over the session
+//! frame's `RULES`. The machines (`session::Requester`, `session::Responder`) run it; this
+//! module prints it.
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use super::rules::{field, rules_static};
+use crate::ir::Protocol;
+use crate::session::{SessionPlan, lower_session};
+use protocol_runtime::session::{Answer, Exchange};
+
+fn opt_key(rt: &TokenStream, k: Option<u64>) -> TokenStream {
+    match k {
+        Some(k) => {
+            let k = key_lit(k);
+            quote!(#rt::Some(#k))
+        }
+        None => quote!(#rt::None),
+    }
+}
+
+fn range(rt: &TokenStream, r: Option<(u64, u64)>) -> TokenStream {
+    match r {
+        Some((a, b)) => quote!(#rt::Some((#a, #b))),
+        None => quote!(#rt::None),
+    }
+}
+
+/// A command's key in hex, as the spec writes ids (`0x0302` is `[0x03, 0x02]`).
+fn key_lit(k: u64) -> TokenStream {
+    let lit = proc_macro2::Literal::u64_suffixed(k);
+    format!("0x{k:X}_u64")
+        .parse()
+        .unwrap_or_else(|_| quote!(#lit))
+}
+
+fn exchange(rt: &TokenStream, e: &Exchange) -> TokenStream {
+    let s = quote!(#rt::session);
+    let answer = match e.answer {
+        Answer::None => quote!(#s::Answer::None),
+        Answer::Reply => quote!(#s::Answer::Reply),
+        Answer::Ack => quote!(#s::Answer::Ack),
+        Answer::Command(k) => {
+            let k = key_lit(k);
+            quote!(#s::Answer::Command(#k))
+        }
+    };
+    let key = key_lit(e.key);
+    let (timeout, retries, backoff) = (e.timeout, e.retries, e.backoff);
+    quote!(#s::Exchange { key: #key, answer: #answer, timeout: #timeout, retries: #retries, backoff: #backoff })
+}
+
+/// The `SESSION` static, when the spec has a session.
+pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
+    let Some(plan): Option<SessionPlan> = lower_session(p) else {
+        return quote!();
+    };
+    let Some(f) = p.frames.get(plan.frame) else {
+        return quote!();
+    };
+    let s = quote!(#rt::session);
+    let rules = rules_static(f);
+    let default = exchange(rt, &plan.default);
+    let exchanges = plan.exchanges.iter().map(|e| exchange(rt, e));
+    let sequence = match plan.sequence {
+        Some(k) => {
+            let k = field(f, &k, rt);
+            quote!(#rt::Some(#k))
+        }
+        None => quote!(#rt::None),
+    };
+    let echo = plan.echo.iter().map(|k| field(f, k, rt));
+    let swap = match plan.swap {
+        Some((a, b)) => {
+            let (a, b) = (field(f, &a, rt), field(f, &b, rt));
+            quote!(#rt::Some((#a, #b)))
+        }
+        None => quote!(#rt::None),
+    };
+    let nack = opt_key(rt, plan.nack);
+    let handshake = opt_key(rt, plan.handshake);
+    let watchdog = match plan.watchdog {
+        Some(w) => {
+            let (key, period) = (key_lit(w.key), w.period);
+            quote!(#rt::Some(#s::Watchdog { key: #key, period: #period }))
+        }
+        None => quote!(#rt::None),
+    };
+    let modes = match plan.modes {
+        Some((k, m)) => {
+            let k = field(f, &k, rt);
+            let (none, once) = (range(rt, m.none), range(rt, m.once));
+            quote!(#rt::Some(#s::Modes { field: #k, none: #none, once: #once }))
+        }
+        None => quote!(#rt::None),
+    };
+    let name = format_ident!("SESSION");
+    let doc = format!(
+        " The conversation of the `{}` frame format: the answer each request expects, how it \
+         is matched, timeouts and retries. `session::Requester` and `session::Responder` run it.",
+        f.name
+    );
+    quote! {
+        #[doc = #doc]
+        pub static #name: #s::SessionRules<'static> = #s::SessionRules {
+            packet: &#rules,
+            default: #default,
+            exchanges: &[#(#exchanges),*],
+            sequence: #sequence,
+            echo: &[#(#echo),*],
+            swap: #swap,
+            nack: #nack,
+            handshake: #handshake,
+            watchdog: #watchdog,
+            modes: #modes,
+        };
+    }
+}

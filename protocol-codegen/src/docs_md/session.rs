@@ -1,0 +1,200 @@
+//! The conversation section of the Markdown reference (`[session]`): the rules as a table,
+//! the commands that expect otherwise than the default, and a sequence diagram (Mermaid) of
+//! each kind of exchange the spec has.
+
+use std::fmt::Write as _;
+
+use crate::ir::{AnswerKind, Exchange, Frame, Protocol, Session};
+
+/// What an answer is, in words.
+fn answer_text(p: &Protocol, a: AnswerKind) -> String {
+    match a {
+        AnswerKind::None => "none".to_string(),
+        AnswerKind::Reply => "the same command back".to_string(),
+        AnswerKind::Ack => "an acknowledgement".to_string(),
+        AnswerKind::Command(c) => format!("`{}`", p.commands[c].name),
+    }
+}
+
+/// The waits of an exchange, in words.
+fn waits(e: &Exchange) -> String {
+    if e.answer == AnswerKind::None {
+        return "-".to_string();
+    }
+    let mut wait = u64::from(e.timeout_ms);
+    let mut all = vec![wait.to_string()];
+    for _ in 0..e.retries {
+        wait = wait.saturating_mul(u64::from(e.backoff));
+        all.push(wait.to_string());
+    }
+    format!("{} ms", all.join(", "))
+}
+
+fn name(f: &Frame, v: usize) -> String {
+    format!("`{}`", f.values[v].name)
+}
+
+/// How an answer is matched to its request, in words.
+fn matched(p: &Protocol, s: &Session, f: &Frame) -> String {
+    let kind = match s.default.answer {
+        AnswerKind::None => "its kind (command)".to_string(),
+        AnswerKind::Reply => "its command (the request's)".to_string(),
+        AnswerKind::Ack => "its acknowledgement flag".to_string(),
+        AnswerKind::Command(c) => format!("its command (`{}`)", p.commands[c].name),
+    };
+    let mut parts = vec![kind];
+    if let Some(q) = s.sequence {
+        parts.push(format!("{} repeated", name(f, q)));
+    }
+    parts.extend(s.echo.iter().map(|&v| format!("{} repeated", name(f, v))));
+    if let Some((a, b)) = s.swap {
+        parts.push(format!("{} and {} swapped", name(f, a), name(f, b)));
+    }
+    if let Some(n) = s.nack {
+        parts.push(format!("`{}` refuses", p.commands[n].name));
+    }
+    parts.join("; ")
+}
+
+/// The rules, one row each.
+fn rules(p: &Protocol, s: &Session, f: &Frame, out: &mut String) {
+    let _ = writeln!(out, "| rule | value |\n|---|---|");
+    let _ = writeln!(out, "| frame format | `{}` |", f.name);
+    let d = &s.default;
+    let _ = writeln!(out, "| a request expects | {} |", answer_text(p, d.answer));
+    let _ = writeln!(out, "| an answer is matched by | {} |", matched(p, s, f));
+    let _ = writeln!(
+        out,
+        "| waits before each retry, then the timeout | {} |",
+        waits(d)
+    );
+    let dup = match s.sequence {
+        Some(q) => format!("answered again, not delivered twice (by {})", name(f, q)),
+        None => "delivered again (no sequence number)".to_string(),
+    };
+    let _ = writeln!(out, "| a request received twice | {dup} |");
+    if let Some(h) = s.handshake {
+        let _ = writeln!(
+            out,
+            "| handshake | `{}`, answered before any other request |",
+            p.commands[h].name
+        );
+    }
+    if let Some(m) = s.modes {
+        let range =
+            |r: Option<(u64, u64)>, what: &str| r.map(|(a, b)| format!("{a} to {b}: {what}"));
+        let modes: Vec<String> = [
+            range(m.none, "no answer"),
+            range(m.once, "answered, not retried"),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        let _ = writeln!(
+            out,
+            "| modes ({}) | {}; other values: as the command says |",
+            name(f, m.value),
+            modes.join("; ")
+        );
+    }
+    if let Some(w) = &s.watchdog {
+        let _ = writeln!(
+            out,
+            "| watchdog | `{}` at least every {} ms. {} |",
+            p.commands[w.command].name,
+            w.period_ms,
+            super::cell(&w.doc)
+        );
+    }
+    out.push('\n');
+}
+
+/// The commands whose requests expect otherwise than the default.
+fn exceptions(p: &Protocol, s: &Session, out: &mut String) {
+    let differ: Vec<&Exchange> = s
+        .exchanges
+        .iter()
+        .filter(|e| {
+            Exchange { command: 0, ..**e }
+                != Exchange {
+                    command: 0,
+                    ..s.default
+                }
+        })
+        .collect();
+    if differ.is_empty() {
+        return;
+    }
+    let _ = writeln!(out, "| command | expects | waits |\n|---|---|---|");
+    for e in differ {
+        let _ = writeln!(
+            out,
+            "| `{}` | {} | {} |",
+            p.commands[e.command].name,
+            answer_text(p, e.answer),
+            waits(e)
+        );
+    }
+    out.push('\n');
+}
+
+/// A sequence diagram of an exchange.
+fn diagram(p: &Protocol, s: &Session, f: &Frame, e: &Exchange, out: &mut String) {
+    let seq = s
+        .sequence
+        .map(|q| format!(" ({} n)", f.values[q].name))
+        .unwrap_or_default();
+    let _ = writeln!(out, "```mermaid\nsequenceDiagram");
+    let _ = writeln!(
+        out,
+        "    participant R as requester\n    participant S as responder"
+    );
+    if let Some(h) = s.handshake {
+        let answer = match s.exchanges.get(h).map_or(e.answer, |x| x.answer) {
+            AnswerKind::Reply => p.commands[h].name.clone(),
+            other => answer_text(p, other).replace('`', ""),
+        };
+        let _ = writeln!(
+            out,
+            "    R->>S: {}\n    S-->>R: {answer}",
+            p.commands[h].name
+        );
+    }
+    let _ = writeln!(out, "    R->>S: request{seq}");
+    let _ = writeln!(
+        out,
+        "    S-->>R: {}{seq}",
+        answer_text(p, e.answer).replace('`', "")
+    );
+    let note = if e.retries == 0 {
+        format!("no answer in {}: timed out", waits(e))
+    } else {
+        format!(
+            "no answer: sent again after each wait but the last ({}), then timed out",
+            waits(e)
+        )
+    };
+    let _ = writeln!(out, "    Note over R: {note}");
+    let _ = writeln!(out, "```\n");
+}
+
+/// The `## Conversation` section, when the spec has a session.
+pub(super) fn session(p: &Protocol, out: &mut String) {
+    let Some(s) = &p.session else {
+        return;
+    };
+    let Some(f) = p.frames.get(s.frame) else {
+        return;
+    };
+    let _ = writeln!(out, "## Conversation\n");
+    if !s.doc.is_empty() {
+        let _ = writeln!(out, "{}\n", s.doc);
+    }
+    rules(p, s, f, out);
+    exceptions(p, s, out);
+    if s.default.answer != AnswerKind::None {
+        diagram(p, s, f, &s.default, out);
+    } else if let Some(e) = s.exchanges.iter().find(|e| e.answer != AnswerKind::None) {
+        diagram(p, s, f, e, out);
+    }
+}

@@ -1,0 +1,245 @@
+//! The conversation of a link as data, and the sans-IO state machines that hold it: which
+//! answer a request expects (the same command back, the format's acknowledgement, another
+//! command, or none), how an answer is matched to its request (the command, a sequence number
+//! and further header values it repeats, the addresses it swaps), timeouts, retries and their
+//! backoff, a handshake that must precede other requests, a command that must keep arriving
+//! (a watchdog), and duplicate suppression by sequence number.
+//!
+//! As [`PacketRules`] is for packets, a [`SessionRules`] is one value that generated code holds
+//! as a `static` (`SESSION`) and the run-time codec builds from a spec. The machines,
+//! [`Requester`] and [`Responder`], execute it over frames the engine has checked: they read
+//! the key, the acknowledgement flag and header values through the packet rules and the word
+//! fields of the session rules, write the values they assign (the sequence number, the values
+//! an answer repeats) into a frame and seal it through the frame rules. They hold no I/O and no
+//! clock: time is passed in as a monotonic instant in milliseconds, and each step returns what
+//! to transmit and what to deliver. Their tables are fixed arrays sized by const generics: no
+//! heap.
+//!
+//! This module does not decode payloads (the packet code does) nor read the wire.
+
+use crate::error::DecodeError;
+use crate::layout::WordField;
+use crate::rules::PacketRules;
+
+mod requester;
+mod responder;
+
+pub use requester::{Due, Outcome, Received, Requester, Resolution, SendError, Ticket};
+pub use responder::{Alarm, AnswerError, Incoming, Responder};
+
+/// The answer a request expects.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Answer {
+    /// None: the request is sent once and forgotten.
+    None,
+    /// The same command, sent back (HFLink: a READ's reply, a SET's empty acknowledgement).
+    Reply,
+    /// The format's acknowledgement (a frame whose ack flag is set).
+    Ack,
+    /// Another command, by its key (Dynamixel: a STATUS packet).
+    Command(u64),
+}
+
+/// What a request of one command expects.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Exchange {
+    /// The command's key, as [`PacketRules::key`] reads it.
+    pub key: u64,
+    /// The answer it expects.
+    pub answer: Answer,
+    /// Milliseconds to wait for the answer before the first retry (or the timeout).
+    pub timeout: u32,
+    /// Times the request is sent again before it times out.
+    pub retries: u8,
+    /// Each retry waits this many times longer than the one before (1: a fixed wait).
+    pub backoff: u8,
+}
+
+impl Exchange {
+    /// The longest a request lives: its first wait and every retry's, in milliseconds.
+    #[must_use]
+    pub fn lifetime(&self) -> u64 {
+        let mut wait = u64::from(self.timeout);
+        let mut total = wait;
+        for _ in 0..self.retries {
+            wait = wait.saturating_mul(u64::from(self.backoff.max(1)));
+            total = total.saturating_add(wait);
+        }
+        total
+    }
+}
+
+/// A command that must keep arriving: the receiver reports when `period` milliseconds pass
+/// without one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Watchdog {
+    /// The command's key.
+    pub key: u64,
+    /// Longest gap between two of its frames, in milliseconds.
+    pub period: u32,
+}
+
+/// A header value that says, per request, whether it expects an answer (RoboRTS's session id:
+/// 0 none, 1 an answer without retries, 2 to 31 an answer with retries).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Modes {
+    /// The header value.
+    pub field: WordField,
+    /// Values `first ..= last` of a request that expects no answer.
+    pub none: Option<(u64, u64)>,
+    /// Values `first ..= last` of a request that expects its answer but is sent once.
+    pub once: Option<(u64, u64)>,
+}
+
+/// The conversation of a frame format.
+#[derive(Debug, Clone, Copy)]
+pub struct SessionRules<'a> {
+    /// The packet rules the frames are read through (key, acknowledgement flag) and sealed by.
+    pub packet: &'a PacketRules<'a>,
+    /// What a request of a command that [`exchanges`](Self::exchanges) does not list expects
+    /// (its `key` is not read).
+    pub default: Exchange,
+    /// The commands whose requests expect otherwise than the default, in spec order.
+    pub exchanges: &'a [Exchange],
+    /// The header value the requester numbers and an answer repeats; the responder suppresses
+    /// duplicates by it.
+    pub sequence: Option<WordField>,
+    /// Further header values an answer repeats from its request (at most
+    /// [`MAX_ECHO`](Self::MAX_ECHO)).
+    pub echo: &'a [WordField],
+    /// The address values `(sender, receiver)` an answer swaps.
+    pub swap: Option<(WordField, WordField)>,
+    /// The key of a command that answers an open request as a refusal.
+    pub nack: Option<u64>,
+    /// The key of a command whose answered request precedes every other request.
+    pub handshake: Option<u64>,
+    /// A command that must keep arriving.
+    pub watchdog: Option<Watchdog>,
+    /// A header value that says whether a request expects an answer.
+    pub modes: Option<Modes>,
+}
+
+/// What a checked frame is, as the conversation reads it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Heard {
+    /// An acknowledgement.
+    Ack,
+    /// A command, by its key.
+    Command(u64),
+}
+
+/// The values that identify a request: its key, sequence number, repeated and address values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct Ids {
+    pub key: u64,
+    pub seq: u64,
+    pub values: [u64; SessionRules::MAX_ECHO],
+    pub from: u64,
+    pub to: u64,
+}
+
+impl SessionRules<'_> {
+    /// The most header values an answer repeats besides the sequence number.
+    pub const MAX_ECHO: usize = 2;
+
+    /// What `frame` is: an acknowledgement, or a command and its key.
+    ///
+    /// # Errors
+    ///
+    /// The errors of [`PacketRules::ack_data`] and [`PacketRules::key`].
+    pub fn heard(&self, frame: &[u8]) -> Result<Heard, DecodeError> {
+        if self.packet.ack_data(frame)?.is_some() {
+            return Ok(Heard::Ack);
+        }
+        Ok(Heard::Command(self.packet.key(frame)?))
+    }
+
+    /// What a request of command `key` expects: its exchange, or the default.
+    #[must_use]
+    pub fn exchange(&self, key: u64) -> Exchange {
+        self.exchanges
+            .iter()
+            .find(|e| e.key == key)
+            .copied()
+            .unwrap_or(Exchange {
+                key,
+                ..self.default
+            })
+    }
+
+    /// What the request `frame` of command `key` expects, its modes applied.
+    #[must_use]
+    pub fn expects(&self, key: u64, frame: &[u8]) -> Exchange {
+        let mut e = self.exchange(key);
+        if let Some(m) = self.modes
+            && let Some(v) = m.field.read(frame)
+        {
+            let within = |r: Option<(u64, u64)>| r.is_some_and(|(a, b)| a <= v && v <= b);
+            if within(m.none) {
+                e.answer = Answer::None;
+            } else if within(m.once) {
+                e.retries = 0;
+            }
+        }
+        e
+    }
+
+    /// The longest any request lives (its waits and retries), in milliseconds.
+    #[must_use]
+    pub fn lifetime(&self) -> u64 {
+        self.exchanges
+            .iter()
+            .map(Exchange::lifetime)
+            .fold(self.default.lifetime(), u64::max)
+    }
+
+    /// The values that identify the request `frame` of command `key` (those of its fields the
+    /// frame holds; a value it lacks reads as 0).
+    pub(crate) fn ids(&self, key: u64, frame: &[u8]) -> Ids {
+        let read = |f: Option<WordField>| f.and_then(|f| f.read(frame)).unwrap_or(0);
+        let mut ids = Ids {
+            key,
+            seq: read(self.sequence),
+            from: read(self.swap.map(|s| s.0)),
+            to: read(self.swap.map(|s| s.1)),
+            ..Ids::default()
+        };
+        for (slot, f) in ids.values.iter_mut().zip(self.echo) {
+            *slot = f.read(frame).unwrap_or(0);
+        }
+        ids
+    }
+
+    /// Whether `frame` repeats what its request `ids` told (the sequence number, the echoed
+    /// values) and swaps its addresses.
+    pub(crate) fn repeats(&self, ids: &Ids, frame: &[u8]) -> bool {
+        let is = |f: Option<WordField>, v: u64| f.is_none_or(|f| f.read(frame) == Some(v));
+        is(self.sequence, ids.seq)
+            && self
+                .echo
+                .iter()
+                .zip(ids.values)
+                .all(|(f, v)| f.read(frame) == Some(v))
+            && is(self.swap.map(|s| s.0), ids.to)
+            && is(self.swap.map(|s| s.1), ids.from)
+    }
+
+    /// Writes into the answer `frame` what it repeats from its request `ids` (the sequence
+    /// number, the echoed values, the swapped addresses); `None` if a value does not fit.
+    pub(crate) fn write_repeats(&self, ids: &Ids, frame: &mut [u8]) -> Option<()> {
+        if let Some(f) = self.sequence {
+            f.write(frame, ids.seq)?;
+        }
+        for (f, v) in self.echo.iter().zip(ids.values) {
+            f.write(frame, v)?;
+        }
+        if let Some((from, to)) = self.swap {
+            from.write(frame, ids.to)?;
+            to.write(frame, ids.from)?;
+        }
+        Some(())
+    }
+}
+
+#[cfg(test)]
+mod tests;

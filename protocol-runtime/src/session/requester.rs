@@ -1,0 +1,365 @@
+//! The requester: the side that sends requests and waits for their answers. Every request
+//! that expects an answer holds a slot of a fixed table until it resolves to exactly one
+//! [`Resolution`]: its answer, a refusal (the spec's NACK) or a timeout after its retries.
+
+use super::{Answer, Heard, Ids, SessionRules};
+use crate::error::{DecodeError, EncodeError};
+
+/// A request that expects an answer, as [`Requester::send`] numbers it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Ticket(pub u32);
+
+/// How a request ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Resolution {
+    /// Its answer arrived (the frame passed to [`Requester::on_frame`]).
+    Answered,
+    /// The spec's NACK command answered it.
+    Refused,
+    /// No answer came within its timeout and retries.
+    TimedOut,
+}
+
+/// A request's one outcome.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Outcome {
+    /// The request.
+    pub ticket: Ticket,
+    /// How it ended.
+    pub resolution: Resolution,
+}
+
+/// Why a request cannot be sent.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum SendError {
+    /// The spec's handshake must be answered before this request.
+    Handshake,
+    /// Every slot holds an open request.
+    Full,
+    /// An open request is numbered `SLOTS` or more before this one: sending it would move
+    /// the responder's window of remembered numbers past that request (it waits until the old
+    /// one resolves).
+    Window,
+    /// A request of the same command to the same peer is open, and without a sequence number
+    /// their answers could not be told apart.
+    Ambiguous,
+    /// The frame is longer than a slot holds.
+    TooLong,
+    /// The frame is not a request (too short for its key, or an acknowledgement).
+    NotARequest(DecodeError),
+    /// The sequence number does not fit the frame, or sealing it failed.
+    Encode(EncodeError),
+}
+
+/// What a frame that arrived at the requester is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Received {
+    /// It resolves an open request (answer or refusal): the request's one outcome.
+    Outcome(Outcome),
+    /// It answers no open request: an unsolicited message (or an answer that came after its
+    /// request resolved), for the application to handle as it does any message.
+    Unsolicited,
+    /// It cannot be read as a frame of the format.
+    Unreadable(DecodeError),
+}
+
+/// What the passing of time asks for.
+#[derive(Debug, PartialEq, Eq)]
+pub enum Due<'a> {
+    /// Send a request's frame again: a retry.
+    Resend {
+        /// The request.
+        ticket: Ticket,
+        /// Its frame, as first sent.
+        frame: &'a [u8],
+    },
+    /// A request timed out after its retries.
+    Outcome(Outcome),
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Open {
+    ticket: Ticket,
+    ids: Ids,
+    answer: Answer,
+    deadline: u64,
+    wait: u64,
+    retries_left: u8,
+    backoff: u8,
+}
+
+/// A slot of the table: an open request and the bytes of its frame, for retries.
+#[derive(Debug, Clone, Copy)]
+struct Slot<const FRAME: usize> {
+    open: Option<Open>,
+    frame: [u8; FRAME],
+    len: usize,
+}
+
+/// The requester's state machine: at most `SLOTS` open requests of frames of at most `FRAME`
+/// bytes.
+///
+/// ```
+/// use protocol_runtime::session::{Answer, Exchange, Requester, Received, Resolution, SessionRules};
+/// use protocol_runtime::layout::{ByteOrder, Check, FrameLayout, LengthRule, Pos, WordField};
+/// use protocol_runtime::{Checksum, PacketRules};
+///
+/// // `AA seq cmd payload sum8`: every frame is 4 bytes.
+/// static LAYOUT: FrameLayout<'static> = FrameLayout {
+///     sync: &[0xAA], sync_set: &[], header_len: 3, min_len: 4, max_len: 4,
+///     length: LengthRule::Fixed(4), constants: &[], header_checks: &[],
+///     frame_checks: &[Check { checksum: Checksum::Sum8, from: Pos::Start(0), to: Pos::End(1),
+///                             at: Pos::End(1), order: ByteOrder::Little }],
+///     markers: &[],
+/// };
+/// static RULES: PacketRules<'static> = PacketRules {
+///     layout: &LAYOUT, header_len: 3, trailer_len: 1, max_payload: 0,
+///     key: &[WordField::le(2, 1)], ack: None, directions: &[], stuffing: None,
+///     truncate_zeros: false,
+/// };
+/// static SESSION: SessionRules<'static> = SessionRules {
+///     packet: &RULES,
+///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 1, backoff: 2 },
+///     exchanges: &[],
+///     sequence: Some(WordField::le(1, 1)), echo: &[], swap: None, nack: None,
+///     handshake: None, watchdog: None, modes: None,
+/// };
+///
+/// let mut requester = Requester::<'_, 4, 4>::new(&SESSION);
+/// let mut frame = [0xAA, 0, 7, 0];
+/// let ticket = requester.send(0, &mut frame)?.expect("an answer is expected");
+/// assert_eq!(frame, [0xAA, 0, 7, 0xB1]); // numbered 0 and sealed
+///
+/// // No answer within 50 ms: the request is sent again, then waits 100 ms.
+/// assert!(matches!(requester.poll(50), Some(protocol_runtime::session::Due::Resend { .. })));
+/// let answer = [0xAA, 0, 7, 0xB1];
+/// let Received::Outcome(outcome) = requester.on_frame(60, &answer) else { panic!() };
+/// assert_eq!((outcome.ticket, outcome.resolution), (ticket, Resolution::Answered));
+/// assert_eq!(requester.on_frame(61, &answer), Received::Unsolicited); // a late duplicate
+/// # Ok::<(), protocol_runtime::session::SendError>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct Requester<'r, const SLOTS: usize, const FRAME: usize> {
+    rules: &'r SessionRules<'r>,
+    slots: [Slot<FRAME>; SLOTS],
+    next_seq: u64,
+    next_ticket: u32,
+    handshaken: bool,
+}
+
+impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
+    /// A requester with no open request; before its handshake when the rules have one.
+    #[must_use]
+    pub fn new(rules: &'r SessionRules<'r>) -> Self {
+        Self {
+            rules,
+            slots: [Slot {
+                open: None,
+                frame: [0; FRAME],
+                len: 0,
+            }; SLOTS],
+            next_seq: 0,
+            next_ticket: 0,
+            handshaken: rules.handshake.is_none(),
+        }
+    }
+
+    /// True once the handshake is answered (always, without a handshake).
+    #[must_use]
+    pub fn handshaken(&self) -> bool {
+        self.handshaken
+    }
+
+    /// The number of open requests.
+    #[must_use]
+    pub fn open(&self) -> usize {
+        self.slots.iter().filter(|s| s.open.is_some()).count()
+    }
+
+    /// The earliest instant at which [`poll`](Self::poll) has something to do.
+    #[must_use]
+    pub fn next_deadline(&self) -> Option<u64> {
+        self.slots
+            .iter()
+            .filter_map(|s| s.open.map(|o| o.deadline))
+            .min()
+    }
+
+    /// The application sends the request `frame` (assembled by its encoder) at `now`: the
+    /// requester writes the next sequence number into it and seals it; the caller transmits
+    /// the frame as it then is. Returns the request's ticket when it expects an answer (the
+    /// ticket's one [`Outcome`] comes from [`on_frame`](Self::on_frame) or
+    /// [`poll`](Self::poll)), `None` when it expects none.
+    ///
+    /// # Errors
+    ///
+    /// [`SendError`]; nothing is sent and no sequence number is used.
+    pub fn send(&mut self, now: u64, frame: &mut [u8]) -> Result<Option<Ticket>, SendError> {
+        let key = match self.rules.heard(frame).map_err(SendError::NotARequest)? {
+            Heard::Command(key) => key,
+            Heard::Ack => return Err(SendError::NotARequest(DecodeError::UnknownDirection)),
+        };
+        if !self.handshaken && Some(key) != self.rules.handshake {
+            return Err(SendError::Handshake);
+        }
+        let e = self.rules.expects(key, frame);
+        if e.answer == Answer::None {
+            self.check_window()?;
+            self.number(frame)?;
+            return Ok(None);
+        }
+        if frame.len() > FRAME {
+            return Err(SendError::TooLong);
+        }
+        let index = self.free_slot(key, frame)?;
+        self.check_window()?;
+        self.number(frame)?;
+        let ticket = Ticket(self.next_ticket);
+        self.next_ticket = self.next_ticket.wrapping_add(1);
+        let slot = self.slots.get_mut(index).ok_or(SendError::Full)?;
+        let stored = slot
+            .frame
+            .get_mut(..frame.len())
+            .ok_or(SendError::TooLong)?;
+        stored.copy_from_slice(frame);
+        slot.len = frame.len();
+        let wait = u64::from(e.timeout);
+        slot.open = Some(Open {
+            ticket,
+            ids: self.rules.ids(key, frame),
+            answer: e.answer,
+            deadline: now.saturating_add(wait),
+            wait,
+            retries_left: e.retries,
+            backoff: e.backoff.max(1),
+        });
+        Ok(Some(ticket))
+    }
+
+    /// A free slot for a request of `key`; without a sequence number, none while a request
+    /// that an answer could not be told from is open.
+    fn free_slot(&self, key: u64, frame: &[u8]) -> Result<usize, SendError> {
+        if self.rules.sequence.is_none() {
+            let ids = self.rules.ids(key, frame);
+            if self
+                .slots
+                .iter()
+                .any(|s| s.open.is_some_and(|o| o.ids == ids))
+            {
+                return Err(SendError::Ambiguous);
+            }
+        }
+        self.slots
+            .iter()
+            .position(|s| s.open.is_none())
+            .ok_or(SendError::Full)
+    }
+
+    /// Rule: no open request is `SLOTS` or more numbers before the next one.
+    fn check_window(&self) -> Result<(), SendError> {
+        let Some(f) = self.rules.sequence else {
+            return Ok(());
+        };
+        let next = self.next_seq & f.max_value();
+        let wide = self
+            .slots
+            .iter()
+            .filter_map(|s| s.open)
+            .any(|o| (next.wrapping_sub(o.ids.seq) & f.max_value()) >= SLOTS as u64);
+        if wide { Err(SendError::Window) } else { Ok(()) }
+    }
+
+    /// Writes the next sequence number into `frame` and seals it.
+    fn number(&mut self, frame: &mut [u8]) -> Result<(), SendError> {
+        if let Some(f) = self.rules.sequence {
+            let seq = self.next_seq & f.max_value();
+            f.write(frame, seq)
+                .ok_or(SendError::Encode(EncodeError::ValueOutOfRange))?;
+            self.next_seq = seq.wrapping_add(1) & f.max_value();
+        }
+        self.rules
+            .packet
+            .layout
+            .seal(frame)
+            .map_err(SendError::Encode)
+    }
+
+    /// A checked frame arrived at `now`: the outcome of the open request it answers or refuses
+    /// (the oldest, should several match), or an unsolicited message.
+    pub fn on_frame(&mut self, now: u64, frame: &[u8]) -> Received {
+        // An answer resolves its request whenever it arrives before the timeout `poll` reports:
+        // the instant is not read, and is taken so that every event's call has the same shape.
+        let _ = now;
+        let heard = match self.rules.heard(frame) {
+            Ok(h) => h,
+            Err(e) => return Received::Unreadable(e),
+        };
+        let rules = self.rules;
+        let answers = |o: &Open| match (o.answer, heard) {
+            (Answer::Reply, Heard::Command(k)) => k == o.ids.key,
+            (Answer::Ack, Heard::Ack) => true,
+            (Answer::Command(c), Heard::Command(k)) => k == c,
+            _ => false,
+        };
+        let refuses = matches!(heard, Heard::Command(k) if Some(k) == rules.nack);
+        let mut found: Option<(usize, Resolution, Ticket)> = None;
+        for (i, s) in self.slots.iter().enumerate() {
+            let Some(o) = s.open.filter(|o| rules.repeats(&o.ids, frame)) else {
+                continue;
+            };
+            let resolution = if answers(&o) {
+                Resolution::Answered
+            } else if refuses {
+                Resolution::Refused
+            } else {
+                continue;
+            };
+            if found.is_none_or(|(_, _, t)| o.ticket < t) {
+                found = Some((i, resolution, o.ticket));
+            }
+        }
+        let Some((i, resolution, ticket)) = found else {
+            return Received::Unsolicited;
+        };
+        if let Some(slot) = self.slots.get_mut(i) {
+            if let Some(o) = slot.open.take()
+                && Some(o.ids.key) == rules.handshake
+                && resolution == Resolution::Answered
+            {
+                self.handshaken = true;
+            }
+        }
+        Received::Outcome(Outcome { ticket, resolution })
+    }
+
+    /// Time advanced to `now`: a retry to send, or a request that timed out; `None` when
+    /// nothing is due. Call it until it returns `None`.
+    pub fn poll(&mut self, now: u64) -> Option<Due<'_>> {
+        let (i, _) = self
+            .slots
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| s.open.map(|o| (i, o.deadline)))
+            .filter(|&(_, d)| d <= now)
+            .min_by_key(|&(_, d)| d)?;
+        let slot = self.slots.get_mut(i)?;
+        let mut o = slot.open?;
+        if o.retries_left == 0 {
+            slot.open = None;
+            return Some(Due::Outcome(Outcome {
+                ticket: o.ticket,
+                resolution: Resolution::TimedOut,
+            }));
+        }
+        o.retries_left = o.retries_left.saturating_sub(1);
+        o.wait = o.wait.saturating_mul(u64::from(o.backoff));
+        o.deadline = now.saturating_add(o.wait);
+        slot.open = Some(o);
+        let frame = slot.frame.get(..slot.len)?;
+        Some(Due::Resend {
+            ticket: o.ticket,
+            frame,
+        })
+    }
+}

@@ -1,0 +1,80 @@
+//! The conversation of the IR (`[session]`): the frame format it reads, the values an answer
+//! repeats, and what each command's request expects. Every name is resolved to an index.
+
+/// The answer a request expects.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AnswerKind {
+    /// None: sent once and forgotten.
+    None,
+    /// The same command, sent back.
+    Reply,
+    /// The format's acknowledgement.
+    Ack,
+    /// Another command (index into [`Protocol::commands`](super::Protocol::commands)).
+    Command(usize),
+}
+
+/// What a command's request expects.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Exchange {
+    /// The command (index into [`Protocol::commands`](super::Protocol::commands)).
+    pub command: usize,
+    /// The answer.
+    pub answer: AnswerKind,
+    /// Milliseconds before the first retry (or the timeout).
+    pub timeout_ms: u32,
+    /// Times the request is sent again.
+    pub retries: u8,
+    /// Each retry waits this many times longer than the one before.
+    pub backoff: u8,
+}
+
+/// A command that must keep arriving.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Watchdog {
+    /// The command (index into [`Protocol::commands`](super::Protocol::commands)).
+    pub command: usize,
+    /// Longest gap between two of its frames, in milliseconds.
+    pub period_ms: u32,
+    /// Documentation.
+    pub doc: String,
+}
+
+/// A header value whose value says whether a request expects an answer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Modes {
+    /// The header value (index into the session frame's values).
+    pub value: usize,
+    /// Values of a request that expects no answer.
+    pub none: Option<(u64, u64)>,
+    /// Values of a request that expects its answer, sent once.
+    pub once: Option<(u64, u64)>,
+}
+
+/// The conversation of the link.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Session {
+    /// The frame format whose frames it reads (index into
+    /// [`Protocol::frames`](super::Protocol::frames)).
+    pub frame: usize,
+    /// Documentation.
+    pub doc: String,
+    /// The header value the requester numbers (index into the frame's values).
+    pub sequence: Option<usize>,
+    /// Further header values an answer repeats.
+    pub echo: Vec<usize>,
+    /// The address values `(sender, receiver)` an answer swaps.
+    pub swap: Option<(usize, usize)>,
+    /// The command that refuses a request.
+    pub nack: Option<usize>,
+    /// The command whose answered request precedes every other.
+    pub handshake: Option<usize>,
+    /// A command that must keep arriving.
+    pub watchdog: Option<Watchdog>,
+    /// A header value that says whether a request expects an answer.
+    pub modes: Option<Modes>,
+    /// What a request expects unless its command says otherwise (`command` is not read).
+    pub default: Exchange,
+    /// What each command's request expects, in command order.
+    pub exchanges: Vec<Exchange>,
+}

@@ -1,0 +1,141 @@
+//! The lowering of the conversation ([`ir::Session`]) to the runtime's [`SessionRules`],
+//! once: each command's key as the session's frame format reads it, the word fields of the
+//! values the machines read and write. The expansion prints the plan as the `SESSION` static;
+//! the run-time codec builds the same value from it. The C printer does not print it: a
+//! session is behaviour, not bytes, and the C peer does not run the machines.
+
+use protocol_runtime::layout::WordField;
+use protocol_runtime::rules::PacketRules;
+use protocol_runtime::session::{Answer, Exchange, Modes, SessionRules, Watchdog};
+
+use crate::ir::{self, AnswerKind, PacketKind, Protocol};
+use crate::layout::word_field;
+use crate::rules::Field;
+
+/// The conversation, lowered, with the header values its word fields read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SessionPlan {
+    /// The frame format (index into [`Protocol::frames`]).
+    pub frame: usize,
+    /// What a request of a command not in `exchanges` expects.
+    pub default: Exchange,
+    /// The commands whose requests expect otherwise than the default, in command order (a
+    /// command the format has no key for is left out).
+    pub exchanges: Vec<Exchange>,
+    /// The sequence number's field.
+    pub sequence: Option<Field>,
+    /// The fields an answer repeats.
+    pub echo: Vec<Field>,
+    /// The address fields an answer swaps.
+    pub swap: Option<(Field, Field)>,
+    /// The NACK command's key.
+    pub nack: Option<u64>,
+    /// The handshake command's key.
+    pub handshake: Option<u64>,
+    /// The watchdog.
+    pub watchdog: Option<Watchdog>,
+    /// The modes, with their field.
+    pub modes: Option<(Field, Modes)>,
+}
+
+/// The key of command `ci` as frame format `f` reads it ([`PacketRules::key`]): its CAN id
+/// on a CAN format after the first, else its id's values side by side, the first in the high bits.
+pub fn command_key(p: &Protocol, f: &ir::Frame, ci: usize) -> Option<u64> {
+    let c = p.commands.get(ci)?;
+    if f.packet == PacketKind::Can {
+        return c.can_id;
+    }
+    let mut key = 0u64;
+    for (&vi, &v) in f.dispatch.iter().zip(&c.id) {
+        let width = f.values.get(vi)?.width;
+        key = key.checked_shl(width).unwrap_or(0) | v;
+    }
+    Some(key)
+}
+
+/// Lowers the session of `p`, if it has one.
+pub fn lower_session(p: &Protocol) -> Option<SessionPlan> {
+    let s = p.session.as_ref()?;
+    let f = p.frames.get(s.frame)?;
+    let key = |ci: usize| command_key(p, f, ci);
+    let field = |vi: usize| Field {
+        value: vi,
+        field: word_field(&f.values[vi]),
+    };
+    let lower = |e: &ir::Exchange, k: u64| {
+        Some(Exchange {
+            key: k,
+            answer: match e.answer {
+                AnswerKind::None => Answer::None,
+                AnswerKind::Reply => Answer::Reply,
+                AnswerKind::Ack => Answer::Ack,
+                AnswerKind::Command(c) => Answer::Command(key(c)?),
+            },
+            timeout: e.timeout_ms,
+            retries: e.retries,
+            backoff: e.backoff,
+        })
+    };
+    let default = lower(&s.default, 0)?;
+    let exchanges = s
+        .exchanges
+        .iter()
+        .filter_map(|e| lower(e, key(e.command)?))
+        .filter(|e| Exchange { key: 0, ..*e } != default)
+        .collect();
+    Some(SessionPlan {
+        frame: s.frame,
+        default,
+        exchanges,
+        sequence: s.sequence.map(field),
+        echo: s.echo.iter().map(|&v| field(v)).collect(),
+        swap: s.swap.map(|(a, b)| (field(a), field(b))),
+        nack: s.nack.and_then(key),
+        handshake: s.handshake.and_then(key),
+        watchdog: s.watchdog.as_ref().and_then(|w| {
+            Some(Watchdog {
+                key: key(w.command)?,
+                period: w.period_ms,
+            })
+        }),
+        modes: s.modes.map(|m| {
+            (
+                field(m.value),
+                Modes {
+                    field: field(m.value).field,
+                    none: m.none,
+                    once: m.once,
+                },
+            )
+        }),
+    })
+}
+
+impl SessionPlan {
+    /// The rules, over `packet` (the session frame's packet rules), with the exchange and
+    /// echo slices built from this plan.
+    pub fn rules<'a>(
+        &self,
+        packet: &'a PacketRules<'a>,
+        exchanges: &'a [Exchange],
+        echo: &'a [WordField],
+    ) -> SessionRules<'a> {
+        SessionRules {
+            packet,
+            default: self.default,
+            exchanges,
+            sequence: self.sequence.map(|f| f.field),
+            echo,
+            swap: self.swap.map(|(a, b)| (a.field, b.field)),
+            nack: self.nack,
+            handshake: self.handshake,
+            watchdog: self.watchdog,
+            modes: self.modes.map(|(_, m)| m),
+        }
+    }
+
+    /// The echo fields' word fields.
+    pub fn echo_fields(&self) -> Vec<WordField> {
+        self.echo.iter().map(|f| f.field).collect()
+    }
+}

@@ -1,0 +1,339 @@
+//! One simulated conversation: a requester and a responder (the runtime's session machines,
+//! over a spec's generated `SESSION`), an application on each side, a lossy [`Link`] and a
+//! clock advanced one millisecond at a time. Every call into a machine runs under the counting
+//! allocator. The run records what the invariants are checked against.
+
+use std::collections::HashMap;
+
+use protocol::session::{
+    Due, Incoming, Received, Requester, Resolution, Responder, SessionRules, Ticket,
+};
+
+use super::link::{DOWN, Fault, Faults, Link, UP};
+
+/// The bytes a slot holds: the largest request or answer the peers build.
+pub const FRAME: usize = 64;
+/// The requester's open requests and the responder's remembered ones.
+pub const SLOTS: usize = 4;
+
+/// The application of a spec's two sides, built on its generated code.
+pub trait Peer {
+    /// The spec's generated `SESSION`.
+    fn session() -> &'static SessionRules<'static>;
+    /// A request the host's application sends: `kind` picks the command, `mode` a header
+    /// value (RoboRTS's session id).
+    fn request(kind: u8, mode: u8) -> Vec<u8>;
+    /// The handshake request, when the spec has one.
+    fn handshake() -> Option<Vec<u8>>;
+    /// The device's answer to a delivered request, as its application builds it.
+    fn answer(request: &[u8]) -> Vec<u8>;
+    /// Whether generated code takes `frame` as a checked frame of the spec and decodes it
+    /// (what a real receiver's stream decoder and `Packet::from_frame` would do).
+    fn decodes(frame: &[u8]) -> bool;
+}
+
+/// What one run saw.
+#[derive(Debug, Default, Clone)]
+pub struct Tally {
+    /// Requests that got a ticket (they expect an answer).
+    pub requests: u64,
+    /// Requests sent expecting nothing.
+    pub fire_and_forget: u64,
+    pub answered: u64,
+    pub refused: u64,
+    pub timed_out: u64,
+    /// Tickets with no outcome, or more than one (must be 0).
+    pub outcome_errors: u64,
+    /// Answers whose sequence number is not their request's (must be 0).
+    pub mismatched: u64,
+    /// Transmissions of a request beyond 1 + its retries (must be 0).
+    pub over_retried: u64,
+    pub resends: u64,
+    /// Requests delivered to the device's application.
+    pub delivered: u64,
+    /// Numbered requests delivered a second time (must be 0).
+    pub duplicates_delivered: u64,
+    /// Duplicates the responder answered again without delivering them.
+    pub duplicates_answered: u64,
+    /// Requests delivered before the handshake was (must be 0).
+    pub before_handshake: u64,
+    /// Requests the responder took as older than its window (neither delivered nor answered).
+    pub stale: u64,
+    pub unsolicited: u64,
+    /// Frames the receiving side rejected (corrupt).
+    pub rejected: u64,
+    /// Allocations inside the machines' calls (must be 0).
+    pub allocations: u64,
+    pub max_open: usize,
+    pub faults: Faults,
+}
+
+#[derive(Debug, Default)]
+struct Log {
+    seq: Option<u64>,
+    sends: u32,
+    retries: u8,
+    outcomes: Vec<Resolution>,
+}
+
+/// Runs `plan` (requests as `(gap in ms, kind, mode)`) over a link with `schedule`.
+pub fn run<P: Peer>(plan: &[(u64, u8, u8)], schedule: Vec<Fault>) -> Tally {
+    let rules = P::session();
+    let mut req = Requester::<'_, SLOTS, FRAME>::new(rules);
+    let mut res = Responder::<'_, SLOTS, FRAME>::new(rules);
+    let mut link = Link::new(schedule);
+    let mut t = Tally::default();
+    let mut logs: HashMap<Ticket, Log> = HashMap::new();
+    let mut seen: HashMap<u64, u32> = HashMap::new();
+    let mut pending: Vec<(u64, u8, u8)> = Vec::new();
+    let mut at = 0;
+    for &(gap, kind, mode) in plan {
+        at += gap;
+        pending.push((at, kind, mode));
+    }
+    pending.reverse();
+    let mut handshake: Option<Ticket> = None;
+    let mut now = 0u64;
+    let end = at + 20_000;
+    while now < end {
+        if !req.handshaken()
+            && handshake.is_none()
+            && let Some(mut frame) = P::handshake()
+        {
+            handshake = send::<P>(&mut t, &mut req, &mut link, &mut logs, now, &mut frame)
+                .ok()
+                .flatten();
+        }
+        while let Some(&(due, kind, mode)) = pending.last() {
+            if due > now {
+                break;
+            }
+            let mut frame = P::request(kind, mode);
+            if send::<P>(&mut t, &mut req, &mut link, &mut logs, now, &mut frame).is_err() {
+                // No room, or before the handshake: the application tries again later.
+                if let Some(last) = pending.last_mut() {
+                    last.0 = now + 7;
+                }
+                break;
+            }
+            pending.pop();
+        }
+        serve::<P>(&mut t, &mut res, &mut link, &mut seen, now);
+        hear::<P>(&mut t, &mut req, &mut link, &mut logs, &mut handshake, now);
+        tick(&mut t, &mut req, &mut link, &mut logs, &mut handshake, now);
+        let mut alarm = None;
+        t.allocations += allocation_counter::measure(|| alarm = res.poll(now)).count_total;
+        t.max_open = t.max_open.max(req.open());
+        if pending.is_empty() && req.open() == 0 && link.quiet() && req.handshaken() {
+            break;
+        }
+        now += 1;
+    }
+    for log in logs.values() {
+        t.outcome_errors += u64::from(log.outcomes.len() != 1);
+        t.over_retried += u64::from(log.sends > 1 + u32::from(log.retries));
+    }
+    t.faults = link.faults;
+    t
+}
+
+/// The host's application sends `frame` through the requester.
+fn send<P: Peer>(
+    t: &mut Tally,
+    req: &mut Requester<'_, SLOTS, FRAME>,
+    link: &mut Link,
+    logs: &mut HashMap<Ticket, Log>,
+    now: u64,
+    frame: &mut [u8],
+) -> Result<Option<Ticket>, protocol::session::SendError> {
+    let mut sent = None;
+    t.allocations += allocation_counter::measure(|| sent = Some(req.send(now, frame))).count_total;
+    let ticket = sent.expect("ran")?;
+    link.send(DOWN, now, frame);
+    let rules = P::session();
+    match ticket {
+        Some(ticket) => {
+            t.requests += 1;
+            let key = rules.heard(frame).ok();
+            let e = key.map(|h| match h {
+                protocol::session::Heard::Command(k) => rules.expects(k, frame),
+                protocol::session::Heard::Ack => rules.default,
+            });
+            logs.insert(
+                ticket,
+                Log {
+                    seq: rules.sequence.and_then(|f| f.read(frame)),
+                    sends: 1,
+                    retries: e.map_or(0, |e| e.retries),
+                    outcomes: Vec::new(),
+                },
+            );
+        }
+        None => t.fire_and_forget += 1,
+    }
+    Ok(ticket)
+}
+
+/// The device: frames that arrived go through the responder; its application answers.
+fn serve<P: Peer>(
+    t: &mut Tally,
+    res: &mut Responder<'_, SLOTS, FRAME>,
+    link: &mut Link,
+    seen: &mut HashMap<u64, u32>,
+    now: u64,
+) {
+    let rules = P::session();
+    for frame in link.arrived(DOWN, now) {
+        if !P::decodes(&frame) {
+            t.rejected += 1;
+            continue;
+        }
+        let mut again = [0u8; FRAME];
+        let mut what = None;
+        t.allocations += allocation_counter::measure(|| {
+            what = Some(match res.on_frame(now, &frame) {
+                Incoming::Duplicate(Some(b)) => {
+                    again[..b.len()].copy_from_slice(b);
+                    Err(Some(b.len()))
+                }
+                Incoming::Duplicate(None) => Err(None),
+                other => Ok(format_incoming(&other)),
+            })
+        })
+        .count_total;
+        match what.expect("ran") {
+            Err(resend) => {
+                t.duplicates_answered += u64::from(resend.is_some());
+                if let Some(n) = resend {
+                    link.send(UP, now, &again[..n]);
+                }
+            }
+            Ok(Verdict::Deliver(answer)) => {
+                t.delivered += 1;
+                if !res.handshaken() {
+                    t.before_handshake += 1;
+                }
+                if let Some(seq) = rules.sequence.and_then(|f| f.read(&frame)) {
+                    let n = seen.entry(seq).or_default();
+                    *n += 1;
+                    t.duplicates_delivered += u64::from(*n > 1);
+                }
+                if answer {
+                    let mut reply = P::answer(&frame);
+                    let mut ok = None;
+                    t.allocations += allocation_counter::measure(|| {
+                        ok = Some(res.answer(&frame, &mut reply));
+                    })
+                    .count_total;
+                    ok.expect("ran")
+                        .expect("the answer takes the request's values");
+                    link.send(UP, now, &reply);
+                }
+            }
+            Ok(Verdict::Stale) => t.stale += 1,
+            Ok(Verdict::Other) => {}
+        }
+    }
+}
+
+enum Verdict {
+    Deliver(bool),
+    Stale,
+    Other,
+}
+
+fn format_incoming(i: &Incoming<'_>) -> Verdict {
+    match i {
+        Incoming::Deliver { answer } => Verdict::Deliver(*answer),
+        Incoming::Stale => Verdict::Stale,
+        _ => Verdict::Other,
+    }
+}
+
+/// The host: frames that arrived go through the requester.
+fn hear<P: Peer>(
+    t: &mut Tally,
+    req: &mut Requester<'_, SLOTS, FRAME>,
+    link: &mut Link,
+    logs: &mut HashMap<Ticket, Log>,
+    handshake: &mut Option<Ticket>,
+    now: u64,
+) {
+    let rules = P::session();
+    for frame in link.arrived(UP, now) {
+        if !P::decodes(&frame) {
+            t.rejected += 1;
+            continue;
+        }
+        let mut got = None;
+        t.allocations +=
+            allocation_counter::measure(|| got = Some(req.on_frame(now, &frame))).count_total;
+        match got.expect("ran") {
+            Received::Outcome(o) => {
+                let log = logs
+                    .get_mut(&o.ticket)
+                    .expect("a ticket the requester gave");
+                if o.resolution == Resolution::Answered
+                    && log.seq != rules.sequence.and_then(|f| f.read(&frame))
+                {
+                    t.mismatched += 1;
+                }
+                record(t, log, o.resolution);
+                if *handshake == Some(o.ticket) && o.resolution != Resolution::Answered {
+                    *handshake = None;
+                }
+            }
+            Received::Unsolicited => t.unsolicited += 1,
+            Received::Unreadable(e) => panic!("a checked frame is readable: {e:?}"),
+        }
+    }
+}
+
+/// Time advances: retries go out, requests time out.
+fn tick(
+    t: &mut Tally,
+    req: &mut Requester<'_, SLOTS, FRAME>,
+    link: &mut Link,
+    logs: &mut HashMap<Ticket, Log>,
+    handshake: &mut Option<Ticket>,
+    now: u64,
+) {
+    loop {
+        let mut buf = [0u8; FRAME];
+        let mut due = None;
+        t.allocations += allocation_counter::measure(|| {
+            due = Some(match req.poll(now) {
+                Some(Due::Resend { ticket, frame }) => {
+                    buf[..frame.len()].copy_from_slice(frame);
+                    Some(Ok((ticket, frame.len())))
+                }
+                Some(Due::Outcome(o)) => Some(Err(o)),
+                None => None,
+            })
+        })
+        .count_total;
+        match due.expect("ran") {
+            None => break,
+            Some(Ok((ticket, n))) => {
+                t.resends += 1;
+                logs.get_mut(&ticket).expect("open").sends += 1;
+                link.send(DOWN, now, &buf[..n]);
+            }
+            Some(Err(o)) => {
+                record(t, logs.get_mut(&o.ticket).expect("open"), o.resolution);
+                if *handshake == Some(o.ticket) {
+                    *handshake = None;
+                }
+            }
+        }
+    }
+}
+
+fn record(t: &mut Tally, log: &mut Log, r: Resolution) {
+    log.outcomes.push(r);
+    match r {
+        Resolution::Answered => t.answered += 1,
+        Resolution::Refused => t.refused += 1,
+        Resolution::TimedOut => t.timed_out += 1,
+    }
+}
