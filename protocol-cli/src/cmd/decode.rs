@@ -174,7 +174,7 @@ fn wrong_format_hint(
 }
 
 /// The frame format to decode: `--frame NAME`, else the first with the input's transport.
-fn pick_format(codec: &Codec<'_>, name: Option<&str>, can: bool) -> Result<usize> {
+pub(crate) fn pick_format(codec: &Codec<'_>, name: Option<&str>, can: bool) -> Result<usize> {
     let p = codec.protocol();
     let is_can = |t: Transport| matches!(t, Transport::Can { .. });
     if let Some(name) = name {
