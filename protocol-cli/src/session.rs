@@ -14,6 +14,7 @@ use protocol_runtime::{CanFrame, DecodeError, Reject, Stats};
 use serde_json::{Map, Value};
 
 use crate::candump::CanRecord;
+use crate::counter::Counters;
 use crate::table::{Widths, event_line, frame_line};
 
 /// How frames and events are printed.
@@ -54,6 +55,8 @@ pub struct Counts {
     pub skipped_event_bytes: u64,
     /// Rejected candidates (serial): each an event of 1 byte.
     pub rejected: u64,
+    /// Lost and reordered frames, from the spec's frame counters.
+    pub counters: Counters,
 }
 
 /// The JSON name of a rejection.
@@ -233,6 +236,7 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
         };
         self.counts.frames += 1;
         self.counts.frame_bytes += shown.len() as u64;
+        self.counts.counters.observe(p, &d);
         let f = &p.frames[d.format];
         self.counts.payload_bytes +=
             shown.len().saturating_sub(f.header_len + f.trailer_len) as u64;
@@ -385,6 +389,9 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                     c.can_skipped
                 ));
             }
+        }
+        if let Some(counters) = c.counters.summary() {
+            s.push_str(&format!("frame counter: {counters}\n"));
         }
         s.push_str(&format!(
             "link efficiency: {} (bytes in decoded frames); payload {}\n",

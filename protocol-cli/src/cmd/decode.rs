@@ -51,7 +51,8 @@ pub struct Args {
     #[arg(long, value_enum)]
     format: Option<Format>,
     /// Print a summary at the end: frames per command, checksum failures, length rejections,
-    /// bytes skipped, link efficiency (to stdout with `table`, to stderr with `json`).
+    /// bytes skipped, lost and reordered frames (a spec's frame counter), link efficiency (to
+    /// stdout with `table`, to stderr with `json`).
     #[arg(long)]
     stats: bool,
     /// The frame format to look for [default: every command format of a link of several (as
