@@ -31,16 +31,6 @@ pub struct Counters {
 
 impl Counters {
     /// Counts one decoded frame (a frame of a format without a counter is ignored).
-    ///
-    /// ```
-    /// use protocol_cli::counter::Counters;
-    /// let mut c = Counters::default();
-    /// for (format, stream, value) in [(0, "", 254), (0, "", 255), (0, "", 2), (0, "", 1)] {
-    ///     c.step(format, stream.to_string(), value, 8);
-    /// }
-    /// // 255 -> 2 wraps and skips 0 and 1; 1 then comes late: 0 alone is lost.
-    /// assert_eq!((c.counted, c.lost, c.reordered, c.repeated), (4, 1, 1, 0));
-    /// ```
     pub fn observe(&mut self, p: &Protocol, d: &Decoded) {
         let Some(f) = p.frames.get(d.format) else {
             return;
@@ -61,6 +51,16 @@ impl Counters {
     }
 
     /// Counts one counter value `value` of `width` bits in group (`format`, `stream`).
+    ///
+    /// ```
+    /// use protocol_cli::counter::Counters;
+    /// let mut c = Counters::default();
+    /// for (format, stream, value) in [(0, "", 254), (0, "", 255), (0, "", 2), (0, "", 1)] {
+    ///     c.step(format, stream.to_string(), value, 8);
+    /// }
+    /// // 255 -> 2 wraps and skips 0 and 1; 1 then comes late: 0 alone is lost.
+    /// assert_eq!((c.counted, c.lost, c.reordered, c.repeated), (4, 1, 1, 0));
+    /// ```
     pub fn step(&mut self, format: usize, stream: String, value: u64, width: u32) {
         self.counted += 1;
         let range: u128 = 1u128 << width.min(64);
@@ -68,7 +68,8 @@ impl Counters {
             self.last.insert((format, stream), value);
             return;
         };
-        let ahead = (u128::from(value) + range - u128::from(*last) % range) % range;
+        // How far `value` is ahead of the last one, around the counter's range.
+        let ahead = (u128::from(value) % range + range - u128::from(*last) % range) % range;
         if ahead == 0 {
             self.repeated += 1;
         } else if ahead < range / 2 {
