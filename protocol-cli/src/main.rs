@@ -72,7 +72,7 @@ enum Command {
     /// Generate a peer codec in another language from a spec.
     #[command(subcommand)]
     Gen(Gen),
-    /// Write a capture for other tools (pcap for Wireshark).
+    /// Write a capture for other tools (pcap for Wireshark, CSV tables, MCAP for Foxglove).
     #[command(subcommand)]
     Export(Export),
     /// Report every change between two versions of a spec, once, as breaking the wire, breaking
@@ -117,6 +117,11 @@ enum Gen {
 enum Export {
     /// Raw serial bytes (or a candump log) as a pcap file the dissector of `gen wireshark` reads.
     Pcap(cmd::export::PcapArgs),
+    /// The decoded frames as one CSV file per command (columns `header.x`, `payload.y`).
+    Csv(cmd::export_data::Args),
+    /// The decoded frames as an MCAP file: a channel per command, JSON messages with a
+    /// schema, log times from the capture (Foxglove opens it).
+    Mcap(cmd::export_data::Args),
 }
 
 /// How `decode` prints.
@@ -152,6 +157,8 @@ fn main() -> ExitCode {
         Command::Gen(Gen::C { spec, output }) => cmd::generate::c(&spec, &output),
         Command::Gen(Gen::Wireshark { spec, output }) => cmd::wireshark::run(&spec, &output),
         Command::Export(Export::Pcap(args)) => cmd::export::pcap_run(&args),
+        Command::Export(Export::Csv(args)) => cmd::export_data::csv_run(&args),
+        Command::Export(Export::Mcap(args)) => cmd::export_data::mcap_run(&args),
         Command::Diff { old, new, json } => cmd::diff::run(&old, &new, json),
     };
     match result {

@@ -11,6 +11,7 @@ use protocol_dynamic::{Codec, DecodeIssue, Decoded, Item, Value};
 use protocol_runtime::{FrameLayout, Reject, Stats};
 use protocol_spec::ir::{Element, FieldKind, Frame, Pos, Protocol};
 
+use crate::counter::Counters;
 use crate::session::reject_name;
 
 /// Bytes of the capture the hex view shows at most (the statistics cover all of it).
@@ -51,6 +52,7 @@ struct Capture {
     stats: Stats,
     per_command: Vec<(usize, usize)>,
     undecoded: usize,
+    counters: Counters,
 }
 
 fn decode(codec: &Codec<'_>, format: usize, data: &[u8]) -> Option<Capture> {
@@ -63,6 +65,7 @@ fn decode(codec: &Codec<'_>, format: usize, data: &[u8]) -> Option<Capture> {
         stats: Stats::default(),
         per_command: vec![(0, 0); p.commands.len()],
         undecoded: 0,
+        counters: Counters::default(),
     };
     let mut input = data;
     let take = |item: Item<'_>, c: &mut Capture| match item {
@@ -73,6 +76,7 @@ fn decode(codec: &Codec<'_>, format: usize, data: &[u8]) -> Option<Capture> {
         } => {
             let (command, issue, spans) = match &decoded {
                 Ok(d) => {
+                    c.counters.observe(p, d);
                     if let Some((n, b)) = d.command.and_then(|i| c.per_command.get_mut(i)) {
                         *n += 1;
                         *b += bytes.len();
@@ -519,7 +523,7 @@ pub fn render(codec: &Codec<'_>, format: usize, data: &[u8], name: &str) -> Opti
         + s.bad_header
         + s.bad_trailer
         + s.truncated;
-    let rows = [
+    let mut rows = vec![
         ("bytes", total.to_string()),
         (
             "frames accepted (framing and checks)",
@@ -560,6 +564,9 @@ pub fn render(codec: &Codec<'_>, format: usize, data: &[u8], name: &str) -> Opti
             ),
         ),
     ];
+    if let Some(counters) = capture.counters.summary() {
+        rows.push(("frame counter", counters));
+    }
     out.push_str("<h2>Link statistics</h2><table id=\"stats\">");
     for (k, v) in rows {
         let _ = write!(out, "<tr><th>{k}</th><td>{}</td></tr>", esc(&v));

@@ -7,12 +7,14 @@
 //! payload errors).
 
 use std::io::{self, Write};
+use std::time::Duration;
 
 use protocol_dynamic::{Codec, DecodeIssue, Decoded, Item, hex};
 use protocol_runtime::{CanFrame, DecodeError, Reject, Stats};
 use serde_json::{Map, Value};
 
 use crate::candump::CanRecord;
+use crate::counter::Counters;
 use crate::table::{Widths, event_line, frame_line};
 
 /// How frames and events are printed.
@@ -53,6 +55,8 @@ pub struct Counts {
     pub skipped_event_bytes: u64,
     /// Rejected candidates (serial): each an event of 1 byte.
     pub rejected: u64,
+    /// Lost and reordered frames, from the spec's frame counters.
+    pub counters: Counters,
 }
 
 /// The JSON name of a rejection.
@@ -75,6 +79,8 @@ pub struct Session<'c, 'a, W: Write> {
     output: Output,
     widths: Widths,
     out: W,
+    /// The receive time of the items being handled (live inputs), since the Unix epoch.
+    received: Option<Duration>,
     /// What was counted so far.
     pub counts: Counts,
 }
@@ -89,6 +95,7 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
             output,
             widths: Widths::of(p),
             out,
+            received: None,
             counts: Counts {
                 per_command: vec![(0, 0); p.commands.len()],
                 ..Counts::default()
@@ -116,6 +123,13 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                 self.emit(offset, "skipped", len, Map::new())
             }
         }
+    }
+
+    /// Stamps the items handled from now on with their receive time (since the Unix epoch):
+    /// a live input's frames and events carry it, as `time` (seconds) in JSON and in front of
+    /// a table line. `None` for a file, whose bytes have no time.
+    pub fn received(&mut self, at: Option<Duration>) {
+        self.received = at;
     }
 
     /// Counts bytes fed to the engine (for the link efficiency).
@@ -222,6 +236,7 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
         };
         self.counts.frames += 1;
         self.counts.frame_bytes += shown.len() as u64;
+        self.counts.counters.observe(p, &d);
         let f = &p.frames[d.format];
         self.counts.payload_bytes +=
             shown.len().saturating_sub(f.header_len + f.trailer_len) as u64;
@@ -233,11 +248,20 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
             None => self.counts.raw_frames += 1,
         }
         let line = match self.output {
-            Output::Json => serde_json::to_string(&self.codec.frame_value(&d, offset, shown))
-                .map_err(io::Error::other)?,
+            Output::Json => {
+                let value = self.codec.frame_value(&d, offset, shown);
+                match self.received {
+                    None => serde_json::to_string(&value),
+                    Some(at) => serde_json::to_value(&value).map(|v| match v {
+                        Value::Object(o) => Value::Object(with_time(o, at)).to_string(),
+                        other => other.to_string(),
+                    }),
+                }
+                .map_err(io::Error::other)?
+            }
             Output::Table => frame_line(p, self.widths, &d, offset, shown.len()),
         };
-        writeln!(self.out, "{line}")
+        self.write_line(&line)
     }
 
     fn emit(
@@ -254,7 +278,10 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                 o.insert("event".into(), Value::from(event));
                 o.insert("bytes".into(), Value::from(bytes));
                 o.extend(extra);
-                Value::Object(o).to_string()
+                match self.received {
+                    Some(at) => Value::Object(with_time(o, at)).to_string(),
+                    None => Value::Object(o).to_string(),
+                }
             }
             Output::Table => {
                 let mut what = event.replace('_', " ");
@@ -270,7 +297,16 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                 event_line(offset, bytes, &what)
             }
         };
-        writeln!(self.out, "{line}")
+        self.write_line(&line)
+    }
+
+    /// Writes one output line; a table line of a live input starts with its receive time
+    /// (UTC, to the microsecond).
+    fn write_line(&mut self, line: &str) -> io::Result<()> {
+        match (self.output, self.received) {
+            (Output::Table, Some(at)) => writeln!(self.out, "{}  {line}", time_of_day(at)),
+            _ => writeln!(self.out, "{line}"),
+        }
     }
 
     /// Flushes the output.
@@ -354,6 +390,9 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                 ));
             }
         }
+        if let Some(counters) = c.counters.summary() {
+            s.push_str(&format!("frame counter: {counters}\n"));
+        }
         s.push_str(&format!(
             "link efficiency: {} (bytes in decoded frames); payload {}\n",
             percent(c.frame_bytes, total),
@@ -361,6 +400,39 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
         ));
         s
     }
+}
+
+/// A frame or event object with `time` (seconds since the Unix epoch, to the microsecond)
+/// after its `offset`.
+fn with_time(object: Map<String, Value>, at: Duration) -> Map<String, Value> {
+    let seconds = at.as_micros() as f64 / 1e6;
+    let mut out = Map::new();
+    for (k, v) in object {
+        let after_offset = k == "offset";
+        out.insert(k, v);
+        if after_offset {
+            out.insert("time".into(), Value::from(seconds));
+        }
+    }
+    out
+}
+
+/// The UTC time of day of a time since the Unix epoch: `HH:MM:SS.ffffff`.
+///
+/// ```
+/// # use std::time::Duration;
+/// use protocol_cli::session::time_of_day;
+/// assert_eq!(time_of_day(Duration::from_micros(1_700_000_000_123_456)), "22:13:20.123456");
+/// ```
+pub fn time_of_day(at: Duration) -> String {
+    let secs = at.as_secs() % 86_400;
+    format!(
+        "{:02}:{:02}:{:02}.{:06}",
+        secs / 3600,
+        secs / 60 % 60,
+        secs % 60,
+        at.subsec_micros()
+    )
 }
 
 fn percent(part: u64, total: u64) -> String {

@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Duration;
+use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use miette::{IntoDiagnostic, Result, WrapErr, miette};
@@ -33,7 +33,8 @@ pub struct Args {
     /// The input is hex text (whitespace, `0x`, `,` and `:` are ignored).
     #[arg(long)]
     hex: bool,
-    /// Read a live serial port (runs until interrupted, or until the port hangs up).
+    /// Read a live serial port (runs until interrupted, or until the port hangs up). Every
+    /// frame and event carries the time its bytes were read.
     #[arg(long, value_name = "PORT", conflicts_with_all = ["candump", "can"])]
     serial: Option<String>,
     /// Baud rate of the serial port.
@@ -43,14 +44,15 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     candump: Option<PathBuf>,
     /// Read a live SocketCAN interface (`can0`, `vcan0`; Linux only), until interrupted (the
-    /// spec needs a CAN frame format).
+    /// spec needs a CAN frame format). Every frame and event carries its receive time.
     #[arg(long, value_name = "IFACE", conflicts_with = "candump")]
     can: Option<String>,
     /// Output format [default: table on a terminal, json otherwise].
     #[arg(long, value_enum)]
     format: Option<Format>,
     /// Print a summary at the end: frames per command, checksum failures, length rejections,
-    /// bytes skipped, link efficiency (to stdout with `table`, to stderr with `json`).
+    /// bytes skipped, lost and reordered frames (a spec's frame counter), link efficiency (to
+    /// stdout with `table`, to stderr with `json`).
     #[arg(long)]
     stats: bool,
     /// The frame format to look for [default: every command format of a link of several (as
@@ -174,7 +176,7 @@ fn wrong_format_hint(
 }
 
 /// The frame format to decode: `--frame NAME`, else the first with the input's transport.
-fn pick_format(codec: &Codec<'_>, name: Option<&str>, can: bool) -> Result<usize> {
+pub(crate) fn pick_format(codec: &Codec<'_>, name: Option<&str>, can: bool) -> Result<usize> {
     let p = codec.protocol();
     let is_can = |t: Transport| matches!(t, Transport::Can { .. });
     if let Some(name) = name {
@@ -347,6 +349,12 @@ impl Input {
     fn live(&self) -> bool {
         !matches!(self, Input::Bytes { .. })
     }
+
+    /// Whether the items of a chunk carry the time it was read (a serial port; stdin may be
+    /// a file, whose output must not change from run to run).
+    fn stamped(&self) -> bool {
+        matches!(self, Input::Serial { .. })
+    }
 }
 
 /// Runs the stream decoder over the whole input; returns the engine's stats.
@@ -357,12 +365,16 @@ fn stream<W: Write>(
 ) -> io::Result<protocol_runtime::Stats> {
     let mut buf = vec![0u8; CHUNK];
     let live = input.live();
+    let stamped = input.stamped();
     loop {
         let mut chunk = input.next(&mut buf)?;
         if chunk.is_empty() {
             break;
         }
         session.fed(chunk.len());
+        if stamped {
+            session.received(SystemTime::now().duration_since(UNIX_EPOCH).ok());
+        }
         while let Some(item) = decoder.next_item(&mut chunk) {
             session.item(item)?;
         }
@@ -405,6 +417,11 @@ fn decode_live_can<W: Write>(
     let mut errors = 0;
     let mut index = 0;
     while let Some(record) = live.next(&mut errors)? {
+        let at = record
+            .time
+            .as_deref()
+            .and_then(protocol_cli::export::time_ns);
+        session.received(at.map(Duration::from_nanos));
         session.can(index, &record)?;
         session.flush()?;
         index += 1;

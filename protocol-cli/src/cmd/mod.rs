@@ -8,6 +8,7 @@ pub mod doc;
 pub mod encode;
 pub mod expand;
 pub mod export;
+pub mod export_data;
 pub mod generate;
 pub mod report;
 pub mod wireshark;

@@ -94,6 +94,10 @@ pub struct Frame {
     /// A wider length that a marker value of the length field announces (MSP v1 jumbo
     /// frames): its bytes follow the header, and the payload starts after them.
     pub length_extension: Option<LengthExtension>,
+    /// The header value (index into `values`) that counts frames (`counter = true`): the
+    /// sender adds one per frame, wrapping at its width. Decode-side statistics only (lost and
+    /// reordered frames); no codec checks it.
+    pub counter: Option<usize>,
 }
 
 /// A wider length, right after the header, present when the length field holds a marker

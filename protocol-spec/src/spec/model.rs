@@ -343,6 +343,11 @@ pub struct ElementDef {
     /// With `extends`: the value of the length field that announces the wider length.
     #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub marker: Option<SInt>,
+    /// The field is a frame counter (a sequence number): the sender adds one per frame, wrapping at the
+    /// field's width. Decoding tools count lost and reordered frames from it (statistics
+    /// only: no codec checks it).
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
+    pub counter: Option<Spanned<bool>>,
 
     /// Documentation.
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]

@@ -8,6 +8,7 @@
 mod ack;
 mod checks;
 mod conditional;
+mod counter;
 mod elements;
 mod header;
 mod length;
@@ -175,6 +176,7 @@ fn lower_frame(
     };
     let flag_trailer = conditional::lower_flag_trailer(ctx, &cx, optional, &mut values, &mut ok);
     let length_extension = conditional::lower_extension(ctx, &cx, extension, &values, &mut ok);
+    let counter = counter::lower_counter(ctx, def, &values, &mut ok);
     if !ok {
         // The commands cannot be checked against a frame whose layout is broken.
         return None;
@@ -219,6 +221,7 @@ fn lower_frame(
         commands: Vec::new(),
         flag_trailer,
         length_extension,
+        counter,
     })
 }
 
