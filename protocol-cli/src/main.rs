@@ -76,8 +76,12 @@ enum Command {
     #[command(subcommand)]
     Export(Export),
     /// Report every change between two versions of a spec, once, as breaking the wire, breaking
-    /// the generated Rust source, or compatible; exit 1 if anything breaks, 2 if a spec cannot
-    /// be read or is invalid.
+    /// the generated Rust source (a rename; an added command or enum value, which an exhaustive
+    /// `match` must name), or compatible.
+    #[command(after_help = "Exit status:\n  \
+        0  compatible at both levels: the wire and the generated Rust source\n  \
+        1  anything breaks, the wire or the source (source-breaking changes included)\n  \
+        2  a spec cannot be read or is invalid (its errors are printed)")]
     Diff {
         /// The old version.
         old: PathBuf,

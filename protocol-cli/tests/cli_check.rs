@@ -232,9 +232,35 @@ fn diff_exit_status_guards_a_ci() {
         ],
         b"",
     );
-    assert!(out.status.success(), "{}", text(&out.stdout));
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "an added command breaks exhaustive matches: {}",
+        text(&out.stdout)
+    );
     assert!(
-        text(&out.stdout).contains("compatible       command READ_BATTERY (id 0x1b): added"),
+        text(&out.stdout).contains("source-breaking  command READ_BATTERY (id 0x1b): added"),
+        "{}",
+        text(&out.stdout)
+    );
+    let doc_only = edited("hflink", |s| {
+        s.replacen(
+            "doc = \"Read the GPS fix.\"",
+            "doc = \"Read the latest GPS fix.\"",
+            1,
+        )
+    });
+    let out = protocol(
+        &[
+            "diff",
+            "specs/hflink.toml",
+            doc_only.path().to_str().expect("path"),
+        ],
+        b"",
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    assert!(
+        text(&out.stdout).contains("0 breaking, 0 source-breaking, 1 compatible"),
         "{}",
         text(&out.stdout)
     );
@@ -265,9 +291,8 @@ fn diff_exit_status_guards_a_ci() {
         .filter_map(|c| c["reason"].as_str())
         .collect();
     assert!(
-        reasons
-            .iter()
-            .any(|r| r.contains("field `cpu_usage` (offset 8): f32 Little → u32 Little")),
+        reasons.iter().any(|r| r
+            .contains("field `cpu_usage` (offset 8): f32 (little-endian) → u32 (little-endian)")),
         "{reasons:?}"
     );
 
@@ -308,6 +333,21 @@ fn diff_exit_status_guards_a_ci() {
         text(&unreadable.stderr)
     );
     assert!(text(&unreadable.stderr).contains("no-such-spec.toml"));
+}
+
+#[test]
+fn diff_help_states_the_exit_statuses() {
+    let out = protocol(&["diff", "--help"], b"");
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let help = text(&out.stdout);
+    for line in [
+        "Exit status:",
+        "  0  compatible at both levels",
+        "  1  anything breaks",
+        "  2  a spec cannot be read or is invalid",
+    ] {
+        assert!(help.contains(line), "`{line}` is not in:\n{help}");
+    }
 }
 
 #[test]

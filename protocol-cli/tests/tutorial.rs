@@ -1,10 +1,13 @@
 //! The `protocol` commands of `docs/tutorial.md` print what the tutorial shows: every line
-//! `$ protocol ARGS` of a `console` block is run in the repository's root, and its standard
-//! output must be the lines that follow it.
+//! `$ protocol ARGS` of a `console` block is run in the tutorial's crate (`examples/tutorial`,
+//! whose capture is the one the tutorial's host writes), and its standard output must be the
+//! lines that follow it.
 
 mod support;
 
-use support::{protocol, root, text};
+use std::process::Command;
+
+use support::{root, text};
 
 /// The (arguments, output) of every `$ protocol` line of the tutorial's console blocks.
 fn commands() -> Vec<(String, String)> {
@@ -40,7 +43,12 @@ fn the_tutorials_commands_print_what_it_shows() {
     assert!(commands.len() >= 3, "check, decode and diff: {commands:?}");
     for (args, shown) in commands {
         let args: Vec<&str> = args.split_whitespace().collect();
-        let out = protocol(&args, b"");
+        let out = Command::new(env!("CARGO_BIN_EXE_protocol"))
+            .args(&args)
+            .current_dir(root().join("examples/tutorial"))
+            .env("NO_COLOR", "1")
+            .output()
+            .expect("the binary runs");
         assert_eq!(
             text(&out.stdout),
             shown,

@@ -68,7 +68,7 @@ fn payload_changes_break() {
     assert_one(
         &c,
         Class::Breaking,
-        "READ_SYSTEM_INFO (id 0x01): response payload: field `cpu_usage` (offset 8): f32 Little → f64 Little",
+        "READ_SYSTEM_INFO (id 0x01): response payload: field `cpu_usage` (offset 8): f32 (little-endian) → f64 (little-endian)",
     );
     let c = changes(
         HFLINK,
@@ -85,7 +85,11 @@ fn payload_changes_break() {
         "{ name = \"x\", type = \"f32\", unit = \"m or m/s\" },",
         "{ name = \"x\", type = \"f32be\", unit = \"m or m/s\" },",
     );
-    assert_one(&c, Class::Breaking, "f32 Little → f32 Big");
+    assert_one(
+        &c,
+        Class::Breaking,
+        "f32 (little-endian) → f32 (big-endian)",
+    );
     let c = changes(
         HFLINK,
         "READ_SYSTEM_INFO = { id = 1, response = \"SystemInfo\"",
@@ -206,8 +210,8 @@ fn enums_break_when_old_decoders_would_refuse_a_value() {
     );
     assert_one(
         &c,
-        Class::Compatible,
-        "enum `Trim` gained FLIP = 2 (old decoders keep it as an unknown value)",
+        Class::SourceBreaking,
+        "enum `Trim` gained FLIP = 2 (old decoders keep it as an unknown value; the generated enum gains a variant",
     );
     assert_eq!(breaking(&c), 0, "{c:?}");
     let c = changes(
@@ -311,4 +315,72 @@ fn check_changes_that_keep_the_bytes_are_compatible_and_others_break() {
         .replace(", check_extra = 137", "");
     let c = diff(&compile("old.toml", &old), &compile("new.toml", &new));
     assert_one(&c, Class::Breaking, "no longer folds in a byte per command");
+}
+
+const ROVER: &str = "../examples/tutorial/specs/rover.toml";
+
+#[test]
+fn an_added_command_keeps_the_wire_and_breaks_exhaustive_matches() {
+    let c = changes(
+        ROVER,
+        "STATUS = { id = 0x20,",
+        "BEEP = { id = 0x12 }\nSTATUS = { id = 0x20,",
+    );
+    assert_one(
+        &c,
+        Class::SourceBreaking,
+        "command BEEP (id 0x12): added (old receivers count its frames as unknown commands; the generated enum gains a variant: an exhaustive `match` in the crate that expands the spec needs one more arm)",
+    );
+    assert_eq!(breaking(&c), 0, "{c:?}");
+}
+
+#[test]
+fn changes_are_said_in_the_specs_words() {
+    let c = changes(
+        ROVER,
+        "over = \"len..payload\" }",
+        "over = \"len..payload\", byte_order = \"big\" }",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "frame `link`: check `checksum`: stored big-endian, was little-endian",
+    );
+    assert_eq!(c.len(), 1, "the byte order is the one change: {c:?}");
+    let c = changes(
+        ROVER,
+        "over = \"len..payload\" }",
+        "over = \"cmd..payload\" }",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "covers the bytes from byte 3 up to 2 bytes before the end, was from byte 2 up to 2 bytes before the end",
+    );
+    let c = changes(
+        ROVER,
+        "{ name = \"battery\", type = \"u16\", scale = 0.01, unit = \"V\" }",
+        "{ name = \"battery\", type = \"i16\", scale = 0.01, unit = \"V\" }",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "field `battery` (offset 0): u16 (little-endian), scale 0.01 → i16 (little-endian), scale 0.01",
+    );
+    let c = changes(
+        ROVER,
+        "{ field = \"cmd\", type = \"u8\" }",
+        "{ field = \"cmd\", type = \"u16be\" }",
+    );
+    assert_one(
+        &c,
+        Class::Breaking,
+        "header value `cmd`: u16 (big-endian) at byte 3, was u8 at byte 3",
+    );
+    for change in &c {
+        assert!(
+            !change.reason.contains("Little") && !change.reason.contains("Start("),
+            "Debug wording in `{change}`"
+        );
+    }
 }

@@ -55,7 +55,7 @@ fn a_missing_file_is_a_read_error() {
 fn a_decoded_frame_holds_the_value_model() {
     let interp = Interpreter::load(spec_path("hflink")).expect("hflink loads");
     let codec = interp.codec();
-    // SHAKING_HANDS from sender 1 to receiver 17, as the README shows it.
+    // SHAKING_HANDS from sender 1 to receiver 17, as docs/cli.md shows it.
     let frame =
         protocol_dynamic::parse_hex("ffff0111000d000000000000000000000000001f").expect("hex");
     let d = codec.parse(0, &frame).expect("a frame");

@@ -361,7 +361,7 @@ fn algorithm_name_text(c: &Check) -> String {
 }
 
 /// The doc of the generated module: the spec's text, its version, the first frame format's
-/// table and the command table.
+/// table, the command table and the RAM of each stream decoder.
 pub fn module_doc(p: &Protocol) -> String {
     let mut doc = p.doc.clone();
     if !p.version.is_empty() {
@@ -375,7 +375,40 @@ pub fn module_doc(p: &Protocol) -> String {
         doc.push('\n');
         doc.push_str(&commands_doc(p));
     }
+    let serial: Vec<&Frame> = p
+        .frames
+        .iter()
+        .filter(|f| f.transport == crate::ir::Transport::Serial)
+        .collect();
+    if !serial.is_empty() {
+        doc.push_str("\nRAM of a stream decoder (it never uses the heap):\n\n");
+        for f in serial {
+            doc.push_str(&format!(
+                "- [`{1}`]({0}::{1}): {2}\n",
+                p.name,
+                f.names.decoder,
+                decoder_ram(f)
+            ));
+        }
+    }
     doc
+}
+
+/// What a frame format's stream decoder takes in RAM, buffer and state, on a microcontroller
+/// (32-bit pointers, as thumbv7em) and on a 64-bit host: the runtime's own sizing.
+pub fn decoder_ram(f: &Frame) -> String {
+    let mcu = protocol_runtime::decoder::decoder_ram(f.max_len(), 4);
+    let host = protocol_runtime::decoder::decoder_ram(f.max_len(), 8);
+    format!(
+        "{} bytes on a 32-bit microcontroller (a buffer of {} and {} of state), {} on a 64-bit \
+         host ({} and {}).",
+        mcu.buffer + mcu.state,
+        mcu.buffer,
+        mcu.state,
+        host.buffer + host.state,
+        host.buffer,
+        host.state
+    )
 }
 
 /// The command table: id, name (a link to its `Command` variant), payload per direction and

@@ -364,7 +364,9 @@ fn emit_decoder(f: &Frame, layout: &Ident) -> TokenStream {
          compiles to code for `{fname}` frames alone."
     );
     let decoder_doc = format!(
-        " A streaming decoder of `{fname}` frames: a fixed buffer of `{buffer_name}` bytes, no heap."
+        " A streaming decoder of `{fname}` frames: a fixed buffer of `{buffer_name}` bytes, no \
+         heap. RAM: {}",
+        super::docs::decoder_ram(f)
     );
     let new_doc = format!(" A new decoder of `{fname}` frames.");
     quote! {

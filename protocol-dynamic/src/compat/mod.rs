@@ -7,9 +7,16 @@
 //! This module compares two checked IRs. Commands are matched by their id (what is on the
 //! wire), frame formats by name, struct fields by position; a rename keeps the wire and breaks
 //! the source (the generated item's name changes). Struct and field comparison lives in the
-//! `payload` submodule.
+//! `payload` submodule, the wording of types and positions in the spec's words in `words`.
+//!
+//! An addition (a command, an enum value) gives a generated enum a variant. `#[non_exhaustive]`
+//! binds only other crates, and the crate that matches on `Message` is the one that expands the
+//! spec, so its exhaustive `match` stops compiling: additions are source-breaking. (A hidden
+//! catch-all variant would keep such a `match` compiling only by forcing a wildcard arm on every
+//! user, and with it the compiler's list of the commands a firmware forgot to handle.)
 
 mod payload;
+mod words;
 
 use std::fmt;
 
@@ -25,11 +32,11 @@ pub enum Class {
     Breaking,
     /// The wire format is unchanged, but the generated module is not: code written against
     /// one version does not compile against the other (a renamed field, command, enum value
-    /// or module; another physical type).
+    /// or module; another physical type; an added command or enum value, which an exhaustive
+    /// `match` in the crate that expands the spec must name).
     SourceBreaking,
-    /// Neither the wire nor the names and types of the generated API change: docs, units, and
-    /// additions (commands, enum values old decoders keep, frame formats). An addition gives an
-    /// enum a variant, so a `match` without a catch-all arm needs one more arm.
+    /// Neither the wire nor the names and types of the generated API change: docs, units,
+    /// versions, added frame formats.
     Compatible,
 }
 
@@ -98,6 +105,9 @@ impl Report<'_> {
         });
     }
 }
+
+/// Why an addition breaks the source, said with every added command or enum value.
+const ADDED_VARIANT: &str = "the generated enum gains a variant: an exhaustive `match` in the crate that expands the spec needs one more arm";
 
 /// Every change from `old` to `new`, breaking ones first (each group in spec order).
 pub fn diff(old: &Protocol, new: &Protocol) -> Vec<Change> {
@@ -217,7 +227,11 @@ fn diff_frames(old: &Protocol, new: &Protocol, out: &mut Vec<Change>) {
 
 fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
     if o.transport != n.transport {
-        r.breaking(format!("transport {:?} → {:?}", o.transport, n.transport));
+        r.breaking(format!(
+            "transport {}, was {}",
+            words::transport(&n.transport),
+            words::transport(&o.transport)
+        ));
     }
     if o.sync != n.sync {
         r.breaking(format!(
@@ -250,16 +264,10 @@ fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
         let shape = |v: &protocol_spec::ir::HeaderValue| (v.at, v.word, v.shift, v.width);
         if shape(ov) != shape(nv) {
             r.breaking(format!(
-                "header value `{}` moved or changed type ({:?} {:?} bits {}..{} → {:?} {:?} bits {}..{})",
+                "header value `{}`: {}, was {}",
                 nv.name,
-                ov.at,
-                ov.word.prim,
-                ov.shift,
-                ov.shift + ov.width,
-                nv.at,
-                nv.word.prim,
-                nv.shift,
-                nv.shift + nv.width
+                words::header_value(nv),
+                words::header_value(ov)
             ));
         } else if std::mem::discriminant(&ov.role) != std::mem::discriminant(&nv.role)
             || matches!((&ov.role, &nv.role), (Role::Const(a), Role::Const(b)) if a != b)
@@ -285,12 +293,16 @@ fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
         ));
     }
     if o.length != n.length {
-        r.breaking(format!("length rule {:?} → {:?}", o.length, n.length));
+        r.breaking(format!(
+            "frame length {}, was {}",
+            words::length(&n.length, &n.values),
+            words::length(&o.length, &o.values)
+        ));
     }
     if o.dispatch != n.dispatch {
         r.breaking("the dispatch key's fields changed");
     }
-    for (k, (oc, nc)) in o.checks.iter().zip(&n.checks).enumerate() {
+    for (oc, nc) in o.checks.iter().zip(&n.checks) {
         if on_the_wire(&oc.algorithm) != on_the_wire(&nc.algorithm) {
             r.breaking(format!(
                 "check `{}`: {} → {}",
@@ -298,14 +310,8 @@ fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
                 algorithm_name(oc),
                 algorithm_name(nc)
             ));
-        } else if (oc.at, oc.size, oc.endian, oc.from, oc.to, oc.header)
-            != (nc.at, nc.size, nc.endian, nc.from, nc.to, nc.header)
-        {
-            r.breaking(format!(
-                "check `{}` (#{}) covers other bytes or is stored elsewhere",
-                nc.name,
-                k + 1
-            ));
+        } else {
+            diff_check_place(oc, nc, r);
         }
     }
     for (oc, nc) in o.checks.iter().zip(&n.checks) {
@@ -335,6 +341,44 @@ fn diff_frame(o: &Frame, n: &Frame, r: &mut Report<'_>) {
     }
     if o.doc != n.doc {
         r.compatible("doc changed");
+    }
+}
+
+/// Where a check is stored, in what byte order, and which bytes it covers: each a change of
+/// its own, said in the spec's words.
+fn diff_check_place(o: &Check, n: &Check, r: &mut Report<'_>) {
+    let name = &n.name;
+    if o.endian != n.endian {
+        r.breaking(format!(
+            "check `{name}`: stored {}, was {}",
+            words::order(n.endian),
+            words::order(o.endian)
+        ));
+    }
+    if (o.at, o.size) != (n.at, n.size) {
+        r.breaking(format!(
+            "check `{name}`: {} bytes at {}, was {} bytes at {}",
+            n.size,
+            words::pos(n.at),
+            o.size,
+            words::pos(o.at)
+        ));
+    }
+    if (o.from, o.to) != (n.from, n.to) {
+        r.breaking(format!(
+            "check `{name}`: covers the bytes {}, was {}",
+            words::span(n.from, n.to),
+            words::span(o.from, o.to)
+        ));
+    }
+    if o.header != n.header {
+        // A header check is verified before the length is trusted, a frame check after.
+        let when = |h: bool| if h { "a header check" } else { "a frame check" };
+        r.breaking(format!(
+            "check `{name}`: {}, was {}",
+            when(n.header),
+            when(o.header)
+        ));
     }
 }
 
@@ -492,7 +536,9 @@ fn diff_commands(old: &Protocol, new: &Protocol, out: &mut Vec<Change>) {
                 out,
                 subject: format!("command {} (id {})", nc.name, id_text(nc)),
             };
-            r.compatible("added");
+            r.source(format!(
+                "added (old receivers count its frames as unknown commands; {ADDED_VARIANT})"
+            ));
         }
     }
 }

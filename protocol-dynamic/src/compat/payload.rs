@@ -5,84 +5,8 @@ use protocol_spec::ir::{
     BitMember, Enum, Field, FieldKind, Protocol, Scale, Struct, UnknownPolicy, ValueType,
 };
 
+use super::words::{field_type, unknown};
 use super::{Class, Report};
-
-fn type_text(p: &Protocol, f: &Field) -> String {
-    kind_text(p, f, &f.kind)
-}
-
-fn kind_text(p: &Protocol, f: &Field, kind: &FieldKind) -> String {
-    match kind {
-        FieldKind::Bytes { max, size_from } => match size_from {
-            Some(n) => format!("bytes (as many as `{n}`, at most {max})"),
-            None => format!("bytes (the rest, at most {max})"),
-        },
-        FieldKind::Group { elem, max } => {
-            format!("repeated {} (at most {max})", p.structs[*elem].name)
-        }
-        FieldKind::Optional(inner) => format!("optional {}", kind_text(p, f, inner)),
-        FieldKind::Padding => format!("{} padding bytes", f.size),
-        FieldKind::NulText { max } => format!("NUL-terminated text (at most {max})"),
-        FieldKind::Array { ty, max, size_from } => {
-            let elem = FieldKind::Value {
-                ty: ty.clone(),
-                count: None,
-            };
-            let n = match size_from {
-                Some(n) => format!("as many as `{n}`"),
-                None => "the rest".to_string(),
-            };
-            format!("array of {} ({n}, at most {max})", kind_text(p, f, &elem))
-        }
-        FieldKind::Check(c) => format!(
-            "check {} over {} after {:?}, {} bytes {:?}",
-            c.naming.display, c.covered, c.prefix, f.size, c.endian
-        ),
-        FieldKind::Bits { word, .. } => format!("{:?} {:?} bits", word.prim, word.endian),
-        FieldKind::Packed {
-            count,
-            bits,
-            order,
-            scale,
-            ..
-        } => {
-            let s = match scale {
-                Some(s) => format!(" × {} + {}", s.factor, s.offset),
-                None => String::new(),
-            };
-            format!("{count} × {bits} bits packed {order:?}{s}")
-        }
-        FieldKind::Value { ty, count } => {
-            let base = match ty {
-                ValueType::Scalar { scalar, scale } => {
-                    let s = match scale {
-                        Some(s) => format!(" × {} + {}", s.factor, s.offset),
-                        None => String::new(),
-                    };
-                    if scalar.prim.size() > 1 {
-                        format!("{} {:?}{s}", scalar.prim.spec_name(), scalar.endian)
-                    } else {
-                        format!("{}{s}", scalar.prim.spec_name())
-                    }
-                }
-                ValueType::Struct(i) => format!("struct {}", p.structs[*i].name),
-                ValueType::Enum(i, s) => {
-                    format!(
-                        "enum {} ({} {:?})",
-                        p.enums[*i].name,
-                        s.prim.spec_name(),
-                        s.endian
-                    )
-                }
-                ValueType::Text(n) => format!("char[{n}]"),
-            };
-            match count {
-                Some(n) => format!("[{base}; {n}]"),
-                None => base,
-            }
-        }
-    }
-}
 
 /// Compares two structs field by field. After the first breaking change the later fields'
 /// offsets may have moved, so comparing them would only repeat it: the walk stops there.
@@ -164,14 +88,14 @@ fn diff_field(
         (
             FieldKind::NulText { .. } | FieldKind::Array { .. } | FieldKind::Check(_),
             FieldKind::NulText { .. } | FieldKind::Array { .. } | FieldKind::Check(_),
-        ) => type_text(op, of) == type_text(np, nf),
+        ) => field_type(op, of) == field_type(np, nf),
         _ => false,
     };
     if !same_shape {
         r.breaking(format!(
             "{at}: {} → {}",
-            type_text(op, of),
-            type_text(np, nf)
+            field_type(op, of),
+            field_type(np, nf)
         ));
         return false;
     }
@@ -269,8 +193,9 @@ fn diff_scale(a: Option<&Scale>, b: Option<&Scale>, at: &str, r: &mut Report<'_>
             }
             if x.physical != y.physical {
                 r.source(format!(
-                    "{at}: physical type {:?} → {:?}",
-                    x.physical, y.physical
+                    "{at}: physical type {} → {}",
+                    x.physical.rust_name(),
+                    y.physical.rust_name()
                 ));
             }
             true
@@ -321,8 +246,8 @@ fn diff_members(
     true
 }
 
-/// Compares enum variants by value: a removed or renumbered variant breaks; an added one is
-/// compatible only when old decoders keep unknown values. Returns whether the wire type is the
+/// Compares enum variants by value: a removed or renumbered variant breaks; an added one keeps
+/// the wire only when old decoders keep unknown values, and breaks exhaustive matches. Returns whether the wire type is the
 /// same.
 fn diff_enum(a: &Enum, b: &Enum, at: &str, r: &mut Report<'_>) -> bool {
     if a.prim != b.prim {
@@ -348,9 +273,13 @@ fn diff_enum(a: &Enum, b: &Enum, at: &str, r: &mut Report<'_>) -> bool {
     for w in &b.variants {
         if !a.variants.iter().any(|v| v.value == w.value) {
             match a.unknown {
-                UnknownPolicy::Keep => r.compatible(format!(
-                    "{at}: enum `{}` gained {} = {} (old decoders keep it as an unknown value)",
-                    b.name, w.name, w.value
+                // The wire keeps, the source does not: see `ADDED_VARIANT`.
+                UnknownPolicy::Keep => r.source(format!(
+                    "{at}: enum `{}` gained {} = {} (old decoders keep it as an unknown value; {})",
+                    b.name,
+                    w.name,
+                    w.value,
+                    super::ADDED_VARIANT
                 )),
                 UnknownPolicy::Reject => r.breaking(format!(
                     "{at}: enum `{}` gained {} = {}, which old decoders reject (`unknown = \"reject\"`)",
@@ -362,8 +291,10 @@ fn diff_enum(a: &Enum, b: &Enum, at: &str, r: &mut Report<'_>) -> bool {
     if a.unknown != b.unknown {
         // `keep` adds the generated enum's `Unknown(raw)` variant.
         r.source(format!(
-            "{at}: enum `{}` unknown values: {:?} → {:?}",
-            b.name, a.unknown, b.unknown
+            "{at}: enum `{}`: {} → {}",
+            b.name,
+            unknown(a.unknown),
+            unknown(b.unknown)
         ));
     }
     // Variant changes are reported above; the field keeps its wire shape.

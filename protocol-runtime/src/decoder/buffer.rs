@@ -36,8 +36,9 @@ const _: () = assert!(!HOST || STAGE_SLACK >= FILL);
 pub const HOST_BUFFER_LEN: usize = 2048;
 
 /// Bytes of the buffer of a decoder of frames of at most `max_frame` bytes, as generated code
-/// sizes it (`DECODER_BUFFER_LEN`): the decoder's RAM but for its state (112 bytes on x86-64,
-/// 104 on thumbv7em, with a generated layout type, which takes none).
+/// sizes it (`DECODER_BUFFER_LEN`): the decoder's RAM but for its state
+/// ([`decoder_ram`]: 112 bytes on x86-64, 104 on thumbv7em, with a generated layout type,
+/// which takes none).
 ///
 /// On targets without 64-bit pointers (microcontrollers), what the engine needs and no more:
 /// the frame, as much again (at least 64 bytes) for a chunk staged behind a pending frame (the
@@ -48,17 +49,82 @@ pub const HOST_BUFFER_LEN: usize = 2048;
 /// the front (a copy of varying length, at irregular intervals) costs mispredicted branches
 /// that a larger buffer pays once every few dozen chunks (`BENCHMARKS.md` measures both).
 pub const fn decoder_buffer_len(max_frame: usize) -> usize {
+    buffer_len_on(max_frame, HOST)
+}
+
+/// [`decoder_buffer_len`] on a host (`true`: 64-bit pointers) or elsewhere, whichever target
+/// this build is for: what a code generator running on a host states of a microcontroller's
+/// decoder.
+const fn buffer_len_on(max_frame: usize, host: bool) -> usize {
     let frame_and_chunk = if max_frame > 64 {
         max_frame.saturating_mul(2)
     } else {
         max_frame.saturating_add(64)
     };
     let small = frame_and_chunk.saturating_add(128).next_multiple_of(64);
-    if HOST && small < HOST_BUFFER_LEN {
+    if host && small < HOST_BUFFER_LEN {
         HOST_BUFFER_LEN
     } else {
         small
     }
+}
+
+/// The RAM of a generated decoder, in bytes: its buffer and the rest of it (positions,
+/// counters, padding), the two summing to its `size_of`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DecoderRam {
+    /// The buffer: [`decoder_buffer_len`] on that target.
+    pub buffer: usize,
+    /// Everything else: the decoder's state.
+    pub state: usize,
+}
+
+/// The RAM a generated decoder of frames of at most `max_frame` bytes takes on a target whose
+/// pointers have `pointer_bytes` bytes (4 on a microcontroller such as thumbv7em, 8 on a
+/// 64-bit host) and whose `u64` is 8-aligned (both of those): the [`StreamDecoder`] with a
+/// generated layout type (zero-sized), laid out as its `repr(C)` declares, so that generated
+/// docs can state a microcontroller's figure from a build on a host.
+///
+/// ```
+/// use protocol_runtime::decoder::{StreamDecoder, decoder_buffer_len, decoder_ram};
+/// use protocol_runtime::layout::LengthRule;
+/// use protocol_runtime::{FrameLayout, LayoutRef};
+///
+/// static FIXED: FrameLayout<'static> = FrameLayout {
+///     sync: &[0xAA], sync_set: &[], header_len: 1, min_len: 4, max_len: 4, length: LengthRule::Fixed(4),
+///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
+/// };
+/// // A generated layout type: zero-sized.
+/// #[derive(Clone, Copy)]
+/// struct Fixed;
+/// impl LayoutRef for Fixed {
+///     fn layout(&self) -> &FrameLayout<'_> {
+///         &FIXED
+///     }
+/// }
+/// for max_frame in [4, 127, 1024] {
+///     assert_eq!(decoder_ram(max_frame, size_of::<usize>()).buffer, decoder_buffer_len(max_frame));
+/// }
+/// const N: usize = decoder_buffer_len(127);
+/// let ram = decoder_ram(127, size_of::<usize>());
+/// assert_eq!(ram.buffer + ram.state, size_of::<StreamDecoder<Fixed, N>>());
+/// const M: usize = decoder_buffer_len(1024);
+/// let ram = decoder_ram(1024, size_of::<usize>());
+/// assert_eq!(ram.buffer + ram.state, size_of::<StreamDecoder<Fixed, M>>());
+/// ```
+pub const fn decoder_ram(max_frame: usize, pointer_bytes: usize) -> DecoderRam {
+    let buffer = buffer_len_on(max_frame, pointer_bytes >= 8);
+    // `inner_dead`, `start` and `end`, then the buffer, then the 8-aligned `u64`s: `position`,
+    // the counters and `inner_owner`.
+    let before_u64s = pointer_bytes
+        .saturating_mul(3)
+        .saturating_add(buffer)
+        .next_multiple_of(8);
+    let state = before_u64s
+        .saturating_sub(buffer)
+        .saturating_add(size_of::<super::Stats>())
+        .saturating_add(16);
+    DecoderRam { buffer, state }
 }
 
 /// `dst.copy_from_slice(src)` (`dst` and `src` of one length), inline for the chunks of a

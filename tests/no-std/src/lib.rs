@@ -162,3 +162,15 @@ pub mod derived {
         }
     }
 }
+
+/// The RAM a generated module's docs state of its decoder, from `decoder_ram`, is the decoder's
+/// size on the target built for: this crate is built for thumbv7em (32-bit pointers) by CI and
+/// for the host (64-bit) by the workspace's tests, so both figures of the docs are checked.
+const fn stated_ram(max_frame: usize) -> usize {
+    let ram = protocol::decoder::decoder_ram(max_frame, size_of::<usize>());
+    ram.buffer + ram.state
+}
+const _: () = assert!(size_of::<hflink::Decoder>() == stated_ram(hflink::MAX_FRAME_LEN));
+const _: () = assert!(size_of::<crsf::Decoder>() == stated_ram(crsf::MAX_FRAME_LEN));
+const _: () = assert!(size_of::<ubx::Decoder>() == stated_ram(ubx::MAX_FRAME_LEN));
+const _: () = assert!(size_of::<roborts::Decoder>() == stated_ram(roborts::MAX_FRAME_LEN));

@@ -2,8 +2,8 @@
 //! serial line that adds noise and flips a bit, prints what comes back, and writes every byte
 //! that crossed the line to a capture file for `protocol decode`.
 
-use protocol_tutorial::Rover;
-use protocol_tutorial::rover::{self, Drive, Header, Lights, Message, Packet, Status};
+use rover_link::Rover;
+use rover_link::rover::{self, Drive, Header, Lights, Message, Packet, Status};
 
 fn frame(message: Message) -> Result<Vec<u8>, protocol::EncodeError> {
     let mut buf = [0u8; rover::MAX_FRAME_LEN];
