@@ -56,6 +56,8 @@ mod slicing;
 mod sum;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_then;
 
 pub use algorithm::{Algorithm, CrcSpec, CrcTable};
 pub use extra::Extra;
@@ -279,6 +281,10 @@ impl Checksum<'_> {
             Checksum::Crc16(c) => u64::from(c.checksum_written(data)),
             Checksum::Crc32(c) => u64::from(c.checksum_written(data)),
             Checksum::Crc64(c) => c.checksum_written(data),
+            Checksum::Extra(e) => match e.byte(data) {
+                Some(byte) => e.fold_written(data, byte),
+                None => e.crc.compute_plain(data),
+            },
             other => other.compute(data),
         }
     }
@@ -325,7 +331,7 @@ impl Checksum<'_> {
             Checksum::Crc16(c) => u64::from(c.checksum_prefix(data, n)),
             Checksum::Crc32(c) => u64::from(c.checksum_prefix(data, n)),
             Checksum::Crc64(c) => c.checksum_prefix(data, n),
-            Checksum::Extra(e) => return e.compute(data.get(..n)?),
+            Checksum::Extra(e) => return e.compute_prefix(data, n),
         })
     }
 }
