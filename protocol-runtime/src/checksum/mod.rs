@@ -20,7 +20,8 @@
 //!
 //! Firmware short of flash picks `NoTable` or `Table1` (the `crc` crate's); hosts pick
 //! `Table16`, this crate's [`Slicing16`], which has no byte-wise loop at all (the `crc` crate's
-//! `Table<16>` finishes with one over the last `n % 16` bytes).
+//! `Table<16>` finishes with one over the last `n % 16` bytes). A spec that names no table gets
+//! [`TargetCrc`]: `Table16` where pointers are 64 bits, `Table1` elsewhere.
 //!
 //! On x86-64 hosts, the `clmul` feature in a build for a CPU with carry-less multiplication
 //! (`-C target-cpu=native`, or `-C target-feature=+pclmulqdq`) has [`Slicing16`] fold reflected
@@ -111,11 +112,53 @@ pub enum CrcImpl<'a, W: crc::Width> {
     Table16(&'a Slicing16<W>),
 }
 
+/// Whether [`TargetCrc`] is [`Slicing16`] (pointers of 64 bits) rather than one table.
+pub const TARGET_TABLE16: bool = cfg!(target_pointer_width = "64");
+
+/// The CRC tables of a check whose spec names no `table` ([`CrcTable::ByTarget`]): sixteen
+/// ([`Slicing16`]) where pointers are 64 bits, where speed comes first; one 256-entry table
+/// (`crc::Table<1>`) elsewhere, on microcontrollers, where flash does (sixteen tables of a
+/// CRC-16 are 8 KiB). Both build in a `const` with `TargetCrc::<W>::new(&algorithm)`;
+/// [`CrcImpl::by_target`] wraps either.
+#[cfg(target_pointer_width = "64")]
+pub type TargetCrc<W> = Slicing16<W>;
+/// The CRC tables of a check whose spec names no `table` ([`CrcTable::ByTarget`]): sixteen
+/// ([`Slicing16`]) where pointers are 64 bits, where speed comes first; one 256-entry table
+/// (`crc::Table<1>`) elsewhere, on microcontrollers, where flash does (sixteen tables of a
+/// CRC-16 are 8 KiB). Both build in a `const` with `TargetCrc::<W>::new(&algorithm)`;
+/// [`CrcImpl::by_target`] wraps either.
+#[cfg(not(target_pointer_width = "64"))]
+pub type TargetCrc<W> = crc::Crc<W, crc::Table<1>>;
+
+impl<'a, W: crc::Width> CrcImpl<'a, W> {
+    /// The [`CrcImpl`] of a [`TargetCrc`]: [`CrcImpl::Table16`] or [`CrcImpl::Table1`].
+    ///
+    /// ```
+    /// use protocol_runtime::checksum::{Checksum, CrcImpl, TargetCrc};
+    ///
+    /// static CRC: TargetCrc<u16> = TargetCrc::<u16>::new(&crc::CRC_16_MCRF4XX);
+    /// let check = Checksum::Crc16(CrcImpl::by_target(&CRC));
+    /// assert_eq!(check.compute(b"123456789"), 0x6F91);
+    /// ```
+    #[inline]
+    #[must_use]
+    pub const fn by_target(tables: &'a TargetCrc<W>) -> Self {
+        #[cfg(target_pointer_width = "64")]
+        {
+            CrcImpl::Table16(tables)
+        }
+        #[cfg(not(target_pointer_width = "64"))]
+        {
+            CrcImpl::Table1(tables)
+        }
+    }
+}
+
 macro_rules! crc_impl_width {
     ($($w:ty),*) => {$(
         impl CrcImpl<'_, $w> {
             #[doc = concat!("The CRC of `data` as a `", stringify!($w), "`.")]
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             pub fn checksum(&self, data: &[u8]) -> $w {
                 match self {
                     CrcImpl::NoTable(c) => c.checksum(data),
@@ -127,7 +170,7 @@ macro_rules! crc_impl_width {
             #[doc = concat!("The CRC of `data` as a `", stringify!($w), "`, bytes just written:")]
             /// as [`checksum`](Self::checksum), but never with the carry-less folding
             /// ([`Slicing16::checksum_written`]).
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             pub fn checksum_written(&self, data: &[u8]) -> $w {
                 match self {
                     CrcImpl::NoTable(c) => c.checksum(data),
@@ -139,7 +182,7 @@ macro_rules! crc_impl_width {
             #[doc = concat!("The CRC of `data[..n]` as a `", stringify!($w), "`; `data` may")]
             /// run past `n` (bytes past `n` never change the result). If `data` is shorter
             /// than `n`, the CRC of all of `data`.
-            #[inline(always)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             pub fn checksum_prefix(&self, data: &[u8], n: usize) -> $w {
                 match self {
                     CrcImpl::NoTable(c) => c.checksum(data.get(..n).unwrap_or(data)),
@@ -211,7 +254,9 @@ impl fmt::Debug for Checksum<'_> {
 // `#[inline(always)]` dispatchers over out-of-line per-algorithm functions: where the
 // `Checksum` is a constant (a generated layout), only the algorithm it names is linked, which
 // matters for firmware flash (at `opt-level = "s"` a plain `#[inline]` dispatcher stays out of
-// line and links every table size of its width).
+// line and links every table size of its width). In a build with debug assertions (opt-level
+// 0 by default) nothing folds, and forced inlining would copy every algorithm into each caller:
+// there they are plain functions, each linked once.
 impl Checksum<'_> {
     /// Bytes of the stored check value: 1 for the 8-bit sums, xor and CRC-8, 2 for the
     /// 16-bit sums, the Fletcher pairs and CRC-16, then 4 or 8.
@@ -220,7 +265,7 @@ impl Checksum<'_> {
     /// the `Checksum` is a constant it folds to a number. (The compiler does not inline a
     /// recursive function: a call per check and frame in the engine's scan, 24 instructions
     /// per referee frame in `benches/count.sh`.)
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub const fn width(&self) -> usize {
         match self {
             Checksum::Extra(e) => e.crc.width_of_crc(),
@@ -230,7 +275,7 @@ impl Checksum<'_> {
 
     /// [`width`](Self::width) of a checksum that is not an [`Extra`] (an [`Extra`] holds no
     /// other [`Extra`]: 0 for one).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     const fn width_of_crc(&self) -> usize {
         match self {
             Checksum::Sum8 | Checksum::SumMod255 | Checksum::Xor8 | Checksum::Crc8(_) => 1,
@@ -251,7 +296,7 @@ impl Checksum<'_> {
     /// assert_eq!(Checksum::Sum8.compute(&[0xFF, 0x02]), 0x01);
     /// assert_eq!(Checksum::Xor8.compute(&[0x0F, 0xF0]), 0xFF);
     /// ```
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn compute(&self, data: &[u8]) -> u64 {
         match self {
             Checksum::Sum8 => u64::from(sum::sum8(data)),
@@ -274,7 +319,7 @@ impl Checksum<'_> {
     /// [`compute`](Self::compute) of bytes the caller has just written (an encoder's frame):
     /// the same value, with a CRC's tables even in a build with the carry-less folding
     /// ([`Slicing16::checksum_written`] says why).
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn compute_written(&self, data: &[u8]) -> u64 {
         match self {
             Checksum::Crc8(c) => u64::from(c.checksum_written(data)),
@@ -315,7 +360,7 @@ impl Checksum<'_> {
     /// assert_eq!(Checksum::Sum8.compute_prefix(&input, 3), Some(0x06));
     /// assert_eq!(Checksum::Sum8.compute_prefix(&input, 6), None);
     /// ```
-    #[inline(always)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn compute_prefix(&self, data: &[u8], n: usize) -> Option<u64> {
         if data.len() < n {
             return None;
