@@ -254,9 +254,8 @@ impl fmt::Debug for Checksum<'_> {
 // `#[inline(always)]` dispatchers over out-of-line per-algorithm functions: where the
 // `Checksum` is a constant (a generated layout), only the algorithm it names is linked, which
 // matters for firmware flash (at `opt-level = "s"` a plain `#[inline]` dispatcher stays out of
-// line and links every table size of its width). In a build with debug assertions (opt-level
-// 0 by default) nothing folds, and forced inlining would copy every algorithm into each caller:
-// there they are plain functions, each linked once.
+// line and links every table size of its width). As all forced inlining in this crate, only
+// in builds without debug assertions (the decoder's module docs say why).
 impl Checksum<'_> {
     /// Bytes of the stored check value: 1 for the 8-bit sums, xor and CRC-8, 2 for the
     /// 16-bit sums, the Fletcher pairs and CRC-16, then 4 or 8.
