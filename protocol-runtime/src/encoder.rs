@@ -62,7 +62,7 @@ impl FrameLayout<'_> {
     /// assert_eq!(hflink.parse(&frame), Ok(&frame[..]));
     /// # Ok::<(), protocol_runtime::EncodeError>(())
     /// ```
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub fn seal(&self, frame: &mut [u8]) -> Result<(), EncodeError> {
         let len = frame.len();
         let span = self.header_span();
@@ -137,7 +137,7 @@ impl FrameLayout<'_> {
     /// field, with the marker in the length field, when it does not fit below the marker),
     /// from the frame's length without the flag trailer, whose flag the caller set. Returns
     /// the frame's body, which the checks and markers resolve against.
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     fn seal_conditional<'f>(
         &self,
         frame: &'f mut [u8],
@@ -311,7 +311,7 @@ pub trait MessagePayload {
     fn visit_payload<V: PayloadVisitor<Self::Command>>(&self, v: V) -> V::Output;
 
     /// Bytes of the payload on the wire.
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     fn payload_len(&self) -> usize {
         self.visit_payload(WireLen)
     }
@@ -322,7 +322,7 @@ pub trait MessagePayload {
     ///
     /// [`EncodeError::BufferTooSmall`] if `w` has too little room,
     /// [`EncodeError::ValueOutOfRange`] if a field's value does not fit its wire form.
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     fn write_payload(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
         self.visit_payload(WritePayload(w))
     }
@@ -334,7 +334,7 @@ pub struct CommandOf;
 
 impl<C> PayloadVisitor<C> for CommandOf {
     type Output = C;
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     fn visit<P: Payload>(self, command: C, _: &P) -> C {
         command
     }
@@ -346,7 +346,7 @@ pub struct WireLen;
 
 impl<C> PayloadVisitor<C> for WireLen {
     type Output = usize;
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     fn visit<P: Payload>(self, _: C, payload: &P) -> usize {
         payload.wire_len()
     }
@@ -358,7 +358,7 @@ pub struct WritePayload<'w, 'b>(pub &'w mut Writer<'b>);
 
 impl<C> PayloadVisitor<C> for WritePayload<'_, '_> {
     type Output = Result<(), EncodeError>;
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     fn visit<P: Payload>(self, _: C, payload: &P) -> Result<(), EncodeError> {
         payload.write(self.0)
     }
@@ -370,7 +370,7 @@ impl<C> PayloadVisitor<C> for WritePayload<'_, '_> {
 /// use protocol_runtime::{DecodeError, encoder::expected_empty};
 /// assert_eq!(expected_empty(&[1]), DecodeError::PayloadLength { expected: 0, actual: 1 });
 /// ```
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub fn expected_empty(bytes: &[u8]) -> DecodeError {
     DecodeError::PayloadLength {
         expected: 0,
@@ -384,7 +384,7 @@ pub fn expected_empty(bytes: &[u8]) -> DecodeError {
 /// # Errors
 ///
 /// The errors of [`Payload::from_bytes`].
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub fn read_payload<P: Payload>(bytes: &[u8]) -> Result<P, DecodeError> {
     P::from_bytes(bytes)
 }
@@ -395,7 +395,7 @@ pub fn read_payload<P: Payload>(bytes: &[u8]) -> Result<P, DecodeError> {
 /// # Errors
 ///
 /// [`DecodeError::Truncated`] if `frame` ends before the field.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub fn header_value(frame: &[u8], field: WordField, header_len: usize) -> Result<u64, DecodeError> {
     field.read(frame).ok_or(DecodeError::Truncated {
         needed: header_len,
@@ -404,7 +404,7 @@ pub fn header_value(frame: &[u8], field: WordField, header_len: usize) -> Result
 }
 
 /// The error of a frame whose dispatch key `key` names no command.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 #[must_use]
 pub const fn unknown_command(key: u64) -> DecodeError {
     DecodeError::UnknownCommand { key }
@@ -416,7 +416,7 @@ pub const fn unknown_command(key: u64) -> DecodeError {
 /// # Errors
 ///
 /// [`DecodeError::Truncated`] if `frame` is shorter than its header and trailer.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub fn payload_of(
     frame: &[u8],
     header_len: usize,
@@ -437,7 +437,7 @@ pub fn payload_of(
 ///
 /// [`EncodeError::BufferTooSmall`] if `buf` is shorter than `needed` or than `start` and the
 /// trailer.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub fn payload_room(
     buf: &mut [u8],
     needed: usize,
@@ -457,7 +457,7 @@ pub fn payload_room(
 /// # Errors
 ///
 /// [`EncodeError::BufferTooSmall`] if `buf` is shorter than `total`.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub fn frame_room(buf: &mut [u8], total: usize) -> Result<&mut [u8], EncodeError> {
     let available = buf.len();
     buf.get_mut(..total).ok_or(EncodeError::BufferTooSmall {
@@ -472,7 +472,7 @@ pub fn frame_room(buf: &mut [u8], total: usize) -> Result<&mut [u8], EncodeError
 ///
 /// [`EncodeError::ValueOutOfRange`] if the value does not fit the field or the field lies
 /// outside the frame.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub fn write_header(frame: &mut [u8], field: WordField, value: u64) -> Result<(), EncodeError> {
     field
         .write(frame, value)

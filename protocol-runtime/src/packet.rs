@@ -49,11 +49,11 @@ pub trait EncodePacket {
 }
 
 impl<P: EncodePacket + ?Sized> EncodePacket for &P {
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     fn encoded_len(&self) -> usize {
         P::encoded_len(self)
     }
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     fn encode_into(&self, buf: &mut [u8]) -> Result<usize, EncodeError> {
         P::encode_into(self, buf)
     }

@@ -158,7 +158,7 @@ macro_rules! crc_impl_width {
     ($($w:ty),*) => {$(
         impl CrcImpl<'_, $w> {
             #[doc = concat!("The CRC of `data` as a `", stringify!($w), "`.")]
-            #[cfg_attr(not(debug_assertions), inline(always))]
+            #[inline(always)]
             pub fn checksum(&self, data: &[u8]) -> $w {
                 match self {
                     CrcImpl::NoTable(c) => c.checksum(data),
@@ -170,7 +170,7 @@ macro_rules! crc_impl_width {
             #[doc = concat!("The CRC of `data` as a `", stringify!($w), "`, bytes just written:")]
             /// as [`checksum`](Self::checksum), but never with the carry-less folding
             /// ([`Slicing16::checksum_written`]).
-            #[cfg_attr(not(debug_assertions), inline(always))]
+            #[inline(always)]
             pub fn checksum_written(&self, data: &[u8]) -> $w {
                 match self {
                     CrcImpl::NoTable(c) => c.checksum(data),
@@ -182,7 +182,7 @@ macro_rules! crc_impl_width {
             #[doc = concat!("The CRC of `data[..n]` as a `", stringify!($w), "`; `data` may")]
             /// run past `n` (bytes past `n` never change the result). If `data` is shorter
             /// than `n`, the CRC of all of `data`.
-            #[cfg_attr(not(debug_assertions), inline(always))]
+            #[inline(always)]
             pub fn checksum_prefix(&self, data: &[u8], n: usize) -> $w {
                 match self {
                     CrcImpl::NoTable(c) => c.checksum(data.get(..n).unwrap_or(data)),
@@ -254,8 +254,7 @@ impl fmt::Debug for Checksum<'_> {
 // `#[inline(always)]` dispatchers over out-of-line per-algorithm functions: where the
 // `Checksum` is a constant (a generated layout), only the algorithm it names is linked, which
 // matters for firmware flash (at `opt-level = "s"` a plain `#[inline]` dispatcher stays out of
-// line and links every table size of its width). As all forced inlining in this crate, only
-// in builds without debug assertions (the decoder's module docs say why).
+// line and links every table size of its width).
 impl Checksum<'_> {
     /// Bytes of the stored check value: 1 for the 8-bit sums, xor and CRC-8, 2 for the
     /// 16-bit sums, the Fletcher pairs and CRC-16, then 4 or 8.
@@ -264,7 +263,7 @@ impl Checksum<'_> {
     /// the `Checksum` is a constant it folds to a number. (The compiler does not inline a
     /// recursive function: a call per check and frame in the engine's scan, 24 instructions
     /// per referee frame in `benches/count.sh`.)
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub const fn width(&self) -> usize {
         match self {
             Checksum::Extra(e) => e.crc.width_of_crc(),
@@ -274,7 +273,7 @@ impl Checksum<'_> {
 
     /// [`width`](Self::width) of a checksum that is not an [`Extra`] (an [`Extra`] holds no
     /// other [`Extra`]: 0 for one).
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     const fn width_of_crc(&self) -> usize {
         match self {
             Checksum::Sum8 | Checksum::SumMod255 | Checksum::Xor8 | Checksum::Crc8(_) => 1,
@@ -295,7 +294,7 @@ impl Checksum<'_> {
     /// assert_eq!(Checksum::Sum8.compute(&[0xFF, 0x02]), 0x01);
     /// assert_eq!(Checksum::Xor8.compute(&[0x0F, 0xF0]), 0xFF);
     /// ```
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub fn compute(&self, data: &[u8]) -> u64 {
         match self {
             Checksum::Sum8 => u64::from(sum::sum8(data)),
@@ -318,7 +317,7 @@ impl Checksum<'_> {
     /// [`compute`](Self::compute) of bytes the caller has just written (an encoder's frame):
     /// the same value, with a CRC's tables even in a build with the carry-less folding
     /// ([`Slicing16::checksum_written`] says why).
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub fn compute_written(&self, data: &[u8]) -> u64 {
         match self {
             Checksum::Crc8(c) => u64::from(c.checksum_written(data)),
@@ -359,7 +358,7 @@ impl Checksum<'_> {
     /// assert_eq!(Checksum::Sum8.compute_prefix(&input, 3), Some(0x06));
     /// assert_eq!(Checksum::Sum8.compute_prefix(&input, 6), None);
     /// ```
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub fn compute_prefix(&self, data: &[u8], n: usize) -> Option<u64> {
         if data.len() < n {
             return None;

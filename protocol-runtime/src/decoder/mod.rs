@@ -47,7 +47,6 @@
 //! | `stage-input` feature | the user; CI on hosts | every chunk staged in the buffer first, as without `HOST`, to test that path on a host | `SCAN_IN_PLACE` |
 //! | `crc-fast` feature | the user, on hosts (it needs `std`) | CRCs the `crc-fast` crate catalogues, over 128 bytes or more, computed by it ([`Slicing16::uses_crc_fast`]) | `checksum/fast.rs`, `checksum/slicing.rs` |
 //! | `clmul` feature, with `target_arch = "x86_64"` and `target_feature = "pclmulqdq"` | the user, and `-C target-feature=+pclmulqdq` or `-C target-cpu=native` (no run-time detection: `safe_arch` offers the intrinsic only to such builds) | reflected CRCs of up to 32 bits over more than 8 bytes folded with carry-less multiplication ([`Slicing16::uses_clmul`]) | `checksum/clmul.rs`, `checksum/slicing.rs` |
-//! | `debug_assertions` | the profile (on in `dev`, off in `release`) | forced inlining (`#[inline(always)]`) of the engine, the checksums, the fields and the rules, only without it. Optimised builds fold a constant layout through the inlined calls to code for its one format; a build at opt-level 0 folds nothing, so each forced inlining copies every branch (every algorithm and table size of a checksum dispatcher) into every caller, and nested ones multiply. With debug assertions each function is linked once, whatever the opt-level: a `dev` profile at opt-level 1 or "s" gets larger code than a release build at the same level (`BENCHMARKS.md`, "Firmware by profile") | every module of this crate |
 //! | `protocol_ablate_early_truncation` cfg | the benchmark scripts only (`RUSTFLAGS="--cfg protocol_ablate_early_truncation"`) | the early-truncation rule left out, to measure what it costs: a candidate waits for its claimed length even when a frame is complete inside it. Never for use: it changes when frames are delivered and, on a link that goes quiet, whether (the rule's tests fail) | `EARLY_TRUNCATION` |
 //!
 //! A host is a target with 64-bit pointers: time counts for more than code size, and 64-bit
@@ -102,7 +101,7 @@ use crate::wire::{read_uint, write_uint};
 /// bytes, and a call (to `memcmp`, or to `Zip::next`, which the compiler may leave out of line
 /// in a large caller) would cost more than the comparison, and hide that a constant sync of
 /// one byte leaves nothing to compare.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 fn bytes_agree(data: &[u8], expected: &[u8]) -> bool {
     let mut i = 0;
     while let (Some(a), Some(b)) = (data.get(i), expected.get(i)) {
@@ -127,7 +126,7 @@ pub enum Probe {
 
 impl Check<'_> {
     /// The covered range and the stored value's offset in a frame of `len` bytes.
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     fn resolve(&self, len: usize) -> Option<(core::ops::Range<usize>, usize)> {
         let from = self.from.resolve(len)?;
         let to = self.to.resolve(len)?;
@@ -146,7 +145,7 @@ impl Check<'_> {
     /// ([`Checksum::compute_prefix`](crate::Checksum::compute_prefix): a fixed-size read
     /// instead of a loop whose trip count follows the frame length) but never change the
     /// verdict.
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub fn verify_prefix(&self, bytes: &[u8], len: usize) -> bool {
         let (Some(frame), Some((covered, at))) = (bytes.get(..len), self.resolve(len)) else {
             return false;
@@ -169,7 +168,7 @@ impl Check<'_> {
     /// Computes the check of the bytes it covers and stores it in `frame`.
     ///
     /// Returns `None`, writing nothing, if a position lies outside the frame.
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub fn store(&self, frame: &mut [u8]) -> Option<()> {
         let (covered, at) = self.resolve(frame.len())?;
         let value = self.checksum.compute_written(frame.get(covered)?);
@@ -179,7 +178,7 @@ impl Check<'_> {
 
 impl Marker<'_> {
     /// Whether `frame` holds the marker's bytes at its position.
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub fn matches(&self, frame: &[u8]) -> bool {
         let Some(at) = self.at.resolve(frame.len()) else {
             return false;
@@ -200,7 +199,7 @@ impl Marker<'_> {
 
 impl Constant {
     /// Whether `header` holds the value.
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub fn matches(&self, header: &[u8]) -> bool {
         self.field.read(header) == Some(self.value)
     }
@@ -209,7 +208,7 @@ impl Constant {
 impl FrameLayout<'_> {
     /// Bytes needed before the length is known and the header verified:
     /// `max(header_len, sync.len())`.
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub const fn header_span(&self) -> usize {
         if self.header_len > self.sync_len() {
             self.header_len
@@ -220,7 +219,7 @@ impl FrameLayout<'_> {
 
     /// Bytes of the sync: the byte of [`sync_set`](Self::sync_set), if any, and
     /// [`sync`](Self::sync).
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub const fn sync_len(&self) -> usize {
         if self.sync_set.is_empty() {
             self.sync.len()
@@ -231,7 +230,7 @@ impl FrameLayout<'_> {
 
     /// Whether `bytes`, the start of a candidate, match the sync as far as they go (a prefix cut
     /// by the end of `bytes` matches).
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub fn sync_matches(&self, bytes: &[u8]) -> bool {
         let rest = match (self.sync_set, bytes) {
             ([], _) => bytes,
@@ -267,7 +266,7 @@ impl FrameLayout<'_> {
     /// assert_eq!(hflink.frame_len(&[0xFF, 0xFF, 0x11, 0x01, 0x00, 0x01]), Some(8));
     /// assert_eq!(hflink.frame_len(&[0xFF, 0xFF, 0x11]), None);
     /// ```
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     pub fn frame_len(&self, header: &[u8]) -> Option<usize> {
         let header = header.get(..self.header_span())?;
         match self.length {
@@ -365,7 +364,7 @@ impl FrameLayout<'_> {
 /// Generic over where the layout comes from: for a layout known at compile time
 /// ([`LayoutRef`]), every read of it is a constant, and this compiles to code for the one
 /// format. Always inlined: it is the body of the engine's inner loops.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub(crate) fn probe<L: LayoutRef>(
     layout: &L,
     readable: &[u8],
@@ -384,7 +383,7 @@ pub(crate) fn probe<L: LayoutRef>(
 /// The format of `link` that the candidate `bytes` start with, and its index (0: the first):
 /// the first whose sync they match (as far as they go). The first format when none does, and
 /// always for a link of one format (the test then folds away).
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub(crate) fn select<'a, L: LayoutRef>(link: &'a L, bytes: &[u8]) -> (usize, &'a FrameLayout<'a>) {
     let first = link.layout();
     let others = link.others();
@@ -398,7 +397,7 @@ pub(crate) fn select<'a, L: LayoutRef>(link: &'a L, bytes: &[u8]) -> (usize, &'a
 }
 
 /// The longest frame of any format of `link`.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub(crate) fn link_max_len<L: LayoutRef>(link: &L) -> usize {
     let first = link.layout().max_len;
     link.others().iter().fold(first, |m, f| m.max(f.max_len))
@@ -407,7 +406,7 @@ pub(crate) fn link_max_len<L: LayoutRef>(link: &L) -> usize {
 /// [`probe`] for a link of one or several formats: the candidate is probed by the format its
 /// sync selects ([`select`]), with frames longer than that format's `max_len` or `limit`
 /// rejected. Returns the format's index with the verdict.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub(crate) fn probe_link<L: LayoutRef>(
     link: &L,
     readable: &[u8],
@@ -425,7 +424,7 @@ pub(crate) fn probe_link<L: LayoutRef>(
 
 /// [`probe_synced`] for a link of one or several formats, once the candidate's bytes are known
 /// to match some format's sync (the engine's search for a candidate has just compared them).
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub(crate) fn probe_link_synced<L: LayoutRef>(
     link: &L,
     readable: &[u8],
@@ -443,7 +442,7 @@ pub(crate) fn probe_link_synced<L: LayoutRef>(
 
 /// [`probe`] once the candidate's bytes are known to match the sync bytes, as many of them as
 /// there are (the engine's search for a candidate has just compared them): every other rule.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub(crate) fn probe_synced<L: LayoutRef>(
     layout: &L,
     readable: &[u8],

@@ -25,7 +25,7 @@ use crate::layout::LayoutRef;
 /// Per frame, only a count and the offset change: a frame's bytes are what the scan did not
 /// skip, added once at the end. Skipped bytes (rare on a good link) go straight to the stats,
 /// out of the loop's registers.
-#[cfg_attr(not(debug_assertions), inline(always))]
+#[inline(always)]
 pub(super) fn scan<L: LayoutRef>(
     layout: &L,
     readable: &[u8],

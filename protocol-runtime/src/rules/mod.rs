@@ -105,7 +105,7 @@ impl DirectionTest {
 
     /// Whether the header of `frame` passes the test (`None` if the frame is too short for
     /// the field).
-    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[inline(always)]
     fn holds(&self, frame: &[u8]) -> Option<bool> {
         match *self {
             DirectionTest::InRange { field, first, last } => {
