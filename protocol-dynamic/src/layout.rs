@@ -43,14 +43,16 @@ macro_rules! tables {
         impl From<&CrcSpec<$w>> for Tables<$w> {
             fn from(spec: &CrcSpec<$w>) -> Self {
                 let alg = intern(&spec.params);
-                match spec.table {
+                match spec.table.on_this_target() {
                     CrcTable::NoTable => {
                         Tables::NoTable(Box::new(crc::Crc::<$w, crc::NoTable>::new(alg)))
                     }
                     CrcTable::Table1 => {
                         Tables::Table1(Box::new(crc::Crc::<$w, crc::Table<1>>::new(alg)))
                     }
-                    CrcTable::Table16 => Tables::Table16(Box::new(Slicing16::<$w>::new(alg))),
+                    CrcTable::Table16 | CrcTable::ByTarget => {
+                        Tables::Table16(Box::new(Slicing16::<$w>::new(alg)))
+                    }
                 }
             }
         }

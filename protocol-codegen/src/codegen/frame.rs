@@ -141,6 +141,11 @@ pub fn algorithm_expr(
                     quote!(#rt::Slicing16::<#w>::new(&#alg)),
                     quote!(Table16),
                 ),
+                CrcTable::ByTarget => (
+                    quote!(#rt::TargetCrc<#w>),
+                    quote!(#rt::TargetCrc::<#w>::new(&#alg)),
+                    quote!(by_target),
+                ),
             };
             let static_name = Ident::new(
                 naming.table_static.as_deref().unwrap_or("CRC_TABLE"),

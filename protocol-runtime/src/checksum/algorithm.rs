@@ -56,16 +56,34 @@ pub enum CrcTable {
     Table1,
     /// [`CrcImpl::Table16`](super::CrcImpl::Table16).
     Table16,
+    /// Chosen by the target the code is built for ([`TargetCrc`](super::TargetCrc)):
+    /// [`Table16`](Self::Table16) where pointers are 64 bits (a host: speed first), else
+    /// [`Table1`](Self::Table1) (a microcontroller: flash first). What a spec that names no
+    /// `table` gets.
+    ByTarget,
 }
 
 impl CrcTable {
-    /// Number of 256-entry tables: 0, 1 or 16.
+    /// Number of 256-entry tables: 0, 1 or 16 (for [`ByTarget`](Self::ByTarget), on the
+    /// target this is built for).
     #[inline]
     pub const fn lanes(self) -> usize {
-        match self {
+        match self.on_this_target() {
             CrcTable::NoTable => 0,
-            CrcTable::Table1 => 1,
+            CrcTable::Table1 | CrcTable::ByTarget => 1,
             CrcTable::Table16 => 16,
+        }
+    }
+
+    /// The table size on the target this is built for: [`ByTarget`](Self::ByTarget) resolved
+    /// (a run-time codec builds its tables with it), any other unchanged.
+    #[inline]
+    #[must_use]
+    pub const fn on_this_target(self) -> CrcTable {
+        match self {
+            CrcTable::ByTarget if super::TARGET_TABLE16 => CrcTable::Table16,
+            CrcTable::ByTarget => CrcTable::Table1,
+            other => other,
         }
     }
 }

@@ -45,6 +45,8 @@ pub struct Extra<'a> {
 
 impl Extra<'_> {
     /// The byte of the key the covered bytes `data` hold, if it has one.
+    ///
+    /// A binary search of [`bytes`](Self::bytes): O(log n) in the number of keys.
     #[inline]
     pub fn byte(&self, data: &[u8]) -> Option<u8> {
         let key = u32::try_from(self.key.read(data)?).ok()?;
@@ -55,11 +57,31 @@ impl Extra<'_> {
     /// The CRC of `data`, then `byte`.
     #[inline]
     pub fn fold(&self, data: &[u8], byte: u8) -> u64 {
+        self.fold_prefix(data, data.len(), byte)
+    }
+
+    /// The CRC of `data[..n]`, then `byte`; `data` may run past `n` (as in
+    /// [`Checksum::compute_prefix`], the bytes after `n` let a block be read whole).
+    #[inline(always)]
+    pub fn fold_prefix(&self, data: &[u8], n: usize, byte: u8) -> u64 {
         match &self.crc {
-            Checksum::Crc8(c) => u64::from(c.checksum_then(data, byte)),
-            Checksum::Crc16(c) => u64::from(c.checksum_then(data, byte)),
-            Checksum::Crc32(c) => u64::from(c.checksum_then(data, byte)),
-            Checksum::Crc64(c) => c.checksum_then(data, byte),
+            Checksum::Crc8(c) => u64::from(c.checksum_prefix_then(data, n, byte)),
+            Checksum::Crc16(c) => u64::from(c.checksum_prefix_then(data, n, byte)),
+            Checksum::Crc32(c) => u64::from(c.checksum_prefix_then(data, n, byte)),
+            Checksum::Crc64(c) => c.checksum_prefix_then(data, n, byte),
+            other => other.compute(data.get(..n).unwrap_or(data)),
+        }
+    }
+
+    /// [`fold`](Self::fold) of bytes the caller has just written (an encoder's frame):
+    /// the same value, with a CRC's tables even in a build with the carry-less folding.
+    #[inline(always)]
+    pub fn fold_written(&self, data: &[u8], byte: u8) -> u64 {
+        match &self.crc {
+            Checksum::Crc8(c) => u64::from(c.checksum_written_then(data, byte)),
+            Checksum::Crc16(c) => u64::from(c.checksum_written_then(data, byte)),
+            Checksum::Crc32(c) => u64::from(c.checksum_written_then(data, byte)),
+            Checksum::Crc64(c) => c.checksum_written_then(data, byte),
             other => other.compute(data),
         }
     }
@@ -69,38 +91,60 @@ impl Extra<'_> {
     pub fn compute(&self, data: &[u8]) -> Option<u64> {
         Some(self.fold(data, self.byte(data)?))
     }
+
+    /// The check value of `data[..n]`: `None` when `data` is shorter than `n` or the key of
+    /// `data[..n]` has no byte.
+    #[inline(always)]
+    pub fn compute_prefix(&self, data: &[u8], n: usize) -> Option<u64> {
+        let byte = self.byte(data.get(..n)?)?;
+        Some(self.fold_prefix(data, n, byte))
+    }
 }
 
 macro_rules! checksum_then {
     ($($w:ty),*) => {$(
         impl CrcImpl<'_, $w> {
-            #[doc = concat!("The CRC of `data` then `byte`, as a `", stringify!($w), "`.")]
+            #[doc = concat!("The CRC of `data[..n]` then `byte`, as a `", stringify!($w), "`;")]
+            /// `data` may run past `n`.
             ///
-            /// A streaming digest of the `crc` crate; a [`CrcImpl::Table16`] runs it without a
-            /// table, since slicing by 16 has no streaming form (validation gives a check with
-            /// an extra byte one table).
-            #[inline]
-            pub fn checksum_then(&self, data: &[u8], byte: u8) -> $w {
+            /// A [`CrcImpl::Table16`] computes the covered bytes as
+            /// [`checksum_prefix`](Self::checksum_prefix) does (blocks, or the carry-less
+            /// folding where built in) and appends the byte with one table step
+            /// ([`Slicing16::then`](super::Slicing16::then)); the one-table and table-free
+            /// CRCs run the `crc` crate's streaming digest.
+            #[inline(always)]
+            pub fn checksum_prefix_then(&self, data: &[u8], n: usize, byte: u8) -> $w {
+                let covered = data.get(..n).unwrap_or(data);
                 match self {
                     CrcImpl::NoTable(c) => {
                         let mut d = c.digest();
-                        d.update(data);
+                        d.update(covered);
                         d.update(&[byte]);
                         d.finalize()
                     }
                     CrcImpl::Table1(c) => {
                         let mut d = c.digest();
-                        d.update(data);
+                        d.update(covered);
                         d.update(&[byte]);
                         d.finalize()
                     }
-                    CrcImpl::Table16(c) => {
-                        let crc = crc::Crc::<$w, crc::NoTable>::new(c.algorithm());
-                        let mut d = crc.digest();
-                        d.update(data);
-                        d.update(&[byte]);
-                        d.finalize()
-                    }
+                    CrcImpl::Table16(c) => c.checksum_prefix_then(data, n, byte),
+                }
+            }
+
+            #[doc = concat!("The CRC of `data` then `byte`, as a `", stringify!($w), "`.")]
+            #[inline]
+            pub fn checksum_then(&self, data: &[u8], byte: u8) -> $w {
+                self.checksum_prefix_then(data, data.len(), byte)
+            }
+
+            /// [`checksum_then`](Self::checksum_then) of bytes the caller has just written:
+            /// never with the carry-less folding ([`Slicing16::checksum_written`](super::Slicing16::checksum_written)).
+            #[inline(always)]
+            pub fn checksum_written_then(&self, data: &[u8], byte: u8) -> $w {
+                match self {
+                    CrcImpl::Table16(c) => c.checksum_written_then(data, byte),
+                    other => other.checksum_then(data, byte),
                 }
             }
         }

@@ -20,7 +20,8 @@
 //!
 //! Firmware short of flash picks `NoTable` or `Table1` (the `crc` crate's); hosts pick
 //! `Table16`, this crate's [`Slicing16`], which has no byte-wise loop at all (the `crc` crate's
-//! `Table<16>` finishes with one over the last `n % 16` bytes).
+//! `Table<16>` finishes with one over the last `n % 16` bytes). A spec that names no table gets
+//! [`TargetCrc`]: `Table16` where pointers are 64 bits, `Table1` elsewhere.
 //!
 //! On x86-64 hosts, the `clmul` feature in a build for a CPU with carry-less multiplication
 //! (`-C target-cpu=native`, or `-C target-feature=+pclmulqdq`) has [`Slicing16`] fold reflected
@@ -56,6 +57,8 @@ mod slicing;
 mod sum;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_then;
 
 pub use algorithm::{Algorithm, CrcSpec, CrcTable};
 pub use extra::Extra;
@@ -107,6 +110,48 @@ pub enum CrcImpl<'a, W: crc::Width> {
     Table1(&'a crc::Crc<W, crc::Table<1>>),
     /// Slicing by 16: sixteen 256-entry tables, no byte-wise loop ([`Slicing16`]).
     Table16(&'a Slicing16<W>),
+}
+
+/// Whether [`TargetCrc`] is [`Slicing16`] (pointers of 64 bits) rather than one table.
+pub const TARGET_TABLE16: bool = cfg!(target_pointer_width = "64");
+
+/// The CRC tables of a check whose spec names no `table` ([`CrcTable::ByTarget`]): sixteen
+/// ([`Slicing16`]) where pointers are 64 bits, where speed comes first; one 256-entry table
+/// (`crc::Table<1>`) elsewhere, on microcontrollers, where flash does (sixteen tables of a
+/// CRC-16 are 8 KiB). Both build in a `const` with `TargetCrc::<W>::new(&algorithm)`;
+/// [`CrcImpl::by_target`] wraps either.
+#[cfg(target_pointer_width = "64")]
+pub type TargetCrc<W> = Slicing16<W>;
+/// The CRC tables of a check whose spec names no `table` ([`CrcTable::ByTarget`]): sixteen
+/// ([`Slicing16`]) where pointers are 64 bits, where speed comes first; one 256-entry table
+/// (`crc::Table<1>`) elsewhere, on microcontrollers, where flash does (sixteen tables of a
+/// CRC-16 are 8 KiB). Both build in a `const` with `TargetCrc::<W>::new(&algorithm)`;
+/// [`CrcImpl::by_target`] wraps either.
+#[cfg(not(target_pointer_width = "64"))]
+pub type TargetCrc<W> = crc::Crc<W, crc::Table<1>>;
+
+impl<'a, W: crc::Width> CrcImpl<'a, W> {
+    /// The [`CrcImpl`] of a [`TargetCrc`]: [`CrcImpl::Table16`] or [`CrcImpl::Table1`].
+    ///
+    /// ```
+    /// use protocol_runtime::checksum::{Checksum, CrcImpl, TargetCrc};
+    ///
+    /// static CRC: TargetCrc<u16> = TargetCrc::<u16>::new(&crc::CRC_16_MCRF4XX);
+    /// let check = Checksum::Crc16(CrcImpl::by_target(&CRC));
+    /// assert_eq!(check.compute(b"123456789"), 0x6F91);
+    /// ```
+    #[inline]
+    #[must_use]
+    pub const fn by_target(tables: &'a TargetCrc<W>) -> Self {
+        #[cfg(target_pointer_width = "64")]
+        {
+            CrcImpl::Table16(tables)
+        }
+        #[cfg(not(target_pointer_width = "64"))]
+        {
+            CrcImpl::Table1(tables)
+        }
+    }
 }
 
 macro_rules! crc_impl_width {
@@ -279,6 +324,10 @@ impl Checksum<'_> {
             Checksum::Crc16(c) => u64::from(c.checksum_written(data)),
             Checksum::Crc32(c) => u64::from(c.checksum_written(data)),
             Checksum::Crc64(c) => c.checksum_written(data),
+            Checksum::Extra(e) => match e.byte(data) {
+                Some(byte) => e.fold_written(data, byte),
+                None => e.crc.compute_plain(data),
+            },
             other => other.compute(data),
         }
     }
@@ -325,7 +374,7 @@ impl Checksum<'_> {
             Checksum::Crc16(c) => u64::from(c.checksum_prefix(data, n)),
             Checksum::Crc32(c) => u64::from(c.checksum_prefix(data, n)),
             Checksum::Crc64(c) => c.checksum_prefix(data, n),
-            Checksum::Extra(e) => return e.compute(data.get(..n)?),
+            Checksum::Extra(e) => return e.compute_prefix(data, n),
         })
     }
 }

@@ -182,6 +182,51 @@ macro_rules! slicing16_width {
                 self.checksum_with::<false>(data, data.len())
             }
 
+            /// The CRC of `data[..n]` then one more byte, `byte` (as
+            /// [`checksum_prefix`](Self::checksum_prefix) of those bytes one after the other):
+            /// the covered bytes by the fast path (blocks, the carry-less folding or the
+            /// `crc-fast` crate where built in), then one table step ([`then`](Self::then)).
+            #[inline(always)]
+            pub fn checksum_prefix_then(&self, data: &[u8], n: usize, byte: u8) -> $w {
+                self.then(self.checksum_prefix(data, n), byte)
+            }
+
+            /// [`checksum_prefix_then`](Self::checksum_prefix_then) of all of `data`, bytes the
+            /// caller has just written (the tables only, as
+            /// [`checksum_written`](Self::checksum_written)).
+            #[inline(always)]
+            pub fn checksum_written_then(&self, data: &[u8], byte: u8) -> $w {
+                self.then(self.checksum_written(data), byte)
+            }
+
+            /// The CRC of some bytes whose CRC is `crc`, then `byte`: the finalisation undone
+            /// (it is a bijection: the xor, the shift of a register kept in the high bits,
+            /// whose low bits are zero, and the reversal), one step of table 0, and the
+            /// finalisation again. A byte appended costs one lookup, whatever computed `crc`.
+            ///
+            /// ```
+            /// use protocol_runtime::checksum::Slicing16;
+            ///
+            /// static CRC: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_MCRF4XX);
+            /// assert_eq!(CRC.then(CRC.checksum(b"12345678"), b'9'), CRC.checksum(b"123456789"));
+            /// ```
+            #[inline(always)]
+            pub fn then(&self, crc: $w, byte: u8) -> $w {
+                let aligned = (crc ^ self.xorout).checked_shl(self.shift).unwrap_or(0);
+                let register = if self.reverse { aligned.reverse_bits() } else { aligned };
+                let register = if self.reflect {
+                    // The low byte meets the input; the rest moves down a byte.
+                    let index = (register as u8) ^ byte;
+                    register.checked_shr(8).unwrap_or(0) ^ self.entry(0, index)
+                } else {
+                    // The high byte meets the input; the rest moves up a byte.
+                    let index = (register.checked_shr(<$w>::BITS - 8).unwrap_or(0) as u8) ^ byte;
+                    register.checked_shl(8).unwrap_or(0) ^ self.entry(0, index)
+                };
+                let register = if self.reverse { register.reverse_bits() } else { register };
+                register.checked_shr(self.shift).unwrap_or(0) ^ self.xorout
+            }
+
             /// [`checksum_prefix`](Self::checksum_prefix), folded with carry-less
             /// multiplication where the build has it and `FOLD` asks for it.
             #[inline(always)]

@@ -104,7 +104,7 @@ macro_rules! into_algorithm {
     ($($w:ty => $variant:ident),*) => {$(
         impl IntoAlgorithm for crc::Algorithm<$w> {
             fn into_algorithm(self) -> Algorithm {
-                Algorithm::$variant(CrcSpec { params: self, table: CrcTable::Table16 })
+                Algorithm::$variant(CrcSpec { params: self, table: CrcTable::ByTarget })
             }
         }
     )*};

@@ -266,8 +266,8 @@ fn lower_custom_crc(
         }
     }
     let table = match table {
-        None => CrcTable::Table16,
-        Some(t) => crc_table(ctx, t).unwrap_or(CrcTable::Table16),
+        None => CrcTable::ByTarget,
+        Some(t) => crc_table(ctx, t).unwrap_or(CrcTable::ByTarget),
     };
     if !ok {
         return None;

@@ -9,9 +9,7 @@ use super::super::names::{check_snake_name, parse_byte_order};
 use super::super::types::Enums;
 use super::super::{Ctx, text};
 use super::{Draft, El, Kind, header};
-use crate::ir::{
-    Algorithm, ByteOrder, Check, CheckExtra, CrcTable, Pos, Trailer, Transport, WordField,
-};
+use crate::ir::{Algorithm, ByteOrder, Check, CheckExtra, Pos, Trailer, Transport, WordField};
 
 use crate::spec::model::{ElementDef, FrameDef, SStr};
 
@@ -275,7 +273,7 @@ fn lower_check<'s>(
     let extra = match &d.extra {
         None => None,
         Some(e) => {
-            let Some(extra) = lower_extra(ctx, e, &mut algorithm) else {
+            let Some(extra) = lower_extra(ctx, e, &algorithm) else {
                 draft.broken = true;
                 return Some(());
             };
@@ -310,9 +308,9 @@ fn lower_check<'s>(
 }
 
 /// Rule: a check's `extra` is `"command"` (each command's `check_extra` byte, folded in after
-/// the covered bytes), on a CRC. Such a CRC runs the `crc` crate's streaming digest, so it is
-/// computed with at most one table (sixteen become one).
-fn lower_extra(ctx: &mut Ctx<'_>, e: &SStr, algorithm: &mut Algorithm) -> Option<CheckExtra> {
+/// the covered bytes), on a CRC. The CRC keeps its table: the covered bytes take its fast
+/// path and the byte one more table step.
+fn lower_extra(ctx: &mut Ctx<'_>, e: &SStr, algorithm: &Algorithm) -> Option<CheckExtra> {
     if e.get_ref() != "command" {
         ctx.error(
             e.span(),
@@ -321,26 +319,16 @@ fn lower_extra(ctx: &mut Ctx<'_>, e: &SStr, algorithm: &mut Algorithm) -> Option
         );
         return None;
     }
-    macro_rules! one_table {
-        ($spec:expr) => {
-            if $spec.table == CrcTable::Table16 {
-                $spec.table = CrcTable::Table1;
-            }
-        };
-    }
-    match algorithm {
-        Algorithm::Crc8(s) => one_table!(s),
-        Algorithm::Crc16(s) => one_table!(s),
-        Algorithm::Crc32(s) => one_table!(s),
-        Algorithm::Crc64(s) => one_table!(s),
-        _ => {
-            ctx.error(
-                e.span(),
-                "a per-command extra byte is folded into CRCs only",
-                "use a CRC for this check, or remove `extra`",
-            );
-            return None;
-        }
+    if !matches!(
+        algorithm,
+        Algorithm::Crc8(_) | Algorithm::Crc16(_) | Algorithm::Crc32(_) | Algorithm::Crc64(_)
+    ) {
+        ctx.error(
+            e.span(),
+            "a per-command extra byte is folded into CRCs only",
+            "use a CRC for this check, or remove `extra`",
+        );
+        return None;
     }
     Some(CheckExtra {
         value: 0,
