@@ -12,7 +12,9 @@
 //! `input`; the one that builds `syn`, `quote` and `prettyplease`), `c` and `markdown`. The
 //! `protocol!` macro takes `rust` alone; the `protocol` command takes `c` and `markdown`.
 
-pub use protocol_spec::{compile, diag, ir, layout, lint, rules, source, spec, validate};
+pub use protocol_spec::{
+    compile, diag, ir, layout, lint, resources, rules, source, spec, validate,
+};
 
 #[cfg(feature = "c")]
 pub mod c;

@@ -22,6 +22,7 @@ use crate::codegen::docs::{frame_doc, struct_doc};
 use crate::ir::{
     DirectionRule, Element, Enum, Frame, PacketKind, Pos, Protocol, Role, Transport, UnknownPolicy,
 };
+use crate::resources;
 
 /// The whole reference, sections in order.
 pub fn render(p: &Protocol) -> String {
@@ -156,7 +157,7 @@ fn constants(p: &Protocol, out: &mut String) {
     out.push('\n');
 }
 
-/// Each frame format: its transport and its layout table.
+/// Each frame format: its transport, what a decoder of it takes, and its layout table.
 fn frames(p: &Protocol, out: &mut String) {
     out.push_str("## Frame formats\n\n");
     for (i, f) in p.frames.iter().enumerate() {
@@ -174,6 +175,7 @@ fn frames(p: &Protocol, out: &mut String) {
             ""
         };
         let _ = writeln!(out, "Transport: {transport}.{role}\n");
+        let _ = writeln!(out, "Memory: {}.\n", resources::needs(f).summary());
         let notes = frame_notes(p, f);
         for note in &notes {
             let _ = writeln!(out, "- {note}");

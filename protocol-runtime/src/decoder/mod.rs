@@ -85,7 +85,7 @@ mod search;
 mod stream;
 mod target;
 
-pub use buffer::{HOST_BUFFER_LEN, decoder_buffer_len};
+pub use buffer::{HOST_BUFFER_LEN, decoder_buffer_len, decoder_buffer_len_for, decoder_state_len};
 pub use conditional::{flag_trailer, write_flag_trailer};
 pub use event::{Event, Frame, Reject, Stats};
 pub use stream::StreamDecoder;

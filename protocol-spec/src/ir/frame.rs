@@ -94,6 +94,11 @@ pub struct Frame {
     /// A wider length that a marker value of the length field announces (MSP v1 jumbo
     /// frames): its bytes follow the header, and the payload starts after them.
     pub length_extension: Option<LengthExtension>,
+    /// Where the spec declares the payload, for messages of generated code, which cannot
+    /// point into the spec: `PATH:LINE:COL` and the line as written
+    /// ([`crate::resources::payload_origin`]); set by [`crate::compile`], which knows the
+    /// spec's path.
+    pub payload_origin: String,
 }
 
 /// A wider length, right after the header, present when the length field holds a marker

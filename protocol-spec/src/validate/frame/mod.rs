@@ -219,6 +219,7 @@ fn lower_frame(
         commands: Vec::new(),
         flag_trailer,
         length_extension,
+        payload_origin: String::new(),
     })
 }
 
