@@ -20,7 +20,8 @@ use std::fmt::Write as _;
 
 use crate::codegen::docs::{frame_doc, struct_doc};
 use crate::ir::{
-    DirectionRule, Element, Enum, Frame, PacketKind, Pos, Protocol, Role, Transport, UnknownPolicy,
+    ByteOrder, Check, DirectionRule, Element, Enum, Frame, PacketKind, Pos, Protocol, Role,
+    Transport, UnknownPolicy,
 };
 use crate::resources;
 
@@ -191,6 +192,17 @@ fn frames(p: &Protocol, out: &mut String) {
     }
 }
 
+/// How a check's value of more than one byte is stored (`, stored little-endian`): two specs
+/// that differ there describe different links. Nothing for a one-byte value, which has no
+/// byte order.
+fn stored_order(c: &Check) -> &'static str {
+    match (c.size > 1, c.endian) {
+        (false, _) => "",
+        (true, ByteOrder::Little) => ", stored little-endian",
+        (true, ByteOrder::Big) => ", stored big-endian",
+    }
+}
+
 /// Bytes per row of a packet diagram (32 bits, as in the RFCs).
 const ROW_BYTES: usize = 4;
 /// Characters per byte: two per bit.
@@ -302,10 +314,11 @@ pub fn packet_diagram(f: &Frame) -> String {
     }
     for c in &f.checks {
         out.push_str(&format!(
-            "{} covers bytes {} .. {}{}\n",
+            "{} covers bytes {} .. {}{}{}\n",
             c.name,
             pos_text(c.from),
             pos_text(c.to),
+            stored_order(c),
             if c.header { " (a header check)" } else { "" }
         ));
     }

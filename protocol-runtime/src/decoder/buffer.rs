@@ -97,7 +97,10 @@ pub const fn decoder_buffer_len_for(max_frame: usize, host: bool) -> usize {
 /// assert_eq!(decoder_state_len(4), 104);
 /// ```
 pub const fn decoder_state_len(pointer_bytes: usize) -> usize {
-    let fields = 3 * pointer_bytes + 2 * size_of::<u64>() + size_of::<Stats>();
+    let fields = pointer_bytes
+        .saturating_mul(3)
+        .saturating_add(size_of::<u64>().saturating_mul(2))
+        .saturating_add(size_of::<Stats>());
     fields.next_multiple_of(align_of::<u64>())
 }
 
