@@ -7,9 +7,10 @@
 //! its layouts borrow it; only a CRC's parameters are interned for `'static`, see
 //! [`protocol_spec::layout::intern`]) and the per-frame slices of constants and checks, and
 //! of the packet rules' key fields and direction tests ([`FrameParts`]); a check with a
-//! per-command byte owns its CRC and byte table ([`OwnedExtra`]). A check's algorithm is the IR's runtime
-//! [`Algorithm`], executed as it is; which bytes a check covers and how a frame is verified or
-//! sealed is the runtime's business, and so is every packet rule.
+//! per-command byte owns its CRC and byte table ([`OwnedExtra`]), so that dropping a codec frees
+//! all it built. A check's algorithm is the IR's runtime [`Algorithm`], executed as it is;
+//! which bytes a check covers and how a frame is verified or sealed is the runtime's business,
+//! and so is every packet rule.
 
 use protocol_runtime::checksum::{CheckObject, Checksum, CrcImpl, Extra, Slicing16};
 use protocol_runtime::layout::{Check, Constant, FrameLayout, WordField};
@@ -125,8 +126,8 @@ impl OwnedExtra {
     }
 }
 
-/// As the [`Checksum::Extra`] generated code holds prints, so that a layout prints alike
-/// from either.
+/// Prints as the [`Checksum::Extra`] of generated code, so that a layout prints alike from
+/// either.
 impl std::fmt::Debug for OwnedExtra {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         Checksum::Extra(&self.view()).fmt(f)
