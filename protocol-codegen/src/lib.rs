@@ -15,7 +15,9 @@
 //! `wireshark`. The `protocol!` macro takes `rust` alone; the `protocol` command takes the
 //! other three.
 
-pub use protocol_spec::{compile, diag, ir, layout, lint, rules, session, source, spec, validate};
+pub use protocol_spec::{
+    compile, diag, ir, layout, lint, resources, rules, session, source, spec, validate,
+};
 
 #[cfg(feature = "c")]
 pub mod c;

@@ -7,18 +7,18 @@
 //! its layouts borrow it; only a CRC's parameters are interned for `'static`, see
 //! [`protocol_spec::layout::intern`]) and the per-frame slices of constants and checks, and
 //! of the packet rules' key fields and direction tests ([`FrameParts`]); a check with a
-//! per-command byte is an interned runtime [`Extra`]. A check's algorithm is the IR's runtime
-//! [`Algorithm`], executed as it is; which bytes a check covers and how a frame is verified or
-//! sealed is the runtime's business, and so is every packet rule.
+//! per-command byte owns its CRC and byte table ([`OwnedExtra`]), so that dropping a codec frees
+//! all it built. A check's algorithm is the IR's runtime [`Algorithm`], executed as it is;
+//! which bytes a check covers and how a frame is verified or sealed is the runtime's business,
+//! and so is every packet rule.
 
-use protocol_runtime::checksum::{Checksum, CrcImpl, Extra, Slicing16};
+use protocol_runtime::checksum::{CheckObject, Checksum, CrcImpl, Extra, Slicing16};
 use protocol_runtime::layout::{Check, Constant, FrameLayout, WordField};
 use protocol_runtime::rules::{DirectionTest, PacketRules};
 use protocol_spec::ir::{self, Algorithm, CrcSpec, CrcTable};
 pub use protocol_spec::layout::word_field;
 use protocol_spec::layout::{self, LayoutPlan, intern, lower_layout};
 use protocol_spec::rules::{RulesPlan, lower_rules};
-use std::sync::Mutex;
 
 /// A CRC object of one width, with the table size the spec chose (as generated code builds):
 /// the `crc` crate's for no table and one table, the runtime's [`Slicing16`] for sixteen.
@@ -93,40 +93,70 @@ impl CrcObject {
     }
 }
 
-/// The runtime [`Extra`] of a check with a per-command byte: interned, since it borrows its
-/// CRC for `'static` as generated code's `static`s do. Each distinct (algorithm, key, bytes)
-/// is built and leaked once per process, its CRC table with it: memory is bounded by the
-/// number of distinct such checks, however many times specs are loaded.
-fn interned_extra(algorithm: &Algorithm, extra: &ir::CheckExtra) -> &'static Extra<'static> {
-    type Key = (Algorithm, ir::WordField, Vec<(u32, u8)>);
-    static CACHE: Mutex<Vec<(Key, &'static Extra<'static>)>> = Mutex::new(Vec::new());
-    let key: Key = (*algorithm, extra.key, extra.bytes.clone());
-    // A poisoned lock only means another thread panicked while pushing: the list is still a
-    // list of valid entries.
-    let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some((_, found)) = cache.iter().find(|(k, _)| *k == key) {
-        return found;
+/// A check with a per-command byte, owning what the runtime's [`Extra`] borrows (its CRC and
+/// its byte table), run by the engine as a [`Checksum::Object`].
+///
+/// Why an object and not an [`Extra`] held beside the CRC objects: a layout's check borrows
+/// its [`Extra`], which borrows the CRC, so a codec that owned both the [`Extra`] and what it
+/// borrows would borrow from itself. Building the [`Extra`] view on each call costs a few
+/// stores, and the codec frees the tables with itself (generated code keeps its `static`
+/// [`Extra`] and never runs this).
+struct OwnedExtra {
+    crc: CrcObject,
+    key: WordField,
+    bytes: Box<[(u32, u8)]>,
+}
+
+impl OwnedExtra {
+    /// The owned parts of `extra`; `None` for an algorithm other than a CRC (validation
+    /// allows an extra byte on CRCs only).
+    fn new(algorithm: &Algorithm, extra: &ir::CheckExtra) -> Option<Self> {
+        Some(OwnedExtra {
+            crc: CrcObject::new(algorithm)?,
+            key: extra.key,
+            bytes: extra.bytes.clone().into_boxed_slice(),
+        })
     }
-    let crc = match CrcObject::new(algorithm) {
-        Some(object) => Box::leak(Box::new(object)).checksum(),
-        // Unreachable: validation allows an extra byte on CRCs only.
-        None => algorithm.tableless().unwrap_or(Checksum::Sum8),
-    };
-    let bytes: &'static [(u32, u8)] = Box::leak(extra.bytes.clone().into_boxed_slice());
-    let leaked: &'static Extra<'static> = Box::leak(Box::new(Extra {
-        crc,
-        key: extra.key,
-        bytes,
-    }));
-    cache.push((key, leaked));
-    leaked
+
+    /// The runtime's [`Extra`], borrowing this object's parts.
+    fn view(&self) -> Extra<'_> {
+        Extra {
+            crc: self.crc.checksum(),
+            key: self.key,
+            bytes: &self.bytes,
+        }
+    }
+}
+
+/// Prints as the [`Checksum::Extra`] of generated code, so that a layout prints alike from
+/// either.
+impl std::fmt::Debug for OwnedExtra {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        Checksum::Extra(&self.view()).fmt(f)
+    }
+}
+
+impl CheckObject for OwnedExtra {
+    fn compute(&self, data: &[u8]) -> u64 {
+        Checksum::Extra(&self.view()).compute(data)
+    }
+
+    fn compute_prefix(&self, data: &[u8], n: usize) -> Option<u64> {
+        Checksum::Extra(&self.view()).compute_prefix(data, n)
+    }
+}
+
+/// What a check needs built: a CRC object, or a CRC with its per-command bytes.
+enum Built {
+    Crc(CrcObject),
+    Extra(OwnedExtra),
 }
 
 /// The CRC objects of every check of every frame format of a spec, owned so that layouts can
 /// borrow them.
 pub struct CrcStore {
-    /// `crcs[frame][check]`: the CRC of a check, `None` for sums and xor.
-    crcs: Vec<Vec<Option<CrcObject>>>,
+    /// `crcs[frame][check]`: what a check needs built, `None` for sums and xor.
+    crcs: Vec<Vec<Option<Built>>>,
 }
 
 impl CrcStore {
@@ -138,10 +168,9 @@ impl CrcStore {
             .map(|f| {
                 f.checks
                     .iter()
-                    .map(|c| match c.extra {
-                        // Its CRC lives in its interned `Extra`.
-                        Some(_) => None,
-                        None => CrcObject::new(&c.algorithm),
+                    .map(|c| match &c.extra {
+                        Some(extra) => OwnedExtra::new(&c.algorithm, extra).map(Built::Extra),
+                        None => CrcObject::new(&c.algorithm).map(Built::Crc),
                     })
                     .collect()
             })
@@ -150,22 +179,19 @@ impl CrcStore {
     }
 
     fn checksum(&self, frame: usize, check: usize, c: &ir::Check) -> Checksum<'_> {
-        let algorithm = &c.algorithm;
-        if let Some(extra) = &c.extra {
-            return Checksum::Extra(interned_extra(algorithm, extra));
-        }
-        if let Some(checksum) = algorithm.tableless() {
-            return checksum;
-        }
         match self
             .crcs
             .get(frame)
             .and_then(|f| f.get(check))
             .and_then(Option::as_ref)
         {
-            Some(crc) => crc.checksum(),
-            // Unreachable: the store was built from the same protocol.
-            None => Checksum::Sum8,
+            Some(Built::Crc(crc)) => crc.checksum(),
+            Some(Built::Extra(extra)) => Checksum::Object {
+                width: c.algorithm.width() as u8,
+                check: extra,
+            },
+            // A sum or xor (a CRC's object was built from the same protocol).
+            None => c.algorithm.tableless().unwrap_or(Checksum::Sum8),
         }
     }
 }

@@ -1,8 +1,8 @@
 //! The spec front end: loading the TOML ([`spec`]), validating it into the checked IR
 //! ([`validate`], [`ir`]), lowering a frame format to the runtime's frame layout ([`layout`])
 //! and to its packet rules ([`rules`]), the conversation to its session rules ([`session`]),
-//! the diagnostics every stage reports into and their one
-//! renderer ([`diag`], [`source`]), and the lints ([`lint`]).
+//! the diagnostics every stage reports into and their one renderer ([`diag`], [`source`]),
+//! what a spec's decoders take ([`resources`]), and the lints ([`lint`]).
 //!
 //! The pipeline is `spec::load_spec` → `validate::validate`; [`compile`] runs both and is what
 //! the macros, the run-time codec, the CLI and the tests call. What reads the IR lives
@@ -13,6 +13,7 @@ pub mod diag;
 pub mod ir;
 pub mod layout;
 pub mod lint;
+pub mod resources;
 pub mod rules;
 pub mod session;
 pub mod source;
@@ -45,7 +46,10 @@ pub fn compile(source: &SpecSource) -> Result<ir::Protocol, Vec<Diagnostic>> {
         }
     }
     match protocol {
-        Some(protocol) if diags.is_empty() => Ok(protocol),
+        Some(mut protocol) if diags.is_empty() => {
+            resources::locate_payloads(&spec, source, &mut protocol);
+            Ok(protocol)
+        }
         _ => Err(diags.into_sorted()),
     }
 }

@@ -1,12 +1,14 @@
 //! `protocol check SPEC... [--json]`: validate specs, print every diagnostic, exit 1 on error.
 //! A valid spec's lint warnings ([`protocol_spec::lint`]) are printed too; they do not
-//! change the exit status.
+//! change the exit status. A valid spec's line is followed by what a decoder of each of its
+//! frame formats takes ([`protocol_spec::resources`]).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use miette::Result;
 use protocol_cli::spec;
+use protocol_spec::resources;
 use serde_json::{Value, json};
 
 use super::{INVALID, stderr_color};
@@ -54,6 +56,9 @@ pub fn run(specs: &[PathBuf], as_json: bool) -> Result<ExitCode> {
                         p.structs.len(),
                         plural(p.structs.len()),
                     );
+                    for f in &p.frames {
+                        println!("  frame `{}`: {}", f.name, resources::needs(f).summary());
+                    }
                 }
             }
             Err(diags) => {

@@ -17,6 +17,7 @@ use miette::{IntoDiagnostic, Result, WrapErr, miette};
 use protocol_cli::session::{Output, Session};
 use protocol_cli::{candump, spec};
 use protocol_dynamic::{Codec, Interpreter, Stream, parse_hex_located};
+use protocol_runtime::Stats;
 use protocol_spec::ir::Transport;
 
 use super::{load_checked, pick_direction};
@@ -119,7 +120,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         Err(e) if e.kind() == io::ErrorKind::BrokenPipe => return Ok(ExitCode::SUCCESS),
         Err(e) => return Err(e).into_diagnostic().wrap_err("decoding failed"),
     };
-    if let Some(hint) = wrong_format_hint(&session, &codec, format) {
+    if let Some(hint) = wrong_format_hint(&session, &codec, format, engine.as_ref(), args.hex) {
         eprintln!("{hint}");
     }
     if args.stats {
@@ -142,11 +143,15 @@ pub fn run(args: &Args) -> Result<ExitCode> {
 const HINT_ABOVE: u64 = 64;
 
 /// A hint when nearly nothing of a sizeable input was in frames (under 10%): the capture is
-/// probably of another link, another frame format, or hex text read as binary.
+/// probably of another link, another frame format, or hex text read as binary (not asked of
+/// input read with `--hex`); or, when every candidate failed on its length or its check, the
+/// spec's length or check rule is ([`rule_question`]).
 fn wrong_format_hint(
     session: &Session<'_, '_, impl Write>,
     codec: &Codec<'_>,
     format: usize,
+    engine: Option<&Stats>,
+    hex: bool,
 ) -> Option<String> {
     let c = &session.counts;
     if c.input_bytes < HINT_ABOVE || c.frame_bytes.saturating_mul(10) >= c.input_bytes {
@@ -154,6 +159,13 @@ fn wrong_format_hint(
     }
     let p = codec.protocol();
     let name = p.frames.get(format).map_or("?", |f| f.name.as_str());
+    let lead = format!(
+        "hint: {} of {} bytes decoded as `{name}` frames of {}",
+        c.frame_bytes, c.input_bytes, p.name
+    );
+    if let Some(question) = engine.and_then(rule_question) {
+        return Some(format!("{lead}: {question}"));
+    }
     let others: Vec<&str> = p
         .frames
         .iter()
@@ -169,9 +181,25 @@ fn wrong_format_hint(
             others.join("` or `--frame ")
         )
     };
+    let as_hex = if hex { "" } else { ", or hex text (`--hex`)" };
     Some(format!(
-        "hint: {} of {} bytes decoded as `{name}` frames of {}: is this a capture of that link{other}, or hex text (`--hex`)?",
-        c.frame_bytes, c.input_bytes, p.name
+        "{lead}: is this a capture of that link{other}{as_hex}?"
+    ))
+}
+
+/// The question when the frames' starts were found but every candidate failed on its length
+/// or on a check (a candidate cut by the end of the input aside): the capture is likely of the
+/// link, and the spec's length or check rule (its algorithm, what it covers, its byte order)
+/// is the likely mistake. `None` when no candidate failed so, or another failed otherwise.
+fn rule_question(s: &Stats) -> Option<String> {
+    let checks = s.bad_checksum.saturating_add(s.bad_header_check);
+    if s.bad_length.saturating_add(checks) == 0 || s.bad_header > 0 || s.bad_trailer > 0 {
+        return None;
+    }
+    Some(format!(
+        "every candidate failed on its length ({}) or its check ({checks}): is the length or \
+         check rule right?",
+        s.bad_length
     ))
 }
 

@@ -15,6 +15,7 @@ use crate::ir::{
     Protocol, Role, Transport,
 };
 use crate::layout::{self, LayoutPlan, lower_layout};
+use crate::resources;
 use protocol_runtime::layout::{LengthRule, WordField};
 
 fn pos(rt: &TokenStream, p: Pos) -> TokenStream {
@@ -350,6 +351,37 @@ fn emit_frame_consts(f: &Frame) -> TokenStream {
         .collect()
 }
 
+/// A `compile_error!` for each pointer width (32, 16 bits) whose targets cannot hold the
+/// decoder's buffer of frame format `f`, behind a `cfg` of that width, naming the spec line of
+/// the payload. Decided here, where the spec is known, rather than by a `const` assertion on
+/// the target: there the buffer's size would already overflow (a `[u8; N]` too large for the
+/// target, a constant out of range), and rustc's own error would point at generated code
+/// rather than at the spec. The span is the macro call's, the spec path in the user's code.
+fn emit_buffer_refusals(f: &Frame) -> TokenStream {
+    let needs = resources::needs(f);
+    [32u32, 16]
+        .into_iter()
+        .filter(|&bits| !resources::fits_pointer_width(needs.small_buffer, bits))
+        .map(|bits| {
+            let width = bits.to_string();
+            let message = format!(
+                "frame `{}` needs a decoder buffer of {} bytes on a target with {bits}-bit \
+                 pointers, where no object exceeds {} bytes (largest frame {} bytes); its \
+                 payload is declared at {}: lower the payload's `max` to what the link sends",
+                f.name,
+                needs.small_buffer,
+                (1u64 << (bits - 1)) - 1,
+                needs.max_frame,
+                f.payload_origin,
+            );
+            quote! {
+                #[cfg(target_pointer_width = #width)]
+                ::core::compile_error!(#message);
+            }
+        })
+        .collect()
+}
+
 /// The layout type, buffer size, decoder type and constructor of a serial frame format.
 fn emit_decoder(f: &Frame, layout: &Ident) -> TokenStream {
     let rt = rt();
@@ -374,7 +406,9 @@ fn emit_decoder(f: &Frame, layout: &Ident) -> TokenStream {
         super::docs::decoder_ram(f)
     );
     let new_doc = format!(" A new decoder of `{fname}` frames.");
+    let refusals = emit_buffer_refusals(f);
     quote! {
+        #refusals
         #[doc = #layout_type_doc]
         #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
         pub struct #layout_type;

@@ -23,8 +23,10 @@ use std::fmt::Write as _;
 
 use crate::codegen::docs::{frame_doc, struct_doc};
 use crate::ir::{
-    DirectionRule, Element, Enum, Frame, PacketKind, Pos, Protocol, Role, Transport, UnknownPolicy,
+    ByteOrder, Check, DirectionRule, Element, Enum, Frame, PacketKind, Pos, Protocol, Role,
+    Transport, UnknownPolicy,
 };
+use crate::resources;
 
 /// The whole reference, sections in order.
 pub fn render(p: &Protocol) -> String {
@@ -160,7 +162,7 @@ fn constants(p: &Protocol, out: &mut String) {
     out.push('\n');
 }
 
-/// Each frame format: its transport and its layout table.
+/// Each frame format: its transport, what a decoder of it takes, and its layout table.
 fn frames(p: &Protocol, out: &mut String) {
     out.push_str("## Frame formats\n\n");
     for (i, f) in p.frames.iter().enumerate() {
@@ -178,6 +180,7 @@ fn frames(p: &Protocol, out: &mut String) {
             ""
         };
         let _ = writeln!(out, "Transport: {transport}.{role}\n");
+        let _ = writeln!(out, "Memory: {}.\n", resources::needs(f).summary());
         let notes = frame_notes(p, f);
         for note in &notes {
             let _ = writeln!(out, "- {note}");
@@ -190,6 +193,17 @@ fn frames(p: &Protocol, out: &mut String) {
         out.push_str("```\n\n");
         out.push_str(frame_doc(f).trim_end());
         out.push_str("\n\n");
+    }
+}
+
+/// How a check's value of more than one byte is stored (`, stored little-endian`): two specs
+/// that differ there describe different links. Nothing for a one-byte value, which has no
+/// byte order.
+fn stored_order(c: &Check) -> &'static str {
+    match (c.size > 1, c.endian) {
+        (false, _) => "",
+        (true, ByteOrder::Little) => ", stored little-endian",
+        (true, ByteOrder::Big) => ", stored big-endian",
     }
 }
 
@@ -304,10 +318,11 @@ pub fn packet_diagram(f: &Frame) -> String {
     }
     for c in &f.checks {
         out.push_str(&format!(
-            "{} covers bytes {} .. {}{}\n",
+            "{} covers bytes {} .. {}{}{}\n",
             c.name,
             pos_text(c.from),
             pos_text(c.to),
+            stored_order(c),
             if c.header { " (a header check)" } else { "" }
         ));
     }

@@ -99,6 +99,56 @@ pub enum Checksum<'a> {
     Crc64(CrcImpl<'a, u64>),
     /// A CRC that folds in one more byte, picked by a key in the covered bytes ([`Extra`]).
     Extra(&'a Extra<'a>),
+    /// A check computed by an object its user owns ([`CheckObject`]), `width` bytes wide.
+    ///
+    /// The run-time codec's check with a per-command byte: an [`Extra`] borrows its CRC and
+    /// its byte table, and a layout borrows the [`Extra`], so a codec that builds all three
+    /// from a spec would have to own a value that borrows from itself. It owns them in one
+    /// object instead, which builds the [`Extra`] view on each call, and frees them when it
+    /// is dropped. Generated code never names this variant: its statics, the size of a
+    /// [`Checksum`] and the code a constant [`Checksum`] folds to stay as they are.
+    Object {
+        /// Bytes of the stored value.
+        width: u8,
+        /// What computes it.
+        check: &'a dyn CheckObject,
+    },
+}
+
+/// A check value computed by an object outside this crate, for [`Checksum::Object`]: a check
+/// whose tables are built at run time and owned by their user. `Sync`, as a layout in a
+/// `static` must be; its `Debug` is the [`Checksum`]'s, so that it can print as the
+/// [`Checksum`] it computes like (the run-time codec's layouts print as generated code's).
+///
+/// ```
+/// use protocol_runtime::checksum::{CheckObject, Checksum};
+///
+/// /// A byte sum xored with a byte known only at run time.
+/// #[derive(Debug)]
+/// struct Salted(u8);
+///
+/// impl CheckObject for Salted {
+///     fn compute(&self, data: &[u8]) -> u64 {
+///         Checksum::Sum8.compute(data) ^ u64::from(self.0)
+///     }
+///     fn compute_prefix(&self, data: &[u8], n: usize) -> Option<u64> {
+///         Some(self.compute(data.get(..n)?))
+///     }
+/// }
+///
+/// let salted = Salted(0xA5);
+/// let check = Checksum::Object { width: 1, check: &salted };
+/// assert_eq!(check.width(), 1);
+/// assert_eq!(check.compute(&[0x01, 0x02]), 0xA6);
+/// assert_eq!(check.compute_prefix(&[0x01, 0x02, 0xFF], 2), Some(0xA6));
+/// ```
+pub trait CheckObject: Sync + fmt::Debug {
+    /// The check value of `data`, as [`Checksum::compute`].
+    fn compute(&self, data: &[u8]) -> u64;
+
+    /// The check value of `data[..n]`, as [`Checksum::compute_prefix`] (`data` holds at least
+    /// `n` bytes; `None` when the value cannot be computed, as an [`Extra`]'s unknown key).
+    fn compute_prefix(&self, data: &[u8], n: usize) -> Option<u64>;
 }
 
 /// A CRC with its table size.
@@ -246,6 +296,7 @@ impl fmt::Debug for Checksum<'_> {
             Checksum::Crc32(c) => f.debug_tuple("Crc32").field(c).finish(),
             Checksum::Crc64(c) => f.debug_tuple("Crc64").field(c).finish(),
             Checksum::Extra(e) => f.debug_tuple("Extra").field(e).finish(),
+            Checksum::Object { check, .. } => fmt::Debug::fmt(check, f),
         }
     }
 }
@@ -282,6 +333,7 @@ impl Checksum<'_> {
             Checksum::Fletcher16 | Checksum::Fletcher16Mod256 | Checksum::Crc16(_) => 2,
             Checksum::Crc32(_) => 4,
             Checksum::Crc64(_) => 8,
+            Checksum::Object { width, .. } => *width as usize,
             Checksum::Extra(_) => 0,
         }
     }
@@ -311,6 +363,7 @@ impl Checksum<'_> {
                 Some(byte) => e.fold(data, byte),
                 None => e.crc.compute_plain(data),
             },
+            Checksum::Object { check, .. } => check.compute(data),
         }
     }
 
@@ -375,6 +428,7 @@ impl Checksum<'_> {
             Checksum::Crc32(c) => u64::from(c.checksum_prefix(data, n)),
             Checksum::Crc64(c) => c.checksum_prefix(data, n),
             Checksum::Extra(e) => return e.compute_prefix(data, n),
+            Checksum::Object { check, .. } => return check.compute_prefix(data, n),
         })
     }
 }

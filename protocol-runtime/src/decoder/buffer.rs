@@ -7,10 +7,11 @@
 //! them), and the count of bytes taken from the input ([`StreamDecoder::position`]). It does
 //! not decide what is pending: the scan and the steps do, by moving `start`.
 
+use super::Stats;
 use super::StreamDecoder;
 use super::search::{FILL, filler};
 use super::target::{EARLY_TRUNCATION, HOST};
-use crate::layout::LayoutRef;
+use crate::layout::{FrameLayout, LayoutRef, LengthRule};
 
 /// Takes the first `len` bytes off `input` (all of it if shorter).
 #[inline(always)]
@@ -37,8 +38,15 @@ pub const HOST_BUFFER_LEN: usize = 2048;
 
 /// Bytes of the buffer of a decoder of frames of at most `max_frame` bytes, as generated code
 /// sizes it (`DECODER_BUFFER_LEN`): the decoder's RAM but for its state
-/// ([`decoder_ram`]: 112 bytes on x86-64, 104 on thumbv7em, with a generated layout type,
-/// which takes none).
+/// ([`decoder_state_len`]); [`decoder_buffer_len_for`] on the target this is built for.
+pub const fn decoder_buffer_len(max_frame: usize) -> usize {
+    decoder_buffer_len_for(max_frame, HOST)
+}
+
+/// Bytes of the buffer of a decoder of frames of at most `max_frame` bytes on a host (a target
+/// with 64-bit pointers, `host`) or elsewhere: what [`decoder_buffer_len`] gives on either, so
+/// that a tool on a host can state what a microcontroller's decoder takes. `usize::MAX` when
+/// the size does not fit a `usize`.
 ///
 /// On targets without 64-bit pointers (microcontrollers), what the engine needs and no more:
 /// the frame, as much again (at least 64 bytes) for a chunk staged behind a pending frame (the
@@ -48,20 +56,27 @@ pub const HOST_BUFFER_LEN: usize = 2048;
 /// fill the room behind a pending frame within a few chunks, and moving the pending bytes to
 /// the front (a copy of varying length, at irregular intervals) costs mispredicted branches
 /// that a larger buffer pays once every few dozen chunks (`BENCHMARKS.md` measures both).
-pub const fn decoder_buffer_len(max_frame: usize) -> usize {
-    buffer_len_on(max_frame, HOST)
-}
-
-/// [`decoder_buffer_len`] on a host (`true`: 64-bit pointers) or elsewhere, whichever target
-/// this build is for: what a code generator running on a host states of a microcontroller's
-/// decoder.
-const fn buffer_len_on(max_frame: usize, host: bool) -> usize {
+///
+/// ```
+/// use protocol_runtime::decoder::decoder_buffer_len_for;
+///
+/// assert_eq!(decoder_buffer_len_for(127, false), 384);
+/// assert_eq!(decoder_buffer_len_for(127, true), 2048);
+/// assert_eq!(decoder_buffer_len_for(usize::MAX / 2, false), usize::MAX);
+/// ```
+pub const fn decoder_buffer_len_for(max_frame: usize, host: bool) -> usize {
     let frame_and_chunk = if max_frame > 64 {
         max_frame.saturating_mul(2)
     } else {
         max_frame.saturating_add(64)
     };
-    let small = frame_and_chunk.saturating_add(128).next_multiple_of(64);
+    let small = match frame_and_chunk
+        .saturating_add(128)
+        .checked_next_multiple_of(64)
+    {
+        Some(rounded) => rounded,
+        None => usize::MAX,
+    };
     if host && small < HOST_BUFFER_LEN {
         HOST_BUFFER_LEN
     } else {
@@ -113,19 +128,59 @@ pub struct DecoderRam {
 /// assert_eq!(ram.buffer + ram.state, size_of::<StreamDecoder<Fixed, M>>());
 /// ```
 pub const fn decoder_ram(max_frame: usize, pointer_bytes: usize) -> DecoderRam {
-    let buffer = buffer_len_on(max_frame, pointer_bytes >= 8);
-    // `inner_dead`, `start` and `end`, then the buffer, then the 8-aligned `u64`s: `position`,
-    // the counters and `inner_owner`.
-    let before_u64s = pointer_bytes
-        .saturating_mul(3)
-        .saturating_add(buffer)
-        .next_multiple_of(8);
-    let state = before_u64s
-        .saturating_sub(buffer)
-        .saturating_add(size_of::<super::Stats>())
-        .saturating_add(16);
-    DecoderRam { buffer, state }
+    DecoderRam {
+        buffer: decoder_buffer_len_for(max_frame, pointer_bytes >= 8),
+        state: decoder_state_len(pointer_bytes),
+    }
 }
+
+/// Bytes of a [`StreamDecoder`] besides its buffer, with a generated layout type (which takes
+/// none), on a target with `pointer_bytes`-byte pointers: three indices into the buffer, the
+/// stream position, the start of the last candidate a frame was found inside, and the counts
+/// of [`Stats`], padded to a `u64`'s alignment. 112 bytes on x86-64 and AArch64 (8-byte
+/// pointers), 104 on Arm Cortex-M (4-byte pointers, 8-byte-aligned `u64`).
+///
+/// ```
+/// use protocol_runtime::decoder::decoder_state_len;
+///
+/// assert_eq!(decoder_state_len(8), 112);
+/// assert_eq!(decoder_state_len(4), 104);
+/// ```
+pub const fn decoder_state_len(pointer_bytes: usize) -> usize {
+    let fields = pointer_bytes
+        .saturating_mul(3)
+        .saturating_add(size_of::<u64>().saturating_mul(2))
+        .saturating_add(size_of::<Stats>());
+    fields.next_multiple_of(align_of::<u64>())
+}
+
+/// A layout type of no bytes, as generated code's, so that the size of a decoder of it is the
+/// size of its state.
+#[derive(Clone, Copy)]
+struct NoBytes;
+
+static NO_LAYOUT: FrameLayout<'static> = FrameLayout {
+    sync: &[],
+    sync_set: &[],
+    header_len: 0,
+    min_len: 0,
+    max_len: 0,
+    length: LengthRule::Fixed(0),
+    constants: &[],
+    header_checks: &[],
+    frame_checks: &[],
+    markers: &[],
+};
+
+impl LayoutRef for NoBytes {
+    fn layout(&self) -> &FrameLayout<'_> {
+        &NO_LAYOUT
+    }
+}
+
+// What `decoder_state_len` states is what a decoder takes, on every target this is built for.
+const _: () =
+    assert!(decoder_state_len(size_of::<usize>()) == size_of::<StreamDecoder<NoBytes, 0>>());
 
 /// `dst.copy_from_slice(src)` (`dst` and `src` of one length), inline for the chunks of a
 /// serial link on hosts: 16 to 64 bytes as two fixed-size moves that overlap in the middle

@@ -85,7 +85,10 @@ mod search;
 mod stream;
 mod target;
 
-pub use buffer::{DecoderRam, HOST_BUFFER_LEN, decoder_buffer_len, decoder_ram};
+pub use buffer::{
+    DecoderRam, HOST_BUFFER_LEN, decoder_buffer_len, decoder_buffer_len_for, decoder_ram,
+    decoder_state_len,
+};
 pub use conditional::{flag_trailer, write_flag_trailer};
 pub use event::{Event, Frame, Reject, Stats};
 pub use stream::StreamDecoder;

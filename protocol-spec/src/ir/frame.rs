@@ -98,6 +98,11 @@ pub struct Frame {
     /// sender adds one per frame, wrapping at its width. Decode-side statistics only (lost and
     /// reordered frames); no codec checks it.
     pub counter: Option<usize>,
+    /// Where the spec declares the payload, for messages of generated code, which cannot
+    /// point into the spec: `PATH:LINE:COL` and the line as written
+    /// ([`crate::resources::payload_origin`]); set by [`crate::compile`], which knows the
+    /// spec's path.
+    pub payload_origin: String,
 }
 
 /// A wider length, right after the header, present when the length field holds a marker

@@ -222,6 +222,7 @@ fn lower_frame(
         flag_trailer,
         length_extension,
         counter,
+        payload_origin: String::new(),
     })
 }
 
