@@ -68,6 +68,11 @@ impl Fields {
         Fields(Vec::new())
     }
 
+    /// No fields, with room for `n`.
+    pub fn with_capacity(n: usize) -> Self {
+        Fields(Vec::with_capacity(n))
+    }
+
     /// The value of field `name`.
     pub fn get(&self, name: &str) -> Option<&Value> {
         self.0.iter().find(|(k, _)| k == name).map(|(_, v)| v)
@@ -85,6 +90,12 @@ impl Fields {
     /// The fields in order.
     pub fn iter(&self) -> impl Iterator<Item = (&str, &Value)> {
         self.0.iter().map(|(k, v)| (k.as_str(), v))
+    }
+
+    /// Appends field `name`, which the caller knows is not there yet (a spec's struct names
+    /// each field once): the decoder's insert, without [`insert`](Self::insert)'s search.
+    pub(crate) fn push(&mut self, name: impl Into<String>, value: Value) {
+        self.0.push((name.into(), value));
     }
 
     /// The field names in order.

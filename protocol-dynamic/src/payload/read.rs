@@ -5,7 +5,7 @@ use protocol_spec::ir::{
     BitMember, BitOrder, Enum, Field, FieldKind, Prim, Protocol, Scale, ValueType,
 };
 
-use super::{join, signed_value, variant};
+use super::{signed_value, variant};
 use crate::model::{Fields, Value};
 use crate::value::{read_scalar, truncate};
 
@@ -39,7 +39,7 @@ impl From<DecodeError> for ReadFail {
 /// [`ReadFail`] as generated code fails on the same bytes.
 pub fn read_payload(p: &Protocol, si: usize, bytes: &[u8]) -> Result<Fields, ReadFail> {
     let mut r = Reader::new(bytes);
-    let value = read_struct(p, si, &mut r, "").map_err(|e| match e {
+    let value = read_struct(p, si, &mut r, &Path::Root).map_err(|e| match e {
         ReadFail::Runtime(DecodeError::Truncated { .. }) => {
             ReadFail::Runtime(DecodeError::PayloadLength {
                 expected: p.structs[si].min_size,
@@ -52,15 +52,38 @@ pub fn read_payload(p: &Protocol, si: usize, bytes: &[u8]) -> Result<Fields, Rea
     Ok(value)
 }
 
+/// Where a value stands in the payload (`att.q[2]`), built on the stack as the read descends
+/// and spelled out only for an error that names it: a read that succeeds formats no path.
+#[derive(Clone, Copy)]
+enum Path<'a> {
+    /// The payload struct itself.
+    Root,
+    /// Field `name` of the struct at the parent path.
+    Field(&'a Path<'a>, &'a str),
+    /// Element `i` of the array at the parent path.
+    Index(&'a Path<'a>, usize),
+}
+
+impl std::fmt::Display for Path<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Path::Root => Ok(()),
+            Path::Field(Path::Root, name) => f.write_str(name),
+            Path::Field(parent, name) => write!(f, "{parent}.{name}"),
+            Path::Index(parent, i) => write!(f, "{parent}[{i}]"),
+        }
+    }
+}
+
 /// Reads struct `si` at the reader's position (`Payload::read`).
 fn read_struct(
     p: &Protocol,
     si: usize,
     r: &mut Reader<'_>,
-    path: &str,
+    path: &Path<'_>,
 ) -> Result<Fields, ReadFail> {
     let s = &p.structs[si];
-    let mut out = Fields::new();
+    let mut out = Fields::with_capacity(s.fields.len());
     // Per field read: a copy of the reader at its start, and the position after it.
     let mut spans: Vec<(Reader<'_>, usize)> = Vec::with_capacity(s.fields.len());
     for (i, f) in s.fields.iter().enumerate() {
@@ -76,7 +99,7 @@ fn read_struct(
                 size_from: None,
             } if s.bytes_after(i) > 0 => {
                 let v = read_rest_bytes(r, *max, s.bytes_after(i))?;
-                out.insert(f.name.clone(), Value::Bytes(v));
+                out.push(f.name.clone(), Value::Bytes(v));
             }
             _ => read_field(p, f, &f.kind, s.size, r, path, &mut out, None)?,
         }
@@ -110,7 +133,7 @@ fn read_field(
     kind: &FieldKind,
     size: usize,
     r: &mut Reader<'_>,
-    path: &str,
+    path: &Path<'_>,
     out: &mut Fields,
     owner: Option<&Fields>,
 ) -> Result<(), ReadFail> {
@@ -119,8 +142,8 @@ fn read_field(
         FieldKind::Bits { word, members } => {
             let raw = read_scalar(r, *word)?.as_u64();
             for m in members {
-                let v = read_member(p, m, raw, &join(path, &m.name))?;
-                out.insert(m.name.clone(), v);
+                let v = read_member(p, m, raw, &Path::Field(path, &m.name))?;
+                out.push(m.name.clone(), v);
             }
         }
         FieldKind::Packed {
@@ -131,30 +154,30 @@ fn read_field(
             ..
         } => {
             let v = read_packed(r, f.size, *count, *bits, *order, scale.as_ref())?;
-            out.insert(f.name.clone(), v);
+            out.push(f.name.clone(), v);
         }
         FieldKind::Optional(inner) => {
             if field::more(r) {
                 read_field(p, f, inner, size, r, path, out, owner)?;
             } else {
                 for key in super::keys(f) {
-                    out.insert(key.to_string(), Value::Null);
+                    out.push(key.to_string(), Value::Null);
                 }
             }
         }
         FieldKind::Value { ty, count } => {
-            let fpath = join(path, &f.name);
+            let fpath = Path::Field(path, &f.name);
             let v = match count {
                 None => read_elem(p, ty, r, &fpath)?,
                 Some(n) => {
                     let mut items = Vec::with_capacity(*n);
                     for i in 0..*n {
-                        items.push(read_elem(p, ty, r, &format!("{fpath}[{i}]"))?);
+                        items.push(read_elem(p, ty, r, &Path::Index(&fpath, i))?);
                     }
                     Value::Array(items)
                 }
             };
-            out.insert(f.name.clone(), v);
+            out.push(f.name.clone(), v);
         }
         FieldKind::Bytes { max, size_from } => {
             let v = match size_from {
@@ -169,15 +192,15 @@ fn read_field(
                     field::take_sized(r, count, *max)?.to_vec()
                 }
             };
-            out.insert(f.name.clone(), Value::Bytes(v));
+            out.push(f.name.clone(), Value::Bytes(v));
         }
         FieldKind::Array { ty, max, size_from } => {
-            let fpath = join(path, &f.name);
+            let fpath = Path::Field(path, &f.name);
             let mut items = Vec::new();
             match size_from {
                 None => {
                     while field::more(r) {
-                        let v = read_elem(p, ty, r, &format!("{fpath}[{}]", items.len()))?;
+                        let v = read_elem(p, ty, r, &Path::Index(&fpath, items.len()))?;
                         if items.len() == *max {
                             return Err(ReadFail::Runtime(field::group_full(r, size)));
                         }
@@ -191,15 +214,15 @@ fn read_field(
                         .and_then(Value::as_u64)
                         .unwrap_or(0);
                     for i in 0..field::array_len(stated, *max)? {
-                        items.push(read_elem(p, ty, r, &format!("{fpath}[{i}]"))?);
+                        items.push(read_elem(p, ty, r, &Path::Index(&fpath, i))?);
                     }
                 }
             }
-            out.insert(f.name.clone(), Value::Array(items));
+            out.push(f.name.clone(), Value::Array(items));
         }
         FieldKind::NulText { max } => {
             let v = super::check::read_nul_text(r, *max)?;
-            out.insert(f.name.clone(), v);
+            out.push(f.name.clone(), v);
         }
         // Read by `read_struct`, which knows the covered fields; validation keeps checks
         // out of repeated elements.
@@ -207,10 +230,10 @@ fn read_field(
         FieldKind::Group { elem, max } => {
             let sizes = owner.unwrap_or(out);
             let mut items = Vec::new();
-            let fpath = join(path, &f.name);
+            let fpath = Path::Field(path, &f.name);
             while field::more(r) {
                 let mut item = Fields::new();
-                let epath = format!("{fpath}[{}]", items.len());
+                let epath = Path::Index(&fpath, items.len());
                 for ef in &p.structs[*elem].fields {
                     read_field(p, ef, &ef.kind, size, r, &epath, &mut item, Some(sizes))?;
                 }
@@ -219,13 +242,13 @@ fn read_field(
                 }
                 items.push(Value::Struct(item));
             }
-            out.insert(f.name.clone(), Value::Array(items));
+            out.push(f.name.clone(), Value::Array(items));
         }
     }
     Ok(())
 }
 
-fn read_member(p: &Protocol, m: &BitMember, word: u64, path: &str) -> Result<Value, ReadFail> {
+fn read_member(p: &Protocol, m: &BitMember, word: u64, path: &Path<'_>) -> Result<Value, ReadFail> {
     let bits = field::get_bits(word, m.shift, m.width);
     Ok(match m.enum_index {
         Some(ei) => {
@@ -241,7 +264,7 @@ fn read_elem(
     p: &Protocol,
     ty: &ValueType,
     r: &mut Reader<'_>,
-    path: &str,
+    path: &Path<'_>,
 ) -> Result<Value, ReadFail> {
     Ok(match ty {
         ValueType::Scalar {
@@ -319,7 +342,7 @@ fn read_packed(
 }
 
 /// The value of an enum's raw value (bits truncated to the enum's type).
-fn enum_value(e: &Enum, ei: usize, raw: u64, path: &str) -> Result<Value, ReadFail> {
+fn enum_value(e: &Enum, ei: usize, raw: u64, path: &Path<'_>) -> Result<Value, ReadFail> {
     if let Some(v) = variant(e, raw) {
         return Ok(Value::from(v.name.clone()));
     }
