@@ -23,6 +23,7 @@ use protocol_spec::rules::{Carries, carries};
 use crate::error::DecodeIssue;
 use crate::layout::word_field;
 use crate::model::{Fields, Value};
+use crate::names::Names;
 use crate::payload::{ReadFail, read_payload};
 use crate::value::truncate;
 
@@ -54,34 +55,36 @@ fn header_truncated(p: &Protocol, frame: &[u8]) -> DecodeIssue {
     })
 }
 
-/// The user-set header values of a frame, in wire order.
+/// The user-set header values of a frame of format `fi`, in wire order.
 fn read_header(
     p: &Protocol,
+    (names, fi): (&Names, usize),
     f: &Frame,
     rules: &PacketRules<'_>,
     frame: &[u8],
 ) -> Result<Fields, DecodeIssue> {
     let mut out = Fields::new();
-    for v in f
+    for (vi, v) in f
         .values
         .iter()
-        .filter(|v| matches!(v.role, Role::User { .. }))
+        .enumerate()
+        .filter(|(_, v)| matches!(v.role, Role::User { .. }))
     {
         let raw = word_field(v)
             .read(frame)
             .ok_or_else(|| header_truncated(p, frame))?;
         if !is_can_id(f, v) {
-            out.insert(v.name.clone(), header_value(v, raw));
+            out.push(names.value(fi, vi), header_value(v, raw));
         }
     }
-    if let Some(t) = &f.flag_trailer {
+    if let Some(name) = names.trailer(fi) {
         let present = rules.layout.flag_trailer_len(frame);
         let bytes = frame.get(frame.len().saturating_sub(present)..);
         let value = match bytes {
             Some(b) if present > 0 => Value::Bytes(b.to_vec()),
             _ => Value::Null,
         };
-        out.insert(t.name.clone(), value);
+        out.push(name, value);
     }
     Ok(out)
 }
@@ -216,6 +219,7 @@ fn payload_issue(command: &str, e: DecodeError) -> DecodeIssue {
 /// `from_bytes` do.
 fn read_struct_payload(
     p: &Protocol,
+    names: &Names,
     si: Option<usize>,
     command: &str,
     payload: &[u8],
@@ -230,7 +234,7 @@ fn read_struct_payload(
             actual: payload.len(),
         });
     };
-    read_payload(p, si, payload)
+    read_payload(p, names, si, payload)
         .map(Value::Struct)
         .map_err(|e| match e {
             ReadFail::Runtime(e) => payload_issue(command, e),
@@ -253,6 +257,7 @@ fn read_struct_payload(
 /// generated `from_<direction>_frame`).
 pub fn decode(
     p: &Protocol,
+    names: &Names,
     fi: usize,
     rules: &PacketRules<'_>,
     frame: &[u8],
@@ -272,7 +277,7 @@ pub fn decode(
     let mut scratch = vec![0u8; rules.max_payload];
     match carries(f) {
         Carries::Bytes => {
-            out.header = read_header(p, f, rules, frame)?;
+            out.header = read_header(p, (names, fi), f, rules, frame)?;
             let payload = rules
                 .payload(frame, &mut scratch)
                 .map_err(DecodeIssue::Frame)?;
@@ -282,8 +287,8 @@ pub fn decode(
             let payload = rules
                 .payload(frame, &mut scratch)
                 .map_err(DecodeIssue::Frame)?;
-            out.header = read_header(p, f, rules, frame)?;
-            out.payload = read_struct_payload(p, Some(si), &f.name, payload)?;
+            out.header = read_header(p, (names, fi), f, rules, frame)?;
+            out.payload = read_struct_payload(p, names, Some(si), &f.name, payload)?;
         }
         Carries::CanCommand => {
             let key = rules.key(frame).map_err(DecodeIssue::Frame)?;
@@ -297,13 +302,18 @@ pub fn decode(
             let payload = rules
                 .payload(frame, &mut scratch)
                 .map_err(DecodeIssue::Frame)?;
-            out.header = read_header(p, f, rules, frame)?;
+            out.header = read_header(p, (names, fi), f, rules, frame)?;
             let c = &p.commands[ci];
-            out.payload =
-                read_struct_payload(p, c.payloads.first().copied().flatten(), &c.name, payload)?;
+            out.payload = read_struct_payload(
+                p,
+                names,
+                c.payloads.first().copied().flatten(),
+                &c.name,
+                payload,
+            )?;
         }
         Carries::Command => {
-            out.header = read_header(p, f, rules, frame)?;
+            out.header = read_header(p, (names, fi), f, rules, frame)?;
             if let Some(data) = rules.ack_data(frame).map_err(DecodeIssue::Frame)? {
                 out.ack = true;
                 out.payload = Value::Bytes(data.to_vec());
@@ -320,11 +330,12 @@ pub fn decode(
                     let payload = rules
                         .payload_from(frame, start, &mut scratch)
                         .map_err(DecodeIssue::Frame)?;
-                    out.payload = read_struct_payload(p, Some(si), &p.directions[d].name, payload)?;
+                    out.payload =
+                        read_struct_payload(p, names, Some(si), &p.directions[d].name, payload)?;
                     return Ok(out);
                 }
             }
-            decode_command(p, f, rules, frame, &mut out)?;
+            decode_command(p, names, f, rules, frame, &mut out)?;
         }
     }
     Ok(out)
@@ -334,6 +345,7 @@ pub fn decode(
 /// header tells) and its payload, zero-filled as the format's rules say.
 fn decode_command(
     p: &Protocol,
+    names: &Names,
     f: &Frame,
     rules: &PacketRules<'_>,
     frame: &[u8],
@@ -395,6 +407,6 @@ fn decode_command(
             .map_err(|e| payload_issue(&c.name, e))?,
         None => payload,
     };
-    out.payload = read_struct_payload(p, si, &c.name, payload)?;
+    out.payload = read_struct_payload(p, names, si, &c.name, payload)?;
     Ok(())
 }

@@ -48,7 +48,7 @@ fn variant(e: &Enum, raw: u64) -> Option<&protocol_spec::ir::EnumVariant> {
 }
 
 /// The names a field takes in its struct's object: its name, or its bit members' names.
-fn keys(f: &Field) -> Vec<&str> {
+pub(crate) fn keys(f: &Field) -> Vec<&str> {
     fn of<'a>(name: &'a str, kind: &'a FieldKind) -> Vec<&'a str> {
         match kind {
             FieldKind::Padding | FieldKind::Check(_) => Vec::new(),

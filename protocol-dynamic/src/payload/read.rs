@@ -7,6 +7,7 @@ use protocol_spec::ir::{
 
 use super::{signed_value, variant};
 use crate::model::{Fields, Value};
+use crate::names::{FieldNames, Names};
 use crate::value::{read_scalar, truncate};
 
 /// Why a payload could not be read.
@@ -37,9 +38,14 @@ impl From<DecodeError> for ReadFail {
 ///
 /// # Errors
 /// [`ReadFail`] as generated code fails on the same bytes.
-pub fn read_payload(p: &Protocol, si: usize, bytes: &[u8]) -> Result<Fields, ReadFail> {
+pub fn read_payload(
+    p: &Protocol,
+    names: &Names,
+    si: usize,
+    bytes: &[u8],
+) -> Result<Fields, ReadFail> {
     let mut r = Reader::new(bytes);
-    let value = read_struct(p, si, &mut r, &Path::Root).map_err(|e| match e {
+    let value = read_struct(p, names, si, &mut r, &Path::Root).map_err(|e| match e {
         ReadFail::Runtime(DecodeError::Truncated { .. }) => {
             ReadFail::Runtime(DecodeError::PayloadLength {
                 expected: p.structs[si].min_size,
@@ -78,6 +84,7 @@ impl std::fmt::Display for Path<'_> {
 /// Reads struct `si` at the reader's position (`Payload::read`).
 fn read_struct(
     p: &Protocol,
+    names: &Names,
     si: usize,
     r: &mut Reader<'_>,
     path: &Path<'_>,
@@ -86,7 +93,7 @@ fn read_struct(
     let mut out = Fields::with_capacity(s.fields.len());
     // Per field read: a copy of the reader at its start, and the position after it.
     let mut spans: Vec<(Reader<'_>, usize)> = Vec::with_capacity(s.fields.len());
-    for (i, f) in s.fields.iter().enumerate() {
+    for ((i, f), n) in s.fields.iter().enumerate().zip(names.fields(si)) {
         let start = r.clone();
         match &f.kind {
             FieldKind::Check(c) => {
@@ -99,9 +106,9 @@ fn read_struct(
                 size_from: None,
             } if s.bytes_after(i) > 0 => {
                 let v = read_rest_bytes(r, *max, s.bytes_after(i))?;
-                out.push(f.name.clone(), Value::Bytes(v));
+                out.push(&n.name, Value::Bytes(v));
             }
-            _ => read_field(p, f, &f.kind, s.size, r, path, &mut out, None)?,
+            _ => read_field(p, names, (f, n), &f.kind, s.size, r, path, &mut out, None)?,
         }
         spans.push((start, r.position()));
     }
@@ -129,7 +136,8 @@ fn read_rest_bytes(r: &mut Reader<'_>, max: usize, keep: usize) -> Result<Vec<u8
 #[allow(clippy::too_many_arguments)]
 fn read_field(
     p: &Protocol,
-    f: &Field,
+    names: &Names,
+    (f, n): (&Field, &FieldNames),
     kind: &FieldKind,
     size: usize,
     r: &mut Reader<'_>,
@@ -141,9 +149,9 @@ fn read_field(
         FieldKind::Padding => r.skip(f.size)?,
         FieldKind::Bits { word, members } => {
             let raw = read_scalar(r, *word)?.as_u64();
-            for m in members {
+            for (m, key) in members.iter().zip(&n.keys) {
                 let v = read_member(p, m, raw, &Path::Field(path, &m.name))?;
-                out.push(m.name.clone(), v);
+                out.push(key, v);
             }
         }
         FieldKind::Packed {
@@ -154,30 +162,30 @@ fn read_field(
             ..
         } => {
             let v = read_packed(r, f.size, *count, *bits, *order, scale.as_ref())?;
-            out.push(f.name.clone(), v);
+            out.push(&n.name, v);
         }
         FieldKind::Optional(inner) => {
             if field::more(r) {
-                read_field(p, f, inner, size, r, path, out, owner)?;
+                read_field(p, names, (f, n), inner, size, r, path, out, owner)?;
             } else {
-                for key in super::keys(f) {
-                    out.push(key.to_string(), Value::Null);
+                for key in &n.keys {
+                    out.push(key, Value::Null);
                 }
             }
         }
         FieldKind::Value { ty, count } => {
             let fpath = Path::Field(path, &f.name);
             let v = match count {
-                None => read_elem(p, ty, r, &fpath)?,
+                None => read_elem(p, names, ty, r, &fpath)?,
                 Some(n) => {
                     let mut items = Vec::with_capacity(*n);
                     for i in 0..*n {
-                        items.push(read_elem(p, ty, r, &Path::Index(&fpath, i))?);
+                        items.push(read_elem(p, names, ty, r, &Path::Index(&fpath, i))?);
                     }
                     Value::Array(items)
                 }
             };
-            out.push(f.name.clone(), v);
+            out.push(&n.name, v);
         }
         FieldKind::Bytes { max, size_from } => {
             let v = match size_from {
@@ -192,7 +200,7 @@ fn read_field(
                     field::take_sized(r, count, *max)?.to_vec()
                 }
             };
-            out.push(f.name.clone(), Value::Bytes(v));
+            out.push(&n.name, Value::Bytes(v));
         }
         FieldKind::Array { ty, max, size_from } => {
             let fpath = Path::Field(path, &f.name);
@@ -200,7 +208,7 @@ fn read_field(
             match size_from {
                 None => {
                     while field::more(r) {
-                        let v = read_elem(p, ty, r, &Path::Index(&fpath, items.len()))?;
+                        let v = read_elem(p, names, ty, r, &Path::Index(&fpath, items.len()))?;
                         if items.len() == *max {
                             return Err(ReadFail::Runtime(field::group_full(r, size)));
                         }
@@ -214,15 +222,15 @@ fn read_field(
                         .and_then(Value::as_u64)
                         .unwrap_or(0);
                     for i in 0..field::array_len(stated, *max)? {
-                        items.push(read_elem(p, ty, r, &Path::Index(&fpath, i))?);
+                        items.push(read_elem(p, names, ty, r, &Path::Index(&fpath, i))?);
                     }
                 }
             }
-            out.push(f.name.clone(), Value::Array(items));
+            out.push(&n.name, Value::Array(items));
         }
         FieldKind::NulText { max } => {
             let v = super::check::read_nul_text(r, *max)?;
-            out.push(f.name.clone(), v);
+            out.push(&n.name, v);
         }
         // Read by `read_struct`, which knows the covered fields; validation keeps checks
         // out of repeated elements.
@@ -234,15 +242,16 @@ fn read_field(
             while field::more(r) {
                 let mut item = Fields::new();
                 let epath = Path::Index(&fpath, items.len());
-                for ef in &p.structs[*elem].fields {
-                    read_field(p, ef, &ef.kind, size, r, &epath, &mut item, Some(sizes))?;
+                for (ef, en) in p.structs[*elem].fields.iter().zip(names.fields(*elem)) {
+                    let (kind, sizes) = (&ef.kind, Some(sizes));
+                    read_field(p, names, (ef, en), kind, size, r, &epath, &mut item, sizes)?;
                 }
                 if items.len() == *max {
                     return Err(ReadFail::Runtime(field::group_full(r, size)));
                 }
                 items.push(Value::Struct(item));
             }
-            out.push(f.name.clone(), Value::Array(items));
+            out.push(&n.name, Value::Array(items));
         }
     }
     Ok(())
@@ -262,6 +271,7 @@ fn read_member(p: &Protocol, m: &BitMember, word: u64, path: &Path<'_>) -> Resul
 
 fn read_elem(
     p: &Protocol,
+    names: &Names,
     ty: &ValueType,
     r: &mut Reader<'_>,
     path: &Path<'_>,
@@ -275,7 +285,7 @@ fn read_elem(
             scalar,
             scale: Some(sc),
         } => physical_value(read_scalar(r, *scalar)?.as_f64(), sc)?,
-        ValueType::Struct(si) => Value::Struct(read_struct(p, *si, r, path)?),
+        ValueType::Struct(si) => Value::Struct(read_struct(p, names, *si, r, path)?),
         ValueType::Enum(ei, scalar) => {
             let raw = read_scalar(r, *scalar)?;
             enum_value(
