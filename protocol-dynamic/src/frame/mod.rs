@@ -97,6 +97,20 @@ fn can_id(f: &Frame, frame: &[u8]) -> Option<u64> {
     word.bits(0, word.size.saturating_mul(8)).read(frame)
 }
 
+/// Bytes of work room a frame decodes in without a heap buffer: the payload buffers of a
+/// format whose payloads fit (MAVLink's 255 bytes, CAN's 64) live on the stack.
+const STACK_ROOM: usize = 256;
+
+/// Zeroed room for `len` bytes: `stack` when it is large enough, else `heap`, zeroed to `len`.
+fn room<'b>(stack: &'b mut [u8; STACK_ROOM], heap: &'b mut Vec<u8>, len: usize) -> &'b mut [u8] {
+    if len <= STACK_ROOM {
+        &mut stack[..len]
+    } else {
+        heap.resize(len, 0);
+        heap
+    }
+}
+
 /// A decoded frame.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Decoded {
@@ -274,19 +288,16 @@ pub fn decode(
         header: Fields::new(),
         payload: Value::Null,
     };
-    let mut scratch = vec![0u8; rules.max_payload];
+    let (mut stack, mut heap) = ([0u8; STACK_ROOM], Vec::new());
+    let scratch = room(&mut stack, &mut heap, rules.max_payload);
     match carries(f) {
         Carries::Bytes => {
             out.header = read_header(p, (names, fi), f, rules, frame)?;
-            let payload = rules
-                .payload(frame, &mut scratch)
-                .map_err(DecodeIssue::Frame)?;
+            let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
             out.payload = Value::Bytes(payload.to_vec());
         }
         Carries::Struct(si) => {
-            let payload = rules
-                .payload(frame, &mut scratch)
-                .map_err(DecodeIssue::Frame)?;
+            let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
             out.header = read_header(p, (names, fi), f, rules, frame)?;
             out.payload = read_struct_payload(p, names, Some(si), &f.name, payload)?;
         }
@@ -299,9 +310,7 @@ pub fn decode(
                 .position(|c| c.can_id == Some(key))
                 .ok_or(DecodeIssue::UnknownCommand { id: vec![key], key })?;
             out.command = Some(ci);
-            let payload = rules
-                .payload(frame, &mut scratch)
-                .map_err(DecodeIssue::Frame)?;
+            let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
             out.header = read_header(p, (names, fi), f, rules, frame)?;
             let c = &p.commands[ci];
             out.payload = read_struct_payload(
@@ -328,7 +337,7 @@ pub fn decode(
                 out.direction = Some(d);
                 if let Some((si, start)) = p.directions[d].message {
                     let payload = rules
-                        .payload_from(frame, start, &mut scratch)
+                        .payload_from(frame, start, scratch)
                         .map_err(DecodeIssue::Frame)?;
                     out.payload =
                         read_struct_payload(p, names, Some(si), &p.directions[d].name, payload)?;
@@ -376,9 +385,10 @@ fn decode_command(
         })?;
     out.command = Some(ci);
     let c = &p.commands[ci];
-    let mut unstuffed = vec![0u8; rules.max_payload];
+    let (mut stack, mut heap) = ([0u8; STACK_ROOM], Vec::new());
+    let unstuffed = room(&mut stack, &mut heap, rules.max_payload);
     let payload = rules
-        .payload(frame, &mut unstuffed)
+        .payload(frame, unstuffed)
         .map_err(DecodeIssue::Frame)?;
     let slot = match out.direction {
         Some(given) => given,
@@ -395,15 +405,12 @@ fn decode_command(
         }
     };
     let si = c.payloads.get(slot).copied().flatten();
-    let mut filled = vec![0u8; rules.max_payload.max(si.map_or(0, |si| p.structs[si].size))];
+    let size = rules.max_payload.max(si.map_or(0, |si| p.structs[si].size));
+    let (mut stack, mut heap) = ([0u8; STACK_ROOM], Vec::new());
+    let filled = room(&mut stack, &mut heap, size);
     let payload = match si {
         Some(si) => rules
-            .filled(
-                payload,
-                p.structs[si].size,
-                carried(p, f, Some(si)),
-                &mut filled,
-            )
+            .filled(payload, p.structs[si].size, carried(p, f, Some(si)), filled)
             .map_err(|e| payload_issue(&c.name, e))?,
         None => payload,
     };
