@@ -93,7 +93,7 @@ fn read_struct(
     let mut out = Fields::with_capacity(s.fields.len());
     // Per field read: a copy of the reader at its start, and the position after it.
     let mut spans: Vec<(Reader<'_>, usize)> = Vec::with_capacity(s.fields.len());
-    for ((i, f), n) in s.fields.iter().enumerate().zip(names.fields(si)) {
+    for ((i, f), fnames) in s.fields.iter().enumerate().zip(names.fields(si)) {
         let start = r.clone();
         match &f.kind {
             FieldKind::Check(c) => {
@@ -106,9 +106,19 @@ fn read_struct(
                 size_from: None,
             } if s.bytes_after(i) > 0 => {
                 let v = read_rest_bytes(r, *max, s.bytes_after(i))?;
-                out.push(&n.name, Value::Bytes(v));
+                out.push(&fnames.name, Value::Bytes(v));
             }
-            _ => read_field(p, names, (f, n), &f.kind, s.size, r, path, &mut out, None)?,
+            _ => read_field(
+                p,
+                names,
+                (f, fnames),
+                &f.kind,
+                s.size,
+                r,
+                path,
+                &mut out,
+                None,
+            )?,
         }
         spans.push((start, r.position()));
     }
@@ -137,7 +147,7 @@ fn read_rest_bytes(r: &mut Reader<'_>, max: usize, keep: usize) -> Result<Vec<u8
 fn read_field(
     p: &Protocol,
     names: &Names,
-    (f, n): (&Field, &FieldNames),
+    (f, fnames): (&Field, &FieldNames),
     kind: &FieldKind,
     size: usize,
     r: &mut Reader<'_>,
@@ -149,7 +159,7 @@ fn read_field(
         FieldKind::Padding => r.skip(f.size)?,
         FieldKind::Bits { word, members } => {
             let raw = read_scalar(r, *word)?.as_u64();
-            for (m, key) in members.iter().zip(&n.keys) {
+            for (m, key) in members.iter().zip(&fnames.keys) {
                 let v = read_member(p, m, raw, &Path::Field(path, &m.name))?;
                 out.push(key, v);
             }
@@ -162,13 +172,13 @@ fn read_field(
             ..
         } => {
             let v = read_packed(r, f.size, *count, *bits, *order, scale.as_ref())?;
-            out.push(&n.name, v);
+            out.push(&fnames.name, v);
         }
         FieldKind::Optional(inner) => {
             if field::more(r) {
-                read_field(p, names, (f, n), inner, size, r, path, out, owner)?;
+                read_field(p, names, (f, fnames), inner, size, r, path, out, owner)?;
             } else {
-                for key in &n.keys {
+                for key in &fnames.keys {
                     out.push(key, Value::Null);
                 }
             }
@@ -185,7 +195,7 @@ fn read_field(
                     Value::Array(items)
                 }
             };
-            out.push(&n.name, v);
+            out.push(&fnames.name, v);
         }
         FieldKind::Bytes { max, size_from } => {
             let v = match size_from {
@@ -200,7 +210,7 @@ fn read_field(
                     field::take_sized(r, count, *max)?.to_vec()
                 }
             };
-            out.push(&n.name, Value::Bytes(v));
+            out.push(&fnames.name, Value::Bytes(v));
         }
         FieldKind::Array { ty, max, size_from } => {
             let fpath = Path::Field(path, &f.name);
@@ -226,11 +236,11 @@ fn read_field(
                     }
                 }
             }
-            out.push(&n.name, Value::Array(items));
+            out.push(&fnames.name, Value::Array(items));
         }
         FieldKind::NulText { max } => {
             let v = super::check::read_nul_text(r, *max)?;
-            out.push(&n.name, v);
+            out.push(&fnames.name, v);
         }
         // Read by `read_struct`, which knows the covered fields; validation keeps checks
         // out of repeated elements.
@@ -251,7 +261,7 @@ fn read_field(
                 }
                 items.push(Value::Struct(item));
             }
-            out.push(&n.name, Value::Array(items));
+            out.push(&fnames.name, Value::Array(items));
         }
     }
     Ok(())
