@@ -104,6 +104,7 @@ mod frame;
 mod layout;
 mod load;
 pub mod model;
+mod names;
 mod payload;
 #[cfg(feature = "serde")]
 mod serde_impl;
@@ -124,18 +125,25 @@ use protocol_runtime::{CanFrame, DecodeError, FrameLayout};
 use protocol_spec::ir::{Protocol, Transport};
 
 use layout::{CrcStore, FrameParts};
+use names::Names;
 
 /// A checked protocol with the CRC objects its layouts borrow.
 pub struct Interpreter {
     protocol: Protocol,
     crcs: CrcStore,
+    names: Names,
 }
 
 impl Interpreter {
     /// An interpreter of a checked protocol.
     pub fn new(protocol: Protocol) -> Self {
         let crcs = CrcStore::new(&protocol);
-        Interpreter { protocol, crcs }
+        let names = Names::new(&protocol);
+        Interpreter {
+            protocol,
+            crcs,
+            names,
+        }
     }
 
     /// The protocol.
@@ -154,6 +162,7 @@ impl Interpreter {
             .collect();
         Codec {
             protocol: &self.protocol,
+            names: &self.names,
             frames,
             direction: None,
         }
@@ -174,6 +183,7 @@ pub struct Encoded {
 /// Decoding and encoding the frames of one protocol.
 pub struct Codec<'a> {
     protocol: &'a Protocol,
+    names: &'a Names,
     frames: Vec<FrameParts<'a>>,
     direction: Option<usize>,
 }
@@ -268,7 +278,14 @@ impl Codec<'_> {
     /// [`DecodeIssue`], mirroring the runtime's [`DecodeError`] of generated code.
     pub fn decode_frame(&self, format: usize, frame: &[u8]) -> Result<Decoded, DecodeIssue> {
         self.with_rules(format, |rules| {
-            frame::decode(self.protocol, format, rules, frame, self.direction)
+            frame::decode(
+                self.protocol,
+                self.names,
+                format,
+                rules,
+                frame,
+                self.direction,
+            )
         })
         .unwrap_or(Err(DecodeIssue::Frame(DecodeError::Frame(
             protocol_runtime::Reject::BadHeader,

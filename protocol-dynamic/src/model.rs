@@ -26,6 +26,7 @@
 
 use std::fmt;
 use std::ops::Index;
+use std::sync::Arc;
 
 use crate::value::{f32_text, f64_text};
 
@@ -59,8 +60,11 @@ pub enum Value {
 }
 
 /// The fields of a struct, in order, each name once.
+///
+/// A name is shared text: a decoded struct's names are the interpreter's own, made once per
+/// spec, so decoding a field copies no text and cloning a struct copies none either.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Fields(Vec<(String, Value)>);
+pub struct Fields(Vec<(Arc<str>, Value)>);
 
 impl Fields {
     /// No fields.
@@ -68,28 +72,39 @@ impl Fields {
         Fields(Vec::new())
     }
 
+    /// No fields, with room for `n`.
+    pub fn with_capacity(n: usize) -> Self {
+        Fields(Vec::with_capacity(n))
+    }
+
     /// The value of field `name`.
     pub fn get(&self, name: &str) -> Option<&Value> {
-        self.0.iter().find(|(k, _)| k == name).map(|(_, v)| v)
+        self.0.iter().find(|(k, _)| **k == *name).map(|(_, v)| v)
     }
 
     /// Sets field `name`: in its place when it exists, else last.
     pub fn insert(&mut self, name: impl Into<String>, value: Value) {
         let name = name.into();
-        match self.0.iter_mut().find(|(k, _)| *k == name) {
+        match self.0.iter_mut().find(|(k, _)| **k == *name) {
             Some((_, v)) => *v = value,
-            None => self.0.push((name, value)),
+            None => self.0.push((Arc::from(name), value)),
         }
     }
 
     /// The fields in order.
     pub fn iter(&self) -> impl Iterator<Item = (&str, &Value)> {
-        self.0.iter().map(|(k, v)| (k.as_str(), v))
+        self.0.iter().map(|(k, v)| (&**k, v))
+    }
+
+    /// Appends field `name`, which the caller knows is not there yet (a spec's struct names
+    /// each field once): the decoder's insert, without [`insert`](Self::insert)'s search.
+    pub(crate) fn push(&mut self, name: &Arc<str>, value: Value) {
+        self.0.push((Arc::clone(name), value));
     }
 
     /// The field names in order.
     pub fn keys(&self) -> impl Iterator<Item = &str> {
-        self.0.iter().map(|(k, _)| k.as_str())
+        self.0.iter().map(|(k, _)| &**k)
     }
 
     /// The number of fields.
@@ -115,10 +130,22 @@ impl<K: Into<String>> FromIterator<(K, Value)> for Fields {
 
 impl IntoIterator for Fields {
     type Item = (String, Value);
-    type IntoIter = std::vec::IntoIter<(String, Value)>;
+    type IntoIter = FieldsIntoIter;
 
     fn into_iter(self) -> Self::IntoIter {
-        self.0.into_iter()
+        FieldsIntoIter(self.0.into_iter())
+    }
+}
+
+/// The fields of a struct by value, in order ([`Fields::into_iter`]).
+#[derive(Debug)]
+pub struct FieldsIntoIter(std::vec::IntoIter<(Arc<str>, Value)>);
+
+impl Iterator for FieldsIntoIter {
+    type Item = (String, Value);
+
+    fn next(&mut self) -> Option<(String, Value)> {
+        self.0.next().map(|(k, v)| (k.to_string(), v))
     }
 }
 

@@ -337,12 +337,12 @@ impl Message {
 /// Lowercase hex of some bytes.
 fn hex_text(bytes: &[u8]) -> String {
     const DIGITS: &[u8; 16] = b"0123456789abcdef";
-    let mut s = String::with_capacity(2 * bytes.len());
-    for b in bytes {
-        s.push(char::from(DIGITS[usize::from(b >> 4)]));
-        s.push(char::from(DIGITS[usize::from(b & 0xF)]));
-    }
-    s
+    // Two ASCII digits a byte, collected as bytes: no character is encoded one at a time.
+    let digits: Vec<u8> = bytes
+        .iter()
+        .flat_map(|b| [DIGITS[usize::from(b >> 4)], DIGITS[usize::from(b & 0xF)]])
+        .collect();
+    String::from_utf8(digits).unwrap_or_default()
 }
 
 impl Message {

@@ -23,6 +23,7 @@ use protocol_spec::rules::{Carries, carries};
 use crate::error::DecodeIssue;
 use crate::layout::word_field;
 use crate::model::{Fields, Value};
+use crate::names::Names;
 use crate::payload::{ReadFail, read_payload};
 use crate::value::truncate;
 
@@ -54,34 +55,36 @@ fn header_truncated(p: &Protocol, frame: &[u8]) -> DecodeIssue {
     })
 }
 
-/// The user-set header values of a frame, in wire order.
+/// The user-set header values of a frame of format `fi`, in wire order.
 fn read_header(
     p: &Protocol,
+    (names, fi): (&Names, usize),
     f: &Frame,
     rules: &PacketRules<'_>,
     frame: &[u8],
 ) -> Result<Fields, DecodeIssue> {
     let mut out = Fields::new();
-    for v in f
+    for (vi, v) in f
         .values
         .iter()
-        .filter(|v| matches!(v.role, Role::User { .. }))
+        .enumerate()
+        .filter(|(_, v)| matches!(v.role, Role::User { .. }))
     {
         let raw = word_field(v)
             .read(frame)
             .ok_or_else(|| header_truncated(p, frame))?;
         if !is_can_id(f, v) {
-            out.insert(v.name.clone(), header_value(v, raw));
+            out.push(names.value(fi, vi), header_value(v, raw));
         }
     }
-    if let Some(t) = &f.flag_trailer {
+    if let Some(name) = names.trailer(fi) {
         let present = rules.layout.flag_trailer_len(frame);
         let bytes = frame.get(frame.len().saturating_sub(present)..);
         let value = match bytes {
             Some(b) if present > 0 => Value::Bytes(b.to_vec()),
             _ => Value::Null,
         };
-        out.insert(t.name.clone(), value);
+        out.push(name, value);
     }
     Ok(out)
 }
@@ -92,6 +95,20 @@ fn can_id(f: &Frame, frame: &[u8]) -> Option<u64> {
     let v = f.values.iter().find(|v| is_can_id(f, v))?;
     let word = word_field(v);
     word.bits(0, word.size.saturating_mul(8)).read(frame)
+}
+
+/// Bytes of work room a frame decodes in without a heap buffer: the payload buffers of a
+/// format whose payloads fit (MAVLink's 255 bytes, CAN's 64) live on the stack.
+const STACK_ROOM: usize = 256;
+
+/// Zeroed room for `len` bytes: `stack` when it is large enough, else `heap`, zeroed to `len`.
+fn room<'b>(stack: &'b mut [u8; STACK_ROOM], heap: &'b mut Vec<u8>, len: usize) -> &'b mut [u8] {
+    if len <= STACK_ROOM {
+        &mut stack[..len]
+    } else {
+        heap.resize(len, 0);
+        heap
+    }
 }
 
 /// A decoded frame.
@@ -216,6 +233,7 @@ fn payload_issue(command: &str, e: DecodeError) -> DecodeIssue {
 /// `from_bytes` do.
 fn read_struct_payload(
     p: &Protocol,
+    names: &Names,
     si: Option<usize>,
     command: &str,
     payload: &[u8],
@@ -230,7 +248,7 @@ fn read_struct_payload(
             actual: payload.len(),
         });
     };
-    read_payload(p, si, payload)
+    read_payload(p, names, si, payload)
         .map(Value::Struct)
         .map_err(|e| match e {
             ReadFail::Runtime(e) => payload_issue(command, e),
@@ -253,6 +271,7 @@ fn read_struct_payload(
 /// generated `from_<direction>_frame`).
 pub fn decode(
     p: &Protocol,
+    names: &Names,
     fi: usize,
     rules: &PacketRules<'_>,
     frame: &[u8],
@@ -269,21 +288,18 @@ pub fn decode(
         header: Fields::new(),
         payload: Value::Null,
     };
-    let mut scratch = vec![0u8; rules.max_payload];
+    let (mut stack, mut heap) = ([0u8; STACK_ROOM], Vec::new());
+    let scratch = room(&mut stack, &mut heap, rules.max_payload);
     match carries(f) {
         Carries::Bytes => {
-            out.header = read_header(p, f, rules, frame)?;
-            let payload = rules
-                .payload(frame, &mut scratch)
-                .map_err(DecodeIssue::Frame)?;
+            out.header = read_header(p, (names, fi), f, rules, frame)?;
+            let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
             out.payload = Value::Bytes(payload.to_vec());
         }
         Carries::Struct(si) => {
-            let payload = rules
-                .payload(frame, &mut scratch)
-                .map_err(DecodeIssue::Frame)?;
-            out.header = read_header(p, f, rules, frame)?;
-            out.payload = read_struct_payload(p, Some(si), &f.name, payload)?;
+            let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
+            out.header = read_header(p, (names, fi), f, rules, frame)?;
+            out.payload = read_struct_payload(p, names, Some(si), &f.name, payload)?;
         }
         Carries::CanCommand => {
             let key = rules.key(frame).map_err(DecodeIssue::Frame)?;
@@ -294,16 +310,19 @@ pub fn decode(
                 .position(|c| c.can_id == Some(key))
                 .ok_or(DecodeIssue::UnknownCommand { id: vec![key], key })?;
             out.command = Some(ci);
-            let payload = rules
-                .payload(frame, &mut scratch)
-                .map_err(DecodeIssue::Frame)?;
-            out.header = read_header(p, f, rules, frame)?;
+            let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
+            out.header = read_header(p, (names, fi), f, rules, frame)?;
             let c = &p.commands[ci];
-            out.payload =
-                read_struct_payload(p, c.payloads.first().copied().flatten(), &c.name, payload)?;
+            out.payload = read_struct_payload(
+                p,
+                names,
+                c.payloads.first().copied().flatten(),
+                &c.name,
+                payload,
+            )?;
         }
         Carries::Command => {
-            out.header = read_header(p, f, rules, frame)?;
+            out.header = read_header(p, (names, fi), f, rules, frame)?;
             if let Some(data) = rules.ack_data(frame).map_err(DecodeIssue::Frame)? {
                 out.ack = true;
                 out.payload = Value::Bytes(data.to_vec());
@@ -318,13 +337,14 @@ pub fn decode(
                 out.direction = Some(d);
                 if let Some((si, start)) = p.directions[d].message {
                     let payload = rules
-                        .payload_from(frame, start, &mut scratch)
+                        .payload_from(frame, start, scratch)
                         .map_err(DecodeIssue::Frame)?;
-                    out.payload = read_struct_payload(p, Some(si), &p.directions[d].name, payload)?;
+                    out.payload =
+                        read_struct_payload(p, names, Some(si), &p.directions[d].name, payload)?;
                     return Ok(out);
                 }
             }
-            decode_command(p, f, rules, frame, &mut out)?;
+            decode_command(p, names, f, rules, frame, &mut out)?;
         }
     }
     Ok(out)
@@ -334,6 +354,7 @@ pub fn decode(
 /// header tells) and its payload, zero-filled as the format's rules say.
 fn decode_command(
     p: &Protocol,
+    names: &Names,
     f: &Frame,
     rules: &PacketRules<'_>,
     frame: &[u8],
@@ -364,9 +385,10 @@ fn decode_command(
         })?;
     out.command = Some(ci);
     let c = &p.commands[ci];
-    let mut unstuffed = vec![0u8; rules.max_payload];
+    let (mut stack, mut heap) = ([0u8; STACK_ROOM], Vec::new());
+    let unstuffed = room(&mut stack, &mut heap, rules.max_payload);
     let payload = rules
-        .payload(frame, &mut unstuffed)
+        .payload(frame, unstuffed)
         .map_err(DecodeIssue::Frame)?;
     let slot = match out.direction {
         Some(given) => given,
@@ -383,18 +405,15 @@ fn decode_command(
         }
     };
     let si = c.payloads.get(slot).copied().flatten();
-    let mut filled = vec![0u8; rules.max_payload.max(si.map_or(0, |si| p.structs[si].size))];
+    let size = rules.max_payload.max(si.map_or(0, |si| p.structs[si].size));
+    let (mut stack, mut heap) = ([0u8; STACK_ROOM], Vec::new());
+    let filled = room(&mut stack, &mut heap, size);
     let payload = match si {
         Some(si) => rules
-            .filled(
-                payload,
-                p.structs[si].size,
-                carried(p, f, Some(si)),
-                &mut filled,
-            )
+            .filled(payload, p.structs[si].size, carried(p, f, Some(si)), filled)
             .map_err(|e| payload_issue(&c.name, e))?,
         None => payload,
     };
-    out.payload = read_struct_payload(p, si, &c.name, payload)?;
+    out.payload = read_struct_payload(p, names, si, &c.name, payload)?;
     Ok(())
 }

@@ -49,4 +49,4 @@ fn variant(e: &Enum, raw: u64) -> Option<&protocol_spec::ir::EnumVariant> {
     e.variants.iter().find(|v| truncate(e.prim, v.value) == raw)
 }
 
-use kinds::keys;
+pub(crate) use kinds::keys;

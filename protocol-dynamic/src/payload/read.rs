@@ -5,6 +5,7 @@ use protocol_spec::ir::{BitMember, BitOrder, Enum, Prim, Protocol, Scale, ValueT
 
 use super::{kinds, signed_value, variant};
 use crate::model::{Fields, Value};
+use crate::names::Names;
 use crate::value::{read_scalar, truncate};
 
 /// Why a payload could not be read.
@@ -35,9 +36,14 @@ impl From<DecodeError> for ReadFail {
 ///
 /// # Errors
 /// [`ReadFail`] as generated code fails on the same bytes.
-pub fn read_payload(p: &Protocol, si: usize, bytes: &[u8]) -> Result<Fields, ReadFail> {
+pub fn read_payload(
+    p: &Protocol,
+    names: &Names,
+    si: usize,
+    bytes: &[u8],
+) -> Result<Fields, ReadFail> {
     let mut r = Reader::new(bytes);
-    let value = read_struct(p, si, &mut r, "").map_err(|e| match e {
+    let value = read_struct(p, names, si, &mut r, &Path::Root).map_err(|e| match e {
         ReadFail::Runtime(DecodeError::Truncated { .. }) => {
             ReadFail::Runtime(DecodeError::PayloadLength {
                 expected: p.structs[si].min_size,
@@ -50,20 +56,50 @@ pub fn read_payload(p: &Protocol, si: usize, bytes: &[u8]) -> Result<Fields, Rea
     Ok(value)
 }
 
+/// Where a value stands in the payload (`att.q[2]`), built on the stack as the read descends
+/// and spelled out only for an error that names it: a read that succeeds formats no path.
+#[derive(Clone, Copy)]
+pub(super) enum Path<'a> {
+    /// The payload struct itself.
+    Root,
+    /// Field `name` of the struct at the parent path.
+    Field(&'a Path<'a>, &'a str),
+    /// Element `i` of the array at the parent path.
+    Index(&'a Path<'a>, usize),
+}
+
+impl std::fmt::Display for Path<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Path::Root => Ok(()),
+            Path::Field(Path::Root, name) => f.write_str(name),
+            Path::Field(parent, name) => write!(f, "{parent}.{name}"),
+            Path::Index(parent, i) => write!(f, "{parent}[{i}]"),
+        }
+    }
+}
+
 /// Reads struct `si` at the reader's position (`Payload::read`).
 fn read_struct(
     p: &Protocol,
+    names: &Names,
     si: usize,
     r: &mut Reader<'_>,
-    path: &str,
+    path: &Path<'_>,
 ) -> Result<Fields, ReadFail> {
     let s = &p.structs[si];
-    let mut out = Fields::new();
+    let mut out = Fields::with_capacity(s.fields.len());
     // Per field read: a copy of the reader at its start, and the position after it.
     let mut spans: Vec<(Reader<'_>, usize)> = Vec::with_capacity(s.fields.len());
-    for (i, f) in s.fields.iter().enumerate() {
+    let at = kinds::ReadAt {
+        names,
+        size: s.size,
+        path,
+        owner: None,
+    };
+    for ((i, f), fnames) in s.fields.iter().enumerate().zip(names.fields(si)) {
         let start = r.clone();
-        kinds::of(&f.kind).read_in(p, s, i, &spans, r, path, &mut out)?;
+        kinds::of(&f.kind).read_in(p, s, i, fnames, &spans, r, &at, &mut out)?;
         spans.push((start, r.position()));
     }
     Ok(out)
@@ -91,7 +127,7 @@ pub(super) fn read_member(
     p: &Protocol,
     m: &BitMember,
     word: u64,
-    path: &str,
+    path: &Path<'_>,
 ) -> Result<Value, ReadFail> {
     let bits = field::get_bits(word, m.shift, m.width);
     Ok(match m.enum_index {
@@ -106,9 +142,10 @@ pub(super) fn read_member(
 
 pub(super) fn read_elem(
     p: &Protocol,
+    names: &Names,
     ty: &ValueType,
     r: &mut Reader<'_>,
-    path: &str,
+    path: &Path<'_>,
 ) -> Result<Value, ReadFail> {
     Ok(match ty {
         ValueType::Scalar {
@@ -119,7 +156,7 @@ pub(super) fn read_elem(
             scalar,
             scale: Some(sc),
         } => physical_value(read_scalar(r, *scalar)?.as_f64(), sc)?,
-        ValueType::Struct(si) => Value::Struct(read_struct(p, *si, r, path)?),
+        ValueType::Struct(si) => Value::Struct(read_struct(p, names, *si, r, path)?),
         ValueType::Enum(ei, scalar) => {
             let raw = read_scalar(r, *scalar)?;
             enum_value(
@@ -186,7 +223,7 @@ pub(super) fn read_packed(
 }
 
 /// The value of an enum's raw value (bits truncated to the enum's type).
-fn enum_value(e: &Enum, ei: usize, raw: u64, path: &str) -> Result<Value, ReadFail> {
+fn enum_value(e: &Enum, ei: usize, raw: u64, path: &Path<'_>) -> Result<Value, ReadFail> {
     if let Some(v) = variant(e, raw) {
         return Ok(Value::from(v.name.clone()));
     }

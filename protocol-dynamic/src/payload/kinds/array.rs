@@ -7,8 +7,9 @@ use protocol_spec::ir::{Field, Protocol, ValueType};
 use super::{Kind, ReadAt, WriteAt, value_of};
 use crate::error::EncodeIssue;
 use crate::model::{Fields, Value};
+use crate::names::FieldNames;
 use crate::payload::join;
-use crate::payload::read::{ReadFail, read_elem};
+use crate::payload::read::{Path, ReadFail, read_elem};
 use crate::payload::write::{check_len, write_elem};
 
 /// Up to `max` elements of `ty`, counted by the field `size_from` or by the payload's end.
@@ -23,16 +24,17 @@ impl Kind<'_> for Array<'_> {
         &self,
         p: &Protocol,
         f: &Field,
+        fnames: &FieldNames,
         at: &ReadAt<'_>,
         r: &mut Reader<'_>,
         out: &mut Fields,
     ) -> Result<(), ReadFail> {
-        let fpath = join(at.path, &f.name);
+        let fpath = Path::Field(at.path, &f.name);
         let mut items = Vec::new();
         match self.size_from {
             None => {
                 while field::more(r) {
-                    let v = read_elem(p, self.ty, r, &format!("{fpath}[{}]", items.len()))?;
+                    let v = read_elem(p, at.names, self.ty, r, &Path::Index(&fpath, items.len()))?;
                     if items.len() == self.max {
                         return Err(ReadFail::Runtime(field::group_full(r, at.size)));
                     }
@@ -47,11 +49,11 @@ impl Kind<'_> for Array<'_> {
                     .and_then(Value::as_u64)
                     .unwrap_or(0);
                 for i in 0..field::array_len(stated, self.max)? {
-                    items.push(read_elem(p, self.ty, r, &format!("{fpath}[{i}]"))?);
+                    items.push(read_elem(p, at.names, self.ty, r, &Path::Index(&fpath, i))?);
                 }
             }
         }
-        out.insert(f.name.clone(), Value::Array(items));
+        out.push(&fnames.name, Value::Array(items));
         Ok(())
     }
 

@@ -8,8 +8,9 @@ use protocol_spec::ir::{BitMember, Field, Protocol, Scalar};
 use super::{Kind, ReadAt, WriteAt};
 use crate::error::EncodeIssue;
 use crate::model::Fields;
+use crate::names::FieldNames;
 use crate::payload::join;
-use crate::payload::read::{ReadFail, read_member};
+use crate::payload::read::{Path, ReadFail, read_member};
 use crate::payload::write::member_raw;
 use crate::value::{read_scalar, truncate, write_bits};
 
@@ -24,14 +25,15 @@ impl<'a> Kind<'a> for Bits<'a> {
         &self,
         p: &Protocol,
         _f: &Field,
+        fnames: &FieldNames,
         at: &ReadAt<'_>,
         r: &mut Reader<'_>,
         out: &mut Fields,
     ) -> Result<(), ReadFail> {
         let raw = read_scalar(r, self.word)?.as_u64();
-        for m in self.members {
-            let v = read_member(p, m, raw, &join(at.path, &m.name))?;
-            out.insert(m.name.clone(), v);
+        for (m, key) in self.members.iter().zip(&fnames.keys) {
+            let v = read_member(p, m, raw, &Path::Field(at.path, &m.name))?;
+            out.push(key, v);
         }
         Ok(())
     }

@@ -7,6 +7,7 @@ use protocol_spec::ir::{Field, Protocol, Struct};
 use super::{Kind, ReadAt, WriteAt, value_of};
 use crate::error::EncodeIssue;
 use crate::model::{Fields, Value};
+use crate::names::FieldNames;
 use crate::payload::join;
 use crate::payload::read::{ReadFail, read_rest_bytes};
 use crate::payload::write::{check_len, value_bytes};
@@ -21,7 +22,8 @@ impl Kind<'_> for Bytes<'_> {
     fn read(
         &self,
         _p: &Protocol,
-        f: &Field,
+        _f: &Field,
+        fnames: &FieldNames,
         at: &ReadAt<'_>,
         r: &mut Reader<'_>,
         out: &mut Fields,
@@ -39,7 +41,7 @@ impl Kind<'_> for Bytes<'_> {
                 field::take_sized(r, count, self.max)?.to_vec()
             }
         };
-        out.insert(f.name.clone(), Value::Bytes(v));
+        out.push(&fnames.name, Value::Bytes(v));
         Ok(())
     }
 
@@ -75,22 +77,18 @@ impl Kind<'_> for Bytes<'_> {
         p: &Protocol,
         s: &Struct,
         i: usize,
+        fnames: &FieldNames,
         _spans: &[(Reader<'b>, usize)],
         r: &mut Reader<'b>,
-        path: &str,
+        at: &ReadAt<'_>,
         out: &mut Fields,
     ) -> Result<(), ReadFail> {
         let f = &s.fields[i];
         if self.size_from.is_some() || s.bytes_after(i) == 0 {
-            let at = ReadAt {
-                size: s.size,
-                path,
-                owner: None,
-            };
-            return self.read(p, f, &at, r, out);
+            return self.read(p, f, fnames, at, r, out);
         }
         let v = read_rest_bytes(r, self.max, s.bytes_after(i))?;
-        out.insert(f.name.clone(), Value::Bytes(v));
+        out.push(&fnames.name, Value::Bytes(v));
         Ok(())
     }
 }

@@ -8,6 +8,7 @@ use protocol_spec::ir::{Field, PayloadCheck, Protocol, Struct};
 use super::{Kind, ReadAt, WriteAt};
 use crate::error::EncodeIssue;
 use crate::model::Fields;
+use crate::names::FieldNames;
 use crate::payload::read::ReadFail;
 
 /// The check.
@@ -20,6 +21,7 @@ impl<'a> Kind<'a> for Check<'a> {
         &self,
         _p: &Protocol,
         _f: &Field,
+        _fnames: &FieldNames,
         _at: &ReadAt<'_>,
         _r: &mut Reader<'_>,
         _out: &mut Fields,
@@ -47,9 +49,10 @@ impl<'a> Kind<'a> for Check<'a> {
         _p: &Protocol,
         _s: &Struct,
         _i: usize,
+        _fnames: &FieldNames,
         spans: &[(Reader<'b>, usize)],
         r: &mut Reader<'b>,
-        _path: &str,
+        _at: &ReadAt<'_>,
         _out: &mut Fields,
     ) -> Result<(), ReadFail> {
         let c = self.0;

@@ -8,8 +8,9 @@ use protocol_spec::ir::{Field, Protocol};
 use super::{Kind, ReadAt, WriteAt, of, value_of};
 use crate::error::EncodeIssue;
 use crate::model::{Fields, Value};
+use crate::names::FieldNames;
 use crate::payload::join;
-use crate::payload::read::ReadFail;
+use crate::payload::read::{Path, ReadFail};
 use crate::payload::write::{check_keys, check_len};
 
 /// Up to `max` elements of the struct `elem`.
@@ -23,30 +24,33 @@ impl Kind<'_> for Group {
         &self,
         p: &Protocol,
         f: &Field,
+        fnames: &FieldNames,
         at: &ReadAt<'_>,
         r: &mut Reader<'_>,
         out: &mut Fields,
     ) -> Result<(), ReadFail> {
         let sizes = at.owner.unwrap_or(out);
         let mut items = Vec::new();
-        let fpath = join(at.path, &f.name);
+        let fpath = Path::Field(at.path, &f.name);
+        let enames = at.names.fields(self.elem);
         while field::more(r) {
             let mut item = Fields::new();
-            let epath = format!("{fpath}[{}]", items.len());
+            let epath = Path::Index(&fpath, items.len());
             let eat = ReadAt {
+                names: at.names,
                 size: at.size,
                 path: &epath,
                 owner: Some(sizes),
             };
-            for ef in &p.structs[self.elem].fields {
-                of(&ef.kind).read(p, ef, &eat, r, &mut item)?;
+            for (ef, en) in p.structs[self.elem].fields.iter().zip(enames) {
+                of(&ef.kind).read(p, ef, en, &eat, r, &mut item)?;
             }
             if items.len() == self.max {
                 return Err(ReadFail::Runtime(field::group_full(r, at.size)));
             }
             items.push(Value::Struct(item));
         }
-        out.insert(f.name.clone(), Value::Array(items));
+        out.push(&fnames.name, Value::Array(items));
         Ok(())
     }
 

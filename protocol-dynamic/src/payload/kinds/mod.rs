@@ -16,17 +16,20 @@ mod value;
 use protocol_runtime::{Reader, Writer};
 use protocol_spec::ir::{Field, FieldKind, Protocol, Struct};
 
-use super::read::ReadFail;
+use super::read::{Path, ReadFail};
 use crate::error::EncodeIssue;
 use crate::model::Fields;
+use crate::names::{FieldNames, Names};
 
-/// Where a field is read: the wire size of the struct whose read code runs (a repeated group
-/// reports it when full), the path of the struct, and the fields sized bytes take their size
-/// from: the struct being read (`None`: the fields read so far), or for a group's elements,
-/// which generated code reads inline, the struct that repeats them.
+/// Where a field is read: the protocol's interned names, the wire size of the struct whose
+/// read code runs (a repeated group reports it when full), the path of the struct, and the
+/// fields sized bytes take their size from: the struct being read (`None`: the fields read so
+/// far), or for a group's elements, which generated code reads inline, the struct that
+/// repeats them.
 pub(super) struct ReadAt<'a> {
+    pub(super) names: &'a Names,
     pub(super) size: usize,
-    pub(super) path: &'a str,
+    pub(super) path: &'a Path<'a>,
     pub(super) owner: Option<&'a Fields>,
 }
 
@@ -41,11 +44,13 @@ pub(super) struct WriteAt<'a> {
 
 /// What the run-time codec does with one field kind, as generated code does it.
 pub(super) trait Kind<'a> {
-    /// Reads the field `f` (or the optional field holding this kind) into `out`.
+    /// Reads the field `f` (or the optional field holding this kind) into `out`, under its
+    /// names `fnames`.
     fn read(
         &self,
         p: &Protocol,
         f: &Field,
+        fnames: &FieldNames,
         at: &ReadAt<'_>,
         r: &mut Reader<'_>,
         out: &mut Fields,
@@ -65,26 +70,23 @@ pub(super) trait Kind<'a> {
         vec![f.name.as_str()]
     }
 
-    /// Reads field `i` of struct `s`, where a kind may need the fields around it (`spans`:
-    /// a copy of the reader at each earlier field's start, and the position after it).
+    /// Reads field `i` of struct `s` (names `fnames`, read at `at`), where a kind may need
+    /// the fields around it (`spans`: a copy of the reader at each earlier field's start, and
+    /// the position after it).
     #[allow(clippy::too_many_arguments)]
     fn read_in<'b>(
         &self,
         p: &Protocol,
         s: &Struct,
         i: usize,
+        fnames: &FieldNames,
         spans: &[(Reader<'b>, usize)],
         r: &mut Reader<'b>,
-        path: &str,
+        at: &ReadAt<'_>,
         out: &mut Fields,
     ) -> Result<(), ReadFail> {
         let _ = spans;
-        let at = ReadAt {
-            size: s.size,
-            path,
-            owner: None,
-        };
-        self.read(p, &s.fields[i], &at, r, out)
+        self.read(p, &s.fields[i], fnames, at, r, out)
     }
 
     /// Writes field `i` of struct `s` from `obj`, where a kind may need the fields around it
@@ -152,7 +154,7 @@ pub(super) fn of(kind: &FieldKind) -> Box<dyn Kind<'_> + '_> {
 }
 
 /// The names a field takes in its struct's object: its name, or its bit members' names.
-pub(super) fn keys(f: &Field) -> Vec<&str> {
+pub(crate) fn keys(f: &Field) -> Vec<&str> {
     of(&f.kind).keys(f)
 }
 

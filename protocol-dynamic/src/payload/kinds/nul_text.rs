@@ -8,6 +8,7 @@ use protocol_spec::ir::{Field, Protocol};
 use super::{Kind, ReadAt, WriteAt, value_of};
 use crate::error::EncodeIssue;
 use crate::model::Fields;
+use crate::names::FieldNames;
 use crate::payload::check::{read_nul_text, write_nul_text};
 use crate::payload::join;
 use crate::payload::read::ReadFail;
@@ -21,13 +22,14 @@ impl Kind<'_> for NulText {
     fn read(
         &self,
         _p: &Protocol,
-        f: &Field,
+        _f: &Field,
+        fnames: &FieldNames,
         _at: &ReadAt<'_>,
         r: &mut Reader<'_>,
         out: &mut Fields,
     ) -> Result<(), ReadFail> {
         let v = read_nul_text(r, self.max)?;
-        out.insert(f.name.clone(), v);
+        out.push(&fnames.name, v);
         Ok(())
     }
 

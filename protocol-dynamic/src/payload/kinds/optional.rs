@@ -8,6 +8,7 @@ use protocol_spec::ir::{Field, Protocol};
 use super::{Kind, ReadAt, WriteAt};
 use crate::error::EncodeIssue;
 use crate::model::{Fields, Value};
+use crate::names::FieldNames;
 use crate::payload::read::ReadFail;
 
 /// The inner kind, present or not.
@@ -18,15 +19,16 @@ impl<'a> Kind<'a> for Optional<'a> {
         &self,
         p: &Protocol,
         f: &Field,
+        fnames: &FieldNames,
         at: &ReadAt<'_>,
         r: &mut Reader<'_>,
         out: &mut Fields,
     ) -> Result<(), ReadFail> {
         if field::more(r) {
-            return self.0.read(p, f, at, r, out);
+            return self.0.read(p, f, fnames, at, r, out);
         }
-        for key in crate::payload::keys(f) {
-            out.insert(key.to_string(), Value::Null);
+        for key in &fnames.keys {
+            out.push(key, Value::Null);
         }
         Ok(())
     }

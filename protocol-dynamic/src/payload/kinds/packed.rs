@@ -7,6 +7,7 @@ use protocol_spec::ir::{BitOrder, ByteOrder, Field, Prim, Protocol, Scalar, Scal
 use super::{Kind, ReadAt, WriteAt, value_of};
 use crate::error::EncodeIssue;
 use crate::model::Fields;
+use crate::names::FieldNames;
 use crate::payload::join;
 use crate::payload::read::{ReadFail, read_packed};
 use crate::payload::write::{issue, scaled_raw};
@@ -26,6 +27,7 @@ impl Kind<'_> for Packed {
         &self,
         _p: &Protocol,
         f: &Field,
+        fnames: &FieldNames,
         _at: &ReadAt<'_>,
         r: &mut Reader<'_>,
         out: &mut Fields,
@@ -38,7 +40,7 @@ impl Kind<'_> for Packed {
             self.order,
             self.scale.as_ref(),
         )?;
-        out.insert(f.name.clone(), v);
+        out.push(&fnames.name, v);
         Ok(())
     }
 

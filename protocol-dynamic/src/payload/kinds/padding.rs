@@ -7,6 +7,7 @@ use protocol_spec::ir::{Field, Protocol};
 use super::{Kind, ReadAt, WriteAt};
 use crate::error::EncodeIssue;
 use crate::model::Fields;
+use crate::names::FieldNames;
 use crate::payload::read::ReadFail;
 
 /// A run of padding bytes (the field's size).
@@ -17,6 +18,7 @@ impl<'a> Kind<'a> for Padding {
         &self,
         _p: &Protocol,
         f: &Field,
+        _fnames: &FieldNames,
         _at: &ReadAt<'_>,
         r: &mut Reader<'_>,
         _out: &mut Fields,

@@ -7,8 +7,9 @@ use protocol_spec::ir::{Field, Protocol, ValueType};
 use super::{Kind, ReadAt, WriteAt, value_of};
 use crate::error::EncodeIssue;
 use crate::model::{Fields, Value as V};
+use crate::names::FieldNames;
 use crate::payload::join;
-use crate::payload::read::{ReadFail, read_elem};
+use crate::payload::read::{Path, ReadFail, read_elem};
 use crate::payload::write::write_elem;
 
 /// A value of type `ty`, or `count` of them.
@@ -22,22 +23,23 @@ impl Kind<'_> for Value<'_> {
         &self,
         p: &Protocol,
         f: &Field,
+        fnames: &FieldNames,
         at: &ReadAt<'_>,
         r: &mut Reader<'_>,
         out: &mut Fields,
     ) -> Result<(), ReadFail> {
-        let fpath = join(at.path, &f.name);
+        let fpath = Path::Field(at.path, &f.name);
         let v = match self.count {
-            None => read_elem(p, self.ty, r, &fpath)?,
+            None => read_elem(p, at.names, self.ty, r, &fpath)?,
             Some(n) => {
                 let mut items = Vec::with_capacity(n);
                 for i in 0..n {
-                    items.push(read_elem(p, self.ty, r, &format!("{fpath}[{i}]"))?);
+                    items.push(read_elem(p, at.names, self.ty, r, &Path::Index(&fpath, i))?);
                 }
                 V::Array(items)
             }
         };
-        out.insert(f.name.clone(), v);
+        out.push(&fnames.name, v);
         Ok(())
     }
 
