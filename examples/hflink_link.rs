@@ -6,7 +6,7 @@
 //!
 //! Run: `cargo run -p protocol-examples --example hflink_link`
 
-use protocol::protocol;
+use protocol_kit::protocol;
 
 protocol!("../specs/hflink.toml");
 

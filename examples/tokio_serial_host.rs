@@ -15,8 +15,8 @@ use std::process::ExitCode;
 use std::time::Duration;
 
 use futures_util::{SinkExt, StreamExt};
-use protocol::codec::PacketCodec;
-use protocol::{PacketEvent, protocol};
+use protocol_kit::codec::PacketCodec;
+use protocol_kit::{PacketEvent, protocol};
 use tokio_serial::SerialStream;
 use tokio_util::codec::Framed;
 

@@ -67,7 +67,7 @@ pub fn stream_vector(stream: &Value) -> (Vec<u8>, Vec<(u64, Vec<u8>)>) {
 /// # Panics
 /// On the first chunk size whose frames differ.
 pub fn assert_stream_at_every_chunk_size<const N: usize>(
-    layout: &'static protocol::FrameLayout<'static>,
+    layout: &'static protocol_kit::FrameLayout<'static>,
     bytes: &[u8],
     expected: &[(u64, Vec<u8>)],
     mut each: impl FnMut(&[u8]),
@@ -79,14 +79,14 @@ pub fn assert_stream_at_every_chunk_size<const N: usize>(
 
 /// [`assert_stream_at_every_chunk_size`] for any layout, a link of several frame formats
 /// too: `each` sees every frame with the format it came in.
-pub fn assert_link_stream_at_every_chunk_size<L: protocol::LayoutRef, const N: usize>(
+pub fn assert_link_stream_at_every_chunk_size<L: protocol_kit::LayoutRef, const N: usize>(
     layout: L,
     bytes: &[u8],
     expected: &[(u64, Vec<u8>)],
-    mut each: impl FnMut(&protocol::Frame<'_>),
+    mut each: impl FnMut(&protocol_kit::Frame<'_>),
 ) {
     for chunk in 1..=bytes.len() {
-        let mut dec = protocol::StreamDecoder::<_, N>::new(layout);
+        let mut dec = protocol_kit::StreamDecoder::<_, N>::new(layout);
         let mut got = Vec::new();
         for part in bytes.chunks(chunk) {
             let mut input = part;

@@ -34,7 +34,7 @@ use criterion::measurement::{Measurement, ValueFormatter, WallTime};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
 mod ours {
-    protocol::protocol!("../specs/mavlink.toml");
+    protocol_kit::protocol!("../specs/mavlink.toml");
 }
 use ours::mavlink as spec;
 
@@ -226,7 +226,7 @@ impl Read for Chunked<'_> {
 fn generated(stream: &[u8], chunk: usize, typed: bool) -> usize {
     let mut decoder = spec::decoder();
     let mut count = 0usize;
-    let mut sink = |frame: protocol::Frame<'_>| {
+    let mut sink = |frame: protocol_kit::Frame<'_>| {
         if typed {
             if let Ok(packet) = spec::Packet::from_frame(frame.bytes) {
                 black_box(&packet);

@@ -15,8 +15,8 @@
 
 use core::marker::PhantomData;
 
-use protocol::FrameLayout;
-use protocol::layout::LayoutRef;
+use protocol_kit::FrameLayout;
+use protocol_kit::layout::LayoutRef;
 
 use crate::ChunkDecoder;
 use crate::generated::{hflink, referee};

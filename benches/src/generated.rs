@@ -1,14 +1,14 @@
-//! The code under test: what `protocol::protocol!` generates from the two specs, used
+//! The code under test: what `protocol_kit::protocol!` generates from the two specs, used
 //! the way its documentation shows (a decoder from `decoder()`, `decode` in a loop per chunk,
 //! `flush` at the end; `Packet::encode` into the caller's buffer).
 
-use protocol::StreamDecoder;
-use protocol::layout::LayoutRef;
+use protocol_kit::StreamDecoder;
+use protocol_kit::layout::LayoutRef;
 
 use crate::ChunkDecoder;
 
-protocol::protocol!("../specs/hflink.toml");
-protocol::protocol!("../specs/referee.toml");
+protocol_kit::protocol!("../specs/hflink.toml");
+protocol_kit::protocol!("../specs/referee.toml");
 
 /// A generated decoder of either spec.
 pub struct Generated<L: LayoutRef, const N: usize>(pub StreamDecoder<L, N>);
@@ -41,13 +41,13 @@ pub fn referee_decoder_small() -> Generated<referee::Layout, BUFFER_SMALL> {
 
 /// The generated HFLink layout read through a reference, as the run-time codec reads its own.
 pub fn hflink_decoder_by_ref()
--> Generated<&'static protocol::FrameLayout<'static>, { hflink::DECODER_BUFFER_LEN }> {
+-> Generated<&'static protocol_kit::FrameLayout<'static>, { hflink::DECODER_BUFFER_LEN }> {
     Generated(StreamDecoder::new(&hflink::LAYOUT))
 }
 
 /// The generated referee layout read through a reference, as the run-time codec reads its own.
 pub fn referee_decoder_by_ref()
--> Generated<&'static protocol::FrameLayout<'static>, { referee::DECODER_BUFFER_LEN }> {
+-> Generated<&'static protocol_kit::FrameLayout<'static>, { referee::DECODER_BUFFER_LEN }> {
     Generated(StreamDecoder::new(&referee::LAYOUT))
 }
 
@@ -76,7 +76,7 @@ pub fn encode_system_info(
     sender: u8,
     receiver: u8,
     info: [f32; 5],
-) -> Result<usize, protocol::EncodeError> {
+) -> Result<usize, protocol_kit::EncodeError> {
     use hflink::{Header, Message, Packet, Response, SystemInfo};
     let [
         system_time,
@@ -109,7 +109,7 @@ pub fn encode_robot_pos(
     buf: &mut [u8],
     seq: u8,
     pos: [f32; 4],
-) -> Result<usize, protocol::EncodeError> {
+) -> Result<usize, protocol_kit::EncodeError> {
     use referee::{GameRobotPos, Header, Message, Packet};
     let [x, y, z, yaw] = pos;
     Packet {

@@ -6,7 +6,7 @@
 //! (`benches/codec.rs`) times:
 //!
 //! - [`workload`]: fixed-seed 16 MiB streams, clean and noisy, with their ground truth;
-//! - [`generated`]: the code `protocol::protocol!` generates, driven the way a user
+//! - [`generated`]: the code `protocol_kit::protocol!` generates, driven the way a user
 //!   drives it;
 //! - [`hand`]: hand-written, optimized decoders and encoders (slice scan, memchr, masked sums,
 //!   slicing-by-16 CRC, zero-copy, small-chunk staging);

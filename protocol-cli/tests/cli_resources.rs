@@ -6,7 +6,7 @@ mod support;
 
 use support::{protocol, text};
 
-protocol::protocol!("../specs/hflink.toml");
+protocol_kit::protocol!("../specs/hflink.toml");
 
 #[test]
 fn check_states_the_sizes_generated_code_allocates() {

@@ -5,8 +5,8 @@
 //!
 //! Attributes:
 //! - on the struct: `#[payload(byte_order = "big")]` (default `"little"`),
-//!   `#[payload(crate = "::my::protocol")]` (where the `protocol` crate is, when it is not
-//!   `::protocol`; a bare path works too);
+//!   `#[payload(crate = "::my::protocol")]` (where the `protocol-kit` crate is, when it is not
+//!   `::protocol_kit`; a bare path works too);
 //! - on a field: `#[payload(byte_order = "big")]`, `#[payload(pad_before = 3)]`,
 //!   `#[payload(pad_after = 1)]`, `#[payload(scale = 0.001, raw = "i16")]` (an `f32`/`f64` field
 //!   stored as a scaled integer), `#[payload(raw = "u24")]` alone on an integer field (a `u32`

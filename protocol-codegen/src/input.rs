@@ -1,5 +1,5 @@
 //! The `protocol!` macro's entry: its arguments (a spec path, or an inline spec; an optional
-//! `crate = path` naming the `protocol` crate when it is not `::protocol`; an optional
+//! `crate = path` naming the `protocol-kit` crate when it is not `::protocol_kit`; an optional
 //! `derive(serde, defmt)` choosing those derives on the generated types), reading the spec file relative to the calling crate, and turning
 //! diagnostics into compile errors placed on the macro's argument.
 
@@ -22,7 +22,7 @@ pub const MANIFEST_DIR_OVERRIDE: &str = "PROTOCOL_SPEC_DIR";
 pub struct MacroInput {
     /// `"specs/x.toml"` or `inline = "..."`.
     pub spec: SpecArg,
-    /// Where generated code finds the `protocol` crate (`::protocol` unless `crate = path`).
+    /// Where generated code finds the `protocol-kit` crate (`::protocol_kit` unless `crate = path`).
     pub paths: RuntimePath,
     /// The derives on generated types: `derive(serde, defmt)`.
     pub derives: Derives,

@@ -11,25 +11,25 @@
 
 mod support;
 
-use protocol::{CanFrame, DecodeError, EncodeError, Event, FrameLayout, Reject, StreamDecoder};
 use protocol_dynamic::{Codec, DecodeIssue, Decoded, Interpreter, Item, Value, hex, word_field};
+use protocol_kit::{CanFrame, DecodeError, EncodeError, Event, FrameLayout, Reject, StreamDecoder};
 use protocol_spec::ir::{DirectionRule, Protocol, Transport};
 use support::{Rng, interpreter, rust_debug, unhex, vectors};
 
-protocol::protocol!("../specs/hflink.toml");
-protocol::protocol!("../specs/referee.toml");
-protocol::protocol!("../specs/referee2018.toml");
-protocol::protocol!("../specs/crsf.toml");
-protocol::protocol!("../specs/scout.toml");
-protocol::protocol!("../specs/mavlink.toml");
-protocol::protocol!("../specs/dynamixel.toml");
-protocol::protocol!("../specs/dynamixel1.toml");
-protocol::protocol!("../specs/roborts.toml");
-protocol::protocol!("../specs/ibus.toml");
-protocol::protocol!("../specs/sbus.toml");
-protocol::protocol!("../specs/ubx.toml");
-protocol::protocol!("../specs/msp.toml");
-protocol::protocol!("tests/fixtures/features.toml");
+protocol_kit::protocol!("../specs/hflink.toml");
+protocol_kit::protocol!("../specs/referee.toml");
+protocol_kit::protocol!("../specs/referee2018.toml");
+protocol_kit::protocol!("../specs/crsf.toml");
+protocol_kit::protocol!("../specs/scout.toml");
+protocol_kit::protocol!("../specs/mavlink.toml");
+protocol_kit::protocol!("../specs/dynamixel.toml");
+protocol_kit::protocol!("../specs/dynamixel1.toml");
+protocol_kit::protocol!("../specs/roborts.toml");
+protocol_kit::protocol!("../specs/ibus.toml");
+protocol_kit::protocol!("../specs/sbus.toml");
+protocol_kit::protocol!("../specs/ubx.toml");
+protocol_kit::protocol!("../specs/msp.toml");
+protocol_kit::protocol!("tests/fixtures/features.toml");
 
 /// A decoded message as `{:?}` prints it, and its bytes encoded again.
 type Generated<T> = Result<(String, T), DecodeError>;
@@ -794,7 +794,7 @@ type LinkEvents = fn(&[u8], usize) -> (Vec<String>, Vec<(usize, Generated<Vec<u8
 macro_rules! link_events {
     ($m:ident) => {
         |bytes: &[u8], n: usize| {
-            let any = |frame: &protocol::Frame<'_>| -> Generated<Vec<u8>> {
+            let any = |frame: &protocol_kit::Frame<'_>| -> Generated<Vec<u8>> {
                 let packet = $m::AnyPacket::from_frame(frame)?;
                 let mut buf = vec![0u8; $m::ANY_DECODER_BUFFER_LEN];
                 let n = packet

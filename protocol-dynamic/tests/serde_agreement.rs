@@ -9,25 +9,25 @@
 
 mod support;
 
-use protocol::CanFrame;
 use protocol_dynamic::{Value, hex, word_field};
+use protocol_kit::CanFrame;
 use protocol_spec::ir::{DirectionRule, Transport};
 use support::{Rng, interpreter, unhex, vectors};
 
-protocol::protocol!("../specs/hflink.toml", derive(serde));
-protocol::protocol!("../specs/referee.toml", derive(serde));
-protocol::protocol!("../specs/referee2018.toml", derive(serde));
-protocol::protocol!("../specs/crsf.toml", derive(serde));
-protocol::protocol!("../specs/scout.toml", derive(serde));
-protocol::protocol!("../specs/mavlink.toml", derive(serde));
-protocol::protocol!("../specs/dynamixel.toml", derive(serde));
-protocol::protocol!("../specs/roborts.toml", derive(serde));
-protocol::protocol!("../specs/ibus.toml", derive(serde));
-protocol::protocol!("../specs/sbus.toml", derive(serde));
-protocol::protocol!("../specs/ubx.toml", derive(serde));
-protocol::protocol!("../specs/msp.toml", derive(serde));
-protocol::protocol!("../specs/dynamixel1.toml", derive(serde));
-protocol::protocol!("tests/fixtures/features.toml", derive(serde));
+protocol_kit::protocol!("../specs/hflink.toml", derive(serde));
+protocol_kit::protocol!("../specs/referee.toml", derive(serde));
+protocol_kit::protocol!("../specs/referee2018.toml", derive(serde));
+protocol_kit::protocol!("../specs/crsf.toml", derive(serde));
+protocol_kit::protocol!("../specs/scout.toml", derive(serde));
+protocol_kit::protocol!("../specs/mavlink.toml", derive(serde));
+protocol_kit::protocol!("../specs/dynamixel.toml", derive(serde));
+protocol_kit::protocol!("../specs/roborts.toml", derive(serde));
+protocol_kit::protocol!("../specs/ibus.toml", derive(serde));
+protocol_kit::protocol!("../specs/sbus.toml", derive(serde));
+protocol_kit::protocol!("../specs/ubx.toml", derive(serde));
+protocol_kit::protocol!("../specs/msp.toml", derive(serde));
+protocol_kit::protocol!("../specs/dynamixel1.toml", derive(serde));
+protocol_kit::protocol!("tests/fixtures/features.toml", derive(serde));
 
 /// A generated packet of a serial frame of a format (an index into the spec's frames): its
 /// JSON, and the bytes that the packet read back from `json` encodes to (and what the packet
@@ -71,8 +71,8 @@ macro_rules! serial_link {
             let read: $m::AnyPacket = serde_json::from_str(json)
                 .unwrap_or_else(|e| panic!("{json} reads as a link's packet: {e}"));
             let encoded = |p: &$m::AnyPacket| {
-                let mut buf = vec![0u8; protocol::EncodePacket::encoded_len(p)];
-                let n = protocol::EncodePacket::encode_into(p, &mut buf).expect("encodes");
+                let mut buf = vec![0u8; protocol_kit::EncodePacket::encoded_len(p)];
+                let n = protocol_kit::EncodePacket::encode_into(p, &mut buf).expect("encodes");
                 buf[..n].to_vec()
             };
             assert_eq!(encoded(&read), encoded(&any), "{json}: read back, encoded");

@@ -4,13 +4,13 @@
 
 mod support;
 
-use protocol::session::{Incoming, Received, Requester, Resolution, Responder, SessionRules};
+use protocol_kit::session::{Incoming, Received, Requester, Resolution, Responder, SessionRules};
 use support::interpreter;
 
-protocol::protocol!("../specs/hflink.toml");
-protocol::protocol!("../specs/roborts.toml");
-protocol::protocol!("../specs/scout.toml");
-protocol::protocol!("../specs/dynamixel.toml");
+protocol_kit::protocol!("../specs/hflink.toml");
+protocol_kit::protocol!("../specs/roborts.toml");
+protocol_kit::protocol!("../specs/scout.toml");
+protocol_kit::protocol!("../specs/dynamixel.toml");
 
 /// The rules as text, without the packet rules they borrow (compared elsewhere).
 fn shown(r: &SessionRules<'_>) -> String {
@@ -88,7 +88,7 @@ fn a_codec_requester_and_a_generated_responder_converse() {
                         seq_num: 0,
                     },
                     message: roborts::Message::Ack(
-                        protocol::Bytes::from_slice(&[]).expect("empty"),
+                        protocol_kit::Bytes::from_slice(&[]).expect("empty"),
                     ),
                 };
                 let mut ack_frame = [0u8; 12];
@@ -103,7 +103,7 @@ fn a_codec_requester_and_a_generated_responder_converse() {
                 );
                 assert_eq!(
                     req.on_frame(round, &ack),
-                    Received::Outcome(protocol::session::Outcome {
+                    Received::Outcome(protocol_kit::session::Outcome {
                         ticket,
                         resolution: Resolution::Answered
                     })

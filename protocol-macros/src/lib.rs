@@ -1,7 +1,7 @@
 //! The `protocol!` and `#[derive(Payload)]` macros. A thin shim: all logic is in the front end
 //! (`protocol-spec`) and the Rust printer (`protocol-codegen` with its `rust` feature alone; the
-//! C and Markdown printers are not built). Use them through the `protocol` crate, which
-//! re-exports them with the runtime the generated code names (`::protocol`).
+//! C and Markdown printers are not built). Use them through the `protocol-kit` crate, which
+//! re-exports them with the runtime the generated code names (`::protocol_kit`).
 
 use proc_macro::TokenStream;
 
@@ -12,10 +12,10 @@ use proc_macro::TokenStream;
 /// and `Message` enums, `Header`, `Packet` (decode/encode), the `LAYOUT` the runtime's stream
 /// decoder uses, and size consts. Errors in the spec are compile errors that quote the spec's
 /// line and column. Also accepts `inline = "..."` (the spec text instead of a path) and
-/// `crate = ::path::to::protocol`, where the generated code finds the `protocol` crate when a
+/// `crate = ::path::to::protocol`, where the generated code finds the `protocol-kit` crate when a
 /// crate re-exports it rather than depending on it under its own name.
 /// `derive(serde, defmt)` (either or both) derives those crates' traits on the generated types,
-/// through the `protocol` crate's re-exports (its features `serde` and `defmt`).
+/// through the `protocol-kit` crate's re-exports (its features `serde` and `defmt`).
 #[proc_macro]
 pub fn protocol(input: TokenStream) -> TokenStream {
     protocol_codegen::input::protocol_macro(input.into()).into()
@@ -23,7 +23,7 @@ pub fn protocol(input: TokenStream) -> TokenStream {
 
 /// Derive `Payload` (wire encoding and decoding) for a hand-written struct. See
 /// `protocol_codegen::derive` for the attributes; `#[payload(crate = "::path")]`
-/// names the `protocol` crate when it is not `::protocol`.
+/// names the `protocol-kit` crate when it is not `::protocol_kit`.
 #[proc_macro_derive(Payload, attributes(payload))]
 pub fn derive_payload(input: TokenStream) -> TokenStream {
     let input = syn::parse_macro_input!(input as syn::DeriveInput);

@@ -300,7 +300,7 @@ pub trait PayloadVisitor<C> {
 /// [`visit_payload`](Self::visit_payload), and the payload's size and encoding through it.
 ///
 /// Generated code implements it; a caller that measures or writes a payload by itself names it
-/// (`use protocol::MessagePayload;`). The message's command is an inherent method, `command()`,
+/// (`use protocol_kit::MessagePayload;`). The message's command is an inherent method, `command()`,
 /// of each generated enum.
 pub trait MessagePayload {
     /// The command a message names: the spec's `Command`, or `Option<Command>` when some

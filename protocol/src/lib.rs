@@ -8,7 +8,7 @@
 //! sum of every preceding byte.
 //!
 //! ```
-//! protocol::protocol!(inline = r#"
+//! protocol_kit::protocol!(inline = r#"
 //! [protocol]
 //! name = "lamp"
 //!
@@ -71,7 +71,7 @@
 //!
 //! # Naming this crate under another path
 //!
-//! Generated code reaches the runtime through `::protocol`. A crate that re-exports this one
+//! Generated code reaches the runtime through `::protocol_kit`. A crate that re-exports this one
 //! under another path says where: `protocol!(crate = ::my_link::protocol, "specs/x.toml")` and
 //! `#[payload(crate = "::my_link::protocol")]` on a `#[derive(Payload)]` struct.
 //!
@@ -81,8 +81,8 @@
 //! `Serialize` and `Deserialize` and `defmt`'s `Format` on the generated structs, enums,
 //! messages, headers and packets. It needs this crate's features of the same names, and no
 //! `serde` or `defmt` dependency of the calling crate: generated code names the crates this one
-//! re-exports (`protocol::serde`, `protocol::defmt`). defmt's logging macros name `defmt`, so a
-//! firmware without a `defmt` dependency of its own writes `use protocol::defmt;` first.
+//! re-exports (`protocol_kit::serde`, `protocol_kit::defmt`). defmt's logging macros name `defmt`, so a
+//! firmware without a `defmt` dependency of its own writes `use protocol_kit::defmt;` first.
 //!
 //! The JSON is that of the run-time codec (`protocol decode --format json`): a packet is the map
 //! of `command` (its name in the spec), `header` and `payload`; an enum is its variant's name in

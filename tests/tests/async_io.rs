@@ -8,13 +8,13 @@ use core::future::poll_fn;
 use core::task::Poll;
 
 use embassy_futures::block_on;
-use protocol::embedded_io_async::{ErrorType, Read, Write};
-use protocol::io_async::{PacketReader, WriteError, write_packet};
-use protocol::{DecodeError, EncodeError, PacketEvent, Reject};
+use protocol_kit::embedded_io_async::{ErrorType, Read, Write};
+use protocol_kit::io_async::{PacketReader, WriteError, write_packet};
+use protocol_kit::{DecodeError, EncodeError, PacketEvent, Reject};
 use protocol_tests::{load_vectors, stream_vector};
 
-protocol::protocol!("../specs/hflink.toml");
-protocol::protocol!("../specs/referee.toml");
+protocol_kit::protocol!("../specs/hflink.toml");
+protocol_kit::protocol!("../specs/referee.toml");
 
 /// A reader of `bytes`, at most `chunk` bytes per read, pending on every other poll.
 struct Uart<'a> {
@@ -67,7 +67,7 @@ impl Write for Sink {
 }
 
 /// Every event of a reader of `bytes` with reads of `chunk` bytes and a read buffer of `B`.
-fn read_all<L: protocol::PacketLayout, const N: usize, const B: usize>(
+fn read_all<L: protocol_kit::PacketLayout, const N: usize, const B: usize>(
     layout: L,
     bytes: &[u8],
     chunk: usize,

@@ -4,11 +4,11 @@
 //! identifier is of the other kind than the spec's is rejected, by generated code and by
 //! `protocol-dynamic` alike.
 
-use protocol::embedded_can::{ExtendedId, Frame, Id, StandardId};
-use protocol::{CanFrame, DecodeError, Reject};
 use protocol_dynamic::{DecodeIssue, Interpreter};
+use protocol_kit::embedded_can::{ExtendedId, Frame, Id, StandardId};
+use protocol_kit::{CanFrame, DecodeError, Reject};
 
-protocol::protocol!(
+protocol_kit::protocol!(
     inline = r#"
 [protocol]
 name = "j1939ish"
@@ -40,7 +40,7 @@ fields = [{ name = "mm_s", type = "i16" }]
 "#
 );
 
-protocol::protocol!("../specs/scout.toml");
+protocol_kit::protocol!("../specs/scout.toml");
 
 #[test]
 fn extended_spec_encodes_extended_frames() {

@@ -8,21 +8,21 @@
 //!
 //! The specs are small fixtures under `tests/check_specs/`.
 
-use protocol::{DecodeError, Reject};
 use protocol_dynamic::{Interpreter, Item};
+use protocol_kit::{DecodeError, Reject};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex};
 
 mod ubx {
-    protocol::protocol!("check_specs/ubx.toml");
+    protocol_kit::protocol!("check_specs/ubx.toml");
 }
 mod dxl1 {
-    protocol::protocol!("check_specs/dynamixel1.toml");
+    protocol_kit::protocol!("check_specs/dynamixel1.toml");
 }
 mod ibus {
-    protocol::protocol!("check_specs/ibus.toml");
+    protocol_kit::protocol!("check_specs/ibus.toml");
 }
 mod mav1 {
-    protocol::protocol!("check_specs/mavlink1.toml");
+    protocol_kit::protocol!("check_specs/mavlink1.toml");
 }
 
 fn interpreter(spec: &str) -> Interpreter {
@@ -236,7 +236,7 @@ fn ibus_frames() -> Vec<(Vec<u8>, [u16; 14])> {
 #[test]
 fn ibus_frames_decode_and_encode() {
     use ibus::ibus_checks::{Channels, HEADER_LEN, LAYOUT, MAX_FRAME_LEN, MAX_PAYLOAD_LEN};
-    use protocol::Payload;
+    use protocol_kit::Payload;
     let mut frames = ibus_frames();
     // A second frame: other channel values, sealed by generated code.
     let mut other = [0u16; 14];

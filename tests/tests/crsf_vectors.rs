@@ -10,12 +10,12 @@
 
 mod golden;
 
-use protocol::{DecodeError, EncodeError, Reject};
 use protocol_dynamic::Interpreter;
+use protocol_kit::{DecodeError, EncodeError, Reject};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::{Value, json};
 
-protocol::protocol!("../specs/crsf.toml");
+protocol_kit::protocol!("../specs/crsf.toml");
 
 use crsf::*;
 
@@ -35,12 +35,12 @@ fn ints(v: &Value, k: &str) -> Vec<i64> {
         .collect()
 }
 
-fn bytes<const N: usize>(b: &[u8]) -> protocol::Bytes<N> {
-    protocol::Bytes::from_slice(b).expect("fits")
+fn bytes<const N: usize>(b: &[u8]) -> protocol_kit::Bytes<N> {
+    protocol_kit::Bytes::from_slice(b).expect("fits")
 }
 
-fn text<const N: usize>(f: &Value, k: &str) -> protocol::NulStr<N> {
-    protocol::NulStr::from_text(f[k].as_str().expect("a text")).expect("fits")
+fn text<const N: usize>(f: &Value, k: &str) -> protocol_kit::NulStr<N> {
+    protocol_kit::NulStr::from_text(f[k].as_str().expect("a text")).expect("fits")
 }
 
 /// The message a vector records, built from its JSON fields (not from its bytes).
@@ -77,14 +77,14 @@ fn expected_message(ty: u64, f: &Value) -> Message {
             let values: Vec<i32> = ints(f, "rpm_value").iter().map(|&v| v as i32).collect();
             Message::Rpm(Rpm {
                 rpm_source_id: u(f, "rpm_source_id") as u8,
-                rpm_value: protocol::Group::from_slice(&values).expect("fits"),
+                rpm_value: protocol_kit::Group::from_slice(&values).expect("fits"),
             })
         }
         0x0D => {
             let values: Vec<i16> = ints(f, "temperature").iter().map(|&v| v as i16).collect();
             Message::Temperature(Temperature {
                 temp_source_id: u(f, "temp_source_id") as u8,
-                temperature: protocol::Group::from_slice(&values).expect("fits"),
+                temperature: protocol_kit::Group::from_slice(&values).expect("fits"),
             })
         }
         0x14 => Message::LinkStatistics(LinkStatistics {
@@ -393,8 +393,8 @@ fn a_flight_mode_without_its_nul_or_too_long_is_refused() {
     bytes[9] = outer.checksum(&bytes[2..9]);
     assert_eq!(Packet::decode(&bytes), Err(DecodeError::Unterminated));
     // A name that does not fit, or holds a NUL, is no value: nothing is cut.
-    assert_eq!(protocol::NulStr::<59>::from_text(&"M".repeat(60)), None);
-    assert_eq!(protocol::NulStr::<59>::from_text("AN\0GLE"), None);
+    assert_eq!(protocol_kit::NulStr::<59>::from_text(&"M".repeat(60)), None);
+    assert_eq!(protocol_kit::NulStr::<59>::from_text("AN\0GLE"), None);
     let codec = interpreter();
     let codec = codec.codec();
     for name in ["M".repeat(60), "AN\u{0}GLE".to_string()] {

@@ -1,7 +1,7 @@
 //! `#[derive(Payload)]` on hand-written structs: the same generator as spec structs, driven by
 //! attributes. Each case checks the exact wire bytes in both directions.
 
-use protocol::{DecodeError, Payload};
+use protocol_kit::{DecodeError, Payload};
 
 #[derive(Debug, Clone, Copy, PartialEq, Default, Payload)]
 struct Pose {
@@ -98,6 +98,6 @@ fn derived_24_bit_fields_take_three_bytes() {
     };
     assert_eq!(
         too_big.to_bytes(&mut buf),
-        Err(protocol::EncodeError::ValueOutOfRange)
+        Err(protocol_kit::EncodeError::ValueOutOfRange)
     );
 }

@@ -11,11 +11,11 @@
 
 mod golden;
 
-use protocol::{Bytes, DecodeError, Group, PacketDecoder, PacketEvent};
 use protocol_dynamic::{Item, Value};
+use protocol_kit::{Bytes, DecodeError, Group, PacketDecoder, PacketEvent};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 
-protocol::protocol!("../specs/dynamixel1.toml");
+protocol_kit::protocol!("../specs/dynamixel1.toml");
 
 use dynamixel1::*;
 
@@ -182,7 +182,7 @@ fn every_packet_decodes_in_its_direction_and_encodes_to_its_bytes() {
         };
         assert_eq!(
             rejected,
-            Err(DecodeError::Frame(protocol::Reject::BadChecksum)),
+            Err(DecodeError::Frame(protocol_kit::Reject::BadChecksum)),
             "{name}: a flipped id bit"
         );
         n += 1;

@@ -4,11 +4,11 @@
 //! chunk size. The companion feedback frame has no vectors from running code: it is checked
 //! against frames built here by hand from the blog's layout.
 
-use protocol::{Bytes, DecodeError, Group, MessagePayload};
+use protocol_kit::{Bytes, DecodeError, Group, MessagePayload};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
-protocol::protocol!("../specs/dynamixel.toml");
+protocol_kit::protocol!("../specs/dynamixel.toml");
 
 use dynamixel::*;
 

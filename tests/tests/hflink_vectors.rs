@@ -2,11 +2,11 @@
 //! frame decodes to its recorded fields and those values encode to the exact bytes; the stream
 //! yields exactly its expected frames at every chunk size.
 
-use protocol::{DecodeError, Reject};
+use protocol_kit::{DecodeError, Reject};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
-protocol::protocol!("../specs/hflink.toml");
+protocol_kit::protocol!("../specs/hflink.toml");
 
 use hflink::*;
 
@@ -273,7 +273,7 @@ fn short_buffers_and_oversized_lengths_are_errors_not_panics() {
         assert!(
             matches!(
                 p.encode(&mut buf),
-                Err(protocol::EncodeError::BufferTooSmall { .. })
+                Err(protocol_kit::EncodeError::BufferTooSmall { .. })
             ),
             "buffer of {len}"
         );

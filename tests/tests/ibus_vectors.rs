@@ -5,11 +5,11 @@
 
 mod golden;
 
-use protocol::{DecodeError, Reject};
+use protocol_kit::{DecodeError, Reject};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
-protocol::protocol!("../specs/ibus.toml");
+protocol_kit::protocol!("../specs/ibus.toml");
 
 use ibus::*;
 

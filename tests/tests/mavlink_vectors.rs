@@ -7,15 +7,15 @@
 
 mod golden;
 
-use protocol::{DecodeError, PacketDecoder, PacketEvent, Reject};
 use protocol_dynamic::Interpreter;
+use protocol_kit::{DecodeError, PacketDecoder, PacketEvent, Reject};
 use protocol_tests::{
     F, assert_link_stream_at_every_chunk_size, assert_stream_at_every_chunk_size, hex,
     load_vectors, stream_vector,
 };
 use serde_json::Value;
 
-protocol::protocol!("../specs/mavlink.toml");
+protocol_kit::protocol!("../specs/mavlink.toml");
 
 use mavlink::*;
 
@@ -273,7 +273,7 @@ fn v1_header(frame: &Value) -> V1Header {
 /// A vector's frame decoded by the packet of its format, and encoded back.
 /// `packet`'s frame encoded through the runtime's `EncodePacket` into a buffer of exactly its
 /// `encoded_len` bytes (a truncated payload's zeros need no room in it).
-fn exactly<P: protocol::EncodePacket>(packet: &P, name: &str) -> Vec<u8> {
+fn exactly<P: protocol_kit::EncodePacket>(packet: &P, name: &str) -> Vec<u8> {
     let mut buf = vec![0u8; packet.encoded_len()];
     let n = packet
         .encode_into(&mut buf)

@@ -11,15 +11,15 @@
 
 mod golden;
 
-use protocol::{Bytes, DecodeError, FixedStr, Group, NulStr, Payload, Reject, StreamDecoder};
 use protocol_dynamic::Interpreter;
+use protocol_kit::{Bytes, DecodeError, FixedStr, Group, NulStr, Payload, Reject, StreamDecoder};
 use protocol_tests::{
     F, assert_link_stream_at_every_chunk_size, assert_stream_at_every_chunk_size, hex,
     load_vectors, stream_vector,
 };
 use serde_json::Value;
 
-protocol::protocol!("../specs/msp.toml");
+protocol_kit::protocol!("../specs/msp.toml");
 
 use msp::*;
 
@@ -211,7 +211,7 @@ fn a_v2_frame_inside_a_v1_frame_carries_its_fields() {
     assert_eq!(u64::from(inner.command), u(&frame, "cmd"));
     assert_eq!(inner.payload.as_slice(), &payload_bytes(&frame)[..]);
     // The inner frame's CRC-8/DVB-S2 is carried; computed here, it is the one received.
-    let crc = protocol::Checksum::Crc8(protocol::__private::CrcImpl::NoTable(&CRC8));
+    let crc = protocol_kit::Checksum::Crc8(protocol_kit::__private::CrcImpl::NoTable(&CRC8));
     let covered = &bytes[5..bytes.len() - 2];
     assert_eq!(crc.compute(covered), u64::from(inner.crc));
     let read = Attitude::from_bytes(inner.payload.as_slice()).expect("attitude");
@@ -221,9 +221,9 @@ fn a_v2_frame_inside_a_v1_frame_carries_its_fields() {
     assert_eq!(F(&buf[..n]), F(&bytes));
 }
 
-static CRC8: protocol::__private::crc::Crc<u8, protocol::__private::crc::NoTable> =
-    protocol::__private::crc::Crc::<u8, protocol::__private::crc::NoTable>::new(
-        &protocol::__private::crc::CRC_8_DVB_S2,
+static CRC8: protocol_kit::__private::crc::Crc<u8, protocol_kit::__private::crc::NoTable> =
+    protocol_kit::__private::crc::Crc::<u8, protocol_kit::__private::crc::NoTable>::new(
+        &protocol_kit::__private::crc::CRC_8_DVB_S2,
     );
 
 fn v2_frames() -> impl Iterator<Item = Value> {
@@ -301,7 +301,7 @@ fn a_v2_only_command_is_not_encoded_in_a_v1_frame() {
     let mut buf = [0u8; MAX_FRAME_LEN];
     assert_eq!(
         v1.encode(&mut buf),
-        Err(protocol::EncodeError::ValueOutOfRange)
+        Err(protocol_kit::EncodeError::ValueOutOfRange)
     );
     let v2 = V2Packet {
         header: V2Header {
@@ -341,7 +341,7 @@ fn a_message_of_the_other_direction_than_its_header_is_not_encoded() {
         let mut buf = [0u8; V2_MAX_FRAME_LEN];
         assert_eq!(
             packet.encode(&mut buf),
-            Err(protocol::EncodeError::ValueOutOfRange),
+            Err(protocol_kit::EncodeError::ValueOutOfRange),
             "{direction}"
         );
     }
@@ -389,7 +389,7 @@ fn encoding_uses_the_jumbo_form_exactly_when_the_payload_needs_it() {
 
 #[test]
 fn an_impossible_jumbo_length_is_rejected_as_soon_as_its_bytes_are_in() {
-    use protocol::decoder::Probe;
+    use protocol_kit::decoder::Probe;
     let jumbo = hex(named("v1_jumbo_boxnames_response")["hex"]
         .as_str()
         .expect("hex"));
@@ -414,7 +414,7 @@ fn an_impossible_jumbo_length_is_rejected_as_soon_as_its_bytes_are_in() {
     assert!(
         matches!(
             event,
-            Some(protocol::Event::Rejected {
+            Some(protocol_kit::Event::Rejected {
                 reason: Reject::BadLength,
                 ..
             })

@@ -3,12 +3,12 @@
 //! rejection and skipped byte is an event, and the run-time codec (`protocol-dynamic`) reports
 //! the same events with the same errors.
 
-use protocol::{DecodeError, PacketDecoder, PacketEvent, PacketLayout};
 use protocol_dynamic::Interpreter;
+use protocol_kit::{DecodeError, PacketDecoder, PacketEvent, PacketLayout};
 use protocol_tests::{load_vectors, stream_vector};
 
-protocol::protocol!("../specs/hflink.toml");
-protocol::protocol!("../specs/referee.toml");
+protocol_kit::protocol!("../specs/hflink.toml");
+protocol_kit::protocol!("../specs/referee.toml");
 
 /// An event with the packet left out: where it starts, how long it is, and the error.
 #[derive(Debug, PartialEq)]
@@ -34,7 +34,7 @@ fn events<L: PacketLayout, const N: usize>(
     layout: L,
     bytes: &[u8],
     chunk: usize,
-) -> (Events<L>, protocol::Stats) {
+) -> (Events<L>, protocol_kit::Stats) {
     let mut decoder = PacketDecoder::<L, N>::new(layout);
     let mut out = Vec::new();
     for part in bytes.chunks(chunk) {

@@ -3,11 +3,11 @@
 //! a rule: it must give exactly what reading field by field gives (a value, or the same
 //! `PayloadLength`), for every length, on every such struct of the bundled specs.
 
-use protocol::__private::Payload;
+use protocol_kit::__private::Payload;
 
-protocol::protocol!("../specs/hflink.toml");
-protocol::protocol!("../specs/referee.toml");
-protocol::protocol!("../specs/scout.toml");
+protocol_kit::protocol!("../specs/hflink.toml");
+protocol_kit::protocol!("../specs/referee.toml");
+protocol_kit::protocol!("../specs/scout.toml");
 
 /// Compares both ways of reading on every length up to a few bytes past the size; returns
 /// whether the type takes the shortcut.

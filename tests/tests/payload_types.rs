@@ -6,12 +6,12 @@
 
 mod golden;
 
-use protocol::{DecodeError, EncodeError, Group, NulStr};
 use protocol_dynamic::{DecodeIssue, Interpreter, Value};
+use protocol_kit::{DecodeError, EncodeError, Group, NulStr};
 use protocol_tests::F;
 use serde_json::json;
 
-protocol::protocol!("../protocol-codegen/tests/features/payload_types.toml");
+protocol_kit::protocol!("../protocol-codegen/tests/features/payload_types.toml");
 
 use payload_types::*;
 
@@ -70,7 +70,7 @@ fn every_payload_decodes_to_its_values_and_encodes_to_its_bytes() {
     let sealed_value = Sealed {
         target: 0x11,
         code: 0x22,
-        data: protocol::Bytes::from_slice(&[1, 2, 3]).expect("fits"),
+        data: protocol_kit::Bytes::from_slice(&[1, 2, 3]).expect("fits"),
     };
     let cases = [
         (frame(1, READINGS), Message::Readings(readings)),

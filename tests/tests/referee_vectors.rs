@@ -2,11 +2,11 @@
 //! RoboRTS firmware's C): every 2019 frame decodes to its recorded fields and encodes back to the
 //! exact bytes; the stream yields exactly its expected frames at every chunk size.
 
-use protocol::DecodeError;
+use protocol_kit::DecodeError;
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
-protocol::protocol!("../specs/referee.toml");
+protocol_kit::protocol!("../specs/referee.toml");
 
 use referee::*;
 
@@ -87,7 +87,7 @@ fn expected(cmd: u64, v: &Value) -> Option<Message> {
                 data_cmd_id: head[0] as u16,
                 sender_id: head[1] as u16,
                 receiver_id: head[2] as u16,
-                data: protocol::Bytes::from_slice(&data).expect("fits"),
+                data: protocol_kit::Bytes::from_slice(&data).expect("fits"),
             })
         }
         _ => return None,
@@ -149,7 +149,7 @@ fn stream_yields_expected_frames_at_every_chunk_size() {
 mod season_2018 {
     use super::*;
 
-    protocol::protocol!("../specs/referee2018.toml");
+    protocol_kit::protocol!("../specs/referee2018.toml");
 
     #[test]
     fn the_2018_frame_decodes_with_the_2018_table_and_encodes_back() {

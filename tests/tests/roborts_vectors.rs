@@ -3,11 +3,11 @@
 //! bytes, the header-only acknowledgement included; the stream yields exactly its expected
 //! frames at every chunk size; what the original rejects is rejected.
 
-use protocol::{Bytes, DecodeError, Reject};
+use protocol_kit::{Bytes, DecodeError, Reject};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
-protocol::protocol!("../specs/roborts.toml");
+protocol_kit::protocol!("../specs/roborts.toml");
 
 use roborts::*;
 

@@ -10,11 +10,11 @@
 
 mod golden;
 
-use protocol::{DecodeError, Reject};
+use protocol_kit::{DecodeError, Reject};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
-protocol::protocol!("../specs/sbus.toml");
+protocol_kit::protocol!("../specs/sbus.toml");
 
 use sbus::*;
 

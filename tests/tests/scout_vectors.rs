@@ -3,11 +3,11 @@
 //! UART stream yields its expected frames at every chunk size, the CAN sequence rejects exactly
 //! the frames with a wrong checksum, and motion commands scale like `SetMotionCommand`.
 
-use protocol::{CanFrame, DecodeError, Reject};
+use protocol_kit::{CanFrame, DecodeError, Reject};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
-protocol::protocol!("../specs/scout.toml");
+protocol_kit::protocol!("../specs/scout.toml");
 
 use scout::*;
 

@@ -2,11 +2,11 @@
 //! `protocol!(..., derive(serde))`) at their edges: what each writes, what each refuses to
 //! read, and that whatever is written reads back as the same value (bits included, for floats).
 
-use protocol::{Bytes, FixedStr, Group};
+use protocol_kit::{Bytes, FixedStr, Group};
 use serde::{Deserialize, Serialize};
 use serde_json::{from_str, json, to_string, to_value};
 
-protocol::protocol!(
+protocol_kit::protocol!(
     derive(serde),
     inline = r#"
 [protocol]

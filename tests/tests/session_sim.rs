@@ -16,15 +16,15 @@ mod sim;
 
 use link::Fault;
 use proptest::prelude::*;
-use protocol::session::SessionRules;
+use protocol_kit::session::SessionRules;
 use sim::{Peer, SLOTS, Tally, run};
 
-protocol::protocol!("../specs/roborts.toml");
-protocol::protocol!("../specs/hflink.toml");
+protocol_kit::protocol!("../specs/roborts.toml");
+protocol_kit::protocol!("../specs/hflink.toml");
 
 fn encode(
     n: usize,
-    encode: impl FnOnce(&mut [u8]) -> Result<usize, protocol::EncodeError>,
+    encode: impl FnOnce(&mut [u8]) -> Result<usize, protocol_kit::EncodeError>,
 ) -> Vec<u8> {
     let mut buf = vec![0u8; n];
     let len = encode(&mut buf).expect("encodes");
@@ -77,7 +77,7 @@ impl Peer for Roborts {
                 receiver: 0,
                 seq_num: 0,
             },
-            message: Message::Ack(protocol::Bytes::from_slice(&[]).expect("empty")),
+            message: Message::Ack(protocol_kit::Bytes::from_slice(&[]).expect("empty")),
         };
         encode(MAX_FRAME_LEN, |b| ack.encode(b))
     }
@@ -314,7 +314,7 @@ impl Mix {
 /// the totals printed, with the machines' fixed sizes.
 #[test]
 fn fault_matrix() {
-    use protocol::session::{Requester, Responder};
+    use protocol_kit::session::{Requester, Responder};
     println!(
         "machines ({SLOTS} slots of {} bytes): requester {} bytes, responder {} bytes",
         sim::FRAME,

@@ -5,11 +5,11 @@
 
 mod golden;
 
-use protocol::{EncodeError, FixedStr, Group, Payload};
 use protocol_dynamic::{Interpreter, Value};
+use protocol_kit::{EncodeError, FixedStr, Group, Payload};
 use protocol_tests::F;
 
-protocol::protocol!("../protocol-codegen/tests/features/text.toml");
+protocol_kit::protocol!("../protocol-codegen/tests/features/text.toml");
 
 use text::*;
 

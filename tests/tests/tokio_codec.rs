@@ -3,13 +3,13 @@
 //! between the frames. Bad frames are items; the stream ends only with the pipe.
 
 use futures_util::{SinkExt, StreamExt};
-use protocol::codec::PacketCodec;
-use protocol::{DecodeError, PacketEvent, Reject};
+use protocol_kit::codec::PacketCodec;
+use protocol_kit::{DecodeError, PacketEvent, Reject};
 use protocol_tests::{load_vectors, stream_vector};
 use tokio::io::AsyncWriteExt;
 use tokio_util::codec::{Encoder, Framed, FramedRead, FramedWrite};
 
-protocol::protocol!("../specs/hflink.toml");
+protocol_kit::protocol!("../specs/hflink.toml");
 
 use hflink::{DECODER_BUFFER_LEN, Header, Layout, Message, Packet, Request, Response};
 
@@ -235,7 +235,7 @@ fn encode_error_leaves_the_buffer() {
     assert!(wire.is_empty());
 }
 
-protocol::protocol!("../specs/mavlink.toml");
+protocol_kit::protocol!("../specs/mavlink.toml");
 
 /// A link of two command formats through one codec (`AnyLayout`, `AnyPacket`): every MAVLink 1
 /// and 2 vector frame as its packet, sent through `FramedWrite` and read back through

@@ -9,11 +9,11 @@
 
 mod golden;
 
-use protocol::{FixedStr, Group};
+use protocol_kit::{FixedStr, Group};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::Value;
 
-protocol::protocol!("../specs/ubx.toml");
+protocol_kit::protocol!("../specs/ubx.toml");
 
 use ubx::*;
 

@@ -4,12 +4,12 @@
 //! wire cannot hold, and round trips of arbitrary values.
 
 use proptest::prelude::*;
-use protocol::{EncodeError, Payload};
 use protocol_dynamic::{Interpreter, Value};
+use protocol_kit::{EncodeError, Payload};
 
-protocol::protocol!("../protocol-codegen/tests/features/int24.toml");
-protocol::protocol!("../protocol-codegen/tests/features/reserved_bits.toml");
-protocol::protocol!("../protocol-codegen/tests/features/packed.toml");
+protocol_kit::protocol!("../protocol-codegen/tests/features/int24.toml");
+protocol_kit::protocol!("../protocol-codegen/tests/features/reserved_bits.toml");
+protocol_kit::protocol!("../protocol-codegen/tests/features/packed.toml");
 
 /// The spec behind the `packed` module.
 const PACKED_SPEC: &str = concat!(

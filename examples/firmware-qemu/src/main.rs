@@ -38,8 +38,8 @@ use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 
-protocol::protocol!("../../specs/hflink.toml");
-protocol::protocol!("../../specs/referee.toml");
+protocol_kit::protocol!("../../specs/hflink.toml");
+protocol_kit::protocol!("../../specs/referee.toml");
 
 mod vectors {
     include!(concat!(env!("OUT_DIR"), "/vectors.rs"));
@@ -106,9 +106,9 @@ fn golden<P>(
     spec: &str,
     name: &str,
     bytes: &[u8],
-    decode: impl Fn(&[u8]) -> Result<P, protocol::DecodeError>,
+    decode: impl Fn(&[u8]) -> Result<P, protocol_kit::DecodeError>,
     command: impl Fn(&P) -> &'static str,
-    encode: impl Fn(&P, &mut [u8]) -> Result<usize, protocol::EncodeError>,
+    encode: impl Fn(&P, &mut [u8]) -> Result<usize, protocol_kit::EncodeError>,
 ) {
     let mut line = Line::new();
     let mut out = [0u8; 512];
@@ -128,11 +128,11 @@ fn golden<P>(
 }
 
 /// The lines of one stream vector, fed in chunks of 7 bytes.
-fn stream<L: protocol::LayoutRef, const N: usize>(
+fn stream<L: protocol_kit::LayoutRef, const N: usize>(
     spec: &str,
     name: &str,
     bytes: &[u8],
-    mut decoder: protocol::StreamDecoder<L, N>,
+    mut decoder: protocol_kit::StreamDecoder<L, N>,
     decodes: impl Fn(&[u8]) -> bool,
 ) {
     for chunk in bytes.chunks(7) {

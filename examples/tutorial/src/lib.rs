@@ -4,9 +4,9 @@
 #![no_std]
 #![forbid(unsafe_code)]
 
-protocol::protocol!("specs/rover.toml");
+protocol_kit::protocol!("specs/rover.toml");
 
-use protocol::EncodeError;
+use protocol_kit::EncodeError;
 use rover::{Drive, Header, Lights, Message, Packet, Status};
 
 /// What the rover knows: the last commands it received and what it reports.
@@ -74,7 +74,7 @@ impl Rover {
     }
 
     /// What the decoder dropped so far: bad CRCs, impossible lengths, skipped bytes.
-    pub fn link(&self) -> &protocol::Stats {
+    pub fn link(&self) -> &protocol_kit::Stats {
         self.decoder.stats()
     }
 }

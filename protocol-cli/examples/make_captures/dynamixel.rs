@@ -1,11 +1,11 @@
 //! ROBOTIS Dynamixel Protocol 2.0: a host and four X-series servos on one bus, and the
 //! companion board's feedback frames.
 
-use protocol::{Bytes, Group};
+use protocol_kit::{Bytes, Group};
 
 use crate::{Stream, wave};
 
-protocol::protocol!("../specs/dynamixel.toml");
+protocol_kit::protocol!("../specs/dynamixel.toml");
 
 /// Goal position register of X-series servos, and present position.
 const GOAL_POSITION: u16 = 116;

@@ -2,7 +2,7 @@
 
 use crate::{Stream, wave};
 
-protocol::protocol!("../specs/hflink.toml");
+protocol_kit::protocol!("../specs/hflink.toml");
 
 /// HFLink: a host (0x01) drives a robot controller (0x11) at 20 Hz for 2 s: speed commands
 /// and their acknowledgements, measured speed and pose, IMU at 2 Hz, system info at 1 Hz, one

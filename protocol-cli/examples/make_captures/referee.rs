@@ -2,8 +2,8 @@
 
 use crate::{Stream, wave};
 
-protocol::protocol!("../specs/referee.toml");
-protocol::protocol!("../specs/referee2018.toml");
+protocol_kit::protocol!("../specs/referee.toml");
+protocol_kit::protocol!("../specs/referee2018.toml");
 
 /// Referee system, 2019 table: what a robot's UART receives during 2 s of a match, at the
 /// rates of the referee manual (power and heat 50 Hz, robot state and position 10 Hz, game
@@ -119,7 +119,7 @@ pub fn capture() -> Stream {
         }
         if tick == 60 {
             // Student interactive data (0x0301): content 0x0200 from robot 13 to robot 3.
-            let data = protocol::Bytes::from_slice(&[0x11, 0x22, 0x33, 0x44]).expect("fits");
+            let data = protocol_kit::Bytes::from_slice(&[0x11, 0x22, 0x33, 0x44]).expect("fits");
             send(
                 &mut s,
                 &mut seq,

@@ -2,7 +2,7 @@
 
 use crate::{Stream, wave};
 
-protocol::protocol!("../specs/roborts.toml");
+protocol_kit::protocol!("../specs/roborts.toml");
 
 /// 1 s of the SDK link at 50 Hz: speed and gimbal commands from the onboard computer (0x00),
 /// chassis (0x01) and gimbal (0x02) state, forwarded referee power data at 10 Hz, a heartbeat
@@ -118,7 +118,7 @@ pub fn capture() -> Stream {
                 receiver: 0,
                 seq_num: beat.seq_num,
             };
-            send(&mut s, ack, Message::Ack(protocol::Bytes::new()));
+            send(&mut s, ack, Message::Ack(protocol_kit::Bytes::new()));
         }
         if tick == 3 {
             send(

@@ -6,7 +6,7 @@ use protocol_cli::candump::format_log;
 
 use crate::{Rng, Stream, hex};
 
-protocol::protocol!("../specs/scout.toml");
+protocol_kit::protocol!("../specs/scout.toml");
 
 /// Scout status and commands for 1 s: the PC sends motion commands at 50 Hz, the base reports
 /// motion at 50 Hz, its system, motor drivers and lights at 10 Hz. One capture of the UART

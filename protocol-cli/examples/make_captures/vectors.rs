@@ -4,18 +4,18 @@
 //! the frame sealed again; either is kept only when the code `protocol!` generates decodes it
 //! and encodes it back to the same bytes, so every frame is one the generated encoder writes.
 
-use protocol::FrameLayout;
+use protocol_kit::FrameLayout;
 use serde_json::Value;
 
 use crate::{Rng, Stream};
 
-protocol::protocol!("../specs/crsf.toml");
-protocol::protocol!("../specs/ubx.toml");
-protocol::protocol!("../specs/ibus.toml");
-protocol::protocol!("../specs/sbus.toml");
-protocol::protocol!("../specs/mavlink.toml");
-protocol::protocol!("../specs/dynamixel1.toml");
-protocol::protocol!("../specs/msp.toml");
+protocol_kit::protocol!("../specs/crsf.toml");
+protocol_kit::protocol!("../specs/ubx.toml");
+protocol_kit::protocol!("../specs/ibus.toml");
+protocol_kit::protocol!("../specs/sbus.toml");
+protocol_kit::protocol!("../specs/mavlink.toml");
+protocol_kit::protocol!("../specs/dynamixel1.toml");
+protocol_kit::protocol!("../specs/msp.toml");
 
 /// Decodes a frame with generated code and encodes the packet again (`None` if it does not
 /// decode or encode).

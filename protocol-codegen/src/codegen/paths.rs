@@ -1,5 +1,5 @@
 //! Every path the expansion names in the runtime, in one place. Generated code reaches the
-//! runtime only through `::protocol::__private`, the facade crate users depend on, or through
+//! runtime only through `::protocol_kit::__private`, the facade crate users depend on, or through
 //! the path a user names instead (`protocol!(crate = ::my::protocol, ...)`,
 //! `#[payload(crate = "::my::protocol")]`), so a user's own `use` items never shadow it.
 
@@ -12,7 +12,7 @@ pub struct RuntimePath(pub TokenStream);
 
 impl Default for RuntimePath {
     fn default() -> Self {
-        RuntimePath(quote!(::protocol))
+        RuntimePath(quote!(::protocol_kit))
     }
 }
 

@@ -128,7 +128,7 @@ fn text_debug(n: usize, v: &Value) -> String {
         }
         other => panic!("not a text: {other:?}"),
     }
-    format!("{:?}", protocol::text::TextDebug(&bytes))
+    format!("{:?}", protocol_kit::text::TextDebug(&bytes))
 }
 
 /// A struct value as `{:?}` prints the generated struct.

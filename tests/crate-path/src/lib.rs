@@ -1,6 +1,6 @@
 //! Generated code that names its runtime through a re-export: this crate depends on the
 //! `protocol` crate under another name (`link_kit`) and re-exports it as `crate::kit::protocol`,
-//! as a crate that wraps `protocol` for its users would. `::protocol` does not resolve here, so
+//! as a crate that wraps `protocol` for its users would. `::protocol_kit` does not resolve here, so
 //! the expansion compiles only if every path it names comes from the `crate = ...` override.
 //! The `sensors` spec derives serde and defmt through the same override, with neither crate a
 //! dependency of this one.
@@ -9,7 +9,7 @@
 #![forbid(unsafe_code)]
 #![deny(warnings, missing_docs)]
 
-/// Where this crate's users find the `protocol` crate.
+/// Where this crate's users find the `protocol-kit` crate.
 pub mod kit {
     pub use link_kit as protocol;
 }

@@ -11,25 +11,25 @@
 #![forbid(unsafe_code)]
 #![deny(warnings, missing_docs)]
 
-protocol::protocol!("../../specs/hflink.toml");
-protocol::protocol!("../../specs/referee.toml");
-protocol::protocol!("../../specs/referee2018.toml");
-protocol::protocol!("../../specs/scout.toml");
-protocol::protocol!("../../specs/mavlink.toml");
-protocol::protocol!("../../specs/roborts.toml");
-protocol::protocol!("../../specs/dynamixel.toml");
-protocol::protocol!("../../specs/dynamixel1.toml");
-protocol::protocol!("../../specs/crsf.toml");
-protocol::protocol!("../../specs/ibus.toml");
-protocol::protocol!("../../specs/sbus.toml");
-protocol::protocol!("../../specs/ubx.toml");
-protocol::protocol!("../../specs/msp.toml");
+protocol_kit::protocol!("../../specs/hflink.toml");
+protocol_kit::protocol!("../../specs/referee.toml");
+protocol_kit::protocol!("../../specs/referee2018.toml");
+protocol_kit::protocol!("../../specs/scout.toml");
+protocol_kit::protocol!("../../specs/mavlink.toml");
+protocol_kit::protocol!("../../specs/roborts.toml");
+protocol_kit::protocol!("../../specs/dynamixel.toml");
+protocol_kit::protocol!("../../specs/dynamixel1.toml");
+protocol_kit::protocol!("../../specs/crsf.toml");
+protocol_kit::protocol!("../../specs/ibus.toml");
+protocol_kit::protocol!("../../specs/sbus.toml");
+protocol_kit::protocol!("../../specs/ubx.toml");
+protocol_kit::protocol!("../../specs/msp.toml");
 // The payload types beyond fixed-width primitives: 24-bit integers, kept bitfield bits,
 // bit-packed arrays, text.
-protocol::protocol!("../../protocol-codegen/tests/features/int24.toml");
-protocol::protocol!("../../protocol-codegen/tests/features/reserved_bits.toml");
-protocol::protocol!("../../protocol-codegen/tests/features/packed.toml");
-protocol::protocol!("../../protocol-codegen/tests/features/text.toml");
+protocol_kit::protocol!("../../protocol-codegen/tests/features/int24.toml");
+protocol_kit::protocol!("../../protocol-codegen/tests/features/reserved_bits.toml");
+protocol_kit::protocol!("../../protocol-codegen/tests/features/packed.toml");
+protocol_kit::protocol!("../../protocol-codegen/tests/features/text.toml");
 
 use hflink::{Header, Message, Packet, Request};
 
@@ -62,7 +62,7 @@ pub fn firmware_step(input: &[u8], out: &mut [u8; hflink::MAX_FRAME_LEN]) -> usi
 
 /// Decode a Scout CAN frame, as a CAN interrupt handler would.
 pub fn scout_can(id: u32, data: &[u8]) -> Option<scout::Message> {
-    let frame = protocol::CanFrame::new(id, data).ok()?;
+    let frame = protocol_kit::CanFrame::new(id, data).ok()?;
     scout::CanPacket::decode(&frame).ok().map(|p| p.message)
 }
 
@@ -116,19 +116,19 @@ pub fn dynamixel(input: &[u8]) -> (usize, usize) {
 /// (Scout), byte stuffing and a second format (Dynamixel), bit-packed arrays and texts.
 pub mod derived {
     // defmt's logging macros name `defmt::...`: the facade's re-export under that name.
-    use protocol::defmt;
+    use protocol_kit::defmt;
 
-    protocol::protocol!("../../specs/hflink.toml", derive(serde, defmt));
-    protocol::protocol!("../../specs/crsf.toml", derive(serde, defmt));
-    protocol::protocol!("../../specs/ubx.toml", derive(serde, defmt));
-    protocol::protocol!("../../specs/sbus.toml", derive(serde, defmt));
-    protocol::protocol!("../../specs/scout.toml", derive(serde, defmt));
-    protocol::protocol!("../../specs/dynamixel.toml", derive(serde, defmt));
-    protocol::protocol!(
+    protocol_kit::protocol!("../../specs/hflink.toml", derive(serde, defmt));
+    protocol_kit::protocol!("../../specs/crsf.toml", derive(serde, defmt));
+    protocol_kit::protocol!("../../specs/ubx.toml", derive(serde, defmt));
+    protocol_kit::protocol!("../../specs/sbus.toml", derive(serde, defmt));
+    protocol_kit::protocol!("../../specs/scout.toml", derive(serde, defmt));
+    protocol_kit::protocol!("../../specs/dynamixel.toml", derive(serde, defmt));
+    protocol_kit::protocol!(
         "../../protocol-codegen/tests/features/packed.toml",
         derive(serde, defmt)
     );
-    protocol::protocol!(
+    protocol_kit::protocol!(
         "../../protocol-codegen/tests/features/text.toml",
         derive(serde, defmt)
     );
@@ -153,7 +153,7 @@ pub mod derived {
 
     /// Log a u-blox and a Scout CAN packet, whose payloads hold groups, texts, optional fields
     /// and kept unknown enum values.
-    pub fn log_others(ubx_frame: &[u8], can: &protocol::CanFrame) {
+    pub fn log_others(ubx_frame: &[u8], can: &protocol_kit::CanFrame) {
         if let Ok(packet) = ubx::Packet::decode(ubx_frame) {
             defmt::info!("u-blox: {}", packet);
         }
@@ -167,7 +167,7 @@ pub mod derived {
 /// size on the target built for: this crate is built for thumbv7em (32-bit pointers) by CI and
 /// for the host (64-bit) by the workspace's tests, so both figures of the docs are checked.
 const fn stated_ram(max_frame: usize) -> usize {
-    let ram = protocol::decoder::decoder_ram(max_frame, size_of::<usize>());
+    let ram = protocol_kit::decoder::decoder_ram(max_frame, size_of::<usize>());
     ram.buffer + ram.state
 }
 const _: () = assert!(size_of::<hflink::Decoder>() == stated_ram(hflink::MAX_FRAME_LEN));

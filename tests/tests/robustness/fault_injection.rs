@@ -3,7 +3,7 @@
 //!
 //! - every frame no fault touched is decoded, in order, unless an accepted false frame (a check
 //!   collision) overlaps it, or (fed in chunks only) a valid frame lies inside it: the
-//!   decoder's documented rule (module docs of `protocol::decoder`);
+//!   decoder's documented rule (module docs of `protocol_kit::decoder`);
 //! - every frame the decoder accepts that was not sent as such really passes its checks,
 //!   verified here independently of the runtime (sums and CRCs from the spec's IR, via the
 //!   `crc` crate); their number is compared with what the checks' widths predict;
@@ -19,9 +19,9 @@ use crate::support::fault::{FaultStream, Kind, build};
 use crate::support::model::{Model, length_field, model};
 use crate::support::stream::run;
 use crate::support::{Rng, Source, Spec, hex};
-use protocol::decoder::Probe;
 use protocol_codegen::ir;
 use protocol_codegen::layout::intern;
+use protocol_kit::decoder::Probe;
 
 /// Frames per stream (of short frames; fewer of long ones).
 const FRAMES: usize = 1200;

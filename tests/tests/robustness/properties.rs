@@ -14,7 +14,7 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::Config;
-use protocol::{DecodeError, EncodeError, Event, Reject};
+use protocol_kit::{DecodeError, EncodeError, Event, Reject};
 
 use crate::support::model::{Model, model, sync_word};
 use crate::support::stream::{assert_chunking_invariant, assert_same_packet, check_packet, run};
@@ -237,7 +237,7 @@ macro_rules! properties {
 
 crate::support::for_each_spec!(properties);
 
-/// The decoder's documented rule (module docs of `protocol::decoder`): a valid frame
+/// The decoder's documented rule (module docs of `protocol_kit::decoder`): a valid frame
 /// whose payload holds another complete valid frame is yielded whole when it arrives whole; cut
 /// by a chunk boundary just after the inner frame, the inner frame is yielded and the outer one
 /// is rejected as truncated. Checked here as documented, for every spec whose payloads can hold
@@ -335,9 +335,9 @@ fn specs_dir_is_covered() {
 /// Minimized cases found by the properties: each states what the spec allows and checks that
 /// the generated code does it.
 mod regressions {
-    use protocol::Bytes;
+    use protocol_kit::Bytes;
 
-    use protocol::EncodeError;
+    use protocol_kit::EncodeError;
 
     use crate::support::{dynamixel, referee, roborts, scout};
 

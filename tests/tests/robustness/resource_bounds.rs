@@ -5,8 +5,8 @@
 use std::mem::{align_of, size_of};
 
 use crate::support::{Dec, Spec};
-use protocol::layout::LayoutRef;
-use protocol::{FrameLayout, StreamDecoder};
+use protocol_kit::layout::LayoutRef;
+use protocol_kit::{FrameLayout, StreamDecoder};
 
 /// A layout known at compile time, as generated code names it: a zero-sized type.
 #[derive(Clone, Copy)]

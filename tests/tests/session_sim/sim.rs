@@ -5,7 +5,7 @@
 
 use std::collections::HashMap;
 
-use protocol::session::{
+use protocol_kit::session::{
     Due, Incoming, Received, Requester, Resolution, Responder, SessionRules, Ticket,
 };
 
@@ -145,7 +145,7 @@ fn send<P: Peer>(
     logs: &mut HashMap<Ticket, Log>,
     now: u64,
     frame: &mut [u8],
-) -> Result<Option<Ticket>, protocol::session::SendError> {
+) -> Result<Option<Ticket>, protocol_kit::session::SendError> {
     let mut sent = None;
     t.allocations += allocation_counter::measure(|| sent = Some(req.send(now, frame))).count_total;
     let ticket = sent.expect("ran")?;
@@ -156,8 +156,8 @@ fn send<P: Peer>(
             t.requests += 1;
             let key = rules.heard(frame).ok();
             let e = key.map(|h| match h {
-                protocol::session::Heard::Command(k) => rules.expects(k, frame),
-                protocol::session::Heard::Ack => rules.default,
+                protocol_kit::session::Heard::Command(k) => rules.expects(k, frame),
+                protocol_kit::session::Heard::Ack => rules.default,
             });
             logs.insert(
                 ticket,

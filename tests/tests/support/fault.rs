@@ -9,7 +9,7 @@
 //! touched): garbage, and sync words followed by part of a header. Frames whose payload holds
 //! the sync word and a valid-looking header are also sent untouched: they must arrive.
 
-use protocol::FrameLayout;
+use protocol_kit::FrameLayout;
 
 use super::model::{Model, length_field, sync_word};
 use super::payload::Ctx;

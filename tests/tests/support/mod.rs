@@ -17,8 +17,8 @@ pub mod stream;
 
 use std::fmt::Debug;
 
-use protocol::layout::LayoutRef;
-use protocol::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stats, StreamDecoder};
+use protocol_kit::layout::LayoutRef;
+use protocol_kit::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stats, StreamDecoder};
 
 /// Calls `$callback!(module, "path relative to the crate")` for every spec under test.
 ///
@@ -97,7 +97,7 @@ macro_rules! expand_spec {
         expand_spec!(@ $name, $path, None, from_frame, decode);
     };
     ($name:ident, $path:literal, link) => {
-        protocol::protocol!($path);
+        protocol_kit::protocol!($path);
 
         impl $crate::support::Spec for $name::AnyPacket {
             const NAME: &'static str = stringify!($name);
@@ -110,10 +110,10 @@ macro_rules! expand_spec {
             const DECODER_BUFFER_LEN: usize = $name::ANY_DECODER_BUFFER_LEN;
             type Decoder = $name::AnyDecoder;
 
-            fn layout() -> &'static protocol::FrameLayout<'static> {
+            fn layout() -> &'static protocol_kit::FrameLayout<'static> {
                 &$name::LAYOUT
             }
-            fn layouts() -> Vec<&'static protocol::FrameLayout<'static>> {
+            fn layouts() -> Vec<&'static protocol_kit::FrameLayout<'static>> {
                 std::iter::once(&$name::LAYOUT)
                     .chain($name::ANY_OTHER_LAYOUTS.iter())
                     .collect()
@@ -128,26 +128,26 @@ macro_rules! expand_spec {
             fn decoder() -> Self::Decoder {
                 $name::any_decoder()
             }
-            fn from_frame(frame: &[u8]) -> Result<Self, protocol::DecodeError> {
-                $name::AnyPacket::from_frame(&protocol::Frame {
+            fn from_frame(frame: &[u8]) -> Result<Self, protocol_kit::DecodeError> {
+                $name::AnyPacket::from_frame(&protocol_kit::Frame {
                     bytes: frame,
                     offset: 0,
                     format: <Self as $crate::support::Spec>::format_of(frame),
                 })
             }
-            fn decode(bytes: &[u8]) -> Result<Self, protocol::DecodeError> {
+            fn decode(bytes: &[u8]) -> Result<Self, protocol_kit::DecodeError> {
                 let format = <Self as $crate::support::Spec>::format_of(bytes);
                 let layout = match format.checked_sub(1) {
                     Some(k) => &$name::ANY_OTHER_LAYOUTS[k],
                     None => &$name::LAYOUT,
                 };
-                $name::AnyPacket::from_frame(&protocol::Frame {
+                $name::AnyPacket::from_frame(&protocol_kit::Frame {
                     bytes: layout.parse(bytes)?,
                     offset: 0,
                     format,
                 })
             }
-            fn encode(&self, buf: &mut [u8]) -> Result<usize, protocol::EncodeError> {
+            fn encode(&self, buf: &mut [u8]) -> Result<usize, protocol_kit::EncodeError> {
                 $name::AnyPacket::encode(self, buf)
             }
             fn encoded_len(&self) -> usize {
@@ -159,7 +159,7 @@ macro_rules! expand_spec {
         expand_spec!(@ $name, $path, Some($direction), $from_frame, $decode);
     };
     (@ $name:ident, $path:literal, $direction:expr, $from_frame:ident, $decode:ident) => {
-        protocol::protocol!($path);
+        protocol_kit::protocol!($path);
 
         impl $crate::support::Spec for $name::Packet {
             const NAME: &'static str = stringify!($name);
@@ -171,19 +171,19 @@ macro_rules! expand_spec {
             const DECODER_BUFFER_LEN: usize = $name::DECODER_BUFFER_LEN;
             type Decoder = $name::Decoder;
 
-            fn layout() -> &'static protocol::FrameLayout<'static> {
+            fn layout() -> &'static protocol_kit::FrameLayout<'static> {
                 &$name::LAYOUT
             }
             fn decoder() -> Self::Decoder {
                 $name::decoder()
             }
-            fn from_frame(frame: &[u8]) -> Result<Self, protocol::DecodeError> {
+            fn from_frame(frame: &[u8]) -> Result<Self, protocol_kit::DecodeError> {
                 $name::Packet::$from_frame(frame)
             }
-            fn decode(bytes: &[u8]) -> Result<Self, protocol::DecodeError> {
+            fn decode(bytes: &[u8]) -> Result<Self, protocol_kit::DecodeError> {
                 $name::Packet::$decode(bytes)
             }
-            fn encode(&self, buf: &mut [u8]) -> Result<usize, protocol::EncodeError> {
+            fn encode(&self, buf: &mut [u8]) -> Result<usize, protocol_kit::EncodeError> {
                 $name::Packet::encode(self, buf)
             }
             fn encoded_len(&self) -> usize {

@@ -17,15 +17,15 @@
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
 
-use protocol::FrameLayout;
-use protocol::decoder::Probe;
-use protocol::encoder::write_header;
-use protocol::layout::{LengthRule, WordField};
-use protocol::rules::{Body, DirectionTest, PacketRules};
 use protocol_codegen::ir;
 pub use protocol_codegen::layout::word_field;
 use protocol_codegen::rules::{self as lowered, RulesPlan, lower_rules};
 use protocol_codegen::source::SpecSource;
+use protocol_kit::FrameLayout;
+use protocol_kit::decoder::Probe;
+use protocol_kit::encoder::write_header;
+use protocol_kit::layout::{LengthRule, WordField};
+use protocol_kit::rules::{Body, DirectionTest, PacketRules};
 
 use super::payload::Ctx;
 use super::{Source, Spec};
@@ -421,7 +421,7 @@ impl Model {
         choice: Choice,
         flagged: Option<&[u8]>,
         frame: &mut [u8],
-    ) -> Result<(), protocol::EncodeError> {
+    ) -> Result<(), protocol_kit::EncodeError> {
         let test = choice.direction.and_then(|d| self.directions.get(d));
         for (i, v) in self.frame().values.iter().enumerate() {
             let field = word_field(v);
@@ -560,7 +560,7 @@ pub struct Refused {
     /// Its length.
     pub len: usize,
     /// What `assemble` said.
-    pub error: protocol::EncodeError,
+    pub error: protocol_kit::EncodeError,
 }
 
 /// The length field of the layout, with the adjustment (`None` for fixed-length frames).

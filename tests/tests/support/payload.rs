@@ -110,7 +110,7 @@ impl Model {
                 let mut bytes = vec![0u8; field.size];
                 for i in 0..*count {
                     let raw = src.next_u64() & mask(*bits);
-                    protocol::packed::set_packed(&mut bytes, i, *bits, *order, raw)
+                    protocol_kit::packed::set_packed(&mut bytes, i, *bits, *order, raw)
                         .expect("the element fits its bits");
                 }
                 out.extend(bytes);

@@ -11,8 +11,8 @@
 //! - every frame decodes to a packet or an error, never a panic, and a packet re-encodes to
 //!   bytes that decode to the same packet.
 
-use protocol::decoder::Probe;
-use protocol::{Event, FrameLayout, Reject, Stats};
+use protocol_kit::decoder::Probe;
+use protocol_kit::{Event, FrameLayout, Reject, Stats};
 
 use super::{Dec, Spec, hex};
 

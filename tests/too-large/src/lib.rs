@@ -4,4 +4,4 @@
 
 #![no_std]
 
-protocol::protocol!("../../protocol-codegen/tests/lints/decoder_buffer_above_bound.toml");
+protocol_kit::protocol!("../../protocol-codegen/tests/lints/decoder_buffer_above_bound.toml");

@@ -5,7 +5,7 @@
 #![no_main]
 #![forbid(unsafe_code)]
 
-protocol::protocol!("../../../specs/hflink.toml");
+protocol_kit::protocol!("../../../specs/hflink.toml");
 
 include!("../../echo.rs");
 

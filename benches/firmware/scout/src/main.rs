@@ -8,7 +8,7 @@
 #![no_main]
 #![forbid(unsafe_code)]
 
-protocol::protocol!("../../../specs/scout.toml");
+protocol_kit::protocol!("../../../specs/scout.toml");
 
 include!("../../echo.rs");
 

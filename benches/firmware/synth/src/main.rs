@@ -7,7 +7,7 @@
 #![no_main]
 #![forbid(unsafe_code)]
 
-protocol::protocol!("synth.toml");
+protocol_kit::protocol!("synth.toml");
 
 include!("../../echo.rs");
 

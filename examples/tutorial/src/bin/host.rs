@@ -5,7 +5,7 @@
 use rover_link::Rover;
 use rover_link::rover::{self, Drive, Header, Lights, Message, Packet, Status};
 
-fn frame(message: Message) -> Result<Vec<u8>, protocol::EncodeError> {
+fn frame(message: Message) -> Result<Vec<u8>, protocol_kit::EncodeError> {
     let mut buf = [0u8; rover::MAX_FRAME_LEN];
     let n = Packet {
         header: Header {},

@@ -109,7 +109,7 @@ fn the_stream_yields_expected_frames_in_crsf() {
 // ---- Random messages both ways: the `crsf` crate and the generated CRSF codec ----
 
 mod ours {
-    protocol::protocol!("../../specs/crsf.toml");
+    protocol_kit::protocol!("../../specs/crsf.toml");
 }
 
 use crate::encoded;

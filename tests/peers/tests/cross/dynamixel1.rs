@@ -14,14 +14,14 @@
 //! instructions and status packets cross in both directions.
 
 use dynamixel1::{Header, Message, Packet, Request, Status, SyncWrite, SyncWriteServo};
-use protocol::{Bytes, Group};
+use protocol_kit::{Bytes, Group};
 use protocol_peers::{frame_bytes, frames, load_vectors, name, uint, uints};
 use rustypot::DynamixelProtocolHandler;
 use serialport::{SerialPort, TTYPort};
 use std::io::{Read, Write};
 use std::time::Duration;
 
-protocol::protocol!("../../specs/dynamixel1.toml");
+protocol_kit::protocol!("../../specs/dynamixel1.toml");
 
 /// A status packet (`FF FF id len error params checksum`), encoded by this project's codec.
 fn status(id: u8, error: u8, params: &[u8]) -> Vec<u8> {

@@ -9,12 +9,12 @@
 use crate::encoded;
 use dynamixel2::Bus;
 use proptest::prelude::*;
-use protocol::{Bytes, Group};
+use protocol_kit::{Bytes, Group};
 use protocol_peers::harness::{PeerAdapter, cross_check};
 use serial2::SerialPort;
 use std::time::{Duration, Instant};
 
-protocol::protocol!("../../specs/dynamixel.toml");
+protocol_kit::protocol!("../../specs/dynamixel.toml");
 
 use dynamixel::{Header, Message, Packet, Read, Status, SyncWrite, SyncWriteServo, Write};
 

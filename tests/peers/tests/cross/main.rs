@@ -15,7 +15,7 @@ mod values;
 
 /// This project's frame of `packet` (any generated packet type), as an adapter's
 /// `PeerAdapter::ours_write` returns it.
-fn encoded<P: protocol::EncodePacket>(packet: &P) -> Result<Vec<u8>, String> {
+fn encoded<P: protocol_kit::EncodePacket>(packet: &P) -> Result<Vec<u8>, String> {
     let mut buf = vec![0; packet.encoded_len()];
     let n = packet.encode_into(&mut buf).map_err(|e| e.to_string())?;
     buf.truncate(n);
@@ -28,17 +28,17 @@ fn encoded<P: protocol::EncodePacket>(packet: &P) -> Result<Vec<u8>, String> {
 /// the error.
 fn packet_of<L, const N: usize>(layout: L, bytes: &[u8]) -> Result<L::Packet, String>
 where
-    L: protocol::PacketLayout<Error = protocol::DecodeError>,
+    L: protocol_kit::PacketLayout<Error = protocol_kit::DecodeError>,
 {
-    let mut decoder = protocol::PacketDecoder::<L, N>::new(layout);
+    let mut decoder = protocol_kit::PacketDecoder::<L, N>::new(layout);
     let mut input = bytes;
     let events = core::iter::from_fn(|| decoder.next_packet(&mut input));
     let mut events: Vec<_> = events.collect();
     events.extend(core::iter::from_fn(|| decoder.flush_packet()));
     for event in events {
         match event {
-            protocol::PacketEvent::Packet { packet, .. } => return Ok(packet),
-            protocol::PacketEvent::Invalid { error, .. } => return Err(error.to_string()),
+            protocol_kit::PacketEvent::Packet { packet, .. } => return Ok(packet),
+            protocol_kit::PacketEvent::Invalid { error, .. } => return Err(error.to_string()),
             _ => {}
         }
     }

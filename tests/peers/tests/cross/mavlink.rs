@@ -354,7 +354,7 @@ fn the_stream_yields_its_expected_frames_in_mavlink() {
 // ---- Random messages both ways: the `mavlink` crate and the generated MAVLink 1 and 2 codecs ----
 
 mod ours {
-    protocol::protocol!("../../specs/mavlink.toml");
+    protocol_kit::protocol!("../../specs/mavlink.toml");
 }
 
 use crate::{encoded, packet_of};

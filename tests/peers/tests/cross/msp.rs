@@ -221,7 +221,7 @@ fn the_stream_yields_expected_frames_in_cu_msp_lib() {
 // ---- Random messages both ways: cu-msp-lib and the generated MSP v1 and v2 codec ----
 
 mod ours {
-    protocol::protocol!("../../specs/msp.toml");
+    protocol_kit::protocol!("../../specs/msp.toml");
 }
 
 use crate::{encoded, packet_of};
@@ -286,7 +286,7 @@ fn messages() -> BoxedStrategy<spec::AnyPacket> {
         );
     let names = prop::collection::vec(any::<u8>(), 0..=254).prop_map(|n| {
         M::Response(R::Boxnames(spec::BoxNames {
-            names: protocol::Bytes::from_slice(&n).expect("fits"),
+            names: protocol_kit::Bytes::from_slice(&n).expect("fits"),
         }))
     });
     let request = prop_oneof![
@@ -302,7 +302,7 @@ fn messages() -> BoxedStrategy<spec::AnyPacket> {
     // MSP2_COMMON_SETTING (INAV): a v2-only command, its request a NUL-terminated name.
     let setting = "[a-z0-9_]{1,64}".prop_map(|name| {
         M::Request(Q::CommonSetting(spec::SettingName {
-            name: protocol::NulStr::from_text(&name).expect("at most 64 bytes"),
+            name: protocol_kit::NulStr::from_text(&name).expect("at most 64 bytes"),
         }))
     });
     let message = prop_oneof![
@@ -389,7 +389,7 @@ fn from_peer(p: &MspPacket) -> Result<spec::Message, String> {
             };
             let name = std::str::from_utf8(name).map_err(|e| e.to_string())?;
             return Ok(M::Request(Q::CommonSetting(spec::SettingName {
-                name: protocol::NulStr::from_text(name).ok_or("a name too long")?,
+                name: protocol_kit::NulStr::from_text(name).ok_or("a name too long")?,
             })));
         }
         if !p.data.as_slice().is_empty() {
@@ -463,7 +463,7 @@ fn from_peer(p: &MspPacket) -> Result<spec::Message, String> {
             })
         }
         spec::Command::Boxnames => R::Boxnames(spec::BoxNames {
-            names: protocol::Bytes::from_slice(p.data.as_slice()).ok_or("too long")?,
+            names: protocol_kit::Bytes::from_slice(p.data.as_slice()).ok_or("too long")?,
         }),
         other => return Err(format!("{other:?}")),
     }))

@@ -123,8 +123,8 @@ fn every_ibus_frame_decodes_in_parse_rc_ibus() {
 // ---- Random messages: sbus-rs and parse_rc_ibus against the generated SBUS and iBUS codecs ----
 
 mod ours {
-    protocol::protocol!("../../specs/sbus.toml");
-    protocol::protocol!("../../specs/ibus.toml");
+    protocol_kit::protocol!("../../specs/sbus.toml");
+    protocol_kit::protocol!("../../specs/ibus.toml");
 }
 
 use crate::encoded;

@@ -237,7 +237,7 @@ fn the_stream_yields_its_expected_frames_in_ublox() {
 // ---- Random messages: the `ublox` crate and the generated UBX codec ----
 
 mod ours {
-    protocol::protocol!("../../specs/ubx.toml");
+    protocol_kit::protocol!("../../specs/ubx.toml");
 }
 
 use crate::encoded;

@@ -1,3 +1,3 @@
-protocol::protocol!(spec = "specs/hflink.toml");
+protocol_kit::protocol!(spec = "specs/hflink.toml");
 
 fn main() {}

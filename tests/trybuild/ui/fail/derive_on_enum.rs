@@ -1,4 +1,4 @@
-#[derive(protocol::Payload)]
+#[derive(protocol_kit::Payload)]
 enum NotAStruct {
     A,
 }

@@ -1,4 +1,4 @@
-#[derive(protocol::Payload)]
+#[derive(protocol_kit::Payload)]
 struct Meter {
     #[payload(raw = "u24")]
     total: u16,

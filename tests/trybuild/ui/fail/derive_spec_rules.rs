@@ -1,7 +1,7 @@
 // A derive's mistakes get the spec rules' diagnostics, all at once, each on its attribute or
 // type: padding of 0 bytes, an empty array, a scale factor of 0, a scaled float with no integer
 // wire type, and a Rust type that is not what the wire type decodes to.
-#[derive(protocol::Payload)]
+#[derive(protocol_kit::Payload)]
 struct Telemetry {
     #[payload(pad_before = 0)]
     id: u8,

@@ -1,4 +1,4 @@
 // A derive the macro does not offer.
-protocol::protocol!("specs/hflink.toml", derive(serde, schemars));
+protocol_kit::protocol!("specs/hflink.toml", derive(serde, schemars));
 
 fn main() {}

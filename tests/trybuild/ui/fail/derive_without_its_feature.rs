@@ -1,6 +1,6 @@
 // `derive(serde)` and `derive(defmt)` with a `protocol` dependency that lacks the features of
 // those names: the first errors name the missing features (the unresolved paths follow).
-protocol::protocol!(
+protocol_kit::protocol!(
     derive(serde, defmt),
     inline = r#"
 [protocol]

@@ -1,5 +1,5 @@
 // The spec has one mistake (an unknown checksum): one error, on the path literal, quoting the
 // spec's line and column.
-protocol::protocol!("protocol-codegen/tests/invalid/unknown_checksum.toml");
+protocol_kit::protocol!("protocol-codegen/tests/invalid/unknown_checksum.toml");
 
 fn main() {}

@@ -1,4 +1,4 @@
-protocol::protocol!(inline = r#"
+protocol_kit::protocol!(inline = r#"
 [protocol]
 name = "inline"
 

@@ -1,3 +1,3 @@
-protocol::protocol!("specs/does_not_exist.toml");
+protocol_kit::protocol!("specs/does_not_exist.toml");
 
 fn main() {}

@@ -1,6 +1,6 @@
 // An unknown struct in a command line: exactly one error, not a cascade of unresolved types in
 // generated code.
-protocol::protocol!(inline = r#"
+protocol_kit::protocol!(inline = r#"
 [protocol]
 name = "one"
 

@@ -1,5 +1,5 @@
 // Generated types are real types: a READ request carries no payload.
-protocol::protocol!("specs/hflink.toml");
+protocol_kit::protocol!("specs/hflink.toml");
 
 fn main() {
     let _ = hflink::Request::ReadSystemInfo(hflink::ChassisCoord::default());

@@ -1,26 +1,26 @@
 //! Every bundled spec and every feature fixture compiles under `deny(warnings, missing_docs)`.
 #![deny(warnings, missing_docs)]
 
-protocol::protocol!("specs/hflink.toml");
-protocol::protocol!("specs/referee.toml");
-protocol::protocol!("specs/referee2018.toml");
-protocol::protocol!("specs/crsf.toml");
-protocol::protocol!("specs/scout.toml");
-protocol::protocol!("specs/mavlink.toml");
-protocol::protocol!("specs/roborts.toml");
-protocol::protocol!("specs/dynamixel.toml");
-protocol::protocol!("specs/dynamixel1.toml");
-protocol::protocol!("specs/ibus.toml");
-protocol::protocol!("specs/sbus.toml");
-protocol::protocol!("specs/ubx.toml");
-protocol::protocol!("specs/msp.toml");
-protocol::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
-protocol::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
-protocol::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
-protocol::protocol!("protocol-codegen/tests/features/can_and_trailer_field.toml");
-protocol::protocol!("protocol-codegen/tests/features/truncate_zeros.toml");
-protocol::protocol!("protocol-codegen/tests/features/text.toml");
-protocol::protocol!("protocol-codegen/tests/features/given_directions.toml");
+protocol_kit::protocol!("specs/hflink.toml");
+protocol_kit::protocol!("specs/referee.toml");
+protocol_kit::protocol!("specs/referee2018.toml");
+protocol_kit::protocol!("specs/crsf.toml");
+protocol_kit::protocol!("specs/scout.toml");
+protocol_kit::protocol!("specs/mavlink.toml");
+protocol_kit::protocol!("specs/roborts.toml");
+protocol_kit::protocol!("specs/dynamixel.toml");
+protocol_kit::protocol!("specs/dynamixel1.toml");
+protocol_kit::protocol!("specs/ibus.toml");
+protocol_kit::protocol!("specs/sbus.toml");
+protocol_kit::protocol!("specs/ubx.toml");
+protocol_kit::protocol!("specs/msp.toml");
+protocol_kit::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
+protocol_kit::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
+protocol_kit::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
+protocol_kit::protocol!("protocol-codegen/tests/features/can_and_trailer_field.toml");
+protocol_kit::protocol!("protocol-codegen/tests/features/truncate_zeros.toml");
+protocol_kit::protocol!("protocol-codegen/tests/features/text.toml");
+protocol_kit::protocol!("protocol-codegen/tests/features/given_directions.toml");
 
 fn main() {
     let _ = hflink::decoder();
