@@ -6,7 +6,7 @@ use quote::{format_ident, quote};
 use super::def::{BitType, PBit, PField, PKind};
 use super::field::{fixed_size, read_value, write_value};
 use super::scalar::{local, prim_type, read_elem, read_scalar, write_scalar};
-use crate::ir::{ByteOrder, Scalar};
+use crate::ir::{ByteOrder, Prim, Scalar};
 
 /// The code of one struct's `write` and `read`, field by field in wire order.
 #[derive(Default)]
@@ -26,7 +26,8 @@ pub(super) struct Body {
 }
 
 impl Body {
-    pub(super) fn of(fields: &[PField], rt: &TokenStream) -> Body {
+    /// The statements of the struct `owner` (its name, for the field paths errors carry).
+    pub(super) fn of(fields: &[PField], owner: &str, rt: &TokenStream) -> Body {
         let mut b = Body::default();
         for (i, f) in fields.iter().enumerate() {
             b.check_starts(fields, i);
@@ -36,7 +37,7 @@ impl Body {
                     b.reads.push(quote!(r.skip(#n)?;));
                 }
                 PKind::Bits { word, members } => {
-                    b.bits(&format_ident!("word{}", i), *word, members, rt);
+                    b.bits(&format_ident!("word{}", i), *word, members, owner, rt);
                     b.sequenced = true;
                 }
                 PKind::Check {
@@ -72,10 +73,16 @@ impl Body {
                 kind => {
                     let Some(id) = &f.ident else { continue };
                     b.sequenced |= needs_locals(kind);
-                    b.writes
-                        .push(write_value(kind, quote!(self.#id), &quote!(self), rt));
+                    let (mut write, mut read) = (
+                        write_value(kind, quote!(self.#id), &quote!(self), rt),
+                        read_value(kind, rt),
+                    );
+                    if value_can_fail(kind) {
+                        write = write_in(&field_path(owner, id), write, rt);
+                        read = read_in(&field_path(owner, id), read, rt);
+                    }
+                    b.writes.push(write);
                     let var = local(id);
-                    let read = read_value(kind, rt);
                     b.reads.push(quote!(let #var = #read;));
                     b.inits.push(quote!(#id: #var));
                 }
@@ -84,7 +91,7 @@ impl Body {
         }
         b.sequenced |= !pads_fold(fields);
         if !b.sequenced {
-            b.inline_reads(fields, rt);
+            b.inline_reads(fields, owner, rt);
         }
         b
     }
@@ -120,7 +127,7 @@ impl Body {
     /// Nothing but padding between the fields: each field read straight into the value, in
     /// order, the padding before it skipped by the read itself (`r.pad(3)?.f32_le()?`), and
     /// the padding after the last field once the value is built.
-    fn inline_reads(&mut self, fields: &[PField], rt: &TokenStream) {
+    fn inline_reads(&mut self, fields: &[PField], owner: &str, rt: &TokenStream) {
         self.reads.clear();
         self.inits.clear();
         let mut pad = 0usize;
@@ -133,6 +140,11 @@ impl Body {
                         n => read_elem(kind, &quote!(r.pad(#n)?), rt),
                     };
                     pad = 0;
+                    let read = if value_can_fail(kind) {
+                        read_in(&field_path(owner, id), read, rt)
+                    } else {
+                        read
+                    };
                     self.inits.push(quote!(#id: #read));
                 }
                 _ => {}
@@ -144,7 +156,7 @@ impl Body {
     }
 
     /// A bitfield word: each member set into (and got from) its bits by the runtime.
-    fn bits(&mut self, var: &Ident, word: Scalar, members: &[PBit], rt: &TokenStream) {
+    fn bits(&mut self, var: &Ident, word: Scalar, members: &[PBit], owner: &str, rt: &TokenStream) {
         let wt = prim_type(word.prim);
         let mut sets = Vec::new();
         for m in members {
@@ -157,7 +169,13 @@ impl Body {
                     quote!(#rt::enum_raw(self.#id, #ty::to_raw, #ty::from_raw)? as #wt as u64)
                 }
             };
-            sets.push(quote!(#var = #rt::set_bits(#var, #raw, #shift, #width)?;));
+            let path = field_path(owner, id);
+            let set = quote!(#var = #rt::set_bits(#var, #raw, #shift, #width)?;);
+            // A `bool` fits its bit; a wider value or an enum's raw value may not.
+            sets.push(match m.ty {
+                BitType::Bool => set,
+                _ => write_in(&path, set, rt),
+            });
             let field = quote!(#rt::get_bits(#var, #shift, #width));
             let value = match &m.ty {
                 BitType::Bool => quote!(#field != 0),
@@ -167,7 +185,7 @@ impl Body {
                 }
                 BitType::Enum(ty, p) => {
                     let t = prim_type(*p);
-                    quote!(#ty::from_raw(#field as #t)?)
+                    read_in(&path, quote!(#ty::from_raw(#field as #t)?), rt)
                 }
             };
             self.inits.push(quote!(#id: #value));
@@ -177,6 +195,42 @@ impl Body {
         let read = read_scalar(word);
         self.reads.push(quote!(let #var = u64::from(#read);));
     }
+}
+
+/// The path an error names for field `id` of the struct `owner`: `Owner.field`, as the spec
+/// writes both.
+fn field_path(owner: &str, id: &Ident) -> String {
+    format!("{owner}.{}", id.to_string().trim_start_matches("r#"))
+}
+
+/// Whether reading or writing a field of this kind can fail for its value (an enum value
+/// without variant, a clamped or scaled value, a stated size, a 24-bit integer, text without
+/// its NUL), not only for want of bytes or room: its code then names the field in the error.
+/// A nested struct names its own fields.
+fn value_can_fail(kind: &PKind) -> bool {
+    match kind {
+        PKind::Pad(_) | PKind::Nested { .. } | PKind::Check { .. } | PKind::Bits { .. } => false,
+        PKind::Scalar { scalar, scale, .. } => {
+            scale.is_some() || matches!(scalar.prim, Prim::U24 | Prim::I24)
+        }
+        PKind::Bytes { size_from, .. } => size_from.is_some(),
+        PKind::Optional(inner) => value_can_fail(inner),
+        PKind::Enum { .. }
+        | PKind::Group { .. }
+        | PKind::Array { .. }
+        | PKind::Packed { .. }
+        | PKind::Var { .. } => true,
+    }
+}
+
+/// A field's read expression `read`, whose errors name the field `path`.
+fn read_in(path: &str, read: TokenStream, rt: &TokenStream) -> TokenStream {
+    quote!(#rt::read_field(#path, || #rt::Ok(#read))?)
+}
+
+/// A field's write statements `write`, whose errors name the field `path`.
+fn write_in(path: &str, write: TokenStream, rt: &TokenStream) -> TokenStream {
+    quote!(#rt::write_field(#path, || { #write #rt::Ok(()) })?;)
 }
 
 /// Whether the padding of `fields` can be skipped by the read of the field after it: that

@@ -38,7 +38,7 @@ pub(super) fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
                         let n = #rt::array_len(#var as u64, #max)?;
                         let mut a = <#ty>::new();
                         for _ in 0..n {
-                            a.push(#read).map_err(|_| #rt::DecodeError::SizeMismatch)?;
+                            a.push(#read).map_err(|_| #rt::DecodeError::SizeMismatch { place: #rt::Place::NONE })?;
                         }
                         a
                     }}
