@@ -1,7 +1,13 @@
 //! A seeded generator of valid specs: from a seed, the TOML text of a spec that combines the
-//! language's parts at random (frame elements, header and frame checks, field kinds, bit
-//! members, enums, nested structs, variable tails, directions, a second frame format, CAN),
-//! so that the backends are compared on specs no one wrote by hand.
+//! language's parts at random, so that the backends are compared on specs no one wrote by
+//! hand. It covers one serial frame format (sync bytes, header fields in any order, a length
+//! that counts the payload, the frame or a run, a header check, a frame check of the sum, xor,
+//! Fletcher and CRC kinds, a trailer), both byte orders, and payload structs of every
+//! fixed-size field kind (integers of 8 to 64 bits with a byte order, floats, bools, arrays,
+//! enums that keep or reject unknown values, scaled and clamped values, bit members, text,
+//! nested structs, padding) with a variable tail (bytes, repeated integers or structs,
+//! NUL-terminated text, an optional value). Directions, several frame formats, CAN, byte
+//! stuffing and acknowledgements are not generated yet.
 //!
 //! Plain `std`, no dependencies: the tests crate's build script expands a batch of these specs
 //! with `protocol!` (`tests/build.rs`), and the C peer's conformance test compiles the C that
