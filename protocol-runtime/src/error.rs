@@ -178,15 +178,15 @@ impl DecodeError {
         }
     }
 
-    /// The same error with its place changed by `f`; the other errors as they are.
+    /// The same error with its place set to `place`; the other errors as they are.
     #[inline]
-    const fn map_place(self, f: Place) -> Self {
+    const fn map_place(self, place: Place) -> Self {
         match self {
-            DecodeError::InvalidEnum { value, .. } => DecodeError::InvalidEnum { value, place: f },
-            DecodeError::ValueOutOfRange { .. } => DecodeError::ValueOutOfRange { place: f },
-            DecodeError::SizeMismatch { .. } => DecodeError::SizeMismatch { place: f },
-            DecodeError::Unterminated { .. } => DecodeError::Unterminated { place: f },
-            DecodeError::PayloadCheck { .. } => DecodeError::PayloadCheck { place: f },
+            DecodeError::InvalidEnum { value, .. } => DecodeError::InvalidEnum { value, place },
+            DecodeError::ValueOutOfRange { .. } => DecodeError::ValueOutOfRange { place },
+            DecodeError::SizeMismatch { .. } => DecodeError::SizeMismatch { place },
+            DecodeError::Unterminated { .. } => DecodeError::Unterminated { place },
+            DecodeError::PayloadCheck { .. } => DecodeError::PayloadCheck { place },
             other => other,
         }
     }

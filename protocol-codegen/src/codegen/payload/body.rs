@@ -4,7 +4,7 @@ use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
 use super::def::{BitType, PBit, PField, PKind};
-use super::field::{fixed_size, read_value, write_value};
+use super::field::{fixed_size, ok_of, read_value, write_value};
 use super::scalar::{local, prim_type, read_elem, read_scalar, write_scalar};
 use crate::ir::{ByteOrder, Prim, Scalar};
 
@@ -225,7 +225,8 @@ fn value_can_fail(kind: &PKind) -> bool {
 
 /// A field's read expression `read`, whose errors name the field `path`.
 fn read_in(path: &str, read: TokenStream, rt: &TokenStream) -> TokenStream {
-    quote!(#rt::read_field(#path, || #rt::Ok(#read))?)
+    let read = ok_of(read, rt);
+    quote!(#rt::read_field(#path, || #read)?)
 }
 
 /// A field's write statements `write`, whose errors name the field `path`.

@@ -3,7 +3,7 @@
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
-use super::def::PKind;
+use super::def::{PField, PKind};
 use super::scalar::{local, prim_type, read_elem, read_packed, to_raw, write_packed, write_scalar};
 
 /// An expression reading a whole field (array, optional, group included).
@@ -47,6 +47,17 @@ pub(super) fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
         }
         PKind::Group {
             ty, elem_ty, elem, ..
+        } if reads_as_itself(elem) => quote!({
+            let mut group = <#ty>::new();
+            while #rt::more(r) {
+                let e = <#elem_ty as #rt::Payload>::read(r)?;
+                let size = <Self as #rt::Payload>::SIZE;
+                group.push(e).map_err(|_| #rt::group_full(r, size))?;
+            }
+            group
+        }),
+        PKind::Group {
+            ty, elem_ty, elem, ..
         } => {
             let mut lets = Vec::new();
             let mut inits = Vec::new();
@@ -82,9 +93,32 @@ pub(super) fn read_value(kind: &PKind, rt: &TokenStream) -> TokenStream {
     }
 }
 
+/// Whether a repeated struct's elements are read and written by the element's own `Payload`
+/// impl: when they hold bit members or checks (which only the struct's own code reads and
+/// writes) and no field takes its size from another, which inline code reads from the
+/// repeating struct's locals.
+fn reads_as_itself(elem: &[PField]) -> bool {
+    let sized = elem.iter().any(|f| {
+        matches!(
+            &f.kind,
+            PKind::Bytes {
+                size_from: Some(_),
+                ..
+            } | PKind::Array {
+                size_from: Some(_),
+                ..
+            }
+        )
+    });
+    let own_code = elem
+        .iter()
+        .any(|f| matches!(f.kind, PKind::Bits { .. } | PKind::Check { .. }));
+    own_code && !sized
+}
+
 /// `Ok(read)`, the value of a closure that reads: `read` without its final `?` when it has
 /// one (`Ok(x?)` is `x`).
-fn ok_of(read: TokenStream, rt: &TokenStream) -> TokenStream {
+pub(super) fn ok_of(read: TokenStream, rt: &TokenStream) -> TokenStream {
     let mut tokens: Vec<proc_macro2::TokenTree> = read.clone().into_iter().collect();
     match tokens.last() {
         Some(proc_macro2::TokenTree::Punct(p)) if p.as_char() == '?' => {
@@ -118,6 +152,9 @@ pub(super) fn write_value(
                 .map(|n| quote!(#rt::check_stated_len(#value.len(), #owner.#n as u64)?;));
             quote!(#stated for e in #value.iter() { #w1 })
         }
+        PKind::Group { elem, .. } if reads_as_itself(elem) => quote! {
+            for e in #value.iter() { #rt::Payload::write(e, w)?; }
+        },
         PKind::Group { elem, .. } => {
             let parts = elem.iter().map(|f| match (&f.kind, &f.ident) {
                 (PKind::Pad(n), _) => quote!(w.zeros(#n)?;),
