@@ -2071,7 +2071,7 @@ HFLINK_UNUSED static void hflink_path(char *sub, size_t cap, const char *fmt, ..
     va_end(ap);
 }
 
-static void hflink_fmt_chassis_coord(struct hflink_txt *t, const char *path, const hflink_chassis_coord *v)
+HFLINK_UNUSED static void hflink_fmt_chassis_coord(struct hflink_txt *t, const char *path, const hflink_chassis_coord *v)
 {
     char sub[192];
     hflink_emit(t, " %s.x=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->x));
@@ -2082,7 +2082,7 @@ static void hflink_fmt_chassis_coord(struct hflink_txt *t, const char *path, con
     (void)path;
 }
 
-static void hflink_fmt_chassis_dof_vector(struct hflink_txt *t, const char *path, const hflink_chassis_dof_vector *v)
+HFLINK_UNUSED static void hflink_fmt_chassis_dof_vector(struct hflink_txt *t, const char *path, const hflink_chassis_dof_vector *v)
 {
     char sub[192];
     hflink_emit(t, " %s.servo1=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->servo1));
@@ -2094,7 +2094,7 @@ static void hflink_fmt_chassis_dof_vector(struct hflink_txt *t, const char *path
     (void)path;
 }
 
-static void hflink_fmt_head_pose(struct hflink_txt *t, const char *path, const hflink_head_pose *v)
+HFLINK_UNUSED static void hflink_fmt_head_pose(struct hflink_txt *t, const char *path, const hflink_head_pose *v)
 {
     char sub[192];
     hflink_emit(t, " %s.pitch=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->pitch));
@@ -2105,7 +2105,7 @@ static void hflink_fmt_head_pose(struct hflink_txt *t, const char *path, const h
     (void)path;
 }
 
-static void hflink_fmt_arm_dof_vector(struct hflink_txt *t, const char *path, const hflink_arm_dof_vector *v)
+HFLINK_UNUSED static void hflink_fmt_arm_dof_vector(struct hflink_txt *t, const char *path, const hflink_arm_dof_vector *v)
 {
     char sub[192];
     size_t i;
@@ -2117,7 +2117,7 @@ static void hflink_fmt_arm_dof_vector(struct hflink_txt *t, const char *path, co
     (void)path;
 }
 
-static void hflink_fmt_system_info(struct hflink_txt *t, const char *path, const hflink_system_info *v)
+HFLINK_UNUSED static void hflink_fmt_system_info(struct hflink_txt *t, const char *path, const hflink_system_info *v)
 {
     char sub[192];
     hflink_emit(t, " %s.system_time=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->system_time));
@@ -2130,7 +2130,7 @@ static void hflink_fmt_system_info(struct hflink_txt *t, const char *path, const
     (void)path;
 }
 
-static void hflink_fmt_imu_sensor_data(struct hflink_txt *t, const char *path, const hflink_imu_sensor_data *v)
+HFLINK_UNUSED static void hflink_fmt_imu_sensor_data(struct hflink_txt *t, const char *path, const hflink_imu_sensor_data *v)
 {
     char sub[192];
     hflink_emit(t, " %s.pitch=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->pitch));
@@ -2143,7 +2143,7 @@ static void hflink_fmt_imu_sensor_data(struct hflink_txt *t, const char *path, c
     (void)path;
 }
 
-static void hflink_fmt_utc_time(struct hflink_txt *t, const char *path, const hflink_utc_time *v)
+HFLINK_UNUSED static void hflink_fmt_utc_time(struct hflink_txt *t, const char *path, const hflink_utc_time *v)
 {
     char sub[192];
     hflink_emit(t, " %s.year=%llu", path, (unsigned long long)v->year);
@@ -2157,7 +2157,7 @@ static void hflink_fmt_utc_time(struct hflink_txt *t, const char *path, const hf
     (void)path;
 }
 
-static void hflink_fmt_gps_data(struct hflink_txt *t, const char *path, const hflink_gps_data *v)
+HFLINK_UNUSED static void hflink_fmt_gps_data(struct hflink_txt *t, const char *path, const hflink_gps_data *v)
 {
     char sub[192];
     hflink_path(sub, sizeof sub, "%s.utc_time", path);
@@ -2174,7 +2174,7 @@ static void hflink_fmt_gps_data(struct hflink_txt *t, const char *path, const hf
     (void)path;
 }
 
-static void hflink_fmt_chassis_parameters(struct hflink_txt *t, const char *path, const hflink_chassis_parameters *v)
+HFLINK_UNUSED static void hflink_fmt_chassis_parameters(struct hflink_txt *t, const char *path, const hflink_chassis_parameters *v)
 {
     char sub[192];
     hflink_emit(t, " %s.type=%llu", path, (unsigned long long)v->type);
@@ -2191,7 +2191,7 @@ static void hflink_fmt_chassis_parameters(struct hflink_txt *t, const char *path
     (void)path;
 }
 
-static void hflink_fmt_head_parameters(struct hflink_txt *t, const char *path, const hflink_head_parameters *v)
+HFLINK_UNUSED static void hflink_fmt_head_parameters(struct hflink_txt *t, const char *path, const hflink_head_parameters *v)
 {
     char sub[192];
     hflink_emit(t, " %s.type=%llu", path, (unsigned long long)v->type);
@@ -2209,7 +2209,7 @@ static void hflink_fmt_head_parameters(struct hflink_txt *t, const char *path, c
     (void)path;
 }
 
-static void hflink_fmt_arm_parameters(struct hflink_txt *t, const char *path, const hflink_arm_parameters *v)
+HFLINK_UNUSED static void hflink_fmt_arm_parameters(struct hflink_txt *t, const char *path, const hflink_arm_parameters *v)
 {
     char sub[192];
     hflink_emit(t, " %s.type=%llu", path, (unsigned long long)v->type);
@@ -2222,7 +2222,7 @@ static void hflink_fmt_arm_parameters(struct hflink_txt *t, const char *path, co
     (void)path;
 }
 
-static void hflink_fmt_pid_parameters(struct hflink_txt *t, const char *path, const hflink_pid_parameters *v)
+HFLINK_UNUSED static void hflink_fmt_pid_parameters(struct hflink_txt *t, const char *path, const hflink_pid_parameters *v)
 {
     char sub[192];
     hflink_emit(t, " %s.p1=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->p1));
@@ -2236,7 +2236,7 @@ static void hflink_fmt_pid_parameters(struct hflink_txt *t, const char *path, co
     (void)path;
 }
 
-static void hflink_fmt_motor_parameters(struct hflink_txt *t, const char *path, const hflink_motor_parameters *v)
+HFLINK_UNUSED static void hflink_fmt_motor_parameters(struct hflink_txt *t, const char *path, const hflink_motor_parameters *v)
 {
     char sub[192];
     hflink_emit(t, " %s.motor_id=%llu", path, (unsigned long long)v->motor_id);
