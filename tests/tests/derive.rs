@@ -98,6 +98,11 @@ fn derived_24_bit_fields_take_three_bytes() {
     };
     assert_eq!(
         too_big.to_bytes(&mut buf),
-        Err(protocol::EncodeError::ValueOutOfRange)
+        Err(protocol::EncodeError::ValueOutOfRange {
+            place: protocol::error::Place {
+                command: "",
+                field: "Wide.total"
+            }
+        })
     );
 }
