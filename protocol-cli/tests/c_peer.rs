@@ -43,6 +43,10 @@ use protocol_spec::layout::word_field;
 
 const RANDOM_FRAMES: usize = 10_000;
 
+/// The same comparison on a batch of random specs.
+#[path = "c_peer/random_specs.rs"]
+mod random_specs;
+
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }

@@ -216,6 +216,7 @@ fn a_struct_named_like_the_generated_code_gets_t() {
 /// test and the QEMU check compare the C's refusals with the Rust codec's by these names.
 #[test]
 fn every_runtime_error_names_a_printed_error_code() {
+    use protocol_runtime::error::Place;
     use protocol_runtime::{DecodeError, Reject};
     let p = compile("specs/hflink.toml");
     let header = protocol_codegen::c::generate(&p)
@@ -232,13 +233,16 @@ fn every_runtime_error_names_a_printed_error_code() {
         },
         DecodeError::UnknownCommand { key: 0xff },
         DecodeError::UnknownDirection,
-        DecodeError::InvalidEnum { value: 9 },
+        DecodeError::InvalidEnum {
+            value: 9,
+            place: Place::NONE,
+        },
         DecodeError::Frame(Reject::BadChecksum),
         DecodeError::InvalidStuffing,
-        DecodeError::ValueOutOfRange,
-        DecodeError::SizeMismatch,
-        DecodeError::Unterminated,
-        DecodeError::PayloadCheck,
+        DecodeError::ValueOutOfRange { place: Place::NONE },
+        DecodeError::SizeMismatch { place: Place::NONE },
+        DecodeError::Unterminated { place: Place::NONE },
+        DecodeError::PayloadCheck { place: Place::NONE },
     ];
     let mut names: Vec<&str> = errors.iter().map(protocol_codegen::c::error_name).collect();
     for name in &names {

@@ -68,7 +68,10 @@ impl DecodeIssue {
                 expected: *expected,
                 actual: *actual,
             },
-            DecodeIssue::InvalidEnum { value, .. } => DecodeError::InvalidEnum { value: *value },
+            DecodeIssue::InvalidEnum { value, .. } => DecodeError::InvalidEnum {
+                value: *value,
+                place: protocol_runtime::error::Place::NONE,
+            },
         }
     }
 }

@@ -80,7 +80,9 @@ impl<const N: usize> Bytes<N> {
     /// [`DecodeError::SizeMismatch`] if `len` exceeds `N`.
     #[inline]
     pub fn read_sized(r: &mut Reader<'_>, len: u64) -> Result<Self, DecodeError> {
-        Self::from_slice(crate::field::take_sized(r, len, N)?).ok_or(DecodeError::SizeMismatch)
+        Self::from_slice(crate::field::take_sized(r, len, N)?).ok_or(DecodeError::SizeMismatch {
+            place: crate::error::Place::NONE,
+        })
     }
 
     /// Writes the bytes at the writer's position.

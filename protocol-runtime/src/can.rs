@@ -122,12 +122,17 @@ impl CanFrame {
     /// [`EncodeError::ValueOutOfRange`] if `virt` is shorter than the prefix or holds more than
     /// 8 data bytes.
     pub fn from_virtual(virt: &[u8]) -> Result<Self, EncodeError> {
-        let (prefix, data) = virt
-            .split_first_chunk::<CAN_PREFIX_LEN>()
-            .ok_or(EncodeError::ValueOutOfRange)?;
+        let (prefix, data) =
+            virt.split_first_chunk::<CAN_PREFIX_LEN>()
+                .ok_or(EncodeError::ValueOutOfRange {
+                    place: crate::error::Place::NONE,
+                })?;
         let [a, b, c, d, _] = *prefix;
-        CanFrame::new(u32::from_be_bytes([a, b, c, d]), data)
-            .map_err(|_| EncodeError::ValueOutOfRange)
+        CanFrame::new(u32::from_be_bytes([a, b, c, d]), data).map_err(|_| {
+            EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE,
+            }
+        })
     }
 }
 

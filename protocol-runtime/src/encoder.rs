@@ -80,29 +80,45 @@ impl FrameLayout<'_> {
                 max: self.max_len,
             });
         }
-        let header = frame.get_mut(..span).ok_or(EncodeError::ValueOutOfRange)?;
+        let header = frame.get_mut(..span).ok_or(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })?;
         // With a sync set, the first byte is a header value the caller wrote: one of the set.
         let lead = match (self.sync_set, header.first()) {
             ([], _) => 0usize,
             (set, Some(first)) if set.contains(first) => 1,
-            _ => return Err(EncodeError::ValueOutOfRange),
+            _ => {
+                return Err(EncodeError::ValueOutOfRange {
+                    place: crate::error::Place::NONE,
+                });
+            }
         };
         let sync = header
             .get_mut(lead..lead.wrapping_add(self.sync.len()))
-            .ok_or(EncodeError::ValueOutOfRange)?;
+            .ok_or(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE,
+            })?;
         sync.copy_from_slice(self.sync);
         match self.length {
             LengthRule::Fixed(fixed) if fixed == len => {}
-            LengthRule::Fixed(_) => return Err(EncodeError::ValueOutOfRange),
+            LengthRule::Fixed(_) => {
+                return Err(EncodeError::ValueOutOfRange {
+                    place: crate::error::Place::NONE,
+                });
+            }
             LengthRule::Field { field, adjust } | LengthRule::FieldOrBare { field, adjust, .. } => {
                 let value = i64::try_from(len)
                     .ok()
                     .and_then(|len| len.checked_sub(adjust))
                     .and_then(|value| u64::try_from(value).ok())
-                    .ok_or(EncodeError::ValueOutOfRange)?;
+                    .ok_or(EncodeError::ValueOutOfRange {
+                        place: crate::error::Place::NONE,
+                    })?;
                 field
                     .write(header, value)
-                    .ok_or(EncodeError::ValueOutOfRange)?;
+                    .ok_or(EncodeError::ValueOutOfRange {
+                        place: crate::error::Place::NONE,
+                    })?;
             }
             LengthRule::Conditional { .. } => {}
         }
@@ -111,7 +127,9 @@ impl FrameLayout<'_> {
         let written = all_hold!(self.constants, |c| c.field.write(header, c.value).is_some())
             && all_hold!(self.header_checks, |c| c.store(header).is_some());
         if !written {
-            return Err(EncodeError::ValueOutOfRange);
+            return Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE,
+            });
         }
         if bare {
             return Ok(());
@@ -128,7 +146,9 @@ impl FrameLayout<'_> {
         let written = all_hold!(self.markers, |m| m.write(frame).is_some())
             && all_hold!(self.frame_checks, |c| c.store(frame).is_some());
         if !written {
-            return Err(EncodeError::ValueOutOfRange);
+            return Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE,
+            });
         }
         Ok(())
     }
@@ -146,16 +166,23 @@ impl FrameLayout<'_> {
         extension: Option<crate::layout::LengthExtension>,
     ) -> Result<&'f mut [u8], EncodeError> {
         let body = self.body_len(frame, frame.len());
-        let (count, wide) =
-            Self::conditional_count(adjust, extension, body).ok_or(EncodeError::ValueOutOfRange)?;
+        let (count, wide) = Self::conditional_count(adjust, extension, body).ok_or(
+            EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE,
+            },
+        )?;
         let written = match wide {
             Some(e) => field
                 .write(frame, e.marker)
                 .and_then(|()| e.wide.write(frame, count)),
             None => field.write(frame, count),
         };
-        written.ok_or(EncodeError::ValueOutOfRange)?;
-        frame.get_mut(..body).ok_or(EncodeError::ValueOutOfRange)
+        written.ok_or(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })?;
+        frame.get_mut(..body).ok_or(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })
     }
 
     /// Whether `frame` is exactly one valid frame (a debugging aid for encoders).
@@ -476,7 +503,9 @@ pub fn frame_room(buf: &mut [u8], total: usize) -> Result<&mut [u8], EncodeError
 pub fn write_header(frame: &mut [u8], field: WordField, value: u64) -> Result<(), EncodeError> {
     field
         .write(frame, value)
-        .ok_or(EncodeError::ValueOutOfRange)
+        .ok_or(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })
 }
 
 /// No payload: a command that carries nothing.

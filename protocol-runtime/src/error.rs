@@ -5,7 +5,10 @@
 //! rejected ([`Reject`]) lives with the engine that decides it.
 //!
 //! Every error is `Copy`, small, `#[non_exhaustive]`, and implements [`Display`] and
-//! [`core::error::Error`], so it works the same on firmware and on a host.
+//! [`core::error::Error`], so it works the same on firmware and on a host. An error about a
+//! value names where the value lies ([`Place`]: the command and the field, as `&'static str`s
+//! generated code passes), so that `Display` says which field of which command is wrong
+//! without allocating.
 //!
 //! [`Display`]: core::fmt::Display
 
@@ -54,6 +57,8 @@ pub enum DecodeError {
     InvalidEnum {
         /// The value on the wire.
         value: u64,
+        /// The field that holds it.
+        place: Place,
     },
     /// The bytes are not a valid frame.
     Frame(Reject),
@@ -62,16 +67,156 @@ pub enum DecodeError {
     InvalidStuffing,
     /// A scaled value lies outside the range its field clamps encoded values to: it could not
     /// be encoded back to the same bytes.
-    ValueOutOfRange,
+    ValueOutOfRange {
+        /// The field.
+        place: Place,
+    },
     /// A field that must have the size another field states does not (a repeated group's
     /// element that does not fit the declared data length).
-    SizeMismatch,
+    SizeMismatch {
+        /// The field.
+        place: Place,
+    },
     /// A NUL-terminated text has no NUL within its field's most bytes (or before the payload
     /// ends).
-    Unterminated,
+    Unterminated {
+        /// The field.
+        place: Place,
+    },
     /// A check inside the payload (a CRC over some of its fields) does not match the bytes it
     /// covers.
-    PayloadCheck,
+    PayloadCheck {
+        /// The check.
+        place: Place,
+    },
+}
+
+/// Where in a message a value lies: the command's name and the field's path, as the spec
+/// writes them (`SET_LED`, `LedState.mode`: the struct that declares the field, then its
+/// name). Generated code fills them in as an error passes out of a field's code and then out
+/// of a command's; a rule of the runtime called on its own leaves them empty ([`Place::NONE`]).
+///
+/// # Examples
+///
+/// ```
+/// use protocol_runtime::DecodeError;
+/// use protocol_runtime::error::Place;
+///
+/// let e = DecodeError::InvalidEnum { value: 9, place: Place::NONE };
+/// assert_eq!(e.to_string(), "invalid enum value 0x9");
+/// let e = e.in_field("LedState.mode").in_command("SET_LED");
+/// assert_eq!(e.place(), Some(Place { command: "SET_LED", field: "LedState.mode" }));
+/// assert_eq!(
+///     e.to_string(),
+///     "SET_LED: `LedState.mode` holds 0x9, which is no variant of its enum"
+/// );
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Place {
+    /// The command's name in the spec; empty where unknown.
+    pub command: &'static str,
+    /// The field's path (`Struct.field`); empty where unknown.
+    pub field: &'static str,
+}
+
+impl Place {
+    /// Nowhere known.
+    pub const NONE: Place = Place {
+        command: "",
+        field: "",
+    };
+
+    /// The place with `field` as its field, unless it names one already: the innermost
+    /// field's code names it first (a nested struct's field), and the path it gives is the
+    /// more precise.
+    #[inline]
+    #[must_use]
+    pub const fn in_field(self, field: &'static str) -> Place {
+        if self.field.is_empty() {
+            Place { field, ..self }
+        } else {
+            self
+        }
+    }
+
+    /// The place with `command` as its command, unless it names one already.
+    #[inline]
+    #[must_use]
+    pub const fn in_command(self, command: &'static str) -> Place {
+        if self.command.is_empty() {
+            Place { command, ..self }
+        } else {
+            self
+        }
+    }
+
+    /// `COMMAND: `field`` (either part alone where the other is unknown), before what is
+    /// wrong; nothing when neither is known.
+    fn write_prefix(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if !self.command.is_empty() {
+            write!(f, "{}: ", self.command)?;
+        }
+        if !self.field.is_empty() {
+            write!(f, "`{}`: ", self.field)?;
+        }
+        Ok(())
+    }
+}
+
+impl DecodeError {
+    /// The place of an error about a value; `None` for the other errors.
+    #[must_use]
+    pub const fn place(&self) -> Option<Place> {
+        match *self {
+            DecodeError::InvalidEnum { place, .. }
+            | DecodeError::ValueOutOfRange { place }
+            | DecodeError::SizeMismatch { place }
+            | DecodeError::Unterminated { place }
+            | DecodeError::PayloadCheck { place } => Some(place),
+            _ => None,
+        }
+    }
+
+    /// The same error with its place set to `place`; the other errors as they are.
+    #[inline]
+    const fn map_place(self, place: Place) -> Self {
+        match self {
+            DecodeError::InvalidEnum { value, .. } => DecodeError::InvalidEnum { value, place },
+            DecodeError::ValueOutOfRange { .. } => DecodeError::ValueOutOfRange { place },
+            DecodeError::SizeMismatch { .. } => DecodeError::SizeMismatch { place },
+            DecodeError::Unterminated { .. } => DecodeError::Unterminated { place },
+            DecodeError::PayloadCheck { .. } => DecodeError::PayloadCheck { place },
+            other => other,
+        }
+    }
+
+    /// The error located in `field` (a `Struct.field` path), unless it names a field already.
+    #[inline]
+    #[must_use]
+    pub const fn in_field(self, field: &'static str) -> Self {
+        match self.place() {
+            Some(place) => self.map_place(place.in_field(field)),
+            None => self,
+        }
+    }
+
+    /// The error located in `command`, unless it names a command already.
+    #[inline]
+    #[must_use]
+    pub const fn in_command(self, command: &'static str) -> Self {
+        match self.place() {
+            Some(place) => self.map_place(place.in_command(command)),
+            None => self,
+        }
+    }
+
+    /// The same error without its place ([`Place::NONE`]): what went wrong, not where, to
+    /// compare with a decoder that names places otherwise.
+    #[must_use]
+    pub const fn without_place(self) -> Self {
+        self.map_place(Place::NONE)
+    }
 }
 
 impl fmt::Display for DecodeError {
@@ -91,24 +236,43 @@ impl fmt::Display for DecodeError {
             }
             DecodeError::UnknownCommand { key } => write!(f, "unknown command {key:#x}"),
             DecodeError::UnknownDirection => f.write_str("header matches no direction"),
-            DecodeError::InvalidEnum { value } => write!(f, "invalid enum value {value:#x}"),
+            DecodeError::InvalidEnum { value, place } if place.field.is_empty() => {
+                place.write_prefix(f)?;
+                write!(f, "invalid enum value {value:#x}")
+            }
+            DecodeError::InvalidEnum { value, place } => {
+                if !place.command.is_empty() {
+                    write!(f, "{}: ", place.command)?;
+                }
+                write!(
+                    f,
+                    "`{}` holds {value:#x}, which is no variant of its enum",
+                    place.field
+                )
+            }
             DecodeError::InvalidStuffing => {
                 write!(
                     f,
                     "stuffed payload: a forbidden pattern is not followed by its stuffing byte"
                 )
             }
-            DecodeError::ValueOutOfRange => {
+            DecodeError::ValueOutOfRange { place } => {
+                place.write_prefix(f)?;
                 write!(f, "a scaled value lies outside its field's range")
             }
-            DecodeError::SizeMismatch => write!(
-                f,
-                "a field's size does not match the size another field states"
-            ),
-            DecodeError::Unterminated => {
+            DecodeError::SizeMismatch { place } => {
+                place.write_prefix(f)?;
+                write!(
+                    f,
+                    "a field's size does not match the size another field states"
+                )
+            }
+            DecodeError::Unterminated { place } => {
+                place.write_prefix(f)?;
                 f.write_str("a NUL-terminated text has no NUL within its most bytes")
             }
-            DecodeError::PayloadCheck => {
+            DecodeError::PayloadCheck { place } => {
+                place.write_prefix(f)?;
                 f.write_str("a check inside the payload does not match the bytes it covers")
             }
             DecodeError::Frame(reason) => write!(f, "invalid frame: {reason}"),
@@ -163,7 +327,65 @@ pub enum EncodeError {
         max: usize,
     },
     /// A value does not fit its field (for example a length or a bitfield).
-    ValueOutOfRange,
+    ValueOutOfRange {
+        /// The field.
+        place: Place,
+    },
+}
+
+impl EncodeError {
+    /// The place of an error about a value; `None` for the other errors.
+    #[must_use]
+    pub const fn place(&self) -> Option<Place> {
+        match *self {
+            EncodeError::ValueOutOfRange { place } => Some(place),
+            _ => None,
+        }
+    }
+
+    /// The error located in `field` (a `Struct.field` path), unless it names a field already.
+    ///
+    /// ```
+    /// use protocol_runtime::EncodeError;
+    /// use protocol_runtime::error::Place;
+    ///
+    /// let e = EncodeError::ValueOutOfRange { place: Place::NONE };
+    /// let e = e.in_field("Status.battery").in_command("STATUS");
+    /// assert_eq!(e.to_string(), "STATUS: `Status.battery`: value does not fit its field");
+    /// ```
+    #[inline]
+    #[must_use]
+    pub const fn in_field(self, field: &'static str) -> Self {
+        match self {
+            EncodeError::ValueOutOfRange { place } => EncodeError::ValueOutOfRange {
+                place: place.in_field(field),
+            },
+            other => other,
+        }
+    }
+
+    /// The error located in `command`, unless it names a command already.
+    #[inline]
+    #[must_use]
+    pub const fn in_command(self, command: &'static str) -> Self {
+        match self {
+            EncodeError::ValueOutOfRange { place } => EncodeError::ValueOutOfRange {
+                place: place.in_command(command),
+            },
+            other => other,
+        }
+    }
+
+    /// The same error without its place ([`Place::NONE`]).
+    #[must_use]
+    pub const fn without_place(self) -> Self {
+        match self {
+            EncodeError::ValueOutOfRange { .. } => {
+                EncodeError::ValueOutOfRange { place: Place::NONE }
+            }
+            other => other,
+        }
+    }
 }
 
 impl fmt::Display for EncodeError {
@@ -178,12 +400,57 @@ impl fmt::Display for EncodeError {
             EncodeError::PayloadTooLarge { len, max } => {
                 write!(f, "payload too large: {len} bytes, at most {max} allowed")
             }
-            EncodeError::ValueOutOfRange => f.write_str("value does not fit its field"),
+            EncodeError::ValueOutOfRange { place } => {
+                place.write_prefix(f)?;
+                f.write_str("value does not fit its field")
+            }
         }
     }
 }
 
 impl core::error::Error for EncodeError {}
+
+/// Reads a field with `read`; an error it gives names the field `field` (a `Struct.field`
+/// path), unless a nested struct's field is named already. Generated code reads each field
+/// through it, so the path costs nothing but on the error path.
+///
+/// # Errors
+///
+/// The error of `read`, located.
+#[inline(always)]
+pub fn read_field<T>(
+    field: &'static str,
+    read: impl FnOnce() -> Result<T, DecodeError>,
+) -> Result<T, DecodeError> {
+    read().map_err(|e| e.in_field(field))
+}
+
+/// Writes a field with `write`; an error it gives names the field `field`, as
+/// [`read_field`] does for reading.
+///
+/// # Errors
+///
+/// The error of `write`, located.
+#[inline(always)]
+pub fn write_field<T>(
+    field: &'static str,
+    write: impl FnOnce() -> Result<T, EncodeError>,
+) -> Result<T, EncodeError> {
+    write().map_err(|e| e.in_field(field))
+}
+
+/// Reads a command's payload with `read`; an error it gives names the command `command`.
+///
+/// # Errors
+///
+/// The error of `read`, located.
+#[inline(always)]
+pub fn read_command<T>(
+    command: &'static str,
+    read: impl FnOnce() -> Result<T, DecodeError>,
+) -> Result<T, DecodeError> {
+    read().map_err(|e| e.in_command(command))
+}
 
 /// The result of decoding a `T`.
 pub type DecodeResult<T> = Result<T, DecodeError>;

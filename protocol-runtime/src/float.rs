@@ -76,7 +76,9 @@ impl Float for f64 {
         if self > T::BELOW && self < T::ABOVE {
             Ok(T::cut(self))
         } else {
-            Err(EncodeError::ValueOutOfRange)
+            Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE,
+            })
         }
     }
 }
@@ -105,7 +107,9 @@ impl Float for f32 {
         if self > T::BELOW_F32 && self < T::ABOVE_F32 {
             Ok(T::cut_f32(self))
         } else {
-            Err(EncodeError::ValueOutOfRange)
+            Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE,
+            })
         }
     }
 }

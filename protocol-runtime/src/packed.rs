@@ -94,7 +94,7 @@ pub fn get_packed(bytes: &[u8], index: usize, bits: u32, order: BitOrder) -> u64
 /// let mut bytes = [0u8; 3];
 /// set_packed(&mut bytes, 0, 11, BitOrder::MsbFirst, 0x7FF)?;
 /// assert_eq!(bytes, [0xFF, 0xE0, 0x00]);
-/// assert_eq!(set_packed(&mut bytes, 1, 11, BitOrder::MsbFirst, 0x800), Err(EncodeError::ValueOutOfRange));
+/// assert_eq!(set_packed(&mut bytes, 1, 11, BitOrder::MsbFirst, 0x800), Err(EncodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
 /// # Ok::<(), EncodeError>(())
 /// ```
 #[inline]
@@ -108,10 +108,14 @@ pub fn set_packed(
     let mask = bit_mask(bits);
     let (first, last, skip) = span(bytes.len(), index, bits)
         .filter(|_| value <= mask)
-        .ok_or(EncodeError::ValueOutOfRange)?;
+        .ok_or(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })?;
     let b = bytes
         .get_mut(first..last)
-        .ok_or(EncodeError::ValueOutOfRange)?;
+        .ok_or(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })?;
     let at = shift(order, b.len(), skip, bits);
     let w = (word(b, order) & !(mask << at)) | (value << at);
     let n = b.len();
@@ -179,15 +183,21 @@ mod tests {
         let mut bytes = [0u8; 22];
         assert_eq!(
             set_packed(&mut bytes, 0, 11, BitOrder::LsbFirst, 0x800),
-            Err(EncodeError::ValueOutOfRange)
+            Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE
+            })
         );
         assert_eq!(
             set_packed(&mut bytes, 16, 11, BitOrder::LsbFirst, 1),
-            Err(EncodeError::ValueOutOfRange)
+            Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE
+            })
         );
         assert_eq!(
             set_packed(&mut bytes, 0, 33, BitOrder::LsbFirst, 1),
-            Err(EncodeError::ValueOutOfRange)
+            Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE
+            })
         );
         assert_eq!(bytes, [0u8; 22]);
         assert_eq!(get_packed(&bytes, 16, 11, BitOrder::LsbFirst), 0);

@@ -166,8 +166,8 @@ impl<const N: usize> fmt::Display for FixedStr<N> {
 /// let mut r = Reader::new(b"ACRO\0\x07");
 /// assert_eq!(read_nul_text(&mut r, 4), Ok(&b"ACRO"[..]));
 /// assert_eq!(r.position(), 5);
-/// assert_eq!(read_nul_text(&mut Reader::new(b"ACRO\0"), 3), Err(DecodeError::Unterminated));
-/// assert_eq!(read_nul_text(&mut Reader::new(b"AC"), 3), Err(DecodeError::Unterminated));
+/// assert_eq!(read_nul_text(&mut Reader::new(b"ACRO\0"), 3), Err(DecodeError::Unterminated { place: protocol_runtime::error::Place::NONE }));
+/// assert_eq!(read_nul_text(&mut Reader::new(b"AC"), 3), Err(DecodeError::Unterminated { place: protocol_runtime::error::Place::NONE }));
 /// ```
 #[inline]
 pub fn read_nul_text<'a>(r: &mut Reader<'a>, max: usize) -> Result<&'a [u8], DecodeError> {
@@ -176,7 +176,9 @@ pub fn read_nul_text<'a>(r: &mut Reader<'a>, max: usize) -> Result<&'a [u8], Dec
     let len = window
         .iter()
         .position(|&b| b == 0)
-        .ok_or(DecodeError::Unterminated)?;
+        .ok_or(DecodeError::Unterminated {
+            place: crate::error::Place::NONE,
+        })?;
     let text = r.take(len)?;
     r.skip(1)?;
     Ok(text)
@@ -287,7 +289,9 @@ impl<const N: usize> Payload for NulStr<N> {
 
     fn read(r: &mut Reader<'_>) -> Result<Self, DecodeError> {
         let text = read_nul_text(r, N)?;
-        Self::from_text_bytes(text).ok_or(DecodeError::Unterminated)
+        Self::from_text_bytes(text).ok_or(DecodeError::Unterminated {
+            place: crate::error::Place::NONE,
+        })
     }
 }
 
@@ -363,15 +367,24 @@ mod tests {
         );
         // No NUL within N + 1 bytes, or none before the end: an error, the reader unmoved.
         let mut r = Reader::new(b"abcd\0");
-        assert_eq!(NulStr::<3>::read(&mut r), Err(DecodeError::Unterminated));
+        assert_eq!(
+            NulStr::<3>::read(&mut r),
+            Err(DecodeError::Unterminated {
+                place: crate::error::Place::NONE
+            })
+        );
         assert_eq!(r.position(), 0);
         assert_eq!(
             NulStr::<8>::read(&mut Reader::new(b"ab")),
-            Err(DecodeError::Unterminated)
+            Err(DecodeError::Unterminated {
+                place: crate::error::Place::NONE
+            })
         );
         assert_eq!(
             NulStr::<8>::read(&mut Reader::new(b"")),
-            Err(DecodeError::Unterminated)
+            Err(DecodeError::Unterminated {
+                place: crate::error::Place::NONE
+            })
         );
         // The empty text is one NUL.
         assert_eq!(

@@ -83,7 +83,12 @@ fn roborts_ten_bit_length_and_version_bits() {
         max_len: 2000,
         ..ROBORTS
     };
-    assert_eq!(wide.seal(&mut huge), Err(EncodeError::ValueOutOfRange));
+    assert_eq!(
+        wide.seal(&mut huge),
+        Err(EncodeError::ValueOutOfRange {
+            place: protocol_runtime::error::Place::NONE
+        })
+    );
     // The CRC32 covers the data.
     let mut data = frame.clone();
     data[13] ^= 0x80;
@@ -171,7 +176,12 @@ fn fixed_length_layouts() {
         ..fixed
     };
     let mut ten = [0u8; 10];
-    assert_eq!(loose.seal(&mut ten), Err(EncodeError::ValueOutOfRange));
+    assert_eq!(
+        loose.seal(&mut ten),
+        Err(EncodeError::ValueOutOfRange {
+            place: protocol_runtime::error::Place::NONE
+        })
+    );
 }
 
 #[test]
@@ -243,7 +253,12 @@ fn sealing_keeps_the_value_of_the_set_and_refuses_another() {
     }
     let mut built = frame.clone();
     built[0] = 0xC9;
-    assert_eq!(CRSF.seal(&mut built), Err(EncodeError::ValueOutOfRange));
+    assert_eq!(
+        CRSF.seal(&mut built),
+        Err(EncodeError::ValueOutOfRange {
+            place: protocol_runtime::error::Place::NONE
+        })
+    );
 }
 
 #[test]

@@ -290,7 +290,12 @@ fn an_address_outside_the_set_is_an_encode_error() {
         message: Message::Airspeed(Airspeed { speed: 360 }),
     };
     let mut buf = [0u8; MAX_FRAME_LEN];
-    assert_eq!(packet.encode(&mut buf), Err(EncodeError::ValueOutOfRange));
+    assert_eq!(
+        packet.encode(&mut buf),
+        Err(EncodeError::ValueOutOfRange {
+            place: protocol_kit::error::Place::NONE
+        })
+    );
     let codec = interpreter();
     let codec = codec.codec();
     let value: protocol_dynamic::Value = serde_json::from_value(json!({
@@ -354,7 +359,15 @@ fn a_wrong_inner_crc_is_a_payload_error_that_the_event_stream_reports() {
         Ok(&bytes[..]),
         "the frame itself is valid"
     );
-    assert_eq!(Packet::decode(&bytes), Err(DecodeError::PayloadCheck));
+    assert_eq!(
+        Packet::decode(&bytes),
+        Err(DecodeError::PayloadCheck {
+            place: protocol_kit::error::Place {
+                command: "COMMAND",
+                field: ""
+            }
+        })
+    );
     // The stream: the frame is found, and its payload's error is an event, not a lost frame.
     let mut stream = bytes.clone();
     stream.extend_from_slice(&hex("c8040b00ea36"));
@@ -367,7 +380,12 @@ fn a_wrong_inner_crc_is_a_payload_error_that_the_event_stream_reports() {
     assert_eq!(
         got,
         vec![
-            Err(DecodeError::PayloadCheck),
+            Err(DecodeError::PayloadCheck {
+                place: protocol_kit::error::Place {
+                    command: "COMMAND",
+                    field: ""
+                }
+            }),
             Ok(Message::Heartbeat(Heartbeat {
                 origin_address: 0xEA
             }))
@@ -379,7 +397,9 @@ fn a_wrong_inner_crc_is_a_payload_error_that_the_event_stream_reports() {
     assert_eq!(
         interp.codec().parse(0, &bytes).err(),
         Some(protocol_dynamic::DecodeIssue::Frame(
-            DecodeError::PayloadCheck
+            DecodeError::PayloadCheck {
+                place: protocol_kit::error::Place::NONE
+            }
         ))
     );
 }
@@ -391,7 +411,15 @@ fn a_flight_mode_without_its_nul_or_too_long_is_refused() {
     bytes[8] = b'!';
     let outer = crc::Crc::<u8>::new(&crc::CRC_8_DVB_S2);
     bytes[9] = outer.checksum(&bytes[2..9]);
-    assert_eq!(Packet::decode(&bytes), Err(DecodeError::Unterminated));
+    assert_eq!(
+        Packet::decode(&bytes),
+        Err(DecodeError::Unterminated {
+            place: protocol_kit::error::Place {
+                command: "FLIGHT_MODE",
+                field: "FlightMode.flight_mode"
+            }
+        })
+    );
     // A name that does not fit, or holds a NUL, is no value: nothing is cut.
     assert_eq!(protocol_kit::NulStr::<59>::from_text(&"M".repeat(60)), None);
     assert_eq!(protocol_kit::NulStr::<59>::from_text("AN\0GLE"), None);

@@ -98,6 +98,11 @@ fn derived_24_bit_fields_take_three_bytes() {
     };
     assert_eq!(
         too_big.to_bytes(&mut buf),
-        Err(protocol_kit::EncodeError::ValueOutOfRange)
+        Err(protocol_kit::EncodeError::ValueOutOfRange {
+            place: protocol_kit::error::Place {
+                command: "",
+                field: "Wide.total"
+            }
+        })
     );
 }

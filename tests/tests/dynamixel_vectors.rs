@@ -174,7 +174,7 @@ fn a_servo_whose_data_disagrees_with_data_length_is_an_error_both_ways() {
     assert!(matches!(
         Packet::decode(&fixed),
         Err(DecodeError::Truncated { .. }
-            | DecodeError::SizeMismatch
+            | DecodeError::SizeMismatch { .. }
             | DecodeError::PayloadLength { .. })
     ));
 }

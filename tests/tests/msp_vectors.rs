@@ -301,7 +301,9 @@ fn a_v2_only_command_is_not_encoded_in_a_v1_frame() {
     let mut buf = [0u8; MAX_FRAME_LEN];
     assert_eq!(
         v1.encode(&mut buf),
-        Err(protocol_kit::EncodeError::ValueOutOfRange)
+        Err(protocol_kit::EncodeError::ValueOutOfRange {
+            place: protocol_kit::error::Place::NONE
+        })
     );
     let v2 = V2Packet {
         header: V2Header {
@@ -341,7 +343,9 @@ fn a_message_of_the_other_direction_than_its_header_is_not_encoded() {
         let mut buf = [0u8; V2_MAX_FRAME_LEN];
         assert_eq!(
             packet.encode(&mut buf),
-            Err(protocol_kit::EncodeError::ValueOutOfRange),
+            Err(protocol_kit::EncodeError::ValueOutOfRange {
+                place: protocol_kit::error::Place::NONE
+            }),
             "{direction}"
         );
     }

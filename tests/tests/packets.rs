@@ -100,7 +100,7 @@ where
             // The run-time codec sees the same events, with the same errors.
             let layout = codec.packet_layout(0).expect("a frame format");
             let (dynamic, _) = events::<_, 512>(layout, &bytes, chunk);
-            let a: Vec<Seen> = got.iter().map(|e| seen(e, |e| *e)).collect();
+            let a: Vec<Seen> = got.iter().map(|e| seen(e, |e| e.without_place())).collect();
             let b: Vec<Seen> = dynamic
                 .iter()
                 .map(|e| seen(e, |e| e.to_runtime()))

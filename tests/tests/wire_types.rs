@@ -131,18 +131,39 @@ fn a_value_beyond_24_bits_is_an_encode_error_not_a_truncation() {
     let mut buf = [0u8; 18];
     assert_eq!(
         battery.to_bytes(&mut buf),
-        Err(EncodeError::ValueOutOfRange)
+        Err(EncodeError::ValueOutOfRange {
+            place: protocol_kit::error::Place {
+                command: "",
+                field: "Battery.capacity"
+            }
+        })
     );
     battery.capacity = 0xFF_FFFF;
     assert_eq!(battery.to_bytes(&mut buf), Ok(8));
 
     let mut s = int24::Samples::from_bytes(&SAMPLES_PAYLOAD).expect("it decodes");
     s.history[1] = 0x80_0000;
-    assert_eq!(s.to_bytes(&mut buf), Err(EncodeError::ValueOutOfRange));
+    assert_eq!(
+        s.to_bytes(&mut buf),
+        Err(EncodeError::ValueOutOfRange {
+            place: protocol_kit::error::Place {
+                command: "",
+                field: "Samples.history"
+            }
+        })
+    );
     s.history[1] = 0;
     // 0x80_0000 * 0.25 Pa: one step past the largest raw value.
     s.pressure = 4_194_304.0;
-    assert_eq!(s.to_bytes(&mut buf), Err(EncodeError::ValueOutOfRange));
+    assert_eq!(
+        s.to_bytes(&mut buf),
+        Err(EncodeError::ValueOutOfRange {
+            place: protocol_kit::error::Place {
+                command: "",
+                field: "Samples.pressure"
+            }
+        })
+    );
 
     let interp = Interpreter::load(INT24_SPEC).expect("the spec loads");
     let codec = interp.codec();
@@ -211,7 +232,12 @@ fn undeclared_bits_are_kept_unless_the_spec_declares_them_reserved_zero() {
     };
     assert_eq!(
         too_wide.to_bytes(&mut buf),
-        Err(EncodeError::ValueOutOfRange)
+        Err(EncodeError::ValueOutOfRange {
+            place: protocol_kit::error::Place {
+                command: "",
+                field: "Validity.valid_reserved"
+            }
+        })
     );
 
     // The same frame through the run-time codec: the same values, the same bytes.
@@ -321,14 +347,27 @@ fn msb_first_elements_scale_and_refuse_what_does_not_fit() {
     too_high.levels[2] = 2.2;
     assert_eq!(
         too_high.to_bytes(&mut buf),
-        Err(EncodeError::ValueOutOfRange)
+        Err(EncodeError::ValueOutOfRange {
+            place: protocol_kit::error::Place {
+                command: "",
+                field: "Levels.levels"
+            }
+        })
     );
     let mut crsf = packed::RcChannels {
         channels: CRSF_RC_CHANNELS,
     };
     crsf.channels[3] = 0x800;
     let mut buf = [0u8; 22];
-    assert_eq!(crsf.to_bytes(&mut buf), Err(EncodeError::ValueOutOfRange));
+    assert_eq!(
+        crsf.to_bytes(&mut buf),
+        Err(EncodeError::ValueOutOfRange {
+            place: protocol_kit::error::Place {
+                command: "",
+                field: "RcChannels.channels"
+            }
+        })
+    );
 }
 
 proptest! {

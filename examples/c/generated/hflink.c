@@ -385,7 +385,7 @@ static int hflink_check_checksum(const uint8_t *p, size_t n, uint64_t *out)
 /* ---- Payload structs ---- */
 
 /* Reads `ChassisCoord` (12 bytes on the wire). */
-static int hflink_read_chassis_coord(struct hflink_rd *r, hflink_chassis_coord *out)
+HFLINK_UNUSED static int hflink_read_chassis_coord(struct hflink_rd *r, hflink_chassis_coord *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -401,7 +401,7 @@ static int hflink_read_chassis_coord(struct hflink_rd *r, hflink_chassis_coord *
 }
 
 /* Writes `ChassisCoord`. */
-static int hflink_write_chassis_coord(struct hflink_wr *w, const hflink_chassis_coord *v)
+HFLINK_UNUSED static int hflink_write_chassis_coord(struct hflink_wr *w, const hflink_chassis_coord *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -414,7 +414,7 @@ static int hflink_write_chassis_coord(struct hflink_wr *w, const hflink_chassis_
 }
 
 /* Reads `ChassisDofVector` (16 bytes on the wire). */
-static int hflink_read_chassis_dof_vector(struct hflink_rd *r, hflink_chassis_dof_vector *out)
+HFLINK_UNUSED static int hflink_read_chassis_dof_vector(struct hflink_rd *r, hflink_chassis_dof_vector *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -432,7 +432,7 @@ static int hflink_read_chassis_dof_vector(struct hflink_rd *r, hflink_chassis_do
 }
 
 /* Writes `ChassisDofVector`. */
-static int hflink_write_chassis_dof_vector(struct hflink_wr *w, const hflink_chassis_dof_vector *v)
+HFLINK_UNUSED static int hflink_write_chassis_dof_vector(struct hflink_wr *w, const hflink_chassis_dof_vector *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -446,7 +446,7 @@ static int hflink_write_chassis_dof_vector(struct hflink_wr *w, const hflink_cha
 }
 
 /* Reads `HeadPose` (12 bytes on the wire). */
-static int hflink_read_head_pose(struct hflink_rd *r, hflink_head_pose *out)
+HFLINK_UNUSED static int hflink_read_head_pose(struct hflink_rd *r, hflink_head_pose *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -462,7 +462,7 @@ static int hflink_read_head_pose(struct hflink_rd *r, hflink_head_pose *out)
 }
 
 /* Writes `HeadPose`. */
-static int hflink_write_head_pose(struct hflink_wr *w, const hflink_head_pose *v)
+HFLINK_UNUSED static int hflink_write_head_pose(struct hflink_wr *w, const hflink_head_pose *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -475,7 +475,7 @@ static int hflink_write_head_pose(struct hflink_wr *w, const hflink_head_pose *v
 }
 
 /* Reads `ArmDofVector` (32 bytes on the wire). */
-static int hflink_read_arm_dof_vector(struct hflink_rd *r, hflink_arm_dof_vector *out)
+HFLINK_UNUSED static int hflink_read_arm_dof_vector(struct hflink_rd *r, hflink_arm_dof_vector *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -490,7 +490,7 @@ static int hflink_read_arm_dof_vector(struct hflink_rd *r, hflink_arm_dof_vector
 }
 
 /* Writes `ArmDofVector`. */
-static int hflink_write_arm_dof_vector(struct hflink_wr *w, const hflink_arm_dof_vector *v)
+HFLINK_UNUSED static int hflink_write_arm_dof_vector(struct hflink_wr *w, const hflink_arm_dof_vector *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -504,7 +504,7 @@ static int hflink_write_arm_dof_vector(struct hflink_wr *w, const hflink_arm_dof
 }
 
 /* Reads `SystemInfo` (20 bytes on the wire). */
-static int hflink_read_system_info(struct hflink_rd *r, hflink_system_info *out)
+HFLINK_UNUSED static int hflink_read_system_info(struct hflink_rd *r, hflink_system_info *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -524,7 +524,7 @@ static int hflink_read_system_info(struct hflink_rd *r, hflink_system_info *out)
 }
 
 /* Writes `SystemInfo`. */
-static int hflink_write_system_info(struct hflink_wr *w, const hflink_system_info *v)
+HFLINK_UNUSED static int hflink_write_system_info(struct hflink_wr *w, const hflink_system_info *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -539,7 +539,7 @@ static int hflink_write_system_info(struct hflink_wr *w, const hflink_system_inf
 }
 
 /* Reads `ImuSensorData` (20 bytes on the wire). */
-static int hflink_read_imu_sensor_data(struct hflink_rd *r, hflink_imu_sensor_data *out)
+HFLINK_UNUSED static int hflink_read_imu_sensor_data(struct hflink_rd *r, hflink_imu_sensor_data *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -559,7 +559,7 @@ static int hflink_read_imu_sensor_data(struct hflink_rd *r, hflink_imu_sensor_da
 }
 
 /* Writes `ImuSensorData`. */
-static int hflink_write_imu_sensor_data(struct hflink_wr *w, const hflink_imu_sensor_data *v)
+HFLINK_UNUSED static int hflink_write_imu_sensor_data(struct hflink_wr *w, const hflink_imu_sensor_data *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -574,7 +574,7 @@ static int hflink_write_imu_sensor_data(struct hflink_wr *w, const hflink_imu_se
 }
 
 /* Reads `UtcTime` (8 bytes on the wire). */
-static int hflink_read_utc_time(struct hflink_rd *r, hflink_utc_time *out)
+HFLINK_UNUSED static int hflink_read_utc_time(struct hflink_rd *r, hflink_utc_time *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -597,7 +597,7 @@ static int hflink_read_utc_time(struct hflink_rd *r, hflink_utc_time *out)
 }
 
 /* Writes `UtcTime`. */
-static int hflink_write_utc_time(struct hflink_wr *w, const hflink_utc_time *v)
+HFLINK_UNUSED static int hflink_write_utc_time(struct hflink_wr *w, const hflink_utc_time *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -614,7 +614,7 @@ static int hflink_write_utc_time(struct hflink_wr *w, const hflink_utc_time *v)
 }
 
 /* Reads `GpsData` (36 bytes on the wire). */
-static int hflink_read_gps_data(struct hflink_rd *r, hflink_gps_data *out)
+HFLINK_UNUSED static int hflink_read_gps_data(struct hflink_rd *r, hflink_gps_data *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -642,7 +642,7 @@ static int hflink_read_gps_data(struct hflink_rd *r, hflink_gps_data *out)
 }
 
 /* Writes `GpsData`. */
-static int hflink_write_gps_data(struct hflink_wr *w, const hflink_gps_data *v)
+HFLINK_UNUSED static int hflink_write_gps_data(struct hflink_wr *w, const hflink_gps_data *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -663,7 +663,7 @@ static int hflink_write_gps_data(struct hflink_wr *w, const hflink_gps_data *v)
 }
 
 /* Reads `ChassisParameters` (24 bytes on the wire). */
-static int hflink_read_chassis_parameters(struct hflink_rd *r, hflink_chassis_parameters *out)
+HFLINK_UNUSED static int hflink_read_chassis_parameters(struct hflink_rd *r, hflink_chassis_parameters *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -691,7 +691,7 @@ static int hflink_read_chassis_parameters(struct hflink_rd *r, hflink_chassis_pa
 }
 
 /* Writes `ChassisParameters`. */
-static int hflink_write_chassis_parameters(struct hflink_wr *w, const hflink_chassis_parameters *v)
+HFLINK_UNUSED static int hflink_write_chassis_parameters(struct hflink_wr *w, const hflink_chassis_parameters *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -710,7 +710,7 @@ static int hflink_write_chassis_parameters(struct hflink_wr *w, const hflink_cha
 }
 
 /* Reads `HeadParameters` (48 bytes on the wire). */
-static int hflink_read_head_parameters(struct hflink_rd *r, hflink_head_parameters *out)
+HFLINK_UNUSED static int hflink_read_head_parameters(struct hflink_rd *r, hflink_head_parameters *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -732,7 +732,7 @@ static int hflink_read_head_parameters(struct hflink_rd *r, hflink_head_paramete
 }
 
 /* Writes `HeadParameters`. */
-static int hflink_write_head_parameters(struct hflink_wr *w, const hflink_head_parameters *v)
+HFLINK_UNUSED static int hflink_write_head_parameters(struct hflink_wr *w, const hflink_head_parameters *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -750,7 +750,7 @@ static int hflink_write_head_parameters(struct hflink_wr *w, const hflink_head_p
 }
 
 /* Reads `ArmParameters` (12 bytes on the wire). */
-static int hflink_read_arm_parameters(struct hflink_rd *r, hflink_arm_parameters *out)
+HFLINK_UNUSED static int hflink_read_arm_parameters(struct hflink_rd *r, hflink_arm_parameters *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -771,7 +771,7 @@ static int hflink_read_arm_parameters(struct hflink_rd *r, hflink_arm_parameters
 }
 
 /* Writes `ArmParameters`. */
-static int hflink_write_arm_parameters(struct hflink_wr *w, const hflink_arm_parameters *v)
+HFLINK_UNUSED static int hflink_write_arm_parameters(struct hflink_wr *w, const hflink_arm_parameters *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -787,7 +787,7 @@ static int hflink_write_arm_parameters(struct hflink_wr *w, const hflink_arm_par
 }
 
 /* Reads `PidParameters` (24 bytes on the wire). */
-static int hflink_read_pid_parameters(struct hflink_rd *r, hflink_pid_parameters *out)
+HFLINK_UNUSED static int hflink_read_pid_parameters(struct hflink_rd *r, hflink_pid_parameters *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -809,7 +809,7 @@ static int hflink_read_pid_parameters(struct hflink_rd *r, hflink_pid_parameters
 }
 
 /* Writes `PidParameters`. */
-static int hflink_write_pid_parameters(struct hflink_wr *w, const hflink_pid_parameters *v)
+HFLINK_UNUSED static int hflink_write_pid_parameters(struct hflink_wr *w, const hflink_pid_parameters *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -825,7 +825,7 @@ static int hflink_write_pid_parameters(struct hflink_wr *w, const hflink_pid_par
 }
 
 /* Reads `MotorParameters` (48 bytes on the wire). */
-static int hflink_read_motor_parameters(struct hflink_rd *r, hflink_motor_parameters *out)
+HFLINK_UNUSED static int hflink_read_motor_parameters(struct hflink_rd *r, hflink_motor_parameters *out)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -849,7 +849,7 @@ static int hflink_read_motor_parameters(struct hflink_rd *r, hflink_motor_parame
 }
 
 /* Writes `MotorParameters`. */
-static int hflink_write_motor_parameters(struct hflink_wr *w, const hflink_motor_parameters *v)
+HFLINK_UNUSED static int hflink_write_motor_parameters(struct hflink_wr *w, const hflink_motor_parameters *v)
 {
     int e = 0;
     uint64_t raw = 0, word = 0;
@@ -2071,7 +2071,7 @@ HFLINK_UNUSED static void hflink_path(char *sub, size_t cap, const char *fmt, ..
     va_end(ap);
 }
 
-static void hflink_fmt_chassis_coord(struct hflink_txt *t, const char *path, const hflink_chassis_coord *v)
+HFLINK_UNUSED static void hflink_fmt_chassis_coord(struct hflink_txt *t, const char *path, const hflink_chassis_coord *v)
 {
     char sub[192];
     hflink_emit(t, " %s.x=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->x));
@@ -2082,7 +2082,7 @@ static void hflink_fmt_chassis_coord(struct hflink_txt *t, const char *path, con
     (void)path;
 }
 
-static void hflink_fmt_chassis_dof_vector(struct hflink_txt *t, const char *path, const hflink_chassis_dof_vector *v)
+HFLINK_UNUSED static void hflink_fmt_chassis_dof_vector(struct hflink_txt *t, const char *path, const hflink_chassis_dof_vector *v)
 {
     char sub[192];
     hflink_emit(t, " %s.servo1=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->servo1));
@@ -2094,7 +2094,7 @@ static void hflink_fmt_chassis_dof_vector(struct hflink_txt *t, const char *path
     (void)path;
 }
 
-static void hflink_fmt_head_pose(struct hflink_txt *t, const char *path, const hflink_head_pose *v)
+HFLINK_UNUSED static void hflink_fmt_head_pose(struct hflink_txt *t, const char *path, const hflink_head_pose *v)
 {
     char sub[192];
     hflink_emit(t, " %s.pitch=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->pitch));
@@ -2105,7 +2105,7 @@ static void hflink_fmt_head_pose(struct hflink_txt *t, const char *path, const h
     (void)path;
 }
 
-static void hflink_fmt_arm_dof_vector(struct hflink_txt *t, const char *path, const hflink_arm_dof_vector *v)
+HFLINK_UNUSED static void hflink_fmt_arm_dof_vector(struct hflink_txt *t, const char *path, const hflink_arm_dof_vector *v)
 {
     char sub[192];
     size_t i;
@@ -2117,7 +2117,7 @@ static void hflink_fmt_arm_dof_vector(struct hflink_txt *t, const char *path, co
     (void)path;
 }
 
-static void hflink_fmt_system_info(struct hflink_txt *t, const char *path, const hflink_system_info *v)
+HFLINK_UNUSED static void hflink_fmt_system_info(struct hflink_txt *t, const char *path, const hflink_system_info *v)
 {
     char sub[192];
     hflink_emit(t, " %s.system_time=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->system_time));
@@ -2130,7 +2130,7 @@ static void hflink_fmt_system_info(struct hflink_txt *t, const char *path, const
     (void)path;
 }
 
-static void hflink_fmt_imu_sensor_data(struct hflink_txt *t, const char *path, const hflink_imu_sensor_data *v)
+HFLINK_UNUSED static void hflink_fmt_imu_sensor_data(struct hflink_txt *t, const char *path, const hflink_imu_sensor_data *v)
 {
     char sub[192];
     hflink_emit(t, " %s.pitch=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->pitch));
@@ -2143,7 +2143,7 @@ static void hflink_fmt_imu_sensor_data(struct hflink_txt *t, const char *path, c
     (void)path;
 }
 
-static void hflink_fmt_utc_time(struct hflink_txt *t, const char *path, const hflink_utc_time *v)
+HFLINK_UNUSED static void hflink_fmt_utc_time(struct hflink_txt *t, const char *path, const hflink_utc_time *v)
 {
     char sub[192];
     hflink_emit(t, " %s.year=%llu", path, (unsigned long long)v->year);
@@ -2157,7 +2157,7 @@ static void hflink_fmt_utc_time(struct hflink_txt *t, const char *path, const hf
     (void)path;
 }
 
-static void hflink_fmt_gps_data(struct hflink_txt *t, const char *path, const hflink_gps_data *v)
+HFLINK_UNUSED static void hflink_fmt_gps_data(struct hflink_txt *t, const char *path, const hflink_gps_data *v)
 {
     char sub[192];
     hflink_path(sub, sizeof sub, "%s.utc_time", path);
@@ -2174,7 +2174,7 @@ static void hflink_fmt_gps_data(struct hflink_txt *t, const char *path, const hf
     (void)path;
 }
 
-static void hflink_fmt_chassis_parameters(struct hflink_txt *t, const char *path, const hflink_chassis_parameters *v)
+HFLINK_UNUSED static void hflink_fmt_chassis_parameters(struct hflink_txt *t, const char *path, const hflink_chassis_parameters *v)
 {
     char sub[192];
     hflink_emit(t, " %s.type=%llu", path, (unsigned long long)v->type);
@@ -2191,7 +2191,7 @@ static void hflink_fmt_chassis_parameters(struct hflink_txt *t, const char *path
     (void)path;
 }
 
-static void hflink_fmt_head_parameters(struct hflink_txt *t, const char *path, const hflink_head_parameters *v)
+HFLINK_UNUSED static void hflink_fmt_head_parameters(struct hflink_txt *t, const char *path, const hflink_head_parameters *v)
 {
     char sub[192];
     hflink_emit(t, " %s.type=%llu", path, (unsigned long long)v->type);
@@ -2209,7 +2209,7 @@ static void hflink_fmt_head_parameters(struct hflink_txt *t, const char *path, c
     (void)path;
 }
 
-static void hflink_fmt_arm_parameters(struct hflink_txt *t, const char *path, const hflink_arm_parameters *v)
+HFLINK_UNUSED static void hflink_fmt_arm_parameters(struct hflink_txt *t, const char *path, const hflink_arm_parameters *v)
 {
     char sub[192];
     hflink_emit(t, " %s.type=%llu", path, (unsigned long long)v->type);
@@ -2222,7 +2222,7 @@ static void hflink_fmt_arm_parameters(struct hflink_txt *t, const char *path, co
     (void)path;
 }
 
-static void hflink_fmt_pid_parameters(struct hflink_txt *t, const char *path, const hflink_pid_parameters *v)
+HFLINK_UNUSED static void hflink_fmt_pid_parameters(struct hflink_txt *t, const char *path, const hflink_pid_parameters *v)
 {
     char sub[192];
     hflink_emit(t, " %s.p1=f32:%08llx", path, (unsigned long long)hflink_f32_bits(v->p1));
@@ -2236,7 +2236,7 @@ static void hflink_fmt_pid_parameters(struct hflink_txt *t, const char *path, co
     (void)path;
 }
 
-static void hflink_fmt_motor_parameters(struct hflink_txt *t, const char *path, const hflink_motor_parameters *v)
+HFLINK_UNUSED static void hflink_fmt_motor_parameters(struct hflink_txt *t, const char *path, const hflink_motor_parameters *v)
 {
     char sub[192];
     hflink_emit(t, " %s.motor_id=%llu", path, (unsigned long long)v->motor_id);

@@ -138,6 +138,8 @@ fn a_speed_the_field_cannot_carry_is_refused() {
     let mut buf = [0u8; rover_link::rover::MAX_FRAME_LEN];
     assert_eq!(
         packet.encode(&mut buf),
-        Err(protocol_kit::EncodeError::ValueOutOfRange)
+        Err(protocol_kit::EncodeError::ValueOutOfRange {
+            place: protocol_kit::error::Place::NONE
+        })
     );
 }

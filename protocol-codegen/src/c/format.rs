@@ -44,9 +44,10 @@ pub fn format(p: &Protocol, n: &Names) -> String {
             ""
         };
         let (snake, ty) = (names::snake(&s.name), n.ty(&s.name));
+        // Unused for a struct no command carries, as its reader and writer are.
         out.push_str(&fill!(
             r"
-static void ${lo}fmt_${snake}(struct ${lo}txt *t, const char *path, const ${ty} *v)
+${up}UNUSED static void ${lo}fmt_${snake}(struct ${lo}txt *t, const char *path, const ${ty} *v)
 {
     char sub[192];
 ${decls}${body}    (void)sub;
@@ -55,6 +56,7 @@ ${decls}${body}    (void)sub;
 }
 
 ",
+            up,
             lo,
             snake,
             ty,

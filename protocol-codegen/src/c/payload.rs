@@ -73,9 +73,11 @@ fn walk(p: &Protocol, n: &Names, s: &Struct, dir: Dir) -> String {
 }
 
 /// A struct's reader or writer around its declarations and statements. A struct repeated by
-/// another whose fields size its bytes gets their values (`ctx`).
+/// another whose fields size its bytes gets their values (`ctx`). Both are marked unused: a
+/// struct no command carries (a spec may declare one) has no caller, which strict builds
+/// (`-Werror=unused-function`) refuse.
 fn function(n: &Names, s: &Struct, dir: Dir, decls: &str, body: &str) -> String {
-    let (lo, name, snake, ty) = (&n.lo, &s.name, names::snake(&s.name), n.ty(&s.name));
+    let (lo, up, name, snake, ty) = (&n.lo, &n.up, &s.name, names::snake(&s.name), n.ty(&s.name));
     let (ctx, unused_ctx) = if s.context.is_empty() {
         ("", "")
     } else {
@@ -87,9 +89,10 @@ fn function(n: &Names, s: &Struct, dir: Dir, decls: &str, body: &str) -> String 
             fill!(
                 r"
 /* Reads `${name}` (${size} bytes on the wire). */
-static int ${lo}read_${snake}(struct ${lo}rd *r, ${ty} *out${ctx})",
+${up}UNUSED static int ${lo}read_${snake}(struct ${lo}rd *r, ${ty} *out${ctx})",
                 name,
                 size,
+                up,
                 lo,
                 snake,
                 ty,
@@ -99,8 +102,9 @@ static int ${lo}read_${snake}(struct ${lo}rd *r, ${ty} *out${ctx})",
         Dir::Write => fill!(
             r"
 /* Writes `${name}`. */
-static int ${lo}write_${snake}(struct ${lo}wr *w, const ${ty} *v${ctx})",
+${up}UNUSED static int ${lo}write_${snake}(struct ${lo}wr *w, const ${ty} *v${ctx})",
             name,
+            up,
             lo,
             snake,
             ty,

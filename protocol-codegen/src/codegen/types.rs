@@ -131,7 +131,7 @@ fn emit_enum(e: &Enum) -> TokenStream {
         UnknownPolicy::Reject => (
             quote!(),
             quote!(),
-            quote!(other => #rt::Err(#rt::DecodeError::InvalidEnum { value: other as u64 }),),
+            quote!(other => #rt::Err(#rt::DecodeError::InvalidEnum { value: other as u64, place: #rt::Place::NONE }),),
         ),
     };
     let to = e.variants.iter().map(|v| {

@@ -234,7 +234,9 @@ pub fn encode(
             |frame| {
                 header(frame).map_err(|issue| {
                     refused = Some(issue);
-                    EncodeError::ValueOutOfRange
+                    EncodeError::ValueOutOfRange {
+                        place: protocol_runtime::error::Place::NONE,
+                    }
                 })
             },
         )
@@ -345,7 +347,11 @@ fn write_header(
     let Some(t) = &f.flag_trailer else {
         return Ok(());
     };
-    let runtime = || EncodeIssue::runtime(EncodeError::ValueOutOfRange);
+    let runtime = || {
+        EncodeIssue::runtime(EncodeError::ValueOutOfRange {
+            place: protocol_runtime::error::Place::NONE,
+        })
+    };
     word_field(&f.values[t.flag])
         .write(frame, u64::from(flagged.is_some()))
         .ok_or_else(runtime)?;

@@ -243,7 +243,11 @@ fn fit_bits(prim: Prim, q: impl field::Float) -> Result<u64, EncodeError> {
         Prim::I32 => fit::<i32>(q)? as u64,
         Prim::I64 => fit::<i64>(q)? as u64,
         // Validation gives scaled fields an integer raw type.
-        Prim::F32 | Prim::F64 | Prim::Bool => return Err(EncodeError::ValueOutOfRange),
+        Prim::F32 | Prim::F64 | Prim::Bool => {
+            return Err(EncodeError::ValueOutOfRange {
+                place: protocol_runtime::error::Place::NONE,
+            });
+        }
     })
 }
 

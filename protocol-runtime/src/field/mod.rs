@@ -56,13 +56,16 @@ impl UnknownPolicy {
     /// ```
     /// use protocol_runtime::{DecodeError, field::UnknownPolicy};
     /// assert_eq!(UnknownPolicy::Keep.unknown(9), Ok(()));
-    /// assert_eq!(UnknownPolicy::Reject.unknown(9), Err(DecodeError::InvalidEnum { value: 9 }));
+    /// assert_eq!(UnknownPolicy::Reject.unknown(9), Err(DecodeError::InvalidEnum { value: 9, place: protocol_runtime::error::Place::NONE }));
     /// ```
     #[inline(always)]
     pub const fn unknown(self, raw: u64) -> Result<(), DecodeError> {
         match self {
             UnknownPolicy::Keep => Ok(()),
-            UnknownPolicy::Reject => Err(DecodeError::InvalidEnum { value: raw }),
+            UnknownPolicy::Reject => Err(DecodeError::InvalidEnum {
+                value: raw,
+                place: crate::error::Place::NONE,
+            }),
         }
     }
 
@@ -74,7 +77,9 @@ impl UnknownPolicy {
     #[inline(always)]
     pub const fn encode(self, known: bool) -> Result<(), EncodeError> {
         match (self, known) {
-            (UnknownPolicy::Reject, false) => Err(EncodeError::ValueOutOfRange),
+            (UnknownPolicy::Reject, false) => Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE,
+            }),
             _ => Ok(()),
         }
     }
@@ -97,7 +102,7 @@ impl UnknownPolicy {
 ///     Ok(match r { 0 => Mode::Idle, r => Mode::Unknown(r) })
 /// }
 /// assert_eq!(enum_raw(Mode::Unknown(7), to_raw, from_raw), Ok(7));
-/// assert_eq!(enum_raw(Mode::Unknown(0), to_raw, from_raw), Err(EncodeError::ValueOutOfRange));
+/// assert_eq!(enum_raw(Mode::Unknown(0), to_raw, from_raw), Err(EncodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
 /// ```
 #[inline(always)]
 pub fn enum_raw<E: Copy + PartialEq, R: Copy>(
@@ -108,7 +113,9 @@ pub fn enum_raw<E: Copy + PartialEq, R: Copy>(
     let raw = to_raw(value);
     match from_raw(raw) {
         Ok(back) if back == value => Ok(raw),
-        _ => Err(EncodeError::ValueOutOfRange),
+        _ => Err(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        }),
     }
 }
 
@@ -149,16 +156,20 @@ pub const fn get_bits(word: u64, shift: u32, width: u32) -> u64 {
 /// ```
 /// use protocol_runtime::{EncodeError, field::set_bits};
 /// assert_eq!(set_bits(0b0001, 0b101, 1, 3), Ok(0b1011));
-/// assert_eq!(set_bits(0, 16, 0, 4), Err(EncodeError::ValueOutOfRange));
+/// assert_eq!(set_bits(0, 16, 0, 4), Err(EncodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
 /// ```
 #[inline(always)]
 pub const fn set_bits(word: u64, value: u64, shift: u32, width: u32) -> Result<u64, EncodeError> {
     if value > bit_mask(width) {
-        return Err(EncodeError::ValueOutOfRange);
+        return Err(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        });
     }
     match value.checked_shl(shift) {
         Some(bits) => Ok(word | bits),
-        None => Err(EncodeError::ValueOutOfRange),
+        None => Err(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        }),
     }
 }
 
@@ -173,13 +184,15 @@ pub const fn set_bits(word: u64, value: u64, shift: u32, width: u32) -> Result<u
 /// use protocol_runtime::{DecodeError, Reader, field::take_sized};
 /// let mut r = Reader::new(&[1, 2, 3]);
 /// assert_eq!(take_sized(&mut r, 2, 4), Ok(&[1, 2][..]));
-/// assert_eq!(take_sized(&mut Reader::new(&[1, 2, 3]), 3, 2), Err(DecodeError::SizeMismatch));
+/// assert_eq!(take_sized(&mut Reader::new(&[1, 2, 3]), 3, 2), Err(DecodeError::SizeMismatch { place: protocol_runtime::error::Place::NONE }));
 /// ```
 #[inline(always)]
 pub fn take_sized<'a>(r: &mut Reader<'a>, len: u64, max: usize) -> Result<&'a [u8], DecodeError> {
     let taken = r.take(usize::try_from(len).unwrap_or(usize::MAX))?;
     if taken.len() > max {
-        return Err(DecodeError::SizeMismatch);
+        return Err(DecodeError::SizeMismatch {
+            place: crate::error::Place::NONE,
+        });
     }
     Ok(taken)
 }
@@ -194,13 +207,15 @@ pub fn take_sized<'a>(r: &mut Reader<'a>, len: u64, max: usize) -> Result<&'a [u
 /// ```
 /// use protocol_runtime::{DecodeError, field::array_len};
 /// assert_eq!(array_len(3, 4), Ok(3));
-/// assert_eq!(array_len(5, 4), Err(DecodeError::SizeMismatch));
+/// assert_eq!(array_len(5, 4), Err(DecodeError::SizeMismatch { place: protocol_runtime::error::Place::NONE }));
 /// ```
 #[inline(always)]
 pub fn array_len(len: u64, max: usize) -> Result<usize, DecodeError> {
     match usize::try_from(len) {
         Ok(n) if n <= max => Ok(n),
-        _ => Err(DecodeError::SizeMismatch),
+        _ => Err(DecodeError::SizeMismatch {
+            place: crate::error::Place::NONE,
+        }),
     }
 }
 
@@ -220,7 +235,9 @@ pub fn check_stated_len(len: usize, stated: u64) -> Result<(), EncodeError> {
     if len as u64 == stated {
         Ok(())
     } else {
-        Err(EncodeError::ValueOutOfRange)
+        Err(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })
     }
 }
 
@@ -290,7 +307,7 @@ pub fn rest_but<'a>(r: &Reader<'a>, keep: usize) -> &'a [u8] {
 /// let mut r = Reader::new(&bad);
 /// let start = r.clone();
 /// r.skip(2)?;
-/// assert_eq!(verify_check(&mut r, &start, 2, &Checksum::Sum8, ByteOrder::Big), Err(DecodeError::PayloadCheck));
+/// assert_eq!(verify_check(&mut r, &start, 2, &Checksum::Sum8, ByteOrder::Big), Err(DecodeError::PayloadCheck { place: protocol_runtime::error::Place::NONE }));
 /// # Ok::<(), DecodeError>(())
 /// ```
 #[inline]
@@ -310,7 +327,9 @@ pub fn verify_check(
     if stored == Some(check.compute(covered)) {
         Ok(())
     } else {
-        Err(DecodeError::PayloadCheck)
+        Err(DecodeError::PayloadCheck {
+            place: crate::error::Place::NONE,
+        })
     }
 }
 
@@ -343,7 +362,9 @@ pub fn put_check(
     let value = check.compute_written(covered);
     let width = check.width();
     let mut bytes = [0u8; 8];
-    write_uint(&mut bytes, 0, width as u8, order, value).ok_or(EncodeError::ValueOutOfRange)?;
+    write_uint(&mut bytes, 0, width as u8, order, value).ok_or(EncodeError::ValueOutOfRange {
+        place: crate::error::Place::NONE,
+    })?;
     w.put_bytes(bytes.get(..width).unwrap_or_default())
 }
 

@@ -88,14 +88,16 @@ pub fn within_clamp<F: Float>(physical: F, lo: F, hi: F) -> bool {
 /// ```
 /// use protocol_runtime::{DecodeError, field::check_clamp};
 /// assert_eq!(check_clamp(0.25, -0.5, 0.5), Ok(0.25));
-/// assert_eq!(check_clamp(0.75, -0.5, 0.5), Err(DecodeError::ValueOutOfRange));
+/// assert_eq!(check_clamp(0.75, -0.5, 0.5), Err(DecodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
 /// ```
 #[inline(always)]
 pub fn check_clamp<F: Float>(physical: F, lo: F, hi: F) -> Result<F, DecodeError> {
     if within_clamp(physical, lo, hi) {
         Ok(physical)
     } else {
-        Err(DecodeError::ValueOutOfRange)
+        Err(DecodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })
     }
 }
 
@@ -217,10 +219,10 @@ raw_ints! {
 /// use protocol_runtime::{EncodeError, field::fit};
 /// assert_eq!(fit::<u8>(255.9), Ok(255));
 /// assert_eq!(fit::<i8>(-128.7), Ok(-128));
-/// assert_eq!(fit::<u8>(256.0), Err(EncodeError::ValueOutOfRange));
-/// assert_eq!(fit::<u16>(f64::NAN), Err(EncodeError::ValueOutOfRange));
+/// assert_eq!(fit::<u8>(256.0), Err(EncodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
+/// assert_eq!(fit::<u16>(f64::NAN), Err(EncodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
 /// assert_eq!(fit::<i32>(-2_147_483_648.0f32), Ok(i32::MIN));
-/// assert_eq!(fit::<i16>(f32::NAN), Err(EncodeError::ValueOutOfRange));
+/// assert_eq!(fit::<i16>(f32::NAN), Err(EncodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
 /// ```
 #[inline(always)]
 pub fn fit<T: RawInt>(x: impl Float) -> Result<T, EncodeError> {

@@ -342,7 +342,9 @@ impl PacketRules<'_> {
                 }
                 (fields, values) => {
                     if values.len() < fields.len() {
-                        return Err(EncodeError::ValueOutOfRange);
+                        return Err(EncodeError::ValueOutOfRange {
+                            place: crate::error::Place::NONE,
+                        });
                     }
                     for (field, value) in fields.iter().zip(values) {
                         write_field(frame, *field, *value)?;
@@ -351,7 +353,9 @@ impl PacketRules<'_> {
             }
             if let Some(d) = direction {
                 if !self.tells(frame, d) {
-                    return Err(EncodeError::ValueOutOfRange);
+                    return Err(EncodeError::ValueOutOfRange {
+                        place: crate::error::Place::NONE,
+                    });
                 }
             }
         }
@@ -363,5 +367,7 @@ impl PacketRules<'_> {
 fn write_field(frame: &mut [u8], field: WordField, value: u64) -> Result<(), EncodeError> {
     field
         .write(frame, value)
-        .ok_or(EncodeError::ValueOutOfRange)
+        .ok_or(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })
 }

@@ -129,7 +129,12 @@ fn a_header_that_does_not_tell_the_message_direction_is_refused() {
     let header = |frame: &mut [u8]| write_header(frame, WordField::le(2, 1).bits(1, 1), 1);
     let len = ACKED_RULES.frame_len(&body, 0, 0);
     let got = ACKED_RULES.assemble(&mut buf, &mut [], &body, || len, 0, |_| Ok(()), header);
-    assert_eq!(got, Err(EncodeError::ValueOutOfRange));
+    assert_eq!(
+        got,
+        Err(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE
+        })
+    );
 }
 
 #[test]
@@ -175,7 +180,12 @@ fn a_key_value_that_does_not_fit_its_field_is_out_of_range() {
     let mut buf = [0u8; 32];
     let len = ACKED_RULES.frame_len(&body, 0, 0);
     let got = ACKED_RULES.assemble(&mut buf, &mut [], &body, || len, 0, |_| Ok(()), |_| Ok(()));
-    assert_eq!(got, Err(EncodeError::ValueOutOfRange));
+    assert_eq!(
+        got,
+        Err(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE
+        })
+    );
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! [`Resolution`]: its answer, a refusal (the spec's NACK) or a timeout after its retries.
 
 use super::{Answer, Heard, Ids, SessionRules};
-use crate::error::{DecodeError, EncodeError};
+use crate::error::{DecodeError, EncodeError, Place};
 
 /// A request that expects an answer, as [`Requester::send`] numbers it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -275,7 +275,9 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
         if let Some(f) = self.rules.sequence {
             let seq = self.next_seq & f.max_value();
             f.write(frame, seq)
-                .ok_or(SendError::Encode(EncodeError::ValueOutOfRange))?;
+                .ok_or(SendError::Encode(EncodeError::ValueOutOfRange {
+                    place: Place::NONE,
+                }))?;
             self.next_seq = seq.wrapping_add(1) & f.max_value();
         }
         self.rules

@@ -14,7 +14,7 @@
 //! [`SendError::Window`]: super::SendError::Window
 
 use super::{Answer, Heard, Ids, SessionRules};
-use crate::error::{DecodeError, EncodeError};
+use crate::error::{DecodeError, EncodeError, Place};
 
 /// What a frame that arrived at the responder is.
 #[derive(Debug, PartialEq, Eq)]
@@ -192,7 +192,9 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Responder<'r, SLOTS, FRAME> {
         let ids = self.rules.ids(key, request);
         self.rules
             .write_repeats(&ids, answer)
-            .ok_or(AnswerError::Encode(EncodeError::ValueOutOfRange))?;
+            .ok_or(AnswerError::Encode(EncodeError::ValueOutOfRange {
+                place: Place::NONE,
+            }))?;
         self.rules
             .packet
             .layout

@@ -24,7 +24,9 @@ pub fn fit_u24(v: u32) -> Result<u32, EncodeError> {
     if v <= U24_MAX {
         Ok(v)
     } else {
-        Err(EncodeError::ValueOutOfRange)
+        Err(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })
     }
 }
 
@@ -38,7 +40,9 @@ pub fn fit_i24(v: i32) -> Result<i32, EncodeError> {
     if I24_RANGE.contains(&v) {
         Ok(v)
     } else {
-        Err(EncodeError::ValueOutOfRange)
+        Err(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })
     }
 }
 
@@ -116,7 +120,7 @@ impl Writer<'_> {
     ///
     /// let mut buf = [0u8; 3];
     /// let mut w = Writer::new(&mut buf);
-    /// assert_eq!(w.put_u24_le(0x100_0000), Err(EncodeError::ValueOutOfRange));
+    /// assert_eq!(w.put_u24_le(0x100_0000), Err(EncodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
     /// w.put_u24_le(0x12_3456)?;
     /// assert_eq!(buf, [0x56, 0x34, 0x12]);
     /// # Ok::<(), EncodeError>(())
@@ -215,10 +219,30 @@ mod tests {
     fn values_beyond_24_bits_are_errors_and_write_nothing() {
         let mut buf = [0xAAu8; 4];
         let mut w = Writer::new(&mut buf);
-        assert_eq!(w.put_u24_le(U24_MAX + 1), Err(EncodeError::ValueOutOfRange));
-        assert_eq!(w.put_u24_be(u32::MAX), Err(EncodeError::ValueOutOfRange));
-        assert_eq!(w.put_i24_le(0x80_0000), Err(EncodeError::ValueOutOfRange));
-        assert_eq!(w.put_i24_be(-0x80_0001), Err(EncodeError::ValueOutOfRange));
+        assert_eq!(
+            w.put_u24_le(U24_MAX + 1),
+            Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE
+            })
+        );
+        assert_eq!(
+            w.put_u24_be(u32::MAX),
+            Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE
+            })
+        );
+        assert_eq!(
+            w.put_i24_le(0x80_0000),
+            Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE
+            })
+        );
+        assert_eq!(
+            w.put_i24_be(-0x80_0001),
+            Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE
+            })
+        );
         assert_eq!(w.position(), 0);
         assert_eq!(buf, [0xAA; 4]);
     }

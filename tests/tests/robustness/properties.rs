@@ -346,7 +346,7 @@ mod regressions {
     fn round_trips_or_is_refused<P: super::Spec>(packet: P) {
         let mut buf = vec![0u8; P::MAX_FRAME_LEN];
         match packet.encode(&mut buf) {
-            Err(EncodeError::ValueOutOfRange) => {}
+            Err(EncodeError::ValueOutOfRange { .. }) => {}
             Ok(n) => assert_eq!(
                 P::decode(&buf[..n]),
                 Ok(packet),

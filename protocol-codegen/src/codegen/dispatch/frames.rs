@@ -69,7 +69,7 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
             /// `EncodeError::ValueOutOfRange` when the command has no CAN id or a header value
             /// does not fit its field.
             pub fn encode(&self) -> #rt::Result<#rt::CanFrame, #rt::EncodeError> {
-                let id = self.message.command().can_id().ok_or(#rt::EncodeError::ValueOutOfRange)?;
+                let id = self.message.command().can_id().ok_or(#rt::EncodeError::ValueOutOfRange { place: #rt::Place::NONE })?;
                 let key = [u64::from(id)];
                 let body = #rt::Body::Command { key: &key, carried: #rt::None, direction: #rt::None };
                 let total = #rules.frame_len(&body, self.message.payload_len(), 0);

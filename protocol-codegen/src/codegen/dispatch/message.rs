@@ -103,10 +103,11 @@ pub(super) fn emit_message_enum(
             pub fn read_payload(command: Command, b: &[u8]) -> #rt::DecodeResult<Self> {
                 #fill
                 use Command as C;
-                // `?` in each arm and one `Ok`: every error leaves by one path.
-                let message = match command {
+                // `?` in each arm and one `Ok`: every error leaves by one path, which names
+                // the command.
+                let message = #rt::read_command(command.name(), || #rt::Ok(match command {
                     #(#read_arms)*
-                };
+                }))?;
                 #rt::Ok(message)
             }
         }

@@ -4,7 +4,7 @@
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
-use super::kinds::{Kind, Slot};
+use super::kinds::{Kind, Slot, ok_of};
 use super::scalar::local;
 
 /// The code of one struct's `write` and `read`, field by field in wire order.
@@ -22,11 +22,17 @@ pub(crate) struct Body {
     /// comes between fields (a bit word) or padding comes before a field that is read in more
     /// than one step (an array): then every field is read into a local first.
     pub(crate) sequenced: bool,
+    /// The struct's name, for the field paths errors carry.
+    pub(crate) owner: String,
 }
 
 impl Body {
-    pub(super) fn of(slots: &[Slot<'_>], rt: &TokenStream) -> Body {
-        let mut b = Body::default();
+    /// The statements of the struct `owner` (its name, for the field paths errors carry).
+    pub(super) fn of(slots: &[Slot<'_>], owner: &str, rt: &TokenStream) -> Body {
+        let mut b = Body {
+            owner: owner.to_string(),
+            ..Body::default()
+        };
         for (i, f) in slots.iter().enumerate() {
             b.check_starts(slots, i);
             f.kind.body(&mut b, i, slots, rt);
@@ -42,10 +48,16 @@ impl Body {
     /// A field read into a local and written from `self`: what most kinds add.
     pub(crate) fn value<K: Kind + ?Sized>(&mut self, kind: &K, id: &Ident, rt: &TokenStream) {
         self.sequenced |= kind.needs_locals();
-        self.writes
-            .push(kind.write(quote!(self.#id), &quote!(self), rt));
+        let (mut write, mut read) = (
+            kind.write(quote!(self.#id), &quote!(self), rt),
+            kind.read(&quote!(r), rt),
+        );
+        if kind.value_can_fail() {
+            write = write_in(&self.field_path(id), write, rt);
+            read = read_in(&self.field_path(id), read, rt);
+        }
+        self.writes.push(write);
         let var = local(id);
-        let read = kind.read(&quote!(r), rt);
         self.reads.push(quote!(let #var = #read;));
         self.inits.push(quote!(#id: #var));
     }
@@ -94,6 +106,11 @@ impl Body {
                         n => f.kind.read(&quote!(r.pad(#n)?), rt),
                     };
                     pad = 0;
+                    let read = if f.kind.value_can_fail() {
+                        read_in(&self.field_path(id), read, rt)
+                    } else {
+                        read
+                    };
                     self.inits.push(quote!(#id: #read));
                 }
                 _ => {}
@@ -103,6 +120,23 @@ impl Body {
             self.after.push(quote!(r.skip(#pad)?;));
         }
     }
+
+    /// The path an error names for field `id` of this struct: `Owner.field`, as the spec
+    /// writes both.
+    pub(crate) fn field_path(&self, id: &Ident) -> String {
+        format!("{}.{}", self.owner, id.to_string().trim_start_matches("r#"))
+    }
+}
+
+/// A field's read expression `read`, whose errors name the field `path`.
+pub(crate) fn read_in(path: &str, read: TokenStream, rt: &TokenStream) -> TokenStream {
+    let read = ok_of(read, rt);
+    quote!(#rt::read_field(#path, || #read)?)
+}
+
+/// A field's write statements `write`, whose errors name the field `path`.
+pub(crate) fn write_in(path: &str, write: TokenStream, rt: &TokenStream) -> TokenStream {
+    quote!(#rt::write_field(#path, || { #write #rt::Ok(()) })?;)
 }
 
 /// Whether the padding of `slots` can be skipped by the read of the field after it: that

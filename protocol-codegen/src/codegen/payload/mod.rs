@@ -82,7 +82,7 @@ pub(crate) fn emit_payload_impl(def: &PayloadDef, rt: &TokenStream) -> TokenStre
         inits,
         after,
         ..
-    } = Body::of(&def.fields, rt);
+    } = Body::of(&def.fields, &def.name.to_string(), rt);
     // Padding after the last field is skipped once the value is built.
     let value = if after.is_empty() {
         quote!(#rt::Ok(Self { #(#inits),* }))

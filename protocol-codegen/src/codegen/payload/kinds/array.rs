@@ -75,7 +75,7 @@ impl Kind for Array<'_> {
                     let n = #rt::array_len(#var as u64, #max)?;
                     let mut a = <#ty>::new();
                     for _ in 0..n {
-                        a.push(#read).map_err(|_| #rt::DecodeError::SizeMismatch)?;
+                        a.push(#read).map_err(|_| #rt::DecodeError::SizeMismatch { place: #rt::Place::NONE })?;
                     }
                     a
                 }}
@@ -94,5 +94,9 @@ impl Kind for Array<'_> {
 
     fn needs_locals(&self) -> bool {
         self.size_from.is_some()
+    }
+
+    fn value_can_fail(&self) -> bool {
+        true
     }
 }

@@ -7,7 +7,7 @@ use quote::{format_ident, quote};
 use super::{Decl, Kind, Slot, named_type};
 use crate::codegen::docs::doc_attrs;
 use crate::codegen::ident;
-use crate::codegen::payload::body::Body;
+use crate::codegen::payload::body::{Body, read_in, write_in};
 use crate::codegen::payload::scalar::{prim_type, read_scalar, write_scalar};
 use crate::ir::{BitMember, Field, Prim, Protocol, Scalar};
 
@@ -40,12 +40,19 @@ impl<'a> Bits<'a> {
 
     /// Statements setting every member into the word `var` (write), and the members' values
     /// got from it (read).
-    fn members_code(&self, var: &Ident, rt: &TokenStream) -> (Vec<TokenStream>, Vec<TokenStream>) {
+    /// The errors of a member's value name the member as a field of the struct `b` builds.
+    fn members_code(
+        &self,
+        var: &Ident,
+        b: &Body,
+        rt: &TokenStream,
+    ) -> (Vec<TokenStream>, Vec<TokenStream>) {
         let wt = prim_type(self.word.prim);
         let mut sets = Vec::new();
         let mut inits = Vec::new();
         for m in self.members {
             let (id, shift, width) = (ident(&m.name), m.shift, m.width);
+            let path = b.field_path(&id);
             let field = quote!(#rt::get_bits(#var, #shift, #width));
             let (raw, value) = match self.member_enum(m) {
                 // Through the word type, as the word holds it (a signed raw value's bits).
@@ -53,7 +60,7 @@ impl<'a> Bits<'a> {
                     let t = prim_type(p);
                     (
                         quote!(#rt::enum_raw(self.#id, #ty::to_raw, #ty::from_raw)? as #wt as u64),
-                        quote!(#ty::from_raw(#field as #t)?),
+                        read_in(&path, quote!(#ty::from_raw(#field as #t)?), rt),
                     )
                 }
                 None if m.prim == Prim::Bool => (quote!(u64::from(self.#id)), quote!(#field != 0)),
@@ -62,7 +69,12 @@ impl<'a> Bits<'a> {
                     (quote!(self.#id as u64), quote!(#field as #t))
                 }
             };
-            sets.push(quote!(#var = #rt::set_bits(#var, #raw, #shift, #width)?;));
+            let set = quote!(#var = #rt::set_bits(#var, #raw, #shift, #width)?;);
+            // A `bool` fits its bit; a wider value or an enum's raw value may not.
+            sets.push(match m.prim {
+                Prim::Bool if m.enum_index.is_none() => set,
+                _ => write_in(&path, set, rt),
+            });
             inits.push(quote!(#id: #value));
         }
         (sets, inits)
@@ -101,13 +113,17 @@ impl Kind for Bits<'_> {
     fn body(&self, b: &mut Body, i: usize, _slots: &[Slot<'_>], rt: &TokenStream) {
         let var = format_ident!("word{}", i);
         let wt = prim_type(self.word.prim);
-        let (sets, inits) = self.members_code(&var, rt);
+        let (sets, inits) = self.members_code(&var, b, rt);
         b.inits.extend(inits);
         b.writes.push(quote!(let mut #var = 0u64; #(#sets)*));
         b.writes.push(write_scalar(self.word, quote!(#var as #wt)));
         let read = read_scalar(self.word);
         b.reads.push(quote!(let #var = u64::from(#read);));
         b.sequenced = true;
+    }
+
+    fn own_code(&self) -> bool {
+        true
     }
 
     fn declare(&self, f: &Field, _id: Option<&Ident>, d: &mut Decl) {

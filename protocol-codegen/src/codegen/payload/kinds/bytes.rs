@@ -87,4 +87,9 @@ impl Kind for Bytes {
             .push(quote!(let #var = <#ty>::read_rest_but(r, #keep)?;));
         b.inits.push(quote!(#id: #var));
     }
+
+    /// A stated size the bytes must match.
+    fn value_can_fail(&self) -> bool {
+        self.size_from.is_some()
+    }
 }

@@ -62,5 +62,9 @@ impl Kind for Check<'_> {
             .push(quote!(#rt::put_check(w, #start, #end, &#checksum, #order)?;));
     }
 
+    fn own_code(&self) -> bool {
+        true
+    }
+
     fn declare(&self, _f: &Field, _id: Option<&Ident>, _d: &mut Decl) {}
 }

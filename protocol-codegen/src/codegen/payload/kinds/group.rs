@@ -29,6 +29,18 @@ impl<'a> Group<'a> {
     }
 }
 
+impl Group<'_> {
+    /// Whether the elements are read and written by the element's own `Payload` impl: when
+    /// they hold bit words or checks (which only the struct's own code reads and writes) and
+    /// no field reads an earlier one, which inline code reads from the repeating struct's
+    /// locals.
+    fn reads_as_itself(&self) -> bool {
+        let sized = self.elem.iter().any(|f| f.kind.needs_locals());
+        let own_code = self.elem.iter().any(|f| f.kind.own_code());
+        own_code && !sized
+    }
+}
+
 impl Kind for Group<'_> {
     fn elem_type(&self) -> TokenStream {
         let rt = type_rt();
@@ -66,6 +78,17 @@ impl Kind for Group<'_> {
 
     fn read(&self, _reader: &TokenStream, rt: &TokenStream) -> TokenStream {
         let (ty, elem_ty) = (self.elem_type(), &self.elem_ty);
+        if self.reads_as_itself() {
+            return quote! {{
+                let mut group = <#ty>::new();
+                while #rt::more(r) {
+                    let e = <#elem_ty as #rt::Payload>::read(r)?;
+                    let size = <Self as #rt::Payload>::SIZE;
+                    group.push(e).map_err(|_| #rt::group_full(r, size))?;
+                }
+                group
+            }};
+        }
         let mut lets = Vec::new();
         let mut inits = Vec::new();
         for f in &self.elem {
@@ -92,6 +115,9 @@ impl Kind for Group<'_> {
     }
 
     fn write(&self, value: TokenStream, owner: &TokenStream, rt: &TokenStream) -> TokenStream {
+        if self.reads_as_itself() {
+            return quote!(for e in #value.iter() { #rt::Payload::write(e, w)?; });
+        }
         let parts = self
             .elem
             .iter()
@@ -104,6 +130,10 @@ impl Kind for Group<'_> {
     }
 
     fn needs_locals(&self) -> bool {
+        true
+    }
+
+    fn value_can_fail(&self) -> bool {
         true
     }
 }

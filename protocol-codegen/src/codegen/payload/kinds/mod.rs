@@ -21,6 +21,7 @@ use super::body::Body;
 use crate::codegen::docs::doc_attrs;
 use crate::codegen::ident;
 use crate::ir::{Field, FieldKind, Protocol, Struct};
+pub(crate) use value::ok_of;
 
 /// What the Rust printer prints of one field kind. A kind answers only what it has: the
 /// defaults are those of a kind that is not there (no array count, no variable size).
@@ -83,6 +84,19 @@ pub(crate) trait Kind {
     /// Whether the padding before the field can be skipped by its read (it is read in one
     /// step: a single value, not an array, group or optional field).
     fn folds_pad(&self) -> bool {
+        false
+    }
+
+    /// Whether reading or writing the field can fail for its value, not only for want of
+    /// bytes or room (an enum without variant, a clamped or scaled value, a stated size, a
+    /// 24-bit integer, text without its NUL): its code then names the field in the error.
+    fn value_can_fail(&self) -> bool {
+        false
+    }
+
+    /// Whether only the struct's own code reads and writes the field (a bit word, a check):
+    /// a repeated struct holding one is read and written by its own `Payload` impl.
+    fn own_code(&self) -> bool {
         false
     }
 

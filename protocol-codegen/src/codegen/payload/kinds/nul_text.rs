@@ -53,4 +53,8 @@ impl Kind for NulText {
         let ty = self.ty();
         quote!(<#ty as #rt::Payload>::write(&#value, w)?;)
     }
+
+    fn value_can_fail(&self) -> bool {
+        true
+    }
 }

@@ -44,4 +44,8 @@ impl Kind for Optional<'_> {
     fn needs_locals(&self) -> bool {
         self.0.needs_locals()
     }
+
+    fn value_can_fail(&self) -> bool {
+        self.0.value_can_fail()
+    }
 }

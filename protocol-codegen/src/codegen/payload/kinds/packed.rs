@@ -93,4 +93,8 @@ impl Kind for Packed {
             .is_none_or(|s| s.clamp.is_none())
             .then_some(None)
     }
+
+    fn value_can_fail(&self) -> bool {
+        true
+    }
 }

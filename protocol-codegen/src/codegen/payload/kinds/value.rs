@@ -10,7 +10,7 @@ use crate::codegen::payload::scalar::{
     prim_type, read_scalar_from, to_physical, to_raw, write_scalar,
 };
 use crate::codegen::rt as type_rt;
-use crate::ir::{Protocol, ValueType};
+use crate::ir::{Prim, Protocol, ValueType};
 
 /// A value of type `ty`, or `count` of them.
 pub(super) struct Value<'a> {
@@ -94,7 +94,7 @@ impl<'a> Value<'a> {
 
 /// `Ok(read)`, the value of a closure that reads: `read` without its final `?` when it has
 /// one (`Ok(x?)` is `x`).
-fn ok_of(read: TokenStream, rt: &TokenStream) -> TokenStream {
+pub(crate) fn ok_of(read: TokenStream, rt: &TokenStream) -> TokenStream {
     let mut tokens: Vec<proc_macro2::TokenTree> = read.clone().into_iter().collect();
     match tokens.last() {
         Some(proc_macro2::TokenTree::Punct(p)) if p.as_char() == '?' => {
@@ -184,5 +184,18 @@ impl Kind for Value<'_> {
 
     fn folds_pad(&self) -> bool {
         self.count.is_none()
+    }
+
+    /// An enum (its raw value may have no variant), a scaled value (clamped, quantized and
+    /// fitted to its raw type) or a 24-bit integer (range-checked); a nested payload names
+    /// its own fields.
+    fn value_can_fail(&self) -> bool {
+        match self.ty {
+            ValueType::Scalar { scalar, scale } => {
+                scale.is_some() || matches!(scalar.prim, Prim::U24 | Prim::I24)
+            }
+            ValueType::Enum(..) => true,
+            ValueType::Struct(_) | ValueType::Text(_) => false,
+        }
     }
 }

@@ -1,0 +1,67 @@
+//! Writes the batch of random specs the `random_specs` test expands with `protocol!`: the
+//! specs of the seeded generator (`tests/support/random_spec.rs`) as files in `OUT_DIR`, and a
+//! Rust file that expands each and lists them. `RANDOM_SPECS` sets the batch size (default 12)
+//! and `RANDOM_SPECS_SEED` its first seed (default 0); both are printed by the test.
+
+use std::fmt::Write as _;
+use std::path::{Component, Path, PathBuf};
+
+#[path = "tests/support/random_spec.rs"]
+mod random_spec;
+
+/// `to` relative to `from` (both absolute): the macro reads spec paths relative to the
+/// crate's manifest directory.
+fn relative(from: &Path, to: &Path) -> PathBuf {
+    let from: Vec<Component<'_>> = from.components().collect();
+    let to: Vec<Component<'_>> = to.components().collect();
+    let common = from.iter().zip(&to).take_while(|(a, b)| a == b).count();
+    let mut out = PathBuf::new();
+    for _ in common..from.len() {
+        out.push("..");
+    }
+    for c in &to[common..] {
+        out.push(c);
+    }
+    out
+}
+
+fn number(name: &str, default: u64) -> u64 {
+    println!("cargo:rerun-if-env-changed={name}");
+    std::env::var(name).map_or(default, |v| {
+        v.parse()
+            .unwrap_or_else(|_| panic!("{name}={v}: not a number"))
+    })
+}
+
+fn main() {
+    println!("cargo:rerun-if-changed=tests/support/random_spec.rs");
+    let first = number("RANDOM_SPECS_SEED", 0);
+    let count = number("RANDOM_SPECS", 12);
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("OUT_DIR"));
+    let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("manifest dir"));
+    let dir = out.join("random_specs");
+    std::fs::create_dir_all(&dir).expect("create the random spec directory");
+    let mut code = String::new();
+    let mut names = Vec::new();
+    for seed in first..first + count {
+        let name = format!("rand_{seed}");
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, random_spec::spec(seed, &name)).expect("write a random spec");
+        let rel = relative(&manifest, &path);
+        let rel = rel.to_str().expect("a UTF-8 path");
+        writeln!(code, "expand_spec!({name}, {rel:?});").unwrap();
+        names.push(name);
+    }
+    writeln!(code, "/// The batch: first seed and count.").unwrap();
+    writeln!(code, "const BATCH: (u64, u64) = ({first}, {count});").unwrap();
+    writeln!(
+        code,
+        "/// Calls `$callback!(module)` for every random spec.\nmacro_rules! for_each_random_spec {{ ($callback:ident) => {{ {} }}; }}",
+        names
+            .iter()
+            .map(|n| format!("$callback!({n});"))
+            .collect::<String>()
+    )
+    .unwrap();
+    std::fs::write(out.join("random_specs.rs"), code).expect("write random_specs.rs");
+}
