@@ -268,14 +268,14 @@ fn compare(
 /// as the run-time codec does (the path in the payload, whose last step is the field).
 fn same_place(g: &DecodeError, i: &DecodeIssue, label: &str) {
     if let (Some(place), DecodeIssue::InvalidEnum { command, field, .. }) = (g.place(), i) {
-        assert_eq!(place.command, command, "{label}: the command of {g}");
+        assert_eq!(place.command(), command, "{label}: the command of {g}");
         // The last step of a path, without an element's index (`modes[2]`).
         let last = |path: &str| {
             let step = path.rsplit('.').next().unwrap_or("");
             step.split('[').next().unwrap_or("").to_string()
         };
         assert_eq!(
-            last(place.field),
+            last(place.field()),
             last(field),
             "{label}: the field of {g} ({i})"
         );

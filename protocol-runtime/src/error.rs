@@ -105,27 +105,69 @@ pub enum DecodeError {
 /// let e = DecodeError::InvalidEnum { value: 9, place: Place::NONE };
 /// assert_eq!(e.to_string(), "invalid enum value 0x9");
 /// let e = e.in_field("LedState.mode").in_command("SET_LED");
-/// assert_eq!(e.place(), Some(Place { command: "SET_LED", field: "LedState.mode" }));
+/// assert_eq!(e.place(), Some(Place::new("SET_LED", "LedState.mode")));
 /// assert_eq!(
 ///     e.to_string(),
 ///     "SET_LED: `LedState.mode` holds 0x9, which is no variant of its enum"
 /// );
 /// ```
+///
+/// Kept on hosts (64-bit pointers), and on every target with the `error-places` feature. A
+/// microcontroller's firmware leaves them out by default ([`Place`] is then empty, its names
+/// read as unknown): with them the name of every command and field is linked in for a message
+/// a firmware rarely prints, and every error value is larger (the HFLink firmware of
+/// `bash benches/footprint.sh`, 7,452 bytes of `.text`, takes 7,984 with them).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Place {
     /// The command's name in the spec; empty where unknown.
-    pub command: &'static str,
+    #[cfg(any(target_pointer_width = "64", feature = "error-places"))]
+    command: &'static str,
     /// The field's path (`Struct.field`); empty where unknown.
-    pub field: &'static str,
+    #[cfg(any(target_pointer_width = "64", feature = "error-places"))]
+    field: &'static str,
 }
 
 impl Place {
+    /// Whether places are kept on the target this is built for (see [`Place`]).
+    pub const KEPT: bool = cfg!(any(target_pointer_width = "64", feature = "error-places"));
+
     /// Nowhere known.
-    pub const NONE: Place = Place {
-        command: "",
-        field: "",
-    };
+    pub const NONE: Place = Place::new("", "");
+
+    /// The place in `command` (its name in the spec) and `field` (`Struct.field`); either
+    /// empty where unknown. Both are dropped where places are not kept.
+    #[inline]
+    #[must_use]
+    #[allow(unused_variables)]
+    pub const fn new(command: &'static str, field: &'static str) -> Place {
+        Place {
+            #[cfg(any(target_pointer_width = "64", feature = "error-places"))]
+            command,
+            #[cfg(any(target_pointer_width = "64", feature = "error-places"))]
+            field,
+        }
+    }
+
+    /// The command's name in the spec; empty where unknown or not kept.
+    #[inline]
+    #[must_use]
+    pub const fn command(&self) -> &'static str {
+        #[cfg(any(target_pointer_width = "64", feature = "error-places"))]
+        return self.command;
+        #[cfg(not(any(target_pointer_width = "64", feature = "error-places")))]
+        ""
+    }
+
+    /// The field's path (`Struct.field`); empty where unknown or not kept.
+    #[inline]
+    #[must_use]
+    pub const fn field(&self) -> &'static str {
+        #[cfg(any(target_pointer_width = "64", feature = "error-places"))]
+        return self.field;
+        #[cfg(not(any(target_pointer_width = "64", feature = "error-places")))]
+        ""
+    }
 
     /// The place with `field` as its field, unless it names one already: the innermost
     /// field's code names it first (a nested struct's field), and the path it gives is the
@@ -133,8 +175,8 @@ impl Place {
     #[inline]
     #[must_use]
     pub const fn in_field(self, field: &'static str) -> Place {
-        if self.field.is_empty() {
-            Place { field, ..self }
+        if self.field().is_empty() {
+            Place::new(self.command(), field)
         } else {
             self
         }
@@ -144,8 +186,8 @@ impl Place {
     #[inline]
     #[must_use]
     pub const fn in_command(self, command: &'static str) -> Place {
-        if self.command.is_empty() {
-            Place { command, ..self }
+        if self.command().is_empty() {
+            Place::new(command, self.field())
         } else {
             self
         }
@@ -154,11 +196,11 @@ impl Place {
     /// `COMMAND: `field`` (either part alone where the other is unknown), before what is
     /// wrong; nothing when neither is known.
     fn write_prefix(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if !self.command.is_empty() {
-            write!(f, "{}: ", self.command)?;
+        if !self.command().is_empty() {
+            write!(f, "{}: ", self.command())?;
         }
-        if !self.field.is_empty() {
-            write!(f, "`{}`: ", self.field)?;
+        if !self.field().is_empty() {
+            write!(f, "`{}`: ", self.field())?;
         }
         Ok(())
     }
@@ -195,6 +237,11 @@ impl DecodeError {
     #[inline]
     #[must_use]
     pub const fn in_field(self, field: &'static str) -> Self {
+        // Nothing to name where places are not kept: the error as it is, without a match
+        // that rebuilds it (which the optimiser does not always see through).
+        if !Place::KEPT {
+            return self;
+        }
         match self.place() {
             Some(place) => self.map_place(place.in_field(field)),
             None => self,
@@ -205,6 +252,11 @@ impl DecodeError {
     #[inline]
     #[must_use]
     pub const fn in_command(self, command: &'static str) -> Self {
+        // Nothing to name where places are not kept: the error as it is, without a match
+        // that rebuilds it (which the optimiser does not always see through).
+        if !Place::KEPT {
+            return self;
+        }
         match self.place() {
             Some(place) => self.map_place(place.in_command(command)),
             None => self,
@@ -236,18 +288,18 @@ impl fmt::Display for DecodeError {
             }
             DecodeError::UnknownCommand { key } => write!(f, "unknown command {key:#x}"),
             DecodeError::UnknownDirection => f.write_str("header matches no direction"),
-            DecodeError::InvalidEnum { value, place } if place.field.is_empty() => {
+            DecodeError::InvalidEnum { value, place } if place.field().is_empty() => {
                 place.write_prefix(f)?;
                 write!(f, "invalid enum value {value:#x}")
             }
             DecodeError::InvalidEnum { value, place } => {
-                if !place.command.is_empty() {
-                    write!(f, "{}: ", place.command)?;
+                if !place.command().is_empty() {
+                    write!(f, "{}: ", place.command())?;
                 }
                 write!(
                     f,
                     "`{}` holds {value:#x}, which is no variant of its enum",
-                    place.field
+                    place.field()
                 )
             }
             DecodeError::InvalidStuffing => {
@@ -356,6 +408,11 @@ impl EncodeError {
     #[inline]
     #[must_use]
     pub const fn in_field(self, field: &'static str) -> Self {
+        // Nothing to name where places are not kept: the error as it is, without a match
+        // that rebuilds it (which the optimiser does not always see through).
+        if !Place::KEPT {
+            return self;
+        }
         match self {
             EncodeError::ValueOutOfRange { place } => EncodeError::ValueOutOfRange {
                 place: place.in_field(field),
@@ -368,6 +425,11 @@ impl EncodeError {
     #[inline]
     #[must_use]
     pub const fn in_command(self, command: &'static str) -> Self {
+        // Nothing to name where places are not kept: the error as it is, without a match
+        // that rebuilds it (which the optimiser does not always see through).
+        if !Place::KEPT {
+            return self;
+        }
         match self {
             EncodeError::ValueOutOfRange { place } => EncodeError::ValueOutOfRange {
                 place: place.in_command(command),

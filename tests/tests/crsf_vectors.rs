@@ -362,10 +362,7 @@ fn a_wrong_inner_crc_is_a_payload_error_that_the_event_stream_reports() {
     assert_eq!(
         Packet::decode(&bytes),
         Err(DecodeError::PayloadCheck {
-            place: protocol_kit::error::Place {
-                command: "COMMAND",
-                field: ""
-            }
+            place: protocol_kit::error::Place::new("COMMAND", "")
         })
     );
     // The stream: the frame is found, and its payload's error is an event, not a lost frame.
@@ -381,10 +378,7 @@ fn a_wrong_inner_crc_is_a_payload_error_that_the_event_stream_reports() {
         got,
         vec![
             Err(DecodeError::PayloadCheck {
-                place: protocol_kit::error::Place {
-                    command: "COMMAND",
-                    field: ""
-                }
+                place: protocol_kit::error::Place::new("COMMAND", "")
             }),
             Ok(Message::Heartbeat(Heartbeat {
                 origin_address: 0xEA
@@ -414,10 +408,7 @@ fn a_flight_mode_without_its_nul_or_too_long_is_refused() {
     assert_eq!(
         Packet::decode(&bytes),
         Err(DecodeError::Unterminated {
-            place: protocol_kit::error::Place {
-                command: "FLIGHT_MODE",
-                field: "FlightMode.flight_mode"
-            }
+            place: protocol_kit::error::Place::new("FLIGHT_MODE", "FlightMode.flight_mode")
         })
     );
     // A name that does not fit, or holds a NUL, is no value: nothing is cut.

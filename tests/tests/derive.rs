@@ -99,10 +99,7 @@ fn derived_24_bit_fields_take_three_bytes() {
     assert_eq!(
         too_big.to_bytes(&mut buf),
         Err(protocol_kit::EncodeError::ValueOutOfRange {
-            place: protocol_kit::error::Place {
-                command: "",
-                field: "Wide.total"
-            }
+            place: protocol_kit::error::Place::new("", "Wide.total")
         })
     );
 }

@@ -37,10 +37,7 @@ fn an_enum_value_without_variant_names_its_command_and_field() {
         e,
         DecodeError::InvalidEnum {
             value: 7,
-            place: Place {
-                command: "READINGS",
-                field: "Readings.modes",
-            },
+            place: Place::new("READINGS", "Readings.modes"),
         }
     );
     assert_eq!(
@@ -65,13 +62,7 @@ fn a_stated_count_beyond_the_most_names_its_field() {
     // Count 9: the arrays hold 8 at most.
     let bytes = frame(1, &[9, 0, 0, 0]);
     let e = Packet::decode(&bytes).expect_err("9 elements do not fit");
-    assert_eq!(
-        e.place(),
-        Some(Place {
-            command: "READINGS",
-            field: "Readings.values",
-        })
-    );
+    assert_eq!(e.place(), Some(Place::new("READINGS", "Readings.values")));
     assert_eq!(
         e.to_string(),
         "READINGS: `Readings.values`: a field's size does not match the size another field states"
@@ -97,10 +88,7 @@ fn a_value_that_does_not_fit_names_its_field_when_encoded() {
     assert_eq!(
         e,
         EncodeError::ValueOutOfRange {
-            place: Place {
-                command: "",
-                field: "Readings.values",
-            },
+            place: Place::new("", "Readings.values"),
         }
     );
     assert_eq!(

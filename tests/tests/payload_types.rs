@@ -166,10 +166,7 @@ fn a_bad_count_a_missing_nul_an_overflow_and_a_wrong_check_are_errors() {
     assert_both(
         &frame(1, &p),
         DecodeError::SizeMismatch {
-            place: protocol_kit::error::Place {
-                command: "READINGS",
-                field: "Readings.values",
-            },
+            place: protocol_kit::error::Place::new("READINGS", "Readings.values"),
         },
     );
     // A count the bytes do not hold: the payload ends early (shorter than its struct).
@@ -186,10 +183,7 @@ fn a_bad_count_a_missing_nul_an_overflow_and_a_wrong_check_are_errors() {
     assert_both(
         &frame(1, &[0, b'a', b'b']),
         DecodeError::Unterminated {
-            place: protocol_kit::error::Place {
-                command: "READINGS",
-                field: "Readings.name",
-            },
+            place: protocol_kit::error::Place::new("READINGS", "Readings.name"),
         },
     );
     // A name of 17 bytes (the most is 16).
@@ -199,10 +193,7 @@ fn a_bad_count_a_missing_nul_an_overflow_and_a_wrong_check_are_errors() {
     assert_both(
         &frame(1, &p),
         DecodeError::Unterminated {
-            place: protocol_kit::error::Place {
-                command: "READINGS",
-                field: "Readings.name",
-            },
+            place: protocol_kit::error::Place::new("READINGS", "Readings.name"),
         },
     );
     // 11 levels (the most is 10): the payload is longer than the struct's largest size.
@@ -222,10 +213,7 @@ fn a_bad_count_a_missing_nul_an_overflow_and_a_wrong_check_are_errors() {
     assert_both(
         &frame(3, &p),
         DecodeError::PayloadCheck {
-            place: protocol_kit::error::Place {
-                command: "SEALED",
-                field: "",
-            },
+            place: protocol_kit::error::Place::new("SEALED", ""),
         },
     );
     let mut p = sealed(0x11, &[1, 2, 3]);
@@ -233,10 +221,7 @@ fn a_bad_count_a_missing_nul_an_overflow_and_a_wrong_check_are_errors() {
     assert_both(
         &frame(3, &p),
         DecodeError::PayloadCheck {
-            place: protocol_kit::error::Place {
-                command: "SEALED",
-                field: "",
-            },
+            place: protocol_kit::error::Place::new("SEALED", ""),
         },
     );
     // The CRC alone, no room for data: truncated is a payload of the wrong length.
@@ -265,10 +250,7 @@ fn a_value_that_does_not_fit_is_an_encode_error_never_cut() {
     assert_eq!(
         encode(&packet),
         Err(EncodeError::ValueOutOfRange {
-            place: protocol_kit::error::Place {
-                command: "",
-                field: "Readings.values"
-            }
+            place: protocol_kit::error::Place::new("", "Readings.values")
         })
     );
     assert_eq!(NulStr::<16>::from_text(&"x".repeat(17)), None);

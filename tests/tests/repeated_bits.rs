@@ -63,10 +63,7 @@ fn repeated_bit_members_round_trip_and_agree_with_the_run_time_codec() {
         Packet::decode(&bad).map(|_| ()),
         Err(DecodeError::InvalidEnum {
             value: 1,
-            place: Place {
-                command: "FLAGS",
-                field: "Flag.level",
-            },
+            place: Place::new("FLAGS", "Flag.level"),
         })
     );
     let issue = interp

@@ -132,10 +132,7 @@ fn a_value_beyond_24_bits_is_an_encode_error_not_a_truncation() {
     assert_eq!(
         battery.to_bytes(&mut buf),
         Err(EncodeError::ValueOutOfRange {
-            place: protocol_kit::error::Place {
-                command: "",
-                field: "Battery.capacity"
-            }
+            place: protocol_kit::error::Place::new("", "Battery.capacity")
         })
     );
     battery.capacity = 0xFF_FFFF;
@@ -146,10 +143,7 @@ fn a_value_beyond_24_bits_is_an_encode_error_not_a_truncation() {
     assert_eq!(
         s.to_bytes(&mut buf),
         Err(EncodeError::ValueOutOfRange {
-            place: protocol_kit::error::Place {
-                command: "",
-                field: "Samples.history"
-            }
+            place: protocol_kit::error::Place::new("", "Samples.history")
         })
     );
     s.history[1] = 0;
@@ -158,10 +152,7 @@ fn a_value_beyond_24_bits_is_an_encode_error_not_a_truncation() {
     assert_eq!(
         s.to_bytes(&mut buf),
         Err(EncodeError::ValueOutOfRange {
-            place: protocol_kit::error::Place {
-                command: "",
-                field: "Samples.pressure"
-            }
+            place: protocol_kit::error::Place::new("", "Samples.pressure")
         })
     );
 
@@ -233,10 +224,7 @@ fn undeclared_bits_are_kept_unless_the_spec_declares_them_reserved_zero() {
     assert_eq!(
         too_wide.to_bytes(&mut buf),
         Err(EncodeError::ValueOutOfRange {
-            place: protocol_kit::error::Place {
-                command: "",
-                field: "Validity.valid_reserved"
-            }
+            place: protocol_kit::error::Place::new("", "Validity.valid_reserved")
         })
     );
 
@@ -348,10 +336,7 @@ fn msb_first_elements_scale_and_refuse_what_does_not_fit() {
     assert_eq!(
         too_high.to_bytes(&mut buf),
         Err(EncodeError::ValueOutOfRange {
-            place: protocol_kit::error::Place {
-                command: "",
-                field: "Levels.levels"
-            }
+            place: protocol_kit::error::Place::new("", "Levels.levels")
         })
     );
     let mut crsf = packed::RcChannels {
@@ -362,10 +347,7 @@ fn msb_first_elements_scale_and_refuse_what_does_not_fit() {
     assert_eq!(
         crsf.to_bytes(&mut buf),
         Err(EncodeError::ValueOutOfRange {
-            place: protocol_kit::error::Place {
-                command: "",
-                field: "RcChannels.channels"
-            }
+            place: protocol_kit::error::Place::new("", "RcChannels.channels")
         })
     );
 }
