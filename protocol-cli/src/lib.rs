@@ -1,8 +1,8 @@
 //! The library behind the `protocol` command: the parts of the command worth testing without
 //! a process: spec loading and diagnostics ([`spec`]), decoding sessions ([`session`],
-//! [`table`]), CAN logs ([`candump`]), CSV and MCAP exports ([`export`]), lost and reordered frames ([`counter`]) and, on Linux, live SocketCAN input (`socketcan`).
-//! Decoding and encoding run on the
-//! [`protocol_dynamic`] codec.
+//! [`table`]), CAN logs ([`candump`]), CSV and MCAP exports ([`export`]), lost and reordered
+//! frames ([`counter`]) and, on Linux, live SocketCAN input (`socketcan`). Decoding and
+//! encoding run on the [`protocol_dynamic`] codec.
 #![forbid(unsafe_code)]
 
 pub mod candump;

@@ -1,6 +1,7 @@
 //! `protocol decode SPEC [INPUT|-] [--hex] [--serial PORT --baud N] [--candump FILE]
-//! [--can IFACE] [--format table|json] [--stats] [--frame NAME] [--direction NAME]`: find and decode the frames of a byte stream with the
-//! runtime's stream engine, on the layout `protocol-dynamic` builds of the spec.
+//! [--can IFACE] [--format table|json] [--stats] [--frame NAME] [--direction NAME]`: find and
+//! decode the frames of a byte stream with the runtime's stream engine, on the layout
+//! `protocol-dynamic` builds of the spec.
 //!
 //! This module owns where the bytes come from (a file, stdin, hex text, a serial port, a CAN
 //! log, a live SocketCAN interface) and when the input ends; what a line says is the session's business.
