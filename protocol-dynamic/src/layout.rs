@@ -4,8 +4,7 @@
 //! packet rules on the same description.
 //!
 //! This module owns the CRC objects a layout's checks borrow ([`CrcStore`]: the codec owns it,
-//! its layouts borrow it; only a CRC's parameters are interned for `'static`, see
-//! [`protocol_spec::layout::intern`]) and the per-frame slices of constants and checks, and
+//! its layouts borrow it, parameters included) and the per-frame slices of constants and checks, and
 //! of the packet rules' key fields and direction tests ([`FrameParts`]); a check with a
 //! per-command byte owns its CRC and byte table ([`OwnedExtra`]), so that dropping a codec frees
 //! all it built. A check's algorithm is the IR's runtime [`Algorithm`], executed as it is;
@@ -15,53 +14,38 @@
 use protocol_runtime::checksum::{CheckObject, Checksum, CrcImpl, Extra, Slicing16};
 use protocol_runtime::layout::{Check, Constant, FrameLayout, WordField};
 use protocol_runtime::rules::{DirectionTest, PacketRules};
-use protocol_spec::ir::{self, Algorithm, CrcSpec, CrcTable};
+use protocol_spec::ir::{self, Algorithm, CrcSpec};
 pub use protocol_spec::layout::word_field;
-use protocol_spec::layout::{self, LayoutPlan, intern, lower_layout};
+use protocol_spec::layout::{self, LayoutPlan, lower_layout};
 use protocol_spec::rules::{RulesPlan, lower_rules};
 
-/// A CRC object of one width, with the table size the spec chose (as generated code builds):
-/// the `crc` crate's for no table and one table, the runtime's [`Slicing16`] for sixteen.
-enum Tables<W: crc::Width> {
-    NoTable(Box<crc::Crc<W, crc::NoTable>>),
-    Table1(Box<crc::Crc<W, crc::Table<1>>>),
-    Table16(Box<Slicing16<W>>),
-}
+/// A CRC object of one width: sixteen tables ([`Slicing16`]), whatever table size the spec
+/// chose.
+///
+/// Why not the spec's choice: a spec's `table` trades a microcontroller's flash for speed, and
+/// this codec runs on hosts, where `by-target` is sixteen tables anyway; and the `crc` crate's
+/// one-table and table-free CRCs take `&'static` parameters, which a spec loaded at run time
+/// could only give by keeping every parameter set it met for the life of the process.
+/// [`Slicing16`] holds its parameters by value, so dropping the codec frees all of it. Every
+/// table size computes the same value (the runtime's tests check them against each other).
+struct Tables<W: crc::Width>(Box<Slicing16<W>>);
 
 impl<W: crc::Width> Tables<W> {
     fn as_impl(&self) -> CrcImpl<'_, W> {
-        match self {
-            Tables::NoTable(c) => CrcImpl::NoTable(c),
-            Tables::Table1(c) => CrcImpl::Table1(c),
-            Tables::Table16(c) => CrcImpl::Table16(c),
-        }
+        CrcImpl::Table16(&self.0)
     }
 }
 
 macro_rules! tables {
-    ($w:ty) => {
+    ($($w:ty),*) => {$(
         impl From<&CrcSpec<$w>> for Tables<$w> {
             fn from(spec: &CrcSpec<$w>) -> Self {
-                let alg = intern(&spec.params);
-                match spec.table.on_this_target() {
-                    CrcTable::NoTable => {
-                        Tables::NoTable(Box::new(crc::Crc::<$w, crc::NoTable>::new(alg)))
-                    }
-                    CrcTable::Table1 => {
-                        Tables::Table1(Box::new(crc::Crc::<$w, crc::Table<1>>::new(alg)))
-                    }
-                    CrcTable::Table16 | CrcTable::ByTarget => {
-                        Tables::Table16(Box::new(Slicing16::<$w>::new(alg)))
-                    }
-                }
+                Tables(Box::new(Slicing16::<$w>::new(&spec.params)))
             }
         }
-    };
+    )*};
 }
-tables!(u8);
-tables!(u16);
-tables!(u32);
-tables!(u64);
+tables!(u8, u16, u32, u64);
 
 /// The CRC object of one check.
 enum CrcObject {

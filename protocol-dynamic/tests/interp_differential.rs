@@ -329,7 +329,13 @@ fn every_layout_is_the_generated_one() {
         );
         for (i, expected) in generated.iter().enumerate() {
             let built = format!("{:?}", codec.layout(i).expect("a layout"));
-            assert_eq!(&built, expected, "{}: frame format {i}", g.spec);
+            // The codec computes every CRC with sixteen tables, whatever the spec's `table`
+            // (a microcontroller's choice; see `protocol_dynamic`'s layout module): the same
+            // layout, but for the tables' name.
+            let expected = expected
+                .replace("NoTable(", "Table16(")
+                .replace("Table1(", "Table16(");
+            assert_eq!(built, expected, "{}: frame format {i}", g.spec);
         }
     }
 }

@@ -7,15 +7,12 @@
 //! result as it is: the expansion prints it as the `LAYOUT` static (`codegen::frame` in
 //! `protocol-codegen`), and the run-time codec builds a [`FrameLayout`] value from it. What
 //! stays to each is the one thing that differs: how a check's algorithm becomes a
-//! [`Checksum`] (a `static` table in generated code, an object the codec owns), for which this
-//! module interns the parameters of a CRC as the `crc` crate takes them ([`intern`]).
+//! [`Checksum`] (a `static` table in generated code, an object the codec owns).
 
 use protocol_runtime::checksum::Checksum;
 use protocol_runtime::layout::{
     Check, Constant, FlagTrailer, FrameLayout, LengthExtension, LengthRule, Marker, WordField,
 };
-
-use std::sync::Mutex;
 
 use crate::ir::{self, HeaderValue, Length, Role};
 
@@ -164,39 +161,3 @@ pub fn word_field(v: &HeaderValue) -> WordField {
         width: v.width as u8,
     }
 }
-
-/// The parameters of a CRC as the `crc` crate's `Crc::new` and the runtime's `Slicing16::new`
-/// take them: a `&'static crc::Algorithm`. A custom CRC's parameters are known only once a spec
-/// is loaded, so each distinct parameter set is leaked once per process and reused: memory is
-/// bounded by the number of distinct CRC algorithms, however many specs are validated or
-/// loaded (a proc macro process expands many).
-pub fn intern<W: Intern>(params: &crc::Algorithm<W>) -> &'static crc::Algorithm<W> {
-    W::intern(params)
-}
-
-/// A CRC width whose parameter sets [`intern`] keeps (one list per width: a `static` cannot be
-/// generic).
-pub trait Intern: crc::Width + PartialEq {
-    /// The interned copy of `params`.
-    fn intern(params: &crc::Algorithm<Self>) -> &'static crc::Algorithm<Self>;
-}
-
-macro_rules! intern_width {
-    ($($w:ty),*) => {$(
-        impl Intern for $w {
-            fn intern(params: &crc::Algorithm<$w>) -> &'static crc::Algorithm<$w> {
-                static CACHE: Mutex<Vec<&'static crc::Algorithm<$w>>> = Mutex::new(Vec::new());
-                // A poisoned lock only means another thread panicked while pushing: the list
-                // is still a list of valid algorithms.
-                let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-                if let Some(found) = cache.iter().find(|a| ***a == *params) {
-                    return found;
-                }
-                let leaked: &'static crc::Algorithm<$w> = Box::leak(Box::new(*params));
-                cache.push(leaked);
-                leaked
-            }
-        }
-    )*};
-}
-intern_width!(u8, u16, u32, u64);

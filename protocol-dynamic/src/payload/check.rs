@@ -2,32 +2,36 @@
 //! the runtime's `field::verify_check` and `field::put_check` over the covered fields'
 //! bytes, and `text::read_nul_text` / `text::nul_text_fits`.
 
-use protocol_runtime::checksum::{Checksum, CrcImpl};
+use protocol_runtime::checksum::{Bitwise, Checksum};
 use protocol_runtime::{DecodeError, EncodeError, Reader, Writer, field, text};
 use protocol_spec::ir::{Algorithm, PayloadCheck, Prim};
-use protocol_spec::layout::intern;
 
 use crate::error::EncodeIssue;
 use crate::model::Value;
 use crate::value::value_bits;
 
-/// Runs `f` with the [`Checksum`] of `a`: a CRC without a table (the value is the same with
-/// any table, and building none costs nothing per payload).
+/// Runs `f` with the [`Checksum`] of `a`: a CRC computed bit by bit from the parameters the
+/// codec owns ([`Bitwise`]: the value is the same with any table, and building none costs
+/// nothing per payload).
 fn with_checksum<T>(a: &Algorithm, f: impl FnOnce(&Checksum<'_>) -> T) -> T {
-    use crc::{Crc, NoTable};
+    let width = a.width() as u8;
     match a {
-        Algorithm::Crc8(s) => f(&Checksum::Crc8(CrcImpl::NoTable(&Crc::<u8, NoTable>::new(
-            intern(&s.params),
-        )))),
-        Algorithm::Crc16(s) => f(&Checksum::Crc16(CrcImpl::NoTable(
-            &Crc::<u16, NoTable>::new(intern(&s.params)),
-        ))),
-        Algorithm::Crc32(s) => f(&Checksum::Crc32(CrcImpl::NoTable(
-            &Crc::<u32, NoTable>::new(intern(&s.params)),
-        ))),
-        Algorithm::Crc64(s) => f(&Checksum::Crc64(CrcImpl::NoTable(
-            &Crc::<u64, NoTable>::new(intern(&s.params)),
-        ))),
+        Algorithm::Crc8(s) => f(&Checksum::Object {
+            width,
+            check: &Bitwise::<u8>::new(&s.params),
+        }),
+        Algorithm::Crc16(s) => f(&Checksum::Object {
+            width,
+            check: &Bitwise::<u16>::new(&s.params),
+        }),
+        Algorithm::Crc32(s) => f(&Checksum::Object {
+            width,
+            check: &Bitwise::<u32>::new(&s.params),
+        }),
+        Algorithm::Crc64(s) => f(&Checksum::Object {
+            width,
+            check: &Bitwise::<u64>::new(&s.params),
+        }),
         // Every other algorithm needs no table.
         other => f(&other.tableless().unwrap_or(Checksum::Sum8)),
     }

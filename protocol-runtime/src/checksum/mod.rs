@@ -48,6 +48,7 @@
 use core::fmt;
 
 mod algorithm;
+mod bitwise;
 mod clmul;
 mod extra;
 #[cfg(feature = "crc-fast")]
@@ -61,6 +62,7 @@ mod tests;
 mod tests_then;
 
 pub use algorithm::{Algorithm, CrcSpec, CrcTable};
+pub use bitwise::Bitwise;
 pub use extra::Extra;
 pub use slicing::Slicing16;
 
@@ -248,7 +250,7 @@ crc_impl_width!(u8, u16, u32, u64);
 impl<W: crc::Width> CrcImpl<'_, W> {
     /// The parameters of the CRC.
     #[inline]
-    pub fn algorithm(&self) -> &'static crc::Algorithm<W> {
+    pub fn algorithm(&self) -> &crc::Algorithm<W> {
         match self {
             CrcImpl::NoTable(c) => c.algorithm,
             CrcImpl::Table1(c) => c.algorithm,

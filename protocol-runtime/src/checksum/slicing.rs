@@ -55,7 +55,9 @@ const BLOCK: usize = 16;
 pub struct Slicing16<W: crc::Width> {
     /// `tables[k][v]`: the register after the byte `v` then `k` zero bytes, from zero.
     tables: [[W; 256]; BLOCK],
-    algorithm: &'static crc::Algorithm<W>,
+    /// The parameters, held by value: a CRC built at run time from a loaded spec borrows
+    /// nothing that must outlive it.
+    algorithm: crc::Algorithm<W>,
     /// The initial register, aligned as the tables are.
     init: W,
     /// Whether the input is reflected (the register shifts right).
@@ -77,15 +79,15 @@ pub struct Slicing16<W: crc::Width> {
 impl<W: crc::Width> Slicing16<W> {
     /// The parameters of the CRC.
     #[inline]
-    pub const fn algorithm(&self) -> &'static crc::Algorithm<W> {
-        self.algorithm
+    pub const fn algorithm(&self) -> &crc::Algorithm<W> {
+        &self.algorithm
     }
 }
 
 impl<W: crc::Width + fmt::Debug> fmt::Debug for Slicing16<W> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Slicing16")
-            .field("algorithm", self.algorithm)
+            .field("algorithm", &self.algorithm)
             .finish_non_exhaustive()
     }
 }
@@ -103,7 +105,7 @@ macro_rules! slicing16_width {
             /// compiler); at run time it takes a few microseconds. A width outside that range
             /// gives meaningless values, never a panic.
             #[must_use]
-            pub const fn new(alg: &'static crc::Algorithm<$w>) -> Self {
+            pub const fn new(alg: &crc::Algorithm<$w>) -> Self {
                 let pad = <$w>::BITS.saturating_sub(alg.width as u32);
                 let (poly, init) = if alg.refin {
                     (
@@ -115,7 +117,7 @@ macro_rules! slicing16_width {
                 };
                 Slicing16 {
                     tables: slicing16_tables!($w, poly, alg.refin),
-                    algorithm: alg,
+                    algorithm: *alg,
                     init,
                     reflect: alg.refin,
                     reverse: alg.refin != alg.refout,

@@ -205,8 +205,8 @@ fn prefix_past_the_input_is_none() {
 
 // ---- CRCs ----
 
-/// Checks `Slicing16` (built at run time, the way the interpreter builds it) against
-/// `crc::Crc<W, NoTable>` for every algorithm named: the check value, random data of every
+/// Checks `Slicing16` (built at run time, the way the interpreter builds it) and `Bitwise`
+/// against `crc::Crc<W, NoTable>` for every algorithm named: the check value, random data of every
 /// length in `0..=300`, and prefixes with bytes past them. Returns the number of algorithms.
 /// Each algorithm is checked in a function of its own: its stack frame (a `Slicing16` is built
 /// on the stack) is reused by the next, not added to one frame of every algorithm.
@@ -224,8 +224,10 @@ macro_rules! check_catalogue {
             assert_eq!(fast.checksum(CHECK), alg.check, stringify!($alg));
             assert_eq!(reference.checksum(CHECK), alg.check, stringify!($alg));
             let check = Checksum::$variant(CrcImpl::Table16(&fast));
+            let bitwise = super::Bitwise::<$w>::new(alg);
             for n in 0..=300 {
                 let want = reference.checksum(&buf[..n]);
+                assert_eq!(bitwise.checksum(&buf[..n]), want, "{} bitwise {n}", stringify!($alg));
                 assert_eq!(fast.checksum(&buf[..n]), want, "{} n {n}", stringify!($alg));
                 // The encoders' call, which never folds: the same value.
                 assert_eq!(fast.checksum_written(&buf[..n]), want, "{} w {n}", stringify!($alg));
@@ -463,12 +465,14 @@ fn slicing_built_at_compile_time_equals_run_time() {
 fn table_sizes() {
     use core::mem::size_of;
     assert_eq!(size_of::<[[u8; 256]; 16]>(), 4096);
-    // The carry-less folding's constants, where the build has them (no bytes otherwise).
+    // The carry-less folding's constants, where the build has them (no bytes otherwise), and
+    // the parameters, held by value.
     let folding = size_of::<Option<clmul::Folding>>();
-    assert!(size_of::<Slicing16<u8>>() <= 4096 + 32 + folding);
-    assert!(size_of::<Slicing16<u16>>() <= 8192 + 32 + folding);
-    assert!(size_of::<Slicing16<u32>>() <= 16384 + 32 + folding);
-    assert!(size_of::<Slicing16<u64>>() <= 32768 + 32 + folding);
+    let params = |w: usize| w * 5 + 8;
+    assert!(size_of::<Slicing16<u8>>() <= 4096 + 32 + folding + params(1));
+    assert!(size_of::<Slicing16<u16>>() <= 8192 + 32 + folding + params(2));
+    assert!(size_of::<Slicing16<u32>>() <= 16384 + 32 + folding + params(4));
+    assert!(size_of::<Slicing16<u64>>() <= 32768 + 32 + folding + params(8));
     assert!(folding <= 64);
 }
 

@@ -8,7 +8,6 @@ use super::{Ctx, text};
 use crate::diag::did_you_mean;
 use crate::ir::{Algorithm, CheckNaming, CrcSpec, CrcTable};
 use crate::spec::model::{ChecksumDef, CrcDef, SStr, SumDef};
-use protocol_runtime::checksum::{Checksum, CrcImpl};
 use toml::Spanned;
 
 /// Built-in algorithms that are not CRCs: (spelling, description).
@@ -315,28 +314,16 @@ fn lower_custom_crc(
     Some(algorithm)
 }
 
-/// The CRC of `data` by the runtime's own code (the `crc` crate without a table, its
-/// parameters interned: [`crate::layout::intern`]); `None` for an algorithm that is not a CRC.
+/// The CRC of `data` by the runtime's own code (its table-free [`Bitwise`] CRC, which holds
+/// the parameters by value: validating a spec keeps nothing once it is done); `None` for an
+/// algorithm that is not a CRC.
 pub fn crc_of(a: &Algorithm, data: &[u8]) -> Option<u64> {
-    use crate::layout::intern;
-    use crc::{Crc, NoTable};
+    use protocol_runtime::checksum::Bitwise;
     Some(match a {
-        Algorithm::Crc8(c) => Checksum::Crc8(CrcImpl::NoTable(&Crc::<u8, NoTable>::new(intern(
-            &c.params,
-        ))))
-        .compute(data),
-        Algorithm::Crc16(c) => Checksum::Crc16(CrcImpl::NoTable(&Crc::<u16, NoTable>::new(
-            intern(&c.params),
-        )))
-        .compute(data),
-        Algorithm::Crc32(c) => Checksum::Crc32(CrcImpl::NoTable(&Crc::<u32, NoTable>::new(
-            intern(&c.params),
-        )))
-        .compute(data),
-        Algorithm::Crc64(c) => Checksum::Crc64(CrcImpl::NoTable(&Crc::<u64, NoTable>::new(
-            intern(&c.params),
-        )))
-        .compute(data),
+        Algorithm::Crc8(c) => u64::from(Bitwise::<u8>::new(&c.params).checksum(data)),
+        Algorithm::Crc16(c) => u64::from(Bitwise::<u16>::new(&c.params).checksum(data)),
+        Algorithm::Crc32(c) => u64::from(Bitwise::<u32>::new(&c.params).checksum(data)),
+        Algorithm::Crc64(c) => Bitwise::<u64>::new(&c.params).checksum(data),
         _ => return None,
     })
 }
