@@ -35,8 +35,9 @@ bin="$CARGO_TARGET_DIR/$target/release"
 
 out="$(mktemp -d)"
 qemu_pid=
+reader_pid=
 cleanup() {
-  [ -n "$qemu_pid" ] && kill "$qemu_pid" 2> /dev/null || true
+  for pid in $qemu_pid $reader_pid; do kill "$pid" 2> /dev/null || true; done
   rm -rf "$out"
 }
 trap cleanup EXIT
@@ -48,12 +49,17 @@ python3 examples/embassy/golden.py tests/vectors/hflink.json "$out/input.bin" "$
 mkfifo "$out/uart.in" "$out/uart.out"
 : > "$out/answers.bin"
 cat "$out/uart.out" >> "$out/answers.bin" &
+reader_pid=$!
 qemu-system-arm -M mps2-an386 -cpu cortex-m4 -display none -monitor none \
   -semihosting-config enable=on,target=native -chardev "pipe,id=uart,path=$out/uart" \
   -serial chardev:uart -kernel "$bin/mps2" > "$out/semihosting.txt" 2>&1 &
 qemu_pid=$!
 # Opening a pipe blocks until its other end is open: bounded, in case QEMU did not start.
-timeout 60 dd if="$out/input.bin" of="$out/uart.in" status=none
+if ! timeout 60 dd if="$out/input.bin" of="$out/uart.in" status=none; then
+  echo "QEMU did not take the input on its UART:"
+  cat "$out/semihosting.txt"
+  exit 1
+fi
 
 # The firmware never stops (a UART has no end): wait until the expected number of bytes came
 # back (the last request's answer is the last expected), QEMU stopped (a panic), or 60 s.
@@ -66,6 +72,9 @@ done
 kill "$qemu_pid" 2> /dev/null || true
 wait "$qemu_pid" 2> /dev/null || true
 qemu_pid=
+# QEMU's end closes the pipe: the reader has every byte once it exits.
+wait "$reader_pid" 2> /dev/null || true
+reader_pid=
 grep -v 'terminating on signal' "$out/semihosting.txt" || true
 if ! cmp -s "$out/answers.bin" "$out/expected.bin"; then
   echo "the mps2 binary's answers differ from the expected ones (or came late):"
