@@ -47,7 +47,9 @@ def main():
     set_speed = frame(MASTER, SLAVE, b"\x0c" + speed_reply[7:-1])
     read_speed = frame(MASTER, SLAVE, b"\x0d")
     chassis = v["set_chassis_parameters_request"]
-    corrupt = v["set_robot_speed_request_negative"][:-1] + bytes([v["set_robot_speed_request_negative"][-1] ^ 0x01])
+    motor = v["set_motor_parameters_request_pc_layout"]
+    set_negative = v["set_robot_speed_request_negative"]
+    corrupt = set_negative[:-1] + bytes([set_negative[-1] ^ 0x01])
 
     # (what the exchange shows, bytes sent, bytes expected back)
     conversation = [
@@ -61,10 +63,10 @@ def main():
          v["read_system_info_request"], v["read_system_info_response"]),
         ("a SET_ROBOT_SPEED with a bad checksum: no answer",
          corrupt, b""),
-        ("a truncated SET_CHASSIS_PARAMETERS, then SET_ROBOT_SPEED: the decoder resyncs, acknowledged",
-         chassis[:11] + v["set_robot_speed_request_negative"], v["set_robot_speed_ack"]),
+        ("a truncated SET_CHASSIS_PARAMETERS, then SET_ROBOT_SPEED: resynced, acknowledged",
+         chassis[:11] + set_negative, v["set_robot_speed_ack"]),
         ("SET_MOTOR_PARAMETERS (the PC layout), acknowledged",
-         v["set_motor_parameters_request_pc_layout"], answer(v["set_motor_parameters_request_pc_layout"])),
+         motor, answer(motor)),
         ("SET_CHASSIS_PARAMETERS, answered with the parameters",
          chassis, answer(chassis, chassis[7:-1])),
         ("SET_ROBOT_SPEED, acknowledged",

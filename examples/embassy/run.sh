@@ -29,8 +29,10 @@ fi
 manifest=examples/embassy/Cargo.toml
 # Its own target directory: another workspace, other features of the shared crates.
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}/embassy"
-cargo build --quiet --locked --manifest-path "$manifest" --release --target "$target" --features stm32f4 --bin stm32f4
-cargo build --quiet --locked --manifest-path "$manifest" --release --target "$target" --features mps2 --bin mps2
+for board in stm32f4 mps2; do
+  cargo build --quiet --locked --manifest-path "$manifest" --release --target "$target" \
+    --features "$board" --bin "$board"
+done
 bin="$CARGO_TARGET_DIR/$target/release"
 
 out="$(mktemp -d)"

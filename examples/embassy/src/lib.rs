@@ -6,7 +6,7 @@
 //!
 //! RAM: the reader holds the decoder (its buffer and state, in the generated module's docs)
 //! and a read buffer of [`READ_BUFFER`] bytes; [`serve`] encodes each answer into a buffer of
-//! `hflink::MAX_FRAME_LEN` bytes on its stack; [`Robot`] holds the robot's values. No heap.
+//! `hflink::MAX_FRAME_LEN` bytes held in its future; [`Robot`] holds the robot's values. No heap.
 
 #![no_std]
 #![forbid(unsafe_code)]
