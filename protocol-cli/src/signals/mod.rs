@@ -186,7 +186,7 @@ fn default_selectors(cat: &Catalogue, records: &[Record]) -> Vec<(String, Select
             None => counts.push((r.key(), 1)),
         }
     }
-    counts.sort_by(|a, b| b.1.cmp(&a.1));
+    counts.sort_by_key(|c| std::cmp::Reverse(c.1));
     let mut out = Vec::new();
     for (key, _) in counts {
         for c in cat.columns(key) {

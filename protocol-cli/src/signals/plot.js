@@ -40,6 +40,7 @@
       full.x1 = Math.max(full.x1, s.x[s.x.length - 1]);
     }
   });
+  var extent = { x0: full.x0, x1: full.x1 };
   // A little room on each side, so that the first and the last sample show whole.
   var room = Math.max(0.5, (full.x1 - full.x0) * 0.01);
   full.x0 -= room;
@@ -347,8 +348,8 @@
     var drawn = 0;
     panels.forEach(function (p) { drawn += p.draw(); });
     document.getElementById('plot-range').textContent = data.axis + ' ' +
-      label(Math.round(view.x0)) + ' to ' + label(Math.round(view.x1)) + ' of ' +
-      label(full.x0) + ' to ' + label(full.x1);
+      Math.max(extent.x0, Math.ceil(view.x0)) + ' to ' + Math.min(extent.x1, Math.floor(view.x1)) +
+      ' (of ' + extent.x0 + ' to ' + extent.x1 + ')';
     root.dataset.drawn = String(drawn);
     check(drawn === data.series.length || view.x0 !== full.x0 || view.x1 !== full.x1,
       'every series is drawn in the whole view (' + drawn + ' of ' + data.series.length + ')');

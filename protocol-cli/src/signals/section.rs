@@ -57,9 +57,11 @@ fn esc(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// Writes the section: heading, notes, the panels' container, the data and the plotter.
+/// Writes the section: heading, notes, the panels' container, the data and the plotter. The
+/// page opened at `#signals-section` shows this section alone (`plot.css`), for a link or a
+/// screenshot of the signals.
 pub fn write(plot: &Plot, out: &mut String) {
-    out.push_str("<h2>Signals</h2>");
+    out.push_str("<section id=\"signals-section\"><h2>Signals</h2>");
     if plot.series.is_empty() {
         let why = if plot.default {
             "No field of the capture's commands has a scale or a unit, so none is plotted by default."
@@ -68,7 +70,7 @@ pub fn write(plot: &Plot, out: &mut String) {
         };
         let _ = write!(
             out,
-            "<p class=\"note\" id=\"signals-none\">{why} Choose fields with <code>protocol report --plot COMMAND.payload.FIELD,...</code>.</p>"
+            "<p class=\"note\" id=\"signals-none\">{why} Choose fields with <code>protocol report --plot COMMAND.payload.FIELD,...</code>.</p></section>"
         );
         return;
     }
@@ -115,6 +117,6 @@ pub fn write(plot: &Plot, out: &mut String) {
     let json = data(plot).to_string().replace('<', "\\u003c");
     let _ = write!(
         out,
-        "<div id=\"signals\"><div class=\"plot-bar\"><button type=\"button\" id=\"plot-reset\">Reset zoom</button><span id=\"plot-range\"></span></div><div id=\"plot-panels\"></div><div id=\"plot-tip\"></div><ul id=\"plot-errors\"></ul></div><script type=\"application/json\" id=\"signal-data\">{json}</script><script>{SCRIPT}</script>"
+        "<div id=\"signals\"><div class=\"plot-bar\"><button type=\"button\" id=\"plot-reset\">Reset zoom</button><span id=\"plot-range\"></span></div><div id=\"plot-panels\"></div><div id=\"plot-tip\"></div><ul id=\"plot-errors\"></ul></div><script type=\"application/json\" id=\"signal-data\">{json}</script><script>{SCRIPT}</script></section>"
     );
 }
