@@ -1,8 +1,8 @@
 //! `protocol report`: one self-contained HTML page about a capture (no network: inline CSS,
-//! SVG and a few lines of script). Link statistics, frames per command, link quality per
-//! window of offsets (bad checks, other rejections, skipped bytes) as an SVG chart, and a hex
-//! view in which every frame's fields are outlined and named on hover, errors highlighted.
-//! The signals' plots are [`crate::signals`]'s; this module places them.
+//! SVG and script). Link statistics, frames per command, the signals (drawn by
+//! [`crate::signals`]), link quality per window of offsets (bad checks, other rejections,
+//! skipped bytes) as an SVG chart, and a hex view in which every frame's fields are outlined
+//! and named on hover, errors highlighted.
 //!
 //! This module decodes and renders; reading the files is the command's.
 

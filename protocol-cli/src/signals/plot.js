@@ -50,6 +50,7 @@
   // Tick positions between lo and hi: steps of 1, 2 or 5 times a power of ten.
   function ticks(lo, hi, count) {
     var raw = (hi - lo) / count;
+    if (!(raw > 0) || !isFinite(raw)) return [lo];
     var power = Math.pow(10, Math.floor(Math.log10(raw)));
     var step = [1, 2, 5, 10].map(function (m) { return m * power; })
       .find(function (s) { return s >= raw; });
