@@ -374,7 +374,10 @@ READ_ROBOT_SPEED.payload.z,READ_GLOBAL_COORDINATE.payload.z";
 /// the place of each sample (computed here from the page's data and the plot area's place and
 /// range, which the plotter records on each canvas), a pixel of the series' colour, wherever
 /// no series drawn later passes; and most of each plot area is still background. A copy of
-/// the page whose plotter throws must show its error in the DOM.
+/// the page whose plotter throws must show its error in the DOM. (Colours at the data's places
+/// rather than a reference image: fonts and anti-aliasing differ between Chromium versions and
+/// machines, the places of the samples do not, and a series drawn out of place fails here
+/// where a tolerance on a whole image might let it through.)
 #[test]
 fn the_signal_plot_is_drawn_in_a_headless_chromium() {
     let Some(browser) = browser() else {
