@@ -7,6 +7,7 @@ use std::fmt::Write as _;
 use serde_json::{Value, json};
 
 use super::{BUCKETS, DEFAULT_SERIES, MAX_SERIES, Plot};
+use crate::report::esc;
 
 /// The plotter: reads the page's JSON, draws one canvas per panel.
 const SCRIPT: &str = include_str!("plot.js");
@@ -47,14 +48,6 @@ pub fn data(plot: &Plot) -> Value {
         "panels": units.iter().map(|u| json!({"unit": u})).collect::<Vec<_>>(),
         "series": series,
     })
-}
-
-/// Escapes text for HTML content.
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 /// Writes the section: heading, notes, the panels' container, the data and the plotter. The
