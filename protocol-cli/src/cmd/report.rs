@@ -65,8 +65,10 @@ pub fn run(args: &Args<'_>) -> Result<ExitCode> {
         data: &data,
         link: false,
     };
-    let records = export::decode_capture(&codec, format, bytes).map_err(|_| not_a_stream())?;
-    let plot = signals::pick(&catalogue, &records, chosen.as_deref());
+    let mut signals = signals::Collector::new(&catalogue, chosen.as_deref());
+    export::each_frame(&codec, format, bytes, &mut |r| signals.add(&r))
+        .map_err(|_| not_a_stream())?;
+    let plot = signals.finish();
     let html = report::render(&codec, format, &data, &name, &plot).ok_or_else(not_a_stream)?;
     let path = args
         .output

@@ -96,75 +96,130 @@ pub fn parse(cat: &Catalogue, arg: &str) -> Result<Vec<(String, Selector)>, Vec<
     if bad.is_empty() { Ok(ok) } else { Err(bad) }
 }
 
-/// The series of `records` that `chosen` selects (in the order of the names, then of the
-/// columns' first appearance), or by default the scaled columns of the most frequent keys.
-pub fn pick(cat: &Catalogue, records: &[Record], chosen: Option<&[(String, Selector)]>) -> Plot {
-    let mut plot = Plot {
-        default: chosen.is_none(),
-        ..Plot::default()
-    };
-    let selectors: Vec<(String, Selector)> = match chosen {
-        Some(c) => c.to_vec(),
-        None => default_selectors(cat, records),
-    };
-    let bound = if chosen.is_some() {
-        MAX_SERIES
-    } else {
-        DEFAULT_SERIES
-    };
-    let mut all: Vec<(usize, Series)> = Vec::new();
-    for (index, record) in records.iter().enumerate() {
+/// A series being gathered: the selector that took it, its key's place in the counts.
+struct Gathered {
+    rank: usize,
+    key: usize,
+    series: Series,
+}
+
+/// Gathers the series of a capture one decoded frame at a time ([`Collector::add`]), so that a
+/// long capture is never held decoded whole; [`Collector::finish`] chooses, bounds and
+/// decimates them.
+pub struct Collector<'c> {
+    cat: &'c Catalogue,
+    /// The names given, or by default every scaled column of every key.
+    selectors: Vec<(String, Selector)>,
+    chosen: bool,
+    /// Frames per key, in order of first appearance.
+    counts: Vec<(String, usize)>,
+    /// The series, in order of first appearance.
+    all: Vec<Gathered>,
+    frames: u64,
+}
+
+impl<'c> Collector<'c> {
+    /// Gathers what `chosen` selects, or by default the scaled columns of every key (the most
+    /// frequent keys' are plotted).
+    pub fn new(cat: &'c Catalogue, chosen: Option<&[(String, Selector)]>) -> Self {
+        Collector {
+            cat,
+            selectors: chosen.map_or_else(|| scaled_selectors(cat), <[_]>::to_vec),
+            chosen: chosen.is_some(),
+            counts: Vec::new(),
+            all: Vec::new(),
+            frames: 0,
+        }
+    }
+
+    /// Adds the values of the capture's next frame.
+    pub fn add(&mut self, record: &Record) {
+        let index = self.frames;
+        self.frames += 1;
         let key = record.key();
+        let k = match self.counts.iter().position(|(x, _)| x == key) {
+            Some(k) => k,
+            None => {
+                self.counts.push((key.to_string(), 0));
+                self.counts.len() - 1
+            }
+        };
+        self.counts[k].1 += 1;
         for (path, cell) in flatten(&record.value) {
             if !(path.starts_with("header.") || path.starts_with("payload.")) {
                 continue;
             }
-            let Some(rank) = selectors.iter().position(|(_, s)| s.matches(key, &path)) else {
+            let shape = names::shape(&path);
+            let selected = (self.selectors.iter()).position(|(_, s)| s.matches(key, &path, &shape));
+            let (Some(rank), Some(y)) = (selected, number(&cell)) else {
                 continue;
             };
-            let Some(y) = number(&cell) else { continue };
             let name = format!("{key}.{path}");
-            let at = match all.iter().position(|(_, s)| s.name == name) {
+            let at = match self.all.iter().position(|g| g.series.name == name) {
                 Some(at) => at,
                 None => {
-                    let unit = cat
+                    let unit = self
+                        .cat
                         .columns(key)
                         .iter()
-                        .find(|c| c.shape == names::shape(&path))
+                        .find(|c| c.shape == shape)
                         .map(|c| c.unit.clone())
                         .unwrap_or_default();
-                    all.push((
+                    let series = Series {
+                        name,
+                        unit,
+                        points: Vec::new(),
+                        samples: 0,
+                    };
+                    self.all.push(Gathered {
                         rank,
-                        Series {
-                            name,
-                            unit,
-                            points: Vec::new(),
-                            samples: 0,
-                        },
-                    ));
-                    all.len() - 1
+                        key: k,
+                        series,
+                    });
+                    self.all.len() - 1
                 }
             };
-            all[at].1.points.push((index as u64, y));
+            self.all[at].series.points.push((index, y));
         }
     }
-    // Stable: within a name, columns stay in order of first appearance.
-    all.sort_by_key(|(rank, _)| *rank);
-    for (rank, (name, _)) in selectors.iter().enumerate() {
-        if chosen.is_some() && !all.iter().any(|(r, _)| *r == rank) {
-            plot.absent.push(name.clone());
+
+    /// The plot: the series in the order of the names given (then of first appearance), or by
+    /// default those of the most frequent keys first; at most [`MAX_SERIES`] or
+    /// [`DEFAULT_SERIES`] of them, each decimated to at most `2 * BUCKETS` points.
+    pub fn finish(self) -> Plot {
+        let mut plot = Plot {
+            default: !self.chosen,
+            ..Plot::default()
+        };
+        let mut all = self.all;
+        let counts = &self.counts;
+        // Stable sorts: within a rank, columns stay in order of first appearance.
+        if self.chosen {
+            all.sort_by_key(|g| g.rank);
+            for (rank, (name, _)) in self.selectors.iter().enumerate() {
+                if !all.iter().any(|g| g.rank == rank) {
+                    plot.absent.push(name.clone());
+                }
+            }
+        } else {
+            all.sort_by_key(|g| (std::cmp::Reverse(counts[g.key].1), g.rank));
         }
-    }
-    for (_, mut s) in all {
-        if plot.series.len() == bound {
-            plot.left_out.push(s.name);
-            continue;
+        let bound = if self.chosen {
+            MAX_SERIES
+        } else {
+            DEFAULT_SERIES
+        };
+        for Gathered { mut series, .. } in all {
+            if plot.series.len() == bound {
+                plot.left_out.push(series.name);
+                continue;
+            }
+            series.samples = series.points.len();
+            series.points = decimate(&series.points, BUCKETS);
+            plot.series.push(series);
         }
-        s.samples = s.points.len();
-        s.points = decimate(&s.points, BUCKETS);
-        plot.series.push(s);
+        plot
     }
-    plot
 }
 
 /// A cell as a number: a JSON number, or a flag as 1 or 0 (non-finite floats, printed as
@@ -177,22 +232,14 @@ fn number(cell: &str) -> Option<f64> {
     }
 }
 
-/// The scaled columns of the keys of `records`, most frequent key first.
-fn default_selectors(cat: &Catalogue, records: &[Record]) -> Vec<(String, Selector)> {
-    let mut counts: Vec<(&str, usize)> = Vec::new();
-    for r in records {
-        match counts.iter_mut().find(|(k, _)| *k == r.key()) {
-            Some((_, n)) => *n += 1,
-            None => counts.push((r.key(), 1)),
-        }
-    }
-    counts.sort_by_key(|c| std::cmp::Reverse(c.1));
+/// Every scaled column of every key, in the spec's order.
+fn scaled_selectors(cat: &Catalogue) -> Vec<(String, Selector)> {
     let mut out = Vec::new();
-    for (key, _) in counts {
-        for c in cat.columns(key) {
+    for (key, columns) in &cat.keys {
+        for c in columns {
             if c.kind == (Kind::Number { scaled: true }) {
                 let selector = Selector {
-                    key: Some(key.to_string()),
+                    key: Some(key.clone()),
                     path: c.shape.clone(),
                 };
                 out.push((format!("{key}.{}", c.shape), selector));

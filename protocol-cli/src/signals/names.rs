@@ -212,15 +212,15 @@ pub struct Selector {
 }
 
 impl Selector {
-    /// Whether column `path` of a frame of `key` is selected.
-    pub fn matches(&self, key: &str, path: &str) -> bool {
+    /// Whether column `path` (whose [`shape`] is `shape`) of a frame of `key` is selected.
+    pub fn matches(&self, key: &str, path: &str, shape: &str) -> bool {
         if self.key.as_deref().is_some_and(|k| k != key) {
             return false;
         }
         if self.path.contains('[') {
             self.path == path
         } else {
-            self.path == shape(path)
+            self.path == shape
         }
     }
 }
@@ -308,13 +308,14 @@ mod tests {
             key: Some("STATUS".into()),
             path: "payload.v[1]".into(),
         };
-        assert!(one.matches("STATUS", "payload.v[1]"));
-        assert!(!one.matches("STATUS", "payload.v[0]"));
-        assert!(!one.matches("OTHER", "payload.v[1]"));
+        assert!(one.matches("STATUS", "payload.v[1]", "payload.v"));
+        assert!(!one.matches("STATUS", "payload.v[0]", "payload.v"));
+        assert!(!one.matches("OTHER", "payload.v[1]", "payload.v"));
         let all = Selector {
             key: None,
             path: "payload.v".into(),
         };
-        assert!(all.matches("STATUS", "payload.v[0]") && all.matches("OTHER", "payload.v[7]"));
+        assert!(all.matches("STATUS", "payload.v[0]", "payload.v"));
+        assert!(all.matches("OTHER", "payload.v[7]", "payload.v"));
     }
 }
