@@ -5,8 +5,8 @@
 //! [`BUCKETS`] equal stretches of the capture), so that a large capture gives a page of
 //! bounded size. [`section`] writes the page's part; the plotter itself is `plot.js`.
 //!
-//! The frames come from [`crate::export::decode_capture`], so a series holds exactly the
-//! values `protocol decode --format json` prints. Their position is the frame's index among
+//! The frames come from [`crate::export::each_frame`], one at a time into a [`Collector`], so
+//! a series holds exactly the values `protocol decode --format json` prints. Their position is the frame's index among
 //! the capture's frames: a file of raw bytes has no receive times.
 
 pub mod names;
