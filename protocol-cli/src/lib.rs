@@ -1,8 +1,9 @@
 //! The library behind the `protocol` command: the parts of the command worth testing without
 //! a process: spec loading and diagnostics ([`spec`]), decoding sessions ([`session`],
 //! [`table`]), CAN logs ([`candump`]), CSV and MCAP exports ([`export`]), lost and reordered
-//! frames ([`counter`]) and, on Linux, live SocketCAN input (`socketcan`). Decoding and
-//! encoding run on the [`protocol_dynamic`] codec.
+//! frames ([`counter`]), the capture report ([`report`]) with its signal plots ([`signals`])
+//! and, on Linux, live SocketCAN input (`socketcan`). Decoding and encoding run on the
+//! [`protocol_dynamic`] codec.
 #![forbid(unsafe_code)]
 
 pub mod candump;
@@ -10,6 +11,7 @@ pub mod counter;
 pub mod export;
 pub mod report;
 pub mod session;
+pub mod signals;
 #[cfg(target_os = "linux")]
 pub mod socketcan;
 pub mod spec;

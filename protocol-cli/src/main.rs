@@ -46,7 +46,8 @@ enum Command {
     /// Encode frame objects (JSON Lines, as `decode --format json` prints them) into frames.
     Encode(cmd::encode::Args),
     /// Write one self-contained HTML page about a capture: link statistics, frames per
-    /// command, link quality over the capture, and a hex view with every field outlined.
+    /// command, signals plotted over the capture, link quality over the capture, and a hex
+    /// view with every field outlined.
     Report {
         /// The spec file.
         spec: PathBuf,
@@ -62,6 +63,12 @@ enum Command {
         /// (`given = true`): a direction named in the spec (`request`, `response`).
         #[arg(long, value_name = "NAME")]
         direction: Option<String>,
+        /// Fields to plot over the capture, comma-separated: `COMMAND.payload.FIELD`,
+        /// `COMMAND.header.FIELD`, or `payload.FIELD` for every command that has it (an
+        /// array's element `payload.v[2]`, or all of them `payload.v`). Default: the fields
+        /// with a scale or a unit of the most frequent commands.
+        #[arg(long, value_name = "NAMES")]
+        plot: Vec<String>,
     },
     /// Print the Rust code the `protocol!` macro generates for a spec, formatted (in a build
     /// with the `expand` feature: `cargo install protocol-cli --features expand`).
@@ -151,13 +158,15 @@ fn main() -> ExitCode {
             output,
             frame,
             direction,
-        } => cmd::report::run(
-            &spec,
-            &capture,
-            output.as_deref(),
-            frame.as_deref(),
-            direction.as_deref(),
-        ),
+            plot,
+        } => cmd::report::run(&cmd::report::Args {
+            spec: &spec,
+            capture: &capture,
+            output: output.as_deref(),
+            frame: frame.as_deref(),
+            direction: direction.as_deref(),
+            plot: &plot,
+        }),
         Command::Gen(Gen::C { spec, output }) => cmd::generate::c(&spec, &output),
         Command::Gen(Gen::Wireshark { spec, output }) => cmd::wireshark::run(&spec, &output),
         Command::Export(Export::Pcap(args)) => cmd::export::pcap_run(&args),

@@ -1,7 +1,8 @@
 //! `protocol report`: one self-contained HTML page about a capture (no network: inline CSS,
-//! SVG and a few lines of script). Link statistics, frames per command, link quality per
-//! window of offsets (bad checks, other rejections, skipped bytes) as an SVG chart, and a hex
-//! view in which every frame's fields are outlined and named on hover, errors highlighted.
+//! SVG and script). Link statistics, frames per command, the signals (drawn by
+//! [`crate::signals`]), link quality per window of offsets (bad checks, other rejections,
+//! skipped bytes) as an SVG chart, and a hex view in which every frame's fields are outlined
+//! and named on hover, errors highlighted.
 //!
 //! This module decodes and renders; reading the files is the command's.
 
@@ -280,7 +281,7 @@ fn spans(
 }
 
 /// Escapes text for HTML content and attribute values.
-fn esc(s: &str) -> String {
+pub(crate) fn esc(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
         match c {
@@ -497,9 +498,15 @@ document.getElementById('quality').addEventListener('click',function(e){var r=e.
 var at=+r.dataset.offset,best=null;document.querySelectorAll('#hex>div').forEach(function(d){if(+d.dataset.offset<=at)best=d;});\
 if(best)best.scrollIntoView({block:'center'});});";
 
-/// The whole page for `data` decoded with frame format `format` of `codec`'s spec; `name`
-/// titles it. `None` when the codec has no such format.
-pub fn render(codec: &Codec<'_>, format: usize, data: &[u8], name: &str) -> Option<String> {
+/// The whole page for `data` decoded with frame format `format` of `codec`'s spec, with the
+/// signals of `plot`; `name` titles it. `None` when the codec has no such format.
+pub fn render(
+    codec: &Codec<'_>,
+    format: usize,
+    data: &[u8],
+    name: &str,
+    plot: &crate::signals::Plot,
+) -> Option<String> {
     let p = codec.protocol();
     let capture = decode(codec, format, data)?;
     let s = &capture.stats;
@@ -513,8 +520,9 @@ pub fn render(codec: &Codec<'_>, format: usize, data: &[u8], name: &str) -> Opti
     let title = format!("{name}: {} capture", p.name);
     let _ = write!(
         out,
-        "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title><style>{STYLE}</style></head><body><h1>{}</h1>",
+        "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title><style>{STYLE}{}</style></head><body><h1>{}</h1>",
         esc(&title),
+        crate::signals::section::STYLE,
         esc(&title)
     );
     let rejected = s.bad_checksum
@@ -582,7 +590,9 @@ pub fn render(codec: &Codec<'_>, format: usize, data: &[u8], name: &str) -> Opti
             );
         }
     }
-    out.push_str("</table><h2>Link quality over the capture</h2>");
+    out.push_str("</table>");
+    crate::signals::section::write(plot, &mut out);
+    out.push_str("<h2>Link quality over the capture</h2>");
     chart(&capture.entries, data.len(), &mut out);
     out.push_str("<h2>Bytes</h2><p>Every frame's fields are outlined; hover one for its name and value. Rejected candidates are red, skipped bytes grey, frames without a message of the spec orange. A click on a bar of the chart scrolls here.</p>");
     hex_view(data, &capture.entries, &mut out);

@@ -2,10 +2,11 @@
 //! ([`csv`]), and an MCAP file with one channel per command ([`mcap`]) whose JSON schema is
 //! derived from the spec ([`schema`]).
 //!
-//! The frames come from [`decode_capture`], which runs a [`Session`] in JSON mode, the one
-//! place that turns a decoded frame into the objects `protocol decode --format json` prints:
-//! an export holds exactly what `decode` prints, field for field. Events (rejected
-//! candidates, skipped bytes, unknown commands) are not frames and are left out.
+//! The frames come from [`decode_capture`] (or [`each_frame`], one at a time), which runs a
+//! [`Session`] in JSON mode, the one place that turns a decoded frame into the objects
+//! `protocol decode --format json` prints: an export holds exactly what `decode` prints, field
+//! for field. Events (rejected candidates, skipped bytes, unknown commands) are not frames and
+//! are left out.
 
 pub mod csv;
 pub mod mcap;
@@ -73,8 +74,44 @@ pub fn decode_capture(
     format: usize,
     capture: Capture<'_>,
 ) -> io::Result<Vec<Record>> {
-    let mut lines = Vec::new();
-    let mut session = Session::new(codec, format, Output::Json, &mut lines);
+    let mut out = Vec::new();
+    each_frame(codec, format, capture, &mut |r| out.push(r))?;
+    Ok(out)
+}
+
+/// Decodes every frame of a capture as [`decode_capture`] does, handing each to `each` as soon
+/// as it is decoded: a long capture is never held decoded whole.
+///
+/// # Errors
+/// Only an internal failure to read back a JSON line the session wrote.
+pub fn each_frame(
+    codec: &Codec<'_>,
+    format: usize,
+    capture: Capture<'_>,
+    each: &mut dyn FnMut(Record),
+) -> io::Result<()> {
+    let mut on_line = |line: &[u8]| -> io::Result<()> {
+        let value: Value = serde_json::from_slice(line).map_err(io::Error::other)?;
+        if value.get("event").is_some() {
+            return Ok(());
+        }
+        let time_ns = match capture {
+            Capture::Can(records) => value
+                .get("offset")
+                .and_then(Value::as_u64)
+                .and_then(|i| records.get(usize::try_from(i).ok()?))
+                .and_then(|r| r.time.as_deref())
+                .and_then(time_ns),
+            Capture::Bytes { .. } => None,
+        };
+        each(Record { value, time_ns });
+        Ok(())
+    };
+    let sink = Lines {
+        partial: Vec::new(),
+        on_line: &mut on_line,
+    };
+    let mut session = Session::new(codec, format, Output::Json, sink);
     match capture {
         Capture::Bytes { data, link } => {
             let decoder = if link {
@@ -102,24 +139,38 @@ pub fn decode_capture(
             }
         }
     }
-    let mut out = Vec::new();
-    for line in lines.split(|b| *b == b'\n').filter(|l| !l.is_empty()) {
-        let value: Value = serde_json::from_slice(line).map_err(io::Error::other)?;
-        if value.get("event").is_some() {
-            continue;
+    session.flush()
+}
+
+/// The session's output: each complete line written is handed on, and only a line not yet
+/// ended is kept.
+struct Lines<'f> {
+    partial: Vec<u8>,
+    on_line: &'f mut dyn FnMut(&[u8]) -> io::Result<()>,
+}
+
+impl io::Write for Lines<'_> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.partial.extend_from_slice(buf);
+        let mut start = 0;
+        while let Some(end) = self.partial[start..].iter().position(|b| *b == b'\n') {
+            let line = &self.partial[start..start + end];
+            if !line.is_empty() {
+                (self.on_line)(line)?;
+            }
+            start += end + 1;
         }
-        let time_ns = match capture {
-            Capture::Can(records) => value
-                .get("offset")
-                .and_then(Value::as_u64)
-                .and_then(|i| records.get(usize::try_from(i).ok()?))
-                .and_then(|r| r.time.as_deref())
-                .and_then(time_ns),
-            Capture::Bytes { .. } => None,
-        };
-        out.push(Record { value, time_ns });
+        self.partial.drain(..start);
+        Ok(buf.len())
     }
-    Ok(out)
+
+    fn flush(&mut self) -> io::Result<()> {
+        if self.partial.is_empty() {
+            Ok(())
+        } else {
+            Err(io::Error::other("a JSON line without its end"))
+        }
+    }
 }
 
 /// Nanoseconds of a decimal seconds timestamp (`1700000000.500000`), read exactly (no float).
