@@ -1,7 +1,7 @@
 //! The library behind the `protocol` command: the parts of the command worth testing without
 //! a process: spec loading and diagnostics ([`spec`]), decoding sessions ([`session`],
 //! [`table`]), CAN logs ([`candump`]), CSV and MCAP exports ([`export`]), lost and reordered
-//! frames ([`counter`]) and, on Linux, live SocketCAN input (`socketcan`). Decoding and
+//! frames ([`counter`]), the device twin ([`twin`]) and, on Linux, live SocketCAN input (`socketcan`). Decoding and
 //! encoding run on the [`protocol_dynamic`] codec.
 #![forbid(unsafe_code)]
 
@@ -14,3 +14,4 @@ pub mod session;
 pub mod socketcan;
 pub mod spec;
 pub mod table;
+pub mod twin;
