@@ -43,6 +43,7 @@
 
 use std::collections::VecDeque;
 use std::fmt;
+use std::future::Future;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::vec::Vec;
@@ -155,29 +156,43 @@ impl Client {
         (Client { orders, tally }, frames)
     }
 
-    /// Encodes `packet` and sends it as a request: resolves to its one [`Reply`].
+    /// Encodes `packet` and hands it to the session's task as a request, at once (requests
+    /// go out in the order of these calls); the future resolves to its one [`Reply`]. The
+    /// future borrows nothing: requests made one after the other can be awaited together.
     ///
     /// # Errors
     /// [`ClientError`]: the packet does not encode, the requester refuses it, or the link
     /// closed.
-    pub async fn request<P: EncodePacket>(&self, packet: &P) -> Result<Reply, ClientError> {
+    pub fn request<P: EncodePacket>(
+        &self,
+        packet: &P,
+    ) -> impl Future<Output = Result<Reply, ClientError>> + Send + 'static {
         let mut frame = std::vec![0u8; packet.encoded_len()];
-        let n = packet
-            .encode_into(&mut frame)
-            .map_err(ClientError::Encode)?;
-        frame.truncate(n);
-        self.request_frame(frame).await
+        let encoded = packet.encode_into(&mut frame).map(|n| {
+            frame.truncate(n);
+            frame
+        });
+        let sent = encoded
+            .map_err(ClientError::Encode)
+            .map(|frame| self.request_frame(frame));
+        async move { sent?.await }
     }
 
-    /// Sends `frame` (a request of the format, encoded; the requester numbers and seals it)
-    /// as a request: resolves to its one [`Reply`].
+    /// Hands `frame` (a request of the format, encoded; the requester numbers and seals it)
+    /// to the session's task as a request, at once; the future resolves to its one [`Reply`].
     ///
     /// # Errors
     /// As [`request`](Self::request).
-    pub async fn request_frame(&self, frame: Vec<u8>) -> Result<Reply, ClientError> {
+    pub fn request_frame(
+        &self,
+        frame: Vec<u8>,
+    ) -> impl Future<Output = Result<Reply, ClientError>> + Send + 'static {
         let (reply, answer) = oneshot::channel();
-        self.order(Order::Request { frame, reply })?;
-        answer.await.unwrap_or(Err(CLOSED))
+        let ordered = self.order(Order::Request { frame, reply });
+        async move {
+            ordered?;
+            answer.await.unwrap_or(Err(CLOSED))
+        }
     }
 
     /// Writes `bytes` as they are, past the requester: no number, no seal, no wait for an
@@ -186,10 +201,16 @@ impl Client {
     ///
     /// # Errors
     /// [`ClientError::Closed`] when the link closed.
-    pub async fn send_raw(&self, bytes: Vec<u8>) -> Result<(), ClientError> {
+    pub fn send_raw(
+        &self,
+        bytes: Vec<u8>,
+    ) -> impl Future<Output = Result<(), ClientError>> + Send + 'static {
         let (done, written) = oneshot::channel();
-        self.order(Order::Raw { bytes, done })?;
-        written.await.unwrap_or(Err(CLOSED))
+        let ordered = self.order(Order::Raw { bytes, done });
+        async move {
+            ordered?;
+            written.await.unwrap_or(Err(CLOSED))
+        }
     }
 
     /// Requests sent again since the client started (each retry the requester asked for).
