@@ -5,7 +5,8 @@
 //! SET is answered with the values the twin was given (or zeros). RoboRTS: acknowledgements
 //! matched by sequence number and session id, session modes, requests open together; with
 //! frames dropped both ways the client retries, and every request still resolves to exactly
-//! one outcome while the twin delivers none twice.
+//! one outcome while the twin delivers none twice. Scout: the twin logs the watchdog's lapse
+//! once, and the next command arms it again.
 
 use std::io::{BufRead, BufReader, Read};
 use std::process::{Child, Command, Stdio};
@@ -350,4 +351,40 @@ fn counts(tally: &str) -> (u64, u64) {
             .unwrap_or_else(|| panic!("no `{what}` in {tally:?}"))
     };
     (number(" delivered"), number(" duplicates"))
+}
+
+#[test]
+fn scout_watchdog_lapse_is_logged_once_per_lapse() {
+    use std::io::Write;
+    // MOTION_CONTROL (CMD_UART, no motion), as `protocol encode specs/scout.toml` writes it.
+    let motion = [
+        0x5A, 0xA5, 0x0A, 0x55, 0x01, 0x02, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x61,
+    ];
+    let twin = Twin::start(&["specs/scout.toml"]);
+    // The twin set its pty raw: plain writes reach it byte for byte.
+    let mut port = std::fs::OpenOptions::new()
+        .write(true)
+        .open(&twin.path)
+        .expect("the pty opens");
+    port.write_all(&motion).expect("written");
+    // The watchdog's period is 500 ms: it lapses once, then the next command arms it again.
+    std::thread::sleep(Duration::from_millis(900));
+    port.write_all(&motion).expect("written");
+    std::thread::sleep(Duration::from_millis(100));
+    let log = twin.stop();
+    let lines: Vec<&str> = log
+        .lines()
+        .map(|l| l.split_once(" ms  ").map_or(l, |(_, r)| r))
+        .collect();
+    let motion_line = "MOTION_CONTROL {\"count\":0}  delivered, no answer";
+    assert_eq!(
+        lines,
+        [
+            motion_line,
+            "watchdog expired",
+            motion_line,
+            "twin: 2 delivered, 0 answered, 0 duplicates, 0 refused before the handshake, 0 dropped, 0 not answered",
+        ],
+        "{log}"
+    );
 }

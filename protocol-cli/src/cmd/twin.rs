@@ -13,6 +13,7 @@ use std::time::Duration;
 use miette::{IntoDiagnostic, Result, WrapErr, miette};
 use protocol_cli::twin::{Options, Tally, read_values, serve};
 use protocol_dynamic::Interpreter;
+use protocol_spec::ir::Transport;
 
 use super::load_checked;
 
@@ -52,10 +53,18 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         Ok(p) => p,
         Err(code) => return Ok(code),
     };
-    if protocol.session.is_none() {
+    let Some(session) = &protocol.session else {
         return Err(miette!(
             "spec `{}` has no [session]: the twin answers as a session says",
             protocol.name
+        ));
+    };
+    let format = &protocol.frames[session.frame];
+    if matches!(format.transport, Transport::Can { .. }) {
+        return Err(miette!(
+            "spec `{}` holds its session on CAN frames (`{}`): the twin answers on a byte stream",
+            protocol.name,
+            format.name
         ));
     }
     if !(0.0..=1.0).contains(&args.drop) {
