@@ -1,9 +1,9 @@
 //! The library behind the `protocol` command: the parts of the command worth testing without
 //! a process: spec loading and diagnostics ([`spec`]), decoding sessions ([`session`],
 //! [`table`]), CAN logs ([`candump`]), CSV and MCAP exports ([`export`]), lost and reordered
-//! frames ([`counter`]), the capture report ([`report`]) with its signal plots ([`signals`])
-//! and, on Linux, live SocketCAN input (`socketcan`). Decoding and encoding run on the
-//! [`protocol_dynamic`] codec.
+//! frames ([`counter`]), the capture report ([`report`]) with its signal plots ([`signals`]),
+//! the device twin ([`twin`]) and, on Linux, live SocketCAN input (`socketcan`). Decoding and
+//! encoding run on the [`protocol_dynamic`] codec.
 #![forbid(unsafe_code)]
 
 pub mod candump;
@@ -16,3 +16,4 @@ pub mod signals;
 pub mod socketcan;
 pub mod spec;
 pub mod table;
+pub mod twin;

@@ -45,6 +45,10 @@ enum Command {
     Decode(cmd::decode::Args),
     /// Encode frame objects (JSON Lines, as `decode --format json` prints them) into frames.
     Encode(cmd::encode::Args),
+    /// Be the device: answer requests on a pseudo-terminal or a serial port as the spec's
+    /// `[session]` says (answers, acknowledgements, NACKs before the handshake, duplicates
+    /// answered again), with payload values from a file or zeros, and optional dropped frames.
+    Twin(cmd::twin::Args),
     /// Write one self-contained HTML page about a capture: link statistics, frames per
     /// command, signals plotted over the capture, link quality over the capture, and a hex
     /// view with every field outlined.
@@ -151,6 +155,7 @@ fn main() -> ExitCode {
         Command::Doc { spec, output } => cmd::doc::run(&spec, output.as_deref()),
         Command::Decode(args) => cmd::decode::run(&args),
         Command::Encode(args) => cmd::encode::run(&args),
+        Command::Twin(args) => cmd::twin::run(&args),
         Command::Expand { spec } => cmd::expand::run(&spec),
         Command::Report {
             spec,

@@ -99,6 +99,7 @@
 #![forbid(unsafe_code)]
 
 pub mod compat;
+mod defaults;
 mod error;
 mod frame;
 mod layout;

@@ -37,9 +37,9 @@
 //! |---|---|
 //! | `std` | reading frames from a `std::io::Read` |
 //! | `embedded-io` | reading frames from an `embedded-io` reader |
-//! | `embedded-io-async` | packets from an `embedded-io-async` reader (`io_async::PacketReader`) and written to a writer (`io_async::write_packet`); re-exports `embedded-io-async` and `embedded-io` at the versions they take |
+//! | `embedded-io-async` | packets from an `embedded-io-async` reader (`io_async::PacketReader`) and written to a writer (`io_async::write_packet`); the session's requester on a reader and a writer (`session::io_async::Link`); re-exports `embedded-io-async` and `embedded-io` at the versions they take |
 //! | `embedded-can` | `CanFrame` as an `embedded_can::Frame`, `CanFrame::from_frame` and `CanFrame::to_frame` for a CAN driver's frames; re-exports `embedded-can` |
-//! | `tokio` | `codec::PacketCodec`, a `tokio_util::codec` decoder and encoder of a spec's packets; re-exports `tokio-util` |
+//! | `tokio` | `codec::PacketCodec`, a `tokio_util::codec` decoder and encoder of a spec's packets; `session::client::Client`, requests over a tokio stream resolved to the answer, the NACK or a timeout; re-exports `tokio-util` |
 //! | `serde` | `Serialize` and `Deserialize` for [`Bytes`], [`FixedStr`], [`Group`] and arrays of any length, and the helpers the impls of generated types call (module `serde_impl`); re-exports `serde` |
 //! | `defmt` | `defmt::Format` for [`Bytes`], [`FixedStr`], [`Group`], [`DecodeError`], [`EncodeError`], [`Reject`], [`Event`], [`Frame`] and [`Stats`]; re-exports `defmt` |
 //! | `stage-input` | every input chunk staged in the decoder's buffer before it is scanned, as on targets without 64-bit pointers (where it is the default: less code); on hosts, to test that path. Frames and stats are the same either way; only whether a frame borrows the caller's input changes |

@@ -11,6 +11,7 @@ pub mod export;
 pub mod export_data;
 pub mod generate;
 pub mod report;
+pub mod twin;
 pub mod wireshark;
 
 use std::io::IsTerminal;

@@ -21,6 +21,10 @@ use crate::error::DecodeError;
 use crate::layout::WordField;
 use crate::rules::PacketRules;
 
+#[cfg(feature = "tokio")]
+pub mod client;
+#[cfg(feature = "embedded-io-async")]
+pub mod io_async;
 mod requester;
 mod responder;
 

@@ -6,6 +6,8 @@
 //! the serde and defmt impls of generated types, and generated packets logged with
 //! `defmt::info!` as firmware would (built, not linked: the firmware's defmt logger and its
 //! host decoder are not part of this check).
+//!
+//! The [`session`] module holds HFLink's session requester on an async UART, as firmware does.
 
 #![no_std]
 #![forbid(unsafe_code)]
@@ -30,6 +32,8 @@ protocol_kit::protocol!("../../protocol-codegen/tests/features/int24.toml");
 protocol_kit::protocol!("../../protocol-codegen/tests/features/reserved_bits.toml");
 protocol_kit::protocol!("../../protocol-codegen/tests/features/packed.toml");
 protocol_kit::protocol!("../../protocol-codegen/tests/features/text.toml");
+
+pub mod session;
 
 use hflink::{Header, Message, Packet, Request};
 

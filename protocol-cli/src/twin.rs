@@ -1,0 +1,400 @@
+//! The device twin of `protocol twin`: a device that holds its side of the spec's `[session]`
+//! on a byte stream (a pseudo-terminal, a serial port). The runtime's [`Responder`] decides
+//! what each request is (new, a duplicate, before the handshake, stale); this module builds the
+//! frames it answers with through the run-time codec (the reply, the acknowledgement, the
+//! answering command, the NACK; payload values from the caller's table or the payload's
+//! all-zero value), injects the faults it is told to (frames dropped each way), and logs every
+//! exchange.
+//!
+//! Matching, numbering and duplicate suppression are the responder's; reading frames is the
+//! engine's ([`Codec::stream`]).
+
+use std::collections::HashMap;
+use std::io::{self, Read, Write};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use protocol_dynamic::{Codec, Decoded, Fields, Item, Value};
+use protocol_runtime::session::{Answer, Heard, Incoming, Responder, SessionRules};
+use protocol_spec::session::command_key;
+
+/// Requests the twin remembers with their answers (give a host's requester at most as many
+/// slots), and the longest answer it remembers, in bytes.
+const SLOTS: usize = 32;
+const FRAME: usize = 2048;
+
+/// Payload values per command name (a struct's fields; those left out are zero).
+pub type Values = HashMap<String, Value>;
+
+/// How the twin answers.
+#[derive(Debug, Clone, Default)]
+pub struct Options {
+    /// Payload values of the answers, per command.
+    pub values: Values,
+    /// Probability that a frame is dropped, each way (a request read, an answer written).
+    pub drop: f64,
+    /// Seed of the fault draws.
+    pub seed: u64,
+}
+
+/// What the twin counted.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Tally {
+    /// Requests delivered (new, in the session).
+    pub delivered: u64,
+    /// Answers written (replies, acknowledgements, answering commands).
+    pub answered: u64,
+    /// Requests received again and not delivered.
+    pub duplicates: u64,
+    /// NACKs written to requests before the handshake.
+    pub refused: u64,
+    /// Frames dropped by the fault injection (read and to be written).
+    pub dropped: u64,
+    /// Requests the twin could not answer (no payload values, an encode error).
+    pub failed: u64,
+}
+
+/// Reads `path` as a table of payload values per command: TOML for a `.toml` file, else JSON.
+///
+/// # Errors
+/// The file cannot be read or parsed, or is not a table.
+pub fn read_values(path: &std::path::Path) -> Result<Values, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+    let parsed = if path.extension().is_some_and(|e| e == "toml") {
+        toml::from_str::<Values>(&text).map_err(|e| e.to_string())
+    } else {
+        serde_json::from_str::<Values>(&text).map_err(|e| e.to_string())
+    };
+    parsed.map_err(|e| {
+        format!(
+            "`{}`: not a table of payloads per command: {e}",
+            path.display()
+        )
+    })
+}
+
+/// Serves the session of `codec`'s spec on `port` until `stop` is set or the port hangs up,
+/// logging each exchange to `log`. A read that times out is a tick of the clock (the
+/// watchdog is checked), so give the port a read timeout.
+///
+/// # Errors
+/// The spec has no `[session]` (`InvalidInput`), or the port fails.
+pub fn serve<P: Read + Write>(
+    codec: &Codec<'_>,
+    port: &mut P,
+    options: &Options,
+    log: &mut dyn Write,
+    stop: &AtomicBool,
+) -> io::Result<Tally> {
+    let no_session = || io::Error::new(io::ErrorKind::InvalidInput, "the spec has no [session]");
+    let format = codec
+        .protocol()
+        .session
+        .as_ref()
+        .ok_or_else(no_session)?
+        .frame;
+    codec
+        .with_session(|rules| {
+            let mut twin = Twin {
+                codec,
+                rules,
+                format,
+                options,
+                responder: Box::new(Responder::new(rules)),
+                rng: options.seed ^ 0x9E37_79B9_7F4A_7C15,
+                start: Instant::now(),
+                tally: Tally::default(),
+            };
+            twin.run(port, log, stop).map(|()| twin.tally)
+        })
+        .ok_or_else(no_session)?
+}
+
+struct Twin<'c, 'r> {
+    codec: &'c Codec<'c>,
+    rules: &'r SessionRules<'r>,
+    format: usize,
+    options: &'c Options,
+    responder: Box<Responder<'r, SLOTS, FRAME>>,
+    rng: u64,
+    start: Instant,
+    tally: Tally,
+}
+
+impl Twin<'_, '_> {
+    fn run<P: Read + Write>(
+        &mut self,
+        port: &mut P,
+        log: &mut dyn Write,
+        stop: &AtomicBool,
+    ) -> io::Result<()> {
+        let mut stream = self
+            .codec
+            .stream(self.format)
+            .ok_or(io::ErrorKind::InvalidInput)?;
+        let mut buf = [0u8; 1024];
+        while !stop.load(Ordering::Relaxed) {
+            let n = match port.read(&mut buf) {
+                Ok(0) => return Ok(()),
+                Ok(n) => n,
+                Err(e) if is_tick(&e) => 0,
+                // A port that hangs up (the host closed a pty whose other end the twin does
+                // not hold, an unplugged adapter) ends the session.
+                Err(e) if e.kind() == io::ErrorKind::BrokenPipe || e.raw_os_error() == Some(5) => {
+                    return Ok(());
+                }
+                Err(e) => return Err(e),
+            };
+            let mut input = buf.get(..n).unwrap_or_default();
+            while let Some(item) = stream.next_item(&mut input) {
+                if let Item::Frame { bytes, decoded, .. } = item {
+                    let (bytes, decoded) = (bytes.to_vec(), decoded.ok());
+                    self.on_frame(&bytes, decoded.as_ref(), port, log)?;
+                }
+            }
+            if self.responder.poll(self.now()).is_some() {
+                writeln!(log, "{:>7} ms  watchdog expired", self.now())?;
+            }
+        }
+        Ok(())
+    }
+
+    fn now(&self) -> u64 {
+        u64::try_from(self.start.elapsed().as_millis()).unwrap_or(u64::MAX)
+    }
+
+    /// True with the probability of a drop.
+    fn draw_drop(&mut self) -> bool {
+        // splitmix64: a fixed sequence per seed, so that a run can be repeated.
+        self.rng = self.rng.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.rng;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        let hit = ((z >> 11) as f64) / ((1u64 << 53) as f64) < self.options.drop;
+        if hit {
+            self.tally.dropped += 1;
+        }
+        hit
+    }
+
+    /// A frame read: what the responder makes of it, and the answer written.
+    fn on_frame<P: Write>(
+        &mut self,
+        request: &[u8],
+        decoded: Option<&Decoded>,
+        port: &mut P,
+        log: &mut dyn Write,
+    ) -> io::Result<()> {
+        let now = self.now();
+        let what = describe(self.codec, decoded);
+        if self.draw_drop() {
+            return writeln!(log, "{now:>7} ms  {what}  dropped (fault)");
+        }
+        let (verdict, answer) = match self.responder.on_frame(now, request) {
+            Incoming::Deliver { answer: false } => {
+                self.tally.delivered += 1;
+                ("delivered, no answer".to_string(), None)
+            }
+            Incoming::Deliver { answer: true } => {
+                self.tally.delivered += 1;
+                self.answer(request, decoded, false)
+            }
+            Incoming::Duplicate(sent) => {
+                self.tally.duplicates += 1;
+                let again = sent.map(<[u8]>::to_vec);
+                ("duplicate, not delivered".to_string(), again)
+            }
+            Incoming::BeforeHandshake if self.rules.nack.is_some() => {
+                self.answer(request, decoded, true)
+            }
+            Incoming::BeforeHandshake => ("before the handshake".to_string(), None),
+            Incoming::Stale => ("stale, neither delivered nor answered".to_string(), None),
+            Incoming::Ack => ("an acknowledgement".to_string(), None),
+            Incoming::Unreadable(e) => (format!("unreadable: {e}"), None),
+        };
+        let Some(answer) = answer else {
+            return writeln!(log, "{now:>7} ms  {what}  {verdict}");
+        };
+        if self.draw_drop() {
+            return writeln!(
+                log,
+                "{now:>7} ms  {what}  {verdict}, answer dropped (fault)"
+            );
+        }
+        port.write_all(&answer)?;
+        port.flush()?;
+        writeln!(log, "{now:>7} ms  {what}  {verdict}")
+    }
+
+    /// The answer to a delivered request, or the NACK to one before the handshake: what to
+    /// log, and the frame.
+    fn answer(
+        &mut self,
+        request: &[u8],
+        decoded: Option<&Decoded>,
+        nack: bool,
+    ) -> (String, Option<Vec<u8>>) {
+        let built = decoded
+            .ok_or_else(|| "not a message of the spec".to_string())
+            .and_then(|d| self.build(request, d, nack));
+        match built {
+            Ok((name, frame)) => {
+                if nack {
+                    self.tally.refused += 1;
+                    (format!("before the handshake -> NACK {name}"), Some(frame))
+                } else {
+                    self.tally.answered += 1;
+                    (format!("delivered -> {name}"), Some(frame))
+                }
+            }
+            Err(e) => {
+                self.tally.failed += 1;
+                (format!("not answered: {e}"), None)
+            }
+        }
+    }
+
+    /// Encodes the answer the spec says `request` expects (or the NACK) and lets the
+    /// responder write what it repeats and seal it: the answer's name and frame.
+    fn build(
+        &mut self,
+        request: &[u8],
+        d: &Decoded,
+        nack: bool,
+    ) -> Result<(String, Vec<u8>), String> {
+        let p = self.codec.protocol();
+        let Ok(Heard::Command(key)) = self.rules.heard(request) else {
+            return Err("not a request".into());
+        };
+        let kind = if nack {
+            Answer::Command(self.rules.nack.unwrap_or(key))
+        } else {
+            self.rules.expects(key, request).answer
+        };
+        let mut object = Fields::new();
+        object.insert("format", Value::from(p.frames[self.format].name.clone()));
+        object.insert("header", Value::Struct(swapped(p, d)));
+        let direction = answer_direction(p, d.direction);
+        if let Some(dir) = direction.filter(|_| p.directions_given()) {
+            object.insert("direction", Value::from(p.directions[dir].name.clone()));
+        }
+        let name = match kind {
+            Answer::None => return Err("the request expects no answer".into()),
+            Answer::Ack => {
+                object.insert("ack", Value::Bool(true));
+                object.insert("payload", Value::Bytes(Vec::new()));
+                "ACK".to_string()
+            }
+            Answer::Reply | Answer::Command(_) => {
+                let other = match kind {
+                    Answer::Command(k) => Some(k),
+                    _ => None,
+                };
+                let ci = match other {
+                    None => d.command.ok_or("a frame without a command")?,
+                    Some(k) => self.command_of(k).ok_or("no command of the answer's key")?,
+                };
+                let command = &p.commands[ci];
+                object.insert("command", Value::from(command.name.clone()));
+                object.insert("payload", self.payload(ci, direction)?);
+                command.name.clone()
+            }
+        };
+        let mut frame = self
+            .codec
+            .encode(&Value::Struct(object))
+            .map_err(|e| format!("{name} not encoded: {e}"))?
+            .bytes;
+        self.responder
+            .answer(request, &mut frame)
+            .map_err(|e| format!("{name}: {e:?}"))?;
+        Ok((name, frame))
+    }
+
+    /// The index of the command of `key` in the session's format.
+    fn command_of(&self, key: u64) -> Option<usize> {
+        let p = self.codec.protocol();
+        let f = &p.frames[self.format];
+        (0..p.commands.len()).find(|&ci| command_key(p, f, ci) == Some(key))
+    }
+
+    /// The payload of command `ci` in `direction`: the caller's values over the payload's
+    /// all-zero value.
+    fn payload(&self, ci: usize, direction: Option<usize>) -> Result<Value, String> {
+        let p = self.codec.protocol();
+        let command = &p.commands[ci];
+        let si = command
+            .payloads
+            .get(direction.unwrap_or(0))
+            .or(command.payloads.first())
+            .copied()
+            .flatten();
+        let given = self.options.values.get(&command.name);
+        let Some(si) = si else {
+            return Ok(Value::Struct(Fields::new()));
+        };
+        let zero = self.codec.zero_payload(si);
+        match (zero, given) {
+            (Some(Value::Struct(mut fields)), Some(Value::Struct(given))) => {
+                for (name, v) in given.iter() {
+                    fields.insert(name, v.clone());
+                }
+                Ok(Value::Struct(fields))
+            }
+            (_, Some(given)) => Ok(given.clone()),
+            (Some(zero), None) => Ok(zero),
+            (None, None) => Err(format!(
+                "zero bytes are no payload of `{}`: give its values (--values)",
+                command.name
+            )),
+        }
+    }
+}
+
+/// The request's header with its addresses swapped, as the answer's.
+fn swapped(p: &protocol_spec::ir::Protocol, d: &Decoded) -> Fields {
+    let mut header = d.header.clone();
+    let Some((s, f)) = p.session.as_ref().map(|s| (s, &p.frames[s.frame])) else {
+        return header;
+    };
+    if let Some((a, b)) = s.swap {
+        let (a, b) = (&f.values[a].name, &f.values[b].name);
+        let (va, vb) = (header.get(a).cloned(), header.get(b).cloned());
+        if let (Some(va), Some(vb)) = (va, vb) {
+            header.insert(a.clone(), vb);
+            header.insert(b.clone(), va);
+        }
+    }
+    header
+}
+
+/// The direction of an answer to a request of `direction`: another direction of the spec.
+fn answer_direction(p: &protocol_spec::ir::Protocol, direction: Option<usize>) -> Option<usize> {
+    let d = direction?;
+    (0..p.directions.len()).find(|&i| i != d).or(Some(d))
+}
+
+/// A request as the log names it: its command, or ACK, and its header.
+fn describe(codec: &Codec<'_>, d: Option<&Decoded>) -> String {
+    let Some(d) = d else {
+        return "a frame of no message".into();
+    };
+    let p = codec.protocol();
+    let name = match d.command.and_then(|ci| p.commands.get(ci)) {
+        Some(c) => c.name.as_str(),
+        None if d.ack => "ACK",
+        None => "?",
+    };
+    let header = serde_json::to_string(&Value::Struct(d.header.clone())).unwrap_or_default();
+    format!("{name} {header}")
+}
+
+/// A read that ended without bytes and without failing: a tick of the clock.
+fn is_tick(e: &io::Error) -> bool {
+    matches!(
+        e.kind(),
+        io::ErrorKind::TimedOut | io::ErrorKind::WouldBlock | io::ErrorKind::Interrupted
+    )
+}
