@@ -7,6 +7,10 @@
 //! `to_dict()`. It does not decide how a value is encoded: a Python object becomes the
 //! [`Value`] that the codec's own checks accept or refuse, naming the field.
 
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+use std::sync::Mutex;
+
 use protocol_dynamic::{Fields, Value};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -67,9 +71,56 @@ pub fn to_py<'py>(py: Python<'py>, value: &Value, shape: Shape) -> PyResult<Boun
 pub fn fields_to_dict<'py>(py: Python<'py>, fields: &Fields) -> PyResult<Bound<'py, PyDict>> {
     let dict = PyDict::new(py);
     for (k, v) in fields.iter() {
-        dict.set_item(PyString::intern(py, k), to_py(py, v, Shape::Dict)?)?;
+        dict.set_item(key(py, k), to_py(py, v, Shape::Dict)?)?;
     }
     Ok(dict)
+}
+
+/// Field names kept as Python strings, at most this many: a process that loads spec after spec
+/// keeps the names of the first ones and makes the others' anew.
+const KEYS_KEPT: usize = 1 << 16;
+
+/// FNV-1a: field names are short, and SipHash costs more than the lookup it serves.
+struct Fnv(u64);
+
+impl Default for Fnv {
+    fn default() -> Self {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl Hasher for Fnv {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x100_0000_01b3);
+        }
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+type KeyMap = HashMap<Box<str>, Py<PyString>, BuildHasherDefault<Fnv>>;
+
+/// A field name as an interned Python `str`, made once for the process: the dicts of a
+/// stream's messages take the same names again and again, and making, hashing and interning
+/// each anew is about 40% of what `to_dict()` costs.
+fn key<'py>(py: Python<'py>, name: &str) -> Bound<'py, PyString> {
+    static KEYS: Mutex<Option<KeyMap>> = Mutex::new(None);
+    // Taken with the GIL held; nothing done under the lock releases the GIL.
+    let Ok(mut keys) = KEYS.lock() else {
+        return PyString::intern(py, name);
+    };
+    let keys = keys.get_or_insert_with(KeyMap::default);
+    if let Some(k) = keys.get(name) {
+        return k.bind(py).clone();
+    }
+    let k = PyString::intern(py, name);
+    if keys.len() < KEYS_KEPT {
+        keys.insert(name.into(), k.clone().unbind());
+    }
+    k
 }
 
 /// The value of a Python object: `None`, `bool`, `int`, `float`, `str`, `bytes` (and
