@@ -1,13 +1,15 @@
 //! The library behind the `protocol` command: the parts of the command worth testing without
 //! a process: spec loading and diagnostics ([`spec`]), decoding sessions ([`session`],
 //! [`table`]), CAN logs ([`candump`]), CSV and MCAP exports ([`export`]), lost and reordered
-//! frames ([`counter`]) and, on Linux, live SocketCAN input (`socketcan`). Decoding and
-//! encoding run on the [`protocol_dynamic`] codec.
+//! frames ([`counter`]), definitions of other languages read as specs ([`import`]) and, on
+//! Linux, live SocketCAN input (`socketcan`). Decoding and encoding run on the
+//! [`protocol_dynamic`] codec.
 #![forbid(unsafe_code)]
 
 pub mod candump;
 pub mod counter;
 pub mod export;
+pub mod import;
 pub mod report;
 pub mod session;
 #[cfg(target_os = "linux")]
