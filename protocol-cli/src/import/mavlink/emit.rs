@@ -146,7 +146,9 @@ fn field_doc(f: &Field, dialect: &Dialect, typed: bool) -> String {
     };
     match (&f.enum_name, typed) {
         (Some(name), false) => {
-            let bits = dialect.enum_named(name).is_some_and(|e| is_bitmask(dialect, e));
+            let bits = dialect
+                .enum_named(name)
+                .is_some_and(|e| is_bitmask(dialect, e));
             let what = if bits { "Bits" } else { "Values" };
             joined(&doc, &format!("{what} of {name}."))
         }
@@ -223,7 +225,11 @@ fn is_bitmask(dialect: &Dialect, e: &Enum) -> bool {
 /// No struct and enum take the same `PascalCase` name.
 fn check_names(dialect: &Dialect) -> Result<(), String> {
     for e in &dialect.enums {
-        if let Some(m) = dialect.messages.iter().find(|m| pascal(&m.name) == pascal(&e.name)) {
+        if let Some(m) = dialect
+            .messages
+            .iter()
+            .find(|m| pascal(&m.name) == pascal(&e.name))
+        {
             return Err(format!(
                 "message {} and enum {} would both be `{}`",
                 m.name,

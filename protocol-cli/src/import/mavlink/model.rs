@@ -231,7 +231,8 @@ fn load_file(path: &Path, dialect: &mut Dialect, seen: &mut Vec<PathBuf>) -> Res
     }
     let at = |e: String| format!("{}: {e}", path.display());
     for e in root.first("enums").iter().flat_map(|e| e.all("enum")) {
-        merge_enum(dialect, read_enum(e).map_err(at)?);
+        let (new, explicit) = read_enum(e).map_err(at)?;
+        merge_enum(dialect, new, &explicit);
     }
     for m in root.first("messages").iter().flat_map(|m| m.all("message")) {
         let message = read_message(m).map_err(at)?;
@@ -244,44 +245,58 @@ fn load_file(path: &Path, dialect: &mut Dialect, seen: &mut Vec<PathBuf>) -> Res
 }
 
 /// Adds an enum, or the entries of a second definition of it to the first, as MAVLink merges
-/// an enum that several files extend.
-fn merge_enum(dialect: &mut Dialect, new: Enum) {
-    match dialect.enums.iter_mut().find(|e| e.name == new.name) {
-        Some(old) => {
-            old.bitmask |= new.bitmask;
-            for entry in new.entries {
-                if !old.entries.iter().any(|e| e.name == entry.name) {
-                    old.entries.push(entry);
-                }
-            }
+/// an enum that several files extend. An entry without a value (`explicit` false) takes the one
+/// after the previous entry's of the merged enum (0 first).
+fn merge_enum(dialect: &mut Dialect, new: Enum, explicit: &[bool]) {
+    let i = match dialect.enums.iter().position(|e| e.name == new.name) {
+        Some(i) => i,
+        None => {
+            dialect.enums.push(Enum {
+                entries: Vec::new(),
+                ..new.clone()
+            });
+            dialect.enums.len() - 1
         }
-        None => dialect.enums.push(new),
+    };
+    let old = &mut dialect.enums[i];
+    old.bitmask |= new.bitmask;
+    for (mut entry, &explicit) in new.entries.into_iter().zip(explicit) {
+        if !explicit {
+            entry.value = old.entries.last().map_or(0, |p| p.value + 1);
+        }
+        if !old.entries.iter().any(|e| e.name == entry.name) {
+            old.entries.push(entry);
+        }
     }
 }
 
-/// An `<enum>`: entries without a value take the one after the previous entry's (0 first).
-fn read_enum(e: &Element) -> Result<Enum, String> {
+/// An `<enum>`, and for each entry whether the XML gives its value.
+fn read_enum(e: &Element) -> Result<(Enum, Vec<bool>), String> {
     let name = required(e, "name")?;
     let mut entries: Vec<Entry> = Vec::new();
+    let mut explicit = Vec::new();
     for entry in e.all("entry") {
         let entry_name = required(entry, "name")?;
         let value = match entry.attr("value") {
-            Some(v) => parse_value(v)
-                .ok_or_else(|| format!("enum {name}: value `{v}` of {entry_name}"))?,
-            None => entries.last().map_or(0, |p| p.value + 1),
+            Some(v) => {
+                parse_value(v).ok_or_else(|| format!("enum {name}: value `{v}` of {entry_name}"))?
+            }
+            None => 0,
         };
+        explicit.push(entry.attr("value").is_some());
         entries.push(Entry {
             name: entry_name.to_string(),
             value,
             doc: description(entry),
         });
     }
-    Ok(Enum {
+    let new = Enum {
         name: name.to_string(),
         bitmask: e.attr("bitmask") == Some("true"),
         doc: description(e),
         entries,
-    })
+    };
+    Ok((new, explicit))
 }
 
 /// An enum value: decimal, `0x` hexadecimal, `0b` binary, or `2**N`.
