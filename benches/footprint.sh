@@ -18,18 +18,24 @@
 # check; the spec copied as the synthetic crate's `synth.toml`) with each table size written on
 # both checks (`table = 0`, `1`, `16`) and prints their sizes.
 #
-# Usage: bash benches/footprint.sh [--scaling | --crc-tables]
+# With --mavlink, also builds a MAVLink node that uses three messages (benches/firmware/mavlink:
+# it answers HEARTBEAT and keeps ATTITUDE and GLOBAL_POSITION_INT) on the whole common dialect
+# and on the twelve messages of specs/mavlink.toml, and prints their sizes.
+#
+# Usage: bash benches/footprint.sh [--scaling | --crc-tables | --mavlink]
 # The firmware is built in "${CARGO_TARGET_DIR:-target}/firmware".
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 scaling=0
 crc_tables=0
+mavlink=0
 case "${1:-}" in
   --scaling) scaling=1 ;;
   --crc-tables) crc_tables=1 ;;
+  --mavlink) mavlink=1 ;;
   "") ;;
-  *) echo "usage: bash benches/footprint.sh [--scaling | --crc-tables]" >&2; exit 2 ;;
+  *) echo "usage: bash benches/footprint.sh [--scaling | --crc-tables | --mavlink]" >&2; exit 2 ;;
 esac
 
 target=thumbv7em-none-eabihf
@@ -64,6 +70,14 @@ fw_build -p footprint-scout
 sizes --baseline "empty=$out/footprint-empty" "scout=$out/footprint-scout"
 echo "double-precision soft-float helpers linked:"
 sizes --symbols __aeabi_d "$out/footprint-scout"
+
+if [ "$mavlink" = 1 ]; then
+  fw_build -p footprint-mavlink
+  echo
+  echo "== MAVLink node using three messages: the common dialect (234 messages) and 12 messages"
+  sizes --baseline "empty=$out/footprint-empty" "common=$out/footprint-mavlink-common" \
+    "twelve=$out/footprint-mavlink-twelve"
+fi
 
 if [ "$crc_tables" = 1 ]; then
   tmp="$(mktemp -d)"

@@ -9,7 +9,10 @@
 //!   generated `spec::decoder()`, and the crate's `read_raw_message`;
 //! - `generated-typed` / `mavlink-typed`: framing and the typed packet: each frame read into
 //!   the generated `Packet` (`Packet::from_frame`), and the crate's `read_message` into its
-//!   `MavMessage`.
+//!   `MavMessage`;
+//! - `common` / `common-typed`: the `generated` rows with the code generated from the whole
+//!   common dialect (`specs/mavlink-common.toml`, 234 messages, imported from its XML) instead
+//!   of the twelve messages of `specs/mavlink.toml`.
 //!
 //! Every decoder must return every frame of the stream (the typed ones every message) before
 //! it is timed. Times are the thread's CPU time, as in the `codec` benchmark:
@@ -37,6 +40,11 @@ mod ours {
     protocol_kit::protocol!("../specs/mavlink.toml");
 }
 use ours::mavlink as spec;
+
+mod dialect {
+    protocol_kit::protocol!("../specs/mavlink-common.toml");
+}
+use dialect::mavlink_common as common;
 
 /// Bytes of the stream (the last frame that fits ends it).
 const STREAM: usize = 4 << 20;
@@ -222,29 +230,37 @@ impl Read for Chunked<'_> {
     }
 }
 
-/// Frames the generated decoder returns, and (typed) the packets read from them.
-fn generated(stream: &[u8], chunk: usize, typed: bool) -> usize {
-    let mut decoder = spec::decoder();
-    let mut count = 0usize;
-    let mut sink = |frame: protocol_kit::Frame<'_>| {
-        if typed {
-            if let Ok(packet) = spec::Packet::from_frame(frame.bytes) {
-                black_box(&packet);
-                count += 1;
+/// The row function of a generated module: the frames its decoder returns, and (typed) the
+/// packets read from them.
+macro_rules! generated_rows {
+    ($name:ident, $module:ident) => {
+        fn $name(stream: &[u8], chunk: usize, typed: bool) -> usize {
+            let mut decoder = $module::decoder();
+            let mut count = 0usize;
+            let mut sink = |frame: protocol_kit::Frame<'_>| {
+                if typed {
+                    if let Ok(packet) = $module::Packet::from_frame(frame.bytes) {
+                        black_box(&packet);
+                        count += 1;
+                    }
+                } else {
+                    black_box(frame.bytes);
+                    count += 1;
+                }
+            };
+            for piece in stream.chunks(chunk) {
+                decoder.feed(piece, &mut sink);
             }
-        } else {
-            black_box(frame.bytes);
-            count += 1;
+            while let Some(frame) = decoder.flush() {
+                sink(frame);
+            }
+            count
         }
     };
-    for piece in stream.chunks(chunk) {
-        decoder.feed(piece, &mut sink);
-    }
-    while let Some(frame) = decoder.flush() {
-        sink(frame);
-    }
-    count
 }
+
+generated_rows!(generated, spec);
+generated_rows!(generated_common, common);
 
 /// Frames (or typed messages) the `mavlink` crate's reader returns until the stream ends.
 fn crate_reader(stream: &[u8], chunk: usize, typed: bool) -> usize {
@@ -273,10 +289,12 @@ type Decode = fn(&[u8], usize, bool) -> usize;
 fn decode(c: &mut Criterion<ThreadCpuTime>) {
     let (stream, frames) = stream();
     for (feed, chunk) in [("whole", stream.len()), ("64", CHUNK)] {
-        let rows: [(&str, Decode, bool); 4] = [
+        let rows: [(&str, Decode, bool); 6] = [
             ("generated", generated, false),
+            ("common", generated_common, false),
             ("mavlink-raw", crate_reader, false),
             ("generated-typed", generated, true),
+            ("common-typed", generated_common, true),
             ("mavlink-typed", crate_reader, true),
         ];
         let mut g = c.benchmark_group(format!("mavlink-{feed}"));

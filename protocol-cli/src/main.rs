@@ -83,6 +83,9 @@ enum Command {
     /// Generate a peer codec in another language from a spec.
     #[command(subcommand)]
     Gen(Gen),
+    /// Write a spec from a definition in another language.
+    #[command(subcommand)]
+    Import(Import),
     /// Write a capture for other tools (pcap for Wireshark, CSV tables, MCAP for Foxglove).
     #[command(subcommand)]
     Export(Export),
@@ -139,6 +142,20 @@ enum Export {
     Mcap(cmd::export_data::Args),
 }
 
+/// The languages of `import`.
+#[derive(Debug, Subcommand)]
+enum Import {
+    /// A MAVLink dialect's XML (and the files it includes) as a spec: a command and a struct
+    /// per message, fields in wire order, each CRC_EXTRA derived from the definition.
+    Mavlink {
+        /// The dialect's XML file (`common.xml`).
+        dialect: PathBuf,
+        /// Write to this file instead of stdout.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+}
+
 /// How `decode` prints.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -174,6 +191,9 @@ fn main() -> ExitCode {
         }),
         Command::Gen(Gen::C { spec, output }) => cmd::generate::c(&spec, &output),
         Command::Gen(Gen::Wireshark { spec, output }) => cmd::wireshark::run(&spec, &output),
+        Command::Import(Import::Mavlink { dialect, output }) => {
+            cmd::import::mavlink(&dialect, output.as_deref())
+        }
         Command::Export(Export::Pcap(args)) => cmd::export::pcap_run(&args),
         Command::Export(Export::Csv(args)) => cmd::export_data::csv_run(&args),
         Command::Export(Export::Mcap(args)) => cmd::export_data::mcap_run(&args),

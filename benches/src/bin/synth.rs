@@ -4,7 +4,9 @@
 //!   it);
 //! - `synth expand [N...]`: loads, validates and expands specs of N commands in process (what
 //!   the `protocol!` macro does) and prints, per N, the median time of `compile` and of
-//!   `codegen::expand` over 5 runs, and the size of the expansion.
+//!   `codegen::expand` over 5 runs, and the size of the expansion;
+//! - `synth expand-file SPEC...`: the same for spec files (`specs/mavlink-common.toml`, the
+//!   whole MAVLink common dialect, against `specs/mavlink.toml`).
 //!
 //! Build it in the dev profile to time expansion as the macro runs it: cargo builds
 //! proc-macros without optimizations unless a profile says otherwise.
@@ -45,9 +47,18 @@ fn main() -> ExitCode {
             if n.is_empty() {
                 n = vec![16, 64, 256];
             }
-            expand_table(&n);
+            let specs = n.iter().map(|&n| (n.to_string(), synth::spec(n.min(256))));
+            expand_table("commands", specs.collect());
         }),
-        _ => Err("usage: synth spec N | synth expand [N...]".into()),
+        Some("expand-file") if args.len() > 1 => args[1..]
+            .iter()
+            .map(|path| {
+                let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+                Ok((path.clone(), text))
+            })
+            .collect::<Result<Vec<_>, String>>()
+            .map(|specs| expand_table("spec", specs)),
+        _ => Err("usage: synth spec N | synth expand [N...] | synth expand-file SPEC...".into()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -58,13 +69,13 @@ fn main() -> ExitCode {
     }
 }
 
-fn expand_table(sizes: &[usize]) {
+/// Times loading and expanding each `(label, spec text)`, one table row each.
+fn expand_table(what: &str, specs: Vec<(String, String)>) {
     println!(
-        "| commands | spec bytes | compile (ms) | expand (ms) | total (ms) | expansion bytes | formatted lines |"
+        "| {what} | spec bytes | compile (ms) | expand (ms) | total (ms) | expansion bytes | formatted lines |"
     );
     println!("|---:|---:|---:|---:|---:|---:|---:|");
-    for &n in sizes {
-        let text = synth::spec(n.min(256));
+    for (n, text) in specs {
         let source = SpecSource::new("synth.toml", text.clone());
         let paths = RuntimePath::default();
         let (mut compile_t, mut expand_t, mut total_t) = (Vec::new(), Vec::new(), Vec::new());
@@ -72,7 +83,7 @@ fn expand_table(sizes: &[usize]) {
         for _ in 0..5 {
             let t0 = Instant::now();
             let Ok(protocol) = protocol_codegen::compile(&source) else {
-                eprintln!("synth: the spec of {n} commands does not validate");
+                eprintln!("synth: the spec {n} does not validate");
                 return;
             };
             let t1 = Instant::now();

@@ -10,6 +10,7 @@ pub mod expand;
 pub mod export;
 pub mod export_data;
 pub mod generate;
+pub mod import;
 pub mod report;
 pub mod twin;
 pub mod wireshark;

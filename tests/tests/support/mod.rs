@@ -49,6 +49,7 @@ macro_rules! for_each_spec {
         $callback!(sbus, "../specs/sbus.toml");
         $callback!(scout, "../specs/scout.toml");
         $callback!(ubx, "../specs/ubx.toml");
+        $callback!(mavlink_common, "../specs/mavlink-common.toml", link);
     };
 }
 pub(crate) use for_each_spec;

@@ -497,9 +497,21 @@ impl Model {
         let mut frame = vec![0u8; self.rules().frame_len(&payload, len, flagged)];
         let after = src.bytes(frame.len() - f.header_len);
         frame[f.header_len..].copy_from_slice(&after);
+        // A format whose dispatch fields are narrower than some ids (MAVLink 1's one-byte id)
+        // carries only the commands whose ids fit them.
+        let fits = |c: &ir::Command| {
+            f.dispatch
+                .iter()
+                .zip(&c.id)
+                .all(|(&d, &id)| id <= word_field(&f.values[d]).max_value())
+        };
+        let carried: Vec<usize> = (0..self.ir.commands.len())
+            .filter(|&c| fits(&self.ir.commands[c]))
+            .collect();
         // A check that folds in a per-command byte verifies only the frames of known commands.
-        let known_key = f.checks.iter().any(|c| c.extra.is_some()) && !self.ir.commands.is_empty();
-        let command = src.below(self.ir.commands.len().max(1) as u64) as usize;
+        let known_key = f.checks.iter().any(|c| c.extra.is_some()) && !carried.is_empty();
+        let pick = src.below(carried.len().max(1) as u64) as usize;
+        let command = carried.get(pick).copied().unwrap_or(0);
         for (i, v) in f.values.iter().enumerate() {
             let field = word_field(v);
             let value = match v.role {

@@ -1,0 +1,11 @@
+//! Three MAVLink messages (`../three.rs`) on the twelve messages of `specs/mavlink.toml`.
+
+#![no_std]
+#![no_main]
+#![forbid(unsafe_code)]
+
+protocol_kit::protocol!("../../../specs/mavlink.toml");
+
+include!("../three.rs");
+
+three_messages!(mavlink);
