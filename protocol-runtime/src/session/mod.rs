@@ -21,9 +21,11 @@ use crate::error::DecodeError;
 use crate::layout::WordField;
 use crate::rules::PacketRules;
 
+mod reply;
 mod requester;
 mod responder;
 
+pub use reply::Reply;
 pub use requester::{Due, Outcome, Received, Requester, Resolution, SendError, Ticket};
 pub use responder::{Alarm, AnswerError, Incoming, Responder};
 
@@ -89,6 +91,14 @@ pub struct Modes {
     pub none: Option<(u64, u64)>,
     /// Values `first ..= last` of a request that expects its answer but is sent once.
     pub once: Option<(u64, u64)>,
+}
+
+impl Modes {
+    /// True when a request whose header value is `value` expects no answer.
+    #[must_use]
+    pub fn silent(&self, value: u64) -> bool {
+        self.none.is_some_and(|(a, b)| a <= value && value <= b)
+    }
 }
 
 /// The conversation of a frame format.
@@ -174,10 +184,9 @@ impl SessionRules<'_> {
         if let Some(m) = self.modes
             && let Some(v) = m.field.read(frame)
         {
-            let within = |r: Option<(u64, u64)>| r.is_some_and(|(a, b)| a <= v && v <= b);
-            if within(m.none) {
+            if m.silent(v) {
                 e.answer = Answer::None;
-            } else if within(m.once) {
+            } else if m.once.is_some_and(|(a, b)| a <= v && v <= b) {
                 e.retries = 0;
             }
         }
