@@ -21,10 +21,12 @@ use crate::error::DecodeError;
 use crate::layout::WordField;
 use crate::rules::PacketRules;
 
+mod pairs;
 mod reply;
 mod requester;
 mod responder;
 
+pub use pairs::{Pair, ValueAt};
 pub use reply::Reply;
 pub use requester::{Due, Outcome, Received, Requester, Resolution, SendError, Ticket};
 pub use responder::{Alarm, AnswerError, Incoming, Responder};
@@ -119,6 +121,9 @@ pub struct SessionRules<'a> {
     pub echo: &'a [WordField],
     /// The address values `(sender, receiver)` an answer swaps.
     pub swap: Option<(WordField, WordField)>,
+    /// Values the answer to a request of one command repeats from it under other names (at
+    /// most [`MAX_PAIRS`](Self::MAX_PAIRS) per command), in spec order.
+    pub pairs: &'a [Pair],
     /// The key of a command that answers an open request as a refusal.
     pub nack: Option<u64>,
     /// The key of a command whose answered request precedes every other request.
@@ -146,11 +151,15 @@ pub(crate) struct Ids {
     pub values: [u64; SessionRules::MAX_ECHO],
     pub from: u64,
     pub to: u64,
+    pub paired: [u64; SessionRules::MAX_PAIRS],
 }
 
 impl SessionRules<'_> {
     /// The most header values an answer repeats besides the sequence number.
     pub const MAX_ECHO: usize = 2;
+
+    /// The most values an answer repeats from a request of one command under other names.
+    pub const MAX_PAIRS: usize = 6;
 
     /// What `frame` is: an acknowledgement, or a command and its key.
     ///
@@ -216,7 +225,15 @@ impl SessionRules<'_> {
         for (slot, f) in ids.values.iter_mut().zip(self.echo) {
             *slot = f.read(frame).unwrap_or(0);
         }
+        for (slot, p) in ids.paired.iter_mut().zip(self.pairs_of(key)) {
+            *slot = p.from.read(self.packet, frame).unwrap_or(0);
+        }
         ids
+    }
+
+    /// The pairs of requests of command `key`.
+    fn pairs_of(&self, key: u64) -> impl Iterator<Item = &Pair> {
+        self.pairs.iter().filter(move |p| p.request == key)
     }
 
     /// Whether `frame` repeats what its request `ids` told (the sequence number, the echoed
@@ -231,10 +248,16 @@ impl SessionRules<'_> {
                 .all(|(f, v)| f.read(frame) == Some(v))
             && is(self.swap.map(|s| s.0), ids.to)
             && is(self.swap.map(|s| s.1), ids.from)
+            && self
+                .pairs_of(ids.key)
+                .zip(ids.paired)
+                .all(|(p, v)| p.to.read(self.packet, frame) == Some(v))
     }
 
     /// Writes into the answer `frame` what it repeats from its request `ids` (the sequence
-    /// number, the echoed values, the swapped addresses); `None` if a value does not fit.
+    /// number, the echoed values, the swapped addresses); `None` if a value does not fit. The
+    /// values of [`pairs`](Self::pairs) are the application's to set: they may lie in the
+    /// payload, which is sealed in the frame.
     pub(crate) fn write_repeats(&self, ids: &Ids, frame: &mut [u8]) -> Option<()> {
         if let Some(f) = self.sequence {
             f.write(frame, ids.seq)?;

@@ -122,7 +122,7 @@ struct Slot<const FRAME: usize> {
 ///     packet: &RULES,
 ///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 1, backoff: 2 },
 ///     exchanges: &[],
-///     sequence: Some(WordField::le(1, 1)), echo: &[], swap: None, nack: None,
+///     sequence: Some(WordField::le(1, 1)), echo: &[], swap: None, pairs: &[], nack: None,
 ///     handshake: None, watchdog: None, modes: None,
 /// };
 ///

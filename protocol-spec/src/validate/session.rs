@@ -1,4 +1,5 @@
-//! Rules of `[session]` and the per-command `answer`, `timeout_ms` and `retries`: the names
+//! Rules of `[session]` and the per-command `answer`, `timeout_ms` and `retries` (`match` is
+//! [`super::session_match`]'s): the names
 //! they use (a frame format, commands, header fields) exist and fit what they are used for,
 //! the numbers are in range. Lowers the table to [`ir::Session`].
 
@@ -27,6 +28,8 @@ pub(super) fn lower_session(
     ctx: &mut Ctx<'_>,
     frames: &[Frame],
     commands: &[ir::Command],
+    structs: &[ir::Struct],
+    directions: usize,
 ) -> Option<ir::Session> {
     let spec = ctx.spec;
     let Some(def) = spec.session.as_ref() else {
@@ -71,6 +74,9 @@ pub(super) fn lower_session(
         })
     });
     let modes = s.modes.as_ref().and_then(|m| lower_modes(ctx, m, f));
+    let pairs = exchanges
+        .as_ref()
+        .and_then(|e| super::session_match::lower_pairs(ctx, f, commands, structs, e, directions));
     Some(ir::Session {
         frame: fi,
         default,
@@ -83,6 +89,7 @@ pub(super) fn lower_session(
         watchdog,
         modes,
         exchanges: exchanges?,
+        pairs: pairs?,
     })
 }
 
@@ -96,6 +103,7 @@ fn check_no_command_keys(ctx: &mut Ctx<'_>) {
             c.answer.as_ref().map(Spanned::span),
             c.timeout_ms.as_ref().map(Spanned::span),
             c.retries.as_ref().map(Spanned::span),
+            c.match_fields.as_ref().map(Spanned::span),
         ];
         if let Some(span) = spans.into_iter().flatten().next() {
             ctx.error(
