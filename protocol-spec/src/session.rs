@@ -104,6 +104,7 @@ pub fn lower_session(p: &Protocol) -> Option<SessionPlan> {
                 AnswerKind::Reply => Answer::Reply,
                 AnswerKind::Ack => Answer::Ack,
                 AnswerKind::Command(c) => Answer::Command(key(c)?),
+                AnswerKind::Message => Answer::Message,
             },
             timeout: e.timeout_ms,
             retries: e.retries,

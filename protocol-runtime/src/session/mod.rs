@@ -21,11 +21,13 @@ use crate::error::DecodeError;
 use crate::layout::WordField;
 use crate::rules::PacketRules;
 
+mod observer;
 mod pairs;
 mod reply;
 mod requester;
 mod responder;
 
+pub use observer::{Observer, Paired};
 pub use pairs::{Pair, ValueAt};
 pub use reply::Reply;
 pub use requester::{Due, Outcome, Received, Requester, Resolution, SendError, Ticket};
@@ -42,6 +44,10 @@ pub enum Answer {
     Ack,
     /// Another command, by its key (Dynamixel: a STATUS packet).
     Command(u64),
+    /// A frame of the answer direction that carries one struct in place of a command
+    /// (Dynamixel 1.0's status packet, whose error byte sits where an instruction does): any
+    /// frame that repeats what the request says answers it.
+    Message,
 }
 
 /// What a request of one command expects.
@@ -200,6 +206,19 @@ impl SessionRules<'_> {
             }
         }
         e
+    }
+
+    /// Whether a frame heard as `heard` is the answer `answer` that a request of command `key`
+    /// expects (what it repeats of the request is [`repeats`](Self::repeats)'s to check).
+    #[must_use]
+    pub fn is_answer(answer: Answer, key: u64, heard: Heard) -> bool {
+        match (answer, heard) {
+            (Answer::Reply, Heard::Command(k)) => k == key,
+            (Answer::Ack, Heard::Ack) => true,
+            (Answer::Command(c), Heard::Command(k)) => k == c,
+            (Answer::Message, Heard::Command(_)) => true,
+            _ => false,
+        }
     }
 
     /// The longest any request lives (its waits and retries), in milliseconds.

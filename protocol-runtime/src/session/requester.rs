@@ -298,12 +298,7 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
             Err(e) => return Received::Unreadable(e),
         };
         let rules = self.rules;
-        let answers = |o: &Open| match (o.answer, heard) {
-            (Answer::Reply, Heard::Command(k)) => k == o.ids.key,
-            (Answer::Ack, Heard::Ack) => true,
-            (Answer::Command(c), Heard::Command(k)) => k == c,
-            _ => false,
-        };
+        let answers = |o: &Open| SessionRules::is_answer(o.answer, o.ids.key, heard);
         let refuses = matches!(heard, Heard::Command(k) if Some(k) == rules.nack);
         let mut found: Option<(usize, Resolution, Ticket)> = None;
         for (i, s) in self.slots.iter().enumerate() {

@@ -12,6 +12,8 @@ pub enum AnswerKind {
     Ack,
     /// Another command (index into [`Protocol::commands`](super::Protocol::commands)).
     Command(usize),
+    /// The response direction's struct, carried in place of a command.
+    Message,
 }
 
 /// What a command's request expects.
@@ -67,7 +69,7 @@ pub enum PairValue {
 
 /// A value the answer to a command's request repeats from it under another name (a command's
 /// `match`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Pair {
     /// The request's command (index into [`Protocol::commands`](super::Protocol::commands)).
     pub command: usize,
@@ -75,6 +77,8 @@ pub struct Pair {
     pub from: PairValue,
     /// Where the answer holds it.
     pub to: PairValue,
+    /// The two fields' names, as the spec writes them (request's, answer's).
+    pub names: (String, String),
 }
 
 /// The conversation of the link.

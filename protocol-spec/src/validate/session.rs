@@ -29,7 +29,7 @@ pub(super) fn lower_session(
     frames: &[Frame],
     commands: &[ir::Command],
     structs: &[ir::Struct],
-    directions: usize,
+    directions: &[ir::Direction],
 ) -> Option<ir::Session> {
     let spec = ctx.spec;
     let Some(def) = spec.session.as_ref() else {
@@ -39,8 +39,10 @@ pub(super) fn lower_session(
     let s = def.get_ref();
     let fi = lower_frame(ctx, s, def.span(), frames)?;
     let f = frames.get(fi)?;
+    // An answer direction that carries one struct in place of a command.
+    let message = directions.get(1).is_some_and(|d| d.message.is_some());
     let answer = match &s.answer {
-        Some(a) => lower_answer(ctx, a, f, commands)?,
+        Some(a) => lower_answer(ctx, a, f, commands, message)?,
         None => AnswerKind::None,
     };
     let timeout = s
@@ -56,7 +58,7 @@ pub(super) fn lower_session(
         retries,
         backoff,
     };
-    let exchanges = lower_exchanges(ctx, default, f, commands);
+    let exchanges = lower_exchanges(ctx, default, f, commands, message);
     let sequence = s.sequence.as_ref().and_then(|n| header_value(ctx, n, f));
     let echo = lower_match(ctx, s, f);
     let swap = lower_addresses(ctx, s, f);
@@ -154,17 +156,28 @@ fn lower_frame(
     Some(fi)
 }
 
-/// Rule: an answer is `"none"`, `"reply"`, `"ack"` (on a format with acknowledgements) or
-/// the name of a command.
+/// Rule: an answer is `"none"`, `"reply"`, `"ack"` (on a format with acknowledgements),
+/// `"message"` (in a spec whose response direction carries one struct) or the name of a
+/// command.
 fn lower_answer(
     ctx: &mut Ctx<'_>,
     a: &SStr,
     f: &Frame,
     commands: &[ir::Command],
+    message: bool,
 ) -> Option<AnswerKind> {
     match a.get_ref().as_str() {
         "none" => Some(AnswerKind::None),
         "reply" => Some(AnswerKind::Reply),
+        "message" if message => Some(AnswerKind::Message),
+        "message" => {
+            ctx.error(
+                a.span(),
+                "`message` answers, but no response direction carries one struct".to_string(),
+                "give `[directions] response` a `message`, or answer with `reply` or a command",
+            );
+            None
+        }
         "ack" if f.ack.is_some() => Some(AnswerKind::Ack),
         "ack" => {
             ctx.error(
@@ -181,7 +194,7 @@ fn lower_answer(
             ctx,
             a,
             commands,
-            "an answer is `none`, `reply`, `ack` or a command's name",
+            "an answer is `none`, `reply`, `ack`, `message` or a command's name",
         )
         .map(AnswerKind::Command),
     }
@@ -252,6 +265,7 @@ fn lower_exchanges(
     default: Exchange,
     f: &Frame,
     commands: &[ir::Command],
+    message: bool,
 ) -> Option<Vec<Exchange>> {
     let spec = ctx.spec;
     let mut out = Vec::new();
@@ -268,7 +282,7 @@ fn lower_exchanges(
             .map(|(_, d)| d.get_ref());
         if let Some(d) = def {
             if let Some(a) = &d.answer {
-                e.answer = lower_answer(ctx, a, f, commands).unwrap_or_else(|| {
+                e.answer = lower_answer(ctx, a, f, commands, message).unwrap_or_else(|| {
                     ok = false;
                     e.answer
                 });

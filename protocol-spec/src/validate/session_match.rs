@@ -27,7 +27,7 @@ pub(super) fn lower_pairs(
     commands: &[ir::Command],
     structs: &[Struct],
     exchanges: &[Exchange],
-    directions: usize,
+    directions: &[ir::Direction],
 ) -> Option<Vec<Pair>> {
     let spec = ctx.spec;
     let mut pairs = Vec::new();
@@ -43,7 +43,7 @@ pub(super) fn lower_pairs(
         };
         // Rule: a command that matches its answer expects one that carries a command.
         let answer = match exchanges.get(ci).map(|e| e.answer) {
-            Some(AnswerKind::Reply) => ci,
+            Some(AnswerKind::Reply | AnswerKind::Message) => ci,
             Some(AnswerKind::Command(k)) => k,
             _ => {
                 ctx.error(
@@ -72,18 +72,24 @@ pub(super) fn lower_pairs(
             let c = commands.get(ci)?;
             structs.get(c.payloads.get(di).copied().flatten()?)
         };
+        // The response direction's struct, when it carries one in place of the command.
+        let message = directions.get(1).and_then(|d| d.message).map(|(si, _)| si);
         let sides = Sides {
             request: struct_of(ci, 0),
-            answer: struct_of(answer, usize::from(directions > 0)),
+            answer: match message {
+                Some(si) => structs.get(si),
+                None => struct_of(answer, usize::from(!directions.is_empty())),
+            },
         };
-        for (from, to) in m.get_ref() {
-            let from = value(ctx, from, f, sides.request, "request");
-            let to = value(ctx, to, f, sides.answer, "answer");
+        for (from_name, to_name) in m.get_ref() {
+            let from = value(ctx, from_name, f, sides.request, "request");
+            let to = value(ctx, to_name, f, sides.answer, "answer");
             match (from, to) {
                 (Some(from), Some(to)) => pairs.push(Pair {
                     command: ci,
                     from,
                     to,
+                    names: (from_name.get_ref().clone(), to_name.get_ref().clone()),
                 }),
                 _ => ok = false,
             }

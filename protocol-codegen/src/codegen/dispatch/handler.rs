@@ -127,7 +127,7 @@ fn answer(p: &Protocol, ci: usize, rt: &TokenStream) -> Option<Answer> {
                 doc: "It expects an acknowledgement: `Reply::ACK` sends it.".into(),
             });
         }
-        AnswerKind::Reply => ci,
+        AnswerKind::Reply | AnswerKind::Message => ci,
         AnswerKind::Command(k) => k,
     };
     let ad = answer_direction(p);

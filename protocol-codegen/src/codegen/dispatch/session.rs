@@ -47,6 +47,7 @@ fn exchange(rt: &TokenStream, e: &Exchange) -> TokenStream {
             let k = key_lit(k);
             quote!(#s::Answer::Command(#k))
         }
+        Answer::Message => quote!(#s::Answer::Message),
     };
     let key = key_lit(e.key);
     let (timeout, retries, backoff) = (e.timeout, e.retries, e.backoff);
