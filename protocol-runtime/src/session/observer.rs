@@ -6,6 +6,10 @@
 //! the instruction packets' layout) and report which request each answer answers, its
 //! round-trip time, and the requests that were never answered.
 //!
+//! An answer that carries no command ([`Answer::Message`]) can be told from a request only by
+//! its place: it answers the request right before it (on a half-duplex bus a device answers
+//! before the wire is used again), never an older one.
+//!
 //! The observer holds no rules: each call takes them, so a caller that builds its rules on
 //! each call (the run-time codec) keeps one observer for a whole capture.
 
@@ -73,6 +77,8 @@ struct Watched {
 #[derive(Debug, Clone)]
 pub struct Observer<const OPEN: usize> {
     open: [Option<Watched>; OPEN],
+    /// The frame number of the last frame heard, when it was a request that waits.
+    latest: Option<u64>,
     answered: u64,
     unanswered: u64,
 }
@@ -89,6 +95,7 @@ impl<const OPEN: usize> Observer<OPEN> {
     pub const fn new() -> Self {
         Self {
             open: [None; OPEN],
+            latest: None,
             answered: 0,
             unanswered: 0,
         }
@@ -114,7 +121,8 @@ impl<const OPEN: usize> Observer<OPEN> {
     }
 
     /// The frame `frame`, number `index`, seen at `at` (milliseconds, when known), read as a
-    /// request: remembered when it expects an answer (the return value). The same request
+    /// request (any frame that is not an answer): remembered when it expects an answer (the
+    /// return value). The same request
     /// seen again (a retry) replaces the one before, which counts unanswered; so does the
     /// oldest request when the table is full, and any request whose requester has given up by
     /// `at`.
@@ -126,6 +134,7 @@ impl<const OPEN: usize> Observer<OPEN> {
         frame: &[u8],
     ) -> bool {
         self.expire(at);
+        self.latest = None;
         let Ok(super::Heard::Command(key)) = rules.heard(frame) else {
             return false;
         };
@@ -160,6 +169,7 @@ impl<const OPEN: usize> Observer<OPEN> {
             self.unanswered = self.unanswered.saturating_add(1);
         }
         *slot = Some(watched);
+        self.latest = Some(index);
         true
     }
 
@@ -179,11 +189,13 @@ impl<const OPEN: usize> Observer<OPEN> {
             .enumerate()
             .filter_map(|(i, o)| o.map(|o| (i, o)))
             .filter(|(_, o)| SessionRules::is_answer(o.answer, o.ids.key, heard))
+            .filter(|(_, o)| o.answer != Answer::Message || self.latest == Some(o.index))
             .filter(|(_, o)| rules.repeats(&o.ids, frame))
             .min_by_key(|(_, o)| o.index)?;
         if let Some(slot) = self.open.get_mut(i) {
             *slot = None;
         }
+        self.latest = None;
         self.answered = self.answered.saturating_add(1);
         Some(Paired {
             request: w.index,
