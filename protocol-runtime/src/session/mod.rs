@@ -209,7 +209,7 @@ impl SessionRules<'_> {
     }
 
     /// Whether a frame heard as `heard` is the answer `answer` that a request of command `key`
-    /// expects (what it repeats of the request is [`repeats`](Self::repeats)'s to check).
+    /// expects (the values it repeats of the request are checked apart).
     #[must_use]
     pub fn is_answer(answer: Answer, key: u64, heard: Heard) -> bool {
         match (answer, heard) {
