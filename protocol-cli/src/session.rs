@@ -9,7 +9,7 @@
 use std::io::{self, Write};
 use std::time::Duration;
 
-use protocol_dynamic::{Codec, DecodeIssue, Decoded, Item, hex};
+use protocol_dynamic::{Codec, Conversation, DecodeIssue, Decoded, Item, hex};
 use protocol_runtime::{CanFrame, DecodeError, Reject, Stats};
 use serde_json::{Map, Value};
 
@@ -57,6 +57,8 @@ pub struct Counts {
     pub rejected: u64,
     /// Lost and reordered frames, from the spec's frame counters.
     pub counters: Counters,
+    /// Answers paired with their requests, and requests never answered (`--session`).
+    pub conversation: Option<(u64, u64)>,
 }
 
 /// The JSON name of a rejection.
@@ -81,6 +83,8 @@ pub struct Session<'c, 'a, W: Write> {
     out: W,
     /// The receive time of the items being handled (live inputs), since the Unix epoch.
     received: Option<Duration>,
+    /// The conversation followed through the frames (`--session`).
+    conversation: Option<Conversation>,
     /// What was counted so far.
     pub counts: Counts,
 }
@@ -96,10 +100,25 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
             widths: Widths::of(p),
             out,
             received: None,
+            conversation: None,
             counts: Counts {
                 per_command: vec![(0, 0); p.commands.len()],
                 ..Counts::default()
             },
+        }
+    }
+
+    /// Follows the spec's conversation through the frames ([`Conversation`]): each frame
+    /// line gets its `frame` number, an answer the request it `answers` and its `rtt_ms`.
+    pub fn follow_conversation(&mut self) {
+        self.conversation = Some(Conversation::new());
+    }
+
+    /// Closes the conversation (the input ended): the requests still open count unanswered.
+    pub fn finish(&mut self) {
+        if let Some(c) = self.conversation.as_mut() {
+            let unanswered = c.finish();
+            self.counts.conversation = Some((c.answered(), unanswered));
         }
     }
 
@@ -113,7 +132,23 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                 offset,
                 bytes,
                 decoded,
-            } => self.decoded(offset, bytes, decoded, Map::new()),
+            } => match self.conversation.as_mut() {
+                Some(c) => {
+                    let format = decoded.as_ref().map_or(self.format, |d| d.format);
+                    let at = self.received.map(|d| d.as_millis() as u64);
+                    let heard = c.hear(self.codec, format, bytes, at, decoded);
+                    let mut extra = Map::new();
+                    extra.insert("frame".into(), Value::from(heard.index));
+                    if let Some(a) = heard.answers {
+                        extra.insert("answers".into(), Value::from(a.request));
+                        if let Some(rtt) = a.round_trip {
+                            extra.insert("rtt_ms".into(), Value::from(rtt));
+                        }
+                    }
+                    self.decoded(offset, bytes, heard.decoded, extra)
+                }
+                None => self.decoded(offset, bytes, decoded, Map::new()),
+            },
             Item::Rejected { offset, reason } => {
                 self.counts.rejected += 1;
                 self.emit(offset, reject_name(reason), 1, Map::new())
@@ -250,16 +285,21 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
         let line = match self.output {
             Output::Json => {
                 let value = self.codec.frame_value(&d, offset, shown);
-                match self.received {
+                let line = match self.received {
                     None => serde_json::to_string(&value),
                     Some(at) => serde_json::to_value(&value).map(|v| match v {
                         Value::Object(o) => Value::Object(with_time(o, at)).to_string(),
                         other => other.to_string(),
                     }),
                 }
-                .map_err(io::Error::other)?
+                .map_err(io::Error::other)?;
+                with_fields(line, extra)
             }
-            Output::Table => frame_line(p, self.widths, &d, offset, shown.len()),
+            Output::Table => {
+                let mut line = frame_line(p, self.widths, &d, offset, shown.len());
+                line.push_str(&conversation_note(&extra));
+                line
+            }
         };
         self.write_line(&line)
     }
@@ -390,6 +430,11 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                 ));
             }
         }
+        if let Some((answered, unanswered)) = c.conversation {
+            s.push_str(&format!(
+                "conversation: {answered} answers paired with their requests, {unanswered} requests unanswered\n"
+            ));
+        }
         if let Some(counters) = c.counters.summary() {
             s.push_str(&format!("frame counter: {counters}\n"));
         }
@@ -400,6 +445,36 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
         ));
         s
     }
+}
+
+/// A JSON object's text with `extra`'s fields appended, the object's own text kept as it is
+/// (its floats printed at their own precision).
+fn with_fields(mut line: String, extra: Map<String, Value>) -> String {
+    if extra.is_empty() || !line.ends_with('}') {
+        return line;
+    }
+    line.pop();
+    for (k, v) in extra {
+        line.push_str(&format!(",{}:{v}", Value::from(k)));
+    }
+    line.push('}');
+    line
+}
+
+/// The end of a table line of the conversation: the frame's number, and the request an
+/// answer answers with its round-trip time.
+fn conversation_note(extra: &Map<String, Value>) -> String {
+    let mut note = String::new();
+    if let Some(n) = extra.get("frame") {
+        note.push_str(&format!("  #{n}"));
+    }
+    if let Some(r) = extra.get("answers") {
+        note.push_str(&format!("  answers #{r}"));
+        if let Some(t) = extra.get("rtt_ms") {
+            note.push_str(&format!(" after {t} ms"));
+        }
+    }
+    note
 }
 
 /// A frame or event object with `time` (seconds since the Unix epoch, to the microsecond)

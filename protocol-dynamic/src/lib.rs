@@ -100,6 +100,7 @@
 
 pub mod compat;
 mod defaults;
+mod conversation;
 mod error;
 mod frame;
 mod layout;
@@ -113,6 +114,7 @@ mod session;
 mod stream;
 mod value;
 
+pub use conversation::{Conversation, Heard};
 pub use error::{DecodeIssue, EncodeIssue};
 pub use frame::{Decoded, HexError, hex, parse_hex, parse_hex_located};
 pub use layout::word_field;
@@ -278,15 +280,23 @@ impl Codec<'_> {
     /// # Errors
     /// [`DecodeIssue`], mirroring the runtime's [`DecodeError`] of generated code.
     pub fn decode_frame(&self, format: usize, frame: &[u8]) -> Result<Decoded, DecodeIssue> {
+        self.decode_frame_as(format, frame, self.direction)
+    }
+
+    /// [`decode_frame`](Self::decode_frame) in direction `direction` (an index into the
+    /// protocol's directions), whatever direction this codec is given: the choice of a
+    /// decoder that knows each frame's direction from elsewhere ([`Conversation`]).
+    ///
+    /// # Errors
+    /// As [`decode_frame`](Self::decode_frame).
+    pub fn decode_frame_as(
+        &self,
+        format: usize,
+        frame: &[u8],
+        direction: Option<usize>,
+    ) -> Result<Decoded, DecodeIssue> {
         self.with_rules(format, |rules| {
-            frame::decode(
-                self.protocol,
-                self.names,
-                format,
-                rules,
-                frame,
-                self.direction,
-            )
+            frame::decode(self.protocol, self.names, format, rules, frame, direction)
         })
         .unwrap_or(Err(DecodeIssue::Frame(DecodeError::Frame(
             protocol_runtime::Reject::BadHeader,

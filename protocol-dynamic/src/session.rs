@@ -33,8 +33,9 @@ impl Codec<'_> {
     pub fn with_session<R>(&self, f: impl FnOnce(&SessionRules<'_>) -> R) -> Option<R> {
         let plan = lower_session(self.protocol())?;
         let echo = plan.echo_fields();
+        let pairs = plan.runtime_pairs();
         self.with_rules(plan.frame, |packet| {
-            f(&plan.rules(packet, &plan.exchanges, &echo))
+            f(&plan.rules(packet, &plan.exchanges, &echo, &pairs))
         })
     }
 }

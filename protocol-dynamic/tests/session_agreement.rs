@@ -11,16 +11,19 @@ protocol_kit::protocol!("../specs/hflink.toml");
 protocol_kit::protocol!("../specs/roborts.toml");
 protocol_kit::protocol!("../specs/scout.toml");
 protocol_kit::protocol!("../specs/dynamixel.toml");
+protocol_kit::protocol!("../specs/dynamixel1.toml");
+protocol_kit::protocol!("../specs/mavlink.toml");
 
 /// The rules as text, without the packet rules they borrow (compared elsewhere).
 fn shown(r: &SessionRules<'_>) -> String {
     format!(
-        "{:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?}",
+        "{:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?}",
         r.default,
         r.exchanges,
         r.sequence,
         r.echo,
         r.swap,
+        r.pairs,
         r.nack,
         r.handshake,
         r.watchdog,
@@ -30,11 +33,13 @@ fn shown(r: &SessionRules<'_>) -> String {
 
 #[test]
 fn the_codec_builds_the_generated_session_rules() {
-    let cases: [(&str, &SessionRules<'static>); 4] = [
+    let cases: [(&str, &SessionRules<'static>); 6] = [
         ("hflink", &hflink::SESSION),
         ("roborts", &roborts::SESSION),
         ("scout", &scout::SESSION),
         ("dynamixel", &dynamixel::SESSION),
+        ("dynamixel1", &dynamixel1::SESSION),
+        ("mavlink", &mavlink::SESSION),
     ];
     for (name, generated) in cases {
         let i = interpreter(name);

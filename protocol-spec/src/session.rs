@@ -4,11 +4,11 @@
 //! the run-time codec builds the same value from it. The C printer does not print it: a
 //! session is behaviour, not bytes, and the C peer does not run the machines.
 
-use protocol_runtime::layout::WordField;
+use protocol_runtime::layout::{Pos, WordField};
 use protocol_runtime::rules::PacketRules;
-use protocol_runtime::session::{Answer, Exchange, Modes, SessionRules, Watchdog};
+use protocol_runtime::session::{Answer, Exchange, Modes, Pair, SessionRules, ValueAt, Watchdog};
 
-use crate::ir::{self, AnswerKind, PacketKind, Protocol};
+use crate::ir::{self, AnswerKind, PacketKind, PairValue, Protocol};
 use crate::layout::word_field;
 use crate::rules::Field;
 
@@ -36,6 +36,40 @@ pub struct SessionPlan {
     pub watchdog: Option<Watchdog>,
     /// The modes, with their field.
     pub modes: Option<(Field, Modes)>,
+    /// The values answers repeat under other names (a command the format has no key for is
+    /// left out).
+    pub pairs: Vec<PairPlan>,
+}
+
+/// Where a value of a [`PairPlan`] sits: a header value (printed by its `wire` const), or a
+/// payload field.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PlanValue {
+    /// A header value.
+    Header(Field),
+    /// A payload field, from the payload's first byte.
+    Payload(WordField),
+}
+
+/// A value the answer to a request of one command repeats from it under another name.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PairPlan {
+    /// The request's command key.
+    pub request: u64,
+    /// Where the request holds it.
+    pub from: PlanValue,
+    /// Where the answer holds it.
+    pub to: PlanValue,
+}
+
+impl PlanValue {
+    /// The runtime's value.
+    pub fn at(self) -> ValueAt {
+        match self {
+            PlanValue::Header(f) => ValueAt::Header(f.field),
+            PlanValue::Payload(w) => ValueAt::Payload(w),
+        }
+    }
 }
 
 /// The key of command `ci` as frame format `f` reads it ([`PacketRules::key`]): its CAN id
@@ -70,12 +104,32 @@ pub fn lower_session(p: &Protocol) -> Option<SessionPlan> {
                 AnswerKind::Reply => Answer::Reply,
                 AnswerKind::Ack => Answer::Ack,
                 AnswerKind::Command(c) => Answer::Command(key(c)?),
+                AnswerKind::Message => Answer::Message,
             },
             timeout: e.timeout_ms,
             retries: e.retries,
             backoff: e.backoff,
         })
     };
+    let value = |v: PairValue| match v {
+        PairValue::Header(vi) => PlanValue::Header(field(vi)),
+        PairValue::Payload { offset, scalar } => PlanValue::Payload(WordField::whole(
+            Pos::Start(offset),
+            u8::try_from(scalar.prim.size()).unwrap_or(8),
+            scalar.endian,
+        )),
+    };
+    let pairs = s
+        .pairs
+        .iter()
+        .filter_map(|pr| {
+            Some(PairPlan {
+                request: key(pr.command)?,
+                from: value(pr.from),
+                to: value(pr.to),
+            })
+        })
+        .collect();
     let default = lower(&s.default, 0)?;
     let exchanges = s
         .exchanges
@@ -108,17 +162,19 @@ pub fn lower_session(p: &Protocol) -> Option<SessionPlan> {
                 },
             )
         }),
+        pairs,
     })
 }
 
 impl SessionPlan {
-    /// The rules, over `packet` (the session frame's packet rules), with the exchange and
-    /// echo slices built from this plan.
+    /// The rules, over `packet` (the session frame's packet rules), with the exchange, echo
+    /// and pair slices built from this plan.
     pub fn rules<'a>(
         &self,
         packet: &'a PacketRules<'a>,
         exchanges: &'a [Exchange],
         echo: &'a [WordField],
+        pairs: &'a [Pair],
     ) -> SessionRules<'a> {
         SessionRules {
             packet,
@@ -127,6 +183,7 @@ impl SessionPlan {
             sequence: self.sequence.map(|f| f.field),
             echo,
             swap: self.swap.map(|(a, b)| (a.field, b.field)),
+            pairs,
             nack: self.nack,
             handshake: self.handshake,
             watchdog: self.watchdog,
@@ -137,5 +194,17 @@ impl SessionPlan {
     /// The echo fields' word fields.
     pub fn echo_fields(&self) -> Vec<WordField> {
         self.echo.iter().map(|f| f.field).collect()
+    }
+
+    /// The pairs, as the runtime reads them.
+    pub fn runtime_pairs(&self) -> Vec<Pair> {
+        self.pairs
+            .iter()
+            .map(|p| Pair {
+                request: p.request,
+                from: p.from.at(),
+                to: p.to.at(),
+            })
+            .collect()
     }
 }

@@ -75,6 +75,67 @@
 //! under another path says where: `protocol!(crate = ::my_link::protocol, "specs/x.toml")` and
 //! `#[payload(crate = "::my_link::protocol")]` on a `#[derive(Payload)]` struct.
 //!
+//! # A handler
+//!
+//! Each side of a link gets a trait with one method per message it receives (`Handler`; with
+//! directions, `RequestHandler` and `ResponseHandler`), each with a default, and a `dispatch`
+//! function that calls them. A method whose request expects an answer (the spec's `[session]`)
+//! returns it as a [`session::Reply`]; `dispatch` returns the answer's packet, addressed back.
+//!
+//! ```
+//! protocol_kit::protocol!(inline = r#"
+//! [protocol]
+//! name = "lamp"
+//!
+//! [frames.main]
+//! layout = [
+//!   { sync = [0xAA] },
+//!   { field = "len", type = "u8", length_of = "payload" },
+//!   { field = "cmd", type = "u8" },
+//!   { payload = { max = 8 } },
+//!   { check = "sum8", over = "frame" },
+//! ]
+//! dispatch = ["cmd"]
+//!
+//! [session]
+//! answer = "reply"
+//!
+//! [commands]
+//! SET_LEVEL = { id = 1, payload = "Level" }
+//! GET_LEVEL = { id = 2, payload = "Level" }
+//! BLINK = { id = 3, answer = "none" }
+//!
+//! [structs.Level]
+//! fields = [{ name = "brightness", type = "u8" }]
+//! "#);
+//! use protocol_kit::session::Reply;
+//! use lamp::{Header, Level, Message, Packet};
+//!
+//! struct Lamp {
+//!     level: u8,
+//! }
+//!
+//! // BLINK is not written: its default does nothing.
+//! impl lamp::Handler for Lamp {
+//!     fn set_level(&mut self, _: &Header, level: &Level) -> Reply<Level> {
+//!         self.level = level.brightness;
+//!         Reply::Answer(*level)
+//!     }
+//!     fn get_level(&mut self, _: &Header, _: &Level) -> Reply<Level> {
+//!         Reply::Answer(Level { brightness: self.level })
+//!     }
+//! }
+//!
+//! let mut lamp = Lamp { level: 0 };
+//! let set = Packet { header: Header {}, message: Message::SetLevel(Level { brightness: 90 }) };
+//! let answer = lamp::dispatch(&mut lamp, &set);
+//! assert_eq!(answer, Some(set));
+//! let get = Packet { header: Header {}, message: Message::GetLevel(Level { brightness: 0 }) };
+//! let answer = lamp::dispatch(&mut lamp, &get).map(|p| p.message);
+//! assert_eq!(answer, Some(Message::GetLevel(Level { brightness: 90 })));
+//! assert_eq!(lamp::dispatch(&mut lamp, &Packet { header: Header {}, message: Message::Blink }), None);
+//! ```
+//!
 //! # serde and defmt on generated types
 //!
 //! `protocol!("specs/x.toml", derive(serde, defmt))` (either or both) derives `serde`'s

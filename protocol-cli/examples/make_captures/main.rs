@@ -15,6 +15,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 mod dynamixel;
+mod dynamixel1;
 mod hflink;
 mod referee;
 mod roborts;
@@ -216,6 +217,7 @@ fn main() {
         ("roborts", roborts::capture()),
         ("dynamixel", dynamixel::capture()),
         ("dynamixel_feedback", dynamixel::feedback_capture()),
+        ("dynamixel1_bus", dynamixel1::half_duplex_capture()),
     ];
     for (name, s) in streams {
         write(&dir, &format!("{name}.bin"), &s.bytes);

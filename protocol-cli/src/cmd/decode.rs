@@ -63,8 +63,15 @@ pub struct Args {
     frame: Option<String>,
     /// The direction of the frames, for a spec whose directions no header field tells
     /// (`given = true`): a direction named in the spec (`request`, `response`).
-    #[arg(long, value_name = "NAME")]
+    #[arg(long, value_name = "NAME", conflicts_with = "session")]
     direction: Option<String>,
+    /// Follow the spec's `[session]` through a capture of both ends of a half-duplex wire: a
+    /// frame that follows a request expecting an answer is read as that answer (in the
+    /// response direction of a spec whose header does not tell it), and each answer names the
+    /// request it answers (`answers`, the request's `frame` number) and the round-trip time
+    /// where frames carry times (`rtt_ms`); `--stats` counts the unanswered requests.
+    #[arg(long)]
+    session: bool,
 }
 
 /// Decodes the input.
@@ -73,7 +80,13 @@ pub fn run(args: &Args) -> Result<ExitCode> {
         Ok(p) => p,
         Err(code) => return Ok(code),
     };
-    let direction = pick_direction(&protocol, args.direction.as_deref(), true)?;
+    if args.session && protocol.session.is_none() {
+        return Err(miette!(
+            "`--session`: spec `{}` has no `[session]` table, so no conversation to follow",
+            protocol.name
+        ));
+    }
+    let direction = pick_direction(&protocol, args.direction.as_deref(), !args.session)?;
     let interp = Interpreter::new(protocol);
     let codec = interp.codec().with_direction(direction);
     let output = match args.format {
@@ -86,6 +99,9 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     let format = pick_format(&codec, args.frame.as_deref(), can)?;
     let stdout = io::stdout();
     let mut session = Session::new(&codec, format, output, io::BufWriter::new(stdout.lock()));
+    if args.session {
+        session.follow_conversation();
+    }
     let decoded = if let Some(interface) = &args.can {
         let live = open_can(interface)?;
         decode_live_can(&mut session, live).map(|()| None)
@@ -124,6 +140,7 @@ pub fn run(args: &Args) -> Result<ExitCode> {
     if let Some(hint) = wrong_format_hint(&session, &codec, format, engine.as_ref(), args.hex) {
         eprintln!("{hint}");
     }
+    session.finish();
     if args.stats {
         let summary = session.summary(engine.as_ref());
         let written = match output {

@@ -1,6 +1,6 @@
 //! The conversation section of the Markdown reference (`[session]`): the rules as a table,
-//! the commands that expect otherwise than the default, and a sequence diagram (Mermaid) of
-//! each kind of exchange the spec has.
+//! each command's exchange with the handler method that receives it, and a sequence diagram
+//! (Mermaid) of each kind of exchange the spec has.
 
 use std::fmt::Write as _;
 
@@ -13,6 +13,7 @@ fn answer_text(p: &Protocol, a: AnswerKind) -> String {
         AnswerKind::Reply => "the same command back".to_string(),
         AnswerKind::Ack => "an acknowledgement".to_string(),
         AnswerKind::Command(c) => format!("`{}`", p.commands[c].name),
+        AnswerKind::Message => "the response's struct (no command)".to_string(),
     }
 }
 
@@ -41,6 +42,7 @@ fn matched(p: &Protocol, s: &Session, f: &Frame) -> String {
         AnswerKind::Reply => "its command (the request's)".to_string(),
         AnswerKind::Ack => "its acknowledgement flag".to_string(),
         AnswerKind::Command(c) => format!("its command (`{}`)", p.commands[c].name),
+        AnswerKind::Message => "its place after the request (it carries no command)".to_string(),
     };
     let mut parts = vec![kind];
     if let Some(q) = s.sequence {
@@ -109,30 +111,48 @@ fn rules(p: &Protocol, s: &Session, f: &Frame, out: &mut String) {
     out.push('\n');
 }
 
-/// The commands whose requests expect otherwise than the default.
-fn exceptions(p: &Protocol, s: &Session, out: &mut String) {
-    let differ: Vec<&Exchange> = s
-        .exchanges
-        .iter()
-        .filter(|e| {
-            Exchange { command: 0, ..**e }
-                != Exchange {
-                    command: 0,
-                    ..s.default
-                }
-        })
-        .collect();
-    if differ.is_empty() {
-        return;
-    }
-    let _ = writeln!(out, "| command | expects | waits |\n|---|---|---|");
-    for e in differ {
+/// Each command's conversation: what its request expects, the values its answer repeats under
+/// other names, and the method of the generated handler that receives it.
+fn per_command(p: &Protocol, s: &Session, f: &Frame, out: &mut String) {
+    let trait_name = if p.directions.is_empty() {
+        "Handler".to_string()
+    } else {
+        p.directions
+            .first()
+            .map_or_else(String::new, |d| format!("{}Handler", d.rust_name))
+    };
+    let _ = writeln!(
+        out,
+        "Each command's request, as the responder's `{trait_name}` receives it (its method \
+         returns the answer as a `session::Reply` when one is expected; `dispatch` encodes it):\n"
+    );
+    let _ = writeln!(
+        out,
+        "| command | handler method | expects | waits | the answer repeats |\n|---|---|---|---|---|"
+    );
+    for e in &s.exchanges {
+        let c = &p.commands[e.command];
+        let repeats: Vec<String> = s
+            .pairs
+            .iter()
+            .filter(|pr| pr.command == e.command)
+            .map(|pr| format!("`{}` as `{}`", pr.names.0, pr.names.1))
+            .collect();
+        let repeats = if e.answer == AnswerKind::None {
+            "-".to_string()
+        } else if repeats.is_empty() {
+            matched(p, s, f)
+        } else {
+            repeats.join(", ")
+        };
         let _ = writeln!(
             out,
-            "| `{}` | {} | {} |",
-            p.commands[e.command].name,
+            "| `{}` | `{}` | {} | {} | {} |",
+            c.name,
+            c.name.to_ascii_lowercase(),
             answer_text(p, e.answer),
-            waits(e)
+            waits(e),
+            repeats
         );
     }
     out.push('\n');
@@ -191,7 +211,7 @@ pub(super) fn session(p: &Protocol, out: &mut String) {
         let _ = writeln!(out, "{}\n", s.doc);
     }
     rules(p, s, f, out);
-    exceptions(p, s, out);
+    per_command(p, s, f, out);
     if s.default.answer != AnswerKind::None {
         diagram(p, s, f, &s.default, out);
     } else if let Some(e) = s.exchanges.iter().find(|e| e.answer != AnswerKind::None) {

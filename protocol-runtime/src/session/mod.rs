@@ -25,9 +25,15 @@ use crate::rules::PacketRules;
 pub mod client;
 #[cfg(feature = "embedded-io-async")]
 pub mod io_async;
+mod observer;
+mod pairs;
+mod reply;
 mod requester;
 mod responder;
 
+pub use observer::{Observer, Paired};
+pub use pairs::{Pair, ValueAt};
+pub use reply::Reply;
 pub use requester::{Due, Outcome, Received, Requester, Resolution, SendError, Ticket};
 pub use responder::{Alarm, AnswerError, Incoming, Responder};
 
@@ -42,6 +48,10 @@ pub enum Answer {
     Ack,
     /// Another command, by its key (Dynamixel: a STATUS packet).
     Command(u64),
+    /// A frame of the answer direction that carries one struct in place of a command
+    /// (Dynamixel 1.0's status packet, whose error byte sits where an instruction does): any
+    /// frame that repeats what the request says answers it.
+    Message,
 }
 
 /// What a request of one command expects.
@@ -95,6 +105,14 @@ pub struct Modes {
     pub once: Option<(u64, u64)>,
 }
 
+impl Modes {
+    /// True when a request whose header value is `value` expects no answer.
+    #[must_use]
+    pub fn silent(&self, value: u64) -> bool {
+        self.none.is_some_and(|(a, b)| a <= value && value <= b)
+    }
+}
+
 /// The conversation of a frame format.
 #[derive(Debug, Clone, Copy)]
 pub struct SessionRules<'a> {
@@ -113,6 +131,9 @@ pub struct SessionRules<'a> {
     pub echo: &'a [WordField],
     /// The address values `(sender, receiver)` an answer swaps.
     pub swap: Option<(WordField, WordField)>,
+    /// Values the answer to a request of one command repeats from it under other names (at
+    /// most [`MAX_PAIRS`](Self::MAX_PAIRS) per command), in spec order.
+    pub pairs: &'a [Pair],
     /// The key of a command that answers an open request as a refusal.
     pub nack: Option<u64>,
     /// The key of a command whose answered request precedes every other request.
@@ -140,11 +161,15 @@ pub(crate) struct Ids {
     pub values: [u64; SessionRules::MAX_ECHO],
     pub from: u64,
     pub to: u64,
+    pub paired: [u64; SessionRules::MAX_PAIRS],
 }
 
 impl SessionRules<'_> {
     /// The most header values an answer repeats besides the sequence number.
     pub const MAX_ECHO: usize = 2;
+
+    /// The most values an answer repeats from a request of one command under other names.
+    pub const MAX_PAIRS: usize = 6;
 
     /// What `frame` is: an acknowledgement, or a command and its key.
     ///
@@ -178,14 +203,26 @@ impl SessionRules<'_> {
         if let Some(m) = self.modes
             && let Some(v) = m.field.read(frame)
         {
-            let within = |r: Option<(u64, u64)>| r.is_some_and(|(a, b)| a <= v && v <= b);
-            if within(m.none) {
+            if m.silent(v) {
                 e.answer = Answer::None;
-            } else if within(m.once) {
+            } else if m.once.is_some_and(|(a, b)| a <= v && v <= b) {
                 e.retries = 0;
             }
         }
         e
+    }
+
+    /// Whether a frame heard as `heard` is the answer `answer` that a request of command `key`
+    /// expects (the values it repeats of the request are checked apart).
+    #[must_use]
+    pub fn is_answer(answer: Answer, key: u64, heard: Heard) -> bool {
+        match (answer, heard) {
+            (Answer::Reply, Heard::Command(k)) => k == key,
+            (Answer::Ack, Heard::Ack) => true,
+            (Answer::Command(c), Heard::Command(k)) => k == c,
+            (Answer::Message, Heard::Command(_)) => true,
+            _ => false,
+        }
     }
 
     /// The longest any request lives (its waits and retries), in milliseconds.
@@ -211,7 +248,15 @@ impl SessionRules<'_> {
         for (slot, f) in ids.values.iter_mut().zip(self.echo) {
             *slot = f.read(frame).unwrap_or(0);
         }
+        for (slot, p) in ids.paired.iter_mut().zip(self.pairs_of(key)) {
+            *slot = p.from.read(self.packet, frame).unwrap_or(0);
+        }
         ids
+    }
+
+    /// The pairs of requests of command `key`.
+    fn pairs_of(&self, key: u64) -> impl Iterator<Item = &Pair> {
+        self.pairs.iter().filter(move |p| p.request == key)
     }
 
     /// Whether `frame` repeats what its request `ids` told (the sequence number, the echoed
@@ -226,10 +271,16 @@ impl SessionRules<'_> {
                 .all(|(f, v)| f.read(frame) == Some(v))
             && is(self.swap.map(|s| s.0), ids.to)
             && is(self.swap.map(|s| s.1), ids.from)
+            && self
+                .pairs_of(ids.key)
+                .zip(ids.paired)
+                .all(|(p, v)| p.to.read(self.packet, frame) == Some(v))
     }
 
     /// Writes into the answer `frame` what it repeats from its request `ids` (the sequence
-    /// number, the echoed values, the swapped addresses); `None` if a value does not fit.
+    /// number, the echoed values, the swapped addresses); `None` if a value does not fit. The
+    /// values of [`pairs`](Self::pairs) are the application's to set: they may lie in the
+    /// payload, which is sealed in the frame.
     pub(crate) fn write_repeats(&self, ids: &Ids, frame: &mut [u8]) -> Option<()> {
         if let Some(f) = self.sequence {
             f.write(frame, ids.seq)?;

@@ -122,7 +122,7 @@ struct Slot<const FRAME: usize> {
 ///     packet: &RULES,
 ///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 1, backoff: 2 },
 ///     exchanges: &[],
-///     sequence: Some(WordField::le(1, 1)), echo: &[], swap: None, nack: None,
+///     sequence: Some(WordField::le(1, 1)), echo: &[], swap: None, pairs: &[], nack: None,
 ///     handshake: None, watchdog: None, modes: None,
 /// };
 ///
@@ -298,12 +298,7 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
             Err(e) => return Received::Unreadable(e),
         };
         let rules = self.rules;
-        let answers = |o: &Open| match (o.answer, heard) {
-            (Answer::Reply, Heard::Command(k)) => k == o.ids.key,
-            (Answer::Ack, Heard::Ack) => true,
-            (Answer::Command(c), Heard::Command(k)) => k == c,
-            _ => false,
-        };
+        let answers = |o: &Open| SessionRules::is_answer(o.answer, o.ids.key, heard);
         let refuses = matches!(heard, Heard::Command(k) if Some(k) == rules.nack);
         let mut found: Option<(usize, Resolution, Ticket)> = None;
         for (i, s) in self.slots.iter().enumerate() {

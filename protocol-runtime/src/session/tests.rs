@@ -53,6 +53,7 @@ const BASE: SessionRules<'static> = SessionRules {
     sequence: Some(WordField::le(1, 1)),
     echo: &[],
     swap: None,
+    pairs: &[],
     nack: Some(9),
     handshake: Some(1),
     watchdog: Some(Watchdog {

@@ -12,6 +12,8 @@ pub enum AnswerKind {
     Ack,
     /// Another command (index into [`Protocol::commands`](super::Protocol::commands)).
     Command(usize),
+    /// The response direction's struct, carried in place of a command.
+    Message,
 }
 
 /// What a command's request expects.
@@ -51,6 +53,34 @@ pub struct Modes {
     pub once: Option<(u64, u64)>,
 }
 
+/// Where a value an answer repeats from its request sits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PairValue {
+    /// A header value (index into the session frame's values).
+    Header(usize),
+    /// A fixed-position integer field of the command's payload struct.
+    Payload {
+        /// The field's offset in the payload.
+        offset: usize,
+        /// The field's wire type and byte order.
+        scalar: super::Scalar,
+    },
+}
+
+/// A value the answer to a command's request repeats from it under another name (a command's
+/// `match`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Pair {
+    /// The request's command (index into [`Protocol::commands`](super::Protocol::commands)).
+    pub command: usize,
+    /// Where the request holds the value.
+    pub from: PairValue,
+    /// Where the answer holds it.
+    pub to: PairValue,
+    /// The two fields' names, as the spec writes them (request's, answer's).
+    pub names: (String, String),
+}
+
 /// The conversation of the link.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Session {
@@ -77,4 +107,6 @@ pub struct Session {
     pub default: Exchange,
     /// What each command's request expects, in command order.
     pub exchanges: Vec<Exchange>,
+    /// The values answers repeat under other names, in command order, then `match` order.
+    pub pairs: Vec<Pair>,
 }

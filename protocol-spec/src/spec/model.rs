@@ -456,6 +456,14 @@ pub struct CommandDef {
     /// This command's retries (as `[session] retries`).
     #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub retries: Option<SInt>,
+    /// Values the answer repeats from this command's request under other names: each key a
+    /// field of the request (header or payload), its value the answer's field that holds it.
+    #[serde(rename = "match")]
+    #[cfg_attr(
+        feature = "schema",
+        schemars(with = "Option<std::collections::BTreeMap<String, String>>")
+    )]
+    pub match_fields: Option<Spanned<IndexMap<SStr, SStr>>>,
     /// Documentation.
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,

@@ -12,6 +12,7 @@ mod extra;
 mod frame;
 mod names;
 mod session;
+mod session_match;
 mod types;
 
 use std::ops::Range;
@@ -96,7 +97,8 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
         &structs,
     );
     extra::lower_extra_bytes(&mut frames, &commands);
-    let session = session::lower_session(&mut ctx, &frames, &commands);
+    let session =
+        session::lower_session(&mut ctx, &frames, &commands, &structs.structs, &directions);
 
     Some(ir::Protocol {
         name: p.name.get_ref().clone(),

@@ -1,4 +1,5 @@
-//! Rules of `[session]` and the per-command `answer`, `timeout_ms` and `retries`: the names
+//! Rules of `[session]` and the per-command `answer`, `timeout_ms` and `retries` (`match` is
+//! [`super::session_match`]'s): the names
 //! they use (a frame format, commands, header fields) exist and fit what they are used for,
 //! the numbers are in range. Lowers the table to [`ir::Session`].
 
@@ -27,6 +28,8 @@ pub(super) fn lower_session(
     ctx: &mut Ctx<'_>,
     frames: &[Frame],
     commands: &[ir::Command],
+    structs: &[ir::Struct],
+    directions: &[ir::Direction],
 ) -> Option<ir::Session> {
     let spec = ctx.spec;
     let Some(def) = spec.session.as_ref() else {
@@ -36,8 +39,10 @@ pub(super) fn lower_session(
     let s = def.get_ref();
     let fi = lower_frame(ctx, s, def.span(), frames)?;
     let f = frames.get(fi)?;
+    // An answer direction that carries one struct in place of a command.
+    let message = directions.get(1).is_some_and(|d| d.message.is_some());
     let answer = match &s.answer {
-        Some(a) => lower_answer(ctx, a, f, commands)?,
+        Some(a) => lower_answer(ctx, a, f, commands, message)?,
         None => AnswerKind::None,
     };
     let timeout = s
@@ -53,7 +58,7 @@ pub(super) fn lower_session(
         retries,
         backoff,
     };
-    let exchanges = lower_exchanges(ctx, default, f, commands);
+    let exchanges = lower_exchanges(ctx, default, f, commands, message);
     let sequence = s.sequence.as_ref().and_then(|n| header_value(ctx, n, f));
     let echo = lower_match(ctx, s, f);
     let swap = lower_addresses(ctx, s, f);
@@ -71,6 +76,9 @@ pub(super) fn lower_session(
         })
     });
     let modes = s.modes.as_ref().and_then(|m| lower_modes(ctx, m, f));
+    let pairs = exchanges
+        .as_ref()
+        .and_then(|e| super::session_match::lower_pairs(ctx, f, commands, structs, e, directions));
     Some(ir::Session {
         frame: fi,
         default,
@@ -83,6 +91,7 @@ pub(super) fn lower_session(
         watchdog,
         modes,
         exchanges: exchanges?,
+        pairs: pairs?,
     })
 }
 
@@ -96,6 +105,7 @@ fn check_no_command_keys(ctx: &mut Ctx<'_>) {
             c.answer.as_ref().map(Spanned::span),
             c.timeout_ms.as_ref().map(Spanned::span),
             c.retries.as_ref().map(Spanned::span),
+            c.match_fields.as_ref().map(Spanned::span),
         ];
         if let Some(span) = spans.into_iter().flatten().next() {
             ctx.error(
@@ -146,17 +156,28 @@ fn lower_frame(
     Some(fi)
 }
 
-/// Rule: an answer is `"none"`, `"reply"`, `"ack"` (on a format with acknowledgements) or
-/// the name of a command.
+/// Rule: an answer is `"none"`, `"reply"`, `"ack"` (on a format with acknowledgements),
+/// `"message"` (in a spec whose response direction carries one struct) or the name of a
+/// command.
 fn lower_answer(
     ctx: &mut Ctx<'_>,
     a: &SStr,
     f: &Frame,
     commands: &[ir::Command],
+    message: bool,
 ) -> Option<AnswerKind> {
     match a.get_ref().as_str() {
         "none" => Some(AnswerKind::None),
         "reply" => Some(AnswerKind::Reply),
+        "message" if message => Some(AnswerKind::Message),
+        "message" => {
+            ctx.error(
+                a.span(),
+                "`message` answers, but no response direction carries one struct".to_string(),
+                "give `[directions] response` a `message`, or answer with `reply` or a command",
+            );
+            None
+        }
         "ack" if f.ack.is_some() => Some(AnswerKind::Ack),
         "ack" => {
             ctx.error(
@@ -173,7 +194,7 @@ fn lower_answer(
             ctx,
             a,
             commands,
-            "an answer is `none`, `reply`, `ack` or a command's name",
+            "an answer is `none`, `reply`, `ack`, `message` or a command's name",
         )
         .map(AnswerKind::Command),
     }
@@ -244,6 +265,7 @@ fn lower_exchanges(
     default: Exchange,
     f: &Frame,
     commands: &[ir::Command],
+    message: bool,
 ) -> Option<Vec<Exchange>> {
     let spec = ctx.spec;
     let mut out = Vec::new();
@@ -260,7 +282,7 @@ fn lower_exchanges(
             .map(|(_, d)| d.get_ref());
         if let Some(d) = def {
             if let Some(a) = &d.answer {
-                e.answer = lower_answer(ctx, a, f, commands).unwrap_or_else(|| {
+                e.answer = lower_answer(ctx, a, f, commands, message).unwrap_or_else(|| {
                     ok = false;
                     e.answer
                 });

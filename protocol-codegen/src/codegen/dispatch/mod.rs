@@ -3,12 +3,13 @@
 //! `RULES` static of each format with a packet type (`rules`: the runtime's packet rules, as
 //! `protocol_spec::rules` lowers them), `Packet`, which decodes a frame into a header and a
 //! message and encodes one back through its `RULES` (`packet`), the packets of the other
-//! frame formats (`frames`, `link`, `given`), and the `SESSION` static of a spec with a
-//! conversation (`session`).
+//! frame formats (`frames`, `link`, `given`), the `SESSION` static of a spec with a
+//! conversation (`session`), and the typed handlers with their dispatch (`handler`).
 
 mod command;
 mod frames;
 mod given;
+mod handler;
 mod link;
 mod message;
 mod packet;
@@ -25,6 +26,7 @@ use crate::ir::{Command, PacketKind, Prim, Protocol};
 use command::emit_command_enum;
 use frames::{emit_can_packet, emit_message_packet};
 pub use given::direction_layouts;
+use handler::emit_handlers;
 use link::{emit_base_payload, emit_commands_packet, emit_link};
 use message::{emit_direction_message, emit_message_enum};
 pub(crate) use packet::direction_test;
@@ -101,6 +103,7 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
         }
     }
     out.extend(emit_session(p, &rt));
+    out.extend(emit_handlers(p, f, &rt));
     out
 }
 

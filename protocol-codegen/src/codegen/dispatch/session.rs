@@ -7,8 +7,9 @@ use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
 use super::rules::{field, rules_static};
-use crate::ir::Protocol;
-use crate::session::{SessionPlan, lower_session};
+use crate::codegen::frame::word_field_lit;
+use crate::ir::{Frame, Protocol};
+use crate::session::{PairPlan, PlanValue, SessionPlan, lower_session};
 use protocol_runtime::session::{Answer, Exchange};
 
 fn opt_key(rt: &TokenStream, k: Option<u64>) -> TokenStream {
@@ -46,10 +47,28 @@ fn exchange(rt: &TokenStream, e: &Exchange) -> TokenStream {
             let k = key_lit(k);
             quote!(#s::Answer::Command(#k))
         }
+        Answer::Message => quote!(#s::Answer::Message),
     };
     let key = key_lit(e.key);
     let (timeout, retries, backoff) = (e.timeout, e.retries, e.backoff);
     quote!(#s::Exchange { key: #key, answer: #answer, timeout: #timeout, retries: #retries, backoff: #backoff })
+}
+
+/// A pair: where the request holds a value and where its answer does.
+fn pair(f: &Frame, rt: &TokenStream, p: &PairPlan) -> TokenStream {
+    let s = quote!(#rt::session);
+    let at = |v: PlanValue| match v {
+        PlanValue::Header(k) => {
+            let k = field(f, &k, rt);
+            quote!(#s::ValueAt::Header(#k))
+        }
+        PlanValue::Payload(w) => {
+            let w = word_field_lit(rt, w);
+            quote!(#s::ValueAt::Payload(#w))
+        }
+    };
+    let (request, from, to) = (key_lit(p.request), at(p.from), at(p.to));
+    quote!(#s::Pair { request: #request, from: #from, to: #to })
 }
 
 /// The `SESSION` static, when the spec has a session.
@@ -79,6 +98,7 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
         }
         None => quote!(#rt::None),
     };
+    let pairs = plan.pairs.iter().map(|p| pair(f, rt, p));
     let nack = opt_key(rt, plan.nack);
     let handshake = opt_key(rt, plan.handshake);
     let watchdog = match plan.watchdog {
@@ -111,6 +131,7 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
             sequence: #sequence,
             echo: &[#(#echo),*],
             swap: #swap,
+            pairs: &[#(#pairs),*],
             nack: #nack,
             handshake: #handshake,
             watchdog: #watchdog,
