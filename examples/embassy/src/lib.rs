@@ -11,6 +11,7 @@
 #![no_std]
 #![forbid(unsafe_code)]
 
+pub mod chassis;
 mod robot;
 
 use protocol_kit::PacketEvent;
@@ -22,6 +23,7 @@ pub use robot::Robot;
 pub use protocol_kit;
 
 protocol_kit::protocol!("../../specs/hflink.toml");
+protocol_kit::protocol!("../../specs/roborts.toml");
 
 /// Bytes of the reader's read buffer: what one read of the UART driver may hand over.
 pub const READ_BUFFER: usize = 32;
