@@ -456,6 +456,11 @@ fn main() -> ExitCode {
         "session clock: 1 ms of the spec's timeouts and the relay's delays = {scale} ms of wall time"
     );
     let baseline = args.iter().any(|a| a == "--baseline");
+    println!(
+        "roborts: longest frame {} bytes, decoder buffer {} bytes",
+        roborts::MAX_FRAME_LEN,
+        roborts::DECODER_BUFFER_LEN
+    );
     let rows = if baseline { &ROWS[..1] } else { &ROWS[..] };
     let mut qemu = match Qemu::start(firmware) {
         Ok(q) => q,
