@@ -4,6 +4,9 @@
 //! Write}`, so the STM32F4 binary (`embassy-stm32`'s buffered USART) and the QEMU binary (a
 //! CMSDK UART driver) run the same code; the board-specific parts are the binaries alone.
 //!
+//! [`chassis`] is the second application: a RoboRTS chassis whose answers go through the
+//! runtime's session `Responder` (or, for comparison, are built by hand).
+//!
 //! RAM: the reader holds the decoder (its buffer and state, in the generated module's docs)
 //! and a read buffer of [`READ_BUFFER`] bytes; [`serve`] encodes each answer into a buffer of
 //! `hflink::MAX_FRAME_LEN` bytes held in its future; [`Robot`] holds the robot's values. No heap.
@@ -11,6 +14,7 @@
 #![no_std]
 #![forbid(unsafe_code)]
 
+pub mod chassis;
 mod robot;
 
 use protocol_kit::PacketEvent;
@@ -22,6 +26,7 @@ pub use robot::Robot;
 pub use protocol_kit;
 
 protocol_kit::protocol!("../../specs/hflink.toml");
+protocol_kit::protocol!("../../specs/roborts.toml");
 
 /// Bytes of the reader's read buffer: what one read of the UART driver may hand over.
 pub const READ_BUFFER: usize = 32;
