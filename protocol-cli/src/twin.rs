@@ -282,6 +282,11 @@ impl Twin<'_, '_> {
         }
         let name = match kind {
             Answer::None => return Err("the request expects no answer".into()),
+            // A command-less frame of the answer direction (Dynamixel 1.0's status packet):
+            // its values depend on what the request asked, which `--values` cannot say.
+            Answer::Message => {
+                return Err("an answer of kind `message` (a struct without a command) is not built by the twin".into());
+            }
             Answer::Ack => {
                 object.insert("ack", Value::Bool(true));
                 object.insert("payload", Value::Bytes(Vec::new()));

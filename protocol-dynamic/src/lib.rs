@@ -99,8 +99,8 @@
 #![forbid(unsafe_code)]
 
 pub mod compat;
-mod defaults;
 mod conversation;
+mod defaults;
 mod error;
 mod frame;
 mod layout;

@@ -17,10 +17,10 @@ use std::fmt::Write as _;
 
 use crate::support::fault::{FaultStream, Kind, build};
 use crate::support::model::{Model, length_field, model};
+use crate::support::oracle::params as intern;
 use crate::support::stream::run;
 use crate::support::{Rng, Source, Spec, hex};
 use protocol_codegen::ir;
-use protocol_codegen::layout::intern;
 use protocol_kit::decoder::Probe;
 
 /// Frames per stream (of short frames; fewer of long ones).
@@ -156,8 +156,7 @@ fn same_but_unchecked(frame: &ir::Frame, a: &[u8], b: &[u8]) -> bool {
 
 /// Whether every check of the spec holds on `bytes`, computed from the IR with the `crc` crate
 /// and plain arithmetic: an oracle independent of the runtime's checksum code (a CRC by the
-/// `crc` crate's own implementation, not the runtime's tables, on the parameters the codecs
-/// intern).
+/// `crc` crate's own implementation, not the runtime's tables, on the spec's parameters).
 fn checks_hold(frame: &ir::Frame, bytes: &[u8]) -> bool {
     let len = body_len(frame, bytes);
     let bare = frame.bare_len == Some(len);

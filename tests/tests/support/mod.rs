@@ -12,6 +12,7 @@
 pub mod fault;
 pub mod fuzz;
 pub mod model;
+pub mod oracle;
 pub mod payload;
 pub mod stream;
 
