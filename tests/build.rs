@@ -46,17 +46,26 @@ fn main() {
     for seed in first..first + count {
         let name = format!("rand_{seed}");
         let path = dir.join(format!("{name}.toml"));
-        std::fs::write(&path, random_spec::spec(seed, &name)).expect("write a random spec");
+        let spec = random_spec::generate(seed, &name);
+        std::fs::write(&path, &spec.text).expect("write a random spec");
         let rel = relative(&manifest, &path);
         let rel = rel.to_str().expect("a UTF-8 path");
-        writeln!(code, "expand_spec!({name}, {rel:?});").unwrap();
-        names.push(name);
+        // As `for_each_spec!` says of a link of several formats and of given directions.
+        let how = if spec.link {
+            ", link"
+        } else if spec.given {
+            ", \"request\", from_request_frame, decode_request"
+        } else {
+            ""
+        };
+        writeln!(code, "expand_spec!({name}, {rel:?}{how});").unwrap();
+        names.push(format!("{name}{how}"));
     }
     writeln!(code, "/// The batch: first seed and count.").unwrap();
     writeln!(code, "const BATCH: (u64, u64) = ({first}, {count});").unwrap();
     writeln!(
         code,
-        "/// Calls `$callback!(module)` for every random spec.\nmacro_rules! for_each_random_spec {{ ($callback:ident) => {{ {} }}; }}",
+        "/// Calls `$callback!(module, ...)` for every random spec, with what `expand_spec!` took after its path.\nmacro_rules! for_each_random_spec {{ ($callback:ident) => {{ {} }}; }}",
         names
             .iter()
             .map(|n| format!("$callback!({n});"))
