@@ -156,6 +156,35 @@ fn stuffing_outside_the_first_format_is_refused_not_printed() {
     );
 }
 
+/// A command format whose spec declares no command (the random spec of seed 3, shrunk): its
+/// command tables would be empty arrays, so the C printer refuses it rather than print C that
+/// does not compile.
+const NO_COMMANDS: &str = r#"
+[protocol]
+name = "nocommands"
+
+[frames.main]
+layout = [
+  { sync = [0x44] },
+  { field = "len", type = "u16", bits = [{ name = "n", bits = 12, length_of = "frame" }, { name = "lver", bits = 4, value = 0 }] },
+  { field = "cmd", type = "u8" },
+  { payload = { max = 11 } },
+]
+dispatch = ["cmd"]
+"#;
+
+#[test]
+fn a_dispatch_key_without_commands_is_refused_not_printed() {
+    let source = SpecSource::new("nocommands.toml", NO_COMMANDS);
+    let p = protocol_codegen::compile(&source)
+        .unwrap_or_else(|d| panic!("{}", render_all(&d, &source)));
+    let refused = protocol_codegen::c::generate(&p).expect_err("no commands");
+    assert_eq!(
+        refused,
+        vec!["frame `main`: a dispatch key without commands".to_string()]
+    );
+}
+
 /// Struct names that are names of the generated code: `Step` (a helper of the stream
 /// decoder), `ReadAll` (the family of struct readers) and `AuxPacket` (the packet type of
 /// format `aux`).

@@ -22,6 +22,10 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
             ));
         }
         let keyed = keyed_format(p, &x);
+        // Its command tables would be empty arrays, which C99 has not.
+        if keyed && p.commands.is_empty() {
+            out.push(format!("{at}: a dispatch key without commands"));
+        }
         let stuffing = rules.stuffing.is_some();
         if stuffing && (!keyed || p.directions.iter().any(|d| d.message.is_some())) {
             out.push(format!(

@@ -11,7 +11,8 @@
 //! directions told by a header field (`equals`, or an address set with `in`) or given to the
 //! decoder (one of them carrying a struct in place of a command); sync bytes or a sync set
 //! (`one_of`); header fields in any order (a length counting the payload, the frame or a run,
-//! a length that is a bit member, a length that a marker value extends, the dispatch key, a
+//! a length that is a bit member, a length that a marker value extends, a dispatch key of one
+//! or two fields, a
 //! sequence number or frame counter, a constant, bit members with constant and flag bits); a
 //! header check; a frame check of every built-in kind, a catalogue CRC or a `[checksums]` CRC
 //! or sum, with a lookup-table size and a byte folded in per command (`extra`); a field after
@@ -157,6 +158,8 @@ struct Shape {
     marker: bool,
     /// A CRC frame check that folds in a byte per command.
     extra: bool,
+    /// A dispatch key of two header fields.
+    two_key: bool,
     /// A sync set (`one_of`) in place of sync bytes.
     one_of: bool,
     /// A later command format without the structs' extension fields.
@@ -254,6 +257,7 @@ pub const FEATURES: &[&str] = &[
     "length-bits",
     "length-marker",
     "dispatch-u16",
+    "dispatch-two-fields",
     "header-seq",
     "header-counter",
     "header-constant",
@@ -366,6 +370,7 @@ impl Shape {
         s.bare = !s.marker && rng.one_in(6);
         s.optional = !s.ack && !s.bare && !s.stuffing && !s.marker && !link && rng.one_in(6);
         s.extra = rng.one_in(5);
+        s.two_key = !s.extra && rng.one_in(5);
         s.one_of = !link && rng.one_in(6);
         s.extensions_off = link && !directions && rng.one_in(2);
         s.fixed_payloads = s.truncate || s.extensions_off;

@@ -308,6 +308,22 @@ fn directions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     for (d, &(value, test)) in p.directions.iter().zip(&x.rules.directions) {
         let bits = truncated(&f.values[value], "raw");
         let cond = match test {
+            // A range from 0 has no lower test: an unsigned value is never below it (and C
+            // compilers warn of a comparison that is always true).
+            DirectionTest::InRange {
+                field,
+                first: 0,
+                last,
+            } => {
+                let (word, last) = (field_word(field), names::u64_lit(last));
+                fill!(
+                    "${lo}field(bytes, len, ${word}, &raw) && ${bits} <= ${last}",
+                    lo,
+                    word,
+                    bits,
+                    last
+                )
+            }
             DirectionTest::InRange { field, first, last } => {
                 let (word, first, last) = (
                     field_word(field),

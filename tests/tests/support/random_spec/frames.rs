@@ -37,6 +37,9 @@ impl Spec {
         if wide_cmd {
             self.feature("dispatch-u16");
         }
+        if self.shape.two_key {
+            self.feature("dispatch-two-fields");
+        }
         // Distinct first sync bytes: the formats of a link differ in a byte both have.
         let mut syncs: Vec<u8> = Vec::new();
         while syncs.len() < 5 {
@@ -56,7 +59,8 @@ impl Spec {
         if self.shape.message_format {
             self.message_format(syncs[4]);
         }
-        self.emit_directions(if wide_cmd { 2 } else { 1 });
+        let key_len = usize::from(wide_cmd) + 1 + usize::from(self.shape.two_key);
+        self.emit_directions(key_len);
         self.emit_commands(wide_cmd, can_max);
     }
 
@@ -96,9 +100,12 @@ impl Spec {
         // Acknowledgements and a direction's struct in place of a command take the bytes of
         // the dispatch key: it is the last header field.
         if ack || self.shape.directions == Directions::GivenMessage {
-            let at = header.iter().position(|h| h.name == "cmd").unwrap();
-            let cmd = header.remove(at);
-            header.push(cmd);
+            for key in ["cset", "cmd"] {
+                if let Some(at) = header.iter().position(|h| h.name == key) {
+                    let field = header.remove(at);
+                    header.push(field);
+                }
+            }
         }
         self.length_of(&mut header, ack || marker);
         if marker {
@@ -157,7 +164,7 @@ impl Spec {
             ));
         }
         let mut t = format_table("main", &layout);
-        t.push_str("dispatch = [\"cmd\"]\n");
+        t.push_str(self.dispatch());
         if ack {
             self.feature("ack");
             t.push_str("ack = { field = \"fack\", equals = 1 }\n");
@@ -185,6 +192,15 @@ impl Spec {
         }
         t.push('\n');
         t
+    }
+
+    /// The `dispatch` line of a command format.
+    fn dispatch(&self) -> &'static str {
+        if self.shape.two_key {
+            "dispatch = [\"cset\", \"cmd\"]\n"
+        } else {
+            "dispatch = [\"cmd\"]\n"
+        }
     }
 
     /// The header fields of the first format, shuffled: the length, the dispatch key, and
@@ -226,6 +242,12 @@ impl Spec {
                 rest: format!("type = \"{cmd_ty}\""),
             },
         ];
+        if self.shape.two_key {
+            header.push(HeaderField {
+                name: "cset",
+                rest: "type = \"u8\"".to_string(),
+            });
+        }
         if self.rng.one_in(2) {
             self.feature("header-seq");
             let counter = if self.rng.one_in(2) {
@@ -388,12 +410,16 @@ impl Spec {
             layout.push("{ field = \"src\", type = \"u8\" }".to_string());
         }
         let cmd = if self.rng.one_in(3) { "u16" } else { "u8" };
+        if self.shape.two_key {
+            layout.push("{ field = \"cset\", type = \"u8\" }".to_string());
+        }
         layout.push(format!("{{ field = \"cmd\", type = \"{cmd}\" }}"));
         layout.push(format!("{{ payload = {{ max = {largest} }} }}"));
         let check = self.frame_check("len..payload", self.shape.extra);
         layout.push(check);
         let mut t = format_table(&format!("f{k}"), &layout);
-        t.push_str("dispatch = [\"cmd\"]\ncommands = true\n");
+        t.push_str(self.dispatch());
+        t.push_str("commands = true\n");
         if self.shape.extensions_off && (k == 1 || self.rng.one_in(2)) {
             self.feature("extensions-off");
             t.push_str("extensions = false\n");
@@ -521,7 +547,11 @@ impl Spec {
             0x40
         };
         for c in 0..self.rng.range(1, 4) {
-            let mut t = format!("C{c} = {{ id = {id}");
+            let mut t = if self.shape.two_key {
+                format!("C{c} = {{ id = [{}, {id}]", self.rng.below(3))
+            } else {
+                format!("C{c} = {{ id = {id}")
+            };
             let mut carried = Vec::new();
             let payload = |s: &mut Spec| {
                 (!s.rng.one_in(5)).then(|| {
