@@ -118,6 +118,13 @@ fn shrink_failure(seed: u64, text: &str, site: &str, dir: &Path) {
     }
 }
 
+/// The random frames a comparison's summary counts (`..., 2000 random frames (...`).
+fn random_frames(what: &str) -> usize {
+    what.find(" random frames")
+        .and_then(|end| what[..end].rsplit(' ').next()?.parse().ok())
+        .unwrap_or(0)
+}
+
 /// The specs to compare: the batch's, or the one of `RANDOM_SPEC_FILE` (its protocol named
 /// `rand_SEED`), to check a shrunk or kept spec by hand.
 fn specs() -> Vec<(u64, String)> {
@@ -165,9 +172,8 @@ fn random_specs_agree_in_c_and_rust() {
             Ok(what) => {
                 if what.starts_with("refused") {
                     refused += 1;
-                } else {
-                    frames += 1000;
                 }
+                frames += random_frames(&what);
                 eprintln!("seed {seed}: {what}");
             }
             Err(site) => {
