@@ -185,6 +185,51 @@ fn a_dispatch_key_without_commands_is_refused_not_printed() {
     );
 }
 
+/// A CAN format that no command has a CAN id for (the random spec of seed 67, shrunk): the C
+/// printer refuses it rather than print an encoder that writes nothing.
+const CAN_WITHOUT_COMMANDS: &str = r#"
+[protocol]
+name = "idlecan"
+
+[frames.main]
+layout = [
+  { sync = [0xAA] },
+  { field = "len", type = "u8", length_of = "payload" },
+  { field = "cmd", type = "u8" },
+  { payload = { max = 8 } },
+  { check = "sum8", over = "frame" },
+]
+dispatch = ["cmd"]
+
+[frames.can]
+transport = "can"
+can_id = "extended"
+layout = [
+  { payload = { min = 0, max = 6 } },
+  { field = "cnt", type = "u8" },
+  { check = "crc-8-smbus", over = "frame" },
+]
+dispatch = ["can_id"]
+
+[commands]
+SET = { id = 1, payload = "Level" }
+
+[structs.Level]
+fields = [{ name = "value", type = "u32" }, { name = "more", type = "u32" }]
+"#;
+
+#[test]
+fn a_can_format_without_commands_is_refused_not_printed() {
+    let source = SpecSource::new("idlecan.toml", CAN_WITHOUT_COMMANDS);
+    let p = protocol_codegen::compile(&source)
+        .unwrap_or_else(|d| panic!("{}", render_all(&d, &source)));
+    let refused = protocol_codegen::c::generate(&p).expect_err("no command has a CAN id");
+    assert_eq!(
+        refused,
+        vec!["frame `can`: a CAN format that carries no command (none has a `can_id`)".to_string()]
+    );
+}
+
 /// Struct names that are names of the generated code: `Step` (a helper of the stream
 /// decoder), `ReadAll` (the family of struct readers) and `AuxPacket` (the packet type of
 /// format `aux`).
