@@ -329,3 +329,55 @@ fn every_runtime_error_names_a_printed_error_code() {
     // valid frame"); every other error has its own code.
     assert_eq!(names.len(), errors.len() - 1, "{names:?}");
 }
+
+/// The body of the printed `decode_frame` of `p` (from its signature to its closing brace).
+fn decode_frame(p: &Protocol) -> String {
+    let files = protocol_codegen::c::generate(p).expect("prints in C");
+    let start = files
+        .source
+        .find(&format!("int {}_decode_frame(", p.name))
+        .expect("a decode_frame");
+    let body = &files.source[start..];
+    body[..body.find("\n}\n").expect("its end")].to_string()
+}
+
+/// Where `needle` is in `text`, which must hold it.
+fn at(text: &str, needle: &str) -> usize {
+    text.find(needle)
+        .unwrap_or_else(|| panic!("`{needle}` is not in:\n{text}"))
+}
+
+#[test]
+fn an_address_range_from_zero_has_no_lower_test() {
+    // gcc -Wtype-limits refuses an unsigned comparison with 0 that is always true.
+    let p = compile("protocol-codegen/tests/c_regressions/address_from_zero.toml");
+    let body = decode_frame(&p);
+    at(
+        &body,
+        "<= UINT64_C(0x7f)) out->direction = ADDRESS_FROM_ZERO_REQUEST",
+    );
+    assert!(!body.contains(">= UINT64_C(0x0)"), "{body}");
+}
+
+#[test]
+fn a_payload_is_unstuffed_before_its_direction_is_read() {
+    // The runtime's rules refuse a frame with both faults for its stuffing.
+    let p = compile("protocol-codegen/tests/c_regressions/stuffed_directions.toml");
+    let body = decode_frame(&p);
+    assert!(
+        at(&body, "ERR_INVALID_STUFFING") < at(&body, "ERR_UNKNOWN_DIRECTION"),
+        "{body}"
+    );
+}
+
+#[test]
+fn a_short_frame_is_refused_after_its_key() {
+    // The runtime's rules read the key before the payload: a bare header whose key is no
+    // command is an unknown command.
+    let p = compile("protocol-codegen/tests/c_regressions/bare_command.toml");
+    let body = decode_frame(&p);
+    assert!(
+        at(&body, "ERR_UNKNOWN_COMMAND") < at(&body, "if (end < start)"),
+        "{body}"
+    );
+}

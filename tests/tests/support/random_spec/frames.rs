@@ -50,9 +50,9 @@ impl Spec {
         }
         let first = self.first_format(largest, wide_cmd, &syncs);
         self.out.push_str(&first);
-        for k in 1..self.shape.formats {
+        for (k, &sync) in syncs.iter().enumerate().take(self.shape.formats).skip(1) {
             self.feature("formats-several");
-            let text = self.link_format(k, largest, syncs[k]);
+            let text = self.link_format(k, largest, sync);
             self.out.push_str(&text);
         }
         let can_max = self.shape.can.map(|extended| self.can_format(extended));
