@@ -251,12 +251,10 @@ impl Spec {
                 min += int.size;
                 max += int.size;
             }
-        } else if !fixed {
-            if let Some((f, lo, hi)) = self.tail_field() {
-                fields.extend(f);
-                min += lo;
-                max += hi;
-            }
+        } else if !fixed && let Some((f, lo, hi)) = self.tail_field() {
+            fields.extend(f);
+            min += lo;
+            max += hi;
         }
         self.write_struct(&name, &fields);
         self.payloads.push(Payload { name, min, max });
