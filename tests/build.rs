@@ -2,6 +2,8 @@
 //! specs of the seeded generator (`tests/support/random_spec.rs`) as files in `OUT_DIR`, and a
 //! Rust file that expands each and lists them. `RANDOM_SPECS` sets the batch size (default 12)
 //! and `RANDOM_SPECS_SEED` its first seed (default 0); both are printed by the test.
+//! `RANDOM_SPEC_FILE` names one spec file (its protocol named `rand_SEED`) to expand alone
+//! instead: a shrunk failure or a kept fixture, checked by hand.
 
 use std::fmt::Write as _;
 use std::path::{Component, Path, PathBuf};
@@ -33,30 +35,74 @@ fn number(name: &str, default: u64) -> u64 {
     })
 }
 
+/// The spec of `RANDOM_SPEC_FILE`, when set, with the seed its protocol's name `rand_SEED`
+/// gives: a shrunk or kept random spec, expanded alone in place of the batch.
+fn one_file() -> Option<(u64, String)> {
+    println!("cargo:rerun-if-env-changed=RANDOM_SPEC_FILE");
+    let path = std::env::var("RANDOM_SPEC_FILE").ok()?;
+    println!("cargo:rerun-if-changed={path}");
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let seed = text
+        .lines()
+        .find_map(|l| {
+            l.strip_prefix("name = \"rand_")?
+                .strip_suffix('"')?
+                .parse()
+                .ok()
+        })
+        .unwrap_or_else(|| panic!("{path}: its protocol is not named `rand_SEED`"));
+    Some((seed, text))
+}
+
 fn main() {
     println!("cargo:rerun-if-changed=tests/support/random_spec.rs");
+    println!("cargo:rerun-if-changed=tests/support/random_spec");
     let first = number("RANDOM_SPECS_SEED", 0);
     let count = number("RANDOM_SPECS", 12);
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("OUT_DIR"));
     let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("manifest dir"));
     let dir = out.join("random_specs");
     std::fs::create_dir_all(&dir).expect("create the random spec directory");
+    let file = one_file();
+    let (first, count) = match &file {
+        Some((seed, _)) => (*seed, 1),
+        None => (first, count),
+    };
     let mut code = String::new();
     let mut names = Vec::new();
     for seed in first..first + count {
         let name = format!("rand_{seed}");
         let path = dir.join(format!("{name}.toml"));
-        std::fs::write(&path, random_spec::spec(seed, &name)).expect("write a random spec");
+        let (text, link, given) = match &file {
+            Some((_, text)) => (
+                text.clone(),
+                text.contains("commands = true"),
+                text.contains("given = true"),
+            ),
+            None => {
+                let spec = random_spec::generate(seed, &name);
+                (spec.text, spec.link, spec.given)
+            }
+        };
+        std::fs::write(&path, &text).expect("write a random spec");
         let rel = relative(&manifest, &path);
         let rel = rel.to_str().expect("a UTF-8 path");
-        writeln!(code, "expand_spec!({name}, {rel:?});").unwrap();
-        names.push(name);
+        // As `for_each_spec!` says of a link of several formats and of given directions.
+        let how = if link {
+            ", link"
+        } else if given {
+            ", \"request\", from_request_frame, decode_request"
+        } else {
+            ""
+        };
+        writeln!(code, "expand_spec!({name}, {rel:?}{how});").unwrap();
+        names.push(format!("{name}{how}"));
     }
     writeln!(code, "/// The batch: first seed and count.").unwrap();
     writeln!(code, "const BATCH: (u64, u64) = ({first}, {count});").unwrap();
     writeln!(
         code,
-        "/// Calls `$callback!(module)` for every random spec.\nmacro_rules! for_each_random_spec {{ ($callback:ident) => {{ {} }}; }}",
+        "/// Calls `$callback!(module, ...)` for every random spec, with what `expand_spec!` took after its path.\nmacro_rules! for_each_random_spec {{ ($callback:ident) => {{ {} }}; }}",
         names
             .iter()
             .map(|n| format!("$callback!({n});"))

@@ -156,6 +156,80 @@ fn stuffing_outside_the_first_format_is_refused_not_printed() {
     );
 }
 
+/// A command format whose spec declares no command (the random spec of seed 3, shrunk): its
+/// command tables would be empty arrays, so the C printer refuses it rather than print C that
+/// does not compile.
+const NO_COMMANDS: &str = r#"
+[protocol]
+name = "nocommands"
+
+[frames.main]
+layout = [
+  { sync = [0x44] },
+  { field = "len", type = "u16", bits = [{ name = "n", bits = 12, length_of = "frame" }, { name = "lver", bits = 4, value = 0 }] },
+  { field = "cmd", type = "u8" },
+  { payload = { max = 11 } },
+]
+dispatch = ["cmd"]
+"#;
+
+#[test]
+fn a_dispatch_key_without_commands_is_refused_not_printed() {
+    let source = SpecSource::new("nocommands.toml", NO_COMMANDS);
+    let p = protocol_codegen::compile(&source)
+        .unwrap_or_else(|d| panic!("{}", render_all(&d, &source)));
+    let refused = protocol_codegen::c::generate(&p).expect_err("no commands");
+    assert_eq!(
+        refused,
+        vec!["frame `main`: a dispatch key without commands".to_string()]
+    );
+}
+
+/// A CAN format that no command has a CAN id for (the random spec of seed 67, shrunk): the C
+/// printer refuses it rather than print an encoder that writes nothing.
+const CAN_WITHOUT_COMMANDS: &str = r#"
+[protocol]
+name = "idlecan"
+
+[frames.main]
+layout = [
+  { sync = [0xAA] },
+  { field = "len", type = "u8", length_of = "payload" },
+  { field = "cmd", type = "u8" },
+  { payload = { max = 8 } },
+  { check = "sum8", over = "frame" },
+]
+dispatch = ["cmd"]
+
+[frames.can]
+transport = "can"
+can_id = "extended"
+layout = [
+  { payload = { min = 0, max = 6 } },
+  { field = "cnt", type = "u8" },
+  { check = "crc-8-smbus", over = "frame" },
+]
+dispatch = ["can_id"]
+
+[commands]
+SET = { id = 1, payload = "Level" }
+
+[structs.Level]
+fields = [{ name = "value", type = "u32" }, { name = "more", type = "u32" }]
+"#;
+
+#[test]
+fn a_can_format_without_commands_is_refused_not_printed() {
+    let source = SpecSource::new("idlecan.toml", CAN_WITHOUT_COMMANDS);
+    let p = protocol_codegen::compile(&source)
+        .unwrap_or_else(|d| panic!("{}", render_all(&d, &source)));
+    let refused = protocol_codegen::c::generate(&p).expect_err("no command has a CAN id");
+    assert_eq!(
+        refused,
+        vec!["frame `can`: a CAN format that carries no command (none has a `can_id`)".to_string()]
+    );
+}
+
 /// Struct names that are names of the generated code: `Step` (a helper of the stream
 /// decoder), `ReadAll` (the family of struct readers) and `AuxPacket` (the packet type of
 /// format `aux`).
@@ -254,4 +328,56 @@ fn every_runtime_error_names_a_printed_error_code() {
     // Two errors share `frame` (truncated bytes and a rejected frame are both "not exactly one
     // valid frame"); every other error has its own code.
     assert_eq!(names.len(), errors.len() - 1, "{names:?}");
+}
+
+/// The body of the printed `decode_frame` of `p` (from its signature to its closing brace).
+fn decode_frame(p: &Protocol) -> String {
+    let files = protocol_codegen::c::generate(p).expect("prints in C");
+    let start = files
+        .source
+        .find(&format!("int {}_decode_frame(", p.name))
+        .expect("a decode_frame");
+    let body = &files.source[start..];
+    body[..body.find("\n}\n").expect("its end")].to_string()
+}
+
+/// Where `needle` is in `text`, which must hold it.
+fn at(text: &str, needle: &str) -> usize {
+    text.find(needle)
+        .unwrap_or_else(|| panic!("`{needle}` is not in:\n{text}"))
+}
+
+#[test]
+fn an_address_range_from_zero_has_no_lower_test() {
+    // gcc -Wtype-limits refuses an unsigned comparison with 0 that is always true.
+    let p = compile("protocol-codegen/tests/c_regressions/address_from_zero.toml");
+    let body = decode_frame(&p);
+    at(
+        &body,
+        "<= UINT64_C(0x7f)) out->direction = ADDRESS_FROM_ZERO_REQUEST",
+    );
+    assert!(!body.contains(">= UINT64_C(0x0)"), "{body}");
+}
+
+#[test]
+fn a_payload_is_unstuffed_before_its_direction_is_read() {
+    // The runtime's rules refuse a frame with both faults for its stuffing.
+    let p = compile("protocol-codegen/tests/c_regressions/stuffed_directions.toml");
+    let body = decode_frame(&p);
+    assert!(
+        at(&body, "ERR_INVALID_STUFFING") < at(&body, "ERR_UNKNOWN_DIRECTION"),
+        "{body}"
+    );
+}
+
+#[test]
+fn a_short_frame_is_refused_after_its_key() {
+    // The runtime's rules read the key before the payload: a bare header whose key is no
+    // command is an unknown command.
+    let p = compile("protocol-codegen/tests/c_regressions/bare_command.toml");
+    let body = decode_frame(&p);
+    assert!(
+        at(&body, "ERR_UNKNOWN_COMMAND") < at(&body, "if (end < start)"),
+        "{body}"
+    );
 }

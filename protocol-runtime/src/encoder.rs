@@ -332,7 +332,7 @@ pub trait PayloadVisitor<C> {
 pub trait MessagePayload {
     /// The command a message names: the spec's `Command`, or `Option<Command>` when some
     /// messages carry none (acknowledgements, a direction's struct in place of a command).
-    type Command;
+    type Command: CommandName;
 
     /// Hands the command and the payload to `v` (`&()` when the command carries none).
     fn visit_payload<V: PayloadVisitor<Self::Command>>(&self, v: V) -> V::Output;
@@ -352,6 +352,34 @@ pub trait MessagePayload {
     #[inline(always)]
     fn write_payload(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
         self.visit_payload(WritePayload(w))
+    }
+}
+
+/// A command's name in the spec, for the place of an encode error ([`WritePayload`] names the
+/// command of a payload that fails to write). Generated `Command` enums implement it.
+pub trait CommandName {
+    /// The name; empty for a message without command.
+    fn command_name(&self) -> &'static str;
+}
+
+/// A message that may carry no command (an acknowledgement) has no name then.
+///
+/// ```
+/// use protocol_runtime::encoder::CommandName;
+///
+/// struct Set;
+/// impl CommandName for Set {
+///     fn command_name(&self) -> &'static str {
+///         "SET"
+///     }
+/// }
+/// assert_eq!(Some(Set).command_name(), "SET");
+/// assert_eq!(None::<Set>.command_name(), "");
+/// ```
+impl<C: CommandName> CommandName for Option<C> {
+    #[inline(always)]
+    fn command_name(&self) -> &'static str {
+        self.as_ref().map_or("", CommandName::command_name)
     }
 }
 
@@ -379,15 +407,18 @@ impl<C> PayloadVisitor<C> for WireLen {
     }
 }
 
-/// Writing the payload at the writer's position ([`Payload::write`]).
+/// Writing the payload at the writer's position ([`Payload::write`]); an error names the
+/// command, as a decode error does (the field's code has named the field).
 #[derive(Debug)]
 pub struct WritePayload<'w, 'b>(pub &'w mut Writer<'b>);
 
-impl<C> PayloadVisitor<C> for WritePayload<'_, '_> {
+impl<C: CommandName> PayloadVisitor<C> for WritePayload<'_, '_> {
     type Output = Result<(), EncodeError>;
     #[inline(always)]
-    fn visit<P: Payload>(self, _: C, payload: &P) -> Result<(), EncodeError> {
-        payload.write(self.0)
+    fn visit<P: Payload>(self, command: C, payload: &P) -> Result<(), EncodeError> {
+        payload
+            .write(self.0)
+            .map_err(|e| e.in_command(command.command_name()))
     }
 }
 

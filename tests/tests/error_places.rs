@@ -1,9 +1,10 @@
 //! Errors of generated code say where: a value that fails to decode or encode names its command
 //! and its field (`Struct.field`, `&'static str`s, nothing allocated), and `Display` prints both,
-//! as the run-time codec's messages do (`protocol decode` and `protocol encode` show those).
+//! as the run-time codec's messages do (`protocol decode` and `protocol encode` show those); the
+//! run-time codec refuses the same values at the same fields.
 //! Spec: `protocol-codegen/tests/features/payload_types.toml`.
 
-use protocol_dynamic::{DecodeIssue, Interpreter};
+use protocol_dynamic::{DecodeIssue, Interpreter, Value};
 use protocol_kit::error::Place;
 use protocol_kit::{DecodeError, EncodeError, Group, NulStr};
 
@@ -70,7 +71,7 @@ fn a_stated_count_beyond_the_most_names_its_field() {
 }
 
 #[test]
-fn a_value_that_does_not_fit_names_its_field_when_encoded() {
+fn a_value_that_does_not_fit_names_its_command_and_field_when_encoded() {
     // Two values where the count says three.
     let packet = Packet {
         header: Header {},
@@ -88,13 +89,76 @@ fn a_value_that_does_not_fit_names_its_field_when_encoded() {
     assert_eq!(
         e,
         EncodeError::ValueOutOfRange {
-            place: Place::new("", "Readings.values"),
+            place: Place::new("READINGS", "Readings.values"),
         }
     );
     assert_eq!(
         e.to_string(),
-        "`Readings.values`: value does not fit its field"
+        "READINGS: `Readings.values`: value does not fit its field"
     );
+    // The run-time codec refuses the same value of the same frame object, naming the field
+    // (its path is the JSON's, `payload.values`) of the command the object names.
+    let interpreter = interpreter();
+    let codec = interpreter.codec();
+    let valid = frame(1, &[2, 1, 0, 2, 0, 0, 1, 1]);
+    let decoded = codec.parse(0, &valid).expect("a valid frame");
+    let mut object = codec.frame_value(&decoded, 0, &valid);
+    let Value::Struct(fields) = &mut object else {
+        panic!("a frame object: {object:?}");
+    };
+    assert_eq!(
+        fields.get("command"),
+        Some(&Value::String("READINGS".into()))
+    );
+    let mut payload = fields.get("payload").cloned().expect("a payload");
+    let Value::Struct(values) = &mut payload else {
+        panic!("a payload struct: {payload:?}");
+    };
+    values.insert("count", Value::UInt(3));
+    fields.insert("payload", payload);
+    let issue = codec
+        .encode(&object)
+        .expect_err("the count is not the values'");
+    assert!(issue.path.contains("values"), "{issue}");
+}
+
+#[test]
+fn an_encode_error_inside_a_nested_value_keeps_the_innermost_field() {
+    // A level that the raw `u16` cannot hold: the field is `Levels.levels`, the command LEVELS.
+    let packet = Packet {
+        header: Header {},
+        message: Message::Levels(Levels {
+            source: 1,
+            levels: Group::from_slice(&[1.0, 1.0e9]).expect("fits"),
+        }),
+    };
+    let mut buf = [0u8; MAX_FRAME_LEN];
+    let e = packet.encode(&mut buf).expect_err("1e9 V does not fit");
+    assert_eq!(e.place(), Some(Place::new("LEVELS", "Levels.levels")));
+    assert_eq!(
+        e.to_string(),
+        "LEVELS: `Levels.levels`: value does not fit its field"
+    );
+    // The run-time codec refuses the same value at the same field.
+    let interpreter = interpreter();
+    let codec = interpreter.codec();
+    let valid = frame(2, &[1, 0, 10]);
+    let decoded = codec.parse(0, &valid).expect("a valid frame");
+    let mut object = codec.frame_value(&decoded, 0, &valid);
+    let Value::Struct(fields) = &mut object else {
+        panic!("a frame object: {object:?}");
+    };
+    let mut payload = fields.get("payload").cloned().expect("a payload");
+    let Value::Struct(values) = &mut payload else {
+        panic!("a payload struct: {payload:?}");
+    };
+    values.insert(
+        "levels",
+        Value::Array(vec![Value::F64(1.0), Value::F64(1.0e9)]),
+    );
+    fields.insert("payload", payload);
+    let issue = codec.encode(&object).expect_err("1e9 V does not fit");
+    assert!(issue.path.contains("levels"), "{issue}");
 }
 
 #[test]

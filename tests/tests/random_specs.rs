@@ -11,7 +11,10 @@
 //!   checked stream driver (`support::stream::run`), no panic.
 //!
 //! The seed and count are printed (`--nocapture`); set `RANDOM_SPECS` and `RANDOM_SPECS_SEED`
-//! at build time for another batch. A failing spec is printed with its seed.
+//! at build time for another batch, or `RANDOM_SPEC_FILE` for one spec file (`tests/build.rs`).
+//! A failing spec is printed with its seed and the commands that shrink it: generated code
+//! needs a compile per spec, so shrinking runs where no compile is needed (the C peer's test
+//! against the run-time codec), and a shrunk candidate comes back here as a file.
 
 #[macro_use]
 #[path = "support/mod.rs"]
@@ -74,15 +77,26 @@ fn random_specs_agree_in_generated_rust_and_the_run_time_codec() {
     );
     let mut frames = 0;
     macro_rules! one {
-        ($name:ident) => {{
+        ($name:ident, link) => {
+            one!(@ $name, $name::AnyPacket)
+        };
+        ($name:ident $(, $given:tt)*) => {
+            one!(@ $name, $name::Packet)
+        };
+        (@ $name:ident, $packet:ty) => {{
             let seed: u64 = stringify!($name)["rand_".len()..].parse().expect("a seed");
-            let outcome = std::panic::catch_unwind(|| check::<$name::Packet>(seed));
+            let outcome = std::panic::catch_unwind(|| check::<$packet>(seed));
             match outcome {
                 Ok(n) => frames += n,
                 Err(panic) => {
                     eprintln!(
-                        "seed {seed}: generated Rust and the run-time codec disagree on:\n{}",
-                        <$name::Packet as Spec>::TEXT
+                        "seed {seed}: generated Rust and the run-time codec disagree on:\n{}\n\
+                         Shrink it where the C peer disagrees too: RANDOM_SPECS_SEED={seed} \
+                         RANDOM_SPECS=1 RANDOM_SPECS_KEEP=1 cargo test -p protocol-cli --test \
+                         c_peer random_specs; check a smaller spec here with \
+                         RANDOM_SPEC_FILE=/absolute/path/rand_{seed}.toml cargo test -p \
+                         protocol-tests --test random_specs",
+                        <$packet as Spec>::TEXT
                     );
                     std::panic::resume_unwind(panic);
                 }

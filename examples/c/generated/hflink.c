@@ -972,7 +972,6 @@ int hflink_decode_frame(const uint8_t *bytes, size_t len, hflink_packet *out)
     out->header.sender = (uint8_t)raw;
     if (!hflink_field(bytes, len, 0, 3u, 1u, 0, 0u, 8u, &raw)) return HFLINK_ERR_FRAME;
     out->header.receiver = (uint8_t)raw;
-    if (end < start) return HFLINK_ERR_FRAME;
     {
         uint64_t key[1];
         if (!hflink_field(bytes, len, 0, 6u, 1u, 0, 0u, 8u, &raw)) return HFLINK_ERR_FRAME;
@@ -1008,6 +1007,7 @@ int hflink_decode_frame(const uint8_t *bytes, size_t len, hflink_packet *out)
         default: return HFLINK_ERR_UNKNOWN_COMMAND;
         }
     }
+    if (end < start) return HFLINK_ERR_FRAME;
     if (hflink_field(bytes, len, 0, 2u, 1u, 0, 0u, 8u, &raw) && (raw & UINT64_C(0xff)) >= UINT64_C(0x1) && (raw & UINT64_C(0xff)) <= UINT64_C(0x10)) out->direction = HFLINK_REQUEST;
     else if (hflink_field(bytes, len, 0, 2u, 1u, 0, 0u, 8u, &raw) && (raw & UINT64_C(0xff)) >= UINT64_C(0x11) && (raw & UINT64_C(0xff)) <= UINT64_C(0x40)) out->direction = HFLINK_RESPONSE;
     else return HFLINK_ERR_UNKNOWN_DIRECTION;

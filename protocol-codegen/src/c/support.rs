@@ -22,6 +22,20 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
             ));
         }
         let keyed = keyed_format(p, &x);
+        // Its command tables would be empty arrays, which C99 has not.
+        if keyed && p.commands.is_empty() {
+            out.push(format!("{at}: a dispatch key without commands"));
+        }
+        // Its encoder would have no command to write (and C compilers warn of every
+        // parameter it leaves unused).
+        if rules.carries == Carries::CanCommand
+            && !p.commands.is_empty()
+            && p.commands.iter().all(|c| c.can_id.is_none())
+        {
+            out.push(format!(
+                "{at}: a CAN format that carries no command (none has a `can_id`)"
+            ));
+        }
         let stuffing = rules.stuffing.is_some();
         if stuffing && (!keyed || p.directions.iter().any(|d| d.message.is_some())) {
             out.push(format!(

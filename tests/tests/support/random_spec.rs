@@ -1,22 +1,44 @@
 //! A seeded generator of valid specs: from a seed, the TOML text of a spec that combines the
 //! language's parts at random, so that the backends are compared on specs no one wrote by
-//! hand. It covers one serial frame format (sync bytes, header fields in any order, a length
-//! that counts the payload, the frame or a run, a header check, a frame check of the sum, xor,
-//! Fletcher and CRC kinds, a trailer), both byte orders, and payload structs of every
-//! fixed-size field kind (integers of 8 to 64 bits with a byte order, floats, bools, arrays,
-//! enums that keep or reject unknown values, scaled and clamped values, bit members, text,
-//! nested structs, padding) with a variable tail (bytes, repeated integers or structs,
-//! NUL-terminated text, an optional value). Directions, several frame formats, CAN, byte
-//! stuffing and acknowledgements are not generated yet.
+//! hand. It owns the choice of a spec's shape ([`Shape`]: which frame formats, directions and
+//! framing rules go together) and the spec's named parts (constants, addresses, checksums,
+//! enums, structs); the fields of a struct are written by `random_spec/fields.rs`, the frame
+//! formats, directions and commands by `random_spec/frames.rs`.
+//!
+//! What a spec may hold: one to three serial command formats on one link (`commands = true`,
+//! `extensions = false`), a CAN format (standard or extended ids, the data length bounded by
+//! the payload's `min` and `max`) and a format carrying one struct (`message`) besides them;
+//! directions told by a header field (`equals`, or an address set with `in`) or given to the
+//! decoder (one of them carrying a struct in place of a command); sync bytes or a sync set
+//! (`one_of`); header fields in any order (a length counting the payload, the frame or a run,
+//! a length that is a bit member, a length that a marker value extends, a dispatch key of one
+//! or two fields, a
+//! sequence number or frame counter, a constant, bit members with constant and flag bits); a
+//! header check; a frame check of every built-in kind, a catalogue CRC or a `[checksums]` CRC
+//! or sum, with a lookup-table size and a byte folded in per command (`extra`); a field after
+//! the payload, a trailer, optional bytes after the checks; acknowledgements, bare headers,
+//! byte stuffing and trailing-zero truncation. Payload structs take every fixed-size field kind
+//! (integers of 8 to 64 bits with a byte order, floats, bools, arrays sized by a number or a
+//! constant, enums that keep or reject unknown values, scaled, clamped and rounded values, bit
+//! members, bit-packed arrays, fixed and NUL-terminated text, nested structs, padding), bytes
+//! and arrays sized by an earlier field, checks inside a payload (with a CRC prefix), extension
+//! fields and a variable tail (bytes, repeated integers or structs, an optional value).
+//! `[session]` is not generated: it changes no byte on the wire.
+//!
+//! A shape never combines what the language refuses (`docs/spec-format.md`, "Not yet
+//! expressible" and each feature's rules): the front end accepts every spec this writes, and
+//! `protocol-spec/tests/random_specs.rs` checks that on a large batch.
 //!
 //! Plain `std`, no dependencies: the tests crate's build script expands a batch of these specs
 //! with `protocol!` (`tests/build.rs`), and the C peer's conformance test compiles the C that
 //! `protocol gen c` prints for the same seeds (`protocol-cli/tests/c_peer.rs`). The same seed
 //! gives the same text, so a failure names its seed and the spec is written out as a fixture.
-//!
-//! Every spec must validate: a spec the front end refuses is a bug here (or in validation), and
-//! the tests that call this fail on it with the diagnostics.
 #![allow(dead_code)]
+
+#[path = "random_spec/fields.rs"]
+mod fields;
+#[path = "random_spec/frames.rs"]
+mod frames;
 
 use std::fmt::Write as _;
 
@@ -58,57 +80,22 @@ struct Int {
     signed: bool,
 }
 
+const fn int(name: &'static str, size: usize, signed: bool) -> Int {
+    Int { name, size, signed }
+}
+
+/// Unsigned and signed, by size; the first eight fit a scaled value's `f32`/`f64` exactly.
 const INTS: &[Int] = &[
-    Int {
-        name: "u8",
-        size: 1,
-        signed: false,
-    },
-    Int {
-        name: "i8",
-        size: 1,
-        signed: true,
-    },
-    Int {
-        name: "u16",
-        size: 2,
-        signed: false,
-    },
-    Int {
-        name: "i16",
-        size: 2,
-        signed: true,
-    },
-    Int {
-        name: "u24",
-        size: 3,
-        signed: false,
-    },
-    Int {
-        name: "i24",
-        size: 3,
-        signed: true,
-    },
-    Int {
-        name: "u32",
-        size: 4,
-        signed: false,
-    },
-    Int {
-        name: "i32",
-        size: 4,
-        signed: true,
-    },
-    Int {
-        name: "u64",
-        size: 8,
-        signed: false,
-    },
-    Int {
-        name: "i64",
-        size: 8,
-        signed: true,
-    },
+    int("u8", 1, false),
+    int("i8", 1, true),
+    int("u16", 2, false),
+    int("i16", 2, true),
+    int("u24", 3, false),
+    int("i24", 3, true),
+    int("u32", 4, false),
+    int("i32", 4, true),
+    int("u64", 8, false),
+    int("i64", 8, true),
 ];
 
 /// The type name with a byte order suffix sometimes (multi-byte types only).
@@ -128,30 +115,195 @@ struct Enum {
     max_value: u64,
 }
 
-/// A struct with a fixed wire size, usable as a nested field or a repeated element.
+/// A struct with a fixed wire size, usable as a nested field, and as a repeated group's
+/// element when `repeatable` (no bit members, text or checks: the language refuses those in
+/// an element).
 struct Leaf {
     name: String,
     size: usize,
+    repeatable: bool,
+}
+
+/// A payload struct: its name, smallest and largest wire size.
+#[derive(Clone)]
+struct Payload {
+    name: String,
+    min: usize,
+    max: usize,
+}
+
+/// What the spec combines, decided first: the frame formats, directions and framing rules,
+/// and what they ask of the payload structs.
+#[derive(Default)]
+struct Shape {
+    /// Serial command formats on the link (1 to 3).
+    formats: usize,
+    /// How directions are told, if the spec has them.
+    directions: Directions,
+    /// A CAN format after the serial ones: whether its ids are extended.
+    can: Option<bool>,
+    /// A serial format that carries one struct (`message`), after the others.
+    message_format: bool,
+    /// Acknowledgement frames (a one-bit header flag).
+    ack: bool,
+    /// Byte stuffing of the payload.
+    stuffing: bool,
+    /// Trailing-zero truncation: every command's struct has a fixed size.
+    truncate: bool,
+    /// A frame may be the header alone.
+    bare: bool,
+    /// Optional bytes after the checks, announced by a header flag.
+    optional: bool,
+    /// A length field that a marker value extends.
+    marker: bool,
+    /// A CRC frame check that folds in a byte per command.
+    extra: bool,
+    /// A dispatch key of two header fields.
+    two_key: bool,
+    /// A sync set (`one_of`) in place of sync bytes.
+    one_of: bool,
+    /// A later command format without the structs' extension fields.
+    extensions_off: bool,
+    /// Every payload struct has a fixed size.
+    fixed_payloads: bool,
+}
+
+/// How the directions of a spec are told.
+#[derive(Default, Clone, Copy, PartialEq, Eq)]
+enum Directions {
+    /// The spec has no directions.
+    #[default]
+    None,
+    /// A header field equals a value per direction.
+    Equals,
+    /// A header field lies in an address set per direction.
+    Addresses,
+    /// The decoder is given the direction.
+    Given,
+    /// Given, and responses carry one struct in place of a command.
+    GivenMessage,
 }
 
 /// The spec being written.
 struct Spec {
     rng: Rng,
     out: String,
+    shape: Shape,
     enums: Vec<Enum>,
     leaves: Vec<Leaf>,
-    /// Payload structs: name and largest wire size.
-    payloads: Vec<(String, usize)>,
+    payloads: Vec<Payload>,
+    /// Constants of the spec: name and value.
+    constants: Vec<(String, u64)>,
+    /// Checksums declared in `[checksums]`: name and whether it is a CRC.
+    checksums: Vec<(String, bool)>,
+    /// The language features this spec uses, for the coverage the tests report.
+    features: Vec<&'static str>,
 }
+
+/// A generated spec: its text, the features it uses, and what a test harness must know to
+/// drive its generated code.
+pub struct Generated {
+    /// The TOML text.
+    pub text: String,
+    /// The language features the spec uses (names of [`FEATURES`]).
+    pub features: Vec<&'static str>,
+    /// Whether its link has several command formats (generated code's `AnyPacket`).
+    pub link: bool,
+    /// Whether the decoder is given the direction (`decode_request`, ...).
+    pub given: bool,
+}
+
+/// Every feature the generator can use: a large batch uses each (the coverage test checks).
+pub const FEATURES: &[&str] = &[
+    "constants",
+    "addresses",
+    "checksum-crc",
+    "checksum-sum",
+    "enum-keep",
+    "enum-reject",
+    "struct-byte-order",
+    "field-int",
+    "field-float",
+    "field-bool",
+    "field-array",
+    "field-array-constant",
+    "field-enum",
+    "field-scaled",
+    "field-clamp",
+    "field-rounding",
+    "field-bits",
+    "field-bits-enum",
+    "field-bits-reserved-zero",
+    "field-packed",
+    "field-char",
+    "field-nested",
+    "field-pad",
+    "field-sized-bytes",
+    "field-sized-array",
+    "field-payload-check",
+    "field-payload-check-prefix",
+    "field-extension",
+    "tail-bytes",
+    "tail-repeat-int",
+    "tail-repeat-struct",
+    "tail-cstr",
+    "tail-optional",
+    "tail-bytes-before-check",
+    "sync",
+    "sync-set",
+    "length-payload",
+    "length-frame",
+    "length-run",
+    "length-bits",
+    "length-marker",
+    "dispatch-u16",
+    "dispatch-two-fields",
+    "header-seq",
+    "header-counter",
+    "header-constant",
+    "header-bits",
+    "header-check",
+    "frame-check",
+    "check-table",
+    "check-byte-order",
+    "check-extra",
+    "field-after-payload",
+    "trailer",
+    "optional-element",
+    "ack",
+    "bare-header",
+    "stuffing",
+    "truncate-zeros",
+    "formats-several",
+    "extensions-off",
+    "can-standard",
+    "can-extended",
+    "message-format",
+    "directions-equals",
+    "directions-addresses",
+    "directions-given",
+    "directions-message",
+];
 
 /// The TOML text of the random spec of `seed`, its protocol named `name`.
 pub fn spec(seed: u64, name: &str) -> String {
+    generate(seed, name).text
+}
+
+/// The random spec of `seed`, its protocol named `name`.
+pub fn generate(seed: u64, name: &str) -> Generated {
+    let mut rng = Rng(seed);
+    let shape = Shape::pick(&mut rng);
     let mut s = Spec {
-        rng: Rng(seed),
+        rng,
         out: String::new(),
+        shape,
         enums: Vec::new(),
         leaves: Vec::new(),
         payloads: Vec::new(),
+        constants: Vec::new(),
+        checksums: Vec::new(),
+        features: Vec::new(),
     };
     let order = *s.rng.pick(&["little", "big"]);
     writeln!(s.out, "# A random spec (seed {seed}).").unwrap();
@@ -160,6 +312,8 @@ pub fn spec(seed: u64, name: &str) -> String {
         "[protocol]\nname = \"{name}\"\nbyte_order = \"{order}\"\n"
     )
     .unwrap();
+    s.emit_constants();
+    s.emit_checksums();
     for i in 0..s.rng.below(3) {
         s.emit_enum(i);
     }
@@ -170,10 +324,126 @@ pub fn spec(seed: u64, name: &str) -> String {
         s.emit_payload(i);
     }
     s.emit_frames_and_commands();
-    s.out
+    let mut features = s.features;
+    features.sort_unstable();
+    features.dedup();
+    Generated {
+        text: s.out,
+        features,
+        link: s.shape.formats > 1,
+        given: matches!(
+            s.shape.directions,
+            Directions::Given | Directions::GivenMessage
+        ),
+    }
+}
+
+impl Shape {
+    /// A shape the language accepts: each rule's exclusions are applied as it is drawn.
+    fn pick(rng: &mut Rng) -> Shape {
+        let mut s = Shape {
+            formats: if rng.one_in(4) {
+                rng.range(2, 3) as usize
+            } else {
+                1
+            },
+            ..Shape::default()
+        };
+        let link = s.formats > 1;
+        s.directions = match rng.below(8) {
+            0 => Directions::Equals,
+            1 => Directions::Addresses,
+            2 if !link => Directions::Given,
+            3 if !link => Directions::GivenMessage,
+            _ => Directions::None,
+        };
+        let directions = s.directions != Directions::None;
+        let given_message = s.directions == Directions::GivenMessage;
+        if !directions && rng.one_in(4) {
+            s.can = Some(rng.one_in(2));
+        }
+        s.message_format = rng.one_in(6);
+        s.ack = !link && !directions && rng.one_in(5);
+        s.stuffing = !link && !given_message && rng.one_in(5);
+        s.truncate = !s.stuffing && !given_message && rng.one_in(6);
+        s.marker = !link && !s.ack && !s.stuffing && !s.truncate && !given_message && rng.one_in(6);
+        s.bare = !s.marker && rng.one_in(6);
+        s.optional = !s.ack && !s.bare && !s.stuffing && !s.marker && !link && rng.one_in(6);
+        s.extra = rng.one_in(5);
+        s.two_key = !s.extra && rng.one_in(5);
+        s.one_of = !link && rng.one_in(6);
+        s.extensions_off = link && !directions && rng.one_in(2);
+        s.fixed_payloads = s.truncate || s.extensions_off;
+        s
+    }
 }
 
 impl Spec {
+    fn feature(&mut self, name: &'static str) {
+        debug_assert!(FEATURES.contains(&name), "{name} is not listed");
+        self.features.push(name);
+    }
+
+    fn emit_constants(&mut self) {
+        if !self.rng.one_in(3) {
+            return;
+        }
+        self.feature("constants");
+        writeln!(self.out, "[constants]").unwrap();
+        for i in 0..self.rng.range(1, 2) {
+            let value = self.rng.range(1, 4);
+            writeln!(self.out, "N{i} = {value}").unwrap();
+            self.constants.push((format!("N{i}"), value));
+        }
+        self.out.push('\n');
+    }
+
+    /// Checksums of `[checksums]`: a CRC of random parameters (its check value computed
+    /// here), a sum with a final XOR.
+    fn emit_checksums(&mut self) {
+        if self.rng.one_in(3) {
+            self.feature("checksum-crc");
+            let width = *self.rng.pick(&[8u32, 16, 32]);
+            let mask = if width == 64 {
+                u64::MAX
+            } else {
+                (1 << width) - 1
+            };
+            let poly = (self.rng.next() & mask) | 1;
+            let init = if self.rng.one_in(2) { 0 } else { mask };
+            let refin = self.rng.one_in(2);
+            let refout = self.rng.one_in(2);
+            let xorout = if self.rng.one_in(2) { 0 } else { mask };
+            let check = crc(width, poly, init, refin, refout, xorout, b"123456789");
+            writeln!(
+                self.out,
+                "[checksums.rcrc]\ncrc = {{ width = {width}, poly = {poly:#x}, init = {init:#x}, refin = {refin}, refout = {refout}, xorout = {xorout:#x}, check = {check:#x} }}"
+            )
+            .unwrap();
+            if self.rng.one_in(2) {
+                let table = *self.rng.pick(&[0, 1, 16]);
+                writeln!(self.out, "table = {table}").unwrap();
+            }
+            self.out.push('\n');
+            self.checksums.push(("rcrc".into(), true));
+        }
+        if self.rng.one_in(4) {
+            self.feature("checksum-sum");
+            let width = *self.rng.pick(&[8u32, 16]);
+            let xorout = if self.rng.one_in(2) {
+                0
+            } else {
+                (1u64 << width) - 1
+            };
+            writeln!(
+                self.out,
+                "[checksums.rsum]\nsum = {{ width = {width}, xorout = {xorout:#x} }}\n"
+            )
+            .unwrap();
+            self.checksums.push(("rsum".into(), false));
+        }
+    }
+
     fn emit_enum(&mut self, i: u64) {
         let name = format!("E{i}");
         let (ty, size, signed) = *self.rng.pick(&[
@@ -183,6 +453,7 @@ impl Spec {
             ("u16", 2, false),
         ]);
         let keep = self.rng.one_in(3);
+        self.feature(if keep { "enum-keep" } else { "enum-reject" });
         let count = self.rng.range(1, 5);
         let mut values = Vec::new();
         let mut v: i64 = if signed {
@@ -207,343 +478,71 @@ impl Spec {
         });
     }
 
-    /// A field of fixed size: its TOML inline table (without the closing brace's content
-    /// beyond the field) and its wire size.
-    fn fixed_field(&mut self, name: &str) -> (String, usize) {
-        match self.rng.below(10) {
-            0 | 1 => {
-                let int = *self.rng.pick(INTS);
-                let ty = with_order(&mut self.rng, int.name, int.size);
-                (
-                    format!("{{ name = \"{name}\", type = \"{ty}\" }}"),
-                    int.size,
-                )
-            }
-            2 => {
-                let (ty, size) = *self.rng.pick(&[("f32", 4), ("f64", 8), ("bool", 1)]);
-                (format!("{{ name = \"{name}\", type = \"{ty}\" }}"), size)
-            }
-            3 => {
-                let int = *self.rng.pick(&INTS[..8]);
-                let n = self.rng.range(1, 4) as usize;
-                let ty = with_order(&mut self.rng, int.name, int.size);
-                (
-                    format!("{{ name = \"{name}\", type = \"{ty}\", count = {n} }}"),
-                    int.size * n,
-                )
-            }
-            4 if !self.enums.is_empty() => {
-                let e = &self.enums[self.rng.below(self.enums.len() as u64) as usize];
-                (
-                    format!("{{ name = \"{name}\", type = \"{}\" }}", e.name),
-                    e.size,
-                )
-            }
-            5 => self.scaled_field(name),
-            6 => self.bits_field(name),
-            7 if !self.leaves.is_empty() => {
-                let l = &self.leaves[self.rng.below(self.leaves.len() as u64) as usize];
-                (
-                    format!("{{ name = \"{name}\", type = \"{}\" }}", l.name),
-                    l.size,
-                )
-            }
-            8 => {
-                let n = self.rng.range(1, 6) as usize;
-                (format!("{{ name = \"{name}\", type = \"char[{n}]\" }}"), n)
-            }
-            _ => (format!("{{ name = \"{name}\", type = \"u8\" }}"), 1),
-        }
-    }
-
-    /// An integer field with a scale (and an offset, a clamp, a rounding mode sometimes).
-    fn scaled_field(&mut self, name: &str) -> (String, usize) {
-        let int = *self.rng.pick(&INTS[..8]);
-        let ty = with_order(&mut self.rng, int.name, int.size);
-        let scale = *self.rng.pick(&["0.5", "0.01", "2.0", "0.1", "0.25"]);
-        let mut t = format!("{{ name = \"{name}\", type = \"{ty}\", scale = {scale}");
-        if self.rng.one_in(2) {
-            let offset = *self.rng.pick(&["-10.0", "3.5", "100.0"]);
-            write!(t, ", offset = {offset}").unwrap();
-        }
-        if self.rng.one_in(3) {
-            // A range inside what the raw type holds for every scale and offset above.
-            let (lo, hi) = if int.signed {
-                ("-0.5", "0.5")
-            } else {
-                ("0.0", "0.5")
-            };
-            let (lo, hi) = if int.size == 1 {
-                (lo, hi)
-            } else {
-                (if int.signed { "-20.0" } else { "100.0" }, "150.0")
-            };
-            write!(t, ", clamp = [{lo}, {hi}]").unwrap();
-        }
-        if self.rng.one_in(3) {
-            t.push_str(", rounding = \"truncate\"");
-        }
-        t.push_str(" }");
-        (t, int.size)
-    }
-
-    /// An unsigned word split into bit members (bools, small integers, an enum).
-    fn bits_field(&mut self, name: &str) -> (String, usize) {
-        let (ty, size) = *self.rng.pick(&[("u8", 1usize), ("u16", 2), ("u32", 4)]);
-        let width = size as u64 * 8;
-        let mut used = 0;
-        let mut members = Vec::new();
-        for k in 0..self.rng.range(1, 4) {
-            let bits = self.rng.range(1, 5).min(width - used);
-            if bits == 0 {
-                break;
-            }
-            let mut m = format!("{{ name = \"{name}_{k}\", bits = {bits}");
-            let fits = self
-                .enums
-                .iter()
-                .filter(|e| !e.signed && e.max_value < (1 << bits))
-                .map(|e| e.name.clone())
-                .collect::<Vec<_>>();
-            if !fits.is_empty() && self.rng.one_in(3) {
-                write!(m, ", type = \"{}\"", self.rng.pick(&fits)).unwrap();
-            }
-            m.push_str(" }");
-            members.push(m);
-            used += bits;
-        }
-        let reserved = if used < width && self.rng.one_in(3) {
-            ", reserved = \"zero\""
-        } else {
-            ""
-        };
-        (
-            format!(
-                "{{ name = \"{name}\", type = \"{ty}\"{reserved}, bits = [{}] }}",
-                members.join(", ")
-            ),
-            size,
-        )
-    }
-
     fn emit_leaf(&mut self, i: u64) {
         let name = format!("L{i}");
         let mut fields = Vec::new();
         let mut size = 0;
+        let mut repeatable = true;
         for k in 0..self.rng.range(1, 3) {
-            let (f, n) = self.fixed_field(&format!("l{k}"));
-            fields.push(f);
-            size += n;
+            let f = self.fixed_field(&format!("l{k}"));
+            repeatable &= f.repeatable;
+            fields.push(f.text);
+            size += f.size;
         }
         self.write_struct(&name, &fields);
-        self.leaves.push(Leaf { name, size });
+        self.leaves.push(Leaf {
+            name,
+            size,
+            repeatable,
+        });
     }
 
     fn write_struct(&mut self, name: &str, fields: &[String]) {
-        writeln!(self.out, "[structs.{name}]\nfields = [").unwrap();
+        writeln!(self.out, "[structs.{name}]").unwrap();
+        if self.rng.one_in(6) {
+            self.feature("struct-byte-order");
+            let order = *self.rng.pick(&["little", "big"]);
+            writeln!(self.out, "byte_order = \"{order}\"").unwrap();
+        }
+        writeln!(self.out, "fields = [").unwrap();
         for f in fields {
             writeln!(self.out, "  {f},").unwrap();
         }
         writeln!(self.out, "]\n").unwrap();
     }
+}
 
-    /// A payload struct: fixed fields, padding sometimes, and a variable tail sometimes.
-    fn emit_payload(&mut self, i: u64) {
-        let name = format!("P{i}");
-        let mut fields = Vec::new();
-        let mut size = 0;
-        for k in 0..self.rng.range(1, 5) {
-            if self.rng.one_in(8) {
-                let n = self.rng.range(1, 3);
-                fields.push(format!("{{ pad = {n} }}"));
-                size += n as usize;
-            }
-            let (f, n) = self.fixed_field(&format!("f{k}"));
-            fields.push(f);
-            size += n;
-        }
-        if let Some((f, n)) = self.tail_field(&fields) {
-            fields.push(f);
-            size += n;
-        }
-        self.write_struct(&name, &fields);
-        self.payloads.push((name, size));
-    }
-
-    /// The last field of a payload that varies in size: bytes, a repeated group (of integers
-    /// or of a fixed struct), NUL-terminated text, or an optional value.
-    fn tail_field(&mut self, _before: &[String]) -> Option<(String, usize)> {
-        match self.rng.below(7) {
-            0 => {
-                let max = self.rng.range(1, 12) as usize;
-                Some((
-                    format!("{{ name = \"tail\", type = \"bytes\", max = {max} }}"),
-                    max,
-                ))
-            }
-            1 => {
-                let int = *self.rng.pick(&INTS[..4]);
-                let max = self.rng.range(1, 5) as usize;
-                Some((
-                    format!(
-                        "{{ name = \"tail\", type = \"{}\", repeat = true, max = {max} }}",
-                        int.name
-                    ),
-                    int.size * max,
-                ))
-            }
-            2 if !self.leaves.is_empty() => {
-                let l = &self.leaves[self.rng.below(self.leaves.len() as u64) as usize];
-                let max = self.rng.range(1, 4) as usize;
-                Some((
-                    format!(
-                        "{{ name = \"tail\", type = \"{}\", repeat = true, max = {max} }}",
-                        l.name
-                    ),
-                    l.size * max,
-                ))
-            }
-            3 => {
-                let max = self.rng.range(1, 8) as usize;
-                Some((
-                    format!("{{ name = \"tail\", type = \"cstr\", max = {max} }}"),
-                    max + 1,
-                ))
-            }
-            4 => {
-                let int = *self.rng.pick(&INTS[..6]);
-                Some((
-                    format!(
-                        "{{ name = \"tail\", type = \"{}\", optional = true }}",
-                        int.name
-                    ),
-                    int.size,
-                ))
-            }
-            _ => None,
-        }
-    }
-
-    /// The frame format(s) and the commands.
-    fn emit_frames_and_commands(&mut self) {
-        let largest = self.payloads.iter().map(|p| p.1).max().unwrap_or(0);
-        let max = largest + self.rng.below(4) as usize;
-        let commands = self.rng.range(1, 5);
-        let wide_cmd = self.rng.one_in(4);
-        let frame = self.serial_frame(max, wide_cmd);
-        self.out.push_str(&frame);
-        writeln!(self.out, "[commands]").unwrap();
-        let mut id = self.rng.below(3);
-        for c in 0..commands {
-            let payload = if self.rng.one_in(5) {
-                String::new()
+/// The CRC of `data` in the Rocksoft model (bit by bit): what a `[checksums]` CRC's `check`
+/// must be for `123456789`.
+fn crc(
+    width: u32,
+    poly: u64,
+    init: u64,
+    refin: bool,
+    refout: bool,
+    xorout: u64,
+    data: &[u8],
+) -> u64 {
+    let mask = if width == 64 {
+        u64::MAX
+    } else {
+        (1 << width) - 1
+    };
+    let top = 1u64 << (width - 1);
+    let mut reg = init & mask;
+    for &b in data {
+        let b = if refin { b.reverse_bits() } else { b };
+        reg ^= u64::from(b) << (width - 8);
+        for _ in 0..8 {
+            reg = if reg & top != 0 {
+                ((reg << 1) ^ poly) & mask
             } else {
-                let p = &self.payloads[self.rng.below(self.payloads.len() as u64) as usize];
-                format!(", payload = \"{}\"", p.0)
+                (reg << 1) & mask
             };
-            writeln!(self.out, "C{c} = {{ id = {id}{payload} }}").unwrap();
-            id += self.rng.range(1, 40);
         }
-        self.out.push('\n');
     }
-
-    /// A serial frame format: sync bytes, header fields in a random order (length, command,
-    /// a sequence number, a constant), a header check sometimes, the payload, a frame check.
-    fn serial_frame(&mut self, max: usize, wide_cmd: bool) -> String {
-        let mut layout = Vec::new();
-        let sync_len = self.rng.range(1, 2);
-        let sync: Vec<String> = (0..sync_len)
-            .map(|_| format!("{:#04X}", self.rng.range(1, 255)))
-            .collect();
-        layout.push(format!("{{ sync = [{}] }}", sync.join(", ")));
-        let wide_len = max > 200 || self.rng.one_in(3);
-        let len_ty = if wide_len {
-            with_order(&mut self.rng, "u16", 2)
-        } else {
-            "u8".to_string()
-        };
-        let cmd_ty = if wide_cmd {
-            with_order(&mut self.rng, "u16", 2)
-        } else {
-            "u8".to_string()
-        };
-        let mut header = vec![
-            ("len", format!("type = \"{len_ty}\"")),
-            ("cmd", format!("type = \"{cmd_ty}\"")),
-        ];
-        if self.rng.one_in(2) {
-            header.push(("seq", "type = \"u8\"".to_string()));
-        }
-        if self.rng.one_in(4) {
-            let v = self.rng.below(256);
-            header.push(("ver", format!("type = \"u8\", value = {v}")));
-        }
-        // Shuffled.
-        for i in (1..header.len()).rev() {
-            let j = self.rng.below(i as u64 + 1) as usize;
-            header.swap(i, j);
-        }
-        let first = header[0].0;
-        let cmd_pos = header.iter().position(|h| h.0 == "cmd").unwrap_or(0);
-        let len_pos = header.iter().position(|h| h.0 == "len").unwrap_or(0);
-        let length_of = match self.rng.below(3) {
-            0 => "payload".to_string(),
-            1 => "frame".to_string(),
-            // A run from a header field after the length to the payload.
-            _ if len_pos + 1 < header.len() => format!("{}..payload", header[len_pos + 1].0),
-            _ => "payload".to_string(),
-        };
-        for (name, rest) in &header {
-            let extra = if *name == "len" {
-                format!(", length_of = \"{length_of}\"")
-            } else {
-                String::new()
-            };
-            layout.push(format!("{{ field = \"{name}\", {rest}{extra} }}"));
-        }
-        let _ = cmd_pos;
-        if self.rng.one_in(3) {
-            let check = *self
-                .rng
-                .pick(&["crc-8-smbus", "xor8", "sum8", "crc-8-maxim-dow"]);
-            let last = header[header.len() - 1].0;
-            layout.push(format!(
-                "{{ check = \"{check}\", name = \"hcheck\", over = \"sync..{last}\" }}"
-            ));
-        }
-        layout.push(format!("{{ payload = {{ max = {max} }} }}"));
-        let check = *self.rng.pick(&[
-            "sum8",
-            "xor8",
-            "sum-mod-255",
-            "crc-16-mcrf4xx",
-            "crc-16-modbus",
-            "crc-16-ibm-3740",
-            "crc-32-iso-hdlc",
-            "crc-8-dvb-s2",
-            "fletcher-16",
-        ]);
-        let over = if self.rng.one_in(2) {
-            "frame".to_string()
-        } else {
-            format!("{first}..payload")
-        };
-        let order = if self.rng.one_in(3) {
-            format!(", byte_order = \"{}\"", self.rng.pick(&["little", "big"]))
-        } else {
-            String::new()
-        };
-        layout.push(format!(
-            "{{ check = \"{check}\", name = \"fcheck\", over = \"{over}\"{order} }}"
-        ));
-        if self.rng.one_in(5) {
-            layout.push("{ trailer = [0x0D, 0x0A], name = \"end\" }".to_string());
-        }
-        let mut t = String::from("[frames.main]\nlayout = [\n");
-        for e in &layout {
-            writeln!(t, "  {e},").unwrap();
-        }
-        t.push_str("]\ndispatch = [\"cmd\"]\n\n");
-        t
+    if refout {
+        reg = reg.reverse_bits() >> (64 - width);
     }
+    (reg ^ xorout) & mask
 }

@@ -142,25 +142,39 @@ ${filled}    if (len > ${xup}MAX_FRAME_LEN${short}) return ${up}ERR_FRAME;
     header_values(p, n, x, out);
     rules::ack_decode(n, x, out);
     flag_trailer(p, n, x, out);
-    out.push_str(&fill!("    if (end < start) return ${up}ERR_FRAME;\n", up));
     if given {
         given_direction(p, n, out);
     }
+    // A frame too short for its trailer (a bare header of a command) is refused once the
+    // command is known, as the runtime's rules read the key before the payload: an unknown
+    // command is that, whatever its length.
+    let too_short = fill!("    if (end < start) return ${up}ERR_FRAME;\n", up);
     match carries(p, x) {
         Carries::Command => {
             dispatch_key(p, n, x, out);
+            out.push_str(&too_short);
+            // The payload is unstuffed before the direction is read, as the runtime's rules
+            // do: a frame with both faults is refused for its stuffing.
+            rules::unstuff(n, x, out);
             if !given {
                 directions(p, n, x, out);
             }
         }
-        Carries::CanCommand => can_command(p, n, x, out),
-        Carries::Struct(_) => {}
+        Carries::CanCommand => {
+            out.push_str(&too_short);
+            can_command(p, n, x, out);
+            rules::unstuff(n, x, out);
+        }
+        Carries::Struct(_) => {
+            out.push_str(&too_short);
+            rules::unstuff(n, x, out);
+        }
         Carries::Bytes => {
+            out.push_str(&too_short);
             payload_bytes(n, out);
             return;
         }
     }
-    rules::unstuff(n, x, out);
     read_payload(p, n, x, out);
 }
 
@@ -308,6 +322,22 @@ fn directions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     for (d, &(value, test)) in p.directions.iter().zip(&x.rules.directions) {
         let bits = truncated(&f.values[value], "raw");
         let cond = match test {
+            // A range from 0 has no lower test: an unsigned value is never below it (and C
+            // compilers warn of a comparison that is always true).
+            DirectionTest::InRange {
+                field,
+                first: 0,
+                last,
+            } => {
+                let (word, last) = (field_word(field), names::u64_lit(last));
+                fill!(
+                    "${lo}field(bytes, len, ${word}, &raw) && ${bits} <= ${last}",
+                    lo,
+                    word,
+                    bits,
+                    last
+                )
+            }
             DirectionTest::InRange { field, first, last } => {
                 let (word, first, last) = (
                     field_word(field),

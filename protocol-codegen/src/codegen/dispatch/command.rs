@@ -104,6 +104,12 @@ pub(super) fn emit_command_enum(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
             }
             #can
         }
+        impl #rt::CommandName for Command {
+            #[inline(always)]
+            fn command_name(&self) -> &'static str {
+                self.name()
+            }
+        }
     }
 }
 
