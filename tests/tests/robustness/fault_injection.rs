@@ -78,6 +78,7 @@ fn extended_by_its_check(m: &Model, bytes: &[u8]) -> bool {
             c.algorithm,
             ir::Algorithm::Sum {
                 width: 1,
+                init: 0,
                 xorout: 0xFF
             }
         )
