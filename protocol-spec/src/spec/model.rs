@@ -189,7 +189,7 @@ pub struct XorDef {
 #[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct CrcDef {
-    /// 8, 16, 32 or 64.
+    /// 1 to 64 bits; the check is stored in the fewest whole bytes that hold it.
     #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub width: SInt,
     /// Polynomial, normal (MSB-first) form.
