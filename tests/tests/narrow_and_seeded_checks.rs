@@ -11,7 +11,9 @@
 //! garbage, corrupt and truncated copies yields exactly the good frames at every chunk size.
 //!
 //! The seeded fixture's frames are encoded by generated code and their checks recomputed here
-//! with naive loops and the `crc` crate, whose catalogue gives CRC-12/UMTS and CRC-7/MMC.
+//! with naive loops and the `crc` crate, whose catalogue gives CRC-12/UMTS and CRC-7/MMC. The
+//! frames of `check_before_payload.toml` (a payload CRC stored in the header) are assembled
+//! here with the `crc` crate and compared with what generated code encodes.
 
 use protocol_dynamic::{Interpreter, Item};
 use protocol_kit::{DecodeError, Reject};
@@ -220,6 +222,89 @@ fn seeded_and_narrow_checks_hold_what_naive_loops_compute() {
     });
     dynamic_agrees(
         &interpreter("seeded_checks.toml"),
+        &frames,
+        &stream,
+        &expected,
+    );
+}
+
+mod before {
+    protocol_kit::protocol!("../protocol-codegen/tests/features/check_before_payload.toml");
+}
+
+/// A frame of `check_before_payload.toml` assembled by hand: the payload's CRC-16/XMODEM
+/// (big-endian) right after the sync, then the length, the command, their CRC-8/SMBUS, and
+/// the payload.
+fn assembled_before(cmd: u8, payload: &[u8]) -> Vec<u8> {
+    let crc16 = crc::Crc::<u16>::new(&crc::CRC_16_XMODEM);
+    let crc8 = crc::Crc::<u8>::new(&crc::CRC_8_SMBUS);
+    let len = payload.len() as u8;
+    let mut frame = vec![0xAA, 0x55];
+    frame.extend_from_slice(&crc16.checksum(payload).to_be_bytes());
+    frame.extend_from_slice(&[len, cmd, crc8.checksum(&[len, cmd])]);
+    frame.extend_from_slice(payload);
+    frame
+}
+
+#[test]
+fn a_check_before_the_payload_is_verified_and_filled_after_it() {
+    use before::check_before_payload::{
+        DECODER_BUFFER_LEN, Header, LAYOUT, MAX_FRAME_LEN, Message, Move, Packet,
+    };
+    let cases = [
+        (
+            Packet {
+                header: Header {},
+                message: Message::Ping,
+            },
+            assembled_before(1, &[]),
+        ),
+        (
+            Packet {
+                header: Header {},
+                message: Message::Move(Move {
+                    x: -300,
+                    y: 1200,
+                    speed: 0xFE,
+                }),
+            },
+            assembled_before(2, &[0xD4, 0xFE, 0xB0, 0x04, 0xFE]),
+        ),
+    ];
+    let mut frames = Vec::new();
+    for (packet, bytes) in &cases {
+        let mut buf = [0u8; MAX_FRAME_LEN];
+        let n = packet.encode(&mut buf).expect("encodes");
+        assert_eq!(
+            F(&buf[..n]),
+            F(bytes),
+            "the encoder fills the check after the payload"
+        );
+        assert_eq!(Packet::decode(bytes), Ok(*packet));
+        for at in 0..bytes.len() {
+            let mut bad = bytes.clone();
+            bad[at] ^= 0x40;
+            assert!(
+                Packet::decode(&bad).is_err(),
+                "byte {at} changed: {:?}",
+                F(&bad)
+            );
+        }
+        frames.push(bytes.clone());
+    }
+    // A changed payload byte fails the check stored before it.
+    let mut bad = frames[1].clone();
+    bad[8] ^= 0x01;
+    assert_eq!(
+        Packet::decode(&bad),
+        Err(DecodeError::Frame(Reject::BadChecksum))
+    );
+    let (stream, expected) = stream_of(&frames);
+    assert_stream_at_every_chunk_size::<DECODER_BUFFER_LEN>(&LAYOUT, &stream, &expected, |f| {
+        assert!(Packet::decode(f).is_ok());
+    });
+    dynamic_agrees(
+        &interpreter("check_before_payload.toml"),
         &frames,
         &stream,
         &expected,
