@@ -93,6 +93,7 @@ fn built_in_sums_are_the_runtime_algorithms() {
             "sum16",
             Algorithm::Sum {
                 width: 2,
+                init: 0,
                 xorout: 0,
             },
             2,
@@ -119,6 +120,7 @@ fn custom_sums_carry_their_width_and_xorout() {
         p.frames[0].checks[0].algorithm,
         Algorithm::Sum {
             width: 1,
+            init: 0,
             xorout: 0xFF
         }
     );
@@ -131,6 +133,7 @@ fn custom_sums_carry_their_width_and_xorout() {
         c.algorithm,
         Algorithm::Sum {
             width: 2,
+            init: 0,
             xorout: 0xFFFF
         }
     );

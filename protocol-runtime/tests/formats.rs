@@ -53,6 +53,7 @@ static LONG: FrameLayout<'static> = FrameLayout {
     frame_checks: &[Check {
         checksum: Checksum::Sum {
             width: 2,
+            init: 0,
             xorout: 0,
         },
         from: Pos::Start(1),

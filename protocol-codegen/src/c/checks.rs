@@ -233,14 +233,25 @@ fn parts(name: &str, a: &Algorithm) -> Parts {
             ..sum("uint32_t", "s += BYTE;", "s".into())
         },
         Algorithm::Xor8 => sum("uint8_t", "s = (uint8_t)(s ^ BYTE);", "s".into()),
-        Algorithm::Sum { width, xorout } => {
+        Algorithm::Sum {
+            width,
+            init,
+            xorout,
+        } => {
             let mask = if *width == 1 { 0xFF } else { 0xFFFF };
-            sum(
-                "uint64_t",
-                "s += BYTE;",
-                format!("(s ^ {xorout:#x}u) & {mask:#x}u"),
-            )
+            Parts {
+                state: format!("    uint64_t s = {init:#x}u;\n"),
+                ..sum(
+                    "uint64_t",
+                    "s += BYTE;",
+                    format!("(s ^ {xorout:#x}u) & {mask:#x}u"),
+                )
+            }
         }
+        Algorithm::Xor { init } => Parts {
+            state: format!("    uint8_t s = {init:#x}u;\n"),
+            ..sum("uint8_t", "s = (uint8_t)(s ^ BYTE);", "s".into())
+        },
         Algorithm::Fletcher16 => fletcher("% 255u"),
         Algorithm::Fletcher16Mod256 => fletcher("& 0xFFu"),
         Algorithm::Crc8(c) => crc(name, &Crc::of(c)),
@@ -274,9 +285,15 @@ fn fletcher(reduce: &'static str) -> Parts {
     }
 }
 
-/// A CRC's parameters, widened to 64 bits.
+/// A CRC's parameters, widened to 64 bits, with the register the C code shifts: the CRC's
+/// own width, except for a CRC of fewer than 8 bits that is not reflected, which runs in an
+/// 8-bit register with its polynomial and initial value moved to the top (as the `crc` crate
+/// computes it), so that a byte always fits the register.
 struct Crc {
+    /// Bits of the register the steps shift: `width`, or 8.
     width: u32,
+    /// Bits of the CRC: the register is shifted right by `width - crc_width` at the end.
+    crc_width: u32,
     poly: u64,
     init: u64,
     refin: bool,
@@ -287,15 +304,28 @@ struct Crc {
 
 impl Crc {
     fn of<W: crc::Width + Copy + Into<u64>>(c: &CrcSpec<W>) -> Crc {
+        let crc_width = u32::from(c.params.width);
+        let pad = if c.params.refin {
+            0
+        } else {
+            8u32.saturating_sub(crc_width)
+        };
+        let (poly, init): (u64, u64) = (c.params.poly.into(), c.params.init.into());
         Crc {
-            width: u32::from(c.params.width),
-            poly: c.params.poly.into(),
-            init: c.params.init.into(),
+            width: crc_width + pad,
+            crc_width,
+            poly: poly << pad,
+            init: init << pad,
             refin: c.params.refin,
             refout: c.params.refout,
             xorout: c.params.xorout.into(),
             table: c.table,
         }
+    }
+
+    /// The C type of the register: the fewest whole bytes that hold it.
+    fn ty(&self) -> &'static str {
+        unsigned_of(self.width.div_ceil(8) as usize)
     }
 }
 
@@ -324,7 +354,7 @@ fn entry(c: &Crc, i: u64) -> u64 {
 /// reflected input), each byte goes in low bit first (reflected) or high bit first, and the
 /// result is reflected when `refout` differs from `refin`, then xored with `xorout`.
 fn crc(name: &str, c: &Crc) -> Parts {
-    let ty = unsigned_of((c.width / 8) as usize);
+    let ty = c.ty();
     let w = c.width;
     let init = if c.refin { reflect(c.init, w) } else { c.init };
     let mut state = format!("    {ty} r = ({ty}){init:#x}u;\n");
@@ -339,10 +369,13 @@ fn crc(name: &str, c: &Crc) -> Parts {
             table_step(name, c)
         }
     };
-    let finish = if c.refin == c.refout {
-        String::new()
-    } else {
-        fill!(
+    let mut finish = match w - c.crc_width {
+        0 => String::new(),
+        pad => fill!("    r = (${ty})(r >> ${pad});\n", ty, pad),
+    };
+    let w = c.crc_width;
+    if c.refin != c.refout {
+        finish.push_str(&fill!(
             r"
     {
         ${ty} o = 0;
@@ -355,8 +388,8 @@ fn crc(name: &str, c: &Crc) -> Parts {
 ",
             ty,
             w
-        )
-    };
+        ));
+    }
     let (xorout, mask) = (format!("{:#x}", c.xorout), u64_lit(mask(w)));
     Parts {
         state,
@@ -377,7 +410,7 @@ fn crc(name: &str, c: &Crc) -> Parts {
 
 /// The step of a CRC without table: the byte into the register, then eight shifts.
 fn bitwise_step(c: &Crc) -> Box<dyn Fn(&str) -> String> {
-    let ty = unsigned_of((c.width / 8) as usize);
+    let ty = c.ty();
     if c.refin {
         let poly = format!("{:#x}", reflect(c.poly, c.width));
         return Box::new(move |b| {
@@ -414,8 +447,10 @@ fn bitwise_step(c: &Crc) -> Box<dyn Fn(&str) -> String> {
 
 /// The step of a CRC with a table: one lookup per byte.
 fn table_step(name: &str, c: &Crc) -> Box<dyn Fn(&str) -> String> {
-    let ty = unsigned_of((c.width / 8) as usize);
-    let (name, refin, low) = (name.to_string(), c.refin, c.width - 8);
+    let ty = c.ty();
+    // A reflected register of up to 8 bits takes its byte whole (`low` 0); a register that is
+    // not reflected is at least 8 bits (`Crc::of`).
+    let (name, refin, low) = (name.to_string(), c.refin, c.width.saturating_sub(8));
     Box::new(move |b| match (refin, low > 0) {
         (true, true) => fill!(
             "        r = (${ty})(${name}_table[(r ^ ${b}) & 0xFFu] ^ (r >> 8));\n",
@@ -436,7 +471,7 @@ fn table_step(name: &str, c: &Crc) -> Box<dyn Fn(&str) -> String> {
 
 /// The 256-entry table of a CRC, eight entries a line.
 fn crc_table(name: &str, ty: &str, c: &Crc) -> String {
-    let digits = (c.width / 4) as usize;
+    let digits = c.width.div_ceil(4) as usize;
     let mut rows = String::new();
     for row in 0..32u64 {
         let cells: Vec<String> = (0..8)

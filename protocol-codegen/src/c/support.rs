@@ -1,7 +1,7 @@
 //! What the C printer supports: [`unsupported`] lists every feature of a spec it refuses, so
 //! that `protocol gen c` fails with a clear message instead of printing wrong code.
 
-use crate::ir::{Algorithm, FieldKind, Protocol, Role, Transport, ValueType};
+use crate::ir::{FieldKind, Protocol, Role, Transport, ValueType};
 use crate::layout::lower_layout;
 use crate::rules::Carries;
 
@@ -65,11 +65,6 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
                 ));
             }
         }
-        for c in &f.checks {
-            if let Some(why) = algorithm_refused(&c.algorithm) {
-                out.push(format!("{at}: check `{}`: {why}", c.name));
-            }
-        }
     }
     for s in &p.structs {
         for field in &s.fields {
@@ -79,18 +74,6 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         }
     }
     out
-}
-
-/// Why the C printer refuses a check algorithm, if it does.
-fn algorithm_refused(a: &Algorithm) -> Option<&'static str> {
-    let fits = match a {
-        Algorithm::Crc8(c) => c.params.width == 8,
-        Algorithm::Crc16(c) => c.params.width == 16,
-        Algorithm::Crc32(c) => c.params.width == 32,
-        Algorithm::Crc64(c) => c.params.width == 64,
-        _ => true,
-    };
-    (!fits).then_some("a CRC narrower than its register (width not 8, 16, 32 or 64 bits)")
 }
 
 /// Why the C printer refuses a field kind, if it does.

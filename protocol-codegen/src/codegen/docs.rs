@@ -337,14 +337,24 @@ fn algorithm_name_text(c: &Check) -> String {
         Algorithm::Sum8 => sum("sum of the bytes modulo 256".into()),
         Algorithm::SumMod255 => sum("sum of the bytes modulo 255".into()),
         Algorithm::Xor8 => "XOR of the bytes".into(),
-        Algorithm::Sum { width, xorout: 0 } => sum(format!(
-            "sum of the bytes modulo {}",
-            1u32 << (8 * u32::from(*width))
-        )),
-        Algorithm::Sum { width, xorout } => sum(format!(
-            "sum of the bytes modulo {}, xored with {xorout:#x}",
-            1u32 << (8 * u32::from(*width))
-        )),
+        Algorithm::Sum {
+            width,
+            init,
+            xorout,
+        } => {
+            let seed = match init {
+                0 => String::new(),
+                init => format!(" from {init:#x}"),
+            };
+            let modulus = 1u32 << (8 * u32::from(*width));
+            match xorout {
+                0 => sum(format!("sum of the bytes{seed} modulo {modulus}")),
+                xorout => sum(format!(
+                    "sum of the bytes{seed} modulo {modulus}, xored with {xorout:#x}"
+                )),
+            }
+        }
+        Algorithm::Xor { init } => sum(format!("XOR of the bytes from {init:#x}")),
         Algorithm::Fletcher16 => {
             "Fletcher-16: sums A (of the bytes) and B (of the As) modulo 255, stored as B << 8 | A"
                 .into()

@@ -164,9 +164,14 @@ pub fn algorithm_expr(
         Algorithm::Sum8 => quote!(#rt::Checksum::Sum8),
         Algorithm::SumMod255 => quote!(#rt::Checksum::SumMod255),
         Algorithm::Xor8 => quote!(#rt::Checksum::Xor8),
-        Algorithm::Sum { width, xorout } => {
-            quote!(#rt::Checksum::Sum { width: #width, xorout: #xorout })
+        Algorithm::Sum {
+            width,
+            init,
+            xorout,
+        } => {
+            quote!(#rt::Checksum::Sum { width: #width, init: #init, xorout: #xorout })
         }
+        Algorithm::Xor { init } => quote!(#rt::Checksum::Xor { init: #init }),
         Algorithm::Fletcher16 => quote!(#rt::Checksum::Fletcher16),
         Algorithm::Fletcher16Mod256 => quote!(#rt::Checksum::Fletcher16Mod256),
         Algorithm::Crc8(spec) => crc!(spec, u8, Crc8, Prim::U8),

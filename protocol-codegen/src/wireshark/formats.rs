@@ -117,7 +117,9 @@ fn checks(p: &Protocol, f: &Frame, fields: &mut Fields, refused: &mut Vec<String
             ", base.HEX",
         );
         let algorithm = lua::algorithm(&c.algorithm).unwrap_or_else(|| {
-            refused.push(format!("{abbrev}: a 64-bit CRC (Lua's bit32 computes 32)"));
+            refused.push(format!(
+                "{abbrev}: a CRC of more than 32 bits (Lua's bit32 computes 32)"
+            ));
             String::from("{}")
         });
         let extra = c.extra.as_ref().map_or(String::new(), |e| {

@@ -70,9 +70,19 @@ pub fn algorithm(a: &Algorithm) -> Option<String> {
         Algorithm::Sum8 => "{ kind = \"sum8\" }".to_string(),
         Algorithm::SumMod255 => "{ kind = \"sum_mod_255\" }".to_string(),
         Algorithm::Xor8 => "{ kind = \"xor8\" }".to_string(),
-        Algorithm::Sum { width, xorout } => {
-            format!("{{ kind = \"sum\", width = {width}, xorout = 0x{xorout:X} }}")
+        Algorithm::Sum {
+            width,
+            init,
+            xorout,
+        } => {
+            // A sum without a seed prints as it always has (its `init` is 0 in the dissector).
+            let seed = match init {
+                0 => String::new(),
+                init => format!(", init = 0x{init:X}"),
+            };
+            format!("{{ kind = \"sum\", width = {width}{seed}, xorout = 0x{xorout:X} }}")
         }
+        Algorithm::Xor { init } => format!("{{ kind = \"xor8\", init = 0x{init:X} }}"),
         Algorithm::Fletcher16 => "{ kind = \"fletcher16\" }".to_string(),
         Algorithm::Fletcher16Mod256 => "{ kind = \"fletcher16_mod256\" }".to_string(),
         Algorithm::Crc8(c) => {
@@ -90,6 +100,7 @@ pub fn algorithm(a: &Algorithm) -> Option<String> {
             let (poly, init, xorout) = (p.poly.into(), p.init.into(), p.xorout.into());
             crc(p.width, poly, init, p.refin, p.refout, xorout)
         }
+        // Every CRC of more than 32 bits is a `Crc64` (the narrowest register that holds it).
         Algorithm::Crc64(_) => return None,
     })
 }

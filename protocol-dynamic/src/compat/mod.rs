@@ -171,10 +171,15 @@ fn algorithm_name(c: &Check) -> String {
         Algorithm::Sum8 => "sum mod 256".into(),
         Algorithm::SumMod255 => "sum mod 255".into(),
         Algorithm::Xor8 => "xor".into(),
-        Algorithm::Sum { width, xorout } => format!(
-            "sum mod {}, xorout {xorout:#x}",
+        Algorithm::Sum {
+            width,
+            init,
+            xorout,
+        } => format!(
+            "sum mod {}, init {init:#x}, xorout {xorout:#x}",
             1u32 << (8 * u32::from(*width))
         ),
+        Algorithm::Xor { init } => format!("xor, init {init:#x}"),
         Algorithm::Fletcher16 => "fletcher-16".into(),
         Algorithm::Fletcher16Mod256 => "fletcher-16-mod-256".into(),
         Algorithm::Crc8(s) => crc!(s),

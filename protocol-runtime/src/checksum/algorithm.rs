@@ -17,12 +17,20 @@ pub enum Algorithm {
     SumMod255,
     /// [`Checksum::Xor8`].
     Xor8,
-    /// [`Checksum::Sum`]: the sum of the bytes modulo 2^(8 × `width`), xored with `xorout`.
+    /// [`Checksum::Sum`]: the sum of `init` and the bytes modulo 2^(8 × `width`), xored with
+    /// `xorout`.
     Sum {
         /// Bytes of the stored value: 1 or 2.
         width: u8,
+        /// The value the sum starts from (a seed).
+        init: u16,
         /// Xored into the sum (all ones: the one's complement).
         xorout: u16,
+    },
+    /// [`Checksum::Xor`]: the XOR of the bytes, starting from `init`.
+    Xor {
+        /// The value the XOR starts from (a seed).
+        init: u8,
     },
     /// [`Checksum::Fletcher16`].
     Fletcher16,
@@ -92,19 +100,24 @@ impl Algorithm {
     /// Bytes of the stored check value (as [`Checksum::width`]).
     ///
     /// ```
-    /// use protocol_runtime::checksum::Algorithm;
+    /// use protocol_runtime::checksum::{Algorithm, CrcSpec, CrcTable};
     ///
     /// assert_eq!(Algorithm::Fletcher16Mod256.width(), 2);
-    /// assert_eq!(Algorithm::Sum { width: 2, xorout: 0xFFFF }.width(), 2);
+    /// assert_eq!(Algorithm::Sum { width: 2, init: 0, xorout: 0xFFFF }.width(), 2);
+    /// // A CRC takes the fewest whole bytes that hold its width: a CRC-24 three.
+    /// let crc24 = Algorithm::Crc32(CrcSpec { params: crc::CRC_24_OPENPGP, table: CrcTable::Table1 });
+    /// assert_eq!(crc24.width(), 3);
     /// ```
     #[inline]
     pub const fn width(&self) -> usize {
         match self {
-            Algorithm::Sum8 | Algorithm::SumMod255 | Algorithm::Xor8 | Algorithm::Crc8(_) => 1,
+            Algorithm::Sum8 | Algorithm::SumMod255 | Algorithm::Xor8 | Algorithm::Xor { .. } => 1,
             Algorithm::Sum { width, .. } => *width as usize,
-            Algorithm::Fletcher16 | Algorithm::Fletcher16Mod256 | Algorithm::Crc16(_) => 2,
-            Algorithm::Crc32(_) => 4,
-            Algorithm::Crc64(_) => 8,
+            Algorithm::Fletcher16 | Algorithm::Fletcher16Mod256 => 2,
+            Algorithm::Crc8(c) => super::crc_bytes(c.params.width),
+            Algorithm::Crc16(c) => super::crc_bytes(c.params.width),
+            Algorithm::Crc32(c) => super::crc_bytes(c.params.width),
+            Algorithm::Crc64(c) => super::crc_bytes(c.params.width),
         }
     }
 
@@ -115,7 +128,7 @@ impl Algorithm {
     /// ```
     /// use protocol_runtime::checksum::Algorithm;
     ///
-    /// let dynamixel = Algorithm::Sum { width: 1, xorout: 0xFF }.tableless().unwrap();
+    /// let dynamixel = Algorithm::Sum { width: 1, init: 0, xorout: 0xFF }.tableless().unwrap();
     /// assert_eq!(dynamixel.compute(&[0x01, 0x02, 0x01]), 0xFB);
     /// ```
     #[inline]
@@ -124,7 +137,16 @@ impl Algorithm {
             Algorithm::Sum8 => Checksum::Sum8,
             Algorithm::SumMod255 => Checksum::SumMod255,
             Algorithm::Xor8 => Checksum::Xor8,
-            Algorithm::Sum { width, xorout } => Checksum::Sum { width, xorout },
+            Algorithm::Sum {
+                width,
+                init,
+                xorout,
+            } => Checksum::Sum {
+                width,
+                init,
+                xorout,
+            },
+            Algorithm::Xor { init } => Checksum::Xor { init },
             Algorithm::Fletcher16 => Checksum::Fletcher16,
             Algorithm::Fletcher16Mod256 => Checksum::Fletcher16Mod256,
             Algorithm::Crc8(_)

@@ -59,6 +59,8 @@ mod sum;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
+mod tests_seeds;
+#[cfg(test)]
 mod tests_then;
 
 pub use algorithm::{Algorithm, CrcSpec, CrcTable};
@@ -75,14 +77,22 @@ pub enum Checksum<'a> {
     SumMod255,
     /// Xor of the bytes.
     Xor8,
-    /// The sum of the bytes modulo 2^(8 × `width`) (`width` 1 or 2; any other counts as 2),
-    /// xored with `xorout`. All ones is the one's complement of the sum: `~sum & 0xFF`
-    /// (Dynamixel Protocol 1.0), `0xFFFF - sum` (iBUS).
+    /// The sum of `init` and the bytes modulo 2^(8 × `width`) (`width` 1 or 2; any other
+    /// counts as 2), xored with `xorout`. All ones is the one's complement of the sum:
+    /// `~sum & 0xFF` (Dynamixel Protocol 1.0), `0xFFFF - sum` (iBUS). `init` seeds the sum
+    /// with a constant a link's documentation gives (0 for a plain sum).
     Sum {
         /// Bytes of the stored value: 1 or 2.
         width: u8,
+        /// The value the sum starts from.
+        init: u16,
         /// Xored into the sum.
         xorout: u16,
+    },
+    /// The XOR of the bytes, starting from `init` (a seed: [`Xor8`](Self::Xor8) is `init` 0).
+    Xor {
+        /// The value the XOR starts from.
+        init: u8,
     },
     /// Fletcher-16: two running sums modulo 255 (`A` of the bytes, `B` of the successive
     /// `A`s), the value `B << 8 | A` (Fletcher, "An Arithmetic Checksum for Serial
@@ -247,6 +257,21 @@ macro_rules! crc_impl_width {
 }
 crc_impl_width!(u8, u16, u32, u64);
 
+/// Bytes a CRC of `width` bits is stored in: the fewest whole bytes that hold it (a CRC-24 in
+/// three, a CRC-5 in one).
+///
+/// ```
+/// use protocol_runtime::checksum::crc_bytes;
+///
+/// assert_eq!(crc_bytes(24), 3);
+/// assert_eq!(crc_bytes(5), 1);
+/// assert_eq!(crc_bytes(40), 5);
+/// ```
+#[inline(always)]
+pub const fn crc_bytes(width: u8) -> usize {
+    (width as usize).div_ceil(8)
+}
+
 impl<W: crc::Width> CrcImpl<'_, W> {
     /// The parameters of the CRC.
     #[inline]
@@ -256,6 +281,17 @@ impl<W: crc::Width> CrcImpl<'_, W> {
             CrcImpl::Table1(c) => c.algorithm,
             CrcImpl::Table16(c) => c.algorithm(),
         }
+    }
+
+    /// Bytes the CRC is stored in ([`crc_bytes`] of its width). Read from the parameters the
+    /// tables were built from: in a generated layout they are a constant, and this folds.
+    #[inline(always)]
+    pub const fn stored_bytes(&self) -> usize {
+        crc_bytes(match self {
+            CrcImpl::NoTable(c) => c.algorithm.width,
+            CrcImpl::Table1(c) => c.algorithm.width,
+            CrcImpl::Table16(c) => c.algorithm().width,
+        })
     }
 
     /// Number of 256-entry tables: 0, 1 or 16.
@@ -286,11 +322,17 @@ impl fmt::Debug for Checksum<'_> {
             Checksum::Sum8 => f.write_str("Sum8"),
             Checksum::SumMod255 => f.write_str("SumMod255"),
             Checksum::Xor8 => f.write_str("Xor8"),
-            Checksum::Sum { width, xorout } => f
+            Checksum::Sum {
+                width,
+                init,
+                xorout,
+            } => f
                 .debug_struct("Sum")
                 .field("width", width)
+                .field("init", init)
                 .field("xorout", xorout)
                 .finish(),
+            Checksum::Xor { init } => f.debug_struct("Xor").field("init", init).finish(),
             Checksum::Fletcher16 => f.write_str("Fletcher16"),
             Checksum::Fletcher16Mod256 => f.write_str("Fletcher16Mod256"),
             Checksum::Crc8(c) => f.debug_tuple("Crc8").field(c).finish(),
@@ -309,8 +351,9 @@ impl fmt::Debug for Checksum<'_> {
 // matters for firmware flash (at `opt-level = "s"` a plain `#[inline]` dispatcher stays out of
 // line and links every table size of its width).
 impl Checksum<'_> {
-    /// Bytes of the stored check value: 1 for the 8-bit sums, xor and CRC-8, 2 for the
-    /// 16-bit sums, the Fletcher pairs and CRC-16, then 4 or 8.
+    /// Bytes of the stored check value: 1 for the 8-bit sums and xors, 2 for the 16-bit sums
+    /// and the Fletcher pairs, and for a CRC the fewest whole bytes that hold its width
+    /// ([`crc_bytes`]: 1 for a CRC-8, 3 for a CRC-24).
     ///
     /// Always inlined and not recursive: every check the engine verifies reads it, and where
     /// the `Checksum` is a constant it folds to a number. (The compiler does not inline a
@@ -329,12 +372,14 @@ impl Checksum<'_> {
     #[inline(always)]
     const fn width_of_crc(&self) -> usize {
         match self {
-            Checksum::Sum8 | Checksum::SumMod255 | Checksum::Xor8 | Checksum::Crc8(_) => 1,
+            Checksum::Sum8 | Checksum::SumMod255 | Checksum::Xor8 | Checksum::Xor { .. } => 1,
             Checksum::Sum { width: 1, .. } => 1,
             Checksum::Sum { .. } => 2,
-            Checksum::Fletcher16 | Checksum::Fletcher16Mod256 | Checksum::Crc16(_) => 2,
-            Checksum::Crc32(_) => 4,
-            Checksum::Crc64(_) => 8,
+            Checksum::Fletcher16 | Checksum::Fletcher16Mod256 => 2,
+            Checksum::Crc8(c) => c.stored_bytes(),
+            Checksum::Crc16(c) => c.stored_bytes(),
+            Checksum::Crc32(c) => c.stored_bytes(),
+            Checksum::Crc64(c) => c.stored_bytes(),
             Checksum::Object { width, .. } => *width as usize,
             Checksum::Extra(_) => 0,
         }
@@ -354,7 +399,12 @@ impl Checksum<'_> {
             Checksum::Sum8 => u64::from(sum::sum8(data)),
             Checksum::SumMod255 => u64::from(sum::sum_mod255(data)),
             Checksum::Xor8 => u64::from(sum::xor8(data)),
-            Checksum::Sum { width, xorout } => sum::sum_xorout(data, *width, *xorout),
+            Checksum::Sum {
+                width,
+                init,
+                xorout,
+            } => sum::sum_xorout(data, *width, *init, *xorout),
+            Checksum::Xor { init } => u64::from(sum::xor8(data) ^ init),
             Checksum::Fletcher16 => u64::from(fletcher::fletcher16(data)),
             Checksum::Fletcher16Mod256 => u64::from(fletcher::fletcher16_mod256(data)),
             Checksum::Crc8(c) => u64::from(c.checksum(data)),
@@ -422,6 +472,7 @@ impl Checksum<'_> {
             Checksum::Sum8 => u64::from(sum::sum8_prefix(data, n)),
             Checksum::SumMod255 => u64::from(sum::sum_mod255_prefix(data, n)),
             Checksum::Xor8 => u64::from(sum::xor8_prefix(data, n)),
+            Checksum::Xor { init } => u64::from(sum::xor8_prefix(data, n) ^ init),
             Checksum::Sum { .. } | Checksum::Fletcher16 | Checksum::Fletcher16Mod256 => {
                 self.compute(data.get(..n).unwrap_or(data))
             }

@@ -334,9 +334,10 @@ pub(super) fn xor8(data: &[u8]) -> u8 {
     fold_xor((acc as u64) ^ ((acc >> 64) as u64))
 }
 
-/// The sum of `data` modulo 2^(8 × `width`) (`width` 1, else 2), xored with `xorout`.
+/// The sum of `init` and `data` modulo 2^(8 × `width`) (`width` 1, else 2), xored with
+/// `xorout`.
 #[inline(always)]
-pub(super) fn sum_xorout(data: &[u8], width: u8, xorout: u16) -> u64 {
+pub(super) fn sum_xorout(data: &[u8], width: u8, init: u16, xorout: u16) -> u64 {
     let mask: u64 = if width == 1 { 0xFF } else { 0xFFFF };
-    (byte_sum(data) ^ u64::from(xorout)) & mask
+    (byte_sum(data).wrapping_add(u64::from(init)) ^ u64::from(xorout)) & mask
 }

@@ -145,6 +145,9 @@ pub struct ChecksumDef {
     /// Sum parameters: a sum of the bytes of a width, with a final xor.
     #[cfg_attr(feature = "schema", schemars(with = "Option<SumDef>"))]
     pub sum: Option<Spanned<SumDef>>,
+    /// XOR parameters: the XOR of the bytes, starting from a constant.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<XorDef>"))]
+    pub xor: Option<Spanned<XorDef>>,
     /// Lookup table slices of a CRC: 0, 1 or 16 (default 16).
     #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub table: Option<SInt>,
@@ -153,8 +156,9 @@ pub struct ChecksumDef {
     pub doc: Option<SStr>,
 }
 
-/// A sum of the bytes: modulo 2^`width`, then xored with `xorout` (all ones: the one's
-/// complement of the sum, as Dynamixel Protocol 1.0 `~sum & 0xFF` and iBUS `0xFFFF - sum`).
+/// A sum of the bytes, starting from `init`: modulo 2^`width`, then xored with `xorout` (all
+/// ones: the one's complement of the sum, as Dynamixel Protocol 1.0 `~sum & 0xFF` and iBUS
+/// `0xFFFF - sum`).
 #[derive(Debug, Deserialize)]
 #[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
@@ -162,9 +166,22 @@ pub struct SumDef {
     /// 8 or 16.
     #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub width: SInt,
+    /// The value the sum starts from (default 0).
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
+    pub init: Option<SInt>,
     /// Final XOR (default 0).
     #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub xorout: Option<SInt>,
+}
+
+/// An 8-bit XOR of the bytes, starting from `init`.
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct XorDef {
+    /// The value the XOR starts from, 0 to 255.
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
+    pub init: SInt,
 }
 
 /// CRC parameters in the Rocksoft model (as in the `crc` crate's `Algorithm`).
@@ -172,7 +189,7 @@ pub struct SumDef {
 #[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct CrcDef {
-    /// 8, 16, 32 or 64.
+    /// 1 to 64 bits; the check is stored in the fewest whole bytes that hold it.
     #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub width: SInt,
     /// Polynomial, normal (MSB-first) form.

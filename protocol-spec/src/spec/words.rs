@@ -43,6 +43,7 @@ fn help(key: Option<&KeyOf>, wanted: &str, found: &str) -> String {
             "a built-in CRC is named where it is used (`{ check = \"crc-32\", over = \"frame\" }` in the layout); under `[checksums.NAME]`, `crc = { width = 16, poly = 0x1021, init = 0xFFFF, refin = false, refout = false, xorout = 0, check = 0x29B1 }` defines one".to_string()
         }
         ("sum", "struct SumDef") => "write `sum = { width = 8, xorout = 0xFF }`".to_string(),
+        ("xor", "struct XorDef") => "write `xor = { init = 0xFF }`".to_string(),
         (_, w) if element && is_integer_type(w) && found == "sequence" => format!(
             "`{name}` is one flat array of integers: write `{name} = [0xC8, 0xEA]`, not an array of arrays"
         ),
@@ -63,7 +64,8 @@ fn expected(wanted: &str) -> String {
         "struct CrcDef" => {
             "a table of CRC parameters `{ width, poly, init, refin, refout, xorout, check }`".into()
         }
-        "struct SumDef" => "a table of sum parameters `{ width, xorout }`".into(),
+        "struct SumDef" => "a table of sum parameters `{ width, init, xorout }`".into(),
+        "struct XorDef" => "a table of XOR parameters `{ init }`".into(),
         w if w.starts_with("struct ") || w.starts_with("a map") => "a table".into(),
         w => w.to_string(),
     }

@@ -1,7 +1,9 @@
 //! The CRC catalogue of the `crc` crate (crc-catalog), by constant name, and the other names
-//! users know its entries by: which names a spec may use in `check = "..."`. Only byte-sized
-//! widths (8, 16, 32, 64) can be stored in a frame. The parameters come from the crate's own
-//! constants, so they cannot drift from what the generated code computes.
+//! users know its entries by: which names a spec may use in `check = "..."`. Every entry of up
+//! to 64 bits is offered (one of 82 bits is not); a CRC whose width is not a whole number of
+//! bytes is stored in the fewest bytes that hold it (a CRC-24 in three). The parameters come
+//! from the crate's own constants, so they cannot drift from what the generated code
+//! computes.
 
 use crate::ir::{Algorithm, CrcSpec, CrcTable};
 
@@ -15,7 +17,7 @@ pub struct Entry {
 
 macro_rules! catalog {
     ($($name:ident),* $(,)?) => {
-        /// Every byte-width catalogue CRC.
+        /// Every catalogue CRC of up to 64 bits.
         pub fn catalog() -> Vec<Entry> {
             vec![$(Entry { constant: stringify!($name), algorithm: crc::$name.into_algorithm() }),*]
         }
@@ -23,6 +25,21 @@ macro_rules! catalog {
 }
 
 catalog!(
+    CRC_3_GSM,
+    CRC_3_ROHC,
+    CRC_4_G_704,
+    CRC_4_INTERLAKEN,
+    CRC_5_EPC_C1G2,
+    CRC_5_G_704,
+    CRC_5_USB,
+    CRC_6_CDMA2000_A,
+    CRC_6_CDMA2000_B,
+    CRC_6_DARC,
+    CRC_6_G_704,
+    CRC_6_GSM,
+    CRC_7_MMC,
+    CRC_7_ROHC,
+    CRC_7_UMTS,
     CRC_8_AUTOSAR,
     CRC_8_BLUETOOTH,
     CRC_8_CDMA2000,
@@ -74,6 +91,32 @@ catalog!(
     CRC_16_UMTS,
     CRC_16_USB,
     CRC_16_XMODEM,
+    CRC_10_ATM,
+    CRC_10_CDMA2000,
+    CRC_10_GSM,
+    CRC_11_FLEXRAY,
+    CRC_11_UMTS,
+    CRC_12_CDMA2000,
+    CRC_12_DECT,
+    CRC_12_GSM,
+    CRC_12_UMTS,
+    CRC_13_BBC,
+    CRC_14_DARC,
+    CRC_14_GSM,
+    CRC_15_CAN,
+    CRC_15_MPT1327,
+    CRC_17_CAN_FD,
+    CRC_21_CAN_FD,
+    CRC_24_BLE,
+    CRC_24_FLEXRAY_A,
+    CRC_24_FLEXRAY_B,
+    CRC_24_INTERLAKEN,
+    CRC_24_LTE_A,
+    CRC_24_LTE_B,
+    CRC_24_OPENPGP,
+    CRC_24_OS_9,
+    CRC_30_CDMA,
+    CRC_31_PHILIPS,
     CRC_32_AIXM,
     CRC_32_AUTOSAR,
     CRC_32_BASE91_D,
@@ -93,6 +136,7 @@ catalog!(
     CRC_64_REDIS,
     CRC_64_WE,
     CRC_64_XZ,
+    CRC_40_GSM,
 );
 
 /// A catalogue constant as an algorithm computed with sixteen tables.
@@ -114,7 +158,9 @@ into_algorithm!(u8 => Crc8, u16 => Crc16, u32 => Crc32, u64 => Crc64);
 /// Names users know catalogue CRCs by, each with the catalogue constant it names: the aliases
 /// of Greg Cook's "Catalogue of parametrised CRC algorithms" (reveng), on which crc-catalog is
 /// built, for the entries links use. In the order a did-you-mean prefers them: a name users
-/// write first (`CRC-32` before `CRC-32/MEF`).
+/// write first (`CRC-32` before `CRC-32/MEF`). One more is not reveng's: `CRC-24Q`, the CRC
+/// of RTCM 3 (and of Qualcomm's documents it is named after), whose parameters (poly
+/// `0x864CFB`, init 0, not reflected, xorout 0) are exactly CRC-24/LTE-A's.
 pub const ALIASES: &[(&str, &str)] = &[
     ("CRC_32", "CRC_32_ISO_HDLC"),
     ("CRC_32_ADCCP", "CRC_32_ISO_HDLC"),
@@ -155,6 +201,8 @@ pub const ALIASES: &[(&str, &str)] = &[
     ("DOW_CRC", "CRC_8_MAXIM_DOW"),
     ("CRC_8_ITU", "CRC_8_I_432_1"),
     ("CRC_64", "CRC_64_ECMA_182"),
+    ("CRC_24", "CRC_24_OPENPGP"),
+    ("CRC_24Q", "CRC_24_LTE_A"),
     ("CRC_64_GO_ECMA", "CRC_64_XZ"),
 ];
 

@@ -7,7 +7,7 @@ use super::catalog::{ALIASES, catalog, display_name};
 use super::{Ctx, text};
 use crate::diag::did_you_mean;
 use crate::ir::{Algorithm, CheckNaming, CrcSpec, CrcTable};
-use crate::spec::model::{ChecksumDef, CrcDef, SStr, SumDef};
+use crate::spec::model::{ChecksumDef, CrcDef, SStr, SumDef, XorDef};
 use toml::Spanned;
 
 /// Built-in algorithms that are not CRCs: (spelling, description).
@@ -33,6 +33,7 @@ fn builtin(name: &str) -> Option<Algorithm> {
         "sum-mod-255" => Some(Algorithm::SumMod255),
         "sum16" => Some(Algorithm::Sum {
             width: 2,
+            init: 0,
             xorout: 0,
         }),
         "xor8" => Some(Algorithm::Xor8),
@@ -112,43 +113,65 @@ pub(crate) fn resolve_algorithm(
     None
 }
 
-/// Rule: a custom checksum is either a CRC (`crc = {...}`) or a sum (`sum = {...}`), not both;
-/// `table` applies to a CRC only.
+/// Rule: a custom checksum is one of a CRC (`crc = {...}`), a sum (`sum = {...}`) or a XOR
+/// (`xor = {...}`); `table` applies to a CRC only.
 fn lower_custom(ctx: &mut Ctx<'_>, key: &SStr, def: &Spanned<ChecksumDef>) -> Option<Algorithm> {
     let d = def.get_ref();
     let _ = text(&d.doc);
-    match (&d.crc, &d.sum) {
-        (Some(crc), None) => lower_custom_crc(ctx, key, crc, d.table.as_ref()),
-        (None, Some(sum)) => {
-            if let Some(t) = &d.table {
-                ctx.error(
-                    t.span(),
-                    format!("checksum `{}` is a sum: it has no table", key.get_ref()),
-                    "remove `table` (it sizes a CRC's lookup table)",
-                );
-            }
-            lower_custom_sum(ctx, sum)
-        }
-        (Some(_), Some(sum)) => {
-            ctx.error(
-                sum.span(),
-                format!(
-                    "checksum `{}` has both `crc` and `sum` parameters",
-                    key.get_ref()
-                ),
-                "keep one: a custom checksum is either a CRC or a sum",
-            );
-            None
-        }
-        (None, None) => {
-            ctx.error(def.span(), format!("checksum `{}` has no `crc` or `sum` parameters", key.get_ref()), "add `crc = { width = 16, poly = 0x1021, init = 0xFFFF, refin = false, refout = false, xorout = 0, check = 0x29B1 }`, or `sum = { width = 8, xorout = 0xFF }` for a complemented sum");
+    let kinds = [
+        d.crc.as_ref().map(Spanned::span),
+        d.sum.as_ref().map(Spanned::span),
+        d.xor.as_ref().map(Spanned::span),
+    ];
+    if let Some(second) = kinds.iter().flatten().nth(1) {
+        ctx.error(
+            second.clone(),
+            format!(
+                "checksum `{}` has more than one of `crc`, `sum` and `xor`",
+                key.get_ref()
+            ),
+            "keep one: a custom checksum is a CRC, a sum or a XOR",
+        );
+        return None;
+    }
+    // A table with neither parameters is answered by the missing parameters alone.
+    if let (None, Some(t), true) = (&d.crc, &d.table, d.sum.is_some() || d.xor.is_some()) {
+        let kind = if d.xor.is_some() { "a XOR" } else { "a sum" };
+        ctx.error(
+            t.span(),
+            format!("checksum `{}` is {kind}: it has no table", key.get_ref()),
+            "remove `table` (it sizes a CRC's lookup table)",
+        );
+    }
+    match (&d.crc, &d.sum, &d.xor) {
+        (Some(crc), ..) => lower_custom_crc(ctx, key, crc, d.table.as_ref()),
+        (_, Some(sum), _) => lower_custom_sum(ctx, sum),
+        (.., Some(xor)) => lower_custom_xor(ctx, xor),
+        (None, None, None) => {
+            ctx.error(def.span(), format!("checksum `{}` has no `crc`, `sum` or `xor` parameters", key.get_ref()), "add `crc = { width = 16, poly = 0x1021, init = 0xFFFF, refin = false, refout = false, xorout = 0, check = 0x29B1 }`, `sum = { width = 8, xorout = 0xFF }` for a complemented sum, or `xor = { init = 0xFF }` for a XOR from a constant");
             None
         }
     }
 }
 
-/// Rule: a custom sum has a width of 8 or 16 bits, and its `xorout` (default 0; all ones for
-/// the one's complement) fits that width.
+/// Rule: a custom XOR starts from an `init` of 0 to 255 (it is 8 bits wide).
+fn lower_custom_xor(ctx: &mut Ctx<'_>, xor: &Spanned<XorDef>) -> Option<Algorithm> {
+    let init = &xor.get_ref().init;
+    match u8::try_from(*init.get_ref()) {
+        Ok(init) => Some(Algorithm::Xor { init }),
+        Err(_) => {
+            ctx.error(
+                init.span(),
+                format!("`init` {:#x} does not fit in 8 bits", init.get_ref()),
+                "a XOR checksum is one byte: use a value from 0 to 0xff",
+            );
+            None
+        }
+    }
+}
+
+/// Rule: a custom sum has a width of 8 or 16 bits, and its `init` (the value it starts from)
+/// and `xorout` (all ones for the one's complement), both 0 by default, fit that width.
 fn lower_custom_sum(ctx: &mut Ctx<'_>, sum: &Spanned<SumDef>) -> Option<Algorithm> {
     let s = sum.get_ref();
     let width = *s.width.get_ref();
@@ -161,21 +184,28 @@ fn lower_custom_sum(ctx: &mut Ctx<'_>, sum: &Spanned<SumDef>) -> Option<Algorith
         return None;
     }
     let max = (1i64 << width) - 1;
-    let xorout = match &s.xorout {
-        None => 0,
-        Some(x) if (0..=max).contains(x.get_ref()) => *x.get_ref(),
+    let mut fits = |what: &str, v: &Option<Spanned<i64>>, help: &str| match v {
+        None => Some(0),
+        Some(x) if (0..=max).contains(x.get_ref()) => Some(*x.get_ref() as u16),
         Some(x) => {
             ctx.error(
                 x.span(),
-                format!("`xorout` {:#x} does not fit in {width} bits", x.get_ref()),
-                format!("use a value from 0 to {max:#x} ({max:#x} stores the one's complement of the sum)"),
+                format!("`{what}` {:#x} does not fit in {width} bits", x.get_ref()),
+                format!("use a value from 0 to {max:#x}{help}"),
             );
-            return None;
+            None
         }
     };
+    let init = fits("init", &s.init, " (the value the sum starts from)");
+    let xorout = fits(
+        "xorout",
+        &s.xorout,
+        &format!(" ({max:#x} stores the one's complement of the sum)"),
+    );
     Some(Algorithm::Sum {
         width: (width / 8) as u8,
-        xorout: xorout as u16,
+        init: init?,
+        xorout: xorout?,
     })
 }
 
@@ -224,7 +254,8 @@ pub(crate) fn set_crc_table(
     true
 }
 
-/// Rule: a custom CRC has a width of 8, 16, 32 or 64; poly, init and xorout fit that width;
+/// Rule: a custom CRC has a width of 1 to 64 bits (stored in the fewest whole bytes that hold
+/// it: a CRC-24 in three); poly, init and xorout fit that width;
 /// the declared `check` equals the CRC of "123456789" computed from the parameters; `table`
 /// is 0, 1 or 16.
 fn lower_custom_crc(
@@ -235,11 +266,11 @@ fn lower_custom_crc(
 ) -> Option<Algorithm> {
     let c = crc.get_ref();
     let width = *c.width.get_ref();
-    if ![8, 16, 32, 64].contains(&width) {
+    if !(1..=64).contains(&width) {
         ctx.error(
             c.width.span(),
-            format!("CRC width {width} cannot be stored in whole bytes"),
-            "use a width of 8, 16, 32 or 64",
+            format!("CRC width {width} is not offered"),
+            "use a width from 1 to 64 bits; the check is stored in the fewest whole bytes that hold it (a CRC-24 in 3)",
         );
         return None;
     }
@@ -296,10 +327,12 @@ fn lower_custom_crc(
             })
         };
     }
+    // The narrowest register that holds the width, as the `crc` crate's catalogue types its
+    // CRCs (a CRC-24 is an `Algorithm<u32>`).
     let algorithm = match width {
-        8 => spec!(u8, Crc8),
-        16 => spec!(u16, Crc16),
-        32 => spec!(u32, Crc32),
+        1..=8 => spec!(u8, Crc8),
+        9..=16 => spec!(u16, Crc16),
+        17..=32 => spec!(u32, Crc32),
         _ => spec!(u64, Crc64),
     };
     let actual = crc_of(&algorithm, b"123456789").unwrap_or(0);

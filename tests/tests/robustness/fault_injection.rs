@@ -78,6 +78,7 @@ fn extended_by_its_check(m: &Model, bytes: &[u8]) -> bool {
             c.algorithm,
             ir::Algorithm::Sum {
                 width: 1,
+                init: 0,
                 xorout: 0xFF
             }
         )
@@ -109,7 +110,7 @@ fn pass_rate(frame: &ir::Frame) -> f64 {
         .iter()
         .filter(|c| !c.header)
         .map(|c| match &c.algorithm {
-            ir::Algorithm::Sum8 | ir::Algorithm::Xor8 => 1.0 / 256.0,
+            ir::Algorithm::Sum8 | ir::Algorithm::Xor8 | ir::Algorithm::Xor { .. } => 1.0 / 256.0,
             ir::Algorithm::SumMod255 => 1.0 / 255.0,
             ir::Algorithm::Sum { width, .. } => 0.5f64.powi(8 * i32::from(*width)),
             ir::Algorithm::Fletcher16 => 1.0 / (255.0 * 255.0),
@@ -189,10 +190,13 @@ fn checks_hold(frame: &ir::Frame, bytes: &[u8]) -> bool {
         let expected = match &c.algorithm {
             ir::Algorithm::Sum8 => sum % 256,
             ir::Algorithm::SumMod255 => sum % 255,
-            ir::Algorithm::Sum { width, xorout } => {
-                (sum % (1 << (8 * u32::from(*width)))) ^ u64::from(*xorout)
-            }
+            ir::Algorithm::Sum {
+                width,
+                init,
+                xorout,
+            } => ((sum + u64::from(*init)) % (1 << (8 * u32::from(*width)))) ^ u64::from(*xorout),
             ir::Algorithm::Xor8 => u64::from(data.iter().fold(0, |a, b| a ^ b)),
+            ir::Algorithm::Xor { init } => u64::from(data.iter().fold(*init, |a, b| a ^ b)),
             ir::Algorithm::Fletcher16 => fletcher(255),
             ir::Algorithm::Fletcher16Mod256 => fletcher(256),
             ir::Algorithm::Crc8(p) => {

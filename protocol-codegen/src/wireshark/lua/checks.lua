@@ -34,8 +34,8 @@ local function crc(a, buf, from, to, extra)
   return band(bxor(reg, a.xorout), mask)
 end
 
-local function sum(buf, from, to, modulus)
-  local s = 0
+local function sum(buf, from, to, modulus, init)
+  local s = init or 0
   for i = from, to - 1 do s = (s + buf[i]) % modulus end
   return s
 end
@@ -55,10 +55,10 @@ local function compute(a, buf, from, to, extra)
   if k == "crc" then return crc(a, buf, from, to, extra) end
   if k == "sum8" then return sum(buf, from, to, 256) end
   if k == "sum_mod_255" then return sum(buf, from, to, 255) end
-  if k == "sum" then return bxor(sum(buf, from, to, 2 ^ (8 * a.width)), a.xorout) end
+  if k == "sum" then return bxor(sum(buf, from, to, 2 ^ (8 * a.width), a.init), a.xorout) end
   if k == "fletcher16" then return fletcher(buf, from, to, 255) end
   if k == "fletcher16_mod256" then return fletcher(buf, from, to, 256) end
-  local x = 0
+  local x = a.init or 0
   for i = from, to - 1 do x = bxor(x, buf[i]) end
   return x
 end

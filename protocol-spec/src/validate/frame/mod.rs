@@ -158,12 +158,14 @@ fn lower_frame(
     length::check_can_length(ctx, def, &lay, transport, length_decl)?;
     let mut ok = true;
     let length = length::lower_length(ctx, def, &lay, transport, length_decl, &values, &mut ok)?;
-    checks::lower_coverage(ctx, &lay, &mut checks, &mut ok);
+    let runs = checks::lower_coverage(ctx, &lay, &mut checks, &mut ok);
+    checks::check_coverage_order(ctx, &lay, &checks, &runs, &mut ok);
     checks::place_trailers(&lay, &mut trailers);
     let dispatch = ack::lower_dispatch(ctx, fname, def, &mut values, &mut ok);
     checks::lower_extra_keys(ctx, &lay, &mut checks, &values, &dispatch, &mut ok);
     let ack = ack::lower_ack(ctx, fname, def, &lay, &mut values, &dispatch, &mut ok);
     let bare_len = ack::lower_bare_header(ctx, def, &length, lay.header_len, ack, &mut ok);
+    checks::check_bare_header(ctx, &lay, &checks, bare_len.is_some(), &mut ok);
     let stuffing = options::lower_stuffing(ctx, def);
     let truncate_zeros = options::lower_truncate_zeros(ctx, def, first, transport, &mut ok);
     let message = options::lower_message(ctx, fname, def, &dispatch, structs, &lay, &mut ok);
@@ -186,7 +188,8 @@ fn lower_frame(
         _ => Vec::new(),
     };
     let names = lower_names(fname.get_ref(), first, &values);
-    let checks = name_tables(order_checks(checks), &names);
+    let (checks, check_order) = order_checks(checks);
+    let checks = name_tables(checks, &names);
     Some(Frame {
         name: fname.get_ref().clone(),
         names,
@@ -204,7 +207,7 @@ fn lower_frame(
         trailer_len: lay.trailer_len,
         payload_min,
         payload_max,
-        elements: lower_elements(&els, &values),
+        elements: lower_elements(&els, &values, &check_order),
         values,
         length,
         dispatch,
@@ -313,8 +316,9 @@ fn lower_names(name: &str, first: bool, values: &[HeaderValue]) -> FrameNames {
     }
 }
 
-/// The wire elements in order, for docs and diagrams.
-fn lower_elements(els: &[El<'_>], values: &[HeaderValue]) -> Vec<Element> {
+/// The wire elements in order, for docs and diagrams; `check_order` gives each check's index
+/// (in spec order) its place in [`Frame::checks`].
+fn lower_elements(els: &[El<'_>], values: &[HeaderValue], check_order: &[usize]) -> Vec<Element> {
     els.iter()
         .map(|e| match &e.kind {
             Kind::Sync(b) => Element::Sync(b.clone()),
@@ -325,7 +329,7 @@ fn lower_elements(els: &[El<'_>], values: &[HeaderValue]) -> Vec<Element> {
                 values: idx.clone(),
             },
             Kind::Payload => Element::Payload,
-            Kind::Check(i) => Element::Check(*i),
+            Kind::Check(i) => Element::Check(check_order[*i]),
             Kind::Trailer(i) => Element::Trailer(*i),
             Kind::Optional => Element::FlagTrailer,
         })
@@ -333,11 +337,17 @@ fn lower_elements(els: &[El<'_>], values: &[HeaderValue]) -> Vec<Element> {
 }
 
 /// Checks in the order they are verified: header checks first, then frame checks, each in
-/// spec order. `Element::Check` indices refer to spec order, which is the same order: header
-/// checks precede the payload, so none follows a frame check.
-fn order_checks(checks: Vec<(Check, usize)>) -> Vec<Check> {
-    let (mut ordered, frame): (Vec<Check>, Vec<Check>) =
-        checks.into_iter().map(|(c, _)| c).partition(|c| c.header);
-    ordered.extend(frame);
-    ordered
+/// spec order; and for each check in spec order, its place in that order (a check before the
+/// payload that covers the payload is a frame check, so a header check may follow it in the
+/// layout).
+fn order_checks(checks: Vec<(Check, usize)>) -> (Vec<Check>, Vec<usize>) {
+    let mut indices: Vec<usize> = (0..checks.len()).collect();
+    indices.sort_by_key(|&i| !checks[i].0.header);
+    let mut place = vec![0; checks.len()];
+    for (p, &i) in indices.iter().enumerate() {
+        place[i] = p;
+    }
+    let mut slots: Vec<Option<Check>> = checks.into_iter().map(|(c, _)| Some(c)).collect();
+    let ordered = indices.iter().filter_map(|&i| slots[i].take()).collect();
+    (ordered, place)
 }

@@ -128,15 +128,13 @@ pub(crate) fn fold_prefix(a: Algorithm, prefix: &[u8]) -> Algorithm {
             let p = spec.params;
             // Undo the final XOR and the output reflection: the register after the prefix.
             let mut register = (crc_of(&a, prefix).unwrap_or(0) as $w) ^ p.xorout;
+            // Reflection over the CRC's width (a CRC-24 sits in the low 24 bits of a `u32`).
+            let reflect = |v: $w| v.reverse_bits() >> (<$w>::BITS - u32::from(p.width));
             if p.refin != p.refout {
-                register = register.reverse_bits();
+                register = reflect(register);
             }
             // The crate reflects a reflected CRC's `init` before it starts.
-            spec.params.init = if p.refin {
-                register.reverse_bits()
-            } else {
-                register
-            };
+            spec.params.init = if p.refin { reflect(register) } else { register };
             let folded = Algorithm::$variant(spec);
             spec.params.check = crc_of(&folded, b"123456789").unwrap_or(0) as $w;
             Algorithm::$variant(spec)
@@ -272,6 +270,13 @@ mod tests {
             Algorithm::Crc32(spec(crc::CRC_32_ISO_HDLC)),
             Algorithm::Crc32(spec(crc::CRC_32_MPEG_2)),
             Algorithm::Crc64(spec(crc::CRC_64_XZ)),
+            // Narrower than their registers, reflected or not, or reflected at the end only.
+            Algorithm::Crc8(spec(crc::CRC_5_USB)),
+            Algorithm::Crc8(spec(crc::CRC_7_MMC)),
+            Algorithm::Crc16(spec(crc::CRC_12_UMTS)),
+            Algorithm::Crc32(spec(crc::CRC_24_BLE)),
+            Algorithm::Crc32(spec(crc::CRC_24_LTE_A)),
+            Algorithm::Crc64(spec(crc::CRC_40_GSM)),
         ];
         for a in algorithms {
             for prefix in [&[0x32u8][..], b"\x00\xFF\x12"] {
