@@ -1,5 +1,5 @@
 //! The fuzz targets' shared code: the robustness harness of the tests crate, included by path
-//! so that the fuzzers and the stable corpus test (`tests/tests/robustness/fuzz_corpus.rs`) run
+//! so that the fuzzers and the stable corpus test (`tests/tests/it/robustness/fuzz_corpus.rs`) run
 //! the same entry points (`support::fuzz`).
 #![forbid(unsafe_code)]
 

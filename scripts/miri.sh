@@ -5,7 +5,7 @@
 #   bash scripts/miri.sh            # the whole runtime test suite
 #   bash scripts/miri.sh TESTNAME   # only the tests whose name contains TESTNAME
 #   bash scripts/miri.sh --skip mixed_streams --skip buffers_smaller --skip random_garbage
-#                                   # all but the randomized stream tests of tests/robustness.rs,
+#                                   # all but the randomized stream tests of tests/it/robustness.rs,
 #                                   # which take hours under Miri
 #
 # Miri interprets the code, so the run takes minutes; it is not part of `.ci/run` (CI stays on

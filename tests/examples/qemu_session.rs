@@ -23,7 +23,7 @@
 //! `examples/embassy/session.sh` builds the firmware and runs this.
 
 #[allow(dead_code)]
-#[path = "../tests/session_sim/link.rs"]
+#[path = "../tests/it/session_sim/link.rs"]
 mod link;
 
 use std::collections::{BTreeMap, HashMap};

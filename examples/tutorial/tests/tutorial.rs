@@ -2,7 +2,7 @@
 //! the tutorial's crate (`PATH` from the crate's root), which is this crate but for its
 //! `Cargo.toml` (the tutorial's crate belongs to no workspace), and the host's run prints what
 //! the tutorial shows and writes the committed capture. (The `protocol` commands of the
-//! tutorial are checked by `protocol-cli/tests/tutorial.rs`; `scripts/tutorial.sh` follows the
+//! tutorial are checked by `protocol-cli/tests/it/tutorial.rs`; `scripts/tutorial.sh` follows the
 //! whole tutorial in a crate of its own.)
 
 use std::path::{Path, PathBuf};

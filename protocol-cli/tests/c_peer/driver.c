@@ -1,4 +1,4 @@
-/* The C side of the conformance test (`tests/c_peer.rs`): reads commands on stdin, one per
+/* The C side of the conformance test (`tests/it/c_peer.rs`): reads commands on stdin, one per
  * line, and prints one line per result, in the text the Rust side prints for the same input.
  *
  *   P FI HEX           decode HEX as a frame of format FI; print `ok TEXT` or `err NAME`,

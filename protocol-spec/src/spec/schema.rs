@@ -1,7 +1,7 @@
 //! The JSON Schema of the spec format, generated from the serde [`model`](super::model) so it
 //! cannot drift from what the loader accepts. Editors with a TOML language server (taplo) use
 //! the committed copy, `docs/spec.schema.json`, to complete and check keys while a spec is
-//! written; `tests/schema.rs` fails when that copy is stale.
+//! written; `tests/it/schema.rs` fails when that copy is stale.
 //!
 //! The schema describes the *shape* of a spec (which keys exist where, and their value types),
 //! exactly as deserialization checks it: an unknown key or an ill-typed value is a schema error.

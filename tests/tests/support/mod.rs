@@ -24,7 +24,7 @@ use protocol_kit::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stats, S
 /// Calls `$callback!(module, "path relative to the crate")` for every spec under test.
 ///
 /// Adding a spec to every robustness suite (properties, faults, bounds, no-alloc, fuzz corpus)
-/// is one line here; `specs_dir_is_covered` (in `robustness/properties.rs`) fails when a spec in `specs/`
+/// is one line here; `specs_dir_is_covered` (in `it/robustness/properties.rs`) fails when a spec in `specs/`
 /// is missing from this list. A spec whose directions are given to the decoder (no header field
 /// tells them) names the direction the suites decode and its decoders, after the path. A spec
 /// whose link has several frame formats says `link` after the path: the suites then run its

@@ -31,7 +31,7 @@
 //!
 //! Plain `std`, no dependencies: the tests crate's build script expands a batch of these specs
 //! with `protocol!` (`tests/build.rs`), and the C peer's conformance test compiles the C that
-//! `protocol gen c` prints for the same seeds (`protocol-cli/tests/c_peer.rs`). The same seed
+//! `protocol gen c` prints for the same seeds (`protocol-cli/tests/it/c_peer.rs`). The same seed
 //! gives the same text, so a failure names its seed and the spec is written out as a fixture.
 #![allow(dead_code)]
 

@@ -140,7 +140,7 @@ pub(crate) fn emit_payload_impl(def: &PayloadDef, rt: &TokenStream) -> TokenStre
 /// `None` if some field can fail otherwise (an enum, a clamped value, a bit member that is an
 /// enum: each kind answers in [`Kind::short_only`](kinds::Kind::short_only)) or has a variable
 /// size; else the conditions on nested types, all of which must hold. Checked against reading
-/// field by field on every bundled spec's structs (`tests/tests/payload_length_first.rs`).
+/// field by field on every bundled spec's structs (`tests/tests/it/payload_length_first.rs`).
 fn needs_only_bytes(fields: &[Slot<'_>], rt: &TokenStream) -> Option<Vec<TokenStream>> {
     let mut nested = Vec::new();
     for f in fields {

@@ -1,0 +1,55 @@
+//! The end-to-end tests of generated code: every bundled spec expanded with `protocol!` on its
+//! golden vectors, streams, faults and random input, the integrations (tokio, async readers,
+//! CAN, serde), the session machines, and random specs.
+//!
+//! One binary for the package's integration tests, each file here a module named as the file
+//! (`cargo test -p protocol-tests --test it -- NAME::` runs one): every test binary links the
+//! crates under test and their dependencies once more, and here each also expanded every spec
+//! again, so one binary builds and links them once. A new file `NAME.rs` here joins with a
+//! `mod NAME;` line (docs/architecture.md, "Tests").
+//!
+//! The no-allocation tests (`no_alloc`, and the session machines' in `session_sim`) count with
+//! `allocation-counter`, whose counting allocator is the global allocator of the whole binary:
+//! it counts only the allocations of the thread inside `allocation_counter::measure`, so the
+//! tests running beside them on other threads neither add to their counts nor see a difference.
+
+// `#[macro_use]`: `random_specs` calls `expand_spec!` by name, in the file `build.rs` writes.
+#[macro_use]
+#[path = "../support/mod.rs"]
+mod support;
+#[path = "../golden/mod.rs"]
+mod golden;
+
+mod async_io;
+mod can_frames;
+mod check_vectors;
+mod crsf_vectors;
+mod derive;
+mod dynamixel1_vectors;
+mod dynamixel_vectors;
+mod error_places;
+mod handler;
+mod hflink_vectors;
+mod ibus_vectors;
+mod mavlink_vectors;
+mod msp_vectors;
+mod narrow_and_seeded_checks;
+mod no_alloc;
+mod packets;
+mod payload_length_first;
+mod payload_types;
+mod random_specs;
+mod referee_vectors;
+mod repeated_bits;
+mod roborts_vectors;
+mod robustness;
+mod sbus_vectors;
+mod scout_vectors;
+mod serde_values;
+mod session_io_async;
+mod session_mavlink;
+mod session_sim;
+mod text_fields;
+mod tokio_codec;
+mod ubx_vectors;
+mod wire_types;
