@@ -5,11 +5,7 @@
 //! COMMAND_ACK alone, and over a lossy link (the session simulation's) to exactly one outcome
 //! within its retries.
 
-#[path = "session_sim/link.rs"]
-mod link;
-#[path = "session_sim/sim.rs"]
-mod sim;
-
+use crate::session_sim::{link, sim};
 use link::Fault;
 use proptest::prelude::*;
 use protocol_kit::session::{Outcome, Received, Requester, Resolution, SessionRules};

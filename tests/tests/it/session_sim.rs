@@ -10,9 +10,9 @@
 //! counts of a fixed matrix of schedules.
 
 #[path = "session_sim/link.rs"]
-mod link;
+pub(crate) mod link;
 #[path = "session_sim/sim.rs"]
-mod sim;
+pub(crate) mod sim;
 
 use link::Fault;
 use proptest::prelude::*;
