@@ -37,8 +37,8 @@ pub const READ_BUFFER: usize = 32;
 /// The session machine of this firmware.
 pub type ChassisResponder = Responder<'static, SLOTS, ANSWER_LEN>;
 
-/// The frame finder of this firmware. The generated layout type (rather than the `LAYOUT` static) lets the compiler fold the frame
-/// rules into the decoder.
+/// The frame finder of this firmware. The generated layout type (rather than the `LAYOUT`
+/// static) lets the compiler fold the frame rules into the decoder.
 pub type Decoder = StreamDecoder<roborts::Layout, DECODER_LEN>;
 
 /// Bytes of the decoder's buffer, as the spec sizes it.
