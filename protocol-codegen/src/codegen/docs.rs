@@ -18,10 +18,95 @@ pub fn doc_attrs(text: &str) -> TokenStream {
         Vec::new()
     } else {
         text.lines()
-            .map(|l| format!(" {l}").trim_end().to_string())
+            .map(|l| format!(" {}", plain_brackets(l)).trim_end().to_string())
             .collect()
     };
     quote!(#(#[doc = #lines])*)
+}
+
+/// `line` with each bracketed run that rustdoc would take for a link to an item escaped
+/// (`value[float]` -> `value\[float\]`): a spec's text is prose, and its brackets (array
+/// indices, C types) are no paths. The generated docs' own links stay links: they name their
+/// item in backticks (`` [`dispatch`] ``), and Markdown links are followed by `(` or `[`.
+/// Code spans are left as they are (an escape would show there).
+#[cfg(feature = "rust")]
+fn plain_brackets(line: &str) -> String {
+    line.split('`')
+        .enumerate()
+        .map(|(i, part)| {
+            if i % 2 == 0 {
+                prose_urls(&prose_brackets(part))
+            } else {
+                part.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("`")
+}
+
+/// `line` with each bare URL in angle brackets (`<https://...>`), as rustdoc links one: a
+/// spec's text names its sources as plain text.
+#[cfg(feature = "rust")]
+fn prose_urls(line: &str) -> String {
+    let mut out = String::with_capacity(line.len());
+    let mut rest = line;
+    while let Some(at) = ["https://", "http://"]
+        .iter()
+        .filter_map(|scheme| rest.find(scheme))
+        .min()
+    {
+        let before = &rest[..at];
+        out.push_str(before);
+        let url_and_more = &rest[at..];
+        let end = url_and_more
+            .find(|c: char| c.is_whitespace() || c == '>' || c == ')')
+            .unwrap_or(url_and_more.len());
+        // A sentence's full stop or comma after the URL is not part of it.
+        let url = url_and_more[..end].trim_end_matches(['.', ',', ';', ':']);
+        // Not already in angle brackets, nor a Markdown link's target.
+        let bare = !before.ends_with('<') && !before.ends_with("](");
+        if bare {
+            out.push('<');
+            out.push_str(url);
+            out.push('>');
+        } else {
+            out.push_str(url);
+        }
+        rest = &url_and_more[url.len()..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// [`plain_brackets`] of a run of text outside code spans.
+#[cfg(feature = "rust")]
+fn prose_brackets(line: &str) -> String {
+    let mut out = String::with_capacity(line.len());
+    let mut rest = line;
+    while let Some(open) = rest.find('[') {
+        out.push_str(&rest[..open]);
+        let after = &rest[open + 1..];
+        let Some(close) = after.find(']') else {
+            out.push_str(&rest[open..]);
+            return out;
+        };
+        let inner = &after[..close];
+        let next = after[close + 1..].chars().next();
+        // Already escaped (`\[`), a link, or a link's text.
+        let escaped = rest[..open].ends_with('\\');
+        let link = escaped || inner.starts_with('`') || matches!(next, Some('(' | '[' | ':'));
+        if link || inner.contains('[') {
+            out.push('[');
+            rest = after;
+            continue;
+        }
+        out.push_str("\\[");
+        out.push_str(inner);
+        out.push_str("\\]");
+        rest = &after[close + 1..];
+    }
+    out.push_str(rest);
+    out
 }
 
 fn order_name(e: ByteOrder, size: usize) -> &'static str {
