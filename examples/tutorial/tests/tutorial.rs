@@ -139,7 +139,7 @@ fn a_speed_the_field_cannot_carry_is_refused() {
     assert_eq!(
         packet.encode(&mut buf),
         Err(protocol_kit::EncodeError::ValueOutOfRange {
-            place: protocol_kit::error::Place::new("", "Drive.speed")
+            place: protocol_kit::error::Place::new("DRIVE", "Drive.speed")
         })
     );
 }

@@ -250,7 +250,7 @@ fn a_value_that_does_not_fit_is_an_encode_error_never_cut() {
     assert_eq!(
         encode(&packet),
         Err(EncodeError::ValueOutOfRange {
-            place: protocol_kit::error::Place::new("", "Readings.values")
+            place: protocol_kit::error::Place::new("READINGS", "Readings.values")
         })
     );
     assert_eq!(NulStr::<16>::from_text(&"x".repeat(17)), None);
