@@ -447,6 +447,33 @@ pub fn read_payload<P: Payload>(bytes: &[u8]) -> Result<P, DecodeError> {
     P::from_bytes(bytes)
 }
 
+/// A payload struct that one command alone carries: its command, known from the type.
+///
+/// Generated code implements it for every such struct, so that a packet type decodes a frame
+/// as one command's struct and encodes one (`Packet::from_frame_as::<Heartbeat>`,
+/// `Packet::encode_as`): a program that handles a few commands of a large spec links the
+/// readers and writers of those alone, where `Packet::from_frame` and `Packet::encode` match
+/// every command and so link each one's.
+pub trait CommandPayload: Payload {
+    /// The spec's `Command`.
+    type Command: CommandName + Copy;
+    /// The command that carries this struct.
+    const COMMAND: Self::Command;
+}
+
+/// One command's struct as a message ([`MessagePayload`]): its command from its type, so
+/// that encoding it opens no `match` over the spec's commands.
+#[derive(Debug, Clone, Copy)]
+pub struct CommandMessage<'p, P>(pub &'p P);
+
+impl<P: CommandPayload> MessagePayload for CommandMessage<'_, P> {
+    type Command = P::Command;
+    #[inline(always)]
+    fn visit_payload<V: PayloadVisitor<P::Command>>(&self, v: V) -> V::Output {
+        v.visit(P::COMMAND, self.0)
+    }
+}
+
 /// Reads a header value of `frame` at `field`; a frame too short for it is
 /// [`DecodeError::Truncated`], needing the `header_len` bytes every frame of its format has.
 ///

@@ -207,7 +207,7 @@ pub use bytes::Bytes;
 pub use can::CanFrame;
 pub use checksum::Checksum;
 pub use decoder::{Event, Frame, Reject, Stats, StreamDecoder, decoder_buffer_len};
-pub use encoder::{MessagePayload, Payload, PayloadVisitor};
+pub use encoder::{CommandPayload, MessagePayload, Payload, PayloadVisitor};
 pub use error::{DecodeError, DecodeResult, EncodeError, EncodeResult};
 pub use group::Group;
 pub use layout::{FrameLayout, LayoutRef};

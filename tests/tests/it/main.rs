@@ -31,6 +31,7 @@ mod error_places;
 mod handler;
 mod hflink_vectors;
 mod ibus_vectors;
+mod mavlink_typed;
 mod mavlink_vectors;
 mod msp_vectors;
 mod narrow_and_seeded_checks;

@@ -1,17 +1,97 @@
-// A MAVLink node that uses three messages, included by both binaries: it reads the MAVLink 2
+// A MAVLink node that uses three messages, included by every binary: it reads the MAVLink 2
 // frames that arrive, keeps the attitude and position of ATTITUDE and GLOBAL_POSITION_INT
 // frames, and answers each HEARTBEAT with one of its own. Every other message is dropped.
+//
+// `three_messages!(module, from_frame)` decodes each frame with `Packet::from_frame` (every
+// message of the spec), matches the message and answers with `Packet::encode`;
+// `three_messages!(module, from_frame_as)` decodes it with `Packet::from_frame_as` for each of
+// the three messages alone and answers with `Packet::encode_as`.
 //
 // The received bytes come from `black_box`, so nothing is constant folded.
 
 macro_rules! three_messages {
-    ($module:ident) => {
-        use $module::{Header, Heartbeat, Message, Packet};
+    ($module:ident, $receive:ident) => {
+        use $module::{Attitude, GlobalPositionInt, Header, Heartbeat, Message, Packet};
 
         #[panic_handler]
         fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
             loop {
                 core::hint::spin_loop();
+            }
+        }
+
+        /// Keeps the attitude.
+        fn attitude(a: &Attitude) {
+            core::hint::black_box((a.roll, a.pitch, a.yaw));
+        }
+
+        /// Keeps the position.
+        fn position(p: &GlobalPositionInt) {
+            core::hint::black_box((p.lat, p.lon, p.alt));
+        }
+
+        /// This node's HEARTBEAT header.
+        fn header(seq: &mut u8) -> Header {
+            let header = Header {
+                seq: *seq,
+                sysid: 1,
+                compid: 1,
+                ..Header::default()
+            };
+            *seq = seq.wrapping_add(1);
+            header
+        }
+
+        /// Answers a HEARTBEAT with one of this node's, as a `Packet`.
+        #[allow(dead_code)]
+        fn answer(h: &Heartbeat, seq: &mut u8, out: &mut [u8]) {
+            let reply = Packet {
+                header: header(seq),
+                message: Message::Heartbeat(Heartbeat {
+                    custom_mode: 0,
+                    ..*h
+                }),
+            };
+            if let Ok(n) = reply.encode(out) {
+                core::hint::black_box(&out[..n]);
+            }
+        }
+
+        /// Answers a HEARTBEAT with one of this node's, as the struct alone.
+        #[allow(dead_code)]
+        fn answer_as(h: &Heartbeat, seq: &mut u8, out: &mut [u8]) {
+            let reply = Heartbeat {
+                custom_mode: 0,
+                ..*h
+            };
+            if let Ok(n) = Packet::encode_as(&header(seq), &reply, out) {
+                core::hint::black_box(&out[..n]);
+            }
+        }
+
+        /// Every message of the spec decoded, then matched.
+        #[allow(dead_code)]
+        fn from_frame(frame: &[u8], seq: &mut u8, out: &mut [u8]) {
+            let Ok(packet) = Packet::from_frame(frame) else {
+                return;
+            };
+            match packet.message {
+                Message::Attitude(a) => attitude(&a),
+                Message::GlobalPositionInt(p) => position(&p),
+                Message::Heartbeat(h) => answer(&h, seq, out),
+                _ => {}
+            }
+        }
+
+        /// Each of the three messages decoded alone.
+        #[allow(dead_code)]
+        fn from_frame_as(frame: &[u8], seq: &mut u8, out: &mut [u8]) {
+            if let Ok(Some((_, a))) = Packet::from_frame_as::<Attitude>(frame) {
+                attitude(&a);
+            } else if let Ok(Some((_, p))) = Packet::from_frame_as::<GlobalPositionInt>(frame) {
+                position(&p);
+            } else if let Ok(Some((_, h))) = Packet::from_frame_as::<Heartbeat>(frame) {
+                answer_as(&h, seq, out);
             }
         }
 
@@ -24,36 +104,7 @@ macro_rules! three_messages {
                 let rx = core::hint::black_box([0u8; 64]);
                 let mut input = &rx[..];
                 while let Some(frame) = decoder.decode(&mut input) {
-                    let Ok(packet) = Packet::from_frame(frame.bytes) else {
-                        continue;
-                    };
-                    match packet.message {
-                        Message::Attitude(a) => {
-                            core::hint::black_box((a.roll, a.pitch, a.yaw));
-                        }
-                        Message::GlobalPositionInt(p) => {
-                            core::hint::black_box((p.lat, p.lon, p.alt));
-                        }
-                        Message::Heartbeat(h) => {
-                            let reply = Packet {
-                                header: Header {
-                                    seq,
-                                    sysid: 1,
-                                    compid: 1,
-                                    ..Header::default()
-                                },
-                                message: Message::Heartbeat(Heartbeat {
-                                    custom_mode: 0,
-                                    ..h
-                                }),
-                            };
-                            seq = seq.wrapping_add(1);
-                            if let Ok(n) = reply.encode(&mut out) {
-                                core::hint::black_box(&out[..n]);
-                            }
-                        }
-                        _ => {}
-                    }
+                    $receive(frame.bytes, &mut seq, &mut out);
                 }
             }
         }

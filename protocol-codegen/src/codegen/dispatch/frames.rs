@@ -175,10 +175,15 @@ pub(super) fn emit_message_packet(
 /// Bytes of the flag trailer of the frame being encoded (`self`), as an expression: 0 for a
 /// frame without one.
 pub(super) fn flag_trailer_len(f: &Frame) -> TokenStream {
+    flag_trailer_len_of(f, &quote!(self.header))
+}
+
+/// [`flag_trailer_len`] of the header `header` (an expression of the header's type).
+pub(super) fn flag_trailer_len_of(f: &Frame, header: &TokenStream) -> TokenStream {
     match &f.flag_trailer {
         Some(t) => {
             let (id, len) = (ident(&t.name), t.len);
-            quote!(if self.header.#id.is_some() { #len } else { 0usize })
+            quote!(if #header.#id.is_some() { #len } else { 0usize })
         }
         None => quote!(0usize),
     }

@@ -4,7 +4,8 @@
 //! `protocol_spec::rules` lowers them), `Packet`, which decodes a frame into a header and a
 //! message and encodes one back through its `RULES` (`packet`), the packets of the other
 //! frame formats (`frames`, `link`, `given`), the `SESSION` static of a spec with a
-//! conversation (`session`), and the typed handlers with their dispatch (`handler`).
+//! conversation (`session`), the typed handlers with their dispatch (`handler`), and the
+//! decoding of a frame as one command's struct (`typed`).
 
 mod command;
 mod frames;
@@ -15,6 +16,7 @@ mod message;
 mod packet;
 mod rules;
 mod session;
+mod typed;
 
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -33,6 +35,7 @@ pub(crate) use packet::direction_test;
 use packet::emit_packet;
 use rules::emit_rules;
 use session::emit_session;
+use typed::emit_typed_decode;
 
 /// Everything about commands and messages, for the first frame.
 pub fn emit_dispatch(p: &Protocol) -> TokenStream {
@@ -83,6 +86,7 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
         out.extend(emit_direction_message(p, &rt));
     }
     out.extend(emit_packet(p, f, &rt));
+    out.extend(emit_typed_decode(p, f, &rt));
     if p.frames.iter().any(|f| !f.extensions) {
         out.extend(emit_base_payload(p, &rt));
     }

@@ -94,7 +94,7 @@ pub(super) fn read_id(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream 
 }
 
 /// A command's id as the values of the rules' key fields (`id` in scope).
-fn key_values(p: &Protocol) -> TokenStream {
+pub(super) fn key_values(p: &Protocol) -> TokenStream {
     let n = key_prims(p).len();
     if n == 1 {
         return quote!([u64::from(id)]);

@@ -8,4 +8,4 @@ protocol_kit::protocol!("../../../specs/mavlink-common.toml");
 
 include!("../three.rs");
 
-three_messages!(mavlink_common);
+three_messages!(mavlink_common, from_frame);

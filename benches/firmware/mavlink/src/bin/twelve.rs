@@ -8,4 +8,4 @@ protocol_kit::protocol!("../../../specs/mavlink.toml");
 
 include!("../three.rs");
 
-three_messages!(mavlink);
+three_messages!(mavlink, from_frame);
