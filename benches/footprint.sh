@@ -20,7 +20,9 @@
 #
 # With --mavlink, also builds a MAVLink node that uses three messages (benches/firmware/mavlink:
 # it answers HEARTBEAT and keeps ATTITUDE and GLOBAL_POSITION_INT) on the whole common dialect
-# and on the twelve messages of specs/mavlink.toml, and prints their sizes.
+# and on the twelve messages of specs/mavlink.toml, decoding every message (`Packet::from_frame`)
+# or each of the three alone (`Packet::from_frame_as`), and through a `Handler`, and prints
+# their sizes.
 #
 # Usage: bash benches/footprint.sh [--scaling | --crc-tables | --mavlink]
 # The firmware is built in "${CARGO_TARGET_DIR:-target}/firmware".
@@ -76,7 +78,9 @@ if [ "$mavlink" = 1 ]; then
   echo
   echo "== MAVLink node using three messages: the common dialect (234 messages) and 12 messages"
   sizes --baseline "empty=$out/footprint-empty" "common=$out/footprint-mavlink-common" \
-    "twelve=$out/footprint-mavlink-twelve"
+    "twelve=$out/footprint-mavlink-twelve" "common, from_frame_as=$out/footprint-mavlink-common-as" \
+    "twelve, from_frame_as=$out/footprint-mavlink-twelve-as" \
+    "common, Handler=$out/footprint-mavlink-common-handler"
 fi
 
 if [ "$crc_tables" = 1 ]; then

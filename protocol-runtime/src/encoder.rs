@@ -62,7 +62,7 @@ impl FrameLayout<'_> {
     /// assert_eq!(hflink.parse(&frame), Ok(&frame[..]));
     /// # Ok::<(), protocol_runtime::EncodeError>(())
     /// ```
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn seal(&self, frame: &mut [u8]) -> Result<(), EncodeError> {
         let len = frame.len();
         let span = self.header_span();
@@ -157,7 +157,7 @@ impl FrameLayout<'_> {
     /// field, with the marker in the length field, when it does not fit below the marker),
     /// from the frame's length without the flag trailer, whose flag the caller set. Returns
     /// the frame's body, which the checks and markers resolve against.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn seal_conditional<'f>(
         &self,
         frame: &'f mut [u8],
@@ -338,7 +338,7 @@ pub trait MessagePayload {
     fn visit_payload<V: PayloadVisitor<Self::Command>>(&self, v: V) -> V::Output;
 
     /// Bytes of the payload on the wire.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn payload_len(&self) -> usize {
         self.visit_payload(WireLen)
     }
@@ -349,7 +349,7 @@ pub trait MessagePayload {
     ///
     /// [`EncodeError::BufferTooSmall`] if `w` has too little room,
     /// [`EncodeError::ValueOutOfRange`] if a field's value does not fit its wire form.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn write_payload(&self, w: &mut Writer<'_>) -> Result<(), EncodeError> {
         self.visit_payload(WritePayload(w))
     }
@@ -377,7 +377,7 @@ pub trait CommandName {
 /// assert_eq!(None::<Set>.command_name(), "");
 /// ```
 impl<C: CommandName> CommandName for Option<C> {
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn command_name(&self) -> &'static str {
         self.as_ref().map_or("", CommandName::command_name)
     }
@@ -389,7 +389,7 @@ pub struct CommandOf;
 
 impl<C> PayloadVisitor<C> for CommandOf {
     type Output = C;
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn visit<P: Payload>(self, command: C, _: &P) -> C {
         command
     }
@@ -401,7 +401,7 @@ pub struct WireLen;
 
 impl<C> PayloadVisitor<C> for WireLen {
     type Output = usize;
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn visit<P: Payload>(self, _: C, payload: &P) -> usize {
         payload.wire_len()
     }
@@ -414,7 +414,7 @@ pub struct WritePayload<'w, 'b>(pub &'w mut Writer<'b>);
 
 impl<C: CommandName> PayloadVisitor<C> for WritePayload<'_, '_> {
     type Output = Result<(), EncodeError>;
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn visit<P: Payload>(self, command: C, payload: &P) -> Result<(), EncodeError> {
         payload
             .write(self.0)
@@ -428,7 +428,7 @@ impl<C: CommandName> PayloadVisitor<C> for WritePayload<'_, '_> {
 /// use protocol_runtime::{DecodeError, encoder::expected_empty};
 /// assert_eq!(expected_empty(&[1]), DecodeError::PayloadLength { expected: 0, actual: 1 });
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn expected_empty(bytes: &[u8]) -> DecodeError {
     DecodeError::PayloadLength {
         expected: 0,
@@ -442,7 +442,7 @@ pub fn expected_empty(bytes: &[u8]) -> DecodeError {
 /// # Errors
 ///
 /// The errors of [`Payload::from_bytes`].
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn read_payload<P: Payload>(bytes: &[u8]) -> Result<P, DecodeError> {
     P::from_bytes(bytes)
 }
@@ -468,7 +468,7 @@ pub struct CommandMessage<'p, P>(pub &'p P);
 
 impl<P: CommandPayload> MessagePayload for CommandMessage<'_, P> {
     type Command = P::Command;
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn visit_payload<V: PayloadVisitor<P::Command>>(&self, v: V) -> V::Output {
         v.visit(P::COMMAND, self.0)
     }
@@ -480,7 +480,7 @@ impl<P: CommandPayload> MessagePayload for CommandMessage<'_, P> {
 /// # Errors
 ///
 /// [`DecodeError::Truncated`] if `frame` ends before the field.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn header_value(frame: &[u8], field: WordField, header_len: usize) -> Result<u64, DecodeError> {
     field.read(frame).ok_or(DecodeError::Truncated {
         needed: header_len,
@@ -489,7 +489,7 @@ pub fn header_value(frame: &[u8], field: WordField, header_len: usize) -> Result
 }
 
 /// The error of a frame whose dispatch key `key` names no command.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 #[must_use]
 pub const fn unknown_command(key: u64) -> DecodeError {
     DecodeError::UnknownCommand { key }
@@ -501,7 +501,7 @@ pub const fn unknown_command(key: u64) -> DecodeError {
 /// # Errors
 ///
 /// [`DecodeError::Truncated`] if `frame` is shorter than its header and trailer.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn payload_of(
     frame: &[u8],
     header_len: usize,
@@ -522,7 +522,7 @@ pub fn payload_of(
 ///
 /// [`EncodeError::BufferTooSmall`] if `buf` is shorter than `needed` or than `start` and the
 /// trailer.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn payload_room(
     buf: &mut [u8],
     needed: usize,
@@ -542,7 +542,7 @@ pub fn payload_room(
 /// # Errors
 ///
 /// [`EncodeError::BufferTooSmall`] if `buf` is shorter than `total`.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn frame_room(buf: &mut [u8], total: usize) -> Result<&mut [u8], EncodeError> {
     let available = buf.len();
     buf.get_mut(..total).ok_or(EncodeError::BufferTooSmall {
@@ -557,7 +557,7 @@ pub fn frame_room(buf: &mut [u8], total: usize) -> Result<&mut [u8], EncodeError
 ///
 /// [`EncodeError::ValueOutOfRange`] if the value does not fit the field or the field lies
 /// outside the frame.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn write_header(frame: &mut [u8], field: WordField, value: u64) -> Result<(), EncodeError> {
     field
         .write(frame, value)

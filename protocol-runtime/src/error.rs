@@ -479,7 +479,7 @@ impl core::error::Error for EncodeError {}
 /// # Errors
 ///
 /// The error of `read`, located.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn read_field<T>(
     field: &'static str,
     read: impl FnOnce() -> Result<T, DecodeError>,
@@ -493,7 +493,7 @@ pub fn read_field<T>(
 /// # Errors
 ///
 /// The error of `write`, located.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn write_field<T>(
     field: &'static str,
     write: impl FnOnce() -> Result<T, EncodeError>,
@@ -506,7 +506,7 @@ pub fn write_field<T>(
 /// # Errors
 ///
 /// The error of `read`, located.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn read_command<T>(
     command: &'static str,
     read: impl FnOnce() -> Result<T, DecodeError>,

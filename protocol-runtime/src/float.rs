@@ -47,13 +47,13 @@ pub trait Float:
         clippy::arithmetic_side_effects,
         reason = "float negation: it neither wraps nor panics"
     )]
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn magnitude(self) -> Self {
         if self >= Self::ZERO { self } else { -self }
     }
 
     /// The larger of the value and `1.0`.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn at_least_one(self) -> Self {
         if self > Self::ONE { self } else { Self::ONE }
     }
@@ -66,12 +66,12 @@ impl Float for f64 {
     const NOISE: Self = 1e-6;
     const CLAMP_SLACK: Self = 1e-9;
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn cut_int(self) -> Self {
         self as i64 as f64
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn fit<T: RawInt>(self) -> Result<T, EncodeError> {
         if self > T::BELOW && self < T::ABOVE {
             Ok(T::cut(self))
@@ -93,7 +93,7 @@ impl Float for f32 {
 
     /// Through an `i32` (an `i64` would link a soft-float conversion on a 32-bit target):
     /// every `f32` of magnitude 2^23 or more is an integer already.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn cut_int(self) -> Self {
         if self.magnitude() >= 8_388_608.0 {
             self
@@ -102,7 +102,7 @@ impl Float for f32 {
         }
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn fit<T: RawInt>(self) -> Result<T, EncodeError> {
         if self > T::BELOW_F32 && self < T::ABOVE_F32 {
             Ok(T::cut_f32(self))

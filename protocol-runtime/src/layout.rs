@@ -26,7 +26,7 @@ pub enum Pos {
 impl Pos {
     /// The absolute offset of this position in a frame of `frame_len` bytes, or `None` if it
     /// falls outside the frame.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub const fn resolve(self, frame_len: usize) -> Option<usize> {
         match self {
             Pos::Start(n) => {
@@ -164,7 +164,7 @@ pub struct FlagTrailer {
 
 impl LengthRule {
     /// The length of a bare header, for [`LengthRule::FieldOrBare`].
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub const fn bare_len(&self) -> Option<usize> {
         match *self {
             LengthRule::FieldOrBare { bare, .. } => Some(bare),
@@ -276,7 +276,7 @@ pub trait LayoutRef: Copy {
     /// these, ...). None by default: a link of one format, for which every branch on the
     /// others folds away. The formats' syncs must tell them apart (none matches a prefix of
     /// another's).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn others(&self) -> &[FrameLayout<'_>] {
         &[]
     }
@@ -294,19 +294,19 @@ pub struct Formats<'l> {
 }
 
 impl LayoutRef for Formats<'_> {
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn layout(&self) -> &FrameLayout<'_> {
         self.first
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn others(&self) -> &[FrameLayout<'_>] {
         self.others
     }
 }
 
 impl<'l> LayoutRef for &'l FrameLayout<'l> {
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn layout(&self) -> &FrameLayout<'_> {
         self
     }

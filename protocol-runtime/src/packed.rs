@@ -20,7 +20,7 @@ pub enum BitOrder {
 }
 
 /// The bytes element `index` touches, and how many bits of the first byte precede it.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn span(len: usize, index: usize, bits: u32) -> Option<(usize, usize, u32)> {
     let start = index.checked_mul(bits as usize)?;
     let end = start.checked_add(bits as usize)?;
@@ -32,7 +32,7 @@ fn span(len: usize, index: usize, bits: u32) -> Option<(usize, usize, u32)> {
 }
 
 /// How far the element lies from bit 0 of the word its bytes make.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn shift(order: BitOrder, bytes: usize, skip: u32, bits: u32) -> u32 {
     match order {
         BitOrder::LsbFirst => skip,
@@ -46,7 +46,7 @@ fn shift(order: BitOrder, bytes: usize, skip: u32, bits: u32) -> u32 {
 }
 
 /// The bytes as one word: little-endian for LSB-first, big-endian for MSB-first.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn word(bytes: &[u8], order: BitOrder) -> u64 {
     let push = |acc: u64, b: &u8| (acc << 8) | u64::from(*b);
     match order {

@@ -49,11 +49,11 @@ pub trait EncodePacket {
 }
 
 impl<P: EncodePacket + ?Sized> EncodePacket for &P {
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn encoded_len(&self) -> usize {
         P::encoded_len(self)
     }
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn encode_into(&self, buf: &mut [u8]) -> Result<usize, EncodeError> {
         P::encode_into(self, buf)
     }

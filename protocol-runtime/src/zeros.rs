@@ -107,7 +107,7 @@ pub fn zero_filled<'a>(
 ///
 /// The errors of [`zero_filled`] and of [`Payload::from_bytes`] (a payload longer than
 /// `P::SIZE` is [`DecodeError::PayloadLength`]).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn read_zero_filled<P: Payload>(bytes: &[u8], scratch: &mut [u8]) -> Result<P, DecodeError> {
     P::from_bytes(zero_filled(bytes, P::SIZE, scratch)?)
 }

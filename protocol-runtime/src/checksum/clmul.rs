@@ -63,7 +63,7 @@ impl Folding {
     }
 
     /// Never called: there is no value to call it on.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub(super) fn register(&self, _data: &[u8], _n: usize, _init: u64) -> u64 {
         match *self {}
     }
@@ -118,7 +118,7 @@ mod folding {
 
         /// The reflected register after `data[..n]` from `init` (`8 < n <= data.len()`:
         /// shorter checks are the tables'), in its low `w` bits.
-        #[inline(always)]
+        #[cfg_attr(not(protocol_opt0), inline(always))]
         pub(in crate::checksum) fn register(&self, data: &[u8], n: usize, init: u64) -> u64 {
             // (`n <= data.len()`, the caller's bound: said once, so that the compiler drops the
             // fallback of every slice below.)
@@ -159,7 +159,7 @@ mod folding {
         }
 
         /// The accumulator reduced modulo `Q`.
-        #[inline(always)]
+        #[cfg_attr(not(protocol_opt0), inline(always))]
         fn reduce(&self, acc: m128i) -> u64 {
             let r = m128i::from(self.reduce);
             // At most `63 + w` bits to 64: hi(A) * (y^64 mod Q) ^ lo(A).
@@ -177,7 +177,7 @@ mod folding {
     }
 
     /// `x * y^-128 mod Q`, not reduced: `lo(x) * (y^-128 mod Q) ^ hi(x) * (y^-64 mod Q)`.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn times_y_inverse_128(x: m128i, k: m128i) -> m128i {
         xor(clmul::<0x00>(x, k), clmul::<0x11>(x, k))
     }

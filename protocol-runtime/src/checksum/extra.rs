@@ -62,7 +62,7 @@ impl Extra<'_> {
 
     /// The CRC of `data[..n]`, then `byte`; `data` may run past `n` (as in
     /// [`Checksum::compute_prefix`], the bytes after `n` let a block be read whole).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn fold_prefix(&self, data: &[u8], n: usize, byte: u8) -> u64 {
         match &self.crc {
             Checksum::Crc8(c) => u64::from(c.checksum_prefix_then(data, n, byte)),
@@ -75,7 +75,7 @@ impl Extra<'_> {
 
     /// [`fold`](Self::fold) of bytes the caller has just written (an encoder's frame):
     /// the same value, with a CRC's tables even in a build with the carry-less folding.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn fold_written(&self, data: &[u8], byte: u8) -> u64 {
         match &self.crc {
             Checksum::Crc8(c) => u64::from(c.checksum_written_then(data, byte)),
@@ -94,7 +94,7 @@ impl Extra<'_> {
 
     /// The check value of `data[..n]`: `None` when `data` is shorter than `n` or the key of
     /// `data[..n]` has no byte.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn compute_prefix(&self, data: &[u8], n: usize) -> Option<u64> {
         let byte = self.byte(data.get(..n)?)?;
         Some(self.fold_prefix(data, n, byte))
@@ -112,7 +112,7 @@ macro_rules! checksum_then {
             /// folding where built in) and appends the byte with one table step
             /// ([`Slicing16::then`](super::Slicing16::then)); the one-table and table-free
             /// CRCs run the `crc` crate's streaming digest.
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_prefix_then(&self, data: &[u8], n: usize, byte: u8) -> $w {
                 let covered = data.get(..n).unwrap_or(data);
                 match self {
@@ -140,7 +140,7 @@ macro_rules! checksum_then {
 
             /// [`checksum_then`](Self::checksum_then) of bytes the caller has just written:
             /// never with the carry-less folding ([`Slicing16::checksum_written`](super::Slicing16::checksum_written)).
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_written_then(&self, data: &[u8], byte: u8) -> $w {
                 match self {
                     CrcImpl::Table16(c) => c.checksum_written_then(data, byte),

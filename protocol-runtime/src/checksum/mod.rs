@@ -220,7 +220,7 @@ macro_rules! crc_impl_width {
     ($($w:ty),*) => {$(
         impl CrcImpl<'_, $w> {
             #[doc = concat!("The CRC of `data` as a `", stringify!($w), "`.")]
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum(&self, data: &[u8]) -> $w {
                 match self {
                     CrcImpl::NoTable(c) => c.checksum(data),
@@ -232,7 +232,7 @@ macro_rules! crc_impl_width {
             #[doc = concat!("The CRC of `data` as a `", stringify!($w), "`, bytes just written:")]
             /// as [`checksum`](Self::checksum), but never with the carry-less folding
             /// ([`Slicing16::checksum_written`]).
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_written(&self, data: &[u8]) -> $w {
                 match self {
                     CrcImpl::NoTable(c) => c.checksum(data),
@@ -244,7 +244,7 @@ macro_rules! crc_impl_width {
             #[doc = concat!("The CRC of `data[..n]` as a `", stringify!($w), "`; `data` may")]
             /// run past `n` (bytes past `n` never change the result). If `data` is shorter
             /// than `n`, the CRC of all of `data`.
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_prefix(&self, data: &[u8], n: usize) -> $w {
                 match self {
                     CrcImpl::NoTable(c) => c.checksum(data.get(..n).unwrap_or(data)),
@@ -267,7 +267,7 @@ crc_impl_width!(u8, u16, u32, u64);
 /// assert_eq!(crc_bytes(5), 1);
 /// assert_eq!(crc_bytes(40), 5);
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub const fn crc_bytes(width: u8) -> usize {
     (width as usize).div_ceil(8)
 }
@@ -285,7 +285,7 @@ impl<W: crc::Width> CrcImpl<'_, W> {
 
     /// Bytes the CRC is stored in ([`crc_bytes`] of its width). Read from the parameters the
     /// tables were built from: in a generated layout they are a constant, and this folds.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub const fn stored_bytes(&self) -> usize {
         crc_bytes(match self {
             CrcImpl::NoTable(c) => c.algorithm.width,
@@ -359,7 +359,7 @@ impl Checksum<'_> {
     /// the `Checksum` is a constant it folds to a number. (The compiler does not inline a
     /// recursive function: a call per check and frame in the engine's scan, 24 instructions
     /// per referee frame in `benches/count.sh`.)
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub const fn width(&self) -> usize {
         match self {
             Checksum::Extra(e) => e.crc.width_of_crc(),
@@ -369,7 +369,7 @@ impl Checksum<'_> {
 
     /// [`width`](Self::width) of a checksum that is not an [`Extra`] (an [`Extra`] holds no
     /// other [`Extra`]: 0 for one).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     const fn width_of_crc(&self) -> usize {
         match self {
             Checksum::Sum8 | Checksum::SumMod255 | Checksum::Xor8 | Checksum::Xor { .. } => 1,
@@ -393,7 +393,7 @@ impl Checksum<'_> {
     /// assert_eq!(Checksum::Sum8.compute(&[0xFF, 0x02]), 0x01);
     /// assert_eq!(Checksum::Xor8.compute(&[0x0F, 0xF0]), 0xFF);
     /// ```
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn compute(&self, data: &[u8]) -> u64 {
         match self {
             Checksum::Sum8 => u64::from(sum::sum8(data)),
@@ -422,7 +422,7 @@ impl Checksum<'_> {
     /// [`compute`](Self::compute) of bytes the caller has just written (an encoder's frame):
     /// the same value, with a CRC's tables even in a build with the carry-less folding
     /// ([`Slicing16::checksum_written`] says why).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn compute_written(&self, data: &[u8]) -> u64 {
         match self {
             Checksum::Crc8(c) => u64::from(c.checksum_written(data)),
@@ -463,7 +463,7 @@ impl Checksum<'_> {
     /// assert_eq!(Checksum::Sum8.compute_prefix(&input, 3), Some(0x06));
     /// assert_eq!(Checksum::Sum8.compute_prefix(&input, 6), None);
     /// ```
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn compute_prefix(&self, data: &[u8], n: usize) -> Option<u64> {
         if data.len() < n {
             return None;

@@ -168,7 +168,7 @@ macro_rules! slicing16_width {
             /// Always inlined: a frame's header check covers a constant number of bytes, and
             /// inlined with it the leading block's zero bytes fold away (a 4-byte header CRC
             /// costs four lookups, not sixteen).
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_prefix(&self, data: &[u8], n: usize) -> $w {
                 self.checksum_with::<true>(data, n)
             }
@@ -179,7 +179,7 @@ macro_rules! slicing16_width {
             /// loads that the processor serves from the pending stores, while the folding's
             /// 16-byte loads of bytes stored a few at a time wait for the stores to reach the
             /// cache (a store-forwarding stall per block).
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_written(&self, data: &[u8]) -> $w {
                 self.checksum_with::<false>(data, data.len())
             }
@@ -188,7 +188,7 @@ macro_rules! slicing16_width {
             /// [`checksum_prefix`](Self::checksum_prefix) of those bytes one after the other):
             /// the covered bytes by the fast path (blocks, the carry-less folding or the
             /// `crc-fast` crate where built in), then one table step ([`then`](Self::then)).
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_prefix_then(&self, data: &[u8], n: usize, byte: u8) -> $w {
                 self.then(self.checksum_prefix(data, n), byte)
             }
@@ -196,7 +196,7 @@ macro_rules! slicing16_width {
             /// [`checksum_prefix_then`](Self::checksum_prefix_then) of all of `data`, bytes the
             /// caller has just written (the tables only, as
             /// [`checksum_written`](Self::checksum_written)).
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_written_then(&self, data: &[u8], byte: u8) -> $w {
                 self.then(self.checksum_written(data), byte)
             }
@@ -212,7 +212,7 @@ macro_rules! slicing16_width {
             /// static CRC: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_MCRF4XX);
             /// assert_eq!(CRC.then(CRC.checksum(b"12345678"), b'9'), CRC.checksum(b"123456789"));
             /// ```
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn then(&self, crc: $w, byte: u8) -> $w {
                 let aligned = (crc ^ self.xorout).checked_shl(self.shift).unwrap_or(0);
                 let register = if self.reverse { aligned.reverse_bits() } else { aligned };
@@ -231,7 +231,7 @@ macro_rules! slicing16_width {
 
             /// [`checksum_prefix`](Self::checksum_prefix), folded with carry-less
             /// multiplication where the build has it and `FOLD` asks for it.
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             fn checksum_with<const FOLD: bool>(&self, data: &[u8], n: usize) -> $w {
                 let n = n.min(data.len());
                 #[cfg(feature = "crc-fast")]
@@ -249,7 +249,7 @@ macro_rules! slicing16_width {
             }
 
             /// The register after `data[..n]` (`n <= data.len()`), before finalisation.
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             fn register<const REFLECT: bool, const FOLD: bool>(&self, data: &[u8], n: usize) -> $w {
                 if n <= SHORT {
                     return self.short_register::<REFLECT>(data, n);
@@ -308,7 +308,7 @@ macro_rules! slicing16_width {
             /// single-byte loads, which the compiler takes from the stores of an encoder that
             /// has just written the header; a whole-block read of freshly written bytes stalls
             /// on store forwarding.
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             fn short_register<const REFLECT: bool>(&self, data: &[u8], n: usize) -> $w {
                 let init = if REFLECT {
                     self.init.to_le_bytes()
@@ -333,7 +333,7 @@ macro_rules! slicing16_width {
             /// What a byte of value `index` with `after` more bytes behind it adds to the
             /// register: table `after`'s entry (slicing-by-16 looks up every byte of a block at
             /// once, each in the table of its distance to the block's end).
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             fn entry(&self, after: usize, index: u8) -> $w {
                 self.tables
                     .get(after)
@@ -343,7 +343,7 @@ macro_rules! slicing16_width {
             }
 
             /// The register's bytes in input order, at the start of a big-endian block.
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             fn spread<const REFLECT: bool>(register: $w) -> u128 {
                 let ordered = if REFLECT { register.swap_bytes() } else { register };
                 u128::from(ordered) << (u128::BITS - <$w>::BITS)
@@ -355,7 +355,7 @@ macro_rules! slicing16_width {
             /// block read straight from the input: the register is what each block waits for,
             /// and folding it into a 128-bit copy of the block first put a store and reloads of
             /// the copy on that path.
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             fn block<const REFLECT: bool>(&self, block: &[u8; BLOCK], register: $w) -> $w {
                 let folded = if REFLECT {
                     register.to_le_bytes()

@@ -19,7 +19,7 @@ pub(super) const WINDOW: usize = 128;
 static WINDOW_MASK: [[u8; WINDOW]; 2] = [[0xFF; WINDOW], [0; WINDOW]];
 
 /// The mask keeping the first `n` (`<= WINDOW`) bytes of a window.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn window_mask(n: usize) -> &'static [u8; WINDOW] {
     WINDOW_MASK
         .as_flattened()
@@ -29,7 +29,7 @@ fn window_mask(n: usize) -> &'static [u8; WINDOW] {
 }
 
 /// The little-endian `u64` at `at` of a window (0 past its end, which no caller reads).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn word(bytes: &[u8; WINDOW], at: usize) -> u64 {
     bytes
         .get(at..)
@@ -41,7 +41,7 @@ fn word(bytes: &[u8; WINDOW], at: usize) -> u64 {
 /// past `n` read as zero), two lanes of one `u64` each: the shape of one SSE2 or NEON register,
 /// which the SLP vectoriser fills. Offsets are loop counters rather than `chunks_exact`
 /// iterators, whose length division stays in the code at `opt-level = "s"`.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn masked_words(window: &[u8; WINDOW], n: usize, mut step: impl FnMut(&mut u64, u64)) -> [u64; 2] {
     let mask = window_mask(n);
     let mut lanes = [0u64; 2];
@@ -57,7 +57,7 @@ fn masked_words(window: &[u8; WINDOW], n: usize, mut step: impl FnMut(&mut u64, 
 /// The sum of `window[..n]` (`n <= WINDOW`, at most 128 × 255 = 32640), without a branch on
 /// `n`: SWAR, each word's bytes added pairwise into four 16-bit lanes (at most 8 words × 2 ×
 /// 255 = 4080 per lane and `u64`), the lanes added at the end by one multiplication.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn window_sum(window: &[u8; WINDOW], n: usize) -> u32 {
     const LOW_BYTES: u64 = 0x00FF_00FF_00FF_00FF;
     let [a, b] = masked_words(window, n, |lane, x| {
@@ -70,14 +70,14 @@ fn window_sum(window: &[u8; WINDOW], n: usize) -> u32 {
 }
 
 /// The xor of `window[..n]` (`n <= WINDOW`), without a branch on `n`.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn window_xor(window: &[u8; WINDOW], n: usize) -> u8 {
     let [a, b] = masked_words(window, n, |lane, x| *lane ^= x);
     fold_xor(a ^ b)
 }
 
 /// The xor of the eight bytes of `x`.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn fold_xor(x: u64) -> u8 {
     let x = x ^ (x >> 32);
     let x = x ^ (x >> 16);
@@ -86,7 +86,7 @@ fn fold_xor(x: u64) -> u8 {
 
 /// `x % 255` without a 64-bit division: `2^32 ≡ 1 (mod 255)`, so the two halves of `x` add up
 /// to a congruent number, and once more to one that fits a `u32`.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn mod255(x: u64) -> u8 {
     let halves = |x: u64| (x >> 32).wrapping_add(x & 0xFFFF_FFFF);
     // At most 2^33 - 2, then at most 2^32 - 1.
@@ -99,13 +99,13 @@ pub(super) fn mod255(x: u64) -> u8 {
 /// `2^32` is a multiple of 256.) A division by a constant is a multiplication; the remainder
 /// costs three more instructions on top of it on x86-64 (`q * 255` as a shift and a
 /// subtraction, then `x - q * 255`), on every frame a decoder checks.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn rem255_u32(x: u32) -> u8 {
     x.wrapping_add(x.wrapping_div(255)) as u8
 }
 
 /// [`rem255_u32`] of a [`ShortSum`] (`2^64` is a multiple of 256 too).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn rem255_short(x: ShortSum) -> u8 {
     x.wrapping_add(x.wrapping_div(255)) as u8
 }
@@ -117,7 +117,7 @@ fn rem255_short(x: ShortSum) -> u8 {
 const WINDOWS: bool = cfg!(target_pointer_width = "64");
 
 /// The sum of `data[..n]` (`n <= data.len()`): the window when it applies, else exact.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn prefix_sum(data: &[u8], n: usize) -> u64 {
     match data.first_chunk::<WINDOW>() {
         Some(window) if WINDOWS && n <= WINDOW => u64::from(window_sum(window, n)),
@@ -126,7 +126,7 @@ fn prefix_sum(data: &[u8], n: usize) -> u64 {
 }
 
 /// The sum modulo 256 of `data`.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn sum8(data: &[u8]) -> u8 {
     if WINDOWS && data.len() <= SHORT {
         return unrolled_sum(data) as u8;
@@ -135,7 +135,7 @@ pub(super) fn sum8(data: &[u8]) -> u8 {
 }
 
 /// The sum modulo 255 of `data`.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn sum_mod255(data: &[u8]) -> u8 {
     if WINDOWS && data.len() <= SHORT {
         return rem255_short(unrolled_sum(data));
@@ -144,7 +144,7 @@ pub(super) fn sum_mod255(data: &[u8]) -> u8 {
 }
 
 /// [`sum_mod255`] without the unrolled short case (decoders' fallback from the window).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn exact_sum_mod255(data: &[u8]) -> u8 {
     if fits_u32_sum(data) {
         // One remainder in the target's word, without folding a `u64` first (sealing a frame
@@ -155,13 +155,13 @@ fn exact_sum_mod255(data: &[u8]) -> u8 {
 }
 
 /// The sum modulo 256 of `data[..n]` (`n <= data.len()`).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn sum8_prefix(data: &[u8], n: usize) -> u8 {
     prefix_sum(data, n) as u8
 }
 
 /// The sum modulo 255 of `data[..n]` (`n <= data.len()`).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn sum_mod255_prefix(data: &[u8], n: usize) -> u8 {
     match data.first_chunk::<WINDOW>() {
         // At most 32640: a `u32` remainder.
@@ -171,7 +171,7 @@ pub(super) fn sum_mod255_prefix(data: &[u8], n: usize) -> u8 {
 }
 
 /// The xor of `data[..n]` (`n <= data.len()`).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn xor8_prefix(data: &[u8], n: usize) -> u8 {
     match data.first_chunk::<WINDOW>() {
         Some(window) if WINDOWS && n <= WINDOW => window_xor(window, n),
@@ -189,7 +189,7 @@ static MASK: [[u8; STEP]; 2] = [[0; STEP], [0xFF; STEP]];
 /// The last `STEP` bytes of `data` (at least `STEP` long), masked to keep the last `rest`
 /// (`< STEP`) of them: the bytes a whole-step loop from the start left over, read without a
 /// byte loop.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn masked_tail(data: &[u8], rest: usize) -> [u8; STEP] {
     let mut tail = data.last_chunk::<STEP>().copied().unwrap_or([0; STEP]);
     let mask = MASK
@@ -204,7 +204,7 @@ fn masked_tail(data: &[u8], rest: usize) -> [u8; STEP] {
 }
 
 /// `data` (shorter than `STEP`), zero-extended.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn padded(data: &[u8]) -> [u8; STEP] {
     let mut block = [0u8; STEP];
     for (dst, src) in block.iter_mut().zip(data) {
@@ -214,7 +214,7 @@ fn padded(data: &[u8]) -> [u8; STEP] {
 }
 
 /// Splits `data` into whole steps and what is left, as one zero-filled step.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn steps(data: &[u8]) -> (core::slice::ChunksExact<'_, u8>, [u8; STEP]) {
     let whole = data.chunks_exact(STEP);
     let rest = whole.remainder().len();
@@ -226,7 +226,7 @@ fn steps(data: &[u8]) -> (core::slice::ChunksExact<'_, u8>, [u8; STEP]) {
     (whole, last)
 }
 
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn sum_step(block: &[u8; STEP]) -> u64 {
     block
         .iter()
@@ -243,7 +243,7 @@ const SHORT: usize = 32;
 /// once inlined with a constant length the compiler takes each byte from the stores that wrote
 /// it, while a wide load over freshly stored bytes stalls on store forwarding (measured: 3x on
 /// a 28-byte HFLink frame).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 // `ShortSum` is a `u64` on this target only.
 #[allow(clippy::useless_conversion)]
 pub(super) fn byte_sum(data: &[u8]) -> u64 {
@@ -264,7 +264,7 @@ const U32_SUM_MAX: usize = 1 << 24;
 /// Whether [`byte_sum`] adds `data` byte by byte in a `u32`: short inputs, and on 32-bit
 /// targets every input a `u32` holds the sum of (a `u64` accumulator there takes two
 /// registers and an add with carry per byte; frames never come near the limit).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn fits_u32_sum(data: &[u8]) -> bool {
     data.len() <= SHORT || (!WINDOWS && data.len() <= U32_SUM_MAX)
 }
@@ -276,7 +276,7 @@ fn fits_u32_sum(data: &[u8]) -> bool {
 /// narrowed afterwards) the compiler vectorizes the loop with 4-byte loads, which over the
 /// bytes an encoder has just stored one field at a time stall on store forwarding (measured:
 /// 3x on a 28-byte HFLink frame), while it keeps `u64` adds of bytes scalar.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn short_sum(data: &[u8]) -> ShortSum {
     data.iter()
         .fold(0, |sum: ShortSum, &b| sum.wrapping_add(ShortSum::from(b)))
@@ -291,7 +291,7 @@ fn short_sum(data: &[u8]) -> ShortSum {
 ///
 /// Written out term by term (a loop of 32 was unrolled or not depending on where it was
 /// inlined: kept as a loop, it cost the HFLink encoder 2.8x).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn unrolled_sum(data: &[u8]) -> ShortSum {
     macro_rules! terms {
         ($($i:literal)*) => {
@@ -336,7 +336,7 @@ pub(super) fn xor8(data: &[u8]) -> u8 {
 
 /// The sum of `init` and `data` modulo 2^(8 × `width`) (`width` 1, else 2), xored with
 /// `xorout`.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn sum_xorout(data: &[u8], width: u8, init: u16, xorout: u16) -> u64 {
     let mask: u64 = if width == 1 { 0xFF } else { 0xFFFF };
     (byte_sum(data).wrapping_add(u64::from(init)) ^ u64::from(xorout)) & mask

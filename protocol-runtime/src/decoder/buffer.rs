@@ -14,7 +14,7 @@ use super::target::{EARLY_TRUNCATION, HOST};
 use crate::layout::{FrameLayout, LayoutRef, LengthRule};
 
 /// Takes the first `len` bytes off `input` (all of it if shorter).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn take<'i>(input: &mut &'i [u8], len: usize) -> &'i [u8] {
     let data: &'i [u8] = input;
     let (head, rest) = data.split_at_checked(len).unwrap_or((data, &[]));
@@ -187,7 +187,7 @@ const _: () =
 /// (a few vector loads and stores), where `copy_from_slice` calls the C library's `memcpy`,
 /// whose call and length dispatch cost more than the copy. Other lengths, and every length
 /// on targets without 64-bit pointers (where the moves cost flash), as `copy_from_slice`.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn copy_chunk(dst: &mut [u8], src: &[u8]) {
     if HOST && dst.len() == src.len() {
         if (32..=64).contains(&src.len()) && overlapping::<32>(dst, src) {
@@ -202,7 +202,7 @@ fn copy_chunk(dst: &mut [u8], src: &[u8]) {
 
 /// Copies the first and the last `K` bytes of `src` to `dst`: all of it if `K <= len <= 2K`.
 /// `false`, copying nothing, if either holds fewer than `K` bytes.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn overlapping<const K: usize>(dst: &mut [u8], src: &[u8]) -> bool {
     let (Some(head), Some(tail)) = (src.first_chunk::<K>(), src.last_chunk::<K>()) else {
         return false;
@@ -221,7 +221,7 @@ fn overlapping<const K: usize>(dst: &mut [u8], src: &[u8]) -> bool {
 impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// Keeps the whole input, with nothing pending, as the pending bytes (the start of a
     /// candidate that needs more). Returns `false`, copying nothing, if it does not fit.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub(super) fn hold(&mut self, input: &mut &[u8]) -> bool {
         let data: &[u8] = input;
         let Some(dst) = self.buf.get_mut(..data.len()) else {
@@ -236,7 +236,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     }
 
     /// Advances `input` by `n` bytes (at most its length) and returns the bytes skipped.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub(super) fn consume<'i>(&mut self, input: &mut &'i [u8], n: usize) -> &'i [u8] {
         let data: &'i [u8] = input;
         let (head, rest) = data.split_at_checked(n).unwrap_or((data, &[]));
@@ -250,7 +250,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// Returns `false`, copying nothing, otherwise. On hosts, writes [`FILL`] bytes of
     /// [`filler`] behind it, inside that room: the block test that follows reads whole blocks
     /// there, unmasked.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub(super) fn stage(&mut self, input: &mut &[u8]) -> bool {
         let data: &[u8] = input;
         let room = N.saturating_sub(STAGE_SLACK);
@@ -289,7 +289,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
 
     /// With nothing pending, copies the start of the input into the buffer: all of it if it
     /// fits with room for a checksum window after it, else as much as fits (at least a byte).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub(super) fn stage_prefix(&mut self, input: &mut &[u8]) {
         let room = if N > STAGE_SLACK {
             N.wrapping_sub(STAGE_SLACK)

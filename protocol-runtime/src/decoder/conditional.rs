@@ -13,7 +13,7 @@ use crate::layout::{FlagTrailer, FrameLayout, LengthExtension, LengthRule, WordF
 
 /// Bytes of the flag trailer present in the frame whose header starts `header` (0 without
 /// one, or when its flag is clear or lies past `header`).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn trailer_len(trailer: Option<FlagTrailer>, header: &[u8]) -> usize {
     match trailer {
         Some(t) if t.flag.read(header).is_some_and(|flag| flag != 0) => t.len,
@@ -22,7 +22,7 @@ fn trailer_len(trailer: Option<FlagTrailer>, header: &[u8]) -> usize {
 }
 
 /// One past the last byte of `field` (a [`Pos::Start`](crate::layout::Pos::Start) position).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn end_of(field: WordField) -> usize {
     field
         .at
@@ -36,7 +36,7 @@ fn end_of(field: WordField) -> usize {
 /// as the bytes that decide it are in (a marker form whose smallest frame exceeds `limit` is
 /// rejected before its wider length is awaited). `header` is the candidate's first
 /// [`FrameLayout::header_span`] bytes, `bytes` all it has.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn measure(
     field: WordField,
     adjust: i64,
@@ -73,7 +73,7 @@ pub(super) fn measure(
 }
 
 /// `count + adjust + extra`, or `None` if negative or too large.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn total_of(count: u64, adjust: i64, extra: usize) -> Option<usize> {
     let count = i64::try_from(count).ok()?;
     let total = usize::try_from(count.checked_add(adjust)?).ok()?;
@@ -103,7 +103,7 @@ impl FrameLayout<'_> {
     /// assert_eq!(msp.extension_for(6 + 254), 0);
     /// assert_eq!(msp.extension_for(6 + 255), 2);
     /// ```
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     #[must_use]
     pub fn extension_len(&self, frame: &[u8]) -> usize {
         match self.length {
@@ -118,7 +118,7 @@ impl FrameLayout<'_> {
 
     /// Bytes of the flag trailer at the end of `frame` (which starts with at least its header):
     /// its length when its flag is set, else 0.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     #[must_use]
     pub fn flag_trailer_len(&self, frame: &[u8]) -> usize {
         match self.length {
@@ -130,7 +130,7 @@ impl FrameLayout<'_> {
     /// For an encoder: the bytes a wider length adds before the payload of a frame of `len`
     /// bytes in its short form (without the wider length and a flag trailer): the extension's
     /// bytes when the count of the length field does not fit below the marker, else 0.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     #[must_use]
     pub fn extension_for(&self, len: usize) -> usize {
         match self.length {
@@ -185,7 +185,7 @@ impl FrameLayout<'_> {
 
     /// The count written into the length field of a frame of `len` bytes under a conditional
     /// rule, and whether it goes into the wider field; `None` if no frame has that length.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub(crate) fn conditional_count(
         adjust: i64,
         extension: Option<LengthExtension>,
@@ -203,7 +203,7 @@ impl FrameLayout<'_> {
 
     /// The body length (without the flag trailer) of a frame of `len` bytes whose header is
     /// `header`.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub(crate) fn body_len(&self, header: &[u8], len: usize) -> usize {
         len.saturating_sub(self.flag_trailer_len(header))
     }
@@ -228,7 +228,7 @@ impl FrameLayout<'_> {
 /// assert_eq!(flag_trailer::<2>(&signed, &[0xFD, 1, 1, 0xAA, 7, 8]), Some([7, 8]));
 /// assert_eq!(flag_trailer::<2>(&signed, &[0xFD, 1, 0, 0xAA]), None);
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 #[must_use]
 pub fn flag_trailer<const N: usize>(layout: &FrameLayout<'_>, frame: &[u8]) -> Option<[u8; N]> {
     if layout.flag_trailer_len(frame) != N {
@@ -244,7 +244,7 @@ pub fn flag_trailer<const N: usize>(layout: &FrameLayout<'_>, frame: &[u8]) -> O
 ///
 /// [`EncodeError::BufferTooSmall`](crate::EncodeError::BufferTooSmall) if `frame` is shorter
 /// than `N` bytes.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn write_flag_trailer<const N: usize>(
     frame: &mut [u8],
     bytes: Option<&[u8; N]>,

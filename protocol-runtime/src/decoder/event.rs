@@ -122,7 +122,7 @@ impl Stats {
     /// Adds what a scan counted: `frames` frames in `scanned` bytes; the bytes that belong to
     /// no frame (skipped runs and the first bytes of rejected candidates) were added to the
     /// skipped bytes since they were `skipped_before`.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub(super) fn count_scan(&mut self, frames: u64, scanned: usize, skipped_before: u64) {
         self.frames = self.frames.wrapping_add(frames);
         let gaps = self.skipped_bytes.wrapping_sub(skipped_before);

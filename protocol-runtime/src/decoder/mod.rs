@@ -104,7 +104,7 @@ use crate::wire::{read_uint, write_uint};
 /// bytes, and a call (to `memcmp`, or to `Zip::next`, which the compiler may leave out of line
 /// in a large caller) would cost more than the comparison, and hide that a constant sync of
 /// one byte leaves nothing to compare.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn bytes_agree(data: &[u8], expected: &[u8]) -> bool {
     let mut i = 0;
     while let (Some(a), Some(b)) = (data.get(i), expected.get(i)) {
@@ -129,7 +129,7 @@ pub enum Probe {
 
 impl Check<'_> {
     /// The covered range and the stored value's offset in a frame of `len` bytes.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn resolve(&self, len: usize) -> Option<(core::ops::Range<usize>, usize)> {
         let from = self.from.resolve(len)?;
         let to = self.to.resolve(len)?;
@@ -148,7 +148,7 @@ impl Check<'_> {
     /// ([`Checksum::compute_prefix`](crate::Checksum::compute_prefix): a fixed-size read
     /// instead of a loop whose trip count follows the frame length) but never change the
     /// verdict.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn verify_prefix(&self, bytes: &[u8], len: usize) -> bool {
         let (Some(frame), Some((covered, at))) = (bytes.get(..len), self.resolve(len)) else {
             return false;
@@ -171,7 +171,7 @@ impl Check<'_> {
     /// Computes the check of the bytes it covers and stores it in `frame`.
     ///
     /// Returns `None`, writing nothing, if a position lies outside the frame.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn store(&self, frame: &mut [u8]) -> Option<()> {
         let (covered, at) = self.resolve(frame.len())?;
         let value = self.checksum.compute_written(frame.get(covered)?);
@@ -181,7 +181,7 @@ impl Check<'_> {
 
 impl Marker<'_> {
     /// Whether `frame` holds the marker's bytes at its position.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn matches(&self, frame: &[u8]) -> bool {
         let Some(at) = self.at.resolve(frame.len()) else {
             return false;
@@ -202,7 +202,7 @@ impl Marker<'_> {
 
 impl Constant {
     /// Whether `header` holds the value.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn matches(&self, header: &[u8]) -> bool {
         self.field.read(header) == Some(self.value)
     }
@@ -211,7 +211,7 @@ impl Constant {
 impl FrameLayout<'_> {
     /// Bytes needed before the length is known and the header verified:
     /// `max(header_len, sync.len())`.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub const fn header_span(&self) -> usize {
         if self.header_len > self.sync_len() {
             self.header_len
@@ -222,7 +222,7 @@ impl FrameLayout<'_> {
 
     /// Bytes of the sync: the byte of [`sync_set`](Self::sync_set), if any, and
     /// [`sync`](Self::sync).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub const fn sync_len(&self) -> usize {
         if self.sync_set.is_empty() {
             self.sync.len()
@@ -233,7 +233,7 @@ impl FrameLayout<'_> {
 
     /// Whether `bytes`, the start of a candidate, match the sync as far as they go (a prefix cut
     /// by the end of `bytes` matches).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn sync_matches(&self, bytes: &[u8]) -> bool {
         let rest = match (self.sync_set, bytes) {
             ([], _) => bytes,
@@ -269,7 +269,7 @@ impl FrameLayout<'_> {
     /// assert_eq!(hflink.frame_len(&[0xFF, 0xFF, 0x11, 0x01, 0x00, 0x01]), Some(8));
     /// assert_eq!(hflink.frame_len(&[0xFF, 0xFF, 0x11]), None);
     /// ```
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn frame_len(&self, header: &[u8]) -> Option<usize> {
         let header = header.get(..self.header_span())?;
         match self.length {
@@ -367,7 +367,7 @@ impl FrameLayout<'_> {
 /// Generic over where the layout comes from: for a layout known at compile time
 /// ([`LayoutRef`]), every read of it is a constant, and this compiles to code for the one
 /// format. Always inlined: it is the body of the engine's inner loops.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(crate) fn probe<L: LayoutRef>(
     layout: &L,
     readable: &[u8],
@@ -386,7 +386,7 @@ pub(crate) fn probe<L: LayoutRef>(
 /// The format of `link` that the candidate `bytes` start with, and its index (0: the first):
 /// the first whose sync they match (as far as they go). The first format when none does, and
 /// always for a link of one format (the test then folds away).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(crate) fn select<'a, L: LayoutRef>(link: &'a L, bytes: &[u8]) -> (usize, &'a FrameLayout<'a>) {
     let first = link.layout();
     let others = link.others();
@@ -400,7 +400,7 @@ pub(crate) fn select<'a, L: LayoutRef>(link: &'a L, bytes: &[u8]) -> (usize, &'a
 }
 
 /// The longest frame of any format of `link`.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(crate) fn link_max_len<L: LayoutRef>(link: &L) -> usize {
     let first = link.layout().max_len;
     link.others().iter().fold(first, |m, f| m.max(f.max_len))
@@ -409,7 +409,7 @@ pub(crate) fn link_max_len<L: LayoutRef>(link: &L) -> usize {
 /// [`probe`] for a link of one or several formats: the candidate is probed by the format its
 /// sync selects ([`select`]), with frames longer than that format's `max_len` or `limit`
 /// rejected. Returns the format's index with the verdict.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(crate) fn probe_link<L: LayoutRef>(
     link: &L,
     readable: &[u8],
@@ -427,7 +427,7 @@ pub(crate) fn probe_link<L: LayoutRef>(
 
 /// [`probe_synced`] for a link of one or several formats, once the candidate's bytes are known
 /// to match some format's sync (the engine's search for a candidate has just compared them).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(crate) fn probe_link_synced<L: LayoutRef>(
     link: &L,
     readable: &[u8],
@@ -445,7 +445,7 @@ pub(crate) fn probe_link_synced<L: LayoutRef>(
 
 /// [`probe`] once the candidate's bytes are known to match the sync bytes, as many of them as
 /// there are (the engine's search for a candidate has just compared them): every other rule.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(crate) fn probe_synced<L: LayoutRef>(
     layout: &L,
     readable: &[u8],

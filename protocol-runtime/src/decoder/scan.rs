@@ -25,7 +25,7 @@ use crate::layout::LayoutRef;
 /// Per frame, only a count and the offset change: a frame's bytes are what the scan did not
 /// skip, added once at the end. Skipped bytes (rare on a good link) go straight to the stats,
 /// out of the loop's registers.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn scan<L: LayoutRef>(
     layout: &L,
     readable: &[u8],

@@ -19,7 +19,7 @@ use crate::layout::{ByteOrder, FrameLayout, LayoutRef, LengthRule, Pos};
 /// With several formats, a byte loop that asks every format at each offset (a few formats,
 /// each deciding on its first byte nearly always): the search stops at the first start, so a
 /// stream costs each byte once whatever the formats' syncs.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn find_link<L: LayoutRef>(link: &L, data: &[u8]) -> usize {
     let others = link.others();
     if others.is_empty() {
@@ -44,7 +44,7 @@ fn find_any(first: &FrameLayout<'_>, others: &[FrameLayout<'_>], data: &[u8]) ->
 ///
 /// A layout known at compile time has a constant [`FrameLayout::sync_set`]: the branch on it
 /// folds away, and a single sync costs what it did before sync sets existed.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn find_candidate(layout: &FrameLayout<'_>, data: &[u8]) -> usize {
     if layout.sync_set.is_empty() {
         find_sync(layout.sync, data)
@@ -118,7 +118,7 @@ fn find_sync(sync: &[u8], data: &[u8]) -> usize {
 /// The first offset of `byte` in `data`: `memchr` (vector compares) on hosts; elsewhere
 /// (microcontrollers) a plain loop, where `memchr`'s word-at-a-time code costs more flash than
 /// it saves time on a UART's chunks.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn find_byte(byte: u8, data: &[u8]) -> Option<usize> {
     if HOST {
         memchr::memchr(byte, data)
@@ -133,7 +133,7 @@ const HIGH: u64 = 0x8080_8080_8080_8080;
 
 /// The high bit of every zero byte of `x` set, and maybe of bytes above a zero byte (a borrow
 /// runs upwards): the lowest flag is exact, and no zero byte goes unflagged.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 const fn zero_byte_flags(x: u64) -> u64 {
     x.wrapping_sub(LOW) & !x & HIGH
 }
@@ -177,7 +177,7 @@ struct Lead {
 impl Lead {
     /// The test for `layout`'s frames of at most `limit` bytes; `None` if its sync is empty
     /// (every offset may start a frame).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn of(layout: &FrameLayout<'_>, limit: usize) -> Option<Self> {
         let (&first, more) = layout.sync.split_first()?;
         let (reach, mask, value) = match *more {
@@ -195,7 +195,7 @@ impl Lead {
     /// A byte that is not `first` and, unless every byte does, fails the second byte's test:
     /// behind the staged input, the offsets of [`frame_may_be_inside`]'s unmasked blocks past
     /// the pending bytes fail on it, and so do those whose second byte is in it.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn filler(self) -> u8 {
         // `!first` is not `first`; if it passes the second byte's test, flipping the lowest
         // bit that test reads fails it, and leaves a byte that is still not `first` (which
@@ -209,7 +209,7 @@ impl Lead {
     }
 
     /// Whether offset `i` of `data` passes: a byte `reach` on that `data` does not hold passes.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn passes(self, data: &[u8], i: usize) -> bool {
         data.get(i) == Some(&self.first)
             && data
@@ -222,7 +222,7 @@ impl Lead {
 /// most `limit` bytes, as its offset and those bits; `None` if there is none (no length field
 /// at a fixed offset, or every value of it fits). A length rule with parts that header values
 /// decide (a marker value announcing a wider length) is left alone.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn length_zero_bits(layout: &FrameLayout<'_>, limit: usize) -> Option<(usize, u8)> {
     let (LengthRule::Field { field, adjust } | LengthRule::FieldOrBare { field, adjust, .. }) =
         layout.length
@@ -276,7 +276,7 @@ fn length_zero_bits(layout: &FrameLayout<'_>, limit: usize) -> Option<(usize, u8
 /// Whole 64-byte blocks are compared byte by byte under a mask, with no branch per byte: the
 /// compiler turns each block into a few vector compares and one test; a search that stops at
 /// the first match mispredicts its exit once per call, at a length that changes every time.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn may_start_lead(lead: Option<Lead>, data: &[u8], n: usize) -> bool {
     let Some(lead) = lead else {
         return n > 0;
@@ -313,7 +313,7 @@ fn may_start_exact(first: u8, reach: usize, mask: u8, value: u8, rest: &[u8], le
 
 /// [`may_start_lead`] on one block: whether one of the first `min(left, SCAN)` offsets of
 /// `data` passes `lead`; `None` if `data` holds fewer than a block and its reach.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn block_may_start(lead: Lead, data: &[u8], left: usize) -> Option<bool> {
     // One bounds check: with the lead's reach a constant, the two chunks of the block are known
     // to fit.
@@ -341,7 +341,7 @@ fn block_may_start(lead: Lead, data: &[u8], left: usize) -> Option<bool> {
 /// The first offset of `data` holding `sync`'s first byte, or `data.len()`: the search inside
 /// a pending candidate, a few dozen bytes. Eight bytes per step (a zero-byte test on a word
 /// xored with the byte repeated); a call to `memchr` costs more on so few bytes.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn find_first_byte(sync: &[u8], data: &[u8]) -> usize {
     let Some(&first) = sync.first() else {
         return 0;
@@ -374,7 +374,7 @@ fn find_first_byte(sync: &[u8], data: &[u8]) -> usize {
 
 /// [`may_start_lead`] for `link`'s frames of at most `limit` bytes: with a sync set or several
 /// formats, always `true` (the exact search then decides).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn may_start<L: LayoutRef>(link: &L, data: &[u8], n: usize, limit: usize) -> bool {
     let layout = link.layout();
     if layout.sync_set.is_empty() && link.others().is_empty() {
@@ -386,7 +386,7 @@ fn may_start<L: LayoutRef>(link: &L, data: &[u8], n: usize, limit: usize) -> boo
 
 /// [`may_start`] on the first block of `data`, `n <= SCAN`; `None` if `data` holds fewer than a
 /// block and its reach.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn may_start_block<L: LayoutRef>(link: &L, data: &[u8], n: usize, limit: usize) -> Option<bool> {
     let layout = link.layout();
     if layout.sync_set.is_empty() && link.others().is_empty() {
@@ -401,7 +401,7 @@ fn may_start_block<L: LayoutRef>(link: &L, data: &[u8], n: usize, limit: usize) 
 
 /// The first offset of `data` holding the first byte of `link`'s sync (any byte of its sync
 /// set; of any format's), or `data.len()`.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn find_lead<L: LayoutRef>(link: &L, data: &[u8]) -> usize {
     let layout = link.layout();
     let others = link.others();
@@ -418,7 +418,7 @@ fn find_lead<L: LayoutRef>(link: &L, data: &[u8]) -> usize {
 }
 
 /// The shortest frame of `link`: no candidate with fewer bytes after its start is decided.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn shortest_frame<L: LayoutRef>(link: &L) -> usize {
     let shortest = |f: &FrameLayout<'_>| f.min_len.max(f.header_span()).max(1);
     let first = shortest(link.layout());
@@ -442,7 +442,7 @@ fn shortest_frame<L: LayoutRef>(link: &L) -> usize {
 /// offset among the last pending bytes that passes; those past the pending bytes hold the
 /// filler, which fails), and the mask's four loads and four ands (of about 40 instructions)
 /// are saved.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn frame_may_be_inside<L: LayoutRef>(
     layout: &L,
     readable: &[u8],
@@ -497,7 +497,7 @@ pub(super) const FILL: usize = SCAN;
 
 /// A byte that starts no frame of `link`'s single format: its lead's [`Lead::filler`]. (With a
 /// sync set or several formats there is no block test, and the byte is never read.)
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn filler<L: LayoutRef>(link: &L, limit: usize) -> u8 {
     Lead::of(link.layout(), limit).map_or(0, Lead::filler)
 }
@@ -512,7 +512,7 @@ pub(super) fn filler<L: LayoutRef>(link: &L, limit: usize) -> u8 {
 /// (a rejection is final: more bytes do not change it), since it is asked again each time the
 /// input runs out while the candidate waits. On hosts, asked only where
 /// [`frame_may_be_inside`] says yes.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn frame_inside<L: LayoutRef>(
     layout: &L,
     readable: &[u8],

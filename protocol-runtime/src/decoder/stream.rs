@@ -199,7 +199,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     ///
     /// Returns `None` when the input is exhausted; a partial frame at its end stays buffered
     /// for the next call. Rejections and garbage are counted in [`stats`](Self::stats).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn decode<'s, 'i: 's>(&'s mut self, input: &mut &'i [u8]) -> Option<Frame<'s>> {
         self.next_frame(input, false)
     }
@@ -295,7 +295,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// The [scan](scan::scan) of the pending bytes, for [`feed`](Self::feed), once the chunk
     /// is staged: frames, rejected candidates and skipped runs, until a candidate needs more
     /// bytes than are pending (left to the general engine).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn scan_buffered(&mut self, sink: &mut impl FnMut(Frame<'_>)) {
         let limit = self.limit();
         // (Never `None`: `start <= end <= N`. Branches the processor predicts, where fallback
@@ -351,7 +351,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     // Inlined into the caller's loop: the common step (a frame found in the input) is a few
     // dozen instructions, which a call and a return per frame would add to; the buffered
     // steps stay out of line.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn next_frame<'s, 'i: 's>(
         &'s mut self,
         input: &mut &'i [u8],
@@ -446,13 +446,13 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     }
 
     /// Frames longer than this are rejected (and longer than their own format's `max_len`).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub(super) fn limit(&self) -> usize {
         link_max_len(&self.layout).min(N)
     }
 
     /// One event's worth of work.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn step(&mut self, input: &mut &[u8], at_end: bool) -> Step {
         if self.start < self.end {
             self.step_buffered(input, at_end)
@@ -464,7 +464,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     }
 
     /// A step on the caller's input, with nothing pending.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn step_input(&mut self, input: &mut &[u8], at_end: bool) -> Step {
         // (A buffer of no bytes stages nothing: scanned in place, where every candidate is
         // too long.)
@@ -491,7 +491,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
 
     /// One step on the bytes at `P`: a skipped run, a frame, a rejected candidate (which
     /// costs one byte), or what `P` does with a candidate that needs more bytes.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn step_in<P: Place>(&mut self, input: &mut &[u8], at_end: bool) -> Step {
         let limit = self.limit();
         loop {
@@ -535,7 +535,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// [`stage`](Self::stage) has just written its filler behind the pending bytes, and the
     /// block test reads whole blocks unmasked
     /// ([`search::frame_may_be_inside`](super::search::frame_may_be_inside)).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn frame_inside(&mut self, limit: usize, filled: bool) -> bool {
         if !EARLY_TRUNCATION {
             return false;
@@ -554,7 +554,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     }
 
     /// [`frame_inside`](Self::frame_inside)'s body.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn frame_inside_here(&mut self, limit: usize, filled: bool) -> bool {
         let pending = self.pending();
         // (The block test on hosts only: on a microcontroller the exact search is smaller and
@@ -639,7 +639,7 @@ trait Place {
 struct InInput;
 
 impl Place for InInput {
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn bytes<'a, L: LayoutRef, const N: usize>(
         decoder: &'a StreamDecoder<L, N>,
         input: &'a [u8],
@@ -650,7 +650,7 @@ impl Place for InInput {
         Some((input, decoder.position))
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn readable<'a, L: LayoutRef, const N: usize>(
         _decoder: &'a StreamDecoder<L, N>,
         input: &'a [u8],
@@ -658,12 +658,12 @@ impl Place for InInput {
         input
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn idle<L: LayoutRef, const N: usize>(_decoder: &mut StreamDecoder<L, N>) -> Step {
         Step::Idle
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn advance<L: LayoutRef, const N: usize>(
         decoder: &mut StreamDecoder<L, N>,
         input: &mut &[u8],
@@ -672,7 +672,7 @@ impl Place for InInput {
         decoder.consume(input, n);
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn frame<L: LayoutRef, const N: usize>(
         decoder: &mut StreamDecoder<L, N>,
         len: usize,
@@ -688,7 +688,7 @@ impl Place for InInput {
         }
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn need<L: LayoutRef, const N: usize>(
         decoder: &mut StreamDecoder<L, N>,
         input: &mut &[u8],
@@ -710,7 +710,7 @@ impl Place for InInput {
 struct InBuffer;
 
 impl Place for InBuffer {
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn bytes<'a, L: LayoutRef, const N: usize>(
         decoder: &'a StreamDecoder<L, N>,
         _input: &'a [u8],
@@ -720,7 +720,7 @@ impl Place for InBuffer {
         Some((region, offset))
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn readable<'a, L: LayoutRef, const N: usize>(
         decoder: &'a StreamDecoder<L, N>,
         _input: &'a [u8],
@@ -728,14 +728,14 @@ impl Place for InBuffer {
         decoder.buf.get(decoder.start..).unwrap_or_default()
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn idle<L: LayoutRef, const N: usize>(decoder: &mut StreamDecoder<L, N>) -> Step {
         decoder.start = 0;
         decoder.end = 0;
         Step::Idle
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn advance<L: LayoutRef, const N: usize>(
         decoder: &mut StreamDecoder<L, N>,
         _input: &mut &[u8],
@@ -744,7 +744,7 @@ impl Place for InBuffer {
         decoder.start = decoder.start.wrapping_add(n);
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn frame<L: LayoutRef, const N: usize>(
         decoder: &mut StreamDecoder<L, N>,
         len: usize,
@@ -761,7 +761,7 @@ impl Place for InBuffer {
         }
     }
 
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn need<L: LayoutRef, const N: usize>(
         decoder: &mut StreamDecoder<L, N>,
         input: &mut &[u8],

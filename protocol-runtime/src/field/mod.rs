@@ -58,7 +58,7 @@ impl UnknownPolicy {
     /// assert_eq!(UnknownPolicy::Keep.unknown(9), Ok(()));
     /// assert_eq!(UnknownPolicy::Reject.unknown(9), Err(DecodeError::InvalidEnum { value: 9, place: protocol_runtime::error::Place::NONE }));
     /// ```
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub const fn unknown(self, raw: u64) -> Result<(), DecodeError> {
         match self {
             UnknownPolicy::Keep => Ok(()),
@@ -74,7 +74,7 @@ impl UnknownPolicy {
     /// # Errors
     ///
     /// [`EncodeError::ValueOutOfRange`] for an unknown value when unknown values are rejected.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub const fn encode(self, known: bool) -> Result<(), EncodeError> {
         match (self, known) {
             (UnknownPolicy::Reject, false) => Err(EncodeError::ValueOutOfRange {
@@ -104,7 +104,7 @@ impl UnknownPolicy {
 /// assert_eq!(enum_raw(Mode::Unknown(7), to_raw, from_raw), Ok(7));
 /// assert_eq!(enum_raw(Mode::Unknown(0), to_raw, from_raw), Err(EncodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn enum_raw<E: Copy + PartialEq, R: Copy>(
     value: E,
     to_raw: fn(E) -> R,
@@ -124,7 +124,7 @@ pub fn enum_raw<E: Copy + PartialEq, R: Copy>(
 /// ```
 /// assert_eq!(protocol_runtime::field::bit_mask(4), 0xF);
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub const fn bit_mask(width: u32) -> u64 {
     match 1u64.checked_shl(width) {
         Some(bit) => bit.wrapping_sub(1),
@@ -137,7 +137,7 @@ pub const fn bit_mask(width: u32) -> u64 {
 /// ```
 /// assert_eq!(protocol_runtime::field::get_bits(0b1011_0110, 4, 3), 0b011);
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub const fn get_bits(word: u64, shift: u32, width: u32) -> u64 {
     match word.checked_shr(shift) {
         Some(bits) => bits & bit_mask(width),
@@ -158,7 +158,7 @@ pub const fn get_bits(word: u64, shift: u32, width: u32) -> u64 {
 /// assert_eq!(set_bits(0b0001, 0b101, 1, 3), Ok(0b1011));
 /// assert_eq!(set_bits(0, 16, 0, 4), Err(EncodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub const fn set_bits(word: u64, value: u64, shift: u32, width: u32) -> Result<u64, EncodeError> {
     if value > bit_mask(width) {
         return Err(EncodeError::ValueOutOfRange {
@@ -186,7 +186,7 @@ pub const fn set_bits(word: u64, value: u64, shift: u32, width: u32) -> Result<u
 /// assert_eq!(take_sized(&mut r, 2, 4), Ok(&[1, 2][..]));
 /// assert_eq!(take_sized(&mut Reader::new(&[1, 2, 3]), 3, 2), Err(DecodeError::SizeMismatch { place: protocol_runtime::error::Place::NONE }));
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn take_sized<'a>(r: &mut Reader<'a>, len: u64, max: usize) -> Result<&'a [u8], DecodeError> {
     let taken = r.take(usize::try_from(len).unwrap_or(usize::MAX))?;
     if taken.len() > max {
@@ -209,7 +209,7 @@ pub fn take_sized<'a>(r: &mut Reader<'a>, len: u64, max: usize) -> Result<&'a [u
 /// assert_eq!(array_len(3, 4), Ok(3));
 /// assert_eq!(array_len(5, 4), Err(DecodeError::SizeMismatch { place: protocol_runtime::error::Place::NONE }));
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn array_len(len: u64, max: usize) -> Result<usize, DecodeError> {
     match usize::try_from(len) {
         Ok(n) if n <= max => Ok(n),
@@ -230,7 +230,7 @@ pub fn array_len(len: u64, max: usize) -> Result<usize, DecodeError> {
 /// assert!(check_stated_len(3, 3).is_ok());
 /// assert!(check_stated_len(3, 4).is_err());
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn check_stated_len(len: usize, stated: u64) -> Result<(), EncodeError> {
     if len as u64 == stated {
         Ok(())
@@ -249,7 +249,7 @@ pub fn check_stated_len(len: usize, stated: u64) -> Result<(), EncodeError> {
 /// assert!(more(&Reader::new(&[0])));
 /// assert!(!more(&Reader::new(&[])));
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn more(r: &Reader<'_>) -> bool {
     r.remaining() > 0
 }
@@ -262,7 +262,7 @@ pub fn more(r: &Reader<'_>) -> bool {
 /// let r = Reader::new(&[0; 9]);
 /// assert_eq!(group_full(&r, 8), DecodeError::PayloadLength { expected: 8, actual: 9 });
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn group_full(r: &Reader<'_>, size: usize) -> DecodeError {
     DecodeError::PayloadLength {
         expected: size,
@@ -279,7 +279,7 @@ pub fn group_full(r: &Reader<'_>, size: usize) -> DecodeError {
 /// assert_eq!(rest_but(&Reader::new(&[1, 2, 3]), 1), &[1, 2][..]);
 /// assert_eq!(rest_but(&Reader::new(&[1]), 2), &[][..]);
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn rest_but<'a>(r: &Reader<'a>, keep: usize) -> &'a [u8] {
     let rest = r.rest();
     rest.get(..rest.len().saturating_sub(keep))

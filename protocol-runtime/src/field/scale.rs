@@ -32,7 +32,7 @@ pub enum Rounding {
     clippy::arithmetic_side_effects,
     reason = "float arithmetic (F is f32 or f64): it neither wraps nor panics"
 )]
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn to_physical<F: Float>(raw: F, factor: F, offset: F) -> F {
     match reciprocal_integer(factor) {
         Some(n) => raw / n + offset,
@@ -46,7 +46,7 @@ pub fn to_physical<F: Float>(raw: F, factor: F, offset: F) -> F {
     clippy::arithmetic_side_effects,
     reason = "float arithmetic (F is f32 or f64): it neither wraps nor panics"
 )]
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn reciprocal_integer<F: Float>(factor: F) -> Option<F> {
     let inv = F::ONE / factor;
     let n = if inv >= F::ZERO {
@@ -72,7 +72,7 @@ fn reciprocal_integer<F: Float>(factor: F) -> Option<F> {
     clippy::arithmetic_side_effects,
     reason = "float arithmetic (F is f32 or f64): it neither wraps nor panics"
 )]
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn within_clamp<F: Float>(physical: F, lo: F, hi: F) -> bool {
     let slack = F::CLAMP_SLACK * (hi - lo).at_least_one();
     physical >= lo - slack && physical <= hi + slack
@@ -90,7 +90,7 @@ pub fn within_clamp<F: Float>(physical: F, lo: F, hi: F) -> bool {
 /// assert_eq!(check_clamp(0.25, -0.5, 0.5), Ok(0.25));
 /// assert_eq!(check_clamp(0.75, -0.5, 0.5), Err(DecodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn check_clamp<F: Float>(physical: F, lo: F, hi: F) -> Result<F, DecodeError> {
     if within_clamp(physical, lo, hi) {
         Ok(physical)
@@ -107,7 +107,7 @@ pub fn check_clamp<F: Float>(physical: F, lo: F, hi: F) -> Result<F, DecodeError
 /// ```
 /// assert_eq!(protocol_runtime::field::clamp(7.0, -1.0, 1.0), 1.0);
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn clamp<F: Float>(physical: F, lo: F, hi: F) -> F {
     if physical < lo {
         lo
@@ -136,7 +136,7 @@ pub fn clamp<F: Float>(physical: F, lo: F, hi: F) -> F {
     clippy::arithmetic_side_effects,
     reason = "float arithmetic (F is f32 or f64): it neither wraps nor panics"
 )]
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn quantize<F: Float>(physical: F, factor: F, offset: F, rounding: Rounding) -> F {
     let q = (physical - offset) / factor;
     let nearest = if q >= F::ZERO {
@@ -183,11 +183,11 @@ macro_rules! raw_ints {
             const BELOW_F32: f32 = $below32;
             // Every upper bound is a power of two: the same number in `f32`.
             const ABOVE_F32: f32 = $above;
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             fn cut(x: f64) -> Self {
                 x as $t
             }
-            #[inline(always)]
+            #[cfg_attr(not(protocol_opt0), inline(always))]
             fn cut_f32(x: f32) -> Self {
                 x as $t
             }
@@ -224,7 +224,7 @@ raw_ints! {
 /// assert_eq!(fit::<i32>(-2_147_483_648.0f32), Ok(i32::MIN));
 /// assert_eq!(fit::<i16>(f32::NAN), Err(EncodeError::ValueOutOfRange { place: protocol_runtime::error::Place::NONE }));
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn fit<T: RawInt>(x: impl Float) -> Result<T, EncodeError> {
     x.fit()
 }

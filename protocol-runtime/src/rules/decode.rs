@@ -14,7 +14,7 @@ impl PacketRules<'_> {
 
     /// The largest acknowledgement data: what the largest frame holds after an
     /// acknowledgement's header and before the trailer.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     #[must_use]
     pub fn ack_max(&self) -> usize {
         let header = self.ack.map_or(self.header_len, |a| a.header_len);
@@ -30,7 +30,7 @@ impl PacketRules<'_> {
     ///
     /// [`DecodeError::Truncated`] if the frame is shorter than its header,
     /// [`DecodeError::PayloadLength`] if the data is longer than [`ack_max`](Self::ack_max).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn ack_data<'f>(&self, frame: &'f [u8]) -> Result<Option<&'f [u8]>, DecodeError> {
         let Some(ack) = self.ack else {
             return Ok(None);
@@ -66,7 +66,7 @@ impl PacketRules<'_> {
     ///
     /// [`DecodeError::Truncated`] if the frame ends before the field (or the format has no
     /// field `i`).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn key_value(&self, frame: &[u8], i: usize) -> Result<u64, DecodeError> {
         // A match, not `Option::and_then`: a closure is a function of its own that the
         // optimiser may keep apart (at opt-level "s", once per firmware), and the field's
@@ -83,7 +83,7 @@ impl PacketRules<'_> {
     /// # Errors
     ///
     /// [`DecodeError::Truncated`] if the frame ends before a key field.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn key(&self, frame: &[u8]) -> Result<u64, DecodeError> {
         let mut key = 0u64;
         each!(self.key, |f| {
@@ -99,7 +99,7 @@ impl PacketRules<'_> {
     ///
     /// [`DecodeError::UnknownDirection`] if none holds (a frame too short for a tested field
     /// holds none; its header read says `Truncated` first).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn direction(&self, frame: &[u8]) -> Result<usize, DecodeError> {
         // Matched apart as `each!` does, for the same reason.
         let found = match self.directions {
@@ -120,7 +120,7 @@ impl PacketRules<'_> {
     /// Whether the header of `frame` tells direction `d` ([`direction`](Self::direction) would
     /// say `d`): always, when the header tells no direction. For an encoder's check, without
     /// the decoder's errors.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     #[must_use]
     pub fn tells(&self, frame: &[u8], d: usize) -> bool {
         // Matched apart as `each!` does, for the same reason.
@@ -144,7 +144,7 @@ impl PacketRules<'_> {
     ///
     /// [`DecodeError::Truncated`] if the frame is shorter than its header and trailer, and the
     /// errors of [`Stuffing::unstuff`](crate::stuffing::Stuffing::unstuff).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn payload<'f>(
         &self,
         frame: &'f [u8],
@@ -162,7 +162,7 @@ impl PacketRules<'_> {
     /// # Errors
     ///
     /// As [`payload`](Self::payload).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn payload_from<'f>(
         &self,
         frame: &'f [u8],
@@ -193,7 +193,7 @@ impl PacketRules<'_> {
     ///
     /// [`DecodeError::PayloadLength`] if the payload is not `carried` bytes long, and the
     /// errors of [`zero_filled`].
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn filled<'p>(
         &self,
         payload: &'p [u8],

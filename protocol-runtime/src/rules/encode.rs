@@ -11,7 +11,7 @@ use crate::zeros::trimmed_len;
 /// Encoding.
 impl PacketRules<'_> {
     /// Where the payload of `body` starts, before a wider length moves it.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     #[must_use]
     pub fn start(&self, body: &Body<'_>) -> usize {
         match *body {
@@ -24,7 +24,7 @@ impl PacketRules<'_> {
     /// The stuffing of `body`'s payload: the format's, for a command's or a struct's payload;
     /// none for acknowledgement data, which [`ack_data`](Self::ack_data) gives as it is on the
     /// wire.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn stuffing_of(&self, body: &Body<'_>) -> Option<Stuffing<'_>> {
         self.stuffing.filter(|_| !matches!(body, Body::Ack))
     }
@@ -32,7 +32,7 @@ impl PacketRules<'_> {
     /// True when a command's payload is written aside before it is placed in the frame (its
     /// size on the wire is known only once it is written: trailing zeros trimmed, bytes
     /// stuffed, or fields after the carried ones cut).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     #[must_use]
     pub fn writes_aside(&self, body: &Body<'_>) -> bool {
         let cut = matches!(
@@ -48,7 +48,7 @@ impl PacketRules<'_> {
 
     /// The bytes a written payload takes on the wire: cut to what the format carries, its
     /// trailing zeros trimmed, stuffed.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     #[must_use]
     pub fn wire_len(&self, body: &Body<'_>, written: &[u8]) -> usize {
         let sent = self.sent(body, written);
@@ -60,7 +60,7 @@ impl PacketRules<'_> {
     }
 
     /// The bytes of a written payload that are sent, before stuffing.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn sent<'w>(&self, body: &Body<'_>, written: &'w [u8]) -> &'w [u8] {
         let written = match *body {
             Body::Command {
@@ -76,7 +76,7 @@ impl PacketRules<'_> {
 
     /// The trailer's bytes in a frame of `body` whose payload takes `plen` bytes: none for a
     /// bare header (an acknowledgement without data), else the format's.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn trailer_for(&self, body: &Body<'_>, plen: usize) -> usize {
         let bare = self.ack.is_some_and(|a| a.bare);
         if bare && matches!(body, Body::Ack) && plen == 0 {
@@ -88,7 +88,7 @@ impl PacketRules<'_> {
 
     /// The length of the frame of `body` whose payload takes `plen` bytes on the wire, with
     /// `flag_trailer` bytes of flag trailer: what [`assemble`](Self::assemble) writes.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     #[must_use]
     pub fn frame_len(&self, body: &Body<'_>, plen: usize, flag_trailer: usize) -> usize {
         let short = self
@@ -115,7 +115,7 @@ impl PacketRules<'_> {
     /// [`EncodeError::ValueOutOfRange`] if a key value or a header value does not fit its
     /// field, or the header written does not tell the message's direction; the errors of
     /// `write`, `header` and [`FrameLayout::seal`](crate::layout::FrameLayout::seal).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     #[allow(clippy::too_many_arguments)]
     pub fn assemble(
         &self,
@@ -153,7 +153,7 @@ impl PacketRules<'_> {
     /// # Errors
     ///
     /// [`EncodeError::BufferTooSmall`] if `buf` is shorter than `len`.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn room<'b>(
         &self,
         buf: &'b mut [u8],
@@ -187,7 +187,7 @@ impl PacketRules<'_> {
     /// # Errors
     ///
     /// [`EncodeError::BufferTooSmall`] if `buf` is shorter than the frame.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn frame<'b>(
         &self,
         buf: &'b mut [u8],
@@ -219,7 +219,7 @@ impl PacketRules<'_> {
     ///
     /// [`EncodeError::ValueOutOfRange`] if a key value does not fit its field or the header
     /// does not tell the message's direction; the errors of [`FrameLayout::seal`](crate::layout::FrameLayout::seal).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn seal(&self, frame: &mut [u8], body: &Body<'_>) -> Result<(), EncodeError> {
         self.write_body(frame, body)?;
         self.layout.seal(frame)
@@ -229,7 +229,7 @@ impl PacketRules<'_> {
     /// flag trailer: [`frame_len`](Self::frame_len) of the message's payload as it goes on the
     /// wire (written into `aside` and measured where the rules write aside; `aside` is unused
     /// otherwise and may be empty).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn message_len<M: MessagePayload>(
         &self,
         body: &Body<'_>,
@@ -257,7 +257,7 @@ impl PacketRules<'_> {
     /// # Errors
     ///
     /// The errors of [`assemble`](Self::assemble).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn encode_message<M: MessagePayload>(
         &self,
         buf: &mut [u8],
@@ -291,7 +291,7 @@ impl PacketRules<'_> {
 
     /// Writes the payload into `aside`, then places what is sent of it at `start` of `buf`,
     /// stuffed; returns its bytes on the wire.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn place_aside(
         &self,
         buf: &mut [u8],
@@ -322,7 +322,7 @@ impl PacketRules<'_> {
 
     /// Writes the acknowledgement flag and the key of `body` into `frame`, and checks that
     /// the header tells the message's direction.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn write_body(&self, frame: &mut [u8], body: &Body<'_>) -> Result<(), EncodeError> {
         if let Some(ack) = self.ack {
             let value = if matches!(body, Body::Ack) {
@@ -363,7 +363,7 @@ impl PacketRules<'_> {
     }
 }
 
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn write_field(frame: &mut [u8], field: WordField, value: u64) -> Result<(), EncodeError> {
     field
         .write(frame, value)

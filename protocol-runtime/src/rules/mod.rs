@@ -105,7 +105,7 @@ impl DirectionTest {
 
     /// Whether the header of `frame` passes the test (`None` if the frame is too short for
     /// the field).
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     fn holds(&self, frame: &[u8]) -> Option<bool> {
         match *self {
             DirectionTest::InRange { field, first, last } => {

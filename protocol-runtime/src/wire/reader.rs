@@ -142,7 +142,7 @@ impl<'a> Reader<'a> {
     /// # Errors
     ///
     /// The first error of `read`.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn array<T: Copy + Default, const N: usize>(
         &mut self,
         mut read: impl FnMut(&mut Self) -> Result<T, DecodeError>,

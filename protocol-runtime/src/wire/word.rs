@@ -7,13 +7,13 @@
 use crate::layout::{ByteOrder, WordField};
 
 /// The `N` bytes at `offset`, if they exist.
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn chunk_at<const N: usize>(bytes: &[u8], offset: usize) -> Option<[u8; N]> {
     bytes.get(offset..)?.first_chunk::<N>().copied()
 }
 
 /// Writes `bytes` over `word` (of the same length).
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 fn put<const N: usize>(word: &mut [u8], bytes: [u8; N]) -> Option<()> {
     word.first_chunk_mut::<N>()?.copy_from_slice(&bytes);
     Some(())
@@ -32,7 +32,7 @@ fn put<const N: usize>(word: &mut [u8], bytes: [u8; N]) -> Option<()> {
 /// assert_eq!(read_uint(&bytes, 1, 3, ByteOrder::Little), Some(0x56_3412));
 /// assert_eq!(read_uint(&bytes, 3, 2, ByteOrder::Big), None);
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn read_uint(bytes: &[u8], offset: usize, size: u8, order: ByteOrder) -> Option<u64> {
     // One fixed-size load per common size: no byte loop, no call to memcpy.
     match (size, order) {
@@ -69,7 +69,7 @@ pub fn read_uint(bytes: &[u8], offset: usize, size: u8, order: ByteOrder) -> Opt
 /// assert_eq!(bytes, [0x00, 0x34, 0x12]);
 /// assert_eq!(write_uint(&mut bytes, 0, 1, ByteOrder::Big, 0x100), None);
 /// ```
-#[inline(always)]
+#[cfg_attr(not(protocol_opt0), inline(always))]
 pub fn write_uint(
     bytes: &mut [u8],
     offset: usize,
@@ -124,7 +124,7 @@ impl WordField {
     /// Whether the field is well formed: `size` in `1..=8`, `width >= 1` and the bits
     /// `shift..shift + width` inside the word. Reads and writes of a malformed field return
     /// `None`.
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub const fn is_valid(&self) -> bool {
         let bits = (self.size as u32).wrapping_mul(8);
         let top = (self.shift as u32).wrapping_add(self.width as u32);
@@ -139,7 +139,7 @@ impl WordField {
     /// let len = WordField { at: Pos::Start(1), size: 2, order: ByteOrder::Little, shift: 0, width: 10 };
     /// assert_eq!(len.max_value(), 1023);
     /// ```
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub const fn max_value(&self) -> u64 {
         if self.width == 0 {
             0
@@ -165,7 +165,7 @@ impl WordField {
     /// assert_eq!(len.read(&frame), Some(0x02C));
     /// assert_eq!(ver.read(&frame), Some(3));
     /// ```
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn read(&self, frame: &[u8]) -> Option<u64> {
         if !self.is_valid() {
             return None;
@@ -189,7 +189,7 @@ impl WordField {
     /// assert_eq!(frame, [0xFF, 0x17]);
     /// assert_eq!(ver.write(&mut frame, 64), None);
     /// ```
-    #[inline(always)]
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn write(&self, frame: &mut [u8], value: u64) -> Option<()> {
         if !self.is_valid() || value > self.max_value() {
             return None;

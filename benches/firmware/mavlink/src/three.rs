@@ -5,7 +5,9 @@
 // `three_messages!(module, from_frame)` decodes each frame with `Packet::from_frame` (every
 // message of the spec), matches the message and answers with `Packet::encode`;
 // `three_messages!(module, from_frame_as)` decodes it with `Packet::from_frame_as` for each of
-// the three messages alone and answers with `Packet::encode_as`.
+// the three messages alone and answers with `Packet::encode_as`;
+// `three_messages!(module, handler)` decodes it with `Packet::from_frame` and hands it to a
+// `Handler` that writes the three methods (`dispatch`), answering with `Packet::encode`.
 //
 // The received bytes come from `black_box`, so nothing is constant folded.
 
@@ -93,6 +95,37 @@ macro_rules! three_messages {
             } else if let Ok(Some((_, h))) = Packet::from_frame_as::<Heartbeat>(frame) {
                 answer_as(&h, seq, out);
             }
+        }
+
+        /// The node as a `Handler`: the three methods it writes, every other one the
+        /// default, which ignores the message.
+        struct Node<'o> {
+            seq: u8,
+            out: &'o mut [u8],
+        }
+
+        impl $module::Handler for Node<'_> {
+            fn heartbeat(&mut self, _: &Header, h: &Heartbeat) {
+                answer(h, &mut self.seq, self.out);
+            }
+            fn attitude(&mut self, _: &Header, a: &Attitude) {
+                attitude(a);
+            }
+            fn global_position_int(&mut self, _: &Header, p: &GlobalPositionInt) {
+                position(p);
+            }
+        }
+
+        /// Every message of the spec decoded, then handed to the handler (`dispatch`).
+        #[allow(dead_code)]
+        fn handler(frame: &[u8], seq: &mut u8, out: &mut [u8]) {
+            let Ok(packet) = Packet::from_frame(frame) else {
+                return;
+            };
+            let mut node = Node { seq: *seq, out };
+            // A HEARTBEAT's answer is sent by the method: `dispatch` returns none.
+            let _ = $module::dispatch(&mut node, &packet);
+            *seq = node.seq;
         }
 
         #[cortex_m_rt::entry]
