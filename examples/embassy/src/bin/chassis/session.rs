@@ -29,10 +29,7 @@ async fn main(_spawner: Spawner) {
     hprintln!("size decoder {}", size_of_val(&decoder));
     hprintln!("size responder {}", size_of_val(&responder));
     // The host's machine as this target sizes it: as many slots, its longest request.
-    hprintln!(
-        "size requester {}",
-        size_of::<roborts::Requester<SLOTS>>()
-    );
+    hprintln!("size requester {}", size_of::<roborts::Requester<SLOTS>>());
     hprintln!("ready");
     let outcome = chassis::serve_session(
         &mut rx,
