@@ -21,7 +21,7 @@ use tokio_serial::SerialPortBuilderExt;
 
 protocol!("../specs/hflink.toml");
 
-use hflink::{ChassisCoord, Header, MAX_FRAME_LEN, Message, Packet, Request, SESSION};
+use hflink::{ChassisCoord, Header, MAX_FRAME_LEN, Message, Packet, Request, Session};
 
 fn to_slave(request: Request) -> Packet {
     Packet {
@@ -62,7 +62,7 @@ async fn main() -> ExitCode {
         }
     };
     // Up to 4 requests open at once.
-    let (client, mut unsolicited) = Client::spawn::<_, 4, MAX_FRAME_LEN>(port, &SESSION);
+    let (client, mut unsolicited) = Client::spawn::<_, 4, MAX_FRAME_LEN>(port, Session);
 
     let read = to_slave(Request::ReadRobotSpeed);
     match client.request(&read).await {

@@ -116,7 +116,7 @@ struct Twin<'c, 'r> {
     rules: &'r SessionRules<'r>,
     format: usize,
     options: &'c Options,
-    responder: Box<Responder<'r, SLOTS, FRAME>>,
+    responder: Box<Responder<&'r SessionRules<'r>, SLOTS, FRAME>>,
     rng: u64,
     start: Instant,
     tally: Tally,

@@ -22,7 +22,7 @@ impl Codec<'_> {
     ///     Interpreter::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../specs/hflink.toml"))?;
     /// let codec = interpreter.codec();
     /// let refused = codec.with_session(|rules| {
-    ///     let mut requester = Requester::<'_, 4, 128>::new(rules);
+    ///     let mut requester = Requester::<_, 4, 128>::new(rules);
     ///     // READ_SYSTEM_INFO from 0x01 to 0x11, before the handshake.
     ///     let mut frame = [0xFF, 0xFF, 0x01, 0x11, 0x00, 0x01, 0x01, 0x14];
     ///     requester.send(0, &mut frame)

@@ -35,7 +35,7 @@ use std::thread;
 use std::time::{Duration, Instant};
 
 use link::{DOWN, Fault, Link, UP};
-use protocol_kit::session::{Due, Received, Requester, Resolution, Ticket};
+use protocol_kit::session::{Due, Received, Resolution, Ticket};
 use protocol_kit::{FrameLayout, StreamDecoder};
 
 protocol_kit::protocol!("../specs/roborts.toml");
@@ -243,7 +243,7 @@ struct Tally {
 
 /// The host: the requester, the relay and what each request became.
 struct Host {
-    requester: Requester<'static, SLOTS, { roborts::MAX_FRAME_LEN }>,
+    requester: roborts::Requester<SLOTS>,
     decoder: StreamDecoder<&'static FrameLayout<'static>, { roborts::DECODER_BUFFER_LEN }>,
     epoch: Instant,
     /// Wall-clock milliseconds per millisecond of the session's clock.
@@ -470,7 +470,7 @@ fn main() -> ExitCode {
         }
     };
     let mut host = Host {
-        requester: Requester::new(&roborts::SESSION),
+        requester: roborts::Requester::new(roborts::Session),
         decoder: StreamDecoder::new(&roborts::LAYOUT),
         epoch: Instant::now(),
         scale,

@@ -3,10 +3,11 @@
 //! decoder and answered in one of two ways, so that the cost of the session machinery is the
 //! difference between two builds of the same firmware:
 //!
-//! - [`serve_session`] passes each frame through the runtime's [`Responder`] for the spec's
-//!   `[session]`: a new request is delivered to the [`Chassis`] and acknowledged, a request
-//!   received again (a retry whose acknowledgement was lost, a duplicate of the link) is
-//!   acknowledged again without being delivered twice.
+//! - [`serve_session`] passes each frame through the runtime's session
+//!   [`Responder`](roborts::Responder) for the spec's `[session]`: a new request is delivered
+//!   to the [`Chassis`] and acknowledged, a request received again (a retry whose
+//!   acknowledgement was lost, a duplicate of the link) is acknowledged again without being
+//!   delivered twice.
 //! - [`serve_by_hand`] delivers every frame and acknowledges it by copying its header: what a
 //!   firmware without the session machinery does, duplicates delivered twice.
 //!
@@ -16,7 +17,7 @@
 //! prints what was delivered and what each request cost.
 
 use protocol_kit::embedded_io_async::{Read, Write};
-use protocol_kit::session::{Incoming, Responder};
+use protocol_kit::session::Incoming;
 use protocol_kit::{Bytes, StreamDecoder};
 
 use crate::roborts::{self, ChassisSpeed, Header, Message, Packet};
@@ -34,8 +35,10 @@ pub const ANSWER_LEN: usize = 12;
 /// Bytes of one read of the UART.
 pub const READ_BUFFER: usize = 32;
 
-/// The session machine of this firmware.
-pub type ChassisResponder = Responder<'static, SLOTS, ANSWER_LEN>;
+/// The session machine of this firmware. The generated machine (over the `Session` type rather
+/// than the `SESSION` static) lets the compiler fold the conversation and the frame rules into
+/// it.
+pub type ChassisResponder = roborts::Responder<SLOTS, ANSWER_LEN>;
 
 /// The frame finder of this firmware. The generated layout type (rather than the `LAYOUT`
 /// static) lets the compiler fold the frame rules into the decoder.
@@ -51,7 +54,7 @@ pub const fn decoder() -> Decoder {
 
 /// A responder for the spec's `[session]`.
 pub fn responder() -> ChassisResponder {
-    Responder::new(&roborts::SESSION)
+    ChassisResponder::new(roborts::Session)
 }
 
 /// What the chassis was asked to do.
@@ -121,7 +124,8 @@ fn encode_ack(header: Header, buf: &mut [u8]) -> Option<usize> {
     ack.encode(buf).ok()
 }
 
-/// Serves the chassis through the spec's session [`Responder`] until a read or write fails.
+/// Serves the chassis through the spec's session [`Responder`](roborts::Responder) until a read
+/// or write fails.
 /// `clock` is a down-counter (SysTick); `report` hears every step.
 ///
 /// # Errors

@@ -60,8 +60,8 @@ fn a_codec_requester_and_a_generated_responder_converse() {
     let codec = i.codec();
     codec
         .with_session(|rules| {
-            let mut req = Requester::<'_, 2, 64>::new(rules);
-            let mut res = Responder::<'_, 2, 64>::new(&roborts::SESSION);
+            let mut req = Requester::<_, 2, 64>::new(rules);
+            let mut res = Responder::<_, 2, 64>::new(&roborts::SESSION);
             let packet = roborts::Packet {
                 header: roborts::Header {
                     session_id: 3,

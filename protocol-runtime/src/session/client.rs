@@ -19,7 +19,7 @@
 //! // `port`: a serial port (`tokio_serial::SerialStream`), a socket, a pipe.
 //! // 4 requests open at once, frames of at most MAX_FRAME_LEN bytes.
 //! let (client, mut unsolicited) =
-//!     Client::spawn::<_, 4, { hflink::MAX_FRAME_LEN }>(port, &hflink::SESSION);
+//!     Client::spawn::<_, 4, { hflink::MAX_FRAME_LEN }>(port, hflink::Session);
 //! let to_slave = Header { sender: 0x01, receiver: 0x11 };
 //! let request = |r| Packet { header: to_slave, message: Message::Request(r) };
 //!
@@ -52,10 +52,9 @@ use tokio::io::{AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt};
 use tokio::sync::{mpsc, oneshot};
 use tokio::time::Instant;
 
-use super::{Due, Received, Requester, Resolution, SendError, SessionRules, Ticket};
+use super::{Due, Received, Requester, Resolution, SendError, SessionLayout, SessionRef, Ticket};
 use crate::decoder::{HOST_BUFFER_LEN, StreamDecoder};
 use crate::error::EncodeError;
-use crate::layout::FrameLayout;
 use crate::packet::EncodePacket;
 
 /// How a request ended: its one outcome.
@@ -132,10 +131,11 @@ impl Client {
     /// Starts the session's task on the current tokio runtime over `io`, with a requester of
     /// `SLOTS` open requests of frames of at most `FRAME` bytes (a generated module's
     /// `MAX_FRAME_LEN` fits its frames). Returns the client and the channel of unsolicited
-    /// frames. The task ends when every client is dropped or the stream fails.
+    /// frames. The task ends when every client is dropped or the stream fails. `rules` is a
+    /// generated module's `Session` or a `&'static SessionRules` ([`SessionRef`]).
     pub fn spawn<T, const SLOTS: usize, const FRAME: usize>(
         io: T,
-        rules: &'static SessionRules<'static>,
+        rules: impl SessionRef + Send + Sync + 'static,
     ) -> (Client, Unsolicited)
     where
         T: AsyncRead + AsyncWrite + Send + 'static,
@@ -143,9 +143,9 @@ impl Client {
         let (orders, inbox) = mpsc::unbounded_channel();
         let (unsolicited, frames) = mpsc::unbounded_channel();
         let tally = Arc::new(Tally::default());
-        let task = Task::<SLOTS, FRAME> {
+        let task = Task::<_, SLOTS, FRAME> {
             requester: Requester::new(rules),
-            decoder: StreamDecoder::new(rules.packet.layout),
+            decoder: StreamDecoder::new(SessionLayout(rules)),
             start: Instant::now(),
             waiting: Vec::new(),
             queued: VecDeque::new(),
@@ -228,9 +228,9 @@ impl Client {
 const CLOSED: ClientError = ClientError::Closed(std::io::ErrorKind::BrokenPipe);
 
 /// The session's task: the requester, the engine, and the requests it holds.
-struct Task<const SLOTS: usize, const FRAME: usize> {
-    requester: Requester<'static, SLOTS, FRAME>,
-    decoder: StreamDecoder<&'static FrameLayout<'static>, HOST_BUFFER_LEN>,
+struct Task<S: SessionRef, const SLOTS: usize, const FRAME: usize> {
+    requester: Requester<S, SLOTS, FRAME>,
+    decoder: StreamDecoder<SessionLayout<S>, HOST_BUFFER_LEN>,
     start: Instant,
     /// Requests the requester holds open, by ticket.
     waiting: Vec<(Ticket, Answer)>,
@@ -247,7 +247,7 @@ enum Wake {
     Due,
 }
 
-impl<const SLOTS: usize, const FRAME: usize> Task<SLOTS, FRAME> {
+impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Task<S, SLOTS, FRAME> {
     /// The loop: orders in, bytes in, deadlines; until the clients are gone or the stream
     /// fails (every request still waiting then resolves to [`ClientError::Closed`]).
     async fn run<T: AsyncRead + AsyncWrite>(

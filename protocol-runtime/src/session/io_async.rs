@@ -17,9 +17,8 @@ use core::task::Poll;
 
 use embedded_io_async::{Read, Write};
 
-use super::{Due, Received, Requester, Resolution, SendError, SessionRules, Ticket};
+use super::{Due, Received, Requester, Resolution, SendError, SessionLayout, SessionRef, Ticket};
 use crate::decoder::StreamDecoder;
-use crate::layout::FrameLayout;
 
 /// A monotonic clock in milliseconds, and a wait until an instant of it.
 pub trait Clock {
@@ -64,24 +63,33 @@ pub enum LinkError<R, W> {
 }
 
 /// A requester on a reader and a writer: a read buffer of `B` bytes, an engine of `N`, a
-/// requester of `SLOTS` slots of `FRAME` bytes.
+/// requester of `SLOTS` slots of `FRAME` bytes, over the rules `S` finds ([`SessionRef`]: a
+/// generated module's `Session`, or a `&SessionRules`).
 ///
 /// The reader's `read` is cancelled when a deadline comes first: it must lose no bytes when
 /// dropped (the buffered UART readers of embassy's HALs do not).
-pub struct Link<'r, R, W, C, const SLOTS: usize, const FRAME: usize, const N: usize, const B: usize>
-{
+pub struct Link<
+    S: SessionRef,
+    R,
+    W,
+    C,
+    const SLOTS: usize,
+    const FRAME: usize,
+    const N: usize,
+    const B: usize,
+> {
     reader: R,
     writer: W,
     clock: C,
-    requester: Requester<'r, SLOTS, FRAME>,
-    decoder: StreamDecoder<&'r FrameLayout<'r>, N>,
+    requester: Requester<S, SLOTS, FRAME>,
+    decoder: StreamDecoder<SessionLayout<S>, N>,
     buf: [u8; B],
     start: usize,
     end: usize,
 }
 
 impl<
-    'r,
+    S: SessionRef,
     R: Read,
     W: Write,
     C: Clock,
@@ -89,16 +97,16 @@ impl<
     const FRAME: usize,
     const N: usize,
     const B: usize,
-> Link<'r, R, W, C, SLOTS, FRAME, N, B>
+> Link<S, R, W, C, SLOTS, FRAME, N, B>
 {
     /// A link of `rules` on `reader` and `writer`, timed by `clock`.
-    pub fn new(rules: &'r SessionRules<'r>, reader: R, writer: W, clock: C) -> Self {
+    pub fn new(rules: S, reader: R, writer: W, clock: C) -> Self {
         Link {
             reader,
             writer,
             clock,
             requester: Requester::new(rules),
-            decoder: StreamDecoder::new(rules.packet.layout),
+            decoder: StreamDecoder::new(SessionLayout(rules)),
             buf: [0; B],
             start: 0,
             end: 0,
@@ -106,7 +114,7 @@ impl<
     }
 
     /// The requester (its handshake, its open requests).
-    pub fn requester(&self) -> &Requester<'r, SLOTS, FRAME> {
+    pub fn requester(&self) -> &Requester<S, SLOTS, FRAME> {
         &self.requester
     }
 
@@ -236,8 +244,10 @@ impl<
     }
 }
 
-impl<R, W, C, const SLOTS: usize, const FRAME: usize, const N: usize, const B: usize>
-    core::fmt::Debug for Link<'_, R, W, C, SLOTS, FRAME, N, B>
+impl<S, R, W, C, const SLOTS: usize, const FRAME: usize, const N: usize, const B: usize>
+    core::fmt::Debug for Link<S, R, W, C, SLOTS, FRAME, N, B>
+where
+    S: SessionRef + core::fmt::Debug,
 {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("Link")

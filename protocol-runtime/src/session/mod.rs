@@ -6,8 +6,9 @@
 //! (a watchdog), and duplicate suppression by sequence number.
 //!
 //! As [`PacketRules`] is for packets, a [`SessionRules`] is one value that generated code holds
-//! as a `static` (`SESSION`) and the run-time codec builds from a spec. The machines,
-//! [`Requester`] and [`Responder`], execute it over frames the engine has checked: they read
+//! as a `static` (`SESSION`, handed out as the zero-sized type `Session`) and the run-time
+//! codec builds from a spec. The machines, [`Requester`] and [`Responder`], execute it over
+//! frames the engine has checked, reaching it through a [`SessionRef`]: they read
 //! the key, the acknowledgement flag and header values through the packet rules and the word
 //! fields of the session rules, write the values they assign (the sequence number, the values
 //! an answer repeats) into a frame and seal it through the frame rules. They hold no I/O and no
@@ -142,6 +143,75 @@ pub struct SessionRules<'a> {
     pub watchdog: Option<Watchdog>,
     /// A header value that says whether a request expects an answer.
     pub modes: Option<Modes>,
+}
+
+/// Where a session machine finds its [`SessionRules`]: a reference to rules built at run time
+/// (the run-time codec), or a zero-sized type whose [`session`](Self::session) returns a
+/// `static` (generated code's `Session`).
+///
+/// Why a trait and not always a reference, as for
+/// [`LayoutRef`](crate::layout::LayoutRef): a machine reads the rules on
+/// every frame (the key, the sequence number, the values an answer repeats) and seals frames
+/// through their layout. Through a reference held in a field those reads stay reads, and every
+/// checksum the runtime knows is linked to seal a frame; through a zero-sized type they are
+/// reads of a constant, which the compiler folds: a firmware links the checks its spec uses.
+///
+/// ```
+/// use protocol_runtime::layout::{FrameLayout, LengthRule, WordField};
+/// use protocol_runtime::session::{Answer, Exchange, SessionRef, SessionRules};
+/// use protocol_runtime::PacketRules;
+///
+/// static LAYOUT: FrameLayout<'static> = FrameLayout {
+///     sync: &[0xAA], sync_set: &[], header_len: 2, min_len: 2, max_len: 2,
+///     length: LengthRule::Fixed(2), constants: &[], header_checks: &[], frame_checks: &[],
+///     markers: &[],
+/// };
+/// static RULES: PacketRules<'static> = PacketRules {
+///     layout: &LAYOUT, header_len: 2, trailer_len: 0, max_payload: 0,
+///     key: &[WordField::le(1, 1)], ack: None, directions: &[], stuffing: None,
+///     truncate_zeros: false,
+/// };
+/// static SESSION: SessionRules<'static> = SessionRules {
+///     packet: &RULES,
+///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 0, backoff: 1 },
+///     exchanges: &[], sequence: None, echo: &[], swap: None, pairs: &[], nack: None,
+///     handshake: None, watchdog: None, modes: None,
+/// };
+///
+/// #[derive(Clone, Copy)]
+/// struct Session;
+/// impl SessionRef for Session {
+///     #[inline(always)]
+///     fn session(&self) -> &SessionRules<'_> {
+///         &SESSION
+///     }
+/// }
+/// assert_eq!(Session.session().lifetime(), (&SESSION).session().lifetime());
+/// ```
+pub trait SessionRef: Copy {
+    /// The conversation.
+    fn session(&self) -> &SessionRules<'_>;
+}
+
+impl<'s> SessionRef for &'s SessionRules<'s> {
+    #[inline(always)]
+    fn session(&self) -> &SessionRules<'_> {
+        self
+    }
+}
+
+/// The frame format of a session's frames, as the engine finds it: a constant when the
+/// session is one.
+#[cfg(any(feature = "tokio", feature = "embedded-io-async"))]
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SessionLayout<S>(pub S);
+
+#[cfg(any(feature = "tokio", feature = "embedded-io-async"))]
+impl<S: SessionRef> crate::layout::LayoutRef for SessionLayout<S> {
+    #[inline(always)]
+    fn layout(&self) -> &crate::layout::FrameLayout<'_> {
+        self.0.session().packet.layout
+    }
 }
 
 /// What a checked frame is, as the conversation reads it.

@@ -10,10 +10,11 @@
 //! its place: it answers the request right before it (on a half-duplex bus a device answers
 //! before the wire is used again), never an older one.
 //!
-//! The observer holds no rules: each call takes them, so a caller that builds its rules on
-//! each call (the run-time codec) keeps one observer for a whole capture.
+//! The observer holds no rules: each call takes them (a [`SessionRef`]: a generated module's
+//! `Session`, or a `&SessionRules`), so a caller that builds its rules on each call (the
+//! run-time codec) keeps one observer for a whole capture.
 
-use super::{Answer, Ids, SessionRules};
+use super::{Answer, Ids, SessionRef, SessionRules};
 
 /// An answer, paired with the request it answers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -126,13 +127,14 @@ impl<const OPEN: usize> Observer<OPEN> {
     /// seen again (a retry) replaces the one before, which counts unanswered; so does the
     /// oldest request when the table is full, and any request whose requester has given up by
     /// `at`.
-    pub fn request(
+    pub fn request<S: SessionRef>(
         &mut self,
-        rules: &SessionRules<'_>,
+        rules: S,
         index: u64,
         at: Option<u64>,
         frame: &[u8],
     ) -> bool {
+        let rules = rules.session();
         self.expire(at);
         self.latest = None;
         let Ok(super::Heard::Command(key)) = rules.heard(frame) else {
@@ -175,12 +177,13 @@ impl<const OPEN: usize> Observer<OPEN> {
 
     /// The frame `frame`, seen at `at`, read as an answer: the open request it answers (the
     /// oldest, should several match), which is then closed; `None` when it answers none.
-    pub fn answer(
+    pub fn answer<S: SessionRef>(
         &mut self,
-        rules: &SessionRules<'_>,
+        rules: S,
         at: Option<u64>,
         frame: &[u8],
     ) -> Option<Paired> {
+        let rules = rules.session();
         self.expire(at);
         let heard = rules.heard(frame).ok()?;
         let (i, w) = self

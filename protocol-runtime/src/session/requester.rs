@@ -2,7 +2,7 @@
 //! that expects an answer holds a slot of a fixed table until it resolves to exactly one
 //! [`Resolution`]: its answer, a refusal (the spec's NACK) or a timeout after its retries.
 
-use super::{Answer, Heard, Ids, SessionRules};
+use super::{Answer, Heard, Ids, SessionRef, SessionRules};
 use crate::error::{DecodeError, EncodeError, Place};
 
 /// A request that expects an answer, as [`Requester::send`] numbers it.
@@ -100,6 +100,9 @@ struct Slot<const FRAME: usize> {
 /// The requester's state machine: at most `SLOTS` open requests of frames of at most `FRAME`
 /// bytes.
 ///
+/// `S` is where it finds its rules ([`SessionRef`]): a generated module's `Session` (its
+/// `Requester` alias names this type with it), or a `&SessionRules` built at run time, as here.
+///
 /// ```
 /// use protocol_runtime::session::{Answer, Exchange, Requester, Received, Resolution, SessionRules};
 /// use protocol_runtime::layout::{ByteOrder, Check, FrameLayout, LengthRule, Pos, WordField};
@@ -126,7 +129,7 @@ struct Slot<const FRAME: usize> {
 ///     handshake: None, watchdog: None, modes: None,
 /// };
 ///
-/// let mut requester = Requester::<'_, 4, 4>::new(&SESSION);
+/// let mut requester = Requester::<_, 4, 4>::new(&SESSION);
 /// let mut frame = [0xAA, 0, 7, 0];
 /// let ticket = requester.send(0, &mut frame)?.expect("an answer is expected");
 /// assert_eq!(frame, [0xAA, 0, 7, 0xB1]); // numbered 0 and sealed
@@ -140,18 +143,18 @@ struct Slot<const FRAME: usize> {
 /// # Ok::<(), protocol_runtime::session::SendError>(())
 /// ```
 #[derive(Debug, Clone)]
-pub struct Requester<'r, const SLOTS: usize, const FRAME: usize> {
-    rules: &'r SessionRules<'r>,
+pub struct Requester<S, const SLOTS: usize, const FRAME: usize> {
+    rules: S,
     slots: [Slot<FRAME>; SLOTS],
     next_seq: u64,
     next_ticket: u32,
     handshaken: bool,
 }
 
-impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
+impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, FRAME> {
     /// A requester with no open request; before its handshake when the rules have one.
     #[must_use]
-    pub fn new(rules: &'r SessionRules<'r>) -> Self {
+    pub fn new(rules: S) -> Self {
         Self {
             rules,
             slots: [Slot {
@@ -161,7 +164,7 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
             }; SLOTS],
             next_seq: 0,
             next_ticket: 0,
-            handshaken: rules.handshake.is_none(),
+            handshaken: rules.session().handshake.is_none(),
         }
     }
 
@@ -196,14 +199,16 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
     ///
     /// [`SendError`]; nothing is sent and no sequence number is used.
     pub fn send(&mut self, now: u64, frame: &mut [u8]) -> Result<Option<Ticket>, SendError> {
-        let key = match self.rules.heard(frame).map_err(SendError::NotARequest)? {
+        let owner = self.rules;
+        let rules = owner.session();
+        let key = match rules.heard(frame).map_err(SendError::NotARequest)? {
             Heard::Command(key) => key,
             Heard::Ack => return Err(SendError::NotARequest(DecodeError::UnknownDirection)),
         };
-        if !self.handshaken && Some(key) != self.rules.handshake {
+        if !self.handshaken && Some(key) != rules.handshake {
             return Err(SendError::Handshake);
         }
-        let e = self.rules.expects(key, frame);
+        let e = rules.expects(key, frame);
         if e.answer == Answer::None {
             self.check_window()?;
             self.number(frame)?;
@@ -227,7 +232,7 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
         let wait = u64::from(e.timeout);
         slot.open = Some(Open {
             ticket,
-            ids: self.rules.ids(key, frame),
+            ids: rules.ids(key, frame),
             answer: e.answer,
             deadline: now.saturating_add(wait),
             wait,
@@ -240,8 +245,9 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
     /// A free slot for a request of `key`; without a sequence number, none while a request
     /// that an answer could not be told from is open.
     fn free_slot(&self, key: u64, frame: &[u8]) -> Result<usize, SendError> {
-        if self.rules.sequence.is_none() {
-            let ids = self.rules.ids(key, frame);
+        let rules = self.rules.session();
+        if rules.sequence.is_none() {
+            let ids = rules.ids(key, frame);
             if self
                 .slots
                 .iter()
@@ -258,7 +264,7 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
 
     /// Rule: no open request is `SLOTS` or more numbers before the next one.
     fn check_window(&self) -> Result<(), SendError> {
-        let Some(f) = self.rules.sequence else {
+        let Some(f) = self.rules.session().sequence else {
             return Ok(());
         };
         let next = self.next_seq & f.max_value();
@@ -272,7 +278,9 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
 
     /// Writes the next sequence number into `frame` and seals it.
     fn number(&mut self, frame: &mut [u8]) -> Result<(), SendError> {
-        if let Some(f) = self.rules.sequence {
+        let owner = self.rules;
+        let rules = owner.session();
+        if let Some(f) = rules.sequence {
             let seq = self.next_seq & f.max_value();
             f.write(frame, seq)
                 .ok_or(SendError::Encode(EncodeError::ValueOutOfRange {
@@ -280,11 +288,7 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
                 }))?;
             self.next_seq = seq.wrapping_add(1) & f.max_value();
         }
-        self.rules
-            .packet
-            .layout
-            .seal(frame)
-            .map_err(SendError::Encode)
+        rules.packet.layout.seal(frame).map_err(SendError::Encode)
     }
 
     /// A checked frame arrived at `now`: the outcome of the open request it answers or refuses
@@ -293,11 +297,12 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Requester<'r, SLOTS, FRAME> {
         // An answer resolves its request whenever it arrives before the timeout `poll` reports:
         // the instant is not read, and is taken so that every event's call has the same shape.
         let _ = now;
-        let heard = match self.rules.heard(frame) {
+        let owner = self.rules;
+        let rules = owner.session();
+        let heard = match rules.heard(frame) {
             Ok(h) => h,
             Err(e) => return Received::Unreadable(e),
         };
-        let rules = self.rules;
         let answers = |o: &Open| SessionRules::is_answer(o.answer, o.ids.key, heard);
         let refuses = matches!(heard, Heard::Command(k) if Some(k) == rules.nack);
         let mut found: Option<(usize, Resolution, Ticket)> = None;

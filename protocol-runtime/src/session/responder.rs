@@ -13,7 +13,7 @@
 //! [`Requester::send`]: super::Requester::send
 //! [`SendError::Window`]: super::SendError::Window
 
-use super::{Answer, Heard, Ids, SessionRules};
+use super::{Answer, Heard, Ids, SessionRef};
 use crate::error::{DecodeError, EncodeError, Place};
 
 /// What a frame that arrived at the responder is.
@@ -68,9 +68,12 @@ struct Seen<const FRAME: usize> {
 
 /// The responder's state machine: it remembers the last `SLOTS` sequence numbers with answers
 /// of at most `FRAME` bytes each. Give it at least as many slots as its requester has.
+///
+/// `S` is where it finds its rules ([`SessionRef`]): a generated module's `Session` (its
+/// `Responder` alias names this type with it), or a `&SessionRules` built at run time.
 #[derive(Debug, Clone)]
-pub struct Responder<'r, const SLOTS: usize, const FRAME: usize> {
-    rules: &'r SessionRules<'r>,
+pub struct Responder<S, const SLOTS: usize, const FRAME: usize> {
+    rules: S,
     /// Slot `seq % SLOTS` holds the request numbered `seq`, while it is in the window.
     seen: [Option<Seen<FRAME>>; SLOTS],
     /// The highest sequence number received.
@@ -80,15 +83,15 @@ pub struct Responder<'r, const SLOTS: usize, const FRAME: usize> {
     fed: Option<(u64, bool)>,
 }
 
-impl<'r, const SLOTS: usize, const FRAME: usize> Responder<'r, SLOTS, FRAME> {
+impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Responder<S, SLOTS, FRAME> {
     /// A responder that has seen nothing; before its handshake when the rules have one.
     #[must_use]
-    pub fn new(rules: &'r SessionRules<'r>) -> Self {
+    pub fn new(rules: S) -> Self {
         Self {
             rules,
             seen: [None; SLOTS],
             newest: None,
-            handshaken: rules.handshake.is_none(),
+            handshaken: rules.session().handshake.is_none(),
             fed: None,
         }
     }
@@ -104,21 +107,23 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Responder<'r, SLOTS, FRAME> {
     pub fn reset(&mut self) {
         self.seen = [None; SLOTS];
         self.newest = None;
-        self.handshaken = self.rules.handshake.is_none();
+        self.handshaken = self.rules.session().handshake.is_none();
     }
 
     /// A checked frame arrived at `now`.
     pub fn on_frame(&mut self, now: u64, frame: &[u8]) -> Incoming<'_> {
-        let key = match self.rules.heard(frame) {
+        let owner = self.rules;
+        let rules = owner.session();
+        let key = match rules.heard(frame) {
             Ok(Heard::Command(key)) => key,
             Ok(Heard::Ack) => return Incoming::Ack,
             Err(e) => return Incoming::Unreadable(e),
         };
-        if self.rules.watchdog.is_some_and(|w| w.key == key) {
+        if rules.watchdog.is_some_and(|w| w.key == key) {
             self.fed = Some((now, false));
         }
-        let ids = self.rules.ids(key, frame);
-        if Some(key) == self.rules.handshake && !self.is_duplicate(&ids) {
+        let ids = rules.ids(key, frame);
+        if Some(key) == rules.handshake && !self.is_duplicate(&ids) {
             // A new handshake starts a new conversation: the peer's numbering starts again.
             self.reset();
             self.handshaken = true;
@@ -126,8 +131,8 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Responder<'r, SLOTS, FRAME> {
         if !self.handshaken {
             return Incoming::BeforeHandshake;
         }
-        let answer = self.rules.expects(key, frame).answer != Answer::None;
-        let Some(seq) = self.rules.sequence else {
+        let answer = rules.expects(key, frame).answer != Answer::None;
+        let Some(seq) = rules.sequence else {
             return Incoming::Deliver { answer };
         };
         let behind = self.behind(seq.max_value(), ids.seq);
@@ -173,7 +178,7 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Responder<'r, SLOTS, FRAME> {
 
     /// True when a request of these values is remembered.
     fn is_duplicate(&self, ids: &Ids) -> bool {
-        self.rules.sequence.is_some() && self.seen.iter().flatten().any(|s| s.ids == *ids)
+        self.rules.session().sequence.is_some() && self.seen.iter().flatten().any(|s| s.ids == *ids)
     }
 
     /// The application answers `request` with `answer` (assembled by its encoder, as the
@@ -185,22 +190,24 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Responder<'r, SLOTS, FRAME> {
     ///
     /// [`AnswerError`]; the answer is then not remembered.
     pub fn answer(&mut self, request: &[u8], answer: &mut [u8]) -> Result<(), AnswerError> {
-        let key = match self.rules.heard(request).map_err(AnswerError::Request)? {
+        let owner = self.rules;
+        let rules = owner.session();
+        let key = match rules.heard(request).map_err(AnswerError::Request)? {
             Heard::Command(key) => key,
             Heard::Ack => return Err(AnswerError::Request(DecodeError::UnknownDirection)),
         };
-        let ids = self.rules.ids(key, request);
-        self.rules
+        let ids = rules.ids(key, request);
+        rules
             .write_repeats(&ids, answer)
             .ok_or(AnswerError::Encode(EncodeError::ValueOutOfRange {
                 place: Place::NONE,
             }))?;
-        self.rules
+        rules
             .packet
             .layout
             .seal(answer)
             .map_err(AnswerError::Encode)?;
-        if self.rules.sequence.is_none() {
+        if rules.sequence.is_none() {
             return Ok(());
         }
         let seen = self.seen.iter_mut().flatten().find(|s| s.ids == ids);
@@ -217,7 +224,7 @@ impl<'r, const SLOTS: usize, const FRAME: usize> Responder<'r, SLOTS, FRAME> {
     /// its lapse is not yet reported).
     #[must_use]
     pub fn next_deadline(&self) -> Option<u64> {
-        let w = self.rules.watchdog?;
+        let w = self.rules.session().watchdog?;
         match self.fed {
             Some((at, false)) => Some(at.saturating_add(u64::from(w.period))),
             _ => None,

@@ -75,8 +75,8 @@ fn frame(cmd: u8) -> [u8; 4] {
 
 #[test]
 fn requests_wait_for_the_handshake_on_both_sides() {
-    let mut req = Requester::<'_, 2, 4>::new(&SESSION);
-    let mut res = Responder::<'_, 2, 4>::new(&SESSION);
+    let mut req = Requester::<_, 2, 4>::new(&SESSION);
+    let mut res = Responder::<_, 2, 4>::new(&SESSION);
     assert_eq!(req.send(0, &mut frame(2)), Err(SendError::Handshake));
     let mut early = frame(2);
     LAYOUT.seal(&mut early).unwrap();
@@ -100,8 +100,8 @@ fn requests_wait_for_the_handshake_on_both_sides() {
 
 #[test]
 fn a_retry_is_answered_again_and_delivered_once() {
-    let mut req = Requester::<'_, 2, 4>::new(&OPEN);
-    let mut res = Responder::<'_, 2, 4>::new(&OPEN);
+    let mut req = Requester::<_, 2, 4>::new(&OPEN);
+    let mut res = Responder::<_, 2, 4>::new(&OPEN);
     let mut ask = frame(2);
     let t = req.send(0, &mut ask).unwrap().unwrap();
     assert_eq!(res.on_frame(1, &ask), Incoming::Deliver { answer: true });
@@ -129,7 +129,7 @@ fn a_retry_is_answered_again_and_delivered_once() {
 
 #[test]
 fn a_request_times_out_after_its_retries_with_backoff() {
-    let mut req = Requester::<'_, 2, 4>::new(&OPEN);
+    let mut req = Requester::<_, 2, 4>::new(&OPEN);
     let t = req.send(0, &mut frame(2)).unwrap().unwrap();
     assert_eq!(req.poll(9), None);
     assert!(matches!(req.poll(10), Some(Due::Resend { .. })));
@@ -147,7 +147,7 @@ fn a_request_times_out_after_its_retries_with_backoff() {
 
 #[test]
 fn a_nack_refuses_and_fire_and_forget_holds_no_slot() {
-    let mut req = Requester::<'_, 1, 4>::new(&OPEN);
+    let mut req = Requester::<_, 1, 4>::new(&OPEN);
     assert_eq!(req.send(0, &mut frame(3)), Ok(None));
     let mut ask = frame(2);
     let t = req.send(0, &mut ask).unwrap().unwrap();
@@ -167,7 +167,7 @@ fn a_nack_refuses_and_fire_and_forget_holds_no_slot() {
 
 #[test]
 fn the_watchdog_expires_once_per_lapse() {
-    let mut res = Responder::<'_, 1, 4>::new(&OPEN);
+    let mut res = Responder::<_, 1, 4>::new(&OPEN);
     assert_eq!(res.poll(1000), None);
     let mut feed = frame(4);
     LAYOUT.seal(&mut feed).unwrap();

@@ -19,6 +19,9 @@ pub const RESERVED_TYPE_NAMES: &[&str] = &[
     "Frame",
     "Payload",
     "Direction",
+    "Session",
+    "Requester",
+    "Responder",
 ];
 
 /// Rust keywords that cannot be raw identifiers (`self`, `Self`, `super`, `crate`).

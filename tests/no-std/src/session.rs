@@ -53,7 +53,7 @@ impl Clock for Ticks {
 
 /// HFLink's requester on the UART: 2 open requests, a read buffer of 32 bytes.
 pub type HflinkLink = Link<
-    'static,
+    hflink::Session,
     Uart,
     Uart,
     Ticks,
@@ -65,7 +65,7 @@ pub type HflinkLink = Link<
 
 /// A link of HFLink's session.
 pub fn hflink_link() -> HflinkLink {
-    Link::new(&hflink::SESSION, Uart, Uart, Ticks(0))
+    Link::new(hflink::Session, Uart, Uart, Ticks(0))
 }
 
 /// Polls the request of `frame` once, as an executor would on a UART interrupt.

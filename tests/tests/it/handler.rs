@@ -4,7 +4,7 @@
 //! handshake, the answer run through the session machines; Dynamixel: a READ's status and a
 //! broadcast that gets none; RoboRTS: an acknowledgement per session mode).
 
-use protocol_kit::session::{Incoming, Received, Reply, Requester, Resolution, Responder};
+use protocol_kit::session::{Incoming, Received, Reply, Resolution};
 
 protocol_kit::protocol!("../specs/hflink.toml");
 protocol_kit::protocol!("../specs/dynamixel.toml");
@@ -149,8 +149,8 @@ fn hflink_read_is_answered_by_its_reply() {
 #[test]
 fn hflink_handlers_hold_the_session() {
     let (mut slave, mut master) = (Slave::default(), Master::default());
-    let mut requester = Requester::<'_, 4, { hflink::MAX_FRAME_LEN }>::new(&hflink::SESSION);
-    let mut responder = Responder::<'_, 4, { hflink::MAX_FRAME_LEN }>::new(&hflink::SESSION);
+    let mut requester = hflink::Requester::<4>::new(hflink::Session);
+    let mut responder = hflink::Responder::<4>::new(hflink::Session);
     let coord = hflink::ChassisCoord {
         x: 0.0,
         y: 0.0,

@@ -21,7 +21,7 @@ protocol_kit::protocol!("../specs/hflink.toml");
 
 /// The device at the other end of the UART, and what it saw.
 struct Device {
-    responder: Responder<'static, 8, 64>,
+    responder: Responder<&'static SessionRules<'static>, 8, 64>,
     decoder: StreamDecoder<&'static FrameLayout<'static>, 256>,
     /// Bytes for the host to read.
     out: Vec<u8>,
@@ -171,11 +171,11 @@ fn rr_ack(_request: &[u8]) -> Vec<u8> {
     })
 }
 
-type RrLink = Link<'static, Uart, Uart, SimClock, 4, { roborts::MAX_FRAME_LEN }, 256, 32>;
+type RrLink = Link<roborts::Session, Uart, Uart, SimClock, 4, { roborts::MAX_FRAME_LEN }, 256, 32>;
 
 fn rr_link(device: &Shared, clock: &SimClock) -> RrLink {
     Link::new(
-        &roborts::SESSION,
+        roborts::Session,
         Uart(Rc::clone(device)),
         Uart(Rc::clone(device)),
         clock.clone(),
@@ -249,13 +249,21 @@ fn roborts_a_lost_answer_is_answered_again_not_delivered_again() {
 fn hflink_refuses_a_request_before_the_handshake() {
     let device = Device::new(&hflink::SESSION, |_| false, |_| Vec::new());
     let clock = SimClock::default();
-    let mut link: Link<'static, Uart, Uart, SimClock, 4, { hflink::MAX_FRAME_LEN }, 256, 32> =
-        Link::new(
-            &hflink::SESSION,
-            Uart(Rc::clone(&device)),
-            Uart(Rc::clone(&device)),
-            clock,
-        );
+    let mut link: Link<
+        hflink::Session,
+        Uart,
+        Uart,
+        SimClock,
+        4,
+        { hflink::MAX_FRAME_LEN },
+        256,
+        32,
+    > = Link::new(
+        hflink::Session,
+        Uart(Rc::clone(&device)),
+        Uart(Rc::clone(&device)),
+        clock,
+    );
     let mut frame = encoded(&hflink::Packet {
         header: hflink::Header {
             sender: 0x01,

@@ -8,7 +8,7 @@
 use crate::session_sim::{link, sim};
 use link::Fault;
 use proptest::prelude::*;
-use protocol_kit::session::{Outcome, Received, Requester, Resolution, SessionRules};
+use protocol_kit::session::{Outcome, Received, Resolution};
 use sim::{Peer, Tally, run};
 
 protocol_kit::protocol!("../specs/mavlink.toml");
@@ -73,7 +73,7 @@ fn command_ack(command: u16, from: (u8, u8), to: (u8, u8)) -> Vec<u8> {
 /// request in any matched value resolves none.
 #[test]
 fn command_long_resolves_to_its_command_ack() {
-    let mut requester = Requester::<'_, 4, 64>::new(&mavlink::SESSION);
+    let mut requester = mavlink::Requester::<4, 64>::new(mavlink::Session);
     let arm = requester
         .send(0, &mut command_long(400))
         .expect("sent")
@@ -124,8 +124,9 @@ fn command_long_resolves_to_its_command_ack() {
 struct Mavlink;
 
 impl Peer for Mavlink {
-    fn session() -> &'static SessionRules<'static> {
-        &mavlink::SESSION
+    type Session = mavlink::Session;
+    fn session() -> mavlink::Session {
+        mavlink::Session
     }
 
     fn request(kind: u8, _mode: u8) -> Vec<u8> {

@@ -16,7 +16,6 @@ pub(crate) mod sim;
 
 use link::Fault;
 use proptest::prelude::*;
-use protocol_kit::session::SessionRules;
 use sim::{Peer, SLOTS, Tally, run};
 
 protocol_kit::protocol!("../specs/roborts.toml");
@@ -36,8 +35,9 @@ fn encode(
 struct Roborts;
 
 impl Peer for Roborts {
-    fn session() -> &'static SessionRules<'static> {
-        &roborts::SESSION
+    type Session = roborts::Session;
+    fn session() -> roborts::Session {
+        roborts::Session
     }
 
     fn request(kind: u8, mode: u8) -> Vec<u8> {
@@ -94,8 +94,9 @@ impl Peer for Roborts {
 struct Hflink;
 
 impl Peer for Hflink {
-    fn session() -> &'static SessionRules<'static> {
-        &hflink::SESSION
+    type Session = hflink::Session;
+    fn session() -> hflink::Session {
+        hflink::Session
     }
 
     fn request(kind: u8, _mode: u8) -> Vec<u8> {
@@ -318,8 +319,8 @@ fn fault_matrix() {
     println!(
         "machines ({SLOTS} slots of {} bytes): requester {} bytes, responder {} bytes",
         sim::FRAME,
-        std::mem::size_of::<Requester<'_, SLOTS, { sim::FRAME }>>(),
-        std::mem::size_of::<Responder<'_, SLOTS, { sim::FRAME }>>()
+        std::mem::size_of::<Requester<roborts::Session, SLOTS, { sim::FRAME }>>(),
+        std::mem::size_of::<Responder<roborts::Session, SLOTS, { sim::FRAME }>>()
     );
     println!(
         "{:<8} {:>5} {:>7} {:>6} {:>6} {:>9} {:>6} {:>8} {:>6} {:>7} {:>6} {:>7} {:>7} {:>6}",

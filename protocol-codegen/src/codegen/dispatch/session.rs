@@ -1,7 +1,8 @@
 //! The `SESSION` static of a spec with `[session]`: its conversation, as
 //! [`lower_session`] plans it, printed as the runtime's `SessionRules` value over the session
-//! frame's `RULES`. The machines (`session::Requester`, `session::Responder`) run it; this
-//! module prints it.
+//! frame's `RULES`, with `Session`, the zero-sized type that hands it to the machines as a
+//! constant, and the `Requester` and `Responder` aliases of the machines over it. The machines
+//! (`session::Requester`, `session::Responder`) run it; this module prints it.
 
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -119,9 +120,10 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
     let name = format_ident!("SESSION");
     let doc = format!(
         " The conversation of the `{}` frame format: the answer each request expects, how it \
-         is matched, timeouts and retries. `session::Requester` and `session::Responder` run it.",
+         is matched, timeouts and retries. [`Requester`] and [`Responder`] run it.",
         f.name
     );
+    let machines = emit_machines(f, &s);
     quote! {
         #[doc = #doc]
         pub static #name: #s::SessionRules<'static> = #s::SessionRules {
@@ -137,5 +139,39 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
             watchdog: #watchdog,
             modes: #modes,
         };
+        #machines
+    }
+}
+
+/// `Session` and the machines over it: the machines read [`SESSION`] as a constant, so a
+/// firmware links the checks of this frame format alone.
+fn emit_machines(f: &Frame, s: &TokenStream) -> TokenStream {
+    let max = format_ident!("{}", f.names.sizes.max_frame_len);
+    let session_doc = " [`SESSION`] as a type: the session machines read the conversation as a \
+         compile-time constant and compile to code for this spec's alone (its frame format's \
+         checks, none other).";
+    let requester_doc = format!(
+        " The requester of [`SESSION`]: at most `SLOTS` open requests, each kept to send again \
+         (a frame of at most `FRAME` bytes, by default [`{max}`]). `Requester::<4>::new(Session)`."
+    );
+    let responder_doc = format!(
+        " The responder of [`SESSION`]: it remembers the last `SLOTS` sequence numbers with \
+         their answers of at most `FRAME` bytes (by default [`{max}`]). \
+         `Responder::<8>::new(Session)`."
+    );
+    quote! {
+        #[doc = #session_doc]
+        #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+        pub struct Session;
+        impl #s::SessionRef for Session {
+            #[inline(always)]
+            fn session(&self) -> &#s::SessionRules<'_> {
+                &SESSION
+            }
+        }
+        #[doc = #requester_doc]
+        pub type Requester<const SLOTS: usize, const FRAME: usize = #max> = #s::Requester<Session, SLOTS, FRAME>;
+        #[doc = #responder_doc]
+        pub type Responder<const SLOTS: usize, const FRAME: usize = #max> = #s::Responder<Session, SLOTS, FRAME>;
     }
 }

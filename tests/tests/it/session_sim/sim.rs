@@ -1,12 +1,12 @@
 //! One simulated conversation: a requester and a responder (the runtime's session machines,
-//! over a spec's generated `SESSION`), an application on each side, a lossy [`Link`] and a
+//! over a spec's generated `Session`), an application on each side, a lossy [`Link`] and a
 //! clock advanced one millisecond at a time. Every call into a machine runs under the counting
 //! allocator. The run records what the invariants are checked against.
 
 use std::collections::HashMap;
 
 use protocol_kit::session::{
-    Due, Incoming, Received, Requester, Resolution, Responder, SessionRules, Ticket,
+    Due, Incoming, Received, Requester, Resolution, Responder, SessionRef, Ticket,
 };
 
 use super::link::{DOWN, Fault, Faults, Link, UP};
@@ -18,8 +18,11 @@ pub const SLOTS: usize = 4;
 
 /// The application of a spec's two sides, built on its generated code.
 pub trait Peer {
-    /// The spec's generated `SESSION`.
-    fn session() -> &'static SessionRules<'static>;
+    /// The spec's generated `Session`: the machines read its rules as constants, as a
+    /// firmware's do.
+    type Session: SessionRef;
+    /// The spec's generated `Session`.
+    fn session() -> Self::Session;
     /// A request the host's application sends: `kind` picks the command, `mode` a header
     /// value (RoboRTS's session id).
     fn request(kind: u8, mode: u8) -> Vec<u8>;
@@ -79,8 +82,8 @@ struct Log {
 /// Runs `plan` (requests as `(gap in ms, kind, mode)`) over a link with `schedule`.
 pub fn run<P: Peer>(plan: &[(u64, u8, u8)], schedule: Vec<Fault>) -> Tally {
     let rules = P::session();
-    let mut req = Requester::<'_, SLOTS, FRAME>::new(rules);
-    let mut res = Responder::<'_, SLOTS, FRAME>::new(rules);
+    let mut req = Requester::<_, SLOTS, FRAME>::new(rules);
+    let mut res = Responder::<_, SLOTS, FRAME>::new(rules);
     let mut link = Link::new(schedule);
     let mut t = Tally::default();
     let mut logs: HashMap<Ticket, Log> = HashMap::new();
@@ -140,7 +143,7 @@ pub fn run<P: Peer>(plan: &[(u64, u8, u8)], schedule: Vec<Fault>) -> Tally {
 /// The host's application sends `frame` through the requester.
 fn send<P: Peer>(
     t: &mut Tally,
-    req: &mut Requester<'_, SLOTS, FRAME>,
+    req: &mut Requester<P::Session, SLOTS, FRAME>,
     link: &mut Link,
     logs: &mut HashMap<Ticket, Log>,
     now: u64,
@@ -150,7 +153,8 @@ fn send<P: Peer>(
     t.allocations += allocation_counter::measure(|| sent = Some(req.send(now, frame))).count_total;
     let ticket = sent.expect("ran")?;
     link.send(DOWN, now, frame);
-    let rules = P::session();
+    let session = P::session();
+    let rules = session.session();
     match ticket {
         Some(ticket) => {
             t.requests += 1;
@@ -177,12 +181,13 @@ fn send<P: Peer>(
 /// The device: frames that arrived go through the responder; its application answers.
 fn serve<P: Peer>(
     t: &mut Tally,
-    res: &mut Responder<'_, SLOTS, FRAME>,
+    res: &mut Responder<P::Session, SLOTS, FRAME>,
     link: &mut Link,
     seen: &mut HashMap<u64, u32>,
     now: u64,
 ) {
-    let rules = P::session();
+    let session = P::session();
+    let rules = session.session();
     for frame in link.arrived(DOWN, now) {
         if !P::decodes(&frame) {
             t.rejected += 1;
@@ -253,13 +258,14 @@ fn format_incoming(i: &Incoming<'_>) -> Verdict {
 /// The host: frames that arrived go through the requester.
 fn hear<P: Peer>(
     t: &mut Tally,
-    req: &mut Requester<'_, SLOTS, FRAME>,
+    req: &mut Requester<P::Session, SLOTS, FRAME>,
     link: &mut Link,
     logs: &mut HashMap<Ticket, Log>,
     handshake: &mut Option<Ticket>,
     now: u64,
 ) {
-    let rules = P::session();
+    let session = P::session();
+    let rules = session.session();
     for frame in link.arrived(UP, now) {
         if !P::decodes(&frame) {
             t.rejected += 1;
@@ -290,9 +296,9 @@ fn hear<P: Peer>(
 }
 
 /// Time advances: retries go out, requests time out.
-fn tick(
+fn tick<S: SessionRef>(
     t: &mut Tally,
-    req: &mut Requester<'_, SLOTS, FRAME>,
+    req: &mut Requester<S, SLOTS, FRAME>,
     link: &mut Link,
     logs: &mut HashMap<Ticket, Log>,
     handshake: &mut Option<Ticket>,

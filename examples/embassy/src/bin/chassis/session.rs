@@ -17,7 +17,6 @@ use core::mem::{size_of, size_of_val};
 use cortex_m_semihosting::hprintln;
 use embassy_executor::Spawner;
 use embassy_hflink::chassis::{self, Chassis, SLOTS};
-use embassy_hflink::protocol_kit::session::Requester;
 use embassy_hflink::roborts;
 
 #[embassy_executor::main]
@@ -30,10 +29,7 @@ async fn main(_spawner: Spawner) {
     hprintln!("size decoder {}", size_of_val(&decoder));
     hprintln!("size responder {}", size_of_val(&responder));
     // The host's machine as this target sizes it: as many slots, its longest request.
-    hprintln!(
-        "size requester {}",
-        size_of::<Requester<'static, SLOTS, { roborts::MAX_FRAME_LEN }>>()
-    );
+    hprintln!("size requester {}", size_of::<roborts::Requester<SLOTS>>());
     hprintln!("ready");
     let outcome = chassis::serve_session(
         &mut rx,
