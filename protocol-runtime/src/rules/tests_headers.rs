@@ -320,3 +320,48 @@ fn encode_message_writes_the_frame_assemble_writes() {
     assert_eq!(frame, frame_to(&trimmed, &[4, 5, 6], 0x12, &[1, 0, 0]));
     assert_eq!(frame.len(), 6 + 1 + 1);
 }
+
+#[test]
+fn a_payload_the_wire_carries_as_written_needs_no_aside_buffer() {
+    let body = Body::Command {
+        key: &[4, 5, 6],
+        carried: None,
+        direction: None,
+    };
+    assert!(!THREE.writes_aside(&body));
+    let mut buf = [0u8; 32];
+    let len = THREE.frame_len(&body, 3, 0);
+    let n = THREE.assemble(
+        &mut buf,
+        &mut [],
+        &body,
+        || len,
+        0,
+        |w| w.put_bytes(&[1, 0, 0]),
+        |frame| write_header(frame, DST, 0x12),
+    );
+    assert_eq!(n, Ok(10));
+    assert_eq!(
+        buf[..10],
+        frame_to(&THREE, &[4, 5, 6], 0x12, &[1, 0, 0])[..]
+    );
+    // Trimming trailing zeros writes aside, and an empty aside buffer has no room for them.
+    let trimmed = PacketRules {
+        truncate_zeros: true,
+        ..THREE
+    };
+    assert!(trimmed.writes_aside(&body));
+    let got = trimmed.assemble(
+        &mut buf,
+        &mut [],
+        &body,
+        || len,
+        0,
+        |w| w.put_bytes(&[1, 0, 0]),
+        |_| Ok(()),
+    );
+    assert!(
+        matches!(got, Err(EncodeError::BufferTooSmall { .. })),
+        "{got:?}"
+    );
+}
