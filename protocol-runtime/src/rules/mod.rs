@@ -170,3 +170,5 @@ pub enum Body<'k> {
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_headers;
