@@ -333,9 +333,10 @@ fn lower_text(ctx: &mut Ctx<'_>, ty: &SStr) -> Option<Option<usize>> {
     }
 }
 
-/// Rule: `scale` and `offset` apply to integer fields; the factor is finite and not 0; the
-/// physical value is the Rust type a derive's field declares (`f32` or `f64`), else an `f32`
-/// for wire integers of up to two bytes and an `f64` for wider ones.
+/// Rule: `scale` and `offset` apply to number fields (integers and floats, not `bool`); the
+/// factor is finite and not 0; the physical value is the Rust type a derive's field declares
+/// (`f32` or `f64`), else an `f32` for wire numbers of up to two bytes and an `f64` for wider
+/// ones; `rounding` applies to integer wire types only (a float takes the quotient as it is).
 pub(super) fn lower_scale(
     ctx: &mut Ctx<'_>,
     f: &Spanned<FieldDef>,
@@ -347,7 +348,7 @@ pub(super) fn lower_scale(
         return None;
     }
     let (s, o) = (&d.scale, &d.offset);
-    if !(scalar.prim.is_signed() || scalar.prim.is_unsigned()) {
+    if scalar.prim == Prim::Bool {
         let span = s
             .as_ref()
             .or(o.as_ref())
@@ -355,10 +356,17 @@ pub(super) fn lower_scale(
             .unwrap_or(f.span());
         ctx.error(
             span,
-            format!("`scale` applies to integer fields, not `{ty}`"),
-            "remove `scale`/`offset`, or use an integer wire type",
+            format!("`scale` applies to number fields, not `{ty}`"),
+            "remove `scale`/`offset`, or use an integer or float wire type",
         );
         return None;
+    }
+    if let (true, Some(r)) = (scalar.prim.is_float(), &d.rounding) {
+        ctx.error(
+            r.span(),
+            format!("`rounding` applies to scaled integer fields, not `{ty}`"),
+            "remove `rounding`: a float wire value takes the quotient as it is",
+        );
     }
     let factor = s.as_ref().map_or(1.0, |s| *s.get_ref());
     if factor == 0.0 || !factor.is_finite() {
@@ -437,7 +445,7 @@ fn reject_scale(ctx: &mut Ctx<'_>, d: &FieldDef, what: &str) {
     if let Some(s) = &d.scale {
         ctx.error(
             s.span(),
-            format!("`scale` applies to integer fields, not to {what}"),
+            format!("`scale` applies to number fields, not to {what}"),
             "remove `scale`",
         );
     }
