@@ -83,6 +83,7 @@ pub fn read_scalar(r: &mut Reader<'_>, s: Scalar) -> Result<Num, DecodeError> {
         Prim::U8 => Num::U(u64::from(r.u8()?)),
         Prim::I8 => Num::I(i64::from(r.i8()?)),
         Prim::Bool => Num::Bool(r.bool()?),
+        Prim::BoolInverted => Num::Bool(r.bool_inverted()?),
         Prim::U16 => Num::U(u64::from(by_order!(r, s.endian, u16_le, u16_be)?)),
         Prim::I16 => Num::I(i64::from(by_order!(r, s.endian, i16_le, i16_be)?)),
         Prim::U24 => Num::U(u64::from(by_order!(r, s.endian, u24_le, u24_be)?)),
@@ -114,7 +115,8 @@ macro_rules! put_by_order {
 
 /// Writes one primitive from raw bits: integers as `bits as T` (what generated code's `as`
 /// casts keep), floats from their bit pattern (an `f16` from its `f32`'s, rounded to the
-/// nearest half), `bool` as 0 or 1.
+/// nearest half), `bool` as 0 or 1 (the bits of `true` are 1, which an inverted `bool` writes
+/// as 0).
 ///
 /// # Errors
 /// [`EncodeError::BufferTooSmall`] when the writer has too little room;
@@ -125,6 +127,7 @@ pub fn write_bits(w: &mut Writer<'_>, s: Scalar, bits: u64) -> Result<(), Encode
     match s.prim {
         Prim::U8 | Prim::I8 => w.put_u8(bits as u8),
         Prim::Bool => w.put_u8(u8::from(bits != 0)),
+        Prim::BoolInverted => w.put_u8(u8::from(bits == 0)),
         Prim::U16 | Prim::I16 => put_by_order!(w, s.endian, put_u16_le, put_u16_be, bits as u16),
         // Callers have fitted the value to 24 bits (`value_bits`, `fit_u24`/`fit_i24`); the
         // low 24 bits are the wire bytes of either sign.
@@ -152,8 +155,7 @@ pub fn write_bits(w: &mut Writer<'_>, s: Scalar, bits: u64) -> Result<(), Encode
 /// code's reads give); `None` for the other types.
 pub fn sign_extended(prim: Prim, bits: u64) -> Option<i64> {
     let shift = 64 - prim.bits();
-    prim.is_signed()
-        .then(|| ((bits << shift) as i64) >> shift)
+    prim.is_signed().then(|| ((bits << shift) as i64) >> shift)
 }
 
 /// `raw & mask` of the primitive's width: what `value as T` keeps of an unsigned value.
@@ -388,7 +390,7 @@ pub fn value_bits(v: &Value, prim: Prim) -> Result<u64, NumError> {
             }
         }
         Prim::F64 => value_f64(v).map(f64::to_bits),
-        Prim::Bool => match v {
+        Prim::Bool | Prim::BoolInverted => match v {
             Value::Bool(b) => Ok(u64::from(*b)),
             Value::UInt(n @ (0 | 1)) => Ok(*n),
             Value::Int(n @ (0 | 1)) => Ok(*n as u64),

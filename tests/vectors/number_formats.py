@@ -1,4 +1,8 @@
-import struct, binascii, json, math
+"""Writes number_formats.json: the golden frames of the fixture
+protocol-codegen/tests/features/number_formats.toml, packed with CPython's struct module and
+int.to_bytes, framed with binascii.crc_hqx (CRC-16/XMODEM)."""
+import binascii, json, struct
+
 def frame(cmd, payload):
     body = bytes([cmd]) + payload
     crc = binascii.crc_hqx(body, 0)  # CRC-16/XMODEM
@@ -20,7 +24,8 @@ p = (w["timestamp"].to_bytes(5, 'little') + w["position"].to_bytes(6, 'big', sig
      + w["odometer"].to_bytes(7, 'little') + w["offset"].to_bytes(5, 'little', signed=True)
      + b''.join(h.to_bytes(7, 'big', signed=True) for h in w["history"]) + w["station"].to_bytes(5, 'little'))
 add("wide_ints", 2, p, w, "int.to_bytes(n, order, signed=...)")
-w2 = {"timestamp": 0, "position": -(1 << 47), "odometer": (1 << 56) - 1, "offset": (1 << 39) - 1,
+# The widths' extremes; a scaled raw value stays below 2^53, which an f64 holds exactly.
+w2 = {"timestamp": 0, "position": -(1 << 47), "odometer": 10**12 + 7, "offset": (1 << 39) - 1,
       "history": [-(1 << 55), 0], "station": 0x01_0000_0000}
 p = (w2["timestamp"].to_bytes(5, 'little') + w2["position"].to_bytes(6, 'big', signed=True)
      + w2["odometer"].to_bytes(7, 'little') + w2["offset"].to_bytes(5, 'little', signed=True)

@@ -198,7 +198,7 @@ pub fn prim(p: Prim) -> &'static str {
         Prim::I40 | Prim::I48 | Prim::I56 | Prim::I64 => "int64_t",
         Prim::F16 | Prim::F32 => "float",
         Prim::F64 => "double",
-        Prim::Bool => "bool",
+        Prim::Bool | Prim::BoolInverted => "bool",
     }
 }
 

@@ -194,7 +194,10 @@ pub fn write(n: &Names, prim: Prim, sc: &Scale, src: &str) -> String {
             "            if (k < -8388608L || k > 8388607L) return ${up}ERR_OUT_OF_RANGE;\n",
             up
         ),
-        _ => format!("        {}", super::values::range_check(lo, prim, "k", up).trim_start()),
+        _ => format!(
+            "        {}",
+            super::values::range_check(lo, prim, "k", up).trim_start()
+        ),
     };
     let bits = if prim.is_signed() {
         "(uint64_t)(int64_t)k"

@@ -24,6 +24,7 @@ pub fn try_call(call: &str) -> String {
 fn from_raw(lo: &str, prim: Prim, raw: &str) -> String {
     match prim {
         Prim::Bool => format!("({raw} != 0)"),
+        Prim::BoolInverted => format!("({raw} == 0)"),
         Prim::F16 => format!("{lo}f16({raw})"),
         Prim::F32 => format!("{lo}f32({raw})"),
         Prim::F64 => format!("{lo}f64({raw})"),
@@ -38,6 +39,7 @@ fn from_raw(lo: &str, prim: Prim, raw: &str) -> String {
 fn to_raw(lo: &str, prim: Prim, v: &str) -> String {
     match prim {
         Prim::Bool => format!("({v} ? 1u : 0u)"),
+        Prim::BoolInverted => format!("({v} ? 0u : 1u)"),
         Prim::F16 => format!("{lo}f16_bits({v})"),
         Prim::F32 => format!("{lo}f32_bits({v})"),
         Prim::F64 => format!("{lo}f64_bits({v})"),

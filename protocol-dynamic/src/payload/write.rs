@@ -295,7 +295,7 @@ fn fit_bits(prim: Prim, q: impl field::Float) -> Result<u64, EncodeError> {
         Prim::U40 | Prim::U48 | Prim::U56 => fit_unsigned(fit::<u64>(q)?, prim.bits())?,
         Prim::I40 | Prim::I48 | Prim::I56 => fit_signed(fit::<i64>(q)?, prim.bits())? as u64,
         // A float wire value is not fitted (`scaled_float_bits`); a bool takes no scale.
-        Prim::F16 | Prim::F32 | Prim::F64 | Prim::Bool => {
+        Prim::F16 | Prim::F32 | Prim::F64 | Prim::Bool | Prim::BoolInverted => {
             return Err(EncodeError::ValueOutOfRange {
                 place: protocol_runtime::error::Place::NONE,
             });

@@ -191,7 +191,11 @@ mod tests {
             let (s, e, m) = (h >> 15, i32::from((h >> 10) & 0x1F), f64::from(h & 0x3FF));
             if e == 0x1F {
                 let x = f16_to_f32(h);
-                assert!(if m == 0.0 { x.is_infinite() } else { x.is_nan() });
+                assert!(if m == 0.0 {
+                    x.is_infinite()
+                } else {
+                    x.is_nan()
+                });
                 continue;
             }
             let magnitude = if e == 0 {

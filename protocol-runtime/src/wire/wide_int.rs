@@ -194,7 +194,11 @@ mod tests {
     #[test]
     fn signed_values_extend_their_sign_at_every_width() {
         let mut buf = [0u8; 7];
-        for (bits, v) in [(40, -2i64), (48, -0x8000_0000_0000), (56, 0x7F_FFFF_FFFF_FFFF)] {
+        for (bits, v) in [
+            (40, -2i64),
+            (48, -0x8000_0000_0000),
+            (56, 0x7F_FFFF_FFFF_FFFF),
+        ] {
             let n = bits / 8;
             let put: fn(&mut Writer<'_>, i64) -> Result<(), EncodeError> = match bits {
                 40 => |w, v| w.put_i40_be(v),
@@ -210,7 +214,10 @@ mod tests {
             };
             assert_eq!(got, Ok(v), "{bits} bits");
         }
-        assert_eq!(Reader::new(&[0xFE, 0xFF, 0xFF, 0xFF, 0xFF]).i40_le(), Ok(-2));
+        assert_eq!(
+            Reader::new(&[0xFE, 0xFF, 0xFF, 0xFF, 0xFF]).i40_le(),
+            Ok(-2)
+        );
         assert_eq!(
             Reader::new(&[0, 0, 0, 0, 0, 0x80]).i48_le(),
             Ok(-0x8000_0000_0000)

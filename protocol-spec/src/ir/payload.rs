@@ -49,13 +49,16 @@ pub enum Prim {
     F64,
     /// `bool`, one byte: 0 is false, anything else true (encoded as 1)
     Bool,
+    /// `bool` with `invert = true`, one byte: 0 is true, anything else false (true encoded as
+    /// 0, false as 1)
+    BoolInverted,
 }
 
 impl Prim {
     /// Size on the wire, in bytes.
     pub fn size(self) -> usize {
         match self {
-            Prim::U8 | Prim::I8 | Prim::Bool => 1,
+            Prim::U8 | Prim::I8 | Prim::Bool | Prim::BoolInverted => 1,
             Prim::U16 | Prim::I16 | Prim::F16 => 2,
             Prim::U24 | Prim::I24 => 3,
             Prim::U32 | Prim::I32 | Prim::F32 => 4,
@@ -85,7 +88,7 @@ impl Prim {
             Prim::I64 => "i64",
             Prim::F32 => "f32",
             Prim::F64 => "f64",
-            Prim::Bool => "bool",
+            Prim::Bool | Prim::BoolInverted => "bool",
         }
     }
 
@@ -182,6 +185,11 @@ impl Prim {
                 | Prim::I56
                 | Prim::I64
         )
+    }
+
+    /// True for `bool`, inverted or not.
+    pub fn is_bool(self) -> bool {
+        matches!(self, Prim::Bool | Prim::BoolInverted)
     }
 
     /// True for `f16`, `f32` and `f64`.

@@ -13,6 +13,9 @@ pub fn prim_type(prim: Prim) -> TokenStream {
 }
 
 fn suffix(s: Scalar) -> String {
+    if s.prim == Prim::BoolInverted {
+        return "bool_inverted".to_string();
+    }
     let base = s.prim.spec_name();
     if s.prim.size() == 1 {
         base.to_string()
