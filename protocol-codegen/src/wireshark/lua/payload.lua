@@ -15,7 +15,10 @@ local function half_value(raw)
   if exp == 0 then return sign * man * 2 ^ -24 end
   if exp == 31 then
     if man == 0 then return sign * math.huge end
-    return 0 / 0
+    -- 0/0 is a NaN of the platform's sign (negative on x86); the half's sign is kept.
+    local nan = 0 / 0
+    if (tostring(nan):sub(1, 1) == "-") ~= (sign < 0) then nan = -nan end
+    return nan
   end
   return sign * (1 + man / 1024) * 2 ^ (exp - 15)
 end
