@@ -194,8 +194,9 @@ pub fn write(n: &Names, prim: Prim, sc: &Scale, src: &str) -> String {
             "            if (k < -8388608L || k > 8388607L) return ${up}ERR_OUT_OF_RANGE;\n",
             up
         ),
+        // The statement of an unscaled value, indented into the block above.
         _ => format!(
-            "        {}",
+            "            {}",
             super::values::range_check(lo, prim, "k", up).trim_start()
         ),
     };
