@@ -83,12 +83,20 @@ pub fn read_scalar(r: &mut Reader<'_>, s: Scalar) -> Result<Num, DecodeError> {
         Prim::U8 => Num::U(u64::from(r.u8()?)),
         Prim::I8 => Num::I(i64::from(r.i8()?)),
         Prim::Bool => Num::Bool(r.bool()?),
+        Prim::BoolInverted => Num::Bool(r.bool_inverted()?),
         Prim::U16 => Num::U(u64::from(by_order!(r, s.endian, u16_le, u16_be)?)),
         Prim::I16 => Num::I(i64::from(by_order!(r, s.endian, i16_le, i16_be)?)),
         Prim::U24 => Num::U(u64::from(by_order!(r, s.endian, u24_le, u24_be)?)),
         Prim::I24 => Num::I(i64::from(by_order!(r, s.endian, i24_le, i24_be)?)),
         Prim::U32 => Num::U(u64::from(by_order!(r, s.endian, u32_le, u32_be)?)),
         Prim::I32 => Num::I(i64::from(by_order!(r, s.endian, i32_le, i32_be)?)),
+        Prim::U40 => Num::U(by_order!(r, s.endian, u40_le, u40_be)?),
+        Prim::I40 => Num::I(by_order!(r, s.endian, i40_le, i40_be)?),
+        Prim::U48 => Num::U(by_order!(r, s.endian, u48_le, u48_be)?),
+        Prim::I48 => Num::I(by_order!(r, s.endian, i48_le, i48_be)?),
+        Prim::U56 => Num::U(by_order!(r, s.endian, u56_le, u56_be)?),
+        Prim::I56 => Num::I(by_order!(r, s.endian, i56_le, i56_be)?),
+        Prim::F16 => Num::F32(by_order!(r, s.endian, f16_le, f16_be)?),
         Prim::U64 => Num::U(by_order!(r, s.endian, u64_le, u64_be)?),
         Prim::I64 => Num::I(by_order!(r, s.endian, i64_le, i64_be)?),
         Prim::F32 => Num::F32(by_order!(r, s.endian, f32_le, f32_be)?),
@@ -106,14 +114,20 @@ macro_rules! put_by_order {
 }
 
 /// Writes one primitive from raw bits: integers as `bits as T` (what generated code's `as`
-/// casts keep), floats from their bit pattern, `bool` as 0 or 1.
+/// casts keep), floats from their bit pattern (an `f16` from its `f32`'s, rounded to the
+/// nearest half), `bool` as 0 or 1 (the bits of `true` are 1, which an inverted `bool` writes
+/// as 0).
 ///
 /// # Errors
-/// [`EncodeError::BufferTooSmall`] when the writer has too little room.
+/// [`EncodeError::BufferTooSmall`] when the writer has too little room;
+/// [`EncodeError::ValueOutOfRange`] for an `f16` beyond the largest half (callers that fit
+/// the value first, as [`value_bits`] does, never see it).
 pub fn write_bits(w: &mut Writer<'_>, s: Scalar, bits: u64) -> Result<(), EncodeError> {
+    let low = |n: u32| bits & (u64::MAX >> (64 - n));
     match s.prim {
         Prim::U8 | Prim::I8 => w.put_u8(bits as u8),
         Prim::Bool => w.put_u8(u8::from(bits != 0)),
+        Prim::BoolInverted => w.put_u8(u8::from(bits == 0)),
         Prim::U16 | Prim::I16 => put_by_order!(w, s.endian, put_u16_le, put_u16_be, bits as u16),
         // Callers have fitted the value to 24 bits (`value_bits`, `fit_u24`/`fit_i24`); the
         // low 24 bits are the wire bytes of either sign.
@@ -126,7 +140,22 @@ pub fn write_bits(w: &mut Writer<'_>, s: Scalar, bits: u64) -> Result<(), Encode
         Prim::U64 | Prim::I64 | Prim::F64 => {
             put_by_order!(w, s.endian, put_u64_le, put_u64_be, bits)
         }
+        // As the 24-bit types: fitted by the callers, the low bytes of either sign.
+        Prim::U40 | Prim::I40 => put_by_order!(w, s.endian, put_u40_le, put_u40_be, low(40)),
+        Prim::U48 | Prim::I48 => put_by_order!(w, s.endian, put_u48_le, put_u48_be, low(48)),
+        Prim::U56 | Prim::I56 => put_by_order!(w, s.endian, put_u56_le, put_u56_be, low(56)),
+        Prim::F16 => {
+            let x = f32::from_bits(bits as u32);
+            put_by_order!(w, s.endian, put_f16_le, put_f16_be, x)
+        }
     }
+}
+
+/// The value of raw bits of a signed integer type, its sign bit extended (what generated
+/// code's reads give); `None` for the other types.
+pub fn sign_extended(prim: Prim, bits: u64) -> Option<i64> {
+    let shift = 64 - prim.bits();
+    prim.is_signed().then(|| ((bits << shift) as i64) >> shift)
 }
 
 /// `raw & mask` of the primitive's width: what `value as T` keeps of an unsigned value.
@@ -332,6 +361,11 @@ fn int_range(prim: Prim) -> (i128, i128) {
         Prim::I24 => (-0x80_0000, 0x7F_FFFF),
         Prim::U32 => (0, i128::from(u32::MAX)),
         Prim::I32 => (i128::from(i32::MIN), i128::from(i32::MAX)),
+        Prim::U40 | Prim::U48 | Prim::U56 => (0, (1i128 << prim.bits()) - 1),
+        Prim::I40 | Prim::I48 | Prim::I56 => {
+            let half = 1i128 << (prim.bits() - 1);
+            (-half, half - 1)
+        }
         Prim::I64 => (i128::from(i64::MIN), i128::from(i64::MAX)),
         _ => (0, i128::from(u64::MAX)),
     }
@@ -345,8 +379,18 @@ fn int_range(prim: Prim) -> (i128, i128) {
 pub fn value_bits(v: &Value, prim: Prim) -> Result<u64, NumError> {
     match prim {
         Prim::F32 => value_f32(v).map(|x| u64::from(x.to_bits())),
+        // The `f32`'s bits, once it is known to round to a half.
+        Prim::F16 => {
+            let x = value_f32(v)?;
+            match protocol_runtime::wire::f32_to_f16(x) {
+                Some(_) => Ok(u64::from(x.to_bits())),
+                None => Err(NumError::Range(format!(
+                    "{x} does not fit f16 (at most 65504 in magnitude)"
+                ))),
+            }
+        }
         Prim::F64 => value_f64(v).map(f64::to_bits),
-        Prim::Bool => match v {
+        Prim::Bool | Prim::BoolInverted => match v {
             Value::Bool(b) => Ok(u64::from(*b)),
             Value::UInt(n @ (0 | 1)) => Ok(*n),
             Value::Int(n @ (0 | 1)) => Ok(*n as u64),
@@ -372,13 +416,9 @@ pub fn value_bits(v: &Value, prim: Prim) -> Result<u64, NumError> {
 
 /// The value of raw bits of an integer primitive as an `f64` (`raw as f64` in generated code).
 pub fn bits_as_f64(prim: Prim, bits: u64) -> f64 {
-    match prim {
-        Prim::I8 => f64::from(bits as u8 as i8),
-        Prim::I16 => f64::from(bits as u16 as i16),
-        Prim::I24 => f64::from(((bits as u32) << 8) as i32 >> 8),
-        Prim::I32 => f64::from(bits as u32 as i32),
-        Prim::I64 => bits as i64 as f64,
-        _ => bits as f64,
+    match sign_extended(prim, bits) {
+        Some(i) => i as f64,
+        None => bits as f64,
     }
 }
 

@@ -220,7 +220,7 @@ fn value_schema(p: &Protocol, ty: &ValueType) -> Value {
         ValueType::Scalar { scalar, scale } => match (scalar.prim, scale) {
             (_, Some(_)) => number(),
             (prim, None) if prim.is_float() => number(),
-            (Prim::Bool, None) => json!({"type": "boolean"}),
+            (prim, None) if prim.is_bool() => json!({"type": "boolean"}),
             (_, None) => json!({"type": "integer"}),
         },
         ValueType::Struct(si) => struct_schema(p, *si),

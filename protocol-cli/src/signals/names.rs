@@ -153,7 +153,7 @@ fn field(
         FieldKind::Optional(inner) => field(p, inner, path, unit, owner, cols),
         FieldKind::Value { ty, .. } | FieldKind::Array { ty, .. } => match ty {
             ValueType::Scalar { scalar, scale } => {
-                let kind = if scalar.prim == Prim::Bool {
+                let kind = if scalar.prim.is_bool() {
                     Kind::Flag
                 } else {
                     scaled(scale.is_some())

@@ -689,6 +689,14 @@ fn random_elem(p: &Protocol, ty: &protocol_spec::ir::ValueType, rng: &mut Rng) -
                 ((bits << shift) as i64) >> shift
             };
             match (scale, scalar.prim) {
+                (Some(sc), Prim::F16 | Prim::F32 | Prim::F64) => {
+                    let raw = match scalar.prim {
+                        Prim::F16 => f64::from(protocol_runtime::wire::f16_to_f32(bits as u16)),
+                        Prim::F32 => f64::from(f32::from_bits(bits as u32)),
+                        _ => f64::from_bits(bits),
+                    };
+                    Value::F64(raw * sc.factor + sc.offset)
+                }
                 (Some(sc), prim) => {
                     let raw = if prim.is_signed() {
                         signed(bits) as f64
@@ -697,7 +705,8 @@ fn random_elem(p: &Protocol, ty: &protocol_spec::ir::ValueType, rng: &mut Rng) -
                     };
                     Value::F64(raw * sc.factor + sc.offset)
                 }
-                (None, Prim::Bool) => Value::Bool(bits & 1 != 0),
+                (None, prim) if prim.is_bool() => Value::Bool(bits & 1 != 0),
+                (None, Prim::F16) => Value::F32(protocol_runtime::wire::f16_to_f32(bits as u16)),
                 (None, Prim::F32) => Value::F32(f32::from_bits(bits as u32)),
                 (None, Prim::F64) => Value::F64(f64::from_bits(bits)),
                 (None, prim) if prim.is_signed() => Value::Int(signed(bits)),

@@ -40,10 +40,16 @@ pub const CAPTURES: &[(&str, &str, &[&str])] = &[
 /// The interpreter of `specs/NAME.toml`, its messages naming the path as the command's tests
 /// pass it (from the workspace root).
 pub fn interpreter(name: &str) -> Interpreter {
-    let path = format!("{}/../specs/{name}.toml", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    Interpreter::from_text(format!("specs/{name}.toml"), text)
-        .unwrap_or_else(|e| panic!("{name} is invalid:\n{e}"))
+    interpreter_at(&format!("specs/{name}.toml"))
+}
+
+/// The interpreter of the spec at `path`, from the workspace root (as the command's tests
+/// pass it, which its messages name).
+pub fn interpreter_at(path: &str) -> Interpreter {
+    let full = format!("{}/../{path}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&full).unwrap_or_else(|e| panic!("{full}: {e}"));
+    Interpreter::from_text(path.to_string(), text)
+        .unwrap_or_else(|e| panic!("{path} is invalid:\n{e}"))
 }
 
 /// Bytes of hex text.

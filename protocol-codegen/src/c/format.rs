@@ -271,8 +271,9 @@ pub(super) fn value(p: &Protocol, n: &Names, ty: &ValueType, label: &Label, v: &
 /// A number (a float as its bits) or a bool.
 pub(super) fn scalar(lo: &str, prim: Prim, label: &Label, v: &str) -> String {
     let (spec, value) = match prim {
-        Prim::Bool => ("%s", format!("{v} ? \"true\" : \"false\"")),
-        Prim::F32 => (
+        Prim::Bool | Prim::BoolInverted => ("%s", format!("{v} ? \"true\" : \"false\"")),
+        // A half is a `float` in C as it is an `f32` in Rust.
+        Prim::F16 | Prim::F32 => (
             "f32:%08llx",
             format!("(unsigned long long){lo}f32_bits({v})"),
         ),

@@ -75,6 +75,8 @@ const RESERVED: &[&str] = &[
     "encode",
     "event",
     "event_kind",
+    "f16",
+    "f16_bits",
     "f32",
     "f32_bits",
     "f64",
@@ -131,6 +133,8 @@ const RESERVED: &[&str] = &[
     "to_physical_f64",
     "trimmed",
     "txt",
+    "unscale_f32",
+    "unscale_f64",
     "utf8",
     "verify",
     "within_f32",
@@ -190,11 +194,11 @@ pub fn prim(p: Prim) -> &'static str {
         Prim::I16 => "int16_t",
         Prim::U24 | Prim::U32 => "uint32_t",
         Prim::I24 | Prim::I32 => "int32_t",
-        Prim::U64 => "uint64_t",
-        Prim::I64 => "int64_t",
-        Prim::F32 => "float",
+        Prim::U40 | Prim::U48 | Prim::U56 | Prim::U64 => "uint64_t",
+        Prim::I40 | Prim::I48 | Prim::I56 | Prim::I64 => "int64_t",
+        Prim::F16 | Prim::F32 => "float",
         Prim::F64 => "double",
-        Prim::Bool => "bool",
+        Prim::Bool | Prim::BoolInverted => "bool",
     }
 }
 

@@ -89,8 +89,8 @@ pub fn helpers(n: &Names) -> String {
     out
 }
 
-/// The runtime's exclusive bounds of a raw type (`fit`), in the physical type; a 24-bit type
-/// is fitted to its 32-bit type first.
+/// The runtime's exclusive bounds of a raw type (`fit`), in the physical type; a 24-, 40-,
+/// 48- or 56-bit type is fitted to its Rust type first.
 fn bounds(raw: Prim, physical: Prim) -> (String, String) {
     fn of<T: RawInt>(physical: Prim) -> (String, String) {
         match physical {
@@ -105,10 +105,11 @@ fn bounds(raw: Prim, physical: Prim) -> (String, String) {
         Prim::U8 => of::<u8>(physical),
         Prim::U16 => of::<u16>(physical),
         Prim::U24 | Prim::U32 => of::<u32>(physical),
-        Prim::U64 => of::<u64>(physical),
+        Prim::U40 | Prim::U48 | Prim::U56 | Prim::U64 => of::<u64>(physical),
         Prim::I8 => of::<i8>(physical),
         Prim::I16 => of::<i16>(physical),
         Prim::I24 | Prim::I32 => of::<i32>(physical),
+        Prim::I40 | Prim::I48 | Prim::I56 => of::<i64>(physical),
         // Validation gives scaled fields an integer raw type.
         _ => of::<i64>(physical),
     }
@@ -120,10 +121,12 @@ fn bounds(raw: Prim, physical: Prim) -> (String, String) {
 pub fn read(n: &Names, prim: Prim, sc: &Scale, raw: &str, dst: &str) -> String {
     let (lo, up) = (&n.lo, &n.up);
     let (ty, sfx) = float_of(sc.physical);
-    let int = if prim.is_signed() {
-        format!("(double){lo}sext({raw}, {}u)", 8 * prim.size())
-    } else {
-        format!("(double){raw}")
+    let int = match prim {
+        Prim::F16 | Prim::F32 | Prim::F64 => {
+            format!("(double){lo}{}({raw})", prim.spec_name())
+        }
+        p if p.is_signed() => format!("(double){lo}sext({raw}, {}u)", 8 * p.size()),
+        _ => format!("(double){raw}"),
     };
     let (factor, offset) = (lit(sc.factor, sc.physical), lit(sc.offset, sc.physical));
     let mut out = fill!(
@@ -151,12 +154,10 @@ pub fn read(n: &Names, prim: Prim, sc: &Scale, raw: &str, dst: &str) -> String {
     out
 }
 
-/// Statements that set `uint64_t raw` to the raw bits of the physical value `src` of a field
-/// of raw type `prim`; a value the type cannot hold returns `<PREFIX>ERR_OUT_OF_RANGE`.
-pub fn write(n: &Names, prim: Prim, sc: &Scale, src: &str) -> String {
-    let (lo, up) = (&n.lo, &n.up);
-    let (ty, sfx) = float_of(sc.physical);
-    let clamp = match sc.clamp {
+/// The statement that clamps `x` to the field's clamp range, if it has one.
+fn clamp(lo: &str, sc: &Scale) -> String {
+    let (_, sfx) = float_of(sc.physical);
+    match sc.clamp {
         Some((a, b)) => {
             let (a, b) = (lit(a, sc.physical), lit(b, sc.physical));
             fill!(
@@ -168,7 +169,18 @@ pub fn write(n: &Names, prim: Prim, sc: &Scale, src: &str) -> String {
             )
         }
         None => String::new(),
-    };
+    }
+}
+
+/// Statements that set `uint64_t raw` to the raw bits of the physical value `src` of a field
+/// of raw type `prim`; a value the type cannot hold returns `<PREFIX>ERR_OUT_OF_RANGE`.
+pub fn write(n: &Names, prim: Prim, sc: &Scale, src: &str) -> String {
+    if prim.is_float() {
+        return write_float(n, prim, sc, src);
+    }
+    let (lo, up) = (&n.lo, &n.up);
+    let (ty, sfx) = float_of(sc.physical);
+    let clamp = clamp(lo, sc);
     let (below, above) = bounds(prim, sc.physical);
     let (factor, offset) = (lit(sc.factor, sc.physical), lit(sc.offset, sc.physical));
     let truncate = u8::from(sc.rounding == Rounding::Truncate);
@@ -182,7 +194,11 @@ pub fn write(n: &Names, prim: Prim, sc: &Scale, src: &str) -> String {
             "            if (k < -8388608L || k > 8388607L) return ${up}ERR_OUT_OF_RANGE;\n",
             up
         ),
-        _ => String::new(),
+        // The statement of an unscaled value, indented into the block above.
+        _ => format!(
+            "            {}",
+            super::values::range_check(lo, prim, "k", up).trim_start()
+        ),
     };
     let bits = if prim.is_signed() {
         "(uint64_t)(int64_t)k"
@@ -215,5 +231,45 @@ ${fits}            raw = ${bits};
         ct,
         fits,
         bits
+    )
+}
+
+/// Statements that set `uint64_t raw` to the bits of the physical value `src` of a field whose
+/// wire type `prim` is a float: clamped (if the field clamps), unscaled (the runtime's
+/// `unscale`), converted to the wire's type as Rust's `as` casts do (a half through `float`);
+/// a value beyond the largest half returns `<PREFIX>ERR_OUT_OF_RANGE`.
+fn write_float(n: &Names, prim: Prim, sc: &Scale, src: &str) -> String {
+    let (lo, up) = (&n.lo, &n.up);
+    let (ty, sfx) = float_of(sc.physical);
+    let clamp = clamp(lo, sc);
+    let (factor, offset) = (lit(sc.factor, sc.physical), lit(sc.offset, sc.physical));
+    let (bits, check) = match prim {
+        Prim::F64 => (format!("{lo}f64_bits((double)x)"), String::new()),
+        Prim::F32 => (format!("{lo}f32_bits((float)x)"), String::new()),
+        _ => (
+            format!("{lo}f16_bits((float)x)"),
+            fill!(
+                "        if (raw > 0xFFFFu) return ${up}ERR_OUT_OF_RANGE;\n",
+                up
+            ),
+        ),
+    };
+    fill!(
+        r"
+    {
+        ${ty} x = ${src};
+${clamp}        x = ${lo}unscale_${sfx}(x, ${factor}, ${offset});
+        raw = ${bits};
+${check}    }
+",
+        ty,
+        src,
+        clamp,
+        lo,
+        sfx,
+        factor,
+        offset,
+        bits,
+        check
     )
 }

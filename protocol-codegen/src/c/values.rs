@@ -24,6 +24,8 @@ pub fn try_call(call: &str) -> String {
 fn from_raw(lo: &str, prim: Prim, raw: &str) -> String {
     match prim {
         Prim::Bool => format!("({raw} != 0)"),
+        Prim::BoolInverted => format!("({raw} == 0)"),
+        Prim::F16 => format!("{lo}f16({raw})"),
         Prim::F32 => format!("{lo}f32({raw})"),
         Prim::F64 => format!("{lo}f64({raw})"),
         p if p.is_signed() => {
@@ -37,6 +39,8 @@ fn from_raw(lo: &str, prim: Prim, raw: &str) -> String {
 fn to_raw(lo: &str, prim: Prim, v: &str) -> String {
     match prim {
         Prim::Bool => format!("({v} ? 1u : 0u)"),
+        Prim::BoolInverted => format!("({v} ? 0u : 1u)"),
+        Prim::F16 => format!("{lo}f16_bits({v})"),
         Prim::F32 => format!("{lo}f32_bits({v})"),
         Prim::F64 => format!("{lo}f64_bits({v})"),
         p if p.is_signed() => format!("(uint64_t)(int64_t){v}"),
@@ -44,8 +48,9 @@ fn to_raw(lo: &str, prim: Prim, v: &str) -> String {
     }
 }
 
-/// The range check of a 24-bit integer before it is written.
-fn range_check(prim: Prim, v: &str, up: &str) -> String {
+/// The range check of a value narrower on the wire than in C before it is written: a 24-,
+/// 40-, 48- or 56-bit integer, or a float beyond the largest half.
+pub fn range_check(lo: &str, prim: Prim, v: &str, up: &str) -> String {
     match prim {
         Prim::U24 => fill!(
             "    if (${v} > 0xFFFFFFu) return ${up}ERR_OUT_OF_RANGE;\n",
@@ -54,6 +59,32 @@ fn range_check(prim: Prim, v: &str, up: &str) -> String {
         ),
         Prim::I24 => fill!(
             "    if (${v} < -8388608L || ${v} > 8388607L) return ${up}ERR_OUT_OF_RANGE;\n",
+            v,
+            up
+        ),
+        Prim::U40 | Prim::U48 | Prim::U56 => {
+            let max = format!("{:#X}ull", u64::MAX >> (64 - prim.bits()));
+            fill!(
+                "    if (${v} > ${max}) return ${up}ERR_OUT_OF_RANGE;\n",
+                v,
+                max,
+                up
+            )
+        }
+        Prim::I40 | Prim::I48 | Prim::I56 => {
+            let half = 1i64 << (prim.bits() - 1);
+            let (min, max) = (format!("-{half}ll"), format!("{}ll", half - 1));
+            fill!(
+                "    if (${v} < ${min} || ${v} > ${max}) return ${up}ERR_OUT_OF_RANGE;\n",
+                v,
+                min,
+                max,
+                up
+            )
+        }
+        Prim::F16 => fill!(
+            "    if (${lo}f16_bits(${v}) > 0xFFFFu) return ${up}ERR_OUT_OF_RANGE;\n",
+            lo,
             v,
             up
         ),
@@ -129,7 +160,7 @@ pub fn write_elem(p: &Protocol, n: &Names, ty: &ValueType, src: &str) -> String 
         ValueType::Scalar { scalar, .. } => {
             let raw = to_raw(lo, scalar.prim, src);
             let put = put_call(n, scalar.prim.size(), big(*scalar), &raw);
-            range_check(scalar.prim, src, up) + &try_call(&put)
+            range_check(lo, scalar.prim, src, up) + &try_call(&put)
         }
         ValueType::Struct(si) => {
             let snake = names::snake(&p.structs[*si].name);

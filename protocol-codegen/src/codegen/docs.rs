@@ -7,8 +7,8 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use crate::ir::{
-    Algorithm, BitOrder, ByteOrder, Check, Field, FieldKind, Frame, Pos, Protocol, Role, Struct,
-    ValueType,
+    Algorithm, BitOrder, ByteOrder, Check, Field, FieldKind, Frame, Pos, Prim, Protocol, Role,
+    Struct, ValueType,
 };
 
 /// `#[doc = "..."]` attributes, one per line (so rustdoc and prettyplease keep the layout).
@@ -250,6 +250,11 @@ fn kind_doc(p: &Protocol, f: &Field, kind: &FieldKind) -> KindDoc {
 /// The docs of a value field ([`FieldKind::Value`]), or of an array's element.
 fn value_doc(p: &Protocol, ty: &ValueType, count: Option<usize>) -> KindDoc {
     let (base, order) = match ty {
+        // An inverted bool says so: its type alone would read as the usual one.
+        ValueType::Scalar {
+            scalar,
+            scale: None,
+        } if scalar.prim == Prim::BoolInverted => ("bool, 0 is true".to_string(), "-"),
         ValueType::Scalar {
             scalar,
             scale: None,

@@ -23,6 +23,11 @@ pub fn int_lit(prim: Prim, value: u64) -> TokenStream {
         // Two's complement bits of 24 bits, sign-extended.
         Prim::I24 => Literal::i32_suffixed(((value as u32) << 8) as i32 >> 8),
         Prim::I64 => Literal::i64_suffixed(value as i64),
+        // Two's complement bits of the type's width, sign-extended.
+        Prim::I40 | Prim::I48 | Prim::I56 => {
+            let shift = 64 - prim.bits();
+            Literal::i64_suffixed(((value << shift) as i64) >> shift)
+        }
         _ => Literal::u64_suffixed(value),
     };
     quote!(#lit)

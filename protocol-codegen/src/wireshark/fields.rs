@@ -33,12 +33,19 @@ impl Fields {
     pub fn prim(&mut self, prim: Prim, abbrev: &str, label: &str, values: Option<&str>) -> String {
         let vs = values.map_or(String::new(), |v| format!(", {v}"));
         match prim {
-            Prim::Bool => self.declare("bool", abbrev, label, ""),
-            Prim::F32 => self.declare("float", abbrev, label, ""),
+            Prim::Bool | Prim::BoolInverted => self.declare("bool", abbrev, label, ""),
+            // A half is shown as the `f32` it decodes to.
+            Prim::F16 | Prim::F32 => self.declare("float", abbrev, label, ""),
             Prim::F64 => self.declare("double", abbrev, label, ""),
             other => {
                 let sign = if other.is_signed() { "int" } else { "uint" };
-                let ctor = format!("{sign}{}", other.size() * 8);
+                // Wireshark's integer fields are 8, 16, 24, 32 or 64 bits wide; a 40-, 48- or
+                // 56-bit value is a 64-bit field over its bytes.
+                let bits = match other.size() * 8 {
+                    40 | 48 | 56 => 64,
+                    b => b,
+                };
+                let ctor = format!("{sign}{bits}");
                 self.declare(&ctor, abbrev, label, &format!(", base.DEC{vs}"))
             }
         }
@@ -125,6 +132,12 @@ impl StructPrinter<'_> {
             s.prim.is_signed(),
             s.prim.is_float()
         );
+        if s.prim == Prim::F16 {
+            out.push_str(", half = true");
+        }
+        if s.prim == Prim::BoolInverted {
+            out.push_str(", inverted = true");
+        }
         match scale {
             Some(sc) => {
                 if s.prim.size() > 6 {

@@ -73,14 +73,14 @@ fn a_derive_mistake_reads_as_the_same_mistake_in_a_spec() {
             "{ name = \"a\", type = \"i16\", scale = 0.0 },",
         ),
         (
-            "struct S { #[payload(scale = 0.5)] a: f32 }",
+            "struct S { #[payload(scale = 0.5)] a: bool }",
             "",
-            "{ name = \"a\", type = \"f32\", scale = 0.5 },",
+            "{ name = \"a\", type = \"bool\", scale = 0.5 },",
         ),
         (
-            "struct S { #[payload(raw = \"u48\")] a: u64 }",
+            "struct S { #[payload(raw = \"u36\")] a: u64 }",
             "",
-            "{ name = \"a\", type = \"u48\" },",
+            "{ name = \"a\", type = \"u36\" },",
         ),
         (
             "#[payload(byte_order = \"middle\")] struct S { a: u16 }",
@@ -100,12 +100,12 @@ fn a_derive_mistake_reads_as_the_same_mistake_in_a_spec() {
 #[test]
 fn every_mistake_of_a_derive_is_reported() {
     let errors = derive_errors(
-        "struct S { #[payload(pad_before = 0)] a: u8, b: [u8; 0], #[payload(scale = 0.5)] c: f64 }",
+        "struct S { #[payload(pad_before = 0)] a: u8, b: [u8; 0], #[payload(scale = 0.5)] c: bool }",
     );
     assert_eq!(errors.len(), 3, "{errors:#?}");
     assert!(errors[0].starts_with("padding must be at least one byte"));
     assert!(errors[1].starts_with("an array count must be at least 1"));
-    assert!(errors[2].starts_with("`scale` applies to integer fields, not `f64`"));
+    assert!(errors[2].starts_with("`scale` applies to number fields, not `bool`"));
 }
 
 /// The rule a spec has no use for: a field's Rust type is the one its wire form decodes to.

@@ -134,7 +134,7 @@ fn first_help(source: &SpecSource) -> String {
 
 #[test]
 fn names_users_know_resolve_and_near_misses_get_the_nearest_meaningful_name() {
-    // Catalogue aliases and the 24-bit width are names, not typos.
+    // Catalogue aliases and the 24- and 40-bit widths are names, not typos.
     for check in ["crc-32", "crc-16-ccitt", "CRC-16/CCITT-FALSE", "sum8"] {
         let source = spec_with(check, "u24be");
         if let Err(d) = protocol_codegen::compile(&source) {
@@ -152,9 +152,9 @@ fn names_users_know_resolve_and_near_misses_get_the_nearest_meaningful_name() {
         ("i61", "did you mean `i16`?"),
         // A width the wire lacks: the narrowest width that holds it, not the nearest spelling
         // (`u8`, `u16`), which is a different type.
-        ("u48", "`u64` holds 48 bits"),
+        ("u36", "`u40` holds 36 bits"),
         ("u12be", "`u16be` holds 12 bits"),
-        ("f16", "floats are `f32`, `f64`"),
+        ("f24", "floats are `f16`, `f32`, `f64`"),
     ] {
         let help = first_help(&spec_with("sum8", ty));
         assert!(help.contains(said), "{ty}: {help}");

@@ -34,14 +34,7 @@ fn join(path: &str, name: &str) -> String {
 
 /// The value of raw bits of a signed type, `None` for unsigned types.
 fn signed_value(prim: Prim, raw: u64) -> Option<i64> {
-    match prim {
-        Prim::I8 => Some(i64::from(raw as u8 as i8)),
-        Prim::I16 => Some(i64::from(raw as u16 as i16)),
-        Prim::I24 => Some(i64::from(((raw as u32) << 8) as i32 >> 8)),
-        Prim::I32 => Some(i64::from(raw as u32 as i32)),
-        Prim::I64 => Some(raw as i64),
-        _ => None,
-    }
+    crate::value::sign_extended(prim, raw)
 }
 
 /// The variant of an enum with raw value `raw` (bits truncated to the enum's type).

@@ -186,6 +186,9 @@ pub(super) fn scaled_raw(
     v: &Value,
     path: &str,
 ) -> Result<u64, EncodeIssue> {
+    if scalar.prim.is_float() {
+        return scaled_float_bits(scalar, sc, v, path);
+    }
     let shown;
     // In the field's Rust type, as generated code computes it.
     let q = match sc.physical {
@@ -227,10 +230,57 @@ pub(super) fn scaled_raw(
     Ok(truncate(scalar.prim, raw))
 }
 
+/// The raw bits (for [`write_bits`]) of a scaled field whose wire type is a float: the value
+/// in its Rust type, clamped, unscaled by the runtime's [`field::unscale`], then converted to
+/// the wire's type as generated code's `as` casts do (an `f16` through `f32`); a value
+/// beyond the largest half is refused.
+fn scaled_float_bits(
+    scalar: Scalar,
+    sc: &Scale,
+    v: &Value,
+    path: &str,
+) -> Result<u64, EncodeIssue> {
+    // The raw value in the wire's width: an `f64` wire takes it widened, the others narrowed.
+    let wire = |wide: f64, narrow: f32| match scalar.prim {
+        Prim::F64 => wide.to_bits(),
+        _ => u64::from(narrow.to_bits()),
+    };
+    let bits = match sc.physical {
+        Prim::F32 => {
+            let value = value_f32(v).map_err(|e| issue(path, e))?;
+            let (factor, offset) = (sc.factor as f32, sc.offset as f32);
+            let physical = match sc.clamp {
+                Some((lo, hi)) => field::clamp(value, lo as f32, hi as f32),
+                None => value,
+            };
+            let raw = field::unscale(physical, factor, offset);
+            wire(f64::from(raw), raw)
+        }
+        _ => {
+            let value = value_f64(v).map_err(|e| issue(path, e))?;
+            let physical = match sc.clamp {
+                Some((lo, hi)) => field::clamp(value, lo, hi),
+                None => value,
+            };
+            let raw = field::unscale(physical, sc.factor, sc.offset);
+            wire(raw, raw as f32)
+        }
+    };
+    if scalar.prim == Prim::F16
+        && protocol_runtime::wire::f32_to_f16(f32::from_bits(bits as u32)).is_none()
+    {
+        return Err(EncodeIssue::new(
+            path,
+            format!("{v} does not fit the raw type f16 once scaled"),
+        ));
+    }
+    Ok(bits)
+}
+
 /// [`field::fit`] for the raw type `prim`, as two's complement bits.
 fn fit_bits(prim: Prim, q: impl field::Float) -> Result<u64, EncodeError> {
     use field::fit;
-    use protocol_runtime::wire::{fit_i24, fit_u24};
+    use protocol_runtime::wire::{fit_i24, fit_signed, fit_u24, fit_unsigned};
     Ok(match prim {
         Prim::U8 => u64::from(fit::<u8>(q)?),
         Prim::U16 => u64::from(fit::<u16>(q)?),
@@ -242,8 +292,10 @@ fn fit_bits(prim: Prim, q: impl field::Float) -> Result<u64, EncodeError> {
         Prim::I24 => fit_i24(fit::<i32>(q)?)? as u64,
         Prim::I32 => fit::<i32>(q)? as u64,
         Prim::I64 => fit::<i64>(q)? as u64,
-        // Validation gives scaled fields an integer raw type.
-        Prim::F32 | Prim::F64 | Prim::Bool => {
+        Prim::U40 | Prim::U48 | Prim::U56 => fit_unsigned(fit::<u64>(q)?, prim.bits())?,
+        Prim::I40 | Prim::I48 | Prim::I56 => fit_signed(fit::<i64>(q)?, prim.bits())? as u64,
+        // A float wire value is not fitted (`scaled_float_bits`); a bool takes no scale.
+        Prim::F16 | Prim::F32 | Prim::F64 | Prim::Bool | Prim::BoolInverted => {
             return Err(EncodeError::ValueOutOfRange {
                 place: protocol_runtime::error::Place::NONE,
             });

@@ -73,8 +73,8 @@ pub fn pascal(name: &str) -> String {
 
 fn int_text(prim: Prim, v: &Value) -> String {
     match prim {
-        Prim::Bool => v.as_bool().expect("bool").to_string(),
-        Prim::F32 => format!("{:?}", value_f32(v).expect("f32")),
+        Prim::Bool | Prim::BoolInverted => v.as_bool().expect("bool").to_string(),
+        Prim::F16 | Prim::F32 => format!("{:?}", value_f32(v).expect("f32")),
         Prim::F64 => format!("{:?}", value_f64(v).expect("f64")),
         _ if prim.is_signed() => v.as_i64().expect("integer").to_string(),
         _ => v.as_u64().expect("integer").to_string(),

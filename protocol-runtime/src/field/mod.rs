@@ -8,7 +8,8 @@
 //!   physical value when the spec gives a clamp range ([`clamp`]), divides back and rounds
 //!   ([`quantize`] by a [`Rounding`]), and a raw value that does not fit its integer type is an
 //!   error ([`fit`]), never a saturated value; decoding refuses a value outside the clamp range
-//!   ([`check_clamp`]), which could not encode back to the same bytes;
+//!   ([`check_clamp`]), which could not encode back to the same bytes; a float on the wire
+//!   takes the same scaling, and encodes by the inverse ([`unscale`]) without rounding;
 //! - enums: an unknown value is an error or kept, by the enum's [`UnknownPolicy`]; a value
 //!   encodes only if it decodes back to itself ([`enum_raw`]);
 //! - bitfields: members are `width` bits at `shift` of an unsigned word ([`get_bits`],
@@ -28,7 +29,9 @@
 
 mod scale;
 
-pub use scale::{RawInt, Rounding, check_clamp, clamp, fit, quantize, to_physical, within_clamp};
+pub use scale::{
+    RawInt, Rounding, check_clamp, clamp, fit, quantize, to_physical, unscale, within_clamp,
+};
 
 use crate::checksum::Checksum;
 use crate::error::{DecodeError, EncodeError};

@@ -59,6 +59,28 @@ fn reciprocal_integer<F: Float>(factor: F) -> Option<F> {
     (n != F::ZERO && off <= F::NOISE * n.magnitude()).then_some(n)
 }
 
+/// The raw value of a physical one for a scaled field whose wire type is a float: the inverse
+/// of [`to_physical`], `(physical - offset) / factor`, multiplying by `n` where
+/// [`to_physical`] divides by it. No rounding: the caller converts the result to the wire's
+/// float type (`as f32`, or to a half), which rounds to the nearest.
+///
+/// ```
+/// use protocol_runtime::field::{to_physical, unscale};
+/// assert_eq!(unscale(20.0, 0.1, -5.0), 250.0);
+/// assert_eq!(unscale(to_physical(3.0f64, 0.25, 1.0), 0.25, 1.0), 3.0);
+/// ```
+#[allow(
+    clippy::arithmetic_side_effects,
+    reason = "float arithmetic (F is f32 or f64): it neither wraps nor panics"
+)]
+#[inline(always)]
+pub fn unscale<F: Float>(physical: F, factor: F, offset: F) -> F {
+    match reciprocal_integer(factor) {
+        Some(n) => (physical - offset) * n,
+        None => (physical - offset) / factor,
+    }
+}
+
 /// Whether a decoded physical value lies in the clamp range `lo..=hi` of its scaled field,
 /// allowing for the rounding of `raw * factor + offset` in `F` (a raw value at the limit is
 /// inside).

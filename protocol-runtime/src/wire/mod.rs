@@ -28,13 +28,17 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod half;
 mod int24;
 mod reader;
+mod wide_int;
 mod word;
 mod writer;
 
+pub use half::{f16_to_f32, f32_to_f16, fit_f16};
 pub use int24::{fit_i24, fit_u24};
 pub use reader::Reader;
+pub use wide_int::{fit_signed, fit_unsigned};
 pub use word::{read_uint, write_uint};
 pub use writer::Writer;
 

@@ -195,6 +195,23 @@ impl<'a> Reader<'a> {
         self.u8().map(|b| b != 0)
     }
 
+    /// Reads an inverted `bool` (a spec's `invert = true`, an active-low flag): 0 is `true`,
+    /// anything else `false`.
+    ///
+    /// # Errors
+    ///
+    /// [`DecodeError::Truncated`] if no byte remains.
+    ///
+    /// ```
+    /// use protocol_runtime::Reader;
+    /// assert_eq!(Reader::new(&[0]).bool_inverted(), Ok(true));
+    /// assert_eq!(Reader::new(&[7]).bool_inverted(), Ok(false));
+    /// ```
+    #[inline]
+    pub fn bool_inverted(&mut self) -> Result<bool, DecodeError> {
+        self.u8().map(|b| b == 0)
+    }
+
     reader_numbers! {
         u16: u16_le, u16_be;
         i16: i16_le, i16_be;

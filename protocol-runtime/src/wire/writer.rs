@@ -209,6 +209,26 @@ impl<'a> Writer<'a> {
         self.put_array([u8::from(v)])
     }
 
+    /// Writes an inverted `bool` (a spec's `invert = true`): `true` as 0, `false` as 1.
+    ///
+    /// # Errors
+    ///
+    /// [`EncodeError::BufferTooSmall`] if the buffer is full.
+    ///
+    /// ```
+    /// use protocol_runtime::Writer;
+    /// let mut buf = [9u8; 2];
+    /// let mut w = Writer::new(&mut buf);
+    /// w.put_bool_inverted(true)?;
+    /// w.put_bool_inverted(false)?;
+    /// assert_eq!(buf, [0, 1]);
+    /// # Ok::<(), protocol_runtime::EncodeError>(())
+    /// ```
+    #[inline]
+    pub fn put_bool_inverted(&mut self, v: bool) -> Result<(), EncodeError> {
+        self.put_array([u8::from(!v)])
+    }
+
     writer_numbers! {
         u16: put_u16_le, put_u16_be;
         i16: put_i16_le, put_i16_be;

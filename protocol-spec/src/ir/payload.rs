@@ -19,6 +19,19 @@ pub enum Prim {
     /// `i24`: three bytes of two's complement, an `i32` in Rust (sign-extended on decode); a
     /// value outside the 24-bit range is an encode error
     I24,
+    /// `u40`: five bytes, a `u64` in Rust; a value above 40 bits is an encode error
+    U40,
+    /// `i40`: five bytes of two's complement, an `i64` in Rust (sign-extended on decode); a
+    /// value outside the 40-bit range is an encode error
+    I40,
+    /// `u48`: six bytes, a `u64` in Rust; a value above 48 bits is an encode error
+    U48,
+    /// `i48`: six bytes of two's complement, an `i64` in Rust, as `I40`
+    I48,
+    /// `u56`: seven bytes, a `u64` in Rust; a value above 56 bits is an encode error
+    U56,
+    /// `i56`: seven bytes of two's complement, an `i64` in Rust, as `I40`
+    I56,
     /// `u32`
     U32,
     /// `i32`
@@ -27,31 +40,44 @@ pub enum Prim {
     U64,
     /// `i64`
     I64,
+    /// `f16`, IEEE 754 binary16: two bytes, an `f32` in Rust (exact on decode, rounded to
+    /// the nearest on encode; a finite value beyond the largest half is an encode error)
+    F16,
     /// `f32`, IEEE 754 binary32
     F32,
     /// `f64`, IEEE 754 binary64
     F64,
     /// `bool`, one byte: 0 is false, anything else true (encoded as 1)
     Bool,
+    /// `bool` with `invert = true`, one byte: 0 is true, anything else false (true encoded as
+    /// 0, false as 1)
+    BoolInverted,
 }
 
 impl Prim {
     /// Size on the wire, in bytes.
     pub fn size(self) -> usize {
         match self {
-            Prim::U8 | Prim::I8 | Prim::Bool => 1,
-            Prim::U16 | Prim::I16 => 2,
+            Prim::U8 | Prim::I8 | Prim::Bool | Prim::BoolInverted => 1,
+            Prim::U16 | Prim::I16 | Prim::F16 => 2,
             Prim::U24 | Prim::I24 => 3,
             Prim::U32 | Prim::I32 | Prim::F32 => 4,
+            Prim::U40 | Prim::I40 => 5,
+            Prim::U48 | Prim::I48 => 6,
+            Prim::U56 | Prim::I56 => 7,
             Prim::U64 | Prim::I64 | Prim::F64 => 8,
         }
     }
 
-    /// The Rust type name (`u32` for `u24`, `i32` for `i24`).
+    /// The Rust type name: the next wider type for the integers of odd widths (`u32` for
+    /// `u24`, `i64` for `i40`), `f32` for `f16`.
     pub fn rust_name(self) -> &'static str {
         match self {
             Prim::U24 => "u32",
             Prim::I24 => "i32",
+            Prim::U40 | Prim::U48 | Prim::U56 => "u64",
+            Prim::I40 | Prim::I48 | Prim::I56 => "i64",
+            Prim::F16 => "f32",
             Prim::U8 => "u8",
             Prim::I8 => "i8",
             Prim::U16 => "u16",
@@ -62,18 +88,44 @@ impl Prim {
             Prim::I64 => "i64",
             Prim::F32 => "f32",
             Prim::F64 => "f64",
-            Prim::Bool => "bool",
+            Prim::Bool | Prim::BoolInverted => "bool",
         }
     }
 
     /// The name a spec writes (before an optional `le`/`be` suffix): the Rust type name, but
-    /// `u24` and `i24` for the 24-bit integers.
+    /// the wire's own for the types Rust has not (`u24`, `i40`, `f16`).
     pub fn spec_name(self) -> &'static str {
         match self {
             Prim::U24 => "u24",
             Prim::I24 => "i24",
+            Prim::U40 => "u40",
+            Prim::I40 => "i40",
+            Prim::U48 => "u48",
+            Prim::I48 => "i48",
+            Prim::U56 => "u56",
+            Prim::I56 => "i56",
+            Prim::F16 => "f16",
             other => other.rust_name(),
         }
+    }
+
+    /// The types a spec names that Rust has not: each is its Rust type
+    /// ([`Prim::rust_name`]) on the wire in fewer bytes.
+    pub const NARROW: [Prim; 9] = [
+        Prim::U24,
+        Prim::I24,
+        Prim::U40,
+        Prim::I40,
+        Prim::U48,
+        Prim::I48,
+        Prim::U56,
+        Prim::I56,
+        Prim::F16,
+    ];
+
+    /// Bits of the wire value.
+    pub fn bits(self) -> u32 {
+        8 * self.size() as u32
     }
 
     /// The primitive a Rust type name (`u8` ... `i64`, `f32`, `f64`, `bool`) stands for: the
@@ -96,21 +148,27 @@ impl Prim {
         .find(|p| p.rust_name() == name)
     }
 
-    /// The primitive a spec name (`u8` ... `i64`, `u24`, `i24`, `f32`, `f64`, `bool`) stands
-    /// for: the inverse of [`Prim::spec_name`].
+    /// The primitive a spec name (`u8` ... `i64`, `u24`, `i40`, `f16`, `f32`, `f64`, `bool`)
+    /// stands for: the inverse of [`Prim::spec_name`].
     pub fn from_spec_name(name: &str) -> Option<Prim> {
-        match name {
-            "u24" => Some(Prim::U24),
-            "i24" => Some(Prim::I24),
-            other => Prim::from_rust_name(other),
-        }
+        Prim::NARROW
+            .into_iter()
+            .find(|p| p.spec_name() == name)
+            .or_else(|| Prim::from_rust_name(name))
     }
 
     /// True for the unsigned integer types.
     pub fn is_unsigned(self) -> bool {
         matches!(
             self,
-            Prim::U8 | Prim::U16 | Prim::U24 | Prim::U32 | Prim::U64
+            Prim::U8
+                | Prim::U16
+                | Prim::U24
+                | Prim::U32
+                | Prim::U40
+                | Prim::U48
+                | Prim::U56
+                | Prim::U64
         )
     }
 
@@ -118,13 +176,31 @@ impl Prim {
     pub fn is_signed(self) -> bool {
         matches!(
             self,
-            Prim::I8 | Prim::I16 | Prim::I24 | Prim::I32 | Prim::I64
+            Prim::I8
+                | Prim::I16
+                | Prim::I24
+                | Prim::I32
+                | Prim::I40
+                | Prim::I48
+                | Prim::I56
+                | Prim::I64
         )
     }
 
-    /// True for `f32` and `f64`.
+    /// True for `bool`, inverted or not.
+    pub fn is_bool(self) -> bool {
+        matches!(self, Prim::Bool | Prim::BoolInverted)
+    }
+
+    /// True for `f16`, `f32` and `f64`.
     pub fn is_float(self) -> bool {
-        matches!(self, Prim::F32 | Prim::F64)
+        matches!(self, Prim::F16 | Prim::F32 | Prim::F64)
+    }
+
+    /// True for the types whose wire is narrower than their Rust type ([`Prim::NARROW`]): a
+    /// value of the Rust type may not fit, which is an encode error.
+    pub fn is_narrow(self) -> bool {
+        Prim::NARROW.contains(&self)
     }
 }
 

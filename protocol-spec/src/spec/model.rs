@@ -521,9 +521,9 @@ pub struct FieldDef {
     /// Field name.
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub name: Option<SStr>,
-    /// Type: primitive (`u16`, `i32be`, `u24le`, `f32`, `bool`), `char[N]` (N bytes of
-    /// NUL-padded text), `cstr` (NUL-terminated text of at most `max` bytes), struct or enum
-    /// name.
+    /// Type: primitive (`u16`, `i32be`, `u24le`, `u48`, `f16`, `f32`, `bool`), `char[N]` (N
+    /// bytes of NUL-padded text), `cstr` (NUL-terminated text of at most `max` bytes), struct
+    /// or enum name.
     #[serde(rename = "type")]
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub ty: Option<SStr>,
@@ -561,18 +561,23 @@ pub struct FieldDef {
     /// (reserved-zero: written as zero, ignored when read).
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub reserved: Option<SStr>,
-    /// Physical value = raw * scale (+ offset).
+    /// Physical value = raw * scale (+ offset), for an integer or a float on the wire.
     #[cfg_attr(feature = "schema", schemars(with = "Option<f64>"))]
     pub scale: Option<Spanned<f64>>,
     /// Added after scaling.
     #[cfg_attr(feature = "schema", schemars(with = "Option<f64>"))]
     pub offset: Option<Spanned<f64>>,
-    /// `"nearest"` (default) or `"truncate"`: how encoding turns a physical value into raw.
+    /// `"nearest"` (default) or `"truncate"`: how encoding turns a physical value into a raw
+    /// integer (a float on the wire keeps the quotient).
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub rounding: Option<SStr>,
     /// `[min, max]`: physical values are clamped into this range before encoding.
     #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<f64>>"))]
     pub clamp: Option<Spanned<Vec<Spanned<f64>>>>,
+    /// With `type = "bool"`: the wire byte 0 means `true` (an active-low flag); `true` is
+    /// written as 0 and `false` as 1.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
+    pub invert: Option<Spanned<bool>>,
     /// Unit of the (physical) value, for docs.
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub unit: Option<SStr>,

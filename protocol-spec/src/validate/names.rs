@@ -29,7 +29,8 @@ const NOT_RAW: &[&str] = &["self", "Self", "super", "crate", "_"];
 
 /// The primitive type names a spec may write (before an optional `le`/`be` suffix).
 pub const PRIM_NAMES: &[&str] = &[
-    "u8", "i8", "u16", "i16", "u24", "i24", "u32", "i32", "u64", "i64", "f32", "f64", "bool",
+    "u8", "i8", "u16", "i16", "u24", "i24", "u32", "i32", "u40", "i40", "u48", "i48", "u56", "i56",
+    "u64", "i64", "f16", "f32", "f64", "bool",
 ];
 
 /// `SHAKING_HANDS` -> `ShakingHands`, `chassis_coord` -> `ChassisCoord`.
@@ -215,20 +216,9 @@ pub fn parse_prim(name: &str, default: ByteOrder) -> Option<Scalar> {
         (name, default)
     };
     let prim = match base {
-        "u8" => Prim::U8,
-        "i8" => Prim::I8,
-        "u16" => Prim::U16,
-        "i16" => Prim::I16,
-        "u24" => Prim::U24,
-        "i24" => Prim::I24,
-        "u32" => Prim::U32,
-        "i32" => Prim::I32,
-        "u64" => Prim::U64,
-        "i64" => Prim::I64,
-        "f32" => Prim::F32,
-        "f64" => Prim::F64,
         "bool" if base.len() == name.len() => Prim::Bool,
-        _ => return None,
+        "bool" => return None,
+        other => Prim::from_spec_name(other)?,
     };
     Some(Scalar { prim, endian })
 }
@@ -247,7 +237,7 @@ pub fn prim_spellings() -> Vec<String> {
 }
 
 /// Report an unknown type name, suggesting the closest known one. A primitive's spelling with a
-/// width the wire does not have (`u48`, `f16`) is answered with the widths there are and the
+/// width the wire does not have (`u36`, `f24`) is answered with the widths there are and the
 /// narrowest that holds it, not with the nearest spelling (`u8`, `u16`), which means something
 /// else.
 pub(crate) fn unknown_type(ctx: &mut Ctx<'_>, ty: &SStr, known: &[String], what: &str) {
@@ -278,7 +268,7 @@ fn same_letters(a: &str, b: &str) -> bool {
     sorted(a) == sorted(b)
 }
 
-/// For `u48`, `i12be`, `f16`: the widths of that kind of number, and the narrowest that holds
+/// For `u36`, `i12be`, `f24`: the widths of that kind of number, and the narrowest that holds
 /// the one written. `None` when the name is not a number's spelling.
 fn width_help(name: &str) -> Option<String> {
     let (base, order) = match (name.strip_suffix("le"), name.strip_suffix("be")) {
@@ -290,9 +280,9 @@ fn width_help(name: &str) -> Option<String> {
     let kind = chars.next()?;
     let bits: u32 = chars.as_str().parse().ok()?;
     let (what, widths): (&str, &[u32]) = match kind {
-        'u' => ("unsigned integers", &[8, 16, 24, 32, 64]),
-        'i' => ("signed integers", &[8, 16, 24, 32, 64]),
-        'f' => ("floats", &[32, 64]),
+        'u' => ("unsigned integers", &[8, 16, 24, 32, 40, 48, 56, 64]),
+        'i' => ("signed integers", &[8, 16, 24, 32, 40, 48, 56, 64]),
+        'f' => ("floats", &[16, 32, 64]),
         _ => return None,
     };
     let list = widths
@@ -301,7 +291,7 @@ fn width_help(name: &str) -> Option<String> {
         .collect::<Vec<_>>()
         .join(", ");
     Some(match widths.iter().find(|w| **w >= bits) {
-        Some(_) if kind == 'f' && [8, 16, 24].contains(&bits) => {
+        Some(_) if kind == 'f' && [8, 24].contains(&bits) => {
             format!("{what} are {list}; declare a {bits}-bit float's raw bits as `u{bits}{order}`")
         }
         Some(_) if kind == 'f' => format!("{what} are {list}"),

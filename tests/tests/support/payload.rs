@@ -198,10 +198,15 @@ impl Model {
             }
             ir::ValueType::Scalar { scalar, scale } => {
                 let mut value = match (scalar.prim, limit) {
-                    (ir::Prim::Bool, _) => src.below(2),
+                    (prim, _) if prim.is_bool() => src.below(2),
                     (_, Some(limit)) => src.below(limit.saturating_add(1)),
                     _ => src.next_u64(),
                 };
+                // A NaN's payload may change through a scaled float's arithmetic (a signaling
+                // NaN is quieted): not canonical.
+                while scale.is_some() && is_nan(scalar.prim, value) {
+                    value = src.next_u64();
+                }
                 // A scaled value outside its clamp range is not canonical: the encoder clamps it.
                 if let Some(scale) = scale {
                     let mut tries = 0;
@@ -239,6 +244,16 @@ fn raw_number(prim: ir::Prim, raw: u64) -> f64 {
         (((raw << shift) as i64) >> shift) as f64
     } else {
         raw as f64
+    }
+}
+
+/// Whether `raw` is the bits of a NaN of the float type `prim` (never for other types).
+fn is_nan(prim: ir::Prim, raw: u64) -> bool {
+    match prim {
+        ir::Prim::F16 => raw & 0x7C00 == 0x7C00 && raw & 0x3FF != 0,
+        ir::Prim::F32 => f32::from_bits(raw as u32).is_nan(),
+        ir::Prim::F64 => f64::from_bits(raw).is_nan(),
+        _ => false,
     }
 }
 

@@ -18,8 +18,9 @@
 //! or sum, with a lookup-table size and a byte folded in per command (`extra`); a field after
 //! the payload, a trailer, optional bytes after the checks; acknowledgements, bare headers,
 //! byte stuffing and trailing-zero truncation. Payload structs take every fixed-size field kind
-//! (integers of 8 to 64 bits with a byte order, floats, bools, arrays sized by a number or a
-//! constant, enums that keep or reject unknown values, scaled, clamped and rounded values, bit
+//! (integers of 8 to 64 bits with a byte order, 40, 48 and 56 bits among them, floats and
+//! halves, bools (inverted too), arrays sized by a number or a constant, enums that keep or reject unknown
+//! values, scaled, clamped and rounded values, scaled floats, bit
 //! members, bit-packed arrays, fixed and NUL-terminated text, nested structs, padding), bytes
 //! and arrays sized by an earlier field, checks inside a payload (with a CRC prefix), extension
 //! fields and a variable tail (bytes, repeated integers or structs, an optional value).
@@ -84,7 +85,8 @@ const fn int(name: &'static str, size: usize, signed: bool) -> Int {
     Int { name, size, signed }
 }
 
-/// Unsigned and signed, by size; the first eight fit a scaled value's `f32`/`f64` exactly.
+/// Unsigned and signed, by size; the first eight fit a scaled value's `f32`/`f64` exactly; the
+/// last six are the widths Rust has not (`field-int-wide`).
 const INTS: &[Int] = &[
     int("u8", 1, false),
     int("i8", 1, true),
@@ -96,6 +98,12 @@ const INTS: &[Int] = &[
     int("i32", 4, true),
     int("u64", 8, false),
     int("i64", 8, true),
+    int("u40", 5, false),
+    int("i40", 5, true),
+    int("u48", 6, false),
+    int("i48", 6, true),
+    int("u56", 7, false),
+    int("i56", 7, true),
 ];
 
 /// The type name with a byte order suffix sometimes (multi-byte types only).
@@ -223,12 +231,16 @@ pub const FEATURES: &[&str] = &[
     "enum-reject",
     "struct-byte-order",
     "field-int",
+    "field-int-wide",
     "field-float",
+    "field-f16",
     "field-bool",
+    "field-bool-inverted",
     "field-array",
     "field-array-constant",
     "field-enum",
     "field-scaled",
+    "field-scaled-float",
     "field-clamp",
     "field-rounding",
     "field-bits",

@@ -25,6 +25,20 @@ ${up}UNUSED static ${ty} ${lo}to_physical_${sfx}(${ty} raw, ${ty} factor, ${ty} 
     return t + offset;
 }
 
+/* The inverse of `to_physical` for a float on the wire: `(physical - offset) / factor`,
+ * times `n` where `to_physical` divides by it; not rounded. */
+${up}UNUSED static ${ty} ${lo}unscale_${sfx}(${ty} physical, ${ty} factor, ${ty} offset)
+{
+    ${ty} inv = ${one} / factor;
+    ${ty} n = ${lo}cut_${sfx}(inv >= ${zero} ? inv + ${half} : inv - ${half});
+    ${ty} off = ${lo}mag_${sfx}(inv - n);
+    ${ty} d = physical - offset;
+    if (n != ${zero} && off <= ${noise} * ${lo}mag_${sfx}(n)) {
+        return d * n;
+    }
+    return d / factor;
+}
+
 /* Whether a decoded value lies in the clamp range, with the slack of its rounding. */
 ${up}UNUSED static int ${lo}within_${sfx}(${ty} x, ${ty} lo, ${ty} hi)
 {

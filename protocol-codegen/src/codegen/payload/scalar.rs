@@ -13,6 +13,9 @@ pub fn prim_type(prim: Prim) -> TokenStream {
 }
 
 fn suffix(s: Scalar) -> String {
+    if s.prim == Prim::BoolInverted {
+        return "bool_inverted".to_string();
+    }
     let base = s.prim.spec_name();
     if s.prim.size() == 1 {
         base.to_string()
@@ -66,11 +69,22 @@ fn rounding(rt: &TokenStream, r: Rounding) -> TokenStream {
     }
 }
 
-/// The physical value of the raw integer expression `raw`.
-pub(super) fn to_physical(raw: TokenStream, sc: &Scale, rt: &TokenStream) -> TokenStream {
+/// The physical value of the raw expression `raw`, of the Rust type of `raw_prim` (an integer,
+/// or a float's own type, which takes no cast).
+pub(super) fn to_physical(
+    raw: TokenStream,
+    raw_prim: Prim,
+    sc: &Scale,
+    rt: &TokenStream,
+) -> TokenStream {
     let (f, o) = (scale_lit(sc.factor, sc), scale_lit(sc.offset, sc));
     let phys = prim_type(sc.physical);
-    let value = quote!(#rt::to_physical(#raw as #phys, #f, #o));
+    let raw = if raw_prim.rust_name() == sc.physical.rust_name() {
+        raw
+    } else {
+        quote!(#raw as #phys)
+    };
+    let value = quote!(#rt::to_physical(#raw, #f, #o));
     match sc.clamp {
         // A value outside the clamp range would not encode back to the same bytes.
         Some((lo, hi)) => {
@@ -106,6 +120,32 @@ pub(super) fn to_raw(
         None => quote!(#rt::fit),
     };
     quote!(#fit(#rt::quantize(#physical, #f, #o, #mode))?)
+}
+
+/// The raw value, of the wire's float type `wire` (`f16` is an `f32` in Rust), of the
+/// physical value `value` of a scaled float field: clamped (if the field clamps) and unscaled
+/// by the runtime, then cast to the wire's Rust type where it differs.
+pub(super) fn to_raw_float(
+    value: TokenStream,
+    sc: &Scale,
+    wire: Prim,
+    rt: &TokenStream,
+) -> TokenStream {
+    let (f, o) = (scale_lit(sc.factor, sc), scale_lit(sc.offset, sc));
+    let physical = match sc.clamp {
+        Some((lo, hi)) => {
+            let (lo, hi) = (scale_lit(lo, sc), scale_lit(hi, sc));
+            quote!(#rt::clamp(#value, #lo, #hi))
+        }
+        None => value,
+    };
+    let raw = quote!(#rt::unscale(#physical, #f, #o));
+    if wire.rust_name() == sc.physical.rust_name() {
+        raw
+    } else {
+        let t = prim_type(wire);
+        quote!(#raw as #t)
+    }
 }
 
 /// The local variable a struct's read code holds field `id` in.

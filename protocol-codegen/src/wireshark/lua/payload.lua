@@ -8,6 +8,29 @@ local function signed(raw, size)
   return raw
 end
 
+-- The value of an IEEE 754 half's bits (Wireshark reads no 2-byte float).
+local function half_value(raw)
+  local sign = raw >= 0x8000 and -1 or 1
+  local exp, man = math.floor(raw / 1024) % 32, raw % 1024
+  if exp == 0 then return sign * man * 2 ^ -24 end
+  if exp == 31 then
+    if man == 0 then return sign * math.huge end
+    -- 0/0 is a NaN of the platform's sign (negative on x86); the half's sign is kept.
+    local nan = 0 / 0
+    if (tostring(nan):sub(1, 1) == "-") ~= (sign < 0) then nan = -nan end
+    return nan
+  end
+  return sign * (1 + man / 1024) * 2 ^ (exp - 15)
+end
+
+-- The raw value of a float element at ctx.off: a half from its bits, else as Wireshark reads
+-- it.
+local function float_value(e, ctx, range)
+  if e.half then return half_value(read_uint(ctx.buf, ctx.off, e.size, e.order)) end
+  if e.order == "le" then return range:le_float() end
+  return range:float()
+end
+
 -- Adds one element of a scalar, enum or text type at ctx.off; returns its raw integer.
 local function read_elem(e, ctx, tree)
   local size = e.size
@@ -22,11 +45,20 @@ local function read_elem(e, ctx, tree)
       chars[#chars + 1] = string.char(b)
     end
     tree:add(e.pf, range, table.concat(chars))
+  elseif e.scale and e.float then
+    local value = float_value(e, ctx, range)
+    local item = tree:add(e.pf, range, value * e.scale.factor + e.scale.offset)
+    item:append_text(string.format(" (raw %s)", tostring(value)))
   elseif e.scale then
     raw = read_uint(ctx.buf, ctx.off, size, e.order)
     if e.signed then raw = signed(raw, size) end
     local item = tree:add(e.pf, range, raw * e.scale.factor + e.scale.offset)
     item:append_text(string.format(" (raw %d)", raw))
+  elseif e.half then
+    tree:add(e.pf, range, float_value(e, ctx, range))
+  elseif e.inverted then
+    -- An inverted bool: the byte 0 is true.
+    tree:add(e.pf, range, ctx.buf[ctx.off] == 0)
   elseif e.order == "le" then
     tree:add_le(e.pf, range)
   else

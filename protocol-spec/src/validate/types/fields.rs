@@ -37,6 +37,7 @@ pub(super) fn lower_field(
         return None;
     };
     check_snake_name(ctx, name, "field name");
+    let inverted = check_invert(ctx, d, endian);
     if let Some(packed) = &d.packed {
         let kind = lower_packed(ctx, f, packed, constants)?;
         let FieldKind::Packed { count, bits, .. } = kind else {
@@ -94,7 +95,7 @@ pub(super) fn lower_field(
         return Some(field(size, FieldKind::Group { elem, max }, &d.doc));
     }
     if repeat {
-        let scalar = parse_prim(ty.get_ref(), endian);
+        let scalar = parse_prim(ty.get_ref(), endian).map(|s| invert(s, inverted));
         let (elem, elem_size) = lower_value_type(ctx, f, ty, scalar, endian, structs, enums)?;
         let max = lower_array(ctx, f, name, &elem, count)?;
         let size_from = d.size.as_ref().map(|s| s.get_ref().clone());
@@ -112,7 +113,7 @@ pub(super) fn lower_field(
             "remove `max`, or use `count` for a fixed array",
         );
     }
-    let scalar = parse_prim(ty.get_ref(), endian);
+    let scalar = parse_prim(ty.get_ref(), endian).map(|s| invert(s, inverted));
     if d.bits.is_some() {
         let (word, kind) = lower_bitfield(ctx, f, name, ty, scalar, count, enums)?;
         return Some(field(word.prim.size(), kind, &d.doc));
@@ -120,6 +121,40 @@ pub(super) fn lower_field(
     let (elem, elem_size) = lower_value_type(ctx, f, ty, scalar, endian, structs, enums)?;
     let kind = FieldKind::Value { ty: elem, count };
     Some(field(elem_size * count.unwrap_or(1), kind, &d.doc))
+}
+
+/// Rule: `invert` applies to `bool` fields (single, arrays or repeated), not to bitfields.
+/// Gives whether the field's bools are inverted.
+fn check_invert(ctx: &mut Ctx<'_>, d: &FieldDef, endian: ByteOrder) -> bool {
+    let Some(inv) = &d.invert else {
+        return false;
+    };
+    let is_bool = d.packed.is_none()
+        && d.bits.is_none()
+        && d.ty
+            .as_ref()
+            .and_then(|t| parse_prim(t.get_ref(), endian))
+            .is_some_and(|s| s.prim == Prim::Bool);
+    if !is_bool {
+        ctx.error(
+            inv.span(),
+            "`invert` applies to `bool` fields",
+            "remove `invert`, or give the field `type = \"bool\"`",
+        );
+        return false;
+    }
+    *inv.get_ref()
+}
+
+/// The inverted form of a `bool` scalar when `inverted`; any other scalar as it is.
+fn invert(s: Scalar, inverted: bool) -> Scalar {
+    match s.prim {
+        Prim::Bool if inverted => Scalar {
+            prim: Prim::BoolInverted,
+            ..s
+        },
+        _ => s,
+    }
 }
 
 /// Rule: `prefix` and `byte_order` apply to check fields, `reserved` to fields with `bits`.
@@ -333,9 +368,10 @@ fn lower_text(ctx: &mut Ctx<'_>, ty: &SStr) -> Option<Option<usize>> {
     }
 }
 
-/// Rule: `scale` and `offset` apply to integer fields; the factor is finite and not 0; the
-/// physical value is the Rust type a derive's field declares (`f32` or `f64`), else an `f32`
-/// for wire integers of up to two bytes and an `f64` for wider ones.
+/// Rule: `scale` and `offset` apply to number fields (integers and floats, not `bool`); the
+/// factor is finite and not 0; the physical value is the Rust type a derive's field declares
+/// (`f32` or `f64`), else an `f32` for wire numbers of up to two bytes and an `f64` for wider
+/// ones; `rounding` applies to integer wire types only (a float takes the quotient as it is).
 pub(super) fn lower_scale(
     ctx: &mut Ctx<'_>,
     f: &Spanned<FieldDef>,
@@ -347,7 +383,7 @@ pub(super) fn lower_scale(
         return None;
     }
     let (s, o) = (&d.scale, &d.offset);
-    if !(scalar.prim.is_signed() || scalar.prim.is_unsigned()) {
+    if scalar.prim.is_bool() {
         let span = s
             .as_ref()
             .or(o.as_ref())
@@ -355,10 +391,17 @@ pub(super) fn lower_scale(
             .unwrap_or(f.span());
         ctx.error(
             span,
-            format!("`scale` applies to integer fields, not `{ty}`"),
-            "remove `scale`/`offset`, or use an integer wire type",
+            format!("`scale` applies to number fields, not `{ty}`"),
+            "remove `scale`/`offset`, or use an integer or float wire type",
         );
         return None;
+    }
+    if let (true, Some(r)) = (scalar.prim.is_float(), &d.rounding) {
+        ctx.error(
+            r.span(),
+            format!("`rounding` applies to scaled integer fields, not `{ty}`"),
+            "remove `rounding`: a float wire value takes the quotient as it is",
+        );
     }
     let factor = s.as_ref().map_or(1.0, |s| *s.get_ref());
     if factor == 0.0 || !factor.is_finite() {
@@ -437,7 +480,7 @@ fn reject_scale(ctx: &mut Ctx<'_>, d: &FieldDef, what: &str) {
     if let Some(s) = &d.scale {
         ctx.error(
             s.span(),
-            format!("`scale` applies to integer fields, not to {what}"),
+            format!("`scale` applies to number fields, not to {what}"),
             "remove `scale`",
         );
     }

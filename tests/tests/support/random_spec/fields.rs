@@ -28,6 +28,9 @@ impl Spec {
             0 | 1 => {
                 self.feature("field-int");
                 let int = *self.rng.pick(INTS);
+                if (5..=7).contains(&int.size) {
+                    self.feature("field-int-wide");
+                }
                 let ty = with_order(&mut self.rng, int.name, int.size);
                 field(
                     format!("{{ name = \"{name}\", type = \"{ty}\" }}"),
@@ -35,13 +38,24 @@ impl Spec {
                 )
             }
             2 => {
-                let (ty, size) = *self.rng.pick(&[("f32", 4), ("f64", 8), ("bool", 1)]);
-                self.feature(if ty == "bool" {
-                    "field-bool"
-                } else {
-                    "field-float"
+                let (ty, size) = *self
+                    .rng
+                    .pick(&[("f32", 4), ("f64", 8), ("bool", 1), ("f16", 2)]);
+                self.feature(match ty {
+                    "bool" => "field-bool",
+                    "f16" => "field-f16",
+                    _ => "field-float",
                 });
-                field(format!("{{ name = \"{name}\", type = \"{ty}\" }}"), size)
+                let invert = if ty == "bool" && self.rng.one_in(3) {
+                    self.feature("field-bool-inverted");
+                    ", invert = true"
+                } else {
+                    ""
+                };
+                field(
+                    format!("{{ name = \"{name}\", type = \"{ty}\"{invert} }}"),
+                    size,
+                )
             }
             3 => self.array_field(name),
             4 if !self.enums.is_empty() => {
@@ -129,8 +143,25 @@ impl Spec {
         }
     }
 
-    /// An integer field with a scale (and an offset, a clamp, a rounding mode sometimes).
+    /// A float on the wire with a scale: a power of two and no offset, so that every value
+    /// but NaN decodes and encodes back to its bits (an offset absorbs a tiny raw value).
+    fn scaled_float_field(&mut self, name: &str) -> Field {
+        self.feature("field-scaled-float");
+        let (ty, size) = *self.rng.pick(&[("f16", 2), ("f32", 4)]);
+        let ty = with_order(&mut self.rng, ty, size);
+        let scale = *self.rng.pick(&["0.5", "0.25", "2.0", "4.0"]);
+        field(
+            format!("{{ name = \"{name}\", type = \"{ty}\", scale = {scale} }}"),
+            size,
+        )
+    }
+
+    /// An integer field with a scale (and an offset, a clamp, a rounding mode sometimes); a
+    /// float with a scale one time in four.
     fn scaled_field(&mut self, name: &str) -> Field {
+        if self.rng.one_in(4) {
+            return self.scaled_float_field(name);
+        }
         self.feature("field-scaled");
         let int = *self.rng.pick(&INTS[..8]);
         let ty = with_order(&mut self.rng, int.name, int.size);

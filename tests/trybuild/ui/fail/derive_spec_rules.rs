@@ -1,6 +1,6 @@
 // A derive's mistakes get the spec rules' diagnostics, all at once, each on its attribute or
-// type: padding of 0 bytes, an empty array, a scale factor of 0, a scaled float with no integer
-// wire type, and a Rust type that is not what the wire type decodes to.
+// type: padding of 0 bytes, an empty array, a scale factor of 0, a scaled bool, and a Rust type
+// that is not what the wire type decodes to.
 #[derive(protocol_kit::Payload)]
 struct Telemetry {
     #[payload(pad_before = 0)]
@@ -9,7 +9,7 @@ struct Telemetry {
     #[payload(scale = 0.0, raw = "i16")]
     speed: f32,
     #[payload(scale = 0.01)]
-    heading: f32,
+    armed: bool,
     #[payload(raw = "i24")]
     offset: u32,
 }

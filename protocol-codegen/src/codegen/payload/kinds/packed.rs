@@ -57,7 +57,7 @@ impl Kind for Packed {
                 let t = prim_type(self.prim);
                 (t.clone(), quote!(#raw as #t))
             }
-            Some(sc) => (prim_type(sc.physical), to_physical(raw, sc, rt)),
+            Some(sc) => (prim_type(sc.physical), to_physical(raw, Prim::U64, sc, rt)),
         };
         quote! {{
             let bytes = r.take(#size)?;

@@ -7,10 +7,10 @@ use quote::quote;
 
 use super::{Kind, named_type};
 use crate::codegen::payload::scalar::{
-    prim_type, read_scalar_from, to_physical, to_raw, write_scalar,
+    prim_type, read_scalar_from, to_physical, to_raw, to_raw_float, write_scalar,
 };
 use crate::codegen::rt as type_rt;
-use crate::ir::{Prim, Protocol, ValueType};
+use crate::ir::{Protocol, ValueType};
 
 /// A value of type `ty`, or `count` of them.
 pub(super) struct Value<'a> {
@@ -51,7 +51,7 @@ impl<'a> Value<'a> {
             ValueType::Scalar {
                 scalar,
                 scale: Some(sc),
-            } => to_physical(read_scalar_from(reader, *scalar), sc, rt),
+            } => to_physical(read_scalar_from(reader, *scalar), scalar.prim, sc, rt),
             ValueType::Enum(i, scalar) => {
                 let ty = named_type(&self.p.enums[*i].name, self.p.enums[*i].foreign);
                 let raw = read_scalar_from(reader, *scalar);
@@ -73,6 +73,12 @@ impl<'a> Value<'a> {
                 scalar,
                 scale: None,
             } => write_scalar(*scalar, value),
+            ValueType::Scalar {
+                scalar,
+                scale: Some(sc),
+            } if scalar.prim.is_float() => {
+                write_scalar(*scalar, to_raw_float(value, sc, scalar.prim, rt))
+            }
             ValueType::Scalar {
                 scalar,
                 scale: Some(sc),
@@ -186,13 +192,14 @@ impl Kind for Value<'_> {
         self.count.is_none()
     }
 
-    /// An enum (its raw value may have no variant), a scaled value (clamped, quantized and
-    /// fitted to its raw type) or a 24-bit integer (range-checked); a nested payload names
-    /// its own fields.
+    /// An enum (its raw value may have no variant), a value scaled to an integer (clamped,
+    /// quantized and fitted to its raw type) or a value narrower on the wire than in Rust
+    /// (range-checked: a 24-, 40-, 48- or 56-bit integer, a half); a nested payload names its
+    /// own fields.
     fn value_can_fail(&self) -> bool {
         match self.ty {
             ValueType::Scalar { scalar, scale } => {
-                scale.is_some() || matches!(scalar.prim, Prim::U24 | Prim::I24)
+                (scale.is_some() && !scalar.prim.is_float()) || scalar.prim.is_narrow()
             }
             ValueType::Enum(..) => true,
             ValueType::Struct(_) | ValueType::Text(_) => false,
