@@ -163,3 +163,22 @@ impl<T> Register<T> {
         }
     }
 }
+
+/// The value `read` reads from exactly `bytes`: what a generated register's `decode` runs.
+/// `None` when `read` fails or leaves bytes unread.
+///
+/// ```
+/// use protocol_runtime::registers::value;
+///
+/// assert_eq!(value(&[0x00, 0x08, 0, 0], |r| r.i32_le()), Some(2048));
+/// assert_eq!(value(&[0x00, 0x08, 0], |r| r.u16_le()), None);
+/// ```
+pub fn value<'a, T>(
+    bytes: &'a [u8],
+    read: impl FnOnce(&mut crate::Reader<'a>) -> Result<T, crate::DecodeError>,
+) -> Option<T> {
+    let mut r = crate::Reader::new(bytes);
+    let v = read(&mut r).ok()?;
+    r.finish().ok()?;
+    Some(v)
+}

@@ -355,10 +355,17 @@ fn int_field<'a>(ctx: &mut Ctx<'_>, n: &SStr, s: &'a Struct) -> Option<&'a ir::F
 
 /// Rule: the address field's type holds the address of every register.
 fn check_reach(ctx: &mut Ctx<'_>, n: &SStr, f: &ir::Field, registers: &[Register]) {
-    let Some(last) = registers.last() else {
+    let (
+        Some(last),
+        FieldKind::Value {
+            ty: ValueType::Scalar { scalar, .. },
+            ..
+        },
+    ) = (registers.last(), &f.kind)
+    else {
         return;
     };
-    let bits = (f.size * 8).min(32) as u32;
+    let bits = scalar.prim.size() * 8 - usize::from(scalar.prim.is_signed());
     let max = if bits >= 32 {
         u64::from(u32::MAX)
     } else {
@@ -368,8 +375,11 @@ fn check_reach(ctx: &mut Ctx<'_>, n: &SStr, f: &ir::Field, registers: &[Register
         ctx.error(
             n.span(),
             format!(
-                "field `{}` ({} bytes) cannot hold address {} of register `{}`",
-                f.name, f.size, last.address, last.name
+                "field `{}` (`{}`) cannot hold address {} of register `{}`",
+                f.name,
+                scalar.prim.spec_name(),
+                last.address,
+                last.name
             ),
             "widen the address field, or correct the register's address",
         );

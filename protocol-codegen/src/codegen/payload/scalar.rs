@@ -12,7 +12,7 @@ pub fn prim_type(prim: Prim) -> TokenStream {
     quote!(#t)
 }
 
-fn suffix(s: Scalar) -> String {
+pub(crate) fn suffix(s: Scalar) -> String {
     let base = s.prim.spec_name();
     if s.prim.size() == 1 {
         base.to_string()
@@ -67,7 +67,7 @@ fn rounding(rt: &TokenStream, r: Rounding) -> TokenStream {
 }
 
 /// The physical value of the raw integer expression `raw`.
-pub(super) fn to_physical(raw: TokenStream, sc: &Scale, rt: &TokenStream) -> TokenStream {
+pub(crate) fn to_physical(raw: TokenStream, sc: &Scale, rt: &TokenStream) -> TokenStream {
     let (f, o) = (scale_lit(sc.factor, sc), scale_lit(sc.offset, sc));
     let phys = prim_type(sc.physical);
     let value = quote!(#rt::to_physical(#raw as #phys, #f, #o));
