@@ -68,13 +68,15 @@ impl<'a> Window<'a> {
     /// The address after the last byte.
     #[must_use]
     pub const fn end(&self) -> u64 {
-        self.start as u64 + self.bytes.len() as u64
+        // Neither term exceeds 2^32 on any target this runs on, so the sum cannot wrap.
+        (self.start as u64).saturating_add(self.bytes.len() as u64)
     }
 
     /// Where the register of `size` bytes at `address` lies in the window.
     #[must_use]
     pub fn cover(&self, address: u32, size: usize) -> Cover<'a> {
-        let (first, last) = (u64::from(address), u64::from(address) + size as u64);
+        let first = u64::from(address);
+        let last = first.saturating_add(size as u64);
         let (start, end) = (u64::from(self.start), self.end());
         if last <= start || first >= end || size == 0 {
             return Cover::Outside;
@@ -82,8 +84,8 @@ impl<'a> Window<'a> {
         if first < start || last > end {
             return Cover::Part;
         }
-        let from = (first - start) as usize;
-        match self.bytes.get(from..from + size) {
+        let from = usize::try_from(first.saturating_sub(start)).unwrap_or(usize::MAX);
+        match self.bytes.get(from..from.saturating_add(size)) {
             Some(b) => Cover::Whole(b),
             None => Cover::Part,
         }

@@ -81,7 +81,10 @@ fn select_text(p: &Protocol, s: &Select) -> String {
     let name = p.commands.get(s.command).map_or("", |c| c.name.as_str());
     let mut parts = Vec::new();
     if let Some(d) = &s.data {
-        parts.push(format!("its `{d}` writes the registers from its `{}`", s.address));
+        parts.push(format!(
+            "its `{d}` writes the registers from its `{}`",
+            s.address
+        ));
     }
     if let Some((_, field)) = &s.answer {
         let asked = s

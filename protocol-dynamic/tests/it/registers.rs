@@ -21,13 +21,13 @@ protocol_kit::protocol!("../specs/dynamixel1.toml");
 
 /// A generated register's value as the run-time codec holds it.
 trait AsValue {
-    fn as_value(self) -> Value;
+    fn into_value(self) -> Value;
 }
 
 macro_rules! as_value {
     ($variant:ident: $($t:ty),*) => {
         $(impl AsValue for $t {
-            fn as_value(self) -> Value {
+            fn into_value(self) -> Value {
                 Value::$variant(self.into())
             }
         })*
@@ -48,7 +48,7 @@ macro_rules! agree {
         let mut whole = 0;
         $(
             let r = registers::$reg;
-            let generated = r.read(window).map(AsValue::as_value);
+            let generated = r.read(window).map(AsValue::into_value);
             assert_eq!(generated.as_ref(), codec.values.get(r.name()), "`{}` in {window:?}", r.name());
             if generated.is_some() {
                 whole += r.size();
@@ -207,10 +207,7 @@ mod protocol2 {
                 };
                 let heard = hear(
                     "dynamixel",
-                    &[
-                        frame(Message::Read(read)),
-                        frame(Message::Status(status.clone())),
-                    ],
+                    &[frame(Message::Read(read)), frame(Message::Status(status))],
                 );
                 assert_eq!(heard[0], None, "a READ carries no register values");
                 let codec = heard[1].as_ref().expect("the status answers the READ");
@@ -226,7 +223,7 @@ mod protocol2 {
                 address,
                 data: Bytes::from_slice(&bytes(u32::from(address), 6)).expect("fits"),
             };
-            let heard = hear("dynamixel", &[frame(Message::Write(write.clone()))]);
+            let heard = hear("dynamixel", &[frame(Message::Write(write))]);
             let codec = heard[0].as_ref().expect("a WRITE writes registers");
             let window = dynamixel::registers::write_data(&write);
             let whole = agree!(
@@ -305,10 +302,7 @@ mod protocol2 {
         };
         let heard = hear(
             "dynamixel",
-            &[
-                frame(Message::Read(read)),
-                frame(Message::Status(status.clone())),
-            ],
+            &[frame(Message::Read(read)), frame(Message::Status(status))],
         );
         let codec = heard[1].as_ref().expect("registers");
         assert_eq!(
@@ -356,7 +350,7 @@ mod protocol1 {
                     "dynamixel1",
                     &[
                         frame(Message::Request(Request::Read(read))),
-                        frame(Message::Response(status.clone())),
+                        frame(Message::Response(status)),
                     ],
                 );
                 let codec = heard[1].as_ref().expect("the status answers the READ");
@@ -414,7 +408,7 @@ mod protocol1 {
             };
             let heard = hear(
                 "dynamixel1",
-                &[frame(Message::Request(Request::Write(write.clone())))],
+                &[frame(Message::Request(Request::Write(write)))],
             );
             let codec = heard[0].as_ref().expect("a WRITE writes registers");
             let window = dynamixel1::registers::write_data(&write);

@@ -79,8 +79,8 @@ pub(super) fn lower_registers(
     })
 }
 
-/// Rule: `map` lists at least one register; each has a snake_case name of its own, an
-/// address from 0 to 2^32 - 1, a primitive type (scaled as a struct field is) and an access
+/// Rule: `map` lists at least one register; each has a snake_case name of its own (not `map`,
+/// the generated list's name), an address from 0 to 2^32 - 1, a primitive type (scaled as a struct field is) and an access
 /// of `r`, `w` or `rw`. Gives each lowered register with the spans of its entry's type and
 /// address, in spec order.
 fn lower_map(
@@ -100,7 +100,13 @@ fn lower_map(
     for entry in map.get_ref() {
         let r = entry.get_ref();
         let named = check_snake_name(ctx, &r.name, "register name");
-        if named && !seen.insert(r.name.get_ref().clone()) {
+        if named && r.name.get_ref() == "map" {
+            ctx.error(
+                r.name.span(),
+                "register name `map` is taken: the generated `registers::MAP` lists the map",
+                "name the register after what it holds, e.g. `map_select`",
+            );
+        } else if named && !seen.insert(r.name.get_ref().clone()) {
             ctx.error(
                 r.name.span(),
                 format!("register `{}` is declared twice", r.name.get_ref()),
@@ -205,10 +211,10 @@ fn lower_access(ctx: &mut Ctx<'_>, access: Option<&SStr>) -> Access {
 /// before the next register's address. `registers` is in address order.
 fn check_overlaps(ctx: &mut Ctx<'_>, registers: &[(Register, RegisterSpans)]) {
     for pair in registers.windows(2) {
-        let [(a, _), (b, b_spans)] = pair else {
+        let [(a, a_spans), (b, b_spans)] = pair else {
             continue;
         };
-        let (a_spans, gap) = (&pair[0].1, u64::from(b.address - a.address));
+        let gap = u64::from(b.address.saturating_sub(a.address));
         if gap == 0 {
             ctx.error(
                 b_spans.address.clone(),
