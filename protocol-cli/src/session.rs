@@ -9,7 +9,7 @@
 use std::io::{self, Write};
 use std::time::Duration;
 
-use protocol_dynamic::registers::{RegisterValues, of_request};
+use protocol_dynamic::registers::RegisterValues;
 use protocol_dynamic::{Codec, Conversation, DecodeIssue, Decoded, Item, hex};
 use protocol_runtime::{CanFrame, DecodeError, Reject, Stats};
 use serde_json::{Map, Value};
@@ -149,13 +149,7 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                     registers_fields(&mut extra, heard.registers);
                     self.decoded(offset, bytes, heard.decoded, extra)
                 }
-                None => {
-                    let p = self.codec.protocol();
-                    let mut extra = Map::new();
-                    let written = decoded.as_ref().ok().and_then(|d| of_request(p, d));
-                    registers_fields(&mut extra, written);
-                    self.decoded(offset, bytes, decoded, extra)
-                }
+                None => self.decoded(offset, bytes, decoded, Map::new()),
             },
             Item::Rejected { offset, reason } => {
                 self.counts.rejected += 1;
