@@ -9,6 +9,7 @@
 use std::io::{self, Write};
 use std::time::Duration;
 
+use protocol_dynamic::registers::RegisterValues;
 use protocol_dynamic::{Codec, Conversation, DecodeIssue, Decoded, Item, hex};
 use protocol_runtime::{CanFrame, DecodeError, Reject, Stats};
 use serde_json::{Map, Value};
@@ -145,6 +146,7 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                             extra.insert("rtt_ms".into(), Value::from(rtt));
                         }
                     }
+                    registers_fields(&mut extra, heard.registers);
                     self.decoded(offset, bytes, heard.decoded, extra)
                 }
                 None => self.decoded(offset, bytes, decoded, Map::new()),
@@ -461,8 +463,26 @@ fn with_fields(mut line: String, extra: Map<String, Value>) -> String {
     line
 }
 
-/// The end of a table line of the conversation: the frame's number, and the request an
-/// answer answers with its round-trip time.
+/// A frame's register values as `registers` (an object, in address order) and what is not a
+/// whole register as `registers_note`.
+fn registers_fields(extra: &mut Map<String, Value>, registers: Option<RegisterValues>) {
+    let Some(r) = registers else {
+        return;
+    };
+    // Through text, so that an `f32` keeps its shortest decimal (`12.6`).
+    let object = serde_json::to_string(&protocol_dynamic::Value::Struct(r.values))
+        .ok()
+        .and_then(|t| serde_json::from_str::<Value>(&t).ok());
+    if let Some(object) = object {
+        extra.insert("registers".into(), object);
+    }
+    if let Some(note) = r.note {
+        extra.insert("registers_note".into(), Value::from(note));
+    }
+}
+
+/// The end of a table line of the conversation: the frame's number, the request an answer
+/// answers with its round-trip time, and the registers the frame holds.
 fn conversation_note(extra: &Map<String, Value>) -> String {
     let mut note = String::new();
     if let Some(n) = extra.get("frame") {
@@ -473,6 +493,13 @@ fn conversation_note(extra: &Map<String, Value>) -> String {
         if let Some(t) = extra.get("rtt_ms") {
             note.push_str(&format!(" after {t} ms"));
         }
+    }
+    if let Some(Value::Object(r)) = extra.get("registers") {
+        let values: Vec<String> = r.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        note.push_str(&format!("  [{}]", values.join(" ")));
+    }
+    if let Some(Value::String(n)) = extra.get("registers_note") {
+        note.push_str(&format!(" ({n})"));
     }
     note
 }

@@ -150,6 +150,7 @@ impl Draft {
             structs,
             enums: IndexMap::new(),
             session: None,
+            registers: None,
         }
     }
 

@@ -3,10 +3,15 @@
 //! response direction, for a spec whose frames do not tell their direction: Dynamixel 1.0's
 //! status packets); otherwise it is read as a request. Each answer names the request it
 //! answers and, when frames carry times, the round-trip time; requests never answered are
-//! counted. The pairing is the runtime's [`Observer`], run on the spec's session rules.
+//! counted. The pairing is the runtime's [`Observer`], run on the spec's session rules. A
+//! request that selects registers (a READ of a `[registers]` map) is remembered until its
+//! answer, whose bytes are then typed by the registers it asked for ([`crate::registers`]).
+
+use std::collections::VecDeque;
 
 use protocol_runtime::session::{Observer, Paired};
 
+use crate::registers::{self, RegisterValues, Selected};
 use crate::{Codec, DecodeIssue, Decoded};
 
 /// Requests that wait for their answer at once; an older one is counted unanswered to make
@@ -18,6 +23,9 @@ const OPEN: usize = 64;
 pub struct Conversation {
     observer: Observer<OPEN>,
     frames: u64,
+    /// The register runs of open requests that read registers, by frame number (at most
+    /// `OPEN`, the oldest dropped first, as the observer drops its requests).
+    selected: VecDeque<(u64, Selected)>,
 }
 
 /// One frame of the conversation.
@@ -29,6 +37,9 @@ pub struct Heard {
     pub decoded: Result<Decoded, DecodeIssue>,
     /// The request it answers, when it is an answer.
     pub answers: Option<Paired>,
+    /// The registers its bytes hold: a request's data it writes, or an answer's data its
+    /// request read.
+    pub registers: Option<RegisterValues>,
 }
 
 impl Conversation {
@@ -67,10 +78,15 @@ impl Conversation {
         let p = codec.protocol();
         let session_frame = p.session.as_ref().map(|s| s.frame);
         if session_frame != Some(format) {
+            let registers = decoded
+                .as_ref()
+                .ok()
+                .and_then(|d| registers::of_request(p, d));
             return Heard {
                 index,
                 decoded,
                 answers: None,
+                registers,
             };
         }
         let observer = &mut self.observer;
@@ -87,10 +103,32 @@ impl Conversation {
         if answers.is_none() {
             codec.with_session(|rules| observer.request(rules, index, at, frame));
         }
+        let registers = match (&decoded, answers) {
+            (Ok(d), Some(a)) => self
+                .take(a.request)
+                .and_then(|sel| registers::of_answer(p, sel, d)),
+            (Ok(d), None) => {
+                if let Some(sel) = registers::selected(p, d) {
+                    if self.selected.len() == OPEN {
+                        self.selected.pop_front();
+                    }
+                    self.selected.push_back((index, sel));
+                }
+                registers::of_request(p, d)
+            }
+            (Err(_), _) => None,
+        };
         Heard {
             index,
             decoded,
             answers,
+            registers,
         }
+    }
+
+    /// The register run request `request` selected, forgotten once answered.
+    fn take(&mut self, request: u64) -> Option<Selected> {
+        let at = self.selected.iter().position(|(i, _)| *i == request)?;
+        self.selected.remove(at).map(|(_, sel)| sel)
     }
 }

@@ -108,6 +108,7 @@ mod load;
 pub mod model;
 mod names;
 mod payload;
+pub mod registers;
 #[cfg(feature = "serde")]
 mod serde_impl;
 mod session;

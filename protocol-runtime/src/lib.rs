@@ -20,6 +20,8 @@
 //! - [`session`]: the conversation as data ([`SessionRules`]) and the sans-IO state machines
 //!   that hold it (a requester and a responder: answers, retries, handshake, watchdog,
 //!   duplicates);
+//! - [`registers`]: a device's register map ([`registers::Register`]) and the run of register
+//!   bytes a request selects ([`registers::Window`]);
 //! - [`wire`]: the cursors payload code reads and writes with ([`Reader`], [`Writer`]);
 //! - [`checksum`]: sums (plain, complemented, 16-bit), xor, Fletcher sums and CRCs ([`Checksum`]),
 //!   a CRC with a per-command byte folded in ([`checksum::Extra`]), and the table-free
@@ -194,6 +196,7 @@ pub mod io_async;
 pub mod layout;
 pub mod packed;
 pub mod packet;
+pub mod registers;
 pub mod rules;
 #[cfg(feature = "serde")]
 pub mod serde_impl;
@@ -294,6 +297,7 @@ pub mod __private {
         layout::*,
         packed::*,
         packet::*,
+        registers,
         rules::*,
         session,
         stuffing::*,

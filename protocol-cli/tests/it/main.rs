@@ -22,6 +22,7 @@ mod cli_edges;
 mod cli_encode;
 mod cli_hints;
 mod cli_receive_time;
+mod cli_registers;
 mod cli_report;
 mod cli_resources;
 mod cli_serial;

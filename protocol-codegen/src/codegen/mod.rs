@@ -13,6 +13,7 @@ pub mod integrations;
 pub mod packets;
 pub mod paths;
 pub mod payload;
+pub mod registers;
 pub mod types;
 
 use proc_macro2::{Ident, Span, TokenStream};
@@ -69,6 +70,7 @@ pub fn expand_with(p: &Protocol, paths: &RuntimePath, derives: Derives) -> Token
     let frames = frame::emit_frames(p);
     let dispatch = dispatch::emit_dispatch(p);
     let packet_traits = packets::emit_packet_traits(p);
+    let registers = registers::emit_registers(p);
     let private = paths.private();
     let items = integrations::apply(
         quote! {
@@ -79,6 +81,7 @@ pub fn expand_with(p: &Protocol, paths: &RuntimePath, derives: Derives) -> Token
             #frames
             #dispatch
             #packet_traits
+            #registers
         },
         p,
         derives,

@@ -17,6 +17,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod registers;
 mod session;
 
 use std::fmt::Write as _;
@@ -38,6 +39,7 @@ pub fn render(p: &Protocol) -> String {
     frames(p, &mut out);
     commands(p, &mut out);
     session::session(p, &mut out);
+    registers::registers(p, &mut out);
     structs(p, &mut out);
     enums(p, &mut out);
     // One trailing newline, whatever the last section left.

@@ -16,6 +16,7 @@ mod kinds;
 mod read;
 mod write;
 
+pub(crate) use read::read_register;
 pub use read::{ReadFail, read_payload};
 pub(crate) use write::value_bytes;
 pub use write::write_payload;

@@ -241,3 +241,18 @@ fn enum_value(e: &Enum, ei: usize, raw: u64, path: &Path<'_>) -> Result<Value, R
         value: signed.map_or(raw, |i| i as u64),
     })
 }
+
+/// A register's value from exactly its bytes, read as a struct field of its type is (a
+/// scalar, scaled or not); `None` for bytes of another length.
+pub(crate) fn read_register(ty: &ValueType, bytes: &[u8]) -> Option<Value> {
+    let ValueType::Scalar { scalar, scale } = ty else {
+        return None;
+    };
+    let mut r = Reader::new(bytes);
+    let raw = read_scalar(&mut r, *scalar).ok()?;
+    r.finish().ok()?;
+    match scale {
+        None => Some(raw.to_value()),
+        Some(sc) => physical_value(raw.as_f64(), sc).ok(),
+    }
+}

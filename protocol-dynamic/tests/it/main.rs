@@ -15,5 +15,6 @@ mod conversation;
 mod hex;
 mod interp_differential;
 mod load;
+mod registers;
 mod serde_agreement;
 mod session_agreement;

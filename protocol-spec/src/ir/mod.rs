@@ -23,10 +23,12 @@ pub use protocol_runtime::packed::BitOrder;
 
 mod frame;
 mod payload;
+mod registers;
 mod session;
 
 pub use frame::*;
 pub use payload::*;
+pub use registers::*;
 pub use session::*;
 
 /// A whole protocol spec, checked.
@@ -59,6 +61,8 @@ pub struct Protocol {
     pub link: Vec<usize>,
     /// The conversation (`[session]`), when the spec declares one.
     pub session: Option<Session>,
+    /// The register map (`[registers]`), when the spec declares one.
+    pub registers: Option<RegisterMap>,
 }
 
 /// A named integer constant of the spec.

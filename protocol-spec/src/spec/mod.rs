@@ -6,6 +6,7 @@
 //! reports every unknown key and ill-typed value of the file, not only the first.
 
 pub mod model;
+pub mod registers;
 #[cfg(feature = "schema")]
 pub mod schema;
 pub mod session;

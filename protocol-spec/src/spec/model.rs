@@ -15,6 +15,7 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 use toml::Spanned;
 
+pub use super::registers::{RegisterDef, RegistersDef, SelectDef};
 pub use super::session::{ModesDef, SessionDef, WatchdogDef};
 
 /// A spanned string.
@@ -68,6 +69,10 @@ pub struct SpecFile {
     /// watchdog).
     #[cfg_attr(feature = "schema", schemars(with = "Option<SessionDef>"))]
     pub session: Option<Spanned<SessionDef>>,
+    /// `[registers]`: the device's register map (a control table), which a command's
+    /// `registers` selects runs of.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<RegistersDef>"))]
+    pub registers: Option<Spanned<RegistersDef>>,
 }
 
 /// `[protocol]`.
@@ -481,6 +486,10 @@ pub struct CommandDef {
         schemars(with = "Option<std::collections::BTreeMap<String, String>>")
     )]
     pub match_fields: Option<Spanned<IndexMap<SStr, SStr>>>,
+    /// Request fields that select a run of `[registers]`, and the bytes (the request's data,
+    /// the answer's) that hold their values.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<SelectDef>"))]
+    pub registers: Option<Spanned<SelectDef>>,
     /// Documentation.
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,

@@ -57,6 +57,7 @@ pub fn validate_derive(
         commands: Vec::new(),
         link: Vec::new(),
         session: None,
+        registers: None,
     })
 }
 

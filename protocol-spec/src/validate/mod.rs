@@ -11,6 +11,7 @@ mod directions;
 mod extra;
 mod frame;
 mod names;
+mod registers;
 mod session;
 mod session_match;
 mod types;
@@ -99,6 +100,13 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
     extra::lower_extra_bytes(&mut frames, &commands);
     let session =
         session::lower_session(&mut ctx, &frames, &commands, &structs.structs, &directions);
+    let registers = registers::lower_registers(
+        &mut ctx,
+        &commands,
+        &structs.structs,
+        &directions,
+        session.as_ref(),
+    );
 
     Some(ir::Protocol {
         name: p.name.get_ref().clone(),
@@ -113,6 +121,7 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
         commands,
         link,
         session,
+        registers,
     })
 }
 

@@ -42,10 +42,9 @@ pub(super) fn lower_pairs(
             continue;
         };
         // Rule: a command that matches its answer expects one that carries a command.
-        let answer = match exchanges.get(ci).map(|e| e.answer) {
-            Some(AnswerKind::Reply | AnswerKind::Message) => ci,
-            Some(AnswerKind::Command(k)) => k,
-            _ => {
+        let answer = match answering_command(exchanges, ci) {
+            Some(k) => k,
+            None => {
                 ctx.error(
                     m.span(),
                     format!("command `{}` matches an answer it does not expect", c.name),
@@ -68,18 +67,9 @@ pub(super) fn lower_pairs(
             ok = false;
             continue;
         }
-        let struct_of = |ci: usize, di: usize| {
-            let c = commands.get(ci)?;
-            structs.get(c.payloads.get(di).copied().flatten()?)
-        };
-        // The response direction's struct, when it carries one in place of the command.
-        let message = directions.get(1).and_then(|d| d.message).map(|(si, _)| si);
         let sides = Sides {
-            request: struct_of(ci, 0),
-            answer: match message {
-                Some(si) => structs.get(si),
-                None => struct_of(answer, usize::from(!directions.is_empty())),
-            },
+            request: request_struct(commands, ci).and_then(|si| structs.get(si)),
+            answer: answer_struct(commands, directions, answer).and_then(|si| structs.get(si)),
         };
         for (from_name, to_name) in m.get_ref() {
             let from = value(ctx, from_name, f, sides.request, "request");
@@ -96,6 +86,40 @@ pub(super) fn lower_pairs(
         }
     }
     ok.then_some(pairs)
+}
+
+/// The request's struct of command `ci` (index into the structs): its first direction's, or
+/// its only payload's.
+pub(super) fn request_struct(commands: &[ir::Command], ci: usize) -> Option<usize> {
+    commands.get(ci)?.payloads.first().copied().flatten()
+}
+
+/// The struct of an answer that command `answer` carries (index into the structs): the
+/// response direction's struct when it carries one in place of a command, else the command's
+/// payload in the response direction (its only payload without directions).
+pub(super) fn answer_struct(
+    commands: &[ir::Command],
+    directions: &[ir::Direction],
+    answer: usize,
+) -> Option<usize> {
+    if let Some((si, _)) = directions.get(1).and_then(|d| d.message) {
+        return Some(si);
+    }
+    let c = commands.get(answer)?;
+    c.payloads
+        .get(usize::from(!directions.is_empty()))
+        .copied()
+        .flatten()
+}
+
+/// The command whose frame answers a request of command `ci` (itself for a reply or a
+/// direction's message), when the request expects one that carries a command.
+pub(super) fn answering_command(exchanges: &[Exchange], ci: usize) -> Option<usize> {
+    match exchanges.get(ci).map(|e| e.answer) {
+        Some(AnswerKind::Reply | AnswerKind::Message) => Some(ci),
+        Some(AnswerKind::Command(k)) => Some(k),
+        _ => None,
+    }
 }
 
 /// Rule: a matched field is a header field the sender sets or a fixed-position integer field

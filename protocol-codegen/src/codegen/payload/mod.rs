@@ -19,6 +19,7 @@ use crate::ir::{Protocol, Struct};
 use body::Body;
 use kinds::{Slot, size_sum, slots};
 pub use scalar::{prim_type, read_scalar, write_scalar};
+pub(crate) use scalar::{suffix, to_physical};
 
 /// A struct as the payload generator sees it.
 pub(crate) struct PayloadDef<'a> {

@@ -12,7 +12,7 @@ pub fn prim_type(prim: Prim) -> TokenStream {
     quote!(#t)
 }
 
-fn suffix(s: Scalar) -> String {
+pub(crate) fn suffix(s: Scalar) -> String {
     if s.prim == Prim::BoolInverted {
         return "bool_inverted".to_string();
     }
@@ -71,7 +71,7 @@ fn rounding(rt: &TokenStream, r: Rounding) -> TokenStream {
 
 /// The physical value of the raw expression `raw`, of the Rust type of `raw_prim` (an integer,
 /// or a float's own type, which takes no cast).
-pub(super) fn to_physical(
+pub(crate) fn to_physical(
     raw: TokenStream,
     raw_prim: Prim,
     sc: &Scale,

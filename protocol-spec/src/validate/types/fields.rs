@@ -372,7 +372,7 @@ fn lower_text(ctx: &mut Ctx<'_>, ty: &SStr) -> Option<Option<usize>> {
 /// factor is finite and not 0; the physical value is the Rust type a derive's field declares
 /// (`f32` or `f64`), else an `f32` for wire numbers of up to two bytes and an `f64` for wider
 /// ones; `rounding` applies to integer wire types only (a float takes the quotient as it is).
-pub(super) fn lower_scale(
+pub(crate) fn lower_scale(
     ctx: &mut Ctx<'_>,
     f: &Spanned<FieldDef>,
     ty: &str,

@@ -18,6 +18,7 @@ use crate::ir::{ByteOrder, Constant, Enum, EnumVariant, Prim, Scalar, UnknownPol
 use crate::spec::model::ConstantDef;
 
 pub(crate) use bits::lower_bits;
+pub(crate) use fields::lower_scale;
 pub(crate) use structs::{Structs, lower_structs};
 
 /// Rule: constants have SCREAMING_SNAKE_CASE names and non-negative values.

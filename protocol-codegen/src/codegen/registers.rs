@@ -1,0 +1,195 @@
+//! The `registers` module of a spec with `[registers]`: a `const` per register (the runtime's
+//! [`Register`](protocol_runtime::registers::Register): name, address, size and a typed
+//! `decode` that reads the register as a struct field of its type is read), the whole map as
+//! `MAP`, and per command that selects registers the window of register bytes a frame holds
+//! (`read_answer(&request, &answer)`, `write_data(&request)`). Where a register lies in a
+//! window is the runtime's rule; this module prints the values it runs on.
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use super::docs::bytes;
+use super::docs::doc_attrs;
+use super::payload::{prim_type, read_scalar, suffix, to_physical};
+use super::{const_ident, ident};
+use crate::ir::{Access, Protocol, Register, RegisterMap, Select, ValueType};
+
+/// The `registers` module, or nothing for a spec without `[registers]`.
+pub fn emit_registers(p: &Protocol) -> TokenStream {
+    let Some(map) = &p.registers else {
+        return quote!();
+    };
+    let rt = quote!(__rt);
+    let consts = map.registers.iter().map(|r| register(&rt, r));
+    let entries = map.registers.iter().map(|r| {
+        let (name, address, size) = (&r.name, r.address, r.size);
+        quote!((#name, #address, #size))
+    });
+    let n = map.registers.len();
+    let windows = map.selects.iter().map(|s| windows(p, s));
+    let doc = doc_attrs(&module_doc(map));
+    quote! {
+        #doc
+        pub mod registers {
+            use super::__rt;
+
+            #(#consts)*
+
+            /// Every register: its name, address and size in bytes, in address order.
+            pub const MAP: [(&str, u32, usize); #n] = [#(#entries),*];
+
+            #(#windows)*
+        }
+    }
+}
+
+fn module_doc(map: &RegisterMap) -> String {
+    let mut doc = String::from(
+        "The device's register map: a `const` per register, whose `read` takes the register\n\
+         from a window of register bytes (a READ's answer, a WRITE's data).",
+    );
+    if !map.doc.is_empty() {
+        doc.push_str("\n\n");
+        doc.push_str(&map.doc);
+    }
+    doc
+}
+
+/// A register's `const`, its value type and its `decode`.
+fn register(rt: &TokenStream, r: &Register) -> TokenStream {
+    let ValueType::Scalar { scalar, scale } = &r.ty else {
+        return quote!();
+    };
+    let (ty, read) = match scale {
+        None => {
+            let method = format_ident!("{}", suffix(*scalar));
+            (prim_type(scalar.prim), quote!(r.#method()))
+        }
+        Some(sc) => {
+            let value = to_physical(read_scalar(*scalar), scalar.prim, sc, rt);
+            (prim_type(sc.physical), quote!(#rt::Ok(#value)))
+        }
+    };
+    let name = const_ident(&r.name);
+    let (text, address) = (&r.name, r.address);
+    let size = u8::try_from(r.size).unwrap_or(u8::MAX);
+    let doc = doc_attrs(&register_doc(r, scalar.prim.spec_name()));
+    quote! {
+        #doc
+        pub const #name: #rt::registers::Register<#ty> = #rt::registers::Register::new(
+            #text,
+            #address,
+            #size,
+            |b| #rt::registers::value(b, |r| #read),
+        );
+    }
+}
+
+fn register_doc(r: &Register, ty: &str) -> String {
+    let access = match r.access {
+        Access::Read => "read only",
+        Access::Write => "write only",
+        Access::ReadWrite => "read and write",
+    };
+    let unit = if r.unit.is_empty() {
+        String::new()
+    } else {
+        format!(", in {}", r.unit)
+    };
+    let mut doc = format!(
+        "`{}`: address {}, {} (`{ty}`{unit}), {access}.",
+        r.name,
+        r.address,
+        bytes(r.size)
+    );
+    if !r.doc.is_empty() {
+        doc.push_str("\n\n");
+        doc.push_str(&r.doc);
+    }
+    doc
+}
+
+/// `request.FIELD` as a `target` of `bits` bits (`u32`, `u64`): by `From` for a narrower
+/// unsigned field, as it is for one of that type, else by `as` (validation checked that every
+/// register's address fits the field).
+fn widen(rs: &crate::ir::Struct, field: &str, target: &str, bits: usize) -> TokenStream {
+    let name = ident(field);
+    let t = format_ident!("{target}");
+    let prim = rs
+        .fields
+        .iter()
+        .find(|f| f.name == field)
+        .and_then(|f| match &f.kind {
+            crate::ir::FieldKind::Value {
+                ty: ValueType::Scalar { scalar, .. },
+                ..
+            } => Some(scalar.prim),
+            _ => None,
+        });
+    match prim {
+        Some(p) if p.is_unsigned() && p.size() * 8 == bits => quote!(request.#name),
+        Some(p) if p.is_unsigned() && p.size() * 8 < bits => quote!(#t::from(request.#name)),
+        _ => quote!(request.#name as #t),
+    }
+}
+
+/// The windows of register bytes a command's frames hold.
+fn windows(p: &Protocol, s: &Select) -> TokenStream {
+    let (Some(c), Some(rs)) = (p.commands.get(s.command), p.structs.get(s.request)) else {
+        return quote!();
+    };
+    let rt = quote!(__rt);
+    let snake = c.name.to_ascii_lowercase();
+    let request = format_ident!("{}", rs.name);
+    let start = widen(rs, &s.address, "u32", 32);
+    let mut out = TokenStream::new();
+    if let Some(data) = &s.data {
+        let f = format_ident!("{snake}_data");
+        let data = ident(data);
+        let doc = format!(
+            "The registers a `{}` writes: its `{}`, from its `{}`.",
+            c.name,
+            s.data.as_deref().unwrap_or_default(),
+            s.address
+        );
+        let doc = doc_attrs(&doc);
+        out.extend(quote! {
+            #doc
+            pub fn #f(request: &super::#request) -> #rt::registers::Window<'_> {
+                #rt::registers::Window::new(#start, request.#data.as_slice())
+            }
+        });
+    }
+    if let Some((si, field)) = &s.answer {
+        let Some(answer) = p.structs.get(*si) else {
+            return out;
+        };
+        let f = format_ident!("{snake}_answer");
+        let ty = format_ident!("{}", answer.name);
+        let bytes = ident(field);
+        let window = match &s.length {
+            Some(l) => {
+                let asked = widen(rs, l, "u64", 64);
+                quote!(#rt::registers::Window::asked(#start, #asked, answer.#bytes.as_slice()))
+            }
+            None => quote!(#rt::registers::Window::new(#start, answer.#bytes.as_slice())),
+        };
+        let doc = format!(
+            "The registers the answer to a `{}` carries: its `{field}`, from the request's `{}`{}.",
+            c.name,
+            s.address,
+            s.length
+                .as_ref()
+                .map(|l| format!(", as many bytes as its `{l}` asked"))
+                .unwrap_or_default()
+        );
+        let doc = doc_attrs(&doc);
+        out.extend(quote! {
+            #doc
+            pub fn #f<'a>(request: &super::#request, answer: &'a super::#ty) -> #rt::registers::Window<'a> {
+                #window
+            }
+        });
+    }
+    out
+}

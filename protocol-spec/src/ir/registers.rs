@@ -1,0 +1,81 @@
+//! The register map of the IR (`[registers]`) and the commands that select runs of it (a
+//! command's `registers`). Every name is resolved; registers are in address order and do not
+//! overlap.
+
+use super::ValueType;
+
+/// Who may read and write a register.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Access {
+    /// Read only (`"r"`).
+    Read,
+    /// Write only (`"w"`).
+    Write,
+    /// Read and write (`"rw"`).
+    ReadWrite,
+}
+
+impl Access {
+    /// The spelling of the spec (`r`, `w`, `rw`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Access::Read => "r",
+            Access::Write => "w",
+            Access::ReadWrite => "rw",
+        }
+    }
+}
+
+/// A named register at an address.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Register {
+    /// Name as written (snake_case).
+    pub name: String,
+    /// Address of its first byte.
+    pub address: u32,
+    /// Its bytes.
+    pub size: usize,
+    /// Its value: a [`ValueType::Scalar`], scaled or not.
+    pub ty: ValueType,
+    /// Physical unit, for docs (empty when none).
+    pub unit: String,
+    /// Who may read and write it.
+    pub access: Access,
+    /// Documentation.
+    pub doc: String,
+}
+
+/// A command whose request selects a run of registers.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Select {
+    /// The command (index into [`Protocol::commands`](super::Protocol::commands)).
+    pub command: usize,
+    /// The request's struct (index into [`Protocol::structs`](super::Protocol::structs)).
+    pub request: usize,
+    /// The request's integer field that holds the first address.
+    pub address: String,
+    /// The request's integer field that holds the number of bytes asked.
+    pub length: Option<String>,
+    /// The request's `bytes` field that holds the values written.
+    pub data: Option<String>,
+    /// The answer's struct and its `bytes` field that holds the values read.
+    pub answer: Option<(usize, String)>,
+}
+
+/// The device's register map.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RegisterMap {
+    /// Documentation.
+    pub doc: String,
+    /// The registers, in address order.
+    pub registers: Vec<Register>,
+    /// The commands that select runs of them, in command order.
+    pub selects: Vec<Select>,
+}
+
+impl RegisterMap {
+    /// What command `command` selects, if anything.
+    pub fn select(&self, command: usize) -> Option<&Select> {
+        self.selects.iter().find(|s| s.command == command)
+    }
+}
