@@ -446,8 +446,9 @@ def value_bytes(value, kind: str) -> bytes:
     return value.to_bytes(size_of(kind), "little", signed=kind[0] == "I")
 
 
-def main() -> None:
-    rng = random.Random(0x55_42_58_32)
+def random_frames(rng: random.Random, per_command: int) -> list[dict]:
+    """`per_command` random frames of every command (and a CFG-PRT poll), as the file records
+    them. The Python package's tests call it for frames of their own."""
     frames = []
     for command in SPEC["commands"]:
         ubx_name = command.replace("_", "-")
@@ -458,16 +459,21 @@ def main() -> None:
         if ubx_name == "NAV-RELPOSNED":
             defn = UBX_PAYLOADS_GET["NAV-RELPOSNED"]
         read = {"CFG_MSG": cfg_msg, "CFG_CFG": cfg_cfg, "CFG_PRT": cfg_prt(defn)}.get(command) or by_definition(command, defn)
-        for i in range(FRAMES_PER_COMMAND):
+        for i in range(per_command):
             payload = random_payload(rng, defn, FIXED.get(ubx_name, {}))
             msg = UBXMessage(ubx_name[:3], ubx_name, mode, payload=payload)
             frames.append(frame_record(f"{command.lower()}_{i}", command, msg, mode, read))
         if command == "CFG_PRT":
             poll = UBXMessage("CFG", "CFG-PRT", POLL, payload=bytes([rng.randint(0, 4)]))
             frames.append(frame_record("cfg_prt_poll", command, poll, POLL, cfg_prt_poll))
-    for i in range(FRAMES_PER_COMMAND):
+    for i in range(per_command):
         frames.extend(config_frames(rng, i))
     assert {f["message"] for f in frames} == set(SPEC["commands"]), "every command has frames"
+    return frames
+
+
+def main() -> None:
+    frames = random_frames(random.Random(0x55_42_58_32), FRAMES_PER_COMMAND)
     doc = {
         "protocol": "ubx",
         "source": {
