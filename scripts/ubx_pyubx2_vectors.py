@@ -149,7 +149,8 @@ def random_payload(rng: random.Random, defn: dict, fixed: dict) -> bytes:
             if isinstance(kind[0], int):
                 counts[key] = kind[0]
             else:
-                counts[key] = rng.randint(0, 5)
+                # At most 4: the spec's smallest group (MON-RF's RF blocks).
+                counts[key] = rng.randint(0, 4)
     by_count_field = {kind[0]: counts[key] for key, kind in defn.items() if key in counts and isinstance(kind[0], str)}
     out = b""
     for key, kind in defn.items():
