@@ -38,7 +38,7 @@ impl Raw<'_> {
         T::try_from(v).unwrap_or_else(|_| panic!("bits of `{k}` do not fit"))
     }
     fn bit(&self, k: &str, at: u32) -> bool {
-        self.int(k) >> at & 1 == 1
+        (self.int(k) >> at) & 1 == 1
     }
     /// A field of scale `1 / div` as an `f64`.
     fn f64_per(&self, k: &str, div: f64) -> f64 {

@@ -270,7 +270,7 @@ fn bits(word: u16, at: u32, n: u32) -> u8 {
 }
 
 fn bit(word: u16, at: u32) -> bool {
-    word >> at & 1 == 1
+    (word >> at) & 1 == 1
 }
 
 // The spec's messages from raw wire values, as the peer gives them: a scaled field is the raw
