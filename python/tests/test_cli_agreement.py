@@ -33,6 +33,7 @@ VECTOR_SPECS = {
     "roborts_sdk.json": [("roborts", None)],
     "sbus.json": [("sbus", None)],
     "ubx.json": [("ubx", None)],
+    "ubx_pyubx2.json": [("ubx", None)],
 }
 
 

@@ -23,7 +23,7 @@
 
 static char line[1 << 23];
 static uint8_t bytes[1 << 22];
-static char text[1 << 16];
+static char text[1 << 18];
 
 static const char *err_name(int e)
 {

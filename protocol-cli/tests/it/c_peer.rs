@@ -90,6 +90,9 @@ fn vector_files(spec: &str) -> Vec<(String, bool)> {
         ("mavlink", "mavlink.json", true),
         // The stream holds an SBUS2 frame, whose footer the spec refuses.
         ("sbus", "sbus.json", false),
+        ("ubx", "ubx.json", true),
+        // Random messages of every command, from pyubx2: no streams.
+        ("ubx", "ubx_pyubx2.json", false),
     ];
     let mut out: Vec<(String, bool)> = known
         .iter()

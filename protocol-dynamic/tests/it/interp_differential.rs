@@ -358,6 +358,7 @@ fn golden_vectors_decode_and_encode_alike() {
         ("ibus", "ibus.json"),
         ("sbus", "sbus.json"),
         ("ubx", "ubx.json"),
+        ("ubx", "ubx_pyubx2.json"),
     ];
     let gens = specs();
     // A spec whose directions are given has an entry per direction: each reads every frame.

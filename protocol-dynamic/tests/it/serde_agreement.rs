@@ -188,6 +188,12 @@ fn specs() -> Vec<(&'static str, &'static str, Serial, Option<Can>)> {
             None,
         ),
         ("ubx", "ubx.json", serial!(ubx::Packet, MAX_FRAME_LEN), None),
+        (
+            "ubx",
+            "ubx_pyubx2.json",
+            serial!(ubx::Packet, MAX_FRAME_LEN),
+            None,
+        ),
     ]
 }
 

@@ -54,5 +54,6 @@ mod session_mavlink;
 mod session_sim;
 mod text_fields;
 mod tokio_codec;
+mod ubx_pyubx2;
 mod ubx_vectors;
 mod wire_types;

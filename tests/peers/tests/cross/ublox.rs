@@ -260,117 +260,211 @@ fn fix(raw: u8) -> spec::GpsFix {
     spec::GpsFix::from_raw(raw).expect("an unknown fix type is kept")
 }
 
+fn carr_soln(raw: u8) -> spec::CarrSoln {
+    spec::CarrSoln::from_raw(raw).expect("an unknown solution is kept")
+}
+
+/// `n` bits of `word` from bit `at`.
+fn bits(word: u16, at: u32, n: u32) -> u8 {
+    u8::try_from((word >> at) & ((1 << n) - 1)).expect("at most 8 bits")
+}
+
+fn bit(word: u16, at: u32) -> bool {
+    (word >> at) & 1 == 1
+}
+
+// The spec's messages from raw wire values, as the peer gives them: a scaled field is the raw
+// integer divided by the integer whose reciprocal its scale is (as the generated decoder
+// computes it), a flag word its members lowest bit first.
+
+fn posllh(itow: u32, i: [i32; 4], u: [u32; 2]) -> spec::NavPosllh {
+    spec::NavPosllh {
+        itow,
+        lon: f64::from(i[0]) / 1e7,
+        lat: f64::from(i[1]) / 1e7,
+        height: i[2],
+        h_msl: i[3],
+        h_acc: u[0],
+        v_acc: u[1],
+    }
+}
+
+/// NAV-STATUS from itow, ttff, msss and gpsFix, flags, fixStat, flags2.
+fn status(u: [u32; 3], b: [u8; 4]) -> spec::NavStatus {
+    let [flags, fix_stat, flags2] = [b[1], b[2], b[3]].map(u16::from);
+    spec::NavStatus {
+        itow: u[0],
+        gps_fix: fix(b[0]),
+        gps_fix_ok: bit(flags, 0),
+        diff_soln: bit(flags, 1),
+        wkn_set: bit(flags, 2),
+        tow_set: bit(flags, 3),
+        flags_reserved: bits(flags, 4, 4),
+        diff_corr: bit(fix_stat, 0),
+        carr_soln_valid: bit(fix_stat, 1),
+        reserved0: bits(fix_stat, 2, 4),
+        map_matching: bits(fix_stat, 6, 2),
+        psm_state: bits(flags2, 0, 2),
+        reserved1: bit(flags2, 2),
+        spoof_det_state: bits(flags2, 3, 2),
+        reserved2: bit(flags2, 5),
+        carr_soln: carr_soln(bits(flags2, 6, 2)),
+        ttff: u[1],
+        msss: u[2],
+    }
+}
+
+fn dop(itow: u32, d: [u16; 7]) -> spec::NavDop {
+    let d = d.map(|v| f32::from(v) / 100.0);
+    spec::NavDop {
+        itow,
+        g_dop: d[0],
+        p_dop: d[1],
+        t_dop: d[2],
+        v_dop: d[3],
+        h_dop: d[4],
+        n_dop: d[5],
+        e_dop: d[6],
+    }
+}
+
+/// NAV-PVT's raw wire values.
+#[derive(Debug, Clone, Copy)]
+struct PvtRaw {
+    /// itow, t_acc, h_acc, v_acc, s_acc, head_acc.
+    u: [u32; 6],
+    /// nano, lon, lat, height, h_msl, vel_n, vel_e, vel_d, g_speed, head_mot, head_veh.
+    i: [i32; 11],
+    /// month, day, hour, min, sec, valid, fix_type, flags, flags2, num_sv.
+    b: [u8; 10],
+    /// year, p_dop, mag_acc, flags3.
+    w: [u16; 4],
+    mag_dec: i16,
+}
+
+fn pvt(r: PvtRaw) -> spec::NavPvt {
+    let (u, i, b, w) = (r.u, r.i, r.b, r.w);
+    let [valid, flags, flags2] = [b[5], b[7], b[8]].map(u16::from);
+    let flags3 = w[3];
+    spec::NavPvt {
+        itow: u[0],
+        year: w[0],
+        month: b[0],
+        day: b[1],
+        hour: b[2],
+        min: b[3],
+        sec: b[4],
+        valid_date: bit(valid, 0),
+        valid_time: bit(valid, 1),
+        fully_resolved: bit(valid, 2),
+        valid_mag: bit(valid, 3),
+        valid_reserved: bits(valid, 4, 4),
+        t_acc: u[1],
+        nano: i[0],
+        fix_type: fix(b[6]),
+        gnss_fix_ok: bit(flags, 0),
+        diff_soln: bit(flags, 1),
+        psm_state: bits(flags, 2, 3),
+        head_veh_valid: bit(flags, 5),
+        carr_soln: carr_soln(bits(flags, 6, 2)),
+        reserved: bits(flags2, 0, 5),
+        confirmed_avai: bit(flags2, 5),
+        confirmed_date: bit(flags2, 6),
+        confirmed_time: bit(flags2, 7),
+        num_sv: b[9],
+        lon: f64::from(i[1]) / 1e7,
+        lat: f64::from(i[2]) / 1e7,
+        height: i[3],
+        h_msl: i[4],
+        h_acc: u[2],
+        v_acc: u[3],
+        vel_n: i[5],
+        vel_e: i[6],
+        vel_d: i[7],
+        g_speed: i[8],
+        head_mot: f64::from(i[9]) / 1e5,
+        s_acc: u[4],
+        head_acc: f64::from(u[5]) / 1e5,
+        p_dop: f32::from(w[1]) / 100.0,
+        invalid_llh: bit(flags3, 0),
+        last_correction_age: bits(flags3, 1, 4),
+        reserved1: bits(flags3, 5, 8),
+        auth_time: bit(flags3, 13),
+        nma_fix_status: bit(flags3, 14),
+        flags3_reserved: bits(flags3, 15, 1),
+        head_veh: f64::from(i[10]) / 1e5,
+        mag_dec: f32::from(r.mag_dec) / 100.0,
+        mag_acc: f32::from(w[2]) / 100.0,
+    }
+}
+
+/// NAV-VELNED from itow, speed, g_speed, s_acc, c_acc and vel_n, vel_e, vel_d, heading.
+fn velned(u: [u32; 5], i: [i32; 4]) -> spec::NavVelned {
+    spec::NavVelned {
+        itow: u[0],
+        vel_n: i[0],
+        vel_e: i[1],
+        vel_d: i[2],
+        speed: u[1],
+        g_speed: u[2],
+        heading: f64::from(i[3]) / 1e5,
+        s_acc: u[3],
+        c_acc: f64::from(u[4]) / 1e5,
+    }
+}
+
+/// NAV-TIMEUTC from itow, t_acc, nano, year and month, day, hour, min, sec, valid.
+fn timeutc(u: [u32; 2], nano: i32, year: u16, b: [u8; 6]) -> spec::NavTimeutc {
+    let valid = u16::from(b[5]);
+    spec::NavTimeutc {
+        itow: u[0],
+        t_acc: u[1],
+        nano,
+        year,
+        month: b[0],
+        day: b[1],
+        hour: b[2],
+        min: b[3],
+        sec: b[4],
+        valid_tow: bit(valid, 0),
+        valid_wkn: bit(valid, 1),
+        valid_utc: bit(valid, 2),
+        auth_status: bit(valid, 3),
+        utc_standard: bits(valid, 4, 4),
+    }
+}
+
 fn messages() -> BoxedStrategy<spec::Packet> {
-    let posllh = (any::<u32>(), any::<[i32; 4]>(), any::<[u32; 2]>()).prop_map(|(itow, i, u)| {
-        M::NavPosllh(spec::NavPosllh {
-            itow,
-            lon: i[0],
-            lat: i[1],
-            height: i[2],
-            h_msl: i[3],
-            h_acc: u[0],
-            v_acc: u[1],
-        })
-    });
-    let status = (any::<[u32; 3]>(), any::<[u8; 4]>()).prop_map(|(u, b)| {
-        M::NavStatus(spec::NavStatus {
-            itow: u[0],
-            gps_fix: fix(b[0]),
-            flags: b[1],
-            fix_stat: b[2],
-            flags2: b[3],
-            ttff: u[1],
-            msss: u[2],
-        })
-    });
-    let dop = (any::<u32>(), any::<[u16; 7]>()).prop_map(|(itow, d)| {
-        M::NavDop(spec::NavDop {
-            itow,
-            g_dop: d[0],
-            p_dop: d[1],
-            t_dop: d[2],
-            v_dop: d[3],
-            h_dop: d[4],
-            n_dop: d[5],
-            e_dop: d[6],
-        })
-    });
+    let posllh = (any::<u32>(), any::<[i32; 4]>(), any::<[u32; 2]>())
+        .prop_map(|(itow, i, u)| M::NavPosllh(posllh(itow, i, u)));
+    let status =
+        (any::<[u32; 3]>(), any::<[u8; 4]>()).prop_map(|(u, b)| M::NavStatus(status(u, b)));
+    let dop = (any::<u32>(), any::<[u16; 7]>()).prop_map(|(itow, d)| M::NavDop(dop(itow, d)));
     let pvt = (
         any::<[u32; 6]>(),
         any::<[i32; 11]>(),
-        any::<[u8; 11]>(),
-        any::<[u16; 3]>(),
+        any::<[u8; 10]>(),
+        any::<[u16; 4]>(),
         any::<i16>(),
     )
         .prop_map(|(u, i, b, w, mag_dec)| {
-            M::NavPvt(spec::NavPvt {
-                itow: u[0],
-                year: w[0],
-                month: b[0],
-                day: b[1],
-                hour: b[2],
-                min: b[3],
-                sec: b[4],
-                valid: b[5],
-                t_acc: u[1],
-                nano: i[0],
-                fix_type: fix(b[6]),
-                flags: b[7],
-                flags2: b[8],
-                num_sv: b[9],
-                lon: i[1],
-                lat: i[2],
-                height: i[3],
-                h_msl: i[4],
-                h_acc: u[2],
-                v_acc: u[3],
-                vel_n: i[5],
-                vel_e: i[6],
-                vel_d: i[7],
-                g_speed: i[8],
-                head_mot: i[9],
-                s_acc: u[4],
-                head_acc: u[5],
-                p_dop: w[1],
-                flags3: b[10],
-                head_veh: i[10],
+            M::NavPvt(pvt(PvtRaw {
+                u,
+                i,
+                b,
+                w,
                 mag_dec,
-                mag_acc: w[2],
-            })
+            }))
         });
-    let velned = (any::<[u32; 5]>(), any::<[i32; 4]>()).prop_map(|(u, i)| {
-        M::NavVelned(spec::NavVelned {
-            itow: u[0],
-            vel_n: i[0],
-            vel_e: i[1],
-            vel_d: i[2],
-            speed: u[1],
-            g_speed: u[2],
-            heading: i[3],
-            s_acc: u[3],
-            c_acc: u[4],
-        })
-    });
+    let velned =
+        (any::<[u32; 5]>(), any::<[i32; 4]>()).prop_map(|(u, i)| M::NavVelned(velned(u, i)));
     let timeutc = (
         any::<[u32; 2]>(),
         any::<i32>(),
         any::<u16>(),
         any::<[u8; 6]>(),
     )
-        .prop_map(|(u, nano, year, b)| {
-            M::NavTimeutc(spec::NavTimeutc {
-                itow: u[0],
-                t_acc: u[1],
-                nano,
-                year,
-                month: b[0],
-                day: b[1],
-                hour: b[2],
-                min: b[3],
-                sec: b[4],
-                valid: b[5],
-            })
-        });
+        .prop_map(|(u, nano, year, b)| M::NavTimeutc(timeutc(u, nano, year, b)));
     let ack = (any::<bool>(), any::<[u8; 2]>()).prop_map(|(acked, [cls_id, msg_id])| {
         let a = spec::Ack { cls_id, msg_id };
         if acked { M::AckAck(a) } else { M::AckNak(a) }
@@ -470,96 +564,109 @@ impl PeerAdapter for Ublox {
             other => return Err(format!("{other:?}")),
         };
         let message = match packet {
-            PacketRef::NavPosLlh(p) => M::NavPosllh(spec::NavPosllh {
-                itow: p.itow(),
-                lon: p.lon_degrees_raw(),
-                lat: p.lat_degrees_raw(),
-                height: p.height_meters_raw(),
-                h_msl: p.height_msl_raw(),
-                h_acc: p.h_ack_raw(),
-                v_acc: p.v_acc_raw(),
-            }),
-            PacketRef::NavStatus(p) => M::NavStatus(spec::NavStatus {
-                itow: p.itow(),
-                gps_fix: fix(p.fix_type_raw()),
-                flags: p.flags_raw(),
-                fix_stat: p.fix_stat_raw(),
-                flags2: p.flags2_raw(),
-                ttff: p.time_to_first_fix(),
-                msss: p.uptime_ms(),
-            }),
-            PacketRef::NavDop(p) => M::NavDop(spec::NavDop {
-                itow: p.itow(),
-                g_dop: p.geometric_dop_raw(),
-                p_dop: p.position_dop_raw(),
-                t_dop: p.time_dop_raw(),
-                v_dop: p.vertical_dop_raw(),
-                h_dop: p.horizontal_dop_raw(),
-                n_dop: p.northing_dop_raw(),
-                e_dop: p.easting_dop_raw(),
-            }),
-            // Bytes 78..83 are laid out differently by the sources (the vector file's note on
-            // NAV-PVT): the peer reads flags3 as a `u16` and four reserved bytes (the later
-            // protocols' X2, whose bits 1..4 are lastCorrectionAge), the spec as one byte and
-            // five reserved ones. The generated encoder writes the reserved bytes as zeros, so
-            // the peer's `u16` holds the spec's byte; a high byte would fail the conversion.
-            PacketRef::NavPvt(p) => M::NavPvt(spec::NavPvt {
-                itow: p.itow(),
-                year: p.year(),
-                month: p.month(),
-                day: p.day(),
-                hour: p.hour(),
-                min: p.min(),
-                sec: p.sec(),
-                valid: p.valid_raw(),
-                t_acc: p.time_accuracy(),
-                nano: p.nanosec(),
-                fix_type: fix(p.fix_type_raw()),
-                flags: p.flags_raw(),
-                flags2: p.flags2_raw(),
-                num_sv: p.num_satellites(),
-                lon: p.longitude_raw(),
-                lat: p.latitude_raw(),
-                height: p.height_above_ellipsoid_raw(),
-                h_msl: p.height_msl_raw(),
-                h_acc: p.horizontal_accuracy_raw(),
-                v_acc: p.vertical_accuracy_raw(),
-                vel_n: p.vel_north_raw(),
-                vel_e: p.vel_east_raw(),
-                vel_d: p.vel_down_raw(),
-                g_speed: p.ground_speed_2d_raw(),
-                head_mot: p.heading_motion_raw(),
-                s_acc: p.speed_accuracy_raw(),
-                head_acc: p.heading_accuracy_raw(),
-                p_dop: p.pdop_raw(),
-                flags3: u8::try_from(p.flags3_raw()).map_err(|e| e.to_string())?,
-                head_veh: p.heading_vehicle_raw(),
+            PacketRef::NavPosLlh(p) => M::NavPosllh(posllh(
+                p.itow(),
+                [
+                    p.lon_degrees_raw(),
+                    p.lat_degrees_raw(),
+                    p.height_meters_raw(),
+                    p.height_msl_raw(),
+                ],
+                [p.h_ack_raw(), p.v_acc_raw()],
+            )),
+            PacketRef::NavStatus(p) => M::NavStatus(status(
+                [p.itow(), p.time_to_first_fix(), p.uptime_ms()],
+                [
+                    p.fix_type_raw(),
+                    p.flags_raw(),
+                    p.fix_stat_raw(),
+                    p.flags2_raw(),
+                ],
+            )),
+            PacketRef::NavDop(p) => M::NavDop(dop(
+                p.itow(),
+                [
+                    p.geometric_dop_raw(),
+                    p.position_dop_raw(),
+                    p.time_dop_raw(),
+                    p.vertical_dop_raw(),
+                    p.horizontal_dop_raw(),
+                    p.northing_dop_raw(),
+                    p.easting_dop_raw(),
+                ],
+            )),
+            // The peer reads bytes 78..83 as the spec does: flags3 a `u16` (the later
+            // protocols' X2), four reserved bytes.
+            PacketRef::NavPvt(p) => M::NavPvt(pvt(PvtRaw {
+                u: [
+                    p.itow(),
+                    p.time_accuracy(),
+                    p.horizontal_accuracy_raw(),
+                    p.vertical_accuracy_raw(),
+                    p.speed_accuracy_raw(),
+                    p.heading_accuracy_raw(),
+                ],
+                i: [
+                    p.nanosec(),
+                    p.longitude_raw(),
+                    p.latitude_raw(),
+                    p.height_above_ellipsoid_raw(),
+                    p.height_msl_raw(),
+                    p.vel_north_raw(),
+                    p.vel_east_raw(),
+                    p.vel_down_raw(),
+                    p.ground_speed_2d_raw(),
+                    p.heading_motion_raw(),
+                    p.heading_vehicle_raw(),
+                ],
+                b: [
+                    p.month(),
+                    p.day(),
+                    p.hour(),
+                    p.min(),
+                    p.sec(),
+                    p.valid_raw(),
+                    p.fix_type_raw(),
+                    p.flags_raw(),
+                    p.flags2_raw(),
+                    p.num_satellites(),
+                ],
+                w: [
+                    p.year(),
+                    p.pdop_raw(),
+                    p.magnetic_declination_accuracy_raw(),
+                    p.flags3_raw(),
+                ],
                 mag_dec: p.magnetic_declination_raw(),
-                mag_acc: p.magnetic_declination_accuracy_raw(),
-            }),
-            PacketRef::NavVelNed(p) => M::NavVelned(spec::NavVelned {
-                itow: p.itow(),
-                vel_n: p.vel_north_raw(),
-                vel_e: p.vel_east_raw(),
-                vel_d: p.vel_down_raw(),
-                speed: p.speed_3d_raw(),
-                g_speed: p.ground_speed_raw(),
-                heading: p.heading_degrees_raw(),
-                s_acc: p.speed_accuracy_estimate_raw(),
-                c_acc: p.course_heading_accuracy_estimate_raw(),
-            }),
-            PacketRef::NavTimeUTC(p) => M::NavTimeutc(spec::NavTimeutc {
-                itow: p.itow(),
-                t_acc: p.time_accuracy_estimate_ns(),
-                nano: p.nanos(),
-                year: p.year(),
-                month: p.month(),
-                day: p.day(),
-                hour: p.hour(),
-                min: p.min(),
-                sec: p.sec(),
-                valid: p.valid_raw(),
-            }),
+            })),
+            PacketRef::NavVelNed(p) => M::NavVelned(velned(
+                [
+                    p.itow(),
+                    p.speed_3d_raw(),
+                    p.ground_speed_raw(),
+                    p.speed_accuracy_estimate_raw(),
+                    p.course_heading_accuracy_estimate_raw(),
+                ],
+                [
+                    p.vel_north_raw(),
+                    p.vel_east_raw(),
+                    p.vel_down_raw(),
+                    p.heading_degrees_raw(),
+                ],
+            )),
+            PacketRef::NavTimeUTC(p) => M::NavTimeutc(timeutc(
+                [p.itow(), p.time_accuracy_estimate_ns()],
+                p.nanos(),
+                p.year(),
+                [
+                    p.month(),
+                    p.day(),
+                    p.hour(),
+                    p.min(),
+                    p.sec(),
+                    p.valid_raw(),
+                ],
+            )),
             PacketRef::AckAck(p) => M::AckAck(spec::Ack {
                 cls_id: p.class(),
                 msg_id: p.msg_id(),

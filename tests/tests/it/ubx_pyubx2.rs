@@ -1,0 +1,148 @@
+//! UBX frames written and decoded by pyubx2 (`tests/vectors/ubx_pyubx2.json`, made by
+//! `scripts/ubx_pyubx2_vectors.py`): random messages of every command of `specs/ubx.toml`.
+//!
+//! The generated code and the run-time codec each decode every frame to pyubx2's values (a
+//! scaled field within half its scale of pyubx2's, every other value equal, bit members and
+//! enumerations included), and encode pyubx2's values back to the frame's bytes. Where pyubx2
+//! adds a high-precision part into its main field (NAV-HPPOSLLH's `lon` is `lon + lon_hp`), the
+//! sum of the spec's two fields is checked against pyubx2's.
+
+use crate::golden;
+
+use protocol_tests::{F, hex, load_vectors};
+use serde_json::{Map, Value, json};
+use std::collections::BTreeSet;
+
+mod generated {
+    protocol_kit::protocol!("../specs/ubx.toml", derive(serde));
+}
+
+use generated::ubx;
+
+/// A JSON value through its text, as a decoder prints it (an `f32` keeps its shortest form).
+fn shown(value: &impl serde::Serialize) -> Value {
+    serde_json::from_str(&serde_json::to_string(value).expect("JSON")).expect("JSON")
+}
+
+/// The path of a field with group indices left out (`svs.pr_res`), as the vectors key scales.
+fn join(path: &str, key: &str) -> String {
+    if path.is_empty() {
+        key.to_owned()
+    } else {
+        format!("{path}.{key}")
+    }
+}
+
+/// `ours` is pyubx2's `theirs`: the same shape, the same keys, numbers equal or, for a scaled
+/// field, within half its scale.
+fn assert_agrees(ours: &Value, theirs: &Value, path: &str, scales: &Map<String, Value>, at: &str) {
+    match (ours, theirs) {
+        (Value::Object(o), Value::Object(t)) => {
+            let ok: BTreeSet<_> = o.keys().collect();
+            let tk: BTreeSet<_> = t.keys().collect();
+            assert_eq!(ok, tk, "{at}: the fields of `{path}`");
+            for (k, v) in t {
+                assert_agrees(&o[k], v, &join(path, k), scales, at);
+            }
+        }
+        (Value::Array(o), Value::Array(t)) => {
+            assert_eq!(o.len(), t.len(), "{at}: the length of `{path}`");
+            for (o, t) in o.iter().zip(t) {
+                assert_agrees(o, t, path, scales, at);
+            }
+        }
+        (Value::Number(o), Value::Number(t)) => match scales.get(path).and_then(Value::as_f64) {
+            Some(scale) => {
+                let (o, t) = (o.as_f64().expect("a number"), t.as_f64().expect("a number"));
+                let within = scale / 2.0 + t.abs() * 1e-12;
+                assert!((o - t).abs() <= within, "{at}: `{path}` is {o}, pyubx2 {t}");
+            }
+            None => assert_eq!(o, t, "{at}: `{path}`"),
+        },
+        _ => assert_eq!(ours, theirs, "{at}: `{path}`"),
+    }
+}
+
+/// pyubx2's sums of a main field and its high-precision part, against the spec's two fields.
+fn assert_sums(payload: &Value, frame: &Value, at: &str) {
+    let Some(sums) = frame["pyubx2_sums"].as_object() else {
+        return;
+    };
+    for (main, check) in sums {
+        let theirs = check[0].as_f64().expect("pyubx2's sum");
+        let hp = check[1][1].as_str().expect("the high-precision field");
+        let ours =
+            payload[main].as_f64().expect("a number") + payload[hp].as_f64().expect("a number");
+        let scale = frame["scales"][hp].as_f64().expect("the part's scale");
+        let within = scale / 2.0 + theirs.abs() * 1e-12;
+        assert!(
+            (ours - theirs).abs() <= within,
+            "{at}: {main} + {hp} is {ours}, pyubx2 {theirs}"
+        );
+    }
+}
+
+#[test]
+fn every_pyubx2_frame_decodes_to_its_values_and_encodes_to_its_bytes() {
+    let v = load_vectors("ubx_pyubx2.json");
+    let interp = golden::interpreter("ubx");
+    let codec = interp.codec();
+    let mut covered = BTreeSet::new();
+    let frames = v["frames"].as_array().expect("frames");
+    for frame in frames {
+        let at = frame["name"].as_str().expect("a name");
+        let bytes = hex(frame["hex"].as_str().expect("hex"));
+        let command = frame["message"].as_str().expect("the command");
+        let expected = &frame["payload"];
+        let scales = frame["scales"].as_object().expect("scales");
+
+        let decoded = codec
+            .parse(0, &bytes)
+            .unwrap_or_else(|e| panic!("{at}: the codec does not decode it: {e:?}"));
+        let by_codec = shown(&codec.frame_value(&decoded, 0, &bytes));
+        assert_eq!(by_codec["command"], command, "{at}: the codec's command");
+        assert_agrees(
+            &by_codec["payload"],
+            expected,
+            "",
+            scales,
+            &format!("{at} (codec)"),
+        );
+        assert_sums(&by_codec["payload"], frame, &format!("{at} (codec)"));
+
+        let packet = ubx::Packet::decode(&bytes).unwrap_or_else(|e| panic!("{at}: {e}"));
+        let by_rust = shown(&packet);
+        assert_eq!(by_rust["command"], command, "{at}: the generated command");
+        assert_agrees(
+            &by_rust["payload"],
+            expected,
+            "",
+            scales,
+            &format!("{at} (Rust)"),
+        );
+        assert_sums(&by_rust["payload"], frame, &format!("{at} (Rust)"));
+
+        // pyubx2's values, encoded by each, are the frame again.
+        let object = json!({ "command": command, "header": {}, "payload": expected });
+        let value: protocol_dynamic::Value =
+            serde_json::from_value(object.clone()).expect("a frame object");
+        let encoded = codec
+            .encode(&value)
+            .unwrap_or_else(|e| panic!("{at}: the codec does not encode it: {e}"));
+        assert_eq!(F(&encoded.bytes), F(&bytes), "{at}: the codec's bytes");
+        let packet: ubx::Packet =
+            serde_json::from_value(object).unwrap_or_else(|e| panic!("{at}: {e}"));
+        let mut buf = [0u8; ubx::MAX_FRAME_LEN];
+        let n = packet
+            .encode(&mut buf)
+            .unwrap_or_else(|e| panic!("{at}: {e}"));
+        assert_eq!(F(&buf[..n]), F(&bytes), "{at}: the generated code's bytes");
+        covered.insert(command.to_owned());
+    }
+    let all: BTreeSet<String> = ubx::Command::ALL
+        .iter()
+        .map(|(_, name)| (*name).to_owned())
+        .collect();
+    assert_eq!(covered, all, "every command of the spec has pyubx2 frames");
+    assert!(frames.len() >= 4 * all.len(), "{} frames", frames.len());
+}
