@@ -381,3 +381,19 @@ fn a_short_frame_is_refused_after_its_key() {
         "{body}"
     );
 }
+
+#[test]
+fn a_bare_header_is_a_frame_once_its_bytes_have_come() {
+    // The length is known after three bytes, the bare header is five: a stream decoder that
+    // took the header for a frame before its last bytes came would hand out bytes it never
+    // received.
+    let p = compile("protocol-codegen/tests/c_regressions/bare_command.toml");
+    let files = protocol_codegen::c::generate(&p).expect("prints in C");
+    let start = at(&files.source, "static int bare_command_probe_synced(");
+    let body = &files.source[start..];
+    let body = &body[..at(body, "\n}\n")];
+    at(
+        body,
+        "if (total == 5u && 5u >= span && 5u > 0 && total <= limit) {\n        *n = total;\n        return avail < total ? BARE_COMMAND_PROBE_NEED : BARE_COMMAND_PROBE_FRAME;",
+    );
+}
