@@ -89,7 +89,7 @@ pub use buffer::{
     DecoderRam, HOST_BUFFER_LEN, decoder_buffer_len, decoder_buffer_len_for, decoder_ram,
     decoder_state_len,
 };
-pub use conditional::{flag_trailer, write_flag_trailer};
+pub use conditional::{flag_trailer, frame_body, frame_body_mut, write_flag_trailer};
 pub use event::{Event, Frame, Reject, Stats};
 pub use stream::StreamDecoder;
 
