@@ -411,3 +411,22 @@ fn a_field_after_the_payload_is_read_before_the_optional_bytes() {
         "{body}"
     );
 }
+
+#[test]
+fn a_flag_after_the_length_is_within_the_probe_span() {
+    // The flag adds the optional bytes to the frame's length: the probe reads it with the
+    // length, before it decides how many bytes the frame has.
+    let p = compile("protocol-codegen/tests/c_regressions/optional_flag_after_length.toml");
+    let files = protocol_codegen::c::generate(&p).expect("prints in C");
+    let start = at(
+        &files.source,
+        "static int optional_flag_after_length_probe_synced(",
+    );
+    let body = &files.source[start..];
+    let body = &body[..at(body, "\n}\n")];
+    at(body, "const size_t span = 4u;");
+    at(
+        body,
+        "if (optional_flag_after_length_field(b, span, 0, 3u, 1u, 0, 0u, 1u, &raw) && raw != 0) {",
+    );
+}

@@ -15,6 +15,6 @@ mod conversation;
 mod hex;
 mod interp_differential;
 mod load;
-mod optional_after_payload;
+mod optional_bytes;
 mod serde_agreement;
 mod session_agreement;
