@@ -348,7 +348,7 @@ fn write_header(
             .write(frame, u64::from(flagged.is_some()))
             .ok_or_else(runtime)?;
     }
-    let body = frame_body_mut(&rules.layout, frame);
+    let body = frame_body_mut(rules.layout, frame);
     for &(vi, raw) in values {
         let v = &f.values[vi];
         word_field(v).write(body, raw).ok_or_else(|| {

@@ -67,7 +67,7 @@ fn read_header(
     let mut out = Fields::new();
     // Values after the payload lie back from the end of the body (the frame without its flag
     // trailer); the others from its start, the same in the frame and the body.
-    let body = frame_body(&rules.layout, frame);
+    let body = frame_body(rules.layout, frame);
     for (vi, v) in f
         .values
         .iter()

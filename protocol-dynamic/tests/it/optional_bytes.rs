@@ -78,7 +78,7 @@ fn a_flag_after_the_length_counts_the_optional_bytes_in_the_frame() {
                 }
             }
         }
-        assert_eq!(frames, [bytes.clone()], "chunk {chunk}");
+        assert_eq!(frames, std::slice::from_ref(&bytes), "chunk {chunk}");
     }
     let packet = optional_flag_after_length::Packet::decode(&bytes).expect("a valid frame");
     assert_eq!(packet.header.sig, Some([0xAA, 0xBB, 0xCC]));
