@@ -154,6 +154,7 @@ pub struct LengthExtension {
 /// Bytes at the very end of a frame, after its checks and trailers, present when a header flag
 /// is set (the 13-byte MAVLink 2 signature when incompatibility flag `0x01` is set). The
 /// checks and markers resolve their [`Pos::End`] positions against the frame without them.
+/// The flag lies within the layout's `header_len` bytes: it decides the frame's length.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct FlagTrailer {
     /// The flag: the bytes are present when it is not 0.

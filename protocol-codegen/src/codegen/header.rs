@@ -9,7 +9,7 @@ use super::docs::doc_attrs;
 use super::frame::{user_values, wire_const};
 use super::payload::prim_type;
 use super::{ident, rt};
-use crate::ir::{Frame, Prim};
+use crate::ir::{Frame, HeaderValue, Pos, Prim};
 
 /// The `Header` struct of format `f` and its `read` and `write`.
 pub(super) fn emit_header(f: &Frame) -> TokenStream {
@@ -63,38 +63,63 @@ pub(super) fn emit_header(f: &Frame) -> TokenStream {
 }
 
 /// Reading the user-set header values of frame `f` into the header struct's fields, and
-/// writing them back from `self`, through the frame's `wire` consts.
+/// writing them back from `self`, through the frame's `wire` consts. A value after the payload
+/// of a format with a flag trailer lies back from the end of the frame's body (the frame
+/// without the trailer): it is read from and written into the body, once the flag is written.
 fn header_codec(f: &Frame, rt: &TokenStream) -> (Vec<TokenStream>, Vec<TokenStream>) {
     let header_len = format_ident!("{}", f.names.sizes.header_len);
-    user_values(f)
+    let layout = format_ident!("{}", f.names.layout_static);
+    let in_body = |v: &HeaderValue| f.flag_trailer.is_some() && matches!(v.at, Pos::End(_));
+    let (trailer_writes, trailer_read) = flag_trailer_codec(f, rt).unzip();
+    let (reads, writes): (Vec<TokenStream>, Vec<TokenStream>) = user_values(f)
         .map(|(i, v)| {
             let id = ident(&v.name);
             let c = wire_const(f, i);
-            let value = quote!(#rt::header_value(frame, wire::#c, #header_len)?);
+            let (from, into) = if in_body(v) {
+                (
+                    quote!(#rt::frame_body(&#layout, frame)),
+                    quote!(#rt::frame_body_mut(&#layout, frame)),
+                )
+            } else {
+                (quote!(frame), quote!(frame))
+            };
+            let value = quote!(#rt::header_value(#from, wire::#c, #header_len)?);
             let read = if v.prim == Prim::Bool {
                 quote!(#id: #value != 0)
             } else {
                 let t = prim_type(v.prim);
                 quote!(#id: #value as #t)
             };
-            let write = quote!(#rt::write_header(frame, wire::#c, self.#id as u64)?;);
+            let write = quote!(#rt::write_header(#into, wire::#c, self.#id as u64)?;);
             (read, write)
         })
-        .chain(flag_trailer_codec(f, rt))
-        .unzip()
+        .unzip();
+    let Some((read, (write_flag, write_bytes))) = trailer_read.zip(trailer_writes) else {
+        return (reads, writes);
+    };
+    // The flag first where a value lies in the body, whose end the flag decides.
+    let writes = if user_values(f).any(|(_, v)| in_body(v)) {
+        [vec![write_flag], writes, vec![write_bytes]].concat()
+    } else {
+        [writes, vec![quote!(#write_flag #write_bytes)]].concat()
+    };
+    ([reads, vec![read]].concat(), writes)
 }
 
-/// The flag trailer's `Header` field read from a frame, and its flag and bytes written into
-/// one.
-fn flag_trailer_codec(f: &Frame, rt: &TokenStream) -> Option<(TokenStream, TokenStream)> {
+/// The flag trailer's `Header` field read from a frame, and its flag and its bytes written
+/// into one.
+fn flag_trailer_codec(
+    f: &Frame,
+    rt: &TokenStream,
+) -> Option<((TokenStream, TokenStream), TokenStream)> {
     let t = f.flag_trailer.as_ref()?;
     let (id, len, flag) = (ident(&t.name), t.len, wire_const(f, t.flag));
     let layout = format_ident!("{}", f.names.layout_static);
     Some((
+        (
+            quote!(#rt::write_header(frame, wire::#flag, u64::from(self.#id.is_some()))?;),
+            quote!(#rt::write_flag_trailer(frame, self.#id.as_ref())?;),
+        ),
         quote!(#id: #rt::flag_trailer::<#len>(&#layout, frame)),
-        quote! {
-            #rt::write_header(frame, wire::#flag, u64::from(self.#id.is_some()))?;
-            #rt::write_flag_trailer(frame, self.#id.as_ref())?;
-        },
     ))
 }

@@ -381,3 +381,52 @@ fn a_short_frame_is_refused_after_its_key() {
         "{body}"
     );
 }
+
+#[test]
+fn a_bare_header_is_a_frame_once_its_bytes_have_come() {
+    // The length is known after three bytes, the bare header is five: a stream decoder that
+    // took the header for a frame before its last bytes came would hand out bytes it never
+    // received.
+    let p = compile("protocol-codegen/tests/c_regressions/bare_command.toml");
+    let files = protocol_codegen::c::generate(&p).expect("prints in C");
+    let start = at(&files.source, "static int bare_command_probe_synced(");
+    let body = &files.source[start..];
+    let body = &body[..at(body, "\n}\n")];
+    at(
+        body,
+        "if (total == 5u && 5u >= span && 5u > 0 && total <= limit) {\n        *n = total;\n        return avail < total ? BARE_COMMAND_PROBE_NEED : BARE_COMMAND_PROBE_FRAME;",
+    );
+}
+
+#[test]
+fn a_field_after_the_payload_is_read_before_the_optional_bytes() {
+    // The optional bytes are left out of the frame first; the field lies back from the end
+    // of what remains, as the checks do.
+    let p = compile("protocol-codegen/tests/c_regressions/optional_after_payload.toml");
+    let body = decode_frame(&p);
+    let field =
+        "optional_after_payload_field(bytes, end + OPTIONAL_AFTER_PAYLOAD_TRAILER_LEN, 1, 2u,";
+    assert!(
+        at(&body, "out->header.sig_present = 1;") < at(&body, field),
+        "{body}"
+    );
+}
+
+#[test]
+fn a_flag_after_the_length_is_within_the_probe_span() {
+    // The flag adds the optional bytes to the frame's length: the probe reads it with the
+    // length, before it decides how many bytes the frame has.
+    let p = compile("protocol-codegen/tests/c_regressions/optional_flag_after_length.toml");
+    let files = protocol_codegen::c::generate(&p).expect("prints in C");
+    let start = at(
+        &files.source,
+        "static int optional_flag_after_length_probe_synced(",
+    );
+    let body = &files.source[start..];
+    let body = &body[..at(body, "\n}\n")];
+    at(body, "const size_t span = 4u;");
+    at(
+        body,
+        "if (optional_flag_after_length_field(b, span, 0, 3u, 1u, 0, 0u, 1u, &raw) && raw != 0) {",
+    );
+}

@@ -9,6 +9,7 @@
 
 use protocol_runtime::EncodeError;
 use protocol_runtime::Writer;
+use protocol_runtime::decoder::frame_body_mut;
 use protocol_runtime::rules::{Body, PacketRules};
 use protocol_spec::ir::{Frame, Protocol, Role};
 use protocol_spec::rules::{Carries, carries};
@@ -220,7 +221,7 @@ pub fn encode(
     let mut refused = None;
     let header = |frame: &mut [u8]| {
         let flagged = flagged.clone()?;
-        write_header(f, &values, flagged.as_deref(), frame)?;
+        write_header(f, rules, &values, flagged.as_deref(), frame)?;
         key.as_ref().map(|_| ()).map_err(Clone::clone)
     };
     let n = rules
@@ -328,33 +329,35 @@ fn header_direction(f: &Frame, rules: &PacketRules<'_>, values: &[(usize, u64)])
 }
 
 /// Writes the header values and the flag trailer (its flag, and its bytes at the end) into
-/// `frame`.
+/// `frame`: the flag first, since it decides where the body (the frame without the flag
+/// trailer) ends, back from which the values after the payload lie.
 fn write_header(
     f: &Frame,
+    rules: &PacketRules<'_>,
     values: &[(usize, u64)],
     flagged: Option<&[u8]>,
     frame: &mut [u8],
 ) -> Result<(), EncodeIssue> {
+    let runtime = || {
+        EncodeIssue::runtime(EncodeError::ValueOutOfRange {
+            place: protocol_runtime::error::Place::NONE,
+        })
+    };
+    if let Some(t) = &f.flag_trailer {
+        word_field(&f.values[t.flag])
+            .write(frame, u64::from(flagged.is_some()))
+            .ok_or_else(runtime)?;
+    }
+    let body = frame_body_mut(rules.layout, frame);
     for &(vi, raw) in values {
         let v = &f.values[vi];
-        word_field(v).write(frame, raw).ok_or_else(|| {
+        word_field(v).write(body, raw).ok_or_else(|| {
             EncodeIssue::new(
                 format!("header.{}", v.name),
                 format!("{raw} does not fit the field"),
             )
         })?;
     }
-    let Some(t) = &f.flag_trailer else {
-        return Ok(());
-    };
-    let runtime = || {
-        EncodeIssue::runtime(EncodeError::ValueOutOfRange {
-            place: protocol_runtime::error::Place::NONE,
-        })
-    };
-    word_field(&f.values[t.flag])
-        .write(frame, u64::from(flagged.is_some()))
-        .ok_or_else(runtime)?;
     if let Some(bytes) = flagged {
         let at = frame.len().saturating_sub(bytes.len());
         frame

@@ -16,6 +16,7 @@ mod encode;
 pub use encode::encode;
 
 use protocol_runtime::DecodeError;
+use protocol_runtime::decoder::frame_body;
 use protocol_runtime::rules::PacketRules;
 use protocol_spec::ir::{Frame, HeaderValue, Prim, Protocol, Role, Transport};
 use protocol_spec::rules::{Carries, carries};
@@ -64,6 +65,9 @@ fn read_header(
     frame: &[u8],
 ) -> Result<Fields, DecodeIssue> {
     let mut out = Fields::new();
+    // Values after the payload lie back from the end of the body (the frame without its flag
+    // trailer); the others from its start, the same in the frame and the body.
+    let body = frame_body(rules.layout, frame);
     for (vi, v) in f
         .values
         .iter()
@@ -71,7 +75,7 @@ fn read_header(
         .filter(|(_, v)| matches!(v.role, Role::User { .. }))
     {
         let raw = word_field(v)
-            .read(frame)
+            .read(body)
             .ok_or_else(|| header_truncated(p, frame))?;
         if !is_can_id(f, v) {
             out.push(names.value(fi, vi), header_value(v, raw));

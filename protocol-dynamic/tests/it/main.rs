@@ -15,6 +15,7 @@ mod conversation;
 mod hex;
 mod interp_differential;
 mod load;
+mod optional_bytes;
 mod registers;
 mod serde_agreement;
 mod session_agreement;

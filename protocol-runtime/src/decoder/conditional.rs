@@ -237,6 +237,46 @@ pub fn flag_trailer<const N: usize>(layout: &FrameLayout<'_>, frame: &[u8]) -> O
     frame.last_chunk::<N>().copied()
 }
 
+/// The body of a checked `frame` of `layout`: the frame without its flag trailer, where the
+/// header values after the payload lie at their distance from the end (as the checks and
+/// trailers do). Without a flag trailer, or with its flag clear, the whole frame.
+///
+/// ```
+/// # use protocol_runtime::layout::*;
+/// # use protocol_runtime::decoder::frame_body;
+/// let signed = FrameLayout {
+///     sync: &[0xFD], sync_set: &[], header_len: 3, min_len: 4, max_len: 300,
+///     length: LengthRule::Conditional {
+///         field: WordField::le(1, 1),
+///         adjust: 4,
+///         extension: None,
+///         trailer: Some(FlagTrailer { flag: WordField::le(2, 1).bits(0, 1), len: 2 }),
+///     },
+///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
+/// };
+/// // A field after the one payload byte, then the two flagged bytes.
+/// assert_eq!(frame_body(&signed, &[0xFD, 1, 1, 0xAA, 0x33, 7, 8]), &[0xFD, 1, 1, 0xAA, 0x33]);
+/// assert_eq!(frame_body(&signed, &[0xFD, 1, 0, 0xAA, 0x33]), &[0xFD, 1, 0, 0xAA, 0x33]);
+/// ```
+#[inline(always)]
+#[must_use]
+pub fn frame_body<'f>(layout: &FrameLayout<'_>, frame: &'f [u8]) -> &'f [u8] {
+    let len = layout.body_len(frame, frame.len());
+    frame.get(..len).unwrap_or(frame)
+}
+
+/// [`frame_body`] of a frame being assembled, whose flag is written.
+#[inline(always)]
+#[must_use]
+pub fn frame_body_mut<'f>(layout: &FrameLayout<'_>, frame: &'f mut [u8]) -> &'f mut [u8] {
+    let len = layout.body_len(frame, frame.len());
+    if len < frame.len() {
+        frame.split_at_mut(len).0
+    } else {
+        frame
+    }
+}
+
 /// Writes the flag trailer `bytes`, if any, into the last `N` bytes of `frame` (the caller
 /// sets its flag and counts the bytes in the frame's length).
 ///

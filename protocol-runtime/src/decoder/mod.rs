@@ -89,7 +89,7 @@ pub use buffer::{
     DecoderRam, HOST_BUFFER_LEN, decoder_buffer_len, decoder_buffer_len_for, decoder_ram,
     decoder_state_len,
 };
-pub use conditional::{flag_trailer, write_flag_trailer};
+pub use conditional::{flag_trailer, frame_body, frame_body_mut, write_flag_trailer};
 pub use event::{Event, Frame, Reject, Stats};
 pub use stream::StreamDecoder;
 
@@ -481,9 +481,14 @@ pub(crate) fn probe_synced<L: LayoutRef>(
         return probe_conditional(layout, readable, bytes, header, shortest, limit);
     }
     let total = match layout.frame_len(header) {
-        // A bare header is complete and verified once its header checks hold.
+        // A bare header is complete and verified once its header checks hold and its bytes
+        // have come (fields after the length may lie in it, beyond the header span).
         Some(t) if Some(t) == bare && t >= span && t > 0 && t <= limit => {
-            return Probe::Frame(t);
+            return if bytes.len() < t {
+                Probe::Need(t)
+            } else {
+                Probe::Frame(t)
+            };
         }
         // `shortest..=limit` in one comparison (empty when `limit < shortest`).
         Some(t)

@@ -1,6 +1,7 @@
 //! Decoding: a checked frame taken apart into its packet's parts.
 
 use super::PacketRules;
+use crate::decoder::frame_body;
 use crate::error::DecodeError;
 use crate::zeros::zero_filled;
 
@@ -93,7 +94,9 @@ impl PacketRules<'_> {
         Ok(key)
     }
 
-    /// The direction the header of `frame` tells: the index of the first test that holds.
+    /// The direction the header of `frame` tells: the index of the first test that holds. A
+    /// field after the payload is read back from the end of the body (the frame without its
+    /// flag trailer).
     ///
     /// # Errors
     ///
@@ -101,6 +104,7 @@ impl PacketRules<'_> {
     /// holds none; its header read says `Truncated` first).
     #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn direction(&self, frame: &[u8]) -> Result<usize, DecodeError> {
+        let frame = frame_body(self.layout, frame);
         // Matched apart as `each!` does, for the same reason.
         let found = match self.directions {
             [] => None,
@@ -123,6 +127,7 @@ impl PacketRules<'_> {
     #[cfg_attr(not(protocol_opt0), inline(always))]
     #[must_use]
     pub fn tells(&self, frame: &[u8], d: usize) -> bool {
+        let frame = frame_body(self.layout, frame);
         // Matched apart as `each!` does, for the same reason.
         match self.directions {
             [] => true,

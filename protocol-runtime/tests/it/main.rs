@@ -9,6 +9,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod bare_header;
 mod conditional;
 mod formats;
 mod hflink;

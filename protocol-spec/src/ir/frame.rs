@@ -42,8 +42,9 @@ pub struct Frame {
     /// Bytes after the payload (frame checks, trailers).
     pub trailer_len: usize,
     /// Bytes a stream decoder needs before it knows a frame's length and has verified its
-    /// header: through the sync, the length field, the constants and the header checks
-    /// (fields after them, such as a command id, are part of what the length counts).
+    /// header: through the sync, the length field, the flag that announces optional bytes,
+    /// the constants and the header checks (fields after them, such as a command id, are part
+    /// of what the length counts).
     pub decide_len: usize,
     /// Smallest payload.
     pub payload_min: usize,

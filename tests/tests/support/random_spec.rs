@@ -14,8 +14,10 @@
 //! a length that is a bit member, a length that a marker value extends, a dispatch key of one
 //! or two fields, a
 //! sequence number or frame counter, a constant, bit members with constant and flag bits); a
-//! header check; a frame check of every built-in kind, a catalogue CRC or a `[checksums]` CRC
-//! or sum, with a lookup-table size and a byte folded in per command (`extra`); a field after
+//! header check; a check stored before the payload it covers; a frame check of every built-in
+//! kind, a catalogue CRC or a `[checksums]` CRC (of 8, 16 or 32 bits, or of another width:
+//! 5, 12, 24, 40), sum (seeded with `init` or not) or XOR (seeded), with a lookup-table size
+//! and a byte folded in per command (`extra`); a field after
 //! the payload, a trailer, optional bytes after the checks; acknowledgements, bare headers,
 //! byte stuffing and trailing-zero truncation. Payload structs take every fixed-size field kind
 //! (integers of 8 to 64 bits with a byte order, 40, 48 and 56 bits among them, floats and
@@ -23,8 +25,9 @@
 //! values, scaled, clamped and rounded values, scaled floats, bit
 //! members, bit-packed arrays, fixed and NUL-terminated text, nested structs, padding), bytes
 //! and arrays sized by an earlier field, checks inside a payload (with a CRC prefix), extension
-//! fields and a variable tail (bytes, repeated integers or structs, an optional value).
-//! `[session]` is not generated: it changes no byte on the wire.
+//! fields and a variable tail (bytes, repeated integers or structs, an optional value). A
+//! `[session]` table (answer, timeout, retries, backoff, sequence field, handshake, watchdog)
+//! changes no byte on the wire: the front end validates it, generated code holds it.
 //!
 //! A shape never combines what the language refuses (`docs/spec-format.md`, "Not yet
 //! expressible" and each feature's rules): the front end accepts every spec this writes, and
@@ -40,6 +43,8 @@
 mod fields;
 #[path = "random_spec/frames.rs"]
 mod frames;
+#[path = "random_spec/session.rs"]
+mod session;
 
 use std::fmt::Write as _;
 
@@ -226,7 +231,11 @@ pub const FEATURES: &[&str] = &[
     "constants",
     "addresses",
     "checksum-crc",
+    "checksum-crc-24",
+    "checksum-crc-other-width",
     "checksum-sum",
+    "checksum-sum-init",
+    "checksum-xor",
     "enum-keep",
     "enum-reject",
     "struct-byte-order",
@@ -277,6 +286,7 @@ pub const FEATURES: &[&str] = &[
     "header-check",
     "frame-check",
     "check-table",
+    "check-before-payload",
     "check-byte-order",
     "check-extra",
     "field-after-payload",
@@ -295,6 +305,10 @@ pub const FEATURES: &[&str] = &[
     "directions-addresses",
     "directions-given",
     "directions-message",
+    "session",
+    "session-sequence",
+    "session-handshake",
+    "session-watchdog",
 ];
 
 /// The TOML text of the random spec of `seed`, its protocol named `name`.
@@ -336,6 +350,7 @@ pub fn generate(seed: u64, name: &str) -> Generated {
         s.emit_payload(i);
     }
     s.emit_frames_and_commands();
+    s.emit_session();
     let mut features = s.features;
     features.sort_unstable();
     features.dedup();
@@ -411,11 +426,24 @@ impl Spec {
     }
 
     /// Checksums of `[checksums]`: a CRC of random parameters (its check value computed
-    /// here), a sum with a final XOR.
+    /// here; now and then of a width other than 8, 16, 32 or 64 bits, stored in the fewest
+    /// bytes that hold it), a sum with a seed and a final XOR, a XOR with a seed.
     fn emit_checksums(&mut self) {
+        // The choices the generator added later draw from a stream of their own, so that a
+        // seed's spec keeps the parts it had.
+        let mut side = self.side();
         if self.rng.one_in(3) {
             self.feature("checksum-crc");
-            let width = *self.rng.pick(&[8u32, 16, 32]);
+            let mut width = *self.rng.pick(&[8u32, 16, 32]);
+            if side.one_in(3) {
+                // A spec integer holds 63 bits: a 64-bit CRC's parameters may not fit.
+                width = *side.pick(&[24u32, 24, 5, 12, 40]);
+                self.feature(if width == 24 {
+                    "checksum-crc-24"
+                } else {
+                    "checksum-crc-other-width"
+                });
+            }
             let mask = if width == 64 {
                 u64::MAX
             } else {
@@ -447,13 +475,31 @@ impl Spec {
             } else {
                 (1u64 << width) - 1
             };
+            let init = if side.one_in(2) {
+                self.feature("checksum-sum-init");
+                format!("init = {:#x}, ", side.below(1 << width))
+            } else {
+                String::new()
+            };
             writeln!(
                 self.out,
-                "[checksums.rsum]\nsum = {{ width = {width}, xorout = {xorout:#x} }}\n"
+                "[checksums.rsum]\nsum = {{ width = {width}, {init}xorout = {xorout:#x} }}\n"
             )
             .unwrap();
             self.checksums.push(("rsum".into(), false));
         }
+        if side.one_in(5) {
+            self.feature("checksum-xor");
+            let init = side.range(1, 255);
+            writeln!(self.out, "[checksums.rxor]\nxor = {{ init = {init:#x} }}\n").unwrap();
+            self.checksums.push(("rxor".into(), false));
+        }
+    }
+
+    /// A generator of the choices added to the language after a seed's spec was first
+    /// written: seeded by the spec's stream without advancing it.
+    fn side(&self) -> Rng {
+        Rng(self.rng.0.rotate_left(23) ^ 0x5DEE_CE66_D1CE_4E5B)
     }
 
     fn emit_enum(&mut self, i: u64) {
@@ -524,8 +570,8 @@ impl Spec {
     }
 }
 
-/// The CRC of `data` in the Rocksoft model (bit by bit): what a `[checksums]` CRC's `check`
-/// must be for `123456789`.
+/// The CRC of `data` in the Rocksoft model (bit by bit, for any width from 1 to 64): what a
+/// `[checksums]` CRC's `check` must be for `123456789`.
 fn crc(
     width: u32,
     poly: u64,
@@ -540,17 +586,15 @@ fn crc(
     } else {
         (1 << width) - 1
     };
-    let top = 1u64 << (width - 1);
     let mut reg = init & mask;
     for &b in data {
         let b = if refin { b.reverse_bits() } else { b };
-        reg ^= u64::from(b) << (width - 8);
-        for _ in 0..8 {
-            reg = if reg & top != 0 {
-                ((reg << 1) ^ poly) & mask
-            } else {
-                (reg << 1) & mask
-            };
+        for i in (0..8).rev() {
+            let top = (reg >> (width - 1)) & 1;
+            reg = (reg << 1) & mask;
+            if top ^ u64::from((b >> i) & 1) == 1 {
+                reg ^= poly & mask;
+            }
         }
     }
     if refout {

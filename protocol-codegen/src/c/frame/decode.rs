@@ -4,7 +4,7 @@
 
 use protocol_runtime::rules::DirectionTest;
 
-use crate::ir::{Length, Prim, Protocol};
+use crate::ir::{Length, Pos, Prim, Protocol};
 use crate::rules::Carries;
 
 use super::super::names::{self, Fx, Names};
@@ -139,9 +139,11 @@ ${filled}    if (len > ${xup}MAX_FRAME_LEN${short}) return ${up}ERR_FRAME;
         up,
         zero
     ));
+    // The flag trailer first: the header values after the payload lie back from the end of
+    // the frame without it.
+    flag_trailer(p, n, x, out);
     header_values(p, n, x, out);
     rules::ack_decode(n, x, out);
-    flag_trailer(p, n, x, out);
     if given {
         given_direction(p, n, out);
     }
@@ -178,11 +180,13 @@ ${filled}    if (len > ${xup}MAX_FRAME_LEN${short}) return ${up}ERR_FRAME;
     read_payload(p, n, x, out);
 }
 
-/// The header values a sender sets, into `out->header`; the payload's start behind a wider
+/// The header values a sender sets, into `out->header` (those after the payload back from the
+/// end of the body, the frame without its flag trailer); the payload's start behind a wider
 /// length when the length field holds its marker.
 fn header_values(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (lo, up) = (&n.lo, &n.up);
     let f = &p.frames[x.fi];
+    let body = body_len(p, x);
     for v in user_values(f) {
         let value = if v.prim == Prim::Bool {
             "(raw != 0)".to_string()
@@ -190,12 +194,17 @@ fn header_values(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             format!("({})raw", names::unsigned_of(v.prim.size()))
         };
         let (word, name) = (word(v), names::field(&v.name));
+        let len = match v.at {
+            Pos::End(_) => body.as_str(),
+            Pos::Start(_) => "len",
+        };
         out.push_str(&fill!(
             r"
-    if (!${lo}field(bytes, len, ${word}, &raw)) return ${up}ERR_FRAME;
+    if (!${lo}field(bytes, ${len}, ${word}, &raw)) return ${up}ERR_FRAME;
     out->header.${name} = ${value};
 ",
             lo,
+            len,
             word,
             up,
             name,
@@ -214,6 +223,17 @@ fn header_values(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             marker,
             len
         ));
+    }
+}
+
+/// The length of the body of the frame being decoded (the frame without its flag trailer,
+/// once [`flag_trailer`] has left it out of `end`), back from whose end the header values
+/// after the payload lie.
+fn body_len(p: &Protocol, x: &Fx) -> String {
+    if p.frames[x.fi].flag_trailer.is_some() {
+        format!("end + {}TRAILER_LEN", x.up)
+    } else {
+        "len".to_string()
     }
 }
 
@@ -318,6 +338,7 @@ fn directions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     if x.rules.directions.is_empty() {
         return;
     }
+    let len = body_len(p, x);
     out.push_str("    ");
     for (d, &(value, test)) in p.directions.iter().zip(&x.rules.directions) {
         let bits = truncated(&f.values[value], "raw");
@@ -331,8 +352,9 @@ fn directions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             } => {
                 let (word, last) = (field_word(field), names::u64_lit(last));
                 fill!(
-                    "${lo}field(bytes, len, ${word}, &raw) && ${bits} <= ${last}",
+                    "${lo}field(bytes, ${len}, ${word}, &raw) && ${bits} <= ${last}",
                     lo,
+                    len,
                     word,
                     bits,
                     last
@@ -345,8 +367,9 @@ fn directions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
                     names::u64_lit(last),
                 );
                 fill!(
-                    "${lo}field(bytes, len, ${word}, &raw) && ${bits} >= ${first} && ${bits} <= ${last}",
+                    "${lo}field(bytes, ${len}, ${word}, &raw) && ${bits} >= ${first} && ${bits} <= ${last}",
                     lo,
+                    len,
                     word,
                     bits,
                     first,
@@ -356,8 +379,9 @@ fn directions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
             DirectionTest::Equals { field, value } => {
                 let (word, equals) = (field_word(field), names::u64_lit(value));
                 fill!(
-                    "${lo}field(bytes, len, ${word}, &raw) && ${bits} == ${equals}",
+                    "${lo}field(bytes, ${len}, ${word}, &raw) && ${bits} == ${equals}",
                     lo,
+                    len,
                     word,
                     bits,
                     equals

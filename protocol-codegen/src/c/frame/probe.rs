@@ -289,14 +289,15 @@ ${too_long}            if (avail < ${needed}u) {
 }
 
 /// The bare header in the probe (the runtime's `LengthRule::FieldOrBare`): a frame of exactly
-/// the bare length is complete and verified once its header checks hold.
+/// the bare length is complete and verified once its header checks hold and its bytes have
+/// come (fields after the length may lie in it, beyond the header span).
 fn bare_probe(bare: usize, n: &Names, out: &mut String) {
     let up = &n.up;
     out.push_str(&fill!(
         r"
     if (total == ${bare}u && ${bare}u >= span && ${bare}u > 0 && total <= limit) {
         *n = total;
-        return ${up}PROBE_FRAME;
+        return avail < total ? ${up}PROBE_NEED : ${up}PROBE_FRAME;
     }
 ",
         bare,

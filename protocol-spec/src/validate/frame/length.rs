@@ -8,7 +8,7 @@ use super::super::Ctx;
 use super::super::types::mask;
 use super::{El, Kind};
 use crate::diag::did_you_mean;
-use crate::ir::{CAN_PREFIX_LEN, Check, HeaderValue, Length, Pos, Role, Transport};
+use crate::ir::{CAN_PREFIX_LEN, Check, FlagTrailer, HeaderValue, Length, Pos, Role, Transport};
 use crate::spec::model::{FrameDef, SStr};
 
 /// A frame's elements with the payload placed.
@@ -226,12 +226,14 @@ pub(super) fn lower_length(
 }
 
 /// Bytes a stream decoder needs before it knows a frame's length and has verified its header:
-/// through the sync, the length field, the constants and the header checks (fields after them,
-/// such as a command id, are part of what the length counts).
+/// through the sync, the length field, the flag that announces optional bytes (it adds them to
+/// the length), the constants and the header checks (fields after them, such as a command id,
+/// are part of what the length counts).
 pub(super) fn lower_decide_len(
     sync_len: usize,
     values: &[HeaderValue],
     length: &Length,
+    flag_trailer: Option<&FlagTrailer>,
     checks: &[Check],
 ) -> usize {
     let word_end = |v: &HeaderValue| match v.at {
@@ -242,6 +244,7 @@ pub(super) fn lower_decide_len(
         Length::Field { value, .. } => word_end(&values[*value]),
         Length::Fixed(_) => 0,
     };
+    let flag = flag_trailer.map_or(0, |t| word_end(&values[t.flag]));
     let constants = values
         .iter()
         .filter(|v| matches!(v.role, Role::Const(_)))
@@ -257,5 +260,5 @@ pub(super) fn lower_decide_len(
         })
         .max()
         .unwrap_or(0);
-    sync_len.max(length).max(constants).max(checks)
+    sync_len.max(length).max(flag).max(constants).max(checks)
 }

@@ -199,6 +199,7 @@ fn lower_frame(
             sync.len() + usize::from(!sync_set.is_empty()),
             &values,
             &length,
+            flag_trailer.as_ref(),
             &checks,
         ),
         sync,

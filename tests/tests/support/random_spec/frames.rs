@@ -133,6 +133,16 @@ impl Spec {
                 "{{ check = \"{check}\", name = \"hcheck\", over = \"{first_name}..{last}\" }}"
             ));
         }
+        // A check stored before the payload it covers (verified once the frame is complete);
+        // a bare header holds no check of its payload, and a wider length is right before it.
+        let mut side = self.side();
+        if !self.shape.bare && !key_last && !marker && side.one_in(6) {
+            self.feature("check-before-payload");
+            let check = *side.pick(&["crc-16-xmodem", "sum8", "crc-32-iso-hdlc"]);
+            layout.push(format!(
+                "{{ check = \"{check}\", name = \"pcheck\", over = \"payload\" }}"
+            ));
+        }
         layout.push(format!("{{ payload = {{ max = {max} }} }}"));
         if self.rng.one_in(5) {
             self.feature("field-after-payload");
