@@ -52,8 +52,9 @@ fn root() -> PathBuf {
 }
 
 /// The specs to compare, each with its number of random frames: the bundled specs (10,000
-/// each), then the feature fixtures of `protocol-codegen/tests/features` and this test's own
-/// (`tests/c_peer/*.toml`, paths no bundled spec takes), 2,000 each.
+/// each), then the feature fixtures of `protocol-codegen/tests/features`, the regression specs
+/// of feature combinations where C and Rust can part (`protocol-codegen/tests/c_regressions`)
+/// and this test's own (`tests/c_peer/*.toml`, paths no bundled spec takes), 2,000 each.
 fn specs() -> Vec<(PathBuf, usize)> {
     let toml_in = |dir: &str| {
         let mut out: Vec<PathBuf> = std::fs::read_dir(root().join(dir))
@@ -70,6 +71,7 @@ fn specs() -> Vec<(PathBuf, usize)> {
         .collect();
     for dir in [
         "protocol-codegen/tests/features",
+        "protocol-codegen/tests/c_regressions",
         "protocol-cli/tests/c_peer",
     ] {
         out.extend(toml_in(dir).into_iter().map(|p| (p, RANDOM_FRAMES / 5)));
