@@ -12,7 +12,11 @@
 //!   `MavMessage`;
 //! - `common` / `common-typed`: the `generated` rows with the code generated from the whole
 //!   common dialect (`specs/mavlink-common.toml`, 234 messages, imported from its XML) instead
-//!   of the twelve messages of `specs/mavlink.toml`.
+//!   of the twelve messages of `specs/mavlink.toml`;
+//! - `hand`: an upper bound for the framing rows: a minimal hand-written MAVLink 2 framer (the
+//!   sync found by `memchr`, the length and flags read, CRC_EXTRA from a 256-entry table, the
+//!   runtime's slicing-by-16 CRC-16 then one step for the extra byte; chunks appended to a
+//!   2 KiB buffer). It counts no rejection and keeps no statistics.
 //!
 //! Every decoder must return every frame of the stream (the typed ones every message) before
 //! it is timed. Times are the thread's CPU time, as in the `codec` benchmark:
@@ -283,13 +287,111 @@ fn crate_reader(stream: &[u8], chunk: usize, typed: bool) -> usize {
     count
 }
 
+/// The CRC-16/MCRF4XX of the `hand` row: the runtime's slicing-by-16 tables.
+static HAND_CRC: protocol_runtime::checksum::Slicing16<u16> =
+    protocol_runtime::checksum::Slicing16::<u16>::new(&crc::CRC_16_MCRF4XX);
+
+/// The `hand` row's CRC_EXTRA by message id: `0x100 | byte` for the twelve messages of
+/// `specs/mavlink.toml`, 0 for the others.
+static HAND_EXTRAS: [u16; 256] = {
+    let pairs: [(usize, u8); 12] = [
+        (0, 50),
+        (1, 124),
+        (2, 137),
+        (22, 220),
+        (24, 24),
+        (30, 39),
+        (33, 104),
+        (65, 118),
+        (76, 152),
+        (77, 143),
+        (147, 154),
+        (253, 83),
+    ];
+    let mut table = [0u16; 256];
+    let mut i = 0;
+    while i < pairs.len() {
+        table[pairs[i].0] = 0x100 | pairs[i].1 as u16;
+        i += 1;
+    }
+    table
+};
+
+/// The `hand` row's scan: counts the MAVLink 2 frames of `data` from its start and returns the
+/// bytes done with (up to a frame that needs more bytes than there are).
+#[inline(always)]
+fn hand_scan(data: &[u8], count: &mut usize) -> usize {
+    let mut at = 0;
+    loop {
+        let Some(rest) = data.get(at..) else {
+            return at;
+        };
+        let skip = if rest.first() == Some(&0xFD) {
+            0
+        } else {
+            match memchr::memchr(0xFD, rest) {
+                Some(i) => i,
+                None => return data.len(),
+            }
+        };
+        at += skip;
+        let Some(header) = data.get(at..).and_then(|r| r.get(..10)) else {
+            return at;
+        };
+        let (len, flags) = (usize::from(header[1]), header[2]);
+        let id =
+            usize::from(header[7]) | usize::from(header[8]) << 8 | usize::from(header[9]) << 16;
+        let extra = HAND_EXTRAS.get(id).copied().unwrap_or(0);
+        if flags & 0xFE != 0 || extra == 0 {
+            at += 1;
+            continue;
+        }
+        let body = len + 12;
+        let total = body + if flags & 1 != 0 { 13 } else { 0 };
+        let Some(frame) = data.get(at..at + total) else {
+            return at;
+        };
+        let crc = HAND_CRC.checksum_prefix_then(&frame[1..], len + 9, extra as u8);
+        if u16::from_le_bytes([frame[body - 2], frame[body - 1]]) != crc {
+            at += 1;
+            continue;
+        }
+        black_box(frame);
+        *count += 1;
+        at += total;
+    }
+}
+
+/// The `hand` row: the frames [`hand_scan`] finds, the stream whole or in `chunk`-byte pieces.
+fn hand(stream: &[u8], chunk: usize, _typed: bool) -> usize {
+    let mut count = 0;
+    if chunk >= stream.len() {
+        hand_scan(stream, &mut count);
+        return count;
+    }
+    let mut buf = [0u8; 2048];
+    let (mut start, mut end) = (0usize, 0usize);
+    for piece in stream.chunks(chunk) {
+        if end + piece.len() > buf.len() {
+            buf.copy_within(start..end, 0);
+            end -= start;
+            start = 0;
+        }
+        buf[end..end + piece.len()].copy_from_slice(piece);
+        end += piece.len();
+        start += hand_scan(&buf[start..end], &mut count);
+    }
+    count
+}
+
 /// A row's decoder: the stream, the chunk size and whether typed, to the frames it returns.
 type Decode = fn(&[u8], usize, bool) -> usize;
 
 fn decode(c: &mut Criterion<ThreadCpuTime>) {
     let (stream, frames) = stream();
     for (feed, chunk) in [("whole", stream.len()), ("64", CHUNK)] {
-        let rows: [(&str, Decode, bool); 6] = [
+        let rows: [(&str, Decode, bool); 7] = [
+            ("hand", hand, false),
             ("generated", generated, false),
             ("common", generated_common, false),
             ("mavlink-raw", crate_reader, false),

@@ -112,6 +112,38 @@ pub fn read_zero_filled<P: Payload>(bytes: &[u8], scratch: &mut [u8]) -> Result<
     P::from_bytes(zero_filled(bytes, P::SIZE, scratch)?)
 }
 
+/// [`read_zero_filled`] in a buffer of its own: the payload `P` read from `bytes` as they are
+/// when they hold all of its `P::SIZE` bytes (the common case: nothing is copied), else from
+/// `bytes` followed by zeros in an `N`-byte buffer, which only this case zeroes. Generated code
+/// passes the struct's size as `N`, so the buffer and its copy have a size known at compile
+/// time.
+///
+/// # Errors
+///
+/// [`DecodeError::PayloadLength`] if a short `bytes` does not fit `N` bytes or `N` is under
+/// `P::SIZE`, and the errors of [`Payload::from_bytes`].
+///
+/// ```
+/// use protocol_runtime::zeros::read_filled;
+/// // A 4-byte payload whose last two bytes (zero) the sender dropped.
+/// assert_eq!(read_filled::<[u8; 4], 4>(&[0x34, 0x12]), Ok([0x34, 0x12, 0, 0]));
+/// assert_eq!(read_filled::<[u8; 4], 4>(&[1, 2, 3, 4]), Ok([1, 2, 3, 4]));
+/// ```
+#[inline(always)]
+pub fn read_filled<P: Payload, const N: usize>(bytes: &[u8]) -> Result<P, DecodeError> {
+    if bytes.len() >= P::SIZE {
+        return P::from_bytes(bytes);
+    }
+    let mut filled = [0u8; N];
+    let too_small = DecodeError::PayloadLength {
+        expected: P::SIZE,
+        actual: bytes.len(),
+    };
+    let sent = filled.get_mut(..bytes.len()).ok_or(too_small)?;
+    sent.copy_from_slice(bytes);
+    P::from_bytes(filled.get(..P::SIZE).ok_or(too_small)?)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -131,6 +163,21 @@ mod tests {
         let full = zero_filled(&sent, 10, &mut scratch);
         assert_eq!(full.map(<[u8]>::len), Ok(10));
         assert_eq!(full.map(|f| f.get(..trimmed_len(f))), Ok(Some(&sent[..])));
+    }
+
+    #[test]
+    fn a_buffer_of_its_own_reads_as_the_scratch_does() {
+        let sent = [0x16, 0x00, 0x04];
+        let mut scratch = [0xFF; 8];
+        let via_scratch: Result<[u8; 8], _> = read_zero_filled(&sent, &mut scratch);
+        assert_eq!(read_filled::<[u8; 8], 8>(&sent), via_scratch);
+        assert_eq!(
+            read_filled::<[u8; 8], 8>(&sent),
+            Ok([0x16, 0x00, 0x04, 0, 0, 0, 0, 0])
+        );
+        // Too small a buffer, or too long a payload: an error, never a panic.
+        assert!(read_filled::<[u8; 8], 4>(&sent).is_err());
+        assert!(read_filled::<[u8; 4], 4>(&[1, 2, 3, 4, 5]).is_err());
     }
 
     #[test]

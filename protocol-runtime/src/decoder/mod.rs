@@ -452,6 +452,7 @@ pub(crate) fn probe_synced<L: LayoutRef>(
     avail: usize,
     limit: usize,
 ) -> Probe {
+    let layout_ref = layout;
     let layout = layout.layout();
     let bytes = readable.get(..avail).unwrap_or(readable);
     let span = layout.header_span();
@@ -478,7 +479,7 @@ pub(crate) fn probe_synced<L: LayoutRef>(
     // A frame whose parts depend on its header (decided at compile time for a generated
     // layout): out of line, so that the other frames' path is the same code as without it.
     if let LengthRule::Conditional { .. } = layout.length {
-        return probe_conditional(layout, readable, bytes, header, shortest, limit);
+        return probe_conditional(layout_ref, readable, avail, header, shortest, limit);
     }
     let total = match layout.frame_len(header) {
         // A bare header is complete and verified once its header checks hold and its bytes
@@ -539,15 +540,20 @@ fn conditional_frame_len(layout: &FrameLayout<'_>, header: &[u8]) -> Option<usiz
 /// [`probe_synced`] for [`LengthRule::Conditional`] once the header is verified: the length
 /// from the header (and a wider length after it), then the frame checks and markers, which
 /// resolve against the frame without its flag trailer.
+///
+/// Generic over where the layout comes from, as [`probe`] is: for a generated layout (MAVLink
+/// 2) every read of it is a constant, and the frame checks compile to the one check.
 #[inline(never)]
-fn probe_conditional(
-    layout: &FrameLayout<'_>,
+fn probe_conditional<L: LayoutRef>(
+    layout: &L,
     readable: &[u8],
-    bytes: &[u8],
+    avail: usize,
     header: &[u8],
     shortest: usize,
     limit: usize,
 ) -> Probe {
+    let layout = layout.layout();
+    let bytes = readable.get(..avail).unwrap_or(readable);
     let LengthRule::Conditional {
         field,
         adjust,
@@ -566,14 +572,10 @@ fn probe_conditional(
     let Some(frame) = bytes.get(..body).filter(|_| total <= bytes.len()) else {
         return Probe::Need(total);
     };
-    if !layout
-        .frame_checks
-        .iter()
-        .all(|c| c.verify_prefix(readable, body))
-    {
+    if !all_hold!(layout.frame_checks, |c| c.verify_prefix(readable, body)) {
         return Probe::Reject(Reject::BadChecksum);
     }
-    if !layout.markers.iter().all(|m| m.matches(frame)) {
+    if !all_hold!(layout.markers, |m| m.matches(frame)) {
         return Probe::Reject(Reject::BadTrailer);
     }
     Probe::Frame(total)

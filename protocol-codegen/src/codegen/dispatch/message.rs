@@ -21,17 +21,21 @@ pub(super) fn emit_message_enum(
         .frames
         .first()
         .and_then(|f| f.ack.map(|(_, hl)| f.max_len() - hl - f.trailer_len));
-    // Trailing-zero truncation: a short payload is zero-filled to its struct's size (in a
-    // buffer of the largest payload) before it is read.
-    let (fill, read_fn) = match p.frames.first().filter(|f| f.truncate_zeros) {
+    // Trailing-zero truncation: a short payload is zero-filled to its struct's size before it
+    // is read, in a buffer of that size (the largest payload's for a struct of the user's
+    // crate, whose size is not known here), which only a short payload costs.
+    let truncating = p.frames.first().filter(|f| f.truncate_zeros);
+    let fill = match truncating {
+        Some(_) => quote!(),
+        None => quote!(use #rt::read_payload as read;),
+    };
+    let read_fn = |si: usize| match truncating {
         Some(f) => {
-            let max = f.payload_max;
-            (
-                quote!(let mut filled = [0u8; #max];),
-                quote!(#rt::read_zero_filled(b, &mut filled)),
-            )
+            let s = &p.structs[si];
+            let size = if s.foreign { f.payload_max } else { s.size };
+            quote!(#rt::read_filled::<_, #size>(b))
         }
-        None => (quote!(use #rt::read_payload as read;), quote!(read(b))),
+        None => quote!(read(b)),
     };
     // A direction that carries a struct in place of a command makes the command optional.
     let none = command_none(p);
@@ -57,7 +61,8 @@ pub(super) fn emit_message_enum(
                 ));
                 variants.push(quote!(#d #v(#s)));
                 visit_arms.push(quote!(Self::#v(p) => v.visit(#command, p),));
-                read_arms.push(quote!(C::#v => Self::#v(#read_fn?),));
+                let read = read_fn(si);
+                read_arms.push(quote!(C::#v => Self::#v(#read?),));
             }
             None => {
                 let d = doc_attrs(&format!("`{}`, with an empty payload. {}", c.name, c.doc));
