@@ -12,8 +12,8 @@ them within each scale's resolution.
 
 Run with pyubx2 installed (the version is written into the file):
 
-    python3 -m venv /tmp/venv && /tmp/venv/bin/pip install pyubx2==1.4.0
-    /tmp/venv/bin/python scripts/ubx_pyubx2_vectors.py
+    python3 -m venv .venv && .venv/bin/pip install pyubx2==1.4.0
+    .venv/bin/python scripts/ubx_pyubx2_vectors.py
 
 The spec and pyubx2 are matched by name: a spec field is the snake_case of a pyubx2 field
 (`hMSL` -> `h_msl`) unless `RENAMES` says otherwise, and every spec field must find its pyubx2
