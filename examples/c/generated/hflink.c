@@ -94,6 +94,57 @@ HFLINK_UNUSED static uint64_t hflink_f64_bits(double f)
     return b;
 }
 
+/* An IEEE 754 half's bits as a float: exact, by the runtime's bit arithmetic. */
+HFLINK_UNUSED static float hflink_f16(uint64_t raw)
+{
+    uint32_t h = (uint32_t)raw & 0xFFFFu;
+    uint32_t sign = (h & 0x8000u) << 16, exp = (h >> 10) & 0x1Fu, man = h & 0x3FFu, b;
+    uint32_t shift = 0;
+    if (exp == 0 && man == 0) {
+        b = sign;
+    } else if (exp == 0) {
+        /* A subnormal: normalized so that its top bit is the implicit one. */
+        while (!(man & 0x400u)) {
+            man <<= 1;
+            shift++;
+        }
+        b = sign | ((113u - shift) << 23) | ((man & 0x3FFu) << 13);
+    } else if (exp == 0x1Fu) {
+        b = sign | 0x7F800000u | (man << 13);
+    } else {
+        b = sign | ((exp + 112u) << 23) | (man << 13);
+    }
+    return hflink_f32(b);
+}
+
+/* The bits of the half nearest `f`, ties to even; 0x10000 (no half) when `f` is finite but
+ * beyond the largest half. A NaN keeps its sign and the top ten bits of its payload. */
+HFLINK_UNUSED static uint64_t hflink_f16_bits(float f)
+{
+    uint32_t b = (uint32_t)hflink_f32_bits(f);
+    uint32_t sign = (b >> 16) & 0x8000u, exp = (b >> 23) & 0xFFu, man = b & 0x7FFFFFu;
+    uint32_t full, drop, kept, rest, half;
+    if (exp == 0xFFu) {
+        uint32_t nan = man == 0 ? 0 : ((man >> 13) == 0 ? 0x200u : (man >> 13));
+        return sign | 0x7C00u | nan;
+    }
+    if (exp < 102u) return sign;
+    if (exp >= 113u) {
+        full = man;
+        drop = 13;
+        kept = ((exp - 112u) << 10) | (man >> 13);
+    } else {
+        full = man | 0x800000u;
+        drop = 126u - exp;
+        kept = full >> drop;
+    }
+    rest = full & ((1u << drop) - 1u);
+    half = 1u << (drop - 1u);
+    if (rest > half || (rest == half && (kept & 1u))) kept++;
+    if (kept >= 0x7C00u) return 0x10000u;
+    return sign | kept;
+}
+
 HFLINK_UNUSED static int hflink_take_uint(struct hflink_rd *r, unsigned n, int big, uint64_t *out)
 {
     if (r->len - r->pos < n) return HFLINK_ERR_PAYLOAD_LENGTH;
