@@ -66,7 +66,8 @@ pub(super) fn lower_given(
 
 /// Rule: a direction's `message` names a struct; the first frame's dispatch fields are the last
 /// header fields before the payload (the struct takes their bytes), the frame has no byte
-/// stuffing or trailing-zero truncation, and the struct fits the bytes the frame carries there.
+/// stuffing or trailing-zero truncation and no check folding in a byte per command (such a
+/// frame has no command), and the struct fits the bytes the frame carries there.
 fn lower_message(
     ctx: &mut Ctx<'_>,
     n: &str,
@@ -105,6 +106,19 @@ fn lower_message(
                 frame.name
             ),
             "carry the struct as the commands' payload instead",
+        );
+        return None;
+    }
+    if let Some(c) = frame.checks.iter().find(|c| c.extra.is_some()) {
+        ctx.error(
+            m.span(),
+            format!(
+                "direction `{n}` carries `{}` in place of a command, but check `{}` of frame `{}` folds in a byte per command (`extra = \"command\"`)",
+                m.get_ref(),
+                c.name,
+                frame.name
+            ),
+            "a frame without a command has no byte to fold in: carry the struct as a command's payload, or remove the check's `extra`",
         );
         return None;
     }
