@@ -61,6 +61,117 @@ macro_rules! agree {
     }};
 }
 
+/// [`agree!`] over every register of the XM430-W350's map (`dynamixel`), listed once.
+macro_rules! agree_xm430 {
+    ($window:expr, $codec:expr) => {
+        agree!(
+            dynamixel,
+            $window,
+            $codec,
+            [
+                MODEL_NUMBER,
+                MODEL_INFORMATION,
+                FIRMWARE_VERSION,
+                ID,
+                BAUD_RATE,
+                RETURN_DELAY_TIME,
+                DRIVE_MODE,
+                OPERATING_MODE,
+                SECONDARY_ID,
+                PROTOCOL_TYPE,
+                HOMING_OFFSET,
+                MOVING_THRESHOLD,
+                TEMPERATURE_LIMIT,
+                MAX_VOLTAGE_LIMIT,
+                MIN_VOLTAGE_LIMIT,
+                PWM_LIMIT,
+                CURRENT_LIMIT,
+                VELOCITY_LIMIT,
+                MAX_POSITION_LIMIT,
+                MIN_POSITION_LIMIT,
+                STARTUP_CONFIGURATION,
+                SHUTDOWN,
+                TORQUE_ENABLE,
+                LED,
+                STATUS_RETURN_LEVEL,
+                REGISTERED_INSTRUCTION,
+                HARDWARE_ERROR_STATUS,
+                VELOCITY_I_GAIN,
+                VELOCITY_P_GAIN,
+                POSITION_D_GAIN,
+                POSITION_I_GAIN,
+                POSITION_P_GAIN,
+                FEEDFORWARD_2ND_GAIN,
+                FEEDFORWARD_1ST_GAIN,
+                BUS_WATCHDOG,
+                GOAL_PWM,
+                GOAL_CURRENT,
+                GOAL_VELOCITY,
+                PROFILE_ACCELERATION,
+                PROFILE_VELOCITY,
+                GOAL_POSITION,
+                REALTIME_TICK,
+                MOVING,
+                MOVING_STATUS,
+                PRESENT_PWM,
+                PRESENT_CURRENT,
+                PRESENT_VELOCITY,
+                PRESENT_POSITION,
+                VELOCITY_TRAJECTORY,
+                POSITION_TRAJECTORY,
+                PRESENT_INPUT_VOLTAGE,
+                PRESENT_TEMPERATURE,
+                BACKUP_READY,
+            ]
+        )
+    };
+}
+
+/// [`agree!`] over every register of the AX-12A's map (`dynamixel1`), listed once.
+macro_rules! agree_ax12 {
+    ($window:expr, $codec:expr) => {
+        agree!(
+            dynamixel1,
+            $window,
+            $codec,
+            [
+                MODEL_NUMBER,
+                FIRMWARE_VERSION,
+                ID,
+                BAUD_RATE,
+                RETURN_DELAY_TIME,
+                CW_ANGLE_LIMIT,
+                CCW_ANGLE_LIMIT,
+                TEMPERATURE_LIMIT,
+                MIN_VOLTAGE_LIMIT,
+                MAX_VOLTAGE_LIMIT,
+                MAX_TORQUE,
+                STATUS_RETURN_LEVEL,
+                ALARM_LED,
+                SHUTDOWN,
+                TORQUE_ENABLE,
+                LED,
+                CW_COMPLIANCE_MARGIN,
+                CCW_COMPLIANCE_MARGIN,
+                CW_COMPLIANCE_SLOPE,
+                CCW_COMPLIANCE_SLOPE,
+                GOAL_POSITION,
+                MOVING_SPEED,
+                TORQUE_LIMIT,
+                PRESENT_POSITION,
+                PRESENT_SPEED,
+                PRESENT_LOAD,
+                PRESENT_VOLTAGE,
+                PRESENT_TEMPERATURE,
+                REGISTERED,
+                MOVING,
+                LOCK,
+                PUNCH,
+            ]
+        )
+    };
+}
+
 /// Bytes that differ from run to run (a linear congruential sequence).
 fn bytes(seed: u32, n: usize) -> Vec<u8> {
     let mut x = seed.wrapping_mul(2_654_435_761).wrapping_add(1);
@@ -125,66 +236,7 @@ mod protocol2 {
 
     fn check(read: Read, status: &Status, codec: &RegisterValues) {
         let window = dynamixel::registers::read_answer(&read, status);
-        let whole = agree!(
-            dynamixel,
-            window,
-            codec,
-            [
-                MODEL_NUMBER,
-                MODEL_INFORMATION,
-                FIRMWARE_VERSION,
-                ID,
-                BAUD_RATE,
-                RETURN_DELAY_TIME,
-                DRIVE_MODE,
-                OPERATING_MODE,
-                SECONDARY_ID,
-                PROTOCOL_TYPE,
-                HOMING_OFFSET,
-                MOVING_THRESHOLD,
-                TEMPERATURE_LIMIT,
-                MAX_VOLTAGE_LIMIT,
-                MIN_VOLTAGE_LIMIT,
-                PWM_LIMIT,
-                CURRENT_LIMIT,
-                VELOCITY_LIMIT,
-                MAX_POSITION_LIMIT,
-                MIN_POSITION_LIMIT,
-                STARTUP_CONFIGURATION,
-                SHUTDOWN,
-                TORQUE_ENABLE,
-                LED,
-                STATUS_RETURN_LEVEL,
-                REGISTERED_INSTRUCTION,
-                HARDWARE_ERROR_STATUS,
-                VELOCITY_I_GAIN,
-                VELOCITY_P_GAIN,
-                POSITION_D_GAIN,
-                POSITION_I_GAIN,
-                POSITION_P_GAIN,
-                FEEDFORWARD_2ND_GAIN,
-                FEEDFORWARD_1ST_GAIN,
-                BUS_WATCHDOG,
-                GOAL_PWM,
-                GOAL_CURRENT,
-                GOAL_VELOCITY,
-                PROFILE_ACCELERATION,
-                PROFILE_VELOCITY,
-                GOAL_POSITION,
-                REALTIME_TICK,
-                MOVING,
-                MOVING_STATUS,
-                PRESENT_PWM,
-                PRESENT_CURRENT,
-                PRESENT_VELOCITY,
-                PRESENT_POSITION,
-                VELOCITY_TRAJECTORY,
-                POSITION_TRAJECTORY,
-                PRESENT_INPUT_VOLTAGE,
-                PRESENT_TEMPERATURE,
-                BACKUP_READY,
-            ]
-        );
+        let whole = agree_xm430!(window, codec);
         check_note(
             codec,
             window,
@@ -226,66 +278,7 @@ mod protocol2 {
             let heard = hear("dynamixel", &[frame(Message::Write(write))]);
             let codec = heard[0].as_ref().expect("a WRITE writes registers");
             let window = dynamixel::registers::write_data(&write);
-            let whole = agree!(
-                dynamixel,
-                window,
-                codec,
-                [
-                    MODEL_NUMBER,
-                    MODEL_INFORMATION,
-                    FIRMWARE_VERSION,
-                    ID,
-                    BAUD_RATE,
-                    RETURN_DELAY_TIME,
-                    DRIVE_MODE,
-                    OPERATING_MODE,
-                    SECONDARY_ID,
-                    PROTOCOL_TYPE,
-                    HOMING_OFFSET,
-                    MOVING_THRESHOLD,
-                    TEMPERATURE_LIMIT,
-                    MAX_VOLTAGE_LIMIT,
-                    MIN_VOLTAGE_LIMIT,
-                    PWM_LIMIT,
-                    CURRENT_LIMIT,
-                    VELOCITY_LIMIT,
-                    MAX_POSITION_LIMIT,
-                    MIN_POSITION_LIMIT,
-                    STARTUP_CONFIGURATION,
-                    SHUTDOWN,
-                    TORQUE_ENABLE,
-                    LED,
-                    STATUS_RETURN_LEVEL,
-                    REGISTERED_INSTRUCTION,
-                    HARDWARE_ERROR_STATUS,
-                    VELOCITY_I_GAIN,
-                    VELOCITY_P_GAIN,
-                    POSITION_D_GAIN,
-                    POSITION_I_GAIN,
-                    POSITION_P_GAIN,
-                    FEEDFORWARD_2ND_GAIN,
-                    FEEDFORWARD_1ST_GAIN,
-                    BUS_WATCHDOG,
-                    GOAL_PWM,
-                    GOAL_CURRENT,
-                    GOAL_VELOCITY,
-                    PROFILE_ACCELERATION,
-                    PROFILE_VELOCITY,
-                    GOAL_POSITION,
-                    REALTIME_TICK,
-                    MOVING,
-                    MOVING_STATUS,
-                    PRESENT_PWM,
-                    PRESENT_CURRENT,
-                    PRESENT_VELOCITY,
-                    PRESENT_POSITION,
-                    VELOCITY_TRAJECTORY,
-                    POSITION_TRAJECTORY,
-                    PRESENT_INPUT_VOLTAGE,
-                    PRESENT_TEMPERATURE,
-                    BACKUP_READY,
-                ]
-            );
+            let whole = agree_xm430!(window, codec);
             check_note(codec, window, whole, false);
         }
     }
@@ -355,45 +348,7 @@ mod protocol1 {
                 );
                 let codec = heard[1].as_ref().expect("the status answers the READ");
                 let window = dynamixel1::registers::read_answer(&read, &status);
-                let whole = agree!(
-                    dynamixel1,
-                    window,
-                    codec,
-                    [
-                        MODEL_NUMBER,
-                        FIRMWARE_VERSION,
-                        ID,
-                        BAUD_RATE,
-                        RETURN_DELAY_TIME,
-                        CW_ANGLE_LIMIT,
-                        CCW_ANGLE_LIMIT,
-                        TEMPERATURE_LIMIT,
-                        MIN_VOLTAGE_LIMIT,
-                        MAX_VOLTAGE_LIMIT,
-                        MAX_TORQUE,
-                        STATUS_RETURN_LEVEL,
-                        ALARM_LED,
-                        SHUTDOWN,
-                        TORQUE_ENABLE,
-                        LED,
-                        CW_COMPLIANCE_MARGIN,
-                        CCW_COMPLIANCE_MARGIN,
-                        CW_COMPLIANCE_SLOPE,
-                        CCW_COMPLIANCE_SLOPE,
-                        GOAL_POSITION,
-                        MOVING_SPEED,
-                        TORQUE_LIMIT,
-                        PRESENT_POSITION,
-                        PRESENT_SPEED,
-                        PRESENT_LOAD,
-                        PRESENT_VOLTAGE,
-                        PRESENT_TEMPERATURE,
-                        REGISTERED,
-                        MOVING,
-                        LOCK,
-                        PUNCH,
-                    ]
-                );
+                let whole = agree_ax12!(window, codec);
                 check_note(codec, window, whole, n < usize::from(length));
             }
         }
@@ -412,45 +367,7 @@ mod protocol1 {
             );
             let codec = heard[0].as_ref().expect("a WRITE writes registers");
             let window = dynamixel1::registers::write_data(&write);
-            let whole = agree!(
-                dynamixel1,
-                window,
-                codec,
-                [
-                    MODEL_NUMBER,
-                    FIRMWARE_VERSION,
-                    ID,
-                    BAUD_RATE,
-                    RETURN_DELAY_TIME,
-                    CW_ANGLE_LIMIT,
-                    CCW_ANGLE_LIMIT,
-                    TEMPERATURE_LIMIT,
-                    MIN_VOLTAGE_LIMIT,
-                    MAX_VOLTAGE_LIMIT,
-                    MAX_TORQUE,
-                    STATUS_RETURN_LEVEL,
-                    ALARM_LED,
-                    SHUTDOWN,
-                    TORQUE_ENABLE,
-                    LED,
-                    CW_COMPLIANCE_MARGIN,
-                    CCW_COMPLIANCE_MARGIN,
-                    CW_COMPLIANCE_SLOPE,
-                    CCW_COMPLIANCE_SLOPE,
-                    GOAL_POSITION,
-                    MOVING_SPEED,
-                    TORQUE_LIMIT,
-                    PRESENT_POSITION,
-                    PRESENT_SPEED,
-                    PRESENT_LOAD,
-                    PRESENT_VOLTAGE,
-                    PRESENT_TEMPERATURE,
-                    REGISTERED,
-                    MOVING,
-                    LOCK,
-                    PUNCH,
-                ]
-            );
+            let whole = agree_ax12!(window, codec);
             check_note(codec, window, whole, false);
         }
     }
