@@ -1,10 +1,16 @@
 //! `protocol report`: one self-contained HTML page about a capture (no network: inline CSS,
 //! SVG and script). Link statistics, frames per command, the signals (drawn by
 //! [`crate::signals`]), link quality per window of offsets (bad checks, other rejections,
-//! skipped bytes) as an SVG chart, and a hex view in which every frame's fields are outlined
-//! and named on hover, errors highlighted.
+//! skipped bytes) as an SVG chart ([`chart`]), and a hex view ([`hex`]) in which every frame's
+//! fields are outlined and named on hover, errors highlighted.
 //!
-//! This module decodes and renders; reading the files is the command's.
+//! This module decodes and renders; reading the files is the command's. What the page keeps of
+//! a capture is bounded: counters for the whole of it, items for the bytes the hex view shows.
+
+mod chart;
+mod hex;
+#[cfg(test)]
+mod tests;
 
 use std::fmt::Write as _;
 
@@ -13,12 +19,10 @@ use protocol_runtime::{FrameLayout, Reject, Stats};
 use protocol_spec::ir::{Element, FieldKind, Frame, Pos, Protocol};
 
 use crate::counter::Counters;
-use crate::session::reject_name;
+use chart::Windows;
 
 /// Bytes of the capture the hex view shows at most (the statistics cover all of it).
 pub const HEX_VIEW_MAX: usize = 64 * 1024;
-/// Windows of the link-quality chart.
-const WINDOWS: usize = 60;
 
 /// A named byte range inside a frame, for the hex view.
 struct Span {
@@ -49,7 +53,11 @@ enum Entry {
 
 /// What the page reports, decoded once.
 struct Capture {
-    entries: Vec<Entry>,
+    /// The items the hex view shows (those that start before [`HEX_VIEW_MAX`]).
+    shown: Vec<Entry>,
+    /// Frames accepted in the whole capture.
+    frames: usize,
+    windows: Windows,
     stats: Stats,
     per_command: Vec<(usize, usize)>,
     undecoded: usize,
@@ -62,7 +70,9 @@ fn decode(codec: &Codec<'_>, format: usize, data: &[u8]) -> Option<Capture> {
     let layout = codec.layout(format)?;
     let mut stream = codec.stream(format)?;
     let mut capture = Capture {
-        entries: Vec::new(),
+        shown: Vec::new(),
+        frames: 0,
+        windows: Windows::new(data.len()),
         stats: Stats::default(),
         per_command: vec![(0, 0); p.commands.len()],
         undecoded: 0,
@@ -75,6 +85,17 @@ fn decode(codec: &Codec<'_>, format: usize, data: &[u8]) -> Option<Capture> {
             bytes,
             decoded,
         } => {
+            c.frames += 1;
+            let offset = offset as usize;
+            let shown = offset < HEX_VIEW_MAX;
+            // The hex view names the fields of the frames it shows; the others are counted.
+            let spans_of = |d| {
+                if shown {
+                    spans(p, frame, &layout, bytes, d)
+                } else {
+                    Vec::new()
+                }
+            };
             let (command, issue, spans) = match &decoded {
                 Ok(d) => {
                     c.counters.observe(p, d);
@@ -88,33 +109,37 @@ fn decode(codec: &Codec<'_>, format: usize, data: &[u8]) -> Option<Capture> {
                         Some(i) => Some(p.commands[i].name.clone()),
                         None => carried(p, d).map(|si| format!("({})", p.structs[si].name)),
                     };
-                    (name, None, spans(p, frame, &layout, bytes, Some(d)))
+                    (name, None, spans_of(Some(d)))
                 }
                 Err(e) => {
                     c.undecoded += 1;
-                    (
-                        None,
-                        Some(issue_text(e)),
-                        spans(p, frame, &layout, bytes, None),
-                    )
+                    (None, Some(issue_text(e)), spans_of(None))
                 }
             };
-            c.entries.push(Entry::Frame {
-                offset: offset as usize,
-                len: bytes.len(),
-                command,
-                issue,
-                spans,
-            });
+            if shown {
+                c.shown.push(Entry::Frame {
+                    offset,
+                    len: bytes.len(),
+                    command,
+                    issue,
+                    spans,
+                });
+            }
         }
-        Item::Rejected { offset, reason } => c.entries.push(Entry::Rejected {
-            offset: offset as usize,
-            reason,
-        }),
-        Item::Skipped { offset, len } => c.entries.push(Entry::Skipped {
-            offset: offset as usize,
-            len,
-        }),
+        Item::Rejected { offset, reason } => {
+            let offset = offset as usize;
+            c.windows.rejected(offset, reason);
+            if offset < HEX_VIEW_MAX {
+                c.shown.push(Entry::Rejected { offset, reason });
+            }
+        }
+        Item::Skipped { offset, len } => {
+            let offset = offset as usize;
+            c.windows.skipped(offset, len);
+            if offset < HEX_VIEW_MAX {
+                c.shown.push(Entry::Skipped { offset, len });
+            }
+        }
     };
     while let Some(item) = stream.next_item(&mut input) {
         take(item, &mut capture);
@@ -304,177 +329,6 @@ fn percent(n: u64, total: u64) -> String {
     }
 }
 
-/// Per window of offsets: (bad checks, other rejections, skipped bytes).
-fn windows(entries: &[Entry], total: usize) -> (usize, Vec<[u64; 3]>) {
-    let size = total.div_ceil(WINDOWS).max(1);
-    let mut w = vec![[0u64; 3]; total.div_ceil(size).max(1)];
-    let last = w.len() - 1;
-    for e in entries {
-        match e {
-            Entry::Rejected { offset, reason } => {
-                let k = usize::from(!matches!(
-                    reason,
-                    Reject::BadChecksum | Reject::BadHeaderCheck
-                ));
-                w[(offset / size).min(last)][k] += 1;
-            }
-            Entry::Skipped { offset, len } => {
-                // A run of skipped bytes may cross windows: each gets its share.
-                let (mut at, end) = (*offset, offset + len);
-                while at < end {
-                    let i = (at / size).min(last);
-                    let stop = ((i + 1) * size).min(end).max(at + 1);
-                    w[i][2] += (stop - at) as u64;
-                    at = stop;
-                }
-            }
-            Entry::Frame { .. } => {}
-        }
-    }
-    (size, w)
-}
-
-/// The link-quality chart: per window, bars of bad checks, other rejections and skipped bytes
-/// (each series scaled to its own maximum, labelled with it).
-fn chart(entries: &[Entry], total: usize, out: &mut String) {
-    let (size, w) = windows(entries, total);
-    let (width, row, gap) = (900.0, 60.0, 18.0);
-    let names = ["bad checks", "other rejections", "skipped bytes"];
-    let classes = ["check", "reject", "skip"];
-    let height = 3.0 * (row + gap) + 20.0;
-    let bar = width / w.len() as f64;
-    let _ = write!(
-        out,
-        "<svg id=\"quality\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {height}\" role=\"img\" aria-label=\"link quality per window of {size} bytes\">",
-        width + 160.0
-    );
-    for (k, name) in names.iter().enumerate() {
-        let max = w.iter().map(|x| x[k]).max().unwrap_or(0).max(1);
-        let top = k as f64 * (row + gap) + gap;
-        let _ = write!(
-            out,
-            "<text x=\"{}\" y=\"{}\" class=\"label\">{name} (max {max})</text><line x1=\"0\" x2=\"{width}\" y1=\"{}\" y2=\"{}\" class=\"axis\"/>",
-            width + 8.0,
-            top + row / 2.0,
-            top + row,
-            top + row
-        );
-        for (i, x) in w.iter().enumerate() {
-            if x[k] == 0 {
-                continue;
-            }
-            let h = row * x[k] as f64 / max as f64;
-            let _ = write!(
-                out,
-                "<rect class=\"bar {}\" data-window=\"{i}\" data-offset=\"{}\" x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{h:.1}\"><title>offsets {}..{}: {} {name}</title></rect>",
-                classes[k],
-                i * size,
-                i as f64 * bar,
-                top + row - h,
-                (bar - 1.0).max(1.0),
-                i * size,
-                ((i + 1) * size).min(total),
-                x[k]
-            );
-        }
-    }
-    let _ = write!(
-        out,
-        "<text x=\"0\" y=\"{}\" class=\"label\">offset 0</text><text x=\"{width}\" y=\"{}\" class=\"label\" text-anchor=\"end\">{total}</text></svg>",
-        height - 2.0,
-        height - 2.0
-    );
-}
-
-fn hex_bytes(data: &[u8], from: usize, to: usize, out: &mut String) {
-    for b in data.get(from..to).unwrap_or_default() {
-        let _ = write!(out, "<i>{b:02x}</i>");
-    }
-}
-
-/// The hex view: every entry a block; a frame's spans outlined, with their name and value.
-fn hex_view(data: &[u8], entries: &[Entry], out: &mut String) {
-    out.push_str("<div id=\"hex\">");
-    for e in entries {
-        let start = match e {
-            Entry::Frame { offset, .. }
-            | Entry::Rejected { offset, .. }
-            | Entry::Skipped { offset, .. } => *offset,
-        };
-        if start >= HEX_VIEW_MAX {
-            break;
-        }
-        match e {
-            Entry::Frame {
-                offset,
-                len,
-                command,
-                issue,
-                spans,
-            } => {
-                let label = command.clone().unwrap_or_else(|| "(no command)".into());
-                let class = if issue.is_some() {
-                    "frame bad"
-                } else {
-                    "frame"
-                };
-                let _ = write!(
-                    out,
-                    "<div class=\"{class}\" id=\"at{offset}\" data-offset=\"{offset}\" data-command=\"{}\" title=\"{}\"><b>{offset}</b><span class=\"cmd\">{}</span>",
-                    esc(&label),
-                    esc(issue.as_deref().unwrap_or(&label)),
-                    esc(&label)
-                );
-                let mut at = 0;
-                for s in spans {
-                    if s.from > at {
-                        hex_bytes(data, offset + at, offset + s.from, out);
-                    }
-                    let _ = write!(
-                        out,
-                        "<span class=\"field\" data-name=\"{}\" data-value=\"{}\" title=\"{}: {}\">",
-                        esc(&s.name),
-                        esc(&s.value),
-                        esc(&s.name),
-                        esc(&s.value)
-                    );
-                    hex_bytes(data, offset + s.from, offset + s.to, out);
-                    out.push_str("</span>");
-                    at = s.to;
-                }
-                hex_bytes(data, offset + at, offset + len, out);
-                out.push_str("</div>");
-            }
-            Entry::Rejected { offset, reason } => {
-                let _ = write!(
-                    out,
-                    "<div class=\"rejected\" id=\"at{offset}\" data-offset=\"{offset}\" title=\"{}: a candidate frame rejected; the search resumes at the next byte\"><b>{offset}</b><span class=\"cmd\">{}</span>",
-                    reject_name(*reason),
-                    reject_name(*reason)
-                );
-                hex_bytes(data, *offset, offset + 1, out);
-                out.push_str("</div>");
-            }
-            Entry::Skipped { offset, len } => {
-                let _ = write!(
-                    out,
-                    "<div class=\"skipped\" id=\"at{offset}\" data-offset=\"{offset}\" title=\"{len} bytes in no frame\"><b>{offset}</b><span class=\"cmd\">skipped</span>"
-                );
-                hex_bytes(data, *offset, offset + len, out);
-                out.push_str("</div>");
-            }
-        }
-    }
-    if data.len() > HEX_VIEW_MAX {
-        let _ = write!(
-            out,
-            "<p class=\"note\">The hex view ends at offset {HEX_VIEW_MAX}; the statistics and the chart cover all {} bytes.</p>",
-            data.len()
-        );
-    }
-    out.push_str("</div>");
-}
-
 const STYLE: &str = "body{font:14px/1.4 system-ui,sans-serif;margin:24px;color:#222}\
 h1{font-size:20px}h2{font-size:16px;margin-top:28px}\
 table{border-collapse:collapse}td,th{padding:2px 10px;border-bottom:1px solid #ddd;text-align:left}\
@@ -511,11 +365,7 @@ pub fn render(
     let capture = decode(codec, format, data)?;
     let s = &capture.stats;
     let total = data.len() as u64;
-    let frames = capture
-        .entries
-        .iter()
-        .filter(|e| matches!(e, Entry::Frame { .. }))
-        .count();
+    let frames = capture.frames;
     let mut out = String::new();
     let title = format!("{name}: {} capture", p.name);
     let _ = write!(
@@ -593,9 +443,9 @@ pub fn render(
     out.push_str("</table>");
     crate::signals::section::write(plot, &mut out);
     out.push_str("<h2>Link quality over the capture</h2>");
-    chart(&capture.entries, data.len(), &mut out);
+    chart::chart(&capture.windows, &mut out);
     out.push_str("<h2>Bytes</h2><p>Every frame's fields are outlined; hover one for its name and value. Rejected candidates are red, skipped bytes grey, frames without a message of the spec orange. A click on a bar of the chart scrolls here.</p>");
-    hex_view(data, &capture.entries, &mut out);
+    hex::hex_view(data, &capture.shown, &mut out);
     let _ = writeln!(
         out,
         "<div id=\"tip\"></div><script>{SCRIPT}</script></body></html>"
