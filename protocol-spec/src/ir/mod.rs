@@ -173,6 +173,23 @@ impl Protocol {
         prims
     }
 
+    /// The commands a frame of `f` can be decoded as by its struct alone, each with that
+    /// struct: on a link without directions or acknowledgements (where a key names one struct
+    /// and every frame carries a key), the commands whose struct no other command carries (a
+    /// struct two commands carry does not tell which one a frame must hold). Empty elsewhere.
+    pub fn sole_carriers<'a>(&'a self, f: &Frame) -> impl Iterator<Item = (&'a Command, usize)> {
+        let typed = self.directions.is_empty() && f.ack.is_none();
+        let first = |c: &Command| c.payloads.first().copied().flatten();
+        self.commands
+            .iter()
+            .filter(move |_| typed)
+            .filter_map(move |c| {
+                let si = first(c)?;
+                let carriers = self.commands.iter().filter(|o| first(o) == Some(si));
+                (carriers.count() == 1).then_some((c, si))
+            })
+    }
+
     /// True when the decoder is given the direction instead of reading it from the header.
     pub fn directions_given(&self) -> bool {
         self.directions

@@ -5,8 +5,7 @@
 //! a program names are linked, where `Packet::from_frame` and `Packet::encode` match every
 //! command and link every reader and writer.
 //!
-//! Printed for the first frame format of a spec without directions or acknowledgements: there
-//! a key names one struct, and every frame that is no acknowledgement carries a key.
+//! Printed for the first frame format when [`Protocol::sole_carriers`] names commands.
 
 use proc_macro2::{Ident, TokenStream};
 use quote::quote;
@@ -18,28 +17,22 @@ use crate::ir::{Frame, Protocol};
 
 /// The `CommandPayload` impls and `Packet::from_frame_as` of format `f`, when it has them.
 pub(super) fn emit_typed_decode(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
-    if !p.directions.is_empty() || f.ack.is_some() {
-        return quote!();
-    }
-    let impls = p.commands.iter().filter_map(|c| {
-        let si = c.payloads.first().copied().flatten()?;
-        // A struct two commands carry does not tell which one a frame must hold.
-        let carriers = p
-            .commands
-            .iter()
-            .filter(|o| o.payloads.first() == Some(&Some(si)));
-        if carriers.count() != 1 {
-            return None;
-        }
-        let s = ident(&p.structs[si].name);
-        let v = ident(&c.rust_name);
-        Some(quote! {
-            impl #rt::CommandPayload for #s {
-                type Command = Command;
-                const COMMAND: Command = Command::#v;
+    let impls: Vec<TokenStream> = p
+        .sole_carriers(f)
+        .map(|(c, si)| {
+            let s = ident(&p.structs[si].name);
+            let v = ident(&c.rust_name);
+            quote! {
+                impl #rt::CommandPayload for #s {
+                    type Command = Command;
+                    const COMMAND: Command = Command::#v;
+                }
             }
         })
-    });
+        .collect();
+    if impls.is_empty() {
+        return quote!();
+    }
     let Items {
         max_payload_len,
         rules,
