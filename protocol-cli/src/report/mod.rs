@@ -191,12 +191,7 @@ fn spans(
     let flagged = layout.flag_trailer_len(bytes);
     let len = bytes.len() - flagged.min(bytes.len());
     let header_len = f.header_len + layout.extension_len(bytes);
-    let hex_of = |from: usize, to: usize| {
-        bytes
-            .get(from..to)
-            .map(protocol_dynamic::hex)
-            .unwrap_or_default()
-    };
+    let hex_of = |from: usize, to: usize| hex_of(bytes, from, to);
     let mut out = Vec::new();
     let mut push = |from: usize, to: usize, name: String, value: String| {
         if from < to && to <= len {
@@ -223,50 +218,8 @@ fn spans(
             }
             Element::Payload => {
                 let (start, end) = (header_len, len.saturating_sub(f.trailer_len));
-                let fields = decoded.and_then(|d| {
-                    let s = match d.command {
-                        Some(ci) => (*p.commands[ci].payloads.get(d.direction.unwrap_or(0))?)?,
-                        None => carried(p, d)?,
-                    };
-                    Some((&p.structs[s], &d.payload))
-                });
-                match fields {
-                    Some((s, payload)) if !s.fields.is_empty() => {
-                        let last = s.fields.len() - 1;
-                        for (i, field) in s.fields.iter().enumerate() {
-                            let from = start + field.offset;
-                            let to = if i == last {
-                                end
-                            } else {
-                                (from + field.size).min(end)
-                            };
-                            let (name, value) = match (&field.kind, payload) {
-                                (FieldKind::Padding, _) => ("padding".into(), hex_of(from, to)),
-                                (FieldKind::Bits { members, .. }, Value::Struct(v)) => (
-                                    members
-                                        .iter()
-                                        .map(|m| m.name.as_str())
-                                        .collect::<Vec<_>>()
-                                        .join(", "),
-                                    members
-                                        .iter()
-                                        .map(|m| {
-                                            let x = v.get(&m.name).map(value_text);
-                                            format!("{}={}", m.name, x.unwrap_or_default())
-                                        })
-                                        .collect::<Vec<_>>()
-                                        .join(" "),
-                                ),
-                                (_, Value::Struct(v)) => (
-                                    field.name.clone(),
-                                    v.get(&field.name).map(value_text).unwrap_or_default(),
-                                ),
-                                _ => (field.name.clone(), hex_of(from, to)),
-                            };
-                            push(from, to, name, value);
-                        }
-                    }
-                    _ => push(start, end, "payload".into(), hex_of(start, end)),
+                for (from, to, name, value) in payload_spans(p, decoded, bytes, start, end) {
+                    push(from, to, name, value);
                 }
             }
             Element::Check(i) => {
@@ -302,6 +255,71 @@ fn spans(
         }
     }
     out.sort_by_key(|s| s.from);
+    out
+}
+
+/// The bytes `from..to` of `bytes` in hex (empty where they lie outside).
+fn hex_of(bytes: &[u8], from: usize, to: usize) -> String {
+    bytes
+        .get(from..to)
+        .map(protocol_dynamic::hex)
+        .unwrap_or_default()
+}
+
+/// The payload's spans, `start..end` of the frame: one per field of the struct the frame
+/// carries (bit members together, the last field to the end), or the payload whole when it
+/// was not decoded.
+fn payload_spans(
+    p: &Protocol,
+    decoded: Option<&Decoded>,
+    bytes: &[u8],
+    start: usize,
+    end: usize,
+) -> Vec<(usize, usize, String, String)> {
+    let fields = decoded.and_then(|d| {
+        let s = match d.command {
+            Some(ci) => (*p.commands[ci].payloads.get(d.direction.unwrap_or(0))?)?,
+            None => carried(p, d)?,
+        };
+        Some((&p.structs[s], &d.payload))
+    });
+    let Some((s, payload)) = fields.filter(|(s, _)| !s.fields.is_empty()) else {
+        return vec![(start, end, "payload".into(), hex_of(bytes, start, end))];
+    };
+    let last = s.fields.len() - 1;
+    let mut out = Vec::with_capacity(s.fields.len());
+    for (i, field) in s.fields.iter().enumerate() {
+        let from = start + field.offset;
+        let to = if i == last {
+            end
+        } else {
+            (from + field.size).min(end)
+        };
+        let (name, value) = match (&field.kind, payload) {
+            (FieldKind::Padding, _) => ("padding".into(), hex_of(bytes, from, to)),
+            (FieldKind::Bits { members, .. }, Value::Struct(v)) => (
+                members
+                    .iter()
+                    .map(|m| m.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                members
+                    .iter()
+                    .map(|m| {
+                        let x = v.get(&m.name).map(value_text);
+                        format!("{}={}", m.name, x.unwrap_or_default())
+                    })
+                    .collect::<Vec<_>>()
+                    .join(" "),
+            ),
+            (_, Value::Struct(v)) => (
+                field.name.clone(),
+                v.get(&field.name).map(value_text).unwrap_or_default(),
+            ),
+            _ => (field.name.clone(), hex_of(bytes, from, to)),
+        };
+        out.push((from, to, name, value));
+    }
     out
 }
 
