@@ -7,6 +7,7 @@ use toml::Spanned;
 
 use super::super::Ctx;
 use super::super::types::{Enums, lower_bits, mask};
+use super::Draft;
 use crate::ir::{HeaderValue, Pos, Prim, Role, Scalar, Transport};
 use crate::spec::model::{BitDef, FrameDef};
 
@@ -119,10 +120,11 @@ pub(super) fn lower_id_members(
 /// Rule: a member of the CAN id is not named as another header value of the frame (a layout
 /// field or one of its members, or the virtual `dlc`): both would be fields of the header
 /// struct.
-pub(super) fn check_member_names(ctx: &mut Ctx<'_>, def: &FrameDef, values: &[HeaderValue]) {
-    let Some(bits) = &def.can_id_bits else {
+pub(super) fn check_member_names(ctx: &mut Ctx<'_>, def: &FrameDef, draft: &Draft<'_>) {
+    let (Some(bits), Transport::Can { .. }) = (&def.can_id_bits, draft.transport) else {
         return;
     };
+    let values = &draft.values;
     for b in bits.get_ref() {
         let name = &b.get_ref().name;
         let named = |n: &String| n == name.get_ref();
@@ -131,7 +133,11 @@ pub(super) fn check_member_names(ctx: &mut Ctx<'_>, def: &FrameDef, values: &[He
             .get_ref()
             .iter()
             .filter(|m| named(m.get_ref().name.get_ref()));
-        let others = values.iter().filter(|v| named(&v.name)).count() - members.count().min(1);
+        let others = values
+            .iter()
+            .filter(|v| named(&v.name))
+            .count()
+            .saturating_sub(members.count().min(1));
         if name.get_ref() == "can_id" {
             ctx.error(
                 name.span(),

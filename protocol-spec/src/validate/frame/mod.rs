@@ -128,7 +128,7 @@ fn lower_frame(
     for (i, el) in def.layout.get_ref().iter().enumerate() {
         elements::lower_element(ctx, &mut draft, i, el, enums)?;
     }
-    can_id::check_member_names(ctx, def, &draft.values);
+    can_id::check_member_names(ctx, def, &draft);
     elements::check_unique_names(ctx, fname, &draft.els);
     elements::check_serial_sync(ctx, fname, def, &mut draft);
     let extension = conditional::find_extension(ctx, &mut draft);
