@@ -287,6 +287,10 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
         let line = match self.output {
             Output::Json => {
                 let value = self.codec.frame_value(&d, offset, shown);
+                // A decoded CAN frame's value names its identifier already.
+                if value.as_struct().is_some_and(|o| o.get("can_id").is_some()) {
+                    extra.remove("can_id");
+                }
                 let line = match self.received {
                     None => serde_json::to_string(&value),
                     Some(at) => serde_json::to_value(&value).map(|v| match v {

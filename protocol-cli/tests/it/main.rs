@@ -18,6 +18,7 @@ mod cli_check;
 mod cli_decode;
 mod cli_diagnostics;
 mod cli_direction;
+mod cli_dronecan;
 mod cli_edges;
 mod cli_encode;
 mod cli_hints;

@@ -94,9 +94,16 @@ fn read_header(
 }
 
 /// The CAN id of a frame of a CAN format: the whole identifier word, as generated code takes
-/// `CanFrame::id`.
+/// `CanFrame::id`; for an identifier split into members (`can_id_bits`), the word they share.
 fn can_id(f: &Frame, frame: &[u8]) -> Option<u64> {
-    let v = f.values.iter().find(|v| is_can_id(f, v))?;
+    if !matches!(f.transport, Transport::Can { .. }) {
+        return None;
+    }
+    let v = f
+        .values
+        .iter()
+        .find(|v| is_can_id(f, v))
+        .or_else(|| f.values.first())?;
     let word = word_field(v);
     word.bits(0, word.size.saturating_mul(8)).read(frame)
 }

@@ -237,6 +237,11 @@ pub struct FrameDef {
     /// For CAN: `"standard"` (11-bit ids, default) or `"extended"` (29-bit).
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub can_id: Option<SStr>,
+    /// For CAN: the identifier split into named members, lowest bit first, that together
+    /// cover its 11 or 29 bits (DroneCAN's priority, message type and source node); each is a
+    /// header value of the frame.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<BitDef>>"))]
+    pub can_id_bits: Option<Spanned<Vec<Spanned<BitDef>>>>,
     /// Frames whose header matches this rule are acknowledgements: they carry no dispatch
     /// fields, and their payload is raw acknowledgement data.
     #[cfg_attr(feature = "schema", schemars(with = "Option<AckDef>"))]

@@ -26,6 +26,7 @@ protocol_kit::protocol!("../../specs/ibus.toml");
 protocol_kit::protocol!("../../specs/sbus.toml");
 protocol_kit::protocol!("../../specs/ubx.toml");
 protocol_kit::protocol!("../../specs/msp.toml");
+protocol_kit::protocol!("../../specs/dronecan.toml");
 // The payload types beyond fixed-width primitives: 24-bit integers, kept bitfield bits,
 // bit-packed arrays, text.
 protocol_kit::protocol!("../../protocol-codegen/tests/features/int24.toml");

@@ -25,6 +25,7 @@ mod can_frames;
 mod check_vectors;
 mod crsf_vectors;
 mod derive;
+mod dronecan_pydronecan;
 mod dynamixel1_vectors;
 mod dynamixel_vectors;
 mod error_places;

@@ -92,6 +92,42 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
     }
 }
 
+/// The CAN methods of `Packet` when the first frame format is a CAN one (a CAN-only link, whose
+/// dispatch key is a member of the identifier, `can_id_bits`): the frame is decoded from and
+/// encoded to its virtual frame (identifier, length, data), as a later CAN format's packet is.
+pub(super) fn can_first_methods(f: &Frame, rt: &TokenStream) -> TokenStream {
+    let Transport::Can { extended } = f.transport else {
+        return TokenStream::new();
+    };
+    let into_extended = if extended {
+        quote!(.map(#rt::CanFrame::into_extended))
+    } else {
+        quote!()
+    };
+    quote! {
+        /// Decode a received CAN frame, verifying its checks and constants.
+        ///
+        /// # Errors
+        /// As [`Self::decode`]; `DecodeError::Frame(Reject::BadHeader)` for an identifier of
+        /// the other kind (standard or extended) than the spec's.
+        pub fn decode_can(can: &#rt::CanFrame) -> #rt::DecodeResult<Self> {
+            let can = can.of_kind(#extended)?;
+            let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
+            Self::decode(can.to_virtual(&mut virt))
+        }
+        /// Encode into a CAN frame: the identifier assembled from its members, the data.
+        ///
+        /// # Errors
+        /// As [`Self::encode`].
+        pub fn encode_can(&self) -> #rt::Result<#rt::CanFrame, #rt::EncodeError> {
+            let mut virt = [0u8; #rt::CAN_VIRTUAL_LEN];
+            // Validation holds a CAN format's data to 8 bytes, so the virtual frame fits.
+            let len = self.encode(&mut virt)?;
+            #rt::CanFrame::from_virtual(virt.get(..len).unwrap_or_default())#into_extended
+        }
+    }
+}
+
 /// `<Name>Packet` for a frame format without dispatch key: every frame carries one struct.
 pub(super) fn emit_message_packet(
     p: &Protocol,

@@ -6,7 +6,7 @@
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
-use super::frames::flag_trailer_len;
+use super::frames::{can_first_methods, flag_trailer_len};
 use super::given;
 use super::key_prims;
 use super::rules::rules_static;
@@ -281,6 +281,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
         ..
     } = Items::of(f);
     let decoders = packet_decoders(p, f, rt);
+    let can = can_first_methods(f, rt);
     let body_fn = emit_body_fn(p, f, rt);
     let n = f.dispatch.len();
     let flagged = flag_trailer_len(f);
@@ -307,6 +308,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
         }
         impl #packet {
             #decoders
+            #can
             #body_fn
             /// Bytes of the encoded frame.
             #[inline(always)]

@@ -8,13 +8,19 @@ use super::super::names::{check_snake_name, parse_prim, unknown_type};
 use super::super::types::{Enums, fit, lower_bits, mask};
 use super::super::{Ctx, text};
 use super::elements::byte_list;
-use super::{Draft, El, Kind};
+use super::{Draft, El, Kind, can_id};
 use crate::ir::{ByteOrder, HeaderValue, Pos, Prim, Role, Scalar, Transport};
-use crate::spec::model::{BitDef, ElementDef, SStr};
+use crate::spec::model::{BitDef, ElementDef, FrameDef, SStr};
 
 /// The virtual prefix every CAN frame starts with: the id and the data length, so that checks
 /// can cover them (the Scout CAN checksum does) and dispatch can name the id.
-pub(super) fn push_can_prefix(draft: &mut Draft<'_>) {
+/// With `can_id_bits` the identifier is its members, each a header value of its own.
+pub(super) fn push_can_prefix(
+    ctx: &mut Ctx<'_>,
+    draft: &mut Draft<'_>,
+    def: &FrameDef,
+    enums: &Enums,
+) {
     let Transport::Can { extended } = draft.transport else {
         return;
     };
@@ -26,16 +32,29 @@ pub(super) fn push_can_prefix(draft: &mut Draft<'_>) {
         prim: Prim::U8,
         endian: ByteOrder::Big,
     };
-    draft.values.push(HeaderValue {
-        name: "can_id".into(),
-        doc: "The CAN identifier.".into(),
-        at: Pos::Start(0),
-        word: id_word,
-        shift: 0,
-        width: if extended { 29 } else { 11 },
-        prim: Prim::U32,
-        role: Role::User { addresses: false },
-    });
+    let id_values = if let Some(bits) = &def.can_id_bits {
+        can_id::lower_id_members(
+            ctx,
+            &mut draft.values,
+            bits,
+            id_word,
+            draft.transport,
+            enums,
+        )
+    } else {
+        draft.values.push(HeaderValue {
+            name: "can_id".into(),
+            doc: "The CAN identifier.".into(),
+            at: Pos::Start(0),
+            word: id_word,
+            shift: 0,
+            width: if extended { 29 } else { 11 },
+            prim: Prim::U32,
+            role: Role::User { addresses: false },
+        });
+        vec![draft.values.len() - 1]
+    };
+    let dlc_value = draft.values.len();
     draft.values.push(HeaderValue {
         name: "dlc".into(),
         doc: "The CAN data length code: number of data bytes.".into(),
@@ -50,13 +69,13 @@ pub(super) fn push_can_prefix(draft: &mut Draft<'_>) {
         name: "can_id".into(),
         def: None,
         size: 4,
-        kind: Kind::Word(id_word, vec![0]),
+        kind: Kind::Word(id_word, id_values),
     });
     draft.els.push(El {
         name: "dlc".into(),
         def: None,
         size: 1,
-        kind: Kind::Word(dlc_word, vec![1]),
+        kind: Kind::Word(dlc_word, vec![dlc_value]),
     });
 }
 

@@ -178,8 +178,9 @@ pub(super) fn lower_length(
     let (header_len, trailer_len) = (lay.header_len, lay.trailer_len);
     let Some((vi, cov)) = length_decl else {
         return match transport {
+            // The DLC: the one length value of a CAN frame (after the id or its members).
             Transport::Can { .. } => Some(Length::Field {
-                value: 1,
+                value: values.iter().position(|v| v.role == Role::Length)?,
                 adjust: CAN_PREFIX_LEN as i64,
             }),
             Transport::Serial if lay.payload_min == lay.payload_max => {

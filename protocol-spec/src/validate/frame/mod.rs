@@ -6,6 +6,7 @@
 //! end, so every rule of a frame still reports.
 
 mod ack;
+mod can_id;
 mod checks;
 mod conditional;
 mod counter;
@@ -122,10 +123,12 @@ fn lower_frame(
 ) -> Option<Frame> {
     let transport = options::lower_transport(ctx, def);
     let mut draft = Draft::new(transport);
-    header::push_can_prefix(&mut draft);
+    can_id::check_members_placement(ctx, def, first);
+    header::push_can_prefix(ctx, &mut draft, def, enums);
     for (i, el) in def.layout.get_ref().iter().enumerate() {
         elements::lower_element(ctx, &mut draft, i, el, enums)?;
     }
+    can_id::check_member_names(ctx, def, &draft);
     elements::check_unique_names(ctx, fname, &draft.els);
     elements::check_serial_sync(ctx, fname, def, &mut draft);
     let extension = conditional::find_extension(ctx, &mut draft);

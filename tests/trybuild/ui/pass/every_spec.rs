@@ -14,10 +14,12 @@ protocol_kit::protocol!("specs/ibus.toml");
 protocol_kit::protocol!("specs/sbus.toml");
 protocol_kit::protocol!("specs/ubx.toml");
 protocol_kit::protocol!("specs/msp.toml");
+protocol_kit::protocol!("specs/dronecan.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/can_and_trailer_field.toml");
+protocol_kit::protocol!("protocol-codegen/tests/features/can_id_members.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/truncate_zeros.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/text.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/given_directions.toml");
@@ -37,4 +39,6 @@ fn main() {
     let _ = ubx::decoder();
     let _ = msp::decoder();
     let _ = msp::v2_decoder();
+    let _ = dronecan::Packet::decode_can;
+    let _ = canmembers::Packet::encode_can;
 }
