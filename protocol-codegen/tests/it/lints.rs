@@ -39,6 +39,9 @@ fn the_reference_specs_give_no_warning() {
         "mavlink",
         "ibus",
         "ubx",
+        "vesc",
+        "feetech",
+        "lx16a",
     ] {
         let path = format!("{}/../specs/{name}.toml", env!("CARGO_MANIFEST_DIR"));
         let text = std::fs::read_to_string(&path).expect("spec");

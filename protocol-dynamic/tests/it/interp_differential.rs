@@ -28,6 +28,9 @@ protocol_kit::protocol!("../specs/roborts.toml");
 protocol_kit::protocol!("../specs/ibus.toml");
 protocol_kit::protocol!("../specs/sbus.toml");
 protocol_kit::protocol!("../specs/ubx.toml");
+protocol_kit::protocol!("../specs/vesc.toml");
+protocol_kit::protocol!("../specs/feetech.toml");
+protocol_kit::protocol!("../specs/lx16a.toml");
 protocol_kit::protocol!("../specs/msp.toml");
 protocol_kit::protocol!("tests/fixtures/features.toml");
 
@@ -203,6 +206,40 @@ fn specs() -> Vec<Gen> {
         generated!(ibus, [LAYOUT], None),
         generated!(sbus, [LAYOUT], None, Some((0, sbus_packet))),
         generated!(ubx, [LAYOUT], None),
+        generated!(vesc, [LAYOUT], None, None, decode_request, Some("request")),
+        generated!(
+            vesc,
+            [LAYOUT],
+            None,
+            None,
+            decode_response,
+            Some("response")
+        ),
+        generated!(
+            feetech,
+            [LAYOUT],
+            None,
+            None,
+            decode_request,
+            Some("request")
+        ),
+        generated!(
+            feetech,
+            [LAYOUT],
+            None,
+            None,
+            decode_response,
+            Some("response")
+        ),
+        generated!(lx16a, [LAYOUT], None, None, decode_request, Some("request")),
+        generated!(
+            lx16a,
+            [LAYOUT],
+            None,
+            None,
+            decode_response,
+            Some("response")
+        ),
         generated!(features, [LAYOUT, RAW_LAYOUT], None),
     ]
 }
@@ -359,6 +396,9 @@ fn golden_vectors_decode_and_encode_alike() {
         ("sbus", "sbus.json"),
         ("ubx", "ubx.json"),
         ("ubx", "ubx_pyubx2.json"),
+        ("vesc", "vesc_pyvesc.json"),
+        ("feetech", "feetech_scservo.json"),
+        ("lx16a", "lx16a_pylx16a.json"),
     ];
     let gens = specs();
     // A spec whose directions are given has an entry per direction: each reads every frame.

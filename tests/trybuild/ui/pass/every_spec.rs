@@ -14,6 +14,9 @@ protocol_kit::protocol!("specs/ibus.toml");
 protocol_kit::protocol!("specs/sbus.toml");
 protocol_kit::protocol!("specs/ubx.toml");
 protocol_kit::protocol!("specs/msp.toml");
+protocol_kit::protocol!("specs/vesc.toml");
+protocol_kit::protocol!("specs/feetech.toml");
+protocol_kit::protocol!("specs/lx16a.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
@@ -37,4 +40,7 @@ fn main() {
     let _ = ubx::decoder();
     let _ = msp::decoder();
     let _ = msp::v2_decoder();
+    let _ = vesc::Packet::decode_response;
+    let _ = feetech::Packet::decode_response;
+    let _ = lx16a::Packet::decode_response;
 }
