@@ -25,8 +25,10 @@ VECTOR_SPECS = {
     "crsf.json": [("crsf", None)],
     "dynamixel_protocol1.json": [("dynamixel1", "request"), ("dynamixel1", "response")],
     "dynamixel_protocol2.json": [("dynamixel", None)],
+    "feetech_scservo.json": [("feetech", "request"), ("feetech", "response")],
     "hflink.json": [("hflink", None)],
     "ibus.json": [("ibus", None)],
+    "lx16a_pylx16a.json": [("lx16a", "request"), ("lx16a", "response")],
     "mavlink.json": [("mavlink", None)],
     "msp.json": [("msp", None)],
     "robomaster_referee.json": [("referee", None), ("referee2018", None)],
@@ -34,6 +36,7 @@ VECTOR_SPECS = {
     "sbus.json": [("sbus", None)],
     "ubx.json": [("ubx", None)],
     "ubx_pyubx2.json": [("ubx", None)],
+    "vesc_pyvesc.json": [("vesc", "request"), ("vesc", "response")],
 }
 
 
@@ -152,8 +155,10 @@ CAPTURE_SPECS = {
     "dynamixel.bin": ("dynamixel", []),
     "dynamixel1.bin": ("dynamixel1", ["--direction", "request"]),
     "dynamixel_feedback.bin": ("dynamixel", ["--frame", "feedback"]),
+    "feetech.bin": ("feetech", ["--direction", "request"]),
     "hflink.bin": ("hflink", []),
     "ibus.bin": ("ibus", []),
+    "lx16a.bin": ("lx16a", ["--direction", "request"]),
     "mavlink.bin": ("mavlink", []),
     "msp.bin": ("msp", []),
     "referee.bin": ("referee", []),
@@ -162,6 +167,7 @@ CAPTURE_SPECS = {
     "sbus.bin": ("sbus", []),
     "scout.bin": ("scout", []),
     "ubx.bin": ("ubx", []),
+    "vesc.bin": ("vesc", ["--direction", "request"]),
 }
 
 

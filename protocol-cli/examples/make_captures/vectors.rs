@@ -1,5 +1,6 @@
 //! Captures of the specs whose traffic is made of their golden frames (`tests/vectors/`): CRSF,
-//! UBX, iBUS, SBUS, MAVLink 1 and 2 mixed, Dynamixel 1.0 instruction packets and MSP v1. Each
+//! UBX, iBUS, SBUS, MAVLink 1 and 2 mixed, Dynamixel 1.0 instruction packets, MSP v1, and the
+//! commands of VESC, Feetech SCS/STS and LX-16A (the controller's side). Each
 //! frame of a capture is a golden frame, or one whose payload bytes were changed at random and
 //! the frame sealed again; either is kept only when the code `protocol!` generates decodes it
 //! and encodes it back to the same bytes, so every frame is one the generated encoder writes.
@@ -16,6 +17,9 @@ protocol_kit::protocol!("../specs/sbus.toml");
 protocol_kit::protocol!("../specs/mavlink.toml");
 protocol_kit::protocol!("../specs/dynamixel1.toml");
 protocol_kit::protocol!("../specs/msp.toml");
+protocol_kit::protocol!("../specs/vesc.toml");
+protocol_kit::protocol!("../specs/feetech.toml");
+protocol_kit::protocol!("../specs/lx16a.toml");
 
 /// Decodes a frame with generated code and encodes the packet again (`None` if it does not
 /// decode or encode).
@@ -125,6 +129,33 @@ pub const SPECS: &[Spec] = &[
         formats: &[(&msp::LAYOUT, reencode!(msp::Packet::decode))],
         seed: 0x4D53_5000_0001,
         frames: 300,
+        damage: true,
+    },
+    Spec {
+        name: "vesc",
+        vectors: "vesc_pyvesc",
+        keep: |f| f["direction"] == "request",
+        formats: &[(&vesc::LAYOUT, reencode!(vesc::Packet::decode_request))],
+        seed: 0x5645_5343_0001,
+        frames: 200,
+        damage: true,
+    },
+    Spec {
+        name: "feetech",
+        vectors: "feetech_scservo",
+        keep: |f| f["direction"] == "request",
+        formats: &[(&feetech::LAYOUT, reencode!(feetech::Packet::decode_request))],
+        seed: 0x5343_5300_0001,
+        frames: 200,
+        damage: true,
+    },
+    Spec {
+        name: "lx16a",
+        vectors: "lx16a_pylx16a",
+        keep: |f| f["direction"] == "request",
+        formats: &[(&lx16a::LAYOUT, reencode!(lx16a::Packet::decode_request))],
+        seed: 0x4C58_3136_0001,
+        frames: 200,
         damage: true,
     },
 ];

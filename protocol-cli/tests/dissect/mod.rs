@@ -20,8 +20,10 @@ pub const SPECS: &[(&str, &str, &[&str])] = &[
         "dynamixel_protocol1.json",
         &["request", "response"],
     ),
+    ("feetech", "feetech_scservo.json", &["request", "response"]),
     ("hflink", "hflink.json", &[]),
     ("ibus", "ibus.json", &[]),
+    ("lx16a", "lx16a_pylx16a.json", &["request", "response"]),
     ("mavlink", "mavlink.json", &[]),
     ("msp", "msp.json", &[]),
     ("referee", "robomaster_referee.json", &[]),
@@ -30,6 +32,7 @@ pub const SPECS: &[(&str, &str, &[&str])] = &[
     ("sbus", "sbus.json", &[]),
     ("scout", "agilex_scout.json", &[]),
     ("ubx", "ubx.json", &[]),
+    ("vesc", "vesc_pyvesc.json", &["request", "response"]),
 ];
 
 pub fn tshark_available() -> bool {

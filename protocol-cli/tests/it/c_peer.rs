@@ -95,6 +95,10 @@ fn vector_files(spec: &str) -> Vec<(String, bool)> {
         ("ubx", "ubx.json", true),
         // Random messages of every command, from pyubx2: no streams.
         ("ubx", "ubx_pyubx2.json", false),
+        // Random messages of every command, from their reference implementations: no streams.
+        ("vesc", "vesc_pyvesc.json", false),
+        ("feetech", "feetech_scservo.json", false),
+        ("lx16a", "lx16a_pylx16a.json", false),
     ];
     let mut out: Vec<(String, bool)> = known
         .iter()

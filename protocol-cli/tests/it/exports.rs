@@ -23,8 +23,14 @@ const VECTORS: &[(&str, &str, &[&str])] = &[
         "dynamixel_protocol1.json",
         &["--direction", "request"],
     ),
+    (
+        "feetech",
+        "feetech_scservo.json",
+        &["--direction", "request"],
+    ),
     ("hflink", "hflink.json", &[]),
     ("ibus", "ibus.json", &[]),
+    ("lx16a", "lx16a_pylx16a.json", &["--direction", "request"]),
     ("mavlink", "mavlink.json", &[]),
     ("msp", "msp.json", &[]),
     ("referee", "robomaster_referee.json", &[]),
@@ -33,6 +39,7 @@ const VECTORS: &[(&str, &str, &[&str])] = &[
     ("sbus", "sbus.json", &[]),
     ("scout", "agilex_scout.json", &[]),
     ("ubx", "ubx.json", &[]),
+    ("vesc", "vesc_pyvesc.json", &["--direction", "request"]),
 ];
 
 /// What one comparison covered.

@@ -35,6 +35,9 @@ pub const CAPTURES: &[(&str, &str, &[&str])] = &[
         &["--direction", "request"],
     ),
     ("specs/msp.toml", "msp", &["--frame", "v1"]),
+    ("specs/vesc.toml", "vesc", &["--direction", "request"]),
+    ("specs/feetech.toml", "feetech", &["--direction", "request"]),
+    ("specs/lx16a.toml", "lx16a", &["--direction", "request"]),
 ];
 
 /// The interpreter of `specs/NAME.toml`, its messages naming the path as the command's tests

@@ -40,6 +40,9 @@ fn the_reference_specs_give_no_warning() {
         "ibus",
         "ubx",
         "dronecan",
+        "vesc",
+        "feetech",
+        "lx16a",
     ] {
         let path = format!("{}/../specs/{name}.toml", env!("CARGO_MANIFEST_DIR"));
         let text = std::fs::read_to_string(&path).expect("spec");

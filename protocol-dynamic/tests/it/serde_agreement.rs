@@ -27,6 +27,9 @@ protocol_kit::protocol!("../specs/sbus.toml", derive(serde));
 protocol_kit::protocol!("../specs/ubx.toml", derive(serde));
 protocol_kit::protocol!("../specs/msp.toml", derive(serde));
 protocol_kit::protocol!("../specs/dynamixel1.toml", derive(serde));
+protocol_kit::protocol!("../specs/vesc.toml", derive(serde));
+protocol_kit::protocol!("../specs/feetech.toml", derive(serde));
+protocol_kit::protocol!("../specs/lx16a.toml", derive(serde));
 protocol_kit::protocol!("tests/fixtures/features.toml", derive(serde));
 
 /// A generated packet of a serial frame of a format (an index into the spec's frames): its
@@ -299,24 +302,85 @@ fn compare_file(
     compared
 }
 
+/// A packet of a spec whose decoder is given the direction, decoded by `$decode` (a frame of
+/// the other direction is not passed here: the codec decodes it first).
+macro_rules! given {
+    ($m:ident, $decode:ident) => {
+        |_: usize, bytes: &[u8], json: &str| {
+            let packet = $m::Packet::$decode(bytes).expect("a packet of the direction");
+            let shown = serde_json::to_string(&packet).expect("a packet serializes");
+            let read: $m::Packet = serde_json::from_str(json)
+                .unwrap_or_else(|e| panic!("{json} reads as a packet: {e}"));
+            assert_eq!(read, packet, "{json}: read back");
+            let mut buf = vec![0u8; $m::MAX_FRAME_LEN];
+            let n = read.encode(&mut buf).expect("the packet read encodes");
+            let mut again = vec![0u8; $m::MAX_FRAME_LEN];
+            let m = packet
+                .encode(&mut again)
+                .expect("the packet decoded encodes");
+            (shown, buf[..n].to_vec(), again[..m].to_vec())
+        }
+    };
+}
 #[test]
 fn serde_json_of_generated_packets_is_the_codecs_on_every_golden_vector() {
     let mut total = 0;
     for (spec, file, serial, can) in specs() {
         total += compare_file(spec, file, serial, can, None);
     }
-    // Dynamixel 1.0: the decoder is given the direction; each reads the frames of its own.
-    for (direction, serial) in [
-        ("request", dynamixel1_request as Serial),
-        ("response", dynamixel1_response as Serial),
-    ] {
-        total += compare_file(
+    // Dynamixel 1.0, VESC, Feetech and LX-16A: the decoder is given the direction; each reads the
+    // frames of its own.
+    for (spec, file, direction, serial) in [
+        (
             "dynamixel1",
             "dynamixel_protocol1.json",
-            serial,
-            None,
-            Some(direction),
-        );
+            "request",
+            dynamixel1_request as Serial,
+        ),
+        (
+            "dynamixel1",
+            "dynamixel_protocol1.json",
+            "response",
+            dynamixel1_response as Serial,
+        ),
+        (
+            "vesc",
+            "vesc_pyvesc.json",
+            "request",
+            given!(vesc, decode_request),
+        ),
+        (
+            "vesc",
+            "vesc_pyvesc.json",
+            "response",
+            given!(vesc, decode_response),
+        ),
+        (
+            "feetech",
+            "feetech_scservo.json",
+            "request",
+            given!(feetech, decode_request),
+        ),
+        (
+            "feetech",
+            "feetech_scservo.json",
+            "response",
+            given!(feetech, decode_response),
+        ),
+        (
+            "lx16a",
+            "lx16a_pylx16a.json",
+            "request",
+            given!(lx16a, decode_request),
+        ),
+        (
+            "lx16a",
+            "lx16a_pylx16a.json",
+            "response",
+            given!(lx16a, decode_response),
+        ),
+    ] {
+        total += compare_file(spec, file, serial, None, Some(direction));
     }
     println!("{total} frames in all");
 }

@@ -27,6 +27,9 @@ protocol_kit::protocol!("../../specs/sbus.toml");
 protocol_kit::protocol!("../../specs/ubx.toml");
 protocol_kit::protocol!("../../specs/msp.toml");
 protocol_kit::protocol!("../../specs/dronecan.toml");
+protocol_kit::protocol!("../../specs/vesc.toml");
+protocol_kit::protocol!("../../specs/feetech.toml");
+protocol_kit::protocol!("../../specs/lx16a.toml");
 // The payload types beyond fixed-width primitives: 24-bit integers, kept bitfield bits,
 // bit-packed arrays, text.
 protocol_kit::protocol!("../../protocol-codegen/tests/features/int24.toml");

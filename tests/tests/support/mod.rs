@@ -40,7 +40,21 @@ macro_rules! for_each_spec {
             from_request_frame,
             decode_request
         );
+        $callback!(
+            feetech,
+            "../specs/feetech.toml",
+            "request",
+            from_request_frame,
+            decode_request
+        );
         $callback!(hflink, "../specs/hflink.toml");
+        $callback!(
+            lx16a,
+            "../specs/lx16a.toml",
+            "request",
+            from_request_frame,
+            decode_request
+        );
         $callback!(mavlink, "../specs/mavlink.toml", link);
         $callback!(msp, "../specs/msp.toml", link);
         $callback!(ibus, "../specs/ibus.toml");
@@ -50,6 +64,13 @@ macro_rules! for_each_spec {
         $callback!(sbus, "../specs/sbus.toml");
         $callback!(scout, "../specs/scout.toml");
         $callback!(ubx, "../specs/ubx.toml");
+        $callback!(
+            vesc,
+            "../specs/vesc.toml",
+            "request",
+            from_request_frame,
+            decode_request
+        );
         $callback!(mavlink_common, "../specs/mavlink-common.toml", link);
     };
 }

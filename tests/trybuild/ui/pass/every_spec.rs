@@ -15,6 +15,9 @@ protocol_kit::protocol!("specs/sbus.toml");
 protocol_kit::protocol!("specs/ubx.toml");
 protocol_kit::protocol!("specs/msp.toml");
 protocol_kit::protocol!("specs/dronecan.toml");
+protocol_kit::protocol!("specs/vesc.toml");
+protocol_kit::protocol!("specs/feetech.toml");
+protocol_kit::protocol!("specs/lx16a.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
@@ -41,4 +44,7 @@ fn main() {
     let _ = msp::v2_decoder();
     let _ = dronecan::Packet::decode_can;
     let _ = canmembers::Packet::encode_can;
+    let _ = vesc::Packet::decode_response;
+    let _ = feetech::Packet::decode_response;
+    let _ = lx16a::Packet::decode_response;
 }
