@@ -31,12 +31,14 @@ mod pairs;
 mod reply;
 mod requester;
 mod responder;
+mod verdict;
 
 pub use observer::{Observer, Paired};
 pub use pairs::{Pair, ValueAt};
 pub use reply::Reply;
 pub use requester::{Due, Outcome, Received, Requester, Resolution, SendError, Ticket};
 pub use responder::{Alarm, AnswerError, Incoming, Responder};
+pub use verdict::{Judged, Verdict};
 
 /// The answer a request expects.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -143,6 +145,9 @@ pub struct SessionRules<'a> {
     pub watchdog: Option<Watchdog>,
     /// A header value that says whether a request expects an answer.
     pub modes: Option<Modes>,
+    /// The commands whose answers tell success from refusal by a value (at most one per
+    /// command), in spec order.
+    pub verdicts: &'a [Verdict<'a>],
 }
 
 /// Where a session machine finds its [`SessionRules`]: a reference to rules built at run time
@@ -175,7 +180,7 @@ pub struct SessionRules<'a> {
 ///     packet: &RULES,
 ///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 0, backoff: 1 },
 ///     exchanges: &[], sequence: None, echo: &[], swap: None, pairs: &[], nack: None,
-///     handshake: None, watchdog: None, modes: None,
+///     handshake: None, watchdog: None, modes: None, verdicts: &[],
 /// };
 ///
 /// #[derive(Clone, Copy)]
@@ -322,6 +327,12 @@ impl SessionRules<'_> {
             *slot = p.from.read(self.packet, frame).unwrap_or(0);
         }
         ids
+    }
+
+    /// How the answer to a request of command `key` tells success from refusal, if it does.
+    #[must_use]
+    pub fn verdict(&self, key: u64) -> Option<&Verdict<'_>> {
+        self.verdicts.iter().find(|v| v.request == key)
     }
 
     /// The pairs of requests of command `key`.

@@ -81,6 +81,22 @@ pub struct Pair {
     pub names: (String, String),
 }
 
+/// The value of the answer to a command's request that says whether it succeeded (a
+/// command's `result`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Verdict {
+    /// The request's command (index into [`Protocol::commands`](super::Protocol::commands)).
+    pub command: usize,
+    /// Where the answer holds the value.
+    pub value: PairValue,
+    /// The field's name, as the spec writes it.
+    pub field: String,
+    /// The values that mean success; every other value refuses the request.
+    pub accept: Vec<u64>,
+    /// The values that mean the request is being carried out.
+    pub progress: Vec<u64>,
+}
+
 /// The conversation of the link.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Session {
@@ -109,4 +125,6 @@ pub struct Session {
     pub exchanges: Vec<Exchange>,
     /// The values answers repeat under other names, in command order, then `match` order.
     pub pairs: Vec<Pair>,
+    /// The commands whose answers tell success by a value, in command order.
+    pub verdicts: Vec<Verdict>,
 }

@@ -89,3 +89,21 @@ pub struct ModesDef {
     #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<i64>>"))]
     pub once: Option<Spanned<Vec<SInt>>>,
 }
+
+/// A command's `result = { field = "result", accept = [0], progress = [5] }`: the value of its
+/// answer that says whether the request succeeded.
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct ResultDef {
+    /// The answer's field: a header field the sender sets, or an integer field of the
+    /// answer's payload at a fixed position.
+    #[cfg_attr(feature = "schema", schemars(with = "String"))]
+    pub field: SStr,
+    /// The values that mean success; every other value refuses the request.
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<i64>"))]
+    pub accept: Spanned<Vec<SInt>>,
+    /// The values that mean the request is being carried out: it waits on, not sent again.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<i64>>"))]
+    pub progress: Option<Spanned<Vec<SInt>>>,
+}

@@ -1,5 +1,5 @@
 //! Rules of `[session]` and the per-command `answer`, `timeout_ms` and `retries` (`match` is
-//! [`super::session_match`]'s): the names
+//! [`super::session_match`]'s, `result` [`super::session_result`]'s): the names
 //! they use (a frame format, commands, header fields) exist and fit what they are used for,
 //! the numbers are in range. Lowers the table to [`ir::Session`].
 
@@ -79,6 +79,9 @@ pub(super) fn lower_session(
     let pairs = exchanges
         .as_ref()
         .and_then(|e| super::session_match::lower_pairs(ctx, f, commands, structs, e, directions));
+    let verdicts = exchanges.as_ref().and_then(|e| {
+        super::session_result::lower_verdicts(ctx, f, commands, structs, e, directions)
+    });
     Some(ir::Session {
         frame: fi,
         default,
@@ -92,6 +95,7 @@ pub(super) fn lower_session(
         modes,
         exchanges: exchanges?,
         pairs: pairs?,
+        verdicts: verdicts?,
     })
 }
 
@@ -106,6 +110,7 @@ fn check_no_command_keys(ctx: &mut Ctx<'_>) {
             c.timeout_ms.as_ref().map(Spanned::span),
             c.retries.as_ref().map(Spanned::span),
             c.match_fields.as_ref().map(Spanned::span),
+            c.result.as_ref().map(Spanned::span),
         ];
         if let Some(span) = spans.into_iter().flatten().next() {
             ctx.error(
