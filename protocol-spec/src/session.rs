@@ -7,7 +7,7 @@
 use protocol_runtime::layout::{Pos, WordField};
 use protocol_runtime::rules::PacketRules;
 use protocol_runtime::session::{
-    Answer, Exchange, Modes, Pair, SessionRules, ValueAt, Verdict, Watchdog,
+    Answer, Exchange, Modes, Pair, Periodic, SessionRules, ValueAt, Verdict, Watchdog,
 };
 
 use crate::ir::{self, AnswerKind, PacketKind, PairValue, Protocol};
@@ -44,6 +44,8 @@ pub struct SessionPlan {
     /// The commands whose answers tell success by a value (a command the format has no key
     /// for is left out).
     pub verdicts: Vec<VerdictPlan>,
+    /// The commands sent at a fixed rate (a command the format has no key for is left out).
+    pub periodic: Vec<Periodic>,
 }
 
 /// How the answer to a request of one command tells success from refusal.
@@ -194,6 +196,17 @@ pub fn lower_session(p: &Protocol) -> Option<SessionPlan> {
         }),
         pairs,
         verdicts,
+        periodic: s
+            .periodic
+            .iter()
+            .filter_map(|p| {
+                Some(Periodic {
+                    key: key(p.command)?,
+                    period: p.period_ms,
+                    sender: p.sender,
+                })
+            })
+            .collect(),
     })
 }
 
@@ -201,7 +214,7 @@ impl SessionPlan {
     /// The rules, over `packet` (the session frame's packet rules), with the exchange, echo,
     /// pair and verdict slices built from this plan.
     pub fn rules<'a>(
-        &self,
+        &'a self,
         packet: &'a PacketRules<'a>,
         exchanges: &'a [Exchange],
         echo: &'a [WordField],
@@ -221,6 +234,7 @@ impl SessionPlan {
             watchdog: self.watchdog,
             modes: self.modes.map(|(_, m)| m),
             verdicts,
+            periodic: &self.periodic,
         }
     }
 

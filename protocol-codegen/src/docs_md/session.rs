@@ -118,6 +118,20 @@ fn rules(p: &Protocol, s: &Session, f: &Frame, out: &mut String) {
             modes.join("; ")
         );
     }
+    for pd in &s.periodic {
+        let who = match pd.sender {
+            protocol_runtime::session::Sender::Requester => "the requester",
+            protocol_runtime::session::Sender::Responder => "the responder",
+            protocol_runtime::session::Sender::Both => "each side",
+        };
+        let _ = writeln!(
+            out,
+            "| periodic | `{}` every {} ms, sent by {who}. {} |",
+            p.commands[pd.command].name,
+            pd.period_ms,
+            super::cell(&pd.doc)
+        );
+    }
     if let Some(w) = &s.watchdog {
         let _ = writeln!(
             out,

@@ -63,6 +63,7 @@ struct Watched {
 ///     exchanges: &[],
 ///     sequence: None, echo: &[WordField::le(1, 1)], swap: None, pairs: &[], nack: None,
 ///     handshake: None, watchdog: None, modes: None, verdicts: &[],
+///     periodic: &[],
 /// };
 ///
 /// let mut wire = Observer::<4>::new();

@@ -140,6 +140,7 @@ struct Slot<const FRAME: usize> {
 ///     exchanges: &[],
 ///     sequence: Some(WordField::le(1, 1)), echo: &[], swap: None, pairs: &[], nack: None,
 ///     handshake: None, watchdog: None, modes: None, verdicts: &[],
+///     periodic: &[],
 /// };
 ///
 /// let mut requester = Requester::<_, 4, 4>::new(&SESSION);

@@ -63,6 +63,7 @@ const BASE: SessionRules<'static> = SessionRules {
     }),
     modes: None,
     verdicts: &[],
+    periodic: &[],
 };
 static SESSION: SessionRules<'static> = BASE;
 /// The same rules without the handshake.
@@ -295,4 +296,66 @@ fn a_progress_value_keeps_the_request_waiting_without_retries() {
         })
     );
     assert_eq!(req.on_frame(31, &result(1, 0)), Received::Unsolicited);
+}
+
+/// Command 4 every 100 ms from the requester, command 3 every 30 ms from both sides.
+static PERIODIC: SessionRules<'static> = SessionRules {
+    periodic: &[
+        Periodic {
+            key: 4,
+            period: 100,
+            sender: Sender::Requester,
+        },
+        Periodic {
+            key: 3,
+            period: 30,
+            sender: Sender::Both,
+        },
+    ],
+    ..BASE
+};
+
+/// The keys `poll` returns at each millisecond of `0..until`, with their instants.
+fn sent<const N: usize>(
+    s: &mut Scheduler<&'static SessionRules<'static>, N>,
+    until: u64,
+) -> std::vec::Vec<(u64, u64)> {
+    let mut out = std::vec::Vec::new();
+    for now in 0..until {
+        while let Some(k) = s.poll(now) {
+            out.push((now, k));
+        }
+    }
+    out
+}
+
+#[test]
+fn each_periodic_command_is_due_at_its_rate_on_its_side() {
+    let mut host = Scheduler::<_, 2>::new(&PERIODIC, Sender::Requester, 0);
+    let got = sent(&mut host, 201);
+    let at =
+        |key| -> std::vec::Vec<u64> { got.iter().filter(|g| g.1 == key).map(|g| g.0).collect() };
+    assert_eq!(at(4), [0, 100, 200]);
+    assert_eq!(at(3), [0, 30, 60, 90, 120, 150, 180]);
+    let mut device = Scheduler::<_, 2>::new(&PERIODIC, Sender::Responder, 0);
+    assert!(sent(&mut device, 201).iter().all(|g| g.1 == 3));
+    // A table smaller than the spec's list schedules its first commands alone.
+    let mut one = Scheduler::<_, 1>::new(&PERIODIC, Sender::Responder, 0);
+    assert_eq!((one.poll(0), one.next_deadline()), (None, None));
+}
+
+#[test]
+fn a_late_poll_keeps_the_rate_and_a_long_gap_sends_once() {
+    let mut s = Scheduler::<_, 2>::new(&PERIODIC, Sender::Responder, 10);
+    assert_eq!(s.poll(9), None);
+    assert_eq!(s.poll(10), Some(3));
+    // 5 ms late: the next is still due 30 ms after the last due instant.
+    assert_eq!(s.poll(45), Some(3));
+    assert_eq!(s.next_deadline(), Some(70));
+    // Asleep for 200 ms: one frame, then the rate resumes from now.
+    assert_eq!((s.poll(270), s.poll(270)), (Some(3), None));
+    assert_eq!(s.next_deadline(), Some(300));
+    // Sent by the application on its own: the next one a period later.
+    s.sent(280, 3);
+    assert_eq!(s.next_deadline(), Some(310));
 }

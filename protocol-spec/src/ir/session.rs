@@ -42,6 +42,19 @@ pub struct Watchdog {
     pub doc: String,
 }
 
+/// A command sent at a fixed rate.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Periodic {
+    /// The command (index into [`Protocol::commands`](super::Protocol::commands)).
+    pub command: usize,
+    /// Milliseconds between two of its frames.
+    pub period_ms: u32,
+    /// Which side sends it.
+    pub sender: protocol_runtime::session::Sender,
+    /// Documentation.
+    pub doc: String,
+}
+
 /// A header value whose value says whether a request expects an answer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Modes {
@@ -127,4 +140,6 @@ pub struct Session {
     pub pairs: Vec<Pair>,
     /// The commands whose answers tell success by a value, in command order.
     pub verdicts: Vec<Verdict>,
+    /// The commands sent at a fixed rate, in spec order.
+    pub periodic: Vec<Periodic>,
 }

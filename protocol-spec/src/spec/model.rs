@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use toml::Spanned;
 
 pub use super::registers::{RegisterDef, RegistersDef, SelectDef};
-pub use super::session::{ModesDef, ResultDef, SessionDef, WatchdogDef};
+pub use super::session::{ModesDef, PeriodicDef, ResultDef, SessionDef, WatchdogDef};
 
 /// A spanned string.
 pub type SStr = Spanned<String>;

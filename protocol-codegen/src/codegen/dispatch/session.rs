@@ -11,7 +11,7 @@ use super::rules::{field, rules_static};
 use crate::codegen::frame::word_field_lit;
 use crate::ir::{Frame, Protocol};
 use crate::session::{PairPlan, PlanValue, SessionPlan, VerdictPlan, lower_session};
-use protocol_runtime::session::{Answer, Exchange};
+use protocol_runtime::session::{Answer, Exchange, Sender};
 
 fn opt_key(rt: &TokenStream, k: Option<u64>) -> TokenStream {
     match k {
@@ -118,6 +118,15 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
     };
     let pairs = plan.pairs.iter().map(|p| pair(f, rt, p));
     let verdicts = plan.verdicts.iter().map(|v| verdict(f, rt, v));
+    let periodic = plan.periodic.iter().map(|p| {
+        let (key, period) = (key_lit(p.key), p.period);
+        let sender = match p.sender {
+            Sender::Requester => quote!(#s::Sender::Requester),
+            Sender::Responder => quote!(#s::Sender::Responder),
+            Sender::Both => quote!(#s::Sender::Both),
+        };
+        quote!(#s::Periodic { key: #key, period: #period, sender: #sender })
+    });
     let nack = opt_key(rt, plan.nack);
     let handshake = opt_key(rt, plan.handshake);
     let watchdog = match plan.watchdog {
@@ -142,6 +151,7 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
         f.name
     );
     let machines = emit_machines(f, &s);
+    let scheduler = emit_scheduler(&plan, &s);
     quote! {
         #[doc = #doc]
         pub static #name: #s::SessionRules<'static> = #s::SessionRules {
@@ -157,8 +167,29 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
             watchdog: #watchdog,
             modes: #modes,
             verdicts: &[#(#verdicts),*],
+            periodic: &[#(#periodic),*],
         };
         #machines
+        #scheduler
+    }
+}
+
+/// `Scheduler`, the periodic commands' scheduler over [`SESSION`] with a slot per periodic
+/// command, when the spec has any.
+fn emit_scheduler(plan: &SessionPlan, s: &TokenStream) -> TokenStream {
+    let n = plan.periodic.len();
+    if n == 0 {
+        return quote!();
+    }
+    let doc = format!(
+        " The scheduler of the {n} periodic command{} of [`SESSION`]: \
+         `Scheduler::new(Session, session::Sender::Requester, now)`, then `poll(now)` says \
+         which is due.",
+        if n == 1 { "" } else { "s" }
+    );
+    quote! {
+        #[doc = #doc]
+        pub type Scheduler = #s::Scheduler<Session, #n>;
     }
 }
 
