@@ -41,6 +41,7 @@ fn show(what: &str, reply: &Reply) {
             Err(e) => println!("{what}: an answer that does not decode ({e})"),
         },
         Reply::Refused(_) => println!("{what}: refused (NACK)"),
+        Reply::Rejected { value, .. } => println!("{what}: refused with result {value}"),
         Reply::TimedOut => println!("{what}: no answer after the retries"),
         Reply::Sent => println!("{what}: sent"),
     }

@@ -3,8 +3,9 @@
 //! what each request is (new, a duplicate, before the handshake, stale); this module builds the
 //! frames it answers with through the run-time codec (the reply, the acknowledgement, the
 //! answering command, the NACK; payload values from the caller's table or the payload's
-//! all-zero value), injects the faults it is told to (frames dropped each way), and logs every
-//! exchange.
+//! all-zero value), sends the commands the spec's `periodic` gives the responder at their
+//! rates (the runtime's [`Scheduler`] says when), injects the faults it is told to (frames
+//! dropped each way), and logs every exchange.
 //!
 //! Matching, numbering and duplicate suppression are the responder's; reading frames is the
 //! engine's ([`Codec::stream`]).
@@ -15,13 +16,17 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use protocol_dynamic::{Codec, Decoded, Fields, Item, Value};
-use protocol_runtime::session::{Answer, Heard, Incoming, Responder, SessionRules};
+use protocol_runtime::session::{
+    Answer, Heard, Incoming, Responder, Scheduler, Sender, SessionRules,
+};
 use protocol_spec::session::command_key;
 
 /// Requests the twin remembers with their answers (give a host's requester at most as many
 /// slots), and the longest answer it remembers, in bytes.
 const SLOTS: usize = 32;
 const FRAME: usize = 2048;
+/// The most periodic commands a spec lists (validation's bound).
+const PERIODIC: usize = 16;
 
 /// Payload values per command name (a struct's fields; those left out are zero).
 pub type Values = HashMap<String, Value>;
@@ -52,6 +57,8 @@ pub struct Tally {
     pub dropped: u64,
     /// Requests the twin could not answer (no payload values, an encode error).
     pub failed: u64,
+    /// Periodic commands sent.
+    pub periodic: u64,
 }
 
 /// Reads `path` as a table of payload values per command: TOML for a `.toml` file, else JSON.
@@ -102,6 +109,8 @@ pub fn serve<P: Read + Write>(
                 format,
                 options,
                 responder: Box::new(Responder::new(rules)),
+                scheduler: Scheduler::new(rules, Sender::Responder, 0),
+                last_header: None,
                 rng: options.seed ^ 0x9E37_79B9_7F4A_7C15,
                 start: Instant::now(),
                 tally: Tally::default(),
@@ -117,6 +126,10 @@ struct Twin<'c, 'r> {
     format: usize,
     options: &'c Options,
     responder: Box<Responder<&'r SessionRules<'r>, SLOTS, FRAME>>,
+    scheduler: Scheduler<&'r SessionRules<'r>, PERIODIC>,
+    /// The header of the last request's answer (its addresses swapped): the header of the
+    /// periodic frames, so that they reach the host that spoke last.
+    last_header: Option<Fields>,
     rng: u64,
     start: Instant,
     tally: Tally,
@@ -156,12 +169,78 @@ impl Twin<'_, '_> {
             if self.responder.poll(self.now()).is_some() {
                 writeln!(log, "{:>7} ms  watchdog expired", self.now())?;
             }
+            while let Some(key) = self.scheduler.poll(self.now()) {
+                self.periodic(key, port, log)?;
+            }
         }
         Ok(())
     }
 
     fn now(&self) -> u64 {
         u64::try_from(self.start.elapsed().as_millis()).unwrap_or(u64::MAX)
+    }
+
+    /// Sends a frame of the periodic command `key`: the given payload values over zeros, the
+    /// header of the last answer (zeros before any request).
+    fn periodic<P: Write>(
+        &mut self,
+        key: u64,
+        port: &mut P,
+        log: &mut dyn Write,
+    ) -> io::Result<()> {
+        let now = self.now();
+        let built = self.build_periodic(key);
+        let (name, frame) = match built {
+            Ok(b) => b,
+            Err(e) => {
+                self.tally.failed += 1;
+                return writeln!(log, "{now:>7} ms  periodic frame not sent: {e}");
+            }
+        };
+        if self.draw_drop() {
+            return writeln!(log, "{now:>7} ms  {name}  periodic, dropped (fault)");
+        }
+        port.write_all(&frame)?;
+        port.flush()?;
+        self.tally.periodic += 1;
+        writeln!(log, "{now:>7} ms  {name}  periodic")
+    }
+
+    /// The frame of the periodic command `key`: its name and bytes.
+    fn build_periodic(&self, key: u64) -> Result<(String, Vec<u8>), String> {
+        let p = self.codec.protocol();
+        let ci = self
+            .command_of(key)
+            .ok_or("no command of the periodic key")?;
+        let f = &p.frames[self.format];
+        let header = self.last_header.clone().unwrap_or_else(|| {
+            let mut zeros = Fields::new();
+            for v in f
+                .values
+                .iter()
+                .filter(|v| matches!(v.role, protocol_spec::ir::Role::User { .. }))
+            {
+                zeros.insert(v.name.clone(), Value::from(0u64));
+            }
+            zeros
+        });
+        // The responder's direction: the second, with directions.
+        let direction = (!p.directions.is_empty()).then_some(1);
+        let mut object = Fields::new();
+        object.insert("format", Value::from(f.name.clone()));
+        object.insert("header", Value::Struct(header));
+        if let Some(dir) = direction.filter(|_| p.directions_given()) {
+            object.insert("direction", Value::from(p.directions[dir].name.clone()));
+        }
+        let name = p.commands[ci].name.clone();
+        object.insert("command", Value::from(name.clone()));
+        object.insert("payload", self.payload(ci, direction)?);
+        let frame = self
+            .codec
+            .encode(&Value::Struct(object))
+            .map_err(|e| format!("{name} not encoded: {e}"))?
+            .bytes;
+        Ok((name, frame))
     }
 
     /// True with the probability of a drop.
@@ -275,7 +354,9 @@ impl Twin<'_, '_> {
         };
         let mut object = Fields::new();
         object.insert("format", Value::from(p.frames[self.format].name.clone()));
-        object.insert("header", Value::Struct(swapped(p, d)));
+        let header = swapped(p, d);
+        self.last_header = Some(header.clone());
+        object.insert("header", Value::Struct(header));
         let direction = answer_direction(p, d.direction);
         if let Some(dir) = direction.filter(|_| p.directions_given()) {
             object.insert("direction", Value::from(p.directions[dir].name.clone()));

@@ -34,8 +34,9 @@ impl Codec<'_> {
         let plan = lower_session(self.protocol())?;
         let echo = plan.echo_fields();
         let pairs = plan.runtime_pairs();
+        let verdicts = plan.runtime_verdicts();
         self.with_rules(plan.frame, |packet| {
-            f(&plan.rules(packet, &plan.exchanges, &echo, &pairs))
+            f(&plan.rules(packet, &plan.exchanges, &echo, &pairs, &verdicts))
         })
     }
 }

@@ -6,7 +6,9 @@
 
 use protocol_runtime::layout::{Pos, WordField};
 use protocol_runtime::rules::PacketRules;
-use protocol_runtime::session::{Answer, Exchange, Modes, Pair, SessionRules, ValueAt, Watchdog};
+use protocol_runtime::session::{
+    Answer, Exchange, Modes, Pair, Periodic, SessionRules, ValueAt, Verdict, Watchdog,
+};
 
 use crate::ir::{self, AnswerKind, PacketKind, PairValue, Protocol};
 use crate::layout::word_field;
@@ -39,6 +41,24 @@ pub struct SessionPlan {
     /// The values answers repeat under other names (a command the format has no key for is
     /// left out).
     pub pairs: Vec<PairPlan>,
+    /// The commands whose answers tell success by a value (a command the format has no key
+    /// for is left out).
+    pub verdicts: Vec<VerdictPlan>,
+    /// The commands sent at a fixed rate (a command the format has no key for is left out).
+    pub periodic: Vec<Periodic>,
+}
+
+/// How the answer to a request of one command tells success from refusal.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VerdictPlan {
+    /// The request's command key.
+    pub request: u64,
+    /// Where the answer holds the value.
+    pub at: PlanValue,
+    /// The values that mean success.
+    pub accept: Vec<u64>,
+    /// The values that mean the request is in progress.
+    pub progress: Vec<u64>,
 }
 
 /// Where a value of a [`PairPlan`] sits: a header value (printed by its `wire` const), or a
@@ -130,6 +150,18 @@ pub fn lower_session(p: &Protocol) -> Option<SessionPlan> {
             })
         })
         .collect();
+    let verdicts = s
+        .verdicts
+        .iter()
+        .filter_map(|v| {
+            Some(VerdictPlan {
+                request: key(v.command)?,
+                at: value(v.value),
+                accept: v.accept.clone(),
+                progress: v.progress.clone(),
+            })
+        })
+        .collect();
     let default = lower(&s.default, 0)?;
     let exchanges = s
         .exchanges
@@ -163,18 +195,31 @@ pub fn lower_session(p: &Protocol) -> Option<SessionPlan> {
             )
         }),
         pairs,
+        verdicts,
+        periodic: s
+            .periodic
+            .iter()
+            .filter_map(|p| {
+                Some(Periodic {
+                    key: key(p.command)?,
+                    period: p.period_ms,
+                    sender: p.sender,
+                })
+            })
+            .collect(),
     })
 }
 
 impl SessionPlan {
-    /// The rules, over `packet` (the session frame's packet rules), with the exchange, echo
-    /// and pair slices built from this plan.
+    /// The rules, over `packet` (the session frame's packet rules), with the exchange, echo,
+    /// pair and verdict slices built from this plan.
     pub fn rules<'a>(
-        &self,
+        &'a self,
         packet: &'a PacketRules<'a>,
         exchanges: &'a [Exchange],
         echo: &'a [WordField],
         pairs: &'a [Pair],
+        verdicts: &'a [Verdict<'a>],
     ) -> SessionRules<'a> {
         SessionRules {
             packet,
@@ -188,7 +233,22 @@ impl SessionPlan {
             handshake: self.handshake,
             watchdog: self.watchdog,
             modes: self.modes.map(|(_, m)| m),
+            verdicts,
+            periodic: &self.periodic,
         }
+    }
+
+    /// The verdicts, as the runtime reads them (borrowing this plan's values).
+    pub fn runtime_verdicts(&self) -> Vec<Verdict<'_>> {
+        self.verdicts
+            .iter()
+            .map(|v| Verdict {
+                request: v.request,
+                at: v.at.at(),
+                accept: &v.accept,
+                progress: &v.progress,
+            })
+            .collect()
     }
 
     /// The echo fields' word fields.

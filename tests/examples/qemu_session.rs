@@ -302,7 +302,8 @@ impl Host {
         assert!(first.is_none(), "request {ticket:?} resolved twice");
         match resolution {
             Resolution::Answered => t.answered += 1,
-            Resolution::Refused => t.refused += 1,
+            // RoboRTS's acknowledgements carry no result value: a refusal is a refusal.
+            Resolution::Refused | Resolution::Rejected(_) => t.refused += 1,
             Resolution::TimedOut => t.timed_out += 1,
         }
     }
@@ -356,6 +357,7 @@ impl Host {
             match self.requester.on_frame(now, &frame) {
                 Received::Outcome(o) => self.record(t, o.ticket, o.resolution),
                 Received::Unsolicited => t.late += 1,
+                Received::Progress { .. } => panic!("RoboRTS's answers say no progress"),
                 Received::Unreadable(e) => panic!("a checked frame is unreadable: {e}"),
             }
         }

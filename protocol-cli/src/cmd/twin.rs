@@ -132,7 +132,7 @@ fn on_pty(_: impl FnOnce(&mut serialport::TTYPort) -> io::Result<Tally>) -> Resu
 
 fn summary(t: &Tally) {
     eprintln!(
-        "twin: {} delivered, {} answered, {} duplicates, {} refused before the handshake, {} dropped, {} not answered",
-        t.delivered, t.answered, t.duplicates, t.refused, t.dropped, t.failed
+        "twin: {} delivered, {} answered, {} duplicates, {} refused before the handshake, {} dropped, {} not answered, {} periodic",
+        t.delivered, t.answered, t.duplicates, t.refused, t.dropped, t.failed, t.periodic
     );
 }

@@ -202,7 +202,7 @@ async fn hflink_handshake_then_answers_and_a_nack_before_it() {
     assert_eq!(
         tally(&log),
         format!(
-            "twin: {n} delivered, {n} answered, 0 duplicates, 1 refused before the handshake, 0 dropped, 0 not answered"
+            "twin: {n} delivered, {n} answered, 0 duplicates, 1 refused before the handshake, 0 dropped, 0 not answered, 0 periodic"
         ),
         "{log}"
     );
@@ -286,7 +286,7 @@ async fn roborts_acknowledges_by_sequence_number() {
     assert_eq!(
         tally(&log),
         format!(
-            "twin: 8 delivered, 7 answered, {retries} duplicates, 0 refused before the handshake, 0 dropped, 0 not answered"
+            "twin: 8 delivered, 7 answered, {retries} duplicates, 0 refused before the handshake, 0 dropped, 0 not answered, 0 periodic"
         ),
         "{log}"
     );
@@ -383,8 +383,39 @@ fn scout_watchdog_lapse_is_logged_once_per_lapse() {
             motion_line,
             "watchdog expired",
             motion_line,
-            "twin: 2 delivered, 0 answered, 0 duplicates, 0 refused before the handshake, 0 dropped, 0 not answered",
+            "twin: 2 delivered, 0 answered, 0 duplicates, 0 refused before the handshake, 0 dropped, 0 not answered, 0 periodic",
         ],
         "{log}"
     );
+}
+
+protocol_kit::protocol!("../specs/mavlink.toml");
+
+/// MAVLink's twin (an autopilot) sends its HEARTBEAT once a second, as the spec's `periodic`
+/// says, with no request to prompt it.
+#[tokio::test]
+async fn mavlink_twin_sends_a_heartbeat_a_second() {
+    let twin = Twin::start(&["specs/mavlink.toml"]);
+    let (_client, mut unsolicited) =
+        Client::spawn::<_, 4, { mavlink::MAX_FRAME_LEN }>(open(&twin.path), mavlink::Session);
+    let mut at = Vec::new();
+    for _ in 0..3 {
+        let frame = next(&mut unsolicited).await;
+        let packet = mavlink::Packet::from_frame(&frame).expect("a frame of the spec");
+        assert!(
+            matches!(packet.message, mavlink::Message::Heartbeat(_)),
+            "{packet:?}"
+        );
+        at.push(std::time::Instant::now());
+    }
+    for w in at.windows(2) {
+        let gap = w[1].duration_since(w[0]);
+        assert!(
+            gap >= Duration::from_millis(800) && gap <= Duration::from_millis(1500),
+            "{gap:?}"
+        );
+    }
+    let log = twin.stop();
+    assert!(tally(&log).ends_with(" periodic"), "{log}");
+    assert!(log.contains("HEARTBEAT  periodic"), "{log}");
 }

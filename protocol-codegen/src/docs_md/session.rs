@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use crate::ir::{AnswerKind, Exchange, Frame, Protocol, Session};
+use crate::ir::{AnswerKind, Exchange, Frame, Protocol, Session, Verdict};
 
 /// What an answer is, in words.
 fn answer_text(p: &Protocol, a: AnswerKind) -> String {
@@ -15,6 +15,25 @@ fn answer_text(p: &Protocol, a: AnswerKind) -> String {
         AnswerKind::Command(c) => format!("`{}`", p.commands[c].name),
         AnswerKind::Message => "the response's struct (no command)".to_string(),
     }
+}
+
+/// Values, in words: `0`, `0 or 5`.
+fn listed(values: &[u64]) -> String {
+    let v: Vec<String> = values.iter().map(u64::to_string).collect();
+    v.join(" or ")
+}
+
+/// What a verdict says, in words.
+fn verdict_text(v: &Verdict) -> String {
+    let mut text = format!("`{}` {}: success", v.field, listed(&v.accept));
+    if !v.progress.is_empty() {
+        text.push_str(&format!(
+            "; {}: in progress (waits again, not sent again)",
+            listed(&v.progress)
+        ));
+    }
+    text.push_str("; any other value: refused, with the value");
+    text
 }
 
 /// The waits of an exchange, in words.
@@ -99,6 +118,20 @@ fn rules(p: &Protocol, s: &Session, f: &Frame, out: &mut String) {
             modes.join("; ")
         );
     }
+    for pd in &s.periodic {
+        let who = match pd.sender {
+            protocol_runtime::session::Sender::Requester => "the requester",
+            protocol_runtime::session::Sender::Responder => "the responder",
+            protocol_runtime::session::Sender::Both => "each side",
+        };
+        let _ = writeln!(
+            out,
+            "| periodic | `{}` every {} ms, sent by {who}. {} |",
+            p.commands[pd.command].name,
+            pd.period_ms,
+            super::cell(&pd.doc)
+        );
+    }
     if let Some(w) = &s.watchdog {
         let _ = writeln!(
             out,
@@ -145,12 +178,16 @@ fn per_command(p: &Protocol, s: &Session, f: &Frame, out: &mut String) {
         } else {
             repeats.join(", ")
         };
+        let mut expects = answer_text(p, e.answer);
+        if let Some(v) = s.verdicts.iter().find(|v| v.command == e.command) {
+            expects.push_str(&format!(" ({})", verdict_text(v)));
+        }
         let _ = writeln!(
             out,
             "| `{}` | `{}` | {} | {} | {} |",
             c.name,
             c.name.to_ascii_lowercase(),
-            answer_text(p, e.answer),
+            expects,
             waits(e),
             repeats
         );
@@ -181,11 +218,13 @@ fn diagram(p: &Protocol, s: &Session, f: &Frame, e: &Exchange, out: &mut String)
         );
     }
     let _ = writeln!(out, "    R->>S: request{seq}");
-    let _ = writeln!(
-        out,
-        "    S-->>R: {}{seq}",
-        answer_text(p, e.answer).replace('`', "")
-    );
+    let answer = answer_text(p, e.answer).replace('`', "");
+    match s.verdicts.iter().find(|v| v.command == e.command) {
+        Some(v) => verdict_lines(v, &answer, &seq, out),
+        None => {
+            let _ = writeln!(out, "    S-->>R: {answer}{seq}");
+        }
+    }
     let note = if e.retries == 0 {
         format!("no answer in {}: timed out", waits(e))
     } else {
@@ -196,6 +235,25 @@ fn diagram(p: &Protocol, s: &Session, f: &Frame, e: &Exchange, out: &mut String)
     };
     let _ = writeln!(out, "    Note over R: {note}");
     let _ = writeln!(out, "```\n");
+}
+
+/// The answers of an exchange whose answer says success by a value: progress, then the end.
+fn verdict_lines(v: &Verdict, answer: &str, seq: &str, out: &mut String) {
+    if let Some(p) = v.progress.first() {
+        let _ = writeln!(out, "    S-->>R: {answer}{seq}, {} = {p}", v.field);
+        let _ = writeln!(
+            out,
+            "    Note over R: in progress: waits again, not sent again"
+        );
+    }
+    let ok = v.accept.first().copied().unwrap_or(0);
+    let _ = writeln!(out, "    S-->>R: {answer}{seq}, {} = {ok}", v.field);
+    let _ = writeln!(
+        out,
+        "    Note over R: {} {}: answered; any other value: refused, with the value",
+        v.field,
+        listed(&v.accept)
+    );
 }
 
 /// The `## Conversation` section, when the spec has a session.

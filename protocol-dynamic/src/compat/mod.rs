@@ -16,6 +16,7 @@
 //! user, and with it the compiler's list of the commands a firmware forgot to handle.)
 
 mod payload;
+mod registers;
 mod words;
 
 use std::fmt;
@@ -133,6 +134,7 @@ pub fn diff(old: &Protocol, new: &Protocol) -> Vec<Change> {
     diff_frames(old, new, &mut out);
     diff_directions(old, new, &mut out);
     diff_commands(old, new, &mut out);
+    registers::diff_registers(old, new, &mut out);
     out.sort_by_key(|c| c.class);
     out
 }

@@ -11,6 +11,7 @@ mod support;
 
 mod codec_memory;
 mod compat;
+mod compat_registers;
 mod conversation;
 mod hex;
 mod interp_differential;

@@ -31,6 +31,7 @@
 //!         other => println!("another answer: {other:?}"),
 //!     },
 //!     Reply::Refused(_) => println!("not handshaken"),
+//!     Reply::Rejected { value, .. } => println!("refused with result {value}"),
 //!     Reply::TimedOut => println!("no answer after the retries"),
 //!     Reply::Sent => unreachable!("a READ expects its reply"),
 //! }
@@ -65,6 +66,14 @@ pub enum Reply {
     Answered(Vec<u8>),
     /// The spec's NACK command answered it: the NACK's frame.
     Refused(Vec<u8>),
+    /// Its answer arrived with a result value that is not a success (the command's
+    /// `result`): the value and the answer's frame.
+    Rejected {
+        /// The answer's result value.
+        value: u64,
+        /// The answer's frame.
+        frame: Vec<u8>,
+    },
     /// No answer came within its timeout and retries.
     TimedOut,
     /// The request expects no answer: it was sent once.
@@ -376,10 +385,13 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Task<S, SLOTS, FRAME
                     let reply = match outcome.resolution {
                         Resolution::Answered => Reply::Answered(frame),
                         Resolution::Refused => Reply::Refused(frame),
+                        Resolution::Rejected(value) => Reply::Rejected { value, frame },
                         Resolution::TimedOut => Reply::TimedOut,
                     };
                     self.resolve(outcome.ticket, reply);
                 }
+                // The request waits on for the answer that ends it.
+                Received::Progress { .. } => {}
                 Received::Unsolicited | Received::Unreadable(_) => {
                     let _ = self.unsolicited.send(frame);
                 }

@@ -42,6 +42,14 @@ pub enum Reply {
         /// Bytes of the NACK's frame.
         len: usize,
     },
+    /// Its answer arrived with a result value that is not a success (the command's
+    /// `result`): its frame is the first `len` bytes of the caller's buffer.
+    Rejected {
+        /// The answer's result value.
+        value: u64,
+        /// Bytes of the answer's frame.
+        len: usize,
+    },
     /// No answer came within its timeout and retries.
     TimedOut,
     /// The request expects no answer: it was sent once.
@@ -120,7 +128,8 @@ impl<
 
     /// Sends the request `frame` (encoded; numbered and sealed here) and waits for its one
     /// [`Reply`]; an answer or a NACK is copied into `answer`. Every other frame read
-    /// meanwhile goes to `other`.
+    /// meanwhile goes to `other` (an answer that says the request is in progress too: the
+    /// request waits on).
     ///
     /// # Errors
     /// [`LinkError`]; a read or write error leaves the request open in the requester, to
@@ -185,6 +194,7 @@ impl<
             return Ok(Some(match outcome.resolution {
                 Resolution::Answered => Reply::Answered { len },
                 Resolution::Refused => Reply::Refused { len },
+                Resolution::Rejected(value) => Reply::Rejected { value, len },
                 Resolution::TimedOut => Reply::TimedOut,
             }));
         }

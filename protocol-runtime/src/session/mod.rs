@@ -3,7 +3,7 @@
 //! command, or none), how an answer is matched to its request (the command, a sequence number
 //! and further header values it repeats, the addresses it swaps), timeouts, retries and their
 //! backoff, a handshake that must precede other requests, a command that must keep arriving
-//! (a watchdog), and duplicate suppression by sequence number.
+//! (a watchdog), commands sent at a fixed rate, and duplicate suppression by sequence number.
 //!
 //! As [`PacketRules`] is for packets, a [`SessionRules`] is one value that generated code holds
 //! as a `static` (`SESSION`, handed out as the zero-sized type `Session`) and the run-time
@@ -31,12 +31,16 @@ mod pairs;
 mod reply;
 mod requester;
 mod responder;
+mod scheduler;
+mod verdict;
 
 pub use observer::{Observer, Paired};
 pub use pairs::{Pair, ValueAt};
 pub use reply::Reply;
 pub use requester::{Due, Outcome, Received, Requester, Resolution, SendError, Ticket};
 pub use responder::{Alarm, AnswerError, Incoming, Responder};
+pub use scheduler::{Periodic, Scheduler, Sender};
+pub use verdict::{Judged, Verdict};
 
 /// The answer a request expects.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -143,6 +147,11 @@ pub struct SessionRules<'a> {
     pub watchdog: Option<Watchdog>,
     /// A header value that says whether a request expects an answer.
     pub modes: Option<Modes>,
+    /// The commands whose answers tell success from refusal by a value (at most one per
+    /// command), in spec order.
+    pub verdicts: &'a [Verdict<'a>],
+    /// The commands sent at a fixed rate, in spec order ([`Scheduler`]).
+    pub periodic: &'a [Periodic],
 }
 
 /// Where a session machine finds its [`SessionRules`]: a reference to rules built at run time
@@ -175,7 +184,8 @@ pub struct SessionRules<'a> {
 ///     packet: &RULES,
 ///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 0, backoff: 1 },
 ///     exchanges: &[], sequence: None, echo: &[], swap: None, pairs: &[], nack: None,
-///     handshake: None, watchdog: None, modes: None,
+///     handshake: None, watchdog: None, modes: None, verdicts: &[],
+///     periodic: &[],
 /// };
 ///
 /// #[derive(Clone, Copy)]
@@ -322,6 +332,12 @@ impl SessionRules<'_> {
             *slot = p.from.read(self.packet, frame).unwrap_or(0);
         }
         ids
+    }
+
+    /// How the answer to a request of command `key` tells success from refusal, if it does.
+    #[must_use]
+    pub fn verdict(&self, key: u64) -> Option<&Verdict<'_>> {
+        self.verdicts.iter().find(|v| v.request == key)
     }
 
     /// The pairs of requests of command `key`.

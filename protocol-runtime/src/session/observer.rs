@@ -62,7 +62,8 @@ struct Watched {
 ///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 0, backoff: 1 },
 ///     exchanges: &[],
 ///     sequence: None, echo: &[WordField::le(1, 1)], swap: None, pairs: &[], nack: None,
-///     handshake: None, watchdog: None, modes: None,
+///     handshake: None, watchdog: None, modes: None, verdicts: &[],
+///     periodic: &[],
 /// };
 ///
 /// let mut wire = Observer::<4>::new();

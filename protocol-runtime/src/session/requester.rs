@@ -1,8 +1,9 @@
 //! The requester: the side that sends requests and waits for their answers. Every request
 //! that expects an answer holds a slot of a fixed table until it resolves to exactly one
-//! [`Resolution`]: its answer, a refusal (the spec's NACK) or a timeout after its retries.
+//! [`Resolution`]: its answer, a refusal (the spec's NACK, or an answer whose result value is
+//! not a success) or a timeout after its retries.
 
-use super::{Answer, Heard, Ids, SessionRef, SessionRules};
+use super::{Answer, Heard, Ids, Judged, SessionRef, SessionRules};
 use crate::error::{DecodeError, EncodeError, Place};
 
 /// A request that expects an answer, as [`Requester::send`] numbers it.
@@ -16,6 +17,9 @@ pub enum Resolution {
     Answered,
     /// The spec's NACK command answered it.
     Refused,
+    /// Its answer arrived, and the answer's result value (the command's `result`) is not one
+    /// that means success: a NACK that carries the value.
+    Rejected(u64),
     /// No answer came within its timeout and retries.
     TimedOut,
 }
@@ -57,6 +61,15 @@ pub enum SendError {
 pub enum Received {
     /// It resolves an open request (answer or refusal): the request's one outcome.
     Outcome(Outcome),
+    /// It answers an open request with a result value that means the request is being
+    /// carried out: the request stays open, is not sent again, and waits its current wait
+    /// anew for the answer that ends it.
+    Progress {
+        /// The request.
+        ticket: Ticket,
+        /// The answer's result value.
+        value: u64,
+    },
     /// It answers no open request: an unsolicited message (or an answer that came after its
     /// request resolved), for the application to handle as it does any message.
     Unsolicited,
@@ -126,7 +139,8 @@ struct Slot<const FRAME: usize> {
 ///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 1, backoff: 2 },
 ///     exchanges: &[],
 ///     sequence: Some(WordField::le(1, 1)), echo: &[], swap: None, pairs: &[], nack: None,
-///     handshake: None, watchdog: None, modes: None,
+///     handshake: None, watchdog: None, modes: None, verdicts: &[],
+///     periodic: &[],
 /// };
 ///
 /// let mut requester = Requester::<_, 4, 4>::new(&SESSION);
@@ -292,47 +306,71 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
     }
 
     /// A checked frame arrived at `now`: the outcome of the open request it answers or refuses
-    /// (the oldest, should several match), or an unsolicited message.
+    /// (the oldest, should several match), a progress answer, or an unsolicited message.
     pub fn on_frame(&mut self, now: u64, frame: &[u8]) -> Received {
-        // An answer resolves its request whenever it arrives before the timeout `poll` reports:
-        // the instant is not read, and is taken so that every event's call has the same shape.
-        let _ = now;
         let owner = self.rules;
         let rules = owner.session();
         let heard = match rules.heard(frame) {
             Ok(h) => h,
             Err(e) => return Received::Unreadable(e),
         };
-        let answers = |o: &Open| SessionRules::is_answer(o.answer, o.ids.key, heard);
+        let Some((i, judged, ticket)) = self.matching(heard, frame) else {
+            return Received::Unsolicited;
+        };
+        let Some(slot) = self.slots.get_mut(i) else {
+            return Received::Unsolicited;
+        };
+        let resolution = match judged {
+            Some(Judged::Progress(value)) => {
+                if let Some(o) = slot.open.as_mut() {
+                    o.retries_left = 0;
+                    o.deadline = now.saturating_add(o.wait);
+                }
+                return Received::Progress { ticket, value };
+            }
+            Some(Judged::Rejected(value)) => Resolution::Rejected(value),
+            Some(Judged::Accepted) => Resolution::Answered,
+            None => Resolution::Refused,
+        };
+        if let Some(o) = slot.open.take()
+            && Some(o.ids.key) == rules.handshake
+            && resolution == Resolution::Answered
+        {
+            self.handshaken = true;
+        }
+        Received::Outcome(Outcome { ticket, resolution })
+    }
+
+    /// The open request `frame` answers or refuses (the oldest, should several match): its
+    /// slot, what the answer says (`Some`: an answer, judged by the command's result value
+    /// when it has one; `None`: the NACK) and its ticket.
+    fn matching(&self, heard: Heard, frame: &[u8]) -> Option<(usize, Option<Judged>, Ticket)> {
+        let rules = self.rules.session();
         let refuses = matches!(heard, Heard::Command(k) if Some(k) == rules.nack);
-        let mut found: Option<(usize, Resolution, Ticket)> = None;
+        let mut found: Option<(usize, Option<Judged>, Ticket)> = None;
         for (i, s) in self.slots.iter().enumerate() {
             let Some(o) = s.open.filter(|o| rules.repeats(&o.ids, frame)) else {
                 continue;
             };
-            let resolution = if answers(&o) {
-                Resolution::Answered
+            let judged = if SessionRules::is_answer(o.answer, o.ids.key, heard) {
+                match rules.verdict(o.ids.key) {
+                    // An answer without the value is not of the kind the request expects.
+                    Some(v) => match v.judge(rules.packet, frame) {
+                        Some(j) => Some(j),
+                        None => continue,
+                    },
+                    None => Some(Judged::Accepted),
+                }
             } else if refuses {
-                Resolution::Refused
+                None
             } else {
                 continue;
             };
             if found.is_none_or(|(_, _, t)| o.ticket < t) {
-                found = Some((i, resolution, o.ticket));
+                found = Some((i, judged, o.ticket));
             }
         }
-        let Some((i, resolution, ticket)) = found else {
-            return Received::Unsolicited;
-        };
-        if let Some(slot) = self.slots.get_mut(i) {
-            if let Some(o) = slot.open.take()
-                && Some(o.ids.key) == rules.handshake
-                && resolution == Resolution::Answered
-            {
-                self.handshaken = true;
-            }
-        }
-        Received::Outcome(Outcome { ticket, resolution })
+        found
     }
 
     /// Time advanced to `now`: a retry to send, or a request that timed out; `None` when

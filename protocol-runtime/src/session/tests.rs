@@ -1,6 +1,7 @@
 //! The machines against hand-written rules: `AA seq cmd sum8`, command 1 the handshake
 //! (answered by itself), 2 a request with one retry, 3 fire-and-forget, 9 the NACK, 4 the
-//! watchdog's command.
+//! watchdog's command; and `AA seq cmd result sum8`, where command 3 answers command 2 with a
+//! result value.
 
 #![allow(clippy::indexing_slicing, clippy::unwrap_used, clippy::panic)]
 
@@ -61,6 +62,8 @@ const BASE: SessionRules<'static> = SessionRules {
         period: 100,
     }),
     modes: None,
+    verdicts: &[],
+    periodic: &[],
 };
 static SESSION: SessionRules<'static> = BASE;
 /// The same rules without the handshake.
@@ -179,4 +182,180 @@ fn the_watchdog_expires_once_per_lapse() {
     LAYOUT.seal(&mut feed).unwrap();
     res.on_frame(250, &feed);
     assert_eq!(res.poll(350), Some(Alarm::WatchdogExpired));
+}
+
+/// `AA seq cmd result sum8`: command 2 is answered by command 3, whose result byte says 0
+/// accepted, 5 in progress, anything else refused.
+static LAYOUT_RESULT: FrameLayout<'static> = FrameLayout {
+    header_len: 3,
+    min_len: 5,
+    max_len: 5,
+    length: LengthRule::Fixed(5),
+    ..LAYOUT
+};
+static RULES_RESULT: PacketRules<'static> = PacketRules {
+    layout: &LAYOUT_RESULT,
+    max_payload: 1,
+    ..RULES
+};
+static RESULT: SessionRules<'static> = SessionRules {
+    packet: &RULES_RESULT,
+    exchanges: &[
+        exchange(1, Answer::Reply, 0),
+        exchange(2, Answer::Command(3), 2),
+    ],
+    handshake: None,
+    watchdog: None,
+    verdicts: &[Verdict {
+        request: 2,
+        at: ValueAt::Payload(WordField::le(0, 1)),
+        accept: &[0],
+        progress: &[5],
+    }],
+    ..BASE
+};
+
+/// An answer of command 3 to sequence number `seq` with result `value`, sealed.
+fn result(seq: u8, value: u8) -> [u8; 5] {
+    let mut f = [0xAA, seq, 3, value, 0];
+    LAYOUT_RESULT.seal(&mut f).unwrap();
+    f
+}
+
+#[test]
+fn a_result_value_accepts_or_rejects_with_the_value() {
+    let mut req = Requester::<_, 2, 5>::new(&RESULT);
+    let ok = req.send(0, &mut [0xAA, 0, 2, 0, 0]).unwrap().unwrap();
+    let no = req.send(0, &mut [0xAA, 0, 2, 0, 0]).unwrap().unwrap();
+    assert_eq!(
+        req.on_frame(1, &result(1, 4)),
+        Received::Outcome(Outcome {
+            ticket: no,
+            resolution: Resolution::Rejected(4)
+        })
+    );
+    assert_eq!(
+        req.on_frame(2, &result(0, 0)),
+        Received::Outcome(Outcome {
+            ticket: ok,
+            resolution: Resolution::Answered
+        })
+    );
+    assert_eq!(req.open(), 0);
+    // A command without a result is answered by its answer whatever it holds.
+    let mut reply = Requester::<_, 1, 5>::new(&RESULT);
+    let t = reply.send(0, &mut [0xAA, 0, 1, 9, 0]).unwrap().unwrap();
+    let mut back = [0xAA, 0, 1, 9, 0];
+    LAYOUT_RESULT.seal(&mut back).unwrap();
+    assert_eq!(
+        reply.on_frame(1, &back),
+        Received::Outcome(Outcome {
+            ticket: t,
+            resolution: Resolution::Answered
+        })
+    );
+}
+
+#[test]
+fn a_progress_value_keeps_the_request_waiting_without_retries() {
+    let mut req = Requester::<_, 2, 5>::new(&RESULT);
+    let t = req.send(0, &mut [0xAA, 0, 2, 0, 0]).unwrap().unwrap();
+    assert_eq!(req.next_deadline(), Some(10));
+    assert_eq!(
+        req.on_frame(8, &result(0, 5)),
+        Received::Progress {
+            ticket: t,
+            value: 5
+        }
+    );
+    // The wait starts again at 8 and is not followed by a retry.
+    assert_eq!((req.open(), req.next_deadline()), (1, Some(18)));
+    assert_eq!(req.poll(17), None);
+    assert_eq!(
+        req.poll(18),
+        Some(Due::Outcome(Outcome {
+            ticket: t,
+            resolution: Resolution::TimedOut
+        }))
+    );
+    // Progress, then the answer that ends it.
+    let t = req.send(20, &mut [0xAA, 0, 2, 0, 0]).unwrap().unwrap();
+    assert!(matches!(
+        req.on_frame(21, &result(1, 5)),
+        Received::Progress { .. }
+    ));
+    assert!(matches!(
+        req.on_frame(25, &result(1, 5)),
+        Received::Progress { .. }
+    ));
+    assert_eq!(
+        req.on_frame(30, &result(1, 0)),
+        Received::Outcome(Outcome {
+            ticket: t,
+            resolution: Resolution::Answered
+        })
+    );
+    assert_eq!(req.on_frame(31, &result(1, 0)), Received::Unsolicited);
+}
+
+/// Command 4 every 100 ms from the requester, command 3 every 30 ms from both sides.
+static PERIODIC: SessionRules<'static> = SessionRules {
+    periodic: &[
+        Periodic {
+            key: 4,
+            period: 100,
+            sender: Sender::Requester,
+        },
+        Periodic {
+            key: 3,
+            period: 30,
+            sender: Sender::Both,
+        },
+    ],
+    ..BASE
+};
+
+/// The keys `poll` returns at each millisecond of `0..until`, with their instants.
+fn sent<const N: usize>(
+    s: &mut Scheduler<&'static SessionRules<'static>, N>,
+    until: u64,
+) -> std::vec::Vec<(u64, u64)> {
+    let mut out = std::vec::Vec::new();
+    for now in 0..until {
+        while let Some(k) = s.poll(now) {
+            out.push((now, k));
+        }
+    }
+    out
+}
+
+#[test]
+fn each_periodic_command_is_due_at_its_rate_on_its_side() {
+    let mut host = Scheduler::<_, 2>::new(&PERIODIC, Sender::Requester, 0);
+    let got = sent(&mut host, 201);
+    let at =
+        |key| -> std::vec::Vec<u64> { got.iter().filter(|g| g.1 == key).map(|g| g.0).collect() };
+    assert_eq!(at(4), [0, 100, 200]);
+    assert_eq!(at(3), [0, 30, 60, 90, 120, 150, 180]);
+    let mut device = Scheduler::<_, 2>::new(&PERIODIC, Sender::Responder, 0);
+    assert!(sent(&mut device, 201).iter().all(|g| g.1 == 3));
+    // A table smaller than the spec's list schedules its first commands alone.
+    let mut one = Scheduler::<_, 1>::new(&PERIODIC, Sender::Responder, 0);
+    assert_eq!((one.poll(0), one.next_deadline()), (None, None));
+}
+
+#[test]
+fn a_late_poll_keeps_the_rate_and_a_long_gap_sends_once() {
+    let mut s = Scheduler::<_, 2>::new(&PERIODIC, Sender::Responder, 10);
+    assert_eq!(s.poll(9), None);
+    assert_eq!(s.poll(10), Some(3));
+    // 5 ms late: the next is still due 30 ms after the last due instant.
+    assert_eq!(s.poll(45), Some(3));
+    assert_eq!(s.next_deadline(), Some(70));
+    // Asleep for 200 ms: one frame, then the rate resumes from now.
+    assert_eq!((s.poll(270), s.poll(270)), (Some(3), None));
+    assert_eq!(s.next_deadline(), Some(300));
+    // Sent by the application on its own: the next one a period later.
+    s.sent(280, 3);
+    assert_eq!(s.next_deadline(), Some(310));
 }

@@ -42,6 +42,19 @@ pub struct Watchdog {
     pub doc: String,
 }
 
+/// A command sent at a fixed rate.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Periodic {
+    /// The command (index into [`Protocol::commands`](super::Protocol::commands)).
+    pub command: usize,
+    /// Milliseconds between two of its frames.
+    pub period_ms: u32,
+    /// Which side sends it.
+    pub sender: protocol_runtime::session::Sender,
+    /// Documentation.
+    pub doc: String,
+}
+
 /// A header value whose value says whether a request expects an answer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Modes {
@@ -81,6 +94,22 @@ pub struct Pair {
     pub names: (String, String),
 }
 
+/// The value of the answer to a command's request that says whether it succeeded (a
+/// command's `result`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Verdict {
+    /// The request's command (index into [`Protocol::commands`](super::Protocol::commands)).
+    pub command: usize,
+    /// Where the answer holds the value.
+    pub value: PairValue,
+    /// The field's name, as the spec writes it.
+    pub field: String,
+    /// The values that mean success; every other value refuses the request.
+    pub accept: Vec<u64>,
+    /// The values that mean the request is being carried out.
+    pub progress: Vec<u64>,
+}
+
 /// The conversation of the link.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Session {
@@ -109,4 +138,8 @@ pub struct Session {
     pub exchanges: Vec<Exchange>,
     /// The values answers repeat under other names, in command order, then `match` order.
     pub pairs: Vec<Pair>,
+    /// The commands whose answers tell success by a value, in command order.
+    pub verdicts: Vec<Verdict>,
+    /// The commands sent at a fixed rate, in spec order.
+    pub periodic: Vec<Periodic>,
 }

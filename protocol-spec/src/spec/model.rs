@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use toml::Spanned;
 
 pub use super::registers::{RegisterDef, RegistersDef, SelectDef};
-pub use super::session::{ModesDef, SessionDef, WatchdogDef};
+pub use super::session::{ModesDef, PeriodicDef, ResultDef, SessionDef, WatchdogDef};
 
 /// A spanned string.
 pub type SStr = Spanned<String>;
@@ -491,6 +491,9 @@ pub struct CommandDef {
         schemars(with = "Option<std::collections::BTreeMap<String, String>>")
     )]
     pub match_fields: Option<Spanned<IndexMap<SStr, SStr>>>,
+    /// The value of the answer that says whether this command's request succeeded.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<ResultDef>"))]
+    pub result: Option<Spanned<ResultDef>>,
     /// Request fields that select a run of `[registers]`, and the bytes (the request's data,
     /// the answer's) that hold their values.
     #[cfg_attr(feature = "schema", schemars(with = "Option<SelectDef>"))]

@@ -53,6 +53,9 @@ pub struct SessionDef {
     /// A header field whose value says, per request, whether an answer is expected.
     #[cfg_attr(feature = "schema", schemars(with = "Option<ModesDef>"))]
     pub modes: Option<Spanned<ModesDef>>,
+    /// Commands sent at a fixed rate.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<PeriodicDef>>"))]
+    pub periodic: Option<Spanned<Vec<Spanned<PeriodicDef>>>>,
     /// Documentation.
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
@@ -88,4 +91,41 @@ pub struct ModesDef {
     /// Values `[first, last]` of a request that expects an answer but is sent once.
     #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<i64>>"))]
     pub once: Option<Spanned<Vec<SInt>>>,
+}
+
+/// A command's `result = { field = "result", accept = [0], progress = [5] }`: the value of its
+/// answer that says whether the request succeeded.
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct ResultDef {
+    /// The answer's field: a header field the sender sets, or an integer field of the
+    /// answer's payload at a fixed position.
+    #[cfg_attr(feature = "schema", schemars(with = "String"))]
+    pub field: SStr,
+    /// The values that mean success; every other value refuses the request.
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<i64>"))]
+    pub accept: Spanned<Vec<SInt>>,
+    /// The values that mean the request is being carried out: it waits on, not sent again.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<i64>>"))]
+    pub progress: Option<Spanned<Vec<SInt>>>,
+}
+
+/// `periodic = [{ command = "HEARTBEAT", period_ms = 1000, sender = "both" }]`.
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct PeriodicDef {
+    /// The command sent at the rate.
+    #[cfg_attr(feature = "schema", schemars(with = "String"))]
+    pub command: SStr,
+    /// Milliseconds between two of its frames.
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
+    pub period_ms: SInt,
+    /// Which side sends it: `"requester"`, `"responder"` or `"both"` (default).
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
+    pub sender: Option<SStr>,
+    /// Documentation.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
+    pub doc: Option<SStr>,
 }

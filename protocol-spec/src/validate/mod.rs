@@ -14,6 +14,8 @@ mod names;
 mod registers;
 mod session;
 mod session_match;
+mod session_periodic;
+mod session_result;
 mod types;
 
 use std::ops::Range;

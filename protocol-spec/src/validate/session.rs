@@ -1,5 +1,6 @@
 //! Rules of `[session]` and the per-command `answer`, `timeout_ms` and `retries` (`match` is
-//! [`super::session_match`]'s): the names
+//! [`super::session_match`]'s, `result` [`super::session_result`]'s, `periodic`
+//! [`super::session_periodic`]'s): the names
 //! they use (a frame format, commands, header fields) exist and fit what they are used for,
 //! the numbers are in range. Lowers the table to [`ir::Session`].
 
@@ -79,6 +80,10 @@ pub(super) fn lower_session(
     let pairs = exchanges
         .as_ref()
         .and_then(|e| super::session_match::lower_pairs(ctx, f, commands, structs, e, directions));
+    let periodic = super::session_periodic::lower_periodic(ctx, s.periodic.as_ref(), commands);
+    let verdicts = exchanges.as_ref().and_then(|e| {
+        super::session_result::lower_verdicts(ctx, f, commands, structs, e, directions)
+    });
     Some(ir::Session {
         frame: fi,
         default,
@@ -92,6 +97,8 @@ pub(super) fn lower_session(
         modes,
         exchanges: exchanges?,
         pairs: pairs?,
+        verdicts: verdicts?,
+        periodic: periodic?,
     })
 }
 
@@ -106,6 +113,7 @@ fn check_no_command_keys(ctx: &mut Ctx<'_>) {
             c.timeout_ms.as_ref().map(Spanned::span),
             c.retries.as_ref().map(Spanned::span),
             c.match_fields.as_ref().map(Spanned::span),
+            c.result.as_ref().map(Spanned::span),
         ];
         if let Some(span) = spans.into_iter().flatten().next() {
             ctx.error(
@@ -201,7 +209,7 @@ fn lower_answer(
 }
 
 /// Rule: a command name names a command (did you mean; else `otherwise`).
-fn command(
+pub(super) fn command(
     ctx: &mut Ctx<'_>,
     n: &SStr,
     commands: &[ir::Command],
@@ -219,7 +227,7 @@ fn command(
 }
 
 /// Rule: a milliseconds value is 1 to an hour.
-fn ms(ctx: &mut Ctx<'_>, v: &SInt, key: &str) -> Option<u32> {
+pub(super) fn ms(ctx: &mut Ctx<'_>, v: &SInt, key: &str) -> Option<u32> {
     let n = *v.get_ref();
     if (1..=MAX_MS).contains(&n) {
         return u32::try_from(n).ok();

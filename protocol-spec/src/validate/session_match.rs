@@ -124,7 +124,7 @@ pub(super) fn answering_command(exchanges: &[Exchange], ci: usize) -> Option<usi
 
 /// Rule: a matched field is a header field the sender sets or a fixed-position integer field
 /// of the payload (`side` says whose), and not both.
-fn value(
+pub(super) fn value(
     ctx: &mut Ctx<'_>,
     n: &SStr,
     f: &Frame,

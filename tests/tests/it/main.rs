@@ -55,6 +55,7 @@ mod scout_vectors;
 mod serde_values;
 mod session_io_async;
 mod session_mavlink;
+mod session_periodic;
 mod session_sim;
 mod text_fields;
 mod tokio_codec;

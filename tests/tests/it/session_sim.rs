@@ -7,13 +7,15 @@
 //! its slots open, deliver nothing before the handshake, and allocate nothing in the machines.
 //!
 //! `cargo test -p protocol-tests --test it -- --nocapture session_sim::fault_matrix` prints the
-//! counts of a fixed matrix of schedules.
+//! counts of a fixed matrix of schedules, MAVLink's commands among them (answered, refused by
+//! their ACK's `result`, or kept waiting by an ACK that says they are in progress).
 
 #[path = "session_sim/link.rs"]
 pub(crate) mod link;
 #[path = "session_sim/sim.rs"]
 pub(crate) mod sim;
 
+use crate::session_mavlink::MavlinkResults;
 use link::Fault;
 use proptest::prelude::*;
 use sim::{Peer, SLOTS, Tally, run};
@@ -183,8 +185,12 @@ fn check(name: &str, t: &Tally) {
     );
     assert_eq!(
         t.requests,
-        t.answered + t.refused + t.timed_out,
+        t.answered + t.refused + t.rejected_by_value + t.timed_out,
         "{name}: {t:?}"
+    );
+    assert_eq!(
+        t.resent_after_progress, 0,
+        "{name}: a request sent again after it was in progress: {t:?}"
     );
     assert_eq!(
         t.mismatched, 0,
@@ -323,7 +329,7 @@ fn fault_matrix() {
         std::mem::size_of::<Responder<roborts::Session, SLOTS, { sim::FRAME }>>()
     );
     println!(
-        "{:<8} {:>5} {:>7} {:>6} {:>6} {:>9} {:>6} {:>8} {:>6} {:>7} {:>6} {:>7} {:>7} {:>6}",
+        "{:<8} {:>5} {:>7} {:>6} {:>6} {:>9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>7} {:>6} {:>7} {:>7} {:>6}",
         "spec",
         "loss%",
         "frames",
@@ -333,6 +339,8 @@ fn fault_matrix() {
         "reqs",
         "answered",
         "nack",
+        "result",
+        "inprog",
         "timeout",
         "resend",
         "deliv",
@@ -340,14 +348,15 @@ fn fault_matrix() {
         "alloc"
     );
     for loss in [0u64, 10, 30] {
-        for name in ["roborts", "hflink"] {
+        for name in ["roborts", "hflink", "mavlink"] {
             let mut mix = Mix(loss * 1000 + name.len() as u64);
             let mut total = Tally::default();
             for _ in 0..100 {
                 let (plan, schedule) = (mix.plan(), mix.schedule(loss));
                 let t = match name {
                     "roborts" => run::<Roborts>(&plan, schedule),
-                    _ => run::<Hflink>(&plan, schedule),
+                    "hflink" => run::<Hflink>(&plan, schedule),
+                    _ => run::<MavlinkResults>(&plan, schedule),
                 };
                 check(name, &t);
                 if name == "roborts" {
@@ -357,7 +366,7 @@ fn fault_matrix() {
             }
             let f = total.faults;
             println!(
-                "{:<8} {:>5} {:>7} {:>6} {:>6} {:>9} {:>6} {:>8} {:>6} {:>7} {:>6} {:>7} {:>7} {:>6}",
+                "{:<8} {:>5} {:>7} {:>6} {:>6} {:>9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>7} {:>6} {:>7} {:>7} {:>6}",
                 name,
                 loss,
                 f.frames,
@@ -367,10 +376,13 @@ fn fault_matrix() {
                 total.requests,
                 total.answered,
                 total.refused,
+                total.rejected_by_value,
+                total.progress,
                 total.timed_out,
                 total.resends,
                 total.delivered,
-                // HFLink numbers nothing: a duplicate cannot be told from a new request.
+                // HFLink and MAVLink number nothing: a duplicate cannot be told from a new
+                // request.
                 if name == "roborts" {
                     total.duplicates_delivered.to_string()
                 } else {
@@ -386,6 +398,8 @@ fn add(total: &mut Tally, t: &Tally) {
     total.requests += t.requests;
     total.answered += t.answered;
     total.refused += t.refused;
+    total.rejected_by_value += t.rejected_by_value;
+    total.progress += t.progress;
     total.timed_out += t.timed_out;
     total.resends += t.resends;
     total.delivered += t.delivered;

@@ -148,7 +148,10 @@ fn answer(p: &Protocol, ci: usize, rt: &TokenStream) -> Option<Answer> {
             ty: payload_type(p, ad, by),
             message: message(p, ad, by, Some(&quote!(a))),
             pattern: quote!(a),
-            doc: format!("It expects an answer, `{name}`, carrying what the method returns."),
+            doc: format!(
+                "It expects an answer, `{name}`, carrying what the method returns.{}",
+                verdict_doc(s, ci)
+            ),
         }
     } else {
         Answer {
@@ -158,6 +161,33 @@ fn answer(p: &Protocol, ci: usize, rt: &TokenStream) -> Option<Answer> {
             doc: format!("It expects an empty answer, `{name}`: `Reply::ACK` sends it."),
         }
     })
+}
+
+/// What the answer's result value tells the requester, when the command has a `result`.
+fn verdict_doc(s: &crate::ir::Session, ci: usize) -> String {
+    let Some(v) = s.verdicts.iter().find(|v| v.command == ci) else {
+        return String::new();
+    };
+    let list = |vs: &[u64]| {
+        vs.iter()
+            .map(u64::to_string)
+            .collect::<Vec<_>>()
+            .join(" or ")
+    };
+    let progress = if v.progress.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " {} says it is in progress (the requester waits again),",
+            list(&v.progress)
+        )
+    };
+    format!(
+        " Its `{}` tells the requester the outcome: {} accepts the request,{progress} any \
+         other value refuses it with that value.",
+        v.field,
+        list(&v.accept)
+    )
 }
 
 /// What a refusal sends: the spec's `nack` command when it carries no payload in the answer's

@@ -10,8 +10,8 @@ use quote::{format_ident, quote};
 use super::rules::{field, rules_static};
 use crate::codegen::frame::word_field_lit;
 use crate::ir::{Frame, Protocol};
-use crate::session::{PairPlan, PlanValue, SessionPlan, lower_session};
-use protocol_runtime::session::{Answer, Exchange};
+use crate::session::{PairPlan, PlanValue, SessionPlan, VerdictPlan, lower_session};
+use protocol_runtime::session::{Answer, Exchange, Sender};
 
 fn opt_key(rt: &TokenStream, k: Option<u64>) -> TokenStream {
     match k {
@@ -55,10 +55,10 @@ fn exchange(rt: &TokenStream, e: &Exchange) -> TokenStream {
     quote!(#s::Exchange { key: #key, answer: #answer, timeout: #timeout, retries: #retries, backoff: #backoff })
 }
 
-/// A pair: where the request holds a value and where its answer does.
-fn pair(f: &Frame, rt: &TokenStream, p: &PairPlan) -> TokenStream {
+/// Where a value sits, as a `session::ValueAt`.
+fn value_at(f: &Frame, rt: &TokenStream, v: PlanValue) -> TokenStream {
     let s = quote!(#rt::session);
-    let at = |v: PlanValue| match v {
+    match v {
         PlanValue::Header(k) => {
             let k = field(f, &k, rt);
             quote!(#s::ValueAt::Header(#k))
@@ -67,9 +67,26 @@ fn pair(f: &Frame, rt: &TokenStream, p: &PairPlan) -> TokenStream {
             let w = word_field_lit(rt, w);
             quote!(#s::ValueAt::Payload(#w))
         }
-    };
-    let (request, from, to) = (key_lit(p.request), at(p.from), at(p.to));
+    }
+}
+
+/// A pair: where the request holds a value and where its answer does.
+fn pair(f: &Frame, rt: &TokenStream, p: &PairPlan) -> TokenStream {
+    let s = quote!(#rt::session);
+    let (request, from, to) = (
+        key_lit(p.request),
+        value_at(f, rt, p.from),
+        value_at(f, rt, p.to),
+    );
     quote!(#s::Pair { request: #request, from: #from, to: #to })
+}
+
+/// A verdict: where the answer holds its result, and the values of success and progress.
+fn verdict(f: &Frame, rt: &TokenStream, v: &VerdictPlan) -> TokenStream {
+    let s = quote!(#rt::session);
+    let (request, at) = (key_lit(v.request), value_at(f, rt, v.at));
+    let (accept, progress) = (&v.accept, &v.progress);
+    quote!(#s::Verdict { request: #request, at: #at, accept: &[#(#accept),*], progress: &[#(#progress),*] })
 }
 
 /// The `SESSION` static, when the spec has a session.
@@ -100,6 +117,16 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
         None => quote!(#rt::None),
     };
     let pairs = plan.pairs.iter().map(|p| pair(f, rt, p));
+    let verdicts = plan.verdicts.iter().map(|v| verdict(f, rt, v));
+    let periodic = plan.periodic.iter().map(|p| {
+        let (key, period) = (key_lit(p.key), p.period);
+        let sender = match p.sender {
+            Sender::Requester => quote!(#s::Sender::Requester),
+            Sender::Responder => quote!(#s::Sender::Responder),
+            Sender::Both => quote!(#s::Sender::Both),
+        };
+        quote!(#s::Periodic { key: #key, period: #period, sender: #sender })
+    });
     let nack = opt_key(rt, plan.nack);
     let handshake = opt_key(rt, plan.handshake);
     let watchdog = match plan.watchdog {
@@ -124,6 +151,7 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
         f.name
     );
     let machines = emit_machines(f, &s);
+    let scheduler = emit_scheduler(&plan, &s);
     quote! {
         #[doc = #doc]
         pub static #name: #s::SessionRules<'static> = #s::SessionRules {
@@ -138,8 +166,30 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
             handshake: #handshake,
             watchdog: #watchdog,
             modes: #modes,
+            verdicts: &[#(#verdicts),*],
+            periodic: &[#(#periodic),*],
         };
         #machines
+        #scheduler
+    }
+}
+
+/// `Scheduler`, the periodic commands' scheduler over [`SESSION`] with a slot per periodic
+/// command, when the spec has any.
+fn emit_scheduler(plan: &SessionPlan, s: &TokenStream) -> TokenStream {
+    let n = plan.periodic.len();
+    if n == 0 {
+        return quote!();
+    }
+    let doc = format!(
+        " The scheduler of the {n} periodic command{} of [`SESSION`]: \
+         `Scheduler::new(Session, session::Sender::Requester, now)`, then `poll(now)` says \
+         which is due.",
+        if n == 1 { "" } else { "s" }
+    );
+    quote! {
+        #[doc = #doc]
+        pub type Scheduler = #s::Scheduler<Session, #n>;
     }
 }
 

@@ -30,6 +30,11 @@ pub trait Peer {
     fn handshake() -> Option<Vec<u8>>;
     /// The device's answer to a delivered request, as its application builds it.
     fn answer(request: &[u8]) -> Vec<u8>;
+    /// An answer the device sends before [`answer`](Self::answer), saying the request is
+    /// being carried out (a `result` value of `progress`); none by default.
+    fn progress(_request: &[u8]) -> Option<Vec<u8>> {
+        None
+    }
     /// Whether generated code takes `frame` as a checked frame of the spec and decodes it
     /// (what a real receiver's stream decoder and `Packet::from_frame` would do).
     fn decodes(frame: &[u8]) -> bool;
@@ -44,7 +49,13 @@ pub struct Tally {
     pub fire_and_forget: u64,
     pub answered: u64,
     pub refused: u64,
+    /// Requests refused by their answer's result value.
+    pub rejected_by_value: u64,
     pub timed_out: u64,
+    /// Answers that said a request is in progress.
+    pub progress: u64,
+    /// Retries of a request after an answer said it is in progress (must be 0).
+    pub resent_after_progress: u64,
     /// Tickets with no outcome, or more than one (must be 0).
     pub outcome_errors: u64,
     /// Answers whose sequence number is not their request's (must be 0).
@@ -76,6 +87,7 @@ struct Log {
     seq: Option<u64>,
     sends: u32,
     retries: u8,
+    progressed: bool,
     outcomes: Vec<Resolution>,
 }
 
@@ -97,7 +109,10 @@ pub fn run<P: Peer>(plan: &[(u64, u8, u8)], schedule: Vec<Fault>) -> Tally {
     pending.reverse();
     let mut handshake: Option<Ticket> = None;
     let mut now = 0u64;
-    let end = at + 20_000;
+    // Long enough for every request to live its lifetime twice over (an answer that says it
+    // is in progress restarts a wait), one after the other.
+    let lifetime = rules.session().lifetime().saturating_mul(2);
+    let end = at + 20_000u64.max(lifetime.saturating_mul(plan.len() as u64));
     while now < end {
         if !req.handshaken()
             && handshake.is_none()
@@ -169,6 +184,7 @@ fn send<P: Peer>(
                     seq: rules.sequence.and_then(|f| f.read(frame)),
                     sends: 1,
                     retries: e.map_or(0, |e| e.retries),
+                    progressed: false,
                     outcomes: Vec::new(),
                 },
             );
@@ -222,6 +238,16 @@ fn serve<P: Peer>(
                     let n = seen.entry(seq).or_default();
                     *n += 1;
                     t.duplicates_delivered += u64::from(*n > 1);
+                }
+                if answer && let Some(mut first) = P::progress(&frame) {
+                    let mut ok = None;
+                    t.allocations += allocation_counter::measure(|| {
+                        ok = Some(res.answer(&frame, &mut first));
+                    })
+                    .count_total;
+                    ok.expect("ran")
+                        .expect("the answer takes the request's values");
+                    link.send(UP, now, &first);
                 }
                 if answer {
                     let mut reply = P::answer(&frame);
@@ -289,6 +315,10 @@ fn hear<P: Peer>(
                     *handshake = None;
                 }
             }
+            Received::Progress { ticket, .. } => {
+                t.progress += 1;
+                logs.get_mut(&ticket).expect("open").progressed = true;
+            }
             Received::Unsolicited => t.unsolicited += 1,
             Received::Unreadable(e) => panic!("a checked frame is readable: {e:?}"),
         }
@@ -322,7 +352,9 @@ fn tick<S: SessionRef>(
             None => break,
             Some(Ok((ticket, n))) => {
                 t.resends += 1;
-                logs.get_mut(&ticket).expect("open").sends += 1;
+                let log = logs.get_mut(&ticket).expect("open");
+                log.sends += 1;
+                t.resent_after_progress += u64::from(log.progressed);
                 link.send(DOWN, now, &buf[..n]);
             }
             Some(Err(o)) => {
@@ -340,6 +372,7 @@ fn record(t: &mut Tally, log: &mut Log, r: Resolution) {
     match r {
         Resolution::Answered => t.answered += 1,
         Resolution::Refused => t.refused += 1,
+        Resolution::Rejected(_) => t.rejected_by_value += 1,
         Resolution::TimedOut => t.timed_out += 1,
     }
 }
