@@ -35,6 +35,7 @@ mod inverted_bool;
 mod mavlink_typed;
 mod mavlink_vectors;
 mod msp_vectors;
+mod msp_yamspy;
 mod narrow_and_seeded_checks;
 mod no_alloc;
 mod number_formats;
