@@ -95,6 +95,9 @@ fn vector_files(spec: &str) -> Vec<(String, bool)> {
         ("ubx", "ubx.json", true),
         // Random messages of every command, from pyubx2: no streams.
         ("ubx", "ubx_pyubx2.json", false),
+        ("crsf", "crsf.json", true),
+        // Random messages of the types crsf-parser builds: no streams.
+        ("crsf", "crsf_parser.json", false),
         ("msp", "msp.json", true),
         // Random messages of the commands, framed and parsed by YAMSPy: no streams.
         ("msp", "msp_yamspy.json", false),

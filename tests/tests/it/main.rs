@@ -23,6 +23,7 @@ mod golden;
 mod async_io;
 mod can_frames;
 mod check_vectors;
+mod crsf_parser;
 mod crsf_vectors;
 mod derive;
 mod dynamixel1_vectors;

@@ -19,22 +19,23 @@ mod generated {
 use generated::msp;
 
 /// A JSON value through its text, as a decoder prints it.
-fn shown(value: &impl serde::Serialize) -> Value {
+pub(crate) fn shown(value: &impl serde::Serialize) -> Value {
     serde_json::from_str(&serde_json::to_string(value).expect("JSON")).expect("JSON")
 }
 
 /// The value at a dotted path (`pids.2.p`), array elements by index.
 fn at_path<'a>(payload: &'a Value, path: &str) -> &'a Value {
-    path.split('.').fold(payload, |v, key| match key.parse::<usize>() {
-        Ok(n) => &v[n],
-        Err(_) => &v[key],
-    })
+    path.split('.')
+        .fold(payload, |v, key| match key.parse::<usize>() {
+            Ok(n) => &v[n],
+            Err(_) => &v[key],
+        })
 }
 
-/// Every value YAMSPy read agrees with ours: equal, or ours times the scale within half the
-/// scale of YAMSPy's.
-fn assert_yamspy_agrees(payload: &Value, frame: &Value, at: &str) {
-    for check in frame["yamspy"].as_array().expect("yamspy") {
+/// Every value the peer read (`frame[peer]`: `[path, value, scale]`) agrees with ours: equal,
+/// or ours times the scale within half the scale of the peer's.
+pub(crate) fn assert_peer_agrees(payload: &Value, frame: &Value, peer: &str, at: &str) {
+    for check in frame[peer].as_array().expect("the peer's values") {
         let path = check[0].as_str().expect("a path");
         let ours = at_path(payload, path);
         let theirs = &check[1];
@@ -47,7 +48,7 @@ fn assert_yamspy_agrees(payload: &Value, frame: &Value, at: &str) {
                 let theirs = theirs.as_f64().expect("a number");
                 assert!(
                     (ours * scale - theirs).abs() <= scale / 2.0,
-                    "{at}: `{path}` is {ours} at {scale}, YAMSPy {theirs}"
+                    "{at}: `{path}` is {ours} at {scale}, {peer} {theirs}"
                 );
             }
         }
@@ -82,7 +83,12 @@ fn every_yamspy_frame_decodes_to_its_values_and_encodes_to_its_bytes() {
         assert_eq!(by_codec["command"], command, "{at}: the codec's command");
         assert_eq!(by_codec["header"]["direction"], direction, "{at}");
         assert_eq!(&by_codec["payload"], expected, "{at}: the codec's payload");
-        assert_yamspy_agrees(&by_codec["payload"], frame, &format!("{at} (codec)"));
+        assert_peer_agrees(
+            &by_codec["payload"],
+            frame,
+            "yamspy",
+            &format!("{at} (codec)"),
+        );
         let encoded = codec
             .encode(&value)
             .unwrap_or_else(|e| panic!("{at}: the codec does not encode it: {e}"));
@@ -105,7 +111,7 @@ fn every_yamspy_frame_decodes_to_its_values_and_encodes_to_its_bytes() {
         assert_eq!(by_rust["header"]["direction"], direction, "{at}: {by_rust}");
         let rust_payload = &by_rust["payload"];
         assert_eq!(rust_payload, expected, "{at}: the generated payload");
-        assert_yamspy_agrees(rust_payload, frame, &format!("{at} (Rust)"));
+        assert_peer_agrees(rust_payload, frame, "yamspy", &format!("{at} (Rust)"));
         compared += frame["yamspy"].as_array().map_or(0, Vec::len);
         covered.insert(command.to_owned());
     }
@@ -120,6 +126,9 @@ fn every_yamspy_frame_decodes_to_its_values_and_encodes_to_its_bytes() {
         .cloned()
         .collect();
     let missing: BTreeSet<_> = all.difference(&covered).cloned().collect();
-    assert_eq!(missing, left_out, "every command but those left out has frames");
+    assert_eq!(
+        missing, left_out,
+        "every command but those left out has frames"
+    );
     assert!(compared > 500, "{compared} values compared with YAMSPy's");
 }
