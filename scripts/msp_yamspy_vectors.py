@@ -407,7 +407,7 @@ def reply_frames(rng, name, cmd, frames):
             frame = framed(cmd["id"], raw, 0x3E, v2)
             board = parsed(frame, inav)
             frames.append({
-                "name": f"{name.lower()}_{'v2' if v2 else 'v1'}_{n}", "message": name, "direction": "response",
+                "name": f"{name.lower()}_{'v2' if v2 else 'v1'}_{n}", "message": name, "id": cmd["id"], "direction": "response",
                 "version": "v2" if v2 else "v1", "hex": frame.hex(), "payload": payload, "yamspy": peer(board),
             })
 
@@ -418,17 +418,17 @@ def request_frames(rng, name, cmd, frames):
         for n in range(FRAMES_PER_COMMAND):
             v = [rng.randint(885, 2115) for _ in range(rng.randint(4, 18))]
             board.send_RAW_RC(v)
-            frames.append({"name": f"set_raw_rc_v1_{n}", "message": name, "direction": "request", "version": "v1",
+            frames.append({"name": f"set_raw_rc_v1_{n}", "message": name, "id": cmd["id"], "direction": "request", "version": "v1",
                            "hex": wire.written.hex(), "payload": {"channels": [{"value": x} for x in v]}, "yamspy": []})
     elif name == "SET_MOTOR":
         for n in range(FRAMES_PER_COMMAND):
             v = [rng.randint(1000, 2000) for _ in range(8)]
             board.send_RAW_MOTORS(v)
-            frames.append({"name": f"set_motor_v1_{n}", "message": name, "direction": "request", "version": "v1",
+            frames.append({"name": f"set_motor_v1_{n}", "message": name, "id": cmd["id"], "direction": "request", "version": "v1",
                            "hex": wire.written.hex(), "payload": {"motors": v}, "yamspy": []})
     else:
         board.send_RAW_msg(cmd["id"], [])
-        frames.append({"name": f"{name.lower()}_request", "message": name, "direction": "request",
+        frames.append({"name": f"{name.lower()}_request", "message": name, "id": cmd["id"], "direction": "request",
                        "version": "v2" if cmd["id"] > 255 else "v1", "hex": wire.written.hex(), "payload": {}, "yamspy": []})
 
 
