@@ -99,6 +99,12 @@ fn vector_files(spec: &str) -> Vec<(String, bool)> {
         ("vesc", "vesc_pyvesc.json", false),
         ("feetech", "feetech_scservo.json", false),
         ("lx16a", "lx16a_pylx16a.json", false),
+        ("crsf", "crsf.json", true),
+        // Random messages of the types crsf-parser builds: no streams.
+        ("crsf", "crsf_parser.json", false),
+        ("msp", "msp.json", true),
+        // Random messages of the commands, framed and parsed by YAMSPy: no streams.
+        ("msp", "msp_yamspy.json", false),
     ];
     let mut out: Vec<(String, bool)> = known
         .iter()

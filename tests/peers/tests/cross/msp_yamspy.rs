@@ -1,0 +1,160 @@
+//! The YAMSPy frames (`tests/vectors/msp_yamspy.json`) against `cu-msp-lib` 1.3, a second
+//! reader of the same bytes: every frame parses there to its command, direction and payload, and
+//! the replies it has a struct for decode to the recorded values (the leading fields its struct
+//! holds, where Betaflight's reply grew after it).
+
+use cu_msp_lib::structs::{
+    MspBatteryState, MspBoardInfo, MspBuildInfo, MspMotor, MspRcTuning, MspStatusEx, MspUniqueId,
+};
+use cu_msp_lib::{MspPacket, MspPacketDirection, MspParser};
+use protocol_peers::{frame_bytes, frames, load_vectors, name, uint};
+use serde_json::{Value, json};
+
+fn parse(bytes: &[u8]) -> Vec<MspPacket> {
+    let mut parser = MspParser::new();
+    bytes
+        .iter()
+        .filter_map(|&b| parser.parse(b).ok().flatten())
+        .collect()
+}
+
+fn text(bytes: &[u8]) -> Value {
+    json!(String::from_utf8(bytes.to_vec()).expect("ASCII"))
+}
+
+/// The values cu-msp-lib decodes from a reply it has a struct for, by the spec's names.
+fn fields(p: &MspPacket) -> Option<Vec<(&'static str, Value)>> {
+    Some(match p.cmd {
+        4 => {
+            let b: MspBoardInfo = p.decode_as().ok()?;
+            vec![
+                ("board_identifier", text(&b.board_id)),
+                ("hardware_revision", json!(b.hardware_revision)),
+                ("board_type", json!(b.fc_type)),
+            ]
+        }
+        5 => {
+            let b: MspBuildInfo = p.decode_as().ok()?;
+            vec![
+                ("build_date", text(&b.date_str)),
+                ("build_time", text(&b.time_str)),
+                ("short_git_revision", text(&b.git_str)),
+            ]
+        }
+        104 => {
+            let m: MspMotor = p.decode_as().ok()?;
+            vec![("motors", json!(m.motors))]
+        }
+        111 => {
+            let r: MspRcTuning = p.decode_as().ok()?;
+            vec![
+                ("rc_rate", json!(r.rc_rate8)),
+                ("rc_expo", json!(r.rc_expo8)),
+                ("roll_rate", json!(r.rate_roll)),
+                ("pitch_rate", json!(r.rate_pitch)),
+                ("yaw_rate", json!(r.rate_yaw)),
+                ("dynamic_thr_pid", json!(r.dyn_thr_pid)),
+                ("throttle_mid", json!(r.thr_mid8)),
+                ("throttle_expo", json!(r.thr_expo8)),
+                ("dynamic_thr_breakpoint", json!(r.tpa_breakpoint)),
+                ("rc_yaw_expo", json!(r.rc_yaw_expo8)),
+                ("rc_yaw_rate", json!(r.rc_yaw_rate8)),
+            ]
+        }
+        130 => {
+            let b: MspBatteryState = p.decode_as().ok()?;
+            vec![
+                ("cell_count", json!(b.battery_cell_count)),
+                ("capacity", json!(b.battery_capacity)),
+                ("legacy_battery_voltage", json!(b.battery_voltage)),
+                ("mah_drawn", json!(b.mah_drawn)),
+                ("amperage", json!(b.amperage)),
+                ("battery_state", json!(b.alerts)),
+                ("battery_voltage", json!(b.battery_voltage_mv)),
+            ]
+        }
+        150 => {
+            let s = MspStatusEx::from_bytes(p.data.as_slice()).ok()?;
+            vec![
+                ("cycle_time", json!(s.cycle_time)),
+                ("i2c_errors", json!(s.i2c_errors)),
+                ("flight_mode_flags", json!(s.flight_mode_flags)),
+                (
+                    "current_pid_profile_index",
+                    json!(s.current_pid_profile_index),
+                ),
+                (
+                    "average_system_load_percent",
+                    json!(s.average_system_load_percent),
+                ),
+                ("pid_profile_count", json!(s.max_profile_count)),
+                (
+                    "current_control_rate_profile_index",
+                    json!(s.current_control_rate_profile_index),
+                ),
+                (
+                    "extra_flight_mode_flags",
+                    json!(hex_text(&s.extra_flight_mode_flags)),
+                ),
+                (
+                    "arming_disable_flags_count",
+                    json!(s.arming_disable_flags_count),
+                ),
+                ("arming_disable_flags", json!(s.arming_disable_flags)),
+                ("config_state_flags", json!(s.config_state_flags)),
+                ("core_temp_celsius", json!(s.core_temp_celsius)),
+                (
+                    "control_rate_profile_count",
+                    json!(s.control_rate_profile_count),
+                ),
+            ]
+        }
+        160 => {
+            let u: MspUniqueId = p.decode_as().ok()?;
+            let words: Vec<u32> = u
+                .uid
+                .chunks(4)
+                .map(|w| u32::from_le_bytes(w.try_into().expect("4 bytes")))
+                .collect();
+            vec![("uid", json!(words))]
+        }
+        _ => return None,
+    })
+}
+
+/// Bytes as the vectors write them (lowercase hex).
+fn hex_text(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+#[test]
+fn every_yamspy_frame_parses_in_cu_msp_lib_to_its_values() {
+    let v = load_vectors("msp_yamspy.json");
+    let (mut parsed, mut decoded) = (0, 0);
+    for frame in frames(&v) {
+        let at = name(frame);
+        let bytes = frame_bytes(frame);
+        let [p] = parse(&bytes)
+            .try_into()
+            .unwrap_or_else(|f| panic!("{at}: {f:?}"));
+        assert_eq!(u64::from(p.cmd), uint(frame, "id"), "{at}");
+        let direction = match p.direction {
+            MspPacketDirection::ToFlightController => "request",
+            MspPacketDirection::FromFlightController => "response",
+            MspPacketDirection::Unsupported => "error",
+        };
+        assert_eq!(direction, frame["direction"], "{at}");
+        parsed += 1;
+        if direction == "response"
+            && let Some(got) = fields(&p)
+        {
+            for (key, value) in got {
+                assert_eq!(value, frame["payload"][key], "{at}.{key}");
+            }
+            decoded += 1;
+        }
+    }
+    println!("cu-msp-lib: {parsed} YAMSPy frames parsed, {decoded} replies decoded");
+    assert_eq!(parsed, frames(&v).len());
+    assert!(decoded >= 40, "{decoded}");
+}
