@@ -41,7 +41,10 @@ mod number_formats;
 mod packets;
 mod payload_length_first;
 mod payload_types;
+#[macro_use]
 mod random_specs;
+// After `random_specs`: it runs that module's batch, through `for_each_random_session!`.
+mod random_sessions;
 mod referee_vectors;
 mod repeated_bits;
 mod roborts_vectors;
