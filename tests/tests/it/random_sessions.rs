@@ -68,7 +68,7 @@ impl<'r, G: SessionRef, const FRAME: usize> Twins<'r, G, FRAME> {
     }
 
     /// `frame` at both requesters.
-    fn to_requester(&mut self, now: u64, frame: &[u8]) {
+    fn at_requester(&mut self, now: u64, frame: &[u8]) {
         let a = self.requester.0.on_frame(now, frame);
         let b = self.requester.1.on_frame(now, frame);
         assert_eq!(a, b, "at the requester at {now}: {}", support::hex(frame));
@@ -77,7 +77,7 @@ impl<'r, G: SessionRef, const FRAME: usize> Twins<'r, G, FRAME> {
 
     /// `frame` at both responders: whether it is to be answered, and the answer to send again
     /// for a duplicate.
-    fn to_responder(&mut self, now: u64, frame: &[u8]) -> (bool, Option<Vec<u8>>) {
+    fn at_responder(&mut self, now: u64, frame: &[u8]) -> (bool, Option<Vec<u8>>) {
         let a = self.responder.0.on_frame(now, frame);
         let b = self.responder.1.on_frame(now, frame);
         assert_eq!(a, b, "at the responder at {now}: {}", support::hex(frame));
@@ -185,14 +185,14 @@ fn event<G: SessionRef, const FRAME: usize>(
             if rng.one_in(5) {
                 return; // lost on the way
             }
-            let (answer, _) = twins.to_responder(now, &sent);
+            let (answer, _) = twins.at_responder(now, &sent);
             let Some(reply) = answer.then(|| answer_for(rules, &sent, pool)).flatten() else {
                 return;
             };
             if let Some(sealed) = twins.answer(&sent, reply)
                 && !rng.one_in(5)
             {
-                twins.to_requester(now, &sealed);
+                twins.at_requester(now, &sealed);
             }
         }
         6 | 7 => {
@@ -201,17 +201,17 @@ fn event<G: SessionRef, const FRAME: usize>(
                 let bit = rng.below(frame.len() as u64 * 8) as usize;
                 frame[bit / 8] ^= 1 << (bit % 8);
             }
-            twins.to_requester(now, &frame);
+            twins.at_requester(now, &frame);
         }
         8 => {
-            twins.to_responder(now, &pick(rng));
+            twins.at_responder(now, &pick(rng));
         }
         _ => {
             // The last request again: a duplicate, its answer sent again.
             if let Some(frame) = last.clone()
-                && let (_, Some(again)) = twins.to_responder(now, &frame)
+                && let (_, Some(again)) = twins.at_responder(now, &frame)
             {
-                twins.to_requester(now, &again);
+                twins.at_requester(now, &again);
             }
         }
     }
@@ -245,7 +245,7 @@ fn compare<S: Spec, G: SessionRef, const FRAME: usize>(
         event(&mut twins, rules, &pool, &mut rng, now, &mut last);
         for frame in twins.poll(now) {
             if rng.one_in(2) {
-                twins.to_responder(now, &frame);
+                twins.at_responder(now, &frame);
             }
         }
         twins.same_state(now);
