@@ -70,6 +70,7 @@ fn main() {
     };
     let mut code = String::new();
     let mut names = Vec::new();
+    let mut sessions = Vec::new();
     for seed in first..first + count {
         let name = format!("rand_{seed}");
         let path = dir.join(format!("{name}.toml"));
@@ -97,6 +98,9 @@ fn main() {
         };
         writeln!(code, "expand_spec!({name}, {rel:?}{how});").unwrap();
         names.push(format!("{name}{how}"));
+        if text.contains("\n[session]") {
+            sessions.push(format!("{name}{how}"));
+        }
     }
     writeln!(code, "/// The batch: first seed and count.").unwrap();
     writeln!(code, "const BATCH: (u64, u64) = ({first}, {count});").unwrap();
@@ -104,6 +108,15 @@ fn main() {
         code,
         "/// Calls `$callback!(module, ...)` for every random spec, with what `expand_spec!` took after its path.\nmacro_rules! for_each_random_spec {{ ($callback:ident) => {{ {} }}; }}",
         names
+            .iter()
+            .map(|n| format!("$callback!({n});"))
+            .collect::<String>()
+    )
+    .unwrap();
+    writeln!(
+        code,
+        "/// `for_each_random_spec!` over the random specs with a `[session]` table.\nmacro_rules! for_each_random_session {{ ($callback:ident) => {{ {} }}; }}",
+        sessions
             .iter()
             .map(|n| format!("$callback!({n});"))
             .collect::<String>()
