@@ -177,6 +177,7 @@
 extern crate std;
 
 pub mod bytes;
+pub mod bitstream;
 pub mod can;
 pub mod checksum;
 #[cfg(feature = "tokio")]
@@ -286,6 +287,7 @@ pub mod __private {
     pub use crate::serde_impl as serde_support;
     pub use crate::{__require_defmt as require_defmt, __require_serde as require_serde};
     pub use crate::{
+        bitstream::*,
         bytes::*,
         can::*,
         checksum::*,
