@@ -80,6 +80,8 @@ pub(super) fn of<'a>(p: &'a Protocol, kind: &'a FieldKind) -> Box<dyn Kind + 'a>
             word: *word,
             members,
         }),
+        // Refused (`support.rs`) before anything is printed: its bytes are skipped if asked.
+        FieldKind::BitStream { .. } => Box::new(padding::Padding),
         FieldKind::Array { ty, max, size_from } => Box::new(array::Array {
             p,
             ty,
