@@ -176,8 +176,8 @@
 #[cfg(feature = "std")]
 extern crate std;
 
-pub mod bytes;
 pub mod bitstream;
+pub mod bytes;
 pub mod can;
 pub mod checksum;
 #[cfg(feature = "tokio")]

@@ -88,13 +88,6 @@ fn kind_refused(p: &Protocol, kind: &FieldKind) -> Option<&'static str> {
             ..
         } => (p.enums[*ei].prim != scalar.prim).then_some("an enum read as another integer type"),
         FieldKind::Optional(inner) => kind_refused(p, inner),
-        // The C values module reads words of whole bytes and unsigned, unscaled members.
-        FieldKind::BitStream { .. } => Some("a bit stream (members read MSB first across bytes)"),
-        FieldKind::Bits { members, .. }
-            if members.iter().any(|m| m.is_signed() || m.scale.is_some()) =>
-        {
-            Some("a signed or scaled bit member")
-        }
         _ => None,
     }
 }

@@ -7,9 +7,8 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use crate::ir::{
-    BitMember,
-    Algorithm, BitOrder, ByteOrder, Check, Field, FieldKind, Frame, Pos, Prim, Protocol, Role,
-    Struct, ValueType,
+    Algorithm, BitMember, BitOrder, ByteOrder, Check, Field, FieldKind, Frame, Pos, Prim, Protocol,
+    Role, Struct, ValueType,
 };
 
 /// `#[doc = "..."]` attributes, one per line (so rustdoc and prettyplease keep the layout).

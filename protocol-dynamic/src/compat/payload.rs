@@ -220,7 +220,8 @@ fn diff_members(
     }
     for (x, y) in a.iter().zip(b) {
         // Signedness and scaling change what the same bits mean.
-        if (x.shift, x.width, x.is_signed(), x.scale) != (y.shift, y.width, y.is_signed(), y.scale) {
+        if (x.shift, x.width, x.is_signed(), x.scale) != (y.shift, y.width, y.is_signed(), y.scale)
+        {
             return false;
         }
         match (x.enum_index, y.enum_index) {

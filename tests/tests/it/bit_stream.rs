@@ -16,7 +16,7 @@ mod fixture {
     protocol_kit::protocol!("../protocol-codegen/tests/features/bit_stream.toml");
 }
 use fixture::bit_stream::{
-    DECODER_BUFFER_LEN, LAYOUT, MAX_FRAME_LEN, Message, Packet, Position, Quality, Trim,
+    DECODER_BUFFER_LEN, Header, LAYOUT, MAX_FRAME_LEN, Message, Packet, Position, Quality, Trim,
 };
 
 fn vectors() -> serde_json::Value {
@@ -115,6 +115,7 @@ fn python_packed_frames_decode_to_their_values_and_encode_back() {
 fn values_that_do_not_fit_their_members_are_encode_errors() {
     let mut buf = [0u8; MAX_FRAME_LEN];
     let trim = |pitch, roll, gain| Packet {
+        header: Header {},
         message: Message::Trim(Trim {
             pitch,
             roll,
@@ -133,6 +134,7 @@ fn values_that_do_not_fit_their_members_are_encode_errors() {
     assert!(trim(0, 0.0, 1.6).encode(&mut buf).is_err());
     assert!(trim(0, 0.0, -0.1).encode(&mut buf).is_err());
     let position = |number, x| Packet {
+        header: Header {},
         message: Message::Position(Position {
             seq: 0,
             number,

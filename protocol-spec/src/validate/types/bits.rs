@@ -7,7 +7,9 @@ use super::super::names::{check_snake_name, parse_prim, unknown_type};
 use super::super::{Ctx, text};
 use super::fields::{lower_count, lower_scale};
 use super::{Enums, mask};
-use crate::ir::{BitMember, BitOrder, ByteOrder, Constant, FieldKind, Prim, Rounding, Scalar, Scale};
+use crate::ir::{
+    BitMember, BitOrder, ByteOrder, Constant, FieldKind, Prim, Rounding, Scalar, Scale,
+};
 use crate::spec::model::{BitDef, FieldDef, PackedDef, SStr};
 
 /// Where bit members stand: a header word, a payload word or a payload bit stream. Scaling,
@@ -106,7 +108,14 @@ fn member_type(
     enums: &Enums,
 ) -> (Prim, Option<usize>) {
     let Some(t) = &m.ty else {
-        return (if width == 1 { Prim::Bool } else { smallest_uint(width) }, None);
+        return (
+            if width == 1 {
+                Prim::Bool
+            } else {
+                smallest_uint(width)
+            },
+            None,
+        );
     };
     let wide = |p: Prim| (p.size() * 8) as u32 >= width;
     match parse_prim(t.get_ref(), ByteOrder::Little) {
@@ -118,8 +127,15 @@ fn member_type(
             }
             ctx.error(
                 t.span(),
-                format!("type `{}` cannot hold the {width} bits of `{}`", t.get_ref(), m.name.get_ref()),
-                format!("use `{}`, or a wider signed integer", smallest_int(width).rust_name()),
+                format!(
+                    "type `{}` cannot hold the {width} bits of `{}`",
+                    t.get_ref(),
+                    m.name.get_ref()
+                ),
+                format!(
+                    "use `{}`, or a wider signed integer",
+                    smallest_int(width).rust_name()
+                ),
             );
             (smallest_int(width), None)
         }
@@ -147,7 +163,14 @@ fn member_type(
             Some(&i) => {
                 let e = &enums.enums[i];
                 if let Some(v) = e.variants.iter().find(|v| v.value > mask(width)) {
-                    ctx.error(t.span(), format!("enum `{}` has value {} (`{}`), which does not fit in {width} bits", e.name, v.value, v.name), "widen the member or narrow the enum");
+                    ctx.error(
+                        t.span(),
+                        format!(
+                            "enum `{}` has value {} (`{}`), which does not fit in {width} bits",
+                            e.name, v.value, v.name
+                        ),
+                        "widen the member or narrow the enum",
+                    );
                 }
                 (smallest_uint(width), Some(i))
             }
@@ -177,7 +200,9 @@ fn reject_header_scale(ctx: &mut Ctx<'_>, m: &BitDef) {
         if let Some(span) = span {
             ctx.error(
                 span,
-                format!("`{key}` applies to the bit members of payload fields, not of header fields"),
+                format!(
+                    "`{key}` applies to the bit members of payload fields, not of header fields"
+                ),
                 format!("remove `{key}`"),
             );
         }
@@ -200,7 +225,10 @@ fn lower_member_scale(
     if prim == Prim::Bool || enum_index.is_some() {
         ctx.error(
             span,
-            format!("`scale` applies to number members, not to `{}` (a flag or an enum)", m.name.get_ref()),
+            format!(
+                "`scale` applies to number members, not to `{}` (a flag or an enum)",
+                m.name.get_ref()
+            ),
             "remove `scale`/`offset`, or give the member an integer `type`",
         );
         return None;
