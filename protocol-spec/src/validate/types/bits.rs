@@ -148,6 +148,14 @@ fn member_type(
             (smallest_uint(width), None)
         }
         Some(_) => {
+            let help = match site {
+                MemberSite::Header => {
+                    "use `bool` for one bit, or an unsigned integer at least as wide"
+                }
+                _ => {
+                    "use `bool` for one bit, or an integer (`u8` ... `u64`, `i8` ... `i64` for two's complement) at least as wide"
+                }
+            };
             ctx.error(
                 t.span(),
                 format!(
@@ -155,7 +163,7 @@ fn member_type(
                     t.get_ref(),
                     m.name.get_ref()
                 ),
-                "use `bool` for one bit, or an integer (`u8` ... `u64`, `i8` ... `i64` for two's complement) at least as wide",
+                help,
             );
             (smallest_uint(width), None)
         }
