@@ -9,6 +9,7 @@ use super::bits::{member_doc, member_raw, member_type, member_value};
 use super::{Decl, Kind, Slot, named_type};
 use crate::codegen::ident;
 use crate::codegen::payload::body::{Body, write_in};
+use crate::codegen::payload::scalar::local;
 use crate::ir::{BitMember, Field, Prim, Protocol};
 
 /// The stream's members and its size in bytes.
@@ -55,7 +56,7 @@ impl Kind for Stream<'_> {
     fn body(&self, b: &mut Body, i: usize, _slots: &[Slot<'_>], rt: &TokenStream) {
         let var = format_ident!("stream{}", i);
         let size = self.size;
-        let mut sets = Vec::new();
+        let (mut sets, mut gets) = (Vec::new(), Vec::new());
         for m in self.members {
             let (id, at, width) = (ident(&m.name), m.shift as usize, m.width);
             let path = b.field_path(&id);
@@ -74,11 +75,16 @@ impl Kind for Stream<'_> {
             });
             let bits = quote!(#rt::get_stream(&#var, #at, #width));
             let value = member_value(self.p, m, bits, &path, rt);
-            b.inits.push(quote!(#id: #value));
+            let local = local(&id);
+            gets.push(quote!(let #local = #value;));
+            b.inits.push(quote!(#id: #local));
         }
         b.writes
             .push(quote!(let mut #var = [0u8; #size]; #(#sets)* w.put_bytes(&#var)?;));
-        b.reads.push(quote!(let #var = r.bytes::<#size>()?;));
+        // Each member as the stream is read: an enum without variant is an error before the
+        // fields after the stream are read, as a value field's is.
+        b.reads
+            .push(quote!(let #var = r.bytes::<#size>()?; #(#gets)*));
         b.sequenced = true;
     }
 
