@@ -176,6 +176,7 @@
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod bitstream;
 pub mod bytes;
 pub mod can;
 pub mod checksum;
@@ -286,6 +287,7 @@ pub mod __private {
     pub use crate::serde_impl as serde_support;
     pub use crate::{__require_defmt as require_defmt, __require_serde as require_serde};
     pub use crate::{
+        bitstream::*,
         bytes::*,
         can::*,
         checksum::*,

@@ -156,14 +156,15 @@ fn field_schema(
                 props.insert(name, json!({"anyOf": [schema, {"type": "null"}]}));
             }
         }
-        FieldKind::Bits { members, .. } => {
+        FieldKind::Bits { members, .. } | FieldKind::BitStream { members } => {
             for m in members {
                 let schema = match m.enum_index {
                     Some(ei) => enum_schema(p, ei),
                     None if m.prim == Prim::Bool => json!({"type": "boolean"}),
+                    None if m.scale.is_some() => json!({"type": "number"}),
                     None => json!({"type": "integer"}),
                 };
-                props.insert(m.name.clone(), with_doc(schema, &m.doc, ""));
+                props.insert(m.name.clone(), with_doc(schema, &m.doc, &m.unit));
                 if present {
                     required.push(m.name.clone());
                 }

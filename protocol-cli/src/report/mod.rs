@@ -297,7 +297,10 @@ fn payload_spans(
         };
         let (name, value) = match (&field.kind, payload) {
             (FieldKind::Padding, _) => ("padding".into(), hex_of(bytes, from, to)),
-            (FieldKind::Bits { members, .. }, Value::Struct(v)) => (
+            (
+                FieldKind::Bits { members, .. } | FieldKind::BitStream { members },
+                Value::Struct(v),
+            ) => (
                 members
                     .iter()
                     .map(|m| m.name.as_str())

@@ -170,14 +170,16 @@ fn field(
             push(cols, path.to_string(), unit, scaled(scale.is_some()))
         }
         // Bit members are keys of the struct's own object, beside the other fields.
-        FieldKind::Bits { members, .. } => {
+        FieldKind::Bits { members, .. } | FieldKind::BitStream { members } => {
             for m in members {
                 let kind = match (m.enum_index, m.prim) {
                     (Some(_), _) => Kind::Named,
                     (None, Prim::Bool) => Kind::Flag,
-                    (None, _) => Kind::Number { scaled: false },
+                    (None, _) => Kind::Number {
+                        scaled: m.scale.is_some(),
+                    },
                 };
-                push(cols, format!("{owner}.{}", m.name), "", kind);
+                push(cols, format!("{owner}.{}", m.name), &m.unit, kind);
             }
         }
         FieldKind::Bytes { .. } | FieldKind::NulText { .. } => {

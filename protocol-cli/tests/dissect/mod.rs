@@ -155,7 +155,7 @@ impl Expected<'_> {
                 }
             }
             FieldKind::Optional(inner) => self.field(name, abbrev, inner, v, whole),
-            FieldKind::Bits { members, .. } => {
+            FieldKind::Bits { members, .. } | FieldKind::BitStream { members } => {
                 let owner = abbrev.rsplit_once('.').expect("owner").0;
                 for m in members {
                     let n = match (&whole[&m.name], m.enum_index) {

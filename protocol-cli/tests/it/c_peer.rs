@@ -616,13 +616,24 @@ fn random_field(
             };
             out.insert(name.to_string(), v);
         }
-        FieldKind::Bits { members, .. } => {
+        FieldKind::Bits { members, .. } | FieldKind::BitStream { members } => {
             for m in members {
                 let bits = rng.next() & mask(m.width);
-                let v = match m.enum_index {
-                    Some(ei) => random_enum(p, ei, bits, rng),
-                    None if m.prim == Prim::Bool => Value::Bool(bits != 0),
-                    None => Value::UInt(bits),
+                // A signed member's value is its bits as two's complement of its width; a
+                // scaled member's the physical value of that raw integer.
+                let raw = if m.prim.is_signed() {
+                    protocol_runtime::bitstream::sign_extend(bits, m.width) as f64
+                } else {
+                    bits as f64
+                };
+                let v = match (m.enum_index, &m.scale) {
+                    (Some(ei), _) => random_enum(p, ei, bits, rng),
+                    (None, Some(sc)) => Value::F64(raw * sc.factor + sc.offset),
+                    (None, None) if m.prim == Prim::Bool => Value::Bool(bits != 0),
+                    (None, None) if m.prim.is_signed() => {
+                        Value::Int(protocol_runtime::bitstream::sign_extend(bits, m.width))
+                    }
+                    (None, None) => Value::UInt(bits),
                 };
                 out.insert(m.name.clone(), v);
             }
@@ -680,7 +691,7 @@ fn random_field(
                 random_field(p, name, inner, outer, out, rng);
             } else {
                 match &**inner {
-                    FieldKind::Bits { members, .. } => {
+                    FieldKind::Bits { members, .. } | FieldKind::BitStream { members } => {
                         for m in members {
                             out.insert(m.name.clone(), Value::Null);
                         }

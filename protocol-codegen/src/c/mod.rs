@@ -51,6 +51,7 @@ mod frame;
 mod header;
 mod kinds;
 mod lookups;
+mod members;
 mod names;
 mod packet;
 mod payload;

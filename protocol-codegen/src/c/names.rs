@@ -283,10 +283,7 @@ pub fn value_type(p: &Protocol, n: &Names, ty: &ValueType) -> String {
 
 /// The C type of a bit member.
 pub fn member_type(p: &Protocol, n: &Names, m: &BitMember) -> String {
-    match m.enum_index {
-        Some(ei) => n.ty(&p.enums[ei].name),
-        None => prim(m.prim).to_string(),
-    }
+    super::members::member_type(p, n, m)
 }
 
 /// A spec's documentation on one line, fit for a C comment.

@@ -139,6 +139,9 @@ fn any_scaled(p: &Protocol) -> bool {
             ..
         } => scale.is_some(),
         FieldKind::Packed { scale, .. } => scale.is_some(),
+        FieldKind::Bits { members, .. } | FieldKind::BitStream { members } => {
+            members.iter().any(|m| m.scale.is_some())
+        }
         _ => false,
     })
 }

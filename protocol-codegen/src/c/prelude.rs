@@ -1,7 +1,7 @@
 //! The start of the source file: its includes and attributes, and the byte-order helpers every
 //! spec's readers and writers call (`templates/bytes.c`: whole-integer readers and writers of
 //! each size and byte order, positions and header fields; `templates/packed.c`, for the specs
-//! with bit-packed arrays). [`take_call`] and [`put_call`] name the helper of one integer.
+//! with bit-packed arrays; `templates/stream.c`, for those with bit streams). [`take_call`] and [`put_call`] name the helper of one integer.
 
 use crate::ir::{FieldKind, Protocol};
 
@@ -18,6 +18,10 @@ pub fn source_prelude(p: &Protocol, n: &Names) -> String {
     out.push('\n');
     if any_field(p, |k| matches!(k, FieldKind::Packed { .. })) {
         out.push_str(&fill!(include_str!("templates/packed.c"), lo, up));
+        out.push('\n');
+    }
+    if any_field(p, |k| matches!(k, FieldKind::BitStream { .. })) {
+        out.push_str(&fill!(include_str!("templates/stream.c"), lo, up));
         out.push('\n');
     }
     out

@@ -196,64 +196,21 @@ pub fn write_elem(p: &Protocol, n: &Names, ty: &ValueType, src: &str) -> String 
 
 /// The members of a bit field, read from its word.
 pub fn read_bits(p: &Protocol, n: &Names, word: Scalar, members: &[BitMember]) -> String {
-    let (lo, up) = (&n.lo, &n.up);
     let mut out = try_call(&take_call(n, word.prim.size(), big(word), "raw"));
     for m in members {
         let bits = format!("((raw >> {}) & {})", m.shift, u64_lit(mask(m.width)));
-        if let Some(ei) = m.enum_index.filter(|&ei| rejects(&p.enums[ei])) {
-            let ety = n.ty(&p.enums[ei].name);
-            out.push_str(&fill!(
-                "    if (!${ety}_known(${bits})) return ${up}ERR_INVALID_ENUM;\n",
-                ety,
-                bits,
-                up
-            ));
-        }
-        let value = match m.enum_index {
-            // A signed enum's value is its bits as a two's complement integer of its type.
-            Some(ei) if p.enums[ei].prim.is_signed() => format!(
-                "({}){}",
-                n.ty(&p.enums[ei].name),
-                from_raw(lo, p.enums[ei].prim, &bits)
-            ),
-            Some(ei) => format!("({}){bits}", n.ty(&p.enums[ei].name)),
-            None => from_raw(lo, m.prim, &bits),
-        };
-        let name = names::field(&m.name);
-        out.push_str(&fill!("    out->${name} = ${value};\n", name, value));
+        out.push_str(&super::members::read_member(p, n, m, &bits));
     }
     out
 }
 
 /// The members of a bit field, each checked to fit, written as their word.
 pub fn write_bits(p: &Protocol, n: &Names, word: Scalar, members: &[BitMember]) -> String {
-    let (lo, up) = (&n.lo, &n.up);
     let mut out = String::from("    word = 0;\n");
     for m in members {
-        let v = format!("v->{}", names::field(&m.name));
-        let bits = match m.enum_index {
-            Some(_) => format!("(uint64_t){v}"),
-            None => to_raw(lo, m.prim, &v),
-        };
-        out.push_str(&fill!("    raw = ${bits};\n", bits));
-        if let Some(ei) = m.enum_index.filter(|&ei| rejects(&p.enums[ei])) {
-            let ety = n.ty(&p.enums[ei].name);
-            out.push_str(&fill!(
-                "    if (!${ety}_known(raw)) return ${up}ERR_OUT_OF_RANGE;\n",
-                ety,
-                up
-            ));
-        }
-        let (m, shift) = (u64_lit(mask(m.width)), m.shift);
-        out.push_str(&fill!(
-            r"
-    if (raw > ${m}) return ${up}ERR_OUT_OF_RANGE;
-    word |= raw << ${shift};
-",
-            m,
-            up,
-            shift
-        ));
+        out.push_str(&super::members::write_member(p, n, m));
+        let shift = m.shift;
+        out.push_str(&fill!("    word |= raw << ${shift};\n", shift));
     }
     out + &try_call(&put_call(n, word.prim.size(), big(word), "word"))
 }

@@ -7,8 +7,8 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use crate::ir::{
-    Algorithm, BitOrder, ByteOrder, Check, Field, FieldKind, Frame, Pos, Prim, Protocol, Role,
-    Struct, ValueType,
+    Algorithm, BitMember, BitOrder, ByteOrder, Check, Field, FieldKind, Frame, Pos, Prim, Protocol,
+    Role, Struct, ValueType,
 };
 
 /// `#[doc = "..."]` attributes, one per line (so rustdoc and prettyplease keep the layout).
@@ -198,10 +198,7 @@ fn kind_doc(p: &Protocol, f: &Field, kind: &FieldKind) -> KindDoc {
             KindDoc::of(ty, order)
         }
         FieldKind::Bits { word, members } => {
-            let mut names: Vec<String> = members
-                .iter()
-                .map(|m| format!("`{}` (bits {}..{})", m.name, m.shift, m.shift + m.width))
-                .collect();
+            let mut names: Vec<String> = members.iter().map(member_name).collect();
             // Bits above the members that no member keeps are reserved-zero.
             let used: u32 = members.iter().map(|m| m.width).sum();
             let bits = 8 * word.prim.size() as u32;
@@ -214,6 +211,20 @@ fn kind_doc(p: &Protocol, f: &Field, kind: &FieldKind) -> KindDoc {
                     format!("{} bits", word.prim.spec_name()),
                     order_name(word.endian, word.prim.size()),
                 )
+            }
+        }
+        FieldKind::BitStream { members } => {
+            let names: Vec<String> = members.iter().map(member_name).collect();
+            let bits: u32 = members.iter().map(|m| m.width).sum();
+            let size = f.size as u32 * 8;
+            let zero = if bits < size {
+                format!(", bits {bits}..{size} zero")
+            } else {
+                String::new()
+            };
+            KindDoc {
+                name: Some(format!("{}{zero}", names.join(", "))),
+                ..KindDoc::of(format!("bit stream of {bits} bits"), "MSB first")
             }
         }
         FieldKind::NulText { max } => {
@@ -245,6 +256,24 @@ fn kind_doc(p: &Protocol, f: &Field, kind: &FieldKind) -> KindDoc {
         }
         FieldKind::Value { ty, count } => value_doc(p, ty, *count),
     }
+}
+
+/// A bit member as a field's docs name it: its bits, and whether it is signed or scaled.
+fn member_name(m: &BitMember) -> String {
+    let mut what = format!("bits {}..{}", m.shift, m.shift + m.width);
+    if m.is_signed() {
+        what.push_str(", signed");
+    }
+    if let Some(s) = &m.scale {
+        what.push_str(&format!(", × {}", s.factor));
+        if s.offset != 0.0 {
+            what.push_str(&format!(" + {}", s.offset));
+        }
+    }
+    if !m.unit.is_empty() {
+        what.push_str(&format!(", {}", m.unit));
+    }
+    format!("`{}` ({what})", m.name)
 }
 
 /// The docs of a value field ([`FieldKind::Value`]), or of an array's element.

@@ -215,7 +215,19 @@ impl StructPrinter<'_> {
                     self.field(si, i, f, inner)
                 )
             }
+            FieldKind::BitStream { .. } => {
+                self.refused.push(format!(
+                    "{abbrev}: a bit stream (members of up to 64 bits; Lua's bit32 computes 32)"
+                ));
+                format!("{{ kind = \"padding\", size = {} }}", f.size)
+            }
             FieldKind::Bits { word, members } => {
+                if let Some(m) = members.iter().find(|m| m.is_signed() || m.scale.is_some()) {
+                    self.refused.push(format!(
+                        "{abbrev}: bit member `{}` is signed or scaled",
+                        m.name
+                    ));
+                }
                 let mut items = Vec::new();
                 for m in members {
                     let abbrev = format!("{}.{}.{}", self.p.name, s.name, m.name);

@@ -61,6 +61,9 @@ fn diff_field(
                 members: mb,
             },
         ) => a == b && diff_members(op, ma, np, mb, at, r),
+        (FieldKind::BitStream { members: ma }, FieldKind::BitStream { members: mb }) => {
+            of.size == nf.size && diff_members(op, ma, np, mb, at, r)
+        }
         // A packed array's wire form is all of its parameters but the Rust type.
         (
             FieldKind::Packed {
@@ -216,7 +219,9 @@ fn diff_members(
         return false;
     }
     for (x, y) in a.iter().zip(b) {
-        if (x.shift, x.width) != (y.shift, y.width) {
+        // Signedness and scaling change what the same bits mean.
+        if (x.shift, x.width, x.is_signed(), x.scale) != (y.shift, y.width, y.is_signed(), y.scale)
+        {
             return false;
         }
         match (x.enum_index, y.enum_index) {

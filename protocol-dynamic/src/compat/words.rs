@@ -133,6 +133,7 @@ fn kind(p: &Protocol, f: &Field, kind_of: &FieldKind) -> String {
             )
         }
         FieldKind::Bits { word, .. } => format!("bit fields in a {}", scalar(word)),
+        FieldKind::BitStream { .. } => format!("a bit stream of {} bytes, MSB first", f.size),
         FieldKind::Packed {
             count,
             bits,

@@ -1,6 +1,6 @@
 //! Reading a payload struct into a [`Value`], as the generated `Payload::read` and `from_bytes` do.
 
-use protocol_runtime::{DecodeError, Reader, field, packed, text};
+use protocol_runtime::{DecodeError, Reader, bitstream, field, packed, text};
 use protocol_spec::ir::{BitMember, BitOrder, Enum, Prim, Protocol, Scale, ValueType};
 
 use super::{kinds, signed_value, variant};
@@ -129,14 +129,29 @@ pub(super) fn read_member(
     word: u64,
     path: &Path<'_>,
 ) -> Result<Value, ReadFail> {
-    let bits = field::get_bits(word, m.shift, m.width);
-    Ok(match m.enum_index {
-        Some(ei) => {
+    read_member_bits(p, m, field::get_bits(word, m.shift, m.width), path)
+}
+
+/// Member `m` from its unsigned `bits` (of a word or a bit stream): a flag, an enum, an
+/// integer (sign-extended from the member's width when signed), or a scaled value's physical
+/// value computed from that integer.
+pub(super) fn read_member_bits(
+    p: &Protocol,
+    m: &BitMember,
+    bits: u64,
+    path: &Path<'_>,
+) -> Result<Value, ReadFail> {
+    let signed = m.is_signed().then(|| bitstream::sign_extend(bits, m.width));
+    Ok(match (m.enum_index, &m.scale, signed) {
+        (Some(ei), _, _) => {
             let e = &p.enums[ei];
             enum_value(e, ei, truncate(e.prim, bits), path)?
         }
-        None if m.prim == Prim::Bool => Value::Bool(bits != 0),
-        None => Value::from(truncate(m.prim, bits)),
+        (None, Some(sc), Some(i)) => physical_value(i as f64, sc)?,
+        (None, Some(sc), None) => physical_value(bits as f64, sc)?,
+        (None, None, _) if m.prim == Prim::Bool => Value::Bool(bits != 0),
+        (None, None, Some(i)) => Value::Int(i),
+        (None, None, None) => Value::from(truncate(m.prim, bits)),
     })
 }
 

@@ -112,8 +112,37 @@ pub(super) fn member_raw(
             let raw = enum_raw(e, v, path)?;
             Ok(signed_value(e.prim, raw).map_or(raw, |i| i as u64))
         }
-        None => value_bits(v, m.prim).map_err(|e| issue(path, e)),
+        None => member_number(m, v, path),
     }
+}
+
+/// The unsigned bits of member `m` (not an enum) holding `v`: the raw integer of a scaled
+/// value, a signed value in two's complement of the member's width; a value that does not fit
+/// the member's type, or a signed one its width, is an error (an unsigned one too wide is the
+/// caller's, as it sets the bits).
+fn member_number(m: &BitMember, v: &Value, path: &str) -> Result<u64, EncodeIssue> {
+    let wide = |prim| Scalar {
+        prim,
+        endian: protocol_spec::ir::ByteOrder::Little,
+    };
+    let raw = match (&m.scale, m.is_signed()) {
+        (Some(sc), true) => scaled_raw(wide(Prim::I64), sc, v, path)?,
+        (Some(sc), false) => scaled_raw(wide(Prim::U64), sc, v, path)?,
+        (None, _) => value_bits(v, m.prim).map_err(|e| issue(path, e))?,
+    };
+    if !m.is_signed() {
+        return Ok(raw);
+    }
+    let value = match m.scale {
+        Some(_) => raw as i64,
+        None => protocol_runtime::bitstream::sign_extend(raw, m.prim.bits()),
+    };
+    protocol_runtime::bitstream::signed_bits(value, m.width).map_err(|_| {
+        EncodeIssue::new(
+            path,
+            format!("{value} does not fit {} bits of two's complement", m.width),
+        )
+    })
 }
 
 pub(super) fn write_elem(

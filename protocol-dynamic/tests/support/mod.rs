@@ -170,12 +170,13 @@ fn field_text(p: &Protocol, name: &str, kind: &FieldKind, v: &Value, out: &mut V
                 .collect();
             out.push(format!("{name}: [{}]", items.join(", ")));
         }
-        FieldKind::Bits { members, .. } => {
+        FieldKind::Bits { members, .. } | FieldKind::BitStream { members } => {
             for m in members {
                 let x = &v[m.name.as_str()];
-                let text = match m.enum_index {
-                    Some(ei) => enum_text(p, ei, x),
-                    None => int_text(m.prim, x),
+                let text = match (m.enum_index, &m.scale) {
+                    (Some(ei), _) => enum_text(p, ei, x),
+                    (None, Some(sc)) => int_text(sc.physical, x),
+                    (None, None) => int_text(m.prim, x),
                 };
                 out.push(format!("{}: {text}", m.name));
             }

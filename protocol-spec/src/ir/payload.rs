@@ -303,6 +303,14 @@ pub enum FieldKind {
     },
     /// A value present only when bytes remain in the payload (only at the end of a struct).
     Optional(Box<FieldKind>),
+    /// Bytes read as one stream of bits, most significant bit of the first byte first, split
+    /// into members of 1 to 64 bits that straddle bytes as they fall (the runtime's
+    /// [`protocol_runtime::bitstream`]); `ceil(bits / 8)` bytes, the bits after the last
+    /// member written as 0 and ignored when read.
+    BitStream {
+        /// Members in stream order; `shift` is each one's first bit.
+        members: Vec<BitMember>,
+    },
     /// An integer whose bits are split into named members.
     Bits {
         /// The integer on the wire.
@@ -352,6 +360,17 @@ pub struct PayloadCheck {
     pub prefix: Vec<u8>,
     /// Byte order of the stored value.
     pub endian: ByteOrder,
+}
+
+impl FieldKind {
+    /// The bit members of a bitfield word or a bit stream: each a field of the Rust struct in
+    /// place of the field itself.
+    pub fn members(&self) -> Option<&[BitMember]> {
+        match self {
+            FieldKind::Bits { members, .. } | FieldKind::BitStream { members } => Some(members),
+            _ => None,
+        }
+    }
 }
 
 impl Struct {
@@ -404,15 +423,29 @@ pub struct BitMember {
     pub name: String,
     /// Documentation.
     pub doc: String,
-    /// Lowest bit, counted from the least significant bit of the word.
+    /// In a word: the lowest bit, counted from the least significant bit of the word. In a
+    /// bit stream ([`FieldKind::BitStream`]): the first bit, counted from the most significant
+    /// bit of the stream's first byte.
     pub shift: u32,
     /// Number of bits.
     pub width: u32,
-    /// Rust type of the member: `Bool` for a one-bit flag unless written otherwise, else the
-    /// smallest unsigned type that holds `width` bits.
+    /// Rust type of the raw member: `Bool` for a one-bit flag unless written otherwise, else
+    /// the smallest unsigned type that holds `width` bits, or the integer type written. A
+    /// signed type makes the member two's complement of `width` bits, sign-extended when read.
     pub prim: Prim,
     /// The enum (index into [`Protocol::enums`](super::Protocol::enums)) the member holds, if any.
     pub enum_index: Option<usize>,
+    /// Scaling from the raw member to its physical value (payload members only).
+    pub scale: Option<Scale>,
+    /// Physical unit, for docs (empty when none).
+    pub unit: String,
+}
+
+impl BitMember {
+    /// Whether the member is two's complement of its width.
+    pub fn is_signed(&self) -> bool {
+        self.prim.is_signed()
+    }
 }
 
 /// An enum with explicit values.

@@ -406,10 +406,20 @@ pub struct BitDef {
     #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub bits: SInt,
     /// Rust type (`bool`, `u8`, ..., or an enum name); default `bool` for one bit, else the
-    /// smallest unsigned integer.
+    /// smallest unsigned integer. In a payload, a signed type (`i8` ... `i64`) makes the member
+    /// two's complement of its own width, sign-extended when read.
     #[serde(rename = "type")]
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub ty: Option<SStr>,
+    /// In a payload: physical value = raw * scale (+ offset), as on a whole field.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<f64>"))]
+    pub scale: Option<Spanned<f64>>,
+    /// In a payload: added after scaling.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<f64>"))]
+    pub offset: Option<Spanned<f64>>,
+    /// In a payload: unit of the (physical) value, for docs.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
+    pub unit: Option<SStr>,
     /// In a header field before the payload: this member is the frame's length.
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub length_of: Option<SStr>,
@@ -539,8 +549,9 @@ pub struct FieldDef {
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub name: Option<SStr>,
     /// Type: primitive (`u16`, `i32be`, `u24le`, `u48`, `f16`, `f32`, `bool`), `char[N]` (N
-    /// bytes of NUL-padded text), `cstr` (NUL-terminated text of at most `max` bytes), struct
-    /// or enum name.
+    /// bytes of NUL-padded text), `cstr` (NUL-terminated text of at most `max` bytes),
+    /// `bitstream` (with `bits`: bytes read as one stream of bits, most significant bit
+    /// first), struct or enum name.
     #[serde(rename = "type")]
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub ty: Option<SStr>,
@@ -566,7 +577,8 @@ pub struct FieldDef {
     /// Padding bytes (written as zero, ignored when read).
     #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub pad: Option<SInt>,
-    /// Bit members of an integer field.
+    /// Bit members of an integer field (lowest bit first), or of a `bitstream` (first bit
+    /// first).
     #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<BitDef>>"))]
     pub bits: Option<Spanned<Vec<Spanned<BitDef>>>>,
     /// A bit-packed array: `count` unsigned elements of `bits` bits each, back to back, in

@@ -215,6 +215,7 @@ fn payload_value(
             FieldKind::Padding
                 | FieldKind::Value { .. }
                 | FieldKind::Bits { .. }
+                | FieldKind::BitStream { .. }
                 | FieldKind::Packed { .. }
         )
     });

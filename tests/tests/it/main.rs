@@ -21,6 +21,7 @@ mod support;
 mod golden;
 
 mod async_io;
+mod bit_stream;
 mod can_frames;
 mod check_vectors;
 mod crsf_parser;

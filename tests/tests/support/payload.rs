@@ -101,6 +101,27 @@ impl Model {
                 }
                 put_uint(out, *word, bits);
             }
+            ir::FieldKind::BitStream { members } => {
+                // Random bits per member (a signed member's bits are its two's complement, a
+                // scaled member's its raw value); the bits after the last member stay 0, as
+                // the encoder writes them.
+                let mut bytes = vec![0u8; field.size];
+                for m in members {
+                    let value = match (m.enum_index, m.prim) {
+                        (Some(e), _) => self.enum_value(src, e, m.width),
+                        (None, ir::Prim::Bool) => src.below(2),
+                        (None, _) => src.next_u64() & mask(m.width),
+                    };
+                    protocol_kit::bitstream::set_stream(
+                        &mut bytes,
+                        m.shift as usize,
+                        m.width,
+                        value,
+                    )
+                    .expect("the member fits its bits");
+                }
+                out.extend(bytes);
+            }
             ir::FieldKind::Packed {
                 count, bits, order, ..
             } => {

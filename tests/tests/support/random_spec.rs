@@ -23,7 +23,7 @@
 //! (integers of 8 to 64 bits with a byte order, 40, 48 and 56 bits among them, floats and
 //! halves, bools (inverted too), arrays sized by a number or a constant, enums that keep or reject unknown
 //! values, scaled, clamped and rounded values, scaled floats, bit
-//! members, bit-packed arrays, fixed and NUL-terminated text, nested structs, padding), bytes
+//! members (signed and scaled among them), bit streams, bit-packed arrays, fixed and NUL-terminated text, nested structs, padding), bytes
 //! and arrays sized by an earlier field, checks inside a payload (with a CRC prefix), extension
 //! fields and a variable tail (bytes, repeated integers or structs, an optional value). A
 //! `[session]` table (answer, timeout, retries, backoff, sequence field, handshake, watchdog)
@@ -255,6 +255,9 @@ pub const FEATURES: &[&str] = &[
     "field-bits",
     "field-bits-enum",
     "field-bits-reserved-zero",
+    "field-bits-signed",
+    "field-bits-scaled",
+    "field-bitstream",
     "field-packed",
     "field-char",
     "field-nested",

@@ -5,7 +5,6 @@ use crate::ir::{BitMember, Field, Protocol, Scalar, Struct};
 
 use super::Kind;
 use crate::c::fields::Dir;
-use crate::c::format::{Label, enum_value, scalar};
 use crate::c::names::{self, Names, doc_comment};
 use crate::c::template::fill;
 use crate::c::values::{read_bits, write_bits};
@@ -34,17 +33,7 @@ impl Kind for Bits<'_> {
     }
 
     fn text(&self, n: &Names, _f: &Field) -> String {
-        let (p, lo) = (self.p, &n.lo);
-        let mut out = String::new();
-        for m in self.members {
-            let v = format!("v->{}", names::field(&m.name));
-            let label = Label::of(&m.name);
-            out.push_str(&match m.enum_index {
-                Some(ei) => enum_value(n, &p.enums[ei].name, p.enums[ei].prim, &label, &v),
-                None => scalar(lo, m.prim, &label, &v),
-            });
-        }
-        out
+        crate::c::members::text(self.p, n, self.members)
     }
 
     fn keys(&self, _f: &Field) -> Vec<String> {

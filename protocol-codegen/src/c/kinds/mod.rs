@@ -12,6 +12,7 @@ mod nul_text;
 mod optional;
 mod packed;
 mod padding;
+mod stream;
 mod value;
 
 use crate::ir::{Field, FieldKind, Protocol, Struct};
@@ -80,6 +81,7 @@ pub(super) fn of<'a>(p: &'a Protocol, kind: &'a FieldKind) -> Box<dyn Kind + 'a>
             word: *word,
             members,
         }),
+        FieldKind::BitStream { members } => Box::new(stream::Stream { p, members }),
         FieldKind::Array { ty, max, size_from } => Box::new(array::Array {
             p,
             ty,

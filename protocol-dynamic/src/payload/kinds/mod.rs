@@ -11,6 +11,7 @@ mod nul_text;
 mod optional;
 mod packed;
 mod padding;
+mod stream;
 mod value;
 
 use protocol_runtime::{Reader, Writer};
@@ -139,6 +140,7 @@ pub(super) fn of(kind: &FieldKind) -> Box<dyn Kind<'_> + '_> {
             scale: *scale,
         }),
         FieldKind::Optional(inner) => Box::new(optional::Optional(of(inner))),
+        FieldKind::BitStream { members } => Box::new(stream::Stream { members }),
         FieldKind::Bits { word, members } => Box::new(bits::Bits {
             word: *word,
             members,

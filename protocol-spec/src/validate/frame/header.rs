@@ -5,7 +5,7 @@
 use toml::Spanned;
 
 use super::super::names::{check_snake_name, parse_prim, unknown_type};
-use super::super::types::{Enums, fit, lower_bits, mask};
+use super::super::types::{Enums, MemberSite, fit, lower_bits, mask};
 use super::super::{Ctx, text};
 use super::elements::byte_list;
 use super::{Draft, El, Kind, can_id};
@@ -325,7 +325,15 @@ fn lower_member_values<'s>(
         return Vec::new();
     };
     let addresses = d.addresses.as_ref().is_some_and(|a| *a.get_ref());
-    let members = lower_bits(ctx, bits.get_ref(), word.prim, enums, &|_| None);
+    let word_bits = (word.prim.size() * 8) as u32;
+    let members = lower_bits(
+        ctx,
+        bits.get_ref(),
+        word_bits,
+        MemberSite::Header,
+        enums,
+        &|_| None,
+    );
     let mut idx = Vec::new();
     for (m, bdef) in members.into_iter().zip(bits.get_ref()) {
         let b = bdef.get_ref();

@@ -5,7 +5,7 @@ use toml::Spanned;
 
 use super::super::names::{check_snake_name, parse_prim, prim_spellings, unknown_type};
 use super::super::{Ctx, text};
-use super::bits::{lower_bits, lower_packed, lower_reserved_bits};
+use super::bits::{MemberSite, lower_bits, lower_packed, lower_reserved_bits, lower_stream};
 use super::variable::{lower_array, lower_bytes, lower_group, lower_nul_text};
 use super::{Enums, Structs};
 use crate::diag::did_you_mean;
@@ -71,6 +71,10 @@ pub(super) fn lower_field(
         kind,
         unit: text(&d.unit),
     };
+    if ty.get_ref() == "bitstream" {
+        let (size, kind) = lower_stream(ctx, f, ty, enums)?;
+        return Some(field(size, kind, &d.doc));
+    }
     if ty.get_ref() == "bytes" {
         let (max, size_from) = lower_bytes(ctx, f, name, ty, count)?;
         return Some(field(max, FieldKind::Bytes { max, size_from }, &d.doc));
@@ -212,7 +216,9 @@ fn lower_bitfield(
             "remove `count`, or wrap the bitfield in a struct and make an array of it",
         );
     }
-    let mut members = lower_bits(ctx, bits.get_ref(), word.prim, enums, &|m| {
+    let word_bits = (word.prim.size() * 8) as u32;
+    let site = MemberSite::Word;
+    let mut members = lower_bits(ctx, bits.get_ref(), word_bits, site, enums, &|m| {
         if m.length_of.is_some() || m.value.is_some() {
             Some("`length_of` and `value` apply to header bitfields only")
         } else {

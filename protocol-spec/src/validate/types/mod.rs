@@ -17,7 +17,7 @@ use super::{Ctx, text};
 use crate::ir::{ByteOrder, Constant, Enum, EnumVariant, Prim, Scalar, UnknownPolicy};
 use crate::spec::model::ConstantDef;
 
-pub(crate) use bits::lower_bits;
+pub(crate) use bits::{MemberSite, lower_bits};
 pub(crate) use fields::lower_scale;
 pub(crate) use structs::{Structs, lower_structs};
 

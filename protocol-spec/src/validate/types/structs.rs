@@ -187,13 +187,18 @@ fn lower_fields(
 fn check_member_names(ctx: &mut Ctx<'_>, name: &str, d: &StructDef, fields: &[Field]) {
     let rust_names = |f: &Field| -> Vec<String> {
         match &f.kind {
-            FieldKind::Bits { members, .. } => members.iter().map(|m| m.name.clone()).collect(),
             FieldKind::Padding => Vec::new(),
+            kind if kind.members().is_some() => kind
+                .members()
+                .unwrap_or_default()
+                .iter()
+                .map(|m| m.name.clone())
+                .collect(),
             _ => vec![f.name.clone()],
         }
     };
     for (i, f) in fields.iter().enumerate() {
-        let FieldKind::Bits { members, .. } = &f.kind else {
+        let Some(members) = f.kind.members() else {
             continue;
         };
         for m in members {

@@ -89,6 +89,7 @@ impl Spec {
                 }
             }
             9 => self.packed_field(name),
+            10 => self.stream_field(name),
             _ => {
                 self.feature("field-int");
                 field(format!("{{ name = \"{name}\", type = \"u8\" }}"), 1)
@@ -216,6 +217,8 @@ impl Spec {
             if !fits.is_empty() && self.rng.one_in(3) {
                 self.feature("field-bits-enum");
                 write!(m, ", type = \"{}\"", self.rng.pick(&fits)).unwrap();
+            } else if bits > 1 {
+                m.push_str(&self.member_number(bits));
             }
             m.push_str(" }");
             members.push(m);
@@ -234,6 +237,70 @@ impl Spec {
             ),
             size,
         )
+    }
+
+    /// The keys that make a bit member of `bits` bits signed or scaled, sometimes: two's
+    /// complement in the smallest signed type that holds it, a scale (and an offset) on a
+    /// member of up to 32 bits (whose raw values an `f64` holds exactly).
+    fn member_number(&mut self, bits: u64) -> String {
+        let mut keys = String::new();
+        if self.rng.one_in(4) {
+            self.feature("field-bits-signed");
+            let ty = match bits {
+                0..=8 => "i8",
+                9..=16 => "i16",
+                17..=32 => "i32",
+                _ => "i64",
+            };
+            write!(keys, ", type = \"{ty}\"").unwrap();
+        }
+        if bits <= 32 && self.rng.one_in(4) {
+            self.feature("field-bits-scaled");
+            let scale = *self.rng.pick(&["0.5", "0.25", "2.0", "0.1"]);
+            write!(keys, ", scale = {scale}").unwrap();
+            if self.rng.one_in(2) {
+                keys.push_str(", offset = -3.0, unit = \"m\"");
+            }
+        }
+        keys
+    }
+
+    /// A bit stream: members of 1 to 40 bits, MSB first across bytes, flags, integers (signed
+    /// and scaled sometimes) and an enum.
+    fn stream_field(&mut self, name: &str) -> Field {
+        self.feature("field-bitstream");
+        let mut used = 0;
+        let mut members = Vec::new();
+        for k in 0..self.rng.range(1, 5) {
+            let bits = if self.rng.one_in(4) {
+                1
+            } else {
+                self.rng.range(2, 40)
+            };
+            let mut m = format!("{{ name = \"{name}_{k}\", bits = {bits}");
+            let fits = self
+                .enums
+                .iter()
+                .filter(|e| !e.signed && e.max_value < (1 << bits.min(63)))
+                .map(|e| e.name.clone())
+                .collect::<Vec<_>>();
+            if !fits.is_empty() && self.rng.one_in(4) {
+                write!(m, ", type = \"{}\"", self.rng.pick(&fits)).unwrap();
+            } else if bits > 1 {
+                m.push_str(&self.member_number(bits));
+            }
+            m.push_str(" }");
+            members.push(m);
+            used += bits;
+        }
+        Field {
+            text: format!(
+                "{{ name = \"{name}\", type = \"bitstream\", bits = [{}] }}",
+                members.join(", ")
+            ),
+            size: used.div_ceil(8) as usize,
+            repeatable: true,
+        }
     }
 
     /// A payload struct: fixed fields, padding sometimes, fields sized by an earlier field, a

@@ -8,7 +8,7 @@ use super::{Decl, Kind, Slot, named_type};
 use crate::codegen::docs::doc_attrs;
 use crate::codegen::ident;
 use crate::codegen::payload::body::{Body, read_in, write_in};
-use crate::codegen::payload::scalar::{prim_type, read_scalar, write_scalar};
+use crate::codegen::payload::scalar::{prim_type, read_scalar, to_physical, to_raw, write_scalar};
 use crate::ir::{BitMember, Field, Prim, Protocol, Scalar};
 
 /// The word and its members.
@@ -21,21 +21,6 @@ pub(super) struct Bits<'a> {
 impl<'a> Bits<'a> {
     pub(super) fn new(p: &'a Protocol, word: Scalar, members: &'a [BitMember]) -> Bits<'a> {
         Bits { p, word, members }
-    }
-
-    /// A member's enum type, if it holds an enum, with the enum's raw type.
-    fn member_enum(&self, m: &BitMember) -> Option<(TokenStream, Prim)> {
-        let e = &self.p.enums[m.enum_index?];
-        Some((named_type(&e.name, e.foreign), e.prim))
-    }
-
-    /// A member's Rust type: `bool`, an unsigned integer or an enum.
-    fn member_type(&self, m: &BitMember) -> TokenStream {
-        match self.member_enum(m) {
-            Some((ty, _)) => ty,
-            None if m.prim == Prim::Bool => quote!(bool),
-            None => prim_type(m.prim),
-        }
     }
 
     /// Statements setting every member into the word `var` (write), and the members' values
@@ -54,20 +39,13 @@ impl<'a> Bits<'a> {
             let (id, shift, width) = (ident(&m.name), m.shift, m.width);
             let path = b.field_path(&id);
             let field = quote!(#rt::get_bits(#var, #shift, #width));
-            let (raw, value) = match self.member_enum(m) {
-                // Through the word type, as the word holds it (a signed raw value's bits).
-                Some((ty, p)) => {
-                    let t = prim_type(p);
-                    (
-                        quote!(#rt::enum_raw(self.#id, #ty::to_raw, #ty::from_raw)? as #wt as u64),
-                        read_in(&path, quote!(#ty::from_raw(#field as #t)?), rt),
-                    )
+            // An enum's raw value goes through the word type, as the word holds it (a signed
+            // raw value's bits).
+            let raw = match member_enum(self.p, m) {
+                Some((ty, _)) => {
+                    quote!(#rt::enum_raw(self.#id, #ty::to_raw, #ty::from_raw)? as #wt as u64)
                 }
-                None if m.prim == Prim::Bool => (quote!(u64::from(self.#id)), quote!(#field != 0)),
-                None => {
-                    let t = prim_type(m.prim);
-                    (quote!(self.#id as u64), quote!(#field as #t))
-                }
+                None => member_raw(m, quote!(self.#id), rt),
             };
             let set = quote!(#var = #rt::set_bits(#var, #raw, #shift, #width)?;);
             // A `bool` fits its bit; a wider value or an enum's raw value may not.
@@ -75,10 +53,91 @@ impl<'a> Bits<'a> {
                 Prim::Bool if m.enum_index.is_none() => set,
                 _ => write_in(&path, set, rt),
             });
+            let value = member_value(self.p, m, field, &path, rt);
             inits.push(quote!(#id: #value));
         }
         (sets, inits)
     }
+}
+
+/// A member's enum type, if it holds an enum, with the enum's raw type.
+fn member_enum(p: &Protocol, m: &BitMember) -> Option<(TokenStream, Prim)> {
+    let e = &p.enums[m.enum_index?];
+    Some((named_type(&e.name, e.foreign), e.prim))
+}
+
+/// A member's Rust type: `bool`, an integer, an enum, or the float a scaled member is.
+pub(super) fn member_type(p: &Protocol, m: &BitMember) -> TokenStream {
+    match (member_enum(p, m), m.scale) {
+        (Some((ty, _)), _) => ty,
+        (None, Some(sc)) => prim_type(sc.physical),
+        (None, None) if m.prim == Prim::Bool => quote!(bool),
+        (None, None) => prim_type(m.prim),
+    }
+}
+
+/// The value of member `m` from its unsigned bits `bits` (a `u64` expression): a flag, an
+/// integer (sign-extended from the member's width when signed), an enum, or the physical
+/// value of a scaled one. Errors name the member's `path`.
+pub(super) fn member_value(
+    p: &Protocol,
+    m: &BitMember,
+    bits: TokenStream,
+    path: &str,
+    rt: &TokenStream,
+) -> TokenStream {
+    if let Some((ty, raw)) = member_enum(p, m) {
+        let t = prim_type(raw);
+        return read_in(path, quote!(#ty::from_raw(#bits as #t)?), rt);
+    }
+    if m.prim == Prim::Bool {
+        return quote!(#bits != 0);
+    }
+    let width = m.width;
+    let t = prim_type(m.prim);
+    let raw = if m.is_signed() {
+        quote!(#rt::sign_extend(#bits, #width) as #t)
+    } else {
+        quote!(#bits as #t)
+    };
+    match &m.scale {
+        Some(sc) => to_physical(raw, m.prim, sc, rt),
+        None => raw,
+    }
+}
+
+/// The unsigned bits (a `u64` expression) of member `m` holding `value` (not an enum): the
+/// raw integer of a scaled value, quantized and fitted by the runtime, and a signed value in
+/// two's complement of the member's width (an error when it does not fit).
+pub(super) fn member_raw(m: &BitMember, value: TokenStream, rt: &TokenStream) -> TokenStream {
+    let width = m.width;
+    let wide = match (&m.scale, m.is_signed()) {
+        (Some(sc), true) => to_raw(value, sc, Some(Prim::I64), rt),
+        (Some(sc), false) => to_raw(value, sc, Some(Prim::U64), rt),
+        (None, true) => quote!(#value as i64),
+        (None, false) if m.prim == Prim::Bool => quote!(u64::from(#value)),
+        (None, false) => quote!(#value as u64),
+    };
+    if m.is_signed() {
+        quote!(#rt::signed_bits(#wide, #width)?)
+    } else {
+        wide
+    }
+}
+
+/// The doc of member `m`: its own text, its unit, and where its bits lie (`place`).
+pub(super) fn member_doc(m: &BitMember, place: &str) -> TokenStream {
+    let unit = if m.unit.is_empty() {
+        String::new()
+    } else {
+        format!("Unit: {}. ", m.unit)
+    };
+    let text = format!(
+        "{}{}{unit}({place}.)",
+        m.doc,
+        if m.doc.is_empty() { "" } else { " " },
+    );
+    doc_attrs(&text)
 }
 
 impl Kind for Bits<'_> {
@@ -87,7 +146,7 @@ impl Kind for Bits<'_> {
     }
 
     fn is_eq(&self) -> bool {
-        true
+        self.members.iter().all(|m| m.scale.is_none())
     }
 
     fn fixed_size(&self) -> usize {
@@ -127,17 +186,16 @@ impl Kind for Bits<'_> {
     }
 
     fn declare(&self, f: &Field, _id: Option<&Ident>, d: &mut Decl) {
+        d.eq &= self.members.iter().all(|m| m.scale.is_none());
         for m in self.members {
-            let ty = self.member_type(m);
-            let text = format!(
-                "{}{}(bits {}..{} of byte {}.)",
-                m.doc,
-                if m.doc.is_empty() { "" } else { " " },
+            let ty = member_type(self.p, m);
+            let place = format!(
+                "bits {}..{} of byte {}",
                 m.shift,
                 m.shift + m.width,
                 f.offset
             );
-            let doc = doc_attrs(&text);
+            let doc = member_doc(m, &place);
             let id = ident(&m.name);
             d.fields.push(quote!(#doc pub #id: #ty));
         }

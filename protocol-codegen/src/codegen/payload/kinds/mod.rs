@@ -12,6 +12,7 @@ mod nul_text;
 mod optional;
 mod packed;
 mod padding;
+mod stream;
 mod value;
 
 use proc_macro2::{Ident, TokenStream};
@@ -162,6 +163,7 @@ pub(crate) fn of<'a>(p: &'a Protocol, kind: &'a FieldKind, size: usize) -> Box<d
         }),
         FieldKind::Optional(inner) => Box::new(optional::Optional(of(p, inner, size))),
         FieldKind::Bits { word, members } => Box::new(bits::Bits::new(p, *word, members)),
+        FieldKind::BitStream { members } => Box::new(stream::Stream { p, members, size }),
         FieldKind::Array { ty, max, size_from } => {
             Box::new(array::Array::new(p, ty, *max, size_from, size))
         }
