@@ -6,7 +6,7 @@
 use toml::Spanned;
 
 use super::super::Ctx;
-use super::super::types::{Enums, lower_bits, mask};
+use super::super::types::{Enums, MemberSite, lower_bits, mask};
 use super::Draft;
 use crate::ir::{HeaderValue, Pos, Prim, Role, Scalar, Transport};
 use crate::spec::model::{BitDef, FrameDef};
@@ -59,7 +59,16 @@ pub(super) fn lower_id_members(
             .is_some()
             .then_some("a member of the CAN id cannot be the length: the DLC is the data length")
     };
-    let members = lower_bits(ctx, bits.get_ref(), Prim::U32, enums, &no_length);
+    // The members are header values of a 32-bit word: signed and scaled members are refused,
+    // as in any header word.
+    let members = lower_bits(
+        ctx,
+        bits.get_ref(),
+        32,
+        MemberSite::Header,
+        enums,
+        &no_length,
+    );
     let total: u32 = members.iter().map(|m| m.width).sum();
     if total != width && members.len() == bits.get_ref().len() {
         let kind = if width == 29 {
