@@ -8,7 +8,7 @@ use toml::Spanned;
 use super::super::Ctx;
 use super::super::types::{Enums, MemberSite, lower_bits, mask};
 use super::Draft;
-use crate::ir::{HeaderValue, Pos, Prim, Role, Scalar, Transport};
+use crate::ir::{HeaderValue, Pos, Role, Scalar, Transport};
 use crate::spec::model::{BitDef, FrameDef};
 
 /// The members of a CAN identifier as written.
