@@ -107,7 +107,7 @@ pub struct DecoderRam {
 ///
 /// static FIXED: FrameLayout<'static> = FrameLayout {
 ///     sync: &[0xAA], sync_set: &[], header_len: 1, min_len: 4, max_len: 4, length: LengthRule::Fixed(4),
-///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
+///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[], escape: None,
 /// };
 /// // A generated layout type: zero-sized.
 /// #[derive(Clone, Copy)]
@@ -170,6 +170,7 @@ static NO_LAYOUT: FrameLayout<'static> = FrameLayout {
     header_checks: &[],
     frame_checks: &[],
     markers: &[],
+    escape: None,
 };
 
 impl LayoutRef for NoBytes {
