@@ -38,9 +38,11 @@ pub(super) fn lower_escape(
         }
         _ => None,
     };
-    check_setting(ctx, def, spanned, transport);
-    if let Some(e) = &lowered {
-        check_delimiters(ctx, def, e.flag, els, trailers);
+    // (A frame that cannot be escaped at all is not also told where its flags go.)
+    if check_setting(ctx, def, spanned, transport) {
+        if let Some(e) = &lowered {
+            check_delimiters(ctx, def, e.flag, els, trailers);
+        }
     }
     if ctx.diags.len() != before {
         *ok = false;
@@ -230,8 +232,13 @@ fn check_flag_and_escape(ctx: &mut Ctx<'_>, d: &EscapeDef, flag: u8, escape: u8,
 }
 
 /// Rule: escaping is a serial framing of the spec's one frame format, and replaces byte
-/// stuffing rather than adding to it.
-fn check_setting(ctx: &mut Ctx<'_>, def: &FrameDef, spanned: &Spanned<EscapeDef>, t: Transport) {
+/// stuffing rather than adding to it. `false` when it does not apply.
+fn check_setting(
+    ctx: &mut Ctx<'_>,
+    def: &FrameDef,
+    spanned: &Spanned<EscapeDef>,
+    t: Transport,
+) -> bool {
     let why = if def.stuffing.is_some() {
         Some((
             "byte stuffing and byte escaping of one frame are not supported together",
@@ -241,6 +248,11 @@ fn check_setting(ctx: &mut Ctx<'_>, def: &FrameDef, spanned: &Spanned<EscapeDef>
         Some((
             "a CAN frame is delimited by the bus, not by flag bytes",
             "remove `escape`, or use `transport = \"serial\"`",
+        ))
+    } else if def.bare_header.as_ref().is_some_and(|b| *b.get_ref()) {
+        Some((
+            "a bare header has no closing flag",
+            "remove `bare_header`: an escaped frame always ends with its flag",
         ))
     } else if ctx.spec.frames.len() > 1 {
         Some((
@@ -252,7 +264,9 @@ fn check_setting(ctx: &mut Ctx<'_>, def: &FrameDef, spanned: &Spanned<EscapeDef>
     };
     if let Some((message, help)) = why {
         ctx.error(spanned.span(), message, help);
+        return false;
     }
+    true
 }
 
 /// Rule: the flag opens and closes every frame: the layout's first element is `sync = [flag]`
