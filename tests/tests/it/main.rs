@@ -28,6 +28,7 @@ mod derive;
 mod dynamixel1_vectors;
 mod dynamixel_vectors;
 mod error_places;
+mod escaped_vectors;
 mod handler;
 mod hflink_vectors;
 mod ibus_vectors;
