@@ -176,7 +176,7 @@ pub(super) fn emit_message_packet(
                     buf,
                     &mut [],
                     &#rt::Body::Struct { start: #header_len },
-                    || #unescaped_len,
+                    || self.encoded_len(),
                     #flagged,
                     |w| #rt::Payload::write(&self.payload, w),
                     |frame| self.header.write(frame),
