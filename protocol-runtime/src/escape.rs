@@ -146,7 +146,9 @@ impl Escape<'_> {
         }
         let mut n = 0usize;
         let mut push = |byte: u8| -> Result<(), DecodeError> {
-            let slot = out.get_mut(n).ok_or(DecodeError::Frame(Reject::BadLength))?;
+            let slot = out
+                .get_mut(n)
+                .ok_or(DecodeError::Frame(Reject::BadLength))?;
             *slot = byte;
             n = n.saturating_add(1);
             Ok(())
@@ -256,7 +258,7 @@ mod tests {
         let escape = DecodeError::Frame(Reject::BadEscape);
         assert_eq!(bad(&[0xC0, 0xDB, 0x01, 0xC0], &mut out), escape);
         assert_eq!(bad(&[0xC0, 0x01, 0xDB, 0xC0], &mut out), escape);
-                let header = DecodeError::Frame(Reject::BadHeader);
+        let header = DecodeError::Frame(Reject::BadHeader);
         assert_eq!(bad(&[0x01, 0x02, 0xC0], &mut out), header);
         let cut = DecodeError::Truncated {
             needed: 3,

@@ -45,9 +45,7 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         // The C engine finds frames by their sync and length; it has no path that unescapes
         // between flags yet (the Rust engine's `decoder/escaped.rs`).
         if f.escape.is_some() {
-            out.push(format!(
-                "{at}: byte escaping between flags (`escape`)"
-            ));
+            out.push(format!("{at}: byte escaping between flags (`escape`)"));
         }
         if rules.ack.is_some() && !keyed {
             out.push(format!(

@@ -258,7 +258,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         // Behind the pending bytes where they are (two comparisons, the common case), else
         // behind them moved to the front, if they leave room.
         if self.end > room || data.len() > room.wrapping_sub(self.end) {
-            if self.pending().saturating_add(data.len()) > room {
+            if self.buffered().saturating_add(data.len()) > room {
                 return false;
             }
             self.buf.copy_within(self.start..self.end, 0);
@@ -320,7 +320,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             self.end = self.end.wrapping_sub(self.start);
             self.start = 0;
         }
-        let want = needed.saturating_sub(self.pending()).min(input.len());
+        let want = needed.saturating_sub(self.buffered()).min(input.len());
         let data: &[u8] = input;
         let Some((src, rest)) = data.split_at_checked(want) else {
             return false;

@@ -15,7 +15,8 @@
 //! The frames yielded are the unescaped bytes, flags included: what
 //! [`FrameLayout::parse`](crate::FrameLayout::parse) and the packet rules read. Offsets and
 //! [`Stats`](super::Stats) count bytes on the wire; a flag shared by two frames counts with the
-//! first. The bytes [`pending`](StreamDecoder::pending) are the candidate's, unescaped.
+//! first. The bytes [`pending_bytes`](StreamDecoder::pending_bytes) are the candidate's, unescaped;
+//! [`pending`](StreamDecoder::pending) counts its bytes on the wire not counted yet.
 //!
 //! The state lives in the fields the other path uses for its search inside a pending
 //! candidate, which this path never runs: `inner_owner` holds the stream offset of the
@@ -182,9 +183,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         Some(match verdict {
             Probe::Frame(n) if n == len => self.frame(esc, flag_at),
             Probe::Reject(reason) => self.reject_closed(esc, reason, flag_at),
-            Probe::Frame(_) | Probe::Need(_) => {
-                self.reject_closed(esc, Reject::BadLength, flag_at)
-            }
+            Probe::Frame(_) | Probe::Need(_) => self.reject_closed(esc, Reject::BadLength, flag_at),
         })
     }
 
@@ -230,6 +229,15 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         let rest = skipped.saturating_sub(1);
         self.stats.skipped_bytes = self.stats.skipped_bytes.wrapping_add(rest);
         Step::Rejected { offset, reason }
+    }
+
+    /// [`pending`](Self::pending) for an escaped format: the open candidate's bytes on the
+    /// wire not counted yet.
+    pub(super) fn escaped_pending(&self) -> usize {
+        if self.start >= self.end {
+            return 0;
+        }
+        usize::try_from(self.uncounted(0)).unwrap_or(usize::MAX)
     }
 
     /// Bytes of the candidate on the wire not counted yet, up to the position less `keep`.

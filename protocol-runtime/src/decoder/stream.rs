@@ -170,8 +170,20 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     }
 
     /// Bytes held in the buffer: the start of a candidate the input has not completed yet.
+    /// For an escaped format, the candidate's bytes on the wire not counted yet (its buffer
+    /// holds them unescaped: [`pending_bytes`](Self::pending_bytes)), so that the bytes fed
+    /// are always the frame bytes, the skipped bytes and these.
     #[inline]
     pub fn pending(&self) -> usize {
+        if self.layout.layout().escape.is_some() {
+            return self.escaped_pending();
+        }
+        self.buffered()
+    }
+
+    /// The bytes in the buffer.
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    pub(super) fn buffered(&self) -> usize {
         self.end.saturating_sub(self.start)
     }
 
@@ -581,7 +593,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// [`frame_inside`](Self::frame_inside)'s body.
     #[cfg_attr(not(protocol_opt0), inline(always))]
     fn frame_inside_here(&mut self, limit: usize, filled: bool) -> bool {
-        let pending = self.pending();
+        let pending = self.buffered();
         // (The block test on hosts only: on a microcontroller the exact search is smaller and
         // as fast.)
         if HOST {

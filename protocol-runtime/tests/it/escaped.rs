@@ -12,9 +12,7 @@ use protocol_runtime::Checksum;
 use protocol_runtime::StreamDecoder;
 use protocol_runtime::decoder::{Event, Reject};
 use protocol_runtime::escape::Escape;
-use protocol_runtime::layout::{
-    ByteOrder, Check, FrameLayout, LengthRule, Marker, Pos, WordField,
-};
+use protocol_runtime::layout::{ByteOrder, Check, FrameLayout, LengthRule, Marker, Pos, WordField};
 
 /// `7E ADR CMD LEN DATA CHK 7E`, the check the one's complement of the sum of `ADR..DATA`;
 /// `7E 7D 11 13` escaped as `7D` and the byte XOR `0x20`.
@@ -80,6 +78,12 @@ fn decode_all(stream: &[u8], chunk: usize) -> (Vec<(Vec<u8>, u64)>, protocol_run
     let mut out = Vec::new();
     for piece in stream.chunks(chunk) {
         d.feed(piece, |f| out.push((f.bytes.to_vec(), f.offset)));
+        let s = d.stats();
+        assert_eq!(
+            s.frame_bytes + s.skipped_bytes + d.pending() as u64,
+            d.position(),
+            "every byte fed is a frame's, skipped or pending"
+        );
     }
     while let Some(f) = d.flush() {
         out.push((f.bytes.to_vec(), f.offset));

@@ -59,13 +59,21 @@ fn codec_agrees(fixture: &str, wire: &[u8], unescaped: &[u8], fields: &serde_jso
             }
             (Value::Int(i), _) => assert_eq!(*i, int(want), "{fixture}: `{key}`"),
             (Value::UInt(u), _) => {
-                assert_eq!(i64::try_from(*u).ok(), Some(int(want)), "{fixture}: `{key}`");
+                assert_eq!(
+                    i64::try_from(*u).ok(),
+                    Some(int(want)),
+                    "{fixture}: `{key}`"
+                );
             }
             other => panic!("{fixture}: `{key}` is {other:?}"),
         }
     }
     let encoded = codec.encode(&value).expect("the codec encodes");
-    assert_eq!(F(&encoded.bytes), F(wire), "{fixture}: codec encode escapes");
+    assert_eq!(
+        F(&encoded.bytes),
+        F(wire),
+        "{fixture}: codec encode escapes"
+    );
 }
 
 #[test]
@@ -78,7 +86,11 @@ fn hdlc_frames_escaped_by_the_shdlc_driver_decode_and_encode_back() {
         let wire = hex(f["hex"].as_str().expect("hex"));
         let unescaped = hex(f["unescaped"].as_str().expect("unescaped"));
         let packet = hdlc::Packet::decode(&wire).unwrap_or_else(|e| panic!("{name}: {e:?}"));
-        assert_eq!(i64::from(packet.header.address), int(&f["address"]), "{name}");
+        assert_eq!(
+            i64::from(packet.header.address),
+            int(&f["address"]),
+            "{name}"
+        );
         let fields = &f["fields"];
         match (&packet.message, f["command"].as_str()) {
             (hdlc::Message::Ping, Some("PING")) => {}
@@ -146,7 +158,10 @@ fn expected(stream: &serde_json::Value) -> Vec<(u64, Vec<u8>)> {
 
 #[test]
 fn streams_yield_exactly_the_good_frames_at_every_chunk_size() {
-    for s in vectors("escaped_hdlc")["streams"].as_array().expect("streams") {
+    for s in vectors("escaped_hdlc")["streams"]
+        .as_array()
+        .expect("streams")
+    {
         let bytes = hex(s["hex"].as_str().expect("hex"));
         assert_stream_at_every_chunk_size::<{ hdlc::DECODER_BUFFER_LEN }>(
             &hdlc::LAYOUT,
@@ -155,7 +170,10 @@ fn streams_yield_exactly_the_good_frames_at_every_chunk_size() {
             |f| assert!(hdlc::Packet::from_frame(f).is_ok(), "{:?}", F(f)),
         );
     }
-    for s in vectors("escaped_slip")["streams"].as_array().expect("streams") {
+    for s in vectors("escaped_slip")["streams"]
+        .as_array()
+        .expect("streams")
+    {
         let bytes = hex(s["hex"].as_str().expect("hex"));
         assert_stream_at_every_chunk_size::<{ slip::DECODER_BUFFER_LEN }>(
             &slip::LAYOUT,

@@ -179,9 +179,6 @@ struct Shape {
     extensions_off: bool,
     /// Every payload struct has a fixed size.
     fixed_payloads: bool,
-    /// Byte escaping between flags (the spec's one frame format, opened by its flag alone and
-    /// closed by it).
-    escape: bool,
 }
 
 /// How the directions of a spec are told.
@@ -298,7 +295,6 @@ pub const FEATURES: &[&str] = &[
     "ack",
     "bare-header",
     "stuffing",
-    "escape",
     "truncate-zeros",
     "formats-several",
     "extensions-off",
@@ -335,11 +331,6 @@ pub fn generate(seed: u64, name: &str) -> Generated {
         checksums: Vec::new(),
         features: Vec::new(),
     };
-    // Drawn from a side stream, so that a seed's other choices stay as they are.
-    let sh = &s.shape;
-    let one_format = sh.formats == 1 && sh.can.is_none() && !sh.message_format;
-    let framed_alone = !sh.stuffing && !sh.one_of && !sh.optional && !sh.bare;
-    s.shape.escape = one_format && framed_alone && s.side().one_in(3);
     let order = *s.rng.pick(&["little", "big"]);
     writeln!(s.out, "# A random spec (seed {seed}).").unwrap();
     writeln!(

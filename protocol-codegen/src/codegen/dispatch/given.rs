@@ -11,8 +11,8 @@
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
-use super::packet::{read_id, unstuff_scratch};
 use super::packet::parse_bytes;
+use super::packet::{read_id, unstuff_scratch};
 use super::rules::rules_static;
 use crate::codegen::docs::doc_attrs;
 use crate::ir::{Direction, Frame, Protocol};

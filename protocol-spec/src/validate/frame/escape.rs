@@ -198,7 +198,13 @@ fn distinct(
 /// Rule: the flag and the escape byte differ, both are escaped (else either could appear as
 /// itself inside a frame), and no substitute is the flag (sent after the escape byte, it
 /// would close the frame).
-fn check_flag_and_escape(ctx: &mut Ctx<'_>, d: &EscapeDef, flag: u8, escape: u8, pairs: &[[u8; 2]]) {
+fn check_flag_and_escape(
+    ctx: &mut Ctx<'_>,
+    d: &EscapeDef,
+    flag: u8,
+    escape: u8,
+    pairs: &[[u8; 2]],
+) {
     if flag == escape {
         ctx.error(
             d.escape.span(),
@@ -271,7 +277,13 @@ fn check_setting(
 
 /// Rule: the flag opens and closes every frame: the layout's first element is `sync = [flag]`
 /// and its last a `trailer = [flag]`.
-fn check_delimiters(ctx: &mut Ctx<'_>, def: &FrameDef, flag: u8, els: &[El<'_>], trailers: &[Trailer]) {
+fn check_delimiters(
+    ctx: &mut Ctx<'_>,
+    def: &FrameDef,
+    flag: u8,
+    els: &[El<'_>],
+    trailers: &[Trailer],
+) {
     let layout = def.layout.get_ref();
     match els.first().map(|e| (&e.kind, e.def)) {
         Some((Kind::Sync(bytes), _)) if bytes.as_slice() == [flag] => {}

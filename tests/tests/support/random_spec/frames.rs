@@ -85,9 +85,7 @@ impl Spec {
         } else {
             self.feature("sync");
             let mut sync = vec![format!("{:#04X}", syncs[0])];
-            // (The draw is made for an escaped frame too, whose sync is its flag alone, so
-            // that the seed's other choices stay as they are.)
-            if self.rng.one_in(2) && !self.shape.escape {
+            if self.rng.one_in(2) {
                 sync.push(format!("{:#04X}", self.rng.range(0, 255)));
             }
             layout.push(format!("{{ sync = [{}] }}", sync.join(", ")));
@@ -168,12 +166,6 @@ impl Spec {
             self.feature("trailer");
             layout.push("{ trailer = [0x0D, 0x0A], name = \"end\" }".to_string());
         }
-        if self.shape.escape {
-            layout.push(format!(
-                "{{ trailer = [{:#04X}], name = \"close\" }}",
-                syncs[0]
-            ));
-        }
         if optional {
             self.feature("optional-element");
             let size = self.rng.range(1, 6);
@@ -204,61 +196,12 @@ impl Spec {
             )
             .unwrap();
         }
-        if self.shape.escape {
-            self.feature("escape");
-            let line = self.escape_line(syncs[0]);
-            t.push_str(&line);
-        }
         if self.shape.truncate {
             self.feature("truncate-zeros");
             t.push_str("truncate_zeros = true\n");
         }
         t.push('\n');
         t
-    }
-
-    /// The `escape` line of a format whose flag is `flag`: an escape byte, one or two more
-    /// reserved bytes now and then, and their substitutes as HDLC's XOR or as SLIP's table
-    /// (distinct, none the flag). Drawn from a side stream.
-    fn escape_line(&self, flag: u8) -> String {
-        let mut side = self.side();
-        let mut reserved = vec![flag];
-        while reserved.len() < 2 + side.below(3) as usize {
-            let b = side.range(0, 255) as u8;
-            if !reserved.contains(&b) {
-                reserved.push(b);
-            }
-        }
-        let escape = reserved[1];
-        let list = |bytes: &[u8]| -> Vec<String> { bytes.iter().map(|b| format!("{b:#04X}")).collect() };
-        if side.one_in(2) {
-            // A mask that maps no reserved byte onto the flag.
-            let mut mask = side.range(1, 255) as u8;
-            while reserved.iter().any(|b| b ^ mask == flag) {
-                mask = mask.wrapping_add(1).max(1);
-            }
-            format!(
-                "escape = {{ flag = {flag:#04X}, escape = {escape:#04X}, xor = {mask:#04X}, bytes = [{}] }}\n",
-                list(&reserved).join(", ")
-            )
-        } else {
-            let mut subs: Vec<u8> = Vec::new();
-            while subs.len() < reserved.len() {
-                let b = side.range(0, 255) as u8;
-                if b != flag && !subs.contains(&b) {
-                    subs.push(b);
-                }
-            }
-            let pairs: Vec<String> = reserved
-                .iter()
-                .zip(&subs)
-                .map(|(r, s)| format!("[{r:#04X}, {s:#04X}]"))
-                .collect();
-            format!(
-                "escape = {{ flag = {flag:#04X}, escape = {escape:#04X}, map = [{}] }}\n",
-                pairs.join(", ")
-            )
-        }
     }
 
     /// The `dispatch` line of a command format.
