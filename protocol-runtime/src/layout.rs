@@ -240,7 +240,9 @@ pub struct FrameLayout<'a> {
     /// The bytes between the frame's flags are escaped on the wire (HDLC, SLIP, SHDLC): the
     /// rest of the layout describes the frame unescaped, whose sync and last marker are the
     /// flag. The stream engine unescapes as the bytes come and ends a candidate at the next
-    /// flag (`decoder/escaped.rs`); the encoder escapes after sealing.
+    /// flag (`decoder/escaped.rs`); the encoder escapes after sealing. [`probe`](Self::probe)
+    /// and [`parse`](Self::parse) take a frame unescaped, as the engine yields it;
+    /// [`parse_wire`](Self::parse_wire) takes it as it is on the wire.
     pub escape: Option<Escape<'a>>,
 }
 
