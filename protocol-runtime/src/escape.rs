@@ -216,6 +216,11 @@ fn set(buf: &mut [u8], at: usize, byte: u8) {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::unwrap_used,
+    clippy::indexing_slicing,
+    clippy::arithmetic_side_effects
+)]
 mod tests {
     use super::*;
 
