@@ -316,6 +316,14 @@ impl Codec<'_> {
             .ok_or(DecodeIssue::Frame(DecodeError::Frame(
                 protocol_runtime::Reject::BadHeader,
             )))?;
+        if layout.escape.is_some() {
+            // The frame unescaped first, as generated code does on its stack.
+            let mut unescaped = vec![0u8; layout.max_len];
+            let frame = layout
+                .parse_wire(bytes, &mut unescaped)
+                .map_err(DecodeIssue::Frame)?;
+            return self.decode_frame(format, frame);
+        }
         let frame = layout.parse(bytes).map_err(DecodeIssue::Frame)?;
         self.decode_frame(format, frame)
     }

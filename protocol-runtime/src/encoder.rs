@@ -52,6 +52,7 @@ impl FrameLayout<'_> {
     ///         order: ByteOrder::Big,
     ///     }],
     ///     markers: &[],
+    ///     escape: None,
     /// };
     /// let mut frame = [0u8; 8];
     /// frame[2] = 0x11; // sender

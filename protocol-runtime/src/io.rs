@@ -89,6 +89,7 @@ mod tests {
             order: ByteOrder::Big,
         }],
         markers: &[],
+        escape: None,
     };
 
     #[test]

@@ -4,6 +4,7 @@
 //! sealing step ([`FrameLayout::seal`]), so the wire rules exist once.
 
 use crate::checksum::Checksum;
+use crate::escape::Escape;
 
 /// Byte order of a multi-byte value on the wire.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -236,6 +237,13 @@ pub struct FrameLayout<'a> {
     pub frame_checks: &'a [Check<'a>],
     /// Constant byte runs after the payload.
     pub markers: &'a [Marker<'a>],
+    /// The bytes between the frame's flags are escaped on the wire (HDLC, SLIP, SHDLC): the
+    /// rest of the layout describes the frame unescaped, whose sync and last marker are the
+    /// flag. The stream engine unescapes as the bytes come and ends a candidate at the next
+    /// flag (`decoder/escaped.rs`); the encoder escapes after sealing. [`probe`](Self::probe)
+    /// and [`parse`](Self::parse) take a frame unescaped, as the engine yields it;
+    /// [`parse_wire`](Self::parse_wire) takes it as it is on the wire.
+    pub escape: Option<Escape<'a>>,
 }
 
 /// Where the engine finds a frame format: a [`FrameLayout`] reference built at run time (the
@@ -254,7 +262,7 @@ pub struct FrameLayout<'a> {
 ///
 /// static FIXED: FrameLayout<'static> = FrameLayout {
 ///     sync: &[0xAA], sync_set: &[], header_len: 1, min_len: 4, max_len: 4, length: LengthRule::Fixed(4),
-///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
+///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[], escape: None,
 /// };
 ///
 /// #[derive(Clone, Copy)]

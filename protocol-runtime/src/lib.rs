@@ -131,6 +131,7 @@
 //!         order: ByteOrder::Big,
 //!     }],
 //!     markers: &[],
+//!     escape: None,
 //! };
 //!
 //! // Encode: write the user's fields in place, let the layout fill in the rest.
@@ -187,6 +188,7 @@ pub mod decoder;
 mod defmt_impl;
 pub mod encoder;
 pub mod error;
+pub mod escape;
 pub mod field;
 mod float;
 pub mod group;
@@ -294,6 +296,7 @@ pub mod __private {
         decoder::*,
         encoder::*,
         error::*,
+        escape::*,
         field::*,
         group::*,
         layout::*,

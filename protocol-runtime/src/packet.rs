@@ -146,6 +146,7 @@ fn packet_event<L: PacketLayout>(layout: &L, event: Event<'_>) -> PacketEvent<L:
 /// #         order: ByteOrder::Big,
 /// #     }],
 /// #     markers: &[],
+/// #     escape: None,
 /// # };
 /// // A frame format (generated code writes this for every serial format of a spec):
 /// // `AA len cmd payload sum8`, with one command, PING (id 2).

@@ -10,6 +10,7 @@
 //! [`Checksum`] (a `static` table in generated code, an object the codec owns).
 
 use protocol_runtime::checksum::Checksum;
+use protocol_runtime::escape::Escape;
 use protocol_runtime::layout::{
     Check, Constant, FlagTrailer, FrameLayout, LengthExtension, LengthRule, Marker, WordField,
 };
@@ -43,6 +44,8 @@ pub struct LayoutPlan<'f> {
     pub frame_checks: Vec<usize>,
     /// Constant byte runs after the payload.
     pub markers: Vec<Marker<'f>>,
+    /// The byte escaping between the frame's flags.
+    pub escape: Option<Escape<'f>>,
 }
 
 /// Lowers a frame format to its layout plan.
@@ -114,6 +117,11 @@ pub fn lower_layout(f: &ir::Frame) -> LayoutPlan<'_> {
         header_checks,
         frame_checks,
         markers,
+        escape: f.escape.as_ref().map(|e| Escape {
+            flag: e.flag,
+            escape: e.escape,
+            pairs: &e.pairs,
+        }),
     }
 }
 
@@ -136,6 +144,7 @@ impl LayoutPlan<'_> {
             header_checks,
             frame_checks,
             markers: &self.markers,
+            escape: self.escape,
         }
     }
 }

@@ -33,6 +33,7 @@ pub fn reject_name(reason: Reject) -> &'static str {
         Reject::BadLength => "bad_length",
         Reject::BadChecksum => "bad_checksum",
         Reject::BadTrailer => "bad_trailer",
+        Reject::BadEscape => "bad_escape",
         Reject::Truncated => "truncated",
         _ => "rejected",
     }

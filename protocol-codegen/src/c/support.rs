@@ -42,6 +42,11 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
                 "{at}: byte stuffing in a format without dispatch key or with a direction's message"
             ));
         }
+        // The C engine finds frames by their sync and length; it has no path that unescapes
+        // between flags yet (the Rust engine's `decoder/escaped.rs`).
+        if f.escape.is_some() {
+            out.push(format!("{at}: byte escaping between flags (`escape`)"));
+        }
         if rules.ack.is_some() && !keyed {
             out.push(format!(
                 "{at}: acknowledgement frames in a format without dispatch key"

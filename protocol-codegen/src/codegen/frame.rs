@@ -251,6 +251,14 @@ fn emit_layout(rt: &TokenStream, f: &Frame, name: &Ident, doc: &str) -> TokenStr
         let (at, bytes) = (pos(rt, m.at), m.bytes);
         quote!(#rt::Marker { at: #at, bytes: &[#(#bytes),*] })
     });
+    let escape = match plan.escape {
+        Some(e) => {
+            let (flag, esc) = (e.flag, e.escape);
+            let pairs = e.pairs.iter().map(|[r, s]| quote!([#r, #s]));
+            quote!(#rt::Some(#rt::Escape { flag: #flag, escape: #esc, pairs: &[#(#pairs),*] }))
+        }
+        None => quote!(#rt::None),
+    };
     let (sync, sync_set, header_len, min_len, max_len) = (
         plan.sync,
         plan.sync_set,
@@ -272,6 +280,7 @@ fn emit_layout(rt: &TokenStream, f: &Frame, name: &Ident, doc: &str) -> TokenStr
             header_checks: &[#(#header_checks),*],
             frame_checks: &[#(#frame_checks),*],
             markers: &[#(#markers),*],
+            escape: #escape,
         };
     }
 }

@@ -402,8 +402,33 @@ fn draw_rows(items: &[(String, usize)], out: &mut String, leading_separator: boo
     flush(&mut row, used, out, &mut first_row);
 }
 
+/// The byte escaping of a frame format, in a sentence.
+fn escape_note(e: &crate::ir::Escape) -> String {
+    let (flag, esc) = (e.flag, e.escape);
+    let rule = match e.xor {
+        Some(x) => {
+            let bytes: Vec<String> = e.pairs.iter().map(|[r, _]| format!("`{r:02X}`")).collect();
+            format!(
+                "each of {} goes as `{esc:02X}` and the byte XOR `{x:02X}`",
+                bytes.join(", ")
+            )
+        }
+        None => {
+            let pairs: Vec<String> = e
+                .pairs
+                .iter()
+                .map(|[r, s]| format!("`{r:02X}` as `{esc:02X} {s:02X}`"))
+                .collect();
+            pairs.join(", ")
+        }
+    };
+    format!(
+        "Byte escaping: the frame opens and closes with the flag `{flag:02X}`; between the flags, {rule}. The length and the checks count the bytes before escaping; a flag always ends a frame."
+    )
+}
+
 /// What a frame format does besides its layout table: the struct it carries, its
-/// acknowledgements, bare headers, byte stuffing.
+/// acknowledgements, bare headers, byte stuffing, byte escaping.
 fn frame_notes(p: &Protocol, f: &Frame) -> Vec<String> {
     let mut notes = Vec::new();
     if let Some(s) = f.message.and_then(|si| p.structs.get(si)) {
@@ -434,6 +459,9 @@ fn frame_notes(p: &Protocol, f: &Frame) -> Vec<String> {
             "Byte stuffing: inside the payload, the sender inserts `{insert:02X}` after every {}; the length and the checks count the stuffed bytes.",
             pattern.join(" ")
         ));
+    }
+    if let Some(e) = &f.escape {
+        notes.push(escape_note(e));
     }
     if f.packet == PacketKind::Commands {
         let first = p.frames.first().map_or("?", |f| f.name.as_str());

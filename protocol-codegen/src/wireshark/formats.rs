@@ -246,6 +246,13 @@ pub fn format(p: &Protocol, f: &Frame, fields: &mut Fields, refused: &mut Vec<St
             t.len
         )
     });
+    // The dissector reads a frame's bytes where they lie; an escaped frame's lie elsewhere.
+    if f.escape.is_some() {
+        refused.push(format!(
+            "{}.{}: byte escaping between flags (`escape`)",
+            p.name, f.name
+        ));
+    }
     if let Length::Field { value, .. } = f.length {
         if f.values[value].word.prim.size() > 6 {
             refused.push(format!(

@@ -214,7 +214,9 @@ pub fn encode(
         _ => 0,
     };
     let len = rules.frame_len(&body, rules.wire_len(&body, &written), flag_trailer);
-    let mut buf = vec![0u8; rules.layout.max_len];
+    // (Escaping may double a frame: the flags aside, every byte may go as two.)
+    let escaped = if rules.layout.escape.is_some() { 2 } else { 1 };
+    let mut buf = vec![0u8; rules.layout.max_len.saturating_mul(escaped)];
     let mut aside = vec![0u8; written.len()];
     // What the header writer refuses, named by the value's path: a flag trailer, a header
     // value, then the key, as the frame is written in that order.

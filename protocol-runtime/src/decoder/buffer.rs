@@ -107,7 +107,7 @@ pub struct DecoderRam {
 ///
 /// static FIXED: FrameLayout<'static> = FrameLayout {
 ///     sync: &[0xAA], sync_set: &[], header_len: 1, min_len: 4, max_len: 4, length: LengthRule::Fixed(4),
-///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
+///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[], escape: None,
 /// };
 /// // A generated layout type: zero-sized.
 /// #[derive(Clone, Copy)]
@@ -170,6 +170,7 @@ static NO_LAYOUT: FrameLayout<'static> = FrameLayout {
     header_checks: &[],
     frame_checks: &[],
     markers: &[],
+    escape: None,
 };
 
 impl LayoutRef for NoBytes {
@@ -257,7 +258,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         // Behind the pending bytes where they are (two comparisons, the common case), else
         // behind them moved to the front, if they leave room.
         if self.end > room || data.len() > room.wrapping_sub(self.end) {
-            if self.pending().saturating_add(data.len()) > room {
+            if self.buffered().saturating_add(data.len()) > room {
                 return false;
             }
             self.buf.copy_within(self.start..self.end, 0);
@@ -319,7 +320,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
             self.end = self.end.wrapping_sub(self.start);
             self.start = 0;
         }
-        let want = needed.saturating_sub(self.pending()).min(input.len());
+        let want = needed.saturating_sub(self.buffered()).min(input.len());
         let data: &[u8] = input;
         let Some((src, rest)) = data.split_at_checked(want) else {
             return false;

@@ -95,7 +95,7 @@ impl FrameLayout<'_> {
     ///         extension: Some(LengthExtension { marker: 255, wide: WordField::le(5, 2), len: 2 }),
     ///         trailer: None,
     ///     },
-    ///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
+    ///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[], escape: None,
     /// };
     /// assert_eq!(msp.extension_len(b"$M>\x03\x01"), 0);
     /// assert_eq!(msp.extension_len(b"$M>\xff\x74\x2c\x01"), 2);
@@ -223,7 +223,7 @@ impl FrameLayout<'_> {
 ///         extension: None,
 ///         trailer: Some(FlagTrailer { flag: WordField::le(2, 1).bits(0, 1), len: 2 }),
 ///     },
-///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
+///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[], escape: None,
 /// };
 /// assert_eq!(flag_trailer::<2>(&signed, &[0xFD, 1, 1, 0xAA, 7, 8]), Some([7, 8]));
 /// assert_eq!(flag_trailer::<2>(&signed, &[0xFD, 1, 0, 0xAA]), None);
@@ -252,7 +252,7 @@ pub fn flag_trailer<const N: usize>(layout: &FrameLayout<'_>, frame: &[u8]) -> O
 ///         extension: None,
 ///         trailer: Some(FlagTrailer { flag: WordField::le(2, 1).bits(0, 1), len: 2 }),
 ///     },
-///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
+///     constants: &[], header_checks: &[], frame_checks: &[], markers: &[], escape: None,
 /// };
 /// // A field after the one payload byte, then the two flagged bytes.
 /// assert_eq!(frame_body(&signed, &[0xFD, 1, 1, 0xAA, 0x33, 7, 8]), &[0xFD, 1, 1, 0xAA, 0x33]);

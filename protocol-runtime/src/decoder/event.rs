@@ -28,6 +28,10 @@ pub enum Reject {
     BadChecksum,
     /// A trailing [`Marker`] does not match.
     BadTrailer,
+    /// On a link that escapes bytes ([`FrameLayout::escape`](crate::FrameLayout::escape)):
+    /// an escape byte not followed by a substitute, or a flag right after an escape byte.
+    /// Counted with [`Stats::bad_header`]: the frame's bytes break a rule of the format itself.
+    BadEscape,
     /// The frame's bytes never came: a complete valid frame started inside its claimed length,
     /// or the input was declared ended ([`StreamDecoder::flush`]).
     Truncated,
@@ -41,6 +45,7 @@ impl fmt::Display for Reject {
             Reject::BadLength => "bad length",
             Reject::BadChecksum => "bad checksum",
             Reject::BadTrailer => "bad trailer",
+            Reject::BadEscape => "bad escape",
             Reject::Truncated => "truncated frame",
         })
     }
@@ -62,7 +67,7 @@ pub struct Stats {
     pub frame_bytes: u64,
     /// Bytes that belong to no valid frame.
     pub skipped_bytes: u64,
-    /// Candidates rejected as [`Reject::BadHeader`].
+    /// Candidates rejected as [`Reject::BadHeader`] or [`Reject::BadEscape`].
     pub bad_header: u64,
     /// Candidates rejected as [`Reject::BadHeaderCheck`].
     pub bad_header_check: u64,
@@ -103,7 +108,7 @@ impl Stats {
     pub(super) fn count_reject(&mut self, reason: Reject) {
         self.skipped_bytes = self.skipped_bytes.wrapping_add(1);
         let counter = match reason {
-            Reject::BadHeader => &mut self.bad_header,
+            Reject::BadHeader | Reject::BadEscape => &mut self.bad_header,
             Reject::BadHeaderCheck => &mut self.bad_header_check,
             Reject::BadLength => &mut self.bad_length,
             Reject::BadChecksum => &mut self.bad_checksum,

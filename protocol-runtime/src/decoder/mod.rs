@@ -79,6 +79,7 @@
 
 mod buffer;
 mod conditional;
+mod escaped;
 mod event;
 mod scan;
 mod search;
@@ -263,7 +264,7 @@ impl FrameLayout<'_> {
     /// #         field: WordField { at: Pos::Start(4), size: 2, order: ByteOrder::Big, shift: 0, width: 16 },
     /// #         adjust: 7,
     /// #     },
-    /// #     constants: &[], header_checks: &[], frame_checks: &[], markers: &[],
+    /// #     constants: &[], header_checks: &[], frame_checks: &[], markers: &[], escape: None,
     /// # };
     /// // HFLink: a big-endian u16 at offset 4 counts command and payload; 7 bytes of framing.
     /// assert_eq!(hflink.frame_len(&[0xFF, 0xFF, 0x11, 0x01, 0x00, 0x01]), Some(8));
@@ -304,6 +305,7 @@ impl FrameLayout<'_> {
     /// #         order: ByteOrder::Big,
     /// #     }],
     /// #     markers: &[],
+    /// #     escape: None,
     /// # };
     /// let frame = [0xFF, 0xFF, 0x11, 0x01, 0x00, 0x01, 0x00, 0x13];
     /// assert_eq!(hflink.probe(&frame), Probe::Frame(8));
@@ -339,6 +341,7 @@ impl FrameLayout<'_> {
     /// #         order: ByteOrder::Big,
     /// #     }],
     /// #     markers: &[],
+    /// #     escape: None,
     /// # };
     /// let bytes = [0xFF, 0xFF, 0x11, 0x01, 0x00, 0x01, 0x00, 0x13, 0xAA];
     /// assert_eq!(hflink.parse(&bytes)?, &bytes[..8]);

@@ -762,6 +762,7 @@ mod tests {
             header_checks: &[],
             frame_checks: &[],
             markers: &[],
+            escape: None,
         }
     }
 

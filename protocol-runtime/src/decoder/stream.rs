@@ -22,7 +22,7 @@ use crate::layout::{FrameLayout, LayoutRef};
 /// of the input as its length, taken from the input by the caller. (A step holding a slice was
 /// returned through memory and read back with one wide load from two narrow stores: a store
 /// forwarding stall once per frame.)
-enum Step {
+pub(super) enum Step {
     /// The next `len` bytes of the input are a frame (consumed by the caller).
     Input {
         len: usize,
@@ -91,6 +91,7 @@ enum Step {
 ///         order: ByteOrder::Big,
 ///     }],
 ///     markers: &[],
+///     escape: None,
 /// };
 ///
 /// let mut decoder = StreamDecoder::<_, 128>::new(&HFLINK);
@@ -109,7 +110,8 @@ enum Step {
 pub struct StreamDecoder<L: LayoutRef, const N: usize> {
     /// What [`Self::frame_inside`] learnt about the pending candidate starting at stream offset
     /// `inner_owner`: its first `inner_dead` bytes start no frame, now or later (at least its
-    /// first byte, the candidate's own start).
+    /// first byte, the candidate's own start). For an escaped format, the escaped path's state
+    /// instead (`escaped.rs`).
     pub(super) inner_dead: usize,
     /// The pending bytes are `buf[start..end]`; `start < end` or both are 0.
     pub(super) start: usize,
@@ -168,8 +170,20 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     }
 
     /// Bytes held in the buffer: the start of a candidate the input has not completed yet.
+    /// For an escaped format, the candidate's bytes on the wire not counted yet (its buffer
+    /// holds them unescaped: [`pending_bytes`](Self::pending_bytes)), so that the bytes fed
+    /// are always the frame bytes, the skipped bytes and these.
     #[inline]
     pub fn pending(&self) -> usize {
+        if self.layout.layout().escape.is_some() {
+            return self.escaped_pending();
+        }
+        self.buffered()
+    }
+
+    /// The bytes in the buffer.
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    pub(super) fn buffered(&self) -> usize {
         self.end.saturating_sub(self.start)
     }
 
@@ -232,6 +246,14 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// the decoder for every frame, a chain of loads and stores from one frame to the next).
     #[inline]
     pub fn feed(&mut self, mut chunk: &[u8], mut sink: impl FnMut(Frame<'_>)) {
+        // An escaped format has a path of its own (`escaped.rs`); for a generated layout this
+        // test is a constant.
+        if self.layout.layout().escape.is_some() {
+            while let Some(frame) = self.next_frame(&mut chunk, false) {
+                sink(frame);
+            }
+            return;
+        }
         // Input cut into small chunks: a candidate waits for the rest of its bytes, the chunk
         // goes whole behind them and the scan goes on in the buffer; the chunk is used up,
         // and unless a frame is complete inside the candidate still waiting, so is this call.
@@ -361,6 +383,18 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         // comes from either an inlined or a called function is passed through memory, and
         // reading a frame back from there stalled on store forwarding, once per frame.
         let (start, end, offset, format) = loop {
+            if self.layout.layout().escape.is_some() {
+                match self.escaped_step(input, at_end) {
+                    Step::Buffered {
+                        start,
+                        end,
+                        offset,
+                        format,
+                    } => break (start, end, offset, format),
+                    Step::Idle => return None,
+                    _ => continue,
+                }
+            }
             if self.start < self.end {
                 match self.step_buffered(input, at_end) {
                     Step::Input {
@@ -454,6 +488,9 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// One event's worth of work.
     #[cfg_attr(not(protocol_opt0), inline(always))]
     fn step(&mut self, input: &mut &[u8], at_end: bool) -> Step {
+        if self.layout.layout().escape.is_some() {
+            return self.escaped_step(input, at_end);
+        }
         if self.start < self.end {
             self.step_buffered(input, at_end)
         } else {
@@ -556,7 +593,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// [`frame_inside`](Self::frame_inside)'s body.
     #[cfg_attr(not(protocol_opt0), inline(always))]
     fn frame_inside_here(&mut self, limit: usize, filled: bool) -> bool {
-        let pending = self.pending();
+        let pending = self.buffered();
         // (The block test on hosts only: on a microcontroller the exact search is smaller and
         // as fast.)
         if HOST {

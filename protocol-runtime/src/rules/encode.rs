@@ -139,7 +139,7 @@ impl PacketRules<'_> {
         let (frame, total) = self.frame(buf, body, plen, flag_trailer)?;
         header(frame)?;
         self.seal(frame, body)?;
-        Ok(total)
+        self.escape(buf, total)
     }
 
     /// For an encoder that writes the payload of `body` in place (where
@@ -225,6 +225,20 @@ impl PacketRules<'_> {
         self.layout.seal(frame)
     }
 
+    /// Escapes the sealed frame `buf[..len]` in place where the format escapes its frames
+    /// ([`FrameLayout::escape`](crate::FrameLayout::escape)); returns its length on the wire.
+    ///
+    /// # Errors
+    ///
+    /// [`EncodeError::BufferTooSmall`] if `buf` has no room for the escaped frame.
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    pub fn escape(&self, buf: &mut [u8], len: usize) -> Result<usize, EncodeError> {
+        match self.layout.escape {
+            Some(escape) => escape.escape_in_place(buf, len),
+            None => Ok(len),
+        }
+    }
+
     /// The length of the frame that carries `message` as `body`, with `flag_trailer` bytes of
     /// flag trailer: [`frame_len`](Self::frame_len) of the message's payload as it goes on the
     /// wire (written into `aside` and measured where the rules write aside; `aside` is unused
@@ -286,7 +300,7 @@ impl PacketRules<'_> {
         let (frame, total) = self.frame(buf, body, plen, flag_trailer)?;
         header(frame)?;
         self.seal(frame, body)?;
-        Ok(total)
+        self.escape(buf, total)
     }
 
     /// Writes the payload into `aside`, then places what is sent of it at `start` of `buf`,

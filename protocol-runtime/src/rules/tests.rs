@@ -44,6 +44,7 @@ static ACKED: FrameLayout<'static> = FrameLayout {
         order: crate::layout::ByteOrder::Little,
     }],
     markers: &[],
+    escape: None,
 };
 
 static ACKED_RULES: PacketRules<'static> = PacketRules {
@@ -230,6 +231,7 @@ static WIDE: FrameLayout<'static> = FrameLayout {
         order: crate::layout::ByteOrder::Little,
     }],
     markers: &[],
+    escape: None,
 };
 
 static WIDE_RULES: PacketRules<'static> = PacketRules {

@@ -43,6 +43,7 @@ static FRAME: FrameLayout<'static> = FrameLayout {
         order: ByteOrder::Little,
     }],
     markers: &[],
+    escape: None,
 };
 
 const DST: WordField = WordField::le(2, 1);

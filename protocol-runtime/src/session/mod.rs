@@ -174,6 +174,7 @@ pub struct SessionRules<'a> {
 ///     sync: &[0xAA], sync_set: &[], header_len: 2, min_len: 2, max_len: 2,
 ///     length: LengthRule::Fixed(2), constants: &[], header_checks: &[], frame_checks: &[],
 ///     markers: &[],
+///     escape: None,
 /// };
 /// static RULES: PacketRules<'static> = PacketRules {
 ///     layout: &LAYOUT, header_len: 2, trailer_len: 0, max_payload: 0,

@@ -42,6 +42,7 @@ impl ValueAt {
     ///     frame_checks: &[Check { checksum: Checksum::Sum8, from: Pos::Start(0), to: Pos::End(1),
     ///                             at: Pos::End(1), order: ByteOrder::Little }],
     ///     markers: &[],
+    ///     escape: None,
     /// };
     /// static RULES: PacketRules<'static> = PacketRules {
     ///     layout: &LAYOUT, header_len: 2, trailer_len: 1, max_payload: 2,

@@ -128,6 +128,7 @@ struct Slot<const FRAME: usize> {
 ///     frame_checks: &[Check { checksum: Checksum::Sum8, from: Pos::Start(0), to: Pos::End(1),
 ///                             at: Pos::End(1), order: ByteOrder::Little }],
 ///     markers: &[],
+///     escape: None,
 /// };
 /// static RULES: PacketRules<'static> = PacketRules {
 ///     layout: &LAYOUT, header_len: 3, trailer_len: 1, max_payload: 0,

@@ -26,6 +26,7 @@ static LAYOUT: FrameLayout<'static> = FrameLayout {
         order: ByteOrder::Little,
     }],
     markers: &[],
+    escape: None,
 };
 static RULES: PacketRules<'static> = PacketRules {
     layout: &LAYOUT,

@@ -46,6 +46,7 @@ pub static HFLINK: FrameLayout<'static> = FrameLayout {
         order: ByteOrder::Big,
     }],
     markers: &[],
+    escape: None,
 };
 
 pub const HFLINK_GOLDEN: [&str; 4] = [
@@ -127,6 +128,7 @@ pub static REFEREE: FrameLayout<'static> = FrameLayout {
         order: ByteOrder::Little,
     }],
     markers: &[],
+    escape: None,
 };
 
 pub const REFEREE_GOLDEN: &str = "a503000027010043b40091fe";
@@ -174,6 +176,7 @@ pub static ROBORTS: FrameLayout<'static> = FrameLayout {
         order: ByteOrder::Little,
     }],
     markers: &[],
+    escape: None,
 };
 
 /// `5A len(u8) payload xor 1F 2F`, `len` counting the payload.
@@ -206,6 +209,7 @@ pub static TRAILER: FrameLayout<'static> = FrameLayout {
         at: Pos::End(2),
         bytes: &[0x1F, 0x2F],
     }],
+    escape: None,
 };
 
 static CRSF_CRC8: crc::Crc<u8, crc::Table<1>> =
@@ -239,6 +243,7 @@ pub static CRSF: FrameLayout<'static> = FrameLayout {
         order: ByteOrder::Little,
     }],
     markers: &[],
+    escape: None,
 };
 
 /// A CRSF heartbeat (type 0x0B, origin 0x00EA) to the flight controller: the `heartbeat` frame
@@ -272,6 +277,7 @@ pub static SET_THEN_SYNC: FrameLayout<'static> = FrameLayout {
         order: ByteOrder::Little,
     }],
     markers: &[],
+    escape: None,
 };
 
 /// Every layout above with a name.

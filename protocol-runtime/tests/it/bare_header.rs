@@ -40,6 +40,7 @@ static BARE: FrameLayout<'static> = FrameLayout {
         order: ByteOrder::Big,
     }],
     markers: &[],
+    escape: None,
 };
 
 #[test]

@@ -40,6 +40,7 @@ static BOTH: FrameLayout<'static> = FrameLayout {
         order: ByteOrder::Little,
     }],
     markers: &[],
+    escape: None,
 };
 
 /// A sealed frame: `plen` payload bytes, with the flag trailer when `signed`.

@@ -35,6 +35,7 @@ static SHORT: FrameLayout<'static> = FrameLayout {
         order: ByteOrder::Little,
     }],
     markers: &[],
+    escape: None,
 };
 
 /// `FD LEN ID ID PAYLOAD CRC16`: a two-byte id and a two-byte sum, longer frames.
@@ -62,6 +63,7 @@ static LONG: FrameLayout<'static> = FrameLayout {
         order: ByteOrder::Little,
     }],
     markers: &[],
+    escape: None,
 };
 
 static OTHERS: [FrameLayout<'static>; 1] = [LONG];

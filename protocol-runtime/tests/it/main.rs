@@ -11,6 +11,7 @@ mod common;
 
 mod bare_header;
 mod conditional;
+mod escaped;
 mod formats;
 mod hflink;
 mod layouts;

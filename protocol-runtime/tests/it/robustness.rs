@@ -191,6 +191,7 @@ fn degenerate_layouts_still_progress() {
         min_len: 0,
         length: LengthRule::Fixed(3),
         markers: &[],
+        escape: None,
         frame_checks: &[],
         ..base
     };

@@ -70,6 +70,8 @@ pub struct Frame {
     pub bare_len: Option<usize>,
     /// Byte stuffing of the payload: the pattern, and the byte inserted after it.
     pub stuffing: Option<(Vec<u8>, u8)>,
+    /// Byte escaping of the whole frame between its flags (the sync and the last trailer).
+    pub escape: Option<Escape>,
     /// Trailing-zero truncation of command payloads: the sender drops the zeros at the end of
     /// a payload (keeping its first byte), the receiver zero-fills it to its struct's size.
     pub truncate_zeros: bool,
@@ -381,4 +383,20 @@ pub struct Trailer {
     pub at: Pos,
     /// The bytes.
     pub bytes: Vec<u8>,
+}
+
+/// The byte escaping of a frame format: between the flags that open and close a frame, each
+/// reserved byte goes as `escape` and its substitute. Lengths and checks count and cover the
+/// bytes before escaping.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Escape {
+    /// The byte that opens and closes every frame.
+    pub flag: u8,
+    /// The byte that announces a substitute.
+    pub escape: u8,
+    /// Each reserved byte and its substitute, in the spec's order (the XOR form lowered to
+    /// its pairs).
+    pub pairs: Vec<[u8; 2]>,
+    /// The XOR form's value, when the spec gives one (for docs).
+    pub xor: Option<u8>,
 }

@@ -252,6 +252,10 @@ pub struct FrameDef {
     /// Byte stuffing of the payload.
     #[cfg_attr(feature = "schema", schemars(with = "Option<StuffingDef>"))]
     pub stuffing: Option<Spanned<StuffingDef>>,
+    /// Byte escaping of the whole frame between its flags (HDLC, PPP, SLIP): each reserved
+    /// byte is sent as an escape byte and a substitute.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<EscapeDef>"))]
+    pub escape: Option<Spanned<EscapeDef>>,
     /// The sender drops the trailing zero bytes of a command's payload (keeping at least one);
     /// the receiver zero-fills it to its struct's size.
     #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
@@ -280,6 +284,31 @@ pub struct StuffingDef {
     /// The inserted byte.
     #[cfg_attr(feature = "schema", schemars(with = "i64"))]
     pub insert: SInt,
+}
+
+/// `escape = { flag = 0x7E, escape = 0x7D, xor = 0x20, bytes = [0x7E, 0x7D] }` (HDLC: each
+/// listed byte goes as the escape byte and the byte XOR `xor`) or `escape = { flag = 0xC0,
+/// escape = 0xDB, map = [[0xC0, 0xDC], [0xDB, 0xDD]] }` (SLIP: each pair is a reserved byte and
+/// its substitute).
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct EscapeDef {
+    /// The byte that opens and closes every frame: the layout's sync and last trailer.
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
+    pub flag: SInt,
+    /// The byte that announces a substitute.
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
+    pub escape: SInt,
+    /// With `bytes`: the substitute of a reserved byte is the byte XOR this.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
+    pub xor: Option<SInt>,
+    /// With `xor`: the reserved bytes (the flag and the escape byte among them).
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<i64>>"))]
+    pub bytes: Option<Spanned<Vec<SInt>>>,
+    /// Instead of `xor` and `bytes`: pairs `[reserved, substitute]`.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<Vec<i64>>>"))]
+    pub map: Option<Spanned<Vec<Spanned<Vec<SInt>>>>>,
 }
 
 /// `ack = { field = "is_ack", equals = 1 }`.

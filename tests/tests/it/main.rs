@@ -32,6 +32,7 @@ mod dynamixel1_vectors;
 mod dynamixel_vectors;
 mod error_places;
 mod feetech_scservo;
+mod escaped_vectors;
 mod handler;
 mod hflink_vectors;
 mod ibus_vectors;

@@ -4,7 +4,7 @@
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
-use super::packet::{Items, unstuff_scratch};
+use super::packet::{Items, escaped_len, parse_bytes, unstuff_scratch};
 use crate::codegen::ident;
 use crate::ir::{Frame, Protocol, Transport};
 
@@ -136,7 +136,6 @@ pub(super) fn emit_message_packet(
     rt: &TokenStream,
 ) -> TokenStream {
     let Items {
-        layout,
         rules,
         packet,
         header,
@@ -146,6 +145,21 @@ pub(super) fn emit_message_packet(
     let header_len = format_ident!("{}", f.names.sizes.header_len);
     let (scratch, scratch_ref) = unstuff_scratch(f);
     let flagged = flag_trailer_len(f);
+    let parse = parse_bytes(f);
+    let unescaped_len =
+        quote!(#rules.frame_len(&body, #rt::Payload::wire_len(&self.payload), #flagged));
+    let encode = quote! {
+        #rules.assemble(
+            buf,
+            &mut [],
+            &body,
+            || #unescaped_len,
+            #flagged,
+            |w| #rt::Payload::write(&self.payload, w),
+            |frame| self.header.write(frame),
+        )
+    };
+    let len = escaped_len(f, rt, &encode, &unescaped_len).unwrap_or_else(|| unescaped_len.clone());
     let doc = format!(
         " A whole `{}` frame, decoded: the header values and its `{}`.",
         f.name, p.structs[si].name
@@ -166,7 +180,7 @@ pub(super) fn emit_message_packet(
             /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they end
             /// early, `PayloadLength` if the payload's size does not fit the struct.
             pub fn decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
-                Self::from_frame(#layout.parse(bytes)?)
+                Self::from_frame(#parse)
             }
             /// Decode a frame whose framing a decoder already checked.
             ///
@@ -185,7 +199,7 @@ pub(super) fn emit_message_packet(
             #[inline(always)]
             pub fn encoded_len(&self) -> usize {
                 let body = #rt::Body::Struct { start: #header_len };
-                #rules.frame_len(&body, #rt::Payload::wire_len(&self.payload), #flagged)
+                #len
             }
             /// Encode the frame into the start of `buf`; returns its length.
             ///

@@ -11,6 +11,7 @@
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
+use super::packet::parse_bytes;
 use super::packet::{read_id, unstuff_scratch};
 use super::rules::rules_static;
 use crate::codegen::docs::doc_attrs;
@@ -18,7 +19,7 @@ use crate::ir::{Direction, Frame, Protocol};
 
 /// `decode_<direction>` and `from_<direction>_frame` for every direction.
 pub(super) fn decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
-    let layout = format_ident!("{}", f.names.layout_static);
+    let parse = parse_bytes(f);
     let rules = rules_static(f);
     let packet = format_ident!("{}", f.names.packet);
     let header = format_ident!("{}", f.names.header);
@@ -70,7 +71,7 @@ pub(super) fn decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream
             /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they
             /// end early, and the errors of the frame's decoding.
             pub fn #decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
-                Self::#from_frame(#layout.parse(bytes)?)
+                Self::#from_frame(#parse)
             }
             #from_doc
             ///

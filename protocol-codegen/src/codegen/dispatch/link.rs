@@ -8,7 +8,7 @@ use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
 use super::frames::flag_trailer_len;
-use super::packet::{Items, aside, read_id, read_message, unstuff_scratch};
+use super::packet::{Items, aside, parse_bytes, read_id, read_message, unstuff_scratch};
 use crate::codegen::ident;
 use crate::ir::{Frame, Protocol};
 
@@ -19,12 +19,12 @@ use crate::ir::{Frame, Protocol};
 pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let first = &p.frames[0];
     let Items {
-        layout,
         rules,
         packet,
         header,
         ..
     } = Items::of(f);
+    let parse = parse_bytes(f);
     // The whole payload is written aside before the format's part of it is placed.
     let aside_len = [first, f]
         .into_iter()
@@ -83,7 +83,7 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
             /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they
             /// end early, and the errors of [`Self::from_frame`].
             pub fn decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
-                Self::from_frame(#layout.parse(bytes)?)
+                Self::from_frame(#parse)
             }
             /// Decode a frame whose framing a decoder already checked.
             ///

@@ -203,6 +203,41 @@ pub(super) fn aside(f: &Frame, len: &Ident) -> TokenStream {
     }
 }
 
+/// The frame at the start of `bytes` (the decoders' `decode`), as an expression: parsed
+/// where it lies, or, for a format that escapes its frames, unescaped into a buffer of the
+/// longest frame's size on the stack first (`FrameLayout::parse_wire`).
+pub(super) fn parse_bytes(f: &Frame) -> TokenStream {
+    let layout = format_ident!("{}", f.names.layout_static);
+    if f.escape.is_some() {
+        let max = format_ident!("{}", f.names.sizes.max_frame_len);
+        quote!(#layout.parse_wire(bytes, &mut [0u8; #max])?)
+    } else {
+        quote!(#layout.parse(bytes)?)
+    }
+}
+
+/// For a format that escapes its frames, the length of the frame on the wire, as an
+/// expression: the frame encoded into a buffer on the stack (escaping may double the longest
+/// frame) and measured. `body` and the encoding's arguments are bound; `unescaped` is the
+/// length before escaping, the answer when the encoding fails (the encoder reports the
+/// error). `None` for any other format.
+pub(super) fn escaped_len(
+    f: &Frame,
+    rt: &TokenStream,
+    encode: &TokenStream,
+    unescaped: &TokenStream,
+) -> Option<TokenStream> {
+    f.escape.as_ref()?;
+    let max = format_ident!("{}", f.names.sizes.max_frame_len);
+    Some(quote! {
+        let buf = &mut [0u8; 2 * #max];
+        match #encode {
+            #rt::Ok(n) => n,
+            #rt::Err(_) => #unescaped,
+        }
+    })
+}
+
 /// The statement that encodes `self` as `body` into `buf`, through the rules'
 /// `encode_message` (the aside buffer is empty where the format writes its payload in place).
 pub(super) fn encode_body(f: &Frame, aside: &TokenStream, flagged: &TokenStream) -> TokenStream {
@@ -219,7 +254,6 @@ fn packet_decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         return given::decoders(p, f, rt);
     }
     let Items {
-        layout,
         rules,
         packet,
         header,
@@ -240,6 +274,7 @@ fn packet_decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         quote!()
     };
     let id = read_id(p, f, rt);
+    let parse = parse_bytes(f);
     let (scratch, scratch_ref) = unstuff_scratch(f);
     let message = read_message(p, f);
     quote! {
@@ -250,7 +285,7 @@ fn packet_decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         /// `DecodeError::Frame` if the bytes are not a valid frame, `Truncated` if they
         /// end early, and the errors of [`Self::from_frame`].
         pub fn decode(bytes: &[u8]) -> #rt::DecodeResult<Self> {
-            Self::from_frame(#layout.parse(bytes)?)
+            Self::from_frame(#parse)
         }
         /// Decode a frame whose framing a decoder already checked.
         ///
@@ -287,6 +322,14 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
     let flagged = flag_trailer_len(f);
     let aside = aside(f, &max_payload_len);
     let encode = encode_body(f, &aside, &flagged);
+    let unescaped = quote!(#rules.message_len(&body, &self.message, #aside, #flagged));
+    let len = match escaped_len(f, rt, &encode, &unescaped) {
+        Some(measured) => quote! {
+            let body = self.body(&mut key);
+            #measured
+        },
+        None => quote!(#rules.message_len(&self.body(&mut key), &self.message, #aside, #flagged)),
+    };
     // A command only a wider format of the link carries.
     let not_carried = if f.commands.len() < p.commands.len() {
         quote! {
@@ -314,7 +357,7 @@ pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStr
             #[inline(always)]
             pub fn encoded_len(&self) -> usize {
                 let mut key = [0u64; #n];
-                #rules.message_len(&self.body(&mut key), &self.message, #aside, #flagged)
+                #len
             }
             /// Encode the frame into the start of `buf`; returns its length.
             ///

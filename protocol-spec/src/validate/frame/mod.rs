@@ -11,6 +11,7 @@ mod checks;
 mod conditional;
 mod counter;
 mod elements;
+mod escape;
 mod header;
 mod length;
 mod link;
@@ -170,6 +171,7 @@ fn lower_frame(
     let bare_len = ack::lower_bare_header(ctx, def, &length, lay.header_len, ack, &mut ok);
     checks::check_bare_header(ctx, &lay, &checks, bare_len.is_some(), &mut ok);
     let stuffing = options::lower_stuffing(ctx, def);
+    let escape = escape::lower_escape(ctx, def, &els, &trailers, transport, &mut ok);
     let truncate_zeros = options::lower_truncate_zeros(ctx, def, first, transport, &mut ok);
     let message = options::lower_message(ctx, fname, def, &dispatch, structs, &lay, &mut ok);
     let cx = conditional::Context {
@@ -220,6 +222,7 @@ fn lower_frame(
         ack,
         bare_len,
         stuffing,
+        escape,
         truncate_zeros,
         message,
         packet: PacketKind::None,
