@@ -56,4 +56,5 @@ mod text_fields;
 mod tokio_codec;
 mod ubx_pyubx2;
 mod ubx_vectors;
+mod unterminated_text;
 mod wire_types;
