@@ -46,6 +46,7 @@ mod referee_vectors;
 mod repeated_bits;
 mod roborts_vectors;
 mod robustness;
+mod sbp_libsbp;
 mod sbus_vectors;
 mod scout_vectors;
 mod serde_values;

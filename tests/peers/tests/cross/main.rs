@@ -10,6 +10,7 @@ mod dynamixel2;
 mod mavlink;
 mod msp;
 mod rc;
+mod sbp;
 mod ublox;
 mod values;
 
