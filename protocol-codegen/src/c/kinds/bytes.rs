@@ -56,11 +56,21 @@ impl Kind for Bytes<'_> {
     fn text(&self, n: &Names, f: &Field) -> String {
         let lo = &n.lo;
         let (key, name) = (&f.name, names::field(&f.name));
+        // Every byte is text, a NUL too: a string when all of them are UTF-8, else the bytes.
         if self.text {
             return fill!(
                 r#"
     ${lo}path(sub, sizeof sub, "%s.${key}", path);
-    ${lo}fmt_text(t, sub, (const uint8_t *)v->${name}, v->${name}_len);
+    if (${lo}utf8((const uint8_t *)v->${name}, v->${name}_len)) {
+        ${lo}emit(t, " %s=", sub);
+        for (i = 0; i < v->${name}_len; i++) {
+            uint8_t c = (uint8_t)v->${name}[i];
+            if (c < 0x20 || c == 0x7F || c == '\\') ${lo}emit(t, "\\x%02x", (unsigned)c);
+            else ${lo}emit(t, "%c", c);
+        }
+    } else {
+        for (i = 0; i < v->${name}_len; i++) ${lo}emit(t, " %s[%u]=%u", sub, (unsigned)i, (unsigned)(uint8_t)v->${name}[i]);
+    }
 "#,
                 lo,
                 key,
