@@ -1,7 +1,7 @@
 //! `defmt::Format` (the `defmt` feature) for the runtime's value types, so that generated
 //! types deriving it (`protocol!(..., derive(defmt))`) can be logged from firmware: [`Bytes`]
 //! as hex bytes, [`FixedStr`] as its text when it is canonical (else its `N` bytes), [`NulStr`]
-//! as its text (its bytes when it is not UTF-8), [`Group`] as the list of its elements. The
+//! and [`Str`] as their text (their bytes when it is not UTF-8), [`Group`] as the list of its elements. The
 //! errors and the decoder's events derive `Format` where they are declared.
 //!
 //! A value type added to the runtime gets its `Format` impl here, usually one `write!`.
@@ -11,6 +11,7 @@ use defmt::{Format, Formatter, write};
 use crate::bytes::Bytes;
 use crate::group::Group;
 use crate::text::{FixedStr, NulStr};
+use crate::unterminated::Str;
 
 impl<const N: usize> Format for Bytes<N> {
     fn format(&self, f: Formatter<'_>) {
@@ -28,6 +29,15 @@ impl<const N: usize> Format for FixedStr<N> {
 }
 
 impl<const N: usize> Format for NulStr<N> {
+    fn format(&self, f: Formatter<'_>) {
+        match self.as_str() {
+            Ok(text) => write!(f, "{=str:?}", text),
+            Err(_) => write!(f, "{=[u8]:02x}", self.text()),
+        }
+    }
+}
+
+impl<const N: usize> Format for Str<N> {
     fn format(&self, f: Formatter<'_>) {
         match self.as_str() {
             Ok(text) => write!(f, "{=str:?}", text),

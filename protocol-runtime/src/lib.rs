@@ -206,6 +206,7 @@ pub mod serde_impl;
 pub mod session;
 pub mod stuffing;
 pub mod text;
+pub mod unterminated;
 pub mod wire;
 pub mod zeros;
 
@@ -221,6 +222,7 @@ pub use packet::{EncodePacket, PacketDecoder, PacketEvent, PacketLayout, Packets
 pub use rules::PacketRules;
 pub use session::SessionRules;
 pub use text::{FixedStr, NulStr};
+pub use unterminated::Str;
 pub use wire::{Reader, Writer};
 
 /// The `defmt` crate at the version this crate's types and generated types implement `Format`
@@ -307,6 +309,7 @@ pub mod __private {
         session,
         stuffing::*,
         text::{FixedStr, NulStr},
+        unterminated::Str,
         wire::*,
         zeros::*,
     };

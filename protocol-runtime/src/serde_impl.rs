@@ -9,7 +9,7 @@
 //! - [`FixedStr`] is its text as a string when it is canonical (UTF-8 and only NUL bytes after
 //!   it), else the array of its `N` bytes, so that every byte comes back;
 //! - [`NulStr`] is its text as a string when it is UTF-8, else the array of its bytes (the NUL
-//!   not included);
+//!   not included); [`Str`] the same;
 //! - [`Group`] and arrays of any length ([`mod@array`]) are sequences;
 //! - a spec enum is its variant's name in the spec, or its number when it has none
 //!   ([`serialize_enum`], [`deserialize_enum`]);
@@ -35,6 +35,7 @@ use serde::{Deserialize, Serialize};
 use crate::bytes::Bytes;
 use crate::group::Group;
 use crate::text::{FixedStr, NulStr};
+use crate::unterminated::Str;
 
 pub mod float;
 mod packet;
@@ -248,6 +249,51 @@ impl<'de, const N: usize> Visitor<'de> for NulStrVisitor<N> {
 impl<'de, const N: usize> Deserialize<'de> for NulStr<N> {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         d.deserialize_any(NulStrVisitor)
+    }
+}
+
+impl<const N: usize> Serialize for Str<N> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self.as_str() {
+            Ok(text) => s.serialize_str(text),
+            Err(_) => self.text().serialize(s),
+        }
+    }
+}
+
+struct StrVisitor<const N: usize>;
+
+impl<'de, const N: usize> Visitor<'de> for StrVisitor<N> {
+    type Value = Str<N>;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "a text of at most {N} bytes, or an array of such bytes")
+    }
+
+    fn visit_str<E: de::Error>(self, text: &str) -> Result<Str<N>, E> {
+        Str::from_text(text).ok_or_else(|| E::invalid_value(de::Unexpected::Str(text), &self))
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Str<N>, A::Error> {
+        // Collected on the stack: one byte beyond `N` is already too long.
+        let mut bytes = [0u8; N];
+        let mut len = 0;
+        while let Some(b) = seq.next_element::<u8>()? {
+            let slot = bytes
+                .get_mut(len)
+                .ok_or_else(|| de::Error::invalid_length(len.saturating_add(1), &self))?;
+            *slot = b;
+            len = len.saturating_add(1);
+        }
+        let text = bytes.get(..len).unwrap_or_default();
+        Str::from_text_bytes(text)
+            .ok_or_else(|| de::Error::invalid_value(de::Unexpected::Bytes(text), &self))
+    }
+}
+
+impl<'de, const N: usize> Deserialize<'de> for Str<N> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(StrVisitor)
     }
 }
 

@@ -188,6 +188,9 @@ fn field_schema(
             };
             add(&f.name, array(item, Some(*count), *count), props);
         }
+        FieldKind::Bytes {
+            max, text: true, ..
+        } => add(&f.name, text(*max), props),
         FieldKind::Bytes { .. } => add(
             &f.name,
             json!({"type": "string", "contentEncoding": "base16"}),

@@ -574,6 +574,19 @@ fn random_struct(
     out
 }
 
+/// A text's value as the codec gives it: a string when it is UTF-8, else its bytes.
+fn text_value(bytes: Vec<u8>) -> Value {
+    match String::from_utf8(bytes) {
+        Ok(s) => Value::from(s),
+        Err(e) => Value::Array(
+            e.into_bytes()
+                .iter()
+                .map(|&b| Value::UInt(u64::from(b)))
+                .collect(),
+        ),
+    }
+}
+
 /// The length a field states for sized bytes or an array of at most `max`: the value of
 /// field `size` (of this struct, else of the struct that repeats it), set to a random length
 /// when this struct holds it.
@@ -638,10 +651,25 @@ fn random_field(
                 out.insert(m.name.clone(), v);
             }
         }
-        FieldKind::Bytes { max, size_from } => {
+        FieldKind::Bytes {
+            max,
+            size_from,
+            text,
+        } => {
             let len = stated_len(size_from, *max, outer, out, rng);
-            let bytes = (0..len).map(|_| rng.byte()).collect();
-            out.insert(name.to_string(), Value::Bytes(bytes));
+            let bytes: Vec<u8> = (0..len).map(|_| rng.byte()).collect();
+            let v = if *text {
+                // Any byte is text (a NUL too); mostly printable ASCII, so the value is
+                // often a string.
+                let bytes = bytes
+                    .iter()
+                    .map(|&b| if b < 0xC0 { 0x20 + b % 0x5F } else { b - 0xC0 })
+                    .collect();
+                text_value(bytes)
+            } else {
+                Value::Bytes(bytes)
+            };
+            out.insert(name.to_string(), v);
         }
         FieldKind::Array { ty, max, size_from } => {
             let len = stated_len(size_from, *max, outer, out, rng);
@@ -659,11 +687,7 @@ fn random_field(
                     _ => 0x20 + rng.below(0x5F) as u8,
                 })
                 .collect();
-            let v = match String::from_utf8(bytes.clone()) {
-                Ok(s) => Value::from(s),
-                Err(_) => Value::Array(bytes.iter().map(|&b| Value::UInt(u64::from(b))).collect()),
-            };
-            out.insert(name.to_string(), v);
+            out.insert(name.to_string(), text_value(bytes));
         }
         FieldKind::Group { elem, max } => {
             let count = rng.below(max.min(&8) + 1);

@@ -26,6 +26,7 @@ pub fn format(p: &Protocol, n: &Names) -> String {
                 ty: ValueType::Text(_),
                 ..
             } | FieldKind::NulText { .. }
+                | FieldKind::Bytes { text: true, .. }
         )
     };
     if any_field(p, text) {

@@ -159,12 +159,16 @@ fn kind_doc(p: &Protocol, f: &Field, kind: &FieldKind) -> KindDoc {
         },
         FieldKind::Bytes {
             max,
-            size_from: None,
-        } => KindDoc::varying(format!("bytes, the rest (up to {max})")),
-        FieldKind::Bytes {
-            max,
-            size_from: Some(n),
-        } => KindDoc::varying(format!("bytes, `{n}` of them (up to {max})")),
+            size_from,
+            text,
+        } => {
+            let what = if *text { "text" } else { "bytes" };
+            KindDoc::varying(match size_from {
+                None => format!("{what}, the rest (up to {max})"),
+                Some(n) if *text => format!("text, `{n}` bytes (up to {max})"),
+                Some(n) => format!("bytes, `{n}` of them (up to {max})"),
+            })
+        }
         FieldKind::Group { elem, max } => KindDoc::varying(format!(
             "`{}` repeated to the end (up to {max})",
             p.structs[*elem].name

@@ -173,8 +173,13 @@ impl StructPrinter<'_> {
                 let count = count.map_or(String::new(), |n| format!(", count = {n}"));
                 format!("{{ kind = \"value\", name = {name}{count}, elem = {elem} }}")
             }
-            FieldKind::Bytes { max, size_from } => {
-                let pf = self.fields.declare("bytes", &abbrev, &label, "");
+            FieldKind::Bytes {
+                max,
+                size_from,
+                text,
+            } => {
+                let ty = if *text { "string" } else { "bytes" };
+                let pf = self.fields.declare(ty, &abbrev, &label, "");
                 let sized = match size_from {
                     Some(n) => format!(", size_from = {}", lua::string(n)),
                     None => format!(", keep = {}", s.bytes_after(i)),

@@ -129,12 +129,14 @@ fn same_kind(
             FieldKind::Bytes {
                 max: ma,
                 size_from: sa,
+                text: ta,
             },
             FieldKind::Bytes {
                 max: mb,
                 size_from: sb,
+                text: tb,
             },
-        ) => ma == mb && sa == sb,
+        ) => ma == mb && sa == sb && ta == tb,
         (FieldKind::Group { elem: ea, max: ma }, FieldKind::Group { elem: eb, max: mb }) => {
             let before = r.out.len();
             diff_struct(op, &op.structs[*ea], np, &np.structs[*eb], at, r);

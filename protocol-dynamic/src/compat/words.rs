@@ -100,10 +100,17 @@ pub(super) fn field_type(p: &Protocol, f: &Field) -> String {
 
 fn kind(p: &Protocol, f: &Field, kind_of: &FieldKind) -> String {
     match kind_of {
-        FieldKind::Bytes { max, size_from } => match size_from {
-            Some(n) => format!("bytes (as many as `{n}`, at most {max})"),
-            None => format!("bytes (the rest, at most {max})"),
-        },
+        FieldKind::Bytes {
+            max,
+            size_from,
+            text,
+        } => {
+            let what = if *text { "text" } else { "bytes" };
+            match size_from {
+                Some(n) => format!("{what} (as many bytes as `{n}`, at most {max})"),
+                None => format!("{what} (the rest, at most {max})"),
+            }
+        }
         FieldKind::Group { elem, max } => {
             format!("repeated {} (at most {max})", p.structs[*elem].name)
         }

@@ -1,4 +1,5 @@
-//! Checks inside a payload and NUL-terminated text, as generated code reads and writes them:
+//! Checks inside a payload and the values of text (NUL-terminated or not), as generated code
+//! reads and writes them:
 //! the runtime's `field::verify_check` and `field::put_check` over the covered fields'
 //! bytes, and `text::read_nul_text` / `text::nul_text_fits`.
 
@@ -65,11 +66,30 @@ pub(super) fn put(
 /// A NUL-terminated text of at most `max` bytes, read: a string when it is UTF-8, else the
 /// array of its bytes (without the NUL), so that encoding gives them back.
 pub(super) fn read_nul_text(r: &mut Reader<'_>, max: usize) -> Result<Value, DecodeError> {
-    let bytes = text::read_nul_text(r, max)?;
-    Ok(match core::str::from_utf8(bytes) {
+    Ok(text_value(text::read_nul_text(r, max)?))
+}
+
+/// A text's value: a string when its bytes are UTF-8, else the array of its bytes, so that
+/// encoding gives them back (NUL-terminated text, and text without a terminator).
+pub(super) fn text_value(bytes: &[u8]) -> Value {
+    match core::str::from_utf8(bytes) {
         Ok(s) => Value::from(s.to_string()),
         Err(_) => Value::Array(bytes.iter().map(|&b| Value::UInt(u64::from(b))).collect()),
-    })
+    }
+}
+
+/// A text's bytes from its value: a string, or an array of byte values.
+pub(super) fn text_bytes(v: &Value, path: &str) -> Result<Vec<u8>, EncodeIssue> {
+    let wrong = || EncodeIssue::new(path, "expected a string or an array of bytes");
+    match v {
+        Value::String(s) => Ok(s.as_bytes().to_vec()),
+        Value::Array(items) => items
+            .iter()
+            .map(|item| value_bits(item, Prim::U8).map(|b| b as u8))
+            .collect::<Result<Vec<u8>, _>>()
+            .map_err(|_| wrong()),
+        _ => Err(wrong()),
+    }
 }
 
 /// Writes a NUL-terminated text of at most `max` bytes from a string or an array of byte
@@ -81,20 +101,7 @@ pub(super) fn write_nul_text(
     w: &mut Writer<'_>,
     path: &str,
 ) -> Result<(), EncodeIssue> {
-    let bytes = match v {
-        Value::String(s) => s.as_bytes().to_vec(),
-        Value::Array(items) => items
-            .iter()
-            .map(|item| value_bits(item, Prim::U8).map(|b| b as u8))
-            .collect::<Result<Vec<u8>, _>>()
-            .map_err(|_| EncodeIssue::new(path, "expected a string or an array of bytes"))?,
-        _ => {
-            return Err(EncodeIssue::new(
-                path,
-                "expected a string or an array of bytes",
-            ));
-        }
-    };
+    let bytes = text_bytes(v, path)?;
     if !text::nul_text_fits(&bytes, max) {
         return Err(EncodeIssue::new(
             path,

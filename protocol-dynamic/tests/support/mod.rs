@@ -149,7 +149,7 @@ pub fn struct_text(p: &Protocol, si: usize, v: &Value) -> String {
 fn field_text(p: &Protocol, name: &str, kind: &FieldKind, v: &Value, out: &mut Vec<String>) {
     match kind {
         FieldKind::Padding | FieldKind::Check(_) => {}
-        FieldKind::NulText { .. } => {
+        FieldKind::NulText { .. } | FieldKind::Bytes { text: true, .. } => {
             let bytes: Vec<u8> = match &v[name] {
                 Value::String(s) => s.as_bytes().to_vec(),
                 Value::Array(items) => items
@@ -158,7 +158,7 @@ fn field_text(p: &Protocol, name: &str, kind: &FieldKind, v: &Value, out: &mut V
                     .collect(),
                 other => panic!("not a text: {other:?}"),
             };
-            // As the runtime's `NulStr` prints: its text's bytes, escaped, in quotes.
+            // As the runtime's `NulStr` and `Str` print: its text's bytes, escaped, in quotes.
             out.push(format!("{name}: \"{}\"", bytes.escape_ascii()));
         }
         FieldKind::Array { ty, .. } => {

@@ -277,6 +277,10 @@ pub enum FieldKind {
         /// The integer field that holds the number of bytes: a field of this struct before
         /// this one, or of the struct that repeats this one.
         size_from: Option<String>,
+        /// The bytes are text without a terminator (`type = "str"`, the runtime's `Str<max>`):
+        /// where they end is as for bytes; what differs is the value (a string when it is
+        /// UTF-8, else its bytes).
+        text: bool,
     },
     /// Elements of a struct (index into [`Protocol::structs`](super::Protocol::structs))
     /// repeated to the end of the payload (only as the last field of a struct).

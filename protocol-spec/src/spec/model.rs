@@ -578,20 +578,22 @@ pub struct FieldDef {
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub name: Option<SStr>,
     /// Type: primitive (`u16`, `i32be`, `u24le`, `u48`, `f16`, `f32`, `bool`), `char[N]` (N
-    /// bytes of NUL-padded text), `cstr` (NUL-terminated text of at most `max` bytes),
-    /// `bitstream` (with `bits`: bytes read as one stream of bits, most significant bit
-    /// first), struct or enum name.
+    /// bytes of NUL-padded text), `cstr` (NUL-terminated text of at most `max` bytes), `str`
+    /// (text of at most `max` bytes without a terminator, as `bytes`), `bitstream` (with
+    /// `bits`: bytes read as one stream of bits, most significant bit first), struct or enum
+    /// name.
     #[serde(rename = "type")]
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub ty: Option<SStr>,
     /// Fixed array length: an integer or a constant's name.
     #[cfg_attr(feature = "schema", schemars(with = "Option<CountDef>"))]
     pub count: Option<Spanned<CountDef>>,
-    /// For `type = "bytes"`: the most bytes the field holds; with `repeat`: the most elements;
+    /// For `type = "bytes"` and `"str"`: the most bytes the field holds; with `repeat`: the
+    /// most elements;
     /// for `type = "cstr"`: the most bytes of text, the NUL not counted.
     #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub max: Option<SInt>,
-    /// For `type = "bytes"` and `repeat` of a primitive: the name of an earlier integer field
+    /// For `type = "bytes"`, `"str"` and `repeat` of a primitive: the name of an earlier integer field
     /// (of this struct, or of the struct that repeats this one) that holds the number of bytes
     /// or elements.
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]

@@ -55,6 +55,7 @@ impl Model {
                 ir::FieldKind::Bytes {
                     max,
                     size_from: Some(name),
+                    ..
                 }
                 | ir::FieldKind::Array {
                     max,
@@ -136,7 +137,8 @@ impl Model {
                 }
                 out.extend(bytes);
             }
-            ir::FieldKind::Bytes { max, size_from } => {
+            // Any bytes are text too: a text without a terminator keeps them as they are.
+            ir::FieldKind::Bytes { max, size_from, .. } => {
                 let n = match size_from {
                     Some(name) => ctx.values.get(name).copied().unwrap_or(0) as usize,
                     None => src.len((*max).min(room)),

@@ -25,7 +25,8 @@
 //! values, scaled, clamped and rounded values, scaled floats, bit
 //! members (signed and scaled among them), bit streams, bit-packed arrays, fixed and NUL-terminated text, nested structs, padding), bytes
 //! and arrays sized by an earlier field, checks inside a payload (with a CRC prefix), extension
-//! fields and a variable tail (bytes, repeated integers or structs, an optional value). A
+//! fields and a variable tail (bytes, text without a terminator, repeated integers or structs,
+//! an optional value). A
 //! `[session]` table (answer, timeout, retries, backoff, sequence field, handshake, watchdog)
 //! changes no byte on the wire: the front end validates it, generated code holds it.
 //!
@@ -271,6 +272,7 @@ pub const FEATURES: &[&str] = &[
     "tail-repeat-int",
     "tail-repeat-struct",
     "tail-cstr",
+    "tail-str",
     "tail-optional",
     "tail-bytes-before-check",
     "sync",

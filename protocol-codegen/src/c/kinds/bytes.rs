@@ -1,6 +1,7 @@
-//! Bytes ([`FieldKind::Bytes`](crate::ir::FieldKind::Bytes)): a byte array and its count
-//! used; read to the payload's end (but the fixed fields after them) or as many as a field
-//! states, which must be there and fit; their text is `hex:` and their digits.
+//! Bytes ([`FieldKind::Bytes`](crate::ir::FieldKind::Bytes)): a byte array (a `char` array for
+//! text without a terminator) and its count used; read to the payload's end (but the fixed
+//! fields after them) or as many as a field states, which must be there and fit; the text of
+//! bytes is `hex:` and their digits, of text a string when it is UTF-8, else its bytes.
 
 use crate::ir::{Field, Struct};
 
@@ -13,19 +14,26 @@ use crate::c::template::fill;
 pub(super) struct Bytes<'a> {
     pub(super) max: usize,
     pub(super) size_from: &'a Option<String>,
+    pub(super) text: bool,
 }
 
 impl Kind for Bytes<'_> {
     fn members(&self, _n: &Names, f: &Field, out: &mut String) {
         let (name, doc) = member_head(f);
         let len = self.max.max(1);
+        let (ty, what) = if self.text {
+            ("char", "Bytes of text (no NUL is added)")
+        } else {
+            ("uint8_t", "Bytes")
+        };
         out.push_str(&fill!(
-            "    uint8_t ${name}[${len}];${doc}\n",
+            "    ${ty} ${name}[${len}];${doc}\n",
+            ty,
             name,
             len,
             doc
         ));
-        out.push_str(&used(&name, "Bytes", self.max));
+        out.push_str(&used(&name, what, self.max));
     }
 
     fn code(&self, n: &Names, s: &Struct, _f: &Field, dir: Dir, here: &str) -> String {
@@ -48,6 +56,27 @@ impl Kind for Bytes<'_> {
     fn text(&self, n: &Names, f: &Field) -> String {
         let lo = &n.lo;
         let (key, name) = (&f.name, names::field(&f.name));
+        // Every byte is text, a NUL too: a string when all of them are UTF-8, else the bytes.
+        if self.text {
+            return fill!(
+                r#"
+    ${lo}path(sub, sizeof sub, "%s.${key}", path);
+    if (${lo}utf8((const uint8_t *)v->${name}, v->${name}_len)) {
+        ${lo}emit(t, " %s=", sub);
+        for (i = 0; i < v->${name}_len; i++) {
+            uint8_t c = (uint8_t)v->${name}[i];
+            if (c < 0x20 || c == 0x7F || c == '\\') ${lo}emit(t, "\\x%02x", (unsigned)c);
+            else ${lo}emit(t, "%c", c);
+        }
+    } else {
+        for (i = 0; i < v->${name}_len; i++) ${lo}emit(t, " %s[%u]=%u", sub, (unsigned)i, (unsigned)(uint8_t)v->${name}[i]);
+    }
+"#,
+                lo,
+                key,
+                name
+            );
+        }
         fill!(
             r#"
     ${lo}emit(t, " %s.${key}=hex:", path);

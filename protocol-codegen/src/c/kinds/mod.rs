@@ -53,9 +53,14 @@ pub(super) fn of<'a>(p: &'a Protocol, kind: &'a FieldKind) -> Box<dyn Kind + 'a>
             ty,
             count: *count,
         }),
-        FieldKind::Bytes { max, size_from } => Box::new(bytes::Bytes {
+        FieldKind::Bytes {
+            max,
+            size_from,
+            text,
+        } => Box::new(bytes::Bytes {
             max: *max,
             size_from,
+            text: *text,
         }),
         FieldKind::Group { elem, max } => Box::new(group::Group {
             p,

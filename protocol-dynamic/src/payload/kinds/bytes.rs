@@ -1,5 +1,6 @@
 //! Bytes ([`FieldKind::Bytes`](protocol_spec::ir::FieldKind::Bytes)): every byte left (but
-//! the checks after them) or as many as an earlier field states, at most `max`.
+//! the checks after them) or as many as an earlier field states, at most `max`; raw bytes, or
+//! text without a terminator (a string when it is UTF-8, else its bytes).
 
 use protocol_runtime::{Reader, Writer, field};
 use protocol_spec::ir::{Field, Protocol, Struct};
@@ -8,6 +9,7 @@ use super::{Kind, ReadAt, WriteAt, value_of};
 use crate::error::EncodeIssue;
 use crate::model::{Fields, Value};
 use crate::names::FieldNames;
+use crate::payload::check::{text_bytes, text_value};
 use crate::payload::join;
 use crate::payload::read::{ReadFail, read_rest_bytes};
 use crate::payload::write::{check_len, value_bytes};
@@ -16,6 +18,18 @@ use crate::payload::write::{check_len, value_bytes};
 pub(super) struct Bytes<'a> {
     pub(super) max: usize,
     pub(super) size_from: &'a Option<String>,
+    pub(super) text: bool,
+}
+
+impl Bytes<'_> {
+    /// The value of the bytes read.
+    fn value(&self, bytes: Vec<u8>) -> Value {
+        if self.text {
+            text_value(&bytes)
+        } else {
+            Value::Bytes(bytes)
+        }
+    }
 }
 
 impl Kind<'_> for Bytes<'_> {
@@ -41,7 +55,7 @@ impl Kind<'_> for Bytes<'_> {
                 field::take_sized(r, count, self.max)?.to_vec()
             }
         };
-        out.push(&fnames.name, Value::Bytes(v));
+        out.push(&fnames.name, self.value(v));
         Ok(())
     }
 
@@ -54,12 +68,16 @@ impl Kind<'_> for Bytes<'_> {
     ) -> Result<(), EncodeIssue> {
         let fpath = join(at.path, &f.name);
         let v = value_of(f, at, &fpath)?;
-        let bytes = value_bytes(v).ok_or_else(|| {
-            EncodeIssue::new(
-                &fpath,
-                "expected bytes: a hex string or an array of numbers 0..=255",
-            )
-        })?;
+        let bytes = if self.text {
+            text_bytes(v, &fpath)?
+        } else {
+            value_bytes(v).ok_or_else(|| {
+                EncodeIssue::new(
+                    &fpath,
+                    "expected bytes: a hex string or an array of numbers 0..=255",
+                )
+            })?
+        };
         check_len(
             bytes.len(),
             "bytes",
@@ -88,7 +106,7 @@ impl Kind<'_> for Bytes<'_> {
             return self.read(p, f, fnames, at, r, out);
         }
         let v = read_rest_bytes(r, self.max, s.bytes_after(i))?;
-        out.push(&fnames.name, Value::Bytes(v));
+        out.push(&fnames.name, self.value(v));
         Ok(())
     }
 }

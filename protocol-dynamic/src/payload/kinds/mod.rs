@@ -118,9 +118,14 @@ pub(super) fn of(kind: &FieldKind) -> Box<dyn Kind<'_> + '_> {
     match kind {
         FieldKind::Padding => Box::new(padding::Padding),
         FieldKind::Value { ty, count } => Box::new(value::Value { ty, count: *count }),
-        FieldKind::Bytes { max, size_from } => Box::new(bytes::Bytes {
+        FieldKind::Bytes {
+            max,
+            size_from,
+            text,
+        } => Box::new(bytes::Bytes {
             max: *max,
             size_from,
+            text: *text,
         }),
         FieldKind::Group { elem, max } => Box::new(group::Group {
             elem: *elem,

@@ -1,5 +1,5 @@
-//! Rules for one field of a payload struct: padding, names and types, arrays, variable bytes,
-//! NUL-terminated text, repeated groups, bitfields and scaling.
+//! Rules for one field of a payload struct: padding, names and types, arrays, variable bytes
+//! and text, NUL-terminated text, repeated groups, bitfields and scaling.
 
 use toml::Spanned;
 
@@ -75,9 +75,15 @@ pub(super) fn lower_field(
         let (size, kind) = lower_stream(ctx, f, ty, enums)?;
         return Some(field(size, kind, &d.doc));
     }
-    if ty.get_ref() == "bytes" {
+    if ty.get_ref() == "bytes" || ty.get_ref() == "str" {
+        let text = ty.get_ref() == "str";
         let (max, size_from) = lower_bytes(ctx, f, name, ty, count)?;
-        return Some(field(max, FieldKind::Bytes { max, size_from }, &d.doc));
+        let kind = FieldKind::Bytes {
+            max,
+            size_from,
+            text,
+        };
+        return Some(field(max, kind, &d.doc));
     }
     if ty.get_ref() == "cstr" {
         let max = lower_nul_text(ctx, f, name, ty, count)?;
@@ -344,6 +350,7 @@ fn lower_value_type(
     }
     if !ctx.spec.structs.keys().any(|k| k.get_ref() == ty.get_ref()) {
         let mut known = prim_spellings();
+        known.extend(["bytes", "cstr", "str"].map(String::from));
         known.extend(ctx.spec.structs.keys().map(|k| k.get_ref().clone()));
         known.extend(ctx.spec.enums.keys().map(|k| k.get_ref().clone()));
         unknown_type(ctx, ty, &known, "a field type");

@@ -256,8 +256,15 @@ fn check_tail_fields(
         let span = || def_of().map_or(d.fields.span(), Spanned::span);
         let tail = match &f.kind {
             FieldKind::Bytes {
-                size_from: None, ..
+                size_from: None,
+                text: false,
+                ..
             } => Some("variable bytes"),
+            FieldKind::Bytes {
+                size_from: None,
+                text: true,
+                ..
+            } => Some("text to the end of the payload"),
             FieldKind::Array {
                 size_from: None, ..
             } => Some("a variable-length array"),

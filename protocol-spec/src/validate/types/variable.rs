@@ -1,4 +1,4 @@
-//! Rules for fields of variable size: sized bytes, NUL-terminated text, repeated values and
+//! Rules for fields of variable size: sized bytes and text, NUL-terminated text, repeated values and
 //! repeated groups.
 
 use toml::Spanned;
@@ -8,8 +8,9 @@ use super::Structs;
 use crate::ir::ValueType;
 use crate::spec::model::{FieldDef, SStr};
 
-/// Rule: variable bytes have a `max` of at least 1 and take only `name`, `type`, `max`,
-/// `size`, `unit` and `doc`. Gives the most bytes and the field that holds their number.
+/// Rule: variable bytes and text without a terminator (`type = "str"`) have a `max` of at
+/// least 1 and take only `name`, `type`, `max`, `size`, `unit` and `doc`. Gives the most bytes
+/// and the field that holds their number.
 pub(super) fn lower_bytes(
     ctx: &mut Ctx<'_>,
     f: &Spanned<FieldDef>,
@@ -18,10 +19,15 @@ pub(super) fn lower_bytes(
     count: Option<usize>,
 ) -> Option<(usize, Option<String>)> {
     let d = f.get_ref();
+    let (what, need) = if ty.get_ref() == "str" {
+        ("text", "needs")
+    } else {
+        ("variable bytes", "need")
+    };
     let Some(max) = &d.max else {
         ctx.error(
             ty.span(),
-            format!("variable bytes `{}` need a `max`", name.get_ref()),
+            format!("{what} `{}` {need} a `max`", name.get_ref()),
             "add `max = N`: the most bytes the field can hold (decoders store them inline)",
         );
         return None;
@@ -37,7 +43,11 @@ pub(super) fn lower_bytes(
     if count.is_some() || d.bits.is_some() || d.scale.is_some() {
         ctx.error(
             f.span(),
-            "variable bytes take only `name`, `type`, `max`, `unit` and `doc`",
+            format!(
+                "{what} `{}` {} only `name`, `type`, `max`, `size`, `unit` and `doc`",
+                name.get_ref(),
+                if need == "needs" { "takes" } else { "take" }
+            ),
             "remove the other keys",
         );
     }

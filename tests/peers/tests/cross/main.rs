@@ -11,6 +11,7 @@ mod mavlink;
 mod msp;
 mod msp_yamspy;
 mod rc;
+mod sbp;
 mod ublox;
 mod values;
 

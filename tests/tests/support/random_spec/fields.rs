@@ -418,15 +418,22 @@ impl Spec {
         (t, size)
     }
 
-    /// The last fields of a payload that vary in size: bytes (followed by a check
-    /// sometimes), a repeated group (of integers or of a fixed struct), NUL-terminated text, or
+    /// The last fields of a payload that vary in size: bytes or text without a terminator
+    /// (followed by a check sometimes), a repeated group (of integers or of a fixed struct), NUL-terminated text, or
     /// an optional value; their smallest and largest sizes.
     fn tail_field(&mut self) -> Option<(Vec<String>, usize, usize)> {
         match self.rng.below(7) {
             0 => {
-                self.feature("tail-bytes");
                 let max = self.rng.range(1, 12) as usize;
-                let bytes = format!("{{ name = \"tail\", type = \"bytes\", max = {max} }}");
+                // Text without a terminator ends as bytes do; chosen by the size already
+                // drawn, so the generator's other choices stay those of its seed.
+                let ty = if max % 3 == 0 { "str" } else { "bytes" };
+                self.feature(if ty == "str" {
+                    "tail-str"
+                } else {
+                    "tail-bytes"
+                });
+                let bytes = format!("{{ name = \"tail\", type = \"{ty}\", max = {max} }}");
                 if self.rng.one_in(3) {
                     self.feature("tail-bytes-before-check");
                     let check = "{ name = \"tcheck\", check = \"xor8\", over = \"tail\" }";

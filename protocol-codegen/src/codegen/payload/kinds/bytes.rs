@@ -1,5 +1,6 @@
-//! Bytes ([`FieldKind::Bytes`](crate::ir::FieldKind::Bytes)): the runtime's `Bytes<max>`, every
-//! byte left in the payload (but the checks after it) or as many as an earlier field states.
+//! Bytes ([`FieldKind::Bytes`](crate::ir::FieldKind::Bytes)): the runtime's `Bytes<max>`, or
+//! `Str<max>` for text without a terminator, every byte left in the payload (but the checks
+//! after it) or as many as an earlier field states.
 
 use proc_macro2::{Ident, TokenStream};
 use quote::quote;
@@ -13,20 +14,26 @@ use crate::codegen::{ident, rt as type_rt};
 pub(super) struct Bytes {
     max: usize,
     size_from: Option<Ident>,
+    text: bool,
 }
 
 impl Bytes {
-    pub(super) fn new(max: usize, size_from: &Option<String>) -> Bytes {
+    pub(super) fn new(max: usize, size_from: &Option<String>, text: bool) -> Bytes {
         Bytes {
             max,
             size_from: size_from.as_deref().map(ident),
+            text,
         }
     }
 
     fn ty(&self) -> TokenStream {
         let rt = type_rt();
         let max = self.max;
-        quote!(#rt::Bytes<#max>)
+        if self.text {
+            quote!(#rt::Str<#max>)
+        } else {
+            quote!(#rt::Bytes<#max>)
+        }
     }
 }
 

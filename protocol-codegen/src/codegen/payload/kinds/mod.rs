@@ -145,7 +145,11 @@ pub(crate) fn of<'a>(p: &'a Protocol, kind: &'a FieldKind, size: usize) -> Box<d
     match kind {
         FieldKind::Padding => Box::new(padding::Padding { size }),
         FieldKind::Value { ty, count } => Box::new(value::Value::new(p, ty, *count)),
-        FieldKind::Bytes { max, size_from } => Box::new(bytes::Bytes::new(*max, size_from)),
+        FieldKind::Bytes {
+            max,
+            size_from,
+            text,
+        } => Box::new(bytes::Bytes::new(*max, size_from, *text)),
         FieldKind::Group { elem, max } => Box::new(group::Group::new(p, *elem, *max)),
         FieldKind::Packed {
             count,
