@@ -88,17 +88,28 @@ fn main() {
         std::fs::write(&path, &text).expect("write a random spec");
         let rel = relative(&manifest, &path);
         let rel = rel.to_str().expect("a UTF-8 path");
-        // As `for_each_spec!` says of a link of several formats and of given directions.
-        let how = if link {
-            ", link"
-        } else if given {
-            ", \"request\", from_request_frame, decode_request"
-        } else {
-            ""
-        };
+        let how = how(link, given);
         writeln!(code, "expand_spec!({name}, {rel:?}{how});").unwrap();
         names.push(format!("{name}{how}"));
         if text.contains("\n[session]") {
+            sessions.push(format!("{name}{how}"));
+        }
+    }
+    // A batch without a session (the default twelve may have none) would leave the session
+    // comparison nothing to compare: the first later seed whose spec has one is expanded too,
+    // for that comparison alone.
+    if sessions.is_empty() && file.is_none() {
+        let found = (first + count..first + count + 1000)
+            .map(|seed| (seed, random_spec::generate(seed, &format!("rand_{seed}"))))
+            .find(|(_, spec)| spec.text.contains("\n[session]"));
+        if let Some((seed, spec)) = found {
+            let name = format!("rand_{seed}");
+            let path = dir.join(format!("{name}.toml"));
+            std::fs::write(&path, &spec.text).expect("write a random spec");
+            let rel = relative(&manifest, &path);
+            let rel = rel.to_str().expect("a UTF-8 path");
+            let how = how(spec.link, spec.given);
+            writeln!(code, "expand_spec!({name}, {rel:?}{how});").unwrap();
             sessions.push(format!("{name}{how}"));
         }
     }
@@ -123,4 +134,16 @@ fn main() {
     )
     .unwrap();
     std::fs::write(out.join("random_specs.rs"), code).expect("write random_specs.rs");
+}
+
+/// What `expand_spec!` takes after a random spec's path: as `for_each_spec!` says of a link of
+/// several formats and of given directions.
+fn how(link: bool, given: bool) -> &'static str {
+    if link {
+        ", link"
+    } else if given {
+        ", \"request\", from_request_frame, decode_request"
+    } else {
+        ""
+    }
 }

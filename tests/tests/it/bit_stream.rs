@@ -147,9 +147,9 @@ fn values_that_do_not_fit_their_members_are_encode_errors() {
             tail: 0,
         }),
     };
-    assert!(position(4095, 13_743_895.3471).encode(&mut buf).is_ok());
+    assert!(position(4095, 13_743_895.347_1).encode(&mut buf).is_ok());
     assert!(position(4096, 0.0).encode(&mut buf).is_err());
-    assert!(position(0, 13_743_895.3472).encode(&mut buf).is_err());
+    assert!(position(0, 13_743_895.347_2).encode(&mut buf).is_err());
 }
 
 #[test]

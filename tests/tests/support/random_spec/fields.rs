@@ -427,7 +427,7 @@ impl Spec {
                 let max = self.rng.range(1, 12) as usize;
                 // Text without a terminator ends as bytes do; chosen by the size already
                 // drawn, so the generator's other choices stay those of its seed.
-                let ty = if max % 3 == 0 { "str" } else { "bytes" };
+                let ty = if matches!(max % 3, 0) { "str" } else { "bytes" };
                 self.feature(if ty == "str" {
                     "tail-str"
                 } else {
