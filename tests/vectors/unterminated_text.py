@@ -32,7 +32,7 @@ for name, level, line in [
 for name, label, value in [("named", b"servo_left", -1234), ("named_empty", b"", 7)]:
     payload = struct.pack("<B", len(label)) + label + struct.pack("<h", value)
     frames.append({"name": name, "command": "NAMED", "hex": frame(0x02, payload).hex(),
-                   "fields": {"name_len": len(label), "name": text(label), "value": value},
+                   "fields": {"name_size": len(label), "name": text(label), "value": value},
                    "provenance": "struct.pack('<B', len) + the name + struct.pack('<h', value)"})
 for name, ident, note in [("note", 9, b"calibrated"), ("note_empty", 1, b"")]:
     body = struct.pack("<B", ident) + note

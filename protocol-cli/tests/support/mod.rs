@@ -27,6 +27,7 @@ pub const CAPTURES: &[(&str, &str, &[&str])] = &[
     ("specs/ubx.toml", "ubx", &[]),
     ("specs/ibus.toml", "ibus", &[]),
     ("specs/sbus.toml", "sbus", &[]),
+    ("specs/sbp.toml", "sbp", &[]),
     // Both formats of the link, each found by its sync: no `--frame`.
     ("specs/mavlink.toml", "mavlink", &[]),
     (

@@ -76,6 +76,17 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
             if let Some(why) = kind_refused(p, &field.kind) {
                 out.push(format!("struct `{}` field `{}`: {why}", s.name, field.name));
             }
+            // The C struct holds a `bytes` or `str` field's count in a member `<name>_len`.
+            let len_member = format!("{}_len", field.name);
+            if matches!(field.kind, FieldKind::Bytes { .. })
+                && s.fields.iter().any(|o| o.name == len_member)
+            {
+                out.push(format!(
+                    "struct `{}` field `{len_member}`: the name of the C member that counts the \
+                     bytes of `{}` (rename the field)",
+                    s.name, field.name
+                ));
+            }
         }
     }
     out

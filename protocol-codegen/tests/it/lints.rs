@@ -43,6 +43,7 @@ fn the_reference_specs_give_no_warning() {
         "vesc",
         "feetech",
         "lx16a",
+        "sbp",
     ] {
         let path = format!("{}/../specs/{name}.toml", env!("CARGO_MANIFEST_DIR"));
         let text = std::fs::read_to_string(&path).expect("spec");

@@ -24,6 +24,7 @@ protocol_kit::protocol!("../../specs/dynamixel1.toml");
 protocol_kit::protocol!("../../specs/crsf.toml");
 protocol_kit::protocol!("../../specs/ibus.toml");
 protocol_kit::protocol!("../../specs/sbus.toml");
+protocol_kit::protocol!("../../specs/sbp.toml");
 protocol_kit::protocol!("../../specs/ubx.toml");
 protocol_kit::protocol!("../../specs/msp.toml");
 protocol_kit::protocol!("../../specs/dronecan.toml");

@@ -91,15 +91,16 @@ pub fn assert_agrees(
 
 /// The frame object of a peer frame's values, as `protocol encode` reads it.
 pub fn object(frame: &PeerFrame) -> Value {
-    let mut object = json!({
-        "direction": frame.direction,
-        "header": frame.header,
-        "payload": frame.payload,
-    });
+    // In the order a packet serializes: the command before the payload it types (the packet's
+    // deserializer reads the payload by the command it has already seen).
+    let mut object = Map::new();
     if let Some(command) = &frame.command {
-        object["command"] = Value::from(command.as_str());
+        object.insert("command".into(), Value::from(command.as_str()));
     }
-    object
+    object.insert("direction".into(), Value::from(frame.direction.as_str()));
+    object.insert("header".into(), frame.header.clone());
+    object.insert("payload".into(), frame.payload.clone());
+    Value::Object(object)
 }
 
 /// The run-time codec, given the frame's direction, decodes it to the peer's values and encodes

@@ -72,7 +72,7 @@ fn python_frames_decode_to_their_texts_and_encode_back() {
             }
             Message::Named(m) => {
                 assert_eq!(i64::from(m.value), want["value"].as_i64().expect("value"));
-                assert_eq!(usize::from(m.name_len), m.name.len(), "{name}");
+                assert_eq!(usize::from(m.name_size), m.name.len(), "{name}");
                 ("name", m.name.text().to_vec())
             }
             Message::Note(m) => ("note", m.note.text().to_vec()),

@@ -48,6 +48,7 @@ macro_rules! for_each_spec {
             decode_request
         );
         $callback!(hflink, "../specs/hflink.toml");
+        $callback!(sbp, "../specs/sbp.toml");
         $callback!(
             lx16a,
             "../specs/lx16a.toml",

@@ -12,6 +12,7 @@ protocol_kit::protocol!("specs/dynamixel.toml");
 protocol_kit::protocol!("specs/dynamixel1.toml");
 protocol_kit::protocol!("specs/ibus.toml");
 protocol_kit::protocol!("specs/sbus.toml");
+protocol_kit::protocol!("specs/sbp.toml");
 protocol_kit::protocol!("specs/ubx.toml");
 protocol_kit::protocol!("specs/msp.toml");
 protocol_kit::protocol!("specs/dronecan.toml");
@@ -39,6 +40,7 @@ fn main() {
     let _ = truncated::decoder();
     let _ = ibus::decoder();
     let _ = sbus::Packet::decode;
+    let _ = sbp::decoder();
     let _ = ubx::decoder();
     let _ = msp::decoder();
     let _ = msp::v2_decoder();
