@@ -1,6 +1,6 @@
 //! Captures of the specs whose traffic is made of their golden frames (`tests/vectors/`): CRSF,
 //! UBX, iBUS, SBUS, MAVLink 1 and 2 mixed, Dynamixel 1.0 instruction packets, MSP v1, and the
-//! commands of VESC, Feetech SCS/STS and LX-16A (the controller's side). Each
+//! commands of VESC, Feetech SCS/STS and LX-16A (the controller's side), SBP messages. Each
 //! frame of a capture is a golden frame, or one whose payload bytes were changed at random and
 //! the frame sealed again; either is kept only when the code `protocol!` generates decodes it
 //! and encodes it back to the same bytes, so every frame is one the generated encoder writes.
@@ -20,6 +20,7 @@ protocol_kit::protocol!("../specs/msp.toml");
 protocol_kit::protocol!("../specs/vesc.toml");
 protocol_kit::protocol!("../specs/feetech.toml");
 protocol_kit::protocol!("../specs/lx16a.toml");
+protocol_kit::protocol!("../specs/sbp.toml");
 
 /// Decodes a frame with generated code and encodes the packet again (`None` if it does not
 /// decode or encode).
@@ -155,6 +156,15 @@ pub const SPECS: &[Spec] = &[
         keep: |f| f["direction"] == "request",
         formats: &[(&lx16a::LAYOUT, reencode!(lx16a::Packet::decode_request))],
         seed: 0x4C58_3136_0001,
+        frames: 200,
+        damage: true,
+    },
+    Spec {
+        name: "sbp",
+        vectors: "sbp_libsbp",
+        keep: any,
+        formats: &[(&sbp::LAYOUT, reencode!(sbp::Packet::decode))],
+        seed: 0x5342_5000_0001,
         frames: 200,
         damage: true,
     },
