@@ -54,7 +54,7 @@ pub struct Periodic {
 /// static LAYOUT: FrameLayout<'static> = FrameLayout {
 ///     sync: &[0xAA], sync_set: &[], header_len: 2, min_len: 2, max_len: 2,
 ///     length: LengthRule::Fixed(2), constants: &[], header_checks: &[], frame_checks: &[],
-///     markers: &[],
+///     markers: &[], escape: None,
 /// };
 /// static RULES: PacketRules<'static> = PacketRules {
 ///     layout: &LAYOUT, header_len: 2, trailer_len: 0, max_payload: 0,

@@ -45,7 +45,7 @@ impl Verdict<'_> {
     /// static LAYOUT: FrameLayout<'static> = FrameLayout {
     ///     sync: &[0xAA], sync_set: &[], header_len: 2, min_len: 3, max_len: 3,
     ///     length: LengthRule::Fixed(3), constants: &[], header_checks: &[], frame_checks: &[],
-    ///     markers: &[],
+    ///     markers: &[], escape: None,
     /// };
     /// static RULES: PacketRules<'static> = PacketRules {
     ///     layout: &LAYOUT, header_len: 2, trailer_len: 0, max_payload: 1,
