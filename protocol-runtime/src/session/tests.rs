@@ -5,6 +5,9 @@
 
 #![allow(clippy::indexing_slicing, clippy::unwrap_used, clippy::panic)]
 
+// The scheduler's test collects what it sends; the crate is `no_std` without its `std` feature.
+extern crate std;
+
 use super::*;
 use crate::checksum::Checksum;
 use crate::layout::{ByteOrder, Check, FrameLayout, LengthRule, Pos};
