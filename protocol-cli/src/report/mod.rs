@@ -1,7 +1,7 @@
 //! `protocol report`: one self-contained HTML page about a capture (no network: inline CSS,
 //! SVG and script). Link statistics, frames per command, the signals (drawn by
 //! [`crate::signals`]), link quality per window of offsets (bad checks, other rejections,
-//! skipped bytes) as an SVG chart ([`chart`]), and a hex view ([`hex`]) in which every frame's
+//! skipped bytes) as an SVG chart (`chart`), and a hex view (`hex`) in which every frame's
 //! fields are outlined and named on hover, errors highlighted.
 //!
 //! This module decodes and renders; reading the files is the command's. What the page keeps of
