@@ -6,7 +6,7 @@
 //! This module owns the rule as data ([`Escape`]) and its three uses on whole frames: the
 //! escaped length, escaping in place after a frame is sealed, and unescaping one frame into a
 //! caller's buffer. The stream engine unescapes byte by byte with [`Escape::original`]
-//! (`decoder/escaped.rs`). The [`FrameLayout`](crate::FrameLayout) of an escaped format
+//! (`decoder/escaped.rs`). The [`FrameLayout`] of an escaped format
 //! describes the frame unescaped (its sync and its end marker are the flag), so lengths and
 //! checks count and cover the bytes before escaping, as HDLC's FCS does.
 //!
