@@ -8,52 +8,19 @@
 //! packets with noise and damaged packets between them yields exactly the good packets, in
 //! both; the answer to the model-number READ is typed by the STS3215's registers.
 
-use crate::{golden, peer_frames};
+use crate::peer_frames;
 
-use protocol_tests::assert_stream_at_every_chunk_size;
-use std::collections::BTreeSet;
-
-mod generated {
-    protocol_kit::protocol!("../specs/feetech.toml", derive(serde));
-}
-
-use generated::feetech;
-
-fn decode(bytes: &[u8], direction: &str) -> Result<feetech::Packet, protocol_kit::DecodeError> {
-    match direction {
-        "request" => feetech::Packet::decode_request(bytes),
-        "response" => feetech::Packet::decode_response(bytes),
-        other => panic!("no direction {other}"),
-    }
-}
-
-fn encode(packet: &feetech::Packet) -> Vec<u8> {
-    let mut buf = [0u8; feetech::MAX_FRAME_LEN];
-    let n = packet.encode(&mut buf).expect("encodes");
-    buf[..n].to_vec()
-}
+peer_frames::directed_link!(feetech, "../specs/feetech.toml");
 
 #[test]
 fn every_sdk_packet_decodes_to_its_values_and_encodes_to_its_bytes() {
     let frames = peer_frames::frames("feetech_scservo.json");
-    let interp = golden::interpreter("feetech");
-    let mut covered = BTreeSet::new();
-    let mut statuses = 0;
-    for frame in &frames {
-        peer_frames::check_codec(&interp, frame);
-        peer_frames::check_generated(frame, decode, encode);
-        match &frame.command {
-            Some(command) => {
-                covered.insert(command.clone());
-            }
-            None => statuses += 1,
-        }
-    }
-    let all: BTreeSet<String> = feetech::Command::ALL
-        .iter()
-        .map(|(_, name)| (*name).to_owned())
-        .collect();
-    assert_eq!(covered, all, "every command of the spec has SDK packets");
+    let (covered, statuses) = check_every_frame(&frames);
+    assert_eq!(
+        covered,
+        all_commands(),
+        "every command of the spec has SDK packets"
+    );
     assert_eq!(statuses, 28, "status packets");
     assert_eq!(frames.len(), 80, "every vector was checked");
 }
@@ -92,23 +59,5 @@ fn the_model_number_read_is_typed_by_the_sts3215_registers() {
 
 #[test]
 fn a_noisy_stream_yields_exactly_the_good_packets() {
-    let frames = peer_frames::frames("feetech_scservo.json");
-    let interp = golden::interpreter("feetech");
-    for direction in ["request", "response"] {
-        let ours: Vec<&[u8]> = frames
-            .iter()
-            .filter(|f| f.direction == direction)
-            .map(|f| f.bytes.as_slice())
-            .collect();
-        let (stream, expected) = peer_frames::noisy_stream(&ours);
-        assert_stream_at_every_chunk_size::<{ feetech::DECODER_BUFFER_LEN }>(
-            &feetech::LAYOUT,
-            &stream,
-            &expected,
-            |f| {
-                decode(f, direction).unwrap_or_else(|e| panic!("{direction}: {e}"));
-            },
-        );
-        peer_frames::codec_stream(&interp, direction, &stream, &expected);
-    }
+    check_noisy_streams(&peer_frames::frames("feetech_scservo.json"));
 }

@@ -2,7 +2,8 @@
 //! with its direction, command, the peer's decoded values and the scale of every scaled field),
 //! checked against the generated code and the run-time codec of a spec whose directions are
 //! given to the decoder; and the noisy stream every such link is decoded from. The per-link
-//! files (`vesc_pyvesc`, `feetech_scservo`) call these with their generated module.
+//! files (`vesc_pyvesc`, `feetech_scservo`, `lx16a_pylx16a`) expand [`directed_link`] for their
+//! spec and call what it writes.
 
 use protocol_dynamic::{Interpreter, Item};
 use protocol_tests::{F, hex, load_vectors};
@@ -226,3 +227,85 @@ pub fn codec_stream(
         assert_eq!(got, expected, "{direction}: chunk size {chunk}");
     }
 }
+
+/// The generated module of a link whose directions are given to the decoder, `$link` expanded
+/// from the spec at `$spec`, with what every peer test of such a link runs on the peer's
+/// frames: `decode` (by direction) and `encode`, `check_every_frame` (the codec and the
+/// generated code on each frame; the commands covered and the count of frames that carry no
+/// command), `all_commands`, and `check_noisy_streams` (per direction, the generated decoder
+/// and the codec's at every chunk size). A macro, as the generated types differ per link.
+macro_rules! directed_link {
+    ($link:ident, $spec:tt) => {
+        mod generated {
+            protocol_kit::protocol!($spec, derive(serde));
+        }
+
+        use generated::$link;
+
+        fn decode(
+            bytes: &[u8],
+            direction: &str,
+        ) -> Result<$link::Packet, protocol_kit::DecodeError> {
+            match direction {
+                "request" => $link::Packet::decode_request(bytes),
+                "response" => $link::Packet::decode_response(bytes),
+                other => panic!("no direction {other}"),
+            }
+        }
+
+        fn encode(packet: &$link::Packet) -> Vec<u8> {
+            let mut buf = [0u8; $link::MAX_FRAME_LEN];
+            let n = packet.encode(&mut buf).expect("encodes");
+            buf[..n].to_vec()
+        }
+
+        fn check_every_frame(
+            frames: &[$crate::peer_frames::PeerFrame],
+        ) -> (std::collections::BTreeSet<String>, usize) {
+            let interp = $crate::golden::interpreter(stringify!($link));
+            let mut covered = std::collections::BTreeSet::new();
+            let mut without_command = 0;
+            for frame in frames {
+                $crate::peer_frames::check_codec(&interp, frame);
+                $crate::peer_frames::check_generated(frame, decode, encode);
+                match &frame.command {
+                    Some(command) => {
+                        covered.insert(command.clone());
+                    }
+                    None => without_command += 1,
+                }
+            }
+            (covered, without_command)
+        }
+
+        fn all_commands() -> std::collections::BTreeSet<String> {
+            $link::Command::ALL
+                .iter()
+                .map(|(_, name)| (*name).to_owned())
+                .collect()
+        }
+
+        fn check_noisy_streams(frames: &[$crate::peer_frames::PeerFrame]) {
+            let interp = $crate::golden::interpreter(stringify!($link));
+            for direction in ["request", "response"] {
+                let ours: Vec<&[u8]> = frames
+                    .iter()
+                    .filter(|f| f.direction == direction)
+                    .map(|f| f.bytes.as_slice())
+                    .collect();
+                let (stream, expected) = $crate::peer_frames::noisy_stream(&ours);
+                protocol_tests::assert_stream_at_every_chunk_size::<{ $link::DECODER_BUFFER_LEN }>(
+                    &$link::LAYOUT,
+                    &stream,
+                    &expected,
+                    |f| {
+                        decode(f, direction).unwrap_or_else(|e| panic!("{direction}: {e}"));
+                    },
+                );
+                $crate::peer_frames::codec_stream(&interp, direction, &stream, &expected);
+            }
+        }
+    };
+}
+
+pub(crate) use directed_link;

@@ -8,10 +8,10 @@
 //! frame's bytes. A stream of the frames with garbage and a damaged copy of each yields exactly
 //! the good frames at every chunk size.
 
-use crate::golden;
+use crate::{golden, peer_frames::assert_agrees};
 
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors};
-use serde_json::{Map, Value, json};
+use serde_json::{Value, json};
 use std::collections::BTreeSet;
 
 mod generated {
@@ -23,30 +23,6 @@ use generated::sbp;
 /// A JSON value through its text, as a decoder prints it (an `f32` keeps its shortest form).
 fn shown(value: &impl serde::Serialize) -> Value {
     serde_json::from_str(&serde_json::to_string(value).expect("JSON")).expect("JSON")
-}
-
-/// `ours` is libsbp's `theirs`: the same keys, numbers equal or, for a scaled field, within
-/// half its scale.
-fn assert_agrees(ours: &Value, theirs: &Value, scales: &Map<String, Value>, at: &str) {
-    let (Value::Object(o), Value::Object(t)) = (ours, theirs) else {
-        panic!("{at}: a payload is an object: {ours} / {theirs}");
-    };
-    let ok: BTreeSet<_> = o.keys().collect();
-    let tk: BTreeSet<_> = t.keys().collect();
-    assert_eq!(ok, tk, "{at}: the fields");
-    for (k, theirs) in t {
-        let ours = &o[k];
-        match (scales.get(k).and_then(Value::as_f64), ours, theirs) {
-            (Some(scale), Value::Number(o), Value::Number(t)) => {
-                let (o, t) = (o.as_f64().expect("a number"), t.as_f64().expect("a number"));
-                assert!(
-                    (o - t).abs() <= scale / 2.0,
-                    "{at}: `{k}` is {o}, libsbp {t}"
-                );
-            }
-            _ => assert_eq!(ours, theirs, "{at}: `{k}`"),
-        }
-    }
 }
 
 #[test]
@@ -76,6 +52,7 @@ fn every_libsbp_frame_decodes_to_its_values_and_encodes_to_its_bytes() {
         assert_agrees(
             &by_codec["payload"],
             expected,
+            "",
             scales,
             &format!("{at} (codec)"),
         );
@@ -90,6 +67,7 @@ fn every_libsbp_frame_decodes_to_its_values_and_encodes_to_its_bytes() {
         assert_agrees(
             &by_rust["payload"],
             expected,
+            "",
             scales,
             &format!("{at} (Rust)"),
         );

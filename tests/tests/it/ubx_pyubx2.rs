@@ -7,10 +7,10 @@
 //! adds a high-precision part into its main field (NAV-HPPOSLLH's `lon` is `lon + lon_hp`), the
 //! sum of the spec's two fields is checked against pyubx2's.
 
-use crate::golden;
+use crate::{golden, peer_frames::assert_agrees};
 
 use protocol_tests::{F, hex, load_vectors};
-use serde_json::{Map, Value, json};
+use serde_json::{Value, json};
 use std::collections::BTreeSet;
 
 mod generated {
@@ -22,45 +22,6 @@ use generated::ubx;
 /// A JSON value through its text, as a decoder prints it (an `f32` keeps its shortest form).
 fn shown(value: &impl serde::Serialize) -> Value {
     serde_json::from_str(&serde_json::to_string(value).expect("JSON")).expect("JSON")
-}
-
-/// The path of a field with group indices left out (`svs.pr_res`), as the vectors key scales.
-fn join(path: &str, key: &str) -> String {
-    if path.is_empty() {
-        key.to_owned()
-    } else {
-        format!("{path}.{key}")
-    }
-}
-
-/// `ours` is pyubx2's `theirs`: the same shape, the same keys, numbers equal or, for a scaled
-/// field, within half its scale.
-fn assert_agrees(ours: &Value, theirs: &Value, path: &str, scales: &Map<String, Value>, at: &str) {
-    match (ours, theirs) {
-        (Value::Object(o), Value::Object(t)) => {
-            let ok: BTreeSet<_> = o.keys().collect();
-            let tk: BTreeSet<_> = t.keys().collect();
-            assert_eq!(ok, tk, "{at}: the fields of `{path}`");
-            for (k, v) in t {
-                assert_agrees(&o[k], v, &join(path, k), scales, at);
-            }
-        }
-        (Value::Array(o), Value::Array(t)) => {
-            assert_eq!(o.len(), t.len(), "{at}: the length of `{path}`");
-            for (o, t) in o.iter().zip(t) {
-                assert_agrees(o, t, path, scales, at);
-            }
-        }
-        (Value::Number(o), Value::Number(t)) => match scales.get(path).and_then(Value::as_f64) {
-            Some(scale) => {
-                let (o, t) = (o.as_f64().expect("a number"), t.as_f64().expect("a number"));
-                let within = scale / 2.0 + t.abs() * 1e-12;
-                assert!((o - t).abs() <= within, "{at}: `{path}` is {o}, pyubx2 {t}");
-            }
-            None => assert_eq!(o, t, "{at}: `{path}`"),
-        },
-        _ => assert_eq!(ours, theirs, "{at}: `{path}`"),
-    }
 }
 
 /// pyubx2's sums of a main field and its high-precision part, against the spec's two fields.
