@@ -67,7 +67,8 @@ function proto.dissector(tvb, pinfo, tree)
     else
       pinfo.desegment_len = need - (n - off)
     end
-    return off
+    -- The segment is this protocol's (0 would hand it to another dissector).
+    return tvb:len()
   end
   if serial and not pinfo.visited then
     pending = nil
