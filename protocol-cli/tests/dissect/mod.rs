@@ -169,7 +169,9 @@ impl Expected<'_> {
                         ),
                         (other, _) => other.clone(),
                     };
-                    self.push(format!("{owner}.{}", m.name), &n, None);
+                    // A scaled member is its physical value, computed as a scaled field's is.
+                    let digits = m.scale.as_ref().filter(|_| m.enum_index.is_none());
+                    self.push(format!("{owner}.{}", m.name), &n, digits.map(scaled_digits));
                 }
             }
             FieldKind::Packed { scale, .. } => {

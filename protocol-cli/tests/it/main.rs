@@ -36,4 +36,5 @@ mod tutorial;
 mod twin;
 mod wireshark;
 mod wireshark_checks;
+mod wireshark_tcp;
 mod wireshark_transports;

@@ -6,7 +6,8 @@
 //!   one, two or three whole frames each, to a port set with the dissector's preference
 //!   (`-o NAME.udp_ports:5760`); datagrams to another port must not be dissected.
 //! * SocketCAN: `examples/captures/scout_can.log` as a pcap of link type 227 (written by
-//!   `protocol export pcap --candump`), found by the dissector's heuristic on the CAN dissector.
+//!   `protocol export pcap --candump`), found by the dissector's heuristic on the CAN dissector;
+//!   and DroneCAN's golden frames, whose command is a member of the CAN id (`can_id_bits`).
 //!
 //! Both sides must find the same frames, and every value `decode` prints must be the value of
 //! the dissector's field of that name. Without `tshark` the test says so and checks nothing
@@ -234,16 +235,12 @@ fn every_spec_dissects_over_udp_as_decode_decodes() {
     assert!(failed.is_empty(), "failed: {failed:?}");
 }
 
-#[test]
-fn a_socketcan_capture_dissects_as_decode_decodes() {
-    if !tshark_available() {
-        return;
-    }
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("wireshark-can");
-    std::fs::create_dir_all(&dir).expect("dir");
-    let lua = generate("scout", &dir);
-    let log = "examples/captures/scout_can.log";
-    let path = dir.join("scout_can.pcap");
+/// A candump log of `spec` as a SocketCAN capture (link type 227, written by `protocol export
+/// pcap --candump`), dissected by the CAN heuristic and compared with `decode --candump`.
+fn socketcan(spec: &str, log: &Path, dir: &Path) -> Tally {
+    let lua = generate(spec, dir);
+    let path = dir.join(format!("{spec}_can.pcap"));
+    let log = log.to_str().expect("utf-8");
     let out = protocol(
         &[
             "export",
@@ -262,15 +259,9 @@ fn a_socketcan_capture_dissects_as_decode_decodes() {
         Some(&227u32.to_le_bytes()[..]),
         "SocketCAN"
     );
+    let spec_path = format!("specs/{spec}.toml");
     let decoded = protocol(
-        &[
-            "decode",
-            "specs/scout.toml",
-            "--candump",
-            log,
-            "--format",
-            "json",
-        ],
+        &["decode", &spec_path, "--candump", log, "--format", "json"],
         b"",
     );
     assert!(decoded.status.success(), "{}", text(&decoded.stderr));
@@ -279,7 +270,8 @@ fn a_socketcan_capture_dissects_as_decode_decodes() {
         .into_iter()
         .filter(|f| f.get("command").is_some())
         .collect();
-    let pdml = tshark(&lua, &path, &[], "scout-can");
+    let label = format!("{spec}-can");
+    let pdml = tshark(&lua, &path, &[], &label);
     // The dissector shows a CAN frame as the frame the spec describes: the id (big-endian u32),
     // the data length and the data.
     let hex_of = |f: &Value| {
@@ -287,10 +279,54 @@ fn a_socketcan_capture_dissects_as_decode_decodes() {
         let id = f["can_id"].as_u64().expect("can_id");
         format!("{id:08x}{:02x}{data}", data.len() / 2)
     };
-    let tally = compare("scout", &pdml, &frames, None, &hex_of, "scout-can");
+    compare(spec, &pdml, &frames, None, &hex_of, &label)
+}
+
+#[test]
+fn a_socketcan_capture_dissects_as_decode_decodes() {
+    if !tshark_available() {
+        return;
+    }
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("wireshark-can");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let log = support::root().join("examples/captures/scout_can.log");
+    let tally = socketcan("scout", &log, &dir);
     println!(
         "SocketCAN: {} frames, {} fields compared",
         tally.frames, tally.fields
     );
     assert!(tally.frames > 100, "{} frames", tally.frames);
+}
+
+/// DroneCAN's golden frames (pydronecan's), whose 29-bit ids hold the priority, the message type
+/// id the command is found by, the service flag and the source node (`can_id_bits`): every id
+/// member is a header value of the dissector, and the command is the message type's.
+#[test]
+fn can_id_members_dissect_as_decode_decodes() {
+    if !tshark_available() {
+        return;
+    }
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("wireshark-can-ids");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let path = support::root().join("tests/vectors/dronecan_pydronecan.json");
+    let v: Value =
+        serde_json::from_str(&std::fs::read_to_string(path).expect("vectors")).expect("JSON");
+    let mut log = String::new();
+    for (i, f) in v["frames"].as_array().expect("frames").iter().enumerate() {
+        let id = f["can_id"].as_u64().expect("can_id");
+        let data = f["data"].as_str().expect("data").to_uppercase();
+        log.push_str(&format!(
+            "(1700000000.{:06}) can0 {id:08X}#{data}\n",
+            i * 1000
+        ));
+    }
+    let log_path = dir.join("dronecan.log");
+    std::fs::write(&log_path, log).expect("log");
+    let tally = socketcan("dronecan", &log_path, &dir);
+    println!(
+        "DroneCAN over SocketCAN: {} frames, {} fields compared",
+        tally.frames, tally.fields
+    );
+    let vectors = v["frames"].as_array().map_or(0, Vec::len);
+    assert_eq!(tally.frames, vectors, "every golden frame decoded");
 }

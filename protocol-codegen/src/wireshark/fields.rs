@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 
 use super::lua;
-use crate::ir::{Field, FieldKind, Prim, Protocol, Scalar, ValueType};
+use crate::ir::{BitMember, Field, FieldKind, Prim, Protocol, Scalar, ValueType};
 
 /// The `ProtoField` declarations printed so far, each one line, named `F[n]`.
 #[derive(Default)]
@@ -160,6 +160,43 @@ impl StructPrinter<'_> {
         out
     }
 
+    /// The tables of the members of a bitfield word or a bit stream of struct `owner`: where
+    /// each lies, whether it is a flag, two's complement of its width or scaled, and its field
+    /// (the physical value's, a double, for a scaled member).
+    fn members(&mut self, owner: &str, members: &[BitMember]) -> String {
+        let mut items = Vec::new();
+        for m in members {
+            let abbrev = format!("{}.{owner}.{}", self.p.name, m.name);
+            let label = label(&m.name, &m.unit);
+            // Wireshark's 64-bit fields take an Int64 or a UInt64, never a Lua number.
+            let mut item = format!(
+                "{{ shift = {}, width = {}, bool = {}, signed = {}, wide = {}",
+                m.shift,
+                m.width,
+                m.prim == Prim::Bool && m.enum_index.is_none(),
+                m.is_signed() && m.enum_index.is_none(),
+                m.prim.size() > 4 && m.scale.is_none()
+            );
+            let pf = match (&m.scale, m.enum_index) {
+                (Some(sc), None) => {
+                    let _ = write!(
+                        item,
+                        ", scale = {{ factor = {:?}, offset = {:?} }}",
+                        sc.factor, sc.offset
+                    );
+                    self.fields.declare("double", &abbrev, &label, "")
+                }
+                (_, ei) => {
+                    let table = ei.map(|ei| enum_table(self.p, ei, m.prim));
+                    self.fields.prim(m.prim, &abbrev, &label, table.as_deref())
+                }
+            };
+            let _ = write!(item, ", pf = {pf} }}");
+            items.push(item);
+        }
+        items.join(", ")
+    }
+
     /// The table of field `i` of struct `si`.
     pub fn field(&mut self, si: usize, i: usize, f: &Field, kind: &FieldKind) -> String {
         let s = &self.p.structs[si];
@@ -220,36 +257,19 @@ impl StructPrinter<'_> {
                     self.field(si, i, f, inner)
                 )
             }
-            FieldKind::BitStream { .. } => {
-                self.refused.push(format!(
-                    "{abbrev}: a bit stream (members of up to 64 bits; Lua's bit32 computes 32)"
-                ));
-                format!("{{ kind = \"padding\", size = {} }}", f.size)
+            FieldKind::BitStream { members } => {
+                let members = self.members(&s.name, members);
+                format!(
+                    "{{ kind = \"bits\", name = {name}, size = {}, stream = true, members = {{ {members} }} }}",
+                    f.size
+                )
             }
             FieldKind::Bits { word, members } => {
-                if let Some(m) = members.iter().find(|m| m.is_signed() || m.scale.is_some()) {
-                    self.refused.push(format!(
-                        "{abbrev}: bit member `{}` is signed or scaled",
-                        m.name
-                    ));
-                }
-                let mut items = Vec::new();
-                for m in members {
-                    let abbrev = format!("{}.{}.{}", self.p.name, s.name, m.name);
-                    let table = m.enum_index.map(|ei| enum_table(self.p, ei, m.prim));
-                    let pf = self.fields.prim(m.prim, &abbrev, &m.name, table.as_deref());
-                    items.push(format!(
-                        "{{ shift = {}, width = {}, bool = {}, pf = {pf} }}",
-                        m.shift,
-                        m.width,
-                        m.prim == Prim::Bool && m.enum_index.is_none()
-                    ));
-                }
+                let members = self.members(&s.name, members);
                 format!(
-                    "{{ kind = \"bits\", name = {name}, size = {}, order = {}, members = {{ {} }} }}",
+                    "{{ kind = \"bits\", name = {name}, size = {}, order = {}, members = {{ {members} }} }}",
                     word.prim.size(),
-                    lua::order(word.endian),
-                    items.join(", ")
+                    lua::order(word.endian)
                 )
             }
             FieldKind::Array { ty, max, size_from } => {

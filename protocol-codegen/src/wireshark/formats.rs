@@ -246,13 +246,20 @@ pub fn format(p: &Protocol, f: &Frame, fields: &mut Fields, refused: &mut Vec<St
             t.len
         )
     });
-    // The dissector reads a frame's bytes where they lie; an escaped frame's lie elsewhere.
-    if f.escape.is_some() {
-        refused.push(format!(
-            "{}.{}: byte escaping between flags (`escape`)",
-            p.name, f.name
-        ));
-    }
+    // An escaped frame is cut at its flags and unescaped before the rules above read it.
+    let escape = f.escape.as_ref().map_or(String::new(), |e| {
+        let original: Vec<String> = e
+            .pairs
+            .iter()
+            .map(|[reserved, sub]| format!("[0x{sub:02X}] = 0x{reserved:02X}"))
+            .collect();
+        format!(
+            ",\n    escape = {{ flag = 0x{:02X}, escape = 0x{:02X}, original = {{ {} }} }}",
+            e.flag,
+            e.escape,
+            original.join(", ")
+        )
+    });
     if let Length::Field { value, .. } = f.length {
         if f.values[value].word.prim.size() > 6 {
             refused.push(format!(
@@ -265,7 +272,7 @@ pub fn format(p: &Protocol, f: &Frame, fields: &mut Fields, refused: &mut Vec<St
         "  {{ name = {}, extended = {extended}, sync = {}, sync_set = {}, sync_lookup = {{ {} }},\n    \
          decide_len = {}, min_len = {}, max_len = {}, length = {},\n    \
          constants = {{ {} }}, header_checks = {}, frame_checks = {}, markers = {{ {} }},\n    \
-         values = {},\n    checks = {},\n    {}{flag_trailer} }},",
+         values = {},\n    checks = {},\n    {}{flag_trailer}{escape} }},",
         lua::string(&f.name),
         lua::bytes(plan.sync),
         lua::bytes(plan.sync_set),

@@ -7,7 +7,8 @@
 //! payloads from the IR's structs; all of them are printed as Lua tables (`formats`,
 //! `fields`), and a fixed engine (`lua/*.lua`, printed as it is) executes the tables as the
 //! runtime's engine executes its layouts: the checks (every checksum, and any CRC of up to 32
-//! bits from its parameters), the framing, the payload reader, the packet rules and the
+//! bits from its parameters), the framing (an escaped link cut at its flags and unescaped), the
+//! payload reader (bit members read bit by bit, exact to 64 bits), the packet rules and the
 //! registration (a user link type for raw serial captures, UDP and TCP ports from the
 //! preferences, SocketCAN frames for a CAN format).
 //!
@@ -25,11 +26,12 @@ use crate::ir::{Protocol, Transport};
 use fields::{Fields, StructPrinter};
 
 /// The engine every dissector holds, in the order its parts use each other.
-const ENGINE: [&str; 5] = [
+const ENGINE: [&str; 6] = [
     include_str!("lua/checks.lua"),
     include_str!("lua/framing.lua"),
     include_str!("lua/payload.lua"),
     include_str!("lua/packet.lua"),
+    include_str!("lua/escaped.lua"),
     include_str!("lua/register.lua"),
 ];
 
@@ -44,6 +46,7 @@ local F_data = ProtoField.bytes(NAME .. ".data", "Data")
 local F_skipped = ProtoField.bytes(NAME .. ".skipped", "Skipped bytes")
 local F_rejected = ProtoField.string(NAME .. ".rejected", "Rejected candidate")
 local F_cut = ProtoField.bytes(NAME .. ".cut", "Frame continued in the next packet")
+local F_escaped = ProtoField.bytes(NAME .. ".escaped", "Frame as sent, escaped")
 local EXPERT = {
   bad_check = ProtoExpert.new(NAME .. ".bad_check", "Bad check", expert.group.CHECKSUM, expert.severity.ERROR),
   payload = ProtoExpert.new(NAME .. ".payload", "Payload does not fit", expert.group.MALFORMED, expert.severity.ERROR),
@@ -52,7 +55,7 @@ local EXPERT = {
   cut = ProtoExpert.new(NAME .. ".cut.note", "Frame continues in the next packet", expert.group.REASSEMBLE, expert.severity.NOTE),
 }
 proto.experts = { EXPERT.bad_check, EXPERT.payload, EXPERT.unknown, EXPERT.skipped, EXPERT.cut }
-local all_fields = { F_format, F_frame, F_command, F_direction, F_ack, F_data, F_skipped, F_rejected, F_cut }
+local all_fields = { F_format, F_frame, F_command, F_direction, F_ack, F_data, F_skipped, F_rejected, F_cut, F_escaped }
 for _, f in ipairs(F) do all_fields[#all_fields + 1] = f end
 proto.fields = all_fields
 "#;
@@ -138,7 +141,7 @@ fn preamble(p: &Protocol) -> String {
          local made, proto = pcall(Proto, NAME, {title})\n\
          if not made then\n  NAME = NAME .. \"_spec\"\n  proto = Proto(NAME, {title})\nend\n\
          local resolve, read_uint, read_field, run_check, probe, select_format, extension_len\n\
-         local read_payload, dissect_frame, dissect_stream\n",
+         local read_payload, dissect_frame, dissect_stream, add_skipped, add_rejected, dissect_escaped\n",
         name = p.name,
         lname = lua::string(&p.name),
         title = lua::string(&format!("{} ({})", p.name, doc.trim_end_matches('.'))),

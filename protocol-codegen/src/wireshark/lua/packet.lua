@@ -1,6 +1,7 @@
 -- Packets: a checked frame taken apart by the packet rules of its format (acknowledgement,
 -- dispatch key, direction, stuffing, zero-fill), and a byte stream cut into frames, skipped
--- bytes and rejected candidates, as the stream engine of the runtime cuts it.
+-- bytes and rejected candidates, as the stream engine of the runtime cuts it (an escaped
+-- link's stream is cut at its flags, in the next part).
 
 local function slice(buf, from, to)
   local out = {}
@@ -118,13 +119,19 @@ local function direction_of(fmt, buf, s, body)
   return nil
 end
 
-local function add_command(fmt, buf, tvb, s, body, pinfo, tree)
+-- The dispatch key of a frame, as the format's `commands` are keyed: `"3"`, `"1,2"`.
+local function command_key(fmt, buf, s, body)
   local key = {}
   for _, k in ipairs(fmt.key) do key[#key + 1] = string.format("%d", read_field(k, buf, s, body)) end
-  local ci = fmt.commands[table.concat(key, ",")]
+  return table.concat(key, ",")
+end
+
+local function add_command(fmt, buf, tvb, s, body, pinfo, tree)
+  local key = command_key(fmt, buf, s, body)
+  local ci = fmt.commands[key]
   if not ci then
-    tree:add_proto_expert_info(EXPERT.unknown, "unknown command " .. table.concat(key, ","))
-    pinfo.cols.info:append(" unknown(" .. table.concat(key, ",") .. ")")
+    tree:add_proto_expert_info(EXPERT.unknown, "unknown command " .. key)
+    pinfo.cols.info:append(" unknown(" .. key .. ")")
     return
   end
   local c = SPEC.commands[ci]
@@ -161,7 +168,8 @@ local function add_ack(fmt, buf, tvb, s, total, body, tree)
   return true
 end
 
--- One frame of format `fi` at buf[s], `total` bytes (`body` without a flag trailer).
+-- One frame of format `fi` at buf[s], `total` bytes (`body` without a flag trailer); returns
+-- its subtree.
 function dissect_frame(fi, buf, tvb, s, total, body, pinfo, tree)
   local fmt = SPEC.formats[fi]
   local sub = tree:add(proto, tvb(s, total), SPEC.title .. " " .. fmt.name)
@@ -169,7 +177,7 @@ function dissect_frame(fi, buf, tvb, s, total, body, pinfo, tree)
   sub:add(F_frame, tvb(s, total))
   add_header(fmt, buf, tvb, s, body, sub)
   add_checks(fmt, buf, tvb, s, body, sub)
-  if add_ack(fmt, buf, tvb, s, total, body, sub) then return end
+  if add_ack(fmt, buf, tvb, s, total, body, sub) then return sub end
   local given = SPEC.directions_given and SPEC.directions[proto.prefs.direction]
   local message = given and SPEC.direction_messages[proto.prefs.direction]
   if message and fmt.carries == "command" then
@@ -185,6 +193,26 @@ function dissect_frame(fi, buf, tvb, s, total, body, pinfo, tree)
     if pbuf then add_payload(fmt.struct, pbuf, plen, new, tvb, s + from, pinfo, sub) end
   else
     sub:add(F_data, tvb(s + fmt.header_len, body - fmt.header_len - fmt.trailer_len))
+  end
+  return sub
+end
+
+-- Bytes tvb(from, to - from) between frames, skipped.
+function add_skipped(tvb, from, to, tree)
+  local item = tree:add(F_skipped, tvb(from, to - from))
+  item:add_proto_expert_info(EXPERT.skipped, string.format("%d bytes skipped", to - from))
+end
+
+-- A candidate of format `fmt` at tvb(at, len) rejected for `reason`; a bad check names the
+-- check (the probe's `ci`) with its stored and computed values.
+function add_rejected(fmt, tvb, at, len, reason, ci, stored, computed, tree)
+  local item = tree:add(F_rejected, tvb(at, len), reason)
+  if reason == "bad checksum" or reason == "bad header check" then
+    item:add_proto_expert_info(EXPERT.bad_check, string.format(
+      "%s: %s stored 0x%x, computed %s", reason, fmt.checks[ci].name, stored or 0,
+      computed and string.format("0x%x", computed) or "nothing (no extra byte for the key)"))
+  else
+    item:add_proto_expert_info(EXPERT.skipped, reason)
   end
 end
 
@@ -202,10 +230,11 @@ end
 -- and the bytes it needs, or n when every byte is decided.
 function dissect_stream(buf, n, tvb, pinfo, tree)
   local off, skipped = 0, nil
+  local first = SPEC.link[1]
+  if SPEC.formats[first].escape then return dissect_escaped(first, buf, n, tvb, pinfo, tree) end
   local function flush(to)
     if skipped then
-      local item = tree:add(F_skipped, tvb(skipped, to - skipped))
-      item:add_proto_expert_info(EXPERT.skipped, string.format("%d bytes skipped", to - skipped))
+      add_skipped(tvb, skipped, to, tree)
       skipped = nil
     end
   end
@@ -230,11 +259,7 @@ function dissect_stream(buf, n, tvb, pinfo, tree)
     else
       if a == "bad checksum" or a == "bad header check" then
         flush(off)
-        local c = SPEC.formats[fi].checks[b]
-        local item = tree:add(F_rejected, tvb(off, 1), a)
-        item:add_proto_expert_info(EXPERT.bad_check, string.format(
-          "%s: %s stored 0x%x, computed %s", a, c.name, stored or 0,
-          computed and string.format("0x%x", computed) or "nothing (no extra byte for the key)"))
+        add_rejected(SPEC.formats[fi], tvb, off, 1, a, b, stored, computed, tree)
       end
       skipped = skipped or off
       off = off + 1

@@ -97,15 +97,73 @@ local function packed_elem(buf, base, index, bits, msb)
   return math.floor(word / 2 ^ skip) % 2 ^ bits
 end
 
+-- Bit `k` (0 the least significant) of member `m` of a bits field `f` at buf[at]: a word's
+-- bits count from its least significant bit, a stream's from the first byte's most
+-- significant bit (the runtime's get_bits and get_stream).
+local function member_bit(f, m, buf, at, k)
+  local pos, byte, down
+  if f.stream then
+    pos = m.shift + m.width - 1 - k
+    byte, down = math.floor(pos / 8), 7 - pos % 8
+  else
+    pos = m.shift + k
+    byte, down = math.floor(pos / 8), pos % 8
+    if f.order == "be" then byte = f.size - 1 - byte end
+  end
+  return math.floor(buf[at + byte] / 2 ^ down) % 2
+end
+
+-- The value of member `m`, two's complement of its width when signed: a Lua number up to 53
+-- bits, which a double holds exactly, else a UInt64 or Int64 built from its two 32-bit halves.
+-- Also the number a scaled member's physical value is computed from, rounded once, as the
+-- runtime converts its integer.
+local function member_value(f, m, buf, at)
+  local hi, lo = 0, 0
+  for k = m.width - 1, 0, -1 do
+    local b = member_bit(f, m, buf, at, k)
+    if k >= 32 then hi = hi * 2 + b else lo = lo * 2 + b end
+  end
+  local negative = m.signed and (m.width > 32 and hi or lo) >= 2 ^ ((m.width - 1) % 32)
+  if m.width <= 53 then
+    local v = hi * 2 ^ 32 + lo
+    if negative then v = v - 2 ^ m.width end
+    return v, v
+  end
+  if not m.signed then
+    local v = UInt64.new(lo, hi)
+    return v, v:tonumber()
+  end
+  -- Sign-extended to 64 bits: the bits above the member's are ones when it is negative.
+  if negative then hi = hi + 2 ^ 32 - 2 ^ (m.width - 32) end
+  local v = Int64.new(lo, hi)
+  return v, v:tonumber()
+end
+
+-- The bytes member `m` lies in, as an offset from the field's start and a count.
+local function member_bytes(f, m)
+  if not f.stream then return 0, f.size end
+  local first = math.floor(m.shift / 8)
+  return first, math.floor((m.shift + m.width - 1) / 8) - first + 1
+end
+
 local function read_bits(f, ctx, tree)
   if ctx.off + f.size > ctx.limit then error("short", 0) end
-  local range = ctx.tvb(ctx.off, f.size)
-  local word = read_uint(ctx.buf, ctx.off, f.size, f.order)
-  local sub = tree:add(proto, range, f.name)
+  local sub = tree:add(proto, ctx.tvb(ctx.off, f.size), f.name)
   for _, m in ipairs(f.members) do
-    local v = math.floor(word / 2 ^ m.shift) % 2 ^ m.width
-    if m.bool then v = v ~= 0 end
-    sub:add(m.pf, range, v)
+    local v, number = member_value(f, m, ctx.buf, ctx.off)
+    local from, len = member_bytes(f, m)
+    local range = ctx.tvb(ctx.off + from, len)
+    if m.scale then
+      local item = sub:add(m.pf, range, number * m.scale.factor + m.scale.offset)
+      if type(v) == "number" then v = string.format("%d", v) end
+      item:append_text(" (raw " .. tostring(v) .. ")")
+    elseif m.bool then
+      sub:add(m.pf, range, v ~= 0)
+    elseif m.wide and type(v) == "number" then
+      if m.signed then sub:add(m.pf, range, Int64.new(v)) else sub:add(m.pf, range, UInt64.new(v)) end
+    else
+      sub:add(m.pf, range, v)
+    end
   end
   ctx.off = ctx.off + f.size
 end

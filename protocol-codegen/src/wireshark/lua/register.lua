@@ -61,8 +61,14 @@ function proto.dissector(tvb, pinfo, tree)
   local off, need = dissect_stream(buf, n, view, pinfo, root)
   if off < n and pinfo.port_type == PT_TCP and not prefix then
     pinfo.desegment_offset = off
-    pinfo.desegment_len = need - (n - off)
-    return off
+    -- An escaped frame needs bytes up to its closing flag, however many.
+    if need == 0 then
+      pinfo.desegment_len = DESEGMENT_ONE_MORE_SEGMENT
+    else
+      pinfo.desegment_len = need - (n - off)
+    end
+    -- The segment is this protocol's (0 would hand it to another dissector).
+    return tvb:len()
   end
   if serial and not pinfo.visited then
     pending = nil
@@ -71,10 +77,15 @@ function proto.dissector(tvb, pinfo, tree)
       for i = off, n - 1 do pending[i - off] = buf[i] end
     end
   end
-  if off < n then
+  -- (A lone flag at the end of an escaped link's bytes opens what comes next: nothing is cut.)
+  if off < n and need > 0 then
     local item = root:add(F_cut, view(off, n - off))
     item:add_proto_expert_info(EXPERT.cut, string.format(
       "%d bytes of a frame that needs %d", n - off, need))
+  elseif n - off > 1 then
+    local item = root:add(F_cut, view(off, n - off))
+    item:add_proto_expert_info(EXPERT.cut, string.format(
+      "%d bytes of a frame that no flag has closed yet", n - off))
   end
   return tvb:len()
 end
@@ -104,6 +115,12 @@ DissectorTable.get("wtap_encap"):add(user_dlt, proto)
 -- frame the spec describes (the id as a big-endian u32, the data length, the data).
 if SPEC.can_format then
   local can_id, can_xtd = Field.new("can.id"), Field.new("can.flags.xtd")
+  -- The command key of a CAN frame: the whole id, or the members of it (`can_id_bits`) that
+  -- the format dispatches on, read as every frame's key is read.
+  local function can_key(fmt, buf, body, id)
+    if fmt.carries == "can" then return string.format("%d", id) end
+    return command_key(fmt, buf, 0, body)
+  end
   local function can_heuristic(tvb, pinfo, tree)
     local fmt = SPEC.formats[SPEC.can_format]
     local id, xtd = can_id(), can_xtd()
@@ -114,7 +131,9 @@ if SPEC.can_format then
     local ba = tvb:bytes()
     for i = 0, len - 1 do buf[5 + i] = ba:get_index(i) end
     local verdict, total, body = probe(fmt, buf, 0, 5 + len)
-    if verdict ~= "frame" or not fmt.commands[string.format("%d", id.value)] then return false end
+    if verdict ~= "frame" or not fmt.commands[can_key(fmt, buf, body, id.value)] then
+      return false
+    end
     pinfo.cols.protocol = SPEC.title
     pinfo.cols.info = ""
     local view = as_tvb(tvb, buf, 5 + len, true)
