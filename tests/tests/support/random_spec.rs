@@ -401,10 +401,11 @@ impl Shape {
         s.marker = !link && !s.ack && !s.stuffing && !s.truncate && !given_message && rng.one_in(6);
         s.bare = !s.marker && rng.one_in(6);
         s.optional = !s.ack && !s.bare && !s.stuffing && !s.marker && !link && rng.one_in(6);
-        // A frame carrying a struct in place of a command has no byte to fold in; the draw is
-        // made anyway so that the seeds' other choices stay as they are.
-        s.extra = rng.one_in(5) && !given_message;
-        s.two_key = !s.extra && rng.one_in(5);
+        // A frame carrying a struct in place of a command, or an acknowledgement, has no byte
+        // to fold in; the draw is made anyway so that the seeds' other choices stay as they are.
+        let extra = rng.one_in(5) && !given_message;
+        s.two_key = !extra && rng.one_in(5);
+        s.extra = extra && !s.ack;
         s.one_of = !link && rng.one_in(6);
         s.extensions_off = link && !directions && rng.one_in(2);
         s.fixed_payloads = s.truncate || s.extensions_off;
