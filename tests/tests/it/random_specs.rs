@@ -26,7 +26,7 @@ use support::{Rng, Source, Spec};
 include!(concat!(env!("OUT_DIR"), "/random_specs.rs"));
 
 /// Frames per spec.
-const FRAMES: usize = 300;
+pub(crate) const FRAMES: usize = 300;
 
 /// Random chunk sizes up to a frame and a half, zero included.
 fn sizes<S: Spec>(rng: &mut Rng) -> Vec<usize> {
@@ -36,7 +36,7 @@ fn sizes<S: Spec>(rng: &mut Rng) -> Vec<usize> {
 }
 
 /// Every check on one spec; the number of frames compared.
-fn check<S: Spec>(seed: u64) -> usize {
+pub(crate) fn check<S: Spec>(seed: u64) -> usize {
     let model = model::<S>();
     let mut rng = Rng(seed ^ 0x5EED);
     let mut sent = Vec::new();
