@@ -2,14 +2,13 @@
 # Runs the runtime's tests under Miri (nightly): undefined behaviour, out-of-bounds accesses and
 # arithmetic overflow in the no_std runtime, on every unit, integration and doc test.
 #
-#   bash scripts/miri.sh            # the whole runtime test suite
-#   bash scripts/miri.sh TESTNAME   # only the tests whose name contains TESTNAME
-#   bash scripts/miri.sh --skip mixed_streams --skip buffers_smaller --skip random_garbage
-#                                   # all but the randomized stream tests of tests/it/robustness.rs,
-#                                   # which take hours under Miri
+#   bash scripts/miri.sh                   # the whole runtime test suite
+#   bash scripts/miri.sh TESTNAME          # only the tests whose name contains TESTNAME
+#   bash scripts/miri.sh --test-threads=1  # each test printed as it ends
 #
-# Miri interprets the code, so the run takes minutes; it is not part of `.ci/run` (CI stays on
-# stable). The result is printed on the last line: `miri: PASS` or `miri: FAIL`.
+# Miri interprets the code, so the tests that sweep a range take a sample of it there
+# (`cfg!(miri)`, docs/fuzzing.md); the run still takes long, and it is not part of `.ci/run`
+# (CI stays on stable). The result is printed on the last line: `miri: PASS` or `miri: FAIL`.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 

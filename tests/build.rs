@@ -71,6 +71,9 @@ fn main() {
     let mut code = String::new();
     let mut names = Vec::new();
     let mut sessions = Vec::new();
+    // Specs expanded besides the batch (checked with it, not counted in its size).
+    let mut extra = Vec::new();
+    let mut escaped = false;
     for seed in first..first + count {
         let name = format!("rand_{seed}");
         let path = dir.join(format!("{name}.toml"));
@@ -82,6 +85,7 @@ fn main() {
             ),
             None => {
                 let spec = random_spec::generate(seed, &name);
+                escaped |= spec.features.contains(&"escape");
                 (spec.text, spec.link, spec.given)
             }
         };
@@ -96,21 +100,29 @@ fn main() {
         }
     }
     // A batch without a session (the default twelve may have none) would leave the session
-    // comparison nothing to compare: the first later seed whose spec has one is expanded too,
-    // for that comparison alone.
-    if sessions.is_empty() && file.is_none() {
-        let found = (first + count..first + count + 1000)
-            .map(|seed| (seed, random_spec::generate(seed, &format!("rand_{seed}"))))
-            .find(|(_, spec)| spec.text.contains("\n[session]"));
-        if let Some((seed, spec)) = found {
-            let name = format!("rand_{seed}");
-            let path = dir.join(format!("{name}.toml"));
-            std::fs::write(&path, &spec.text).expect("write a random spec");
-            let rel = relative(&manifest, &path);
-            let rel = rel.to_str().expect("a UTF-8 path");
-            let how = how(spec.link, spec.given);
-            writeln!(code, "expand_spec!({name}, {rel:?}{how});").unwrap();
-            sessions.push(format!("{name}{how}"));
+    // comparison nothing to compare, and one without an escaped format would leave the
+    // unescaping paths untested: the first later seed whose spec has what the batch lacks is
+    // expanded too, for the random spec comparisons (not counted in the batch's size).
+    if file.is_none() {
+        let later = || {
+            (first + count..first + count + 1000)
+                .map(|seed| (seed, random_spec::generate(seed, &format!("rand_{seed}"))))
+        };
+        let mut session_seed = None;
+        if sessions.is_empty() {
+            if let Some((seed, spec)) = later().find(|(_, s)| s.text.contains("\n[session]")) {
+                sessions.push(write_spec(&dir, &manifest, seed, &spec, &mut code));
+                session_seed = Some(seed);
+            }
+        }
+        if !escaped {
+            if let Some((seed, spec)) = later().find(|(_, s)| s.features.contains(&"escape")) {
+                extra.push(if session_seed == Some(seed) {
+                    sessions[0].clone()
+                } else {
+                    write_spec(&dir, &manifest, seed, &spec, &mut code)
+                });
+            }
         }
     }
     writeln!(code, "/// The batch: first seed and count.").unwrap();
@@ -120,6 +132,7 @@ fn main() {
         "/// Calls `$callback!(module, ...)` for every random spec, with what `expand_spec!` took after its path.\nmacro_rules! for_each_random_spec {{ ($callback:ident) => {{ {} }}; }}",
         names
             .iter()
+            .chain(&extra)
             .map(|n| format!("$callback!({n});"))
             .collect::<String>()
     )
@@ -134,6 +147,25 @@ fn main() {
     )
     .unwrap();
     std::fs::write(out.join("random_specs.rs"), code).expect("write random_specs.rs");
+}
+
+/// Writes the random spec of `seed` into `dir` and its `expand_spec!` line into `code`;
+/// returns what `for_each_random_spec!` lists for it.
+fn write_spec(
+    dir: &Path,
+    manifest: &Path,
+    seed: u64,
+    spec: &random_spec::Generated,
+    code: &mut String,
+) -> String {
+    let name = format!("rand_{seed}");
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, &spec.text).expect("write a random spec");
+    let rel = relative(manifest, &path);
+    let rel = rel.to_str().expect("a UTF-8 path");
+    let how = how(spec.link, spec.given);
+    writeln!(code, "expand_spec!({name}, {rel:?}{how});").unwrap();
+    format!("{name}{how}")
 }
 
 /// What `expand_spec!` takes after a random spec's path: as `for_each_spec!` says of a link of

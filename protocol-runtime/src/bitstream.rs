@@ -151,8 +151,11 @@ mod tests {
     #[test]
     fn every_width_and_position_matches_the_bit_by_bit_definition() {
         let bytes: [u8; 24] = core::array::from_fn(|i| (i * 37 + 11) as u8);
+        // Miri interprets every step: there, every eleventh position, which still meets each
+        // width at every bit offset within a byte.
+        let step = if cfg!(miri) { 11 } else { 1 };
         for width in 1..=64u32 {
-            for at in 0..=(bytes.len() * 8 - width as usize) {
+            for at in (0..=(bytes.len() * 8 - width as usize)).step_by(step) {
                 let v = get_stream(&bytes, at, width);
                 assert_eq!(v, slow_get(&bytes, at, width), "{width} at {at}");
                 let mut copy = bytes;

@@ -134,7 +134,8 @@ mod tests {
                 let table = Slicing16::<$w>::new(&crc::$alg);
                 assert!(table.uses_crc_fast(), stringify!($alg));
                 let reference = crc::Crc::<$w, crc::NoTable>::new(&crc::$alg);
-                for n in 0..200 {
+                // (Under Miri, which interprets every step, every 23rd length.)
+                for n in (0..200).step_by(if cfg!(miri) { 23 } else { 1 }) {
                     let want = reference.checksum(&data[..n]);
                     assert_eq!(table.checksum(&data[..n]), want, "{} n {n}", stringify!($alg));
                     assert_eq!(table.checksum_prefix(&data, n), want, "{} +", stringify!($alg));

@@ -145,7 +145,8 @@ fn seeded_sums_and_xors_match_naive_loops() {
     };
     let xor = Checksum::Xor { init: 0x5A };
     assert_eq!((sum8.width(), sum16.width(), xor.width()), (1, 2, 1));
-    for n in 0..=300 {
+    // (Under Miri, which interprets every step, every 37th length.)
+    for n in (0..=300).step_by(if cfg!(miri) { 37 } else { 1 }) {
         let data = &buf[..n];
         let total: u64 = data.iter().map(|&b| u64::from(b)).sum();
         let x = data.iter().fold(0x5Au8, |x, &b| x ^ b);

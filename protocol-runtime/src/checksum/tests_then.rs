@@ -42,7 +42,8 @@ macro_rules! check_then {
                 let reference = crc::Crc::<$w, crc::NoTable>::new(alg);
                 let fast = std::boxed::Box::new(Slicing16::<$w>::new(alg));
                 let one = crc::Crc::<$w, crc::Table<1>>::new(alg);
-                for n in 0..=200 {
+                // (Under Miri, which interprets every step, every 37th length.)
+                for n in (0..=200).step_by(if cfg!(miri) { 37 } else { 1 }) {
                     let byte = buf[n + 7];
                     let mut digest = reference.digest();
                     digest.update(&buf[..n]);

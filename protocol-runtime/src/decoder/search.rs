@@ -660,9 +660,11 @@ mod tests {
                 value: 0,
             }),
         ];
+        // (Under Miri, which interprets every step, fewer draws.)
+        let rounds = if cfg!(miri) { 200 } else { 20_000 };
         for lead in leads {
             let own = lead.map_or([0; 2], |l| [l.first, l.value]);
-            for _ in 0..20_000 {
+            for _ in 0..rounds {
                 let len = (next() % (2 * SCAN as u64 + 20)) as usize;
                 // Bytes drawn mostly from the lead's own, so that starts and near misses are
                 // common.
@@ -682,8 +684,10 @@ mod tests {
 
     #[test]
     fn the_filler_fails_every_lead() {
-        for first in 0..=255u8 {
-            for mask in 0..=255u8 {
+        // (Under Miri, which interprets every step, every 17th first byte and mask.)
+        let step = if cfg!(miri) { 17 } else { 1 };
+        for first in (0..=255u8).step_by(step) {
+            for mask in (0..=255u8).step_by(step) {
                 for value in [0, mask, mask & first, mask & !first, mask & 0x5A] {
                     let lead = Lead {
                         first,
@@ -715,12 +719,14 @@ mod tests {
         };
         let referee = layout(WordField::le(1, 2), 9, 5);
         let mut extra = 0;
+        // (Under Miri, which interprets every step, fewer draws, which may not reach the case.)
+        let (rounds, least) = if cfg!(miri) { (500, 0) } else { (50_000, 100) };
         for layout in [&hflink, &referee] {
             let limit = 127;
             let lead = Lead::of(layout, limit).unwrap();
             let shortest = shortest_frame(&layout);
             let own = [lead.first, lead.value];
-            for _ in 0..50_000 {
+            for _ in 0..rounds {
                 let pending = (next() % 140) as usize;
                 let mut buf: Vec<u8> = (0..pending + FILL + 8)
                     .map(|_| match next() % 4 {
@@ -747,7 +753,7 @@ mod tests {
             }
         }
         // The draw reaches the case it is about.
-        assert!(extra > 100, "{extra}");
+        assert!(extra >= least, "{extra}");
     }
 
     fn layout(field: WordField, adjust: i64, header_len: usize) -> FrameLayout<'static> {
@@ -833,7 +839,9 @@ mod tests {
     fn every_acceptable_header_passes_its_lead() {
         let mut next = rng();
         let mut accepted = 0;
-        for _ in 0..20_000 {
+        // (Under Miri, which interprets every step, fewer draws.)
+        let rounds = if cfg!(miri) { 400 } else { 20_000 };
+        for _ in 0..rounds {
             let size = [1u8, 2, 4, 8][(next() % 4) as usize];
             let width = 1 + (next() % u64::from(size * 8)) as u8;
             let shift = (next() % u64::from(size * 8 - width + 1)) as u8;
@@ -874,6 +882,6 @@ mod tests {
             }
         }
         // The assertion above ran often enough to mean something.
-        assert!(accepted > 20_000, "{accepted} headers accepted");
+        assert!(accepted > rounds, "{accepted} headers accepted");
     }
 }

@@ -9,6 +9,12 @@ use common::{Rng, Seen, check, layouts, random_frame, run};
 use protocol_runtime::StreamDecoder;
 use protocol_runtime::layout::{FrameLayout, LengthRule};
 
+/// `n`, or under Miri, which interprets every step (a thousand times slower or more), a
+/// fiftieth of it: the same properties on shorter streams.
+const fn scaled(n: usize) -> usize {
+    if cfg!(miri) { n.div_ceil(50) } else { n }
+}
+
 /// Random bytes where sync bytes and small values are frequent, so that many candidates get
 /// deep into the checks.
 fn hostile_garbage(rng: &mut Rng, layout: &FrameLayout<'_>, len: usize) -> Vec<u8> {
@@ -69,8 +75,8 @@ fn frames(seen: &[Seen]) -> Vec<Seen> {
 fn mixed_streams_match_the_reference_for_every_chunking() {
     let mut rng = Rng(0x0123_4567_89AB_CDEF);
     for (name, layout) in layouts() {
-        for round in 0..6 {
-            let stream = mixed_stream(&mut rng, layout, 60);
+        for round in 0..scaled(6) {
+            let stream = mixed_stream(&mut rng, layout, scaled(60).max(10));
             let whole = check::<512>(layout, &stream, &[stream.len()], false);
             for flush in [false, true] {
                 for sizes in chunkings(&mut rng, stream.len()) {
@@ -101,7 +107,7 @@ fn decode_yields_the_frames_that_next_event_reports() {
 }
 
 fn feed_matches_next_event(rng: &mut Rng, name: &str, layout: &FrameLayout<'_>, size: usize) {
-    let stream = mixed_stream(rng, layout, 80);
+    let stream = mixed_stream(rng, layout, scaled(80).max(10));
     let events: Vec<Seen> = run::<256>(layout, &stream, &[size], true)
         .into_iter()
         .filter(|e| matches!(e, Seen::Frame { .. }))
@@ -128,7 +134,7 @@ fn feed_matches_next_event(rng: &mut Rng, name: &str, layout: &FrameLayout<'_>, 
 /// Runs the engine with a buffer of `N` bytes: it behaves as if `max_len` were `min(max_len, N)`.
 fn small_buffer<const N: usize>(rng: &mut Rng) {
     for (name, layout) in layouts() {
-        let stream = mixed_stream(rng, layout, 40);
+        let stream = mixed_stream(rng, layout, scaled(40).max(5));
         for flush in [false, true] {
             for sizes in [vec![1], vec![3, 11], vec![stream.len()]] {
                 if N >= layout.sync_len() {
@@ -163,17 +169,18 @@ fn random_garbage_never_panics_and_always_progresses() {
     let mut rng = Rng(0x7777_0000_1111_2222);
     for (_, layout) in layouts() {
         for hostile in [false, true] {
+            let len = scaled(50_000);
             let stream = if hostile {
-                hostile_garbage(&mut rng, layout, 50_000)
+                hostile_garbage(&mut rng, layout, len)
             } else {
-                let mut s = vec![0u8; 50_000];
+                let mut s = vec![0u8; len];
                 rng.fill(&mut s);
                 s
             };
             let sizes: Vec<usize> = (0..97).map(|_| 1 + rng.below(200)).collect();
             check::<128>(layout, &stream, &sizes, true);
             check::<16>(layout, &stream, &sizes, true);
-            check::<128>(layout, &stream[..5000], &[1], false);
+            check::<128>(layout, &stream[..scaled(5000)], &[1], false);
         }
     }
 }

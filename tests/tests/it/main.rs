@@ -53,6 +53,7 @@ mod peer_frames;
 mod random_specs;
 // After `random_specs`: it runs that module's batch, through `for_each_random_session!`.
 mod random_sessions;
+mod random_fixtures;
 mod referee_vectors;
 mod repeated_bits;
 mod roborts_vectors;

@@ -226,7 +226,11 @@ fn compare<S: Spec, G: SessionRef, const FRAME: usize>(
     let mut rng = Rng(seed ^ 0x5E55_1011);
     let m = model::<S>();
     let pool: Vec<Vec<u8>> = (0..POOL)
-        .map(|_| m.pick(&mut rng).canonical_here(&mut rng))
+        .map(|_| {
+            // The machines take frames as the decoder yields them: unescaped.
+            let format = m.pick(&mut rng);
+            support::unescaped(format.layout, &format.canonical_here(&mut rng))
+        })
         .collect();
     let mut twins = Twins {
         requester: (generated.0, Requester::new(rules)),

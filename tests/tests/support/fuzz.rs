@@ -24,12 +24,11 @@ pub fn stream<S: Spec>(data: &[u8]) {
     let sizes = chunk_sizes(mode, S::MAX_FRAME_LEN);
     assert_chunking_invariant::<S>(bytes, &sizes);
     if let Ok(packet) = S::decode(bytes) {
-        let frame = S::layouts()[S::format_of(bytes)]
-            .parse(bytes)
+        let frame = super::parse_wire(S::layouts()[S::format_of(bytes)], bytes)
             .expect("decoded bytes hold a frame");
-        check_packet::<S>(frame);
-        let again = S::from_frame(frame).expect("from_frame agrees with decode");
-        super::stream::assert_same_packet(&packet, &again, frame);
+        check_packet::<S>(&frame);
+        let again = S::from_frame(&frame).expect("from_frame agrees with decode");
+        super::stream::assert_same_packet(&packet, &again, &frame);
     }
 }
 
@@ -108,10 +107,8 @@ pub fn interp<S: Spec>(data: &[u8]) {
     let (Ok(packet), Ok(decoded)) = (generated, interpreted) else {
         return;
     };
-    let frame = S::layouts()[S::format_of(data)]
-        .parse(data)
-        .expect("a decoded frame");
-    let json = serde_json::to_value(codec.frame_value(&decoded, 0, frame))
+    let frame = super::parse_wire(S::layouts()[S::format_of(data)], data).expect("a decoded frame");
+    let json = serde_json::to_value(codec.frame_value(&decoded, 0, &frame))
         .expect("a frame value has a JSON form");
     let object: Value = serde_json::from_value(json).expect("the JSON form reads back");
     let encoded = codec.encode(&object).unwrap_or_else(|e| {

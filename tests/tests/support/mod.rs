@@ -262,9 +262,15 @@ pub trait Spec: Sized + Debug + Clone + PartialEq + 'static {
     /// `Packet::encoded_len`.
     fn encoded_len(&self) -> usize;
 
-    /// The packet encoded into a fresh buffer of exactly `MAX_FRAME_LEN` bytes.
+    /// The packet encoded into a fresh buffer of exactly `MAX_FRAME_LEN` bytes, or, for a
+    /// format that escapes its frames, of the bound its escaped frames keep: twice
+    /// `MAX_FRAME_LEN` less the two flags, which go as they are.
     fn to_vec(&self) -> Result<Vec<u8>, EncodeError> {
-        let mut buf = vec![0u8; Self::MAX_FRAME_LEN];
+        let len = match Self::layout().escape {
+            Some(_) => 2 * Self::MAX_FRAME_LEN - 2,
+            None => Self::MAX_FRAME_LEN,
+        };
+        let mut buf = vec![0u8; len];
         let n = self.encode(&mut buf)?;
         buf.truncate(n);
         Ok(buf)
@@ -408,6 +414,31 @@ impl Source for Entropy<'_> {
         let bytes = (64 - (n - 1).leading_zeros()).div_ceil(8) as usize;
         self.take(bytes) % n
     }
+}
+
+/// The frame a decoder yields for `wire`, the bytes of one frame of `layout` as they go on the
+/// wire: unescaped where the format escapes its frames ([`FrameLayout::escape`]), else `wire`
+/// as it is.
+///
+/// # Panics
+/// If `wire` is no escaped frame of such a format.
+pub fn unescaped(layout: &FrameLayout<'_>, wire: &[u8]) -> Vec<u8> {
+    let Some(escape) = layout.escape else {
+        return wire.to_vec();
+    };
+    let mut out = vec![0u8; wire.len()];
+    let n = escape
+        .unescape(wire, &mut out)
+        .unwrap_or_else(|e| panic!("{}: no escaped frame: {e:?}", hex(wire)));
+    out.truncate(n);
+    out
+}
+
+/// The frame at the start of `wire` as `layout` parses it ([`FrameLayout::parse_wire`]:
+/// unescaped first where the format escapes its frames).
+pub fn parse_wire(layout: &FrameLayout<'_>, wire: &[u8]) -> Result<Vec<u8>, DecodeError> {
+    let mut out = vec![0u8; layout.max_len];
+    layout.parse_wire(wire, &mut out).map(<[u8]>::to_vec)
 }
 
 /// Bytes as hex, for assertion messages (the first 64 bytes of longer runs).

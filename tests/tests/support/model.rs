@@ -13,6 +13,9 @@
 //! unused bits zero, enum values that exist): those must survive decode → encode byte for byte.
 //! *Raw* frames only pass the frame checks (any header values, any payload length and bytes):
 //! those must decode to a value or an error, never a panic.
+//!
+//! Every frame comes as it goes on the wire: escaped, for a format that escapes its frames
+//! between flags (a decoder yields it unescaped: [`super::unescaped`]).
 
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
@@ -390,8 +393,17 @@ impl Model {
         let flag_len = flagged.as_ref().map_or(0, Vec::len);
         let len = rules.frame_len(body, rules.wire_len(body, payload), flag_len);
         // Room for a trailer past the frame: `assemble` asks for it before it knows that an
-        // acknowledgement without data is a bare header.
-        let mut frame = vec![0u8; len + rules.trailer_len];
+        // acknowledgement without data is a bare header. An escaped frame may take twice its
+        // bytes on the wire.
+        let room = len + rules.trailer_len;
+        let mut frame = vec![
+            0u8;
+            if self.layout.escape.is_some() {
+                2 * room
+            } else {
+                room
+            }
+        ];
         let mut aside = vec![0u8; payload.len()];
         let assembled = rules.assemble(
             &mut frame,
@@ -532,17 +544,34 @@ impl Model {
             field.write(&mut frame, value).expect("header value fits");
         }
         self.layout.seal(&mut frame).expect("seal");
+        if let Some(escape) = self.layout.escape {
+            let len = frame.len();
+            frame.resize(2 * len, 0);
+            let n = escape
+                .escape_in_place(&mut frame, len)
+                .expect("room to escape");
+            frame.truncate(n);
+        }
         self.checked(frame)
     }
 
-    /// Checks that a sealed frame is a valid frame of the layout.
-    fn checked(&self, frame: Vec<u8>) -> Vec<u8> {
+    /// Checks that a sealed frame, as it goes on the wire, is one valid frame of the layout
+    /// (escaped whole, for a format that escapes its frames).
+    fn checked(&self, wire: Vec<u8>) -> Vec<u8> {
+        let frame = super::unescaped(self.layout, &wire);
         assert_eq!(
             self.layout.probe(&frame),
             Probe::Frame(frame.len()),
             "sealed frame is valid"
         );
-        frame
+        if let Some(escape) = self.layout.escape {
+            assert_eq!(
+                escape.escaped_len(&frame),
+                wire.len(),
+                "an escaped frame holds no flag before its last byte"
+            );
+        }
+        wire
     }
 
     /// A value of the first frame's sync set.

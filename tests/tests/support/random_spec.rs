@@ -3,7 +3,8 @@
 //! hand. It owns the choice of a spec's shape ([`Shape`]: which frame formats, directions and
 //! framing rules go together) and the spec's named parts (constants, addresses, checksums,
 //! enums, structs); the fields of a struct are written by `random_spec/fields.rs`, the frame
-//! formats, directions and commands by `random_spec/frames.rs`.
+//! formats, directions and commands by `random_spec/frames.rs` (with a format's escaping:
+//! `random_spec/escape.rs`).
 //!
 //! What a spec may hold: one to three serial command formats on one link (`commands = true`,
 //! `extensions = false`), a CAN format (standard or extended ids, the data length bounded by
@@ -19,7 +20,8 @@
 //! 5, 12, 24, 40), sum (seeded with `init` or not) or XOR (seeded), with a lookup-table size
 //! and a byte folded in per command (`extra`); a field after
 //! the payload, a trailer, optional bytes after the checks; acknowledgements, bare headers,
-//! byte stuffing and trailing-zero truncation. Payload structs take every fixed-size field kind
+//! byte stuffing, byte escaping between flags (the XOR form or a table) and trailing-zero
+//! truncation. Payload structs take every fixed-size field kind
 //! (integers of 8 to 64 bits with a byte order, 40, 48 and 56 bits among them, floats and
 //! halves, bools (inverted too), arrays sized by a number or a constant, enums that keep or reject unknown
 //! values, scaled, clamped and rounded values, scaled floats, bit
@@ -38,8 +40,12 @@
 //! with `protocol!` (`tests/build.rs`), and the C peer's conformance test compiles the C that
 //! `protocol gen c` prints for the same seeds (`protocol-cli/tests/it/c_peer.rs`). The same seed
 //! gives the same text, so a failure names its seed and the spec is written out as a fixture.
+//! The C printer refuses escaped formats (`protocol gen c` says so), so the C peer's test counts
+//! those specs as refused and compares the others.
 #![allow(dead_code)]
 
+#[path = "random_spec/escape.rs"]
+mod escape;
 #[path = "random_spec/fields.rs"]
 mod fields;
 #[path = "random_spec/frames.rs"]
@@ -180,6 +186,8 @@ struct Shape {
     extensions_off: bool,
     /// Every payload struct has a fixed size.
     fixed_payloads: bool,
+    /// The one frame format escapes its frames between flags (`escape`).
+    escape: bool,
 }
 
 /// How the directions of a spec are told.
@@ -300,6 +308,8 @@ pub const FEATURES: &[&str] = &[
     "ack",
     "bare-header",
     "stuffing",
+    "escape",
+    "escape-map",
     "truncate-zeros",
     "formats-several",
     "extensions-off",
@@ -401,13 +411,22 @@ impl Shape {
         s.marker = !link && !s.ack && !s.stuffing && !s.truncate && !given_message && rng.one_in(6);
         s.bare = !s.marker && rng.one_in(6);
         s.optional = !s.ack && !s.bare && !s.stuffing && !s.marker && !link && rng.one_in(6);
-        // A frame carrying a struct in place of a command has no byte to fold in; the draw is
-        // made anyway so that the seeds' other choices stay as they are.
-        s.extra = rng.one_in(5) && !given_message;
-        s.two_key = !s.extra && rng.one_in(5);
+        // A frame carrying a struct in place of a command, or an acknowledgement, has no byte
+        // to fold in; the draw is made anyway so that the seeds' other choices stay as they are.
+        let extra = rng.one_in(5) && !given_message;
+        s.two_key = !extra && rng.one_in(5);
+        s.extra = extra && !s.ack;
         s.one_of = !link && rng.one_in(6);
         s.extensions_off = link && !directions && rng.one_in(2);
         s.fixed_payloads = s.truncate || s.extensions_off;
+        // Escaping is drawn from a stream of its own (the seeds' other choices stay as they
+        // are), for a spec of one serial format that opens with its one sync byte, the flag,
+        // and closes with it: no link, CAN or message format, stuffing, bare header, sync set
+        // or optional bytes after the checks.
+        let mut side = Rng(rng.0.rotate_left(29) ^ 0x0E5C_A9ED_F1A6_0001);
+        let alone = s.formats == 1 && s.can.is_none() && !s.message_format;
+        let delimited = !s.stuffing && !s.bare && !s.one_of && !s.optional;
+        s.escape = alone && delimited && side.one_in(3);
         s
     }
 }

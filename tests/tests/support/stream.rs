@@ -8,6 +8,13 @@
 //!   stream without gap or overlap, and a call returns `None` only once its input is consumed;
 //! - every byte is accounted for: `frame_bytes + skipped_bytes + pending == position == fed`;
 //! - every frame it yields is the stream's bytes at its offset, and a valid frame of the layout;
+//!
+//! A format that escapes its frames between flags ([`FrameLayout::escape`]) yields them
+//! unescaped, and an event there does not say how many bytes of the wire it took (a rejected
+//! candidate runs to the next flag; two frames may share a flag, counted with the first). There
+//! each frame must be the stream's bytes at its offset unescaped, the events' offsets never go
+//! back, frames overlap by a shared flag at most, and `frame_bytes` is the frames' escaped
+//! lengths less the shared flags; the identity of the counters holds as for every format.
 //! - every frame decodes to a packet or an error, never a panic, and a packet re-encodes to
 //!   bytes that decode to the same packet.
 
@@ -35,7 +42,7 @@ pub struct Run {
 pub fn run<S: Spec>(stream: &[u8], sizes: &[usize]) -> Run {
     let mut decoder = S::decoder();
     let mut out = Run::default();
-    let mut cursor = 0u64;
+    let mut cursor = Cursor::default();
     let mut fed = 0usize;
     let mut sizes = Sizes::new(sizes);
     let mut rest = stream;
@@ -63,14 +70,15 @@ pub fn run<S: Spec>(stream: &[u8], sizes: &[usize]) -> Run {
             events += 1;
             assert!(
                 events <= budget,
-                "{}: no progress at offset {cursor}",
-                S::NAME
+                "{}: no progress at offset {}",
+                S::NAME,
+                cursor.at
             );
             assert!(input.len() <= before);
             record::<S>(event, stream, &mut cursor, &mut out);
-            check_counters::<S>(&decoder, (fed - input.len()) as u64, cursor, false);
+            check_counters::<S>(&decoder, (fed - input.len()) as u64, &cursor, false);
         }
-        check_counters::<S>(&decoder, fed as u64, cursor, true);
+        check_counters::<S>(&decoder, fed as u64, &cursor, true);
     }
     let budget = decoder.pending() + 1;
     let mut events = 0;
@@ -85,13 +93,15 @@ pub fn run<S: Spec>(stream: &[u8], sizes: &[usize]) -> Run {
         "{}: flush leaves bytes pending",
         S::NAME
     );
-    check_counters::<S>(&decoder, fed as u64, cursor, true);
-    assert_eq!(
-        cursor,
-        stream.len() as u64,
-        "{}: events do not cover the stream",
-        S::NAME
-    );
+    check_counters::<S>(&decoder, fed as u64, &cursor, true);
+    if S::layout().escape.is_none() {
+        assert_eq!(
+            cursor.at,
+            stream.len() as u64,
+            "{}: events do not cover the stream",
+            S::NAME
+        );
+    }
     let stats = decoder.stats();
     assert_eq!(stats.frames, out.frames.len() as u64);
     assert_eq!(stats.rejected(), out.rejected.len() as u64);
@@ -121,7 +131,7 @@ pub fn frames<S: Spec>(stream: &[u8], sizes: &[usize]) -> Vec<(u64, Vec<u8>)> {
             out.push((frame.offset, frame.bytes.to_vec()));
         }
         assert!(chunk.is_empty());
-        assert!(decoder.pending() < S::MAX_FRAME_LEN);
+        assert!(decoder.pending() < wire_bound::<S>(S::MAX_FRAME_LEN));
         assert_eq!(out_fed, out, "{}: feed and decode differ", S::NAME);
         assert_eq!(
             fed.stats(),
@@ -174,15 +184,33 @@ impl<'a> Sizes<'a> {
     }
 }
 
+/// Where the events have got to in the stream.
+#[derive(Debug, Default)]
+struct Cursor {
+    /// The end of the last event (for an escaped format: the furthest offset an event
+    /// reached).
+    at: u64,
+    /// For an escaped format: the end of the last frame on the wire, and the bytes the
+    /// frames took on the wire, a shared flag counted once.
+    frame_end: u64,
+    frame_bytes: u64,
+}
+
 /// Checks one event against the stream and appends it to `out`.
-fn record<S: Spec>(event: Event<'_>, stream: &[u8], cursor: &mut u64, out: &mut Run) {
+fn record<S: Spec>(event: Event<'_>, stream: &[u8], cursor: &mut Cursor, out: &mut Run) {
+    let escaped = S::layout().escape.is_some();
     let (offset, len) = match event {
         Event::Frame(frame) => {
             let len = frame.bytes.len();
             let at = frame.offset as usize;
+            let wire = if escaped {
+                escaped_frame::<S>(frame.bytes, stream, at, cursor)
+            } else {
+                stream.get(at..at + len).map(<[u8]>::to_vec)
+            };
             assert_eq!(
                 Some(frame.bytes),
-                stream.get(at..at + len),
+                wire.as_deref(),
                 "{}: frame at {at} is not the stream's bytes",
                 S::NAME
             );
@@ -212,26 +240,71 @@ fn record<S: Spec>(event: Event<'_>, stream: &[u8], cursor: &mut u64, out: &mut 
         Event::Skipped { offset, len } => (offset, len),
     };
     assert!(len > 0, "{}: an event of no bytes at {offset}", S::NAME);
+    if escaped {
+        assert!(
+            offset >= cursor.at,
+            "{}: an event at {offset} goes back before {}",
+            S::NAME,
+            cursor.at
+        );
+        cursor.at = offset;
+        return;
+    }
     assert_eq!(
         offset,
-        *cursor,
+        cursor.at,
         "{}: events leave a gap or overlap",
         S::NAME
     );
-    *cursor += len as u64;
+    cursor.at += len as u64;
+}
+
+/// For a format that escapes its frames: the stream's bytes at `at` unescaped, which a frame
+/// yielded there must be (`None` if they are no escaped frame); records the frame's bytes on
+/// the wire, which start no earlier than the flag that closed the frame before.
+fn escaped_frame<S: Spec>(
+    frame: &[u8],
+    stream: &[u8],
+    at: usize,
+    cursor: &mut Cursor,
+) -> Option<Vec<u8>> {
+    let escape = S::layout().escape?;
+    let mut out = vec![0u8; frame.len()];
+    let n = escape.unescape(stream.get(at..)?, &mut out).ok()?;
+    out.truncate(n);
+    let wire = escape.escaped_len(&out) as u64;
+    let shared = cursor.frame_end > 0 && at as u64 + 1 == cursor.frame_end;
+    assert!(
+        shared || at as u64 >= cursor.frame_end,
+        "{}: the frame at {at} overlaps the frame before, which ends at {}",
+        S::NAME,
+        cursor.frame_end
+    );
+    cursor.frame_bytes += wire - u64::from(shared);
+    cursor.frame_end = at as u64 + wire;
+    Some(out)
+}
+
+/// `n` unescaped bytes as they may go on the wire: twice as many where the format escapes its
+/// frames (`pending` counts the bytes on the wire of a candidate the buffer holds unescaped).
+fn wire_bound<S: Spec>(n: usize) -> usize {
+    match S::layout().escape {
+        Some(_) => 2 * n,
+        None => n,
+    }
 }
 
 /// The buffer bound and the accounting identity. Between events the buffer may hold a staged
 /// chunk beyond a frame; once the input is used up (`idle`), it holds only the start of one
 /// candidate, shorter than a frame.
-fn check_counters<S: Spec>(decoder: &S::Decoder, fed: u64, cursor: u64, idle: bool) {
+fn check_counters<S: Spec>(decoder: &S::Decoder, fed: u64, cursor: &Cursor, idle: bool) {
     let pending = decoder.pending();
     assert!(
-        !idle || pending < S::MAX_FRAME_LEN,
+        !idle || pending < wire_bound::<S>(S::MAX_FRAME_LEN),
         "{}: {pending} bytes pending",
         S::NAME
     );
-    assert!(pending <= <S::Decoder as Dec>::CAPACITY);
+    assert!(pending <= wire_bound::<S>(<S::Decoder as Dec>::CAPACITY));
     let s = decoder.stats();
     assert_eq!(
         decoder.position(),
@@ -245,8 +318,17 @@ fn check_counters<S: Spec>(decoder: &S::Decoder, fed: u64, cursor: u64, idle: bo
         "{}: counters do not add up: {s:?}, pending {pending}",
         S::NAME
     );
+    if S::layout().escape.is_some() {
+        assert_eq!(
+            s.frame_bytes,
+            cursor.frame_bytes,
+            "{}: frame_bytes is not the frames' bytes on the wire",
+            S::NAME
+        );
+        return;
+    }
     assert_eq!(
-        cursor + pending as u64,
+        cursor.at + pending as u64,
         fed,
         "{}: events and pending bytes differ from fed",
         S::NAME

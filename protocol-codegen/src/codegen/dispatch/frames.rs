@@ -11,7 +11,7 @@ use crate::ir::{Frame, Protocol, Transport};
 /// `<Name>Packet` for a CAN frame format: decode from and encode to a `CanFrame`, through the
 /// frame's virtual layout (id, length, data) so the runtime verifies and seals its checks, and
 /// its rules, whose key is the CAN id.
-pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
+pub(super) fn emit_can_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let Items {
         layout,
         rules,
@@ -31,6 +31,12 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
         f.name
     );
     let decode_doc = " Decode a received CAN frame, verifying its checks.";
+    // A message without a command (an acknowledgement of the first format) has no CAN id.
+    let can_id = if super::message::command_none(p).is_some() {
+        quote!(self.message.command().and_then(Command::can_id))
+    } else {
+        quote!(self.message.command().can_id())
+    };
     quote! {
         #[doc = #doc]
         #[derive(Debug, Clone, Copy, PartialEq)]
@@ -69,7 +75,7 @@ pub(super) fn emit_can_packet(f: &Frame, rt: &TokenStream) -> TokenStream {
             /// `EncodeError::ValueOutOfRange` when the command has no CAN id or a header value
             /// does not fit its field.
             pub fn encode(&self) -> #rt::Result<#rt::CanFrame, #rt::EncodeError> {
-                let id = self.message.command().can_id().ok_or(#rt::EncodeError::ValueOutOfRange { place: #rt::Place::NONE })?;
+                let id = #can_id.ok_or(#rt::EncodeError::ValueOutOfRange { place: #rt::Place::NONE })?;
                 let key = [u64::from(id)];
                 let body = #rt::Body::Command { key: &key, carried: #rt::None, direction: #rt::None };
                 let total = #rules.frame_len(&body, self.message.payload_len(), 0);

@@ -154,8 +154,9 @@ fn emit_visit_and_command(
     (visit_impl, command)
 }
 
-/// What a message without a command is, when a spec has such messages.
-fn command_none(p: &Protocol) -> Option<&'static str> {
+/// What a message without a command is, when a spec has such messages (its `command()` is
+/// then an `Option`).
+pub(super) fn command_none(p: &Protocol) -> Option<&'static str> {
     if p.frames.first().is_some_and(|f| f.ack.is_some()) {
         Some("an acknowledgement")
     } else if p.directions.iter().any(|d| d.message.is_some()) {

@@ -103,7 +103,7 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
     }
     for cf in &p.frames {
         if cf.packet == PacketKind::Can {
-            out.extend(emit_can_packet(cf, &rt));
+            out.extend(emit_can_packet(p, cf, &rt));
         }
     }
     out.extend(emit_session(p, &rt));

@@ -4,7 +4,7 @@ use super::super::Ctx;
 use super::Kind;
 use super::length::Layout;
 use crate::diag::did_you_mean;
-use crate::ir::{HeaderValue, Length, Pos, Role};
+use crate::ir::{Check, HeaderValue, Length, Pos, Role};
 use crate::spec::model::{FrameDef, SStr};
 
 /// Rule: the dispatch key names header fields (before the payload) that are not the length or
@@ -127,6 +127,31 @@ pub(super) fn lower_ack(
     }
     values[vi].role = Role::Ack(equals.clamp(0, 1) as u64);
     Some((vi, ack_header_len))
+}
+
+/// Rule: a frame format with acknowledgements has no check that folds in a byte per command
+/// (`extra = "command"`): an acknowledgement carries no command, so its check would have no
+/// byte to fold in, and the bytes in the key's place are data, not an id.
+pub(super) fn check_ack_extra(
+    ctx: &mut Ctx<'_>,
+    fname: &SStr,
+    def: &FrameDef,
+    checks: &[(Check, usize)],
+    ok: &mut bool,
+) {
+    let (Some(a), Some((c, _))) = (&def.ack, checks.iter().find(|(c, _)| c.extra.is_some())) else {
+        return;
+    };
+    ctx.error(
+        a.span(),
+        format!(
+            "frame `{}` has acknowledgements, but its check `{}` folds in a byte per command (`extra = \"command\"`)",
+            fname.get_ref(),
+            c.name
+        ),
+        "an acknowledgement carries no command, so no byte to fold in: remove `ack`, or the check's `extra`",
+    );
+    *ok = false;
 }
 
 /// The header without the words right before the payload that hold only dispatch values: its

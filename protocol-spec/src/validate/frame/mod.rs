@@ -168,6 +168,7 @@ fn lower_frame(
     let dispatch = ack::lower_dispatch(ctx, fname, def, &mut values, &mut ok);
     checks::lower_extra_keys(ctx, &lay, &mut checks, &values, &dispatch, &mut ok);
     let ack = ack::lower_ack(ctx, fname, def, &lay, &mut values, &dispatch, &mut ok);
+    ack::check_ack_extra(ctx, fname, def, &checks, &mut ok);
     let bare_len = ack::lower_bare_header(ctx, def, &length, lay.header_len, ack, &mut ok);
     checks::check_bare_header(ctx, &lay, &checks, bare_len.is_some(), &mut ok);
     let stuffing = options::lower_stuffing(ctx, def);

@@ -85,8 +85,10 @@ impl Spec {
         } else {
             self.feature("sync");
             let mut sync = vec![format!("{:#04X}", syncs[0])];
-            if self.rng.one_in(2) {
-                sync.push(format!("{:#04X}", self.rng.range(0, 255)));
+            // An escaped frame opens with its flag alone; the draw is made anyway.
+            let second = self.rng.one_in(2).then(|| self.rng.range(0, 255));
+            if let Some(b) = second.filter(|_| !self.shape.escape) {
+                sync.push(format!("{b:#04X}"));
             }
             layout.push(format!("{{ sync = [{}] }}", sync.join(", ")));
             "sync"
@@ -173,6 +175,12 @@ impl Spec {
                 "{{ optional = \"sig\", size = {size}, when = \"fopt\" }}"
             ));
         }
+        if self.shape.escape {
+            layout.push(format!(
+                "{{ trailer = [{:#04X}], name = \"close\" }}",
+                syncs[0]
+            ));
+        }
         let mut t = format_table("main", &layout);
         t.push_str(self.dispatch());
         if ack {
@@ -199,6 +207,10 @@ impl Spec {
         if self.shape.truncate {
             self.feature("truncate-zeros");
             t.push_str("truncate_zeros = true\n");
+        }
+        if self.shape.escape {
+            let rule = self.escape_rule(syncs[0]);
+            writeln!(t, "escape = {rule}").unwrap();
         }
         t.push('\n');
         t
