@@ -1357,7 +1357,7 @@ fn check_spec(path: &Path, random_frames: usize) -> (String, String) {
         tally.edge_frames,
     );
     if decoders.is_empty() {
-        what.push_str(", no stream decoder (a CAN-only link)");
+        what.push_str(", no stream decoder");
     } else {
         let _ = write!(
             what,
