@@ -14,7 +14,9 @@
  * spec's lower- and upper-case prefixes, and the lists FORMATS(X), CAN_FORMATS(X), GIVEN(X)
  * and DECODERS(X) of the spec's frame formats, CAN formats, formats whose decoder is given the
  * direction and stream decoders, each item
- * X(index, lower-case prefix, upper-case prefix). */
+ * X(index, lower-case prefix, upper-case prefix); per format FI, ESCAPED_FI (1 when it escapes
+ * its bytes between flags) and UNESCAPE_FI(wire, len, out, cap) (its `unescape`, or -1); and
+ * NO_DECODERS for a spec without stream decoder (a CAN-only link). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -84,15 +86,21 @@ static void put_hex(const uint8_t *b, size_t n)
         }                                                                                       \
     } while (0)
 
-/* Per frame format FI (`FORMATS` of `spec.h`): `ok TEXT` or `err NAME`; with `encode`, the
- * frame the packet encodes to. */
+/* Per frame format FI (`FORMATS` of `spec.h`): `ok TEXT` or `err NAME`; with `encode` (bytes
+ * as sent, not a stream decoder's frame), the frame the packet encodes to. A format that
+ * escapes its bytes decodes bytes as sent with `decode`, and with `decode_frame` once
+ * unescaped; a stream decoder's frame is unescaped already, and `decode_frame` reads it. An
+ * escaped frame takes up to twice MAX_FRAME_LEN bytes. */
 #define DESCRIBE(fi, lo, up)                                                                    \
     static void describe_##fi(const uint8_t *b, size_t n, int encode)                          \
     {                                                                                           \
         lo##packet pk, pk_frame;                                                                \
-        uint8_t out[up##MAX_FRAME_LEN];                                                         \
-        int e = lo##decode(b, n, &pk);                                                          \
-        int trusted = lo##decode_frame(b, n, &pk_frame);                                        \
+        uint8_t out[2 * up##MAX_FRAME_LEN];                                                     \
+        uint8_t plain[up##MAX_FRAME_LEN];                                                       \
+        int m = encode ? UNESCAPE_##fi(b, n, plain, sizeof plain) : -1;                         \
+        int e = ESCAPED_##fi && !encode ? lo##decode_frame(b, n, &pk) : lo##decode(b, n, &pk);  \
+        int trusted = m >= 0 ? lo##decode_frame(plain, (size_t)m, &pk_frame)                    \
+                             : lo##decode_frame(b, n, &pk_frame);                               \
         int len;                                                                                \
         if (e != 0) {                                                                           \
             printf("err %s\n", err_name(e));                                                    \
@@ -136,9 +144,12 @@ static void describe(int format, const uint8_t *b, size_t n, int encode)
     static void describe_given_##fi(int dir, const uint8_t *b, size_t n)                       \
     {                                                                                           \
         lo##packet pk, pk_frame;                                                                \
-        uint8_t out[up##MAX_FRAME_LEN];                                                         \
+        uint8_t out[2 * up##MAX_FRAME_LEN];                                                     \
+        uint8_t plain[up##MAX_FRAME_LEN];                                                       \
+        int m = UNESCAPE_##fi(b, n, plain, sizeof plain);                                       \
         int e = lo##decode_given(b, n, (P(direction))dir, &pk);                                 \
-        int trusted = lo##decode_frame_given(b, n, (P(direction))dir, &pk_frame);               \
+        int trusted = m >= 0 ? lo##decode_frame_given(plain, (size_t)m, (P(direction))dir, &pk_frame) \
+                             : lo##decode_frame_given(b, n, (P(direction))dir, &pk_frame);      \
         int len;                                                                                \
         if (e != 0) {                                                                           \
             printf("err %s\n", err_name(e));                                                    \
@@ -222,6 +233,7 @@ static void describe_can(int format, uint32_t id, int extended, const uint8_t *b
     }
 }
 
+#ifndef NO_DECODERS
 static void event(const P(event) *ev)
 {
     switch (ev->kind) {
@@ -283,6 +295,15 @@ static void stream(int decoder, size_t chunk, const uint8_t *b, size_t n)
         printf("no decoder %d\n", decoder);
     }
 }
+#else
+static void stream(int decoder, size_t chunk, const uint8_t *b, size_t n)
+{
+    (void)chunk;
+    (void)b;
+    (void)n;
+    printf("no decoder %d\n", decoder);
+}
+#endif
 
 int main(void)
 {

@@ -15,7 +15,10 @@
 //!   one in four of the first format's is encoded by the Rust codec from random payload values
 //!   (text, stated lengths, checks inside a payload, acknowledgements that random bytes seldom
 //!   make valid), and a format with bare headers gets some; a stuffed format's random bytes
-//!   often hold its pattern;
+//!   often hold its pattern, an escaped format's its reserved bytes and substitutes (its frames
+//!   go escaped, as sent; its stream decoders' frames come unescaped, read by `decode_frame`);
+//!   a CAN format's frames are CAN frames (id and data), the first format's too where the spec
+//!   is a CAN-only link (whose command is a member of the id);
 //! * edge frames per command: payloads of all-zero and all-`0xFF` bytes, and of one zero byte
 //!   (the field rules' extreme values, trailing-zero truncation's kept first byte), and the
 //!   bare header where the format has one;
@@ -105,6 +108,8 @@ fn vector_files(spec: &str) -> Vec<(String, bool)> {
         ("msp", "msp.json", true),
         // Random messages of the commands, framed and parsed by YAMSPy: no streams.
         ("msp", "msp_yamspy.json", false),
+        // CAN frames of random messages of every command, from pydronecan: no streams.
+        ("dronecan", "dronecan_pydronecan.json", false),
     ];
     let mut out: Vec<(String, bool)> = known
         .iter()
@@ -399,9 +404,27 @@ fn after_header(
     }
 }
 
+/// The bytes random frames favour (one in two): a stuffed format's pattern and inserted byte,
+/// so that payloads hold the pattern, stuffed or not; an escaped format's flag, escape byte,
+/// reserved bytes and substitutes, so that frames hold bytes to escape and substitutes.
+fn bias(p: &Protocol) -> Vec<u8> {
+    let f = &p.frames[0];
+    let mut out = f
+        .stuffing
+        .as_ref()
+        .map(|(after, insert)| [after.as_slice(), &[*insert]].concat())
+        .unwrap_or_default();
+    if let Some(e) = &f.escape {
+        out.extend([e.flag, e.escape]);
+        out.extend(e.pairs.iter().flatten());
+    }
+    out
+}
+
 /// A frame of format `fi`, sealed by the runtime after `fill` wrote its bytes: the flag
-/// trailer's bytes added when its flag came out set. `None` when the runtime cannot seal it
-/// (a length no frame has).
+/// trailer's bytes added when its flag came out set; escaped, as it goes on the wire, where
+/// the format escapes its bytes. `None` when the runtime cannot seal it (a length no frame
+/// has).
 fn sealed(
     codec: &Codec<'_>,
     fi: usize,
@@ -412,6 +435,12 @@ fn sealed(
     let present = layout.flag_trailer_len(&frame);
     frame.extend((0..present).map(|_| trailer_byte()));
     layout.seal(&mut frame).ok()?;
+    if let Some(escape) = layout.escape {
+        let len = frame.len();
+        frame.resize(escape.escaped_len(&frame), 0);
+        let wire = escape.escape_in_place(&mut frame, len).ok()?;
+        frame.truncate(wire);
+    }
     Some(frame)
 }
 
@@ -984,7 +1013,7 @@ fn build(p: &Protocol, files: &protocol_codegen::c::CFiles, dir: &Path) -> PathB
     } else {
         Vec::new()
     };
-    let decoders = decoders(p)
+    let decoders: Vec<(usize, String, String)> = decoders(p)
         .into_iter()
         .enumerate()
         .map(|(di, d)| match d {
@@ -999,10 +1028,28 @@ fn build(p: &Protocol, files: &protocol_codegen::c::CFiles, dir: &Path) -> PathB
             ),
         })
         .collect();
+    // Per format, whether it escapes its bytes, and how its frames on the wire are unescaped.
+    let mut escaped = String::new();
+    for (fi, f) in p.frames.iter().enumerate() {
+        let (lo, _) = prefixes(p, fi);
+        let unescape = if f.escape.is_some() {
+            format!("{lo}unescape(w, n, o, c)")
+        } else {
+            "((void)(w), (void)(n), (void)(o), (void)(c), -1)".into()
+        };
+        let _ = writeln!(
+            escaped,
+            "#define ESCAPED_{fi} {}\n#define UNESCAPE_{fi}(w, n, o, c) {unescape}",
+            u8::from(f.escape.is_some())
+        );
+    }
+    if decoders.is_empty() {
+        escaped.push_str("#define NO_DECODERS\n");
+    }
     std::fs::write(
         dir.join("spec.h"),
         format!(
-            "#include \"{}\"\n#define P(x) {}_##x\n#define U(x) {}_##x\n#define FORMATS(X){}\n#define CAN_FORMATS(X){}\n#define GIVEN(X){}\n#define DECODERS(X){}\n",
+            "#include \"{}\"\n#define P(x) {}_##x\n#define U(x) {}_##x\n#define FORMATS(X){}\n#define CAN_FORMATS(X){}\n#define GIVEN(X){}\n#define DECODERS(X){}\n{escaped}",
             files.header_name,
             p.name,
             p.name.to_uppercase(),
@@ -1189,8 +1236,11 @@ fn check_spec(path: &Path, random_frames: usize) -> (String, String) {
                 }
                 tally.vector_frames += 1;
             }
+            // A CAN frame as `can: { can_id, data_hex }`, or as `can_id` and `data` beside the
+            // frame's values.
             let can = &frame["can"];
-            if let (Some(id), Some(h)) = (can["can_id"].as_u64(), can["data_hex"].as_str()) {
+            let id = can["can_id"].as_u64().or(frame["can_id"].as_u64());
+            if let (Some(id), Some(h)) = (id, can["data_hex"].as_str().or(frame["data"].as_str())) {
                 for &fi in &can_formats {
                     let extended =
                         matches!(p.frames[fi].transport, Transport::Can { extended: true });
@@ -1245,11 +1295,7 @@ fn check_spec(path: &Path, random_frames: usize) -> (String, String) {
 
     // Random and edge frames of every format, then the fault-injection stream of each
     // decoder's formats' random frames at several chunk sizes.
-    let bias = p.frames[0]
-        .stuffing
-        .as_ref()
-        .map(|(after, insert)| [after.as_slice(), &[*insert]].concat())
-        .unwrap_or_default();
+    let bias = bias(p);
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ p.name.len() as u64, bias);
     let mut frames: Vec<Vec<Vec<u8>>> = Vec::new();
     for fi in 0..p.frames.len() {
@@ -1303,25 +1349,35 @@ fn check_spec(path: &Path, random_frames: usize) -> (String, String) {
     }
     compare(&p.name, &exe, &input, expected);
     let mut what = format!(
-        "C matches Rust: {} vector frames, {} vector streams, {} random frames ({} decoded), {} edge frames, a {}-byte fault-injection stream",
+        "C matches Rust: {} vector frames, {} vector streams, {} random frames ({} decoded), {} edge frames",
         tally.vector_frames,
         tally.vector_streams,
         tally.random_frames,
         tally.random_decoded,
         tally.edge_frames,
-        tally.stream_bytes
     );
-    if p.frames.len() > 1 {
+    if decoders.is_empty() {
+        what.push_str(", no stream decoder");
+    } else {
         let _ = write!(
             what,
-            " ({} frame formats, {} stream decoders",
+            ", a {}-byte fault-injection stream",
+            tally.stream_bytes
+        );
+    }
+    let mut more = Vec::new();
+    if p.frames.len() > 1 {
+        more.push(format!(
+            "{} frame formats, {} stream decoders",
             p.frames.len(),
             decoders.len()
-        );
-        if !can_formats.is_empty() {
-            let _ = write!(what, ", {} CAN vector frames", tally.can_frames);
-        }
-        what.push(')');
+        ));
+    }
+    if !can_formats.is_empty() {
+        more.push(format!("{} CAN vector frames", tally.can_frames));
+    }
+    if !more.is_empty() {
+        let _ = write!(what, " ({})", more.join(", "));
     }
     eprintln!(
         "{}: {} vector frames, {} CAN vector frames, {} vector streams at {} chunkings, {} random frames, {} edge frames, {} stream bytes at 4 chunkings",

@@ -10,9 +10,14 @@
 //! the link's decoder of all of them (the runtime's `LayoutRef::others`): a candidate goes to
 //! the first of its formats whose sync it matches, bounded by that format's largest frame.
 //!
+//! A format that escapes its bytes between flags has the runtime's escaped path instead: a
+//! flag opens and closes every candidate, its bytes unescaped into the buffer as they come.
+//!
 //! The caller's chunks are copied into a fixed buffer of the largest frame's size; a frame
 //! event points into it. Frames longer than the buffer cannot exist: the buffer is the largest
 //! frame of the decoder's formats, so the bound is theirs.
+
+use protocol_runtime::escape::Escape;
 
 use crate::ir::{Protocol, Transport};
 use crate::layout::lower_layout;
@@ -62,19 +67,40 @@ pub fn decoders(p: &Protocol, n: &Names) -> Vec<Decoder> {
     out
 }
 
+/// Whether a spec's frames escape their bytes between flags: its stream decoder then has the
+/// escaped path (`templates/escaped.c`) and its rejections the reason `BAD_ESCAPE`.
+fn escapes(p: &Protocol) -> bool {
+    p.frames.iter().any(|f| lower_layout(f).escape.is_some())
+}
+
 /// The stream decoder's types and functions, for the header.
 pub fn declarations(p: &Protocol, n: &Names) -> String {
     let (lo, up) = (&n.lo, &n.up);
-    let mut out = fill!(include_str!("templates/engine.h"), lo, up);
+    let escape_reason = if escapes(p) {
+        fill!(
+            "    ${up}REJECT_BAD_ESCAPE,       /**< An escape byte not followed by a substitute (counted as a bad header). */\n",
+            up
+        )
+    } else {
+        String::new()
+    };
+    let mut out = fill!(include_str!("templates/engine.h"), lo, up, escape_reason);
     out.push('\n');
     for d in decoders(p, n) {
         let (dlo, dup, what) = (&d.lo, &d.up, &d.what);
+        let escape_state = if escaped(p, &d).is_some() {
+            "    uint64_t owner;      /**< Stream offset of the pending candidate's opening flag. */\n    \
+             unsigned state;      /**< The escaped path's state of the candidate. */\n"
+        } else {
+            ""
+        };
         out.push_str(&fill!(
             include_str!("templates/decoder.h"),
             lo,
             dlo,
             dup,
-            what
+            what,
+            escape_state
         ));
         out.push('\n');
     }
@@ -84,12 +110,65 @@ pub fn declarations(p: &Protocol, n: &Names) -> String {
 /// The stream decoders' functions, for the source: the shared ones, then each decoder's.
 pub fn engine(p: &Protocol, n: &Names) -> String {
     let (lo, up) = (&n.lo, &n.up);
-    let mut out = fill!(include_str!("templates/engine.c"), lo, up);
+    let (escape_name, escape_count) = if escapes(p) {
+        (
+            fill!(
+                "    case ${up}REJECT_BAD_ESCAPE: return \"bad escape\";\n",
+                up
+            ),
+            fill!(
+                "    case ${up}REJECT_BAD_ESCAPE: s->bad_header++; break;\n",
+                up
+            ),
+        )
+    } else {
+        (String::new(), String::new())
+    };
+    let mut out = fill!(
+        include_str!("templates/engine.c"),
+        lo,
+        up,
+        escape_name,
+        escape_count
+    );
     out.push('\n');
     for d in decoders(p, n) {
-        decoder(p, n, &d, &mut out);
+        match escaped(p, &d) {
+            Some(e) => escaped_decoder(n, &d, &e, &mut out),
+            None => decoder(p, n, &d, &mut out),
+        }
     }
     out
+}
+
+/// The escaping of a decoder's one format, when it escapes its bytes between flags (such a
+/// spec has one frame format, so its decoder finds that format alone).
+fn escaped<'p>(p: &'p Protocol, d: &Decoder) -> Option<Escape<'p>> {
+    match d.formats.as_slice() {
+        [fi] => lower_layout(&p.frames[*fi]).escape,
+        _ => None,
+    }
+}
+
+/// The functions of the stream decoder of a format that escapes its bytes (the runtime's
+/// escaped path): a flag always ends a candidate, whose unescaped bytes the format's probe
+/// then decides.
+fn escaped_decoder(n: &Names, d: &Decoder, e: &Escape<'_>, out: &mut String) {
+    let (lo, up, dlo, dup, what) = (&n.lo, &n.up, &d.lo, &d.up, &d.what);
+    let xlo = dlo;
+    let (flag, escape) = (format!("{:#04x}", e.flag), format!("{:#04x}", e.escape));
+    out.push_str(&fill!(
+        include_str!("templates/escaped.c"),
+        what,
+        dup,
+        dlo,
+        lo,
+        up,
+        flag,
+        xlo,
+        escape
+    ));
+    out.push('\n');
 }
 
 /// The functions of one stream decoder. A candidate goes to the first of its formats whose

@@ -240,6 +240,19 @@ fn sizes(p: &Protocol, x: &Fx, out: &mut String) {
     ] {
         out.push_str(&fill!("#define ${up}${name} ${v}u\n", up, name, v));
     }
+    if f.escape.is_some() {
+        // Every byte between the flags may go as two.
+        let max = 2 * f.max_len() - 2;
+        out.push_str(&fill!(
+            r"
+/** The longest frame on the wire, escaped: the size of an encoder's buffer for every
+ *  packet (${up}MAX_FRAME_LEN counts a frame unescaped). */
+#define ${up}MAX_WIRE_LEN ${max}u
+",
+            up,
+            max
+        ));
+    }
     if let Some(t) = &f.flag_trailer {
         let (name, len) = (t.name.to_uppercase(), t.len);
         out.push_str(&fill!("#define ${up}${name}_LEN ${len}u\n", up, name, len));

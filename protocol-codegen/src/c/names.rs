@@ -73,6 +73,7 @@ const RESERVED: &[&str] = &[
     "direction_name",
     "emit",
     "encode",
+    "escape",
     "event",
     "event_kind",
     "f16",
@@ -91,6 +92,7 @@ const RESERVED: &[&str] = &[
     "ids",
     "mag_f32",
     "mag_f64",
+    "original",
     "packed_span",
     "packet",
     "path",
@@ -120,6 +122,7 @@ const RESERVED: &[&str] = &[
     "step",
     "store",
     "stuff",
+    "substitute",
     "sync_matches",
     "take_u16be",
     "take_u16le",
@@ -133,6 +136,8 @@ const RESERVED: &[&str] = &[
     "to_physical_f64",
     "trimmed",
     "txt",
+    "unescape",
+    "unescape_from",
     "unscale_f32",
     "unscale_f64",
     "utf8",
@@ -146,7 +151,8 @@ const RESERVED: &[&str] = &[
 /// The prefixes after the spec's prefix of the generated code's families of names
 /// (`read_<struct>`, `check_<check>`, `encode_<command>`).
 const FAMILIES: &[&str] = &[
-    "check_", "decode_", "decoder_", "encode_", "fmt_", "pcheck_", "probe_", "read_", "write_",
+    "check_", "decode_", "decoder_", "encode_", "escaped_", "fmt_", "pcheck_", "probe_", "read_",
+    "write_",
 ];
 
 /// snake_case of a PascalCase name.

@@ -198,6 +198,20 @@ int ${lo}decode_${direction}(const uint8_t *bytes, size_t len, ${lo}packet *out)
             ));
         }
     }
+    if f.escape.is_some() {
+        out.push_str(&fill!(
+            r"
+/** The frame at the start of `wire[0..len]`, from its opening flag to the next flag,
+ *  unescaped into `out[0..cap]` (${up}MAX_FRAME_LEN holds every frame), flags included: what
+ *  ${lo}decode_frame reads. Its length, or ${up}ERR_FRAME (no opening or closing flag, an
+ *  escape byte not followed by a substitute, a frame longer than `cap`). */
+int ${lo}unescape(const uint8_t *wire, size_t len, uint8_t *out, size_t cap);
+
+",
+            up,
+            lo
+        ));
+    }
     if matches!(f.transport, Transport::Can { .. }) {
         out.push_str(&fill!(
             r"

@@ -16,7 +16,12 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
         let at = format!("frame `{}`", f.name);
         let x = Fx::new(p, fi);
         let rules = &x.rules;
-        if matches!(f.transport, Transport::Can { .. }) && rules.carries != Carries::CanCommand {
+        // A CAN format finds its command from the CAN id, or (the first format, a CAN-only
+        // link) from its dispatch key, which may name members of the id (`can_id_bits`).
+        if matches!(f.transport, Transport::Can { .. })
+            && rules.carries != Carries::CanCommand
+            && fi > 0
+        {
             out.push(format!(
                 "{at}: CAN transport in a format whose frames' command does not follow from the CAN id"
             ));
@@ -41,11 +46,6 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
             out.push(format!(
                 "{at}: byte stuffing in a format without dispatch key or with a direction's message"
             ));
-        }
-        // The C engine finds frames by their sync and length; it has no path that unescapes
-        // between flags yet (the Rust engine's `decoder/escaped.rs`).
-        if f.escape.is_some() {
-            out.push(format!("{at}: byte escaping between flags (`escape`)"));
         }
         if rules.ack.is_some() && !keyed {
             out.push(format!(

@@ -9,6 +9,8 @@
 // The tests of one printer need its feature (all are on by default).
 mod buffer_refusal;
 #[cfg(feature = "c")]
+mod c_escape_can;
+#[cfg(feature = "c")]
 mod c_printer;
 mod checks;
 #[cfg(feature = "rust")]

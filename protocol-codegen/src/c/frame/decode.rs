@@ -5,13 +5,14 @@
 use protocol_runtime::rules::DirectionTest;
 
 use crate::ir::{Length, Pos, Prim, Protocol};
+use crate::layout::lower_layout;
 use crate::rules::Carries;
 
 use super::super::names::{self, Fx, Names};
 use super::super::shape::{Slot, carries, slots_of, user_values};
 use super::super::template::fill;
-use super::rules;
 use super::wire::{field_word, truncate, truncated, word};
+use super::{escape, rules};
 
 /// The decoders of format `x`: by direction where the caller gives it, the checking entry
 /// point, and the reading of a checked frame.
@@ -20,7 +21,7 @@ pub(super) fn decode(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     if given {
         by_direction(p, n, x, out);
     }
-    checking(n, x, given, out);
+    checking(p, n, x, given, out);
     decode_frame(p, n, x, given, out);
 }
 
@@ -66,14 +67,19 @@ int ${xlo}${name}(const uint8_t *bytes, size_t len, ${xlo}packet *out)
 }
 
 /// The checking entry point: the probe of the stream decoder's rules on the whole bytes,
-/// then the reading of a checked frame.
-fn checking(n: &Names, x: &Fx, given: bool, out: &mut String) {
+/// then the reading of a checked frame. A format that escapes its bytes has the frame
+/// unescaped first, on the stack: exactly one frame from its opening flag to its closing one.
+fn checking(p: &Protocol, n: &Names, x: &Fx, given: bool, out: &mut String) {
     let (up, xlo, xup) = (&n.up, &x.lo, &x.up);
     let (params, sfx, direction) = if given {
         (params(n, given), "_given", "direction, ")
     } else {
         (String::new(), "", "")
     };
+    if lower_layout(&p.frames[x.fi]).escape.is_some() {
+        out.push_str(&escape::checking(n, x, sfx, &params, direction));
+        return;
+    }
     out.push_str(&fill!(
         r"
 int ${xlo}decode${sfx}(const uint8_t *bytes, size_t len, ${params}${xlo}packet *out)

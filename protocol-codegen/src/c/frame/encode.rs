@@ -1,15 +1,17 @@
 //! The encoders: a command's payload written after the header, then the frame sealed around
 //! it (`pfx_seal`: the header values, the dispatch key, the sync, the trailers, the checks),
-//! and the encoder of a whole packet that picks the command's.
+//! and the encoder of a whole packet that picks the command's. A format that escapes its
+//! bytes between flags has each encoder escape the sealed frame last.
 
 use crate::ir::{Frame, HeaderValue, Length, Protocol, Role, Transport};
+use crate::layout::lower_layout;
 use crate::rules::Carries;
 
 use super::super::names::{self, Fx, Names};
 use super::super::shape::{Slot, carries, slots_of};
 use super::super::template::fill;
-use super::rules;
 use super::wire::{self, check_args, truncate, word, write_sync, write_trailers};
+use super::{escape, rules};
 
 /// The encoders of format `x`: the tables of the commands' keys, the rules' helpers, the seal,
 /// one encoder per slot, and `pfx_encode` of a packet.
@@ -121,6 +123,13 @@ fn seal_place(p: &Protocol, x: &Fx, start: &str) -> String {
     } else {
         "buf, ".to_string()
     }
+}
+
+/// The call `seal` (the sealed frame's length, or an error), escaped in the caller's buffer
+/// where the format escapes its bytes between flags.
+fn sealed(p: &Protocol, x: &Fx, seal: String) -> String {
+    let escapes = lower_layout(&p.frames[x.fi]).escape.is_some();
+    escape::escaped(x, escapes, seal)
 }
 
 /// The length field's count of a frame of `body` bytes (the format's adjustment taken off).
@@ -426,6 +435,11 @@ fn encoder(p: &Protocol, n: &Names, x: &Fx, slot: &Slot, out: &mut String) {
         (None, None) => "0".into(),
     };
     let (name, place_args) = (&slot.name, seal_place(p, x, &start));
+    let sealed = sealed(
+        p,
+        x,
+        format!("{xlo}seal({place_args}w.pos, header, {command})"),
+    );
     out.push_str(&fill!(
         r"
 int ${xlo}encode_${name}(const ${xlo}header *header, ${arg}uint8_t *buf, size_t cap)
@@ -434,7 +448,7 @@ int ${xlo}encode_${name}(const ${xlo}header *header, ${arg}uint8_t *buf, size_t 
     int e = 0;
 ${decl}    if (cap < ${start} + ${xup}TRAILER_LEN) return ${up}ERR_SHORT_BUFFER;
 ${place}${write}    (void)e;
-    return ${xlo}seal(${place_args}w.pos, header, ${command});
+    return ${sealed};
 }
 
 ",
@@ -448,8 +462,7 @@ ${place}${write}    (void)e;
         up,
         place,
         write,
-        place_args,
-        command
+        sealed
     ));
 }
 
@@ -458,6 +471,7 @@ ${place}${write}    (void)e;
 fn encode_bytes(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
     let (up, xlo, xup) = (&n.up, &x.lo, &x.up);
     let place = seal_place(p, x, &format!("{xup}HEADER_LEN"));
+    let sealed = sealed(p, x, format!("{xlo}seal({place}len, header, 0)"));
     out.push_str(&fill!(
         r"
 int ${xlo}encode_bytes(const ${xlo}header *header, const uint8_t *payload, size_t len, uint8_t *buf, size_t cap)
@@ -466,14 +480,14 @@ int ${xlo}encode_bytes(const ${xlo}header *header, const uint8_t *payload, size_
     if (cap < ${xup}HEADER_LEN + ${xup}TRAILER_LEN \
         || len > cap - ${xup}HEADER_LEN - ${xup}TRAILER_LEN) return ${up}ERR_SHORT_BUFFER;
     if (len > 0) memcpy(buf + ${xup}HEADER_LEN, payload, len);
-    return ${xlo}seal(${place}len, header, 0);
+    return ${sealed};
 }
 
 ",
         xlo,
         xup,
         up,
-        place
+        sealed
     ));
 }
 

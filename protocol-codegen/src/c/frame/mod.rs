@@ -1,13 +1,15 @@
 //! The frame rules in C: the probe of a candidate (`probe`), the decoder of one frame's bytes
 //! (`decode`), the encoders (`encode`), and the packet rules between a checked frame and a
 //! packet, each with its decoding and encoding side by side (`rules`: acknowledgements, byte
-//! stuffing, trailing-zero truncation). Every position, size and bound is the IR's, through
+//! stuffing, trailing-zero truncation); for a format that escapes its bytes between flags,
+//! the unescaping and escaping of a whole frame (`escape`). Every position, size and bound is the IR's, through
 //! the same lowerings as the Rust engine's `FrameLayout` ([`lower_layout`]) and `PacketRules`
 //! (`crate::rules::lower_rules`, the format's `Fx::rules`). This module prints them in order,
 //! with a format's sync; where things lie in a frame is `wire`'s, which the others share.
 
 mod decode;
 mod encode;
+mod escape;
 mod probe;
 mod rules;
 mod wire;
@@ -19,8 +21,8 @@ use super::names::{Fx, Names};
 use super::template::fill;
 
 /// The frame rules: the shared helpers (`templates/frame.c`), then for every frame format its
-/// sync, probe, decoder of one frame and encoders (and, for a CAN format, its CAN frame
-/// functions, `templates/can.c`).
+/// sync, probe, escaping (`templates/escape.c`, where it escapes its bytes), decoder of one
+/// frame and encoders (and, for a CAN format, its CAN frame functions, `templates/can.c`).
 pub fn frame(p: &Protocol, n: &Names) -> String {
     let (lo, up) = (&n.lo, &n.up);
     let mut out = String::from("/* ---- Frame rules ---- */\n\n");
@@ -31,7 +33,11 @@ pub fn frame(p: &Protocol, n: &Names) -> String {
         let f = &p.frames[fi];
         out.push_str(&format!("/* -- Frame format `{}` -- */\n\n", f.name));
         out.push_str(&sync_matches(f, n, &x));
-        probe::probe(f, &lower_layout(f), n, &x, &mut out);
+        let plan = lower_layout(f);
+        probe::probe(f, &plan, n, &x, &mut out);
+        if let Some(e) = &plan.escape {
+            escape::escape(e, n, &x, &mut out);
+        }
         decode::decode(p, n, &x, &mut out);
         encode::encode(p, n, &x, &mut out);
         if let Transport::Can { .. } = f.transport {

@@ -13,6 +13,7 @@ use crate::layout::lower_layout;
 use super::super::names::{self, Fx, Names};
 use super::super::shape::{Slot, slots_of};
 use super::super::template::fill;
+use super::escape;
 use super::wire::{byte_list, check_args, field_word, word, write_sync, write_trailers};
 
 /// An acknowledgement in the decoder: when the flag holds its value, the frame carries no
@@ -136,12 +137,14 @@ int ${xlo}encode_ack(const ${xlo}header *h, const uint8_t *data, size_t len, uin
     for &ci in &plan.frame_checks {
         out.push_str(&store(ci));
     }
+    let sealed = escape::escaped(x, plan.escape.is_some(), "(int)total".into());
     out.push_str(&fill!(
         r"
-    return (int)total;
+    return ${sealed};
 }
 
-"
+",
+        sealed
     ));
 }
 

@@ -2,7 +2,7 @@
 typedef struct ${dlo}decoder {
     size_t start, end;   /**< The pending bytes are buf[start..end]. */
     uint64_t position;   /**< Bytes taken from all inputs. */
-    ${lo}stats stats;
+${escape_state}    ${lo}stats stats;
     uint8_t buf[${dup}DECODER_BUFFER_LEN];
 } ${dlo}decoder;
 

@@ -7,7 +7,7 @@ typedef enum ${lo}reject {
     ${up}REJECT_BAD_LENGTH,       /**< The length is outside the format's bounds. */
     ${up}REJECT_BAD_CHECKSUM,     /**< A frame check does not match. */
     ${up}REJECT_BAD_TRAILER,      /**< A trailer does not match. */
-    ${up}REJECT_TRUNCATED         /**< The frame's bytes never came. */
+${escape_reason}    ${up}REJECT_TRUNCATED         /**< The frame's bytes never came. */
 } ${lo}reject;
 
 /** The name of a rejection reason. */
