@@ -64,7 +64,7 @@ struct Watched {
 ///     exchanges: &[],
 ///     sequence: None, echo: &[WordField::le(1, 1)], swap: None, pairs: &[], nack: None,
 ///     handshake: None, watchdog: None, modes: None, verdicts: &[],
-///     periodic: &[],
+///     periodic: &[], fanouts: &[],
 /// };
 ///
 /// let mut wire = Observer::<4>::new();
