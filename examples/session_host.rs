@@ -43,6 +43,8 @@ fn show(what: &str, reply: &Reply) {
         Reply::Refused(_) => println!("{what}: refused (NACK)"),
         Reply::Rejected { value, .. } => println!("{what}: refused with result {value}"),
         Reply::TimedOut => println!("{what}: no answer after the retries"),
+        Reply::AnsweredAll(frames) => println!("{what}: {} answers", frames.len()),
+        Reply::Incomplete { missing, .. } => println!("{what}: no answer from {missing:?}"),
         Reply::Sent => println!("{what}: sent"),
     }
 }

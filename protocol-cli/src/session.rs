@@ -146,6 +146,10 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                         if let Some(rtt) = a.round_trip {
                             extra.insert("rtt_ms".into(), Value::from(rtt));
                         }
+                        // An in-progress answer, or one of several: more are to come.
+                        if a.open {
+                            extra.insert("request_open".into(), Value::Bool(true));
+                        }
                     }
                     registers_fields(&mut extra, heard.registers);
                     self.decoded(offset, bytes, heard.decoded, extra)
@@ -497,6 +501,9 @@ fn conversation_note(extra: &Map<String, Value>) -> String {
         note.push_str(&format!("  answers #{r}"));
         if let Some(t) = extra.get("rtt_ms") {
             note.push_str(&format!(" after {t} ms"));
+        }
+        if extra.contains_key("request_open") {
+            note.push_str(" (more to come)");
         }
     }
     if let Some(Value::Object(r)) = extra.get("registers") {

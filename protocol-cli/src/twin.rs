@@ -5,7 +5,9 @@
 //! answering command, the NACK; payload values from the caller's table or the payload's
 //! all-zero value), sends the commands the spec's `periodic` gives the responder at their
 //! rates (the runtime's [`Scheduler`] says when), injects the faults it is told to (frames
-//! dropped each way), and logs every exchange.
+//! dropped each way), and logs every exchange. Where the spec has `[registers]`, the twin keeps
+//! a register file ([`registers`]): a WRITE stores its data, a READ is answered with the bytes
+//! at its address and length.
 //!
 //! Matching, numbering and duplicate suppression are the responder's; reading frames is the
 //! engine's ([`Codec::stream`]).
@@ -21,6 +23,10 @@ use protocol_runtime::session::{
 };
 use protocol_spec::session::command_key;
 
+pub mod registers;
+
+use registers::RegisterFile;
+
 /// Requests the twin remembers with their answers (give a host's requester at most as many
 /// slots), and the longest answer it remembers, in bytes.
 const SLOTS: usize = 32;
@@ -28,7 +34,8 @@ const FRAME: usize = 2048;
 /// The most periodic commands a spec lists (validation's bound).
 const PERIODIC: usize = 16;
 
-/// Payload values per command name (a struct's fields; those left out are zero).
+/// Payload values per command name (a struct's fields; those left out are zero); with
+/// `[registers]`, the key `registers` holds raw register values by name.
 pub type Values = HashMap<String, Value>;
 
 /// How the twin answers.
@@ -101,9 +108,12 @@ pub fn serve<P: Read + Write>(
         .as_ref()
         .ok_or_else(no_session)?
         .frame;
+    let registers = RegisterFile::new(codec.protocol(), options.values.get(registers::KEY))
+        .map_err(|e| io::Error::new(io::ErrorKind::InvalidInput, e))?;
     codec
         .with_session(|rules| {
             let mut twin = Twin {
+                registers,
                 codec,
                 rules,
                 format,
@@ -127,6 +137,8 @@ struct Twin<'c, 'r> {
     options: &'c Options,
     responder: Box<Responder<&'r SessionRules<'r>, SLOTS, FRAME>>,
     scheduler: Scheduler<&'r SessionRules<'r>, PERIODIC>,
+    /// The register file, when the spec has `[registers]`.
+    registers: Option<RegisterFile>,
     /// The header of the last request's answer (its addresses swapped): the header of the
     /// periodic frames, so that they reach the host that spoke last.
     last_header: Option<Fields>,
@@ -274,11 +286,14 @@ impl Twin<'_, '_> {
         let (verdict, answer) = match self.responder.on_frame(now, request) {
             Incoming::Deliver { answer: false } => {
                 self.tally.delivered += 1;
-                ("delivered, no answer".to_string(), None)
+                let wrote = self.write_registers(decoded);
+                (format!("delivered, no answer{wrote}"), None)
             }
             Incoming::Deliver { answer: true } => {
                 self.tally.delivered += 1;
-                self.answer(request, decoded, false)
+                let wrote = self.write_registers(decoded);
+                let (verdict, answer) = self.answer(request, decoded, false);
+                (format!("{verdict}{wrote}"), answer)
             }
             Incoming::Duplicate(sent) => {
                 self.tally.duplicates += 1;
@@ -302,9 +317,46 @@ impl Twin<'_, '_> {
                 "{now:>7} ms  {what}  {verdict}, answer dropped (fault)"
             );
         }
-        port.write_all(&answer)?;
+        for frame in self.answers_of_each_listed(request, answer) {
+            port.write_all(&frame)?;
+        }
         port.flush()?;
         writeln!(log, "{now:>7} ms  {what}  {verdict}")
+    }
+
+    /// The answers to `request`: `answer` itself, or, for a request answered once by each id
+    /// it lists (a SYNC_READ), one copy per listed id with that id as its sender, in id order:
+    /// the twin plays every device on the bus.
+    fn answers_of_each_listed(&self, request: &[u8], answer: Vec<u8>) -> Vec<Vec<u8>> {
+        let Ok(Heard::Command(key)) = self.rules.heard(request) else {
+            return vec![answer];
+        };
+        let Some(fanout) = self.rules.fanout(key) else {
+            return vec![answer];
+        };
+        let ids = fanout
+            .listed(self.rules.packet, request)
+            .unwrap_or_default();
+        ids.iter()
+            .filter_map(|id| {
+                let mut frame = answer.clone();
+                fanout.id.write(&mut frame, u64::from(id))?;
+                self.rules.packet.layout.seal(&mut frame).ok()?;
+                Some(frame)
+            })
+            .collect()
+    }
+
+    /// A delivered request's data stored in the register file, when it writes registers:
+    /// what to log.
+    fn write_registers(&mut self, decoded: Option<&Decoded>) -> String {
+        let p = self.codec.protocol();
+        match (self.registers.as_mut(), decoded) {
+            (Some(file), Some(d)) => file
+                .apply_request(p, d)
+                .map_or_else(String::new, |w| format!(" ({w})")),
+            _ => String::new(),
+        }
     }
 
     /// The answer to a delivered request, or the NACK to one before the handshake: what to
@@ -384,8 +436,16 @@ impl Twin<'_, '_> {
                 };
                 let command = &p.commands[ci];
                 object.insert("command", Value::from(command.name.clone()));
-                object.insert("payload", self.payload(ci, direction)?);
-                command.name.clone()
+                let mut payload = self.payload(ci, direction)?;
+                let read = match (&self.registers, nack) {
+                    (Some(file), false) => file.fill_answer(p, d, &mut payload),
+                    _ => None,
+                };
+                object.insert("payload", payload);
+                match read {
+                    Some(read) => format!("{} ({read})", command.name),
+                    None => command.name.clone(),
+                }
             }
         };
         let mut frame = self

@@ -35,8 +35,9 @@ impl Codec<'_> {
         let echo = plan.echo_fields();
         let pairs = plan.runtime_pairs();
         let verdicts = plan.runtime_verdicts();
+        let fanouts = plan.runtime_fanouts();
         self.with_rules(plan.frame, |packet| {
-            f(&plan.rules(packet, &plan.exchanges, &echo, &pairs, &verdicts))
+            f(&plan.rules(packet, &plan.exchanges, &echo, &pairs, &verdicts, &fanouts))
         })
     }
 }

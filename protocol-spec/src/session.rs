@@ -7,7 +7,7 @@
 use protocol_runtime::layout::{Pos, WordField};
 use protocol_runtime::rules::PacketRules;
 use protocol_runtime::session::{
-    Answer, Exchange, Modes, Pair, Periodic, SessionRules, ValueAt, Verdict, Watchdog,
+    Answer, Exchange, Fanout, Modes, Pair, Periodic, SessionRules, ValueAt, Verdict, Watchdog,
 };
 
 use crate::ir::{self, AnswerKind, PacketKind, PairValue, Protocol};
@@ -46,6 +46,34 @@ pub struct SessionPlan {
     pub verdicts: Vec<VerdictPlan>,
     /// The commands sent at a fixed rate (a command the format has no key for is left out).
     pub periodic: Vec<Periodic>,
+    /// The commands answered once by each id they list, with the answer's header value that
+    /// names its sender (a command the format has no key for is left out).
+    pub fanouts: Vec<FanoutPlan>,
+}
+
+/// A command whose request is answered once by each id it lists.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FanoutPlan {
+    /// The request's command key.
+    pub request: u64,
+    /// Offset of the first listed id in the request's payload.
+    pub first: usize,
+    /// Bytes from one listed id to the next.
+    pub stride: usize,
+    /// The answer's header value that names its sender.
+    pub by: Field,
+}
+
+impl FanoutPlan {
+    /// The runtime's value.
+    pub fn runtime(&self) -> Fanout {
+        Fanout {
+            request: self.request,
+            first: self.first,
+            stride: self.stride,
+            id: self.by.field,
+        }
+    }
 }
 
 /// How the answer to a request of one command tells success from refusal.
@@ -162,6 +190,18 @@ pub fn lower_session(p: &Protocol) -> Option<SessionPlan> {
             })
         })
         .collect();
+    let fanouts = s
+        .fanouts
+        .iter()
+        .filter_map(|fo| {
+            Some(FanoutPlan {
+                request: key(fo.command)?,
+                first: fo.first,
+                stride: fo.stride,
+                by: field(fo.by),
+            })
+        })
+        .collect();
     let default = lower(&s.default, 0)?;
     let exchanges = s
         .exchanges
@@ -196,6 +236,7 @@ pub fn lower_session(p: &Protocol) -> Option<SessionPlan> {
         }),
         pairs,
         verdicts,
+        fanouts,
         periodic: s
             .periodic
             .iter()
@@ -212,7 +253,7 @@ pub fn lower_session(p: &Protocol) -> Option<SessionPlan> {
 
 impl SessionPlan {
     /// The rules, over `packet` (the session frame's packet rules), with the exchange, echo,
-    /// pair and verdict slices built from this plan.
+    /// pair, verdict and fanout slices built from this plan.
     pub fn rules<'a>(
         &'a self,
         packet: &'a PacketRules<'a>,
@@ -220,6 +261,7 @@ impl SessionPlan {
         echo: &'a [WordField],
         pairs: &'a [Pair],
         verdicts: &'a [Verdict<'a>],
+        fanouts: &'a [Fanout],
     ) -> SessionRules<'a> {
         SessionRules {
             packet,
@@ -235,7 +277,13 @@ impl SessionPlan {
             modes: self.modes.map(|(_, m)| m),
             verdicts,
             periodic: &self.periodic,
+            fanouts,
         }
+    }
+
+    /// The fanouts, as the runtime reads them.
+    pub fn runtime_fanouts(&self) -> Vec<Fanout> {
+        self.fanouts.iter().map(FanoutPlan::runtime).collect()
     }
 
     /// The verdicts, as the runtime reads them (borrowing this plan's values).

@@ -305,6 +305,7 @@ impl Host {
             // RoboRTS's acknowledgements carry no result value: a refusal is a refusal.
             Resolution::Refused | Resolution::Rejected(_) => t.refused += 1,
             Resolution::TimedOut => t.timed_out += 1,
+            Resolution::Incomplete(_) => panic!("RoboRTS's requests list no answerers"),
         }
     }
 
@@ -358,6 +359,7 @@ impl Host {
                 Received::Outcome(o) => self.record(t, o.ticket, o.resolution),
                 Received::Unsolicited => t.late += 1,
                 Received::Progress { .. } => panic!("RoboRTS's answers say no progress"),
+                Received::Partial { .. } => panic!("RoboRTS's requests list no answerers"),
                 Received::Unreadable(e) => panic!("a checked frame is unreadable: {e}"),
             }
         }

@@ -28,6 +28,7 @@ mod cli_report;
 mod cli_resources;
 mod cli_serial;
 mod cli_session;
+mod cli_session_open;
 mod exports;
 mod frame_counter;
 mod import_mavlink;

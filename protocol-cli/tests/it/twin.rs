@@ -16,6 +16,8 @@ use protocol_kit::session::SendError;
 use protocol_kit::session::client::{Client, ClientError, Reply, Unsolicited};
 use tokio_serial::SerialPortBuilderExt;
 
+mod registers;
+
 protocol_kit::protocol!("../specs/hflink.toml");
 protocol_kit::protocol!("../specs/roborts.toml");
 

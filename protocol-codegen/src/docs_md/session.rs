@@ -54,8 +54,9 @@ fn name(f: &Frame, v: usize) -> String {
     format!("`{}`", f.values[v].name)
 }
 
-/// How an answer is matched to its request, in words.
-fn matched(p: &Protocol, s: &Session, f: &Frame) -> String {
+/// How an answer is matched to its request, in words; `own` is the header value an answer
+/// sets for itself (the answering device's id, for a request of several answers).
+fn matched(p: &Protocol, s: &Session, f: &Frame, own: Option<usize>) -> String {
     let kind = match s.default.answer {
         AnswerKind::None => "its kind (command)".to_string(),
         AnswerKind::Reply => "its command (the request's)".to_string(),
@@ -67,7 +68,10 @@ fn matched(p: &Protocol, s: &Session, f: &Frame) -> String {
     if let Some(q) = s.sequence {
         parts.push(format!("{} repeated", name(f, q)));
     }
-    parts.extend(s.echo.iter().map(|&v| format!("{} repeated", name(f, v))));
+    parts.extend(s.echo.iter().map(|&v| match own {
+        Some(o) if o == v => format!("its own {}", name(f, v)),
+        _ => format!("{} repeated", name(f, v)),
+    }));
     if let Some((a, b)) = s.swap {
         parts.push(format!("{} and {} swapped", name(f, a), name(f, b)));
     }
@@ -83,7 +87,11 @@ fn rules(p: &Protocol, s: &Session, f: &Frame, out: &mut String) {
     let _ = writeln!(out, "| frame format | `{}` |", f.name);
     let d = &s.default;
     let _ = writeln!(out, "| a request expects | {} |", answer_text(p, d.answer));
-    let _ = writeln!(out, "| an answer is matched by | {} |", matched(p, s, f));
+    let _ = writeln!(
+        out,
+        "| an answer is matched by | {} |",
+        matched(p, s, f, None)
+    );
     let _ = writeln!(
         out,
         "| waits before each retry, then the timeout | {} |",
@@ -174,13 +182,20 @@ fn per_command(p: &Protocol, s: &Session, f: &Frame, out: &mut String) {
         let repeats = if e.answer == AnswerKind::None {
             "-".to_string()
         } else if repeats.is_empty() {
-            matched(p, s, f)
+            let own = s.fanouts.iter().find(|fo| fo.command == e.command);
+            matched(p, s, f, own.map(|fo| fo.by))
         } else {
             repeats.join(", ")
         };
         let mut expects = answer_text(p, e.answer);
         if let Some(v) = s.verdicts.iter().find(|v| v.command == e.command) {
             expects.push_str(&format!(" ({})", verdict_text(v)));
+        }
+        if let Some(fo) = s.fanouts.iter().find(|fo| fo.command == e.command) {
+            expects.push_str(&format!(
+                ", one from each id `{}` lists (its `{}`)",
+                fo.names.0, fo.names.1
+            ));
         }
         let _ = writeln!(
             out,
@@ -275,4 +290,44 @@ pub(super) fn session(p: &Protocol, out: &mut String) {
     } else if let Some(e) = s.exchanges.iter().find(|e| e.answer != AnswerKind::None) {
         diagram(p, s, f, e, out);
     }
+    if let Some(fo) = s.fanouts.first() {
+        fanout_diagram(p, s, fo, out);
+    }
+}
+
+/// A sequence diagram of a request answered once by each id it lists: two devices answer,
+/// a third does not, and the request times out naming it.
+fn fanout_diagram(p: &Protocol, s: &Session, fo: &crate::ir::Fanout, out: &mut String) {
+    let Some(e) = s.exchanges.iter().find(|e| e.command == fo.command) else {
+        return;
+    };
+    let (each, by) = &fo.names;
+    let answer = answer_text(p, e.answer).replace('`', "");
+    let _ = writeln!(
+        out,
+        "`{}` is answered once by each id its `{each}` lists; each answer waits {} anew, and \
+         the request resolves when every listed id answered, or times out naming those that \
+         did not (sent again whole after each wait but the last):\n",
+        p.commands[fo.command].name,
+        waits(e)
+    );
+    let _ = writeln!(out, "```mermaid\nsequenceDiagram");
+    let _ = writeln!(
+        out,
+        "    participant R as requester\n    participant A as {by} 1\n    participant B as {by} 2\n    participant C as {by} 3"
+    );
+    let _ = writeln!(
+        out,
+        "    R->>A: {} ({each}: 1, 2, 3)",
+        p.commands[fo.command].name
+    );
+    let _ = writeln!(
+        out,
+        "    A-->>R: {answer} ({by} 1)\n    B-->>R: {answer} ({by} 2)"
+    );
+    let _ = writeln!(
+        out,
+        "    Note over R: {by} 3 did not answer: incomplete, missing [3]"
+    );
+    let _ = writeln!(out, "```\n");
 }

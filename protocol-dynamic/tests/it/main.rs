@@ -20,3 +20,4 @@ mod optional_bytes;
 mod registers;
 mod serde_agreement;
 mod session_agreement;
+mod session_fanout;

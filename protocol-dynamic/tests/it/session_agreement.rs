@@ -17,7 +17,7 @@ protocol_kit::protocol!("../specs/mavlink.toml");
 /// The rules as text, without the packet rules they borrow (compared elsewhere).
 fn shown(r: &SessionRules<'_>) -> String {
     format!(
-        "{:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?}",
+        "{:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?}",
         r.default,
         r.exchanges,
         r.sequence,
@@ -27,7 +27,8 @@ fn shown(r: &SessionRules<'_>) -> String {
         r.nack,
         r.handshake,
         r.watchdog,
-        r.modes
+        r.modes,
+        r.fanouts
     )
 }
 

@@ -1,7 +1,9 @@
 //! The session client over tokio (the `tokio` feature): a task that holds a [`Requester`] on
 //! any `AsyncRead + AsyncWrite` byte stream (a serial port, a pseudo-terminal, a socket), so
 //! that [`Client::request`] resolves to exactly one [`Reply`]: the answer, the spec's NACK, or a
-//! timeout after the spec's retries. Frames that answer no request flow to a channel.
+//! timeout after the spec's retries. Frames that answer no request flow to a channel; what a
+//! request hears before it resolves (an answer that says it is in progress, each answer of a
+//! request of several) flows to the request's own channel ([`Client::request_watched`]).
 //!
 //! This module owns the I/O and the clock around the sans-IO machine: it reads the stream
 //! through the engine ([`StreamDecoder`]), gives each frame and the passing of time (tokio's
@@ -33,6 +35,7 @@
 //!     Reply::Refused(_) => println!("not handshaken"),
 //!     Reply::Rejected { value, .. } => println!("refused with result {value}"),
 //!     Reply::TimedOut => println!("no answer after the retries"),
+//!     Reply::AnsweredAll(_) | Reply::Incomplete { .. } => unreachable!("one answer"),
 //!     Reply::Sent => unreachable!("a READ expects its reply"),
 //! }
 //! while let Ok(frame) = unsolicited.try_recv() {
@@ -53,7 +56,9 @@ use tokio::io::{AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt};
 use tokio::sync::{mpsc, oneshot};
 use tokio::time::Instant;
 
-use super::{Due, Received, Requester, Resolution, SendError, SessionLayout, SessionRef, Ticket};
+use super::{
+    Due, Outcome, Received, Requester, Resolution, SendError, SessionLayout, SessionRef, Ticket,
+};
 use crate::decoder::{HOST_BUFFER_LEN, StreamDecoder};
 use crate::error::EncodeError;
 use crate::packet::EncodePacket;
@@ -76,9 +81,43 @@ pub enum Reply {
     },
     /// No answer came within its timeout and retries.
     TimedOut,
+    /// A request answered once by each id it lists: every answer's frame, in arrival order.
+    AnsweredAll(Vec<Vec<u8>>),
+    /// A request answered once by each id it lists timed out after its retries with some of
+    /// its answers.
+    Incomplete {
+        /// The frames of the answers that came, in arrival order.
+        frames: Vec<Vec<u8>>,
+        /// The ids that did not answer, in increasing order.
+        missing: Vec<u8>,
+    },
     /// The request expects no answer: it was sent once.
     Sent,
 }
+
+/// What a request hears before it resolves ([`Client::request_watched`]).
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum Update {
+    /// An answer whose result value says the request is being carried out (the command's
+    /// `result` `progress`): the request waits on for the answer that ends it.
+    Progress {
+        /// The answer's result value.
+        value: u64,
+        /// The answer's frame.
+        frame: Vec<u8>,
+    },
+    /// One answer of a request answered once by each id it lists, others still to come.
+    Partial {
+        /// The id of the device that answered.
+        id: u8,
+        /// The answer's frame.
+        frame: Vec<u8>,
+    },
+}
+
+/// What a request hears before it resolves, in arrival order; the channel closes when the
+/// request resolves.
+pub type Updates = mpsc::UnboundedReceiver<Update>;
 
 /// Why a request has no [`Reply`].
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -111,7 +150,26 @@ struct Tally {
     retries: AtomicU64,
 }
 
-type Answer = oneshot::Sender<Result<Reply, ClientError>>;
+/// Where a request's reply and updates go.
+struct Answer {
+    reply: oneshot::Sender<Result<Reply, ClientError>>,
+    updates: Option<mpsc::UnboundedSender<Update>>,
+}
+
+impl Answer {
+    fn send(self, reply: Result<Reply, ClientError>) {
+        let _ = self.reply.send(reply);
+    }
+}
+
+/// A request the requester holds open: where its reply goes, and the answers heard so far of
+/// a request of several answers.
+struct Waiting {
+    ticket: Ticket,
+    answer: Answer,
+    several: bool,
+    parts: Vec<Vec<u8>>,
+}
 
 /// What a [`Client`] asks of its task.
 enum Order {
@@ -196,8 +254,44 @@ impl Client {
         &self,
         frame: Vec<u8>,
     ) -> impl Future<Output = Result<Reply, ClientError>> + Send + 'static {
+        self.order_request(frame, None)
+    }
+
+    /// As [`request`](Self::request), and what the request hears before it resolves flows to
+    /// the returned channel: an answer that says it is in progress (MAVLink's COMMAND_ACK
+    /// `IN_PROGRESS`), each answer of a request answered once by each id it lists.
+    ///
+    /// # Errors
+    /// As [`request`](Self::request), from the future.
+    pub fn request_watched<P: EncodePacket>(
+        &self,
+        packet: &P,
+    ) -> (
+        impl Future<Output = Result<Reply, ClientError>> + Send + 'static,
+        Updates,
+    ) {
+        let (updates, watched) = mpsc::unbounded_channel();
+        let mut frame = std::vec![0u8; packet.encoded_len()];
+        let encoded = packet.encode_into(&mut frame).map(|n| {
+            frame.truncate(n);
+            frame
+        });
+        let sent = encoded
+            .map_err(ClientError::Encode)
+            .map(|frame| self.order_request(frame, Some(updates)));
+        (async move { sent?.await }, watched)
+    }
+
+    fn order_request(
+        &self,
+        frame: Vec<u8>,
+        updates: Option<mpsc::UnboundedSender<Update>>,
+    ) -> impl Future<Output = Result<Reply, ClientError>> + Send + 'static {
         let (reply, answer) = oneshot::channel();
-        let ordered = self.order(Order::Request { frame, reply });
+        let ordered = self.order(Order::Request {
+            frame,
+            reply: Answer { reply, updates },
+        });
         async move {
             ordered?;
             answer.await.unwrap_or(Err(CLOSED))
@@ -241,8 +335,8 @@ struct Task<S: SessionRef, const SLOTS: usize, const FRAME: usize> {
     requester: Requester<S, SLOTS, FRAME>,
     decoder: StreamDecoder<SessionLayout<S>, HOST_BUFFER_LEN>,
     start: Instant,
-    /// Requests the requester holds open, by ticket.
-    waiting: Vec<(Ticket, Answer)>,
+    /// Requests the requester holds open.
+    waiting: Vec<Waiting>,
     /// Requests the requester cannot take yet, in the order they came.
     queued: VecDeque<(Vec<u8>, Answer)>,
     unsolicited: mpsc::UnboundedSender<Vec<u8>>,
@@ -287,11 +381,11 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Task<S, SLOTS, FRAME
                 break kind;
             }
         };
-        for (_, reply) in self.waiting.drain(..) {
-            let _ = reply.send(Err(ClientError::Closed(ended)));
+        for w in self.waiting.drain(..) {
+            w.answer.send(Err(ClientError::Closed(ended)));
         }
         for (_, reply) in self.queued.drain(..) {
-            let _ = reply.send(Err(ClientError::Closed(ended)));
+            reply.send(Err(ClientError::Closed(ended)));
         }
     }
 
@@ -347,13 +441,16 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Task<S, SLOTS, FRAME
                 return Ok(());
             }
             Err(e) => {
-                let _ = reply.send(Err(ClientError::Send(e)));
+                reply.send(Err(ClientError::Send(e)));
                 return Ok(());
             }
-            Ok(Some(ticket)) => self.waiting.push((ticket, reply)),
-            Ok(None) => {
-                let _ = reply.send(Ok(Reply::Sent));
-            }
+            Ok(Some(ticket)) => self.waiting.push(Waiting {
+                ticket,
+                answer: reply,
+                several: self.requester.several(ticket),
+                parts: Vec::new(),
+            }),
+            Ok(None) => reply.send(Ok(Reply::Sent)),
         }
         write(wr, &frame).await
     }
@@ -381,17 +478,17 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Task<S, SLOTS, FRAME
             };
             let frame = frame.bytes.to_vec();
             match self.requester.on_frame(self.now(), &frame) {
-                Received::Outcome(outcome) => {
-                    let reply = match outcome.resolution {
-                        Resolution::Answered => Reply::Answered(frame),
-                        Resolution::Refused => Reply::Refused(frame),
-                        Resolution::Rejected(value) => Reply::Rejected { value, frame },
-                        Resolution::TimedOut => Reply::TimedOut,
-                    };
-                    self.resolve(outcome.ticket, reply);
-                }
+                Received::Outcome(outcome) => self.resolve(outcome, Some(frame)),
                 // The request waits on for the answer that ends it.
-                Received::Progress { .. } => {}
+                Received::Progress { ticket, value } => {
+                    self.update(ticket, Update::Progress { value, frame });
+                }
+                Received::Partial { ticket, id, .. } => {
+                    if let Some(w) = self.waiting.iter_mut().find(|w| w.ticket == ticket) {
+                        w.parts.push(frame.clone());
+                    }
+                    self.update(ticket, Update::Partial { id, frame });
+                }
                 Received::Unsolicited | Received::Unreadable(_) => {
                     let _ = self.unsolicited.send(frame);
                 }
@@ -407,7 +504,7 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Task<S, SLOTS, FRAME
                 None => return Ok(()),
                 Some(Due::Resend { frame, .. }) => frame.to_vec(),
                 Some(Due::Outcome(outcome)) => {
-                    self.resolve(outcome.ticket, Reply::TimedOut);
+                    self.resolve(outcome, None);
                     continue;
                 }
             };
@@ -416,11 +513,41 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Task<S, SLOTS, FRAME
         }
     }
 
-    /// Hands `ticket`'s reply to its caller.
-    fn resolve(&mut self, ticket: Ticket, reply: Reply) {
-        if let Some(i) = self.waiting.iter().position(|(t, _)| *t == ticket) {
-            let (_, answer) = self.waiting.swap_remove(i);
-            let _ = answer.send(Ok(reply));
+    /// Hands a request's reply to its caller: its outcome, with the frame that resolved it
+    /// (none for a timeout).
+    fn resolve(&mut self, outcome: Outcome, frame: Option<Vec<u8>>) {
+        let Some(i) = self.waiting.iter().position(|w| w.ticket == outcome.ticket) else {
+            return;
+        };
+        let Waiting {
+            answer,
+            several,
+            mut parts,
+            ..
+        } = self.waiting.swap_remove(i);
+        let frame = frame.unwrap_or_default();
+        let reply = match outcome.resolution {
+            Resolution::Answered if !several => Reply::Answered(frame),
+            Resolution::Answered => {
+                parts.push(frame);
+                Reply::AnsweredAll(parts)
+            }
+            Resolution::Refused => Reply::Refused(frame),
+            Resolution::Rejected(value) => Reply::Rejected { value, frame },
+            Resolution::TimedOut => Reply::TimedOut,
+            Resolution::Incomplete(missing) => Reply::Incomplete {
+                frames: parts,
+                missing: missing.iter().collect(),
+            },
+        };
+        answer.send(Ok(reply));
+    }
+
+    /// Hands what a request heard to its caller's channel, when it watches.
+    fn update(&self, ticket: Ticket, update: Update) {
+        let watcher = self.waiting.iter().find(|w| w.ticket == ticket);
+        if let Some(tx) = watcher.and_then(|w| w.answer.updates.as_ref()) {
+            let _ = tx.send(update);
         }
     }
 }

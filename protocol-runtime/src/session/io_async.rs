@@ -17,7 +17,9 @@ use core::task::Poll;
 
 use embedded_io_async::{Read, Write};
 
-use super::{Due, Received, Requester, Resolution, SendError, SessionLayout, SessionRef, Ticket};
+use super::{
+    Due, IdSet, Received, Requester, Resolution, SendError, SessionLayout, SessionRef, Ticket,
+};
 use crate::decoder::StreamDecoder;
 
 /// A monotonic clock in milliseconds, and a wait until an instant of it.
@@ -52,6 +54,12 @@ pub enum Reply {
     },
     /// No answer came within its timeout and retries.
     TimedOut,
+    /// A request answered once by each id it lists timed out with some of its answers (each
+    /// went to the caller's closure as it came): the ids that did not answer.
+    Incomplete {
+        /// The ids that did not answer.
+        missing: IdSet,
+    },
     /// The request expects no answer: it was sent once.
     Sent,
 }
@@ -129,7 +137,8 @@ impl<
     /// Sends the request `frame` (encoded; numbered and sealed here) and waits for its one
     /// [`Reply`]; an answer or a NACK is copied into `answer`. Every other frame read
     /// meanwhile goes to `other` (an answer that says the request is in progress too: the
-    /// request waits on).
+    /// request waits on; and, for a request answered once by each id it lists, every answer
+    /// but the last, which resolves it).
     ///
     /// # Errors
     /// [`LinkError`]; a read or write error leaves the request open in the requester, to
@@ -196,6 +205,7 @@ impl<
                 Resolution::Refused => Reply::Refused { len },
                 Resolution::Rejected(value) => Reply::Rejected { value, len },
                 Resolution::TimedOut => Reply::TimedOut,
+                Resolution::Incomplete(missing) => Reply::Incomplete { missing },
             }));
         }
     }
@@ -215,7 +225,12 @@ impl<
                         .map_err(LinkError::Write)?;
                     self.writer.flush().await.map_err(LinkError::Write)?;
                 }
-                Some(Due::Outcome(o)) if o.ticket == ticket => return Ok(Some(Reply::TimedOut)),
+                Some(Due::Outcome(o)) if o.ticket == ticket => {
+                    return Ok(Some(match o.resolution {
+                        Resolution::Incomplete(missing) => Reply::Incomplete { missing },
+                        _ => Reply::TimedOut,
+                    }));
+                }
                 Some(Due::Outcome(_)) => {}
             }
         }

@@ -24,6 +24,7 @@ use crate::rules::PacketRules;
 
 #[cfg(feature = "tokio")]
 pub mod client;
+mod fanout;
 #[cfg(feature = "embedded-io-async")]
 pub mod io_async;
 mod observer;
@@ -34,6 +35,7 @@ mod responder;
 mod scheduler;
 mod verdict;
 
+pub use fanout::{Fanout, IdSet};
 pub use observer::{Observer, Paired};
 pub use pairs::{Pair, ValueAt};
 pub use reply::Reply;
@@ -152,6 +154,8 @@ pub struct SessionRules<'a> {
     pub verdicts: &'a [Verdict<'a>],
     /// The commands sent at a fixed rate, in spec order ([`Scheduler`]).
     pub periodic: &'a [Periodic],
+    /// The commands whose requests are answered once by each id they list, in spec order.
+    pub fanouts: &'a [Fanout],
 }
 
 /// Where a session machine finds its [`SessionRules`]: a reference to rules built at run time
@@ -186,7 +190,7 @@ pub struct SessionRules<'a> {
 ///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 0, backoff: 1 },
 ///     exchanges: &[], sequence: None, echo: &[], swap: None, pairs: &[], nack: None,
 ///     handshake: None, watchdog: None, modes: None, verdicts: &[],
-///     periodic: &[],
+///     periodic: &[], fanouts: &[],
 /// };
 ///
 /// #[derive(Clone, Copy)]
@@ -277,10 +281,21 @@ impl SessionRules<'_> {
             })
     }
 
-    /// What the request `frame` of command `key` expects, its modes applied.
+    /// What the request `frame` of command `key` expects, its modes applied. A request that
+    /// lists the ids that answer it ([`fanouts`](Self::fanouts)) expects them whatever its
+    /// modes value says (a SYNC_READ goes to the broadcast id, which otherwise expects no
+    /// answer), and nothing when it lists none.
     #[must_use]
     pub fn expects(&self, key: u64, frame: &[u8]) -> Exchange {
         let mut e = self.exchange(key);
+        if let Some(f) = self.fanout(key) {
+            if f.listed(self.packet, frame)
+                .is_none_or(|ids| ids.is_empty())
+            {
+                e.answer = Answer::None;
+            }
+            return e;
+        }
         if let Some(m) = self.modes
             && let Some(v) = m.field.read(frame)
         {
@@ -341,21 +356,37 @@ impl SessionRules<'_> {
         self.verdicts.iter().find(|v| v.request == key)
     }
 
+    /// How the ids that answer a request of command `key` are listed, when several answer it.
+    #[must_use]
+    pub fn fanout(&self, key: u64) -> Option<&Fanout> {
+        self.fanouts.iter().find(|f| f.request == key)
+    }
+
     /// The pairs of requests of command `key`.
     fn pairs_of(&self, key: u64) -> impl Iterator<Item = &Pair> {
         self.pairs.iter().filter(move |p| p.request == key)
     }
 
+    /// The header value that each answer to a request of command `key` sets for itself (the
+    /// id of the device that answers a request of several answers), which it does not repeat
+    /// from the request.
+    pub(crate) fn own_value(&self, key: u64) -> Option<WordField> {
+        self.fanout(key).map(|f| f.id)
+    }
+
     /// Whether `frame` repeats what its request `ids` told (the sequence number, the echoed
-    /// values) and swaps its addresses.
+    /// values) and swaps its addresses; a value the answer sets for itself is not compared.
     pub(crate) fn repeats(&self, ids: &Ids, frame: &[u8]) -> bool {
-        let is = |f: Option<WordField>, v: u64| f.is_none_or(|f| f.read(frame) == Some(v));
+        let own = self.own_value(ids.key);
+        let is = |f: Option<WordField>, v: u64| {
+            f.is_none_or(|f| Some(f) == own || f.read(frame) == Some(v))
+        };
         is(self.sequence, ids.seq)
             && self
                 .echo
                 .iter()
                 .zip(ids.values)
-                .all(|(f, v)| f.read(frame) == Some(v))
+                .all(|(&f, v)| is(Some(f), v))
             && is(self.swap.map(|s| s.0), ids.to)
             && is(self.swap.map(|s| s.1), ids.from)
             && self
@@ -367,17 +398,21 @@ impl SessionRules<'_> {
     /// Writes into the answer `frame` what it repeats from its request `ids` (the sequence
     /// number, the echoed values, the swapped addresses); `None` if a value does not fit. The
     /// values of [`pairs`](Self::pairs) are the application's to set: they may lie in the
-    /// payload, which is sealed in the frame.
+    /// payload, which is sealed in the frame; so is a value the answer sets for itself (the
+    /// answering device's id, for a request of several answers).
     pub(crate) fn write_repeats(&self, ids: &Ids, frame: &mut [u8]) -> Option<()> {
-        if let Some(f) = self.sequence {
-            f.write(frame, ids.seq)?;
-        }
-        for (f, v) in self.echo.iter().zip(ids.values) {
-            f.write(frame, v)?;
+        let own = self.own_value(ids.key);
+        let mut put = |f: Option<WordField>, v: u64| match f {
+            Some(f) if Some(f) != own => f.write(frame, v),
+            _ => Some(()),
+        };
+        put(self.sequence, ids.seq)?;
+        for (&f, v) in self.echo.iter().zip(ids.values) {
+            put(Some(f), v)?;
         }
         if let Some((from, to)) = self.swap {
-            from.write(frame, ids.to)?;
-            to.write(frame, ids.from)?;
+            put(Some(from), ids.to)?;
+            put(Some(to), ids.from)?;
         }
         Some(())
     }
@@ -385,3 +420,5 @@ impl SessionRules<'_> {
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_fanout;

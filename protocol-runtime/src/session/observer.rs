@@ -6,6 +6,11 @@
 //! the instruction packets' layout) and report which request each answer answers, its
 //! round-trip time, and the requests that were never answered.
 //!
+//! An answer that does not end its request is paired and leaves it open: one whose result
+//! value says the request is in progress (MAVLink's COMMAND_ACK `IN_PROGRESS`; the final ACK
+//! that follows answers the same request), and each answer but the last of a request
+//! answered once by each id it lists (a SYNC_READ's statuses).
+//!
 //! An answer that carries no command ([`Answer::Message`]) can be told from a request only by
 //! its place: it answers the request right before it (on a half-duplex bus a device answers
 //! before the wire is used again), never an older one.
@@ -14,7 +19,7 @@
 //! `Session`, or a `&SessionRules`), so a caller that builds its rules on each call (the
 //! run-time codec) keeps one observer for a whole capture.
 
-use super::{Answer, Ids, SessionRef, SessionRules};
+use super::{Answer, IdSet, Ids, Judged, SessionRef, SessionRules};
 
 /// An answer, paired with the request it answers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -23,6 +28,9 @@ pub struct Paired {
     pub request: u64,
     /// Milliseconds from the request to its answer, when both have a time.
     pub round_trip: Option<u64>,
+    /// The request waits on for another answer: this one says it is in progress, or ids it
+    /// lists are still to answer.
+    pub open: bool,
 }
 
 /// A request seen, waiting for its answer.
@@ -34,6 +42,10 @@ struct Watched {
     answer: Answer,
     /// How long the requester waits for it, its retries included.
     lifetime: u64,
+    /// When it last heard an answer that left it open (its wait starts anew then).
+    heard: Option<u64>,
+    /// The ids still to answer, for a request answered once by each id it lists.
+    waiting: Option<IdSet>,
 }
 
 /// Follows a conversation on a wire: at most `OPEN` requests wait for their answer at once (an
@@ -64,7 +76,7 @@ struct Watched {
 ///     exchanges: &[],
 ///     sequence: None, echo: &[WordField::le(1, 1)], swap: None, pairs: &[], nack: None,
 ///     handshake: None, watchdog: None, modes: None, verdicts: &[],
-///     periodic: &[],
+///     periodic: &[], fanouts: &[],
 /// };
 ///
 /// let mut wire = Observer::<4>::new();
@@ -73,7 +85,7 @@ struct Watched {
 /// // An answer from another id answers nothing; the one from id 1 answers frame 0.
 /// assert_eq!(wire.answer(&SESSION, Some(1010), &[0xAA, 2, 7, 0xB3]), None);
 /// let paired = wire.answer(&SESSION, Some(1012), &[0xAA, 1, 7, 0xB2]);
-/// assert_eq!(paired, Some(Paired { request: 0, round_trip: Some(12) }));
+/// assert_eq!(paired, Some(Paired { request: 0, round_trip: Some(12), open: false }));
 /// assert!(wire.request(&SESSION, 2, Some(2000), &[0xAA, 1, 7, 0xB2]));
 /// assert_eq!((wire.answered(), wire.finish()), (1, 1));
 /// ```
@@ -153,6 +165,10 @@ impl<const OPEN: usize> Observer<OPEN> {
             ids,
             answer: e.answer,
             lifetime: e.lifetime(),
+            heard: None,
+            waiting: rules
+                .fanout(key)
+                .and_then(|f| f.listed(rules.packet, frame)),
         };
         let again = self
             .open
@@ -178,7 +194,8 @@ impl<const OPEN: usize> Observer<OPEN> {
     }
 
     /// The frame `frame`, seen at `at`, read as an answer: the open request it answers (the
-    /// oldest, should several match), which is then closed; `None` when it answers none.
+    /// oldest, should several match), which is then closed unless the answer leaves it open
+    /// ([`Paired::open`]); `None` when it answers none.
     pub fn answer<S: SessionRef>(
         &mut self,
         rules: S,
@@ -196,16 +213,50 @@ impl<const OPEN: usize> Observer<OPEN> {
             .filter(|(_, o)| SessionRules::is_answer(o.answer, o.ids.key, heard))
             .filter(|(_, o)| o.answer != Answer::Message || self.latest == Some(o.index))
             .filter(|(_, o)| rules.repeats(&o.ids, frame))
+            .filter(|(_, o)| Self::awaited(rules, o, frame))
             .min_by_key(|(_, o)| o.index)?;
+        let open = Self::leaves_open(rules, w, frame).map(|o| Watched {
+            heard: at.or(o.heard),
+            ..o
+        });
         if let Some(slot) = self.open.get_mut(i) {
-            *slot = None;
+            *slot = open;
         }
         self.latest = None;
         self.answered = self.answered.saturating_add(1);
         Some(Paired {
             request: w.index,
             round_trip: at.zip(w.at).map(|(a, r)| a.saturating_sub(r)),
+            open: open.is_some(),
         })
+    }
+
+    /// Whether `frame` comes from an id the request `w` still waits for (always, for a
+    /// request of one answer).
+    fn awaited(rules: &SessionRules<'_>, w: &Watched, frame: &[u8]) -> bool {
+        let Some(waiting) = w.waiting else {
+            return true;
+        };
+        rules
+            .fanout(w.ids.key)
+            .and_then(|f| f.sender(frame))
+            .is_some_and(|id| waiting.contains(id))
+    }
+
+    /// Rule, as the requester's: the request after its answer `frame`, when it waits on (the
+    /// answer says it is in progress, or listed ids are still to answer); `None` when the
+    /// answer ends it.
+    fn leaves_open(rules: &SessionRules<'_>, mut w: Watched, frame: &[u8]) -> Option<Watched> {
+        let judged = rules
+            .verdict(w.ids.key)
+            .and_then(|v| v.judge(rules.packet, frame));
+        if matches!(judged, Some(Judged::Progress(_))) {
+            return Some(w);
+        }
+        let id = rules.fanout(w.ids.key).and_then(|f| f.sender(frame));
+        let waiting = w.waiting.as_mut()?;
+        waiting.remove(id?);
+        (!waiting.is_empty()).then_some(w)
     }
 
     /// Closes every open request (the capture ended): returns how many requests went
@@ -222,8 +273,11 @@ impl<const OPEN: usize> Observer<OPEN> {
     fn expire(&mut self, now: Option<u64>) {
         let Some(now) = now else { return };
         for slot in &mut self.open {
-            let gone =
-                slot.is_some_and(|w| w.at.is_some_and(|at| now > at.saturating_add(w.lifetime)));
+            let gone = slot.is_some_and(|w| {
+                w.heard
+                    .or(w.at)
+                    .is_some_and(|at| now > at.saturating_add(w.lifetime))
+            });
             if gone {
                 *slot = None;
                 self.unanswered = self.unanswered.saturating_add(1);

@@ -1,9 +1,15 @@
 //! The requester: the side that sends requests and waits for their answers. Every request
 //! that expects an answer holds a slot of a fixed table until it resolves to exactly one
 //! [`Resolution`]: its answer, a refusal (the spec's NACK, or an answer whose result value is
-//! not a success) or a timeout after its retries.
+//! not a success) or a timeout after its retries (with the ids still to answer, for a request
+//! answered once by each id it lists).
+//!
+//! Such a request is sent again whole when its wait lapses with ids still to answer: the
+//! requester writes only the header values it owns and never rewrites a payload, so it cannot
+//! list only the missing ids; an answer from an id that has answered already is then
+//! `Unsolicited`, and costs the bus that answer's time only.
 
-use super::{Answer, Heard, Ids, Judged, SessionRef, SessionRules};
+use super::{Answer, Heard, IdSet, Ids, Judged, SessionRef, SessionRules};
 use crate::error::{DecodeError, EncodeError, Place};
 
 /// A request that expects an answer, as [`Requester::send`] numbers it.
@@ -22,6 +28,9 @@ pub enum Resolution {
     Rejected(u64),
     /// No answer came within its timeout and retries.
     TimedOut,
+    /// A request answered once by each id it lists ([`Fanout`](super::Fanout)) timed out after its retries
+    /// with some of its answers: the ids that did not answer.
+    Incomplete(IdSet),
 }
 
 /// A request's one outcome.
@@ -70,6 +79,17 @@ pub enum Received {
         /// The answer's result value.
         value: u64,
     },
+    /// It answers an open request that lists several answerers ([`Fanout`](super::Fanout)), and answerers
+    /// are still to come: the request stays open, and waits its current wait anew for the
+    /// next. The last answer resolves it ([`Received::Outcome`]).
+    Partial {
+        /// The request.
+        ticket: Ticket,
+        /// The id of the device that answered.
+        id: u8,
+        /// How many listed ids are still to answer.
+        waiting: usize,
+    },
     /// It answers no open request: an unsolicited message (or an answer that came after its
     /// request resolved), for the application to handle as it does any message.
     Unsolicited,
@@ -100,6 +120,8 @@ struct Open {
     wait: u64,
     retries_left: u8,
     backoff: u8,
+    /// The ids still to answer a request of several answers, and whether one has answered.
+    fanout: Option<(IdSet, bool)>,
 }
 
 /// A slot of the table: an open request and the bytes of its frame, for retries.
@@ -141,7 +163,7 @@ struct Slot<const FRAME: usize> {
 ///     exchanges: &[],
 ///     sequence: Some(WordField::le(1, 1)), echo: &[], swap: None, pairs: &[], nack: None,
 ///     handshake: None, watchdog: None, modes: None, verdicts: &[],
-///     periodic: &[],
+///     periodic: &[], fanouts: &[],
 /// };
 ///
 /// let mut requester = Requester::<_, 4, 4>::new(&SESSION);
@@ -193,6 +215,16 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
     #[must_use]
     pub fn open(&self) -> usize {
         self.slots.iter().filter(|s| s.open.is_some()).count()
+    }
+
+    /// True when the open request `ticket` is answered once by each id it lists
+    /// ([`Fanout`](super::Fanout)).
+    #[must_use]
+    pub fn several(&self, ticket: Ticket) -> bool {
+        self.slots
+            .iter()
+            .filter_map(|s| s.open)
+            .any(|o| o.ticket == ticket && o.fanout.is_some())
     }
 
     /// The earliest instant at which [`poll`](Self::poll) has something to do.
@@ -253,6 +285,10 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
             wait,
             retries_left: e.retries,
             backoff: e.backoff.max(1),
+            fanout: rules
+                .fanout(key)
+                .and_then(|f| f.listed(rules.packet, frame))
+                .map(|ids| (ids, false)),
         });
         Ok(Some(ticket))
     }
@@ -321,6 +357,11 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
         let Some(slot) = self.slots.get_mut(i) else {
             return Received::Unsolicited;
         };
+        if judged == Some(Judged::Accepted)
+            && let Some(part) = Self::one_of_several(rules, slot, now, frame)
+        {
+            return part;
+        }
         let resolution = match judged {
             Some(Judged::Progress(value)) => {
                 if let Some(o) = slot.open.as_mut() {
@@ -342,6 +383,43 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
         Received::Outcome(Outcome { ticket, resolution })
     }
 
+    /// Rule: an answer to a request of several answers takes its sender off the ids the
+    /// request waits for; while some remain, the request waits its wait anew for the next
+    /// (`Partial`); the last lets the answer resolve it (`None`).
+    fn one_of_several(
+        rules: &SessionRules<'_>,
+        slot: &mut Slot<FRAME>,
+        now: u64,
+        frame: &[u8],
+    ) -> Option<Received> {
+        let o = slot.open.as_mut()?;
+        let (waiting, heard) = o.fanout.as_mut()?;
+        let id = rules.fanout(o.ids.key)?.sender(frame)?;
+        waiting.remove(id);
+        *heard = true;
+        if waiting.is_empty() {
+            return None;
+        }
+        o.deadline = now.saturating_add(o.wait);
+        Some(Received::Partial {
+            ticket: o.ticket,
+            id,
+            waiting: waiting.len(),
+        })
+    }
+
+    /// Whether `frame` comes from an id that the open request `o` still waits for (always,
+    /// for a request of one answer).
+    fn awaited(rules: &SessionRules<'_>, o: &Open, frame: &[u8]) -> bool {
+        let Some((waiting, _)) = o.fanout else {
+            return true;
+        };
+        rules
+            .fanout(o.ids.key)
+            .and_then(|f| f.sender(frame))
+            .is_some_and(|id| waiting.contains(id))
+    }
+
     /// The open request `frame` answers or refuses (the oldest, should several match): its
     /// slot, what the answer says (`Some`: an answer, judged by the command's result value
     /// when it has one; `None`: the NACK) and its ticket.
@@ -350,7 +428,10 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
         let refuses = matches!(heard, Heard::Command(k) if Some(k) == rules.nack);
         let mut found: Option<(usize, Option<Judged>, Ticket)> = None;
         for (i, s) in self.slots.iter().enumerate() {
-            let Some(o) = s.open.filter(|o| rules.repeats(&o.ids, frame)) else {
+            let Some(o) = s
+                .open
+                .filter(|o| rules.repeats(&o.ids, frame) && Self::awaited(rules, o, frame))
+            else {
                 continue;
             };
             let judged = if SessionRules::is_answer(o.answer, o.ids.key, heard) {
@@ -388,9 +469,13 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
         let mut o = slot.open?;
         if o.retries_left == 0 {
             slot.open = None;
+            let resolution = match o.fanout {
+                Some((waiting, true)) => Resolution::Incomplete(waiting),
+                _ => Resolution::TimedOut,
+            };
             return Some(Due::Outcome(Outcome {
                 ticket: o.ticket,
-                resolution: Resolution::TimedOut,
+                resolution,
             }));
         }
         o.retries_left = o.retries_left.saturating_sub(1);

@@ -70,6 +70,7 @@ pub struct Periodic {
 ///         Periodic { key: 0, period: 1000, sender: Sender::Both },
 ///         Periodic { key: 5, period: 20, sender: Sender::Requester },
 ///     ],
+///     fanouts: &[],
 /// };
 ///
 /// let mut host = Scheduler::<_, 2>::new(&SESSION, Sender::Requester, 0);

@@ -68,6 +68,7 @@ const BASE: SessionRules<'static> = SessionRules {
     modes: None,
     verdicts: &[],
     periodic: &[],
+    fanouts: &[],
 };
 static SESSION: SessionRules<'static> = BASE;
 /// The same rules without the handshake.

@@ -110,6 +110,22 @@ pub struct Verdict {
     pub progress: Vec<u64>,
 }
 
+/// A command whose request is answered once by each id it lists (a command's `answers`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Fanout {
+    /// The request's command (index into [`Protocol::commands`](super::Protocol::commands)).
+    pub command: usize,
+    /// Offset of the first listed id in the request's payload.
+    pub first: usize,
+    /// Bytes from one listed id to the next.
+    pub stride: usize,
+    /// The answer's header value that names its sender (index into the session frame's
+    /// values).
+    pub by: usize,
+    /// The two names, as the spec writes them (`each`, `by`).
+    pub names: (String, String),
+}
+
 /// The conversation of the link.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Session {
@@ -142,4 +158,6 @@ pub struct Session {
     pub verdicts: Vec<Verdict>,
     /// The commands sent at a fixed rate, in spec order.
     pub periodic: Vec<Periodic>,
+    /// The commands whose requests are answered once by each id they list, in command order.
+    pub fanouts: Vec<Fanout>,
 }

@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use toml::Spanned;
 
 pub use super::registers::{RegisterDef, RegistersDef, SelectDef};
-pub use super::session::{ModesDef, PeriodicDef, ResultDef, SessionDef, WatchdogDef};
+pub use super::session::{AnswersDef, ModesDef, PeriodicDef, ResultDef, SessionDef, WatchdogDef};
 
 /// A spanned string.
 pub type SStr = Spanned<String>;
@@ -533,6 +533,10 @@ pub struct CommandDef {
     /// The value of the answer that says whether this command's request succeeded.
     #[cfg_attr(feature = "schema", schemars(with = "Option<ResultDef>"))]
     pub result: Option<Spanned<ResultDef>>,
+    /// The ids that answer this command's request, once each: where the request lists them,
+    /// and the answer's header field that names its sender.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<AnswersDef>"))]
+    pub answers: Option<Spanned<AnswersDef>>,
     /// Request fields that select a run of `[registers]`, and the bytes (the request's data,
     /// the answer's) that hold their values.
     #[cfg_attr(feature = "schema", schemars(with = "Option<SelectDef>"))]

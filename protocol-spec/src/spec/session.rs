@@ -129,3 +129,18 @@ pub struct PeriodicDef {
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,
 }
+
+/// A command's `answers = { each = "ids", by = "id" }`: its request is answered once by each
+/// id it lists.
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct AnswersDef {
+    /// Where the request lists the ids: a repeated `u8` field of its payload (`ids`), or a
+    /// `u8` field of its repeated elements (`servos.id`).
+    #[cfg_attr(feature = "schema", schemars(with = "String"))]
+    pub each: SStr,
+    /// The header field of an answer that holds the id of the device that sent it.
+    #[cfg_attr(feature = "schema", schemars(with = "String"))]
+    pub by: SStr,
+}

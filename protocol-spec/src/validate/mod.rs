@@ -13,6 +13,7 @@ mod frame;
 mod names;
 mod registers;
 mod session;
+mod session_answers;
 mod session_match;
 mod session_periodic;
 mod session_result;

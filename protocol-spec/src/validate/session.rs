@@ -1,5 +1,6 @@
 //! Rules of `[session]` and the per-command `answer`, `timeout_ms` and `retries` (`match` is
-//! [`super::session_match`]'s, `result` [`super::session_result`]'s, `periodic`
+//! [`super::session_match`]'s, `result` [`super::session_result`]'s, `answers`
+//! [`super::session_answers`]'s, `periodic`
 //! [`super::session_periodic`]'s): the names
 //! they use (a frame format, commands, header fields) exist and fit what they are used for,
 //! the numbers are in range. Lowers the table to [`ir::Session`].
@@ -84,6 +85,9 @@ pub(super) fn lower_session(
     let verdicts = exchanges.as_ref().and_then(|e| {
         super::session_result::lower_verdicts(ctx, f, commands, structs, e, directions)
     });
+    let fanouts = exchanges
+        .as_ref()
+        .and_then(|e| super::session_answers::lower_fanouts(ctx, f, commands, structs, e));
     Some(ir::Session {
         frame: fi,
         default,
@@ -99,6 +103,7 @@ pub(super) fn lower_session(
         pairs: pairs?,
         verdicts: verdicts?,
         periodic: periodic?,
+        fanouts: fanouts?,
     })
 }
 
@@ -114,6 +119,7 @@ fn check_no_command_keys(ctx: &mut Ctx<'_>) {
             c.retries.as_ref().map(Spanned::span),
             c.match_fields.as_ref().map(Spanned::span),
             c.result.as_ref().map(Spanned::span),
+            c.answers.as_ref().map(Spanned::span),
         ];
         if let Some(span) = spans.into_iter().flatten().next() {
             ctx.error(

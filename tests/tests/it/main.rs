@@ -62,6 +62,7 @@ mod sbp_libsbp;
 mod sbus_vectors;
 mod scout_vectors;
 mod serde_values;
+mod session_client_updates;
 mod session_io_async;
 mod session_mavlink;
 mod session_periodic;

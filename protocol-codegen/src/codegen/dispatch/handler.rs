@@ -149,8 +149,9 @@ fn answer(p: &Protocol, ci: usize, rt: &TokenStream) -> Option<Answer> {
             message: message(p, ad, by, Some(&quote!(a))),
             pattern: quote!(a),
             doc: format!(
-                "It expects an answer, `{name}`, carrying what the method returns.{}",
-                verdict_doc(s, ci)
+                "It expects an answer, `{name}`, carrying what the method returns.{}{}",
+                verdict_doc(s, ci),
+                fanout_doc(s, ci)
             ),
         }
     } else {
@@ -164,6 +165,18 @@ fn answer(p: &Protocol, ci: usize, rt: &TokenStream) -> Option<Answer> {
 }
 
 /// What the answer's result value tells the requester, when the command has a `result`.
+/// For a request answered once by each id it lists: who answers, and with which id.
+fn fanout_doc(s: &crate::ir::Session, ci: usize) -> String {
+    let Some(fo) = s.fanouts.iter().find(|fo| fo.command == ci) else {
+        return String::new();
+    };
+    let (each, by) = &fo.names;
+    format!(
+        " Each device that `{each}` lists answers once, in the answer's header its own `{by}` \
+         (set it before encoding the answer); a device not listed returns `Reply::Refuse`."
+    )
+}
+
 fn verdict_doc(s: &crate::ir::Session, ci: usize) -> String {
     let Some(v) = s.verdicts.iter().find(|v| v.command == ci) else {
         return String::new();
@@ -443,13 +456,27 @@ fn swap_stmts(p: &Protocol, f: &Frame) -> TokenStream {
     }
 }
 
-/// With `modes`: a request whose mode says it expects no answer gets none.
+/// With `modes`: a request whose mode says it expects no answer gets none, except a request
+/// that lists the ids that answer it (a SYNC_READ goes to the broadcast id; the application
+/// sets its own id in the answer's header).
 fn silent_check(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
-    match p.session.as_ref().and_then(|s| s.modes) {
+    let Some(s) = p.session.as_ref() else {
+        return quote!();
+    };
+    match s.modes {
         Some(m) => {
             let id = ident(&f.values[m.value].name);
+            let listed = s.fanouts.iter().filter_map(|fo| {
+                let v = format_ident!("{}", p.commands.get(fo.command)?.rust_name);
+                Some(quote!(Command::#v))
+            });
+            let listing = if s.fanouts.is_empty() {
+                quote!()
+            } else {
+                quote!(&&!matches!(packet.message.command(), #(#listed)|*))
+            };
             quote! {
-                if SESSION.modes.is_some_and(|m| m.silent(packet.header.#id as u64)) {
+                if SESSION.modes.is_some_and(|m| m.silent(packet.header.#id as u64)) #listing {
                     return #rt::None;
                 }
             }

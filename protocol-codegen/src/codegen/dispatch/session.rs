@@ -118,6 +118,13 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
     };
     let pairs = plan.pairs.iter().map(|p| pair(f, rt, p));
     let verdicts = plan.verdicts.iter().map(|v| verdict(f, rt, v));
+    let fanouts = plan.fanouts.iter().map(|fo| {
+        let request = key_lit(fo.request);
+        let first = proc_macro2::Literal::usize_unsuffixed(fo.first);
+        let stride = proc_macro2::Literal::usize_unsuffixed(fo.stride);
+        let id = field(f, &fo.by, rt);
+        quote!(#s::Fanout { request: #request, first: #first, stride: #stride, id: #id })
+    });
     let periodic = plan.periodic.iter().map(|p| {
         let (key, period) = (key_lit(p.key), p.period);
         let sender = match p.sender {
@@ -168,6 +175,7 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
             modes: #modes,
             verdicts: &[#(#verdicts),*],
             periodic: &[#(#periodic),*],
+            fanouts: &[#(#fanouts),*],
         };
         #machines
         #scheduler

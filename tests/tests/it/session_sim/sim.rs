@@ -319,6 +319,7 @@ fn hear<P: Peer>(
                 t.progress += 1;
                 logs.get_mut(&ticket).expect("open").progressed = true;
             }
+            Received::Partial { .. } => panic!("no request of these rules lists its answerers"),
             Received::Unsolicited => t.unsolicited += 1,
             Received::Unreadable(e) => panic!("a checked frame is readable: {e:?}"),
         }
@@ -374,5 +375,6 @@ fn record(t: &mut Tally, log: &mut Log, r: Resolution) {
         Resolution::Refused => t.refused += 1,
         Resolution::Rejected(_) => t.rejected_by_value += 1,
         Resolution::TimedOut => t.timed_out += 1,
+        Resolution::Incomplete(_) => panic!("no request of these rules lists its answerers"),
     }
 }
