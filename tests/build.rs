@@ -109,20 +109,20 @@ fn main() {
                 .map(|seed| (seed, random_spec::generate(seed, &format!("rand_{seed}"))))
         };
         let mut session_seed = None;
-        if sessions.is_empty() {
-            if let Some((seed, spec)) = later().find(|(_, s)| s.text.contains("\n[session]")) {
-                sessions.push(write_spec(&dir, &manifest, seed, &spec, &mut code));
-                session_seed = Some(seed);
-            }
+        if sessions.is_empty()
+            && let Some((seed, spec)) = later().find(|(_, s)| s.text.contains("\n[session]"))
+        {
+            sessions.push(write_spec(&dir, &manifest, seed, &spec, &mut code));
+            session_seed = Some(seed);
         }
-        if !escaped {
-            if let Some((seed, spec)) = later().find(|(_, s)| s.features.contains(&"escape")) {
-                extra.push(if session_seed == Some(seed) {
-                    sessions[0].clone()
-                } else {
-                    write_spec(&dir, &manifest, seed, &spec, &mut code)
-                });
-            }
+        if !escaped
+            && let Some((seed, spec)) = later().find(|(_, s)| s.features.contains(&"escape"))
+        {
+            extra.push(if session_seed == Some(seed) {
+                sessions[0].clone()
+            } else {
+                write_spec(&dir, &manifest, seed, &spec, &mut code)
+            });
         }
     }
     writeln!(code, "/// The batch: first seed and count.").unwrap();

@@ -52,8 +52,8 @@ mod peer_frames;
 #[macro_use]
 mod random_specs;
 // After `random_specs`: it runs that module's batch, through `for_each_random_session!`.
-mod random_sessions;
 mod random_fixtures;
+mod random_sessions;
 mod referee_vectors;
 mod repeated_bits;
 mod roborts_vectors;
