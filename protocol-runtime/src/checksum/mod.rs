@@ -63,6 +63,8 @@ mod tests_extra;
 #[cfg(test)]
 mod tests_seeds;
 #[cfg(test)]
+mod tests_target;
+#[cfg(test)]
 mod tests_then;
 
 pub use algorithm::{Algorithm, CrcSpec, CrcTable};
