@@ -1,6 +1,7 @@
 //! An [`Extra`] check of a key without a byte: [`Checksum::compute`] and
 //! [`Checksum::compute_written`], which encoders call, give the CRC of the covered bytes alone;
-//! [`Checksum::compute_prefix`], which decoders call, gives none.
+//! [`Checksum::compute_prefix`], which decoders call, gives none; and [`Extra::compute`], none
+//! either.
 
 extern crate std;
 
@@ -41,4 +42,14 @@ fn a_key_without_a_byte_is_checked_by_the_crc_alone() {
     assert_eq!(check.compute(&HEARTBEAT), 0x7F1C);
     assert_eq!(check.compute_written(&HEARTBEAT), 0x7F1C);
     assert_ne!(u64::from(MCRF4XX.checksum(&HEARTBEAT)), 0x7F1C);
+}
+
+#[test]
+fn the_extra_value_is_there_for_a_key_with_a_byte_only() {
+    assert_eq!(MAVLINK1.compute(&HEARTBEAT), Some(0x7F1C));
+    assert_eq!(MAVLINK1.byte(&HEARTBEAT), Some(50));
+    let mut unknown = HEARTBEAT;
+    unknown[4] = 7;
+    assert_eq!(MAVLINK1.compute(&unknown), None);
+    assert_eq!(MAVLINK1.byte(&unknown), None);
 }
