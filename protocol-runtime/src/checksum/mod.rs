@@ -59,7 +59,11 @@ mod sum;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
+mod tests_extra;
+#[cfg(test)]
 mod tests_seeds;
+#[cfg(test)]
+mod tests_target;
 #[cfg(test)]
 mod tests_then;
 

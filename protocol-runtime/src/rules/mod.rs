@@ -172,3 +172,5 @@ pub enum Body<'k> {
 mod tests;
 #[cfg(test)]
 mod tests_headers;
+#[cfg(test)]
+mod tests_sent;
