@@ -11,7 +11,7 @@
 //! which bytes a check covers and how a frame is verified or sealed is the runtime's business,
 //! and so is every packet rule.
 
-use protocol_runtime::checksum::{CheckObject, Checksum, CrcImpl, Extra, Slicing16};
+use protocol_runtime::checksum::{CheckObject, Checksum, CrcImpl, Extra, Slicing16, fill_direct};
 use protocol_runtime::layout::{Check, Constant, FrameLayout, WordField};
 use protocol_runtime::rules::{DirectionTest, PacketRules};
 use protocol_spec::ir::{self, Algorithm, CrcSpec};
@@ -88,6 +88,7 @@ impl CrcObject {
 struct OwnedExtra {
     crc: CrcObject,
     key: WordField,
+    direct: Box<[u16]>,
     bytes: Box<[(u32, u8)]>,
 }
 
@@ -98,7 +99,8 @@ impl OwnedExtra {
         Some(OwnedExtra {
             crc: CrcObject::new(algorithm)?,
             key: extra.key,
-            bytes: extra.bytes.clone().into_boxed_slice(),
+            direct: direct_entries(extra),
+            bytes: extra.searched_pairs().into(),
         })
     }
 
@@ -107,9 +109,17 @@ impl OwnedExtra {
         Extra {
             crc: self.crc.checksum(),
             key: self.key,
+            direct: &self.direct,
             bytes: &self.bytes,
         }
     }
+}
+
+/// The direct table of `extra`, as generated code's `direct_table` builds it.
+fn direct_entries(extra: &ir::CheckExtra) -> Box<[u16]> {
+    let mut table = vec![0u16; extra.direct];
+    fill_direct(&mut table, extra.direct_pairs());
+    table.into_boxed_slice()
 }
 
 /// Prints as the [`Checksum::Extra`] of generated code, so that a layout prints alike from

@@ -78,7 +78,15 @@ fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>) ->
         Span::call_site(),
     );
     let key = word_field_lit(rt, extra.key);
-    let bytes = extra.bytes.iter().map(|(k, b)| quote!((#k, #b)));
+    let pair = |&(k, b): &(u32, u8)| quote!((#k, #b));
+    let bytes = extra.searched_pairs().iter().map(pair);
+    let direct = match extra.direct {
+        0 => quote!(&[]),
+        n => {
+            let pairs = extra.direct_pairs().iter().map(pair);
+            quote!(&#rt::direct_table::<#n>(&[#(#pairs),*]))
+        }
+    };
     let doc = format!(
         " The `{}` check with the byte each command folds in after the covered bytes.",
         c.name
@@ -88,6 +96,7 @@ fn checksum_expr(rt: &TokenStream, c: &Check, statics: &mut Vec<TokenStream>) ->
         static #name: #rt::Extra<'static> = #rt::Extra {
             crc: #checksum,
             key: #key,
+            direct: #direct,
             bytes: &[#(#bytes),*],
         };
     });

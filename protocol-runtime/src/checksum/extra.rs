@@ -3,6 +3,11 @@
 //!
 //! This module owns looking the byte up and folding it in. Which key field and which table
 //! come from the spec is validation's business; where the check sits is the layout's.
+//!
+//! The byte of a small key is read from a table indexed by the key ([`Extra::direct`], built
+//! in a `const` by [`direct_table`]): one load, where a binary search of the pairs costs a
+//! branch per halving that the keys of a mixed stream mispredict. Larger keys (MAVLink's
+//! ids from 256 on) are searched among the sorted pairs ([`Extra::bytes`]).
 
 use super::{Checksum, CrcImpl};
 use crate::layout::WordField;
@@ -23,6 +28,7 @@ use crate::layout::WordField;
 /// static EXTRA: Extra<'static> = Extra {
 ///     crc: Checksum::Crc16(CrcImpl::Table1(&CRC)),
 ///     key: WordField { at: Pos::Start(4), size: 1, order: ByteOrder::Little, shift: 0, width: 8 },
+///     direct: &[],
 ///     bytes: &[(0, 50)],
 /// };
 /// let check = Checksum::Extra(&EXTRA);
@@ -39,17 +45,69 @@ pub struct Extra<'a> {
     pub crc: Checksum<'a>,
     /// Where the key sits, from the first covered byte.
     pub key: WordField,
-    /// `(key, byte)` pairs, sorted by key.
+    /// The bytes of the keys below `direct.len()`, indexed by key: `0x100 | byte` for a key
+    /// with a byte, 0 for one without ([`direct_table`] builds it from pairs).
+    pub direct: &'a [u16],
+    /// `(key, byte)` pairs of the keys from `direct.len()` on, sorted by key.
     pub bytes: &'a [(u32, u8)],
+}
+
+/// The [`Extra::direct`] table of `N` entries for `(key, byte)` pairs whose keys are below `N`
+/// (a pair with a larger key is left out: it belongs in [`Extra::bytes`]). Evaluated in a
+/// `const`, so that generated code prints the pairs and not the table.
+///
+/// ```
+/// use protocol_runtime::checksum::direct_table;
+///
+/// const DIRECT: [u16; 4] = direct_table(&[(0, 50), (3, 0), (300, 7)]);
+/// assert_eq!(DIRECT, [0x100 | 50, 0, 0, 0x100]);
+/// ```
+#[must_use]
+pub const fn direct_table<const N: usize>(pairs: &[(u32, u8)]) -> [u16; N] {
+    let mut table = [0u16; N];
+    fill_direct(&mut table, pairs);
+    table
+}
+
+/// Writes the entry of each pair whose key is below `table.len()` into `table` (as
+/// [`direct_table`], into a table whose length is known at run time: the run-time codec's).
+///
+/// ```
+/// use protocol_runtime::checksum::fill_direct;
+///
+/// let mut table = [0u16; 2];
+/// fill_direct(&mut table, &[(1, 9), (2, 7)]);
+/// assert_eq!(table, [0, 0x109]);
+/// ```
+// Each index is checked against the length it indexes (`i` against the pairs', the key
+// against the table's), and `i` stays below the pairs' length, which a slice keeps below
+// `usize::MAX`.
+#[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
+pub const fn fill_direct(table: &mut [u16], pairs: &[(u32, u8)]) {
+    let mut i = 0;
+    while i < pairs.len() {
+        let (key, byte) = pairs[i];
+        // Compared as `u64`, so that no key is cut short to fit a `usize`.
+        if (key as u64) < (table.len() as u64) {
+            table[key as usize] = 0x100 | byte as u16;
+        }
+        i += 1;
+    }
 }
 
 impl Extra<'_> {
     /// The byte of the key the covered bytes `data` hold, if it has one.
     ///
-    /// A binary search of [`bytes`](Self::bytes): O(log n) in the number of keys.
-    #[inline]
+    /// One load from [`direct`](Self::direct) for a key below its length, else a binary
+    /// search of [`bytes`](Self::bytes): O(log n) in the number of larger keys.
+    #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn byte(&self, data: &[u8]) -> Option<u8> {
-        let key = u32::try_from(self.key.read(data)?).ok()?;
+        let key = self.key.read(data)?;
+        if let Some(&entry) = usize::try_from(key).ok().and_then(|k| self.direct.get(k)) {
+            // The high byte marks a key with a byte; the low one is the byte.
+            return (entry >> 8 != 0).then_some(entry as u8);
+        }
+        let key = u32::try_from(key).ok()?;
         let at = self.bytes.binary_search_by_key(&key, |&(k, _)| k).ok()?;
         self.bytes.get(at).map(|&(_, b)| b)
     }

@@ -69,7 +69,7 @@ mod tests_then;
 
 pub use algorithm::{Algorithm, CrcSpec, CrcTable};
 pub use bitwise::Bitwise;
-pub use extra::Extra;
+pub use extra::{Extra, direct_table, fill_direct};
 pub use slicing::Slicing16;
 
 /// A check algorithm.

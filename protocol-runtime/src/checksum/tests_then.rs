@@ -75,8 +75,19 @@ static MCRF4XX_16: Slicing16<u16> = Slicing16::<u16>::new(&crc::CRC_16_MCRF4XX);
 static MCRF4XX_1: crc::Crc<u16, crc::Table<1>> =
     crc::Crc::<u16, crc::Table<1>>::new(&crc::CRC_16_MCRF4XX);
 
-/// MAVLink 2's check: the key is the 24-bit message id at the sixth covered byte.
-fn mavlink_extra(crc: Checksum<'static>) -> Extra<'static> {
+/// The pairs of [`mavlink_extra`]: three ids below 256 and one above.
+const PAIRS: [(u32, u8); 4] = [(0, 50), (30, 39), (33, 104), (70_000, 7)];
+/// The bytes of the ids below 34, as a table indexed by id.
+static DIRECT: [u16; 34] = direct_table(&PAIRS);
+
+/// MAVLink 2's check: the key is the 24-bit message id at the sixth covered byte; with
+/// `direct`, the ids below 34 are read from [`DIRECT`] and the pairs hold the others.
+fn mavlink_extra(crc: Checksum<'static>, direct: bool) -> Extra<'static> {
+    let (direct, bytes): (&[u16], &[(u32, u8)]) = if direct {
+        (&DIRECT, &PAIRS[3..])
+    } else {
+        (&[], &PAIRS)
+    };
     Extra {
         crc,
         key: WordField {
@@ -86,21 +97,29 @@ fn mavlink_extra(crc: Checksum<'static>) -> Extra<'static> {
             shift: 0,
             width: 24,
         },
-        bytes: &[(0, 50), (30, 39), (33, 104), (70_000, 7)],
+        direct,
+        bytes,
     }
 }
 
 #[test]
 fn an_extra_check_has_one_value_whatever_its_table() {
-    let sixteen = mavlink_extra(Checksum::Crc16(CrcImpl::Table16(&MCRF4XX_16)));
-    let one = mavlink_extra(Checksum::Crc16(CrcImpl::Table1(&MCRF4XX_1)));
-    let (sixteen, one) = (Checksum::Extra(&sixteen), Checksum::Extra(&one));
+    for direct in [false, true] {
+        let sixteen = mavlink_extra(Checksum::Crc16(CrcImpl::Table16(&MCRF4XX_16)), direct);
+        let one = mavlink_extra(Checksum::Crc16(CrcImpl::Table1(&MCRF4XX_1)), false);
+        one_value_whatever_the_table(Checksum::Extra(&sixteen), Checksum::Extra(&one));
+    }
+}
+
+/// `sixteen` and `one` (the same check, built with other tables or lookups) give the same
+/// values for every id and length.
+fn one_value_whatever_the_table(sixteen: Checksum<'_>, one: Checksum<'_>) {
     let mut buf = random(400);
-    for (round, id) in [0u32, 30, 33, 70_000, 5].into_iter().enumerate() {
+    // Id 5 has no byte, and neither has id 34, the first past the direct table.
+    for (round, id) in [0u32, 30, 33, 70_000, 5, 34].into_iter().enumerate() {
         buf[6..9].copy_from_slice(&id.to_le_bytes()[..3]);
         for n in 9..=300 {
             let want = one.compute_prefix(&buf, n);
-            // Id 5 has no byte: no value, whatever the table.
             assert_eq!(want.is_some(), round < 4, "id {id}");
             assert_eq!(sixteen.compute_prefix(&buf, n), want, "id {id} n {n}");
             assert_eq!(sixteen.compute_prefix(&buf[..n], n), want, "id {id} n {n}");

@@ -353,6 +353,32 @@ pub struct CheckExtra {
     pub key: WordField,
     /// `(command id, byte)` of every command, sorted by id.
     pub bytes: Vec<(u32, u8)>,
+    /// The ids below this are looked up in a table indexed by id (the runtime's
+    /// [`Extra::direct`](protocol_runtime::checksum::Extra::direct)), the others searched
+    /// among the pairs: one more than the largest id below [`DIRECT_KEYS`], 0 for none.
+    pub direct: usize,
+}
+
+/// Keys a per-command byte table may index directly: a table of 256 two-byte entries (512
+/// bytes) at most, which covers a one-byte id and MAVLink's first 256 messages.
+pub const DIRECT_KEYS: u32 = 256;
+
+impl CheckExtra {
+    /// The pairs whose ids the direct table holds (ids below [`direct`](Self::direct)).
+    pub fn direct_pairs(&self) -> &[(u32, u8)] {
+        &self.bytes[..self.searched_from()]
+    }
+
+    /// The pairs searched by id (ids from [`direct`](Self::direct) on).
+    pub fn searched_pairs(&self) -> &[(u32, u8)] {
+        &self.bytes[self.searched_from()..]
+    }
+
+    /// Index of the first pair not in the direct table (the pairs are sorted by id).
+    fn searched_from(&self) -> usize {
+        self.bytes
+            .partition_point(|&(id, _)| usize::try_from(id).is_ok_and(|id| id < self.direct))
+    }
 }
 
 /// The names of a check's algorithm: what docs show, and the Rust items a CRC is printed with.

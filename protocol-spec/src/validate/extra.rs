@@ -3,7 +3,7 @@
 //! spec has one, and the frame's table of bytes is built from the commands.
 
 use super::Ctx;
-use crate::ir::{Command, Frame};
+use crate::ir::{Command, DIRECT_KEYS, Frame};
 use crate::spec::model::{CommandDef, SStr, SpecFile};
 
 /// Whether any check of the spec declares a per-command extra byte (as written: a check whose
@@ -58,7 +58,8 @@ pub(crate) fn lower_check_extra(ctx: &mut Ctx<'_>, name: &SStr, d: &CommandDef) 
 }
 
 /// Each per-command extra byte table: `(id, byte)` of every command the frame format carries
-/// (every command, for a format that carries none: its key then finds no byte), sorted by id.
+/// (every command, for a format that carries none: its key then finds no byte), sorted by id,
+/// and the ids below the largest one under [`DIRECT_KEYS`] read from a table indexed by id.
 pub(crate) fn lower_extra_bytes(frames: &mut [Frame], commands: &[Command]) {
     for f in frames {
         let mut bytes: Vec<(u32, u8)> = commands
@@ -71,9 +72,16 @@ pub(crate) fn lower_extra_bytes(frames: &mut [Frame], commands: &[Command]) {
             })
             .collect();
         bytes.sort_unstable();
+        let direct = bytes
+            .iter()
+            .map(|&(id, _)| id)
+            .take_while(|&id| id < DIRECT_KEYS)
+            .last()
+            .map_or(0, |id| id as usize + 1);
         for c in &mut f.checks {
             if let Some(extra) = &mut c.extra {
                 extra.bytes.clone_from(&bytes);
+                extra.direct = direct;
             }
         }
     }

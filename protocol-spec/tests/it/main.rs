@@ -6,5 +6,6 @@
 //! crates under test and their dependencies once more, so one binary builds and links them once.
 //! A new file `NAME.rs` here joins with a `mod NAME;` line (docs/architecture.md, "Tests").
 
+mod extra_direct;
 mod fuzz_dict;
 mod schema;

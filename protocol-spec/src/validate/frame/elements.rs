@@ -340,6 +340,7 @@ fn lower_extra(ctx: &mut Ctx<'_>, e: &SStr, algorithm: &Algorithm) -> Option<Che
             width: 8,
         },
         bytes: Vec::new(),
+        direct: 0,
     })
 }
 
