@@ -220,6 +220,11 @@ impl StructPrinter<'_> {
                     self.field(si, i, f, inner)
                 )
             }
+            FieldKind::When { .. } => {
+                self.refused
+                    .push(format!("{abbrev}: a field a mask bit announces (`when`)"));
+                format!("{{ kind = \"padding\", size = {} }}", f.size)
+            }
             FieldKind::BitStream { .. } => {
                 self.refused.push(format!(
                     "{abbrev}: a bit stream (members of up to 64 bits; Lua's bit32 computes 32)"
@@ -252,7 +257,17 @@ impl StructPrinter<'_> {
                     items.join(", ")
                 )
             }
-            FieldKind::Array { ty, max, size_from } => {
+            FieldKind::Array {
+                ty,
+                max,
+                size_from,
+                by_mask,
+            } => {
+                if *by_mask {
+                    self.refused.push(format!(
+                        "{abbrev}: an array counted by the set bits of a mask (`mask`)"
+                    ));
+                }
                 let elem = self.elem(ty, &abbrev, &label, &f.name);
                 let sized = size_from.as_ref().map_or(String::new(), |n| {
                     format!(", size_from = {}", lua::string(n))
