@@ -36,7 +36,7 @@ impl Kind for When<'_> {
         let this = if dir == Dir::Read { "out" } else { "v" };
         let (mask, bit, up) = (names::field(self.mask), self.bit, &n.up);
         let set = fill!(
-            "((((uint64_t)${this}->${mask}) >> ${bit}) & 1u) != 0",
+            "(((uint64_t)${this}->${mask} >> ${bit}) & 1u) != 0",
             this,
             mask,
             bit
