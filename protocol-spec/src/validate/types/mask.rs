@@ -37,7 +37,7 @@ pub(super) fn check_mask_site(ctx: &mut Ctx<'_>, d: &FieldDef, of_struct: bool) 
 }
 
 /// Rule: a field announced by a mask bit (`when`) is not also `optional`, has a fixed size
-/// (a value, an array of fixed count, a bitfield, a packed array or a bit stream), and names
+/// and one Rust field (a value, a struct of fixed size, a fixed or packed array), and names
 /// a bit within the width of its mask, an earlier unsigned integer field of the struct.
 /// Gives the field's kind wrapped in [`FieldKind::When`].
 pub(super) fn lower_when(
@@ -57,13 +57,8 @@ pub(super) fn lower_when(
         );
         return None;
     }
-    let fixed = matches!(
-        field.kind,
-        FieldKind::Value { .. }
-            | FieldKind::Bits { .. }
-            | FieldKind::Packed { .. }
-            | FieldKind::BitStream { .. }
-    );
+    // Bit members are fields of the Rust struct themselves, which an `Option` cannot hold.
+    let fixed = matches!(field.kind, FieldKind::Value { .. } | FieldKind::Packed { .. });
     if !fixed {
         ctx.error(
             w.span(),
@@ -71,7 +66,7 @@ pub(super) fn lower_when(
                 "field `{}` has no fixed size, so a mask bit cannot announce it",
                 field.name
             ),
-            "give `when` to a value, a fixed array, a bitfield or a struct of fixed size",
+            "give `when` to a value, a fixed or packed array, or a struct of fixed size (which may hold a bitfield)",
         );
         return None;
     }
