@@ -58,7 +58,10 @@ pub(super) fn lower_when(
         return None;
     }
     // Bit members are fields of the Rust struct themselves, which an `Option` cannot hold.
-    let fixed = matches!(field.kind, FieldKind::Value { .. } | FieldKind::Packed { .. });
+    let fixed = matches!(
+        field.kind,
+        FieldKind::Value { .. } | FieldKind::Packed { .. }
+    );
     if !fixed {
         ctx.error(
             w.span(),
