@@ -59,7 +59,7 @@ impl<'a> Kind<'a> for When<'a> {
             } else {
                 format!("absent, but bit {bit} of `{name}` is set")
             };
-            return Err(EncodeIssue::new(&join(at.path, &f.name), what));
+            return Err(EncodeIssue::new(join(at.path, &f.name), what));
         }
         if present {
             self.inner.write(p, f, at, w)
