@@ -90,7 +90,9 @@ fn field_text(
 ) {
     match kind {
         FieldKind::Padding | FieldKind::Check(_) => {}
-        FieldKind::Optional(inner) => field_text(p, f, inner, v, prefix, out),
+        FieldKind::Optional(inner) | FieldKind::When { kind: inner, .. } => {
+            field_text(p, f, inner, v, prefix, out)
+        }
         FieldKind::Bits { members, .. } | FieldKind::BitStream { members } => {
             for m in members {
                 let value = v.get(&m.name).map(scalar_text).unwrap_or_default();

@@ -149,7 +149,7 @@ fn field_schema(
     };
     match kind {
         FieldKind::Padding | FieldKind::Check(_) => {}
-        FieldKind::Optional(inner) => {
+        FieldKind::Optional(inner) | FieldKind::When { kind: inner, .. } => {
             let mut inner_props = Map::new();
             field_schema(p, f, inner, false, &mut inner_props, &mut Vec::new());
             for (name, schema) in inner_props {

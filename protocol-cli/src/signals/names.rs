@@ -150,7 +150,9 @@ fn field(
     };
     match kind {
         FieldKind::Padding | FieldKind::Check(_) => {}
-        FieldKind::Optional(inner) => field(p, inner, path, unit, owner, cols),
+        FieldKind::Optional(inner) | FieldKind::When { kind: inner, .. } => {
+            field(p, inner, path, unit, owner, cols)
+        }
         FieldKind::Value { ty, .. } | FieldKind::Array { ty, .. } => match ty {
             ValueType::Scalar { scalar, scale } => {
                 let kind = if scalar.prim.is_bool() {

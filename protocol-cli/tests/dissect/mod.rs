@@ -154,7 +154,9 @@ impl Expected<'_> {
                     self.elem(ty, abbrev, item);
                 }
             }
-            FieldKind::Optional(inner) => self.field(name, abbrev, inner, v, whole),
+            FieldKind::Optional(inner) | FieldKind::When { kind: inner, .. } => {
+                self.field(name, abbrev, inner, v, whole)
+            }
             FieldKind::Bits { members, .. } | FieldKind::BitStream { members } => {
                 let owner = abbrev.rsplit_once('.').expect("owner").0;
                 for m in members {

@@ -640,6 +640,17 @@ fn stated_len(
     }
 }
 
+/// The elements of an array counted by the set bits of the mask `mask` (a field of `out`,
+/// random already): its set bits, the highest cleared while there are more than `max`.
+fn mask_len(mask: &str, max: usize, out: &mut protocol_dynamic::Fields) -> usize {
+    let mut bits = out.get(mask).and_then(Value::as_u64).unwrap_or(0);
+    while bits.count_ones() as usize > max {
+        bits &= !(1u64 << (63 - bits.leading_zeros()));
+    }
+    out.insert(mask.to_string(), Value::UInt(bits));
+    bits.count_ones() as usize
+}
+
 fn random_field(
     p: &Protocol,
     name: &str,
@@ -700,7 +711,27 @@ fn random_field(
             };
             out.insert(name.to_string(), v);
         }
-        FieldKind::Array { ty, max, size_from } => {
+        FieldKind::Array {
+            ty,
+            max,
+            size_from: Some(m),
+            by_mask: true,
+        } => {
+            let len = mask_len(m, *max, out);
+            let items = (0..len).map(|_| random_elem(p, ty, rng)).collect();
+            out.insert(name.to_string(), Value::Array(items));
+        }
+        FieldKind::When { kind, mask, bit } => {
+            let bits = out.get(mask).and_then(Value::as_u64).unwrap_or(0);
+            if protocol_runtime::field::mask_bit(bits, *bit) {
+                random_field(p, name, kind, outer, out, rng);
+            } else {
+                out.insert(name.to_string(), Value::Null);
+            }
+        }
+        FieldKind::Array {
+            ty, max, size_from, ..
+        } => {
             let len = stated_len(size_from, *max, outer, out, rng);
             let items = (0..len).map(|_| random_elem(p, ty, rng)).collect();
             out.insert(name.to_string(), Value::Array(items));

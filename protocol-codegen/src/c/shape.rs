@@ -159,7 +159,7 @@ pub fn slots_of(p: &Protocol, x: &Fx) -> Vec<Slot> {
 pub fn any_field(p: &Protocol, kind: fn(&FieldKind) -> bool) -> bool {
     fn holds(k: &FieldKind, kind: fn(&FieldKind) -> bool) -> bool {
         match k {
-            FieldKind::Optional(inner) => holds(inner, kind),
+            FieldKind::Optional(inner) | FieldKind::When { kind: inner, .. } => holds(inner, kind),
             k => kind(k),
         }
     }

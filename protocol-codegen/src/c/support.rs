@@ -103,7 +103,7 @@ fn kind_refused(p: &Protocol, kind: &FieldKind) -> Option<&'static str> {
             ty: ValueType::Enum(ei, scalar),
             ..
         } => (p.enums[*ei].prim != scalar.prim).then_some("an enum read as another integer type"),
-        FieldKind::Optional(inner) => kind_refused(p, inner),
+        FieldKind::Optional(inner) | FieldKind::When { kind: inner, .. } => kind_refused(p, inner),
         _ => None,
     }
 }

@@ -177,6 +177,17 @@ fn kind_doc(p: &Protocol, f: &Field, kind: &FieldKind) -> KindDoc {
             let inner = kind_doc(p, f, inner);
             KindDoc::of(format!("optional {}", inner.ty), inner.order)
         }
+        // Present or not, it moves the fields after it.
+        FieldKind::When { kind, mask, bit } => {
+            let inner = kind_doc(p, f, kind);
+            KindDoc {
+                moves_offsets: true,
+                ..KindDoc::of(
+                    format!("{} if bit {bit} of `{mask}` is set", inner.ty),
+                    inner.order,
+                )
+            }
+        }
         FieldKind::Packed {
             count,
             bits,
@@ -234,11 +245,19 @@ fn kind_doc(p: &Protocol, f: &Field, kind: &FieldKind) -> KindDoc {
         FieldKind::NulText { max } => {
             KindDoc::varying(format!("NUL-terminated text (up to {max} bytes)"))
         }
-        FieldKind::Array { ty, max, size_from } => {
+        FieldKind::Array {
+            ty,
+            max,
+            size_from,
+            by_mask,
+        } => {
             let elem = value_doc(p, ty, None);
             // Brackets escaped: rustdoc would read `[i24]` as a link.
             let ty = match size_from {
                 None => format!("\\[{}\\] to the end (up to {max})", elem.ty),
+                Some(n) if *by_mask => {
+                    format!("\\[{}\\], one per bit set in `{n}` (up to {max})", elem.ty)
+                }
                 Some(n) => format!("\\[{}\\], `{n}` of them (up to {max})", elem.ty),
             };
             KindDoc {

@@ -257,6 +257,11 @@ impl StructPrinter<'_> {
                     self.field(si, i, f, inner)
                 )
             }
+            FieldKind::When { .. } => {
+                self.refused
+                    .push(format!("{abbrev}: a field a mask bit announces (`when`)"));
+                format!("{{ kind = \"padding\", size = {} }}", f.size)
+            }
             FieldKind::BitStream { members } => {
                 let members = self.members(&s.name, members);
                 format!(
@@ -272,7 +277,17 @@ impl StructPrinter<'_> {
                     lua::order(word.endian)
                 )
             }
-            FieldKind::Array { ty, max, size_from } => {
+            FieldKind::Array {
+                ty,
+                max,
+                size_from,
+                by_mask,
+            } => {
+                if *by_mask {
+                    self.refused.push(format!(
+                        "{abbrev}: an array counted by the set bits of a mask (`mask`)"
+                    ));
+                }
                 let elem = self.elem(ty, &abbrev, &label, &f.name);
                 let sized = size_from.as_ref().map_or(String::new(), |n| {
                     format!(", size_from = {}", lua::string(n))

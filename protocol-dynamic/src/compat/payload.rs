@@ -84,9 +84,13 @@ fn diff_field(
         (FieldKind::Value { ty: ta, count: ca }, FieldKind::Value { ty: tb, count: cb }) => {
             ca == cb && diff_value(op, ta, np, tb, at, r)
         }
-        (a @ (FieldKind::Bytes { .. } | FieldKind::Group { .. } | FieldKind::Optional(_)), b) => {
-            same_kind(op, a, np, b, at, r)
-        }
+        (
+            a @ (FieldKind::Bytes { .. }
+            | FieldKind::Group { .. }
+            | FieldKind::Optional(_)
+            | FieldKind::When { .. }),
+            b,
+        ) => same_kind(op, a, np, b, at, r),
         // Their wire form is all their description says.
         (
             FieldKind::NulText { .. } | FieldKind::Array { .. } | FieldKind::Check(_),
@@ -148,6 +152,29 @@ fn same_kind(
             }
             (x, y) => same_kind(op, x, np, y, at, r),
         },
+        // The same bit of the same mask announces the same value.
+        (
+            FieldKind::When {
+                kind: x,
+                mask: ma,
+                bit: ba,
+            },
+            FieldKind::When {
+                kind: y,
+                mask: mb,
+                bit: bb,
+            },
+        ) => {
+            ma == mb
+                && ba == bb
+                && match (&**x, &**y) {
+                    (
+                        FieldKind::Value { ty: ta, count: ca },
+                        FieldKind::Value { ty: tb, count: cb },
+                    ) => ca == cb && diff_value(op, ta, np, tb, at, r),
+                    (x, y) => x == y,
+                }
+        }
         _ => false,
     }
 }

@@ -115,10 +115,23 @@ fn kind(p: &Protocol, f: &Field, kind_of: &FieldKind) -> String {
             format!("repeated {} (at most {max})", p.structs[*elem].name)
         }
         FieldKind::Optional(inner) => format!("optional {}", kind(p, f, inner)),
+        FieldKind::When {
+            kind: inner,
+            mask,
+            bit,
+        } => {
+            format!("{} when bit {bit} of `{mask}` is set", kind(p, f, inner))
+        }
         FieldKind::Padding => format!("{} padding bytes", f.size),
         FieldKind::NulText { max } => format!("NUL-terminated text (at most {max})"),
-        FieldKind::Array { ty, max, size_from } => {
+        FieldKind::Array {
+            ty,
+            max,
+            size_from,
+            by_mask,
+        } => {
             let n = match size_from {
+                Some(n) if *by_mask => format!("one per bit set in `{n}`"),
                 Some(n) => format!("as many as `{n}`"),
                 None => "the rest".to_string(),
             };

@@ -181,7 +181,7 @@ fn field_text(p: &Protocol, name: &str, kind: &FieldKind, v: &Value, out: &mut V
                 out.push(format!("{}: {text}", m.name));
             }
         }
-        FieldKind::Optional(inner) => {
+        FieldKind::Optional(inner) | FieldKind::When { kind: inner, .. } => {
             if v[name].is_null() {
                 out.push(format!("{name}: None"));
             } else {

@@ -17,6 +17,8 @@
 //!   written as zero and ignored when read;
 //! - sized bytes and arrays: a run of bytes or elements whose length another field states
 //!   ([`take_sized`], [`array_len`], [`check_stated_len`]);
+//! - fields a mask announces: a value present when a bit of an earlier field is set
+//!   ([`mask_bit`], [`check_mask_bit`]), an array of one element per set bit ([`mask_count`]);
 //! - optional fields and repeated groups: present while bytes remain ([`more`]); a group that
 //!   holds more elements than its capacity is a payload of the wrong length ([`group_full`]);
 //!   a field that takes every byte left but a check after it reads to that check
@@ -27,8 +29,10 @@
 //! It does not own the wire cursors ([`crate::wire`]) or the payload trait
 //! ([`crate::Payload`]).
 
+mod mask;
 mod scale;
 
+pub use mask::{check_mask_bit, mask_bit, mask_count};
 pub use scale::{
     RawInt, Rounding, check_clamp, clamp, fit, quantize, to_physical, unscale, within_clamp,
 };

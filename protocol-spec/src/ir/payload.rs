@@ -307,6 +307,16 @@ pub enum FieldKind {
     },
     /// A value present only when bytes remain in the payload (only at the end of a struct).
     Optional(Box<FieldKind>),
+    /// A value of a fixed size present only when bit `bit` of the earlier unsigned integer
+    /// field `mask` of the struct is set (anywhere in the struct).
+    When {
+        /// The value when present.
+        kind: Box<FieldKind>,
+        /// The mask field (a field of this struct before this one).
+        mask: String,
+        /// The bit of the mask, from its least significant bit.
+        bit: u32,
+    },
     /// Bytes read as one stream of bits, most significant bit of the first byte first, split
     /// into members of 1 to 64 bits that straddle bytes as they fall (the runtime's
     /// [`protocol_runtime::bitstream`]); `ceil(bits / 8)` bytes, the bits after the last
@@ -332,6 +342,9 @@ pub enum FieldKind {
         /// The integer field that holds the number of elements: a field of this struct before
         /// this one, or of the struct that repeats this one.
         size_from: Option<String>,
+        /// `size_from` is a mask (a field of this struct): the number of elements is the
+        /// number of its set bits, not its value.
+        by_mask: bool,
     },
     /// NUL-terminated text of at most `max` bytes, the NUL not counted (the runtime's
     /// `NulStr<max>`): 1 to `max + 1` bytes on the wire, so the struct's size varies and the

@@ -609,6 +609,14 @@ pub struct FieldDef {
     /// The field may be absent: it is present when bytes remain in the payload.
     #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
     pub optional: Option<Spanned<bool>>,
+    /// The field is present only when a bit of an earlier unsigned integer field of the
+    /// struct is set: `{ field = "flags", bit = 3 }`.
+    #[cfg_attr(feature = "schema", schemars(with = "Option<WhenDef>"))]
+    pub when: Option<Spanned<WhenDef>>,
+    /// With `repeat` of a primitive or an enum: the name of an earlier unsigned integer field
+    /// of the struct whose set bits count the elements (one element per set bit).
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
+    pub mask: Option<SStr>,
     /// Padding bytes (written as zero, ignored when read).
     #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub pad: Option<SInt>,
@@ -671,6 +679,19 @@ pub struct FieldDef {
     #[serde(skip)]
     #[cfg_attr(feature = "schema", schemars(skip))]
     pub rust: Option<SStr>,
+}
+
+/// `when = { field = "flags", bit = 3 }`: the bit of a mask field that announces a field.
+#[derive(Debug, Deserialize)]
+#[cfg_attr(feature = "schema", derive(JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct WhenDef {
+    /// An earlier unsigned integer field of the struct (the mask).
+    #[cfg_attr(feature = "schema", schemars(with = "String"))]
+    pub field: SStr,
+    /// The bit, counted from the least significant bit of the mask's value (0 first).
+    #[cfg_attr(feature = "schema", schemars(with = "i64"))]
+    pub bit: SInt,
 }
 
 /// `packed = { bits = 11, order = "lsb-first" }`: the elements of a bit-packed array.

@@ -38,6 +38,7 @@ mod hflink_vectors;
 mod ibus_vectors;
 mod inverted_bool;
 mod lx16a_pylx16a;
+mod mask_fields;
 mod mavlink_typed;
 mod mavlink_vectors;
 mod msp_vectors;

@@ -167,9 +167,16 @@ impl Model {
                     }
                 }
             }
-            ir::FieldKind::Array { ty, max, size_from } => {
+            ir::FieldKind::Array {
+                ty,
+                max,
+                size_from,
+                by_mask,
+            } => {
+                let stated = |name: &String| ctx.values.get(name).copied().unwrap_or(0);
                 let n = match size_from {
-                    Some(name) => ctx.values.get(name).copied().unwrap_or(0) as usize,
+                    Some(name) if *by_mask => stated(name).count_ones() as usize,
+                    Some(name) => stated(name) as usize,
                     None => src.len(*max).min(room / (field.size / max).max(1)),
                 };
                 for _ in 0..n {
@@ -184,6 +191,13 @@ impl Model {
             }
             // Written by `canonical_struct`, which knows the covered bytes.
             ir::FieldKind::Check(_) => {}
+            // Present exactly when the mask's bit is set, as the encoder requires.
+            ir::FieldKind::When { kind, mask, bit } => {
+                let bits = ctx.values.get(mask).copied().unwrap_or(0);
+                if protocol_kit::field::mask_bit(bits, *bit) {
+                    self.canonical_field(src, field, kind, budget, ctx, out);
+                }
+            }
             ir::FieldKind::Optional(inner) => {
                 if src.one_in(2) {
                     let before = out.len();

@@ -273,6 +273,8 @@ pub const FEATURES: &[&str] = &[
     "field-pad",
     "field-sized-bytes",
     "field-sized-array",
+    "field-when",
+    "field-mask-array",
     "field-payload-check",
     "field-payload-check-prefix",
     "field-extension",

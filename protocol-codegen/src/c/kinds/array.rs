@@ -16,6 +16,8 @@ pub(super) struct Array<'a> {
     pub(super) ty: &'a ValueType,
     pub(super) max: usize,
     pub(super) size_from: &'a Option<String>,
+    /// `size_from` is a mask: one element per set bit.
+    pub(super) by_mask: bool,
 }
 
 impl Kind for Array<'_> {
@@ -34,11 +36,24 @@ impl Kind for Array<'_> {
 
     fn code(&self, n: &Names, s: &Struct, _f: &Field, dir: Dir, here: &str) -> String {
         let this = if dir == Dir::Read { "out" } else { "v" };
-        let stated = self.size_from.as_ref().map(|size| stated(s, this, size));
-        match dir {
+        let mut stated = self.size_from.as_ref().map(|size| stated(s, this, size));
+        // A mask states the number of its set bits, counted into `raw`.
+        let mut count = String::new();
+        if let (true, Some(mask)) = (self.by_mask, &stated) {
+            count = fill!(
+                r"
+    raw = 0;
+    for (word = ${mask}; word != 0; word &= word - 1) raw++;
+",
+                mask
+            );
+            stated = Some("raw".to_string());
+        }
+        let code = match dir {
             Dir::Read => read_array(self.p, n, self.ty, self.max, stated.as_deref(), here),
             Dir::Write => write_array(self.p, n, self.ty, self.max, stated.as_deref(), here),
-        }
+        };
+        count + &code
     }
 
     fn text(&self, n: &Names, f: &Field) -> String {

@@ -14,6 +14,7 @@ mod packed;
 mod padding;
 mod stream;
 mod value;
+mod when;
 
 use crate::ir::{Field, FieldKind, Protocol, Struct};
 
@@ -81,17 +82,28 @@ pub(super) fn of<'a>(p: &'a Protocol, kind: &'a FieldKind) -> Box<dyn Kind + 'a>
             scale: *scale,
         }),
         FieldKind::Optional(inner) => Box::new(optional::Optional(of(p, inner))),
+        FieldKind::When { kind, mask, bit } => Box::new(when::When {
+            inner: of(p, kind),
+            mask,
+            bit: *bit,
+        }),
         FieldKind::Bits { word, members } => Box::new(bits::Bits {
             p,
             word: *word,
             members,
         }),
         FieldKind::BitStream { members } => Box::new(stream::Stream { p, members }),
-        FieldKind::Array { ty, max, size_from } => Box::new(array::Array {
+        FieldKind::Array {
+            ty,
+            max,
+            size_from,
+            by_mask,
+        } => Box::new(array::Array {
             p,
             ty,
             max: *max,
             size_from,
+            by_mask: *by_mask,
         }),
         FieldKind::NulText { max } => Box::new(nul_text::NulText { max: *max }),
         FieldKind::Check(c) => Box::new(check::Check(c)),

@@ -17,6 +17,8 @@ pub(super) struct Array<'a> {
     pub(super) ty: &'a ValueType,
     pub(super) max: usize,
     pub(super) size_from: &'a Option<String>,
+    /// `size_from` is a mask of this struct: one element per set bit.
+    pub(super) by_mask: bool,
 }
 
 impl Kind<'_> for Array<'_> {
@@ -39,6 +41,12 @@ impl Kind<'_> for Array<'_> {
                         return Err(ReadFail::Runtime(field::group_full(r, at.size)));
                     }
                     items.push(v);
+                }
+            }
+            Some(n) if self.by_mask => {
+                let mask = out.get(n).and_then(Value::as_u64).unwrap_or(0);
+                for i in 0..field::array_len(field::mask_count(mask), self.max)? {
+                    items.push(read_elem(p, at.names, self.ty, r, &Path::Index(&fpath, i))?);
                 }
             }
             Some(n) => {
@@ -69,17 +77,44 @@ impl Kind<'_> for Array<'_> {
         let items = v
             .as_array()
             .ok_or_else(|| EncodeIssue::new(&fpath, "expected an array of elements"))?;
-        check_len(
-            items.len(),
-            "elements",
-            self.max,
-            self.size_from.as_deref(),
-            at.owner,
-            &fpath,
-        )?;
+        match self.size_from {
+            Some(n) if self.by_mask => check_mask_len(items.len(), self.max, n, at.obj, &fpath)?,
+            _ => check_len(
+                items.len(),
+                "elements",
+                self.max,
+                self.size_from.as_deref(),
+                at.owner,
+                &fpath,
+            )?,
+        }
         for (i, item) in items.iter().enumerate() {
             write_elem(p, self.ty, item, w, &format!("{fpath}[{i}]"))?;
         }
         Ok(())
+    }
+}
+
+/// Refuses `len` elements above `max`, or other than the set bits of the mask `mask` (a field
+/// of `obj`), as generated code does.
+fn check_mask_len(
+    len: usize,
+    max: usize,
+    mask: &str,
+    obj: &Fields,
+    path: &str,
+) -> Result<(), EncodeIssue> {
+    check_len(len, "elements", max, None, obj, path)?;
+    let bits = obj.get(mask).and_then(Value::as_u64);
+    match bits.map(field::mask_count) {
+        Some(n) if field::check_stated_len(len, n).is_ok() => Ok(()),
+        Some(n) => Err(EncodeIssue::new(
+            path,
+            format!("{len} elements, but `{mask}` has {n} bits set"),
+        )),
+        None => Err(EncodeIssue::new(
+            path,
+            format!("{len} elements, but `{mask}` holds no number"),
+        )),
     }
 }

@@ -13,6 +13,7 @@ mod packed;
 mod padding;
 mod stream;
 mod value;
+mod when;
 
 use protocol_runtime::{Reader, Writer};
 use protocol_spec::ir::{Field, FieldKind, Protocol, Struct};
@@ -145,15 +146,26 @@ pub(super) fn of(kind: &FieldKind) -> Box<dyn Kind<'_> + '_> {
             scale: *scale,
         }),
         FieldKind::Optional(inner) => Box::new(optional::Optional(of(inner))),
+        FieldKind::When { kind, mask, bit } => Box::new(when::When {
+            inner: of(kind),
+            mask,
+            bit: *bit,
+        }),
         FieldKind::BitStream { members } => Box::new(stream::Stream { members }),
         FieldKind::Bits { word, members } => Box::new(bits::Bits {
             word: *word,
             members,
         }),
-        FieldKind::Array { ty, max, size_from } => Box::new(array::Array {
+        FieldKind::Array {
+            ty,
+            max,
+            size_from,
+            by_mask,
+        } => Box::new(array::Array {
             ty,
             max: *max,
             size_from,
+            by_mask: *by_mask,
         }),
         FieldKind::NulText { max } => Box::new(nul_text::NulText { max: *max }),
         FieldKind::Check(c) => Box::new(check::Check(c)),

@@ -6,6 +6,7 @@ use toml::Spanned;
 use super::super::names::{check_snake_name, parse_prim, prim_spellings, unknown_type};
 use super::super::{Ctx, text};
 use super::bits::{MemberSite, lower_bits, lower_packed, lower_reserved_bits, lower_stream};
+use super::mask::check_mask_site;
 use super::variable::{lower_array, lower_bytes, lower_group, lower_nul_text};
 use super::{Enums, Structs};
 use crate::diag::did_you_mean;
@@ -92,6 +93,7 @@ pub(super) fn lower_field(
     let repeat = d.repeat.as_ref().is_some_and(|r| *r.get_ref());
     let of_struct = structs.by_name.contains_key(ty.get_ref())
         || ctx.spec.structs.keys().any(|k| k.get_ref() == ty.get_ref());
+    check_mask_site(ctx, d, of_struct);
     if let Some(sz) = d.size.as_ref().filter(|_| !repeat || of_struct) {
         ctx.error(
             sz.span(),
@@ -108,11 +110,13 @@ pub(super) fn lower_field(
         let scalar = parse_prim(ty.get_ref(), endian).map(|s| invert(s, inverted));
         let (elem, elem_size) = lower_value_type(ctx, f, ty, scalar, endian, structs, enums)?;
         let max = lower_array(ctx, f, name, &elem, count)?;
-        let size_from = d.size.as_ref().map(|s| s.get_ref().clone());
+        let by_mask = d.mask.is_some() && d.size.is_none();
+        let size_from = d.size.as_ref().or(d.mask.as_ref());
         let kind = FieldKind::Array {
             ty: elem,
             max,
-            size_from,
+            size_from: size_from.map(|s| s.get_ref().clone()),
+            by_mask,
         };
         return Some(field(elem_size * max, kind, &d.doc));
     }

@@ -5,6 +5,7 @@
 mod bits;
 mod checks;
 mod fields;
+mod mask;
 mod structs;
 mod variable;
 

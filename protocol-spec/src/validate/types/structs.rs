@@ -10,6 +10,7 @@ use super::super::{Ctx, text};
 use super::Enums;
 use super::checks::{lower_check_field, resolve_check_runs};
 use super::fields::lower_field;
+use super::mask::{check_mask_array, lower_when};
 use crate::ir::{ByteOrder, Constant, Field, FieldKind, Struct, ValueType};
 use crate::spec::model::{SStr, StructDef};
 
@@ -141,7 +142,7 @@ fn lower_fields(
 ) -> Vec<Field> {
     let mut fields: Vec<Field> = Vec::new();
     let mut offset = 0usize;
-    for f in d.fields.get_ref() {
+    for (k, f) in d.fields.get_ref().iter().enumerate() {
         let lowered = match &f.get_ref().name {
             Some(n) if f.get_ref().check.is_some() => {
                 lower_check_field(ctx, f, n, name, endian, offset)
@@ -151,6 +152,16 @@ fn lower_fields(
         if let Some(mut field) = lowered {
             if f.get_ref().optional.as_ref().is_some_and(|o| *o.get_ref()) {
                 field.kind = FieldKind::Optional(Box::new(field.kind));
+            }
+            let later = &d.fields.get_ref()[k + 1..];
+            if let Some(w) = &f.get_ref().when {
+                match lower_when(ctx, f, w, &field, &fields, later) {
+                    Some(kind) => field.kind = kind,
+                    None => continue,
+                }
+            }
+            if let Some(m) = &f.get_ref().mask {
+                check_mask_array(ctx, m.span(), &field, &fields, later);
             }
             if !field.name.is_empty() && fields.iter().any(|x| x.name == field.name) {
                 let span = f
@@ -292,6 +303,8 @@ fn check_tail_fields(
             }
         }
         match &f.kind {
+            // A mask is a field of this struct, checked where the field is lowered.
+            FieldKind::Array { by_mask: true, .. } => {}
             FieldKind::Bytes {
                 size_from: Some(src),
                 ..
@@ -321,6 +334,15 @@ fn check_tail_fields(
                 {
                     ctx.error(span(), format!("the elements of `{}` hold a check or NUL-terminated text, which a repeated element cannot", f.name), format!("move them out of `{}`", inner.name));
                 }
+                let masked = |x: &Field| {
+                    matches!(
+                        x.kind,
+                        FieldKind::When { .. } | FieldKind::Array { by_mask: true, .. }
+                    )
+                };
+                if inner.fields.iter().any(masked) {
+                    ctx.error(span(), format!("the elements of `{}` hold fields a mask announces (`when` or `mask`), which a repeated element cannot", f.name), format!("move them out of `{}`", inner.name));
+                }
                 // The element's sized bytes may name fields of this struct before the group.
                 for need in &out.structs[*elem].context {
                     if !fields[..i].iter().any(|x| &x.name == need) {
@@ -328,7 +350,10 @@ fn check_tail_fields(
                     }
                 }
             }
-            FieldKind::Bytes { .. } | FieldKind::Array { .. } | FieldKind::Optional(_) => {}
+            FieldKind::Bytes { .. }
+            | FieldKind::Array { .. }
+            | FieldKind::Optional(_)
+            | FieldKind::When { .. } => {}
             // The empty text: its NUL.
             FieldKind::NulText { .. } => min_size += 1,
             _ => min_size += f.size,
@@ -373,7 +398,11 @@ fn lower_base_size(
     let variable = fields.iter().any(|f| {
         matches!(
             f.kind,
-            FieldKind::Bytes { .. } | FieldKind::Group { .. } | FieldKind::Optional(_)
+            FieldKind::Bytes { .. }
+                | FieldKind::Group { .. }
+                | FieldKind::Optional(_)
+                | FieldKind::When { .. }
+                | FieldKind::Array { by_mask: true, .. }
         )
     });
     if variable {

@@ -332,6 +332,13 @@ impl Spec {
             max += 1 + most;
             names.clear();
         }
+        if !fixed && self.rng.one_in(5) {
+            let (f, most) = self.masked_fields();
+            fields.extend(f);
+            min += 1;
+            max += 1 + most;
+            names.clear();
+        }
         if !names.is_empty() && self.rng.one_in(5) {
             let (f, n) = self.payload_check(&names);
             fields.push(f);
@@ -386,6 +393,33 @@ impl Spec {
                 most * int.size,
             )
         }
+    }
+
+    /// A mask, then an integer present when one of its bits is set, an array of one integer
+    /// per set bit, or both; the largest number of bytes they take after the mask.
+    fn masked_fields(&mut self) -> (Vec<String>, usize) {
+        let mut fields = vec!["{ name = \"m\", type = \"u8\" }".to_string()];
+        let mut most = 0;
+        let both = self.rng.one_in(3);
+        if both || self.rng.one_in(2) {
+            self.feature("field-when");
+            let (int, bit) = (*self.rng.pick(&INTS[..4]), self.rng.range(0, 7));
+            fields.push(format!(
+                "{{ name = \"mv\", type = \"{}\", when = {{ field = \"m\", bit = {bit} }} }}",
+                int.name
+            ));
+            most += int.size;
+        }
+        if both || fields.len() == 1 {
+            self.feature("field-mask-array");
+            let int = *self.rng.pick(&INTS[..4]);
+            fields.push(format!(
+                "{{ name = \"md\", type = \"{}\", repeat = true, mask = \"m\", max = 8 }}",
+                int.name
+            ));
+            most += 8 * int.size;
+        }
+        (fields, most)
     }
 
     /// A check over a run of the fields `names` (a CRC with a prefix sometimes); its size.

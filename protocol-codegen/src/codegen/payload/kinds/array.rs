@@ -16,6 +16,8 @@ pub(super) struct Array<'a> {
     elem: Value<'a>,
     max: usize,
     size_from: Option<Ident>,
+    /// `size_from` is a mask: one element per set bit.
+    by_mask: bool,
     elem_size: usize,
 }
 
@@ -25,13 +27,27 @@ impl<'a> Array<'a> {
         ty: &'a ValueType,
         max: usize,
         size_from: &Option<String>,
+        by_mask: bool,
         size: usize,
     ) -> Array<'a> {
         Array {
             elem: Value::new(p, ty, None),
             max,
             size_from: size_from.as_deref().map(ident),
+            by_mask,
             elem_size: size / max,
+        }
+    }
+}
+
+impl Array<'_> {
+    /// The number of elements the size field's value `value` states: the value, or the
+    /// number of its set bits for a mask.
+    fn stated(&self, value: TokenStream, rt: &TokenStream) -> TokenStream {
+        if self.by_mask {
+            quote!(#rt::mask_count(#value as u64))
+        } else {
+            quote!(#value as u64)
         }
     }
 }
@@ -71,8 +87,9 @@ impl Kind for Array<'_> {
             }},
             Some(n) => {
                 let var = local(n);
+                let stated = self.stated(quote!(#var), rt);
                 quote! {{
-                    let n = #rt::array_len(#var as u64, #max)?;
+                    let n = #rt::array_len(#stated, #max)?;
                     let mut a = <#ty>::new();
                     for _ in 0..n {
                         a.push(#read).map_err(|_| #rt::DecodeError::SizeMismatch { place: #rt::Place::NONE })?;
@@ -85,10 +102,10 @@ impl Kind for Array<'_> {
 
     fn write(&self, value: TokenStream, owner: &TokenStream, rt: &TokenStream) -> TokenStream {
         let w1 = self.elem.write_elem(quote!(*e), rt);
-        let stated = self
-            .size_from
-            .as_ref()
-            .map(|n| quote!(#rt::check_stated_len(#value.len(), #owner.#n as u64)?;));
+        let stated = self.size_from.as_ref().map(|n| {
+            let stated = self.stated(quote!(#owner.#n), rt);
+            quote!(#rt::check_stated_len(#value.len(), #stated)?;)
+        });
         quote!(#stated for e in #value.iter() { #w1 })
     }
 

@@ -14,6 +14,7 @@ mod packed;
 mod padding;
 mod stream;
 mod value;
+mod when;
 
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
@@ -166,11 +167,17 @@ pub(crate) fn of<'a>(p: &'a Protocol, kind: &'a FieldKind, size: usize) -> Box<d
             size,
         }),
         FieldKind::Optional(inner) => Box::new(optional::Optional(of(p, inner, size))),
+        FieldKind::When { kind, mask, bit } => {
+            Box::new(when::When::new(of(p, kind, size), mask, *bit))
+        }
         FieldKind::Bits { word, members } => Box::new(bits::Bits::new(p, *word, members)),
         FieldKind::BitStream { members } => Box::new(stream::Stream { p, members, size }),
-        FieldKind::Array { ty, max, size_from } => {
-            Box::new(array::Array::new(p, ty, *max, size_from, size))
-        }
+        FieldKind::Array {
+            ty,
+            max,
+            size_from,
+            by_mask,
+        } => Box::new(array::Array::new(p, ty, *max, size_from, *by_mask, size)),
         FieldKind::NulText { max } => Box::new(nul_text::NulText { max: *max }),
         FieldKind::Check(c) => Box::new(check::Check { check: c, size }),
     }
