@@ -43,14 +43,14 @@ fn files_in(dir: &str, ext: &str) -> Vec<String> {
     out
 }
 
-/// The protocol name a spec's text gives (its top-level `name`).
+/// The protocol name a spec's text gives (`[protocol] name`).
 fn spec_name(text: &str) -> Option<String> {
     let table: toml::Table = text.parse().ok()?;
-    Some(table.get("name")?.as_str()?.to_string())
+    Some(table.get("protocol")?.get("name")?.as_str()?.to_string())
 }
 
-/// Every spec of `specs/` has one entry, under the name its `[protocol]` gives; every entry's
-/// spec exists.
+/// Every spec of `specs/` has one entry, under the name its `[protocol]` table gives; every
+/// entry's spec exists.
 #[test]
 fn every_spec_is_registered_under_its_name() {
     let catalogue = catalogue::load();
