@@ -136,15 +136,12 @@ impl Catalogue {
     }
 
     /// The specs `suite` takes, in order.
-    pub fn taking<'c, 's>(&'c self, suite: &'s str) -> impl Iterator<Item = &'c Entry> {
+    pub fn taking<'c>(&'c self, suite: &str) -> impl Iterator<Item = &'c Entry> {
         self.spec.iter().filter(move |e| e.takes(suite))
     }
 
     /// The vector files `suite` reads, each with its spec, in order.
-    pub fn vectors<'c, 's>(
-        &'c self,
-        suite: &'s str,
-    ) -> impl Iterator<Item = (&'c Entry, &'c Vectors)> {
+    pub fn vectors<'c>(&'c self, suite: &str) -> impl Iterator<Item = (&'c Entry, &'c Vectors)> {
         self.taking(suite).flat_map(move |e| {
             e.vectors
                 .iter()
