@@ -4,10 +4,16 @@
 //! and `RANDOM_SPECS_SEED` its first seed (default 0); both are printed by the test.
 //! `RANDOM_SPEC_FILE` names one spec file (its protocol named `rand_SEED`) to expand alone
 //! instead: a shrunk failure or a kept fixture, checked by hand.
+//!
+//! It also writes `for_each_spec!`, the robustness suites' list of bundled specs, from the
+//! registry `catalogue.toml` (`catalogue.rs` reads it; the fuzz crate's build script writes
+//! the same macro).
 
 use std::fmt::Write as _;
 use std::path::{Component, Path, PathBuf};
 
+#[path = "catalogue.rs"]
+mod catalogue;
 #[path = "tests/support/random_spec.rs"]
 mod random_spec;
 
@@ -57,9 +63,13 @@ fn one_file() -> Option<(u64, String)> {
 fn main() {
     println!("cargo:rerun-if-changed=tests/support/random_spec.rs");
     println!("cargo:rerun-if-changed=tests/support/random_spec");
+    println!("cargo:rerun-if-changed=catalogue.rs");
+    println!("cargo:rerun-if-changed=catalogue.toml");
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("OUT_DIR"));
+    let specs = catalogue::load().for_each_spec_macro("../");
+    std::fs::write(out.join("for_each_spec.rs"), specs).expect("write for_each_spec.rs");
     let first = number("RANDOM_SPECS_SEED", 0);
     let count = number("RANDOM_SPECS", 12);
-    let out = PathBuf::from(std::env::var("OUT_DIR").expect("OUT_DIR"));
     let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("manifest dir"));
     let dir = out.join("random_specs");
     std::fs::create_dir_all(&dir).expect("create the random spec directory");

@@ -1,5 +1,5 @@
-"""Shared fixtures: the repository's root, the bundled specs, and the `protocol` command the
-package is compared with."""
+"""Shared fixtures: the repository's root, the bundled specs and their registry
+(`tests/catalogue.toml`), and the `protocol` command the package is compared with."""
 
 from __future__ import annotations
 
@@ -9,12 +9,19 @@ from pathlib import Path
 
 import pytest
 
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python before 3.11
+    import tomli as tomllib
+
 import protocol_link
 
 ROOT = Path(__file__).resolve().parents[2]
 SPECS = ROOT / "specs"
 VECTORS = ROOT / "tests" / "vectors"
 CAPTURES = ROOT / "examples" / "captures"
+#: The registry of bundled specs: one `[[spec]]` table each (its header says what the keys mean).
+CATALOGUE = tomllib.loads((ROOT / "tests" / "catalogue.toml").read_text())["spec"]
 
 _loaded: dict = {}
 

@@ -17,28 +17,43 @@ from pathlib import Path
 import pytest
 
 import protocol_link
-from conftest import CAPTURES, VECTORS, spec
+from conftest import CAPTURES, CATALOGUE, VECTORS, spec
+
+def takes(entry: dict, suite: str) -> bool:
+    """Whether a registry entry (a spec's, or one of its vector files') does not skip `suite`."""
+    return suite not in entry.get("skip", [])
+
+
+def stem(entry: dict) -> str:
+    """The spec's file name without `.toml`: what `spec()` loads."""
+    return entry["file"].removesuffix(".toml")
+
+
+def vector_specs() -> dict:
+    """Vector file -> the specs (and directions) that decode it: the registry's `python` suite."""
+    out: dict = {}
+    for entry in CATALOGUE:
+        for vectors in entry.get("vectors", []):
+            if takes(entry, "python") and takes(vectors, "python"):
+                directions = entry.get("directions") or [None]
+                out.setdefault(vectors["file"], []).extend((stem(entry), d) for d in directions)
+    return out
+
+
+def capture_specs() -> dict:
+    """Capture -> spec and the command's options (its frame format, and the first direction of a
+    spec whose directions are given), as the registry lists them."""
+    out = {}
+    for entry in CATALOGUE:
+        for capture in entry.get("captures", []):
+            options = ["--frame", capture["frame"]] if "frame" in capture else []
+            options += ["--direction", entry["directions"][0]] if entry.get("directions") else []
+            out[capture["name"] + ".bin"] = (stem(entry), options)
+    return out
+
 
 #: Vector file -> the specs (and directions) that decode it.
-VECTOR_SPECS = {
-    "agilex_scout.json": [("scout", None)],
-    "crsf.json": [("crsf", None)],
-    "dynamixel_protocol1.json": [("dynamixel1", "request"), ("dynamixel1", "response")],
-    "dynamixel_protocol2.json": [("dynamixel", None)],
-    "feetech_scservo.json": [("feetech", "request"), ("feetech", "response")],
-    "hflink.json": [("hflink", None)],
-    "ibus.json": [("ibus", None)],
-    "lx16a_pylx16a.json": [("lx16a", "request"), ("lx16a", "response")],
-    "mavlink.json": [("mavlink", None)],
-    "msp.json": [("msp", None)],
-    "robomaster_referee.json": [("referee", None), ("referee2018", None)],
-    "roborts_sdk.json": [("roborts", None)],
-    "sbp_libsbp.json": [("sbp", None)],
-    "sbus.json": [("sbus", None)],
-    "ubx.json": [("ubx", None)],
-    "ubx_pyubx2.json": [("ubx", None)],
-    "vesc_pyvesc.json": [("vesc", "request"), ("vesc", "response")],
-}
+VECTOR_SPECS = vector_specs()
 
 
 def jsonable(value):
@@ -151,26 +166,7 @@ def test_every_can_vector_decodes_as_the_command_decodes_it(cli, tmp_path: Path,
 
 
 #: Capture -> spec and the command's options (`examples/captures/README.md`).
-CAPTURE_SPECS = {
-    "crsf.bin": ("crsf", []),
-    "dynamixel.bin": ("dynamixel", []),
-    "dynamixel1.bin": ("dynamixel1", ["--direction", "request"]),
-    "dynamixel_feedback.bin": ("dynamixel", ["--frame", "feedback"]),
-    "feetech.bin": ("feetech", ["--direction", "request"]),
-    "hflink.bin": ("hflink", []),
-    "ibus.bin": ("ibus", []),
-    "lx16a.bin": ("lx16a", ["--direction", "request"]),
-    "mavlink.bin": ("mavlink", []),
-    "msp.bin": ("msp", []),
-    "referee.bin": ("referee", []),
-    "referee2018.bin": ("referee2018", []),
-    "roborts.bin": ("roborts", []),
-    "sbp.bin": ("sbp", []),
-    "sbus.bin": ("sbus", []),
-    "scout.bin": ("scout", []),
-    "ubx.bin": ("ubx", []),
-    "vesc.bin": ("vesc", ["--direction", "request"]),
-}
+CAPTURE_SPECS = capture_specs()
 
 
 @pytest.mark.parametrize("file", sorted(CAPTURE_SPECS))

@@ -11,29 +11,14 @@ use serde_json::Value;
 use crate::support::{self, root};
 
 /// Each spec, its vector file and the directions it is decoded in (a spec whose header does not
-/// tell them is decoded in each).
-pub const SPECS: &[(&str, &str, &[&str])] = &[
-    ("crsf", "crsf.json", &[]),
-    ("dynamixel", "dynamixel_protocol2.json", &[]),
-    (
-        "dynamixel1",
-        "dynamixel_protocol1.json",
-        &["request", "response"],
-    ),
-    ("feetech", "feetech_scservo.json", &["request", "response"]),
-    ("hflink", "hflink.json", &[]),
-    ("ibus", "ibus.json", &[]),
-    ("lx16a", "lx16a_pylx16a.json", &["request", "response"]),
-    ("mavlink", "mavlink.json", &[]),
-    ("msp", "msp.json", &[]),
-    ("referee", "robomaster_referee.json", &[]),
-    ("referee2018", "robomaster_referee.json", &[]),
-    ("roborts", "roborts_sdk.json", &[]),
-    ("sbus", "sbus.json", &[]),
-    ("scout", "agilex_scout.json", &[]),
-    ("ubx", "ubx.json", &[]),
-    ("vesc", "vesc_pyvesc.json", &["request", "response"]),
-];
+/// tell them is decoded in each): the registry's `dissector` suite (`tests/catalogue.toml`).
+pub const SPECS: support::Listed<(&str, &str, &[&str])> = support::Listed(specs);
+
+fn specs() -> &'static [(&'static str, &'static str, &'static [&'static str])] {
+    type Spec = (&'static str, &'static str, &'static [&'static str]);
+    static SPECS: std::sync::OnceLock<Vec<Spec>> = std::sync::OnceLock::new();
+    SPECS.get_or_init(|| support::vector_specs("dissector"))
+}
 
 pub fn tshark_available() -> bool {
     let found = Command::new("tshark").arg("--version").output().is_ok();

@@ -82,41 +82,20 @@ fn specs() -> Vec<(PathBuf, usize)> {
     out
 }
 
-/// The vector files of a spec, and whether their streams' expected frames are the spec's.
+/// The vector files of a spec, and whether their streams' expected frames are the spec's: for a
+/// bundled spec, the registry's `c-peer` suite (`tests/catalogue.toml`, which says why a file's
+/// streams are not); for a fixture, `tests/vectors/NAME.json` if there is one.
 fn vector_files(spec: &str) -> Vec<(String, bool)> {
-    let known: &[(&str, &str, bool)] = &[
-        ("referee", "robomaster_referee.json", true),
-        ("referee2018", "robomaster_referee.json", false),
-        ("scout", "agilex_scout.json", true),
-        ("dynamixel", "dynamixel_protocol2.json", true),
-        ("dynamixel1", "dynamixel_protocol1.json", true),
-        ("roborts", "roborts_sdk.json", true),
-        // MAVLink 1 and 2 frames (and a signed one) on one link: the link's decoder finds them.
-        ("mavlink", "mavlink.json", true),
-        // The stream holds an SBUS2 frame, whose footer the spec refuses.
-        ("sbus", "sbus.json", false),
-        ("ubx", "ubx.json", true),
-        // Random messages of every command, from pyubx2: no streams.
-        ("ubx", "ubx_pyubx2.json", false),
-        // Random messages of every command, from their reference implementations: no streams.
-        ("vesc", "vesc_pyvesc.json", false),
-        ("feetech", "feetech_scservo.json", false),
-        ("lx16a", "lx16a_pylx16a.json", false),
-        ("crsf", "crsf.json", true),
-        // Random messages of the types crsf-parser builds: no streams.
-        ("crsf", "crsf_parser.json", false),
-        ("msp", "msp.json", true),
-        // Random messages of the commands, framed and parsed by YAMSPy: no streams.
-        ("msp", "msp_yamspy.json", false),
-        // CAN frames of random messages of every command, from pydronecan: no streams.
-        ("dronecan", "dronecan_pydronecan.json", false),
-    ];
-    let mut out: Vec<(String, bool)> = known
-        .iter()
-        .filter(|(s, _, _)| *s == spec)
-        .map(|(_, f, primary)| (f.to_string(), *primary))
-        .collect();
-    if out.is_empty() && root().join(format!("tests/vectors/{spec}.json")).exists() {
+    let catalogue = crate::support::catalogue();
+    if catalogue.spec.iter().any(|e| e.name == spec) {
+        return catalogue
+            .vectors("c-peer")
+            .filter(|(e, _)| e.name == spec)
+            .map(|(_, v)| (v.file.clone(), v.streams))
+            .collect();
+    }
+    let mut out = Vec::new();
+    if root().join(format!("tests/vectors/{spec}.json")).exists() {
         out.push((format!("{spec}.json"), true));
     }
     out

@@ -13,34 +13,27 @@ use std::path::{Path, PathBuf};
 use serde_json::Value;
 use support::{CAPTURES, json_lines, protocol, root, text};
 
-/// Each spec and its vector file, as the Wireshark test pairs them, with the options decode
-/// needs (a direction for a spec whose header does not tell it).
-const VECTORS: &[(&str, &str, &[&str])] = &[
-    ("crsf", "crsf.json", &[]),
-    ("dynamixel", "dynamixel_protocol2.json", &[]),
-    (
-        "dynamixel1",
-        "dynamixel_protocol1.json",
-        &["--direction", "request"],
-    ),
-    (
-        "feetech",
-        "feetech_scservo.json",
-        &["--direction", "request"],
-    ),
-    ("hflink", "hflink.json", &[]),
-    ("ibus", "ibus.json", &[]),
-    ("lx16a", "lx16a_pylx16a.json", &["--direction", "request"]),
-    ("mavlink", "mavlink.json", &[]),
-    ("msp", "msp.json", &[]),
-    ("referee", "robomaster_referee.json", &[]),
-    ("referee2018", "robomaster_referee.json", &[]),
-    ("roborts", "roborts_sdk.json", &[]),
-    ("sbus", "sbus.json", &[]),
-    ("scout", "agilex_scout.json", &[]),
-    ("ubx", "ubx.json", &[]),
-    ("vesc", "vesc_pyvesc.json", &["--direction", "request"]),
-];
+/// Each spec and its vector file, as the Wireshark test pairs them (the registry's `exports`
+/// suite, `tests/catalogue.toml`), with the options decode needs (a direction for a spec whose
+/// header does not tell it: the first it is given).
+const VECTORS: support::Listed<(&str, &str, &[&str])> = support::Listed(vectors);
+
+fn vectors() -> &'static [(&'static str, &'static str, &'static [&'static str])] {
+    type Vectors = (&'static str, &'static str, &'static [&'static str]);
+    static VECTORS: std::sync::OnceLock<Vec<Vectors>> = std::sync::OnceLock::new();
+    VECTORS.get_or_init(|| {
+        support::vector_specs("exports")
+            .into_iter()
+            .map(|(spec, file, directions)| {
+                let opts: &'static [&'static str] = match directions.first() {
+                    Some(d) => Box::leak(vec!["--direction", *d].into_boxed_slice()),
+                    None => &[],
+                };
+                (spec, file, opts)
+            })
+            .collect()
+    })
+}
 
 /// What one comparison covered.
 #[derive(Debug, Default, Clone, Copy)]

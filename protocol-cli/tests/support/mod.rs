@@ -5,41 +5,78 @@
 use protocol_dynamic::Interpreter;
 use serde_json::Value;
 
+/// The registry of bundled specs (`tests/catalogue.toml`).
+#[path = "../../../tests/catalogue.rs"]
+pub mod catalogue;
+
+/// The registry, read once.
+pub fn catalogue() -> &'static catalogue::Catalogue {
+    static CATALOGUE: std::sync::OnceLock<catalogue::Catalogue> = std::sync::OnceLock::new();
+    CATALOGUE.get_or_init(catalogue::load)
+}
+
+/// A string that lives as long as the test binary (the lists below are built once).
+fn keep(text: String) -> &'static str {
+    Box::leak(text.into_boxed_str())
+}
+
+/// A capture: its spec's path, its name and the options `decode` needs.
+pub type Capture = (&'static str, &'static str, &'static [&'static str]);
+
 /// Spec, name and the options `decode` needs of every serial capture of `examples/captures/`
-/// (`NAME.bin`, with its truth `NAME.truth.jsonl`).
-pub const CAPTURES: &[(&str, &str, &[&str])] = &[
-    ("specs/hflink.toml", "hflink", &["--frame", "link"]),
-    ("specs/referee.toml", "referee", &["--frame", "referee"]),
-    (
-        "specs/referee2018.toml",
-        "referee2018",
-        &["--frame", "referee"],
-    ),
-    ("specs/scout.toml", "scout", &["--frame", "uart"]),
-    ("specs/roborts.toml", "roborts", &["--frame", "sdk"]),
-    ("specs/dynamixel.toml", "dynamixel", &["--frame", "packet"]),
-    (
-        "specs/dynamixel.toml",
-        "dynamixel_feedback",
-        &["--frame", "feedback"],
-    ),
-    ("specs/crsf.toml", "crsf", &[]),
-    ("specs/ubx.toml", "ubx", &[]),
-    ("specs/ibus.toml", "ibus", &[]),
-    ("specs/sbus.toml", "sbus", &[]),
-    ("specs/sbp.toml", "sbp", &[]),
-    // Both formats of the link, each found by its sync: no `--frame`.
-    ("specs/mavlink.toml", "mavlink", &[]),
-    (
-        "specs/dynamixel1.toml",
-        "dynamixel1",
-        &["--direction", "request"],
-    ),
-    ("specs/msp.toml", "msp", &["--frame", "v1"]),
-    ("specs/vesc.toml", "vesc", &["--direction", "request"]),
-    ("specs/feetech.toml", "feetech", &["--direction", "request"]),
-    ("specs/lx16a.toml", "lx16a", &["--direction", "request"]),
-];
+/// (`NAME.bin`, with its truth `NAME.truth.jsonl`), as the registry lists them.
+pub const CAPTURES: Listed<Capture> = Listed(captures);
+
+fn captures() -> &'static [Capture] {
+    static CAPTURES: std::sync::OnceLock<Vec<Capture>> = std::sync::OnceLock::new();
+    CAPTURES.get_or_init(|| {
+        let catalogue = catalogue();
+        catalogue
+            .spec
+            .iter()
+            .flat_map(|e| e.captures.iter().map(move |c| (e, c)))
+            .map(|(e, c)| {
+                let options: Vec<&'static str> =
+                    e.capture_options(c).into_iter().map(keep).collect();
+                let options: &'static [&'static str] = Box::leak(options.into_boxed_slice());
+                (keep(e.path()), c.name.as_str(), options)
+            })
+            .collect()
+    })
+}
+
+/// A list read from the registry once, which a `for` loop and an index take as they take the
+/// constant slice it stands for (`for (spec, name, how) in CAPTURES`, `CAPTURES[0]`).
+#[derive(Clone, Copy)]
+pub struct Listed<T: 'static>(pub fn() -> &'static [T]);
+
+impl<T> IntoIterator for Listed<T> {
+    type Item = &'static T;
+    type IntoIter = std::slice::Iter<'static, T>;
+    fn into_iter(self) -> Self::IntoIter {
+        (self.0)().iter()
+    }
+}
+
+impl<T> std::ops::Index<usize> for Listed<T> {
+    type Output = T;
+    fn index(&self, i: usize) -> &T {
+        &(self.0)()[i]
+    }
+}
+
+/// Each spec a vector suite takes (its name), with each vector file the suite reads and the
+/// directions given to the spec's decoder (none when its header tells them), from the registry.
+pub fn vector_specs(suite: &str) -> Vec<(&'static str, &'static str, &'static [&'static str])> {
+    catalogue()
+        .vectors(suite)
+        .map(|(e, v)| {
+            let directions: Vec<&'static str> = e.directions.iter().map(String::as_str).collect();
+            let directions: &'static [&'static str] = Box::leak(directions.into_boxed_slice());
+            (e.name.as_str(), v.file.as_str(), directions)
+        })
+        .collect()
+}
 
 /// The interpreter of `specs/NAME.toml`, its messages naming the path as the command's tests
 /// pass it (from the workspace root).

@@ -7,9 +7,15 @@
 //!
 //! Besides the bundled specs, `tests/fixtures/features.toml` holds every feature of the spec
 //! language that they do not use. A spec added to `specs/` joins by one `protocol!` line and one
-//! `generated!` line below.
+//! `generated!` line below (`catalogue::` of the tests crate checks that every spec of the
+//! registry `tests/catalogue.toml` has its `protocol!` line here, or skips `interp`); the golden
+//! vector files come from the registry.
 
 use crate::support;
+
+/// The registry of bundled specs (`tests/catalogue.toml`).
+#[path = "../../../tests/catalogue.rs"]
+mod catalogue;
 
 use protocol_dynamic::{Codec, DecodeIssue, Decoded, Interpreter, Item, Value, hex, word_field};
 use protocol_kit::{CanFrame, DecodeError, EncodeError, Event, FrameLayout, Reject, StreamDecoder};
@@ -381,26 +387,20 @@ fn every_layout_is_the_generated_one() {
 /// read it (the 2018 referee frame is also read by the 2019 spec, and the other way round).
 #[test]
 fn golden_vectors_decode_and_encode_alike() {
-    let files: &[(&str, &str)] = &[
-        ("crsf", "crsf.json"),
-        ("hflink", "hflink.json"),
-        ("referee", "robomaster_referee.json"),
-        ("referee2018", "robomaster_referee.json"),
-        ("scout", "agilex_scout.json"),
-        ("dynamixel", "dynamixel_protocol2.json"),
-        ("dynamixel1", "dynamixel_protocol1.json"),
-        ("roborts", "roborts_sdk.json"),
-        ("mavlink", "mavlink.json"),
-        ("msp", "msp.json"),
-        ("ibus", "ibus.json"),
-        ("sbus", "sbus.json"),
-        ("ubx", "ubx.json"),
-        ("ubx", "ubx_pyubx2.json"),
-        ("vesc", "vesc_pyvesc.json"),
-        ("feetech", "feetech_scservo.json"),
-        ("lx16a", "lx16a_pylx16a.json"),
-    ];
+    // The registry's `interp` suite (`tests/catalogue.toml`).
+    let catalogue = catalogue::load();
+    let files: Vec<(&str, &str)> = catalogue
+        .vectors("interp")
+        .map(|(e, v)| (e.name.as_str(), v.file.as_str()))
+        .collect();
     let gens = specs();
+    for (spec, _) in &files {
+        assert!(
+            gens.iter().any(|g| g.spec == *spec),
+            "{spec}: the registry (tests/catalogue.toml) has it read its vectors here, but \
+             protocol-dynamic/tests/it/interp_differential.rs has no `generated!` entry of it"
+        );
+    }
     // A spec whose directions are given has an entry per direction: each reads every frame.
     for (g, file) in files.iter().flat_map(|(spec, file)| {
         gens.iter()

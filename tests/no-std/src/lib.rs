@@ -13,24 +13,8 @@
 #![forbid(unsafe_code)]
 #![deny(warnings, missing_docs)]
 
-protocol_kit::protocol!("../../specs/hflink.toml");
-protocol_kit::protocol!("../../specs/referee.toml");
-protocol_kit::protocol!("../../specs/referee2018.toml");
-protocol_kit::protocol!("../../specs/scout.toml");
-protocol_kit::protocol!("../../specs/mavlink.toml");
-protocol_kit::protocol!("../../specs/roborts.toml");
-protocol_kit::protocol!("../../specs/dynamixel.toml");
-protocol_kit::protocol!("../../specs/dynamixel1.toml");
-protocol_kit::protocol!("../../specs/crsf.toml");
-protocol_kit::protocol!("../../specs/ibus.toml");
-protocol_kit::protocol!("../../specs/sbus.toml");
-protocol_kit::protocol!("../../specs/sbp.toml");
-protocol_kit::protocol!("../../specs/ubx.toml");
-protocol_kit::protocol!("../../specs/msp.toml");
-protocol_kit::protocol!("../../specs/dronecan.toml");
-protocol_kit::protocol!("../../specs/vesc.toml");
-protocol_kit::protocol!("../../specs/feetech.toml");
-protocol_kit::protocol!("../../specs/lx16a.toml");
+// Every bundled spec of the registry (`tests/catalogue.toml`), written by the build script.
+include!(concat!(env!("OUT_DIR"), "/specs.rs"));
 // The payload types beyond fixed-width primitives: 24-bit integers, kept bitfield bits,
 // bit-packed arrays, text.
 protocol_kit::protocol!("../../protocol-codegen/tests/features/int24.toml");

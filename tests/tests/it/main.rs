@@ -19,10 +19,14 @@
 mod support;
 #[path = "../golden/mod.rs"]
 mod golden;
+/// The registry of bundled specs (`tests/catalogue.toml`).
+#[path = "../../catalogue.rs"]
+mod registry;
 
 mod async_io;
 mod bit_stream;
 mod can_frames;
+mod catalogue;
 mod check_vectors;
 mod crsf_parser;
 mod crsf_vectors;

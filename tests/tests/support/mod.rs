@@ -2,7 +2,8 @@
 //! no-alloc, the fuzz corpus) and by the `cargo fuzz` targets, which include this directory by
 //! path so that CI replays the fuzz corpus through exactly the code the fuzzers run.
 //!
-//! It owns the list of specs under test ([`for_each_spec!`]: one line per spec), the [`Spec`]
+//! It owns the list of specs under test ([`for_each_spec!`], written from the registry of
+//! bundled specs by the build script), the [`Spec`]
 //! trait that makes a generated module usable by generic code, a spec-driven generator of valid
 //! frames ([`model`]) and of canonical payloads ([`payload`]), the checked stream driver ([`stream`]), the fault injector ([`fault`])
 //! and the fuzz entry points ([`fuzz`]). It does not know any spec's structs by name: every
@@ -21,60 +22,14 @@ use std::fmt::Debug;
 use protocol_kit::layout::LayoutRef;
 use protocol_kit::{DecodeError, EncodeError, Event, Frame, FrameLayout, Stats, StreamDecoder};
 
-/// Calls `$callback!(module, "path relative to the crate")` for every spec under test.
-///
-/// Adding a spec to every robustness suite (properties, faults, bounds, no-alloc, fuzz corpus)
-/// is one line here; `specs_dir_is_covered` (in `it/robustness/properties.rs`) fails when a spec in `specs/`
-/// is missing from this list. A spec whose directions are given to the decoder (no header field
-/// tells them) names the direction the suites decode and its decoders, after the path. A spec
-/// whose link has several frame formats says `link` after the path: the suites then run its
-/// link decoder (`any_decoder()`, `AnyPacket`) on frames of every format.
-macro_rules! for_each_spec {
-    ($callback:ident) => {
-        $callback!(crsf, "../specs/crsf.toml");
-        $callback!(dynamixel, "../specs/dynamixel.toml");
-        $callback!(
-            dynamixel1,
-            "../specs/dynamixel1.toml",
-            "request",
-            from_request_frame,
-            decode_request
-        );
-        $callback!(
-            feetech,
-            "../specs/feetech.toml",
-            "request",
-            from_request_frame,
-            decode_request
-        );
-        $callback!(hflink, "../specs/hflink.toml");
-        $callback!(sbp, "../specs/sbp.toml");
-        $callback!(
-            lx16a,
-            "../specs/lx16a.toml",
-            "request",
-            from_request_frame,
-            decode_request
-        );
-        $callback!(mavlink, "../specs/mavlink.toml", link);
-        $callback!(msp, "../specs/msp.toml", link);
-        $callback!(ibus, "../specs/ibus.toml");
-        $callback!(referee, "../specs/referee.toml");
-        $callback!(referee2018, "../specs/referee2018.toml");
-        $callback!(roborts, "../specs/roborts.toml");
-        $callback!(sbus, "../specs/sbus.toml");
-        $callback!(scout, "../specs/scout.toml");
-        $callback!(ubx, "../specs/ubx.toml");
-        $callback!(
-            vesc,
-            "../specs/vesc.toml",
-            "request",
-            from_request_frame,
-            decode_request
-        );
-        $callback!(mavlink_common, "../specs/mavlink-common.toml", link);
-    };
-}
+// `for_each_spec!`: calls `$callback!(module, "path relative to the crate")` for every spec
+// under test. The build script writes it from the registry of bundled specs
+// (`tests/catalogue.toml`): adding a spec to every robustness suite (properties, faults,
+// bounds, no-alloc, fuzz corpus) is its entry there. A spec whose directions are given to the
+// decoder (no header field tells them) names the direction the suites decode and its decoders,
+// after the path. A spec whose link has several frame formats says `link` after the path: the
+// suites then run its link decoder (`any_decoder()`, `AnyPacket`) on frames of every format.
+include!(concat!(env!("OUT_DIR"), "/for_each_spec.rs"));
 pub(crate) use for_each_spec;
 
 /// The packet type the suites test for a line of [`for_each_spec!`]: the link's `AnyPacket` for

@@ -307,36 +307,45 @@ fn nested_frame_rule<S: Spec>() {
     );
 }
 
-/// The bundled specs whose only frame format is a CAN one, each with its own frame tests
-/// (`dronecan_pydronecan`).
-const CAN_ONLY: &[&str] = &["specs/dronecan.toml"];
-
-/// Every spec in `specs/` is under test: a new spec must be added to `for_each_spec!` (or,
-/// for a CAN-only link, to `CAN_ONLY`).
+/// Every spec in `specs/` is under test, but those the registry of bundled specs
+/// (`tests/catalogue.toml`) says the robustness suites skip (a CAN-only link, whose frames
+/// arrive whole: no byte stream to cut, damage and resynchronise); a new spec joins
+/// `for_each_spec!` by its entry there. Each line is as the registry describes the spec: a
+/// link of several formats, or the direction its decoders are given.
 #[test]
 fn specs_dir_is_covered() {
     let mut listed: Vec<String> = Vec::new();
     macro_rules! list {
         ($name:ident, $path:literal $(, $given:tt)*) => {
-            listed.push($path.trim_start_matches("../").to_string());
+            let given: &[&str] = &[$(stringify!($given)),*];
+            listed.push(format!("{} {} {}", $path.trim_start_matches("../"), stringify!($name), given.join(" ")));
         };
     }
     crate::support::for_each_spec!(list);
-    // A CAN-only link has no byte stream for these suites to cut, damage and resynchronise:
-    // its frames arrive whole, and its vector test decodes a bus of good and damaged frames.
-    listed.extend(CAN_ONLY.iter().map(|s| s.to_string()));
+    let catalogue = crate::registry::load();
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../specs");
     let mut found: Vec<String> = std::fs::read_dir(dir)
         .expect("specs dir")
         .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
         .filter(|n| n.ends_with(".toml"))
-        .map(|n| format!("specs/{n}"))
+        .filter_map(|n| {
+            let Some(e) = catalogue.by_file(&n) else {
+                return Some(format!("specs/{n}: no entry in tests/catalogue.toml"));
+            };
+            let given = match (e.link, e.directions.first()) {
+                _ if !e.takes("robustness") => return None,
+                (true, _) => "link".to_string(),
+                (false, Some(d)) => format!("{d:?} from_{d}_frame decode_{d}"),
+                (false, None) => String::new(),
+            };
+            Some(format!("specs/{n} {} {given}", e.name))
+        })
         .collect();
     found.sort();
     listed.sort();
     assert_eq!(
         found, listed,
-        "add every spec to for_each_spec! in tests/tests/support/mod.rs"
+        "for_each_spec! is written from tests/catalogue.toml: give every spec an entry there"
     );
 }
 
