@@ -45,8 +45,9 @@ fn captures() -> &'static [Capture] {
     })
 }
 
-/// A list read from the registry once, which a `for` loop and an index take as they take the
-/// constant slice it stands for (`for (spec, name, how) in CAPTURES`, `CAPTURES[0]`).
+/// A list read from the registry once, which a `for` loop, an index and slice methods take as
+/// they take the constant slice it stands for (`for (spec, name, how) in CAPTURES`,
+/// `CAPTURES[0]`, `SPECS.iter()`).
 #[derive(Clone, Copy)]
 pub struct Listed<T: 'static>(pub fn() -> &'static [T]);
 
@@ -58,10 +59,10 @@ impl<T> IntoIterator for Listed<T> {
     }
 }
 
-impl<T> std::ops::Index<usize> for Listed<T> {
-    type Output = T;
-    fn index(&self, i: usize) -> &T {
-        &(self.0)()[i]
+impl<T> std::ops::Deref for Listed<T> {
+    type Target = [T];
+    fn deref(&self) -> &[T] {
+        (self.0)()
     }
 }
 
