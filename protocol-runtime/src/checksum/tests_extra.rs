@@ -21,6 +21,7 @@ static MAVLINK1: Extra<'static> = Extra {
         shift: 0,
         width: 8,
     },
+    direct: &[],
     bytes: &[(0, 50)],
 };
 
