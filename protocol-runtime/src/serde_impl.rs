@@ -229,21 +229,31 @@ impl<'de, const N: usize> Visitor<'de> for NulStrVisitor<N> {
         NulStr::from_text(text).ok_or_else(|| E::invalid_value(de::Unexpected::Str(text), &self))
     }
 
-    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<NulStr<N>, A::Error> {
-        // Collected on the stack: one byte beyond `N` is already too long.
-        let mut bytes = [0u8; N];
-        let mut len = 0;
-        while let Some(b) = seq.next_element::<u8>()? {
-            let slot = bytes
-                .get_mut(len)
-                .ok_or_else(|| de::Error::invalid_length(len.saturating_add(1), &self))?;
-            *slot = b;
-            len = len.saturating_add(1);
-        }
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<NulStr<N>, A::Error> {
+        let (bytes, len) = text_bytes::<N, A>(seq, &self)?;
         let text = bytes.get(..len).unwrap_or_default();
         NulStr::from_text_bytes(text)
             .ok_or_else(|| de::Error::invalid_value(de::Unexpected::Bytes(text), &self))
     }
+}
+
+/// The bytes of a text given as an array, collected on the stack (a text type of `N` bytes
+/// has no heap to grow into): the buffer and how many it holds. One byte beyond `N` is already
+/// too long, an error that `expected` describes.
+fn text_bytes<'de, const N: usize, A: SeqAccess<'de>>(
+    mut seq: A,
+    expected: &dyn de::Expected,
+) -> Result<([u8; N], usize), A::Error> {
+    let mut bytes = [0u8; N];
+    let mut len = 0;
+    while let Some(b) = seq.next_element::<u8>()? {
+        let slot = bytes
+            .get_mut(len)
+            .ok_or_else(|| de::Error::invalid_length(len.saturating_add(1), expected))?;
+        *slot = b;
+        len = len.saturating_add(1);
+    }
+    Ok((bytes, len))
 }
 
 impl<'de, const N: usize> Deserialize<'de> for NulStr<N> {
@@ -274,17 +284,8 @@ impl<'de, const N: usize> Visitor<'de> for StrVisitor<N> {
         Str::from_text(text).ok_or_else(|| E::invalid_value(de::Unexpected::Str(text), &self))
     }
 
-    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Str<N>, A::Error> {
-        // Collected on the stack: one byte beyond `N` is already too long.
-        let mut bytes = [0u8; N];
-        let mut len = 0;
-        while let Some(b) = seq.next_element::<u8>()? {
-            let slot = bytes
-                .get_mut(len)
-                .ok_or_else(|| de::Error::invalid_length(len.saturating_add(1), &self))?;
-            *slot = b;
-            len = len.saturating_add(1);
-        }
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Str<N>, A::Error> {
+        let (bytes, len) = text_bytes::<N, A>(seq, &self)?;
         let text = bytes.get(..len).unwrap_or_default();
         Str::from_text_bytes(text)
             .ok_or_else(|| de::Error::invalid_value(de::Unexpected::Bytes(text), &self))

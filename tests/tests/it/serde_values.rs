@@ -183,3 +183,17 @@ fn generated_types_nest_in_a_users_own_serde_types() {
     let text = to_string(&log).expect("writes");
     assert_eq!(from_str::<Log>(&text).expect("reads"), log);
 }
+
+#[test]
+fn text_given_as_bytes_reads_up_to_its_capacity_and_no_further() {
+    use protocol_kit::{NulStr, Str};
+    let bytes = [0xFF, b'a', b'b', 0x80];
+    let s = from_str::<Str<4>>("[255, 97, 98, 128]").expect("reads");
+    assert_eq!(s.text(), bytes);
+    assert_eq!(from_str::<Str<4>>(&to_string(&s).expect("writes")).expect("reads"), s);
+    let n = from_str::<NulStr<4>>("[255, 97, 98, 128]").expect("reads");
+    assert_eq!(n.text(), bytes);
+    // One byte beyond the capacity is refused, in both.
+    assert!(from_str::<Str<4>>("[1, 2, 3, 4, 5]").is_err());
+    assert!(from_str::<NulStr<4>>("[1, 2, 3, 4, 5]").is_err());
+}
