@@ -190,7 +190,10 @@ fn text_given_as_bytes_reads_up_to_its_capacity_and_no_further() {
     let bytes = [0xFF, b'a', b'b', 0x80];
     let s = from_str::<Str<4>>("[255, 97, 98, 128]").expect("reads");
     assert_eq!(s.text(), bytes);
-    assert_eq!(from_str::<Str<4>>(&to_string(&s).expect("writes")).expect("reads"), s);
+    assert_eq!(
+        from_str::<Str<4>>(&to_string(&s).expect("writes")).expect("reads"),
+        s
+    );
     let n = from_str::<NulStr<4>>("[255, 97, 98, 128]").expect("reads");
     assert_eq!(n.text(), bytes);
     // One byte beyond the capacity is refused, in both.
