@@ -74,6 +74,29 @@ pub struct Slicing16<W: crc::Width> {
     /// The carry-less folding of a reflected CRC (the `clmul` feature, in a build for a CPU
     /// with `pclmulqdq`); always `None`, and no bytes, otherwise.
     folding: Option<super::clmul::Folding>,
+    /// Where the compiler does not optimise (cfg `protocol_opt0`, the runtime's build script),
+    /// what the public methods call to compute with the tables: the computation is then
+    /// linked only where a `Slicing16` of its width is built. A [`CrcImpl`](super::CrcImpl)
+    /// matches every table size of every width, and at opt-level 0 nothing folds that match:
+    /// called directly, every width's slicing code lands in any firmware that checks a frame
+    /// (about 19 KB on a Cortex-M4 whose spec has no CRC at all). Optimised builds call the
+    /// computation directly, where a constant layout keeps only what the spec uses.
+    #[cfg(protocol_opt0)]
+    run: fn(&Self, &[u8], usize, Run) -> W,
+}
+
+/// What a [`Slicing16`]'s public methods ask of its computation through its `run` pointer.
+#[cfg(protocol_opt0)]
+#[derive(Clone, Copy)]
+enum Run {
+    /// [`Slicing16::checksum_prefix`].
+    Prefix,
+    /// [`Slicing16::checksum_written`].
+    Written,
+    /// [`Slicing16::checksum_prefix_then`] of this byte.
+    PrefixThen(u8),
+    /// [`Slicing16::checksum_written_then`] of this byte.
+    WrittenThen(u8),
 }
 
 impl<W: crc::Width> Slicing16<W> {
@@ -130,6 +153,22 @@ macro_rules! slicing16_width {
                     } else {
                         None
                     },
+                    #[cfg(protocol_opt0)]
+                    run: Self::run,
+                }
+            }
+
+            /// What the public methods compute, reached through the `run` pointer where the
+            /// compiler does not optimise.
+            #[cfg(protocol_opt0)]
+            fn run(&self, data: &[u8], n: usize, ask: Run) -> $w {
+                match ask {
+                    Run::Prefix => self.checksum_with::<true>(data, n),
+                    Run::Written => self.checksum_with::<false>(data, n),
+                    Run::PrefixThen(byte) => self.then(self.checksum_with::<true>(data, n), byte),
+                    Run::WrittenThen(byte) => {
+                        self.then(self.checksum_with::<false>(data, n), byte)
+                    }
                 }
             }
 
@@ -170,7 +209,14 @@ macro_rules! slicing16_width {
             /// costs four lookups, not sixteen).
             #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_prefix(&self, data: &[u8], n: usize) -> $w {
-                self.checksum_with::<true>(data, n)
+                #[cfg(protocol_opt0)]
+                {
+                    (self.run)(self, data, n, Run::Prefix)
+                }
+                #[cfg(not(protocol_opt0))]
+                {
+                    self.checksum_with::<true>(data, n)
+                }
             }
 
             /// The CRC of `data`, bytes the caller has just written (an encoder's frame),
@@ -181,7 +227,14 @@ macro_rules! slicing16_width {
             /// cache (a store-forwarding stall per block).
             #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_written(&self, data: &[u8]) -> $w {
-                self.checksum_with::<false>(data, data.len())
+                #[cfg(protocol_opt0)]
+                {
+                    (self.run)(self, data, data.len(), Run::Written)
+                }
+                #[cfg(not(protocol_opt0))]
+                {
+                    self.checksum_with::<false>(data, data.len())
+                }
             }
 
             /// The CRC of `data[..n]` then one more byte, `byte` (as
@@ -190,7 +243,14 @@ macro_rules! slicing16_width {
             /// `crc-fast` crate where built in), then one table step ([`then`](Self::then)).
             #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_prefix_then(&self, data: &[u8], n: usize, byte: u8) -> $w {
-                self.then(self.checksum_prefix(data, n), byte)
+                #[cfg(protocol_opt0)]
+                {
+                    (self.run)(self, data, n, Run::PrefixThen(byte))
+                }
+                #[cfg(not(protocol_opt0))]
+                {
+                    self.then(self.checksum_prefix(data, n), byte)
+                }
             }
 
             /// [`checksum_prefix_then`](Self::checksum_prefix_then) of all of `data`, bytes the
@@ -198,7 +258,14 @@ macro_rules! slicing16_width {
             /// [`checksum_written`](Self::checksum_written)).
             #[cfg_attr(not(protocol_opt0), inline(always))]
             pub fn checksum_written_then(&self, data: &[u8], byte: u8) -> $w {
-                self.then(self.checksum_written(data), byte)
+                #[cfg(protocol_opt0)]
+                {
+                    (self.run)(self, data, data.len(), Run::WrittenThen(byte))
+                }
+                #[cfg(not(protocol_opt0))]
+                {
+                    self.then(self.checksum_written(data), byte)
+                }
             }
 
             /// The CRC of some bytes whose CRC is `crc`, then `byte`: the finalisation undone
