@@ -79,8 +79,9 @@ pub struct Slicing16<W: crc::Width> {
     /// linked only where a `Slicing16` of its width is built. A [`CrcImpl`](super::CrcImpl)
     /// matches every table size of every width, and at opt-level 0 nothing folds that match:
     /// called directly, every width's slicing code lands in any firmware that checks a frame
-    /// (about 19 KB on a Cortex-M4 whose spec has no CRC at all). Optimised builds call the
-    /// computation directly, where a constant layout keeps only what the spec uses.
+    /// (about 20 KB of the HFLink debug firmware's `.text`, whose spec has no CRC at all;
+    /// `docs/performance.md`). Optimised builds call the computation directly, where a
+    /// constant layout keeps only what the spec uses.
     #[cfg(protocol_opt0)]
     run: fn(&Self, &[u8], usize, Run) -> W,
 }
