@@ -93,8 +93,9 @@ fn emit_accessors(
         #[doc = #read_doc]
         ///
         /// # Errors
-        /// `UnknownCommand` when the key names no command, and the errors of the command's
-        /// payload read from the bytes; each names this field.
+        /// `UnknownCommand` when the key names no command, and the errors of reading the
+        /// command's payload from the bytes (`PayloadLength`; a field's error names that
+        /// field, or this one).
         pub fn #read(&self) -> #rt::DecodeResult<#e> {
             #rt::read_field(#place, || {
                 let command = #rt::carried_command(self.#k, Command::from_id)?;
