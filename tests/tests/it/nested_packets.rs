@@ -170,13 +170,13 @@ fn sealing_refuses_what_the_carrier_cannot_hold() {
     let mut twice = V2InV1::default();
     twice.set_payload_response(&outer).expect("seals");
     assert_eq!(twice.payload_response(), Ok(outer));
-    // Each level adds the six bytes of flag, command, size and CRC: the 64 bytes of text
-    // nested 31 times are 250 bytes, one more than the 249 the carrier holds.
+    // Each carrier adds the six bytes of flag, command, size and CRC: the 64 bytes of text
+    // under 31 carriers are 250 bytes, one more than the 249 a 32nd carrier holds.
     let mut inner = hello;
-    for level in 1..=31 {
+    for level in 1..=32 {
         let mut c = V2InV1::default();
         let sealed = c.set_payload_response(&inner);
-        if level < 31 {
+        if level < 32 {
             sealed.unwrap_or_else(|e| panic!("level {level}: {e:?}"));
             assert_eq!(usize::from(c.size), 64 + 6 * (level - 1));
             inner = Response::V2Frame(c);
@@ -186,7 +186,7 @@ fn sealing_refuses_what_the_carrier_cannot_hold() {
                 matches!(err, EncodeError::ValueOutOfRange { .. }),
                 "{err:?}"
             );
-            assert_eq!(err.place().map(|p| p.field), Some("V2InV1.payload"));
+            assert_eq!(err.place().map(|p| p.field()), Some("V2InV1.payload"));
         }
     }
 }
