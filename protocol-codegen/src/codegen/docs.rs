@@ -425,6 +425,12 @@ pub fn struct_doc(p: &Protocol, s: &Struct) -> String {
             offset, f.size, name, doc.ty, doc.order, unit
         ));
     }
+    for c in &s.carries {
+        out.push_str(&format!(
+            "\n`{}` carries a packet: the payload of the command whose id `{}` holds, in the direction of the frame around it.\n",
+            s.fields[c.field].name, s.fields[c.key].name
+        ));
+    }
     out
 }
 

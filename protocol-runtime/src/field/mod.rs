@@ -24,13 +24,19 @@
 //!   a field that takes every byte left but a check after it reads to that check
 //!   ([`rest_but`]);
 //! - checks inside a payload: a check value over a run of the payload's fields, verified on
-//!   decode ([`verify_check`]) and computed on encode ([`put_check`]).
+//!   decode ([`verify_check`]) and computed on encode ([`put_check`]);
+//! - a packet carried in a payload: the command an earlier key field names
+//!   ([`carried_command`]), and a message written into the carrying bytes ([`seal_carried`])
+//!   with its key ([`carried_key`]).
 //!
 //! It does not own the wire cursors ([`crate::wire`]) or the payload trait
 //! ([`crate::Payload`]).
 
+mod carried;
 mod mask;
 mod scale;
+
+pub use carried::{carried_command, carried_key, seal_carried};
 
 pub use mask::{check_mask_bit, mask_bit, mask_count};
 pub use scale::{

@@ -237,6 +237,20 @@ pub struct Struct {
     /// Bytes of the fields before the first extension field, for a struct that has extension
     /// fields (then of a fixed size): what a frame format without extensions carries of it.
     pub base_size: Option<usize>,
+    /// The packets the struct carries (`carries`): bytes fields that hold the payload of the
+    /// command an earlier field of the struct names.
+    pub carries: Vec<Carried>,
+}
+
+/// A `bytes` field that holds the payload of a command of the spec (`carries`): the command
+/// is the one whose id the key field holds, the direction that of the frame around it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Carried {
+    /// The bytes field (index into the struct's fields).
+    pub field: usize,
+    /// The unsigned integer field that holds the command's id (index into the struct's
+    /// fields, before `field`).
+    pub key: usize,
 }
 
 /// One field of a payload struct.

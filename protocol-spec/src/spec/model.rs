@@ -617,6 +617,10 @@ pub struct FieldDef {
     /// of the struct whose set bits count the elements (one element per set bit).
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub mask: Option<SStr>,
+    /// With `type = "bytes"`: the bytes are the payload of the command whose id this earlier
+    /// unsigned integer field of the struct holds (a packet carried in this one).
+    #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
+    pub carries: Option<SStr>,
     /// Padding bytes (written as zero, ignored when read).
     #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub pad: Option<SInt>,

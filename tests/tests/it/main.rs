@@ -48,6 +48,7 @@ mod mavlink_vectors;
 mod msp_vectors;
 mod msp_yamspy;
 mod narrow_and_seeded_checks;
+mod nested_packets;
 mod no_alloc;
 mod number_formats;
 mod packets;

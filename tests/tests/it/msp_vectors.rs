@@ -12,7 +12,7 @@
 use crate::golden;
 
 use protocol_dynamic::Interpreter;
-use protocol_kit::{Bytes, DecodeError, FixedStr, Group, NulStr, Payload, Reject, StreamDecoder};
+use protocol_kit::{Bytes, DecodeError, FixedStr, Group, NulStr, Reject, StreamDecoder};
 use protocol_tests::{
     F, assert_link_stream_at_every_chunk_size, assert_stream_at_every_chunk_size, hex,
     load_vectors, stream_vector,
@@ -210,21 +210,22 @@ fn a_v2_frame_inside_a_v1_frame_carries_its_fields() {
     };
     assert_eq!(u64::from(inner.command), u(&frame, "cmd"));
     assert_eq!(inner.payload.as_slice(), &payload_bytes(&frame)[..]);
-    // The inner frame's CRC-8/DVB-S2 is carried; computed here, it is the one received.
-    let crc = protocol_kit::Checksum::Crc8(protocol_kit::__private::CrcImpl::NoTable(&CRC8));
-    let covered = &bytes[5..bytes.len() - 2];
-    assert_eq!(crc.compute(covered), u64::from(inner.crc));
-    let read = Attitude::from_bytes(inner.payload.as_slice()).expect("attitude");
-    assert_eq!(read, attitude(&frame["fields"]));
+    // The carried command, read in the direction of the frame around it.
+    let read = inner.payload_response().expect("a carried response");
+    assert_eq!(read, Response::Attitude(attitude(&frame["fields"])));
+    // The inner frame's CRC-8/DVB-S2 is checked: one bit off in it fails the payload.
+    let mut bad = bytes.clone();
+    let n = bad.len();
+    bad[n - 2] ^= 0x01;
+    bad[n - 1] ^= 0x01;
+    assert!(matches!(
+        Packet::decode(&bad),
+        Err(DecodeError::PayloadCheck { .. })
+    ));
     let mut buf = [0u8; MAX_FRAME_LEN];
     let n = packet.encode(&mut buf).expect("encode");
     assert_eq!(F(&buf[..n]), F(&bytes));
 }
-
-static CRC8: protocol_kit::__private::crc::Crc<u8, protocol_kit::__private::crc::NoTable> =
-    protocol_kit::__private::crc::Crc::<u8, protocol_kit::__private::crc::NoTable>::new(
-        &protocol_kit::__private::crc::CRC_8_DVB_S2,
-    );
 
 fn v2_frames() -> impl Iterator<Item = Value> {
     frames().into_iter().filter(|f| f["version"] == "v2")

@@ -5,8 +5,10 @@
 //! message and encodes one back through its `RULES` (`packet`), the packets of the other
 //! frame formats (`frames`, `link`, `given`), the `SESSION` static of a spec with a
 //! conversation (`session`), the typed handlers with their dispatch (`handler`), and the
-//! decoding of a frame as one command's struct (`typed`).
+//! decoding of a frame as one command's struct (`typed`), and the packets a struct carries
+//! (`carried`).
 
+mod carried;
 mod command;
 mod frames;
 mod given;
@@ -25,6 +27,7 @@ use super::payload::prim_type;
 use super::rt;
 use super::types::int_lit;
 use crate::ir::{Command, PacketKind, Prim, Protocol};
+use carried::emit_carried;
 use command::emit_command_enum;
 use frames::{emit_can_packet, emit_message_packet};
 pub use given::direction_layouts;
@@ -85,6 +88,7 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
         }
         out.extend(emit_direction_message(p, &rt));
     }
+    out.extend(emit_carried(p, &rt));
     out.extend(emit_packet(p, f, &rt));
     out.extend(emit_typed_decode(p, f, &rt));
     if p.frames.iter().any(|f| !f.extensions) {

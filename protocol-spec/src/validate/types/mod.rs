@@ -3,6 +3,7 @@
 //! and enums are here; structs, their fields and bit members have their own files.
 
 mod bits;
+mod carried;
 mod checks;
 mod fields;
 mod mask;

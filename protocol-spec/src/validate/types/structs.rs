@@ -8,6 +8,7 @@ use toml::Spanned;
 use super::super::names::{check_pascal_name, parse_byte_order};
 use super::super::{Ctx, text};
 use super::Enums;
+use super::carried::lower_carries;
 use super::checks::{lower_check_field, resolve_check_runs};
 use super::fields::lower_field;
 use super::mask::{check_mask_array, lower_when};
@@ -50,6 +51,7 @@ pub(crate) fn lower_structs(ctx: &mut Ctx<'_>, enums: &Enums, constants: &[Const
             min_size: 0,
             context: Vec::new(),
             base_size: None,
+            carries: Vec::new(),
             foreign: true,
         });
     }
@@ -114,6 +116,7 @@ fn visit_struct(
     let fields = lower_fields(ctx, name, d, endian, out, enums, constants);
     let (min_size, unresolved) = check_tail_fields(ctx, name, d, &fields, out);
     let base_size = lower_base_size(ctx, name, d, &fields);
+    let carries = lower_carries(ctx, d, &fields);
     state.insert(name.to_string(), Visit::Done);
     let index = out.structs.len();
     out.by_name.insert(name.to_string(), index);
@@ -126,6 +129,7 @@ fn visit_struct(
         context: unresolved,
         foreign: false,
         base_size,
+        carries,
     });
     Some(index)
 }
