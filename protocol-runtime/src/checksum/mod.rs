@@ -59,6 +59,8 @@ mod sum;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
+mod tests_direct;
+#[cfg(test)]
 mod tests_extra;
 #[cfg(test)]
 mod tests_seeds;
