@@ -267,3 +267,43 @@ fn an_id_set_holds_every_byte() {
     assert_eq!(set.iter().collect::<Vec<_>>(), [0, 63, 127, 128, 255]);
     assert!(!set.is_empty() && IdSet::EMPTY.is_empty());
 }
+
+/// These rules as generated code hands them out, sized for rules that list no command of
+/// several answers: wrongly, since these do.
+#[derive(Clone, Copy)]
+struct Unlisted;
+
+impl SessionRef for Unlisted {
+    type Awaiting = NoFanout;
+    fn session(&self) -> &SessionRules<'_> {
+        &SESSION
+    }
+}
+
+#[test]
+fn a_requester_without_id_sets_keeps_none_in_its_slots() {
+    use core::mem::size_of;
+    assert_eq!(size_of::<Option<NoFanout>>(), 0);
+    let with = size_of::<Requester<&SessionRules<'static>, 4, 32>>();
+    let without = size_of::<Requester<Unlisted, 4, 32>>();
+    // Each slot saves at least the 32-byte id set.
+    assert!(with >= without + 4 * size_of::<IdSet>(), "{with} {without}");
+}
+
+#[test]
+fn a_requester_without_id_sets_refuses_a_request_of_several_answers() {
+    let mut req = Requester::<_, 2, 32>::new(Unlisted);
+    let mut request = sync_read(&[3, 5]);
+    let before = request.clone();
+    assert_eq!(req.send(0, &mut request), Err(SendError::Several));
+    assert_eq!((request, req.open()), (before, 0));
+    // Its requests of one answer are as any requester's.
+    let t = req
+        .send(1, &mut frame(3, 0x02, &[0x84, 0, 4, 0]))
+        .unwrap()
+        .unwrap();
+    assert_eq!(
+        req.on_frame(2, &status(3)),
+        outcome(t, Resolution::Answered)
+    );
+}
