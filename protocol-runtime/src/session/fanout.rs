@@ -69,6 +69,12 @@ impl IdSet {
         self.0.iter().all(|&w| w == 0)
     }
 
+    /// True when an id is in both sets.
+    #[must_use]
+    pub fn meets(&self, other: &IdSet) -> bool {
+        self.0.iter().zip(other.0).any(|(a, b)| a & b != 0)
+    }
+
     /// The ids, in increasing order.
     pub fn iter(&self) -> impl Iterator<Item = u8> + '_ {
         (0..=u8::MAX).filter(|&id| self.contains(id))
@@ -90,6 +96,8 @@ pub trait Awaiting: Copy + core::fmt::Debug + Send + Sync + 'static {
     /// The ids still to answer once at least one has answered (the request is then
     /// incomplete, not unanswered).
     fn incomplete(&self) -> Option<IdSet>;
+    /// The ids still to answer.
+    fn waiting(&self) -> IdSet;
 }
 
 /// The ids a request of several answers still waits for, and whether one has answered.
@@ -120,6 +128,10 @@ impl Awaiting for Awaited {
     fn incomplete(&self) -> Option<IdSet> {
         self.heard.then_some(self.left)
     }
+
+    fn waiting(&self) -> IdSet {
+        self.left
+    }
 }
 
 /// Nothing: what a requester keeps of requests of several answers when its rules list no
@@ -141,6 +153,10 @@ impl Awaiting for NoFanout {
     }
 
     fn incomplete(&self) -> Option<IdSet> {
+        match *self {}
+    }
+
+    fn waiting(&self) -> IdSet {
         match *self {}
     }
 }

@@ -22,6 +22,7 @@ use crate::error::DecodeError;
 use crate::layout::WordField;
 use crate::rules::PacketRules;
 
+mod ambiguity;
 #[cfg(feature = "tokio")]
 pub mod client;
 mod fanout;

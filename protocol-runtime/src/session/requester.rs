@@ -9,6 +9,7 @@
 //! list only the missing ids; an answer from an id that has answered already is then
 //! `Unsolicited`, and costs the bus that answer's time only.
 
+use super::ambiguity::Awaits;
 use super::{Answer, Awaiting, Heard, Ids, Judged, SessionRef, SessionRules};
 use crate::error::{DecodeError, EncodeError, Place};
 
@@ -54,8 +55,10 @@ pub enum SendError {
     /// the responder's window of remembered numbers past that request (it waits until the old
     /// one resolves).
     Window,
-    /// A request of the same command to the same peer is open, and without a sequence number
-    /// their answers could not be told apart.
+    /// A request is open that one frame could answer as well as this one (the same command to
+    /// the same peer; a READ to a servo that an open SYNC_READ lists, or the other way
+    /// round), and without a sequence number their answers could not be told apart (it waits
+    /// until the open one resolves).
     Ambiguous,
     /// The frame is longer than a slot holds.
     TooLong,
@@ -275,7 +278,12 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
             Some(ids) => Some(S::Awaiting::keep(ids).ok_or(SendError::Several)?),
             None => None,
         };
-        let index = self.free_slot(key, frame)?;
+        let ids = rules.ids(key, frame);
+        let index = self.free_slot(Awaits {
+            ids: &ids,
+            answer: e.answer,
+            several: fanout.map(|w| w.waiting()),
+        })?;
         self.check_window()?;
         self.number(frame)?;
         let ticket = Ticket(self.next_ticket);
@@ -290,6 +298,7 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
         let wait = u64::from(e.timeout);
         slot.open = Some(Open {
             ticket,
+            // Read again: numbering wrote the sequence number.
             ids: rules.ids(key, frame),
             answer: e.answer,
             deadline: now.saturating_add(wait),
@@ -301,17 +310,21 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
         Ok(Some(ticket))
     }
 
-    /// A free slot for a request of `key`; without a sequence number, none while a request
-    /// that an answer could not be told from is open.
-    fn free_slot(&self, key: u64, frame: &[u8]) -> Result<usize, SendError> {
+    /// A free slot for the request `new`; without a sequence number, none while a request is
+    /// open that one frame could answer as well as `new` (a request of the same command to
+    /// the same peer; a READ to a servo that an open SYNC_READ lists).
+    fn free_slot(&self, new: Awaits<'_>) -> Result<usize, SendError> {
         let rules = self.rules.session();
         if rules.sequence.is_none() {
-            let ids = rules.ids(key, frame);
-            if self
-                .slots
-                .iter()
-                .any(|s| s.open.is_some_and(|o| o.ids == ids))
-            {
+            let shared = self.slots.iter().filter_map(|s| s.open).any(|o| {
+                let open = Awaits {
+                    ids: &o.ids,
+                    answer: o.answer,
+                    several: o.fanout.map(|w| w.waiting()),
+                };
+                rules.share_answer(open, new)
+            });
+            if shared {
                 return Err(SendError::Ambiguous);
             }
         }
