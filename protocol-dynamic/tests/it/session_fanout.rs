@@ -230,3 +230,69 @@ fn servos_answer_a_broadcast_sync_read_with_their_own_ids() {
         ]
     );
 }
+
+/// A READ of servo `id`.
+fn read(id: u8) -> Vec<u8> {
+    encode(&Packet {
+        header: Header { id },
+        message: Message::Read(dynamixel::Read {
+            address: 132,
+            length: 4,
+        }),
+    })
+}
+
+#[test]
+fn a_read_and_a_sync_read_that_one_status_could_answer_are_not_open_together() {
+    use protocol_kit::session::SendError;
+    let i = interpreter("dynamixel");
+    let codec = i.codec();
+    codec
+        .with_session(|rules| {
+            let mut m = Pair {
+                generated: Requester::new(dynamixel::Session),
+                codec: Requester::new(rules),
+            };
+            let both = |m: &mut Pair<'_, _>, frame: &[u8]| {
+                let (mut a, mut b) = (frame.to_vec(), frame.to_vec());
+                let r = m.generated.send(1, &mut a);
+                assert_eq!(r, m.codec.send(1, &mut b));
+                r
+            };
+            let read3 = m.send(0, &read(3));
+            // A status from 3 could answer the READ or the SYNC_READ: the requester refuses
+            // the second until the first resolves, in generated code and the codec alike.
+            let listing3 = sync_read(&[1, 3], 132, 4);
+            assert_eq!(both(&mut m, &listing3), Err(SendError::Ambiguous));
+            let sync = m.send(1, &sync_read(&[1, 2], 132, 4));
+            assert_eq!(both(&mut m, &read(2)), Err(SendError::Ambiguous));
+            assert_eq!(
+                m.heard(2, &status(3)),
+                Received::Outcome(Outcome {
+                    ticket: read3,
+                    resolution: Resolution::Answered
+                })
+            );
+            assert!(matches!(m.heard(3, &status(2)), Received::Partial { .. }));
+            // 3 answered and the SYNC_READ waits for 1 alone: a READ of 2 and a SYNC_READ
+            // of 3 are told apart from it.
+            let read2 = m.send(4, &read(2));
+            assert_eq!(
+                m.heard(5, &status(2)),
+                Received::Outcome(Outcome {
+                    ticket: read2,
+                    resolution: Resolution::Answered
+                })
+            );
+            assert!(m.generated.open() == 1 && m.codec.open() == 1);
+            assert_eq!(
+                m.heard(6, &status(1)),
+                Received::Outcome(Outcome {
+                    ticket: sync,
+                    resolution: Resolution::Answered
+                })
+            );
+            m.send(7, &listing3);
+        })
+        .expect("the spec has a session");
+}

@@ -4,7 +4,8 @@
 //! names its sender, and the set of ids a request still waits for.
 //!
 //! Ids are one byte (the protocols in view address at most 253 devices on a bus), so the set
-//! is a fixed 256-bit table: no heap, 32 bytes per open request. The listed ids are read from
+//! is a fixed 256-bit table: no heap, 32 bytes per open request, in the requesters of rules
+//! that list such a command only ([`Awaiting`]). The listed ids are read from
 //! the request's payload, unstuffed on the fly when the format stuffs payloads (Dynamixel
 //! does), so that no scratch buffer is needed.
 
@@ -68,9 +69,95 @@ impl IdSet {
         self.0.iter().all(|&w| w == 0)
     }
 
+    /// True when an id is in both sets.
+    #[must_use]
+    pub fn meets(&self, other: &IdSet) -> bool {
+        self.0.iter().zip(other.0).any(|(a, b)| a & b != 0)
+    }
+
     /// The ids, in increasing order.
     pub fn iter(&self) -> impl Iterator<Item = u8> + '_ {
         (0..=u8::MAX).filter(|&id| self.contains(id))
+    }
+}
+
+/// What a requester's slot keeps of a request answered once by each id it lists: the ids it
+/// still waits for, and whether one has answered. A [`SessionRef`](super::SessionRef) names
+/// it ([`SessionRef::Awaiting`](super::SessionRef::Awaiting)): [`Awaited`] when its rules list
+/// a command of several answers, [`NoFanout`] otherwise, which holds nothing, so that a
+/// requester of rules without one keeps no id set in its slots.
+pub trait Awaiting: Copy + core::fmt::Debug + Send + Sync + 'static {
+    /// Keeps `ids`, none answered yet; `None` when this keeps no ids.
+    fn keep(ids: IdSet) -> Option<Self>;
+    /// True while `id` is still to answer.
+    fn awaits(&self, id: u8) -> bool;
+    /// `id` answered: it is taken off the ids still to answer; returns how many remain.
+    fn answered(&mut self, id: u8) -> usize;
+    /// The ids still to answer once at least one has answered (the request is then
+    /// incomplete, not unanswered).
+    fn incomplete(&self) -> Option<IdSet>;
+    /// The ids still to answer.
+    fn waiting(&self) -> IdSet;
+}
+
+/// The ids a request of several answers still waits for, and whether one has answered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Awaited {
+    left: IdSet,
+    heard: bool,
+}
+
+impl Awaiting for Awaited {
+    fn keep(ids: IdSet) -> Option<Self> {
+        Some(Self {
+            left: ids,
+            heard: false,
+        })
+    }
+
+    fn awaits(&self, id: u8) -> bool {
+        self.left.contains(id)
+    }
+
+    fn answered(&mut self, id: u8) -> usize {
+        self.left.remove(id);
+        self.heard = true;
+        self.left.len()
+    }
+
+    fn incomplete(&self) -> Option<IdSet> {
+        self.heard.then_some(self.left)
+    }
+
+    fn waiting(&self) -> IdSet {
+        self.left
+    }
+}
+
+/// Nothing: what a requester keeps of requests of several answers when its rules list no
+/// such command. It has no value, so an `Option<NoFanout>` takes no byte.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum NoFanout {}
+
+impl Awaiting for NoFanout {
+    fn keep(_: IdSet) -> Option<Self> {
+        None
+    }
+
+    fn awaits(&self, _: u8) -> bool {
+        match *self {}
+    }
+
+    fn answered(&mut self, _: u8) -> usize {
+        match *self {}
+    }
+
+    fn incomplete(&self) -> Option<IdSet> {
+        match *self {}
+    }
+
+    fn waiting(&self) -> IdSet {
+        match *self {}
     }
 }
 

@@ -22,6 +22,7 @@ use crate::error::DecodeError;
 use crate::layout::WordField;
 use crate::rules::PacketRules;
 
+mod ambiguity;
 #[cfg(feature = "tokio")]
 pub mod client;
 mod fanout;
@@ -35,7 +36,7 @@ mod responder;
 mod scheduler;
 mod verdict;
 
-pub use fanout::{Fanout, IdSet};
+pub use fanout::{Awaited, Awaiting, Fanout, IdSet, NoFanout};
 pub use observer::{Observer, Paired};
 pub use pairs::{Pair, ValueAt};
 pub use reply::Reply;
@@ -196,6 +197,9 @@ pub struct SessionRules<'a> {
 /// #[derive(Clone, Copy)]
 /// struct Session;
 /// impl SessionRef for Session {
+///     // No command of these rules is answered by several frames: the requester's slots keep
+///     // no id set.
+///     type Awaiting = protocol_runtime::session::NoFanout;
 ///     #[inline(always)]
 ///     fn session(&self) -> &SessionRules<'_> {
 ///         &SESSION
@@ -203,12 +207,25 @@ pub struct SessionRules<'a> {
 /// }
 /// assert_eq!(Session.session().lifetime(), (&SESSION).session().lifetime());
 /// ```
+///
+/// The same choice sizes the requester: [`Awaiting`](Self::Awaiting) is what each of its slots
+/// keeps of a request answered by several frames, an id set where the rules list such a
+/// command and nothing where they do not. Generated code picks it from the spec; rules built at
+/// run time may list any, so a reference keeps the set.
 pub trait SessionRef: Copy {
+    /// What a requester's slot keeps of a request answered once by each id it lists:
+    /// [`Awaited`] when [`fanouts`](SessionRules::fanouts) may list a command, [`NoFanout`]
+    /// when it lists none (a requester refuses such a request with
+    /// [`SendError::Several`]).
+    type Awaiting: Awaiting;
+
     /// The conversation.
     fn session(&self) -> &SessionRules<'_>;
 }
 
 impl<'s> SessionRef for &'s SessionRules<'s> {
+    type Awaiting = Awaited;
+
     #[inline(always)]
     fn session(&self) -> &SessionRules<'_> {
         self

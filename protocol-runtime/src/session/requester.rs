@@ -9,7 +9,8 @@
 //! list only the missing ids; an answer from an id that has answered already is then
 //! `Unsolicited`, and costs the bus that answer's time only.
 
-use super::{Answer, Heard, IdSet, Ids, Judged, SessionRef, SessionRules};
+use super::ambiguity::Awaits;
+use super::{Answer, Awaiting, Heard, Ids, Judged, SessionRef, SessionRules};
 use crate::error::{DecodeError, EncodeError, Place};
 
 /// A request that expects an answer, as [`Requester::send`] numbers it.
@@ -30,7 +31,7 @@ pub enum Resolution {
     TimedOut,
     /// A request answered once by each id it lists ([`Fanout`](super::Fanout)) timed out after its retries
     /// with some of its answers: the ids that did not answer.
-    Incomplete(IdSet),
+    Incomplete(super::IdSet),
 }
 
 /// A request's one outcome.
@@ -54,11 +55,17 @@ pub enum SendError {
     /// the responder's window of remembered numbers past that request (it waits until the old
     /// one resolves).
     Window,
-    /// A request of the same command to the same peer is open, and without a sequence number
-    /// their answers could not be told apart.
+    /// A request is open that one frame could answer as well as this one (the same command to
+    /// the same peer; a READ to a servo that an open SYNC_READ lists, or the other way
+    /// round), and without a sequence number their answers could not be told apart (it waits
+    /// until the open one resolves).
     Ambiguous,
     /// The frame is longer than a slot holds.
     TooLong,
+    /// The request lists the ids that answer it, and the requester's
+    /// [`SessionRef::Awaiting`] keeps no ids ([`NoFanout`](super::NoFanout)): its rules are
+    /// not those it was sized for.
+    Several,
     /// The frame is not a request (too short for its key, or an acknowledgement).
     NotARequest(DecodeError),
     /// The sequence number does not fit the frame, or sealing it failed.
@@ -112,7 +119,7 @@ pub enum Due<'a> {
 }
 
 #[derive(Debug, Clone, Copy)]
-struct Open {
+struct Open<W> {
     ticket: Ticket,
     ids: Ids,
     answer: Answer,
@@ -121,13 +128,13 @@ struct Open {
     retries_left: u8,
     backoff: u8,
     /// The ids still to answer a request of several answers, and whether one has answered.
-    fanout: Option<(IdSet, bool)>,
+    fanout: Option<W>,
 }
 
 /// A slot of the table: an open request and the bytes of its frame, for retries.
 #[derive(Debug, Clone, Copy)]
-struct Slot<const FRAME: usize> {
-    open: Option<Open>,
+struct Slot<W, const FRAME: usize> {
+    open: Option<Open<W>>,
     frame: [u8; FRAME],
     len: usize,
 }
@@ -180,9 +187,9 @@ struct Slot<const FRAME: usize> {
 /// # Ok::<(), protocol_runtime::session::SendError>(())
 /// ```
 #[derive(Debug, Clone)]
-pub struct Requester<S, const SLOTS: usize, const FRAME: usize> {
+pub struct Requester<S: SessionRef, const SLOTS: usize, const FRAME: usize> {
     rules: S,
-    slots: [Slot<FRAME>; SLOTS],
+    slots: [Slot<S::Awaiting, FRAME>; SLOTS],
     next_seq: u64,
     next_ticket: u32,
     handshaken: bool,
@@ -264,7 +271,19 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
         if frame.len() > FRAME {
             return Err(SendError::TooLong);
         }
-        let index = self.free_slot(key, frame)?;
+        let fanout = match rules
+            .fanout(key)
+            .and_then(|f| f.listed(rules.packet, frame))
+        {
+            Some(ids) => Some(S::Awaiting::keep(ids).ok_or(SendError::Several)?),
+            None => None,
+        };
+        let ids = rules.ids(key, frame);
+        let index = self.free_slot(Awaits {
+            ids: &ids,
+            answer: e.answer,
+            several: fanout.map(|w| w.waiting()),
+        })?;
         self.check_window()?;
         self.number(frame)?;
         let ticket = Ticket(self.next_ticket);
@@ -279,31 +298,33 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
         let wait = u64::from(e.timeout);
         slot.open = Some(Open {
             ticket,
+            // Read again: numbering wrote the sequence number.
             ids: rules.ids(key, frame),
             answer: e.answer,
             deadline: now.saturating_add(wait),
             wait,
             retries_left: e.retries,
             backoff: e.backoff.max(1),
-            fanout: rules
-                .fanout(key)
-                .and_then(|f| f.listed(rules.packet, frame))
-                .map(|ids| (ids, false)),
+            fanout,
         });
         Ok(Some(ticket))
     }
 
-    /// A free slot for a request of `key`; without a sequence number, none while a request
-    /// that an answer could not be told from is open.
-    fn free_slot(&self, key: u64, frame: &[u8]) -> Result<usize, SendError> {
+    /// A free slot for the request `new`; without a sequence number, none while a request is
+    /// open that one frame could answer as well as `new` (a request of the same command to
+    /// the same peer; a READ to a servo that an open SYNC_READ lists).
+    fn free_slot(&self, new: Awaits<'_>) -> Result<usize, SendError> {
         let rules = self.rules.session();
         if rules.sequence.is_none() {
-            let ids = rules.ids(key, frame);
-            if self
-                .slots
-                .iter()
-                .any(|s| s.open.is_some_and(|o| o.ids == ids))
-            {
+            let shared = self.slots.iter().filter_map(|s| s.open).any(|o| {
+                let open = Awaits {
+                    ids: &o.ids,
+                    answer: o.answer,
+                    several: o.fanout.map(|w| w.waiting()),
+                };
+                rules.share_answer(open, new)
+            });
+            if shared {
                 return Err(SendError::Ambiguous);
             }
         }
@@ -388,36 +409,34 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
     /// (`Partial`); the last lets the answer resolve it (`None`).
     fn one_of_several(
         rules: &SessionRules<'_>,
-        slot: &mut Slot<FRAME>,
+        slot: &mut Slot<S::Awaiting, FRAME>,
         now: u64,
         frame: &[u8],
     ) -> Option<Received> {
         let o = slot.open.as_mut()?;
-        let (waiting, heard) = o.fanout.as_mut()?;
         let id = rules.fanout(o.ids.key)?.sender(frame)?;
-        waiting.remove(id);
-        *heard = true;
-        if waiting.is_empty() {
+        let waiting = o.fanout.as_mut()?.answered(id);
+        if waiting == 0 {
             return None;
         }
         o.deadline = now.saturating_add(o.wait);
         Some(Received::Partial {
             ticket: o.ticket,
             id,
-            waiting: waiting.len(),
+            waiting,
         })
     }
 
     /// Whether `frame` comes from an id that the open request `o` still waits for (always,
     /// for a request of one answer).
-    fn awaited(rules: &SessionRules<'_>, o: &Open, frame: &[u8]) -> bool {
-        let Some((waiting, _)) = o.fanout else {
+    fn awaited(rules: &SessionRules<'_>, o: &Open<S::Awaiting>, frame: &[u8]) -> bool {
+        let Some(waiting) = o.fanout else {
             return true;
         };
         rules
             .fanout(o.ids.key)
             .and_then(|f| f.sender(frame))
-            .is_some_and(|id| waiting.contains(id))
+            .is_some_and(|id| waiting.awaits(id))
     }
 
     /// The open request `frame` answers or refuses (the oldest, should several match): its
@@ -469,9 +488,9 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
         let mut o = slot.open?;
         if o.retries_left == 0 {
             slot.open = None;
-            let resolution = match o.fanout {
-                Some((waiting, true)) => Resolution::Incomplete(waiting),
-                _ => Resolution::TimedOut,
+            let resolution = match o.fanout.and_then(|w| w.incomplete()) {
+                Some(waiting) => Resolution::Incomplete(waiting),
+                None => Resolution::TimedOut,
             };
             return Some(Due::Outcome(Outcome {
                 ticket: o.ticket,

@@ -267,3 +267,114 @@ fn an_id_set_holds_every_byte() {
     assert_eq!(set.iter().collect::<Vec<_>>(), [0, 63, 127, 128, 255]);
     assert!(!set.is_empty() && IdSet::EMPTY.is_empty());
 }
+
+/// These rules as generated code hands them out, sized for rules that list no command of
+/// several answers: wrongly, since these do.
+#[derive(Clone, Copy)]
+struct Unlisted;
+
+impl SessionRef for Unlisted {
+    type Awaiting = NoFanout;
+    fn session(&self) -> &SessionRules<'_> {
+        &SESSION
+    }
+}
+
+#[test]
+fn a_requester_without_id_sets_keeps_none_in_its_slots() {
+    use core::mem::size_of;
+    assert_eq!(size_of::<Option<NoFanout>>(), 0);
+    let with = size_of::<Requester<&SessionRules<'static>, 4, 32>>();
+    let without = size_of::<Requester<Unlisted, 4, 32>>();
+    // Each slot saves at least the 32-byte id set.
+    assert!(with >= without + 4 * size_of::<IdSet>(), "{with} {without}");
+}
+
+#[test]
+fn a_requester_without_id_sets_refuses_a_request_of_several_answers() {
+    let mut req = Requester::<_, 2, 32>::new(Unlisted);
+    let mut request = sync_read(&[3, 5]);
+    let before = request.clone();
+    assert_eq!(req.send(0, &mut request), Err(SendError::Several));
+    assert_eq!((request, req.open()), (before, 0));
+    // Its requests of one answer are as any requester's.
+    let t = req
+        .send(1, &mut frame(3, 0x02, &[0x84, 0, 4, 0]))
+        .unwrap()
+        .unwrap();
+    assert_eq!(
+        req.on_frame(2, &status(3)),
+        outcome(t, Resolution::Answered)
+    );
+}
+
+#[test]
+fn a_status_that_could_answer_two_open_requests_is_refused_at_send() {
+    let mut req = Requester::<_, 4, 32>::new(&SESSION);
+    let read3 = req
+        .send(0, &mut frame(3, 0x02, &[0x84, 0, 4, 0]))
+        .unwrap()
+        .unwrap();
+    // A status from 3 could answer the READ or a SYNC_READ listing 3: the second waits.
+    let mut listing3 = sync_read(&[5, 3]);
+    let before = listing3.clone();
+    assert_eq!(req.send(1, &mut listing3), Err(SendError::Ambiguous));
+    assert_eq!((listing3, req.open()), (before, 1));
+    // So could a PING of 3 (its answer is a status too), and a BULK_READ listing 3.
+    assert_eq!(
+        req.send(1, &mut frame(3, 0x01, &[])),
+        Err(SendError::Ambiguous)
+    );
+    let bulk3 = [0x07, 0x84, 0x02, 0x03, 0x80, 0x04];
+    assert_eq!(
+        req.send(1, &mut frame(0xFE, 0x92, &bulk3)),
+        Err(SendError::Ambiguous)
+    );
+    // Servos 4 and 5 are not 3: a SYNC_READ of them is told apart by the sender's id.
+    let sync = req.send(2, &mut sync_read(&[4, 5])).unwrap().unwrap();
+    // Now a READ of 5, and a BULK_READ listing 4, could share a status with the SYNC_READ.
+    assert_eq!(
+        req.send(3, &mut frame(5, 0x02, &[0x84, 0, 4, 0])),
+        Err(SendError::Ambiguous)
+    );
+    let bulk4 = [0x04, 0x84, 0x02, 0x09, 0x80, 0x04];
+    assert_eq!(
+        req.send(3, &mut frame(0xFE, 0x92, &bulk4)),
+        Err(SendError::Ambiguous)
+    );
+    // Once 5 has answered, the SYNC_READ waits for 4 alone: a READ of 5 is told apart.
+    assert!(matches!(
+        req.on_frame(4, &status(5)),
+        Received::Partial { id: 5, .. }
+    ));
+    let read5 = req
+        .send(5, &mut frame(5, 0x02, &[0x84, 0, 4, 0]))
+        .unwrap()
+        .unwrap();
+    // Each status resolves the one request it can answer.
+    assert_eq!(
+        req.on_frame(6, &status(5)),
+        outcome(read5, Resolution::Answered)
+    );
+    assert_eq!(
+        req.on_frame(6, &status(3)),
+        outcome(read3, Resolution::Answered)
+    );
+    assert_eq!(
+        req.on_frame(7, &status(4)),
+        outcome(sync, Resolution::Answered)
+    );
+    // With the READ of 3 resolved, the SYNC_READ listing 3 goes out.
+    assert!(req.send(8, &mut sync_read(&[5, 3])).unwrap().is_some());
+}
+
+#[test]
+fn id_sets_meet_when_they_share_an_id() {
+    let (mut a, mut b) = (IdSet::EMPTY, IdSet::EMPTY);
+    a.insert(3);
+    a.insert(200);
+    b.insert(4);
+    assert!(!a.meets(&b) && !IdSet::EMPTY.meets(&a));
+    b.insert(200);
+    assert!(a.meets(&b) && b.meets(&a));
+}

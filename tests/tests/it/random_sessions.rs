@@ -43,7 +43,7 @@ struct Tally {
 
 /// A machine of each kind over each side's rules: `G` is generated code's `Session`, the other
 /// the codec's rules.
-struct Twins<'r, G, const FRAME: usize> {
+struct Twins<'r, G: SessionRef, const FRAME: usize> {
     requester: (
         Requester<G, SLOTS, FRAME>,
         Requester<&'r SessionRules<'r>, SLOTS, FRAME>,

@@ -6,16 +6,26 @@
 //! numbered request twice, never send a request more than 1 + its retries times, hold at most
 //! its slots open, deliver nothing before the handshake, and allocate nothing in the machines.
 //!
+//! Dynamixel's SYNC_READ and BULK_READ are answered by each servo they list: every answer but
+//! the last leaves the request open (`Partial`), a request some servos missed resolves to
+//! `Incomplete`, no servo's answer reaches the application twice, none from a servo the
+//! request does not list, and a request one status could answer as well as an open one waits
+//! (`SendError::Ambiguous`).
+//!
 //! `cargo test -p protocol-tests --test it -- --nocapture session_sim::fault_matrix` prints the
 //! counts of a fixed matrix of schedules, MAVLink's commands among them (answered, refused by
-//! their ACK's `result`, or kept waiting by an ACK that says they are in progress).
+//! their ACK's `result`, or kept waiting by an ACK that says they are in progress) and
+//! Dynamixel's reads of several servos.
 
+#[path = "session_sim/dynamixel.rs"]
+pub(crate) mod dynamixel;
 #[path = "session_sim/link.rs"]
 pub(crate) mod link;
 #[path = "session_sim/sim.rs"]
 pub(crate) mod sim;
 
 use crate::session_mavlink::MavlinkResults;
+use dynamixel::Dynamixel;
 use link::Fault;
 use proptest::prelude::*;
 use sim::{Peer, SLOTS, Tally, run};
@@ -185,8 +195,13 @@ fn check(name: &str, t: &Tally) {
     );
     assert_eq!(
         t.requests,
-        t.answered + t.refused + t.rejected_by_value + t.timed_out,
+        t.answered + t.refused + t.rejected_by_value + t.timed_out + t.incomplete,
         "{name}: {t:?}"
+    );
+    assert_eq!(
+        (t.answers_twice, t.unlisted),
+        (0, 0),
+        "{name}: an answer of several handed over twice, or from a device not listed: {t:?}"
     );
     assert_eq!(
         t.resent_after_progress, 0,
@@ -236,6 +251,15 @@ proptest! {
     }
 
     #[test]
+    fn dynamixel_reads_of_several_servos_resolve_once_under_faults(
+        plan in plan(),
+        schedule in prop::collection::vec(fault(), 0..200),
+    ) {
+        let t = run::<Dynamixel>(&plan, schedule);
+        check("dynamixel", &t);
+    }
+
+    #[test]
     fn hflink_holds_its_handshake_and_replies_under_faults(
         plan in plan(),
         schedule in prop::collection::vec(fault(), 0..200),
@@ -252,6 +276,7 @@ fn a_clean_link_answers_every_request() {
     for (name, t) in [
         ("roborts", run::<Roborts>(&plan, Vec::new())),
         ("hflink", run::<Hflink>(&plan, Vec::new())),
+        ("dynamixel", run::<Dynamixel>(&plan, Vec::new())),
     ] {
         check(name, &t);
         assert_eq!(
@@ -329,7 +354,7 @@ fn fault_matrix() {
         std::mem::size_of::<Responder<roborts::Session, SLOTS, { sim::FRAME }>>()
     );
     println!(
-        "{:<8} {:>5} {:>7} {:>6} {:>6} {:>9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>7} {:>6} {:>7} {:>7} {:>6}",
+        "{:<9} {:>5} {:>7} {:>6} {:>6} {:>9} {:>6} {:>8} {:>7} {:>10} {:>6} {:>6} {:>6} {:>7} {:>6} {:>7} {:>7} {:>6}",
         "spec",
         "loss%",
         "frames",
@@ -338,6 +363,8 @@ fn fault_matrix() {
         "corrupt",
         "reqs",
         "answered",
+        "partial",
+        "incomplete",
         "nack",
         "result",
         "inprog",
@@ -348,7 +375,7 @@ fn fault_matrix() {
         "alloc"
     );
     for loss in [0u64, 10, 30] {
-        for name in ["roborts", "hflink", "mavlink"] {
+        for name in ["roborts", "hflink", "mavlink", "dynamixel"] {
             let mut mix = Mix(loss * 1000 + name.len() as u64);
             let mut total = Tally::default();
             for _ in 0..100 {
@@ -356,6 +383,7 @@ fn fault_matrix() {
                 let t = match name {
                     "roborts" => run::<Roborts>(&plan, schedule),
                     "hflink" => run::<Hflink>(&plan, schedule),
+                    "dynamixel" => run::<Dynamixel>(&plan, schedule),
                     _ => run::<MavlinkResults>(&plan, schedule),
                 };
                 check(name, &t);
@@ -366,7 +394,7 @@ fn fault_matrix() {
             }
             let f = total.faults;
             println!(
-                "{:<8} {:>5} {:>7} {:>6} {:>6} {:>9} {:>6} {:>8} {:>6} {:>6} {:>6} {:>7} {:>6} {:>7} {:>7} {:>6}",
+                "{:<9} {:>5} {:>7} {:>6} {:>6} {:>9} {:>6} {:>8} {:>7} {:>10} {:>6} {:>6} {:>6} {:>7} {:>6} {:>7} {:>7} {:>6}",
                 name,
                 loss,
                 f.frames,
@@ -375,18 +403,21 @@ fn fault_matrix() {
                 f.corrupted,
                 total.requests,
                 total.answered,
+                total.partial,
+                total.incomplete,
                 total.refused,
                 total.rejected_by_value,
                 total.progress,
                 total.timed_out,
                 total.resends,
                 total.delivered,
-                // HFLink and MAVLink number nothing: a duplicate cannot be told from a new
-                // request.
-                if name == "roborts" {
-                    total.duplicates_delivered.to_string()
-                } else {
-                    "-".to_string()
+                // HFLink, MAVLink and Dynamixel number nothing: a duplicate request cannot be
+                // told from a new one. Dynamixel's column counts the servos' answers handed
+                // to the host twice instead.
+                match name {
+                    "roborts" => total.duplicates_delivered.to_string(),
+                    "dynamixel" => total.answers_twice.to_string(),
+                    _ => "-".to_string(),
                 },
                 total.allocations
             );
@@ -397,6 +428,9 @@ fn fault_matrix() {
 fn add(total: &mut Tally, t: &Tally) {
     total.requests += t.requests;
     total.answered += t.answered;
+    total.partial += t.partial;
+    total.incomplete += t.incomplete;
+    total.answers_twice += t.answers_twice;
     total.refused += t.refused;
     total.rejected_by_value += t.rejected_by_value;
     total.progress += t.progress;

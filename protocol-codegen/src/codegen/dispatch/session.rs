@@ -157,7 +157,7 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
          is matched, timeouts and retries. [`Requester`] and [`Responder`] run it.",
         f.name
     );
-    let machines = emit_machines(f, &s);
+    let machines = emit_machines(f, &s, !plan.fanouts.is_empty());
     let scheduler = emit_scheduler(&plan, &s);
     quote! {
         #[doc = #doc]
@@ -203,7 +203,7 @@ fn emit_scheduler(plan: &SessionPlan, s: &TokenStream) -> TokenStream {
 
 /// `Session` and the machines over it: the machines read [`SESSION`] as a constant, so a
 /// firmware links the checks of this frame format alone.
-fn emit_machines(f: &Frame, s: &TokenStream) -> TokenStream {
+fn emit_machines(f: &Frame, s: &TokenStream, several: bool) -> TokenStream {
     let max = format_ident!("{}", f.names.sizes.max_frame_len);
     let session_doc = " [`SESSION`] as a type: the session machines read the conversation as a \
          compile-time constant and compile to code for this spec's alone (its frame format's \
@@ -217,11 +217,19 @@ fn emit_machines(f: &Frame, s: &TokenStream) -> TokenStream {
          their answers of at most `FRAME` bytes (by default [`{max}`]). \
          `Responder::<8>::new(Session)`."
     );
+    // A requester's slot keeps the ids a request still waits for only where a command is
+    // answered once by each id it lists.
+    let awaiting = if several {
+        quote!(#s::Awaited)
+    } else {
+        quote!(#s::NoFanout)
+    };
     quote! {
         #[doc = #session_doc]
         #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
         pub struct Session;
         impl #s::SessionRef for Session {
+            type Awaiting = #awaiting;
             #[inline(always)]
             fn session(&self) -> &#s::SessionRules<'_> {
                 &SESSION

@@ -30,6 +30,11 @@ pub trait Peer {
     fn handshake() -> Option<Vec<u8>>;
     /// The device's answer to a delivered request, as its application builds it.
     fn answer(request: &[u8]) -> Vec<u8>;
+    /// The answers to a delivered request, in the order the devices send them: one, the
+    /// [`answer`](Self::answer), but where each device the request lists answers.
+    fn answers(request: &[u8]) -> Vec<Vec<u8>> {
+        vec![Self::answer(request)]
+    }
     /// An answer the device sends before [`answer`](Self::answer), saying the request is
     /// being carried out (a `result` value of `progress`); none by default.
     fn progress(_request: &[u8]) -> Option<Vec<u8>> {
@@ -52,6 +57,14 @@ pub struct Tally {
     /// Requests refused by their answer's result value.
     pub rejected_by_value: u64,
     pub timed_out: u64,
+    /// Requests of several answers that timed out with some of them.
+    pub incomplete: u64,
+    /// Answers to a request of several answers that left it open for the others.
+    pub partial: u64,
+    /// Answers of one device to one request handed to the application twice (must be 0).
+    pub answers_twice: u64,
+    /// Answers to a request of several answers from a device it does not list (must be 0).
+    pub unlisted: u64,
     /// Answers that said a request is in progress.
     pub progress: u64,
     /// Retries of a request after an answer said it is in progress (must be 0).
@@ -89,6 +102,9 @@ struct Log {
     retries: u8,
     progressed: bool,
     outcomes: Vec<Resolution>,
+    /// The devices whose answers were handed over, for a request of several answers.
+    from: Vec<u8>,
+    listed: Option<(protocol_kit::session::Fanout, Vec<u8>)>,
 }
 
 /// Runs `plan` (requests as `(gap in ms, kind, mode)`) over a link with `schedule`.
@@ -186,6 +202,15 @@ fn send<P: Peer>(
                     retries: e.map_or(0, |e| e.retries),
                     progressed: false,
                     outcomes: Vec::new(),
+                    from: Vec::new(),
+                    listed: rules
+                        .heard(frame)
+                        .ok()
+                        .and_then(|h| match h {
+                            protocol_kit::session::Heard::Command(k) => rules.fanout(k),
+                            protocol_kit::session::Heard::Ack => None,
+                        })
+                        .and_then(|f| Some((*f, f.listed(rules.packet, frame)?.iter().collect()))),
                 },
             );
         }
@@ -249,8 +274,7 @@ fn serve<P: Peer>(
                         .expect("the answer takes the request's values");
                     link.send(UP, now, &first);
                 }
-                if answer {
-                    let mut reply = P::answer(&frame);
+                for mut reply in answer.then(|| P::answers(&frame)).unwrap_or_default() {
                     let mut ok = None;
                     t.allocations += allocation_counter::measure(|| {
                         ok = Some(res.answer(&frame, &mut reply));
@@ -310,6 +334,9 @@ fn hear<P: Peer>(
                 {
                     t.mismatched += 1;
                 }
+                if o.resolution == Resolution::Answered {
+                    handed_over(t, log, &frame);
+                }
                 record(t, log, o.resolution);
                 if *handshake == Some(o.ticket) && o.resolution != Resolution::Answered {
                     *handshake = None;
@@ -319,7 +346,15 @@ fn hear<P: Peer>(
                 t.progress += 1;
                 logs.get_mut(&ticket).expect("open").progressed = true;
             }
-            Received::Partial { .. } => panic!("no request of these rules lists its answerers"),
+            Received::Partial { ticket, .. } => {
+                t.partial += 1;
+                let log = logs.get_mut(&ticket).expect("open");
+                assert!(
+                    log.outcomes.is_empty(),
+                    "a partial answer after the outcome"
+                );
+                handed_over(t, log, &frame);
+            }
             Received::Unsolicited => t.unsolicited += 1,
             Received::Unreadable(e) => panic!("a checked frame is readable: {e:?}"),
         }
@@ -375,6 +410,21 @@ fn record(t: &mut Tally, log: &mut Log, r: Resolution) {
         Resolution::Refused => t.refused += 1,
         Resolution::Rejected(_) => t.rejected_by_value += 1,
         Resolution::TimedOut => t.timed_out += 1,
-        Resolution::Incomplete(_) => panic!("no request of these rules lists its answerers"),
+        Resolution::Incomplete(_) => t.incomplete += 1,
     }
+}
+
+/// An answer to a request of several answers handed to the application: counted against its
+/// sender's id.
+fn handed_over(t: &mut Tally, log: &mut Log, frame: &[u8]) {
+    let Some((fanout, listed)) = &log.listed else {
+        return;
+    };
+    let Some(id) = fanout.sender(frame) else {
+        t.unlisted += 1;
+        return;
+    };
+    t.unlisted += u64::from(!listed.contains(&id));
+    t.answers_twice += u64::from(log.from.contains(&id));
+    log.from.push(id);
 }
