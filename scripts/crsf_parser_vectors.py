@@ -3,8 +3,10 @@
 Writes `tests/vectors/crsf_parser.json`: random BATTERY_SENSOR, LINK_STATISTICS and
 RC_CHANNELS_PACKED messages, framed by crsf-parser (`crsf_build_frame`, sync 0xC8, its CRC) and
 parsed back by its `CRSFParser.parse_stream`, which checks the length and the CRC. Each frame
-records the payload in the spec's shape (`payload`) and, under `peer`, what crsf-parser parsed
-from the bytes: `[spec path, crsf-parser's value, scale]`. crsf-parser's other types are left
+records the payload in the spec's shape (`payload`: a field the spec scales is its physical
+value) and, under `peer`, what crsf-parser parsed from the bytes: `[spec path, crsf-parser's
+value, scale]`. crsf-parser keeps the wire integers; where the spec scales a field, its value
+is put in the spec's unit with the specification's scale, to agree within half the scale. crsf-parser's other types are left
 out (see `left_out` in the file).
 
 Run with crsf-parser installed (the version is written into the file):
@@ -46,11 +48,33 @@ def parsed(frame: bytes):
     return out[0][0].payload
 
 
+#: The fields the spec scales: the wire value to the spec's physical value (a scale that is
+#: the reciprocal of an integer divides by it, as the generated code does), and the scale's step.
+SCALED = {
+    "voltage": (lambda v: v / 10, 0.1),
+    "current": (lambda v: v / 10, 0.1),
+    "up_rssi_ant1": (lambda v: v / -1, 1),
+    "up_rssi_ant2": (lambda v: v / -1, 1),
+    "down_rssi": (lambda v: v / -1, 1),
+    "channels": (lambda v: v * 0.625 + 880, 0.625),
+}
+
+
+def physical(k, v):
+    """The spec's value of field `k` whose wire value is `v`."""
+    return SCALED[k][0](v) if k in SCALED else v
+
+
+def peer(k, v):
+    """crsf-parser's wire value `v` of field `k`, in the spec's unit, with its step."""
+    return [k, physical(k.split(".")[0], v), SCALED.get(k.split(".")[0], (None, 1))[1]]
+
+
 def battery(rng):
     p = {"voltage": rng.getrandbits(16), "current": rng.getrandbits(16), "capacity_used": rng.getrandbits(24), "remaining": rng.randint(0, 100)}
     frame = crsf_build_frame(PacketsTypes.BATTERY_SENSOR, {BATTERY[k]: v for k, v in p.items()})
     got = parsed(frame)
-    return p, frame, [[k, got[t], 1] for k, t in BATTERY.items()]
+    return {k: physical(k, v) for k, v in p.items()}, frame, [peer(k, got[t]) for k, t in BATTERY.items()]
 
 
 def link_statistics(rng):
@@ -63,7 +87,7 @@ def link_statistics(rng):
     frame = crsf_build_frame(PacketsTypes.LINK_STATISTICS, {LINK[k]: v for k, v in p.items()})
     got = parsed(frame)
     # Its enumerations parse to named integers: their integer is the wire value.
-    return p, frame, [[k, int(got[t]), 1] for k, t in LINK.items()]
+    return {k: physical(k, v) for k, v in p.items()}, frame, [peer(k, int(got[t])) for k, t in LINK.items()]
 
 
 def rc_channels(rng):
@@ -73,7 +97,7 @@ def rc_channels(rng):
     # bits as the TBS specification writes them.
     frame = crsf_build_frame(PacketsTypes.RC_CHANNELS_PACKED, {"channels": channels[::-1]})
     got = list(parsed(frame)["channels"])[::-1]
-    return {"channels": channels}, frame, [[f"channels.{n}", v, 1] for n, v in enumerate(got)]
+    return {"channels": [physical("channels", c) for c in channels]}, frame, [peer(f"channels.{n}", v) for n, v in enumerate(got)]
 
 
 TYPES = {"BATTERY_SENSOR": battery, "LINK_STATISTICS": link_statistics, "RC_CHANNELS_PACKED": rc_channels}

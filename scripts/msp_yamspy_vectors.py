@@ -8,8 +8,12 @@ values in Betaflight's (or INAV's) order, are framed by `send_RAW_msg` (v1) or w
 `_crc8_dvb_s2` (v2 frames of ids below 256, which `send_RAW_msg` writes as v1 only), their
 direction byte set to `>` (no check covers it), and are then read back by YAMSPy's
 `receive_msg` and `process_recv_data`. Each frame records the payload in the spec's shape
-(`payload`, what the script packed) and, under `yamspy`, what YAMSPy's parser read from the
-bytes: `[spec path, YAMSPy's value, scale]`, the spec's raw value times `scale` being YAMSPy's.
+(`payload`, what the script packed, a field the spec scales as its physical value: the wire
+integer divided as `SCALED` says) and, under `yamspy`, what YAMSPy's parser read from the
+bytes: `[spec path, YAMSPy's value, scale]`. Where the spec scales the field, YAMSPy's value
+is in the spec's unit (YAMSPy's raw reading times the scale where YAMSPy keeps the integer)
+and agrees with the spec's within half the scale; elsewhere the spec's wire value times
+`scale` is YAMSPy's.
 
 Run with YAMSPy installed (the version is written into the file):
 
@@ -263,9 +267,10 @@ def raw_gps(rng):
 
     def y(b):
         g = b.GPS_DATA
-        out = [["fix_type", g["fix"], 1], ["num_sat", g["numSat"], 1], ["lat", g["lat"], 1], ["lon", g["lon"], 1],
-               ["alt", g["alt"], 1], ["ground_speed", g["speed"], 1], ["ground_course", g["ground_course"], 1]]
-        return out + ([["dop", g["hdop"], 1]] if inav else [])
+        # YAMSPy keeps these four integers: their scale makes them the spec's physical values.
+        out = [["fix_type", g["fix"], 1], ["num_sat", g["numSat"], 1], ["lat", g["lat"] / 10**7, 1e-7], ["lon", g["lon"] / 10**7, 1e-7],
+               ["alt", g["alt"], 1], ["ground_speed", g["speed"], 1], ["ground_course", g["ground_course"] / 10, 0.1]]
+        return out + ([["dop", g["hdop"] / 100, 0.01]] if inav else [])
 
     return p, raw, y, inav
 
@@ -398,10 +403,31 @@ LEFT_OUT = {
 }
 
 
+#: The fields the spec scales, by command, and the integer that divides the wire value (the
+#: reciprocal of the scale): the payload holds their physical values, as `protocol decode`
+#: prints them.
+SCALED = {
+    "ATTITUDE": {"roll": 10, "pitch": 10},
+    "ANALOG": {"battery_voltage": 10, "amperage": 100, "battery_voltage_mv": 100},
+    "RAW_GPS": {"lat": 10**7, "lon": 10**7, "ground_course": 10, "dop": 100},
+    "RC_TUNING": {k: 100 for k in ["rc_rate", "rc_expo", "roll_rate", "pitch_rate", "yaw_rate", "dynamic_thr_pid", "throttle_mid", "throttle_expo",
+                                   "rc_yaw_expo", "rc_yaw_rate", "rc_pitch_rate", "rc_pitch_expo", "throttle_hover"]},
+    "BATTERY_STATE": {"legacy_battery_voltage": 10, "amperage": 100, "battery_voltage": 100},
+    "INAV_ANALOG": {"voltage": 100, "amperage": 100, "power": 100},
+}
+
+
+def physical(name, payload):
+    """`payload` with the fields the spec scales divided into their physical values."""
+    div = SCALED.get(name, {})
+    return {k: v / div[k] if k in div and v is not None else v for k, v in payload.items()}
+
+
 def reply_frames(rng, name, cmd, frames):
     for n in range(FRAMES_PER_COMMAND):
         made = REPLIES[name](rng)
         payload, raw, peer = made[:3]
+        payload = physical(name, payload)
         inav = made[3] if len(made) > 3 else name in INAV
         for v2 in ([True] if cmd["id"] > 255 else [False, True]):
             frame = framed(cmd["id"], raw, 0x3E, v2)
@@ -449,7 +475,7 @@ def main() -> None:
             "yamspy": version("yamspy"),
             "what": "requests written by YAMSPy (send_RAW_msg, send_RAW_RC, send_RAW_MOTORS); replies laid out from random values in Betaflight's or INAV's order, framed by YAMSPy's send_RAW_msg (v1) or with its _crc8_dvb_s2 (v2), direction set to '>', and read back by YAMSPy's receive_msg and process_recv_data",
             "payload": "the payload in the spec's shape, as protocol decode prints it (bytes as hex, texts as strings, bit members by name)",
-            "yamspy": "[spec path, YAMSPy's value, scale]: YAMSPy's reading of the bytes; the spec's raw value times scale is YAMSPy's value (scale null: compared as they are, texts as hex)",
+            "yamspy": "[spec path, YAMSPy's value, scale]: YAMSPy's reading of the bytes; where the spec scales the field, YAMSPy's value in the spec's unit, within half the scale of the spec's physical value; elsewhere the spec's raw value times scale is YAMSPy's value (scale null: compared as they are, texts as hex)",
             "left_out": LEFT_OUT,
             "disagreements": [
                 "MSP_BATTERY_STATE: YAMSPy 0.3.3 reads no legacy voltage byte after the capacity (Betaflight writes one), so its mAhDrawn, amperage, batteryState and voltage are read a byte early; only cell_count and capacity are compared",

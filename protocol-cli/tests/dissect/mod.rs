@@ -1,5 +1,10 @@
 //! What the dissector tests share: the bundled specs with their vector files, reading frames
 //! out of `tshark -T pdml`, and comparing each with the frame object `protocol decode` prints.
+//!
+//! PDML is read element by element, not line by line: a text field's `show` attribute may hold
+//! a newline. Text is compared by its bytes (the `value` attribute, the field's bytes in hex)
+//! where the shown string cannot say them: `decode` prints text that is not UTF-8 as its bytes,
+//! and the dissector shows it with replacement characters and escapes.
 #![allow(dead_code)]
 
 use std::collections::BTreeMap;
@@ -32,14 +37,23 @@ pub fn tshark_available() -> bool {
     found
 }
 
-/// One frame as the dissector shows it: its bytes, and every field's `show` values in order.
+/// One frame as the dissector shows it: its bytes, and every field's values in order.
 #[derive(Debug, Default)]
 pub struct Shown {
     pub hex: String,
-    pub fields: BTreeMap<String, Vec<String>>,
+    pub fields: BTreeMap<String, Vec<FieldShown>>,
 }
 
-/// The value of an XML attribute on a PDML line, unescaped.
+/// One field as the dissector shows it.
+#[derive(Debug, Default)]
+pub struct FieldShown {
+    /// The text shown (for a `bytes` field, its bytes in hex).
+    pub show: String,
+    /// The field's bytes in hex (PDML's `value`), empty where PDML gives none.
+    pub value: String,
+}
+
+/// The value of an XML attribute in a PDML element's start tag, unescaped.
 pub fn attr(line: &str, name: &str) -> Option<String> {
     let key = format!(" {name}=\"");
     let start = line.find(&key)? + key.len();
@@ -58,7 +72,10 @@ pub fn attr(line: &str, name: &str) -> Option<String> {
 pub fn frames_of(pdml: &str, name: &str) -> Vec<Shown> {
     let mut out: Vec<Shown> = Vec::new();
     let prefix = format!("{name}.");
-    for line in pdml.lines() {
+    // Each `<field` element's start tag whole, attribute values with newlines included (a
+    // `<` inside an attribute value is escaped, so the next element starts at the next `<`).
+    for line in pdml.split("<field").skip(1) {
+        let line = line.split('<').next().unwrap_or_default();
         let Some(field) = attr(line, "name") else {
             continue;
         };
@@ -72,16 +89,16 @@ pub fn frames_of(pdml: &str, name: &str) -> Vec<Shown> {
         if field == format!("{name}.frame") {
             frame.hex = attr(line, "value").unwrap_or_default();
         } else if field.starts_with(&prefix) {
-            let shown = if line.contains("type=\"bytes\"") {
-                attr(line, "value")
+            let value = attr(line, "value");
+            let show = if line.contains("type=\"bytes\"") {
+                value.clone()
             } else {
                 attr(line, "show")
             };
-            frame
-                .fields
-                .entry(field)
-                .or_default()
-                .push(shown.unwrap_or_default());
+            frame.fields.entry(field).or_default().push(FieldShown {
+                show: show.unwrap_or_default(),
+                value: value.unwrap_or_default(),
+            });
         }
     }
     out
@@ -197,8 +214,14 @@ fn scaled_digits(scale: &protocol_spec::ir::Scale) -> u32 {
     }
 }
 
-/// Whether the dissector's `shown` text is the value `decode` printed.
-pub fn same(shown: &str, v: &Value, digits: Option<u32>) -> bool {
+/// Whether the dissector's field is the value `decode` printed.
+pub fn same(field: &FieldShown, v: &Value, digits: Option<u32>) -> bool {
+    let shown = field.show.as_str();
+    // Text by its bytes: the field's bytes in hex are those of the string, or the byte list.
+    let bytes_are = |bytes: &mut dyn Iterator<Item = u64>| {
+        !field.value.is_empty()
+            && bytes.map(|b| format!("{b:02x}")).collect::<String>() == field.value
+    };
     match (v, digits) {
         (Value::Number(n), Some(d)) => {
             let (Some(want), Ok(got)) = (n.as_f64(), shown.parse::<f64>()) else {
@@ -211,13 +234,18 @@ pub fn same(shown: &str, v: &Value, digits: Option<u32>) -> bool {
             shown.parse::<i128>().ok().map(|x| x.to_string()) == Some(n.to_string())
         }
         (Value::Bool(b), _) => matches!((shown, b), ("1" | "True", true) | ("0" | "False", false)),
-        (Value::String(s), _) => shown == s || shown.replace(':', "").eq_ignore_ascii_case(s),
+        (Value::String(s), _) => {
+            shown == s
+                || shown.replace(':', "").eq_ignore_ascii_case(s)
+                || bytes_are(&mut s.bytes().map(u64::from))
+        }
         (Value::Array(items), _) => {
             let hex: String = items
                 .iter()
                 .map(|b| format!("{:02x}", b.as_u64().unwrap_or(0)))
                 .collect();
             shown.replace(':', "") == hex
+                || bytes_are(&mut items.iter().map(|b| b.as_u64().unwrap_or(256)))
                 || items.iter().all(|b| b.as_u64().is_some_and(|b| b < 0x80))
                     && shown
                         .as_bytes()

@@ -4,6 +4,11 @@
 //! (`protocol_dynamic`); the mixed stream yields exactly its expected frames at every chunk size,
 //! through the generated decoder, a decoder on the layout value and the run-time codec.
 //!
+//! The vectors record the wire integers: a field the specification scales is the integer times
+//! its scale plus its offset, in the spec's `f32` or `f64` (dividing by the integer whose
+//! reciprocal the scale is, as the generated code does). The codec's JSON of each frame is the
+//! serde JSON of the expected message (`derive(serde)`), through its text.
+//!
 //! The NUL-terminated names (FLIGHT_MODE, DEVICE_INFO) are texts; a COMMAND's inner CRC is no
 //! field of its struct: decoding verifies it, encoding computes it, and the byte it writes is
 //! the value the vector records.
@@ -15,7 +20,7 @@ use protocol_kit::{DecodeError, EncodeError, Reject};
 use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 use serde_json::{Value, json};
 
-protocol_kit::protocol!("../specs/crsf.toml");
+protocol_kit::protocol!("../specs/crsf.toml", derive(serde));
 
 use crsf::*;
 
@@ -35,6 +40,21 @@ fn ints(v: &Value, k: &str) -> Vec<i64> {
         .collect()
 }
 
+/// A field of scale `1 / div` as an `f32`.
+fn f32_per(v: &Value, k: &str, div: f32) -> f32 {
+    i(v, k) as f32 / div
+}
+
+/// A field on the wire as dBm × -1 (scale -1), in dBm.
+fn dbm(v: &Value, k: &str) -> f32 {
+    i(v, k) as f32 / -1.0
+}
+
+/// A JSON value through its text, as a decoder prints it (an `f32` keeps its shortest form).
+fn shown(value: &impl serde::Serialize) -> Value {
+    serde_json::from_str(&serde_json::to_string(value).expect("JSON")).expect("JSON")
+}
+
 fn bytes<const N: usize>(b: &[u8]) -> protocol_kit::Bytes<N> {
     protocol_kit::Bytes::from_slice(b).expect("fits")
 }
@@ -47,28 +67,29 @@ fn text<const N: usize>(f: &Value, k: &str) -> protocol_kit::NulStr<N> {
 fn expected_message(ty: u64, f: &Value) -> Message {
     match ty {
         0x02 => Message::Gps(Gps {
-            latitude: i(f, "latitude") as i32,
-            longitude: i(f, "longitude") as i32,
-            groundspeed: u(f, "groundspeed") as u16,
-            heading: u(f, "heading") as u16,
-            altitude: u(f, "altitude") as u16,
+            latitude: i(f, "latitude") as f64 / 1e7,
+            longitude: i(f, "longitude") as f64 / 1e7,
+            groundspeed: f32_per(f, "groundspeed", 10.0),
+            heading: f32_per(f, "heading", 100.0),
+            altitude: u(f, "altitude") as f32 - 1000.0,
             satellites: u(f, "satellites") as u8,
         }),
         0x07 => Message::Vario(Vario {
             vertical_speed: i(f, "vertical_speed") as i16,
         }),
         0x08 => Message::BatterySensor(BatterySensor {
-            voltage: u(f, "voltage") as u16,
-            current: u(f, "current") as u16,
+            voltage: f32_per(f, "voltage", 10.0),
+            current: f32_per(f, "current", 10.0),
             capacity_used: u(f, "capacity_used") as u32,
             remaining: u(f, "remaining") as u8,
         }),
         0x09 => Message::BaroAltitude(BaroAltitude {
-            altitude_packed: u(f, "altitude_packed") as u16,
+            altitude: (u(f, "altitude_packed") & 0x7FFF) as u16,
+            altitude_in_meters: u(f, "altitude_packed") >> 15 == 1,
             vertical_speed_packed: i(f, "vertical_speed_packed") as i8,
         }),
         0x0A => Message::Airspeed(Airspeed {
-            speed: u(f, "speed") as u16,
+            speed: f32_per(f, "speed", 10.0),
         }),
         0x0B => Message::Heartbeat(Heartbeat {
             origin_address: i(f, "origin_address") as i16,
@@ -81,49 +102,56 @@ fn expected_message(ty: u64, f: &Value) -> Message {
             })
         }
         0x0D => {
-            let values: Vec<i16> = ints(f, "temperature").iter().map(|&v| v as i16).collect();
+            let values: Vec<f32> = ints(f, "temperature")
+                .iter()
+                .map(|&v| v as f32 / 10.0)
+                .collect();
             Message::Temperature(Temperature {
                 temp_source_id: u(f, "temp_source_id") as u8,
                 temperature: protocol_kit::Group::from_slice(&values).expect("fits"),
             })
         }
         0x14 => Message::LinkStatistics(LinkStatistics {
-            up_rssi_ant1: u(f, "up_rssi_ant1") as u8,
-            up_rssi_ant2: u(f, "up_rssi_ant2") as u8,
+            up_rssi_ant1: dbm(f, "up_rssi_ant1"),
+            up_rssi_ant2: dbm(f, "up_rssi_ant2"),
             up_link_quality: u(f, "up_link_quality") as u8,
             up_snr: i(f, "up_snr") as i8,
             active_antenna: u(f, "active_antenna") as u8,
             rf_profile: u(f, "rf_profile") as u8,
             up_rf_power: u(f, "up_rf_power") as u8,
-            down_rssi: u(f, "down_rssi") as u8,
+            down_rssi: dbm(f, "down_rssi"),
             down_link_quality: u(f, "down_link_quality") as u8,
             down_snr: i(f, "down_snr") as i8,
         }),
         0x16 => {
-            let channels: Vec<u16> = ints(f, "channels").iter().map(|&c| c as u16).collect();
+            // The specification's TICKS_TO_US: (x - 992) * 5 / 8 + 1500.
+            let channels: Vec<f32> = ints(f, "channels")
+                .iter()
+                .map(|&c| c as f32 * 0.625 + 880.0)
+                .collect();
             Message::RcChannelsPacked(RcChannels {
                 channels: channels.try_into().expect("16 channels"),
             })
         }
         0x1C => Message::LinkStatisticsRx(LinkStatisticsRx {
-            rssi_db: u(f, "rssi_db") as u8,
+            rssi_db: dbm(f, "rssi_db"),
             rssi_percent: u(f, "rssi_percent") as u8,
             link_quality: u(f, "link_quality") as u8,
             snr: i(f, "snr") as i8,
             rf_power_db: u(f, "rf_power_db") as u8,
         }),
         0x1D => Message::LinkStatisticsTx(LinkStatisticsTx {
-            rssi_db: u(f, "rssi_db") as u8,
+            rssi_db: dbm(f, "rssi_db"),
             rssi_percent: u(f, "rssi_percent") as u8,
             link_quality: u(f, "link_quality") as u8,
             snr: i(f, "snr") as i8,
             rf_power_db: u(f, "rf_power_db") as u8,
-            fps: u(f, "fps") as u8,
+            fps: u(f, "fps") as f32 * 10.0,
         }),
         0x1E => Message::Attitude(Attitude {
-            pitch: i(f, "pitch") as i16,
-            roll: i(f, "roll") as i16,
-            yaw: i(f, "yaw") as i16,
+            pitch: f32_per(f, "pitch", 1e4),
+            roll: f32_per(f, "roll", 1e4),
+            yaw: f32_per(f, "yaw", 1e4),
         }),
         0x21 => Message::FlightMode(FlightMode {
             flight_mode: text(f, "flight_mode"),
@@ -170,28 +198,6 @@ fn expected_message(ty: u64, f: &Value) -> Message {
     }
 }
 
-/// The vector's fields in the run-time codec's JSON shape: bytes as lowercase hex, no inner
-/// CRC (no field of the struct).
-fn dynamic_fields(ty: u64, f: &Value) -> Value {
-    let hex_of = |b: &[u8]| b.iter().map(|x| format!("{x:02x}")).collect::<String>();
-    let small = |k: &str| ints(f, k).iter().map(|&b| b as u8).collect::<Vec<u8>>();
-    let mut out = f.clone();
-    match ty {
-        0x2D => out["value"] = Value::String(hex_of(&small("value"))),
-        0x32 => {
-            let data = small("payload");
-            out = json!({
-                "destination": f["destination"],
-                "origin": f["origin"],
-                "command": f["command"],
-                "data": hex_of(&data),
-            });
-        }
-        _ => {}
-    }
-    out
-}
-
 fn interpreter() -> Interpreter {
     golden::interpreter("crsf")
 }
@@ -233,7 +239,7 @@ fn every_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
             .parse(0, &bytes)
             .unwrap_or_else(|e| panic!("{name}: dynamic decode: {e:?}"));
         let value = codec.frame_value(&decoded, 0, &bytes);
-        let json = serde_json::to_value(&value).expect("serializes");
+        let json = shown(&value);
         assert_eq!(
             json["header"],
             json!({ "address": u(frame, "sync") }),
@@ -242,7 +248,7 @@ fn every_frame_decodes_to_its_fields_and_encodes_to_its_bytes() {
         assert_eq!(json["id"], json!(ty), "{name}: dynamic type");
         assert_eq!(
             json["payload"],
-            dynamic_fields(ty, &frame["fields"]),
+            shown(&expected)["payload"],
             "{name}: dynamic decode"
         );
         let encoded = codec
@@ -287,7 +293,7 @@ fn every_address_of_the_set_is_a_sync_and_no_other_byte_is() {
 fn an_address_outside_the_set_is_an_encode_error() {
     let packet = Packet {
         header: Header { address: 0xC9 },
-        message: Message::Airspeed(Airspeed { speed: 360 }),
+        message: Message::Airspeed(Airspeed { speed: 36.0 }),
     };
     let mut buf = [0u8; MAX_FRAME_LEN];
     assert_eq!(
@@ -301,7 +307,7 @@ fn an_address_outside_the_set_is_an_encode_error() {
     let value: protocol_dynamic::Value = serde_json::from_value(json!({
         "command": "AIRSPEED",
         "header": { "address": 0xC9 },
-        "payload": { "speed": 360 },
+        "payload": { "speed": 36.0 },
     }))
     .expect("a frame value");
     assert!(

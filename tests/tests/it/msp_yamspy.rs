@@ -4,7 +4,8 @@
 //!
 //! The generated code and the run-time codec each decode every frame to the recorded payload
 //! and to YAMSPy's reading of the bytes (each value YAMSPy read, at its scale, within half that
-//! scale), and encode the payload back to the frame's bytes.
+//! scale: ours as it is where the spec scales the field too, ours times the scale where the
+//! spec keeps the wire integer), and encode the payload back to the frame's bytes.
 
 use crate::golden;
 
@@ -33,7 +34,8 @@ fn at_path<'a>(payload: &'a Value, path: &str) -> &'a Value {
 }
 
 /// Every value the peer read (`frame[peer]`: `[path, value, scale]`) agrees with ours: equal,
-/// or ours times the scale within half the scale of the peer's.
+/// or within half the scale of the peer's, ours as it is where it is a physical value (a
+/// float: the spec scales the field) and ours times the scale where it is the wire integer.
 pub(crate) fn assert_peer_agrees(payload: &Value, frame: &Value, peer: &str, at: &str) {
     for check in frame[peer].as_array().expect("the peer's values") {
         let path = check[0].as_str().expect("a path");
@@ -42,12 +44,14 @@ pub(crate) fn assert_peer_agrees(payload: &Value, frame: &Value, peer: &str, at:
         match check[2].as_f64() {
             None => assert_eq!(ours, theirs, "{at}: `{path}`"),
             Some(scale) => {
+                let physical = ours.is_f64();
                 let ours = ours
                     .as_f64()
                     .unwrap_or_else(|| panic!("{at}: `{path}` is {ours}"));
+                let ours = if physical { ours } else { ours * scale };
                 let theirs = theirs.as_f64().expect("a number");
                 assert!(
-                    (ours * scale - theirs).abs() <= scale / 2.0,
+                    (ours - theirs).abs() <= scale / 2.0,
                     "{at}: `{path}` is {ours} at {scale}, {peer} {theirs}"
                 );
             }

@@ -6,7 +6,9 @@
 //! vectors use 0xC8 and 0xEE, the random frames below all four); it lacks the broadcast 0x00.
 //!
 //! Random RC_CHANNELS_PACKED and LINK_STATISTICS frames cross both ways between the peer and the
-//! code generated from `specs/crsf.toml`, as the same bytes.
+//! code generated from `specs/crsf.toml`, as the same bytes. The peer keeps the wire integers
+//! where the spec has physical values (channels in µs, RSSI in dBm): the adapter converts with
+//! the specification's scales, which are exact in `f32` for every wire value.
 
 use crate::values::{V, assert_fields};
 use crsf::{Packet, PacketError, PacketParser};
@@ -118,6 +120,27 @@ use ours::crsf as spec;
 use proptest::prelude::*;
 use protocol_peers::harness::{PeerAdapter, assert_every_message_crosses};
 
+/// A channel's pulse width in µs, from its 11-bit wire value (the specification's
+/// `TICKS_TO_US`: `(x - 992) * 5 / 8 + 1500`).
+fn us(ticks: u16) -> f32 {
+    f32::from(ticks) * 0.625 + 880.0
+}
+
+/// A channel's 11-bit wire value, from its pulse width in µs.
+fn ticks(us: f32) -> u16 {
+    ((us - 880.0) / 0.625) as u16
+}
+
+/// An RSSI in dBm, from its wire value (dBm × -1).
+fn dbm(wire: u8) -> f32 {
+    -f32::from(wire)
+}
+
+/// An RSSI's wire value (dBm × -1), from dBm.
+fn rssi_wire(dbm: f32) -> u8 {
+    (-dbm) as u8
+}
+
 /// The `crsf` crate against the generated codec, over the two frame types the crate has
 /// (RC_CHANNELS_PACKED and LINK_STATISTICS) and the four addresses it knows (`C8`, `EA`, `EE`,
 /// `EC`: it has no broadcast address `00`, which the TBS specification lists and this spec
@@ -126,18 +149,21 @@ struct Crsf;
 
 fn messages() -> BoxedStrategy<spec::Packet> {
     let address = prop_oneof![Just(0xC8u8), Just(0xEA), Just(0xEE), Just(0xEC)];
-    let channels = prop::array::uniform16(0u16..=0x7FF)
-        .prop_map(|channels| spec::Message::RcChannelsPacked(spec::RcChannels { channels }));
+    let channels = prop::array::uniform16(0u16..=0x7FF).prop_map(|channels| {
+        spec::Message::RcChannelsPacked(spec::RcChannels {
+            channels: channels.map(us),
+        })
+    });
     let stats = (any::<[u8; 8]>(), any::<[i8; 2]>()).prop_map(|(u, [up_snr, down_snr])| {
         spec::Message::LinkStatistics(spec::LinkStatistics {
-            up_rssi_ant1: u[0],
-            up_rssi_ant2: u[1],
+            up_rssi_ant1: dbm(u[0]),
+            up_rssi_ant2: dbm(u[1]),
             up_link_quality: u[2],
             up_snr,
             active_antenna: u[3],
             rf_profile: u[4],
             up_rf_power: u[5],
-            down_rssi: u[6],
+            down_rssi: dbm(u[6]),
             down_link_quality: u[7],
             down_snr,
         })
@@ -164,16 +190,18 @@ impl PeerAdapter for Crsf {
     fn peer_write(&mut self, m: &spec::Packet) -> Result<Option<Vec<u8>>, String> {
         let address = PacketAddress::from_u8(m.header.address).ok_or("an address it lacks")?;
         let packet = match &m.message {
-            spec::Message::RcChannelsPacked(c) => Packet::RcChannels(RcChannels(c.channels)),
+            spec::Message::RcChannelsPacked(c) => {
+                Packet::RcChannels(RcChannels(c.channels.map(ticks)))
+            }
             spec::Message::LinkStatistics(l) => Packet::LinkStatistics(LinkStatistics {
-                uplink_rssi_1: l.up_rssi_ant1,
-                uplink_rssi_2: l.up_rssi_ant2,
+                uplink_rssi_1: rssi_wire(l.up_rssi_ant1),
+                uplink_rssi_2: rssi_wire(l.up_rssi_ant2),
                 uplink_link_quality: l.up_link_quality,
                 uplink_snr: l.up_snr,
                 active_antenna: l.active_antenna,
                 rf_mode: l.rf_profile,
                 uplink_tx_power: l.up_rf_power,
-                downlink_rssi: l.down_rssi,
+                downlink_rssi: rssi_wire(l.down_rssi),
                 downlink_link_quality: l.down_link_quality,
                 downlink_snr: l.down_snr,
             }),
@@ -197,18 +225,18 @@ impl PeerAdapter for Crsf {
             return Err("more than one packet".into());
         }
         let message = match packet {
-            Packet::RcChannels(c) => {
-                spec::Message::RcChannelsPacked(spec::RcChannels { channels: c.0 })
-            }
+            Packet::RcChannels(c) => spec::Message::RcChannelsPacked(spec::RcChannels {
+                channels: c.0.map(us),
+            }),
             Packet::LinkStatistics(l) => spec::Message::LinkStatistics(spec::LinkStatistics {
-                up_rssi_ant1: l.uplink_rssi_1,
-                up_rssi_ant2: l.uplink_rssi_2,
+                up_rssi_ant1: dbm(l.uplink_rssi_1),
+                up_rssi_ant2: dbm(l.uplink_rssi_2),
                 up_link_quality: l.uplink_link_quality,
                 up_snr: l.uplink_snr,
                 active_antenna: l.active_antenna,
                 rf_profile: l.rf_mode,
                 up_rf_power: l.uplink_tx_power,
-                down_rssi: l.downlink_rssi,
+                down_rssi: dbm(l.downlink_rssi),
                 down_link_quality: l.downlink_link_quality,
                 down_snr: l.downlink_snr,
             }),

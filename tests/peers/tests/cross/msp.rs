@@ -4,7 +4,10 @@
 //! Every frame the peer parses yields the recorded command, direction and payload, and the
 //! responses whose payload the peer has a struct for decode to the recorded fields. The peer has
 //! no jumbo v1 frames (size byte 255): that frame is checked to be rejected there, and decoded
-//! here. Random messages cross both ways between the peer and the generated codec.
+//! here. Random messages cross both ways between the peer and the generated codec; the peer
+//! keeps the wire integers where the spec has physical values (attitude angles, voltages,
+//! currents), which the adapter converts with the spec's scales (exact in `f32` for every wire
+//! value).
 
 use crate::values::{V, assert_fields};
 use cu_msp_lib::structs::{
@@ -229,6 +232,16 @@ use ours::msp as spec;
 use proptest::prelude::*;
 use protocol_peers::harness::{PeerAdapter, assert_every_message_crosses};
 
+/// A wire integer of scale `1 / div` as its physical value, as the generated code computes it.
+fn per(wire: impl Into<f32>, div: f32) -> f32 {
+    wire.into() / div
+}
+
+/// The wire integer of a physical value of scale `1 / div` (exact for the values [`per`] gives).
+fn wire(physical: f32, div: f32) -> f64 {
+    f64::from((physical * div).round())
+}
+
 /// The MSP messages both sides know: replies the peer has a struct for, their empty
 /// requests, and box names (raw bytes, below the jumbo size the peer does not have), each in a
 /// v1 or a v2 frame.
@@ -249,7 +262,11 @@ fn messages() -> BoxedStrategy<spec::AnyPacket> {
         }))
     });
     let attitude = any::<[i16; 3]>().prop_map(|[roll, pitch, yaw]| {
-        M::Response(R::Attitude(spec::Attitude { roll, pitch, yaw }))
+        M::Response(R::Attitude(spec::Attitude {
+            roll: per(roll, 10.0),
+            pitch: per(pitch, 10.0),
+            yaw,
+        }))
     });
     let altitude = (any::<i32>(), any::<i16>())
         .prop_map(|(altitude, vario)| M::Response(R::Altitude(spec::Altitude { altitude, vario })));
@@ -276,11 +293,11 @@ fn messages() -> BoxedStrategy<spec::AnyPacket> {
         .prop_map(
             |(battery_voltage, mah_drawn, rssi, amperage, battery_voltage_mv)| {
                 M::Response(R::Analog(spec::Analog {
-                    battery_voltage,
+                    battery_voltage: per(battery_voltage, 10.0),
                     mah_drawn,
                     rssi,
-                    amperage,
-                    battery_voltage_mv,
+                    amperage: per(amperage, 100.0),
+                    battery_voltage_mv: per(battery_voltage_mv, 100.0),
                 }))
             },
         );
@@ -348,7 +365,7 @@ fn payload_of(m: &spec::Message) -> Vec<u8> {
         }
         M::Response(R::FcVersion(v)) => out.extend([v.major, v.minor, v.patch]),
         M::Response(R::Attitude(a)) => {
-            for x in [a.roll, a.pitch, a.yaw] {
+            for x in [wire(a.roll, 10.0) as i16, wire(a.pitch, 10.0) as i16, a.yaw] {
                 out.extend(x.to_le_bytes());
             }
         }
@@ -365,11 +382,11 @@ fn payload_of(m: &spec::Message) -> Vec<u8> {
             }
         }
         M::Response(R::Analog(a)) => {
-            out.push(a.battery_voltage);
+            out.push(wire(a.battery_voltage, 10.0) as u8);
             out.extend(a.mah_drawn.to_le_bytes());
             out.extend(a.rssi.to_le_bytes());
-            out.extend(a.amperage.to_le_bytes());
-            out.extend(a.battery_voltage_mv.to_le_bytes());
+            out.extend((wire(a.amperage, 100.0) as i16).to_le_bytes());
+            out.extend((wire(a.battery_voltage_mv, 100.0) as u16).to_le_bytes());
         }
         M::Response(R::Boxnames(n)) => out.extend_from_slice(n.names.as_slice()),
         other => panic!("not drawn: {other:?}"),
@@ -426,8 +443,8 @@ fn from_peer(p: &MspPacket) -> Result<spec::Message, String> {
         spec::Command::Attitude => {
             let a: MspAttitude = decoded(p.decode_as())?;
             R::Attitude(spec::Attitude {
-                roll: a.roll,
-                pitch: a.pitch,
+                roll: per(a.roll, 10.0),
+                pitch: per(a.pitch, 10.0),
                 yaw: a.yaw,
             })
         }
@@ -455,11 +472,11 @@ fn from_peer(p: &MspPacket) -> Result<spec::Message, String> {
         spec::Command::Analog => {
             let a: MspAnalog = decoded(p.decode_as())?;
             R::Analog(spec::Analog {
-                battery_voltage: a.battery_voltage,
+                battery_voltage: per(a.battery_voltage, 10.0),
                 mah_drawn: a.mah_drawn,
                 rssi: a.rssi,
-                amperage: a.amperage,
-                battery_voltage_mv: a.battery_voltage_mv,
+                amperage: per(a.amperage, 100.0),
+                battery_voltage_mv: per(a.battery_voltage_mv, 100.0),
             })
         }
         spec::Command::Boxnames => R::Boxnames(spec::BoxNames {

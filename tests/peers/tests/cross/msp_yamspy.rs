@@ -1,7 +1,9 @@
 //! The YAMSPy frames (`tests/vectors/msp_yamspy.json`) against `cu-msp-lib` 1.3, a second
 //! reader of the same bytes: every frame parses there to its command, direction and payload, and
 //! the replies it has a struct for decode to the recorded values (the leading fields its struct
-//! holds, where Betaflight's reply grew after it).
+//! holds, where Betaflight's reply grew after it). cu-msp-lib keeps the wire integers where the
+//! spec has physical values (rates, voltages, currents): they are divided by the integer whose
+//! reciprocal the spec's scale is, in `f64` as the vectors' generator computes them.
 
 use cu_msp_lib::structs::{
     MspBatteryState, MspBoardInfo, MspBuildInfo, MspMotor, MspRcTuning, MspStatusEx, MspUniqueId,
@@ -16,6 +18,11 @@ fn parse(bytes: &[u8]) -> Vec<MspPacket> {
         .iter()
         .filter_map(|&b| parser.parse(b).ok().flatten())
         .collect()
+}
+
+/// A wire integer of scale `1 / div` as its physical value.
+fn per(wire: impl Into<f64>, div: f64) -> Value {
+    json!(wire.into() / div)
 }
 
 fn text(bytes: &[u8]) -> Value {
@@ -48,17 +55,17 @@ fn fields(p: &MspPacket) -> Option<Vec<(&'static str, Value)>> {
         111 => {
             let r: MspRcTuning = p.decode_as().ok()?;
             vec![
-                ("rc_rate", json!(r.rc_rate8)),
-                ("rc_expo", json!(r.rc_expo8)),
-                ("roll_rate", json!(r.rate_roll)),
-                ("pitch_rate", json!(r.rate_pitch)),
-                ("yaw_rate", json!(r.rate_yaw)),
-                ("dynamic_thr_pid", json!(r.dyn_thr_pid)),
-                ("throttle_mid", json!(r.thr_mid8)),
-                ("throttle_expo", json!(r.thr_expo8)),
+                ("rc_rate", per(r.rc_rate8, 100.0)),
+                ("rc_expo", per(r.rc_expo8, 100.0)),
+                ("roll_rate", per(r.rate_roll, 100.0)),
+                ("pitch_rate", per(r.rate_pitch, 100.0)),
+                ("yaw_rate", per(r.rate_yaw, 100.0)),
+                ("dynamic_thr_pid", per(r.dyn_thr_pid, 100.0)),
+                ("throttle_mid", per(r.thr_mid8, 100.0)),
+                ("throttle_expo", per(r.thr_expo8, 100.0)),
                 ("dynamic_thr_breakpoint", json!(r.tpa_breakpoint)),
-                ("rc_yaw_expo", json!(r.rc_yaw_expo8)),
-                ("rc_yaw_rate", json!(r.rc_yaw_rate8)),
+                ("rc_yaw_expo", per(r.rc_yaw_expo8, 100.0)),
+                ("rc_yaw_rate", per(r.rc_yaw_rate8, 100.0)),
             ]
         }
         130 => {
@@ -66,11 +73,11 @@ fn fields(p: &MspPacket) -> Option<Vec<(&'static str, Value)>> {
             vec![
                 ("cell_count", json!(b.battery_cell_count)),
                 ("capacity", json!(b.battery_capacity)),
-                ("legacy_battery_voltage", json!(b.battery_voltage)),
+                ("legacy_battery_voltage", per(b.battery_voltage, 10.0)),
                 ("mah_drawn", json!(b.mah_drawn)),
-                ("amperage", json!(b.amperage)),
+                ("amperage", per(b.amperage, 100.0)),
                 ("battery_state", json!(b.alerts)),
-                ("battery_voltage", json!(b.battery_voltage_mv)),
+                ("battery_voltage", per(b.battery_voltage_mv, 100.0)),
             ]
         }
         150 => {
