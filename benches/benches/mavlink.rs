@@ -10,6 +10,9 @@
 //! - `generated-typed` / `mavlink-typed`: framing and the typed packet: each frame read into
 //!   the generated `Packet` (`Packet::from_frame`), and the crate's `read_message` into its
 //!   `MavMessage`;
+//! - `generated-as`: framing and the typed struct as a program that handles a few messages
+//!   reads it: `Packet::from_frame_as` of each of the seven structs in turn until one matches
+//!   (each miss compares the frame's id with a constant);
 //! - `common` / `common-typed`: the `generated` rows with the code generated from the whole
 //!   common dialect (`specs/mavlink-common.toml`, 234 messages, imported from its XML) instead
 //!   of the twelve messages of `specs/mavlink.toml`;
@@ -266,6 +269,43 @@ macro_rules! generated_rows {
 generated_rows!(generated, spec);
 generated_rows!(generated_common, common);
 
+/// Whether `frame` is one of the seven messages, read by `Packet::from_frame_as` of each of
+/// their structs in turn.
+fn read_as(frame: &[u8]) -> bool {
+    macro_rules! first_of {
+        ($($m:ident),*) => {$(
+            if let Ok(Some(read)) = spec::Packet::from_frame_as::<spec::$m>(frame) {
+                black_box(&read);
+                return true;
+            }
+        )*};
+    }
+    first_of!(
+        Heartbeat,
+        SysStatus,
+        SystemTime,
+        GpsRawInt,
+        Attitude,
+        GlobalPositionInt,
+        RcChannels
+    );
+    false
+}
+
+/// The `generated-as` row: the frames of the generated decoder that [`read_as`] reads.
+fn generated_as(stream: &[u8], chunk: usize, _typed: bool) -> usize {
+    let mut decoder = spec::decoder();
+    let mut count = 0usize;
+    let mut sink = |frame: protocol_kit::Frame<'_>| count += usize::from(read_as(frame.bytes));
+    for piece in stream.chunks(chunk) {
+        decoder.feed(piece, &mut sink);
+    }
+    while let Some(frame) = decoder.flush() {
+        sink(frame);
+    }
+    count
+}
+
 /// Frames (or typed messages) the `mavlink` crate's reader returns until the stream ends.
 fn crate_reader(stream: &[u8], chunk: usize, typed: bool) -> usize {
     let mut reader = MavlinkReader::new(Chunked {
@@ -390,12 +430,13 @@ type Decode = fn(&[u8], usize, bool) -> usize;
 fn decode(c: &mut Criterion<ThreadCpuTime>) {
     let (stream, frames) = stream();
     for (feed, chunk) in [("whole", stream.len()), ("64", CHUNK)] {
-        let rows: [(&str, Decode, bool); 7] = [
+        let rows: [(&str, Decode, bool); 8] = [
             ("hand", hand, false),
             ("generated", generated, false),
             ("common", generated_common, false),
             ("mavlink-raw", crate_reader, false),
             ("generated-typed", generated, true),
+            ("generated-as", generated_as, true),
             ("common-typed", generated_common, true),
             ("mavlink-typed", crate_reader, true),
         ];
