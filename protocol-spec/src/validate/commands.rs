@@ -60,8 +60,8 @@ pub(crate) fn lower_addresses(ctx: &mut Ctx<'_>) -> Vec<AddressSet> {
 }
 
 /// Rule: directions are `request` and `response` (both, or none), and any number of empty
-/// directions besides them (`empty = true`, [`empty::check_empty`]); each names a header field
-/// of the first frame and either an address set (`in`) or a value (`equals`).
+/// directions besides them (`empty = true`, `directions_empty::check_empty`); each names a
+/// header field of the first frame and either an address set (`in`) or a value (`equals`).
 pub(crate) fn lower_directions(
     ctx: &mut Ctx<'_>,
     frame: &Frame,

@@ -97,3 +97,29 @@ fn check_rust_name(ctx: &mut Ctx<'_>, name: &SStr) -> bool {
     }
     true
 }
+
+/// Rule: a spec with an empty direction has no `[session]`: a session would take a refusal
+/// (the request's command in the empty direction) for its answer. Gives whether it holds.
+pub(super) fn check_no_session(ctx: &mut Ctx<'_>) -> bool {
+    let spec = ctx.spec;
+    let Some(name) = spec
+        .directions
+        .iter()
+        .find(|(_, d)| is_empty(d))
+        .map(|(k, _)| k)
+    else {
+        return true;
+    };
+    if spec.session.is_some() {
+        ctx.error(
+            name.span(),
+            format!(
+                "empty direction `{}` and a `[session]`: a session does not tell a refusal from an answer",
+                name.get_ref()
+            ),
+            "remove the `[session]`, and match the empty direction's messages in the program that waits for a reply",
+        );
+        return false;
+    }
+    true
+}
