@@ -437,6 +437,27 @@ pub fn expected_empty(bytes: &[u8]) -> DecodeError {
     }
 }
 
+/// The command of a frame of an empty direction (MSP's error replies: the header and no
+/// payload, whatever the command), read from its payload `bytes`, which must be empty.
+///
+/// # Errors
+///
+/// [`DecodeError::PayloadLength`] when `bytes` is not empty.
+///
+/// ```
+/// use protocol_runtime::{DecodeError, encoder::read_empty};
+/// assert_eq!(read_empty(7u8, &[]), Ok(7));
+/// assert_eq!(read_empty(7u8, &[0]), Err(DecodeError::PayloadLength { expected: 0, actual: 1 }));
+/// ```
+#[cfg_attr(not(protocol_opt0), inline(always))]
+pub fn read_empty<C>(command: C, bytes: &[u8]) -> Result<C, DecodeError> {
+    if bytes.is_empty() {
+        Ok(command)
+    } else {
+        Err(expected_empty(bytes))
+    }
+}
+
 /// The payload read from exactly `bytes` ([`Payload::from_bytes`] as a function, so that a
 /// message enum's `read_payload` arm infers the type from the variant it fills).
 ///

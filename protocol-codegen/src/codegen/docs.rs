@@ -575,7 +575,13 @@ pub fn decoder_ram(f: &Frame) -> String {
 /// Links name the module: rustdoc resolves the outer doc of a module in its parent's scope.
 fn commands_doc(p: &Protocol) -> String {
     let m = &p.name;
-    let dirs: Vec<&str> = p.directions.iter().map(|d| d.name.as_str()).collect();
+    // An empty direction (sorted last) carries no command's payload: no column.
+    let dirs: Vec<&str> = p
+        .directions
+        .iter()
+        .filter(|d| !d.empty)
+        .map(|d| d.name.as_str())
+        .collect();
     let payload_heads = if dirs.is_empty() {
         "payload".to_string()
     } else {
@@ -591,6 +597,7 @@ fn commands_doc(p: &Protocol) -> String {
         let payloads: Vec<String> = c
             .payloads
             .iter()
+            .take(columns)
             .map(|x| {
                 x.map_or("-".into(), |i| {
                     format!("[`{0}`]({m}::{0})", p.structs[i].name)

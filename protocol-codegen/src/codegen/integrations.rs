@@ -186,7 +186,7 @@ fn serde_impls(p: &Protocol, rt: &TokenStream) -> TokenStream {
                 .directions
                 .iter()
                 .enumerate()
-                .filter(|(_, d)| d.message.is_none())
+                .filter(|(_, d)| d.message.is_none() && !d.empty)
             {
                 let name = format_ident!("{}", dir.rust_name);
                 out.extend(message_impls(p, di, &name, acks, rt));
@@ -356,15 +356,20 @@ fn message_impls(
 
 /// The `Message` over the directions: it serializes as its direction's message.
 fn direction_message_impl(p: &Protocol, rt: &TokenStream) -> TokenStream {
-    let names = p
-        .directions
-        .iter()
-        .map(|d| format_ident!("{}", d.rust_name));
+    let arms = p.directions.iter().map(|d| {
+        let v = format_ident!("{}", d.rust_name);
+        if d.empty {
+            // The command is the packet's: the payload is the empty map.
+            quote!(Self::#v(_) => #rt::serde::Serialize::serialize(&#rt::serde_support::Empty, s),)
+        } else {
+            quote!(Self::#v(m) => #rt::serde::Serialize::serialize(m, s),)
+        }
+    });
     quote! {
         impl #rt::serde::Serialize for Message {
             fn serialize<S: #rt::serde::Serializer>(&self, s: S) -> #rt::Result<S::Ok, S::Error> {
                 match self {
-                    #(Self::#names(m) => #rt::serde::Serialize::serialize(m, s),)*
+                    #(#arms)*
                 }
             }
         }
@@ -526,10 +531,20 @@ fn packet_message(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     if p.directions.is_empty() {
         return quote!(let _ = header; Message::deserialize_payload(command, d));
     }
-    let names: Vec<_> = p
+    let reads: Vec<_> = p
         .directions
         .iter()
-        .map(|d| format_ident!("{}", d.rust_name))
+        .map(|d| {
+            let v = format_ident!("{}", d.rust_name);
+            if d.empty {
+                quote! {{
+                    <#rt::serde_support::Empty as #rt::serde::Deserialize>::deserialize(d)?;
+                    Message::#v(command)
+                }}
+            } else {
+                quote!(Message::#v(#v::deserialize_payload(command, d)?))
+            }
+        })
         .collect();
     let tests: Vec<_> = p
         .directions
@@ -537,7 +552,7 @@ fn packet_message(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         .map(|d| direction_test(p, f, &d.rule.in_frame(f)))
         .collect();
     quote! {
-        #(if #tests { #rt::Ok(Message::#names(#names::deserialize_payload(command, d)?)) } else)*
+        #(if #tests { #rt::Ok(#reads) } else)*
         { #rt::Err(#rt::serde_support::payload_error("the header matches no direction")) }
     }
 }

@@ -131,7 +131,15 @@ fn directions(p: &Protocol, out: &mut String) {
             }
             DirectionRule::Given => "given to the decoder".to_string(),
         };
-        let _ = writeln!(out, "| {} | {rule} | {} |", d.name, cell(&d.doc));
+        let meaning = if d.empty {
+            format!(
+                "The header and no payload, whatever the command. {}",
+                cell(&d.doc)
+            )
+        } else {
+            cell(&d.doc)
+        };
+        let _ = writeln!(out, "| {} | {rule} | {} |", d.name, meaning.trim_end());
     }
     out.push('\n');
 }
@@ -500,7 +508,12 @@ fn commands(p: &Protocol, out: &mut String) {
     let slots: Vec<String> = if p.directions.is_empty() {
         vec!["payload".into()]
     } else {
-        p.directions.iter().map(|d| d.name.clone()).collect()
+        // An empty direction (sorted last) carries no command's payload: no column.
+        p.directions
+            .iter()
+            .filter(|d| !d.empty)
+            .map(|d| d.name.clone())
+            .collect()
     };
     let _ = writeln!(
         out,

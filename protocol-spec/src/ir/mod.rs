@@ -91,7 +91,7 @@ pub struct AddressSet {
 /// A direction of travel, which selects a command's payload.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Direction {
-    /// Name (`request` or `response`).
+    /// Name (`request`, `response`, or the name of an empty direction).
     pub name: String,
     /// Rust name of the direction's message enum and variant (PascalCase of `name`).
     pub rust_name: String,
@@ -103,6 +103,10 @@ pub struct Direction {
     /// every frame instead of a command: the struct's index, and the header length without the
     /// dispatch key, whose bytes the struct takes (they are the last header bytes).
     pub message: Option<(usize, usize)>,
+    /// A direction besides `request` and `response` whose frames carry the header and no
+    /// payload, whatever the command (MSP's error replies: the command the sender refuses).
+    /// Told by a header field; every command's payload in it is empty.
+    pub empty: bool,
 }
 
 /// How a decoder recognises a direction.

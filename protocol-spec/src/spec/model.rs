@@ -461,7 +461,9 @@ pub struct BitDef {
 }
 
 /// `request = { field = "sender", in = "master" }` or `{ field = "is_ack", equals = 0 }`: a
-/// header field tells the direction; or `request = { given = true }`: the decoder is given it.
+/// header field tells the direction; or `request = { given = true }`: the decoder is given it;
+/// or `error = { field = "direction", equals = 0x21, empty = true }`: a direction whose frames
+/// carry no payload.
 #[derive(Debug, Deserialize)]
 #[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
@@ -485,6 +487,10 @@ pub struct DirectionDef {
     /// The field equals this value.
     #[cfg_attr(feature = "schema", schemars(with = "Option<i64>"))]
     pub equals: Option<SInt>,
+    /// A direction besides `request` and `response` whose frames carry the header and no
+    /// payload, whatever the command (MSP's error replies).
+    #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
+    pub empty: Option<Spanned<bool>>,
     /// Documentation.
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub doc: Option<SStr>,

@@ -7,7 +7,7 @@ use toml::Spanned;
 
 use super::names::{check_screaming_name, check_snake_name, pascal_case};
 use super::types::{Structs, mask};
-use super::{Ctx, directions as given, text};
+use super::{Ctx, directions as given, directions_empty as empty, text};
 use crate::diag::did_you_mean;
 use crate::ir::{AddressSet, Command, Direction, DirectionRule, Frame, Role, Transport};
 use crate::spec::model::{DirectionDef, IdDef, SStr};
@@ -59,8 +59,9 @@ pub(crate) fn lower_addresses(ctx: &mut Ctx<'_>) -> Vec<AddressSet> {
     out
 }
 
-/// Rule: directions are `request` and `response` (both, or none); each names a header field of
-/// the first frame and either an address set (`in`) or a value (`equals`).
+/// Rule: directions are `request` and `response` (both, or none), and any number of empty
+/// directions besides them (`empty = true`, `directions_empty::check_empty`); each names a
+/// header field of the first frame and either an address set (`in`) or a value (`equals`).
 pub(crate) fn lower_directions(
     ctx: &mut Ctx<'_>,
     frame: &Frame,
@@ -71,14 +72,9 @@ pub(crate) fn lower_directions(
     let mut out = Vec::new();
     for (name, def) in &spec.directions {
         let n = name.get_ref();
-        if n != "request" && n != "response" {
-            let help = match did_you_mean(n, ["request", "response"]) {
-                Some(b) => format!("did you mean `{b}`?"),
-                None => "the directions are `request` and `response`".to_string(),
-            };
-            ctx.error(name.span(), format!("unknown direction `{n}`"), help);
+        let Some(is_empty) = empty::check_empty(ctx, name, def) else {
             continue;
-        }
+        };
         let d = def.get_ref();
         if d.given.is_some() || d.message.is_some() {
             if let Some((rule, message)) = given::lower_given(ctx, n, def, frame, structs) {
@@ -88,6 +84,7 @@ pub(crate) fn lower_directions(
                     doc: text(&d.doc),
                     rule,
                     message,
+                    empty: false,
                 });
             }
             continue;
@@ -139,12 +136,16 @@ pub(crate) fn lower_directions(
             doc: text(&d.doc),
             rule,
             message: None,
+            empty: is_empty,
         });
     }
     given::check_given_agree(ctx);
     // Rule: both directions, or neither. Report a lone direction only when the spec declares
     // one; when a declared direction failed to lower, its own error says why.
-    if spec.directions.len() == 1 {
+    let paired = |n: &str| n == "request" || n == "response";
+    let declared =
+        (spec.directions.iter()).filter(|(k, d)| paired(k.get_ref()) || !empty::is_empty(d));
+    if declared.count() == 1 {
         let span = spec
             .directions
             .keys()
@@ -157,10 +158,15 @@ pub(crate) fn lower_directions(
             "declare both `request` and `response`, or neither",
         );
     }
-    if out.len() != 2 {
+    if out.iter().filter(|d| paired(&d.name)).count() != 2 {
         out.clear();
-    } // Request first, then response, whatever the spec's order.
-    out.sort_by_key(|d| d.name != "request");
+    }
+    // Request first, then response, then the empty directions, whatever the spec's order.
+    out.sort_by_key(|d| match d.name.as_str() {
+        "request" => 0,
+        "response" => 1,
+        _ => 2,
+    });
     out
 }
 
@@ -494,10 +500,11 @@ fn lower_payload_refs(
         directions
             .iter()
             .map(|dir| {
-                let r = if dir.name == "request" {
-                    &d.request
-                } else {
-                    &d.response
+                let r = match dir.name.as_str() {
+                    "request" => &d.request,
+                    "response" => &d.response,
+                    // An empty direction carries no payload of any command.
+                    _ => return None,
                 };
                 match (dir.message, r) {
                     (Some((si, _)), Some(r)) => {

@@ -170,7 +170,12 @@ pub(super) fn check_given_agree(ctx: &mut Ctx<'_>) {
     let given =
         |d: &Spanned<DirectionDef>| d.get_ref().given.is_some() || d.get_ref().message.is_some();
     let (mut given_one, mut told_one) = (None, None);
-    for (name, def) in &spec.directions {
+    // An empty direction is told by a header field, a rule of its own.
+    for (name, def) in spec
+        .directions
+        .iter()
+        .filter(|(_, d)| !super::directions_empty::is_empty(d))
+    {
         if given(def) {
             given_one = given_one.or(Some(name));
         } else if def.get_ref().field.is_some() {

@@ -8,6 +8,7 @@ mod checksum;
 mod commands;
 pub mod derive;
 mod directions;
+mod directions_empty;
 mod extra;
 mod frame;
 mod names;

@@ -38,6 +38,9 @@ pub(super) fn lower_session(
         check_no_command_keys(ctx);
         return None;
     };
+    if !super::directions_empty::check_no_session(ctx) {
+        return None;
+    }
     let s = def.get_ref();
     let fi = lower_frame(ctx, s, def.span(), frames)?;
     let f = frames.get(fi)?;

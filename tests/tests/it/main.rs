@@ -45,6 +45,7 @@ mod lx16a_pylx16a;
 mod mask_fields;
 mod mavlink_typed;
 mod mavlink_vectors;
+mod msp_errors;
 mod msp_vectors;
 mod msp_yamspy;
 mod narrow_and_seeded_checks;

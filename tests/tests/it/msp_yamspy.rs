@@ -13,7 +13,7 @@ use protocol_tests::{F, hex, load_vectors};
 use serde_json::Value;
 use std::collections::BTreeSet;
 
-mod generated {
+pub(crate) mod generated {
     protocol_kit::protocol!("../specs/msp.toml", derive(serde));
 }
 

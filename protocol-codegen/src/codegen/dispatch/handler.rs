@@ -51,9 +51,12 @@ pub(super) fn emit_handlers(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenS
             requests: true,
         }]
     } else {
+        // An empty direction carries no payload to hand to a method: its frames (a command
+        // refused) reach no handler.
         p.directions
             .iter()
             .enumerate()
+            .filter(|(_, d)| !d.empty)
             .map(|(di, d)| Side {
                 handler: format_ident!("{}Handler", d.rust_name),
                 dispatch: format_ident!("dispatch_{}", d.name),

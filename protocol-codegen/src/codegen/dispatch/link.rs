@@ -40,7 +40,7 @@ pub(super) fn emit_commands_packet(p: &Protocol, f: &Frame, rt: &TokenStream) ->
     let n = f.dispatch.len();
     // A format without extension fields carries the fields before them (`carried`).
     let (read, carried) = if f.extensions {
-        (read_message(p, f), quote!(#rt::None))
+        (read_message(p, f, rt), quote!(#rt::None))
     } else {
         (
             quote!(Message::read_base_payload(command, payload)?),

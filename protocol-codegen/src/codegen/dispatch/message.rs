@@ -178,6 +178,13 @@ pub(super) fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStr
                 ));
                 quote!(#doc #v(#s))
             }
+            None if d.empty => {
+                let doc = doc_attrs(&format!(
+                    "A frame of direction `{}`: the command alone, no payload whatever the command. {}",
+                    d.name, d.doc
+                ));
+                quote!(#doc #v(Command))
+            }
             None => {
                 let doc = doc_attrs(&format!("A {}. {}", d.name, d.doc));
                 quote!(#doc #v(#v))
@@ -188,6 +195,7 @@ pub(super) fn emit_direction_message(p: &Protocol, rt: &TokenStream) -> TokenStr
         let v = format_ident!("{}", d.rust_name);
         match d.message {
             Some(_) => quote!(Self::#v(m) => v.visit(#rt::None, m),),
+            None if d.empty => quote!(Self::#v(c) => v.visit(*c, &()),),
             None => quote!(Self::#v(m) => m.visit_payload(v),),
         }
     });

@@ -75,8 +75,9 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
         ));
     } else {
         for (di, d) in p.directions.iter().enumerate() {
-            if d.message.is_some() {
-                // The direction's frames carry one struct, held by `Message` itself.
+            if d.message.is_some() || d.empty {
+                // The direction's frames carry one struct, or only the command (an empty
+                // direction), held by `Message` itself.
                 continue;
             }
             let name = format_ident!("{}", d.rust_name);

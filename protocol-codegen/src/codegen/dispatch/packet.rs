@@ -105,7 +105,7 @@ pub(super) fn key_values(p: &Protocol) -> TokenStream {
 
 /// The message of a decoded command frame of format `f`: by the direction the rules read from
 /// the header when the spec has directions.
-pub(super) fn read_message(p: &Protocol, f: &Frame) -> TokenStream {
+pub(super) fn read_message(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     if p.directions.is_empty() || p.directions_given() {
         return quote!(Message::read_payload(command, payload)?);
     }
@@ -118,6 +118,10 @@ pub(super) fn read_message(p: &Protocol, f: &Frame) -> TokenStream {
         } else {
             quote!(#i)
         };
+        if d.empty {
+            // Whatever the command: the header and no payload.
+            return quote!(#pat => Message::#v(#rt::read_empty(command, payload)?),);
+        }
         quote!(#pat => Message::#v(#v::read_payload(command, payload)?),)
     });
     quote!(match #rules.direction(frame)? { #(#arms)* })
@@ -276,7 +280,7 @@ fn packet_decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
     let id = read_id(p, f, rt);
     let parse = parse_bytes(f);
     let (scratch, scratch_ref) = unstuff_scratch(f);
-    let message = read_message(p, f);
+    let message = read_message(p, f, rt);
     quote! {
         /// Decode the frame at the start of `bytes`, checking its framing (sync, length,
         /// checks) first.

@@ -9,6 +9,7 @@ mod dynamixel1;
 mod dynamixel2;
 mod mavlink;
 mod msp;
+mod msp_errors;
 mod msp_yamspy;
 mod rc;
 mod sbp;

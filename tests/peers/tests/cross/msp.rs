@@ -243,8 +243,8 @@ fn wire(physical: f32, div: f32) -> f64 {
 }
 
 /// The MSP messages both sides know: replies the peer has a struct for, their empty
-/// requests, and box names (raw bytes, below the jumbo size the peer does not have), each in a
-/// v1 or a v2 frame.
+/// requests, box names (raw bytes, below the jumbo size the peer does not have) and the error
+/// reply of any command, each in a v1 or a v2 frame.
 fn messages() -> BoxedStrategy<spec::AnyPacket> {
     use spec::{Message as M, Request as Q, Response as R};
     let api = any::<[u8; 3]>().prop_map(|[a, b, c]| {
@@ -322,17 +322,20 @@ fn messages() -> BoxedStrategy<spec::AnyPacket> {
             name: protocol_kit::NulStr::from_text(&name).expect("at most 64 bytes"),
         }))
     });
+    // An error reply (`!`, cu-msp-lib's `Unsupported`) of any command: the command alone.
+    let refused = (0..spec::Command::ALL.len()).prop_map(|i| M::Error(spec::Command::ALL[i].0));
     let message = prop_oneof![
-        api, version, attitude, altitude, imu, analog, names, request, setting
+        api, version, attitude, altitude, imu, analog, names, request, setting, refused
     ];
     (message, any::<bool>())
         .prop_map(|(message, v2)| {
             // A command of an id above 255 travels in v2 frames only.
-            let v2 = v2 || message.command().id() > 255;
-            let direction = if matches!(message, M::Request(_)) {
-                b'<'
-            } else {
-                b'>'
+            // V2_FRAME (255) in a v1 frame carries a v2 frame, which cu-msp-lib reads as such.
+            let v2 = v2 || message.command().id() >= 255;
+            let direction = match message {
+                M::Request(_) => b'<',
+                M::Error(_) => b'!',
+                M::Response(_) => b'>',
             };
             if v2 {
                 spec::AnyPacket::V2(spec::V2Packet {
@@ -359,7 +362,7 @@ fn payload_of(m: &spec::Message) -> Vec<u8> {
             out.extend_from_slice(s.name.text());
             out.push(0);
         }
-        M::Request(_) => {}
+        M::Request(_) | M::Error(_) => {}
         M::Response(R::ApiVersion(a)) => {
             out.extend([a.protocol_version, a.api_version_major, a.api_version_minor]);
         }
@@ -399,6 +402,12 @@ fn from_peer(p: &MspPacket) -> Result<spec::Message, String> {
     use spec::{Message as M, Request as Q, Response as R};
     let cmd = p.cmd;
     let command = spec::Command::from_id(cmd).ok_or(format!("command {cmd}"))?;
+    if p.direction == MspPacketDirection::Unsupported {
+        if !p.data.as_slice().is_empty() {
+            return Err("an error reply with a payload".into());
+        }
+        return Ok(M::Error(command));
+    }
     if p.direction == MspPacketDirection::ToFlightController {
         if command == spec::Command::CommonSetting {
             let [name @ .., 0] = p.data.as_slice() else {
@@ -517,6 +526,7 @@ impl PeerAdapter for CuMsp {
             cmd: m.message().command().id(),
             direction: match direction_byte(m) {
                 b'<' => MspPacketDirection::ToFlightController,
+                b'!' => MspPacketDirection::Unsupported,
                 _ => MspPacketDirection::FromFlightController,
             },
             data: payload_of(m.message()).as_slice().into(),
