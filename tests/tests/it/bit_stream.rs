@@ -10,7 +10,7 @@
 //! good frames at every chunk size. Values that do not fit their members are encode errors.
 
 use protocol_dynamic::{Interpreter, Value};
-use protocol_tests::{F, assert_stream_at_every_chunk_size, hex};
+use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 
 mod fixture {
     protocol_kit::protocol!("../protocol-codegen/tests/features/bit_stream.toml");
@@ -20,9 +20,7 @@ use fixture::bit_stream::{
 };
 
 fn vectors() -> serde_json::Value {
-    let path = format!("{}/vectors/bit_stream.json", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    serde_json::from_str(&text).expect("the vector file is JSON")
+    load_vectors("bit_stream.json")
 }
 
 fn int(v: &serde_json::Value, key: &str) -> i64 {
@@ -155,17 +153,7 @@ fn values_that_do_not_fit_their_members_are_encode_errors() {
 #[test]
 fn golden_stream_yields_exactly_the_good_frames_at_every_chunk_size() {
     let v = vectors();
-    let stream = &v["streams"][0];
-    let bytes = hex(stream["hex"].as_str().expect("hex"));
-    let expected: Vec<(u64, Vec<u8>)> = stream["expected_frames"]
-        .as_array()
-        .expect("expected frames")
-        .iter()
-        .map(|f| {
-            let offset = f["offset"].as_u64().expect("offset");
-            (offset, hex(f["hex"].as_str().expect("hex")))
-        })
-        .collect();
+    let (bytes, expected) = stream_vector(&v["streams"][0]);
     assert_stream_at_every_chunk_size::<DECODER_BUFFER_LEN>(&LAYOUT, &bytes, &expected, |f| {
         assert!(Packet::decode(f).is_ok(), "{:?}", F(f));
     });

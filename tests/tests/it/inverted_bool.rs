@@ -10,7 +10,7 @@
 //! frames in `protocol-cli`'s `c_peer` test, which reads every vector file of a fixture.
 
 use protocol_dynamic::{Interpreter, Value};
-use protocol_tests::{F, assert_stream_at_every_chunk_size, hex};
+use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 
 mod fixture {
     protocol_kit::protocol!("../protocol-codegen/tests/features/inverted_bool.toml");
@@ -18,9 +18,7 @@ mod fixture {
 use fixture::inverted_bool::{DECODER_BUFFER_LEN, LAYOUT, MAX_FRAME_LEN, Message, Packet};
 
 fn vectors() -> serde_json::Value {
-    let path = format!("{}/vectors/inverted_bool.json", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    serde_json::from_str(&text).expect("the vector file is JSON")
+    load_vectors("inverted_bool.json")
 }
 
 fn bools(v: &serde_json::Value) -> Vec<bool> {
@@ -84,17 +82,7 @@ fn python_struct_frames_decode_to_their_flags_and_encode_back() {
 #[test]
 fn golden_stream_yields_exactly_the_good_frames_at_every_chunk_size() {
     let v = vectors();
-    let stream = &v["streams"][0];
-    let bytes = hex(stream["hex"].as_str().expect("hex"));
-    let expected: Vec<(u64, Vec<u8>)> = stream["expected_frames"]
-        .as_array()
-        .expect("expected frames")
-        .iter()
-        .map(|f| {
-            let offset = f["offset"].as_u64().expect("offset");
-            (offset, hex(f["hex"].as_str().expect("hex")))
-        })
-        .collect();
+    let (bytes, expected) = stream_vector(&v["streams"][0]);
     assert_stream_at_every_chunk_size::<DECODER_BUFFER_LEN>(&LAYOUT, &bytes, &expected, |f| {
         assert!(Packet::decode(f).is_ok(), "{:?}", F(f));
     });

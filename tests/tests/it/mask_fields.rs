@@ -15,7 +15,7 @@
 use protocol_dynamic::{Codec, Interpreter};
 use protocol_kit::error::Place;
 use protocol_kit::{DecodeError, EncodeError, Group};
-use protocol_tests::{F, assert_stream_at_every_chunk_size, hex};
+use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
 
 mod fixture {
     protocol_kit::protocol!("../protocol-codegen/tests/features/mask_fields.toml");
@@ -25,9 +25,7 @@ use fixture::mask_fields::{
 };
 
 fn vectors() -> serde_json::Value {
-    let path = format!("{}/vectors/mask_fields.json", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    serde_json::from_str(&text).expect("the vector file is JSON")
+    load_vectors("mask_fields.json")
 }
 
 fn interpreter() -> Interpreter {
@@ -262,17 +260,7 @@ fn crc16_xmodem(data: &[u8]) -> u16 {
 #[test]
 fn golden_stream_yields_exactly_the_good_frames_at_every_chunk_size() {
     let v = vectors();
-    let stream = &v["streams"][0];
-    let bytes = hex(stream["hex"].as_str().expect("hex"));
-    let expected: Vec<(u64, Vec<u8>)> = stream["expected_frames"]
-        .as_array()
-        .expect("expected frames")
-        .iter()
-        .map(|f| {
-            let offset = f["offset"].as_u64().expect("offset");
-            (offset, hex(f["hex"].as_str().expect("hex")))
-        })
-        .collect();
+    let (bytes, expected) = stream_vector(&v["streams"][0]);
     assert_eq!(expected.len(), 13);
     assert_stream_at_every_chunk_size::<DECODER_BUFFER_LEN>(&LAYOUT, &bytes, &expected, |f| {
         assert!(Packet::decode(f).is_ok(), "{:?}", F(f));

@@ -5,7 +5,7 @@
 //! files (`vesc_pyvesc`, `feetech_scservo`, `lx16a_pylx16a`) expand [`directed_link`] for their
 //! spec and call what it writes.
 
-use protocol_dynamic::{Interpreter, Item};
+use protocol_dynamic::{Codec, Interpreter, Item};
 use protocol_tests::{F, hex, load_vectors};
 use serde_json::{Map, Value, json};
 use std::collections::BTreeSet;
@@ -165,6 +165,30 @@ pub fn check_generated<P, E>(
         F(&encode(&packet)),
         F(&frame.bytes),
         "{at}: re-encoded bytes"
+    );
+}
+
+/// A peer's values (`object`, a frame object as `protocol encode` reads it) are the frame's
+/// `bytes` again, encoded by the run-time codec and, read into a packet, by the generated
+/// code's `encode`.
+pub fn assert_encodes_back<P: serde::de::DeserializeOwned>(
+    codec: &Codec<'_>,
+    object: Value,
+    bytes: &[u8],
+    at: &str,
+    encode: impl Fn(&P) -> Vec<u8>,
+) {
+    let value: protocol_dynamic::Value =
+        serde_json::from_value(object.clone()).expect("a frame object");
+    let encoded = codec
+        .encode(&value)
+        .unwrap_or_else(|e| panic!("{at}: the codec does not encode it: {e}"));
+    assert_eq!(F(&encoded.bytes), F(bytes), "{at}: the codec's bytes");
+    let packet: P = serde_json::from_value(object).unwrap_or_else(|e| panic!("{at}: {e}"));
+    assert_eq!(
+        F(&encode(&packet)),
+        F(bytes),
+        "{at}: the generated code's bytes"
     );
 }
 

@@ -8,10 +8,11 @@
 //! frame's bytes. A stream of the frames with garbage and a damaged copy of each yields exactly
 //! the good frames at every chunk size.
 
-use crate::{golden, peer_frames::assert_agrees};
+use crate::golden;
+use crate::peer_frames::{assert_agrees, assert_encodes_back, shown};
 
-use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors};
-use serde_json::{Value, json};
+use protocol_tests::{F, assert_stream_at_every_chunk_size, hex, load_vectors, stream_vector};
+use serde_json::json;
 use std::collections::BTreeSet;
 
 mod generated {
@@ -19,11 +20,6 @@ mod generated {
 }
 
 use generated::sbp;
-
-/// A JSON value through its text, as a decoder prints it (an `f32` keeps its shortest form).
-fn shown(value: &impl serde::Serialize) -> Value {
-    serde_json::from_str(&serde_json::to_string(value).expect("JSON")).expect("JSON")
-}
 
 #[test]
 fn every_libsbp_frame_decodes_to_its_values_and_encodes_to_its_bytes() {
@@ -75,19 +71,13 @@ fn every_libsbp_frame_decodes_to_its_values_and_encodes_to_its_bytes() {
         // libsbp's values, encoded by each, are the frame again.
         let object =
             json!({ "command": command, "header": { "sender": sender }, "payload": expected });
-        let value: protocol_dynamic::Value =
-            serde_json::from_value(object.clone()).expect("a frame object");
-        let encoded = codec
-            .encode(&value)
-            .unwrap_or_else(|e| panic!("{at}: the codec does not encode it: {e}"));
-        assert_eq!(F(&encoded.bytes), F(&bytes), "{at}: the codec's bytes");
-        let packet: sbp::Packet =
-            serde_json::from_value(object).unwrap_or_else(|e| panic!("{at}: {e}"));
-        let mut buf = [0u8; sbp::MAX_FRAME_LEN];
-        let n = packet
-            .encode(&mut buf)
-            .unwrap_or_else(|e| panic!("{at}: {e}"));
-        assert_eq!(F(&buf[..n]), F(&bytes), "{at}: the generated code's bytes");
+        assert_encodes_back(&codec, object, &bytes, at, |packet: &sbp::Packet| {
+            let mut buf = [0u8; sbp::MAX_FRAME_LEN];
+            let n = packet
+                .encode(&mut buf)
+                .unwrap_or_else(|e| panic!("{at}: {e}"));
+            buf[..n].to_vec()
+        });
         covered.insert(command.to_owned());
     }
     let all: BTreeSet<String> = sbp::Command::ALL
@@ -101,17 +91,7 @@ fn every_libsbp_frame_decodes_to_its_values_and_encodes_to_its_bytes() {
 #[test]
 fn libsbp_stream_yields_exactly_the_good_frames_at_every_chunk_size() {
     let v = load_vectors("sbp_libsbp.json");
-    let stream = &v["streams"][0];
-    let bytes = hex(stream["hex"].as_str().expect("hex"));
-    let expected: Vec<(u64, Vec<u8>)> = stream["expected_frames"]
-        .as_array()
-        .expect("expected frames")
-        .iter()
-        .map(|f| {
-            let offset = f["offset"].as_u64().expect("offset");
-            (offset, hex(f["hex"].as_str().expect("hex")))
-        })
-        .collect();
+    let (bytes, expected) = stream_vector(&v["streams"][0]);
     assert_eq!(expected.len(), 88);
     assert_stream_at_every_chunk_size::<{ sbp::DECODER_BUFFER_LEN }>(
         &sbp::LAYOUT,

@@ -3,8 +3,8 @@
 //! hand. It owns the choice of a spec's shape ([`Shape`]: which frame formats, directions and
 //! framing rules go together) and the spec's named parts (constants, addresses, checksums,
 //! enums, structs); the fields of a struct are written by `random_spec/fields.rs`, the frame
-//! formats, directions and commands by `random_spec/frames.rs` (with a format's escaping:
-//! `random_spec/escape.rs`).
+//! formats by `random_spec/frames.rs` (with a format's escaping: `random_spec/escape.rs`), the
+//! directions and commands by `random_spec/commands.rs`.
 //!
 //! What a spec may hold: one to three serial command formats on one link (`commands = true`,
 //! `extensions = false`), a CAN format (standard or extended ids, the data length bounded by
@@ -44,6 +44,8 @@
 //! those specs as refused and compares the others.
 #![allow(dead_code)]
 
+#[path = "random_spec/commands.rs"]
+mod commands;
 #[path = "random_spec/escape.rs"]
 mod escape;
 #[path = "random_spec/fields.rs"]

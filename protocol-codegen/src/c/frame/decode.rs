@@ -1,8 +1,9 @@
 //! The decoder of one frame's bytes: the checking entry point (the probe on the whole bytes),
-//! then the reading of a checked frame, one function per rule: the header values, the
-//! direction, the dispatch key (or a CAN id), the payload read into the packet's member.
+//! then the reading of a checked frame (`templates/decode_frame.c`), one function per rule:
+//! the header values, the flag trailer, the payload read into the packet's member. Which
+//! command and direction the frame is, `dispatch` prints.
 
-use protocol_runtime::rules::DirectionTest;
+mod dispatch;
 
 use crate::ir::{Length, Pos, Prim, Protocol};
 use crate::layout::lower_layout;
@@ -11,7 +12,7 @@ use crate::rules::Carries;
 use super::super::names::{self, Fx, Names};
 use super::super::shape::{Slot, carries, slots_of, user_values};
 use super::super::template::fill;
-use super::wire::{field_word, truncate, truncated, word};
+use super::wire::word;
 use super::{escape, rules};
 
 /// The decoders of format `x`: by direction where the caller gives it, the checking entry
@@ -99,8 +100,8 @@ int ${xlo}decode${sfx}(const uint8_t *bytes, size_t len, ${params}${xlo}packet *
     ));
 }
 
-/// The reading of a checked frame: the framing is trusted, but any bytes are read within
-/// `len` (the payload's end is computed only when the trailer fits).
+/// The reading of a checked frame (`templates/decode_frame.c`): the framing is trusted, but
+/// any bytes are read within `len` (the payload's end is computed only when the trailer fits).
 fn decode_frame(p: &Protocol, n: &Names, x: &Fx, given: bool, out: &mut String) {
     let (lo, up, xlo, xup) = (&n.lo, &n.up, &x.lo, &x.up);
     let (sfx, params) = (if given { "_given" } else { "" }, params(n, given));
@@ -122,19 +123,25 @@ fn decode_frame(p: &Protocol, n: &Names, x: &Fx, given: bool, out: &mut String) 
     } else {
         format!("offsetof({xlo}packet, payload)")
     };
+    // The flag trailer first: the header values after the payload lie back from the end of
+    // the frame without it.
+    let flag_trailer = printed(|o| flag_trailer(p, n, x, o));
+    let header = printed(|o| header_values(p, n, x, o));
+    let ack = printed(|o| rules::ack_decode(n, x, o));
+    let given_direction = if given {
+        printed(|o| dispatch::given_direction(p, n, o))
+    } else {
+        String::new()
+    };
+    let Steps {
+        key,
+        can_command,
+        unstuff,
+        directions,
+        payload,
+    } = steps(p, n, x, given);
     out.push_str(&fill!(
-        r"
-int ${xlo}decode_frame${sfx}(const uint8_t *bytes, size_t len, ${params}${xlo}packet *out)
-{
-    size_t start = ${xup}HEADER_LEN, end;
-    uint64_t raw = 0;
-    struct ${lo}rd r;
-    int e = 0;
-${filled}    if (len > ${xup}MAX_FRAME_LEN${short}) return ${up}ERR_FRAME;
-    memset(out, 0, ${zero});
-    (void)raw;
-    end = len - ${xup}TRAILER_LEN;
-",
+        include_str!("../templates/decode_frame.c"),
         xlo,
         sfx,
         params,
@@ -143,47 +150,68 @@ ${filled}    if (len > ${xup}MAX_FRAME_LEN${short}) return ${up}ERR_FRAME;
         filled,
         short,
         up,
-        zero
+        zero,
+        flag_trailer,
+        header,
+        ack,
+        given_direction,
+        key,
+        can_command,
+        unstuff,
+        directions,
+        payload
     ));
-    // The flag trailer first: the header values after the payload lie back from the end of
-    // the frame without it.
-    flag_trailer(p, n, x, out);
-    header_values(p, n, x, out);
-    rules::ack_decode(n, x, out);
-    if given {
-        given_direction(p, n, out);
+    out.push('\n');
+}
+
+/// The statements of [`decode_frame`] that depend on what the format carries, around the
+/// refusal of a frame too short for its trailer.
+struct Steps {
+    /// Before the refusal: the command of a dispatch key.
+    key: String,
+    /// After it: the command of a CAN id.
+    can_command: String,
+    /// The payload unstuffed (but for a format that carries bytes).
+    unstuff: String,
+    /// The direction from the header.
+    directions: String,
+    /// The payload read, but for the function's last `return 0`.
+    payload: String,
+}
+
+/// The steps of a format after its header: a frame too short for its trailer (a bare header
+/// of a command) is refused once the command is known, as the runtime's rules read the key
+/// before the payload (an unknown command is that, whatever its length); the payload is
+/// unstuffed before the direction is read, as the runtime's rules do (a frame with both
+/// faults is refused for its stuffing).
+fn steps(p: &Protocol, n: &Names, x: &Fx, given: bool) -> Steps {
+    let kind = carries(p, x);
+    let only =
+        |on: bool, print: &dyn Fn(&mut String)| if on { printed(print) } else { String::new() };
+    Steps {
+        key: only(kind == Carries::Command, &|o| {
+            dispatch::dispatch_key(p, n, x, o)
+        }),
+        can_command: only(kind == Carries::CanCommand, &|o| {
+            dispatch::can_command(p, n, x, o)
+        }),
+        unstuff: only(kind != Carries::Bytes, &|o| rules::unstuff(n, x, o)),
+        directions: only(kind == Carries::Command && !given, &|o| {
+            dispatch::directions(p, n, x, o);
+        }),
+        payload: if kind == Carries::Bytes {
+            payload_bytes(n)
+        } else {
+            printed(|o| read_payload(p, n, x, o))
+        },
     }
-    // A frame too short for its trailer (a bare header of a command) is refused once the
-    // command is known, as the runtime's rules read the key before the payload: an unknown
-    // command is that, whatever its length.
-    let too_short = fill!("    if (end < start) return ${up}ERR_FRAME;\n", up);
-    match carries(p, x) {
-        Carries::Command => {
-            dispatch_key(p, n, x, out);
-            out.push_str(&too_short);
-            // The payload is unstuffed before the direction is read, as the runtime's rules
-            // do: a frame with both faults is refused for its stuffing.
-            rules::unstuff(n, x, out);
-            if !given {
-                directions(p, n, x, out);
-            }
-        }
-        Carries::CanCommand => {
-            out.push_str(&too_short);
-            can_command(p, n, x, out);
-            rules::unstuff(n, x, out);
-        }
-        Carries::Struct(_) => {
-            out.push_str(&too_short);
-            rules::unstuff(n, x, out);
-        }
-        Carries::Bytes => {
-            out.push_str(&too_short);
-            payload_bytes(n, out);
-            return;
-        }
-    }
-    read_payload(p, n, x, out);
+}
+
+/// What `print` appends to an empty string.
+fn printed(print: impl FnOnce(&mut String)) -> String {
+    let mut out = String::new();
+    print(&mut out);
+    out
 }
 
 /// The header values a sender sets, into `out->header` (those after the payload back from the
@@ -275,9 +303,9 @@ fn flag_trailer(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
 }
 
 /// The payload of a format without dispatch key or message: its bytes as they are.
-fn payload_bytes(n: &Names, out: &mut String) {
+fn payload_bytes(n: &Names) -> String {
     let up = &n.up;
-    out.push_str(&fill!(
+    fill!(
         r"
     /* The payload's bytes as they are. */
     if (end - start > sizeof out->payload) return ${up}ERR_PAYLOAD_LENGTH;
@@ -287,247 +315,9 @@ fn payload_bytes(n: &Names, out: &mut String) {
     r.len = r.pos = 0;
     (void)r;
     (void)e;
-    return 0;
-}
-
 ",
         up
-    ));
-}
-
-/// The direction the decoder is given: none is an unknown direction; a direction whose frames
-/// carry one struct reads it from where the dispatch key would be.
-fn given_direction(p: &Protocol, n: &Names, out: &mut String) {
-    let (lo, up) = (&n.lo, &n.up);
-    out.push_str(&fill!(
-        r"
-    if ((int)direction < 0 || direction >= ${up}DIRECTION_COUNT) return ${up}ERR_UNKNOWN_DIRECTION;
-    out->direction = direction;
-",
-        up
-    ));
-    for d in &p.directions {
-        let Some((si, start)) = d.message else {
-            continue;
-        };
-        let (direction, name) = (d.name.to_uppercase(), &d.name);
-        let snake = names::snake(&p.structs[si].name);
-        out.push_str(&fill!(
-            r"
-    if (direction == ${up}${direction}) {
-        out->command = ${up}COMMAND_COUNT; /* none */
-        if (end < ${start}u) return ${up}ERR_FRAME;
-        r.p = bytes + ${start}u;
-        r.len = end - ${start}u;
-        r.pos = 0;
-        memset(&out->payload.${name}, 0, sizeof out->payload.${name});
-        if ((e = ${lo}read_${snake}(&r, &out->payload.${name})) != 0) return e;
-        return r.pos != r.len ? ${up}ERR_PAYLOAD_LENGTH : 0;
-    }
-",
-            up,
-            direction,
-            start,
-            name,
-            lo,
-            snake
-        ));
-    }
-}
-
-/// The direction from the header of format `x`, its rules' tests in order (on a link, each
-/// command format names its own direction field). The bounds are in the header value's type;
-/// the value read is truncated to it.
-fn directions(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
-    let (lo, up) = (&n.lo, &n.up);
-    let f = &p.frames[x.fi];
-    if x.rules.directions.is_empty() {
-        return;
-    }
-    let len = body_len(p, x);
-    out.push_str("    ");
-    for (d, &(value, test)) in p.directions.iter().zip(&x.rules.directions) {
-        let bits = truncated(&f.values[value], "raw");
-        let cond = match test {
-            // A range from 0 has no lower test: an unsigned value is never below it (and C
-            // compilers warn of a comparison that is always true).
-            DirectionTest::InRange {
-                field,
-                first: 0,
-                last,
-            } => {
-                let (word, last) = (field_word(field), names::u64_lit(last));
-                fill!(
-                    "${lo}field(bytes, ${len}, ${word}, &raw) && ${bits} <= ${last}",
-                    lo,
-                    len,
-                    word,
-                    bits,
-                    last
-                )
-            }
-            DirectionTest::InRange { field, first, last } => {
-                let (word, first, last) = (
-                    field_word(field),
-                    names::u64_lit(first),
-                    names::u64_lit(last),
-                );
-                fill!(
-                    "${lo}field(bytes, ${len}, ${word}, &raw) && ${bits} >= ${first} && ${bits} <= ${last}",
-                    lo,
-                    len,
-                    word,
-                    bits,
-                    first,
-                    last
-                )
-            }
-            DirectionTest::Equals { field, value } => {
-                let (word, equals) = (field_word(field), names::u64_lit(value));
-                fill!(
-                    "${lo}field(bytes, ${len}, ${word}, &raw) && ${bits} == ${equals}",
-                    lo,
-                    len,
-                    word,
-                    bits,
-                    equals
-                )
-            }
-        };
-        let direction = d.name.to_uppercase();
-        out.push_str(&fill!(
-            "if (${cond}) out->direction = ${up}${direction};\n    else ",
-            cond,
-            up,
-            direction
-        ));
-    }
-    out.push_str(&fill!("return ${up}ERR_UNKNOWN_DIRECTION;\n", up));
-}
-
-/// The dispatch key, one variable per field of the rules' key (each truncated to its header
-/// value's type), then the command it names among those the format carries.
-fn dispatch_key(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
-    let (lo, up) = (&n.lo, &n.up);
-    let f = &p.frames[x.fi];
-    let key = &x.rules.key;
-    let fields = key.len();
-    out.push_str(&fill!(
-        r"
-    {
-        uint64_t key[${fields}];
-",
-        fields
-    ));
-    for (k, field) in key.iter().enumerate() {
-        let (word, bits) = (
-            field_word(field.field),
-            truncated(&f.values[field.value], "raw"),
-        );
-        out.push_str(&fill!(
-            r"
-        if (!${lo}field(bytes, len, ${word}, &raw)) return ${up}ERR_FRAME;
-        key[${k}] = ${bits};
-",
-            lo,
-            word,
-            up,
-            k,
-            bits
-        ));
-    }
-    let carried = |ci: usize| f.commands.contains(&ci);
-    if let [field] = key[..] {
-        // One key field: a switch (a jump table where the ids are dense).
-        let vi = field.value;
-        let narrow = f.values[vi].prim.size() <= 4;
-        let cast = if narrow { "(uint32_t)" } else { "" };
-        out.push_str(&fill!("        switch (${cast}key[0]) {\n", cast));
-        for (ci, c) in p.commands.iter().enumerate() {
-            if !carried(ci) || c.id.len() != 1 {
-                continue;
-            }
-            let id = truncate(f.values[vi].prim, c.id[0]);
-            let label = if narrow {
-                format!("{id:#x}u")
-            } else {
-                names::u64_lit(id)
-            };
-            let name = &c.name;
-            out.push_str(&fill!(
-                "        case ${label}: out->command = ${up}${name}; break;\n",
-                label,
-                up,
-                name
-            ));
-        }
-        out.push_str(&fill!(
-            r"
-        default: return ${up}ERR_UNKNOWN_COMMAND;
-        }
-    }
-",
-            up
-        ));
-        return;
-    }
-    out.push_str("        ");
-    for (ci, c) in p.commands.iter().enumerate() {
-        if !carried(ci) || c.id.len() != fields {
-            continue;
-        }
-        let conds: Vec<String> = key
-            .iter()
-            .zip(&c.id)
-            .enumerate()
-            .map(|(k, (field, id))| {
-                let v = &f.values[field.value];
-                format!("key[{k}] == {}", names::u64_lit(truncate(v.prim, *id)))
-            })
-            .collect();
-        let (conds, name) = (conds.join(" && "), &c.name);
-        out.push_str(&fill!(
-            "if (${conds}) out->command = ${up}${name};\n        else ",
-            conds,
-            up,
-            name
-        ));
-    }
-    out.push_str(&fill!(
-        r"
-return ${up}ERR_UNKNOWN_COMMAND;
-    }
-",
-        up
-    ));
-}
-
-/// The command of a CAN frame: the one whose CAN id is the rules' key, the frame's whole
-/// identifier word (bits above the id's width, which no bus delivers, name no command).
-fn can_command(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
-    let (lo, up) = (&n.lo, &n.up);
-    let [id] = x.rules.key[..] else {
-        return;
-    };
-    let word = field_word(id.field);
-    out.push_str(&fill!(
-        "    if (!${lo}field(bytes, len, ${word}, &raw)) return ${up}ERR_FRAME;\n    ",
-        lo,
-        word,
-        up
-    ));
-    for c in &p.commands {
-        if let Some(id) = c.can_id {
-            let (id, name) = (names::u64_lit(id), &c.name);
-            out.push_str(&fill!(
-                "if (raw == ${id}) out->command = ${up}${name};\n    else ",
-                id,
-                up,
-                name
-            ));
-        }
-    }
-    out.push_str(&fill!("return ${up}ERR_UNKNOWN_COMMAND;\n", up));
+    )
 }
 
 /// The payload `bytes[start..end]` read into the packet's member of its slot (zero-filled
@@ -604,9 +394,6 @@ ${lo}read_${snake}(&r, &out->payload.${name}));",
         r"
     if (e != 0) return e;
     if (r.pos != r.len) return ${up}ERR_PAYLOAD_LENGTH;
-    return 0;
-}
-
 ",
         up
     ));

@@ -1,7 +1,8 @@
 //! The encoders: a command's payload written after the header, then the frame sealed around
-//! it (`pfx_seal`: the header values, the dispatch key, the sync, the trailers, the checks),
-//! and the encoder of a whole packet that picks the command's. A format that escapes its
-//! bytes between flags has each encoder escape the sealed frame last.
+//! it (`pfx_seal`, `templates/seal.c` and `templates/seal_apart.c`: the header values, the
+//! dispatch key, the sync, the trailers, the checks), and the encoder of a whole packet that
+//! picks the command's. A format that escapes its bytes between flags has each encoder escape
+//! the sealed frame last.
 
 use crate::ir::{Frame, HeaderValue, Length, Protocol, Role, Transport};
 use crate::layout::lower_layout;
@@ -140,135 +141,128 @@ fn adjust(f: &Frame) -> i64 {
     }
 }
 
-/// `pfx_seal`: the frame around a payload already written after the header (moved behind a
-/// wider length when the frame needs one), with the flag trailer when the header has it.
+/// `pfx_seal`: the frame around a payload already written after the header
+/// (`templates/seal.c`), or, for a format sealed apart, at a start the encoder gives, moved
+/// behind a wider length when the frame needs one, with the flag trailer when the header has
+/// it (`templates/seal_apart.c`).
 fn seal(p: &Protocol, n: &Names, x: &Fx, out: &mut String) {
-    let (lo, up, xlo, xup) = (&n.lo, &n.up, &x.lo, &x.up);
+    let (up, xlo, xup) = (&n.up, &x.lo, &x.up);
     let f = &p.frames[x.fi];
-    let apart = framed_apart(p, x.fi);
-    out.push_str(&seal_head(n, x, apart));
-    let adjust = adjust(f);
-    if let Some(e) = &f.length_extension {
-        // The runtime's `extension_for`: the count of the short form reaches the marker.
-        let (marker, len) = (names::u64_lit(e.marker), e.len);
+    let sync = write_sync(f);
+    let values: String = (f.values.iter().enumerate())
+        .map(|(vi, v)| header_value(f, n, x, vi, v))
+        .collect();
+    let (sync_set, trailers, checks) = (
+        sync_in_set(n, x, f),
+        write_trailers(f, n, "body"),
+        stores(n, x, f),
+    );
+    if !framed_apart(p, x.fi) {
         out.push_str(&fill!(
-            r"
-    if ((int64_t)body - (${adjust}) >= 0 \
-        && (uint64_t)((int64_t)body - (${adjust})) >= ${marker}) ext = ${len}u;
-",
-            adjust,
-            marker,
-            len
+            include_str!("../templates/seal.c"),
+            xlo,
+            xup,
+            up,
+            sync,
+            values,
+            sync_set,
+            trailers,
+            checks
         ));
+        out.push('\n');
+        return;
     }
-    if let Some(t) = &f.flag_trailer {
-        let (name, len) = (names::field(&t.name), t.len);
-        out.push_str(&fill!(
-            "    if (h->${name}_present) flagged = ${len}u;\n",
-            name,
-            len
-        ));
-    }
-    if apart {
-        out.push_str(&fill!(
-            r"
-    body += ext;
-    total = body + flagged;
-    if (total > cap) return ${up}ERR_SHORT_BUFFER;
-    if (ext > 0) memmove(buf + start + ext, buf + start, payload_len);
-",
-            up
-        ));
-    } else {
-        out.push_str("    total = body;\n");
-    }
+    let (extension, flagged, flag_copy) = (extension(f), flagged(f), flag_copy(f));
     out.push_str(&fill!(
-        r"
-    memset(buf, 0, start + ext);
-    memset(buf + start + ext + payload_len, 0, ${xup}TRAILER_LEN);
-",
-        xup
+        include_str!("../templates/seal_apart.c"),
+        xlo,
+        xup,
+        up,
+        extension,
+        flagged,
+        sync,
+        values,
+        sync_set,
+        trailers,
+        checks,
+        flag_copy
     ));
-    out.push_str(&write_sync(f));
-    out.push_str(&fill!(
-        r"
-    (void)h;
-    (void)command;
-"
-    ));
-    for (vi, v) in f.values.iter().enumerate() {
-        out.push_str(&header_value(f, n, x, vi, v));
+    out.push('\n');
+}
+
+/// The seal's test of a sync set: the first header value, written with the others, is one of
+/// the set.
+fn sync_in_set(n: &Names, x: &Fx, f: &Frame) -> String {
+    if f.sync_set.is_empty() {
+        return String::new();
     }
-    if !f.sync_set.is_empty() {
-        out.push_str(&fill!(
-            r"
+    let (up, xlo) = (&n.up, &x.lo);
+    fill!(
+        r"
     /* The first header value is the sync: one of its set. */
     if (!${xlo}sync_matches(buf, 1)) return ${up}ERR_OUT_OF_RANGE;
 ",
-            xlo,
-            up
-        ));
-    }
-    out.push_str(&write_trailers(f, n, "body"));
-    for c in &f.checks {
-        let args = check_args(n, x, c, "body");
-        out.push_str(&fill!(
-            "    if (!${lo}store(buf, ${args})) return ${up}ERR_OUT_OF_RANGE;\n",
-            lo,
-            args,
-            up
-        ));
-    }
-    if let Some(t) = &f.flag_trailer {
-        let name = names::field(&t.name);
-        out.push_str(&fill!(
-            "    if (flagged > 0) memcpy(buf + body, h->${name}, flagged);\n",
-            name
-        ));
-    }
-    out.push_str(&fill!(
-        r"
-    return (int)total;
+        xlo,
+        up
+    )
 }
 
-"
-    ));
+/// The seal's checks, each computed over its span and stored, in the format's order.
+fn stores(n: &Names, x: &Fx, f: &Frame) -> String {
+    let (lo, up) = (&n.lo, &n.up);
+    (f.checks.iter())
+        .map(|c| {
+            let args = check_args(n, x, c, "body");
+            fill!(
+                "    if (!${lo}store(buf, ${args})) return ${up}ERR_OUT_OF_RANGE;\n",
+                lo,
+                args,
+                up
+            )
+        })
+        .collect()
 }
 
-/// The start of `pfx_seal`: a format sealed apart takes the buffer's size and the payload's
-/// start; the others have their payload after the header, in the buffer the encoder checked.
-fn seal_head(n: &Names, x: &Fx, apart: bool) -> String {
-    let (up, xlo, xup) = (&n.up, &x.lo, &x.up);
-    if apart {
-        return fill!(
-            r"
-/* The frame around a payload of `payload_len` bytes already written at `start` (after the
- * header), in a buffer of `cap` bytes; `command` SIZE_MAX for a frame without dispatch key. */
-static int ${xlo}seal(uint8_t *buf, size_t cap, size_t start, size_t payload_len, const ${xlo}header *h, size_t command)
-{
-    size_t ext = 0, flagged = 0, body, total;
-    if (start > ${xup}HEADER_LEN \
-        || payload_len > ${xup}MAX_PAYLOAD_LEN + (${xup}HEADER_LEN - start)) return ${up}ERR_OUT_OF_RANGE;
-    body = start + payload_len + ${xup}TRAILER_LEN;
-",
-            xlo,
-            xup,
-            up
-        );
-    }
+/// The seal's wider length: taken when the count of the short form reaches the marker (the
+/// runtime's `extension_for`).
+fn extension(f: &Frame) -> String {
+    let Some(e) = &f.length_extension else {
+        return String::new();
+    };
+    let (adjust, marker, len) = (adjust(f), names::u64_lit(e.marker), e.len);
     fill!(
         r"
-/* The frame around a payload of `payload_len` bytes already written after the header. */
-static int ${xlo}seal(uint8_t *buf, size_t payload_len, const ${xlo}header *h, size_t command)
-{
-    const size_t start = ${xup}HEADER_LEN, ext = 0;
-    size_t body, total;
-    if (payload_len > ${xup}MAX_PAYLOAD_LEN) return ${up}ERR_OUT_OF_RANGE;
-    body = start + payload_len + ${xup}TRAILER_LEN;
+    if ((int64_t)body - (${adjust}) >= 0 \
+        && (uint64_t)((int64_t)body - (${adjust})) >= ${marker}) ext = ${len}u;
 ",
-        xlo,
-        xup,
-        up
+        adjust,
+        marker,
+        len
+    )
+}
+
+/// The seal's flag trailer length: the trailer's, when the header holds it.
+fn flagged(f: &Frame) -> String {
+    let Some(t) = &f.flag_trailer else {
+        return String::new();
+    };
+    let (name, len) = (names::field(&t.name), t.len);
+    fill!(
+        "    if (h->${name}_present) flagged = ${len}u;\n",
+        name,
+        len
+    )
+}
+
+/// The seal's last bytes: the flag trailer, when the header holds it.
+fn flag_copy(f: &Frame) -> String {
+    let Some(t) = &f.flag_trailer else {
+        return String::new();
+    };
+    let name = names::field(&t.name);
+    fill!(
+        "    if (flagged > 0) memcpy(buf + body, h->${name}, flagged);\n",
+        name
     )
 }
 
