@@ -30,14 +30,15 @@ pub(super) fn emit_carried(p: &Protocol, rt: &TokenStream) -> TokenStream {
 }
 
 /// The message enums a carried packet can be read as, with the suffix of their accessors:
-/// one per direction that has one, or `Message`.
+/// one per direction that has one (an empty direction carries no payload, so no packet), or
+/// `Message`.
 fn message_enums(p: &Protocol) -> Vec<(Ident, String)> {
     if p.directions.is_empty() {
         return vec![(format_ident!("Message"), "message".to_string())];
     }
     p.directions
         .iter()
-        .filter(|d| d.message.is_none())
+        .filter(|d| d.message.is_none() && !d.empty)
         .map(|d| (format_ident!("{}", d.rust_name), d.name.clone()))
         .collect()
 }
