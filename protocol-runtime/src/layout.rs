@@ -276,6 +276,23 @@ pub struct FrameLayout<'a> {
 /// assert_eq!(Fixed.layout().max_len, (&FIXED).layout().max_len);
 /// ```
 pub trait LayoutRef: Copy {
+    /// Whether a format of the link may escape its bytes ([`FrameLayout::escape`]). The
+    /// engine tests it before it reads the layout: where it is `false` the escaped path
+    /// (`decoder/escaped.rs`) is neither compiled nor linked, even at `opt-level = 0`, where
+    /// a test of a constant layout's value is not folded. `true` by default: a layout read
+    /// at run time keeps every path. Generated code sets it from its spec.
+    const ESCAPED: bool = true;
+
+    /// Whether a format of the link may decide parts of its frames by header values
+    /// ([`LengthRule::Conditional`]); as [`ESCAPED`](Self::ESCAPED), for the decoder's path
+    /// of those frames.
+    const HEADER_DECIDED: bool = true;
+
+    /// Whether the link may have [`others`](Self::others); as [`ESCAPED`](Self::ESCAPED),
+    /// for the engine's selection of a format by its sync, which probes a format read at run
+    /// time and so holds every rule.
+    const SEVERAL_FORMATS: bool = true;
+
     /// The frame format (the link's first, when it has several).
     fn layout(&self) -> &FrameLayout<'_>;
 

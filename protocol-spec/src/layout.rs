@@ -170,3 +170,36 @@ pub fn word_field(v: &HeaderValue) -> WordField {
         width: v.width as u8,
     }
 }
+
+/// The rule kinds a link's frame formats use, for the engine's paths that a layout known at
+/// compile time leaves out (the runtime's `LayoutRef::ESCAPED`, `HEADER_DECIDED` and
+/// `SEVERAL_FORMATS`): a kind none of the formats uses is not linked into a firmware, even
+/// unoptimised.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RuleKinds {
+    /// A format escapes its bytes between flags.
+    pub escaped: bool,
+    /// A format decides parts of its frames by header values ([`LengthRule::Conditional`]).
+    pub header_decided: bool,
+    /// The link's decoder finds the frames of more than one format.
+    pub several_formats: bool,
+}
+
+impl RuleKinds {
+    /// The kinds of a decoder of `formats`' frames (the first, then the others it finds
+    /// beside it).
+    pub fn of_link<'f>(formats: impl IntoIterator<Item = &'f ir::Frame>) -> Self {
+        formats
+            .into_iter()
+            .enumerate()
+            .fold(RuleKinds::default(), |kinds, (i, f)| {
+                let plan = lower_layout(f);
+                RuleKinds {
+                    escaped: kinds.escaped || plan.escape.is_some(),
+                    header_decided: kinds.header_decided
+                        || matches!(plan.length, LengthRule::Conditional { .. }),
+                    several_formats: kinds.several_formats || i > 0,
+                }
+            })
+    }
+}

@@ -14,7 +14,7 @@ use crate::ir::{
     Algorithm, ByteOrder, Check, CheckNaming, CrcTable, Frame, HeaderValue, PacketKind, Pos, Prim,
     Protocol, Role, Transport,
 };
-use crate::layout::{self, LayoutPlan, lower_layout};
+use crate::layout::{self, LayoutPlan, RuleKinds, lower_layout};
 use crate::resources;
 use protocol_runtime::layout::{LengthRule, WordField};
 
@@ -430,12 +430,14 @@ fn emit_decoder(f: &Frame, layout: &Ident) -> TokenStream {
     );
     let new_doc = format!(" A new decoder of `{fname}` frames.");
     let refusals = emit_buffer_refusals(f);
+    let kinds = emit_rule_kinds(RuleKinds::of_link([f]));
     quote! {
         #refusals
         #[doc = #layout_type_doc]
         #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
         pub struct #layout_type;
         impl #rt::LayoutRef for #layout_type {
+            #kinds
             #[inline(always)]
             fn layout(&self) -> &#rt::FrameLayout<'_> {
                 &#layout
@@ -449,6 +451,21 @@ fn emit_decoder(f: &Frame, layout: &Ident) -> TokenStream {
         pub const fn #decoder_fn() -> #decoder {
             #rt::StreamDecoder::new(#layout_type)
         }
+    }
+}
+
+/// The rule kinds of a `LayoutRef` implementation, as the lowering found them: the engine
+/// links no path of a kind that is `false`.
+pub(crate) fn emit_rule_kinds(kinds: RuleKinds) -> TokenStream {
+    let RuleKinds {
+        escaped,
+        header_decided,
+        several_formats,
+    } = kinds;
+    quote! {
+        const ESCAPED: bool = #escaped;
+        const HEADER_DECIDED: bool = #header_decided;
+        const SEVERAL_FORMATS: bool = #several_formats;
     }
 }
 

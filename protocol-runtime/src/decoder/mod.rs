@@ -272,6 +272,20 @@ impl FrameLayout<'_> {
     /// ```
     #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn frame_len(&self, header: &[u8]) -> Option<usize> {
+        match self.length {
+            // Out of line, so that the other rules' frame length stays as small as it is
+            // without this rule wherever it is inlined (`benches/count.sh` counts it).
+            LengthRule::Conditional { .. } => {
+                conditional_frame_len(self, header.get(..self.header_span())?)
+            }
+            _ => self.counted_frame_len(header),
+        }
+    }
+
+    /// [`frame_len`](Self::frame_len) by the rules that a length field or a constant decides
+    /// alone: `None` for [`LengthRule::Conditional`].
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    fn counted_frame_len(&self, header: &[u8]) -> Option<usize> {
         let header = header.get(..self.header_span())?;
         match self.length {
             LengthRule::Fixed(len) => Some(len),
@@ -279,9 +293,7 @@ impl FrameLayout<'_> {
                 let value = i64::try_from(field.read(header)?).ok()?;
                 usize::try_from(value.checked_add(adjust)?).ok()
             }
-            // Out of line, so that the other rules' frame length stays as small as it is
-            // without this rule wherever it is inlined (`benches/count.sh` counts it).
-            LengthRule::Conditional { .. } => conditional_frame_len(self, header),
+            LengthRule::Conditional { .. } => None,
         }
     }
 
@@ -419,7 +431,7 @@ pub(crate) fn probe_link<L: LayoutRef>(
     avail: usize,
     limit: usize,
 ) -> (usize, Probe) {
-    if link.others().is_empty() {
+    if !L::SEVERAL_FORMATS || link.others().is_empty() {
         return (0, probe(link, readable, avail, limit));
     }
     let bytes = readable.get(..avail).unwrap_or(readable);
@@ -437,7 +449,7 @@ pub(crate) fn probe_link_synced<L: LayoutRef>(
     avail: usize,
     limit: usize,
 ) -> (usize, Probe) {
-    if link.others().is_empty() {
+    if !L::SEVERAL_FORMATS || link.others().is_empty() {
         return (0, probe_synced(link, readable, avail, limit));
     }
     let bytes = readable.get(..avail).unwrap_or(readable);
@@ -481,10 +493,12 @@ pub(crate) fn probe_synced<L: LayoutRef>(
     let shortest = span.max(layout.min_len).max(1);
     // A frame whose parts depend on its header (decided at compile time for a generated
     // layout): out of line, so that the other frames' path is the same code as without it.
-    if let LengthRule::Conditional { .. } = layout.length {
-        return probe_conditional(layout_ref, readable, avail, header, shortest, limit);
+    if L::HEADER_DECIDED {
+        if let LengthRule::Conditional { .. } = layout.length {
+            return probe_conditional(layout_ref, readable, avail, header, shortest, limit);
+        }
     }
-    let total = match layout.frame_len(header) {
+    let total = match frame_len_of::<L>(layout, header) {
         // A bare header is complete and verified once its header checks hold and its bytes
         // have come (fields after the length may lie in it, beyond the header span).
         Some(t) if Some(t) == bare && t >= span && t > 0 && t <= limit => {
@@ -512,6 +526,18 @@ pub(crate) fn probe_synced<L: LayoutRef>(
         return Probe::Reject(Reject::BadTrailer);
     }
     Probe::Frame(total)
+}
+
+/// [`FrameLayout::frame_len`] where the link's [`LayoutRef`] says whether its formats may
+/// decide their length by header values: where they may not, the rule's path is not linked
+/// (a frame of that rule has no length then).
+#[cfg_attr(not(protocol_opt0), inline(always))]
+fn frame_len_of<L: LayoutRef>(layout: &FrameLayout<'_>, header: &[u8]) -> Option<usize> {
+    if L::HEADER_DECIDED {
+        layout.frame_len(header)
+    } else {
+        layout.counted_frame_len(header)
+    }
 }
 
 /// [`FrameLayout::frame_len`] for [`LengthRule::Conditional`]: only the header is looked at,

@@ -22,7 +22,7 @@ use crate::layout::{ByteOrder, FrameLayout, LayoutRef, LengthRule, Pos};
 #[cfg_attr(not(protocol_opt0), inline(always))]
 pub(super) fn find_link<L: LayoutRef>(link: &L, data: &[u8]) -> usize {
     let others = link.others();
-    if others.is_empty() {
+    if !L::SEVERAL_FORMATS || others.is_empty() {
         return find_candidate(link.layout(), data);
     }
     find_any(link.layout(), others, data)
@@ -405,7 +405,7 @@ fn may_start_block<L: LayoutRef>(link: &L, data: &[u8], n: usize, limit: usize) 
 fn find_lead<L: LayoutRef>(link: &L, data: &[u8]) -> usize {
     let layout = link.layout();
     let others = link.others();
-    if !others.is_empty() {
+    if L::SEVERAL_FORMATS && !others.is_empty() {
         return find_any(layout, others, data);
     }
     if layout.sync_set.is_empty() {

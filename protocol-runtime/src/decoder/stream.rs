@@ -175,7 +175,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// are always the frame bytes, the skipped bytes and these.
     #[inline]
     pub fn pending(&self) -> usize {
-        if self.layout.layout().escape.is_some() {
+        if L::ESCAPED && self.layout.layout().escape.is_some() {
             return self.escaped_pending();
         }
         self.buffered()
@@ -248,7 +248,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     pub fn feed(&mut self, mut chunk: &[u8], mut sink: impl FnMut(Frame<'_>)) {
         // An escaped format has a path of its own (`escaped.rs`); for a generated layout this
         // test is a constant.
-        if self.layout.layout().escape.is_some() {
+        if L::ESCAPED && self.layout.layout().escape.is_some() {
             while let Some(frame) = self.next_frame(&mut chunk, false) {
                 sink(frame);
             }
@@ -383,7 +383,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
         // comes from either an inlined or a called function is passed through memory, and
         // reading a frame back from there stalled on store forwarding, once per frame.
         let (start, end, offset, format) = loop {
-            if self.layout.layout().escape.is_some() {
+            if L::ESCAPED && self.layout.layout().escape.is_some() {
                 match self.escaped_step(input, at_end) {
                     Step::Buffered {
                         start,
@@ -488,7 +488,7 @@ impl<L: LayoutRef, const N: usize> StreamDecoder<L, N> {
     /// One event's worth of work.
     #[cfg_attr(not(protocol_opt0), inline(always))]
     fn step(&mut self, input: &mut &[u8], at_end: bool) -> Step {
-        if self.layout.layout().escape.is_some() {
+        if L::ESCAPED && self.layout.layout().escape.is_some() {
             return self.escaped_step(input, at_end);
         }
         if self.start < self.end {

@@ -16,3 +16,4 @@ mod formats;
 mod hflink;
 mod layouts;
 mod robustness;
+mod rule_kinds;

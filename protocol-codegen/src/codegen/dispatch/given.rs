@@ -15,7 +15,9 @@ use super::packet::parse_bytes;
 use super::packet::{read_id, unstuff_scratch};
 use super::rules::rules_static;
 use crate::codegen::docs::doc_attrs;
+use crate::codegen::frame::emit_rule_kinds;
 use crate::ir::{Direction, Frame, Protocol};
+use crate::layout::RuleKinds;
 
 /// `decode_<direction>` and `from_<direction>_frame` for every direction.
 pub(super) fn decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
@@ -104,6 +106,7 @@ pub fn direction_layouts(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStre
     let layout = format_ident!("{}", f.names.layout_static);
     let packet = format_ident!("{}", f.names.packet);
     let mut out = TokenStream::new();
+    let kinds = emit_rule_kinds(RuleKinds::of_link([f]));
     for d in &p.directions {
         let ty = format_ident!("{}Layout", d.rust_name);
         let from_frame = format_ident!("from_{}_frame", d.name);
@@ -118,6 +121,7 @@ pub fn direction_layouts(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStre
             #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
             pub struct #ty;
             impl #rt::LayoutRef for #ty {
+                #kinds
                 #[inline(always)]
                 fn layout(&self) -> &#rt::FrameLayout<'_> {
                     &#layout

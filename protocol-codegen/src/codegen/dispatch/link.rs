@@ -9,8 +9,10 @@ use quote::{format_ident, quote};
 
 use super::frames::flag_trailer_len;
 use super::packet::{Items, aside, parse_bytes, read_id, read_message, unstuff_scratch};
+use crate::codegen::frame::emit_rule_kinds;
 use crate::codegen::ident;
 use crate::ir::{Frame, Protocol};
+use crate::layout::RuleKinds;
 
 /// `<Name>Packet` for a frame format with [`PacketKind::Commands`](crate::ir::PacketKind):
 /// its header and the link's `Message`, decoded through its own layout and rules (its own
@@ -213,6 +215,7 @@ pub(super) fn emit_link(p: &Protocol, rt: &TokenStream) -> TokenStream {
         .map(|f| format!(" A `{}` frame.", f.name))
         .collect();
     let indices: Vec<usize> = (0..formats.len()).collect();
+    let kinds = emit_rule_kinds(RuleKinds::of_link(formats.iter().copied()));
     quote! {
         /// The link's other command formats, after the first: the formats
         /// [`AnyLayout`] hands the engine.
@@ -223,6 +226,7 @@ pub(super) fn emit_link(p: &Protocol, rt: &TokenStream) -> TokenStream {
         #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
         pub struct AnyLayout;
         impl #rt::LayoutRef for AnyLayout {
+            #kinds
             #[inline(always)]
             fn layout(&self) -> &#rt::FrameLayout<'_> {
                 &#first_layout
