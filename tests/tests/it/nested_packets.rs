@@ -212,10 +212,10 @@ fn golden_stream_yields_exactly_the_good_frames_at_every_chunk_size() {
         &expected,
         |f| {
             let packet = AnyPacket::from_frame(f).expect("decodes");
-            if let AnyPacket::V1(p) = packet {
-                if p.message.command() == fixture::nested_packets::Command::V2Frame {
-                    carried(&p.message, carrier(&p.message)).expect("a carried packet");
-                }
+            if let AnyPacket::V1(p) = packet
+                && p.message.command() == fixture::nested_packets::Command::V2Frame
+            {
+                carried(&p.message, carrier(&p.message)).expect("a carried packet");
             }
         },
     );

@@ -274,7 +274,12 @@ fn serve<P: Peer>(
                         .expect("the answer takes the request's values");
                     link.send(UP, now, &first);
                 }
-                for mut reply in answer.then(|| P::answers(&frame)).unwrap_or_default() {
+                let replies = if answer {
+                    P::answers(&frame)
+                } else {
+                    Default::default()
+                };
+                for mut reply in replies {
                     let mut ok = None;
                     t.allocations += allocation_counter::measure(|| {
                         ok = Some(res.answer(&frame, &mut reply));
