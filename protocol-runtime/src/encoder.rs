@@ -588,6 +588,33 @@ pub fn write_header(frame: &mut [u8], field: WordField, value: u64) -> Result<()
         })
 }
 
+/// Refuses a header value of another direction's frames: a frame of a direction without that
+/// field (Sensirion SHDLC's state byte in a command) has no place for it, so only its default,
+/// 0, encodes to a frame that decodes back equal.
+///
+/// # Errors
+///
+/// [`EncodeError::ValueOutOfRange`] when `value` is not 0.
+///
+/// # Examples
+///
+/// ```
+/// use protocol_runtime::EncodeError;
+/// use protocol_runtime::encoder::absent_header;
+/// assert_eq!(absent_header(0), Ok(()));
+/// assert!(matches!(absent_header(3), Err(EncodeError::ValueOutOfRange { .. })));
+/// ```
+#[inline]
+pub fn absent_header(value: u64) -> Result<(), EncodeError> {
+    if value == 0 {
+        Ok(())
+    } else {
+        Err(EncodeError::ValueOutOfRange {
+            place: crate::error::Place::NONE,
+        })
+    }
+}
+
 /// No payload: a command that carries nothing.
 impl Payload for () {
     const SIZE: usize = 0;

@@ -121,4 +121,10 @@ pub(crate) fn locate_payloads(spec: &SpecFile, source: &SpecSource, p: &mut Prot
             f.payload_origin = payload_origin(source, payload_span(def.get_ref()));
         }
     }
+    // A direction's own layout of the first format declares its payload where the format does.
+    if let Some(first) = p.frames.first().map(|f| f.payload_origin.clone()) {
+        for f in p.directions.iter_mut().filter_map(|d| d.frame.as_mut()) {
+            f.payload_origin.clone_from(&first);
+        }
+    }
 }

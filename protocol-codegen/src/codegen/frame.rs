@@ -11,8 +11,8 @@ use super::docs::{doc_attrs, frame_doc};
 use super::header::emit_header;
 use super::rt;
 use crate::ir::{
-    Algorithm, ByteOrder, Check, CheckNaming, CrcTable, Frame, HeaderValue, PacketKind, Pos, Prim,
-    Protocol, Role, Transport,
+    Algorithm, ByteOrder, Check, CheckNaming, CrcTable, Direction, Frame, HeaderValue, PacketKind,
+    Pos, Prim, Protocol, Role, Transport,
 };
 use crate::layout::{self, LayoutPlan, RuleKinds, lower_layout};
 use crate::resources;
@@ -316,17 +316,46 @@ pub fn emit_frames(p: &Protocol) -> TokenStream {
             out.extend(emit_decoder(f, &layout));
         }
     }
+    for (d, f) in own_layouts(p) {
+        out.extend(emit_frame_consts(f));
+        let doc = format!(
+            "The `{}` frame format as {}s lay it out, with the fields of that direction.",
+            f.name, d.name
+        );
+        let layout = format_ident!("{}", f.names.layout_static);
+        out.extend(emit_layout(&rt(), f, &layout, &doc));
+        let buffer = format_ident!("{}", f.names.sizes.decoder_buffer_len);
+        let (rt, max_len) = (rt(), f.max_len());
+        let buffer_doc = format!(
+            " Bytes of the buffer of a `PacketDecoder` of {}s ([`{}Layout`]).",
+            d.name, d.rust_name
+        );
+        out.extend(quote! {
+            #[doc = #buffer_doc]
+            pub const #buffer: usize = #rt::decoder_buffer_len(#max_len);
+        });
+    }
     out.extend(emit_wire(p));
+    let own: Vec<_> = own_layouts(p).collect();
     for (i, f) in p.frames.iter().enumerate() {
-        if i == 0
-            || f.transport != Transport::Serial
+        if i == 0 {
+            out.extend(emit_header(f, &own));
+        } else if f.transport != Transport::Serial
             || f.message.is_some()
             || f.packet == PacketKind::Commands
         {
-            out.extend(emit_header(f));
+            out.extend(emit_header(f, &[]));
         }
     }
     out
+}
+
+/// The directions that lay the first frame format out with fields of their own, each with
+/// that layout.
+pub(crate) fn own_layouts(p: &Protocol) -> impl Iterator<Item = (&Direction, &Frame)> {
+    p.directions
+        .iter()
+        .filter_map(|d| Some((d, d.frame.as_ref()?)))
 }
 
 /// The size consts of a frame format.
@@ -471,12 +500,14 @@ pub(crate) fn emit_rule_kinds(kinds: RuleKinds) -> TokenStream {
 
 /// The `wire` module: where each header value of every frame format sits.
 fn emit_wire(p: &Protocol) -> TokenStream {
-    let rt = rt();
-    let items = p.frames.iter().flat_map(|f| {
-        f.values.iter().enumerate().map(|(i, v)| {
+    let rt = &rt();
+    let own = own_layouts(p).map(|(d, f)| (f, format!(" {}", d.name)));
+    let frames = p.frames.iter().map(|f| (f, String::new())).chain(own);
+    let items = frames.flat_map(|(f, what)| {
+        f.values.iter().enumerate().map(move |(i, v)| {
             let name = wire_const(f, i);
-            let lit = word_field(&rt, v);
-            let doc = format!(" Where `{}` sits in a `{}` frame.", v.name, f.name);
+            let lit = word_field(rt, v);
+            let doc = format!(" Where `{}` sits in a `{}`{what} frame.", v.name, f.name);
             quote!(#[doc = #doc] pub const #name: #rt::WordField = #lit;)
         })
     });

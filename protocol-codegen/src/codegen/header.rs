@@ -9,20 +9,28 @@ use super::docs::doc_attrs;
 use super::frame::{user_values, wire_const};
 use super::payload::prim_type;
 use super::{ident, rt};
-use crate::ir::{Frame, HeaderValue, Pos, Prim};
+use crate::ir::{Direction, Frame, HeaderValue, Pos, Prim};
 
-/// The `Header` struct of format `f` and its `read` and `write`.
-pub(super) fn emit_header(f: &Frame) -> TokenStream {
+/// The `Header` struct of format `f` and its `read` and `write`. `own` are the layouts of `f`
+/// of the directions with fields of their own (the first format only): the struct holds
+/// their values too, `read` and `write` are the format's own layout (where another
+/// direction's value reads as 0 and only 0 is written), and `read_<direction>` and
+/// `write_<direction>` are each direction's.
+pub(super) fn emit_header(f: &Frame, own: &[(&Direction, &Frame)]) -> TokenStream {
     let rt = rt();
     let name = format_ident!("{}", f.names.header);
-    let fields = user_values(f).map(|(_, v)| {
+    let mut values: Vec<&HeaderValue> = user_values(f).map(|(_, v)| v).collect();
+    for (_, of) in own {
+        for (_, v) in user_values(of) {
+            if !values.iter().any(|x| x.name == v.name) {
+                values.push(v);
+            }
+        }
+    }
+    let fields = values.iter().map(|v| {
         let id = ident(&v.name);
         let ty = prim_type(v.prim);
-        let d = doc_attrs(if v.doc.is_empty() {
-            "Header value."
-        } else {
-            &v.doc
-        });
+        let d = doc_attrs(&value_doc(v, own));
         quote!(#d pub #id: #ty)
     });
     let trailer = f.flag_trailer.as_ref().map(|t| {
@@ -36,7 +44,22 @@ pub(super) fn emit_header(f: &Frame) -> TokenStream {
         ));
         quote!(#doc pub #id: #rt::Option<[u8; #len]>,)
     });
-    let (reads, writes) = header_codec(f, &rt);
+    let (read, write) = read_write(f, &values, quote!(read), quote!(write), "", &rt);
+    let directed = own.iter().map(|(d, of)| {
+        let (r, w) = (
+            format_ident!("read_{}", d.name),
+            format_ident!("write_{}", d.name),
+        );
+        read_write(
+            of,
+            &values,
+            quote!(#r),
+            quote!(#w),
+            &format!(" of a {}", d.name),
+            &rt,
+        )
+    });
+    let directed = directed.map(|(r, w)| quote!(#r #w));
     quote! {
         /// The header values a sender sets (the codec computes the sync, length, command and
         /// checks).
@@ -46,20 +69,84 @@ pub(super) fn emit_header(f: &Frame) -> TokenStream {
             #trailer
         }
         impl #name {
-            /// The header values of a frame (`DecodeError::Truncated` if it ends before one).
+            #read
+            #write
+            #(#directed)*
+        }
+    }
+}
+
+/// The documentation of header value `v`: its own, and which directions have it when it is
+/// one direction's only.
+fn value_doc(v: &HeaderValue, own: &[(&Direction, &Frame)]) -> String {
+    let doc = if v.doc.is_empty() {
+        "Header value."
+    } else {
+        &v.doc
+    };
+    let in_all = own
+        .iter()
+        .all(|(_, of)| user_values(of).any(|(_, x)| x.name == v.name));
+    if in_all {
+        return doc.to_string();
+    }
+    let dirs: Vec<String> = own
+        .iter()
+        .filter(|(_, of)| user_values(of).any(|(_, x)| x.name == v.name))
+        .map(|(d, _)| format!("`{}`", d.name))
+        .collect();
+    format!(
+        "{doc}\n\nIn {} frames only: other frames have no place for it, so it reads as 0 \
+         there and any other value is `EncodeError::ValueOutOfRange`.",
+        dirs.join(", ")
+    )
+}
+
+/// A header's `read` and `write` (named `read`, `write`) through the layout of `f`: the values
+/// of `all` that `f` does not have read as 0 and are written only as 0.
+fn read_write(
+    f: &Frame,
+    all: &[&HeaderValue],
+    read: TokenStream,
+    write: TokenStream,
+    what: &str,
+    rt: &TokenStream,
+) -> (TokenStream, TokenStream) {
+    let (reads, writes) = header_codec(f, rt);
+    let absent: Vec<_> = all
+        .iter()
+        .filter(|v| !user_values(f).any(|(_, x)| x.name == v.name))
+        .map(|v| ident(&v.name))
+        .collect();
+    let rest = (!absent.is_empty()).then(|| quote!(..Self::default()));
+    let refuse = absent
+        .iter()
+        .map(|id| quote!(#rt::absent_header(self.#id as u64)?;));
+    let read_doc = format!(
+        " The header values of a frame{what} (`DecodeError::Truncated` if it ends before one)."
+    );
+    let write_doc = format!(
+        " Writes the header values into a frame{what} (`EncodeError::ValueOutOfRange` if one does"
+    );
+    (
+        quote! {
+            #[doc = #read_doc]
             #[inline(always)]
-            pub fn read(frame: &[u8]) -> #rt::DecodeResult<Self> {
-                #rt::Ok(Self { #(#reads,)* })
+            pub fn #read(frame: &[u8]) -> #rt::DecodeResult<Self> {
+                #rt::Ok(Self { #(#reads,)* #rest })
             }
-            /// Writes the header values into a frame (`EncodeError::ValueOutOfRange` if one does
+        },
+        quote! {
+            #[doc = #write_doc]
             /// not fit its field).
             #[inline(always)]
-            pub fn write(&self, frame: &mut [u8]) -> #rt::Result<(), #rt::EncodeError> {
+            pub fn #write(&self, frame: &mut [u8]) -> #rt::Result<(), #rt::EncodeError> {
+                #(#refuse)*
                 #(#writes)*
                 #rt::Ok(())
             }
-        }
-    }
+        },
+    )
 }
 
 /// Reading the user-set header values of frame `f` into the header struct's fields, and

@@ -107,6 +107,12 @@ pub struct Direction {
     /// payload, whatever the command (MSP's error replies: the command the sender refuses).
     /// Told by a header field; every command's payload in it is empty.
     pub empty: bool,
+    /// The first frame format as this direction's frames lay it out, when a header field
+    /// belongs to this direction only (`direction = "NAME"` on a layout element, Sensirion
+    /// SHDLC's state byte): the frame with that field, its offsets, length rule and checks
+    /// placed accordingly. `None`: the direction's frames are the first format's
+    /// ([`Protocol::frame_in`]). Only directions the decoder is given have one.
+    pub frame: Option<Frame>,
 }
 
 /// How a decoder recognises a direction.
@@ -192,6 +198,22 @@ impl Protocol {
                 let carriers = self.commands.iter().filter(|o| first(o) == Some(si));
                 (carriers.count() == 1).then_some((c, si))
             })
+    }
+
+    /// Frame format `format` as the frames of direction `direction` (an index into
+    /// [`Protocol::directions`]) lay it out: the direction's own [`Direction::frame`] for the
+    /// first format when it has one, else the format itself. `None` for a format out of range.
+    pub fn frame_in(&self, format: usize, direction: Option<usize>) -> Option<&Frame> {
+        let own = direction
+            .filter(|_| format == 0)
+            .and_then(|d| self.directions.get(d))
+            .and_then(|d| d.frame.as_ref());
+        own.or_else(|| self.frames.get(format))
+    }
+
+    /// True when a direction lays the first frame format out with fields of its own.
+    pub fn directed_layouts(&self) -> bool {
+        self.directions.iter().any(|d| d.frame.is_some())
     }
 
     /// True when the decoder is given the direction instead of reading it from the header.

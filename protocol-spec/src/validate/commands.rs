@@ -85,6 +85,7 @@ pub(crate) fn lower_directions(
                     rule,
                     message,
                     empty: false,
+                    frame: None,
                 });
             }
             continue;
@@ -137,6 +138,7 @@ pub(crate) fn lower_directions(
             rule,
             message: None,
             empty: is_empty,
+            frame: None,
         });
     }
     given::check_given_agree(ctx);

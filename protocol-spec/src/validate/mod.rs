@@ -72,10 +72,10 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
     let enums = types::lower_enums(&mut ctx);
     let structs = types::lower_structs(&mut ctx, &enums, &constants);
     names::check_type_names(&mut ctx);
-    let frames = frame::lower_frames(&mut ctx, &structs, &enums);
+    let (frames, own_layouts) = frame::lower_frames(&mut ctx, &structs, &enums);
     // Directions name fields of the first frame: skip them when it failed to lower.
     let first_spec_frame = spec.frames.keys().next().map(|k| k.get_ref().as_str());
-    let directions = match frames
+    let mut directions = match frames
         .first()
         .filter(|f| Some(f.name.as_str()) == first_spec_frame)
     {
@@ -102,6 +102,7 @@ pub fn validate(spec: &SpecFile, diags: &mut Diagnostics) -> Option<ir::Protocol
         &structs,
     );
     extra::lower_extra_bytes(&mut frames, &commands);
+    frame::attach_own_layouts(&mut directions, own_layouts, &frames, &commands);
     let session =
         session::lower_session(&mut ctx, &frames, &commands, &structs.structs, &directions);
     let registers = registers::lower_registers(

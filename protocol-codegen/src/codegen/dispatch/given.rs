@@ -20,14 +20,20 @@ use crate::ir::{Direction, Frame, Protocol};
 use crate::layout::RuleKinds;
 
 /// `decode_<direction>` and `from_<direction>_frame` for every direction.
-pub(super) fn decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
-    let parse = parse_bytes(f);
-    let rules = rules_static(f);
-    let packet = format_ident!("{}", f.names.packet);
-    let header = format_ident!("{}", f.names.header);
-    let (scratch, scratch_ref) = unstuff_scratch(f);
+/// A direction with fields of its own decodes through its own layout of the format
+/// ([`Direction::frame`]), its header read by `Header::read_<direction>`.
+pub(super) fn decoders(p: &Protocol, base: &Frame, rt: &TokenStream) -> TokenStream {
+    let packet = format_ident!("{}", base.names.packet);
+    let header = format_ident!("{}", base.names.header);
     let mut out = TokenStream::new();
     for d in &p.directions {
+        let (f, read) = match &d.frame {
+            Some(own) => (own, format_ident!("read_{}", d.name)),
+            None => (base, format_ident!("read")),
+        };
+        let parse = parse_bytes(f);
+        let rules = rules_static(f);
+        let (scratch, scratch_ref) = unstuff_scratch(f);
         let v = format_ident!("{}", d.rust_name);
         let decode = format_ident!("decode_{}", d.name);
         let from_frame = format_ident!("from_{}_frame", d.name);
@@ -80,7 +86,7 @@ pub(super) fn decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream
             /// # Errors
             #errors
             pub fn #from_frame(frame: &[u8]) -> #rt::DecodeResult<Self> {
-                let header = #header::read(frame)?;
+                let header = #header::#read(frame)?;
                 #body
                 #rt::Ok(#packet { header, message })
             }
@@ -102,12 +108,13 @@ fn what(d: &Direction) -> String {
 
 /// A layout type per direction, for the runtime's `PacketDecoder` and integrations: the frame
 /// format's layout, each frame decoded in that direction.
-pub fn direction_layouts(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
-    let layout = format_ident!("{}", f.names.layout_static);
-    let packet = format_ident!("{}", f.names.packet);
+pub fn direction_layouts(p: &Protocol, base: &Frame, rt: &TokenStream) -> TokenStream {
+    let packet = format_ident!("{}", base.names.packet);
     let mut out = TokenStream::new();
-    let kinds = emit_rule_kinds(RuleKinds::of_link([f]));
     for d in &p.directions {
+        let f = d.frame.as_ref().unwrap_or(base);
+        let layout = format_ident!("{}", f.names.layout_static);
+        let kinds = emit_rule_kinds(RuleKinds::of_link([f]));
         let ty = format_ident!("{}Layout", d.rust_name);
         let from_frame = format_ident!("from_{}_frame", d.name);
         let doc = doc_attrs(&format!(

@@ -23,6 +23,7 @@ mod typed;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
+use super::frame::own_layouts;
 use super::payload::prim_type;
 use super::rt;
 use super::types::int_lit;
@@ -52,6 +53,7 @@ pub fn emit_dispatch(p: &Protocol) -> TokenStream {
         .iter()
         .filter(|f| f.packet != PacketKind::None)
         .map(|f| emit_rules(p, f, &rt))
+        .chain(own_layouts(p).map(|(_, f)| emit_rules(p, f, &rt)))
         .collect();
     if f.dispatch.is_empty() {
         return match f.packet {

@@ -10,6 +10,7 @@ use super::frames::{can_first_methods, flag_trailer_len};
 use super::given;
 use super::key_prims;
 use super::rules::rules_static;
+use crate::codegen::frame::own_layouts;
 use crate::codegen::ident;
 use crate::codegen::payload::prim_type;
 use crate::codegen::types::int_lit;
@@ -244,11 +245,61 @@ pub(super) fn escaped_len(
 
 /// The statement that encodes `self` as `body` into `buf`, through the rules'
 /// `encode_message` (the aside buffer is empty where the format writes its payload in place).
-pub(super) fn encode_body(f: &Frame, aside: &TokenStream, flagged: &TokenStream) -> TokenStream {
+/// The header is written by `Header::<write>`.
+fn encode_body_with(
+    f: &Frame,
+    aside: &TokenStream,
+    flagged: &TokenStream,
+    write: &TokenStream,
+) -> TokenStream {
     let rules = rules_static(f);
     quote! {
-        #rules.encode_message(buf, #aside, &body, &self.message, #flagged, |frame| self.header.write(frame))
+        #rules.encode_message(buf, #aside, &body, &self.message, #flagged, |frame| self.header.#write(frame))
     }
+}
+
+/// The bodies of `Packet::encoded_len` and `Packet::encode` through the layout of `f`, its
+/// header written by `Header::<write>`.
+fn encoding(f: &Frame, write: &TokenStream, rt: &TokenStream) -> (TokenStream, TokenStream) {
+    let Items {
+        max_payload_len,
+        rules,
+        ..
+    } = Items::of(f);
+    let flagged = flag_trailer_len(f);
+    let aside = aside(f, &max_payload_len);
+    let encode = encode_body_with(f, &aside, &flagged, write);
+    let unescaped = quote!(#rules.message_len(&body, &self.message, #aside, #flagged));
+    let len = match escaped_len(f, rt, &encode, &unescaped) {
+        Some(measured) => quote! {
+            let body = self.body(&mut key);
+            #measured
+        },
+        None => quote!(#rules.message_len(&self.body(&mut key), &self.message, #aside, #flagged)),
+    };
+    (len, encode)
+}
+
+/// [`encoding`] for every direction: through the first format's layout, and through each
+/// direction's own where one has fields of its own (chosen by the message's direction).
+fn encodings(p: &Protocol, f: &Frame, rt: &TokenStream) -> (TokenStream, TokenStream) {
+    let (len, encode) = encoding(f, &quote!(write), rt);
+    let own: Vec<_> = own_layouts(p).collect();
+    if own.is_empty() {
+        return (len, encode);
+    }
+    let (mut len_arms, mut encode_arms) = (TokenStream::new(), TokenStream::new());
+    for (d, of) in own {
+        let v = format_ident!("{}", d.rust_name);
+        let write = format_ident!("write_{}", d.name);
+        let (l, e) = encoding(of, &quote!(#write), rt);
+        len_arms.extend(quote!(Message::#v(_) => { #l }));
+        encode_arms.extend(quote!(Message::#v(_) => #e,));
+    }
+    (
+        quote!(match self.message { #len_arms _ => { #len } }),
+        quote!(match self.message { #encode_arms _ => #encode }),
+    )
 }
 
 /// `Packet::decode` and `Packet::from_frame` (with directions the decoder is given, the
@@ -312,28 +363,12 @@ fn packet_decoders(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
 /// `Packet`: the header values and the message of the first frame format, decoded from and
 /// encoded to a frame through its `RULES`.
 pub(super) fn emit_packet(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
-    let Items {
-        max_payload_len,
-        rules,
-        packet,
-        header,
-        ..
-    } = Items::of(f);
+    let Items { packet, header, .. } = Items::of(f);
     let decoders = packet_decoders(p, f, rt);
     let can = can_first_methods(f, rt);
     let body_fn = emit_body_fn(p, f, rt);
     let n = f.dispatch.len();
-    let flagged = flag_trailer_len(f);
-    let aside = aside(f, &max_payload_len);
-    let encode = encode_body(f, &aside, &flagged);
-    let unescaped = quote!(#rules.message_len(&body, &self.message, #aside, #flagged));
-    let len = match escaped_len(f, rt, &encode, &unescaped) {
-        Some(measured) => quote! {
-            let body = self.body(&mut key);
-            #measured
-        },
-        None => quote!(#rules.message_len(&self.body(&mut key), &self.message, #aside, #flagged)),
-    };
+    let (len, encode) = encodings(p, f, rt);
     // A command only a wider format of the link carries.
     let not_carried = if f.commands.len() < p.commands.len() {
         quote! {

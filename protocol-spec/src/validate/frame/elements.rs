@@ -51,6 +51,7 @@ const FIELD_KEYS: &[&str] = &[
     "extends",
     "marker",
     "counter",
+    "direction",
     "doc",
 ];
 const SYNC_KEYS: &[&str] = &["sync", "doc"];
@@ -78,7 +79,7 @@ fn present_keys(e: &ElementDef) -> Vec<(&'static str, std::ops::Range<usize>)> {
        ty => "type", addresses => "addresses", length_of => "length_of", value => "value",
        one_of => "one_of", bits => "bits", over => "over", byte_order => "byte_order", extra => "extra",
        table => "table", name => "name", optional => "optional", size => "size", when => "when",
-       extends => "extends", marker => "marker", counter => "counter",
+       extends => "extends", marker => "marker", counter => "counter", direction => "direction",
        doc => "doc");
     v
 }

@@ -10,6 +10,7 @@ mod can_id;
 mod checks;
 mod conditional;
 mod counter;
+mod directed;
 mod elements;
 mod escape;
 mod header;
@@ -29,10 +30,15 @@ use crate::ir::{
 use crate::spec::model::{ElementDef, FrameDef, SStr};
 use length::Layout;
 
+pub(crate) use directed::attach_own_layouts;
 pub(crate) use link::lower_link;
 
+/// The frame formats, and the first format as each direction with fields of its own lays it
+/// out (`(direction, frame)`, in the order of `[directions]`).
+pub(crate) type Lowered = (Vec<Frame>, Vec<(String, Frame)>);
+
 /// Rule: a spec has at least one frame format, each with a snake_case name.
-pub(crate) fn lower_frames(ctx: &mut Ctx<'_>, structs: &Structs, enums: &Enums) -> Vec<Frame> {
+pub(crate) fn lower_frames(ctx: &mut Ctx<'_>, structs: &Structs, enums: &Enums) -> Lowered {
     let spec = ctx.spec;
     if spec.frames.is_empty() {
         ctx.error(
@@ -42,13 +48,17 @@ pub(crate) fn lower_frames(ctx: &mut Ctx<'_>, structs: &Structs, enums: &Enums) 
         );
     }
     let mut out = Vec::new();
+    let mut own = Vec::new();
     for (i, (name, def)) in spec.frames.iter().enumerate() {
         check_snake_name(ctx, name, "frame name");
-        if let Some(f) = lower_frame(ctx, name, i == 0, def.get_ref(), structs, enums) {
-            out.push(f);
+        directed::check_first_format(ctx, def.get_ref(), i == 0);
+        let f = lower_frame(ctx, name, i == 0, def.get_ref(), structs, enums, None);
+        if i == 0 {
+            own = directed::lower_directed(ctx, name, def.get_ref(), structs, enums, f.is_some());
         }
+        out.extend(f);
     }
-    out
+    (out, own)
 }
 
 /// What one layout element is, once classified.
@@ -112,8 +122,9 @@ impl Draft<'_> {
     }
 }
 
-/// Lower one frame format (`first`: the spec's first, default one): the element rules, then
-/// the rules over the whole layout. `None` when any rule failed (its error is recorded).
+/// Lower one frame format (`first`: the spec's first, default one) as the frames of
+/// `direction` lay it out (`None`: without the fields of one direction): the element rules,
+/// then the rules over the whole layout. `None` when any rule failed (its error is recorded).
 fn lower_frame(
     ctx: &mut Ctx<'_>,
     fname: &SStr,
@@ -121,12 +132,15 @@ fn lower_frame(
     def: &FrameDef,
     structs: &Structs,
     enums: &Enums,
+    direction: Option<&str>,
 ) -> Option<Frame> {
     let transport = options::lower_transport(ctx, def);
     let mut draft = Draft::new(transport);
     can_id::check_members_placement(ctx, def, first);
     header::push_can_prefix(ctx, &mut draft, def, enums);
-    for (i, el) in def.layout.get_ref().iter().enumerate() {
+    let layout = def.layout.get_ref().iter();
+    let own = layout.filter(|el| directed::in_direction(el.get_ref(), direction));
+    for (i, el) in own.enumerate() {
         elements::lower_element(ctx, &mut draft, i, el, enums)?;
     }
     can_id::check_member_names(ctx, def, &draft);
@@ -193,7 +207,7 @@ fn lower_frame(
         Kind::Sync(b) => b.clone(),
         _ => Vec::new(),
     };
-    let names = lower_names(fname.get_ref(), first, &values);
+    let names = lower_names(fname.get_ref(), first, direction, &values);
     let (checks, check_order) = order_checks(checks);
     let checks = name_tables(checks, &names);
     Some(Frame {
@@ -281,8 +295,22 @@ pub(crate) fn lower_packets(frames: &mut [Frame], directions: bool, commands: us
 }
 
 /// The Rust names of a frame format's items: plain for the first frame format, prefixed with
-/// the frame's name for the others (so two frame formats never define the same item).
-fn lower_names(name: &str, first: bool, values: &[HeaderValue]) -> FrameNames {
+/// the frame's name for the others (so two frame formats never define the same item). The
+/// first format as a direction with fields of its own lays it out has its statics and consts
+/// prefixed with the direction's name (`RESPONSE_LAYOUT`, `wire::RESPONSE_LENGTH`) and shares
+/// the format's `Header` and `Packet`, which hold every direction's values.
+fn lower_names(
+    name: &str,
+    first: bool,
+    direction: Option<&str>,
+    values: &[HeaderValue],
+) -> FrameNames {
+    if let Some(d) = direction {
+        let mut names = lower_names(d, false, None, values);
+        names.header = "Header".to_string();
+        names.packet = "Packet".to_string();
+        return names;
+    }
     let pascal = pascal_case(name);
     let item = |plain: &str| {
         if first {
