@@ -164,10 +164,22 @@ impl Interpreter {
             .enumerate()
             .map(|(i, f)| FrameParts::new(&self.protocol, i, f, &self.crcs))
             .collect();
+        // A direction's own layout of the first format has the format's checks, so it takes
+        // the format's CRC objects.
+        let own = self
+            .protocol
+            .directions
+            .iter()
+            .map(|d| {
+                let f = d.frame.as_ref()?;
+                Some(FrameParts::new(&self.protocol, 0, f, &self.crcs))
+            })
+            .collect();
         Codec {
             protocol: &self.protocol,
             names: &self.names,
             frames,
+            own,
             direction: None,
         }
     }
@@ -189,6 +201,8 @@ pub struct Codec<'a> {
     protocol: &'a Protocol,
     names: &'a Names,
     frames: Vec<FrameParts<'a>>,
+    /// Per direction, its own layout of the first format (`None`: it has none).
+    own: Vec<Option<FrameParts<'a>>>,
     direction: Option<usize>,
 }
 
@@ -221,9 +235,19 @@ impl Codec<'_> {
     }
 
     /// The runtime layout of frame format `format` (an index into the protocol's frames), as
-    /// generated code's `LAYOUT` holds it. `None` for an index out of range.
+    /// generated code's `LAYOUT` holds it; for a direction this codec is given that has fields
+    /// of its own, the first format as that direction lays it out (`RESPONSE_LAYOUT`). `None`
+    /// for an index out of range.
     pub fn layout(&self, format: usize) -> Option<FrameLayout<'_>> {
-        self.frames.get(format).map(FrameParts::layout)
+        self.parts(format, self.direction).map(FrameParts::layout)
+    }
+
+    /// The parts of frame format `format` as the frames of `direction` lay it out.
+    fn parts(&self, format: usize, direction: Option<usize>) -> Option<&FrameParts<'_>> {
+        let own = direction
+            .filter(|_| format == 0 && self.protocol.directions_given())
+            .and_then(|d| self.own.get(d)?.as_ref());
+        own.or_else(|| self.frames.get(format))
     }
 
     /// `f` run on the packet rules of frame format `format` (an index into the protocol's
@@ -234,7 +258,18 @@ impl Codec<'_> {
     /// A closure rather than a value: the rules borrow the format's layout, which the codec
     /// builds from its parts on each call.
     pub fn with_rules<R>(&self, format: usize, f: impl FnOnce(&PacketRules<'_>) -> R) -> Option<R> {
-        self.frames.get(format).map(|parts| parts.with_rules(f))
+        self.with_rules_in(format, self.direction, f)
+    }
+
+    /// [`with_rules`](Self::with_rules) as the frames of `direction` lay the format out.
+    fn with_rules_in<R>(
+        &self,
+        format: usize,
+        direction: Option<usize>,
+        f: impl FnOnce(&PacketRules<'_>) -> R,
+    ) -> Option<R> {
+        self.parts(format, direction)
+            .map(|parts| parts.with_rules(f))
     }
 
     /// A stream decoder of frame format `format`: the runtime's engine on its layout, each
@@ -296,7 +331,7 @@ impl Codec<'_> {
         frame: &[u8],
         direction: Option<usize>,
     ) -> Result<Decoded, DecodeIssue> {
-        self.with_rules(format, |rules| {
+        self.with_rules_in(format, direction, |rules| {
             frame::decode(self.protocol, self.names, format, rules, frame, direction)
         })
         .unwrap_or(Err(DecodeIssue::Frame(DecodeError::Frame(
@@ -401,8 +436,9 @@ impl Codec<'_> {
             })?,
             Some(_) => return Err(EncodeIssue::new("format", "expected a frame format name")),
         };
+        let direction = frame::frame_direction(self.protocol, obj, self.direction);
         let bytes = self
-            .with_rules(format, |rules| {
+            .with_rules_in(format, direction, |rules| {
                 frame::encode(self.protocol, format, rules, obj, self.direction)
             })
             .ok_or_else(|| EncodeIssue::new("format", "no such frame format"))??;

@@ -45,6 +45,9 @@ pub(crate) struct Names {
     values: Vec<Vec<Arc<str>>>,
     /// Per frame format, its flag trailer's name.
     trailers: Vec<Option<Arc<str>>>,
+    /// Per direction, the header values' names of its own layout of the first frame format
+    /// (`None`: it has none).
+    own: Vec<Option<Vec<Arc<str>>>>,
 }
 
 impl Names {
@@ -71,6 +74,19 @@ impl Names {
                 .iter()
                 .map(|f| f.flag_trailer.as_ref().map(|t| Arc::from(t.name.as_str())))
                 .collect(),
+            own: p
+                .directions
+                .iter()
+                .map(|d| {
+                    let f = d.frame.as_ref()?;
+                    Some(
+                        f.values
+                            .iter()
+                            .map(|v| Arc::from(v.name.as_str()))
+                            .collect(),
+                    )
+                })
+                .collect(),
         }
     }
 
@@ -79,9 +95,16 @@ impl Names {
         &self.structs[si]
     }
 
-    /// The name of header value `vi` of frame format `fi`.
-    pub fn value(&self, fi: usize, vi: usize) -> &Arc<str> {
-        &self.values[fi][vi]
+    /// The name of header value `vi` of frame format `fi` as the frames of `direction` lay it
+    /// out ([`Protocol::frame_in`](protocol_spec::ir::Protocol::frame_in)).
+    pub fn value(&self, fi: usize, direction: Option<usize>, vi: usize) -> &Arc<str> {
+        let own = direction
+            .filter(|_| fi == 0)
+            .and_then(|d| self.own.get(d)?.as_ref());
+        match own {
+            Some(names) => &names[vi],
+            None => &self.values[fi][vi],
+        }
     }
 
     /// The name of the flag trailer of frame format `fi`.

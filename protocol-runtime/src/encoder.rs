@@ -589,30 +589,51 @@ pub fn write_header(frame: &mut [u8], field: WordField, value: u64) -> Result<()
 }
 
 /// Refuses a header value of another direction's frames: a frame of a direction without that
-/// field (Sensirion SHDLC's state byte in a command) has no place for it, so only its default,
-/// 0, encodes to a frame that decodes back equal.
+/// field (Sensirion SHDLC's state byte, in a command) has no place for it, so it is `None`
+/// there; a value would not decode back.
 ///
 /// # Errors
 ///
-/// [`EncodeError::ValueOutOfRange`] when `value` is not 0.
+/// [`EncodeError::ValueOutOfRange`] when `value` is `Some`.
 ///
 /// # Examples
 ///
 /// ```
 /// use protocol_runtime::EncodeError;
 /// use protocol_runtime::encoder::absent_header;
-/// assert_eq!(absent_header(0), Ok(()));
-/// assert!(matches!(absent_header(3), Err(EncodeError::ValueOutOfRange { .. })));
+/// assert_eq!(absent_header::<u8>(None), Ok(()));
+/// assert!(matches!(absent_header(Some(3u8)), Err(EncodeError::ValueOutOfRange { .. })));
 /// ```
 #[inline]
-pub fn absent_header(value: u64) -> Result<(), EncodeError> {
-    if value == 0 {
-        Ok(())
-    } else {
-        Err(EncodeError::ValueOutOfRange {
+pub fn absent_header<T>(value: Option<T>) -> Result<(), EncodeError> {
+    match value {
+        None => Ok(()),
+        Some(_) => Err(EncodeError::ValueOutOfRange {
             place: crate::error::Place::NONE,
-        })
+        }),
     }
+}
+
+/// The value of a header field of one direction, in a frame of that direction: every such
+/// frame has it, so a `None` would not decode back.
+///
+/// # Errors
+///
+/// [`EncodeError::ValueOutOfRange`] when `value` is `None`.
+///
+/// # Examples
+///
+/// ```
+/// use protocol_runtime::EncodeError;
+/// use protocol_runtime::encoder::present_header;
+/// assert_eq!(present_header(Some(3u8)), Ok(3));
+/// assert!(matches!(present_header::<u8>(None), Err(EncodeError::ValueOutOfRange { .. })));
+/// ```
+#[inline]
+pub fn present_header<T>(value: Option<T>) -> Result<T, EncodeError> {
+    value.ok_or(EncodeError::ValueOutOfRange {
+        place: crate::error::Place::NONE,
+    })
 }
 
 /// No payload: a command that carries nothing.

@@ -12,6 +12,13 @@ use super::shape::keyed_format;
 /// whole spec.
 pub fn unsupported(p: &Protocol) -> Vec<String> {
     let mut out = Vec::new();
+    // The C decoder and encoder have one layout per format.
+    for d in p.directions.iter().filter(|d| d.frame.is_some()) {
+        out.push(format!(
+            "direction `{}`: header fields of one direction only (`direction` on a layout element)",
+            d.name
+        ));
+    }
     for (fi, f) in p.frames.iter().enumerate() {
         let at = format!("frame `{}`", f.name);
         let x = Fx::new(p, fi);

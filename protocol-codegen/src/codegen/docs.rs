@@ -529,6 +529,15 @@ pub fn module_doc(p: &Protocol) -> String {
         doc.push_str("\n\n");
         doc.push_str(&frame_doc(f));
     }
+    for d in &p.directions {
+        if let Some(f) = &d.frame {
+            doc.push_str(&format!(
+                "\nAs {}s lay the `{}` frame format out (`{}`):\n\n",
+                d.name, f.name, f.names.layout_static
+            ));
+            doc.push_str(&frame_doc(f));
+        }
+    }
     if !p.commands.is_empty() {
         doc.push('\n');
         doc.push_str(&commands_doc(p));

@@ -27,9 +27,20 @@ pub(super) fn emit_header(f: &Frame, own: &[(&Direction, &Frame)]) -> TokenStrea
             }
         }
     }
+    // A value some frames of the format lack is `None` in them.
+    let optional: Vec<&str> = values
+        .iter()
+        .filter(|v| !user_values(f).any(|(_, x)| x.name == v.name))
+        .map(|v| v.name.as_str())
+        .collect();
     let fields = values.iter().map(|v| {
         let id = ident(&v.name);
         let ty = prim_type(v.prim);
+        let ty = if optional.contains(&v.name.as_str()) {
+            quote!(#rt::Option<#ty>)
+        } else {
+            ty
+        };
         let d = doc_attrs(&value_doc(v, own));
         quote!(#d pub #id: #ty)
     });
@@ -44,18 +55,24 @@ pub(super) fn emit_header(f: &Frame, own: &[(&Direction, &Frame)]) -> TokenStrea
         ));
         quote!(#doc pub #id: #rt::Option<[u8; #len]>,)
     });
-    let (read, write) = read_write(f, &values, quote!(read), quote!(write), "", &rt);
+    let (read, write) = read_write(
+        f,
+        (&values, &optional),
+        (quote!(read), quote!(write)),
+        "",
+        &rt,
+    );
     let directed = own.iter().map(|(d, of)| {
         let (r, w) = (
             format_ident!("read_{}", d.name),
             format_ident!("write_{}", d.name),
         );
+        let what = format!(" of a {}", d.name);
         read_write(
             of,
-            &values,
-            quote!(#r),
-            quote!(#w),
-            &format!(" of a {}", d.name),
+            (&values, &optional),
+            (quote!(#r), quote!(#w)),
+            &what,
             &rt,
         )
     });
@@ -96,23 +113,23 @@ fn value_doc(v: &HeaderValue, own: &[(&Direction, &Frame)]) -> String {
         .map(|(d, _)| format!("`{}`", d.name))
         .collect();
     format!(
-        "{doc}\n\nIn {} frames only: other frames have no place for it, so it reads as 0 \
-         there and any other value is `EncodeError::ValueOutOfRange`.",
+        "{doc}\n\nIn {} frames only: `None` in the others, which have no place for it (encoding \
+         `Some` there, or `None` in its own, is `EncodeError::ValueOutOfRange`).",
         dirs.join(", ")
     )
 }
 
-/// A header's `read` and `write` (named `read`, `write`) through the layout of `f`: the values
-/// of `all` that `f` does not have read as 0 and are written only as 0.
+/// A header's `read` and `write` (named `read`, `write`) through the layout of `f`: of `all`
+/// the header's values, those `optional` are `Option`s, and those `f` does not have read as
+/// `None` and are written only as `None`.
 fn read_write(
     f: &Frame,
-    all: &[&HeaderValue],
-    read: TokenStream,
-    write: TokenStream,
+    (all, optional): (&[&HeaderValue], &[&str]),
+    (read, write): (TokenStream, TokenStream),
     what: &str,
     rt: &TokenStream,
 ) -> (TokenStream, TokenStream) {
-    let (reads, writes) = header_codec(f, rt);
+    let (reads, writes) = header_codec(f, optional, rt);
     let absent: Vec<_> = all
         .iter()
         .filter(|v| !user_values(f).any(|(_, x)| x.name == v.name))
@@ -121,7 +138,7 @@ fn read_write(
     let rest = (!absent.is_empty()).then(|| quote!(..Self::default()));
     let refuse = absent
         .iter()
-        .map(|id| quote!(#rt::absent_header(self.#id as u64)?;));
+        .map(|id| quote!(#rt::absent_header(self.#id)?;));
     let read_doc = format!(
         " The header values of a frame{what} (`DecodeError::Truncated` if it ends before one)."
     );
@@ -153,7 +170,13 @@ fn read_write(
 /// writing them back from `self`, through the frame's `wire` consts. A value after the payload
 /// of a format with a flag trailer lies back from the end of the frame's body (the frame
 /// without the trailer): it is read from and written into the body, once the flag is written.
-fn header_codec(f: &Frame, rt: &TokenStream) -> (Vec<TokenStream>, Vec<TokenStream>) {
+/// The values `optional` are `Option`s of the header struct: `Some` when read, and required
+/// when written.
+fn header_codec(
+    f: &Frame,
+    optional: &[&str],
+    rt: &TokenStream,
+) -> (Vec<TokenStream>, Vec<TokenStream>) {
     let header_len = format_ident!("{}", f.names.sizes.header_len);
     let layout = format_ident!("{}", f.names.layout_static);
     let in_body = |v: &HeaderValue| f.flag_trailer.is_some() && matches!(v.at, Pos::End(_));
@@ -171,13 +194,21 @@ fn header_codec(f: &Frame, rt: &TokenStream) -> (Vec<TokenStream>, Vec<TokenStre
                 (quote!(frame), quote!(frame))
             };
             let value = quote!(#rt::header_value(#from, wire::#c, #header_len)?);
-            let read = if v.prim == Prim::Bool {
-                quote!(#id: #value != 0)
+            let value = if v.prim == Prim::Bool {
+                quote!(#value != 0)
             } else {
                 let t = prim_type(v.prim);
-                quote!(#id: #value as #t)
+                quote!(#value as #t)
             };
-            let write = quote!(#rt::write_header(#into, wire::#c, self.#id as u64)?;);
+            let (read, field) = if optional.contains(&v.name.as_str()) {
+                (
+                    quote!(#id: #rt::Some(#value)),
+                    quote!(#rt::present_header(self.#id)?),
+                )
+            } else {
+                (quote!(#id: #value), quote!(self.#id))
+            };
+            let write = quote!(#rt::write_header(#into, wire::#c, #field as u64)?;);
             (read, write)
         })
         .unzip();

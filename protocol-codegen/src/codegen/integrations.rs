@@ -65,6 +65,8 @@ pub fn apply(items: TokenStream, p: &Protocol, d: Derives) -> TokenStream {
         .map(|f| f.names.packet.as_str())
         .collect();
     let serde_crate = path_text(quote!(#rt::serde));
+    let header = p.frames.first().map_or("", |f| f.names.header.as_str());
+    let directed = directed_values(p);
     for item in &mut file.items {
         match item {
             syn::Item::Struct(s) => {
@@ -91,6 +93,18 @@ pub fn apply(items: TokenStream, p: &Protocol, d: Derives) -> TokenStream {
                             .ident
                             .as_ref()
                             .is_some_and(|i| Some(i.to_string().as_str()) == trailer);
+                        // A value of one direction's frames: absent from the others' headers,
+                        // as the codec's JSON has it.
+                        if name == header
+                            && field
+                                .ident
+                                .as_ref()
+                                .is_some_and(|i| directed.contains(&i.to_string()))
+                        {
+                            field.attrs.push(syn::parse_quote!(
+                                #[serde(default, skip_serializing_if = "Option::is_none")]
+                            ));
+                        }
                         let helper = if is_trailer {
                             Some(quote!(trailer))
                         } else {
@@ -555,4 +569,21 @@ fn packet_message(p: &Protocol, f: &Frame, rt: &TokenStream) -> TokenStream {
         #(if #tests { #rt::Ok(#reads) } else)*
         { #rt::Err(#rt::serde_support::payload_error("the header matches no direction")) }
     }
+}
+
+/// The header values of the first frame format that only some directions' frames have (an
+/// `Option` of its header).
+fn directed_values(p: &Protocol) -> Vec<String> {
+    let Some(first) = p.frames.first() else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for f in p.directions.iter().filter_map(|d| d.frame.as_ref()) {
+        for (_, v) in super::frame::user_values(f) {
+            if !first.values.iter().any(|x| x.name == v.name) && !out.contains(&v.name) {
+                out.push(v.name.clone());
+            }
+        }
+    }
+    out
 }

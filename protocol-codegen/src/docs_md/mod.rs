@@ -203,6 +203,31 @@ fn frames(p: &Protocol, out: &mut String) {
         out.push_str("```\n\n");
         out.push_str(frame_doc(f).trim_end());
         out.push_str("\n\n");
+        if i == 0 {
+            own_layouts(p, out);
+        }
+    }
+}
+
+/// The first frame format as each direction with fields of its own lays it out: the layout
+/// above is every other direction's.
+fn own_layouts(p: &Protocol, out: &mut String) {
+    for d in &p.directions {
+        let Some(f) = &d.frame else {
+            continue;
+        };
+        let _ = writeln!(
+            out,
+            "#### `{}` as {}s lay it out
+
+A {} has header fields the layout above has not; its frames are laid out so:\n",
+            f.name, d.name, d.name
+        );
+        out.push_str("```text\n");
+        out.push_str(&packet_diagram(f));
+        out.push_str("```\n\n");
+        out.push_str(frame_doc(f).trim_end());
+        out.push_str("\n\n");
     }
 }
 

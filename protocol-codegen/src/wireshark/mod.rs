@@ -83,6 +83,13 @@ pub fn generate(p: &Protocol) -> Result<Dissector, Vec<String>> {
         degraded: Vec::new(),
         refused: Vec::new(),
     };
+    // The dissector has one layout per format.
+    for d in p.directions.iter().filter(|d| d.frame.is_some()) {
+        printer.refused.push(format!(
+            "{}: direction `{}` has header fields of its own (`direction` on a layout element)",
+            p.name, d.name
+        ));
+    }
     for f in &p.frames {
         for v in f.values.iter().filter(|v| v.word.prim.size() > 6) {
             printer.refused.push(format!(

@@ -167,6 +167,15 @@ fn given_direction(
     }
 }
 
+/// The direction a frame value of a spec whose directions are given is encoded in (its
+/// `direction`, else `given`, the codec's); `None` for another spec or a value that names no
+/// direction of the spec (whose encoding then says why).
+pub fn frame_direction(p: &Protocol, obj: &Fields, given: Option<usize>) -> Option<usize> {
+    p.directions_given()
+        .then(|| given_direction(p, obj, given).ok())
+        .flatten()
+}
+
 /// Encodes a frame value of format `fi` under the format's packet `rules`. Returns the frame's
 /// bytes (for a CAN format, its virtual frame).
 ///
@@ -180,7 +189,12 @@ pub fn encode(
     obj: &Fields,
     given: Option<usize>,
 ) -> Result<Vec<u8>, EncodeIssue> {
-    let f = &p.frames[fi];
+    // A direction with fields of its own writes the first format by its own layout, which
+    // `rules` hold (the codec chose them by `frame_direction`).
+    let own = frame_direction(p, obj, given);
+    let f = p
+        .frame_in(fi, own)
+        .ok_or_else(|| EncodeIssue::new("format", "no such frame format"))?;
     let values = header_values(f, obj)?;
     let what = carried_by(p, f, rules, &values, obj, given)?;
     let key = match what {

@@ -13,7 +13,7 @@
 
 mod encode;
 
-pub use encode::encode;
+pub use encode::{encode, frame_direction};
 
 use protocol_runtime::DecodeError;
 use protocol_runtime::decoder::frame_body;
@@ -59,7 +59,7 @@ fn header_truncated(p: &Protocol, frame: &[u8]) -> DecodeIssue {
 /// The user-set header values of a frame of format `fi`, in wire order.
 fn read_header(
     p: &Protocol,
-    (names, fi): (&Names, usize),
+    (names, fi, direction): (&Names, usize, Option<usize>),
     f: &Frame,
     rules: &PacketRules<'_>,
     frame: &[u8],
@@ -78,7 +78,7 @@ fn read_header(
             .read(body)
             .ok_or_else(|| header_truncated(p, frame))?;
         if !is_can_id(f, v) {
-            out.push(names.value(fi, vi), header_value(v, raw));
+            out.push(names.value(fi, direction, vi), header_value(v, raw));
         }
     }
     if let Some(name) = names.trailer(fi) {
@@ -288,7 +288,14 @@ pub fn decode(
     frame: &[u8],
     given: Option<usize>,
 ) -> Result<Decoded, DecodeIssue> {
-    let f = &p.frames[fi];
+    // A direction with fields of its own reads the first format by its own layout, which
+    // `rules` hold (the codec chose them by the same direction).
+    let own = given.filter(|_| p.directions_given());
+    let Some(f) = p.frame_in(fi, own) else {
+        return Err(DecodeIssue::Frame(DecodeError::Frame(
+            protocol_runtime::Reject::BadHeader,
+        )));
+    };
     let mut out = Decoded {
         format: fi,
         command: None,
@@ -303,13 +310,13 @@ pub fn decode(
     let scratch = room(&mut stack, &mut heap, rules.max_payload);
     match carries(f) {
         Carries::Bytes => {
-            out.header = read_header(p, (names, fi), f, rules, frame)?;
+            out.header = read_header(p, (names, fi, own), f, rules, frame)?;
             let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
             out.payload = Value::Bytes(payload.to_vec());
         }
         Carries::Struct(si) => {
             let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
-            out.header = read_header(p, (names, fi), f, rules, frame)?;
+            out.header = read_header(p, (names, fi, own), f, rules, frame)?;
             out.payload = read_struct_payload(p, names, Some(si), &f.name, payload)?;
         }
         Carries::CanCommand => {
@@ -322,7 +329,7 @@ pub fn decode(
                 .ok_or(DecodeIssue::UnknownCommand { id: vec![key], key })?;
             out.command = Some(ci);
             let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
-            out.header = read_header(p, (names, fi), f, rules, frame)?;
+            out.header = read_header(p, (names, fi, own), f, rules, frame)?;
             let c = &p.commands[ci];
             out.payload = read_struct_payload(
                 p,
@@ -333,7 +340,7 @@ pub fn decode(
             )?;
         }
         Carries::Command => {
-            out.header = read_header(p, (names, fi), f, rules, frame)?;
+            out.header = read_header(p, (names, fi, own), f, rules, frame)?;
             if let Some(data) = rules.ack_data(frame).map_err(DecodeIssue::Frame)? {
                 out.ack = true;
                 out.payload = Value::Bytes(data.to_vec());

@@ -74,6 +74,7 @@ mod session_io_async;
 mod session_mavlink;
 mod session_periodic;
 mod session_sim;
+mod shdlc_sensirion;
 mod text_fields;
 mod tokio_codec;
 mod ubx_pyubx2;

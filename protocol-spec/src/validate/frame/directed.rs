@@ -35,11 +35,22 @@ pub(super) fn in_direction(el: &ElementDef, direction: Option<&str>) -> bool {
     }
 }
 
+/// The rules of the fields of one direction of the first frame format, each reported; false
+/// when one fails.
+pub(super) fn check_directed(ctx: &mut Ctx<'_>, def: &FrameDef) -> bool {
+    let mut ok = true;
+    for (el, dir) in directed(def) {
+        ok &= check_direction_given(ctx, dir);
+        ok &= check_directed_role(ctx, def, el);
+        ok &= check_not_an_end(ctx, def, el);
+    }
+    ok
+}
+
 /// The first frame format as each direction that has fields of its own lays it out, in the
-/// order of `[directions]`: `(direction, frame)`. Runs the rules below first; a frame whose
-/// directed fields break one is not lowered again. The second lowering reports only errors the
-/// first could not see (those of the directed fields themselves): `base_ok` says whether the
-/// first lowering succeeded.
+/// order of `[directions]`: `(direction, frame)`, once [`check_directed`] has passed. The
+/// second lowering reports only errors the first could not see (those of the directed fields
+/// themselves): `base_ok` says whether the first lowering succeeded.
 pub(super) fn lower_directed(
     ctx: &mut Ctx<'_>,
     fname: &SStr,
@@ -48,13 +59,7 @@ pub(super) fn lower_directed(
     enums: &Enums,
     base_ok: bool,
 ) -> Vec<(String, Frame)> {
-    let mut ok = true;
-    for (el, dir) in directed(def) {
-        ok &= check_direction_given(ctx, dir);
-        ok &= check_directed_role(ctx, def, el);
-        ok &= check_not_an_end(ctx, def, el);
-    }
-    if !ok || !base_ok {
+    if !base_ok {
         return Vec::new();
     }
     let spec = ctx.spec;
@@ -150,8 +155,8 @@ fn check_direction_given(ctx: &mut Ctx<'_>, dir: &SStr) -> bool {
 fn check_directed_role(ctx: &mut Ctx<'_>, def: &FrameDef, el: &Spanned<ElementDef>) -> bool {
     let e = el.get_ref();
     let Some(name) = &e.field else {
-        // Another kind's `direction` is already refused as a key that does not apply to it.
-        return false;
+        // Another kind's `direction` is refused as a key that does not apply to it.
+        return true;
     };
     let dispatch = def
         .dispatch
@@ -189,7 +194,7 @@ fn check_directed_role(ctx: &mut Ctx<'_>, def: &FrameDef, el: &Spanned<ElementDe
 /// there (a run that passes over it covers it where it is).
 fn check_not_an_end(ctx: &mut Ctx<'_>, def: &FrameDef, el: &Spanned<ElementDef>) -> bool {
     let Some(name) = &el.get_ref().field else {
-        return false;
+        return true;
     };
     let mut ok = true;
     for other in def.layout.get_ref() {

@@ -52,6 +52,11 @@ pub(crate) fn lower_frames(ctx: &mut Ctx<'_>, structs: &Structs, enums: &Enums) 
     for (i, (name, def)) in spec.frames.iter().enumerate() {
         check_snake_name(ctx, name, "frame name");
         directed::check_first_format(ctx, def.get_ref(), i == 0);
+        // A field of one direction that breaks its rules is not lowered at all: the format's
+        // own layout would report what the field's rule says once.
+        if i == 0 && !directed::check_directed(ctx, def.get_ref()) {
+            continue;
+        }
         let f = lower_frame(ctx, name, i == 0, def.get_ref(), structs, enums, None);
         if i == 0 {
             own = directed::lower_directed(ctx, name, def.get_ref(), structs, enums, f.is_some());

@@ -19,6 +19,7 @@ protocol_kit::protocol!("specs/dronecan.toml");
 protocol_kit::protocol!("specs/vesc.toml");
 protocol_kit::protocol!("specs/feetech.toml");
 protocol_kit::protocol!("specs/lx16a.toml");
+protocol_kit::protocol!("specs/shdlc.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/bitfields_and_enums.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/scaled_and_arrays.toml");
 protocol_kit::protocol!("protocol-codegen/tests/features/two_field_key_and_custom_crc.toml");
@@ -49,4 +50,5 @@ fn main() {
     let _ = vesc::Packet::decode_response;
     let _ = feetech::Packet::decode_response;
     let _ = lx16a::Packet::decode_response;
+    let _ = shdlc::Packet::decode_response;
 }
