@@ -404,9 +404,9 @@ pub struct ElementDef {
     /// only: no codec checks it).
     #[cfg_attr(feature = "schema", schemars(with = "Option<bool>"))]
     pub counter: Option<Spanned<bool>>,
-    /// The field belongs to the frames of this direction only (a directions given to the
-    /// decoder): the other directions' frames do not have its bytes (Sensirion SHDLC's state
-    /// byte, in a device's answers only).
+    /// The field belongs to the frames of this direction only (one given to the decoder): the
+    /// other directions' frames do not have its bytes (Sensirion SHDLC's state byte, in a
+    /// device's answers only).
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub direction: Option<SStr>,
 
