@@ -79,6 +79,21 @@ fn the_marker_form_is_used_exactly_when_the_count_needs_it() {
     }
 }
 
+/// `frame_len` looks at the header alone: it gives the length of a frame whose count is in the
+/// header, and none for the marker form, whose wider count comes after it.
+#[test]
+fn the_length_from_the_header_alone_is_the_frames_without_a_wider_count() {
+    for plen in [0, 1, 254, 255, 256, 600] {
+        for signed in [false, true] {
+            let f = frame(plen, signed, 3);
+            let header = &f[..BOTH.header_span()];
+            let want = (plen < 255).then_some(f.len());
+            assert_eq!(BOTH.frame_len(header), want, "{plen} {signed}");
+            assert_eq!(BOTH.frame_len(&header[..2]), None, "{plen} {signed}");
+        }
+    }
+}
+
 #[test]
 fn every_prefix_of_a_frame_waits_and_never_rejects() {
     for (plen, signed) in [(3, true), (300, true), (300, false), (254, true)] {
