@@ -8,7 +8,7 @@ use protocol_runtime::decoder::{Probe, Reject};
 use protocol_runtime::layout::{
     ByteOrder, Check, FlagTrailer, FrameLayout, LengthExtension, LengthRule, Pos, WordField,
 };
-use protocol_runtime::{Checksum, StreamDecoder};
+use protocol_runtime::{Checksum, EncodeError, StreamDecoder};
 
 /// `A5 flags size command [size16 when size is 255] payload xor [4 bytes when flags & 1]`.
 static BOTH: FrameLayout<'static> = FrameLayout {
@@ -92,6 +92,31 @@ fn the_length_from_the_header_alone_is_the_frames_without_a_wider_count() {
             assert_eq!(BOTH.frame_len(&header[..2]), None, "{plen} {signed}");
         }
     }
+}
+
+/// An encoder's payload moves behind the wider length in a buffer of exactly the frame's size
+/// (without its flag trailer), which one byte less cannot hold; a payload whose count fits the
+/// header stays where it is.
+#[test]
+fn a_payload_moves_behind_the_wider_length_in_a_buffer_of_its_size() {
+    let plen = 300;
+    let short = 4 + plen + 1;
+    let extra = BOTH.extension_for(short);
+    assert_eq!(extra, 2);
+    let payload: Vec<u8> = (0..plen).map(|k| (k as u8).wrapping_mul(7)).collect();
+    let mut buf = vec![0u8; short + extra];
+    buf[4..4 + plen].copy_from_slice(&payload);
+    assert_eq!(BOTH.place_payload(&mut buf, 4, plen, 1), Ok(4 + extra));
+    assert_eq!(&buf[4 + extra..4 + extra + plen], &payload[..]);
+    let mut tight = vec![0u8; short + extra - 1];
+    assert_eq!(
+        BOTH.place_payload(&mut tight, 4, plen, 1),
+        Err(EncodeError::BufferTooSmall {
+            needed: short + extra,
+            available: short + extra - 1,
+        })
+    );
+    assert_eq!(BOTH.place_payload(&mut tight, 4, 10, 1), Ok(4));
 }
 
 #[test]
