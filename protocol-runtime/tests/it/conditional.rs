@@ -184,7 +184,10 @@ fn a_stream_of_mixed_forms_decodes_at_every_chunk_size() {
         expected.push((bytes.len() as u64, f.clone()));
         bytes.extend_from_slice(f);
     }
-    for chunk in 1..=bytes.len() {
+    // Under Miri, which interprets every byte fed (601 bytes at each of 601 chunk sizes),
+    // every 61st chunk size and the whole stream.
+    let step = if cfg!(miri) { 61 } else { 1 };
+    for chunk in (1..=bytes.len()).step_by(step).chain([bytes.len()]) {
         let mut dec = StreamDecoder::<_, 1400>::new(&BOTH);
         let mut got = Vec::new();
         for part in bytes.chunks(chunk) {
