@@ -182,6 +182,35 @@ fn events_name_each_rejection() {
     );
 }
 
+/// A frame cut by the end of the input is truncated when the input ends, wherever it is cut
+/// after its first byte; a lone opening flag is skipped.
+#[test]
+fn a_frame_cut_by_the_end_of_the_input_is_truncated() {
+    let good = wire(&frame(1, 2, &[3, 4]));
+    for cut in 1..good.len() - 1 {
+        let mut d = StreamDecoder::<_, 64>::new(&SHDLC);
+        let mut input = &good[..cut];
+        while d.next_event(&mut input).is_some() {}
+        let mut reasons = Vec::new();
+        while let Some(e) = d.flush_event() {
+            if let Event::Rejected { reason, .. } = e {
+                reasons.push(reason);
+            }
+        }
+        let truncated = cut > 1;
+        assert_eq!(
+            reasons,
+            if truncated {
+                vec![Reject::Truncated]
+            } else {
+                vec![]
+            },
+            "{cut}"
+        );
+        assert_eq!(d.stats().truncated, u64::from(truncated), "{cut}");
+    }
+}
+
 #[test]
 fn a_length_that_disagrees_with_the_flags_is_rejected() {
     // A whole valid 7-byte frame (its closing 7E escaped) and one byte more before the flag.

@@ -17,3 +17,4 @@ mod hflink;
 mod layouts;
 mod robustness;
 mod rule_kinds;
+mod sizing;
