@@ -7,6 +7,7 @@ use std::collections::HashSet;
 
 use toml::Spanned;
 
+use super::registers_each::{RunFields, lower_run_fields, member, run_struct};
 use super::names::{check_snake_name, parse_byte_order, parse_prim, prim_spellings, unknown_type};
 use super::session_match::{answer_struct, answering_command, request_struct};
 use super::{Ctx, text};
@@ -250,7 +251,7 @@ struct Sides<'a> {
 }
 
 /// Rule: a command that selects registers has a request struct; `address` (and `length`)
-/// name its unscaled integer fields, `data` its `bytes` field, `answer` the `bytes` field of
+/// name its unscaled integer fields (or its group element's, [`lower_run_fields`]), `data` its `bytes` field, `answer` the `bytes` field of
 /// the answer the request expects; at least one of `data` and `answer` is given, and
 /// `length` only with `answer`.
 fn lower_select(
@@ -270,14 +271,16 @@ fn lower_select(
         return None;
     };
     let rs = sides.structs.get(request)?;
-    let address = int_field(ctx, &s.address, rs);
+    let run = lower_run_fields(ctx, name, s, rs)?;
+    let run_struct = run_struct(&run, rs, sides.structs)?;
+    let address = int_field(ctx, &member(&s.address), run_struct);
     if let Some(field) = address {
         check_reach(ctx, &s.address, field, sides.registers);
     }
     let length = s
         .length
         .as_ref()
-        .map(|n| int_field(ctx, n, rs).map(|f| f.name.clone()));
+        .map(|n| int_field(ctx, &member(n), run_struct).map(|f| f.name.clone()));
     let data = s.data.as_ref().map(|n| bytes_field(ctx, n, rs, "request"));
     let answer = s.answer.as_ref().map(|n| answer_field(ctx, sides, ci, n));
     if s.data.is_none() && s.answer.is_none() {
@@ -303,6 +306,10 @@ fn lower_select(
         length: resolved(length)?,
         data: resolved(data)?,
         answer: resolved(answer)?,
+        each: match run {
+            RunFields::Request => None,
+            RunFields::PerDevice(p) => Some(p),
+        },
     })
 }
 
