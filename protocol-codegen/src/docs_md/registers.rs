@@ -94,9 +94,9 @@ fn select_text(p: &Protocol, s: &Select) -> String {
             .map(|l| format!(" as many bytes as the element's `{l}` asks,"))
             .unwrap_or_default();
         parts.push(format!(
-            "each device its `{}` lists is asked the registers from the `{}` of its own element \
-             (the first whose `{}` is the device's id),{asked} and the answer of each device's \
-             `{field}` holds their values",
+            "it reads from each device its `{}` lists the registers from the `{}` of that \
+             device's element (the first whose `{}` is the device's id),{asked} and each \
+             device's answer's `{field}` holds their values",
             each.group, s.address, each.id
         ));
     } else if let Some((_, field)) = &s.answer {
@@ -109,13 +109,13 @@ fn select_text(p: &Protocol, s: &Select) -> String {
             .as_ref()
             .map(|l| format!(" as many bytes as its `{l}` asks,"))
             .unwrap_or_default();
-        let whose = if fanout {
-            "the answer of each device it lists"
+        let (from, whose) = if fanout {
+            (" of each device it lists", "each device's answer")
         } else {
-            "its answer"
+            ("", "its answer")
         };
         parts.push(format!(
-            "it reads the registers from its `{}`,{asked} and {whose}'s `{field}` holds their values",
+            "it reads the registers{from} from its `{}`,{asked} and {whose}'s `{field}` holds their values",
             s.address
         ));
     }

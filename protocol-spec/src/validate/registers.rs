@@ -273,14 +273,18 @@ fn lower_select(
     let rs = sides.structs.get(request)?;
     let run = lower_run_fields(ctx, name, s, rs)?;
     let run_struct = run_struct(&run, rs, sides.structs)?;
-    let address = int_field(ctx, &member(&s.address), run_struct);
+    let side = match run {
+        RunFields::Request => "request",
+        RunFields::PerDevice(_) => "group element",
+    };
+    let address = int_field(ctx, &member(&s.address), run_struct, side);
     if let Some(field) = address {
         check_reach(ctx, &s.address, field, sides.registers);
     }
     let length = s
         .length
         .as_ref()
-        .map(|n| int_field(ctx, &member(n), run_struct).map(|f| f.name.clone()));
+        .map(|n| int_field(ctx, &member(n), run_struct, side).map(|f| f.name.clone()));
     let data = s.data.as_ref().map(|n| bytes_field(ctx, n, rs, "request"));
     let answer = s.answer.as_ref().map(|n| answer_field(ctx, sides, ci, n));
     if s.data.is_none() && s.answer.is_none() {
@@ -341,8 +345,13 @@ fn field<'a>(ctx: &mut Ctx<'_>, n: &SStr, s: &'a Struct, side: &str) -> Option<&
 }
 
 /// Rule: a field that holds an address or a length is an unscaled integer.
-fn int_field<'a>(ctx: &mut Ctx<'_>, n: &SStr, s: &'a Struct) -> Option<&'a ir::Field> {
-    let f = field(ctx, n, s, "request")?;
+fn int_field<'a>(
+    ctx: &mut Ctx<'_>,
+    n: &SStr,
+    s: &'a Struct,
+    side: &str,
+) -> Option<&'a ir::Field> {
+    let f = field(ctx, n, s, side)?;
     match &f.kind {
         FieldKind::Value {
             ty:
@@ -359,7 +368,7 @@ fn int_field<'a>(ctx: &mut Ctx<'_>, n: &SStr, s: &'a Struct) -> Option<&'a ir::F
                     "field `{}` of `{}` is not an unscaled integer, so it selects no registers",
                     f.name, s.name
                 ),
-                "name an integer field of the request (a `u8`, `u16`, ... without `scale`)",
+                format!("name an integer field of the {side} (a `u8`, `u16`, ... without `scale`)"),
             );
             None
         }

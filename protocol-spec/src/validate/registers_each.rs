@@ -101,8 +101,8 @@ fn group_element(ctx: &mut Ctx<'_>, path: &SStr, group: &str, request: &Struct) 
     None
 }
 
-/// Rule: a run per device needs the command's `answers` to read the ids from the same group:
-/// gives the element's id field (`answers.each`'s member).
+/// Rule: a run per device needs the command's `answers`, which reads the ids from the same
+/// group: gives the element's id field (`answers.each`'s member).
 fn answering_member(
     ctx: &mut Ctx<'_>,
     command: &str,
@@ -116,30 +116,25 @@ fn answering_member(
         .find(|(n, _)| n.get_ref() == command)
         .and_then(|(_, d)| d.get_ref().answers.as_ref())
         .map(Spanned::get_ref);
-    let each = answers.map(|a| a.each.get_ref().as_str());
-    if let Some((Some(g), member)) = each.map(split)
-        && g == group
-    {
-        return Some(member.to_string());
-    }
-    let message = match each {
-        None => format!(
-            "`{}` selects a run per device, but command `{command}` lists no devices that answer it (`answers`)",
-            path.get_ref()
-        ),
-        Some(each) => format!(
-            "`{}` selects a run per device of group `{group}`, but `answers.each` reads the answering ids from `{each}`",
-            path.get_ref()
-        ),
+    let Some(each) = answers.map(|a| a.each.get_ref().as_str()) else {
+        ctx.error(
+            path.span(),
+            format!(
+                "`{}` selects a run per device, but command `{command}` lists no devices that answer it (`answers`)",
+                path.get_ref()
+            ),
+            format!(
+                "list them in the same group (`answers = {{ each = \"{group}.id\", by = \"id\" }}`), or name a field of the request"
+            ),
+        );
+        return None;
     };
-    ctx.error(
-        path.span(),
-        message,
-        format!(
-            "read the ids from the same group (`answers = {{ each = \"{group}.id\", by = \"id\" }}`), or name a field of the request"
-        ),
-    );
-    None
+    // A request has one repeated group (its last field), so an `answers.each` that does not
+    // walk this group is itself an error, which the rule of `answers` reports.
+    match split(each) {
+        (Some(g), member) if g == group => Some(member.to_string()),
+        _ => None,
+    }
 }
 
 /// The struct whose fields `address` and `length` name.
