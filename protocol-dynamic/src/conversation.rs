@@ -132,7 +132,10 @@ impl Conversation {
     /// request is answered whole (kept while it waits for the answers of other devices it
     /// lists, or for the final answer after one that says it is in progress).
     fn runs_of(&mut self, answer: Paired) -> Option<Selected> {
-        let at = self.selected.iter().position(|(i, _)| *i == answer.request)?;
+        let at = self
+            .selected
+            .iter()
+            .position(|(i, _)| *i == answer.request)?;
         if answer.open {
             return self.selected.get(at).map(|(_, sel)| sel.clone());
         }

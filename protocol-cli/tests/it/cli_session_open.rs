@@ -186,20 +186,31 @@ fn each_status_answering_a_sync_read_is_typed_by_the_run_every_servo_was_asked()
             ids,
         }),
     );
-    capture.extend(status_with(9, &[0xFD, 0xFF, 0xFF, 0xFF, 0x00, 0x08, 0x00, 0x00]));
+    capture.extend(status_with(
+        9,
+        &[0xFD, 0xFF, 0xFF, 0xFF, 0x00, 0x08, 0x00, 0x00],
+    ));
     capture.extend(status_with(4, &[0x05, 0x00, 0x00, 0x00, 0x10, 0x00, 0x00]));
     let frames = decode("specs/dynamixel.toml", &capture);
     assert_eq!(frames.len(), 3);
     // Present velocity is 0.229 rpm per unit.
     let velocity = |f: &serde_json::Value| f["registers"]["present_velocity"].as_f64();
     assert_eq!(frames[1]["answers"], 0, "{}", frames[1]);
-    assert_eq!(frames[1]["registers"]["present_position"], 2048, "{}", frames[1]);
+    assert_eq!(
+        frames[1]["registers"]["present_position"], 2048,
+        "{}",
+        frames[1]
+    );
     assert!((velocity(&frames[1]).expect("velocity") + 3.0 * 0.229).abs() < 1e-9);
     assert!(frames[1].get("registers_note").is_none(), "{}", frames[1]);
     // Servo 4 sent 7 of the 8 bytes: the velocity whole, the position cut.
     assert_eq!(frames[2]["answers"], 0, "{}", frames[2]);
     assert!((velocity(&frames[2]).expect("velocity") - 5.0 * 0.229).abs() < 1e-9);
-    assert!(frames[2]["registers"].get("present_position").is_none(), "{}", frames[2]);
+    assert!(
+        frames[2]["registers"].get("present_position").is_none(),
+        "{}",
+        frames[2]
+    );
     let note = frames[2]["registers_note"].as_str().expect("a note");
     assert!(note.contains("carries 7 of the 8 bytes asked"), "{note}");
 }
@@ -217,8 +228,7 @@ fn each_status_answering_a_bulk_read_is_typed_by_the_run_its_own_servo_was_asked
         };
         servos.push(servo).expect("room");
     }
-    let mut capture =
-        dynamixel_frame(0xFE, dynamixel::Message::BulkRead(BulkRead { servos }));
+    let mut capture = dynamixel_frame(0xFE, dynamixel::Message::BulkRead(BulkRead { servos }));
     // The servos answer in id order; one not listed answers nothing.
     capture.extend(status_with(2, &[0x00, 0x04, 0x00, 0x00]));
     capture.extend(status_with(5, &[0x2A]));

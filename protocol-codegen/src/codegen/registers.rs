@@ -225,7 +225,10 @@ fn per_device_answer(p: &Protocol, s: &Select, each: &PerDevice) -> TokenStream 
     };
     let rt = quote!(__rt);
     let f = format_ident!("{}_answer", c.name.to_ascii_lowercase());
-    let (request, ty) = (format_ident!("{}", rs.name), format_ident!("{}", answer.name));
+    let (request, ty) = (
+        format_ident!("{}", rs.name),
+        format_ident!("{}", answer.name),
+    );
     let (group, id, bytes) = (ident(&each.group), ident(&each.id), ident(field));
     let e = quote!(e);
     let start = widen_of(&e, es, &s.address, "u32", 32);

@@ -7,8 +7,8 @@ use std::collections::HashSet;
 
 use toml::Spanned;
 
-use super::registers_each::{RunFields, lower_run_fields, member, run_struct};
 use super::names::{check_snake_name, parse_byte_order, parse_prim, prim_spellings, unknown_type};
+use super::registers_each::{RunFields, lower_run_fields, member, run_struct};
 use super::session_match::{answer_struct, answering_command, request_struct};
 use super::{Ctx, text};
 use crate::diag::did_you_mean;
@@ -345,12 +345,7 @@ fn field<'a>(ctx: &mut Ctx<'_>, n: &SStr, s: &'a Struct, side: &str) -> Option<&
 }
 
 /// Rule: a field that holds an address or a length is an unscaled integer.
-fn int_field<'a>(
-    ctx: &mut Ctx<'_>,
-    n: &SStr,
-    s: &'a Struct,
-    side: &str,
-) -> Option<&'a ir::Field> {
+fn int_field<'a>(ctx: &mut Ctx<'_>, n: &SStr, s: &'a Struct, side: &str) -> Option<&'a ir::Field> {
     let f = field(ctx, n, s, side)?;
     match &f.kind {
         FieldKind::Value {

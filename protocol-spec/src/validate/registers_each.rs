@@ -103,12 +103,7 @@ fn group_element(ctx: &mut Ctx<'_>, path: &SStr, group: &str, request: &Struct) 
 
 /// Rule: a run per device needs the command's `answers`, which reads the ids from the same
 /// group: gives the element's id field (`answers.each`'s member).
-fn answering_member(
-    ctx: &mut Ctx<'_>,
-    command: &str,
-    path: &SStr,
-    group: &str,
-) -> Option<String> {
+fn answering_member(ctx: &mut Ctx<'_>, command: &str, path: &SStr, group: &str) -> Option<String> {
     let spec = ctx.spec;
     let answers = spec
         .commands

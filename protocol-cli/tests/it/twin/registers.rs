@@ -134,8 +134,7 @@ fn statuses(reply: Reply) -> Vec<(u8, Status)> {
 #[tokio::test]
 async fn each_servo_answering_a_sync_or_bulk_read_carries_the_registers_it_was_asked() {
     use dynamixel::registers::{
-        PRESENT_POSITION, PRESENT_TEMPERATURE, PRESENT_VELOCITY, bulk_read_answer,
-        sync_read_answer,
+        PRESENT_POSITION, PRESENT_TEMPERATURE, PRESENT_VELOCITY, bulk_read_answer, sync_read_answer,
     };
     use dynamixel::{BulkRead, BulkReadServo};
     let dir = tempfile::tempdir().expect("a temp dir");
@@ -165,7 +164,10 @@ async fn each_servo_answering_a_sync_or_bulk_read_carries_the_registers_it_was_a
         .await
         .expect("a reply");
     let answers = statuses(reply);
-    assert_eq!(answers.iter().map(|(id, _)| *id).collect::<Vec<_>>(), [2, 5]);
+    assert_eq!(
+        answers.iter().map(|(id, _)| *id).collect::<Vec<_>>(),
+        [2, 5]
+    );
     for (_, s) in &answers {
         let window = sync_read_answer(&sync, s);
         assert_eq!(PRESENT_POSITION.read(window), Some(3000));
@@ -189,7 +191,10 @@ async fn each_servo_answering_a_sync_or_bulk_read_carries_the_registers_it_was_a
         .await
         .expect("a reply");
     let answers = statuses(reply);
-    assert_eq!(answers.iter().map(|(id, _)| *id).collect::<Vec<_>>(), [3, 8]);
+    assert_eq!(
+        answers.iter().map(|(id, _)| *id).collect::<Vec<_>>(),
+        [3, 8]
+    );
     for (id, s) in &answers {
         let window = bulk_read_answer(&bulk, *id, s).expect("a listed servo");
         match id {
