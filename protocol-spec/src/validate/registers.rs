@@ -251,9 +251,9 @@ struct Sides<'a> {
 }
 
 /// Rule: a command that selects registers has a request struct; `address` (and `length`)
-/// name its unscaled integer fields (or its group element's, [`lower_run_fields`]), `data` its `bytes` field, `answer` the `bytes` field of
-/// the answer the request expects; at least one of `data` and `answer` is given, and
-/// `length` only with `answer`.
+/// name its unscaled integer fields (or its group element's, [`lower_run_fields`]), `data`
+/// its `bytes` field, `answer` the `bytes` field of the answer the request expects; at least
+/// one of `data` and `answer` is given, and `length` only with `answer`.
 fn lower_select(
     ctx: &mut Ctx<'_>,
     sides: &Sides<'_>,

@@ -24,7 +24,7 @@ pub(super) enum RunFields {
 
 /// `path` split at its dot: the group and its element's field (`servos.address`), or the
 /// request's field alone (`address`).
-pub(super) fn split(path: &str) -> (Option<&str>, &str) {
+fn split(path: &str) -> (Option<&str>, &str) {
     match path.split_once('.') {
         Some((group, member)) => (Some(group), member),
         None => (None, path),
