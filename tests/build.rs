@@ -84,6 +84,7 @@ fn main() {
     // Specs expanded besides the batch (checked with it, not counted in its size).
     let mut extra = Vec::new();
     let mut escaped = false;
+    let mut answers = false;
     for seed in first..first + count {
         let name = format!("rand_{seed}");
         let path = dir.join(format!("{name}.toml"));
@@ -96,6 +97,7 @@ fn main() {
             None => {
                 let spec = random_spec::generate(seed, &name);
                 escaped |= spec.features.contains(&"escape");
+                answers |= several_answers(&spec);
                 (spec.text, spec.link, spec.given)
             }
         };
@@ -110,9 +112,10 @@ fn main() {
         }
     }
     // A batch without a session (the default twelve may have none) would leave the session
-    // comparison nothing to compare, and one without an escaped format would leave the
-    // unescaping paths untested: the first later seed whose spec has what the batch lacks is
-    // expanded too, for the random spec comparisons (not counted in the batch's size).
+    // comparison nothing to compare, one without a request answered by several devices its
+    // several-answer paths, and one without an escaped format would leave the unescaping paths
+    // untested: the first later seed whose spec has what the batch lacks is expanded too, for
+    // the random spec comparisons (not counted in the batch's size).
     if file.is_none() {
         let later = || {
             (first + count..first + count + 1000)
@@ -125,11 +128,26 @@ fn main() {
             sessions.push(write_spec(&dir, &manifest, seed, &spec, &mut code));
             session_seed = Some(seed);
         }
+        // Likewise a session with a request answered by several devices (`answers`), rarer:
+        // the first of the next few thousand seeds that has one.
+        let mut answers_seed = None;
+        if !answers
+            && let Some((seed, spec)) = (first + count..first + count + 5000)
+                .map(|seed| (seed, random_spec::generate(seed, &format!("rand_{seed}"))))
+                .find(|(_, s)| several_answers(s))
+        {
+            if session_seed != Some(seed) {
+                sessions.push(write_spec(&dir, &manifest, seed, &spec, &mut code));
+            }
+            answers_seed = Some((seed, sessions.last().cloned().unwrap_or_default()));
+        }
         if !escaped
             && let Some((seed, spec)) = later().find(|(_, s)| s.features.contains(&"escape"))
         {
             extra.push(if session_seed == Some(seed) {
                 sessions[0].clone()
+            } else if let Some((_, listed)) = answers_seed.clone().filter(|(s, _)| *s == seed) {
+                listed
             } else {
                 write_spec(&dir, &manifest, seed, &spec, &mut code)
             });
@@ -176,6 +194,12 @@ fn write_spec(
     let how = how(spec.link, spec.given);
     writeln!(code, "expand_spec!({name}, {rel:?}{how});").unwrap();
     format!("{name}{how}")
+}
+
+/// Whether `spec` has a request that several devices answer, each named by a whole byte (a
+/// one-bit sender names two devices at most: the comparison would see few answers).
+fn several_answers(spec: &random_spec::Generated) -> bool {
+    spec.features.contains(&"session-answers") && !spec.text.contains("by = \"fuser\"")
 }
 
 /// What `expand_spec!` takes after a random spec's path: as `for_each_spec!` says of a link of

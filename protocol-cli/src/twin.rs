@@ -7,7 +7,8 @@
 //! rates (the runtime's [`Scheduler`] says when), injects the faults it is told to (frames
 //! dropped each way), and logs every exchange. Where the spec has `[registers]`, the twin keeps
 //! a register file ([`registers`]): a WRITE stores its data, a READ is answered with the bytes
-//! at its address and length.
+//! at its address and length, each answer to a SYNC_READ or a BULK_READ with the bytes its
+//! device was asked for.
 //!
 //! Matching, numbering and duplicate suppression are the responder's; reading frames is the
 //! engine's ([`Codec::stream`]).
@@ -317,34 +318,69 @@ impl Twin<'_, '_> {
                 "{now:>7} ms  {what}  {verdict}, answer dropped (fault)"
             );
         }
-        for frame in self.answers_of_each_listed(request, answer) {
+        let (frames, reads) = self.answers_of_each_listed(request, decoded, answer);
+        for frame in frames {
             port.write_all(&frame)?;
         }
         port.flush()?;
-        writeln!(log, "{now:>7} ms  {what}  {verdict}")
+        writeln!(log, "{now:>7} ms  {what}  {verdict}{reads}")
     }
 
     /// The answers to `request`: `answer` itself, or, for a request answered once by each id
-    /// it lists (a SYNC_READ), one copy per listed id with that id as its sender, in id order:
-    /// the twin plays every device on the bus.
-    fn answers_of_each_listed(&self, request: &[u8], answer: Vec<u8>) -> Vec<Vec<u8>> {
+    /// it lists (a SYNC_READ), one per listed id with that id as its sender, in id order: the
+    /// twin plays every device on the bus. Where the request asks each device a run of
+    /// registers of its own (a BULK_READ), each answer is built anew with its device's run,
+    /// and what each read is returned to log.
+    fn answers_of_each_listed(
+        &mut self,
+        request: &[u8],
+        decoded: Option<&Decoded>,
+        answer: Vec<u8>,
+    ) -> (Vec<Vec<u8>>, String) {
         let Ok(Heard::Command(key)) = self.rules.heard(request) else {
-            return vec![answer];
+            return (vec![answer], String::new());
         };
         let Some(fanout) = self.rules.fanout(key) else {
-            return vec![answer];
+            return (vec![answer], String::new());
         };
         let ids = fanout
             .listed(self.rules.packet, request)
             .unwrap_or_default();
-        ids.iter()
-            .filter_map(|id| {
-                let mut frame = answer.clone();
-                fanout.id.write(&mut frame, u64::from(id))?;
-                self.rules.packet.layout.seal(&mut frame).ok()?;
-                Some(frame)
-            })
-            .collect()
+        let per_device = decoded.filter(|d| self.per_device(d));
+        let mut reads = Vec::new();
+        let mut frames = Vec::new();
+        for id in ids.iter() {
+            let mut frame = match per_device {
+                Some(d) => match self.build(request, d, false, Some(id)) {
+                    Ok((name, frame)) => {
+                        reads.push(format!("{id}: {name}"));
+                        frame
+                    }
+                    Err(e) => {
+                        reads.push(format!("{id}: not answered: {e}"));
+                        continue;
+                    }
+                },
+                None => answer.clone(),
+            };
+            let written = fanout.id.write(&mut frame, u64::from(id));
+            if written.is_some() && self.rules.packet.layout.seal(&mut frame).is_ok() {
+                frames.push(frame);
+            }
+        }
+        let reads = if reads.is_empty() {
+            String::new()
+        } else {
+            format!(" [{}]", reads.join(", "))
+        };
+        (frames, reads)
+    }
+
+    /// True when request `d` asks each device it lists a run of registers of its own.
+    fn per_device(&self, d: &Decoded) -> bool {
+        let p = self.codec.protocol();
+        let select = p.registers.as_ref().zip(d.command);
+        select.is_some_and(|(map, ci)| map.select(ci).is_some_and(|s| s.each.is_some()))
     }
 
     /// A delivered request's data stored in the register file, when it writes registers:
@@ -369,7 +405,7 @@ impl Twin<'_, '_> {
     ) -> (String, Option<Vec<u8>>) {
         let built = decoded
             .ok_or_else(|| "not a message of the spec".to_string())
-            .and_then(|d| self.build(request, d, nack));
+            .and_then(|d| self.build(request, d, nack, None));
         match built {
             Ok((name, frame)) => {
                 if nack {
@@ -387,13 +423,15 @@ impl Twin<'_, '_> {
         }
     }
 
-    /// Encodes the answer the spec says `request` expects (or the NACK) and lets the
+    /// Encodes the answer the spec says `request` expects (or the NACK; for a request that
+    /// asks each listed device a run of registers of its own, `device`'s answer) and lets the
     /// responder write what it repeats and seal it: the answer's name and frame.
     fn build(
         &mut self,
         request: &[u8],
         d: &Decoded,
         nack: bool,
+        device: Option<u8>,
     ) -> Result<(String, Vec<u8>), String> {
         let p = self.codec.protocol();
         let Ok(Heard::Command(key)) = self.rules.heard(request) else {
@@ -438,7 +476,7 @@ impl Twin<'_, '_> {
                 object.insert("command", Value::from(command.name.clone()));
                 let mut payload = self.payload(ci, direction)?;
                 let read = match (&self.registers, nack) {
-                    (Some(file), false) => file.fill_answer(p, d, &mut payload),
+                    (Some(file), false) => file.fill_answer(p, d, device, &mut payload),
                     _ => None,
                 };
                 object.insert("payload", payload);

@@ -5,7 +5,9 @@
 //! answers and, when frames carry times, the round-trip time; requests never answered are
 //! counted. The pairing is the runtime's [`Observer`], run on the spec's session rules. A
 //! request that selects registers (a READ of a `[registers]` map) is remembered until its
-//! answer, whose bytes are then typed by the registers it asked for ([`crate::registers`]).
+//! answer, whose bytes are then typed by the registers it asked for ([`crate::registers`]); a
+//! request answered once by each device it lists (a SYNC_READ, a BULK_READ) until its last
+//! answer, each typed by the run its sender was asked for.
 
 use std::collections::VecDeque;
 
@@ -105,8 +107,8 @@ impl Conversation {
         }
         let registers = match (&decoded, answers) {
             (Ok(d), Some(a)) => self
-                .take(a.request)
-                .and_then(|sel| registers::of_answer(p, sel, d)),
+                .runs_of(a)
+                .and_then(|sel| registers::of_answer(p, &sel, d)),
             (Ok(d), None) => {
                 if let Some(sel) = registers::selected(p, d) {
                     if self.selected.len() == OPEN {
@@ -126,9 +128,17 @@ impl Conversation {
         }
     }
 
-    /// The register run request `request` selected, forgotten once answered.
-    fn take(&mut self, request: u64) -> Option<Selected> {
-        let at = self.selected.iter().position(|(i, _)| *i == request)?;
+    /// The register runs the request that `answer` answers selected, forgotten once the
+    /// request is answered whole (kept while it waits for the answers of other devices it
+    /// lists, or for the final answer after one that says it is in progress).
+    fn runs_of(&mut self, answer: Paired) -> Option<Selected> {
+        let at = self
+            .selected
+            .iter()
+            .position(|(i, _)| *i == answer.request)?;
+        if answer.open {
+            return self.selected.get(at).map(|(_, sel)| sel.clone());
+        }
         self.selected.remove(at).map(|(_, sel)| sel)
     }
 }

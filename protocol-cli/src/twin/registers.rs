@@ -2,8 +2,9 @@
 //! table, at zero unless the values file gives a register's raw value (`registers = {
 //! goal_position = 2048 }`). A request whose command writes registers (its `registers.data`)
 //! stores its data from its address; an answer to a request that reads registers (its
-//! `registers.answer`) carries the bytes at the requested address and length. Which fields
-//! select the run is the spec's (`ir::Select`); this module keeps the bytes and nothing else.
+//! `registers.answer`) carries the bytes at the requested address and length (for a BULK_READ,
+//! those its element asks of the answering device). Which fields select the run is the spec's
+//! (`ir::Select`); this module keeps the bytes and nothing else.
 
 use std::collections::BTreeMap;
 
@@ -81,13 +82,33 @@ impl RegisterFile {
     }
 
     /// The answer `payload` to request `d`, its registers' bytes written into it, when the
-    /// request reads registers. Returns what to log.
-    pub fn fill_answer(&self, p: &Protocol, d: &Decoded, payload: &mut Value) -> Option<String> {
+    /// request reads registers: the run the request asks of every device, or, for a request
+    /// that asks each listed device a run of its own, the run of `device` (its first element
+    /// that names it). Returns what to log.
+    pub fn fill_answer(
+        &self,
+        p: &Protocol,
+        d: &Decoded,
+        device: Option<u8>,
+        payload: &mut Value,
+    ) -> Option<String> {
         let s = p.registers.as_ref()?.select(d.command?)?;
         let (_, field) = s.answer.as_ref()?;
-        let address = uint(&d.payload, &s.address)?;
+        let run = match &s.each {
+            None => &d.payload,
+            Some(each) => {
+                let Value::Array(elements) = d.payload.get(&each.group)? else {
+                    return None;
+                };
+                let device = u64::from(device?);
+                elements
+                    .iter()
+                    .find(|e| uint(e, &each.id) == Some(device))?
+            }
+        };
+        let address = uint(run, &s.address)?;
         let length = match &s.length {
-            Some(l) => uint(&d.payload, l)?,
+            Some(l) => uint(run, l)?,
             None => 0,
         };
         let Value::Struct(fields) = payload else {

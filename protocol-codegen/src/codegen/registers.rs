@@ -2,8 +2,9 @@
 //! [`Register`](protocol_runtime::registers::Register): name, address, size and a typed
 //! `decode` that reads the register as a struct field of its type is read), the whole map as
 //! `MAP`, and per command that selects registers the window of register bytes a frame holds
-//! (`read_answer(&request, &answer)`, `write_data(&request)`). Where a register lies in a
-//! window is the runtime's rule; this module prints the values it runs on.
+//! (`read_answer(&request, &answer)`, `write_data(&request)`, and for a request that asks each
+//! listed device a run of its own `bulk_read_answer(&request, id, &answer)`). Where a register
+//! lies in a window is the runtime's rule; this module prints the values it runs on.
 
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -12,7 +13,7 @@ use super::docs::bytes;
 use super::docs::doc_attrs;
 use super::payload::{prim_type, read_scalar, suffix, to_physical};
 use super::{const_ident, ident};
-use crate::ir::{Access, Protocol, Register, RegisterMap, Select, ValueType};
+use crate::ir::{Access, PerDevice, Protocol, Register, RegisterMap, Select, ValueType};
 
 /// The `registers` module, or nothing for a spec without `[registers]`.
 pub fn emit_registers(p: &Protocol) -> TokenStream {
@@ -113,6 +114,17 @@ fn register_doc(r: &Register, ty: &str) -> String {
 /// unsigned field, as it is for one of that type, else by `as` (validation checked that every
 /// register's address fits the field).
 fn widen(rs: &crate::ir::Struct, field: &str, target: &str, bits: usize) -> TokenStream {
+    widen_of(&quote!(request), rs, field, target, bits)
+}
+
+/// `OF.FIELD` of struct `rs` as a `target` of `bits` bits, as [`widen`] reads the request's.
+fn widen_of(
+    of: &TokenStream,
+    rs: &crate::ir::Struct,
+    field: &str,
+    target: &str,
+    bits: usize,
+) -> TokenStream {
     let name = ident(field);
     let t = format_ident!("{target}");
     let prim = rs
@@ -127,9 +139,9 @@ fn widen(rs: &crate::ir::Struct, field: &str, target: &str, bits: usize) -> Toke
             _ => None,
         });
     match prim {
-        Some(p) if p.is_unsigned() && p.size() * 8 == bits => quote!(request.#name),
-        Some(p) if p.is_unsigned() && p.size() * 8 < bits => quote!(#t::from(request.#name)),
-        _ => quote!(request.#name as #t),
+        Some(p) if p.is_unsigned() && p.size() * 8 == bits => quote!(#of.#name),
+        Some(p) if p.is_unsigned() && p.size() * 8 < bits => quote!(#t::from(#of.#name)),
+        _ => quote!(#of.#name as #t),
     }
 }
 
@@ -160,7 +172,9 @@ fn windows(p: &Protocol, s: &Select) -> TokenStream {
             }
         });
     }
-    if let Some((si, field)) = &s.answer {
+    if let Some(each) = &s.each {
+        out.extend(per_device_answer(p, s, each));
+    } else if let Some((si, field)) = &s.answer {
         let Some(answer) = p.structs.get(*si) else {
             return out;
         };
@@ -192,4 +206,62 @@ fn windows(p: &Protocol, s: &Select) -> TokenStream {
         });
     }
     out
+}
+
+/// The window the answer of one listed device carries, for a request that asks each device a
+/// run of its own (a `BULK_READ`): the run of the first element whose id is the answer's
+/// sender's, `None` when the request does not list it.
+fn per_device_answer(p: &Protocol, s: &Select, each: &PerDevice) -> TokenStream {
+    let (Some(c), Some(rs), Some(es), Some((si, field))) = (
+        p.commands.get(s.command),
+        p.structs.get(s.request),
+        p.structs.get(each.element),
+        s.answer.as_ref(),
+    ) else {
+        return quote!();
+    };
+    let Some(answer) = p.structs.get(*si) else {
+        return quote!();
+    };
+    let rt = quote!(__rt);
+    let f = format_ident!("{}_answer", c.name.to_ascii_lowercase());
+    let (request, ty) = (
+        format_ident!("{}", rs.name),
+        format_ident!("{}", answer.name),
+    );
+    let (group, id, bytes) = (ident(&each.group), ident(&each.id), ident(field));
+    let e = quote!(e);
+    let start = widen_of(&e, es, &s.address, "u32", 32);
+    let window = match &s.length {
+        Some(l) => {
+            let asked = widen_of(&e, es, l, "u64", 64);
+            quote!(#rt::registers::Window::asked(#start, #asked, answer.#bytes.as_slice()))
+        }
+        None => quote!(#rt::registers::Window::new(#start, answer.#bytes.as_slice())),
+    };
+    let doc = format!(
+        "The registers the answer of device `id` to a `{}` carries: its `{field}`, from the `{}` \
+         of the request's first `{}` element whose `{}` is `id`{}; `None` when the request \
+         does not list `id`.",
+        c.name,
+        s.address,
+        each.group,
+        each.id,
+        s.length
+            .as_ref()
+            .map(|l| format!(", as many bytes as its `{l}` asked"))
+            .unwrap_or_default()
+    );
+    let doc = doc_attrs(&doc);
+    quote! {
+        #doc
+        pub fn #f<'a>(
+            request: &super::#request,
+            id: u8,
+            answer: &'a super::#ty,
+        ) -> #rt::Option<#rt::registers::Window<'a>> {
+            let e = request.#group.as_slice().iter().find(|e| e.#id == id)?;
+            #rt::Some(#window)
+        }
+    }
 }

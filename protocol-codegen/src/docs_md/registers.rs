@@ -1,6 +1,7 @@
 //! The register map section of the Markdown reference (`[registers]`): the table of registers
 //! in address order (address, size, name, type and scaling, unit, access, description) and the
-//! commands whose requests select runs of it.
+//! commands whose requests select runs of it (one run for every device a request lists, or one
+//! per device).
 
 use std::fmt::Write as _;
 
@@ -86,14 +87,35 @@ fn select_text(p: &Protocol, s: &Select) -> String {
             s.address
         ));
     }
-    if let Some((_, field)) = &s.answer {
+    if let (Some((_, field)), Some(each)) = (&s.answer, &s.each) {
+        let asked = s
+            .length
+            .as_ref()
+            .map(|l| format!(" as many bytes as the element's `{l}` asks,"))
+            .unwrap_or_default();
+        parts.push(format!(
+            "it reads from each device its `{}` lists the registers from the `{}` of that \
+             device's element (the first whose `{}` is the device's id),{asked} and each \
+             device's answer's `{field}` holds their values",
+            each.group, s.address, each.id
+        ));
+    } else if let Some((_, field)) = &s.answer {
+        let fanout = p
+            .session
+            .as_ref()
+            .is_some_and(|ss| ss.fanouts.iter().any(|f| f.command == s.command));
         let asked = s
             .length
             .as_ref()
             .map(|l| format!(" as many bytes as its `{l}` asks,"))
             .unwrap_or_default();
+        let (from, whose) = if fanout {
+            (" of each device it lists", "each device's answer")
+        } else {
+            ("", "its answer")
+        };
         parts.push(format!(
-            "it reads the registers from its `{}`,{asked} and its answer's `{field}` holds their values",
+            "it reads the registers{from} from its `{}`,{asked} and {whose}'s `{field}` holds their values",
             s.address
         ));
     }

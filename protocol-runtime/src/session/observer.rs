@@ -17,9 +17,12 @@
 //!
 //! The observer holds no rules: each call takes them (a [`SessionRef`]: a generated module's
 //! `Session`, or a `&SessionRules`), so a caller that builds its rules on each call (the
-//! run-time codec) keeps one observer for a whole capture.
+//! run-time codec) keeps one observer for a whole capture. What it keeps per request of
+//! several answers is the rules' [`SessionRef::Awaiting`], as a requester's slot does: an id
+//! set where the rules may list such a command ([`Awaited`], the default), nothing where they
+//! list none ([`NoFanout`](super::NoFanout)).
 
-use super::{Answer, IdSet, Ids, Judged, SessionRef, SessionRules};
+use super::{Answer, Awaited, Awaiting, Ids, Judged, SessionRef, SessionRules};
 
 /// An answer, paired with the request it answers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -35,7 +38,7 @@ pub struct Paired {
 
 /// A request seen, waiting for its answer.
 #[derive(Debug, Clone, Copy)]
-struct Watched {
+struct Watched<A> {
     index: u64,
     at: Option<u64>,
     ids: Ids,
@@ -45,11 +48,12 @@ struct Watched {
     /// When it last heard an answer that left it open (its wait starts anew then).
     heard: Option<u64>,
     /// The ids still to answer, for a request answered once by each id it lists.
-    waiting: Option<IdSet>,
+    waiting: Option<A>,
 }
 
 /// Follows a conversation on a wire: at most `OPEN` requests wait for their answer at once (an
-/// older one is counted unanswered to make room).
+/// older one is counted unanswered to make room). `A` is what it keeps of a request answered
+/// once by each id it lists: the [`SessionRef::Awaiting`] of the rules it is given.
 ///
 /// ```
 /// use protocol_runtime::layout::{ByteOrder, Check, FrameLayout, LengthRule, Pos, WordField};
@@ -90,21 +94,21 @@ struct Watched {
 /// assert_eq!((wire.answered(), wire.finish()), (1, 1));
 /// ```
 #[derive(Debug, Clone)]
-pub struct Observer<const OPEN: usize> {
-    open: [Option<Watched>; OPEN],
+pub struct Observer<const OPEN: usize, A: Awaiting = Awaited> {
+    open: [Option<Watched<A>>; OPEN],
     /// The frame number of the last frame heard, when it was a request that waits.
     latest: Option<u64>,
     answered: u64,
     unanswered: u64,
 }
 
-impl<const OPEN: usize> Default for Observer<OPEN> {
+impl<const OPEN: usize, A: Awaiting> Default for Observer<OPEN, A> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<const OPEN: usize> Observer<OPEN> {
+impl<const OPEN: usize, A: Awaiting> Observer<OPEN, A> {
     /// An observer that has seen nothing.
     #[must_use]
     pub const fn new() -> Self {
@@ -141,7 +145,7 @@ impl<const OPEN: usize> Observer<OPEN> {
     /// seen again (a retry) replaces the one before, which counts unanswered; so does the
     /// oldest request when the table is full, and any request whose requester has given up by
     /// `at`.
-    pub fn request<S: SessionRef>(
+    pub fn request<S: SessionRef<Awaiting = A>>(
         &mut self,
         rules: S,
         index: u64,
@@ -168,7 +172,8 @@ impl<const OPEN: usize> Observer<OPEN> {
             heard: None,
             waiting: rules
                 .fanout(key)
-                .and_then(|f| f.listed(rules.packet, frame)),
+                .and_then(|f| f.listed(rules.packet, frame))
+                .and_then(A::keep),
         };
         let again = self
             .open
@@ -196,7 +201,7 @@ impl<const OPEN: usize> Observer<OPEN> {
     /// The frame `frame`, seen at `at`, read as an answer: the open request it answers (the
     /// oldest, should several match), which is then closed unless the answer leaves it open
     /// ([`Paired::open`]); `None` when it answers none.
-    pub fn answer<S: SessionRef>(
+    pub fn answer<S: SessionRef<Awaiting = A>>(
         &mut self,
         rules: S,
         at: Option<u64>,
@@ -233,20 +238,24 @@ impl<const OPEN: usize> Observer<OPEN> {
 
     /// Whether `frame` comes from an id the request `w` still waits for (always, for a
     /// request of one answer).
-    fn awaited(rules: &SessionRules<'_>, w: &Watched, frame: &[u8]) -> bool {
+    fn awaited(rules: &SessionRules<'_>, w: &Watched<A>, frame: &[u8]) -> bool {
         let Some(waiting) = w.waiting else {
             return true;
         };
         rules
             .fanout(w.ids.key)
             .and_then(|f| f.sender(frame))
-            .is_some_and(|id| waiting.contains(id))
+            .is_some_and(|id| waiting.awaits(id))
     }
 
     /// Rule, as the requester's: the request after its answer `frame`, when it waits on (the
     /// answer says it is in progress, or listed ids are still to answer); `None` when the
     /// answer ends it.
-    fn leaves_open(rules: &SessionRules<'_>, mut w: Watched, frame: &[u8]) -> Option<Watched> {
+    fn leaves_open(
+        rules: &SessionRules<'_>,
+        mut w: Watched<A>,
+        frame: &[u8],
+    ) -> Option<Watched<A>> {
         let judged = rules
             .verdict(w.ids.key)
             .and_then(|v| v.judge(rules.packet, frame));
@@ -255,8 +264,7 @@ impl<const OPEN: usize> Observer<OPEN> {
         }
         let id = rules.fanout(w.ids.key).and_then(|f| f.sender(frame));
         let waiting = w.waiting.as_mut()?;
-        waiting.remove(id?);
-        (!waiting.is_empty()).then_some(w)
+        (waiting.answered(id?) > 0).then_some(w)
     }
 
     /// Closes every open request (the capture ended): returns how many requests went

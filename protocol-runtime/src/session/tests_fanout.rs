@@ -309,6 +309,32 @@ fn a_requester_without_id_sets_refuses_a_request_of_several_answers() {
 }
 
 #[test]
+fn an_observer_of_rules_without_id_sets_keeps_none_and_pairs_as_any_observer() {
+    use core::mem::size_of;
+    let with = size_of::<Observer<4>>();
+    let without = size_of::<Observer<4, NoFanout>>();
+    // Each open request saves at least the 32-byte id set.
+    assert!(with >= without + 4 * size_of::<IdSet>(), "{with} {without}");
+    // A READ and its status, a READ left unanswered: as the observer with id sets has them.
+    let read = frame(3, 0x02, &[0x84, 0, 4, 0]);
+    let mut lean = Observer::<4, NoFanout>::new();
+    let mut full = Observer::<4>::new();
+    assert!(lean.request(Unlisted, 0, Some(0), &read));
+    assert!(full.request(&SESSION, 0, Some(0), &read));
+    let paired = Some(Paired {
+        request: 0,
+        round_trip: Some(3),
+        open: false,
+    });
+    assert_eq!(lean.answer(Unlisted, Some(3), &status(3)), paired);
+    assert_eq!(full.answer(&SESSION, Some(3), &status(3)), paired);
+    assert!(lean.request(Unlisted, 2, Some(10), &read));
+    assert!(full.request(&SESSION, 2, Some(10), &read));
+    assert_eq!((lean.answered(), lean.finish()), (1, 1));
+    assert_eq!((full.answered(), full.finish()), (1, 1));
+}
+
+#[test]
 fn a_status_that_could_answer_two_open_requests_is_refused_at_send() {
     let mut req = Requester::<_, 4, 32>::new(&SESSION);
     let read3 = req

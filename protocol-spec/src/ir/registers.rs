@@ -52,14 +52,33 @@ pub struct Select {
     pub command: usize,
     /// The request's struct (index into [`Protocol::structs`](super::Protocol::structs)).
     pub request: usize,
-    /// The request's integer field that holds the first address.
+    /// The integer field that holds the first address: the request's, or with
+    /// [`each`](Self::each) its group element's.
     pub address: String,
-    /// The request's integer field that holds the number of bytes asked.
+    /// The integer field that holds the number of bytes asked: the request's, or with
+    /// [`each`](Self::each) its group element's.
     pub length: Option<String>,
     /// The request's `bytes` field that holds the values written.
     pub data: Option<String>,
     /// The answer's struct and its `bytes` field that holds the values read.
     pub answer: Option<(usize, String)>,
+    /// For a request answered once by each id it lists, whose every listed device is asked
+    /// a run of its own (`BULK_READ`): the repeated group that lists them.
+    pub each: Option<PerDevice>,
+}
+
+/// The repeated group of a request whose elements each name a device and the run it is
+/// asked for (`registers = { address = "servos.address", ... }` with `answers = { each =
+/// "servos.id", ... }`). The answer whose sender id is an element's id carries that element's
+/// run; a device listed twice is asked the run of its first element, as it answers once.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PerDevice {
+    /// The request's repeated group field (`servos`).
+    pub group: String,
+    /// Its element struct (index into [`Protocol::structs`](super::Protocol::structs)).
+    pub element: usize,
+    /// The element's `u8` field that holds the device's id (`id`, from `answers.each`).
+    pub id: String,
 }
 
 /// The device's register map.

@@ -63,10 +63,13 @@ pub struct RegisterDef {
 #[cfg_attr(feature = "schema", derive(JsonSchema))]
 #[serde(deny_unknown_fields)]
 pub struct SelectDef {
-    /// The request's integer field that holds the run's first address.
+    /// The request's integer field that holds the run's first address, or, for a request
+    /// answered once by each device it lists, a field of the elements of the group that lists
+    /// them (`servos.address`): each device's own run.
     #[cfg_attr(feature = "schema", schemars(with = "String"))]
     pub address: SStr,
-    /// The request's integer field that holds the number of bytes its answer carries.
+    /// The request's integer field that holds the number of bytes its answer carries (a field
+    /// of the same group's elements when `address` is one: `servos.length`).
     #[cfg_attr(feature = "schema", schemars(with = "Option<String>"))]
     pub length: Option<SStr>,
     /// The request's `bytes` field that holds the values it writes.

@@ -13,6 +13,7 @@ mod extra;
 mod frame;
 mod names;
 mod registers;
+mod registers_each;
 mod session;
 mod session_answers;
 mod session_match;

@@ -8,6 +8,7 @@ use std::collections::HashSet;
 use toml::Spanned;
 
 use super::names::{check_snake_name, parse_byte_order, parse_prim, prim_spellings, unknown_type};
+use super::registers_each::{RunFields, lower_run_fields, member, run_struct};
 use super::session_match::{answer_struct, answering_command, request_struct};
 use super::{Ctx, text};
 use crate::diag::did_you_mean;
@@ -250,9 +251,9 @@ struct Sides<'a> {
 }
 
 /// Rule: a command that selects registers has a request struct; `address` (and `length`)
-/// name its unscaled integer fields, `data` its `bytes` field, `answer` the `bytes` field of
-/// the answer the request expects; at least one of `data` and `answer` is given, and
-/// `length` only with `answer`.
+/// name its unscaled integer fields (or its group element's, [`lower_run_fields`]), `data`
+/// its `bytes` field, `answer` the `bytes` field of the answer the request expects; at least
+/// one of `data` and `answer` is given, and `length` only with `answer`.
 fn lower_select(
     ctx: &mut Ctx<'_>,
     sides: &Sides<'_>,
@@ -270,14 +271,20 @@ fn lower_select(
         return None;
     };
     let rs = sides.structs.get(request)?;
-    let address = int_field(ctx, &s.address, rs);
+    let run = lower_run_fields(ctx, name, s, rs)?;
+    let run_struct = run_struct(&run, rs, sides.structs)?;
+    let side = match run {
+        RunFields::Request => "request",
+        RunFields::PerDevice(_) => "group element",
+    };
+    let address = int_field(ctx, &member(&s.address), run_struct, side);
     if let Some(field) = address {
         check_reach(ctx, &s.address, field, sides.registers);
     }
     let length = s
         .length
         .as_ref()
-        .map(|n| int_field(ctx, n, rs).map(|f| f.name.clone()));
+        .map(|n| int_field(ctx, &member(n), run_struct, side).map(|f| f.name.clone()));
     let data = s.data.as_ref().map(|n| bytes_field(ctx, n, rs, "request"));
     let answer = s.answer.as_ref().map(|n| answer_field(ctx, sides, ci, n));
     if s.data.is_none() && s.answer.is_none() {
@@ -303,6 +310,10 @@ fn lower_select(
         length: resolved(length)?,
         data: resolved(data)?,
         answer: resolved(answer)?,
+        each: match run {
+            RunFields::Request => None,
+            RunFields::PerDevice(p) => Some(p),
+        },
     })
 }
 
@@ -334,8 +345,8 @@ fn field<'a>(ctx: &mut Ctx<'_>, n: &SStr, s: &'a Struct, side: &str) -> Option<&
 }
 
 /// Rule: a field that holds an address or a length is an unscaled integer.
-fn int_field<'a>(ctx: &mut Ctx<'_>, n: &SStr, s: &'a Struct) -> Option<&'a ir::Field> {
-    let f = field(ctx, n, s, "request")?;
+fn int_field<'a>(ctx: &mut Ctx<'_>, n: &SStr, s: &'a Struct, side: &str) -> Option<&'a ir::Field> {
+    let f = field(ctx, n, s, side)?;
     match &f.kind {
         FieldKind::Value {
             ty:
@@ -352,7 +363,7 @@ fn int_field<'a>(ctx: &mut Ctx<'_>, n: &SStr, s: &'a Struct) -> Option<&'a ir::F
                     "field `{}` of `{}` is not an unscaled integer, so it selects no registers",
                     f.name, s.name
                 ),
-                "name an integer field of the request (a `u8`, `u16`, ... without `scale`)",
+                format!("name an integer field of the {side} (a `u8`, `u16`, ... without `scale`)"),
             );
             None
         }

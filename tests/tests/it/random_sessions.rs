@@ -9,11 +9,14 @@
 //!
 //! The events are seeded by the spec's seed: random valid frames of the spec (the spec-driven
 //! model) sent as requests, delivered to the responder or lost, answered with a frame of the
-//! command the request expects, duplicated, bit-flipped, and time advanced by random steps or
-//! to the next deadline.
+//! command the request expects (a request that several devices answer, a command's `answers`,
+//! once per id it lists, each answer lost or not on its own), duplicated, bit-flipped, and time
+//! advanced by random steps or to the next deadline. The output counts the requests of several
+//! answers, the answers that left them open and those that ended incomplete.
 
 use protocol_kit::session::{
-    Due, Incoming, Received, Requester, Responder, SessionRef, SessionRules,
+    Due, Heard, Incoming, Outcome, Received, Requester, Resolution, Responder, SessionRef,
+    SessionRules,
 };
 
 use crate::random_specs as batch;
@@ -39,6 +42,32 @@ struct Tally {
     answered: usize,
     outcomes: usize,
     resends: usize,
+    /// Requests sent that several devices answer (a command's `answers`).
+    several: usize,
+    /// Answers that left such a request open for the other devices' (`Received::Partial`).
+    partial: usize,
+    /// Such requests that ended with some devices silent (`Resolution::Incomplete`).
+    incomplete: usize,
+}
+
+impl Tally {
+    /// Counts an outcome: incomplete ones apart.
+    fn outcome(&mut self, o: Outcome) {
+        self.outcomes += 1;
+        self.incomplete += usize::from(matches!(o.resolution, Resolution::Incomplete(_)));
+    }
+
+    /// Adds `t`'s counts.
+    fn add(&mut self, t: &Tally) {
+        self.events += t.events;
+        self.sent += t.sent;
+        self.answered += t.answered;
+        self.outcomes += t.outcomes;
+        self.resends += t.resends;
+        self.several += t.several;
+        self.partial += t.partial;
+        self.incomplete += t.incomplete;
+    }
 }
 
 /// A machine of each kind over each side's rules: `G` is generated code's `Session`, the other
@@ -72,7 +101,11 @@ impl<'r, G: SessionRef, const FRAME: usize> Twins<'r, G, FRAME> {
         let a = self.requester.0.on_frame(now, frame);
         let b = self.requester.1.on_frame(now, frame);
         assert_eq!(a, b, "at the requester at {now}: {}", support::hex(frame));
-        self.tally.outcomes += usize::from(matches!(a, Received::Outcome(_)));
+        match a {
+            Received::Outcome(o) => self.tally.outcome(o),
+            Received::Partial { .. } => self.tally.partial += 1,
+            _ => {}
+        }
     }
 
     /// `frame` at both responders: whether it is to be answered, and the answer to send again
@@ -112,7 +145,7 @@ impl<'r, G: SessionRef, const FRAME: usize> Twins<'r, G, FRAME> {
                     self.tally.resends += 1;
                     resent.push(frame.to_vec());
                 }
-                Some(Due::Outcome(_)) => self.tally.outcomes += 1,
+                Some(Due::Outcome(o)) => self.tally.outcome(o),
             }
         }
         loop {
@@ -153,7 +186,7 @@ fn answer_for<'p>(
     request: &[u8],
     pool: &'p [Vec<u8>],
 ) -> Option<&'p [u8]> {
-    let Ok(protocol_kit::session::Heard::Command(key)) = rules.heard(request) else {
+    let Ok(Heard::Command(key)) = rules.heard(request) else {
         return None;
     };
     let expected = rules.expects(key, request).answer;
@@ -164,6 +197,32 @@ fn answer_for<'p>(
                 .is_ok_and(|h| SessionRules::is_answer(expected, key, h))
         })
         .map(Vec::as_slice)
+}
+
+/// The answers to `request` made of `reply`: `reply` itself, or, for a request that several
+/// devices answer, one per id it lists, that id written as the sender's (an id the field cannot
+/// hold gets no answer, as a device the answer cannot name would stay silent).
+fn answers_of_each(rules: &SessionRules<'_>, request: &[u8], reply: &[u8]) -> Vec<Vec<u8>> {
+    let fanout = match rules.heard(request) {
+        Ok(Heard::Command(key)) => rules.fanout(key),
+        _ => None,
+    };
+    let Some(fanout) = fanout else {
+        return vec![reply.to_vec()];
+    };
+    let ids = fanout.listed(rules.packet, request).unwrap_or_default();
+    ids.iter()
+        .filter_map(|id| {
+            let mut frame = reply.to_vec();
+            fanout.id.write(&mut frame, u64::from(id))?;
+            Some(frame)
+        })
+        .collect()
+}
+
+/// Whether several devices answer `request`.
+fn several(rules: &SessionRules<'_>, request: &[u8]) -> bool {
+    matches!(rules.heard(request), Ok(Heard::Command(key)) if rules.fanout(key).is_some())
 }
 
 /// One event: a request and what the link does with it, or a frame out of turn.
@@ -182,6 +241,7 @@ fn event<G: SessionRef, const FRAME: usize>(
                 return;
             };
             *last = Some(sent.clone());
+            twins.tally.several += usize::from(several(rules, &sent));
             if rng.one_in(5) {
                 return; // lost on the way
             }
@@ -189,10 +249,12 @@ fn event<G: SessionRef, const FRAME: usize>(
             let Some(reply) = answer.then(|| answer_for(rules, &sent, pool)).flatten() else {
                 return;
             };
-            if let Some(sealed) = twins.answer(&sent, reply)
-                && !rng.one_in(5)
-            {
-                twins.at_requester(now, &sealed);
+            for reply in answers_of_each(rules, &sent, reply) {
+                if let Some(sealed) = twins.answer(&sent, &reply)
+                    && !rng.one_in(5)
+                {
+                    twins.at_requester(now, &sealed);
+                }
             }
         }
         6 | 7 => {
@@ -260,7 +322,7 @@ fn compare<S: Spec, G: SessionRef, const FRAME: usize>(
 
 #[test]
 fn random_sessions_agree_in_generated_rust_and_the_run_time_codec() {
-    let mut specs = 0;
+    let (mut specs, mut with_answers) = (0, 0);
     let mut total = Tally::default();
     macro_rules! one {
         ($name:ident, link) => {
@@ -286,11 +348,8 @@ fn random_sessions_agree_in_generated_rust_and_the_run_time_codec() {
                 Ok(t) => {
                     eprintln!("seed {seed}: {t:?}");
                     specs += 1;
-                    total.events += t.events;
-                    total.sent += t.sent;
-                    total.answered += t.answered;
-                    total.outcomes += t.outcomes;
-                    total.resends += t.resends;
+                    with_answers += usize::from(t.several > 0);
+                    total.add(&t);
                 }
                 Err(panic) => {
                     eprintln!(
@@ -304,8 +363,16 @@ fn random_sessions_agree_in_generated_rust_and_the_run_time_codec() {
         }};
     }
     for_each_random_session!(one);
-    eprintln!("random sessions: {specs} specs of the batch with a session, {total:?}");
-    // `tests/build.rs` adds a later seed's spec when the batch has no session.
+    eprintln!(
+        "random sessions: {specs} specs of the batch with a session, {with_answers} of them \
+         with requests that several devices answer, {total:?}"
+    );
+    // `tests/build.rs` adds a later seed's spec when the batch has no session, and one when
+    // none of its sessions has a request that several devices answer.
     assert!(specs > 0, "no random spec with a session was compared");
+    assert!(
+        total.several > 0,
+        "no request that several devices answer was compared: {total:?}"
+    );
     assert_eq!(total.events, specs * STEPS);
 }

@@ -29,8 +29,8 @@
 //! and arrays sized by an earlier field, checks inside a payload (with a CRC prefix), extension
 //! fields and a variable tail (bytes, text without a terminator, repeated integers or structs,
 //! an optional value). A
-//! `[session]` table (answer, timeout, retries, backoff, sequence field, handshake, watchdog)
-//! changes no byte on the wire: the front end validates it, generated code holds it.
+//! `[session]` table (answer, timeout, retries, backoff, sequence field, handshake, watchdog,
+//! a command answered once by each id its payload lists) changes no byte on the wire: the front end validates it, generated code holds it.
 //!
 //! A shape never combines what the language refuses (`docs/spec-format.md`, "Not yet
 //! expressible" and each feature's rules): the front end accepts every spec this writes, and
@@ -144,6 +144,8 @@ struct Leaf {
     name: String,
     size: usize,
     repeatable: bool,
+    /// An unscaled `u8` field of it: where an element names a device (`answers`).
+    id_member: Option<String>,
 }
 
 /// A payload struct: its name, smallest and largest wire size.
@@ -152,6 +154,8 @@ struct Payload {
     name: String,
     min: usize,
     max: usize,
+    /// Where it lists one-byte ids at a fixed place (`tail`, `tail.l0`), for `answers`.
+    ids: Option<String>,
 }
 
 /// What the spec combines, decided first: the frame formats, directions and framing rules,
@@ -328,6 +332,7 @@ pub const FEATURES: &[&str] = &[
     "session-sequence",
     "session-handshake",
     "session-watchdog",
+    "session-answers",
 ];
 
 /// The TOML text of the random spec of `seed`, its protocol named `name`.
@@ -571,9 +576,15 @@ impl Spec {
         let mut fields = Vec::new();
         let mut size = 0;
         let mut repeatable = true;
+        let mut id_member = None;
         for k in 0..self.rng.range(1, 3) {
-            let f = self.fixed_field(&format!("l{k}"));
+            let member = format!("l{k}");
+            let f = self.fixed_field(&member);
             repeatable &= f.repeatable;
+            if id_member.is_none() && f.text == format!("{{ name = \"{member}\", type = \"u8\" }}")
+            {
+                id_member = Some(member);
+            }
             fields.push(f.text);
             size += f.size;
         }
@@ -582,6 +593,7 @@ impl Spec {
             name,
             size,
             repeatable,
+            id_member,
         });
     }
 

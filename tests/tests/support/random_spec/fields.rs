@@ -311,6 +311,7 @@ impl Spec {
         let mut fields = Vec::new();
         let (mut min, mut max) = (0, 0);
         let mut names = Vec::new();
+        let mut ids = None;
         for k in 0..self.rng.range(1, 4) {
             if self.rng.one_in(8) {
                 self.feature("field-pad");
@@ -325,7 +326,10 @@ impl Spec {
             max += f.size;
             names.push(format!("f{k}"));
         }
+        // Whether a field of variable size (or a check) comes before the tail.
+        let mut variable = false;
         if !fixed && self.rng.one_in(5) {
+            variable = true;
             let (f, most) = self.sized_fields();
             fields.extend(f);
             min += 1;
@@ -333,6 +337,7 @@ impl Spec {
             names.clear();
         }
         if !fixed && self.rng.one_in(5) {
+            variable = true;
             let (f, most) = self.masked_fields();
             fields.extend(f);
             min += 1;
@@ -340,6 +345,7 @@ impl Spec {
             names.clear();
         }
         if !names.is_empty() && self.rng.one_in(5) {
+            variable = true;
             let (f, n) = self.payload_check(&names);
             fields.push(f);
             min += n;
@@ -357,12 +363,43 @@ impl Spec {
                 max += int.size;
             }
         } else if !fixed && let Some((f, lo, hi)) = self.tail_field() {
+            if !variable {
+                ids = self.listed_ids(&f);
+            }
             fields.extend(f);
             min += lo;
             max += hi;
         }
         self.write_struct(&name, &fields);
-        self.payloads.push(Payload { name, min, max });
+        self.payloads.push(Payload {
+            name,
+            min,
+            max,
+            ids,
+        });
+    }
+
+    /// Where a tail after fields of a fixed size lists one-byte ids, two at least: a repeated
+    /// `u8` (`tail`), or a `u8` of repeated structs (`tail.l0`).
+    fn listed_ids(&self, tail: &[String]) -> Option<String> {
+        let [only] = tail else {
+            return None;
+        };
+        let rest = only.strip_prefix("{ name = \"tail\", type = \"")?;
+        let (ty, rest) = rest.split_once('"')?;
+        let most: usize = rest
+            .strip_prefix(", repeat = true, max = ")?
+            .trim_end_matches(" }")
+            .parse()
+            .ok()?;
+        if most < 2 {
+            return None;
+        }
+        if ty == "u8" {
+            return Some("tail".to_string());
+        }
+        let leaf = self.leaves.iter().find(|l| l.name == ty)?;
+        Some(format!("tail.{}", leaf.id_member.as_ref()?))
     }
 
     /// A count, then bytes or an array of integers of as many elements as it says; the
