@@ -44,12 +44,12 @@ pub(super) fn emit_typed_decode(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
     let values = key_values(p);
     let frame_values = (0..f.dispatch.len()).map(|i| quote!(#rules.key_value(frame, #i)?));
     let (scratch, scratch_ref) = unstuff_scratch(f);
+    // A payload whose trailing zeros the sender dropped is read zero-extended; a whole one is
+    // read where it lies, with no buffer zeroed (the struct's size is not a constant here, so
+    // the buffer of a short one has the format's largest payload).
     let read = if f.truncate_zeros {
         let max = f.payload_max;
-        quote! {
-            let mut filled = [0u8; #max];
-            #rt::read_zero_filled(payload, &mut filled)
-        }
+        quote!(#rt::read_filled::<M, #max>(payload))
     } else {
         quote!(#rt::read_payload(payload))
     };
