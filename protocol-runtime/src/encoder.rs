@@ -8,7 +8,7 @@
 
 use crate::decoder::Probe;
 use crate::error::{DecodeError, EncodeError};
-use crate::layout::{FrameLayout, LengthRule, WordField, all_hold};
+use crate::layout::{EveryKind, FrameLayout, LayoutRef, LengthRule, WordField, all_hold};
 use crate::wire::{Reader, Writer};
 
 /// The error of a frame whose computed parts do not fit it.
@@ -70,6 +70,18 @@ impl FrameLayout<'_> {
     /// ```
     #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn seal(&self, frame: &mut [u8]) -> Result<(), EncodeError> {
+        self.seal_of::<EveryKind>(frame)
+    }
+
+    /// [`seal`](Self::seal) on a link of layout type `L`, which compiles only the rule kinds
+    /// `L` declares ([`LayoutRef::HEADER_DECIDED`], [`LayoutRef::CRC_CHECKED`]); a layout of
+    /// another kind is [`EncodeError::ValueOutOfRange`].
+    ///
+    /// # Errors
+    ///
+    /// As [`seal`](Self::seal).
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    pub(crate) fn seal_of<L: LayoutRef>(&self, frame: &mut [u8]) -> Result<(), EncodeError> {
         let len = frame.len();
         let span = self.header_span();
         let bare = self.length.bare_len() == Some(len) && len >= span;
@@ -126,7 +138,7 @@ impl FrameLayout<'_> {
         // Each item handled apart (`all_hold`), so that a constant layout folds at any
         // optimisation level.
         let written = all_hold!(self.constants, |c| c.field.write(header, c.value).is_some())
-            && all_hold!(self.header_checks, |c| c.store(header).is_some());
+            && all_hold!(self.header_checks, |c| c.store_of::<L>(header).is_some());
         if !written {
             return Err(OUT_OF_RANGE);
         }
@@ -139,14 +151,20 @@ impl FrameLayout<'_> {
                 adjust,
                 extension,
                 ..
-            } => match self.seal_conditional(frame, field, adjust, extension) {
-                Some(body) => body,
-                None => return Err(OUT_OF_RANGE),
-            },
+            } => {
+                if L::HEADER_DECIDED {
+                    match self.seal_conditional(frame, field, adjust, extension) {
+                        Some(body) => body,
+                        None => return Err(OUT_OF_RANGE),
+                    }
+                } else {
+                    return Err(OUT_OF_RANGE);
+                }
+            }
             _ => frame,
         };
         let written = all_hold!(self.markers, |m| m.write(frame).is_some())
-            && all_hold!(self.frame_checks, |c| c.store(frame).is_some());
+            && all_hold!(self.frame_checks, |c| c.store_of::<L>(frame).is_some());
         if !written {
             return Err(OUT_OF_RANGE);
         }
