@@ -8,8 +8,13 @@
 
 use crate::decoder::Probe;
 use crate::error::{DecodeError, EncodeError};
-use crate::layout::{FrameLayout, LengthRule, WordField, all_hold};
+use crate::layout::{EveryKind, FrameLayout, LayoutRef, LengthRule, WordField, all_hold};
 use crate::wire::{Reader, Writer};
+
+/// The error of a frame whose computed parts do not fit it.
+const OUT_OF_RANGE: EncodeError = EncodeError::ValueOutOfRange {
+    place: crate::error::Place::NONE,
+};
 
 impl FrameLayout<'_> {
     /// Fills in the computed parts of `frame`, whose user header fields and payload are already
@@ -65,6 +70,18 @@ impl FrameLayout<'_> {
     /// ```
     #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn seal(&self, frame: &mut [u8]) -> Result<(), EncodeError> {
+        self.seal_of::<EveryKind>(frame)
+    }
+
+    /// [`seal`](Self::seal) on a link of layout type `L`, which compiles only the rule kinds
+    /// `L` declares ([`LayoutRef::HEADER_DECIDED`], [`LayoutRef::CRC_CHECKED`]); a layout of
+    /// another kind is [`EncodeError::ValueOutOfRange`].
+    ///
+    /// # Errors
+    ///
+    /// As [`seal`](Self::seal).
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    pub(crate) fn seal_of<L: LayoutRef>(&self, frame: &mut [u8]) -> Result<(), EncodeError> {
         let len = frame.len();
         let span = self.header_span();
         let bare = self.length.bare_len() == Some(len) && len >= span;
@@ -81,56 +98,49 @@ impl FrameLayout<'_> {
                 max: self.max_len,
             });
         }
-        let header = frame.get_mut(..span).ok_or(EncodeError::ValueOutOfRange {
-            place: crate::error::Place::NONE,
-        })?;
+        // `let ... else` rather than `ok_or` and `?` here and below: unoptimised, each of those
+        // is a function of `core` per type, linked into every firmware that encodes.
+        let Some(header) = frame.get_mut(..span) else {
+            return Err(OUT_OF_RANGE);
+        };
         // With a sync set, the first byte is a header value the caller wrote: one of the set.
         let lead = match (self.sync_set, header.first()) {
             ([], _) => 0usize,
             (set, Some(first)) if set.contains(first) => 1,
-            _ => {
-                return Err(EncodeError::ValueOutOfRange {
-                    place: crate::error::Place::NONE,
-                });
-            }
+            _ => return Err(OUT_OF_RANGE),
         };
-        let sync = header
-            .get_mut(lead..lead.wrapping_add(self.sync.len()))
-            .ok_or(EncodeError::ValueOutOfRange {
-                place: crate::error::Place::NONE,
-            })?;
+        let Some(sync) = header.get_mut(lead..lead.wrapping_add(self.sync.len())) else {
+            return Err(OUT_OF_RANGE);
+        };
         sync.copy_from_slice(self.sync);
         match self.length {
             LengthRule::Fixed(fixed) if fixed == len => {}
-            LengthRule::Fixed(_) => {
-                return Err(EncodeError::ValueOutOfRange {
-                    place: crate::error::Place::NONE,
-                });
-            }
+            LengthRule::Fixed(_) => return Err(OUT_OF_RANGE),
             LengthRule::Field { field, adjust } | LengthRule::FieldOrBare { field, adjust, .. } => {
-                let value = i64::try_from(len)
-                    .ok()
-                    .and_then(|len| len.checked_sub(adjust))
-                    .and_then(|value| u64::try_from(value).ok())
-                    .ok_or(EncodeError::ValueOutOfRange {
-                        place: crate::error::Place::NONE,
-                    })?;
-                field
-                    .write(header, value)
-                    .ok_or(EncodeError::ValueOutOfRange {
-                        place: crate::error::Place::NONE,
-                    })?;
+                // The field holds the length less `adjust`.
+                let value = match i64::try_from(len) {
+                    Ok(len) => len.checked_sub(adjust),
+                    Err(_) => None,
+                };
+                let written = match value {
+                    Some(value) => match u64::try_from(value) {
+                        Ok(value) => field.write(header, value),
+                        Err(_) => None,
+                    },
+                    None => None,
+                };
+                if written.is_none() {
+                    return Err(OUT_OF_RANGE);
+                }
             }
             LengthRule::Conditional { .. } => {}
         }
         // Each item handled apart (`all_hold`), so that a constant layout folds at any
         // optimisation level.
         let written = all_hold!(self.constants, |c| c.field.write(header, c.value).is_some())
-            && all_hold!(self.header_checks, |c| c.store(header).is_some());
+            && all_hold!(self.header_checks, |c| c.store_of::<L>(header).is_some());
         if !written {
-            return Err(EncodeError::ValueOutOfRange {
-                place: crate::error::Place::NONE,
-            });
+            return Err(OUT_OF_RANGE);
         }
         if bare {
             return Ok(());
@@ -141,15 +151,22 @@ impl FrameLayout<'_> {
                 adjust,
                 extension,
                 ..
-            } => self.seal_conditional(frame, field, adjust, extension)?,
+            } => {
+                if L::HEADER_DECIDED {
+                    match self.seal_conditional(frame, field, adjust, extension) {
+                        Some(body) => body,
+                        None => return Err(OUT_OF_RANGE),
+                    }
+                } else {
+                    return Err(OUT_OF_RANGE);
+                }
+            }
             _ => frame,
         };
         let written = all_hold!(self.markers, |m| m.write(frame).is_some())
-            && all_hold!(self.frame_checks, |c| c.store(frame).is_some());
+            && all_hold!(self.frame_checks, |c| c.store_of::<L>(frame).is_some());
         if !written {
-            return Err(EncodeError::ValueOutOfRange {
-                place: crate::error::Place::NONE,
-            });
+            return Err(OUT_OF_RANGE);
         }
         Ok(())
     }
@@ -157,7 +174,8 @@ impl FrameLayout<'_> {
     /// [`seal`](Self::seal)'s length for [`LengthRule::Conditional`]: the count (in the wider
     /// field, with the marker in the length field, when it does not fit below the marker),
     /// from the frame's length without the flag trailer, whose flag the caller set. Returns
-    /// the frame's body, which the checks and markers resolve against.
+    /// the frame's body, which the checks and markers resolve against; `None` when the count
+    /// does not fit its field.
     #[cfg_attr(not(protocol_opt0), inline(always))]
     fn seal_conditional<'f>(
         &self,
@@ -165,25 +183,17 @@ impl FrameLayout<'_> {
         field: WordField,
         adjust: i64,
         extension: Option<crate::layout::LengthExtension>,
-    ) -> Result<&'f mut [u8], EncodeError> {
+    ) -> Option<&'f mut [u8]> {
         let body = self.body_len(frame, frame.len());
-        let (count, wide) = Self::conditional_count(adjust, extension, body).ok_or(
-            EncodeError::ValueOutOfRange {
-                place: crate::error::Place::NONE,
-            },
-        )?;
-        let written = match wide {
-            Some(e) => field
-                .write(frame, e.marker)
-                .and_then(|()| e.wide.write(frame, count)),
-            None => field.write(frame, count),
-        };
-        written.ok_or(EncodeError::ValueOutOfRange {
-            place: crate::error::Place::NONE,
-        })?;
-        frame.get_mut(..body).ok_or(EncodeError::ValueOutOfRange {
-            place: crate::error::Place::NONE,
-        })
+        let (count, wide) = Self::conditional_count(adjust, extension, body)?;
+        match wide {
+            Some(e) => {
+                field.write(frame, e.marker)?;
+                e.wide.write(frame, count)?;
+            }
+            None => field.write(frame, count)?,
+        }
+        frame.get_mut(..body)
     }
 
     /// Whether `frame` is exactly one valid frame (a debugging aid for encoders).
@@ -288,16 +298,17 @@ pub trait Payload: Sized {
     /// As [`from_bytes`](Self::from_bytes).
     #[doc(hidden)]
     fn read_exactly(bytes: &[u8]) -> Result<Self, DecodeError> {
+        // Matched, not `?` and `map_err`: unoptimised, each of those is a function of `core`
+        // instantiated for every payload type, where the error is decided once, in
+        // `whole_read_error`.
         let mut r = Reader::new(bytes);
-        let value = Self::read(&mut r).map_err(|e| match e {
-            DecodeError::Truncated { .. } => DecodeError::PayloadLength {
-                expected: Self::MIN_SIZE,
-                actual: bytes.len(),
+        match Self::read(&mut r) {
+            Ok(value) => match r.finish() {
+                Ok(()) => Ok(value),
+                Err(e) => Err(e),
             },
-            other => other,
-        })?;
-        r.finish()?;
-        Ok(value)
+            Err(e) => Err(whole_read_error(e, Self::MIN_SIZE, bytes.len())),
+        }
     }
 
     /// Encodes the value at the start of `buf` and returns the bytes written.
@@ -309,6 +320,18 @@ pub trait Payload: Sized {
         let mut w = Writer::new(buf);
         self.write(&mut w)?;
         Ok(w.position())
+    }
+}
+
+/// The error of reading a whole payload of `actual` bytes whose read failed with `e`: a
+/// truncation is a payload shorter than `min_size`, any other error stays as it is.
+fn whole_read_error(e: DecodeError, min_size: usize, actual: usize) -> DecodeError {
+    match e {
+        DecodeError::Truncated { .. } => DecodeError::PayloadLength {
+            expected: min_size,
+            actual,
+        },
+        other => other,
     }
 }
 
@@ -417,9 +440,11 @@ impl<C: CommandName> PayloadVisitor<C> for WritePayload<'_, '_> {
     type Output = Result<(), EncodeError>;
     #[cfg_attr(not(protocol_opt0), inline(always))]
     fn visit<P: Payload>(self, command: C, payload: &P) -> Result<(), EncodeError> {
-        payload
-            .write(self.0)
-            .map_err(|e| e.in_command(command.command_name()))
+        // Matched, not `map_err`: unoptimised, a closure and a `map_err` per payload type.
+        match payload.write(self.0) {
+            Ok(()) => Ok(()),
+            Err(e) => Err(e.in_command(command.command_name())),
+        }
     }
 }
 

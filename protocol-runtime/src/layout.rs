@@ -293,6 +293,13 @@ pub trait LayoutRef: Copy {
     /// time and so holds every rule.
     const SEVERAL_FORMATS: bool = true;
 
+    /// Whether a format of the link checks with a CRC (of any width, with or without a
+    /// per-command byte) or a checksum object; as [`ESCAPED`](Self::ESCAPED), for the code
+    /// of those checks on the decoder's and the encoder's paths: where it is `false`, only
+    /// the sums, xors and Fletcher checks are compiled and linked, and a check of another kind
+    /// neither verifies nor is written.
+    const CRC_CHECKED: bool = true;
+
     /// The frame format (the link's first, when it has several).
     fn layout(&self) -> &FrameLayout<'_>;
 
@@ -330,6 +337,10 @@ impl LayoutRef for Formats<'_> {
         self.others
     }
 }
+
+/// The layout type of a layout read at run time: it declares every rule kind, so the engine
+/// keeps every path. What the functions that take a layout by value run as.
+pub(crate) type EveryKind = &'static FrameLayout<'static>;
 
 impl<'l> LayoutRef for &'l FrameLayout<'l> {
     #[cfg_attr(not(protocol_opt0), inline(always))]

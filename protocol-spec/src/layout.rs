@@ -9,7 +9,7 @@
 //! stays to each is the one thing that differs: how a check's algorithm becomes a
 //! [`Checksum`] (a `static` table in generated code, an object the codec owns).
 
-use protocol_runtime::checksum::Checksum;
+use protocol_runtime::checksum::{Algorithm, Checksum};
 use protocol_runtime::escape::Escape;
 use protocol_runtime::layout::{
     Check, Constant, FlagTrailer, FrameLayout, LengthExtension, LengthRule, Marker, WordField,
@@ -149,6 +149,16 @@ impl LayoutPlan<'_> {
     }
 }
 
+/// Whether `check` is computed with a CRC: one of the CRC algorithms, or any algorithm with a
+/// per-command byte (the runtime's `Extra` holds a CRC).
+fn is_crc(check: &ir::Check) -> bool {
+    check.extra.is_some()
+        || matches!(
+            check.algorithm,
+            Algorithm::Crc8(_) | Algorithm::Crc16(_) | Algorithm::Crc32(_) | Algorithm::Crc64(_)
+        )
+}
+
 /// The runtime check of `check` (one of [`ir::Frame::checks`]), computed with `checksum`.
 pub fn check<'c>(check: &ir::Check, checksum: Checksum<'c>) -> Check<'c> {
     Check {
@@ -183,6 +193,8 @@ pub struct RuleKinds {
     pub header_decided: bool,
     /// The link's decoder finds the frames of more than one format.
     pub several_formats: bool,
+    /// A format checks with a CRC (of any width, with or without a per-command byte).
+    pub crc_checked: bool,
 }
 
 impl RuleKinds {
@@ -199,6 +211,7 @@ impl RuleKinds {
                     header_decided: kinds.header_decided
                         || matches!(plan.length, LengthRule::Conditional { .. }),
                     several_formats: kinds.several_formats || i > 0,
+                    crc_checked: kinds.crc_checked || f.checks.iter().any(is_crc),
                 }
             })
     }

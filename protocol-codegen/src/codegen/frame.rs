@@ -490,11 +490,13 @@ pub(crate) fn emit_rule_kinds(kinds: RuleKinds) -> TokenStream {
         escaped,
         header_decided,
         several_formats,
+        crc_checked,
     } = kinds;
     quote! {
         const ESCAPED: bool = #escaped;
         const HEADER_DECIDED: bool = #header_decided;
         const SEVERAL_FORMATS: bool = #several_formats;
+        const CRC_CHECKED: bool = #crc_checked;
     }
 }
 

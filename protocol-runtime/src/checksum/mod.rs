@@ -50,6 +50,7 @@ use core::fmt;
 mod algorithm;
 mod bitwise;
 mod clmul;
+mod declared;
 mod extra;
 #[cfg(feature = "crc-fast")]
 mod fast;
@@ -58,6 +59,8 @@ mod slicing;
 mod sum;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_declared;
 #[cfg(test)]
 mod tests_direct;
 #[cfg(test)]

@@ -95,7 +95,9 @@ pub use event::{Event, Frame, Reject, Stats};
 pub use stream::StreamDecoder;
 
 use crate::error::DecodeError;
-use crate::layout::{Check, Constant, FrameLayout, LayoutRef, LengthRule, Marker, all_hold};
+use crate::layout::{
+    Check, Constant, EveryKind, FrameLayout, LayoutRef, LengthRule, Marker, all_hold,
+};
 use crate::wire::{read_uint, write_uint};
 
 /// Whether every byte that `data` and `expected` both have (the shorter's length) agrees: a
@@ -151,6 +153,13 @@ impl Check<'_> {
     /// verdict.
     #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn verify_prefix(&self, bytes: &[u8], len: usize) -> bool {
+        self.verify_prefix_of::<EveryKind>(bytes, len)
+    }
+
+    /// [`verify_prefix`](Self::verify_prefix) on a link of layout type `L`, which computes
+    /// only the kinds of check `L` declares ([`LayoutRef::CRC_CHECKED`]).
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    pub(crate) fn verify_prefix_of<L: LayoutRef>(&self, bytes: &[u8], len: usize) -> bool {
         let (Some(frame), Some((covered, at))) = (bytes.get(..len), self.resolve(len)) else {
             return false;
         };
@@ -162,7 +171,7 @@ impl Check<'_> {
         ) else {
             return false;
         };
-        let Some(value) = self.checksum.compute_prefix(from, n) else {
+        let Some(value) = self.checksum.compute_prefix_of::<L>(from, n) else {
             return false;
         };
         let width = self.checksum.width() as u8;
@@ -174,8 +183,15 @@ impl Check<'_> {
     /// Returns `None`, writing nothing, if a position lies outside the frame.
     #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn store(&self, frame: &mut [u8]) -> Option<()> {
+        self.store_of::<EveryKind>(frame)
+    }
+
+    /// [`store`](Self::store) on a link of layout type `L`, as
+    /// [`verify_prefix_of`](Self::verify_prefix_of).
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    pub(crate) fn store_of<L: LayoutRef>(&self, frame: &mut [u8]) -> Option<()> {
         let (covered, at) = self.resolve(frame.len())?;
-        let value = self.checksum.compute_written(frame.get(covered)?);
+        let value = self.checksum.compute_written_of::<L>(frame.get(covered)?)?;
         write_uint(frame, at, self.checksum.width() as u8, self.order, value)
     }
 }
@@ -486,7 +502,9 @@ pub(crate) fn probe_synced<L: LayoutRef>(
     if !all_hold!(layout.constants, |c| c.matches(header)) {
         return Probe::Reject(Reject::BadHeader);
     }
-    if !all_hold!(layout.header_checks, |c| c.verify_prefix(readable, span)) {
+    if !all_hold!(layout.header_checks, |c| c
+        .verify_prefix_of::<L>(readable, span))
+    {
         return Probe::Reject(Reject::BadHeaderCheck);
     }
     let bare = layout.length.bare_len();
@@ -519,7 +537,9 @@ pub(crate) fn probe_synced<L: LayoutRef>(
     let Some(frame) = bytes.get(..total) else {
         return Probe::Need(total);
     };
-    if !all_hold!(layout.frame_checks, |c| c.verify_prefix(readable, total)) {
+    if !all_hold!(layout.frame_checks, |c| c
+        .verify_prefix_of::<L>(readable, total))
+    {
         return Probe::Reject(Reject::BadChecksum);
     }
     if !all_hold!(layout.markers, |m| m.matches(frame)) {
@@ -601,7 +621,9 @@ fn probe_conditional<L: LayoutRef>(
     let Some(frame) = bytes.get(..body).filter(|_| total <= bytes.len()) else {
         return Probe::Need(total);
     };
-    if !all_hold!(layout.frame_checks, |c| c.verify_prefix(readable, body)) {
+    if !all_hold!(layout.frame_checks, |c| c
+        .verify_prefix_of::<L>(readable, body))
+    {
         return Probe::Reject(Reject::BadChecksum);
     }
     if !all_hold!(layout.markers, |m| m.matches(frame)) {

@@ -3,7 +3,7 @@
 use super::{Body, PacketRules};
 use crate::encoder::{MessagePayload, frame_room, payload_room};
 use crate::error::EncodeError;
-use crate::layout::WordField;
+use crate::layout::{EveryKind, LayoutRef, WordField};
 use crate::stuffing::Stuffing;
 use crate::wire::Writer;
 use crate::zeros::trimmed_len;
@@ -195,14 +195,28 @@ impl PacketRules<'_> {
         plen: usize,
         flag_trailer: usize,
     ) -> Result<(&'b mut [u8], usize), EncodeError> {
+        self.frame_of::<EveryKind>(buf, body, plen, flag_trailer)
+    }
+
+    /// [`frame`](Self::frame) on a link of layout type `L`: a wider length only where `L`
+    /// declares lengths decided by header values ([`LayoutRef::HEADER_DECIDED`]).
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    fn frame_of<'b, L: LayoutRef>(
+        &self,
+        buf: &'b mut [u8],
+        body: &Body<'_>,
+        plen: usize,
+        flag_trailer: usize,
+    ) -> Result<(&'b mut [u8], usize), EncodeError> {
         let start = self.start(body);
         let trailer = self.trailer_for(body, plen);
         // A wider length moves the payload behind it; most formats have none (this folds away).
         let short = start.saturating_add(plen).saturating_add(trailer);
-        let start = if self.layout.extension_for(short) == 0 {
-            start
-        } else {
+        // The constant tested first and alone, so that an unoptimised build folds it.
+        let start = if L::HEADER_DECIDED && self.layout.extension_for(short) != 0 {
             self.layout.place_payload(buf, start, plen, trailer)?
+        } else {
+            start
         };
         let total = start
             .saturating_add(plen)
@@ -221,8 +235,14 @@ impl PacketRules<'_> {
     /// does not tell the message's direction; the errors of [`FrameLayout::seal`](crate::layout::FrameLayout::seal).
     #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn seal(&self, frame: &mut [u8], body: &Body<'_>) -> Result<(), EncodeError> {
+        self.seal_of::<EveryKind>(frame, body)
+    }
+
+    /// [`seal`](Self::seal) on a link of layout type `L` (`FrameLayout::seal_of`).
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    fn seal_of<L: LayoutRef>(&self, frame: &mut [u8], body: &Body<'_>) -> Result<(), EncodeError> {
         self.write_body(frame, body)?;
-        self.layout.seal(frame)
+        self.layout.seal_of::<L>(frame)
     }
 
     /// Escapes the sealed frame `buf[..len]` in place where the format escapes its frames
@@ -233,8 +253,24 @@ impl PacketRules<'_> {
     /// [`EncodeError::BufferTooSmall`] if `buf` has no room for the escaped frame.
     #[cfg_attr(not(protocol_opt0), inline(always))]
     pub fn escape(&self, buf: &mut [u8], len: usize) -> Result<usize, EncodeError> {
+        self.escape_of::<EveryKind>(buf, len)
+    }
+
+    /// [`escape`](Self::escape) on a link of layout type `L`: nothing to escape where `L`
+    /// declares no escaping ([`LayoutRef::ESCAPED`]).
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    fn escape_of<L: LayoutRef>(&self, buf: &mut [u8], len: usize) -> Result<usize, EncodeError> {
+        // A test of the constant alone, which an unoptimised build folds (not a match guard).
+        if L::ESCAPED {
+            return match self.layout.escape {
+                Some(escape) => escape.escape_in_place(buf, len),
+                None => Ok(len),
+            };
+        }
         match self.layout.escape {
-            Some(escape) => escape.escape_in_place(buf, len),
+            Some(_) => Err(EncodeError::ValueOutOfRange {
+                place: crate::error::Place::NONE,
+            }),
             None => Ok(len),
         }
     }
@@ -281,6 +317,27 @@ impl PacketRules<'_> {
         flag_trailer: usize,
         header: impl FnOnce(&mut [u8]) -> Result<(), EncodeError>,
     ) -> Result<usize, EncodeError> {
+        self.encode_message_of::<EveryKind, M>(buf, aside, body, message, flag_trailer, header)
+    }
+
+    /// [`encode_message`](Self::encode_message) on a link of layout type `L` (generated code
+    /// names its own): only the rule kinds `L` declares are compiled (`LayoutRef::ESCAPED`,
+    /// `HEADER_DECIDED`, `CRC_CHECKED`), which an unoptimised build does not find by itself.
+    ///
+    /// # Errors
+    ///
+    /// The errors of [`assemble`](Self::assemble); [`EncodeError::ValueOutOfRange`] for a
+    /// layout of a kind `L` does not declare.
+    #[cfg_attr(not(protocol_opt0), inline(always))]
+    pub fn encode_message_of<L: LayoutRef, M: MessagePayload>(
+        &self,
+        buf: &mut [u8],
+        aside: &mut [u8],
+        body: &Body<'_>,
+        message: &M,
+        flag_trailer: usize,
+        header: impl FnOnce(&mut [u8]) -> Result<(), EncodeError>,
+    ) -> Result<usize, EncodeError> {
         // `assemble`'s steps written out with the message's own calls rather than closures:
         // the compiler then keeps a fixed-size payload in registers and folds its checksum, as
         // it does for hand-written code (through closures it summed a stack copy, several
@@ -297,10 +354,10 @@ impl PacketRules<'_> {
             message.write_payload(&mut w)?;
             w.position()
         };
-        let (frame, total) = self.frame(buf, body, plen, flag_trailer)?;
+        let (frame, total) = self.frame_of::<L>(buf, body, plen, flag_trailer)?;
         header(frame)?;
-        self.seal(frame, body)?;
-        self.escape(buf, total)
+        self.seal_of::<L>(frame, body)?;
+        self.escape_of::<L>(buf, total)
     }
 
     /// Writes the payload into `aside`, then places what is sent of it at `start` of `buf`,

@@ -25,6 +25,9 @@ pub struct Reader<'a> {
     total: usize,
 }
 
+// The reads match their results rather than `map` them: unoptimised (cargo's default `dev`
+// profile), each `map` with its closure is a function of `core` per type read, linked into
+// every firmware; a `match` is a few instructions in the read itself.
 macro_rules! reader_numbers {
     ($($t:ident: $le:ident, $be:ident;)*) => {$(
         #[doc = concat!("Reads a little-endian `", stringify!($t), "`.")]
@@ -34,7 +37,10 @@ macro_rules! reader_numbers {
         /// [`DecodeError::Truncated`] if too few bytes remain.
         #[inline]
         pub fn $le(&mut self) -> Result<$t, DecodeError> {
-            self.bytes().map($t::from_le_bytes)
+            match self.bytes() {
+                Ok(b) => Ok($t::from_le_bytes(b)),
+                Err(e) => Err(e),
+            }
         }
 
         #[doc = concat!("Reads a big-endian `", stringify!($t), "`.")]
@@ -44,7 +50,10 @@ macro_rules! reader_numbers {
         /// [`DecodeError::Truncated`] if too few bytes remain.
         #[inline]
         pub fn $be(&mut self) -> Result<$t, DecodeError> {
-            self.bytes().map($t::from_be_bytes)
+            match self.bytes() {
+                Ok(b) => Ok($t::from_be_bytes(b)),
+                Err(e) => Err(e),
+            }
         }
     )*};
 }
@@ -125,7 +134,10 @@ impl<'a> Reader<'a> {
     /// [`DecodeError::Truncated`] if fewer than `n` bytes remain.
     #[inline]
     pub fn skip(&mut self, n: usize) -> Result<(), DecodeError> {
-        self.take(n).map(|_| ())
+        match self.take(n) {
+            Ok(_) => Ok(()),
+            Err(e) => Err(e),
+        }
     }
 
     /// Reads an array of `N` elements, each with `read`, in order (the read of an array
@@ -162,7 +174,10 @@ impl<'a> Reader<'a> {
     /// [`DecodeError::Truncated`] if fewer than `n` bytes remain.
     #[inline]
     pub fn pad(&mut self, n: usize) -> Result<&mut Self, DecodeError> {
-        self.skip(n).map(|()| self)
+        match self.take(n) {
+            Ok(_) => Ok(self),
+            Err(e) => Err(e),
+        }
     }
 
     /// Reads a `u8`.
@@ -172,7 +187,10 @@ impl<'a> Reader<'a> {
     /// [`DecodeError::Truncated`] if no byte remains.
     #[inline]
     pub fn u8(&mut self) -> Result<u8, DecodeError> {
-        self.bytes().map(u8::from_le_bytes)
+        match self.bytes() {
+            Ok(b) => Ok(u8::from_le_bytes(b)),
+            Err(e) => Err(e),
+        }
     }
 
     /// Reads an `i8`.
@@ -182,7 +200,10 @@ impl<'a> Reader<'a> {
     /// [`DecodeError::Truncated`] if no byte remains.
     #[inline]
     pub fn i8(&mut self) -> Result<i8, DecodeError> {
-        self.bytes().map(i8::from_le_bytes)
+        match self.bytes() {
+            Ok(b) => Ok(i8::from_le_bytes(b)),
+            Err(e) => Err(e),
+        }
     }
 
     /// Reads a `bool`: 0 is `false`, anything else `true`.
@@ -192,7 +213,10 @@ impl<'a> Reader<'a> {
     /// [`DecodeError::Truncated`] if no byte remains.
     #[inline]
     pub fn bool(&mut self) -> Result<bool, DecodeError> {
-        self.u8().map(|b| b != 0)
+        match self.u8() {
+            Ok(b) => Ok(b != 0),
+            Err(e) => Err(e),
+        }
     }
 
     /// Reads an inverted `bool` (a spec's `invert = true`, an active-low flag): 0 is `true`,
@@ -209,7 +233,10 @@ impl<'a> Reader<'a> {
     /// ```
     #[inline]
     pub fn bool_inverted(&mut self) -> Result<bool, DecodeError> {
-        self.u8().map(|b| b == 0)
+        match self.u8() {
+            Ok(b) => Ok(b == 0),
+            Err(e) => Err(e),
+        }
     }
 
     reader_numbers! {

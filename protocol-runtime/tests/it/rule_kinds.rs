@@ -1,5 +1,6 @@
 //! A layout type that declares the rule kinds its format lacks (`LayoutRef::ESCAPED`,
-//! `HEADER_DECIDED`, `SEVERAL_FORMATS` false, as generated code declares them): the engine
+//! `HEADER_DECIDED`, `SEVERAL_FORMATS` false, and `CRC_CHECKED` false for HFLink's sum, as
+//! generated code declares them): the engine
 //! leaves those paths out and decodes the same events as with the layout read at run time,
 //! on random streams of frames and noise cut into chunks of every size.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
@@ -10,14 +11,15 @@ use common::{HFLINK, REFEREE, ROBORTS, Rng, Seen, push, random_frame};
 use protocol_runtime::StreamDecoder;
 use protocol_runtime::layout::{FrameLayout, LayoutRef};
 
-/// A format known at compile time that uses none of the three kinds.
+/// A format known at compile time that uses none of the three kinds, and a CRC where `CRC`.
 #[derive(Clone, Copy)]
-struct Plain(&'static FrameLayout<'static>);
+struct Plain<const CRC: bool>(&'static FrameLayout<'static>);
 
-impl LayoutRef for Plain {
+impl<const CRC: bool> LayoutRef for Plain<CRC> {
     const ESCAPED: bool = false;
     const HEADER_DECIDED: bool = false;
     const SEVERAL_FORMATS: bool = false;
+    const CRC_CHECKED: bool = CRC;
 
     fn layout(&self) -> &FrameLayout<'_> {
         self.0
@@ -60,10 +62,10 @@ fn stream(rng: &mut Rng, layout: &FrameLayout<'_>) -> Vec<u8> {
 #[test]
 fn declared_kinds_decode_as_the_layout_read_at_run_time() {
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
-    for (name, layout) in [
-        ("hflink", &HFLINK),
-        ("referee", &REFEREE),
-        ("roborts", &ROBORTS),
+    for (name, layout, crc) in [
+        ("hflink", &HFLINK, false),
+        ("referee", &REFEREE, true),
+        ("roborts", &ROBORTS, true),
     ] {
         let stream = stream(&mut rng, layout);
         let frames = |seen: &[Seen]| {
@@ -74,11 +76,12 @@ fn declared_kinds_decode_as_the_layout_read_at_run_time() {
         for size in [1, 2, 3, 7, 16, 64, stream.len()] {
             let want = events(layout, &stream, size);
             assert!(frames(&want) >= 20, "{name}: the stream holds frames");
-            assert_eq!(
-                events(Plain(layout), &stream, size),
-                want,
-                "{name}, chunks of {size}"
-            );
+            let declared = if crc {
+                events(Plain::<true>(layout), &stream, size)
+            } else {
+                events(Plain::<false>(layout), &stream, size)
+            };
+            assert_eq!(declared, want, "{name}, chunks of {size}");
         }
     }
 }

@@ -116,3 +116,25 @@ fn lengthened(frame: &[u8]) -> Vec<u8> {
     long.extend_from_slice(&digest.finalize().to_le_bytes());
     long
 }
+
+#[test]
+fn a_payload_cut_to_its_last_non_zero_byte_reads_zero_extended() {
+    // MAVLink 2 sends a payload without its trailing zeros: this HEARTBEAT goes out with the
+    // five bytes up to `type`, and its struct reads them followed by zeros.
+    let heartbeat = Heartbeat {
+        custom_mode: 0x0403_0201,
+        r#type: 2,
+        ..Heartbeat::default()
+    };
+    let header = Header::default();
+    let mut buf = [0u8; MAX_FRAME_LEN];
+    let n = Packet::encode_as(&header, &heartbeat, &mut buf).expect("encodes");
+    assert_eq!(buf[1], 5, "payload length on the wire");
+    let frame = frame(&buf[..n]);
+    assert_eq!(
+        Packet::from_frame_as::<Heartbeat>(frame),
+        Ok(Some((header, heartbeat)))
+    );
+    let whole = Packet::from_frame(frame).expect("decodes");
+    assert_eq!(whole.message, Message::Heartbeat(heartbeat));
+}

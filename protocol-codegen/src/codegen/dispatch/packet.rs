@@ -14,7 +14,7 @@ use crate::codegen::frame::own_layouts;
 use crate::codegen::ident;
 use crate::codegen::payload::prim_type;
 use crate::codegen::types::int_lit;
-use crate::ir::{DirectionRule, Frame, Protocol};
+use crate::ir::{DirectionRule, Frame, Protocol, Transport};
 
 /// The items of a frame format that its packet names, as validation named them.
 pub(super) struct Items {
@@ -253,8 +253,22 @@ fn encode_body_with(
     write: &TokenStream,
 ) -> TokenStream {
     let rules = rules_static(f);
+    let encode = encode_message(f);
     quote! {
-        #rules.encode_message(buf, #aside, &body, &self.message, #flagged, |frame| self.header.#write(frame))
+        #rules.#encode(buf, #aside, &body, &self.message, #flagged, |frame| self.header.#write(frame))
+    }
+}
+
+/// The rules' method that encodes a message of format `f`: for a serial format,
+/// `encode_message_of` its layout type, which compiles only the rule kinds the format uses
+/// (the encoder's paths of the other kinds are not linked, even unoptimised); a CAN frame has
+/// no layout type and takes `encode_message`.
+pub(super) fn encode_message(f: &Frame) -> TokenStream {
+    if f.transport == Transport::Serial {
+        let layout = format_ident!("{}", f.names.layout);
+        quote!(encode_message_of::<#layout, _>)
+    } else {
+        quote!(encode_message)
     }
 }
 

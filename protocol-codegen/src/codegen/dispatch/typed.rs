@@ -11,7 +11,7 @@ use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 
 use super::frames::flag_trailer_len_of;
-use super::packet::{Items, aside, key_values, unstuff_scratch};
+use super::packet::{Items, aside, encode_message, key_values, unstuff_scratch};
 use crate::codegen::ident;
 use crate::ir::{Frame, Protocol};
 
@@ -44,12 +44,12 @@ pub(super) fn emit_typed_decode(p: &Protocol, f: &Frame, rt: &TokenStream) -> To
     let values = key_values(p);
     let frame_values = (0..f.dispatch.len()).map(|i| quote!(#rules.key_value(frame, #i)?));
     let (scratch, scratch_ref) = unstuff_scratch(f);
+    // A payload whose trailing zeros the sender dropped is read zero-extended; a whole one is
+    // read where it lies, with no buffer zeroed (the struct's size is not a constant here, so
+    // the buffer of a short one has the format's largest payload).
     let read = if f.truncate_zeros {
         let max = f.payload_max;
-        quote! {
-            let mut filled = [0u8; #max];
-            #rt::read_zero_filled(payload, &mut filled)
-        }
+        quote!(#rt::read_filled::<M, #max>(payload))
     } else {
         quote!(#rt::read_payload(payload))
     };
@@ -91,6 +91,7 @@ fn encode_as(p: &Protocol, f: &Frame, max_payload_len: &Ident, rt: &TokenStream)
     let Items { rules, header, .. } = Items::of(f);
     let aside = aside(f, max_payload_len);
     let flagged = flag_trailer_len_of(f, &quote!(header));
+    let encode = encode_message(f);
     quote! {
         /// Encode `payload` as command `M::COMMAND`'s frame with `header` into the start of
         /// `buf`; returns its length. The same bytes as [`Self::encode`] of the packet that
@@ -105,7 +106,7 @@ fn encode_as(p: &Protocol, f: &Frame, max_payload_len: &Ident, rt: &TokenStream)
         ) -> #rt::Result<usize, #rt::EncodeError> {
             let id = const { M::COMMAND.id() };
             let body = #rt::Body::Command { key: &#values, carried: #rt::None, direction: #rt::None };
-            #rules.encode_message(buf, #aside, &body, &#rt::CommandMessage(payload), #flagged, |frame| header.write(frame))
+            #rules.#encode(buf, #aside, &body, &#rt::CommandMessage(payload), #flagged, |frame| header.write(frame))
         }
     }
 }
