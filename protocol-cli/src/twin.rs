@@ -2,8 +2,9 @@
 //! on a byte stream (a pseudo-terminal, a serial port). The runtime's [`Responder`] decides
 //! what each request is (new, a duplicate, before the handshake, stale); this module builds the
 //! frames it answers with through the run-time codec (the reply, the acknowledgement, the
-//! answering command, the NACK; payload values from the caller's table or the payload's
-//! all-zero value), sends the commands the spec's `periodic` gives the responder at their
+//! answering command, the NACK, and where the spec has an empty direction the error reply to a
+//! request it does not know or cannot answer ([`refusal`]); payload values from the caller's
+//! table or the payload's all-zero value), sends the commands the spec's `periodic` gives the responder at their
 //! rates (the runtime's [`Scheduler`] says when), injects the faults it is told to (frames
 //! dropped each way), and logs every exchange. Where the spec has `[registers]`, the twin keeps
 //! a register file ([`registers`]): a WRITE stores its data, a READ is answered with the bytes
@@ -23,8 +24,10 @@ use protocol_runtime::session::{
 };
 use protocol_spec::session::command_key;
 
+mod refusal;
 pub mod registers;
 
+use refusal::{set_direction, zero_header};
 use registers::RegisterFile;
 
 /// Requests the twin remembers with their answers (give a host's requester at most as many
@@ -60,6 +63,9 @@ pub struct Tally {
     pub duplicates: u64,
     /// NACKs written to requests before the handshake.
     pub refused: u64,
+    /// Error replies (frames of the spec's empty direction) written to requests the twin does
+    /// not know or cannot answer.
+    pub error_replies: u64,
     /// Frames dropped by the fault injection (read and to be written).
     pub dropped: u64,
     /// Requests the twin could not answer (no payload values, an encode error).
@@ -225,17 +231,7 @@ impl Twin<'_, '_> {
             .command_of(key)
             .ok_or("no command of the periodic key")?;
         let f = &p.frames[self.format];
-        let header = self.last_header.clone().unwrap_or_else(|| {
-            let mut zeros = Fields::new();
-            for v in f
-                .values
-                .iter()
-                .filter(|v| matches!(v.role, protocol_spec::ir::Role::User { .. }))
-            {
-                zeros.insert(v.name.clone(), Value::from(0u64));
-            }
-            zeros
-        });
+        let header = self.last_header.clone().unwrap_or_else(|| zero_header(f));
         // The responder's direction: the second, with directions.
         let direction = (!p.directions.is_empty()).then_some(1);
         let mut object = Fields::new();
@@ -380,10 +376,19 @@ impl Twin<'_, '_> {
                     (format!("delivered -> {name}"), Some(frame))
                 }
             }
-            Err(e) => {
-                self.tally.failed += 1;
-                (format!("not answered: {e}"), None)
-            }
+            Err(e) => match self.error_reply(request, decoded) {
+                Some((name, frame)) => {
+                    self.tally.error_replies += 1;
+                    (
+                        format!("not answered: {e} -> error reply {name}"),
+                        Some(frame),
+                    )
+                }
+                None => {
+                    self.tally.failed += 1;
+                    (format!("not answered: {e}"), None)
+                }
+            },
         }
     }
 
@@ -406,10 +411,13 @@ impl Twin<'_, '_> {
         };
         let mut object = Fields::new();
         object.insert("format", Value::from(p.frames[self.format].name.clone()));
-        let header = swapped(p, d);
+        let mut header = swapped(p, d);
+        let direction = answer_direction(p, d.direction);
+        if let Some(dir) = direction {
+            set_direction(p, &p.frames[self.format], &mut header, dir);
+        }
         self.last_header = Some(header.clone());
         object.insert("header", Value::Struct(header));
-        let direction = answer_direction(p, d.direction);
         if let Some(dir) = direction.filter(|_| p.directions_given()) {
             object.insert("direction", Value::from(p.directions[dir].name.clone()));
         }
