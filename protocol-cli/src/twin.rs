@@ -3,12 +3,12 @@
 //! what each request is (new, a duplicate, before the handshake, stale); this module builds the
 //! frames it answers with through the run-time codec (the reply, the acknowledgement, the
 //! answering command, the NACK, and where the spec has an empty direction the error reply to a
-//! request it does not know or cannot answer ([`refusal`]); payload values from the caller's
-//! table or the payload's all-zero value), sends the commands the spec's `periodic` gives the responder at their
-//! rates (the runtime's [`Scheduler`] says when), injects the faults it is told to (frames
-//! dropped each way), and logs every exchange. Where the spec has `[registers]`, the twin keeps
-//! a register file ([`registers`]): a WRITE stores its data, a READ is answered with the bytes
-//! at its address and length.
+//! request it does not know or cannot answer, built in `refusal`; payload values from the
+//! caller's table or the payload's all-zero value), sends the commands the spec's `periodic`
+//! gives the responder at their rates (the runtime's [`Scheduler`] says when), injects the
+//! faults it is told to (frames dropped each way), and logs every exchange. Where the spec has
+//! `[registers]`, the twin keeps a register file ([`registers`]): a WRITE stores its data, a
+//! READ is answered with the bytes at its address and length.
 //!
 //! Matching, numbering and duplicate suppression are the responder's; reading frames is the
 //! engine's ([`Codec::stream`]).
