@@ -150,6 +150,10 @@ impl<'c, 'a, W: Write> Session<'c, 'a, W> {
                         if a.open {
                             extra.insert("request_open".into(), Value::Bool(true));
                         }
+                        // An error reply (a frame of an empty direction): the request's refusal.
+                        if a.refused {
+                            extra.insert("refused".into(), Value::Bool(true));
+                        }
                     }
                     registers_fields(&mut extra, heard.registers);
                     self.decoded(offset, bytes, heard.decoded, extra)
@@ -498,7 +502,12 @@ fn conversation_note(extra: &Map<String, Value>) -> String {
         note.push_str(&format!("  #{n}"));
     }
     if let Some(r) = extra.get("answers") {
-        note.push_str(&format!("  answers #{r}"));
+        let verb = if extra.contains_key("refused") {
+            "refuses"
+        } else {
+            "answers"
+        };
+        note.push_str(&format!("  {verb} #{r}"));
         if let Some(t) = extra.get("rtt_ms") {
             note.push_str(&format!(" after {t} ms"));
         }

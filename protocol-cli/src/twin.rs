@@ -2,13 +2,14 @@
 //! on a byte stream (a pseudo-terminal, a serial port). The runtime's [`Responder`] decides
 //! what each request is (new, a duplicate, before the handshake, stale); this module builds the
 //! frames it answers with through the run-time codec (the reply, the acknowledgement, the
-//! answering command, the NACK; payload values from the caller's table or the payload's
-//! all-zero value), sends the commands the spec's `periodic` gives the responder at their
-//! rates (the runtime's [`Scheduler`] says when), injects the faults it is told to (frames
-//! dropped each way), and logs every exchange. Where the spec has `[registers]`, the twin keeps
-//! a register file ([`registers`]): a WRITE stores its data, a READ is answered with the bytes
-//! at its address and length, each answer to a SYNC_READ or a BULK_READ with the bytes its
-//! device was asked for.
+//! answering command, the NACK, and where the spec has an empty direction the error reply to a
+//! request it does not know or cannot answer, built in `refusal`; payload values from the
+//! caller's table or the payload's all-zero value), sends the commands the spec's `periodic`
+//! gives the responder at their rates (the runtime's [`Scheduler`] says when), injects the
+//! faults it is told to (frames dropped each way), and logs every exchange. Where the spec has
+//! `[registers]`, the twin keeps a register file ([`registers`]): a WRITE stores its data, a
+//! READ is answered with the bytes at its address and length, each answer to a SYNC_READ or a
+//! BULK_READ with the bytes its device was asked for.
 //!
 //! Matching, numbering and duplicate suppression are the responder's; reading frames is the
 //! engine's ([`Codec::stream`]).
@@ -24,8 +25,10 @@ use protocol_runtime::session::{
 };
 use protocol_spec::session::command_key;
 
+mod refusal;
 pub mod registers;
 
+use refusal::{set_direction, zero_header};
 use registers::RegisterFile;
 
 /// Requests the twin remembers with their answers (give a host's requester at most as many
@@ -61,6 +64,9 @@ pub struct Tally {
     pub duplicates: u64,
     /// NACKs written to requests before the handshake.
     pub refused: u64,
+    /// Error replies (frames of the spec's empty direction) written to requests the twin does
+    /// not know or cannot answer.
+    pub error_replies: u64,
     /// Frames dropped by the fault injection (read and to be written).
     pub dropped: u64,
     /// Requests the twin could not answer (no payload values, an encode error).
@@ -226,17 +232,7 @@ impl Twin<'_, '_> {
             .command_of(key)
             .ok_or("no command of the periodic key")?;
         let f = &p.frames[self.format];
-        let header = self.last_header.clone().unwrap_or_else(|| {
-            let mut zeros = Fields::new();
-            for v in f
-                .values
-                .iter()
-                .filter(|v| matches!(v.role, protocol_spec::ir::Role::User { .. }))
-            {
-                zeros.insert(v.name.clone(), Value::from(0u64));
-            }
-            zeros
-        });
+        let header = self.last_header.clone().unwrap_or_else(|| zero_header(f));
         // The responder's direction: the second, with directions.
         let direction = (!p.directions.is_empty()).then_some(1);
         let mut object = Fields::new();
@@ -416,10 +412,19 @@ impl Twin<'_, '_> {
                     (format!("delivered -> {name}"), Some(frame))
                 }
             }
-            Err(e) => {
-                self.tally.failed += 1;
-                (format!("not answered: {e}"), None)
-            }
+            Err(e) => match self.error_reply(request, decoded) {
+                Some((name, frame)) => {
+                    self.tally.error_replies += 1;
+                    (
+                        format!("not answered: {e} -> error reply {name}"),
+                        Some(frame),
+                    )
+                }
+                None => {
+                    self.tally.failed += 1;
+                    (format!("not answered: {e}"), None)
+                }
+            },
         }
     }
 
@@ -444,10 +449,13 @@ impl Twin<'_, '_> {
         };
         let mut object = Fields::new();
         object.insert("format", Value::from(p.frames[self.format].name.clone()));
-        let header = swapped(p, d);
+        let mut header = swapped(p, d);
+        let direction = answer_direction(p, d.direction);
+        if let Some(dir) = direction {
+            set_direction(p, &p.frames[self.format], &mut header, dir);
+        }
         self.last_header = Some(header.clone());
         object.insert("header", Value::Struct(header));
-        let direction = answer_direction(p, d.direction);
         if let Some(dir) = direction.filter(|_| p.directions_given()) {
             object.insert("direction", Value::from(p.directions[dir].name.clone()));
         }

@@ -32,6 +32,9 @@ pub struct SessionPlan {
     pub swap: Option<(Field, Field)>,
     /// The NACK command's key.
     pub nack: Option<u64>,
+    /// The directions whose frames refuse the request of their command (indices into the
+    /// session frame's direction tests, which follow [`Protocol::directions`]): the empty ones.
+    pub refusals: Vec<usize>,
     /// The handshake command's key.
     pub handshake: Option<u64>,
     /// The watchdog.
@@ -217,6 +220,13 @@ pub fn lower_session(p: &Protocol) -> Option<SessionPlan> {
         echo: s.echo.iter().map(|&v| field(v)).collect(),
         swap: s.swap.map(|(a, b)| (field(a), field(b))),
         nack: s.nack.and_then(key),
+        refusals: p
+            .directions
+            .iter()
+            .enumerate()
+            .filter(|(_, d)| d.empty)
+            .map(|(i, _)| i)
+            .collect(),
         handshake: s.handshake.and_then(key),
         watchdog: s.watchdog.as_ref().and_then(|w| {
             Some(Watchdog {
@@ -272,6 +282,7 @@ impl SessionPlan {
             swap: self.swap.map(|(a, b)| (a.field, b.field)),
             pairs,
             nack: self.nack,
+            refusals: &self.refusals,
             handshake: self.handshake,
             watchdog: self.watchdog,
             modes: self.modes.map(|(_, m)| m),

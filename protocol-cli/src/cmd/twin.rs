@@ -132,7 +132,14 @@ fn on_pty(_: impl FnOnce(&mut serialport::TTYPort) -> io::Result<Tally>) -> Resu
 
 fn summary(t: &Tally) {
     eprintln!(
-        "twin: {} delivered, {} answered, {} duplicates, {} refused before the handshake, {} dropped, {} not answered, {} periodic",
-        t.delivered, t.answered, t.duplicates, t.refused, t.dropped, t.failed, t.periodic
+        "twin: {} delivered, {} answered, {} duplicates, {} refused before the handshake, {} error replies, {} dropped, {} not answered, {} periodic",
+        t.delivered,
+        t.answered,
+        t.duplicates,
+        t.refused,
+        t.error_replies,
+        t.dropped,
+        t.failed,
+        t.periodic
     );
 }

@@ -29,6 +29,7 @@ mod cli_resources;
 mod cli_serial;
 mod cli_session;
 mod cli_session_open;
+mod cli_session_refusal;
 mod exports;
 mod frame_counter;
 mod import_mavlink;

@@ -16,6 +16,7 @@ use protocol_kit::session::SendError;
 use protocol_kit::session::client::{Client, ClientError, Reply, Unsolicited};
 use tokio_serial::SerialPortBuilderExt;
 
+mod msp;
 mod registers;
 
 protocol_kit::protocol!("../specs/hflink.toml");
@@ -204,7 +205,7 @@ async fn hflink_handshake_then_answers_and_a_nack_before_it() {
     assert_eq!(
         tally(&log),
         format!(
-            "twin: {n} delivered, {n} answered, 0 duplicates, 1 refused before the handshake, 0 dropped, 0 not answered, 0 periodic"
+            "twin: {n} delivered, {n} answered, 0 duplicates, 1 refused before the handshake, 0 error replies, 0 dropped, 0 not answered, 0 periodic"
         ),
         "{log}"
     );
@@ -288,7 +289,7 @@ async fn roborts_acknowledges_by_sequence_number() {
     assert_eq!(
         tally(&log),
         format!(
-            "twin: 8 delivered, 7 answered, {retries} duplicates, 0 refused before the handshake, 0 dropped, 0 not answered, 0 periodic"
+            "twin: 8 delivered, 7 answered, {retries} duplicates, 0 refused before the handshake, 0 error replies, 0 dropped, 0 not answered, 0 periodic"
         ),
         "{log}"
     );
@@ -385,7 +386,7 @@ fn scout_watchdog_lapse_is_logged_once_per_lapse() {
             motion_line,
             "watchdog expired",
             motion_line,
-            "twin: 2 delivered, 0 answered, 0 duplicates, 0 refused before the handshake, 0 dropped, 0 not answered, 0 periodic",
+            "twin: 2 delivered, 0 answered, 0 duplicates, 0 refused before the handshake, 0 error replies, 0 dropped, 0 not answered, 0 periodic",
         ],
         "{log}"
     );

@@ -102,6 +102,14 @@ fn rules(p: &Protocol, s: &Session, f: &Frame, out: &mut String) {
         None => "delivered again (no sequence number)".to_string(),
     };
     let _ = writeln!(out, "| a request received twice | {dup} |");
+    for d in p.directions.iter().filter(|d| d.empty) {
+        let _ = writeln!(
+            out,
+            "| a request is refused by | a frame of direction `{}` that carries its command ({}) |",
+            d.name,
+            super::cell(&d.doc)
+        );
+    }
     if let Some(h) = s.handshake {
         let _ = writeln!(
             out,
@@ -234,9 +242,18 @@ fn diagram(p: &Protocol, s: &Session, f: &Frame, e: &Exchange, out: &mut String)
     }
     let _ = writeln!(out, "    R->>S: request{seq}");
     let answer = answer_text(p, e.answer).replace('`', "");
-    match s.verdicts.iter().find(|v| v.command == e.command) {
-        Some(v) => verdict_lines(v, &answer, &seq, out),
-        None => {
+    let refusal = p.directions.iter().find(|d| d.empty);
+    match (s.verdicts.iter().find(|v| v.command == e.command), refusal) {
+        (Some(v), _) => verdict_lines(v, &answer, &seq, out),
+        (None, Some(d)) => {
+            let _ = writeln!(out, "    alt answered\n        S-->>R: {answer}{seq}");
+            let _ = writeln!(
+                out,
+                "    else refused\n        S-->>R: {} (the request's command, no payload){seq}\n    end",
+                d.name
+            );
+        }
+        (None, None) => {
             let _ = writeln!(out, "    S-->>R: {answer}{seq}");
         }
     }

@@ -69,7 +69,8 @@ pub enum Reply {
     /// Its answer arrived: the answer's frame (an acknowledgement, the reply, or the command
     /// the spec says answers it).
     Answered(Vec<u8>),
-    /// The spec's NACK command answered it: the NACK's frame.
+    /// The spec's NACK command, or an error reply of its command (a frame of an empty
+    /// direction: MSP's `!`), refused it: that frame.
     Refused(Vec<u8>),
     /// Its answer arrived with a result value that is not a success (the command's
     /// `result`): the value and the answer's frame.

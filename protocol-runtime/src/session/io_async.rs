@@ -39,9 +39,10 @@ pub enum Reply {
         /// Bytes of the answer's frame.
         len: usize,
     },
-    /// The spec's NACK answered it: its frame is the first `len` bytes of the caller's buffer.
+    /// The spec's NACK, or an error reply of its command (a frame of an empty direction),
+    /// refused it: that frame is the first `len` bytes of the caller's buffer.
     Refused {
-        /// Bytes of the NACK's frame.
+        /// Bytes of the refusing frame.
         len: usize,
     },
     /// Its answer arrived with a result value that is not a success (the command's

@@ -144,6 +144,11 @@ pub struct SessionRules<'a> {
     pub pairs: &'a [Pair],
     /// The key of a command that answers an open request as a refusal.
     pub nack: Option<u64>,
+    /// The directions (indices into the packet rules'
+    /// [`directions`](PacketRules::directions)) whose frames refuse the open request of the
+    /// command they carry: the spec's empty directions (MSP's error replies, `!`, which repeat
+    /// the refused command's id with no payload). Such a frame is never an answer.
+    pub refusals: &'a [usize],
     /// The key of a command whose answered request precedes every other request.
     pub handshake: Option<u64>,
     /// A command that must keep arriving.
@@ -190,7 +195,7 @@ pub struct SessionRules<'a> {
 ///     packet: &RULES,
 ///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 0, backoff: 1 },
 ///     exchanges: &[], sequence: None, echo: &[], swap: None, pairs: &[], nack: None,
-///     handshake: None, watchdog: None, modes: None, verdicts: &[],
+///     refusals: &[], handshake: None, watchdog: None, modes: None, verdicts: &[],
 ///     periodic: &[], fanouts: &[],
 /// };
 ///
@@ -283,6 +288,17 @@ impl SessionRules<'_> {
             return Ok(Heard::Ack);
         }
         Ok(Heard::Command(self.packet.key(frame)?))
+    }
+
+    /// Whether `frame` is of a direction that refuses the request of its command
+    /// ([`refusals`](Self::refusals)); false when the rules list none.
+    #[must_use]
+    pub fn refuses(&self, frame: &[u8]) -> bool {
+        !self.refusals.is_empty()
+            && self
+                .packet
+                .direction(frame)
+                .is_ok_and(|d| self.refusals.contains(&d))
     }
 
     /// What a request of command `key` expects: its exchange, or the default.
@@ -439,3 +455,5 @@ impl SessionRules<'_> {
 mod tests;
 #[cfg(test)]
 mod tests_fanout;
+#[cfg(test)]
+mod tests_refusal;

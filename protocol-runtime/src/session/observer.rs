@@ -34,6 +34,9 @@ pub struct Paired {
     /// The request waits on for another answer: this one says it is in progress, or ids it
     /// lists are still to answer.
     pub open: bool,
+    /// The frame refuses the request: it is of a refusing direction
+    /// ([`SessionRules::refusals`]: MSP's error reply) and carries the request's command.
+    pub refused: bool,
 }
 
 /// A request seen, waiting for its answer.
@@ -79,6 +82,7 @@ struct Watched<A> {
 ///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 0, backoff: 1 },
 ///     exchanges: &[],
 ///     sequence: None, echo: &[WordField::le(1, 1)], swap: None, pairs: &[], nack: None,
+///     refusals: &[],
 ///     handshake: None, watchdog: None, modes: None, verdicts: &[],
 ///     periodic: &[], fanouts: &[],
 /// };
@@ -89,7 +93,7 @@ struct Watched<A> {
 /// // An answer from another id answers nothing; the one from id 1 answers frame 0.
 /// assert_eq!(wire.answer(&SESSION, Some(1010), &[0xAA, 2, 7, 0xB3]), None);
 /// let paired = wire.answer(&SESSION, Some(1012), &[0xAA, 1, 7, 0xB2]);
-/// assert_eq!(paired, Some(Paired { request: 0, round_trip: Some(12), open: false }));
+/// assert_eq!(paired, Some(Paired { request: 0, round_trip: Some(12), open: false, refused: false }));
 /// assert!(wire.request(&SESSION, 2, Some(2000), &[0xAA, 1, 7, 0xB2]));
 /// assert_eq!((wire.answered(), wire.finish()), (1, 1));
 /// ```
@@ -158,6 +162,9 @@ impl<const OPEN: usize, A: Awaiting> Observer<OPEN, A> {
         let Ok(super::Heard::Command(key)) = rules.heard(frame) else {
             return false;
         };
+        if rules.refuses(frame) {
+            return false;
+        }
         let e = rules.expects(key, frame);
         if e.answer == Answer::None {
             return false;
@@ -210,20 +217,25 @@ impl<const OPEN: usize, A: Awaiting> Observer<OPEN, A> {
         let rules = rules.session();
         self.expire(at);
         let heard = rules.heard(frame).ok()?;
+        let refused = rules.refuses(frame);
         let (i, w) = self
             .open
             .iter()
             .enumerate()
             .filter_map(|(i, o)| o.map(|o| (i, o)))
-            .filter(|(_, o)| SessionRules::is_answer(o.answer, o.ids.key, heard))
+            .filter(|(_, o)| Self::ends(o, heard, refused))
             .filter(|(_, o)| o.answer != Answer::Message || self.latest == Some(o.index))
             .filter(|(_, o)| rules.repeats(&o.ids, frame))
             .filter(|(_, o)| Self::awaited(rules, o, frame))
             .min_by_key(|(_, o)| o.index)?;
-        let open = Self::leaves_open(rules, w, frame).map(|o| Watched {
-            heard: at.or(o.heard),
-            ..o
-        });
+        let open = if refused {
+            None
+        } else {
+            Self::leaves_open(rules, w, frame).map(|o| Watched {
+                heard: at.or(o.heard),
+                ..o
+            })
+        };
         if let Some(slot) = self.open.get_mut(i) {
             *slot = open;
         }
@@ -233,7 +245,18 @@ impl<const OPEN: usize, A: Awaiting> Observer<OPEN, A> {
             request: w.index,
             round_trip: at.zip(w.at).map(|(a, r)| a.saturating_sub(r)),
             open: open.is_some(),
+            refused,
         })
+    }
+
+    /// Rule, as the requester's: a frame heard as `heard` ends the request `w` when it is the
+    /// answer `w` expects, or when it is a refusal (`refused`) that carries `w`'s command.
+    fn ends(w: &Watched, heard: super::Heard, refused: bool) -> bool {
+        if refused {
+            heard == super::Heard::Command(w.ids.key)
+        } else {
+            SessionRules::is_answer(w.answer, w.ids.key, heard)
+        }
     }
 
     /// Whether `frame` comes from an id the request `w` still waits for (always, for a

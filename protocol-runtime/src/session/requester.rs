@@ -22,7 +22,8 @@ pub struct Ticket(pub u32);
 pub enum Resolution {
     /// Its answer arrived (the frame passed to [`Requester::on_frame`]).
     Answered,
-    /// The spec's NACK command answered it.
+    /// The spec's NACK command answered it, or a frame of an empty direction that carries
+    /// its command (MSP's error reply, `!`).
     Refused,
     /// Its answer arrived, and the answer's result value (the command's `result`) is not one
     /// that means success: a NACK that carries the value.
@@ -169,6 +170,7 @@ struct Slot<W, const FRAME: usize> {
 ///     default: Exchange { key: 0, answer: Answer::Reply, timeout: 50, retries: 1, backoff: 2 },
 ///     exchanges: &[],
 ///     sequence: Some(WordField::le(1, 1)), echo: &[], swap: None, pairs: &[], nack: None,
+///     refusals: &[],
 ///     handshake: None, watchdog: None, modes: None, verdicts: &[],
 ///     periodic: &[], fanouts: &[],
 /// };
@@ -256,8 +258,8 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
         let owner = self.rules;
         let rules = owner.session();
         let key = match rules.heard(frame).map_err(SendError::NotARequest)? {
-            Heard::Command(key) => key,
-            Heard::Ack => return Err(SendError::NotARequest(DecodeError::UnknownDirection)),
+            Heard::Command(key) if !rules.refuses(frame) => key,
+            _ => return Err(SendError::NotARequest(DecodeError::UnknownDirection)),
         };
         if !self.handshaken && Some(key) != rules.handshake {
             return Err(SendError::Handshake);
@@ -441,9 +443,11 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
 
     /// The open request `frame` answers or refuses (the oldest, should several match): its
     /// slot, what the answer says (`Some`: an answer, judged by the command's result value
-    /// when it has one; `None`: the NACK) and its ticket.
+    /// when it has one; `None`: the NACK, or a frame of a refusing direction that carries the
+    /// request's command) and its ticket.
     fn matching(&self, heard: Heard, frame: &[u8]) -> Option<(usize, Option<Judged>, Ticket)> {
         let rules = self.rules.session();
+        let refusal = rules.refuses(frame);
         let refuses = matches!(heard, Heard::Command(k) if Some(k) == rules.nack);
         let mut found: Option<(usize, Option<Judged>, Ticket)> = None;
         for (i, s) in self.slots.iter().enumerate() {
@@ -453,7 +457,14 @@ impl<S: SessionRef, const SLOTS: usize, const FRAME: usize> Requester<S, SLOTS, 
             else {
                 continue;
             };
-            let judged = if SessionRules::is_answer(o.answer, o.ids.key, heard) {
+            let judged = if refusal {
+                // An error reply refuses the request it repeats the command of, whatever that
+                // request expects; it is never an answer.
+                if heard != Heard::Command(o.ids.key) {
+                    continue;
+                }
+                None
+            } else if SessionRules::is_answer(o.answer, o.ids.key, heard) {
                 match rules.verdict(o.ids.key) {
                     // An answer without the value is not of the kind the request expects.
                     Some(v) => match v.judge(rules.packet, frame) {

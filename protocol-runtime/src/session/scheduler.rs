@@ -65,6 +65,7 @@ pub struct Periodic {
 ///     packet: &RULES,
 ///     default: Exchange { key: 0, answer: Answer::None, timeout: 50, retries: 0, backoff: 1 },
 ///     exchanges: &[], sequence: None, echo: &[], swap: None, pairs: &[], nack: None,
+///     refusals: &[],
 ///     handshake: None, watchdog: None, modes: None, verdicts: &[],
 ///     periodic: &[
 ///         Periodic { key: 0, period: 1000, sender: Sender::Both },

@@ -60,6 +60,7 @@ const BASE: SessionRules<'static> = SessionRules {
     swap: None,
     pairs: &[],
     nack: Some(9),
+    refusals: &[],
     handshake: Some(1),
     watchdog: Some(Watchdog {
         key: 4,

@@ -72,6 +72,7 @@ static SESSION: SessionRules<'static> = SessionRules {
     swap: None,
     pairs: &[],
     nack: None,
+    refusals: &[],
     handshake: None,
     watchdog: None,
     modes: Some(Modes {

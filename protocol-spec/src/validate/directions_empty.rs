@@ -1,7 +1,9 @@
 //! Rules for empty directions (`empty = true`): a direction besides `request` and `response`
 //! whose frames carry the header and no payload, whatever the command (MSP's error replies,
 //! `!`, which answer a command the flight controller refuses). The header field that tells it
-//! is checked as any direction's (`commands.rs`); what is here is which names may be empty.
+//! is checked as any direction's (`commands.rs`); what is here is which names may be empty,
+//! and what a `[session]` beside one may not ask (its frames refuse requests: a session
+//! matches requests only by what they repeat).
 
 use std::collections::HashMap;
 
@@ -10,7 +12,8 @@ use toml::Spanned;
 use super::Ctx;
 use super::names::{check_snake_name, pascal_case};
 use crate::diag::did_you_mean;
-use crate::spec::model::{DirectionDef, SStr};
+use crate::ir::{Direction, DirectionRule, Frame};
+use crate::spec::model::{DirectionDef, SStr, SessionDef};
 
 /// Rule: `request` and `response` hold the commands' payloads, so neither is empty; any other
 /// direction is empty (`empty = true`), has a snake_case name whose Rust form is its own, and is
@@ -98,28 +101,66 @@ fn check_rust_name(ctx: &mut Ctx<'_>, name: &SStr) -> bool {
     true
 }
 
-/// Rule: a spec with an empty direction has no `[session]`: a session would take a refusal
-/// (the request's command in the empty direction) for its answer. Gives whether it holds.
-pub(super) fn check_no_session(ctx: &mut Ctx<'_>) -> bool {
-    let spec = ctx.spec;
-    let Some(name) = spec
-        .directions
-        .iter()
-        .find(|(_, d)| is_empty(d))
-        .map(|(k, _)| k)
-    else {
+/// Rule: with an empty direction and a `[session]`, a frame of the empty direction refuses
+/// the open request of its command (MSP's error reply; the runtime's
+/// `SessionRules::refusals`), so the session matches requests by values an error reply
+/// repeats: `sequence` and `match` do not name the header field that tells an empty direction
+/// (an error reply holds its own value there, never the request's), and no command is answered
+/// once by each id it lists (`answers`: the error reply of one device would end the request
+/// the others still answer). Gives whether it holds.
+pub(super) fn check_refusals(
+    ctx: &mut Ctx<'_>,
+    s: &SessionDef,
+    f: &Frame,
+    directions: &[Direction],
+) -> bool {
+    let Some(empty) = directions.iter().find(|d| d.empty) else {
         return true;
     };
-    if spec.session.is_some() {
-        ctx.error(
-            name.span(),
-            format!(
-                "empty direction `{}` and a `[session]`: a session does not tell a refusal from an answer",
-                name.get_ref()
-            ),
-            "remove the `[session]`, and match the empty direction's messages in the program that waits for a reply",
-        );
-        return false;
+    let mut ok = true;
+    let told: Vec<&str> = directions
+        .iter()
+        .filter(|d| d.empty)
+        .filter_map(|d| match d.rule.in_frame(f) {
+            DirectionRule::Equals { value, .. } | DirectionRule::InSet { value, .. } => {
+                f.values.get(value).map(|v| v.name.as_str())
+            }
+            DirectionRule::Given => None,
+        })
+        .collect();
+    let named = s.sequence.iter().map(|n| (n, "sequence")).chain(
+        s.match_fields
+            .iter()
+            .flat_map(|m| m.get_ref().iter().map(|n| (n, "match"))),
+    );
+    for (n, key) in named {
+        if told.contains(&n.get_ref().as_str()) {
+            ctx.error(
+                n.span(),
+                format!(
+                    "`{key}` names `{}`, the header field that tells the empty direction `{}`: an error reply holds its own value there, so it never repeats the request's",
+                    n.get_ref(),
+                    empty.name
+                ),
+                "match answers by other header fields; the error reply of a request is the frame of the empty direction that carries its command",
+            );
+            ok = false;
+        }
     }
-    true
+    let spec = ctx.spec;
+    for (name, c) in &spec.commands {
+        if let Some(a) = &c.get_ref().answers {
+            ctx.error(
+                a.span(),
+                format!(
+                    "command `{}` is answered once by each id it lists, and the empty direction `{}` refuses a request by one frame: one device's error reply would end the request the others still answer",
+                    name.get_ref(),
+                    empty.name
+                ),
+                "remove `answers` and send the request to each device, or remove the empty direction",
+            );
+            ok = false;
+        }
+    }
+    ok
 }

@@ -38,12 +38,12 @@ pub(super) fn lower_session(
         check_no_command_keys(ctx);
         return None;
     };
-    if !super::directions_empty::check_no_session(ctx) {
-        return None;
-    }
     let s = def.get_ref();
     let fi = lower_frame(ctx, s, def.span(), frames)?;
     let f = frames.get(fi)?;
+    if !super::directions_empty::check_refusals(ctx, s, f, directions) {
+        return None;
+    }
     // An answer direction that carries one struct in place of a command.
     let message = directions.get(1).is_some_and(|d| d.message.is_some());
     let answer = match &s.answer {

@@ -12,21 +12,28 @@
 //! request does not list, and a request one status could answer as well as an open one waits
 //! (`SendError::Ambiguous`).
 //!
+//! MSP's flight controller refuses the requests it does not serve with the error reply of
+//! their command (`!`, a frame of the spec's empty direction): each such request resolves once,
+//! as refused, and a clean link refuses exactly those.
+//!
 //! `cargo test -p protocol-tests --test it -- --nocapture session_sim::fault_matrix` prints the
 //! counts of a fixed matrix of schedules, MAVLink's commands among them (answered, refused by
-//! their ACK's `result`, or kept waiting by an ACK that says they are in progress) and
-//! Dynamixel's reads of several servos.
+//! their ACK's `result`, or kept waiting by an ACK that says they are in progress),
+//! Dynamixel's reads of several servos and MSP's error replies (the `nack` column).
 
 #[path = "session_sim/dynamixel.rs"]
 pub(crate) mod dynamixel;
 #[path = "session_sim/link.rs"]
 pub(crate) mod link;
+#[path = "session_sim/msp.rs"]
+pub(crate) mod msp;
 #[path = "session_sim/sim.rs"]
 pub(crate) mod sim;
 
 use crate::session_mavlink::MavlinkResults;
 use dynamixel::Dynamixel;
 use link::Fault;
+use msp::Msp;
 use proptest::prelude::*;
 use sim::{Peer, SLOTS, Tally, run};
 
@@ -298,6 +305,21 @@ fn a_clean_link_answers_every_request() {
     );
 }
 
+/// MSP on a clean link: the flight controller answers API_VERSION and ATTITUDE and refuses
+/// STATUS and UID with their error replies; every request resolves once, as the one or the
+/// other, and none is sent again.
+#[test]
+fn a_clean_msp_link_refuses_exactly_the_requests_its_controller_refuses() {
+    let plan: Vec<(u64, u8, u8)> = (0..20).map(|i| (3, i, 0)).collect();
+    let t = run::<Msp>(&plan, Vec::new());
+    check("msp", &t);
+    assert_eq!(
+        (t.requests, t.answered, t.refused, t.timed_out, t.resends),
+        (20, 10, 10, 0, 0),
+        "{t:?}"
+    );
+}
+
 /// A link that loses everything: each request times out once, after exactly its retries.
 #[test]
 fn a_dead_link_times_every_request_out_after_its_retries() {
@@ -375,7 +397,7 @@ fn fault_matrix() {
         "alloc"
     );
     for loss in [0u64, 10, 30] {
-        for name in ["roborts", "hflink", "mavlink", "dynamixel"] {
+        for name in ["roborts", "hflink", "mavlink", "dynamixel", "msp"] {
             let mut mix = Mix(loss * 1000 + name.len() as u64);
             let mut total = Tally::default();
             for _ in 0..100 {
@@ -384,6 +406,7 @@ fn fault_matrix() {
                     "roborts" => run::<Roborts>(&plan, schedule),
                     "hflink" => run::<Hflink>(&plan, schedule),
                     "dynamixel" => run::<Dynamixel>(&plan, schedule),
+                    "msp" => run::<Msp>(&plan, schedule),
                     _ => run::<MavlinkResults>(&plan, schedule),
                 };
                 check(name, &t);

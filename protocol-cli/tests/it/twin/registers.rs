@@ -112,7 +112,7 @@ async fn dynamixel_reads_and_writes_the_twins_registers() {
     assert!(log.contains("(wrote 4 bytes at 116)"), "{log}");
     assert_eq!(
         tally(&log),
-        "twin: 6 delivered, 6 answered, 0 duplicates, 0 refused before the handshake, 0 dropped, 0 not answered, 0 periodic",
+        "twin: 6 delivered, 6 answered, 0 duplicates, 0 refused before the handshake, 0 error replies, 0 dropped, 0 not answered, 0 periodic",
         "{log}"
     );
 }

@@ -14,7 +14,7 @@ use quote::{format_ident, quote};
 use super::packet::Items;
 use crate::codegen::docs::doc_attrs;
 use crate::codegen::ident;
-use crate::ir::{AnswerKind, Frame, Protocol};
+use crate::ir::{AnswerKind, DirectionRule, Frame, Protocol};
 
 /// One side's trait and dispatch function.
 struct Side {
@@ -206,9 +206,14 @@ fn verdict_doc(s: &crate::ir::Session, ci: usize) -> String {
     )
 }
 
-/// What a refusal sends: the spec's `nack` command when it carries no payload in the answer's
-/// direction.
+/// What a refusal sends: the error reply of the request's command where the spec has an
+/// empty direction (MSP's `!`: the refusal the requester reads), else the spec's `nack`
+/// command when it carries no payload in the answer's direction.
 fn refusal(p: &Protocol, rt: &TokenStream) -> TokenStream {
+    if let Some(e) = p.directions.iter().find(|d| d.empty) {
+        let dv = format_ident!("{}", e.rust_name);
+        return quote!(#rt::Some(Message::#dv(packet.message.command())));
+    }
     let ad = answer_direction(p);
     let struct_answers = ad
         .and_then(|d| p.directions.get(d))
@@ -408,6 +413,7 @@ fn emit_items(
     let function = if answers {
         let silent = silent_check(p, f, rt);
         let swap = swap_stmts(p, f);
+        let direction = direction_stmts(p, f);
         quote! {
             pub fn #dispatch<H: #handler + ?Sized>(handler: &mut H, packet: &#packet) -> #rt::Option<#packet> {
                 let header = &packet.header;
@@ -416,6 +422,7 @@ fn emit_items(
                 #silent
                 let mut to = packet.header;
                 #swap
+                #direction
                 answer.map(|message| #packet { header: to, message })
             }
         }
@@ -437,11 +444,24 @@ fn emit_items(
     }
 }
 
-/// The header fields an answer swaps, in prose.
+/// The header fields an answer swaps and the direction field it sets, in prose.
 fn swap_doc(p: &Protocol, f: &Frame) -> String {
-    match p.session.as_ref().and_then(|s| s.swap) {
-        Some((a, b)) => format!("`{}` and `{}` swapped", f.values[a].name, f.values[b].name),
-        None => "unchanged".to_string(),
+    let swapped = p
+        .session
+        .as_ref()
+        .and_then(|s| s.swap)
+        .map(|(a, b)| format!("`{}` and `{}` swapped", f.values[a].name, f.values[b].name));
+    let told = p.directions.first().and_then(|d| match d.rule.in_frame(f) {
+        DirectionRule::Equals { value, .. } if !direction_stmts(p, f).is_empty() => f
+            .values
+            .get(value)
+            .map(|v| format!("`{}` set to the answer's direction", v.name)),
+        _ => None,
+    });
+    match (swapped, told) {
+        (Some(a), Some(b)) => format!("{a}, {b}"),
+        (Some(a), None) | (None, Some(a)) => a,
+        (None, None) => "unchanged".to_string(),
     }
 }
 
@@ -456,6 +476,39 @@ fn swap_stmts(p: &Protocol, f: &Frame) -> TokenStream {
             }
         }
         None => quote!(),
+    }
+}
+
+/// Setting the answer header's direction field to the answer's direction, where the header
+/// tells every direction by a value of one field (MSP's `<`, `>` and `!`): the request's
+/// value tells the request's direction, under which the encoder refuses an answer.
+fn direction_stmts(p: &Protocol, f: &Frame) -> TokenStream {
+    let mut field = None;
+    let mut arms = Vec::new();
+    for d in &p.directions {
+        let DirectionRule::Equals { value, equals } = d.rule.in_frame(f) else {
+            return quote!();
+        };
+        if field.is_some_and(|v| v != value) {
+            return quote!();
+        }
+        field = Some(value);
+        let dv = format_ident!("{}", d.rust_name);
+        // In hex, as specs write these values (`0x3C`).
+        let equals = format!("{equals:#04X}")
+            .replace("0X", "0x")
+            .parse::<proc_macro2::Literal>()
+            .unwrap_or_else(|_| proc_macro2::Literal::u64_unsuffixed(equals));
+        arms.push(quote!(Message::#dv(_) => #equals,));
+    }
+    let Some(v) = field.and_then(|v| f.values.get(v)) else {
+        return quote!();
+    };
+    let name = ident(&v.name);
+    quote! {
+        if let Some(m) = &answer {
+            to.#name = match m { #(#arms)* };
+        }
     }
 }
 

@@ -135,6 +135,10 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
         quote!(#s::Periodic { key: #key, period: #period, sender: #sender })
     });
     let nack = opt_key(rt, plan.nack);
+    let refusals = plan
+        .refusals
+        .iter()
+        .map(|&d| proc_macro2::Literal::usize_unsuffixed(d));
     let handshake = opt_key(rt, plan.handshake);
     let watchdog = match plan.watchdog {
         Some(w) => {
@@ -170,6 +174,7 @@ pub(super) fn emit_session(p: &Protocol, rt: &TokenStream) -> TokenStream {
             swap: #swap,
             pairs: &[#(#pairs),*],
             nack: #nack,
+            refusals: &[#(#refusals),*],
             handshake: #handshake,
             watchdog: #watchdog,
             modes: #modes,
