@@ -251,7 +251,7 @@ impl<const OPEN: usize, A: Awaiting> Observer<OPEN, A> {
 
     /// Rule, as the requester's: a frame heard as `heard` ends the request `w` when it is the
     /// answer `w` expects, or when it is a refusal (`refused`) that carries `w`'s command.
-    fn ends(w: &Watched, heard: super::Heard, refused: bool) -> bool {
+    fn ends(w: &Watched<A>, heard: super::Heard, refused: bool) -> bool {
         if refused {
             heard == super::Heard::Command(w.ids.key)
         } else {

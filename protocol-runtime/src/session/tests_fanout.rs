@@ -326,6 +326,7 @@ fn an_observer_of_rules_without_id_sets_keeps_none_and_pairs_as_any_observer() {
         request: 0,
         round_trip: Some(3),
         open: false,
+        refused: false,
     });
     assert_eq!(lean.answer(Unlisted, Some(3), &status(3)), paired);
     assert_eq!(full.answer(&SESSION, Some(3), &status(3)), paired);
