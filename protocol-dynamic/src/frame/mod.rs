@@ -25,7 +25,7 @@ use crate::error::DecodeIssue;
 use crate::layout::word_field;
 use crate::model::{Fields, Value};
 use crate::names::Names;
-use crate::payload::{ReadFail, read_payload};
+use crate::payload::{ReadFail, carry_of, read_payload};
 use crate::value::truncate;
 
 /// True for the header value that holds a CAN frame's id: it is shown as the frame's `can_id`.
@@ -241,13 +241,14 @@ fn payload_issue(command: &str, e: DecodeError) -> DecodeIssue {
 }
 
 /// Decodes the payload of struct `si` (or an empty one) for `command`, as `read_payload` and
-/// `from_bytes` do.
-fn read_struct_payload(
+/// `from_bytes` do, a carried packet shown as read in message `carry`.
+pub(crate) fn read_struct_payload(
     p: &Protocol,
     names: &Names,
     si: Option<usize>,
     command: &str,
     payload: &[u8],
+    carry: Option<usize>,
 ) -> Result<Value, DecodeIssue> {
     let Some(si) = si else {
         if payload.is_empty() {
@@ -259,7 +260,7 @@ fn read_struct_payload(
             actual: payload.len(),
         });
     };
-    read_payload(p, names, si, payload)
+    read_payload(p, names, si, payload, carry)
         .map(Value::Struct)
         .map_err(|e| match e {
             ReadFail::Runtime(e) => payload_issue(command, e),
@@ -310,7 +311,8 @@ pub fn decode(
         Carries::Struct(si) => {
             let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
             out.header = read_header(p, (names, fi), f, rules, frame)?;
-            out.payload = read_struct_payload(p, names, Some(si), &f.name, payload)?;
+            out.payload =
+                read_struct_payload(p, names, Some(si), &f.name, payload, carry_of(p, None))?;
         }
         Carries::CanCommand => {
             let key = rules.key(frame).map_err(DecodeIssue::Frame)?;
@@ -330,6 +332,7 @@ pub fn decode(
                 c.payloads.first().copied().flatten(),
                 &c.name,
                 payload,
+                carry_of(p, None),
             )?;
         }
         Carries::Command => {
@@ -350,8 +353,8 @@ pub fn decode(
                     let payload = rules
                         .payload_from(frame, start, scratch)
                         .map_err(DecodeIssue::Frame)?;
-                    out.payload =
-                        read_struct_payload(p, names, Some(si), &p.directions[d].name, payload)?;
+                    let name = &p.directions[d].name;
+                    out.payload = read_struct_payload(p, names, Some(si), name, payload, None)?;
                     return Ok(out);
                 }
             }
@@ -425,6 +428,7 @@ fn decode_command(
             .map_err(|e| payload_issue(&c.name, e))?,
         None => payload,
     };
-    out.payload = read_struct_payload(p, names, si, &c.name, payload)?;
+    let carry = carry_of(p, out.direction);
+    out.payload = read_struct_payload(p, names, si, &c.name, payload, carry)?;
     Ok(())
 }
