@@ -169,6 +169,7 @@ impl Interpreter {
             names: &self.names,
             frames,
             direction: None,
+            carried: true,
         }
     }
 }
@@ -190,6 +191,7 @@ pub struct Codec<'a> {
     names: &'a Names,
     frames: Vec<FrameParts<'a>>,
     direction: Option<usize>,
+    carried: bool,
 }
 
 impl Codec<'_> {
@@ -207,6 +209,16 @@ impl Codec<'_> {
     #[must_use]
     pub fn with_direction(mut self, direction: Option<usize>) -> Self {
         self.direction = direction;
+        self
+    }
+
+    /// This codec decoding a carrying field (`carries`) as the packet it carries (`true`, the
+    /// default: as generated code's `<field>_<direction>()` reads it), or as its bytes
+    /// (`false`: as the carrying struct holds them, and as the C peer reads them). Encoding
+    /// takes either form.
+    #[must_use]
+    pub fn with_carried_packets(mut self, carried: bool) -> Self {
+        self.carried = carried;
         self
     }
 
@@ -297,7 +309,8 @@ impl Codec<'_> {
         direction: Option<usize>,
     ) -> Result<Decoded, DecodeIssue> {
         self.with_rules(format, |rules| {
-            frame::decode(self.protocol, self.names, format, rules, frame, direction)
+            let read = (self.names, self.carried);
+            frame::decode(self.protocol, read, format, rules, frame, direction)
         })
         .unwrap_or(Err(DecodeIssue::Frame(DecodeError::Frame(
             protocol_runtime::Reject::BadHeader,

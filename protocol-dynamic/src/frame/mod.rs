@@ -280,16 +280,18 @@ pub(crate) fn read_struct_payload(
 /// Decodes a frame of format `fi` that the engine accepted (for a CAN format: its virtual
 /// frame) under the format's packet `rules`, as the generated packet of the format does;
 /// `given` is the direction the decoder is given, for a spec whose header does not tell it (as
-/// generated `from_<direction>_frame`).
+/// generated `from_<direction>_frame`). With `packets`, a carrying field shows the packet it
+/// carries, else its bytes.
 pub fn decode(
     p: &Protocol,
-    names: &Names,
+    (names, packets): (&Names, bool),
     fi: usize,
     rules: &PacketRules<'_>,
     frame: &[u8],
     given: Option<usize>,
 ) -> Result<Decoded, DecodeIssue> {
     let f = &p.frames[fi];
+    let carry = |direction| carry_of(p, direction).filter(|_| packets);
     let mut out = Decoded {
         format: fi,
         command: None,
@@ -311,8 +313,7 @@ pub fn decode(
         Carries::Struct(si) => {
             let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
             out.header = read_header(p, (names, fi), f, rules, frame)?;
-            out.payload =
-                read_struct_payload(p, names, Some(si), &f.name, payload, carry_of(p, None))?;
+            out.payload = read_struct_payload(p, names, Some(si), &f.name, payload, carry(None))?;
         }
         Carries::CanCommand => {
             let key = rules.key(frame).map_err(DecodeIssue::Frame)?;
@@ -332,7 +333,7 @@ pub fn decode(
                 c.payloads.first().copied().flatten(),
                 &c.name,
                 payload,
-                carry_of(p, None),
+                carry(None),
             )?;
         }
         Carries::Command => {
@@ -358,17 +359,18 @@ pub fn decode(
                     return Ok(out);
                 }
             }
-            decode_command(p, names, f, rules, frame, &mut out)?;
+            decode_command(p, (names, packets), f, rules, frame, &mut out)?;
         }
     }
     Ok(out)
 }
 
 /// The command a frame's dispatch key names, its direction (the given one, or the one its
-/// header tells) and its payload, zero-filled as the format's rules say.
+/// header tells) and its payload, zero-filled as the format's rules say (a carried packet
+/// shown with `packets`).
 fn decode_command(
     p: &Protocol,
-    names: &Names,
+    (names, packets): (&Names, bool),
     f: &Frame,
     rules: &PacketRules<'_>,
     frame: &[u8],
@@ -428,7 +430,7 @@ fn decode_command(
             .map_err(|e| payload_issue(&c.name, e))?,
         None => payload,
     };
-    let carry = carry_of(p, out.direction);
+    let carry = carry_of(p, out.direction).filter(|_| packets);
     out.payload = read_struct_payload(p, names, si, &c.name, payload, carry)?;
     Ok(())
 }
