@@ -222,6 +222,16 @@ impl Codec<'_> {
         self
     }
 
+    /// The packets the payload of decoded frame `d` carries, read from the bytes of its
+    /// carrying fields (`carries`, decoded [`with_carried_packets(false)`](Self::with_carried_packets))
+    /// in the direction of the frame, as generated code's `<field>_<direction>()` reads them:
+    /// per carrying field of the payload's struct, in field order, the command (an index into
+    /// the protocol's commands) and its payload, or why the bytes are not one. Empty for a
+    /// payload that carries none.
+    pub fn carried_packets(&self, d: &Decoded) -> Vec<Result<(usize, Value), DecodeIssue>> {
+        payload::carried_packets(self.protocol, self.names, d)
+    }
+
     /// The direction this codec is given ([`with_direction`](Self::with_direction)).
     pub fn direction(&self) -> Option<usize> {
         self.direction

@@ -23,6 +23,7 @@ use protocol_spec::ir::{FieldKind, Prim, Protocol, Struct, ValueType};
 use super::join;
 use super::write::{value_bytes, write_payload};
 use crate::error::{DecodeIssue, EncodeIssue};
+use crate::frame::Decoded;
 use crate::model::{Fields, Value};
 use crate::names::Names;
 
@@ -61,6 +62,35 @@ pub(super) fn show(p: &Protocol, names: &Names, s: &Struct, carry: usize, out: &
         };
         out.insert(field.as_str(), Value::Struct(shown));
     }
+}
+
+/// The packets the payload of decoded frame `d` carries in its carrying fields' bytes (see
+/// [`Codec::carried_packets`](crate::Codec::carried_packets)).
+pub(crate) fn carried_packets(
+    p: &Protocol,
+    names: &Names,
+    d: &Decoded,
+) -> Vec<Result<(usize, Value), DecodeIssue>> {
+    let si = d.command.and_then(|ci| {
+        let slot = d.direction.unwrap_or(0);
+        p.commands[ci].payloads.get(slot).copied().flatten()
+    });
+    let (Some(si), Some(carry), Some(fields)) =
+        (si, carry_of(p, d.direction), d.payload.as_struct())
+    else {
+        return Vec::new();
+    };
+    let s = &p.structs[si];
+    s.carries
+        .iter()
+        .filter_map(|c| {
+            let key = fields.get(&s.fields[c.key].name).and_then(Value::as_u64)?;
+            let bytes = fields
+                .get(&s.fields[c.field].name)
+                .and_then(Value::as_bytes)?;
+            Some(read_carried(p, names, carry, key, bytes))
+        })
+        .collect()
 }
 
 /// The command whose id `key` is and its payload read from `bytes` in message `carry`, as

@@ -18,7 +18,7 @@ mod kinds;
 mod read;
 mod write;
 
-pub(crate) use carried::carry_of;
+pub(crate) use carried::{carried_packets, carry_of};
 pub(crate) use read::read_register;
 pub use read::{ReadFail, read_payload};
 pub(crate) use write::value_bytes;
