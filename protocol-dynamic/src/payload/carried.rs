@@ -1,4 +1,4 @@
-//! A packet carried inside a payload (the IR's [`Carried`]): the run-time codec's counterpart
+//! A packet carried inside a payload (the IR's `Carried`): the run-time codec's counterpart
 //! of the `<field>_<direction>()` and `set_<field>_<direction>(..)` accessors generated code
 //! has (`protocol-codegen/src/codegen/dispatch/carried.rs`), executed where a carrying struct
 //! is read or written in a frame's payload.
