@@ -27,7 +27,7 @@ impl Codec<'_> {
     #[must_use]
     pub fn zero_payload(&self, si: usize) -> Option<Value> {
         let size = self.protocol.structs.get(si)?.min_size;
-        read_payload(self.protocol, self.names, si, &vec![0; size])
+        read_payload(self.protocol, self.names, si, &vec![0; size], None)
             .ok()
             .map(Value::Struct)
     }

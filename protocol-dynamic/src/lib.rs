@@ -181,6 +181,7 @@ impl Interpreter {
             frames,
             own,
             direction: None,
+            carried: true,
         }
     }
 }
@@ -204,6 +205,7 @@ pub struct Codec<'a> {
     /// Per direction, its own layout of the first format (`None`: it has none).
     own: Vec<Option<FrameParts<'a>>>,
     direction: Option<usize>,
+    carried: bool,
 }
 
 impl Codec<'_> {
@@ -222,6 +224,26 @@ impl Codec<'_> {
     pub fn with_direction(mut self, direction: Option<usize>) -> Self {
         self.direction = direction;
         self
+    }
+
+    /// This codec decoding a carrying field (`carries`) as the packet it carries (`true`, the
+    /// default: as generated code's `<field>_<direction>()` reads it), or as its bytes
+    /// (`false`: as the carrying struct holds them, and as the C peer reads them). Encoding
+    /// takes either form.
+    #[must_use]
+    pub fn with_carried_packets(mut self, carried: bool) -> Self {
+        self.carried = carried;
+        self
+    }
+
+    /// The packets the payload of decoded frame `d` carries, read from the bytes of its
+    /// carrying fields (`carries`, decoded [`with_carried_packets(false)`](Self::with_carried_packets))
+    /// in the direction of the frame, as generated code's `<field>_<direction>()` reads them:
+    /// per carrying field of the payload's struct, in field order, the command (an index into
+    /// the protocol's commands) and its payload, or why the bytes are not one. Empty for a
+    /// payload that carries none.
+    pub fn carried_packets(&self, d: &Decoded) -> Vec<Result<(usize, Value), DecodeIssue>> {
+        payload::carried_packets(self.protocol, self.names, d)
     }
 
     /// The direction this codec is given ([`with_direction`](Self::with_direction)).
@@ -332,7 +354,8 @@ impl Codec<'_> {
         direction: Option<usize>,
     ) -> Result<Decoded, DecodeIssue> {
         self.with_rules_in(format, direction, |rules| {
-            frame::decode(self.protocol, self.names, format, rules, frame, direction)
+            let read = (self.names, self.carried);
+            frame::decode(self.protocol, read, format, rules, frame, direction)
         })
         .unwrap_or(Err(DecodeIssue::Frame(DecodeError::Frame(
             protocol_runtime::Reject::BadHeader,

@@ -2,7 +2,8 @@
  * line, and prints one line per result, in the text the Rust side prints for the same input.
  *
  *   P FI HEX           decode HEX as a frame of format FI; print `ok TEXT` or `err NAME`,
- *                      then the frame the packet encodes to (`enc HEX`, or `enc err`)
+ *                      then each packet it carries (`carried ok TEXT` or `carried err
+ *                      NAME`) and the frame the packet encodes to (`enc HEX`, or `enc err`)
  *   D FI DIR HEX       as `P`, the frame sent in direction DIR (a spec whose decoder is
  *                      given the direction)
  *   C FI EXT ID HEX    decode the CAN frame of id ID (extended when EXT is 1) and data HEX
@@ -16,7 +17,8 @@
  * direction and stream decoders, each item
  * X(index, lower-case prefix, upper-case prefix); per format FI, ESCAPED_FI (1 when it escapes
  * its bytes between flags) and UNESCAPE_FI(wire, len, out, cap) (its `unescape`, or -1); and
- * NO_DECODERS for a spec without stream decoder (a CAN-only link). */
+ * NO_DECODERS for a spec without stream decoder (a CAN-only link). `carried.h` defines, per
+ * format FI, `carried_FI()`, which prints the packets a decoded packet carries. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -86,8 +88,13 @@ static void put_hex(const uint8_t *b, size_t n)
         }                                                                                       \
     } while (0)
 
+/* Per format FI, `carried_FI(packet)`: the packets a decoded packet's carrying fields carry,
+ * one line each (`carried ok TEXT` or `carried err NAME`). */
+#include "carried.h"
+
 /* Per frame format FI (`FORMATS` of `spec.h`): `ok TEXT` or `err NAME`; with `encode` (bytes
- * as sent, not a stream decoder's frame), the frame the packet encodes to. A format that
+ * as sent, not a stream decoder's frame), the packets it carries and the frame the packet
+ * encodes to. A format that
  * escapes its bytes decodes bytes as sent with `decode`, and with `decode_frame` once
  * unescaped; a stream decoder's frame is unescaped already, and `decode_frame` reads it. An
  * escaped frame takes up to twice MAX_FRAME_LEN bytes. */
@@ -110,6 +117,7 @@ static void put_hex(const uint8_t *b, size_t n)
         printf("ok %s\n", text);                                                                \
         same_as_decode(trusted, &pk_frame, lo##format);                                         \
         if (!encode) return;                                                                    \
+        carried_##fi(&pk);                                                                      \
         len = lo##encode(&pk, out, sizeof out);                                                 \
         if (len < 0) {                                                                          \
             printf("enc err\n");                                                                \

@@ -110,6 +110,8 @@ pub struct Expected<'p> {
     /// The dissector's protocol name.
     name: &'p str,
     out: Vec<(String, Value, Option<u32>)>,
+    /// The direction a carried packet is read in (0 for a spec without directions).
+    carry: usize,
 }
 
 impl Expected<'_> {
@@ -181,6 +183,28 @@ impl Expected<'_> {
             FieldKind::Packed { scale, .. } => {
                 for item in v[name].as_array().into_iter().flatten() {
                     self.push(abbrev.to_string(), item, scale.as_ref().map(scaled_digits));
+                }
+            }
+            // A carried packet `decode` read: its command and payload, which the dissector shows
+            // in a subtree; one it could not read, its bytes.
+            FieldKind::Bytes { .. } if v[name].is_object() => {
+                let carried = &v[name];
+                match carried["command"].as_str() {
+                    Some(c) => {
+                        self.push(format!("{}.command", self.name), &carried["command"], None);
+                        let ci = self.p.commands.iter().position(|x| x.name == c);
+                        let si = ci.and_then(|ci| {
+                            self.p.commands[ci]
+                                .payloads
+                                .get(self.carry)
+                                .copied()
+                                .flatten()
+                        });
+                        if let Some(si) = si {
+                            self.structure(si, &carried["payload"]);
+                        }
+                    }
+                    None => self.push(abbrev.to_string(), &carried["bytes"], None),
                 }
             }
             FieldKind::Bytes { .. } | FieldKind::NulText { .. } => {
@@ -264,6 +288,22 @@ pub struct Tally {
     pub fields: usize,
 }
 
+/// The direction of a frame `decode` printed: the one it names (a direction the decoder is
+/// given), else the one whose header value equals its constant.
+fn frame_direction(p: &Protocol, frame: &Value) -> Option<usize> {
+    if let Some(d) = frame.get("direction").and_then(Value::as_str) {
+        return p.directions.iter().position(|x| x.name == d);
+    }
+    p.directions.iter().position(|d| match d.rule {
+        protocol_spec::ir::DirectionRule::Equals { value, equals } => p
+            .frames
+            .first()
+            .and_then(|f| f.values.get(value))
+            .is_some_and(|v| frame["header"][&v.name].as_u64() == Some(equals)),
+        _ => false,
+    })
+}
+
 /// Compares one frame `decode` printed with the frame the dissector (protocol `name`) showed:
 /// every value `decode` prints must be the value of the dissector's field of that name, in order.
 /// `direction` is the direction given to both. Returns the number of values compared.
@@ -280,6 +320,7 @@ pub fn check_frame(
         p,
         name,
         out: Vec::new(),
+        carry: 0,
     };
     let format = frame["format"].as_str().unwrap_or("");
     for (k, v) in frame["header"].as_object().into_iter().flatten() {
@@ -297,6 +338,7 @@ pub fn check_frame(
             .unwrap_or(0);
         p.commands[ci].payloads.get(slot).copied().flatten()
     });
+    expected.carry = frame_direction(p, frame).unwrap_or(0);
     // A format without dispatch key carries one struct in every frame.
     let si = si.or_else(|| {
         p.frames

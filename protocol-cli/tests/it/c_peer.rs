@@ -40,7 +40,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use protocol_dynamic::{Codec, DecodeIssue, Interpreter, Item, Value};
 use protocol_runtime::CanFrame;
 use protocol_spec::ir::{
-    Command as Cmd, Direction, DirectionRule, Frame, PacketKind, Protocol, Transport,
+    Command as Cmd, Direction, DirectionRule, Frame, PacketKind, Prim, Protocol, Role, Transport,
 };
 use protocol_spec::layout::word_field;
 
@@ -176,12 +176,58 @@ fn describe(
     value_text(&mut text, "payload", &d.payload);
     let mut out = vec![text];
     if encode {
+        out.extend(carried_lines(codec, &d));
         out.push(match codec.encode(&codec.frame_value(&d, 0, bytes)) {
             Ok(e) => format!("enc {}", hex(&e.bytes)),
             Err(_) => "enc err".into(),
         });
     }
     out
+}
+
+/// The packets a decoded frame's payload carries, as the driver's `carried_FI`: `carried ok
+/// TEXT` (the packet read into a packet of the format that carries every command, its header
+/// zeroed) or `carried err NAME`.
+fn carried_lines(codec: &Codec<'_>, d: &protocol_dynamic::Decoded) -> Vec<String> {
+    let p = codec.protocol();
+    let carried = codec.carried_packets(d);
+    let Some(fi) = protocol_codegen::c::carried_format(p).filter(|_| !carried.is_empty()) else {
+        return Vec::new();
+    };
+    let f = &p.frames[fi];
+    carried
+        .into_iter()
+        .map(|read| {
+            let (ci, payload) = match read {
+                Ok(read) => read,
+                Err(e) => {
+                    let name = protocol_codegen::c::error_name(&e.to_runtime());
+                    return format!("carried err {name}");
+                }
+            };
+            let mut text = format!("carried ok cmd={}", p.commands[ci].name);
+            if let Some(di) = d.direction {
+                write!(text, " dir={}", p.directions[di].name).unwrap();
+            }
+            for v in f
+                .values
+                .iter()
+                .filter(|v| matches!(v.role, Role::User { .. }))
+            {
+                let zero = if v.prim == Prim::Bool {
+                    Value::Bool(false)
+                } else {
+                    Value::UInt(0)
+                };
+                value_text(&mut text, &format!("header.{}", v.name), &zero);
+            }
+            if let Some(t) = &f.flag_trailer {
+                value_text(&mut text, &format!("header.{}", t.name), &Value::Null);
+            }
+            value_text(&mut text, "payload", &payload);
+            text
+        })
+        .collect()
 }
 
 fn rust_frame(codec: &Codec<'_>, format: usize, bytes: &[u8]) -> Vec<String> {
@@ -1070,6 +1116,7 @@ fn build(p: &Protocol, files: &protocol_codegen::c::CFiles, dir: &Path) -> PathB
         ),
     )
     .unwrap();
+    std::fs::write(dir.join("carried.h"), carried_header(p)).unwrap();
     let with_format = format!("-D{}_WITH_FORMAT", p.name.to_uppercase());
     let compilers = compilers();
     assert!(
@@ -1112,6 +1159,76 @@ fn build(p: &Protocol, files: &protocol_codegen::c::CFiles, dir: &Path) -> PathB
         dir,
     );
     exe
+}
+
+/// `carried.h`: per format FI, `carried_FI()`, which reads each packet a decoded packet's
+/// carrying fields carry with the C's reader, and prints it by the text form of the format it
+/// is read into (`carried ok TEXT`) or its error (`carried err NAME`).
+fn carried_header(p: &Protocol) -> String {
+    let mut out = String::new();
+    let target = protocol_codegen::c::carried_format(p);
+    for fi in 0..p.frames.len() {
+        let (lo, _) = prefixes(p, fi);
+        let mut body = String::new();
+        let Some(to) = target else {
+            writeln!(
+                out,
+                "static void carried_{fi}(const {lo}packet *pk) {{ (void)pk; }}"
+            )
+            .unwrap();
+            continue;
+        };
+        let (tlo, _) = prefixes(p, to);
+        for &ci in &p.frames[fi].commands {
+            let c = &p.commands[ci];
+            for (di, si) in c.payloads.iter().enumerate() {
+                let Some(s) = si.map(|si| &p.structs[si]) else {
+                    continue;
+                };
+                let (member, test) = match p.directions.get(di) {
+                    Some(d) => (
+                        format!("{}_{}", c.name.to_lowercase(), d.name),
+                        format!(
+                            "pk->command == U({}) && pk->direction == U({})",
+                            c.name,
+                            d.name.to_uppercase()
+                        ),
+                    ),
+                    None => (
+                        c.name.to_lowercase(),
+                        format!("pk->command == U({})", c.name),
+                    ),
+                };
+                let direction = if p.directions.is_empty() {
+                    ""
+                } else {
+                    "pk->direction, "
+                };
+                for carried in &s.carries {
+                    let reader = protocol_codegen::c::carried_reader(p, s, carried);
+                    writeln!(
+                        body,
+                        "    if ({test}) {{\n        e = {reader}(&pk->payload.{member}, {direction}&out);\n        if (e != 0) {{\n            printf(\"carried err %s\\n\", err_name(e));\n        }} else {{\n            {tlo}format(&out, text, sizeof text);\n            printf(\"carried ok %s\\n\", text);\n        }}\n    }}"
+                    )
+                    .unwrap();
+                }
+            }
+        }
+        if body.is_empty() {
+            writeln!(
+                out,
+                "static void carried_{fi}(const {lo}packet *pk) {{ (void)pk; }}"
+            )
+            .unwrap();
+        } else {
+            writeln!(
+                out,
+                "static void carried_{fi}(const {lo}packet *pk)\n{{\n    static {tlo}packet out;\n    int e = 0;\n{body}    (void)e;\n}}"
+            )
+            .unwrap();
+        }
+    }
+    out
 }
 
 fn run_driver(exe: &Path, input: &str) -> Vec<String> {
@@ -1207,7 +1324,9 @@ fn check_spec(path: &Path, random_frames: usize) -> (String, String) {
         .to_string();
     let interp = Interpreter::load(path).expect("a valid spec");
     let p = interp.protocol();
-    let codec = interp.codec();
+    // The C peer's structs hold a carrying field's bytes, as the Rust structs do: compared
+    // with the codec's view of the same bytes.
+    let codec = interp.codec().with_carried_packets(false);
     let files = match protocol_codegen::c::generate(p) {
         Ok(files) => files,
         Err(refused) => return (shown, format!("refused: {}", refused.join("; "))),
@@ -1226,7 +1345,10 @@ fn check_spec(path: &Path, random_frames: usize) -> (String, String) {
     // For a spec whose decoder is given the direction, a codec per direction.
     let given: Vec<Codec<'_>> = if p.directions_given() {
         (0..p.directions.len())
-            .map(|d| interp.codec().with_direction(Some(d)))
+            .map(|d| {
+                let codec = interp.codec().with_carried_packets(false);
+                codec.with_direction(Some(d))
+            })
             .collect()
     } else {
         Vec::new()

@@ -168,13 +168,15 @@ fn every_spec_dissects_as_decode_decodes() {
 /// The feature fixtures with golden frames of their own whose field kinds the bundled specs do
 /// not use: number formats (scaled floats, 40- to 56-bit integers, halves), inverted bools, bit
 /// streams with signed and scaled members of up to 38 bits, and byte escaping between flags as
-/// HDLC (an XOR) and SLIP (a table) do it (the frames compared unescaped, as decode prints them).
+/// HDLC (an XOR) and SLIP (a table) do it (the frames compared unescaped, as decode prints them),
+/// and a packet carried in a payload (the carried command and its payload's fields).
 const FIXTURES: &[&str] = &[
     "number_formats",
     "inverted_bool",
     "bit_stream",
     "escaped_hdlc",
     "escaped_slip",
+    "nested_packets",
 ];
 
 #[test]

@@ -61,6 +61,7 @@ ${fields}} ${ty};
     for fi in 0..p.frames.len() {
         super::packet::prototypes(p, n, &Fx::new(p, fi), &mut out);
     }
+    out.push_str(&super::carried::prototypes(p, n));
     out.push_str(&fill!(
         r"
 #ifdef __cplusplus

@@ -19,6 +19,7 @@
 //!   parameters), the probe of a candidate, a decoder of one frame's bytes and an encoder per
 //!   command into the caller's buffer (`frame`, `checks`);
 //! * the stream decoders, with the runtime engine's rules over a fixed buffer (`engine`);
+//! * a reader of the packet a carrying field carries (`carried`);
 //! * optionally (`<PREFIX>_WITH_FORMAT`), a text form of a packet, with `snprintf` (`format`).
 //!
 //! A spec with several frame formats gets the items of a format (sizes, header and packet
@@ -39,10 +40,11 @@
 //!
 //! Each module uses only modules after it in this order, so no two import each other:
 //! `header`, `packet`, `engine`, `lookups`, `format`, `frame` (its `probe`, `decode`,
-//! `encode`, then `rules`, then `wire`), `payload`, `fields`, `values`, `checks`, `scale`,
+//! `encode`, then `rules`, then `wire`), `carried`, `payload`, `fields`, `values`, `checks`, `scale`,
 //! `prelude`, `support`, `shape`, `names`, `template`. The main lines: `header` → `packet`;
 //! `payload` → `fields` → `values` → `prelude`, `scale`; the printers → `shape` → `names`.
 
+mod carried;
 mod checks;
 mod engine;
 mod fields;
@@ -62,6 +64,7 @@ mod support;
 mod template;
 mod values;
 
+pub use carried::{carried_format, carried_reader};
 pub use support::unsupported;
 
 use protocol_runtime::DecodeError;
@@ -119,6 +122,7 @@ pub fn generate(p: &Protocol) -> Result<CFiles, Vec<String>> {
     source.push_str(&checks::payload_checks(p, &n));
     source.push_str(&payload::payloads(p, &n));
     source.push_str(&frame::frame(p, &n));
+    source.push_str(&carried::readers(p, &n));
     source.push_str(&engine::engine(p, &n));
     source.push_str(&format::format(p, &n));
     Ok(CFiles {

@@ -78,6 +78,12 @@ pub fn unsupported(p: &Protocol) -> Vec<String> {
             }
         }
     }
+    // A carried packet is read into the packet of a format that carries every command.
+    if p.structs.iter().any(|s| !s.carries.is_empty())
+        && super::carried::carried_format(p).is_none()
+    {
+        out.push("a carried packet (`carries`) where no frame format carries every command".into());
+    }
     for s in &p.structs {
         for field in &s.fields {
             if let Some(why) = kind_refused(p, &field.kind) {

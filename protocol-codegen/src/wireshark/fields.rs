@@ -221,7 +221,15 @@ impl StructPrinter<'_> {
                     Some(n) => format!(", size_from = {}", lua::string(n)),
                     None => format!(", keep = {}", s.bytes_after(i)),
                 };
-                format!("{{ kind = \"bytes\", max = {max}{sized}, pf = {pf} }}")
+                // A packet carried in the bytes: the field that holds its command's id.
+                let carries = s
+                    .carries
+                    .iter()
+                    .find(|c| c.field == i)
+                    .map_or(String::new(), |c| {
+                        format!(", carries = {}", lua::string(&s.fields[c.key].name))
+                    });
+                format!("{{ kind = \"bytes\", max = {max}{sized}{carries}, pf = {pf} }}")
             }
             FieldKind::Group { elem, max } => format!(
                 "{{ kind = \"group\", name = {name}, elem = {}, max = {max} }}",

@@ -8,7 +8,8 @@
 //! `fields`), and a fixed engine (`lua/*.lua`, printed as it is) executes the tables as the
 //! runtime's engine executes its layouts: the checks (every checksum, and any CRC of up to 32
 //! bits from its parameters), the framing (an escaped link cut at its flags and unescaped), the
-//! payload reader (bit members read bit by bit, exact to 64 bits), the packet rules and the
+//! payload reader (bit members read bit by bit, exact to 64 bits; a packet carried in a
+//! payload read one level in a subtree of its bytes), the packet rules and the
 //! registration (a user link type for raw serial captures, UDP and TCP ports from the
 //! preferences, SocketCAN frames for a CAN format).
 //!
@@ -195,8 +196,13 @@ fn spec_table(p: &Protocol, structs: &[String], formats: &[String]) -> String {
                 .iter()
                 .map(|s| s.map_or("false".to_string(), |si| (si + 1).to_string()))
                 .collect();
+            // A command told by one id: the id a carried packet names it by.
+            let id = match c.id.as_slice() {
+                [id] => format!(", id = {id}"),
+                _ => String::new(),
+            };
             format!(
-                "  {{ name = {}, payloads = {{ {} }} }},",
+                "  {{ name = {}, payloads = {{ {} }}{id} }},",
                 lua::string(&c.name),
                 payloads.join(", ")
             )
@@ -206,7 +212,10 @@ fn spec_table(p: &Protocol, structs: &[String], formats: &[String]) -> String {
     format!(
         "local SPEC = {{\n  title = {},\n  link = {{ {} }},\n  can_format = {can},\n  \
          directions = {{ {} }},\n  directions_given = {},\n  direction_messages = {{ {} }},\n}}\n\
-         SPEC.commands = {{\n{}\n}}\nSPEC.structs = {{\n{}\n}}\nSPEC.formats = {{\n{}\n}}\n",
+         SPEC.commands = {{\n{}\n}}\nSPEC.structs = {{\n{}\n}}\nSPEC.formats = {{\n{}\n}}\n\
+         -- The commands by the id a carried packet names them by.\n\
+         SPEC.command_by_id = {{}}\n\
+         for ci, c in ipairs(SPEC.commands) do\n  if c.id then SPEC.command_by_id[c.id] = ci end\nend\n",
         lua::string(&p.name.to_uppercase()),
         link.join(", "),
         directions.join(", "),

@@ -18,7 +18,7 @@ use super::{carried, is_can_id, parse_hex};
 use crate::error::EncodeIssue;
 use crate::layout::word_field;
 use crate::model::{Fields, Value};
-use crate::payload::{value_bytes, write_payload};
+use crate::payload::{carry_of, value_bytes, write_payload};
 use crate::value::{NumError, truncate, value_bits};
 
 /// The command a frame value names: `command` (spec or Rust name), else its `id` or `can_id`.
@@ -116,18 +116,22 @@ fn flagged_trailer(f: &Frame, obj: &Fields) -> Result<Option<Vec<u8>>, EncodeIss
     }
 }
 
-/// What a frame value carries: a command (its index, payload struct and the direction its
-/// header tells), acknowledgement data, a struct, or raw bytes.
+/// What a frame value carries: a command (its index, payload struct, the direction its
+/// header tells and the message its payload is in), acknowledgement data, a struct, or raw
+/// bytes.
 enum Carried {
     Command {
         ci: usize,
         si: Option<usize>,
         direction: Option<usize>,
+        carry: Option<usize>,
     },
     Ack,
-    Message(usize),
-    /// A struct a direction carries in place of the dispatch key, from this header length.
-    Keyless(usize, usize),
+    /// A struct, and the message a packet it carries is in.
+    Message(usize, Option<usize>),
+    /// A struct a direction carries in place of the dispatch key, from this header length (a
+    /// packet it carries is in no message: validation keeps carriers from such specs).
+    Keyless(usize, usize, Option<usize>),
     Raw,
 }
 
@@ -208,8 +212,8 @@ pub fn encode(
             direction,
         },
         Carried::Ack => Body::Ack,
-        Carried::Keyless(_, start) => Body::Struct { start },
-        Carried::Message(_) | Carried::Raw => Body::Struct {
+        Carried::Keyless(_, start, _) => Body::Struct { start },
+        Carried::Message(..) | Carried::Raw => Body::Struct {
             start: rules.header_len,
         },
     };
@@ -286,7 +290,7 @@ fn carried_by(
         Carries::Command if p.directions_given() => {
             let d = given_direction(p, obj, given)?;
             Ok(match p.directions[d].message {
-                Some((si, start)) => Carried::Keyless(si, start),
+                Some((si, start)) => Carried::Keyless(si, start, None),
                 None => {
                     let ci = command_of(p, false, obj)?;
                     let si = p.commands[ci].payloads.get(d).copied().flatten();
@@ -294,6 +298,7 @@ fn carried_by(
                         ci,
                         si,
                         direction: None,
+                        carry: Some(d),
                     }
                 }
             })
@@ -325,9 +330,14 @@ fn carried_by(
                 .get(direction.unwrap_or(0))
                 .copied()
                 .flatten();
-            Ok(Carried::Command { ci, si, direction })
+            Ok(Carried::Command {
+                ci,
+                si,
+                direction,
+                carry: carry_of(p, direction),
+            })
         }
-        Carries::Struct(si) => Ok(Carried::Message(si)),
+        Carries::Struct(si) => Ok(Carried::Message(si, carry_of(p, None))),
         Carries::Bytes => Ok(Carried::Raw),
     }
 }
@@ -429,10 +439,16 @@ fn write_body(
                 ));
             }
         }
-        Carried::Command { si: Some(si), .. } | Carried::Message(si) | Carried::Keyless(si, _) => {
+        Carried::Command {
+            si: Some(si),
+            carry,
+            ..
+        }
+        | Carried::Message(si, carry)
+        | Carried::Keyless(si, _, carry) => {
             let v = payload.ok_or_else(|| EncodeIssue::missing("payload"))?;
             // The only error without a path is the writer's: the payload does not fit.
-            write_payload(p, si, v, &mut w, "payload").map_err(|e| {
+            write_payload(p, si, v, &mut w, "payload", carry).map_err(|e| {
                 if e.path.is_empty() {
                     too_large(EncodeError::BufferTooSmall {
                         needed: room + 1,

@@ -25,7 +25,7 @@ use crate::error::DecodeIssue;
 use crate::layout::word_field;
 use crate::model::{Fields, Value};
 use crate::names::Names;
-use crate::payload::{ReadFail, read_payload};
+use crate::payload::{ReadFail, carry_of, read_payload};
 use crate::value::truncate;
 
 /// True for the header value that holds a CAN frame's id: it is shown as the frame's `can_id`.
@@ -241,13 +241,14 @@ fn payload_issue(command: &str, e: DecodeError) -> DecodeIssue {
 }
 
 /// Decodes the payload of struct `si` (or an empty one) for `command`, as `read_payload` and
-/// `from_bytes` do.
-fn read_struct_payload(
+/// `from_bytes` do, a carried packet shown as read in message `carry`.
+pub(crate) fn read_struct_payload(
     p: &Protocol,
     names: &Names,
     si: Option<usize>,
     command: &str,
     payload: &[u8],
+    carry: Option<usize>,
 ) -> Result<Value, DecodeIssue> {
     let Some(si) = si else {
         if payload.is_empty() {
@@ -259,7 +260,7 @@ fn read_struct_payload(
             actual: payload.len(),
         });
     };
-    read_payload(p, names, si, payload)
+    read_payload(p, names, si, payload, carry)
         .map(Value::Struct)
         .map_err(|e| match e {
             ReadFail::Runtime(e) => payload_issue(command, e),
@@ -279,10 +280,11 @@ fn read_struct_payload(
 /// Decodes a frame of format `fi` that the engine accepted (for a CAN format: its virtual
 /// frame) under the format's packet `rules`, as the generated packet of the format does;
 /// `given` is the direction the decoder is given, for a spec whose header does not tell it (as
-/// generated `from_<direction>_frame`).
+/// generated `from_<direction>_frame`). With `packets`, a carrying field shows the packet it
+/// carries, else its bytes.
 pub fn decode(
     p: &Protocol,
-    names: &Names,
+    (names, packets): (&Names, bool),
     fi: usize,
     rules: &PacketRules<'_>,
     frame: &[u8],
@@ -296,6 +298,7 @@ pub fn decode(
             protocol_runtime::Reject::BadHeader,
         )));
     };
+    let carry = |direction| carry_of(p, direction).filter(|_| packets);
     let mut out = Decoded {
         format: fi,
         command: None,
@@ -317,7 +320,7 @@ pub fn decode(
         Carries::Struct(si) => {
             let payload = rules.payload(frame, scratch).map_err(DecodeIssue::Frame)?;
             out.header = read_header(p, (names, fi, own), f, rules, frame)?;
-            out.payload = read_struct_payload(p, names, Some(si), &f.name, payload)?;
+            out.payload = read_struct_payload(p, names, Some(si), &f.name, payload, carry(None))?;
         }
         Carries::CanCommand => {
             let key = rules.key(frame).map_err(DecodeIssue::Frame)?;
@@ -337,6 +340,7 @@ pub fn decode(
                 c.payloads.first().copied().flatten(),
                 &c.name,
                 payload,
+                carry(None),
             )?;
         }
         Carries::Command => {
@@ -357,22 +361,23 @@ pub fn decode(
                     let payload = rules
                         .payload_from(frame, start, scratch)
                         .map_err(DecodeIssue::Frame)?;
-                    out.payload =
-                        read_struct_payload(p, names, Some(si), &p.directions[d].name, payload)?;
+                    let name = &p.directions[d].name;
+                    out.payload = read_struct_payload(p, names, Some(si), name, payload, None)?;
                     return Ok(out);
                 }
             }
-            decode_command(p, names, f, rules, frame, &mut out)?;
+            decode_command(p, (names, packets), f, rules, frame, &mut out)?;
         }
     }
     Ok(out)
 }
 
 /// The command a frame's dispatch key names, its direction (the given one, or the one its
-/// header tells) and its payload, zero-filled as the format's rules say.
+/// header tells) and its payload, zero-filled as the format's rules say (a carried packet
+/// shown with `packets`).
 fn decode_command(
     p: &Protocol,
-    names: &Names,
+    (names, packets): (&Names, bool),
     f: &Frame,
     rules: &PacketRules<'_>,
     frame: &[u8],
@@ -432,6 +437,7 @@ fn decode_command(
             .map_err(|e| payload_issue(&c.name, e))?,
         None => payload,
     };
-    out.payload = read_struct_payload(p, names, si, &c.name, payload)?;
+    let carry = carry_of(p, out.direction).filter(|_| packets);
+    out.payload = read_struct_payload(p, names, si, &c.name, payload, carry)?;
     Ok(())
 }

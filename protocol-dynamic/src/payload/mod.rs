@@ -8,14 +8,17 @@
 //! nested structs are structs, arrays and repeated groups are arrays, bytes are bytes, an
 //! optional field that is absent is `Null`, enums are their spec name (the number when unknown
 //! and kept), scaled fields their physical value, bitfield members their own fields; padding
-//! does not appear. Each field kind is read and written by its module in `kinds`; a struct's
+//! does not appear; a carrying field (`carries`) read with a frame is the packet it carries
+//! ([`carried`]). Each field kind is read and written by its module in `kinds`; a struct's
 //! walk is in [`read`] and [`write`].
 
+mod carried;
 mod check;
 mod kinds;
 mod read;
 mod write;
 
+pub(crate) use carried::{carried_packets, carry_of};
 pub(crate) use read::read_register;
 pub use read::{ReadFail, read_payload};
 pub(crate) use write::value_bytes;

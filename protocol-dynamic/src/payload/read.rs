@@ -32,7 +32,8 @@ impl From<DecodeError> for ReadFail {
 
 /// Reads exactly `bytes` as struct `si`, as generated `Payload::from_bytes` does: an early
 /// end is a `PayloadLength` with the struct's smallest size, bytes left over a
-/// `PayloadLength` with the bytes read.
+/// `PayloadLength` with the bytes read. A carrying field shows the packet it carries in
+/// message `carry` (`None`: its bytes).
 ///
 /// # Errors
 /// [`ReadFail`] as generated code fails on the same bytes.
@@ -41,9 +42,10 @@ pub fn read_payload(
     names: &Names,
     si: usize,
     bytes: &[u8],
+    carry: Option<usize>,
 ) -> Result<Fields, ReadFail> {
     let mut r = Reader::new(bytes);
-    let value = read_struct(p, names, si, &mut r, &Path::Root).map_err(|e| match e {
+    let value = read_struct(p, (names, carry), si, &mut r, &Path::Root).map_err(|e| match e {
         ReadFail::Runtime(DecodeError::Truncated { .. }) => {
             ReadFail::Runtime(DecodeError::PayloadLength {
                 expected: p.structs[si].min_size,
@@ -79,10 +81,11 @@ impl std::fmt::Display for Path<'_> {
     }
 }
 
-/// Reads struct `si` at the reader's position (`Payload::read`).
+/// Reads struct `si` at the reader's position (`Payload::read`), its carrying fields shown as
+/// the packets they carry in message `carry`.
 fn read_struct(
     p: &Protocol,
-    names: &Names,
+    (names, carry): (&Names, Option<usize>),
     si: usize,
     r: &mut Reader<'_>,
     path: &Path<'_>,
@@ -96,11 +99,15 @@ fn read_struct(
         size: s.size,
         path,
         owner: None,
+        carry,
     };
     for ((i, f), fnames) in s.fields.iter().enumerate().zip(names.fields(si)) {
         let start = r.clone();
         kinds::of(&f.kind).read_in(p, s, i, fnames, &spans, r, &at, &mut out)?;
         spans.push((start, r.position()));
+    }
+    if let Some(carry) = carry.filter(|_| !s.carries.is_empty()) {
+        super::carried::show(p, names, s, carry, &mut out);
     }
     Ok(out)
 }
@@ -157,7 +164,7 @@ pub(super) fn read_member_bits(
 
 pub(super) fn read_elem(
     p: &Protocol,
-    names: &Names,
+    (names, carry): (&Names, Option<usize>),
     ty: &ValueType,
     r: &mut Reader<'_>,
     path: &Path<'_>,
@@ -171,7 +178,7 @@ pub(super) fn read_elem(
             scalar,
             scale: Some(sc),
         } => physical_value(read_scalar(r, *scalar)?.as_f64(), sc)?,
-        ValueType::Struct(si) => Value::Struct(read_struct(p, names, *si, r, path)?),
+        ValueType::Struct(si) => Value::Struct(read_struct(p, (names, carry), *si, r, path)?),
         ValueType::Enum(ei, scalar) => {
             let raw = read_scalar(r, *scalar)?;
             enum_value(

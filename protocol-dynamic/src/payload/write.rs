@@ -17,7 +17,8 @@ pub(super) fn issue(path: &str, e: NumError) -> EncodeIssue {
     }
 }
 
-/// Writes struct `si` from a struct value (a payload, or a nested struct of one).
+/// Writes struct `si` from a struct value (a payload, or a nested struct of one); a carrying
+/// field may give the packet it carries in message `carry` (`None`: only its bytes).
 ///
 /// # Errors
 /// [`EncodeIssue`] naming the first missing, ill-typed, out-of-range or unknown value.
@@ -27,17 +28,32 @@ pub fn write_payload(
     v: &Value,
     w: &mut Writer<'_>,
     path: &str,
+    carry: Option<usize>,
 ) -> Result<(), EncodeIssue> {
     let s = &p.structs[si];
     let obj = v.as_struct().ok_or_else(|| {
         EncodeIssue::new(path, format!("expected an object (struct `{}`)", s.name))
     })?;
     check_keys(s, obj, path)?;
+    let sealed;
+    let obj = match carry.filter(|_| !s.carries.is_empty()) {
+        Some(carry) => {
+            sealed = super::carried::seal(p, s, obj, carry, path)?;
+            &sealed
+        }
+        None => obj,
+    };
+    let at = kinds::WriteAt {
+        obj,
+        path,
+        owner: obj,
+        carry,
+    };
     // Per field written: where it starts and ends.
     let mut spans: Vec<(usize, usize)> = Vec::with_capacity(s.fields.len());
     for (i, f) in s.fields.iter().enumerate() {
         let start = w.position();
-        kinds::of(&f.kind).write_in(p, s, i, &spans, obj, w, path)?;
+        kinds::of(&f.kind).write_in(p, s, i, &spans, &at, w)?;
         spans.push((start, w.position()));
     }
     Ok(())
@@ -151,6 +167,7 @@ pub(super) fn write_elem(
     v: &Value,
     w: &mut Writer<'_>,
     path: &str,
+    carry: Option<usize>,
 ) -> Result<(), EncodeIssue> {
     let buffer = |e| EncodeIssue::runtime(e);
     match ty {
@@ -168,7 +185,7 @@ pub(super) fn write_elem(
             let bits = scaled_raw(*scalar, sc, v, path)?;
             write_bits(w, *scalar, bits).map_err(buffer)
         }
-        ValueType::Struct(si) => write_payload(p, *si, v, w, path),
+        ValueType::Struct(si) => write_payload(p, *si, v, w, path, carry),
         ValueType::Enum(ei, scalar) => {
             let raw = enum_raw(&p.enums[*ei], v, path)?;
             write_bits(w, *scalar, raw).map_err(buffer)

@@ -26,6 +26,7 @@ mod registry;
 mod async_io;
 mod bit_stream;
 mod can_frames;
+mod carried_codec;
 mod catalogue;
 mod check_vectors;
 mod crsf_parser;

@@ -18,7 +18,7 @@ use protocol_dynamic::Interpreter;
 use protocol_kit::{DecodeError, EncodeError};
 use protocol_tests::{F, assert_link_stream_at_every_chunk_size, hex};
 
-mod fixture {
+pub(crate) mod fixture {
     protocol_kit::protocol!("../protocol-codegen/tests/features/nested_packets.toml");
 }
 use fixture::nested_packets::{

@@ -90,7 +90,7 @@ local function payload_of(fmt, si, buf, from, to)
   return pbuf, plen, (fmt.stuffing or fill) and true
 end
 
-local function add_payload(si, pbuf, plen, new, tvb, from, pinfo, tree)
+local function add_payload(si, pbuf, plen, new, tvb, from, pinfo, tree, carry)
   local ptvb
   if new then
     ptvb = byte_array(pbuf, plen):tvb("Payload")
@@ -102,7 +102,7 @@ local function add_payload(si, pbuf, plen, new, tvb, from, pinfo, tree)
     return
   end
   local sub = tree:add(proto, ptvb(), "payload: " .. SPEC.structs[si].name)
-  read_payload(si, ptvb, pbuf, plen, sub)
+  read_payload(si, ptvb, pbuf, plen, sub, carry)
 end
 
 -- The direction of a command frame: the one the user gives (a preference) for a spec whose
@@ -153,7 +153,7 @@ local function add_command(fmt, buf, tvb, s, body, pinfo, tree)
     tree:add_proto_expert_info(EXPERT.payload, plen)
     return
   end
-  add_payload(si, pbuf, plen, new, tvb, s + from, pinfo, tree)
+  add_payload(si, pbuf, plen, new, tvb, s + from, pinfo, tree, d)
 end
 
 -- Acknowledgements: the flag set, the data after the shorter header.

@@ -207,6 +207,33 @@ local function read_many(f, ctx, tree, values, owner)
   sub:set_len(ctx.off - start)
 end
 
+-- The packet carrying bytes `n` at ctx.off carry (`carries`: the field holding its command's
+-- id), read one level in the direction of the frame (`ctx.carry`) into a subtree of `item`:
+-- its command, and its payload as the command's struct; one that is not is an expert note.
+local function read_carried(f, ctx, item, values, n)
+  local key = values[f.carries]
+  local ci = key and SPEC.command_by_id[tonumber(tostring(key))]
+  if not ci then
+    item:add_proto_expert_info(EXPERT.unknown, "unknown carried command " .. tostring(key))
+    return
+  end
+  local c = SPEC.commands[ci]
+  local sub = item:add(proto, ctx.tvb(ctx.off, n), "carried: " .. c.name)
+  sub:add(F_command, ctx.tvb(ctx.off, n), c.name)
+  local si = c.payloads[ctx.carry]
+  if not si then
+    if n > 0 then sub:add_proto_expert_info(EXPERT.payload, "a command without payload has bytes") end
+    return
+  end
+  local inner = { tvb = ctx.tvb, buf = ctx.buf, off = ctx.off, limit = ctx.off + n }
+  local ok, why = pcall(read_struct, si, inner, sub)
+  if not ok then
+    sub:add_proto_expert_info(EXPERT.payload, "carried payload of " .. SPEC.structs[si].name .. ": " .. tostring(why))
+  elseif inner.off < inner.limit then
+    sub:add_proto_expert_info(EXPERT.payload, string.format("%d carried payload bytes left over", inner.limit - inner.off))
+  end
+end
+
 local function read_bytes(f, ctx, tree, values, owner)
   local n
   if f.size_from then
@@ -215,7 +242,8 @@ local function read_bytes(f, ctx, tree, values, owner)
     n = ctx.limit - ctx.off - (f.keep or 0)
   end
   if n < 0 or n > f.max or ctx.off + n > ctx.limit then error("short", 0) end
-  tree:add(f.pf, ctx.tvb(ctx.off, n))
+  local item = tree:add(f.pf, ctx.tvb(ctx.off, n))
+  if f.carries and ctx.carry then read_carried(f, ctx, item, values, n) end
   ctx.off = ctx.off + n
 end
 
@@ -303,9 +331,10 @@ read_struct = function(si, ctx, tree)
 end
 
 -- Reads struct `si` from the whole of `tvb` (whose bytes are `buf`); a payload too short, or
--- with bytes left over, gets an expert note.
-function read_payload(si, tvb, buf, len, tree)
-  local ctx = { tvb = tvb, buf = buf, off = 0, limit = len }
+-- with bytes left over, gets an expert note. `carry`: the direction a carried packet is read
+-- in (nil: the carrying bytes alone).
+function read_payload(si, tvb, buf, len, tree, carry)
+  local ctx = { tvb = tvb, buf = buf, off = 0, limit = len, carry = carry }
   local ok, why = pcall(read_struct, si, ctx, tree)
   if not ok then
     tree:add_proto_expert_info(EXPERT.payload, "payload of " .. SPEC.structs[si].name .. ": " .. tostring(why))

@@ -32,11 +32,12 @@ impl Kind<'_> for Array<'_> {
         out: &mut Fields,
     ) -> Result<(), ReadFail> {
         let fpath = Path::Field(at.path, &f.name);
+        let ctx = (at.names, at.carry);
         let mut items = Vec::new();
         match self.size_from {
             None => {
                 while field::more(r) {
-                    let v = read_elem(p, at.names, self.ty, r, &Path::Index(&fpath, items.len()))?;
+                    let v = read_elem(p, ctx, self.ty, r, &Path::Index(&fpath, items.len()))?;
                     if items.len() == self.max {
                         return Err(ReadFail::Runtime(field::group_full(r, at.size)));
                     }
@@ -46,7 +47,7 @@ impl Kind<'_> for Array<'_> {
             Some(n) if self.by_mask => {
                 let mask = out.get(n).and_then(Value::as_u64).unwrap_or(0);
                 for i in 0..field::array_len(field::mask_count(mask), self.max)? {
-                    items.push(read_elem(p, at.names, self.ty, r, &Path::Index(&fpath, i))?);
+                    items.push(read_elem(p, ctx, self.ty, r, &Path::Index(&fpath, i))?);
                 }
             }
             Some(n) => {
@@ -57,7 +58,7 @@ impl Kind<'_> for Array<'_> {
                     .and_then(Value::as_u64)
                     .unwrap_or(0);
                 for i in 0..field::array_len(stated, self.max)? {
-                    items.push(read_elem(p, at.names, self.ty, r, &Path::Index(&fpath, i))?);
+                    items.push(read_elem(p, ctx, self.ty, r, &Path::Index(&fpath, i))?);
                 }
             }
         }
@@ -89,7 +90,7 @@ impl Kind<'_> for Array<'_> {
             )?,
         }
         for (i, item) in items.iter().enumerate() {
-            write_elem(p, self.ty, item, w, &format!("{fpath}[{i}]"))?;
+            write_elem(p, self.ty, item, w, &format!("{fpath}[{i}]"), at.carry)?;
         }
         Ok(())
     }

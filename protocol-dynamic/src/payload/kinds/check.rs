@@ -67,9 +67,8 @@ impl<'a> Kind<'a> for Check<'a> {
         _s: &Struct,
         _i: usize,
         spans: &[(usize, usize)],
-        _obj: &Fields,
+        _at: &WriteAt<'_>,
         w: &mut Writer<'_>,
-        _path: &str,
     ) -> Result<(), EncodeIssue> {
         let c = self.0;
         crate::payload::check::put(c, w, spans[c.first].0, spans[c.last].1)

@@ -41,6 +41,7 @@ impl Kind<'_> for Group {
                 size: at.size,
                 path: &epath,
                 owner: Some(sizes),
+                carry: at.carry,
             };
             for (ef, en) in p.structs[self.elem].fields.iter().zip(enames) {
                 of(&ef.kind).read(p, ef, en, &eat, r, &mut item)?;
@@ -78,6 +79,7 @@ impl Kind<'_> for Group {
                 obj: iobj,
                 path: &ipath,
                 owner: at.owner,
+                carry: at.carry,
             };
             for ef in &es.fields {
                 of(&ef.kind).write(p, ef, &eat, w)?;

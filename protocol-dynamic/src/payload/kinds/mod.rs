@@ -27,21 +27,24 @@ use crate::names::{FieldNames, Names};
 /// read code runs (a repeated group reports it when full), the path of the struct, and the
 /// fields sized bytes take their size from: the struct being read (`None`: the fields read so
 /// far), or for a group's elements, which generated code reads inline, the struct that
-/// repeats them.
+/// repeats them; and the message a carried packet is read in (`carried`'s `carry`).
 pub(super) struct ReadAt<'a> {
     pub(super) names: &'a Names,
     pub(super) size: usize,
     pub(super) path: &'a Path<'a>,
     pub(super) owner: Option<&'a Fields>,
+    pub(super) carry: Option<usize>,
 }
 
 /// Where a field is written from: the object holding its value, the path of that object, and
 /// the fields sized bytes take their size from (the struct, or for a group's elements the
-/// struct that repeats them).
+/// struct that repeats them), and the message a carried packet is written in (`carried`'s
+/// `carry`).
 pub(super) struct WriteAt<'a> {
     pub(super) obj: &'a Fields,
     pub(super) path: &'a str,
     pub(super) owner: &'a Fields,
+    pub(super) carry: Option<usize>,
 }
 
 /// What the run-time codec does with one field kind, as generated code does it.
@@ -91,26 +94,19 @@ pub(super) trait Kind<'a> {
         self.read(p, &s.fields[i], fnames, at, r, out)
     }
 
-    /// Writes field `i` of struct `s` from `obj`, where a kind may need the fields around it
-    /// (`spans`: where each earlier field starts and ends).
-    #[allow(clippy::too_many_arguments)]
+    /// Writes field `i` of struct `s` from `at.obj`, where a kind may need the fields around
+    /// it (`spans`: where each earlier field starts and ends).
     fn write_in(
         &self,
         p: &Protocol,
         s: &Struct,
         i: usize,
         spans: &[(usize, usize)],
-        obj: &Fields,
+        at: &WriteAt<'_>,
         w: &mut Writer<'_>,
-        path: &str,
     ) -> Result<(), EncodeIssue> {
         let _ = spans;
-        let at = WriteAt {
-            obj,
-            path,
-            owner: obj,
-        };
-        self.write(p, &s.fields[i], &at, w)
+        self.write(p, &s.fields[i], at, w)
     }
 }
 

@@ -29,12 +29,13 @@ impl Kind<'_> for Value<'_> {
         out: &mut Fields,
     ) -> Result<(), ReadFail> {
         let fpath = Path::Field(at.path, &f.name);
+        let ctx = (at.names, at.carry);
         let v = match self.count {
-            None => read_elem(p, at.names, self.ty, r, &fpath)?,
+            None => read_elem(p, ctx, self.ty, r, &fpath)?,
             Some(n) => {
                 let mut items = Vec::with_capacity(n);
                 for i in 0..n {
-                    items.push(read_elem(p, at.names, self.ty, r, &Path::Index(&fpath, i))?);
+                    items.push(read_elem(p, ctx, self.ty, r, &Path::Index(&fpath, i))?);
                 }
                 V::Array(items)
             }
@@ -53,7 +54,7 @@ impl Kind<'_> for Value<'_> {
         let fpath = join(at.path, &f.name);
         let v = value_of(f, at, &fpath)?;
         let Some(n) = self.count else {
-            return write_elem(p, self.ty, v, w, &fpath);
+            return write_elem(p, self.ty, v, w, &fpath, at.carry);
         };
         let items = v.as_array().ok_or_else(|| {
             EncodeIssue::new(&fpath, format!("expected an array of {n} elements"))
@@ -65,7 +66,7 @@ impl Kind<'_> for Value<'_> {
             ));
         }
         for (i, item) in items.iter().enumerate() {
-            write_elem(p, self.ty, item, w, &format!("{fpath}[{i}]"))?;
+            write_elem(p, self.ty, item, w, &format!("{fpath}[{i}]"), at.carry)?;
         }
         Ok(())
     }
