@@ -30,6 +30,7 @@ protocol_kit::protocol!("../specs/dynamixel1.toml", derive(serde));
 protocol_kit::protocol!("../specs/vesc.toml", derive(serde));
 protocol_kit::protocol!("../specs/feetech.toml", derive(serde));
 protocol_kit::protocol!("../specs/lx16a.toml", derive(serde));
+protocol_kit::protocol!("../specs/shdlc.toml", derive(serde));
 protocol_kit::protocol!("tests/fixtures/features.toml", derive(serde));
 
 /// A generated packet of a serial frame of a format (an index into the spec's frames): its
@@ -305,18 +306,22 @@ fn compare_file(
 }
 
 /// A packet of a spec whose decoder is given the direction, decoded by `$decode` (a frame of
-/// the other direction is not passed here: the codec decodes it first).
+/// the other direction is not passed here: the codec decodes it first), encoded into `$len`
+/// bytes (`MAX_FRAME_LEN` unless given).
 macro_rules! given {
     ($m:ident, $decode:ident) => {
+        given!($m, $decode, $m::MAX_FRAME_LEN)
+    };
+    ($m:ident, $decode:ident, $len:expr) => {
         |_: usize, bytes: &[u8], json: &str| {
             let packet = $m::Packet::$decode(bytes).expect("a packet of the direction");
             let shown = serde_json::to_string(&packet).expect("a packet serializes");
             let read: $m::Packet = serde_json::from_str(json)
                 .unwrap_or_else(|e| panic!("{json} reads as a packet: {e}"));
             assert_eq!(read, packet, "{json}: read back");
-            let mut buf = vec![0u8; $m::MAX_FRAME_LEN];
+            let mut buf = vec![0u8; $len];
             let n = read.encode(&mut buf).expect("the packet read encodes");
-            let mut again = vec![0u8; $m::MAX_FRAME_LEN];
+            let mut again = vec![0u8; $len];
             let m = packet
                 .encode(&mut again)
                 .expect("the packet decoded encodes");
@@ -324,14 +329,18 @@ macro_rules! given {
         }
     };
 }
+
+/// SHDLC's longest frame on the wire: escaping may double every byte between the flags, and
+/// its responses (with the state byte) are its longest frames.
+const SHDLC_WIRE_LEN: usize = 2 * shdlc::RESPONSE_MAX_FRAME_LEN;
 #[test]
 fn serde_json_of_generated_packets_is_the_codecs_on_every_golden_vector() {
     let mut total = 0;
     for (spec, file, serial, can) in specs() {
         total += compare_file(spec, file, serial, can, None);
     }
-    // Dynamixel 1.0, VESC, Feetech and LX-16A: the decoder is given the direction; each reads the
-    // frames of its own.
+    // Dynamixel 1.0, VESC, Feetech, LX-16A and SHDLC: the decoder is given the direction; each
+    // reads the frames of its own (an SHDLC response by its own layout, with the state byte).
     for (spec, file, direction, serial) in [
         (
             "dynamixel1",
@@ -380,6 +389,18 @@ fn serde_json_of_generated_packets_is_the_codecs_on_every_golden_vector() {
             "lx16a_pylx16a.json",
             "response",
             given!(lx16a, decode_response),
+        ),
+        (
+            "shdlc",
+            "shdlc_sensirion.json",
+            "request",
+            given!(shdlc, decode_request, SHDLC_WIRE_LEN),
+        ),
+        (
+            "shdlc",
+            "shdlc_sensirion.json",
+            "response",
+            given!(shdlc, decode_response, SHDLC_WIRE_LEN),
         ),
     ] {
         total += compare_file(spec, file, serial, None, Some(direction));

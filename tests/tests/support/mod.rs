@@ -217,15 +217,19 @@ pub trait Spec: Sized + Debug + Clone + PartialEq + 'static {
     /// `Packet::encoded_len`.
     fn encoded_len(&self) -> usize;
 
-    /// The packet encoded into a fresh buffer of exactly `MAX_FRAME_LEN` bytes, or, for a
-    /// format that escapes its frames, of the bound its escaped frames keep: twice
-    /// `MAX_FRAME_LEN` less the two flags, which go as they are.
-    fn to_vec(&self) -> Result<Vec<u8>, EncodeError> {
-        let len = match Self::layout().escape {
+    /// The longest frame on the wire: `MAX_FRAME_LEN`, or, for a format that escapes its
+    /// frames, the bound its escaped frames keep: twice `MAX_FRAME_LEN` less the two flags,
+    /// which go as they are.
+    fn wire_max_len() -> usize {
+        match Self::layout().escape {
             Some(_) => 2 * Self::MAX_FRAME_LEN - 2,
             None => Self::MAX_FRAME_LEN,
-        };
-        let mut buf = vec![0u8; len];
+        }
+    }
+
+    /// The packet encoded into a fresh buffer of exactly [`Self::wire_max_len`] bytes.
+    fn to_vec(&self) -> Result<Vec<u8>, EncodeError> {
+        let mut buf = vec![0u8; Self::wire_max_len()];
         let n = self.encode(&mut buf)?;
         buf.truncate(n);
         Ok(buf)
@@ -387,6 +391,14 @@ pub fn unescaped(layout: &FrameLayout<'_>, wire: &[u8]) -> Vec<u8> {
         .unwrap_or_else(|e| panic!("{}: no escaped frame: {e:?}", hex(wire)));
     out.truncate(n);
     out
+}
+
+/// The bytes the unescaped `frame` of `layout` (as a decoder yields it) takes on the wire: its
+/// escaped length where the format escapes its frames, else its length.
+pub fn wire_len(layout: &FrameLayout<'_>, frame: &[u8]) -> usize {
+    layout
+        .escape
+        .map_or(frame.len(), |escape| escape.escaped_len(frame))
 }
 
 /// The frame at the start of `wire` as `layout` parses it ([`FrameLayout::parse_wire`]:

@@ -19,7 +19,7 @@ use crate::support::fault::{FaultStream, Kind, build};
 use crate::support::model::{Model, length_field, model};
 use crate::support::oracle::params as intern;
 use crate::support::stream::run;
-use crate::support::{Rng, Source, Spec, hex};
+use crate::support::{Rng, Source, Spec, hex, unescaped, wire_len};
 use protocol_codegen::ir;
 use protocol_kit::decoder::Probe;
 
@@ -240,7 +240,9 @@ fn checks_hold(frame: &ir::Frame, bytes: &[u8]) -> bool {
     })
 }
 
-/// Feeds one stream in `sizes` and checks it; `chunked` allows the documented nested case.
+/// Feeds one stream in `sizes` and checks it; `chunked` allows the documented nested case. The
+/// frames sent are compared as the decoder yields them (unescaped, on a format that escapes its
+/// frames), and the decoder's frames span their bytes on the wire.
 fn check_stream<S: Spec>(
     m: &Model,
     fs: &FaultStream,
@@ -258,6 +260,7 @@ fn check_stream<S: Spec>(
     let mut delivered = vec![false; fs.sent.len()];
     let mut last = None;
     let mut false_frames = Vec::new();
+    let yielded = |wire: &[u8]| unescaped(m.format_for(wire).layout, wire);
     for (offset, bytes) in &r.frames {
         assert!(
             checks_hold(m.format_for(bytes).frame(), bytes),
@@ -267,7 +270,7 @@ fn check_stream<S: Spec>(
         );
         let at = *offset as usize;
         match sent_at.get(&at) {
-            Some(&i) if !fs.sent[i].kind.touches() && fs.sent[i].bytes == *bytes => {
+            Some(&i) if !fs.sent[i].kind.touches() && yielded(&fs.sent[i].bytes) == *bytes => {
                 assert!(last < Some(i), "{}: frame {i} out of order", S::NAME);
                 last = Some(i);
                 delivered[i] = true;
@@ -278,7 +281,7 @@ fn check_stream<S: Spec>(
                 t.delivered_flagged += u64::from(body_len(format, bytes) < bytes.len());
             }
             _ => {
-                let end = at + bytes.len();
+                let end = at + wire_len(m.format_for(bytes).layout, bytes);
                 let owner = sent_at.range(..=at).next_back().map(|(_, &i)| &fs.sent[i]);
                 let owner = owner.filter(|s| at < s.offset + s.bytes.len());
                 // A touched frame's own bytes, made whole again by its neighbours: a sync word
@@ -294,11 +297,12 @@ fn check_stream<S: Spec>(
                 // (CRSF's address, a sync from a set: a set value inserted after it, or a bit
                 // flip that makes it another value of the set): no check can see those.
                 if overlapping.any(|s| {
+                    let original = yielded(&s.original);
                     s.kind.touches()
-                        && (s.original == *bytes
+                        && (original == *bytes
                             || same_but_unchecked(
                                 m.format_for(&s.original).frame(),
-                                &s.original,
+                                &original,
                                 bytes,
                             ))
                 }) {
@@ -318,7 +322,7 @@ fn check_stream<S: Spec>(
                     t.examples.push(format!(
                         "at {at}: {} (stream from {from}: {}; sent there: {sent:?})",
                         hex(bytes),
-                        hex(&fs.bytes[from..(at + bytes.len() + 16).min(fs.bytes.len())])
+                        hex(&fs.bytes[from..(end + 16).min(fs.bytes.len())])
                     ));
                 }
                 false_frames.push((at, end, true));
@@ -337,10 +341,9 @@ fn check_stream<S: Spec>(
             continue;
         }
         let (start, end) = (s.offset, s.offset + s.bytes.len());
-        let inside = r
-            .frames
-            .iter()
-            .any(|(o, b)| *o as usize > start && *o as usize + b.len() <= end);
+        let inside = r.frames.iter().any(|(o, b)| {
+            *o as usize > start && *o as usize + wire_len(m.format_for(b).layout, b) <= end
+        });
         if chunked && inside {
             t.lost_nested += 1;
         } else if let Some(&(_, _, collision)) =

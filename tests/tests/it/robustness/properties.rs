@@ -18,7 +18,7 @@ use protocol_kit::{DecodeError, EncodeError, Event, Reject};
 
 use crate::support::model::{Model, model, sync_word};
 use crate::support::stream::{assert_chunking_invariant, assert_same_packet, check_packet, run};
-use crate::support::{Entropy, Source, Spec, hex};
+use crate::support::{Entropy, Source, Spec, hex, unescaped};
 
 /// CI-sized: proptest's default case count (or `PROPTEST_CASES`), no regression files written
 /// into the source tree (regressions become named tests instead).
@@ -40,7 +40,9 @@ fn chunk_sizes() -> impl Strategy<Value = Vec<usize>> {
 }
 
 /// A canonical frame decodes to a packet that encodes back to the same bytes and decodes to the
-/// same packet; a buffer one byte short is an error.
+/// same packet; a buffer one byte short is an error. The frames are as they go on the wire;
+/// `from_frame` reads a frame as the decoder yields it (unescaped, on a format that escapes its
+/// frames), `decode` the wire's bytes.
 fn message_round_trip<S: Spec>(entropy: &[u8]) {
     let m = model::<S>();
     let frame = m.try_canonical(&mut Entropy(entropy)).unwrap_or_else(|r| {
@@ -52,7 +54,8 @@ fn message_round_trip<S: Spec>(entropy: &[u8]) {
             r.error
         )
     });
-    let packet = S::from_frame(&frame).unwrap_or_else(|e| {
+    let yielded = unescaped(m.format_for(&frame).layout, &frame);
+    let packet = S::from_frame(&yielded).unwrap_or_else(|e| {
         panic!(
             "{}: canonical frame {} does not decode: {e}",
             S::NAME,
@@ -83,13 +86,15 @@ fn message_round_trip<S: Spec>(entropy: &[u8]) {
     ));
 }
 
-/// Any frame that passes the checks decodes or errs; every prefix of it is `Truncated`.
+/// Any frame that passes the checks decodes or errs; every prefix of it is `Truncated`. `decode`
+/// reads the wire's bytes, `from_frame` and `check_packet` the frame the decoder yields of them.
 fn raw_frames<S: Spec>(entropy: &[u8]) {
     let m = model::<S>();
     let mut src = Entropy(entropy);
     let frame = m.raw(&mut src);
-    check_packet::<S>(&frame);
-    match (S::decode(&frame), S::from_frame(&frame)) {
+    let yielded = unescaped(m.format_for(&frame).layout, &frame);
+    check_packet::<S>(&yielded);
+    match (S::decode(&frame), S::from_frame(&yielded)) {
         (Ok(a), Ok(b)) => assert_same_packet(&a, &b, &frame),
         (a, b) => assert_eq!(
             a.err(),
@@ -105,7 +110,8 @@ fn raw_frames<S: Spec>(entropy: &[u8]) {
     ));
 }
 
-/// Frames back to back: fed whole they are exactly the frames sent; in chunks, the same.
+/// Frames back to back: fed whole they are exactly the frames sent (as the decoder yields them:
+/// unescaped, on a format that escapes its frames); in chunks, the same.
 fn back_to_back<S: Spec>(entropy: &[u8], sizes: &[usize]) {
     let m = model::<S>();
     let mut src = Entropy(entropy);
@@ -117,7 +123,8 @@ fn back_to_back<S: Spec>(entropy: &[u8], sizes: &[usize]) {
         } else {
             m.raw(&mut src)
         };
-        sent.push((stream.len() as u64, frame.clone()));
+        let yielded = unescaped(m.format_for(&frame).layout, &frame);
+        sent.push((stream.len() as u64, yielded));
         stream.extend(frame);
     }
     let whole = run::<S>(&stream, &[stream.len()]);
