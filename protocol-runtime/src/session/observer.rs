@@ -218,16 +218,20 @@ impl<const OPEN: usize, A: Awaiting> Observer<OPEN, A> {
         self.expire(at);
         let heard = rules.heard(frame).ok()?;
         let refused = rules.refuses(frame);
+        let nack = matches!(heard, super::Heard::Command(k) if Some(k) == rules.nack);
         let (i, w) = self
             .open
             .iter()
             .enumerate()
             .filter_map(|(i, o)| o.map(|o| (i, o)))
-            .filter(|(_, o)| Self::ends(o, heard, refused))
+            .filter(|(_, o)| Self::ends(o, heard, refused, nack))
             .filter(|(_, o)| o.answer != Answer::Message || self.latest == Some(o.index))
             .filter(|(_, o)| rules.repeats(&o.ids, frame))
             .filter(|(_, o)| Self::awaited(rules, o, frame))
             .min_by_key(|(_, o)| o.index)?;
+        // The NACK command refuses a request unless it is that request's own answer (HFLink's
+        // handshake answers itself and refuses every other request).
+        let refused = refused || (nack && !SessionRules::is_answer(w.answer, w.ids.key, heard));
         let open = if refused {
             None
         } else {
@@ -250,12 +254,13 @@ impl<const OPEN: usize, A: Awaiting> Observer<OPEN, A> {
     }
 
     /// Rule, as the requester's: a frame heard as `heard` ends the request `w` when it is the
-    /// answer `w` expects, or when it is a refusal (`refused`) that carries `w`'s command.
-    fn ends(w: &Watched<A>, heard: super::Heard, refused: bool) -> bool {
+    /// answer `w` expects, the spec's NACK command (`nack`), or a frame of a refusing direction
+    /// (`refused`) that carries `w`'s command.
+    fn ends(w: &Watched<A>, heard: super::Heard, refused: bool, nack: bool) -> bool {
         if refused {
             heard == super::Heard::Command(w.ids.key)
         } else {
-            SessionRules::is_answer(w.answer, w.ids.key, heard)
+            nack || SessionRules::is_answer(w.answer, w.ids.key, heard)
         }
     }
 

@@ -175,6 +175,33 @@ fn a_nack_refuses_and_fire_and_forget_holds_no_slot() {
 }
 
 #[test]
+fn the_observer_pairs_the_nack_as_the_refusal_of_the_request_it_repeats() {
+    let mut wire = Observer::<4>::new();
+    let mut ask = frame(2);
+    ask[1] = 7;
+    LAYOUT.seal(&mut ask).unwrap();
+    assert!(wire.request(&OPEN, 0, Some(10), &ask));
+    let mut other = frame(9);
+    other[1] = 8;
+    LAYOUT.seal(&mut other).unwrap();
+    assert_eq!(wire.answer(&OPEN, Some(11), &other), None);
+    let mut nack = frame(9);
+    nack[1] = 7;
+    LAYOUT.seal(&mut nack).unwrap();
+    assert_eq!(
+        wire.answer(&OPEN, Some(12), &nack),
+        Some(Paired {
+            request: 0,
+            round_trip: Some(2),
+            open: false,
+            refused: true,
+        })
+    );
+    assert_eq!(wire.answer(&OPEN, Some(13), &nack), None);
+    assert_eq!((wire.answered(), wire.finish()), (1, 0));
+}
+
+#[test]
 fn the_watchdog_expires_once_per_lapse() {
     let mut res = Responder::<_, 1, 4>::new(&OPEN);
     assert_eq!(res.poll(1000), None);
