@@ -129,7 +129,37 @@ fn struct_schema(p: &Protocol, si: usize) -> Value {
     for f in &s.fields {
         field_schema(p, f, &f.kind, true, &mut props, &mut required);
     }
+    for c in &s.carries {
+        let f = &s.fields[c.field];
+        if let Some(schema) = props.get_mut(&f.name) {
+            *schema = with_doc(carried_schema(p), &f.doc, &f.unit);
+        }
+    }
     json!({"type": "object", "properties": props, "required": required})
+}
+
+/// A carrying field (`carries`): the packet it carries, its command and payload one level
+/// deep, as `protocol decode` shows it; its bytes and the error of reading them when they hold
+/// no packet of the spec; or its bytes alone where the codec does not open it (inside a
+/// repeated group's elements).
+fn carried_schema(p: &Protocol) -> Value {
+    let bytes = json!({"type": "string", "contentEncoding": "base16"});
+    json!({"anyOf": [
+        {
+            "type": "object",
+            "properties": {
+                "command": string_enum(p.commands.iter().map(|c| &c.name)),
+                "payload": {"type": ["object", "string", "null"]},
+            },
+            "required": ["command", "payload"],
+        },
+        {
+            "type": "object",
+            "properties": {"bytes": bytes, "error": {"type": "string"}},
+            "required": ["bytes", "error"],
+        },
+        bytes,
+    ]})
 }
 
 /// The properties a field adds to its struct's object (none, one, or one per bit member).
