@@ -36,10 +36,10 @@ impl Checksum<'_> {
         }
     }
 
-    /// The arms of [`compute`](Self::compute) for the sums, xors and Fletcher checks; `None`
-    /// for the other kinds.
+    /// The check value of the sums, xors and Fletcher checks (the one list of them, which
+    /// [`compute`](Self::compute) takes too); `None` for the other kinds.
     #[cfg_attr(not(protocol_opt0), inline(always))]
-    fn compute_sum(&self, data: &[u8]) -> Option<u64> {
+    pub(crate) fn compute_sum(&self, data: &[u8]) -> Option<u64> {
         Some(match self {
             Checksum::Sum8 => u64::from(sum::sum8(data)),
             Checksum::SumMod255 => u64::from(sum::sum_mod255(data)),
